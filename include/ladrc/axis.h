@@ -1,0 +1,141 @@
+/**
+ * @file axis.h
+ * @brief One attitude axis behind one config and one state: LADRC (reference
+ *        shaping + LESO + control law) or the PID baseline. The command of
+ *        every variant is a torque in N m.
+ *
+ * Sign convention: positive torque accelerates the angle positively; angles
+ * in rad (roll = phi about body X, pitch = theta about Y, yaw = psi about Z).
+ *
+ * LADRC tick k, measured angle y_k, raw reference ref_k (PAPER.md eq. 9-14):
+ *
+ *     LESO   z   <- step(y_k, applied torque of tick k-1)     (leso.h)
+ *     shaper (r, r', r'') <- TD(ref_k) | (ref_k, 0, 0)       (td.h)
+ *     law    u0 = wc^2 (r - z1) + 2 wc (r' - z2) + r''
+ *            u_k = clamp((u0 - z3) / b0, u_min_Nm, u_max_Nm)
+ *
+ * with b0 in rad/s^2 per N m (1/J for an axis of inertia J: the paper's b0 = 1
+ * on an acceleration command). The LESO is fed the torque actually applied:
+ * u_k itself unless the caller reports another value with
+ * ladrc_axis_set_applied (e.g. after the mixer saturated), so saturation never
+ * winds the observer up.
+ *
+ * Faults: a non-finite reference or angle leaves every state untouched, holds
+ * the previous command and raises LADRC_FAULT_INPUT; the next finite tick
+ * continues from the held state. A non-finite rate raises LADRC_FAULT_RATE
+ * and the tick runs without it.
+ */
+#ifndef LADRC_AXIS_H
+#define LADRC_AXIS_H
+
+#include "ladrc/leso.h"
+#include "ladrc/pid.h"
+#include "ladrc/td.h"
+#include "ladrc/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum {
+    LADRC_VARIANT_LADRC = 0,    /**< traditional LADRC: TD + LESO + control law */
+    LADRC_VARIANT_LP_MLADRC = 1,/**< modified, low precision: not in this version (init rejects) */
+    LADRC_VARIANT_HP_MLADRC = 2,/**< modified, high precision: not in this version (init rejects) */
+    LADRC_VARIANT_PID = 3,      /**< PID baseline (pid.h) */
+    LADRC_VARIANT_COUNT
+} ladrc_variant_t;
+
+typedef enum {
+    LADRC_SHAPER_TD = 0,  /**< Han's tracking differentiator gives r, r', r'' */
+    LADRC_SHAPER_NONE = 1 /**< raw reference, r' = r'' = 0 */
+} ladrc_shaper_t;
+
+/**
+ * Axis configuration; can live in flash. Only the fields the variant uses
+ * are read and validated: LADRC reads the common fields, wc_rad_s .. td_h0_s;
+ * PID reads the common fields and pid_*.
+ */
+typedef struct {
+    ladrc_variant_t variant;
+    ladrc_real_t dt_s;            /**< fixed control step (s), > 0 */
+    ladrc_real_t u_min_Nm;        /**< torque command lower bound (N m), may be -INFINITY */
+    ladrc_real_t u_max_Nm;        /**< torque command upper bound (N m), > u_min_Nm */
+    /* LADRC */
+    ladrc_real_t wc_rad_s;        /**< controller bandwidth (rad/s), > 0; closed loop (s + wc)^2 */
+    ladrc_real_t wo_rad_s;        /**< observer bandwidth (rad/s), > 0 */
+    ladrc_real_t b0;              /**< rad/s^2 per N m (1/J), non-zero */
+    ladrc_leso_method_t leso_method;
+    ladrc_shaper_t shaper;
+    ladrc_real_t td_accel_rad_s2; /**< TD acceleration bound (rad/s^2), > 0 (shaper TD only) */
+    ladrc_real_t td_h0_s;         /**< TD filter factor (s), >= dt_s (shaper TD only) */
+    /* PID */
+    ladrc_real_t pid_kp;          /**< N m / rad */
+    ladrc_real_t pid_ki;          /**< N m / (rad s) */
+    ladrc_real_t pid_kd;          /**< N m s / rad */
+    ladrc_real_t pid_d_filter_tau_s; /**< derivative filter time constant (s), 0 = none */
+    ladrc_real_t pid_i_limit_Nm;  /**< |integral| bound (N m), INFINITY = none */
+} ladrc_axis_config_t;
+
+/** Axis state; owned by the caller, read through the getters. */
+typedef struct {
+    ladrc_variant_t variant;
+    ladrc_shaper_t shaper;
+    ladrc_real_t u_min_Nm, u_max_Nm;
+    ladrc_real_t kp, kd, b0;      /**< wc^2, 2 wc, b0 */
+    ladrc_td_t td;
+    ladrc_leso_t leso;
+    ladrc_pid_t pid;
+    ladrc_ref_t ref;              /**< shaped reference of the latest tick */
+    ladrc_real_t output_Nm;       /**< latest command */
+    ladrc_real_t applied_Nm;      /**< torque the LESO sees at the next tick */
+    uint32_t consecutive_faults;  /**< ticks in a row with LADRC_FAULT_INPUT or _STATE */
+    ladrc_fault_t faults;         /**< flags of the latest tick */
+} ladrc_axis_t;
+
+/**
+ * Fills cfg with the paper's settings for a variant: wc = 15, wo = 75,
+ * b0 = 1 / inertia_kg_m2, ZOH LESO, TD shaping (R = 20 rad/s^2, h0 = dt_s);
+ * PID kp = 20, ki = 20, kd = 0.05, no derivative filter; no torque or
+ * integral limits (ideal actuators, as in the paper: set real ones for flight).
+ */
+void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant,
+                               ladrc_real_t dt_s, ladrc_real_t inertia_kg_m2);
+
+/** Validates the fields the variant reads (status names the first bad one)
+ *  and resets at angle 0. LP/HP variants: LADRC_ERR_VARIANT_UNSUPPORTED. */
+ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg);
+
+/** Restarts at rest on angle_rad (reference shaper and observer start there). */
+void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad);
+
+/** One tick with angle only. @return torque command (N m) */
+ladrc_real_t ladrc_axis_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad);
+
+/** One tick with a measured rate too (PID uses it for its derivative; LADRC
+ *  estimates the rate itself and ignores it). @return torque command (N m) */
+ladrc_real_t ladrc_axis_step_with_rate(ladrc_axis_t *axis, ladrc_real_t ref_rad,
+                                       ladrc_real_t angle_rad, ladrc_real_t rate_rad_s);
+
+/** Reports the torque actually applied since the last tick (N m), e.g. after
+ *  mixer saturation. Non-finite: ignored, LADRC_FAULT_APPLIED raised. */
+void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm);
+
+/** Fault flags of the latest tick (and of set_applied since). */
+ladrc_fault_t ladrc_axis_get_faults(const ladrc_axis_t *axis);
+
+/** Ticks in a row that raised LADRC_FAULT_INPUT or LADRC_FAULT_STATE. */
+uint32_t ladrc_axis_get_consecutive_faults(const ladrc_axis_t *axis);
+
+/** Shaped reference of the latest tick (PID: raw reference, zero derivatives). */
+void ladrc_axis_get_reference(const ladrc_axis_t *axis, ladrc_ref_t *ref);
+
+/** Observer estimates: angle (rad), rate (rad/s), total disturbance (rad/s^2).
+ *  PID has no observer: last measured angle, its filtered rate, and 0. */
+void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad,
+                             ladrc_real_t *rate_rad_s, ladrc_real_t *disturbance_rad_s2);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LADRC_AXIS_H */

@@ -1,0 +1,96 @@
+/**
+ * @file pid.h
+ * @brief PID baseline on one attitude axis: angle error in rad in, torque in
+ *        N m out; derivative on measurement, optional first-order derivative
+ *        filter, integrator clamp and integrator freeze while the applied
+ *        torque is saturated in the error's direction.
+ *
+ * Discrete time, fixed step h = dt_s, e_k = ref_k - y_k:
+ *
+ *     D input  m_k = measured rate, or (y_k - y_k-1) / h without one
+ *     filter   d_k = d_k-1 + (m_k - d_k-1) h / (tau + h)     (tau = 0: d_k = m_k)
+ *     integral I_k = clamp(I_k-1 + ki h e_k, +-i_limit)     unless frozen
+ *     output   u_k = clamp(kp e_k + I_k - kd d_k, u_min, u_max)
+ *
+ * Frozen: the previous tick's applied torque was below the unclamped command
+ * and e_k > 0, or above it and e_k < 0 (integrating would push further into
+ * saturation). The applied torque is the clamped output unless the caller
+ * reports another one with ladrc_pid_set_applied (e.g. after the mixer).
+ * The comparison is exact: a mixer that did not saturate must report the
+ * command itself (or not call set_applied), not a recomputed torque with
+ * rounding error, or the integrator freezes spuriously.
+ * First step after init (or after a reset with a non-finite measurement):
+ * no previous measurement, so the finite difference is 0.
+ * Gains are continuous-time. Paper baseline: kp = 20, ki = 20, kd = 0.05.
+ */
+#ifndef LADRC_PID_H
+#define LADRC_PID_H
+
+#include "ladrc/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct {
+    ladrc_real_t dt_s;           /**< fixed step (s), > 0 */
+    ladrc_real_t kp;             /**< N m / rad, >= 0 */
+    ladrc_real_t ki;             /**< N m / (rad s), >= 0 */
+    ladrc_real_t kd;             /**< N m s / rad, >= 0 */
+    ladrc_real_t d_filter_tau_s; /**< derivative filter time constant (s), 0 = unfiltered */
+    ladrc_real_t i_limit_Nm;     /**< |integral term| bound (N m), >= 0 (may be INFINITY) */
+    ladrc_real_t u_min_Nm;       /**< output lower bound (N m), may be -INFINITY */
+    ladrc_real_t u_max_Nm;       /**< output upper bound (N m), > u_min_Nm, may be INFINITY */
+} ladrc_pid_config_t;
+
+/** PID state; owned by the caller. */
+typedef struct {
+    ladrc_real_t dt_s, kp, ki, kd;
+    ladrc_real_t d_alpha;          /**< h / (tau + h), derived at init */
+    ladrc_real_t i_limit_Nm, u_min_Nm, u_max_Nm;
+    ladrc_real_t integral_Nm;      /**< integral term (N m) */
+    ladrc_real_t d_filtered_rad_s; /**< filtered derivative of the measurement (rad/s) */
+    ladrc_real_t prev_meas_rad;    /**< last finite measurement */
+    ladrc_real_t unclamped_Nm;     /**< last command before clamping */
+    ladrc_real_t output_Nm;        /**< last command after clamping */
+    ladrc_real_t applied_Nm;       /**< torque applied since the last step */
+    uint8_t has_prev_meas;         /**< 0 until a first measurement was seen */
+    ladrc_fault_t faults;          /**< flags of the latest step */
+} ladrc_pid_t;
+
+/** Validates every field (LADRC_ERR_DT_S, _PID_KP, _PID_KI, _PID_KD, _PID_D_TAU_S,
+ *  _PID_I_LIMIT_NM, _U_LIMITS, checked in that order; LADRC_ERR_NULL) and resets.
+ *  i_limit_Nm may be +INFINITY and u_min_Nm / u_max_Nm -INFINITY / +INFINITY (no
+ *  clamp); NaN is rejected. On a config error *pid is zeroed: its output stays 0. */
+ladrc_status_t ladrc_pid_init(ladrc_pid_t *pid, const ladrc_pid_config_t *cfg);
+
+/** Clears integral, derivative filter, faults and history; meas_rad seeds the derivative.
+ *  The held output becomes 0 clamped into [u_min_Nm, u_max_Nm]. A non-finite meas_rad
+ *  seeds nothing (the next good measurement does) and raises LADRC_FAULT_INPUT. */
+void ladrc_pid_reset(ladrc_pid_t *pid, ladrc_real_t meas_rad);
+
+/**
+ * One tick. rate_rad_s may be NULL (no rate sensor: differentiate meas_rad).
+ * Non-finite ref/meas: state held, last output returned, LADRC_FAULT_INPUT;
+ * the next good step continues as if the bad samples had been skipped.
+ * Non-finite *rate_rad_s: the finite difference is used, LADRC_FAULT_RATE.
+ * An update that would overflow the state (huge finite inputs): state held,
+ * last output returned, LADRC_FAULT_STATE.
+ * @return torque command (N m), within [u_min_Nm, u_max_Nm]
+ */
+ladrc_real_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t meas_rad,
+                            const ladrc_real_t *rate_rad_s);
+
+/** Reports the torque actually applied after the last step (N m). A non-finite
+ *  value is ignored (the clamped output counts) and adds LADRC_FAULT_APPLIED to the
+ *  step's flags (set_applied never clears a flag). */
+void ladrc_pid_set_applied(ladrc_pid_t *pid, ladrc_real_t applied_Nm);
+
+/** Fault flags of the latest step or set_applied call. */
+ladrc_fault_t ladrc_pid_get_faults(const ladrc_pid_t *pid);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LADRC_PID_H */

@@ -1,0 +1,115 @@
+/**
+ * @file types.h
+ * @brief The real type, status codes, fault flags and small numeric helpers
+ *        shared by every ladrc module.
+ *
+ * `ladrc_real_t` is `float` by default (single-precision FPU of a Cortex-M4F)
+ * and `double` when the library is built with `LADRC_REAL_DOUBLE` defined.
+ * Write literals as `LADRC_R(0.5)` so they take the right type in both builds.
+ */
+#ifndef LADRC_TYPES_H
+#define LADRC_TYPES_H
+
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#ifdef LADRC_REAL_DOUBLE
+typedef double ladrc_real_t;
+#define LADRC_R(x) (x)
+#else
+typedef float ladrc_real_t;
+/* Appends the f suffix so float builds never promote to double. */
+#define LADRC_R(x) (x##f)
+#endif
+
+/** Programmer-error check (null pointers in debug builds); never used on flight data.
+ *  Override by defining LADRC_ASSERT before including any ladrc header. */
+#ifndef LADRC_ASSERT
+#define LADRC_ASSERT(cond) ((void)0)
+#endif
+
+/**
+ * Result of an init or a configuration helper. Each error names the one
+ * configuration field that is wrong, so a caller can report it directly.
+ */
+typedef enum {
+    LADRC_OK = 0,
+    LADRC_ERR_NULL,               /**< a pointer argument is NULL */
+    LADRC_ERR_DT_S,               /**< dt_s not finite or not > 0 */
+    LADRC_ERR_WO_RAD_S,           /**< wo_rad_s not finite or not > 0 */
+    LADRC_ERR_WC_RAD_S,           /**< wc_rad_s not finite or not > 0 */
+    LADRC_ERR_B0,                 /**< b0 not finite or zero */
+    LADRC_ERR_LESO_METHOD,        /**< leso_method not a ladrc_leso_method_t */
+    LADRC_ERR_LESO_EULER_UNSTABLE,/**< Euler LESO with wo_rad_s * dt_s >= 2: observer poles outside the unit circle */
+    LADRC_ERR_SHAPER,             /**< shaper not a ladrc_shaper_t */
+    LADRC_ERR_TD_ACCEL_RAD_S2,    /**< td_accel_rad_s2 not finite or not > 0 */
+    LADRC_ERR_TD_H0_S,            /**< td_h0_s not finite or < dt_s */
+    LADRC_ERR_VARIANT,            /**< variant not a ladrc_variant_t */
+    LADRC_ERR_VARIANT_UNSUPPORTED,/**< variant known but not built into this library version */
+    LADRC_ERR_U_LIMITS,           /**< u_min_Nm / u_max_Nm NaN or u_min_Nm >= u_max_Nm (infinite = no limit) */
+    LADRC_ERR_PID_KP,             /**< kp not finite or < 0 */
+    LADRC_ERR_PID_KI,             /**< ki not finite or < 0 */
+    LADRC_ERR_PID_KD,             /**< kd not finite or < 0 */
+    LADRC_ERR_PID_D_TAU_S,        /**< d_filter_tau_s not finite or < 0 */
+    LADRC_ERR_PID_I_LIMIT_NM,     /**< i_limit_Nm NaN or < 0 (INFINITY = no clamp) */
+    LADRC_ERR_SETTLING_TIME_S,    /**< settling_time_s not finite or not > 0 */
+    LADRC_ERR_PLANT_ORDER,        /**< plant order outside 1..3 */
+    LADRC_ERR_INERTIA_KG_M2,      /**< inertia not finite or not > 0 */
+    LADRC_ERR_WO_RATIO,           /**< observer-to-controller bandwidth ratio not finite or not > 0 */
+    LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
+} ladrc_status_t;
+
+/** Short, stable text for a status code ("LADRC_ERR_DT_S: ..."); never NULL. */
+const char *ladrc_status_str(ladrc_status_t status);
+
+/**
+ * Fault flags raised by a step. They describe the latest step only; a
+ * module also counts consecutive faulty steps so a caller can fail over.
+ */
+enum {
+    LADRC_FAULT_NONE = 0u,
+    LADRC_FAULT_INPUT = 1u << 0,   /**< reference or measured angle not finite: state held */
+    LADRC_FAULT_RATE = 1u << 1,    /**< measured rate not finite: step ran without it */
+    LADRC_FAULT_APPLIED = 1u << 2, /**< applied command not finite: own command used instead */
+    LADRC_FAULT_STATE = 1u << 3    /**< an update would have made the state non-finite: state held */
+};
+typedef uint8_t ladrc_fault_t;
+
+/** 1 if x is neither NaN nor infinite. */
+static inline int ladrc_is_finite(ladrc_real_t x) { return isfinite(x) ? 1 : 0; }
+
+static inline ladrc_real_t ladrc_clamp(ladrc_real_t x, ladrc_real_t lo, ladrc_real_t hi)
+{
+    return (x < lo) ? lo : ((x > hi) ? hi : x);
+}
+
+static inline ladrc_real_t ladrc_sign(ladrc_real_t x)
+{
+    return (x > LADRC_R(0.0)) ? LADRC_R(1.0) : ((x < LADRC_R(0.0)) ? LADRC_R(-1.0) : LADRC_R(0.0));
+}
+
+#ifdef LADRC_REAL_DOUBLE
+static inline ladrc_real_t ladrc_sqrt(ladrc_real_t x) { return sqrt(x); }
+static inline ladrc_real_t ladrc_fabs(ladrc_real_t x) { return fabs(x); }
+static inline ladrc_real_t ladrc_exp(ladrc_real_t x) { return exp(x); }
+static inline ladrc_real_t ladrc_expm1(ladrc_real_t x) { return expm1(x); }
+#else
+static inline ladrc_real_t ladrc_sqrt(ladrc_real_t x) { return sqrtf(x); }
+static inline ladrc_real_t ladrc_fabs(ladrc_real_t x) { return fabsf(x); }
+static inline ladrc_real_t ladrc_exp(ladrc_real_t x) { return expf(x); }
+static inline ladrc_real_t ladrc_expm1(ladrc_real_t x) { return expm1f(x); }
+#endif
+
+/** 1 if x is finite and strictly positive: the check most config fields need. */
+static inline int ladrc_is_positive(ladrc_real_t x) { return ladrc_is_finite(x) && x > LADRC_R(0.0); }
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LADRC_TYPES_H */

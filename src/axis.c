@@ -1,0 +1,226 @@
+/* One attitude axis: LADRC or PID behind one API (see axis.h). */
+#include "ladrc/axis.h"
+
+/* Paper settings (Section 5) used by ladrc_axis_config_default. */
+#define AXIS_DEFAULT_WC_RAD_S LADRC_R(15.0)
+#define AXIS_DEFAULT_WO_RAD_S LADRC_R(75.0)
+/* At most the initial acceleration the ideal loop (s + wc)^2 asks for a 10 deg
+ * step (wc^2 * 0.17 rad = 39 rad/s^2), so shaping lowers the torque peak;
+ * the shaped 10 deg step still takes only 2 sqrt(0.17 / 20) = 0.19 s. */
+#define AXIS_DEFAULT_TD_ACCEL_RAD_S2 LADRC_R(20.0)
+#define AXIS_DEFAULT_PID_KP LADRC_R(20.0)
+#define AXIS_DEFAULT_PID_KI LADRC_R(20.0)
+#define AXIS_DEFAULT_PID_KD LADRC_R(0.05)
+
+void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant,
+                               ladrc_real_t dt_s, ladrc_real_t inertia_kg_m2)
+{
+    LADRC_ASSERT(cfg != NULL);
+    const ladrc_real_t unlimited = (ladrc_real_t)INFINITY;
+    cfg->variant = variant;
+    cfg->dt_s = dt_s;
+    cfg->u_min_Nm = -unlimited;
+    cfg->u_max_Nm = unlimited;
+    cfg->wc_rad_s = AXIS_DEFAULT_WC_RAD_S;
+    cfg->wo_rad_s = AXIS_DEFAULT_WO_RAD_S;
+    cfg->b0 = LADRC_R(1.0) / inertia_kg_m2;
+    cfg->leso_method = LADRC_LESO_ZOH;
+    cfg->shaper = LADRC_SHAPER_TD;
+    cfg->td_accel_rad_s2 = AXIS_DEFAULT_TD_ACCEL_RAD_S2;
+    cfg->td_h0_s = dt_s;
+    cfg->pid_kp = AXIS_DEFAULT_PID_KP;
+    cfg->pid_ki = AXIS_DEFAULT_PID_KI;
+    cfg->pid_kd = AXIS_DEFAULT_PID_KD;
+    cfg->pid_d_filter_tau_s = LADRC_R(0.0);
+    cfg->pid_i_limit_Nm = unlimited;
+}
+
+static ladrc_status_t init_ladrc(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
+{
+    if (!ladrc_is_positive(cfg->wc_rad_s)) {
+        return LADRC_ERR_WC_RAD_S;
+    }
+    const ladrc_leso_config_t leso_cfg = {cfg->dt_s, cfg->wo_rad_s, cfg->b0, cfg->leso_method};
+    ladrc_status_t status = ladrc_leso_init(&axis->leso, &leso_cfg);
+    if (status != LADRC_OK) {
+        return status;
+    }
+    if (cfg->shaper == LADRC_SHAPER_TD) {
+        const ladrc_td_config_t td_cfg = {cfg->dt_s, cfg->td_accel_rad_s2, cfg->td_h0_s};
+        status = ladrc_td_init(&axis->td, &td_cfg);
+        if (status != LADRC_OK) {
+            return status;
+        }
+    } else if (cfg->shaper != LADRC_SHAPER_NONE) {
+        return LADRC_ERR_SHAPER;
+    }
+    axis->shaper = cfg->shaper;
+    axis->kp = cfg->wc_rad_s * cfg->wc_rad_s;
+    axis->kd = LADRC_R(2.0) * cfg->wc_rad_s;
+    axis->b0 = cfg->b0;
+    return LADRC_OK;
+}
+
+static ladrc_status_t init_pid(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
+{
+    const ladrc_pid_config_t pid_cfg = {cfg->dt_s,           cfg->pid_kp,
+                                        cfg->pid_ki,         cfg->pid_kd,
+                                        cfg->pid_d_filter_tau_s, cfg->pid_i_limit_Nm,
+                                        cfg->u_min_Nm,       cfg->u_max_Nm};
+    return ladrc_pid_init(&axis->pid, &pid_cfg);
+}
+
+ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
+{
+    if (axis == NULL || cfg == NULL) {
+        return LADRC_ERR_NULL;
+    }
+    if (!ladrc_is_positive(cfg->dt_s)) {
+        return LADRC_ERR_DT_S;
+    }
+    if (isnan(cfg->u_min_Nm) || isnan(cfg->u_max_Nm) || !(cfg->u_min_Nm < cfg->u_max_Nm)) {
+        return LADRC_ERR_U_LIMITS;
+    }
+    ladrc_status_t status;
+    switch (cfg->variant) {
+    case LADRC_VARIANT_LADRC:
+        status = init_ladrc(axis, cfg);
+        break;
+    case LADRC_VARIANT_PID:
+        status = init_pid(axis, cfg);
+        break;
+    case LADRC_VARIANT_LP_MLADRC:
+    case LADRC_VARIANT_HP_MLADRC:
+        status = LADRC_ERR_VARIANT_UNSUPPORTED;
+        break;
+    default:
+        status = LADRC_ERR_VARIANT;
+        break;
+    }
+    if (status != LADRC_OK) {
+        return status;
+    }
+    axis->variant = cfg->variant;
+    axis->u_min_Nm = cfg->u_min_Nm;
+    axis->u_max_Nm = cfg->u_max_Nm;
+    ladrc_axis_reset(axis, LADRC_R(0.0));
+    return LADRC_OK;
+}
+
+void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
+{
+    LADRC_ASSERT(axis != NULL);
+    const ladrc_real_t angle = ladrc_is_finite(angle_rad) ? angle_rad : LADRC_R(0.0);
+    if (axis->variant == LADRC_VARIANT_PID) {
+        ladrc_pid_reset(&axis->pid, angle);
+    } else {
+        ladrc_leso_reset(&axis->leso, angle);
+        if (axis->shaper == LADRC_SHAPER_TD) {
+            ladrc_td_reset(&axis->td, angle);
+        }
+    }
+    axis->ref.r = angle;
+    axis->ref.dr = LADRC_R(0.0);
+    axis->ref.ddr = LADRC_R(0.0);
+    axis->output_Nm = LADRC_R(0.0);
+    axis->applied_Nm = LADRC_R(0.0);
+    axis->consecutive_faults = 0u;
+    axis->faults = LADRC_FAULT_NONE;
+}
+
+/* LADRC tick on finite ref and angle; returns the state fault, if any. */
+static ladrc_fault_t step_ladrc(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad)
+{
+    const ladrc_leso_t *leso = &axis->leso;
+    /* The LESO error dynamics must see the torque that really acted. */
+    ladrc_fault_t faults = ladrc_leso_step(&axis->leso, angle_rad, axis->applied_Nm,
+                                           LADRC_R(0.0), LADRC_R(0.0));
+    ladrc_ref_t ref = {ref_rad, LADRC_R(0.0), LADRC_R(0.0)};
+    if (axis->shaper == LADRC_SHAPER_TD) {
+        (void)ladrc_td_step(&axis->td, ref_rad, &ref);
+    }
+    const ladrc_real_t u0 =
+        axis->kp * (ref.r - leso->z1) + axis->kd * (ref.dr - leso->z2) + ref.ddr;
+    const ladrc_real_t u = (u0 - leso->z3) / axis->b0;
+    axis->ref = ref;
+    if (!ladrc_is_finite(u)) {
+        return (ladrc_fault_t)(faults | LADRC_FAULT_STATE);
+    }
+    axis->output_Nm = ladrc_clamp(u, axis->u_min_Nm, axis->u_max_Nm);
+    return faults;
+}
+
+static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
+                              const ladrc_real_t *rate_rad_s)
+{
+    LADRC_ASSERT(axis != NULL);
+    ladrc_fault_t faults = LADRC_FAULT_NONE;
+    if (rate_rad_s != NULL && !ladrc_is_finite(*rate_rad_s)) {
+        faults |= LADRC_FAULT_RATE;
+    }
+    if (!(ladrc_is_finite(ref_rad) && ladrc_is_finite(angle_rad))) {
+        faults |= LADRC_FAULT_INPUT;
+    } else if (axis->variant == LADRC_VARIANT_PID) {
+        axis->output_Nm = ladrc_pid_step(&axis->pid, ref_rad, angle_rad, rate_rad_s);
+        faults |= ladrc_pid_get_faults(&axis->pid);
+        axis->ref.r = ref_rad;
+    } else {
+        faults |= step_ladrc(axis, ref_rad, angle_rad);
+    }
+    axis->applied_Nm = axis->output_Nm;
+    axis->faults = faults;
+    if ((faults & (LADRC_FAULT_INPUT | LADRC_FAULT_STATE)) != 0u) {
+        axis->consecutive_faults++;
+    } else {
+        axis->consecutive_faults = 0u;
+    }
+    return axis->output_Nm;
+}
+
+ladrc_real_t ladrc_axis_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad)
+{
+    return step_axis(axis, ref_rad, angle_rad, NULL);
+}
+
+ladrc_real_t ladrc_axis_step_with_rate(ladrc_axis_t *axis, ladrc_real_t ref_rad,
+                                       ladrc_real_t angle_rad, ladrc_real_t rate_rad_s)
+{
+    return step_axis(axis, ref_rad, angle_rad, &rate_rad_s);
+}
+
+void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
+{
+    LADRC_ASSERT(axis != NULL);
+    if (!ladrc_is_finite(torque_Nm)) {
+        axis->faults |= LADRC_FAULT_APPLIED;
+        axis->applied_Nm = axis->output_Nm;
+        return;
+    }
+    axis->applied_Nm = torque_Nm;
+    if (axis->variant == LADRC_VARIANT_PID) {
+        ladrc_pid_set_applied(&axis->pid, torque_Nm);
+    }
+}
+
+ladrc_fault_t ladrc_axis_get_faults(const ladrc_axis_t *axis) { return axis->faults; }
+
+uint32_t ladrc_axis_get_consecutive_faults(const ladrc_axis_t *axis)
+{
+    return axis->consecutive_faults;
+}
+
+void ladrc_axis_get_reference(const ladrc_axis_t *axis, ladrc_ref_t *ref) { *ref = axis->ref; }
+
+void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad,
+                             ladrc_real_t *rate_rad_s, ladrc_real_t *disturbance_rad_s2)
+{
+    if (axis->variant == LADRC_VARIANT_PID) {
+        *angle_rad = axis->pid.prev_meas_rad;
+        *rate_rad_s = axis->pid.d_filtered_rad_s;
+        *disturbance_rad_s2 = LADRC_R(0.0);
+    } else {
+        *angle_rad = axis->leso.z1;
+        *rate_rad_s = axis->leso.z2;
+        *disturbance_rad_s2 = axis->leso.z3;
+    }
+}

@@ -1,0 +1,35 @@
+/* Status code texts: one static const table, so it lives in flash. */
+#include "ladrc/types.h"
+
+const char *ladrc_status_str(ladrc_status_t status)
+{
+    static const char *const texts[LADRC_STATUS_COUNT] = {
+        "LADRC_OK",
+        "LADRC_ERR_NULL: a pointer argument is NULL",
+        "LADRC_ERR_DT_S: dt_s must be finite and > 0",
+        "LADRC_ERR_WO_RAD_S: wo_rad_s must be finite and > 0",
+        "LADRC_ERR_WC_RAD_S: wc_rad_s must be finite and > 0",
+        "LADRC_ERR_B0: b0 must be finite and non-zero",
+        "LADRC_ERR_LESO_METHOD: leso_method is not a ladrc_leso_method_t",
+        "LADRC_ERR_LESO_EULER_UNSTABLE: Euler LESO needs wo_rad_s * dt_s < 2",
+        "LADRC_ERR_SHAPER: shaper is not a ladrc_shaper_t",
+        "LADRC_ERR_TD_ACCEL_RAD_S2: td accel_rad_s2 must be finite and > 0",
+        "LADRC_ERR_TD_H0_S: td h0_s must be finite and >= dt_s",
+        "LADRC_ERR_VARIANT: variant is not a ladrc_variant_t",
+        "LADRC_ERR_VARIANT_UNSUPPORTED: variant not available in this library version",
+        "LADRC_ERR_U_LIMITS: u_min_Nm < u_max_Nm required, neither NaN",
+        "LADRC_ERR_PID_KP: kp must be finite and >= 0",
+        "LADRC_ERR_PID_KI: ki must be finite and >= 0",
+        "LADRC_ERR_PID_KD: kd must be finite and >= 0",
+        "LADRC_ERR_PID_D_TAU_S: d_filter_tau_s must be finite and >= 0",
+        "LADRC_ERR_PID_I_LIMIT_NM: i_limit_Nm must be >= 0 and not NaN",
+        "LADRC_ERR_SETTLING_TIME_S: settling_time_s must be finite and > 0",
+        "LADRC_ERR_PLANT_ORDER: plant order must be 1, 2 or 3",
+        "LADRC_ERR_INERTIA_KG_M2: inertia_kg_m2 must be finite and > 0",
+        "LADRC_ERR_WO_RATIO: the observer/controller bandwidth ratio must be finite and > 0",
+    };
+    if ((unsigned)status >= (unsigned)LADRC_STATUS_COUNT) {
+        return "LADRC_ERR_UNKNOWN: not a ladrc_status_t";
+    }
+    return texts[status];
+}
