@@ -137,7 +137,7 @@ static ladrc_fault_t step_ladrc(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_
                                            LADRC_R(0.0), LADRC_R(0.0));
     ladrc_ref_t ref = {ref_rad, LADRC_R(0.0), LADRC_R(0.0)};
     if (axis->shaper == LADRC_SHAPER_TD) {
-        (void)ladrc_td_step(&axis->td, ref_rad, &ref);
+        faults |= ladrc_td_step(&axis->td, ref_rad, &ref);
     }
     const ladrc_real_t u0 =
         axis->kp * (ref.r - leso->z1) + axis->kd * (ref.dr - leso->z2) + ref.ddr;
