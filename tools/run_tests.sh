@@ -1,0 +1,154 @@
+#!/usr/bin/env bash
+# Runs every check of the project, stopping at the first failure.
+#
+# Usage: tools/run_tests.sh [STAGE]
+#        tools/run_tests.sh --help
+#
+# Stages, in order:
+#   host-debug   main unit-test suite (host, Debug, float, -Werror)
+#   host-double  the suite with ladrc_real_t = double
+#   coverage     suite with gcov, then the gcovr gate (line 95 %, branch 85 %)
+#   asan-ubsan   suite under AddressSanitizer + UndefinedBehaviorSanitizer
+#   cortex-m4f   cross build, suite under qemu (mps2-an386), library size
+#   no-heap      no heap/stdio use and no writable globals, host + cross archive
+#   cppcheck     static analysis of src/
+#
+# Missing tools are installed with apt-get (as root, or through sudo).
+set -euo pipefail
+
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+STAGES=(host-debug host-double coverage asan-ubsan cortex-m4f no-heap cppcheck)
+
+# What each stage needs: "stage check package". A check is a command name,
+# "py:<module>" for a Python module, or "newlib" for the Arm C library;
+# stage "all" applies to every stage. Add new requirements here.
+REQUIREMENTS=(
+  "all cmake cmake"
+  "all gcc gcc"
+  "coverage gcovr gcovr"
+  "cortex-m4f arm-none-eabi-gcc gcc-arm-none-eabi"
+  "cortex-m4f newlib libnewlib-arm-none-eabi"
+  "cortex-m4f qemu-system-arm qemu-system-arm"
+  "no-heap nm binutils"
+  "no-heap arm-none-eabi-nm binutils-arm-none-eabi"
+  "no-heap arm-none-eabi-gcc gcc-arm-none-eabi"
+  "no-heap newlib libnewlib-arm-none-eabi"
+  "cppcheck cppcheck cppcheck"
+)
+
+JOBS=2
+
+usage() { sed -n '2,16s/^# \{0,1\}//p' "$0"; }
+
+have() {
+  case $1 in
+    py:*) python3 -c "import ${1#py:}" >/dev/null 2>&1 ;;
+    newlib) echo '#include <stdio.h>' | arm-none-eabi-gcc -E -x c - >/dev/null 2>&1 ;;
+    *) command -v "$1" >/dev/null 2>&1 ;;
+  esac
+}
+
+# Installs the packages of the failing checks of the given stages.
+install_missing() {
+  local wanted=" $* " missing=() entry stage check package
+  for entry in "${REQUIREMENTS[@]}"; do
+    read -r stage check package <<<"$entry"
+    [[ $stage == all || $wanted == *" $stage "* ]] || continue
+    have "$check" && continue
+    [[ " ${missing[*]} " == *" $package "* ]] || missing+=("$package")
+  done
+  [[ ${#missing[@]} -eq 0 ]] && return 0
+
+  echo "== installing missing packages: ${missing[*]}"
+  local sudo=()
+  if [[ $(id -u) -ne 0 ]]; then
+    if command -v sudo >/dev/null 2>&1; then
+      sudo=(sudo)
+    else
+      echo "error: need root or sudo to install: ${missing[*]}" >&2
+      exit 1
+    fi
+  fi
+  if ! command -v apt-get >/dev/null 2>&1 ||
+     ! "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update ||
+     ! "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive \
+         apt-get install -y --no-install-recommends "${missing[@]}"; then
+    echo "error: could not install: ${missing[*]} (install them by hand)" >&2
+    exit 1
+  fi
+}
+
+workflow() { cmake --workflow --preset "$1"; }
+
+# Configures (if needed) and builds only the library of a preset.
+build_library() {
+  [[ -f build/$1/CMakeCache.txt ]] || cmake --preset "$1"
+  cmake --build --preset "$1" --target ladrc
+}
+
+stage_host-debug() { workflow host-debug; }
+stage_host-double() { workflow host-double; }
+
+stage_coverage() {
+  # Counters of an earlier run would inflate the numbers.
+  [[ -d build/coverage ]] && find build/coverage -name '*.gcda' -delete
+  workflow coverage
+  cmake --build --preset coverage --target coverage
+}
+
+stage_asan-ubsan() { workflow asan-ubsan; }
+
+stage_cortex-m4f() {
+  workflow cortex-m4f
+  echo "-- libladrc.a size for Cortex-M4F (text/data/bss, totals last):"
+  cmake --build --preset cortex-m4f --target ladrc_size
+}
+
+stage_no-heap() {
+  build_library host-debug
+  build_library cortex-m4f
+  tools/check_no_heap.sh build/host-debug/libladrc.a nm
+  tools/check_no_heap.sh build/cortex-m4f/libladrc.a arm-none-eabi-nm
+}
+
+stage_cppcheck() {
+  cppcheck --enable=warning,style,performance,portability --error-exitcode=1 \
+    --inline-suppr --std=c99 --suppress=missingIncludeSystem -j "$JOBS" -q \
+    -I include src
+  echo "cppcheck: no findings"
+}
+
+case ${1:-} in
+  -h | --help) usage; exit 0 ;;
+  "") selected=("${STAGES[@]}") ;;
+  *)
+    if [[ $# -ne 1 || " ${STAGES[*]} " != *" $1 "* ]]; then
+      echo "error: unknown stage '$*' (stages: ${STAGES[*]})" >&2
+      exit 2
+    fi
+    selected=("$1")
+    ;;
+esac
+
+install_missing "${selected[@]}"
+export CMAKE_BUILD_PARALLEL_LEVEL=$JOBS CTEST_PARALLEL_LEVEL=$JOBS
+
+summary=()
+for stage in "${selected[@]}"; do
+  echo "== stage: $stage"
+  start=$(date +%s)
+  # A subshell outside any "if", so that errexit applies inside the stage.
+  set +e
+  (set -e; "stage_$stage")
+  rc=$?
+  set -e
+  if [[ $rc -ne 0 ]]; then
+    echo "== FAILED: stage $stage ($(($(date +%s) - start)) s)" >&2
+    exit 1
+  fi
+  summary+=("$stage $(($(date +%s) - start))s")
+  echo "== stage $stage passed in $(($(date +%s) - start)) s"
+done
+
+echo "== all ${#selected[@]} stages passed: ${summary[*]}"
