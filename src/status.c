@@ -27,6 +27,10 @@ const char *ladrc_status_str(ladrc_status_t status)
         "LADRC_ERR_PLANT_ORDER: plant order must be 1, 2 or 3",
         "LADRC_ERR_INERTIA_KG_M2: inertia_kg_m2 must be finite and > 0",
         "LADRC_ERR_WO_RATIO: the observer/controller bandwidth ratio must be finite and > 0",
+        "LADRC_ERR_RLS_N_PARAMS: rls n_params must be 1..LADRC_RLS_MAX_PARAMS",
+        "LADRC_ERR_RLS_LAMBDA0: rls lambda0_per_s must be finite, >= 0 and <= 1 / dt_s",
+        "LADRC_ERR_RLS_P_BOUND: rls p_bound must be finite and > 0",
+        "LADRC_ERR_RLS_P_INITIAL: rls p_initial must be finite, > 0 and <= p_bound / n_params",
     };
     if ((unsigned)status >= (unsigned)LADRC_STATUS_COUNT) {
         return "LADRC_ERR_UNKNOWN: not a ladrc_status_t";

@@ -61,6 +61,10 @@ typedef enum {
     LADRC_ERR_PLANT_ORDER,        /**< plant order outside 1..3 */
     LADRC_ERR_INERTIA_KG_M2,      /**< inertia not finite or not > 0 */
     LADRC_ERR_WO_RATIO,           /**< observer-to-controller bandwidth ratio not finite or not > 0 */
+    LADRC_ERR_RLS_N_PARAMS,       /**< rls n_params outside 1..LADRC_RLS_MAX_PARAMS */
+    LADRC_ERR_RLS_LAMBDA0,        /**< rls lambda0_per_s not finite, < 0, or lambda0_per_s * dt_s > 1 */
+    LADRC_ERR_RLS_P_BOUND,        /**< rls p_bound not finite or not > 0 */
+    LADRC_ERR_RLS_P_INITIAL,      /**< rls p_initial not finite, not > 0, or n_params * p_initial > p_bound */
     LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
 } ladrc_status_t;
 

@@ -1,0 +1,135 @@
+/**
+ * @file rls.h
+ * @brief Small fixed-size recursive least squares (RLS) estimator with
+ *        bounded-gain forgetting, for the adaptive disturbance estimators.
+ *
+ * Model y_k = phi_k^T theta + noise, n = n_params <= LADRC_RLS_MAX_PARAMS.
+ * Continuous law (PAPER.md section 5, Slotine and Li 8.7), e = phi^T theta - y:
+ *
+ *     theta' = -P phi e
+ *     P'     = lambda P - P phi phi^T P,      lambda = lambda0 (1 - ||P|| / k0)
+ *
+ * Discrete step h = dt_s, once per sample, ||P|| = trace(P):
+ *
+ *     lambda_k = lambda0 (1 - tr(P_k-1) / k0)     (0 once tr(P) >= (1 - 1e-4) k0)
+ *     mu_k     = exp(-lambda_k h)                 per-sample forgetting factor
+ *     g_k      = h P phi / (mu_k + h phi^T P phi)
+ *     theta_k  = theta_k-1 + g_k (y_k - phi_k^T theta_k-1)
+ *     P_k      = (P_k-1 - g_k phi_k^T P_k-1) / mu_k
+ *
+ * Units and gains: P keeps the continuous law's units (1/(s phi^2)) and k0,
+ * lambda0 (1/s) and p_initial are continuous-time; h P is the usual
+ * per-sample RLS covariance. As h -> 0 the step tends to the law above.
+ *
+ * Why these choices:
+ * - mu = exp(-lambda h) is the exact decay of the information matrix
+ *   P^-1 over one step of the continuous law; it lies in (0, 1] for any
+ *   lambda h (1 - lambda h reaches 0 at lambda h = 1).
+ * - The trace bounds the spectral norm of a positive definite P
+ *   (||P||_2 <= tr P) and every entry (|P_ij| <= sqrt(P_ii P_jj)), and
+ *   costs n additions. Hence P = p_initial I needs n p_initial <= k0.
+ * - With lambda0 h <= 1 (checked at init) the map tr -> tr exp(lambda h)
+ *   is increasing with fixed point k0, so in exact arithmetic the step never
+ *   leaves tr(P) <= k0. A P above k0 after rounding is scaled back to
+ *   (1 - 5e-5) k0. Forgetting stops 1e-4 below k0, so without excitation
+ *   P reaches a fixed point (same state, bit for bit) instead of a cycle.
+ * - P is held as P = U D U^T (U unit upper triangular, D diagonal; Bierman's
+ *   factorised update): symmetric by construction, positive definite while
+ *   D > 0, and accurate when one sample of huge excitation makes P nearly
+ *   singular, where the plain update loses definiteness in float. 10 reals
+ *   for n = 4, as many as the upper triangle of P.
+ *
+ * Guards: a non-finite phi or y leaves the state untouched
+ * (LADRC_FAULT_INPUT). A step whose factors come out not finite or with a
+ * D not > 0 restarts P at p_initial I, keeping theta's update if it is
+ * finite (LADRC_FAULT_STATE). Otherwise a step whose theta would not be
+ * finite is refused, state held (LADRC_FAULT_STATE).
+ */
+#ifndef LADRC_RLS_H
+#define LADRC_RLS_H
+
+#include "ladrc/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Largest number of parameters; sets the state size at compile time. */
+#define LADRC_RLS_MAX_PARAMS 4
+/** Entries of the strict upper triangle of U. */
+#define LADRC_RLS_U_SIZE (LADRC_RLS_MAX_PARAMS * (LADRC_RLS_MAX_PARAMS - 1) / 2)
+
+typedef struct {
+    uint8_t n_params;            /**< 1..LADRC_RLS_MAX_PARAMS */
+    ladrc_real_t dt_s;           /**< fixed step h (s), > 0 */
+    ladrc_real_t lambda0_per_s;  /**< maximum forgetting rate (1/s), >= 0 (0 = no forgetting), lambda0 h <= 1 */
+    ladrc_real_t p_bound;        /**< k0: bound on tr(P) (1/(s phi^2)), > 0 */
+    ladrc_real_t p_initial;      /**< P after init/reset = p_initial I; > 0 and n_params p_initial <= p_bound */
+} ladrc_rls_config_t;
+
+/**
+ * Estimator state; owned by the caller. Read it through the getters;
+ * u and d are public only so that tests and diagnostics can see the factors.
+ */
+typedef struct {
+    ladrc_real_t theta[LADRC_RLS_MAX_PARAMS]; /**< parameter estimate */
+    ladrc_real_t u[LADRC_RLS_U_SIZE];         /**< U(i,j), i < j, at u[j (j - 1) / 2 + i] */
+    ladrc_real_t d[LADRC_RLS_MAX_PARAMS];     /**< D(j), > 0 */
+    ladrc_real_t lambda_per_s;                /**< forgetting rate of the last update */
+    ladrc_real_t dt_s;
+    ladrc_real_t lambda0_per_s;
+    ladrc_real_t p_bound;
+    ladrc_real_t p_initial;
+    uint8_t n_params;
+    ladrc_fault_t faults;                     /**< flags of the latest update */
+} ladrc_rls_t;
+
+/**
+ * Validates cfg and starts at theta = 0, P = p_initial I.
+ * @return LADRC_OK, LADRC_ERR_NULL, LADRC_ERR_RLS_N_PARAMS, LADRC_ERR_DT_S,
+ *         LADRC_ERR_RLS_LAMBDA0, LADRC_ERR_RLS_P_BOUND or LADRC_ERR_RLS_P_INITIAL
+ *         (first bad field, in that order).
+ */
+ladrc_status_t ladrc_rls_init(ladrc_rls_t *rls, const ladrc_rls_config_t *cfg);
+
+/**
+ * Restarts at theta = theta0 (n_params entries; NULL or non-finite entries
+ * give 0) and P = p_initial I; clears the faults and the last lambda.
+ * ladrc_rls_reset(rls, ladrc_rls_get_theta(rls)) restarts P only.
+ */
+void ladrc_rls_reset(ladrc_rls_t *rls, const ladrc_real_t *theta0);
+
+/**
+ * One sample of y = phi^T theta (see the file comment for the equations).
+ * @param phi regressor, n_params entries
+ * @param y   measurement
+ * @return flags of this update: LADRC_FAULT_NONE, LADRC_FAULT_INPUT (state
+ *         untouched) or LADRC_FAULT_STATE (refused, or P restarted).
+ */
+ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_real_t y);
+
+/** Prediction phi^T theta (n_params entries of phi; a non-finite phi gives a non-finite result). */
+ladrc_real_t ladrc_rls_predict(const ladrc_rls_t *rls, const ladrc_real_t *phi);
+
+/** The estimate, n_params entries; valid while rls is. */
+const ladrc_real_t *ladrc_rls_get_theta(const ladrc_rls_t *rls);
+
+/** tr(P), the norm the forgetting and the bound use (1/(s phi^2)). */
+ladrc_real_t ladrc_rls_get_p_norm(const ladrc_rls_t *rls);
+
+/** Entry (row, col) of P = U D U^T, both < n_params (0 otherwise); P(i,j) and
+ *  P(j,i) are the same number. */
+ladrc_real_t ladrc_rls_get_p(const ladrc_rls_t *rls, uint8_t row, uint8_t col);
+
+/** Forgetting rate lambda (1/s) of the last update that got past the input
+ *  check; 0 after init or reset. */
+ladrc_real_t ladrc_rls_get_lambda(const ladrc_rls_t *rls);
+
+/** Flags of the latest update. */
+ladrc_fault_t ladrc_rls_get_faults(const ladrc_rls_t *rls);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LADRC_RLS_H */

@@ -1,0 +1,273 @@
+/* Bounded-gain RLS on the factors P = U D U^T (see rls.h). */
+#include "ladrc/rls.h"
+
+/* Forgetting stops when tr(P) is within this fraction of k0. It is far above
+ * the rounding of the trace (about n eps = 5e-7 in float), so without
+ * excitation P lands on an exact fixed point, and far below anything the
+ * law would show (the rate left there is lambda0 * 1e-4). */
+#define RLS_FORGET_DEADBAND LADRC_R(1e-4)
+/* A P that rounding pushed above k0 is scaled to this fraction of k0: inside
+ * the dead band, and 5e-5 below k0, so the scaled trace cannot round above. */
+#define RLS_CLAMP_FRACTION LADRC_R(0.99995)
+
+/* U(i,j), i < j, stored by columns: column j holds rows 0..j-1. */
+static unsigned u_index(unsigned i, unsigned j) { return j * (j - 1u) / 2u + i; }
+
+/* tr(U D U^T) = sum_j D_j (1 + sum_{i<j} U_ij^2). */
+static ladrc_real_t trace_of(const ladrc_real_t *u, const ladrc_real_t *d, unsigned n)
+{
+    ladrc_real_t tr = LADRC_R(0.0);
+    for (unsigned j = 0u; j < n; ++j) {
+        ladrc_real_t col = LADRC_R(1.0);
+        for (unsigned i = 0u; i < j; ++i) {
+            const ladrc_real_t uij = u[u_index(i, j)];
+            col += uij * uij;
+        }
+        tr += d[j] * col;
+    }
+    return tr;
+}
+
+/* U unit upper triangular is always invertible: P > 0 exactly when D > 0. */
+static int factors_valid(const ladrc_real_t *u, const ladrc_real_t *d, unsigned n)
+{
+    int ok = 1;
+    for (unsigned k = 0u; k < n * (n - 1u) / 2u; ++k) {
+        if (!ladrc_is_finite(u[k])) {
+            ok = 0;
+        }
+    }
+    for (unsigned j = 0u; j < n; ++j) {
+        if (!ladrc_is_positive(d[j])) {
+            ok = 0;
+        }
+    }
+    return ok;
+}
+
+static void commit_theta(ladrc_rls_t *rls, const ladrc_real_t *theta)
+{
+    for (unsigned i = 0u; i < rls->n_params; ++i) {
+        rls->theta[i] = theta[i];
+    }
+}
+
+/* P = p_initial I; unused entries zero so that states compare bitwise. */
+static void restart_p(ladrc_rls_t *rls)
+{
+    for (unsigned k = 0u; k < LADRC_RLS_U_SIZE; ++k) {
+        rls->u[k] = LADRC_R(0.0);
+    }
+    for (unsigned j = 0u; j < LADRC_RLS_MAX_PARAMS; ++j) {
+        rls->d[j] = (j < rls->n_params) ? rls->p_initial : LADRC_R(0.0);
+    }
+}
+
+ladrc_status_t ladrc_rls_init(ladrc_rls_t *rls, const ladrc_rls_config_t *cfg)
+{
+    if (rls == NULL || cfg == NULL) {
+        return LADRC_ERR_NULL;
+    }
+    if (cfg->n_params < 1u || cfg->n_params > LADRC_RLS_MAX_PARAMS) {
+        return LADRC_ERR_RLS_N_PARAMS;
+    }
+    if (!ladrc_is_positive(cfg->dt_s)) {
+        return LADRC_ERR_DT_S;
+    }
+    /* lambda0 h <= 1 keeps the trace map monotone, so the bound holds (rls.h). */
+    if (!ladrc_is_finite(cfg->lambda0_per_s) || cfg->lambda0_per_s < LADRC_R(0.0) ||
+        cfg->lambda0_per_s * cfg->dt_s > LADRC_R(1.0)) {
+        return LADRC_ERR_RLS_LAMBDA0;
+    }
+    if (!ladrc_is_positive(cfg->p_bound)) {
+        return LADRC_ERR_RLS_P_BOUND;
+    }
+    if (!ladrc_is_positive(cfg->p_initial)) {
+        return LADRC_ERR_RLS_P_INITIAL;
+    }
+    /* Summed as trace_of sums it, so the start state itself meets the bound. */
+    ladrc_real_t tr0 = LADRC_R(0.0);
+    for (unsigned j = 0u; j < cfg->n_params; ++j) {
+        tr0 += cfg->p_initial;
+    }
+    if (tr0 > cfg->p_bound) {
+        return LADRC_ERR_RLS_P_INITIAL;
+    }
+    rls->n_params = cfg->n_params;
+    rls->dt_s = cfg->dt_s;
+    rls->lambda0_per_s = cfg->lambda0_per_s;
+    rls->p_bound = cfg->p_bound;
+    rls->p_initial = cfg->p_initial;
+    ladrc_rls_reset(rls, NULL);
+    return LADRC_OK;
+}
+
+void ladrc_rls_reset(ladrc_rls_t *rls, const ladrc_real_t *theta0)
+{
+    LADRC_ASSERT(rls != NULL);
+    for (unsigned i = 0u; i < LADRC_RLS_MAX_PARAMS; ++i) {
+        ladrc_real_t v = LADRC_R(0.0);
+        if (theta0 != NULL && i < rls->n_params && ladrc_is_finite(theta0[i])) {
+            v = theta0[i];
+        }
+        rls->theta[i] = v;
+    }
+    restart_p(rls);
+    rls->lambda_per_s = LADRC_R(0.0);
+    rls->faults = LADRC_FAULT_NONE;
+}
+
+ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_real_t y)
+{
+    LADRC_ASSERT(rls != NULL && phi != NULL);
+    const unsigned n = rls->n_params;
+    int finite = ladrc_is_finite(y);
+    for (unsigned i = 0u; i < n; ++i) {
+        if (!ladrc_is_finite(phi[i])) {
+            finite = 0;
+        }
+    }
+    if (!finite) {
+        rls->faults = LADRC_FAULT_INPUT;
+        return rls->faults;
+    }
+
+    const ladrc_real_t h = rls->dt_s;
+    const ladrc_real_t room = LADRC_R(1.0) - trace_of(rls->u, rls->d, n) / rls->p_bound;
+    const ladrc_real_t lambda = (room > RLS_FORGET_DEADBAND) ? rls->lambda0_per_s * room : LADRC_R(0.0);
+    rls->lambda_per_s = lambda;
+    const ladrc_real_t mu = ladrc_exp(-lambda * h);
+    const ladrc_real_t inv_mu = LADRC_R(1.0) / mu;
+
+    /* f = U^T phi, g = h D f (h: P is in continuous units), prior error e. */
+    ladrc_real_t f[LADRC_RLS_MAX_PARAMS];
+    ladrc_real_t g[LADRC_RLS_MAX_PARAMS];
+    ladrc_real_t e = y;
+    for (unsigned j = 0u; j < n; ++j) {
+        ladrc_real_t fj = phi[j];
+        for (unsigned i = 0u; i < j; ++i) {
+            fj += rls->u[u_index(i, j)] * phi[i];
+        }
+        f[j] = fj;
+        g[j] = h * rls->d[j] * fj;
+        e -= phi[j] * rls->theta[j];
+    }
+
+    /* Bierman's update, one column at a time, with
+     * beta_j = mu + h sum_{k<=j} D_k f_k^2:
+     *   D_j <- D_j beta_j-1 / (beta_j mu),  U_ij <- U_ij - nu_i f_j / beta_j-1,
+     * nu accumulating the unnormalised gain; the gain is nu / beta_n. */
+    ladrc_real_t nu[LADRC_RLS_MAX_PARAMS];
+    ladrc_real_t u_new[LADRC_RLS_U_SIZE];
+    ladrc_real_t d_new[LADRC_RLS_MAX_PARAMS];
+    ladrc_real_t beta_prev = mu;
+    ladrc_real_t inv_beta_prev = inv_mu;
+    for (unsigned j = 0u; j < n; ++j) {
+        const ladrc_real_t beta = beta_prev + f[j] * g[j];
+        const ladrc_real_t inv_beta = LADRC_R(1.0) / beta;
+        d_new[j] = rls->d[j] * beta_prev * inv_beta * inv_mu;
+        const ladrc_real_t p = -f[j] * inv_beta_prev;
+        for (unsigned i = 0u; i < j; ++i) {
+            const unsigned k = u_index(i, j);
+            u_new[k] = rls->u[k] + nu[i] * p;
+            nu[i] += rls->u[k] * g[j];
+        }
+        nu[j] = g[j];
+        beta_prev = beta;
+        inv_beta_prev = inv_beta;
+    }
+
+    const ladrc_real_t step = e * inv_beta_prev;
+    ladrc_real_t theta_new[LADRC_RLS_MAX_PARAMS];
+    int theta_ok = 1;
+    for (unsigned i = 0u; i < n; ++i) {
+        theta_new[i] = rls->theta[i] + nu[i] * step;
+        if (!ladrc_is_finite(theta_new[i])) {
+            theta_ok = 0;
+        }
+    }
+    /* Bound: only rounding can take the trace above k0 (rls.h). */
+    const ladrc_real_t tr = trace_of(u_new, d_new, n);
+    if (tr > rls->p_bound) {
+        const ladrc_real_t scale = rls->p_bound * RLS_CLAMP_FRACTION / tr;
+        for (unsigned j = 0u; j < n; ++j) {
+            d_new[j] *= scale;
+        }
+    }
+    if (!factors_valid(u_new, d_new, n)) {
+        /* Restart P so that the next sample meets a sound covariance; theta
+         * still takes its update if that is finite. */
+        restart_p(rls);
+        if (theta_ok) {
+            commit_theta(rls, theta_new);
+        }
+        rls->faults = LADRC_FAULT_STATE;
+        return rls->faults;
+    }
+    if (!theta_ok) {
+        rls->faults = LADRC_FAULT_STATE; /* refused: state held */
+        return rls->faults;
+    }
+    commit_theta(rls, theta_new);
+    for (unsigned k = 0u; k < n * (n - 1u) / 2u; ++k) {
+        rls->u[k] = u_new[k];
+    }
+    for (unsigned j = 0u; j < n; ++j) {
+        rls->d[j] = d_new[j];
+    }
+    rls->faults = LADRC_FAULT_NONE;
+    return rls->faults;
+}
+
+ladrc_real_t ladrc_rls_predict(const ladrc_rls_t *rls, const ladrc_real_t *phi)
+{
+    LADRC_ASSERT(rls != NULL && phi != NULL);
+    ladrc_real_t y = LADRC_R(0.0);
+    for (unsigned i = 0u; i < rls->n_params; ++i) {
+        y += phi[i] * rls->theta[i];
+    }
+    return y;
+}
+
+const ladrc_real_t *ladrc_rls_get_theta(const ladrc_rls_t *rls)
+{
+    LADRC_ASSERT(rls != NULL);
+    return rls->theta;
+}
+
+ladrc_real_t ladrc_rls_get_p_norm(const ladrc_rls_t *rls)
+{
+    LADRC_ASSERT(rls != NULL);
+    return trace_of(rls->u, rls->d, rls->n_params);
+}
+
+ladrc_real_t ladrc_rls_get_p(const ladrc_rls_t *rls, uint8_t row, uint8_t col)
+{
+    LADRC_ASSERT(rls != NULL);
+    const unsigned n = rls->n_params;
+    if (row >= n || col >= n) {
+        return LADRC_R(0.0);
+    }
+    /* Same order for (i,j) and (j,i): P_ij = sum_{k>=j} U_ik D_k U_jk, i <= j. */
+    const unsigned i = (row < col) ? row : col;
+    const unsigned j = (row < col) ? col : row;
+    ladrc_real_t p = LADRC_R(0.0);
+    for (unsigned k = j; k < n; ++k) {
+        const ladrc_real_t uik = (k == i) ? LADRC_R(1.0) : rls->u[u_index(i, k)];
+        const ladrc_real_t ujk = (k == j) ? LADRC_R(1.0) : rls->u[u_index(j, k)];
+        p += uik * rls->d[k] * ujk;
+    }
+    return p;
+}
+
+ladrc_real_t ladrc_rls_get_lambda(const ladrc_rls_t *rls)
+{
+    LADRC_ASSERT(rls != NULL);
+    return rls->lambda_per_s;
+}
+
+ladrc_fault_t ladrc_rls_get_faults(const ladrc_rls_t *rls)
+{
+    LADRC_ASSERT(rls != NULL);
+    return rls->faults;
+}
