@@ -27,6 +27,15 @@ const char *ladrc_status_str(ladrc_status_t status)
         "LADRC_ERR_PLANT_ORDER: plant order must be 1, 2 or 3",
         "LADRC_ERR_INERTIA_KG_M2: inertia_kg_m2 must be finite and > 0",
         "LADRC_ERR_WO_RATIO: the observer/controller bandwidth ratio must be finite and > 0",
+        "LADRC_ERR_MIXER_KL_N_S2: mixer kL_N_s2 must be finite and > 0",
+        "LADRC_ERR_MIXER_ARM_M: mixer arm_m must be finite and > 0",
+        "LADRC_ERR_MIXER_B_NM_S2: mixer b_Nm_s2 must be finite and > 0",
+        "LADRC_ERR_MIXER_MASS_KG: mixer mass_kg must be finite and > 0",
+        "LADRC_ERR_MIXER_G_M_S2: mixer g_m_s2 must be finite and > 0",
+        "LADRC_ERR_MIXER_MODE: mixer mode is not a ladrc_mixer_mode_t",
+        "LADRC_ERR_MIXER_W2_MIN: mixer w2_min_rad2_s2 must be finite, and >= 0 unless ideal",
+        "LADRC_ERR_MIXER_W2_MAX: mixer w2_max_rad2_s2 must be finite and > w2_min_rad2_s2",
+        "LADRC_ERR_MIXER_TILT_MAX_RAD: mixer tilt_max_rad must lie in (0, pi/2)",
     };
     if ((unsigned)status >= (unsigned)LADRC_STATUS_COUNT) {
         return "LADRC_ERR_UNKNOWN: not a ladrc_status_t";

@@ -61,6 +61,15 @@ typedef enum {
     LADRC_ERR_PLANT_ORDER,        /**< plant order outside 1..3 */
     LADRC_ERR_INERTIA_KG_M2,      /**< inertia not finite or not > 0 */
     LADRC_ERR_WO_RATIO,           /**< observer-to-controller bandwidth ratio not finite or not > 0 */
+    LADRC_ERR_MIXER_KL_N_S2,      /**< mixer kL_N_s2 (thrust coefficient) not finite or not > 0 */
+    LADRC_ERR_MIXER_ARM_M,        /**< mixer arm_m (rotor arm length l) not finite or not > 0 */
+    LADRC_ERR_MIXER_B_NM_S2,      /**< mixer b_Nm_s2 (drag coefficient) not finite or not > 0 */
+    LADRC_ERR_MIXER_MASS_KG,      /**< mixer mass_kg not finite or not > 0 */
+    LADRC_ERR_MIXER_G_M_S2,       /**< mixer g_m_s2 not finite or not > 0 */
+    LADRC_ERR_MIXER_MODE,         /**< mixer mode not a ladrc_mixer_mode_t */
+    LADRC_ERR_MIXER_W2_MIN,       /**< mixer w2_min_rad2_s2 not finite, or < 0 outside ideal mode */
+    LADRC_ERR_MIXER_W2_MAX,       /**< mixer w2_max_rad2_s2 not finite or not > w2_min_rad2_s2 */
+    LADRC_ERR_MIXER_TILT_MAX_RAD, /**< mixer tilt_max_rad not in (0, pi/2) */
     LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
 } ladrc_status_t;
 
@@ -98,11 +107,13 @@ static inline ladrc_real_t ladrc_sqrt(ladrc_real_t x) { return sqrt(x); }
 static inline ladrc_real_t ladrc_fabs(ladrc_real_t x) { return fabs(x); }
 static inline ladrc_real_t ladrc_exp(ladrc_real_t x) { return exp(x); }
 static inline ladrc_real_t ladrc_expm1(ladrc_real_t x) { return expm1(x); }
+static inline ladrc_real_t ladrc_cos(ladrc_real_t x) { return cos(x); }
 #else
 static inline ladrc_real_t ladrc_sqrt(ladrc_real_t x) { return sqrtf(x); }
 static inline ladrc_real_t ladrc_fabs(ladrc_real_t x) { return fabsf(x); }
 static inline ladrc_real_t ladrc_exp(ladrc_real_t x) { return expf(x); }
 static inline ladrc_real_t ladrc_expm1(ladrc_real_t x) { return expm1f(x); }
+static inline ladrc_real_t ladrc_cos(ladrc_real_t x) { return cosf(x); }
 #endif
 
 /** 1 if x is finite and strictly positive: the check most config fields need. */
