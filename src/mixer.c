@@ -182,7 +182,7 @@ static uint8_t desaturate(const ladrc_mixer_t *mx, ladrc_real_t w2[4])
         for (i = 0; i < 4; ++i) {
             rp[i] *= k;
         }
-        changed = (uint8_t)(changed | LADRC_MIXER_SAT_ROLL | LADRC_MIXER_SAT_PITCH);
+        changed = (uint8_t)(LADRC_MIXER_SAT_ROLL | LADRC_MIXER_SAT_PITCH); /* first cut */
     }
     /* 2. Largest yaw share k with every pairwise difference of rp + k yaw
      *    within the range; at k = 0 all fit after step 1. */

@@ -35,7 +35,8 @@
  * from the forward model of the final w^2; an axis that was not changed
  * reports its request itself, bit for bit. So achieved != requested exactly
  * when the axis was cut back: a PID or observer comparing applied with
- * commanded torque never mistakes rounding for saturation. Bit i of
+ * commanded torque never mistakes rounding for saturation (the rotors of an
+ * axis left alone give its request up to float rounding of w^2). Bit i of
  * `saturated` (LADRC_MIXER_SAT_*) is set exactly when achieved != requested.
  *
  * Mode LADRC_MIXER_IDEAL applies no limits (w^2 may be negative, as the
@@ -106,7 +107,8 @@ typedef struct {
 
 /** Validates every field (LADRC_ERR_MIXER_KL_N_S2, _ARM_M, _B_NM_S2, _MASS_KG, _G_M_S2,
  *  _MODE, _W2_MIN, _W2_MAX, _TILT_MAX_RAD, checked in that order; LADRC_ERR_NULL), derives
- *  the constants and resets. On a config error *mx is zeroed: its rotors stay at 0. */
+ *  the constants and resets. On a config error *mx is zeroed: every step then outputs
+ *  w^2 = 0 (its achieved values mean nothing; do not fly a rejected mixer). */
 ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *cfg);
 
 /** Sets the held output to the mix of level hover (U_L = m g, no torque) and clears faults. */
