@@ -31,6 +31,15 @@ const char *ladrc_status_str(ladrc_status_t status)
         "LADRC_ERR_RLS_LAMBDA0: rls lambda0_per_s must be finite, >= 0 and <= 1 / dt_s",
         "LADRC_ERR_RLS_P_BOUND: rls p_bound must be finite and > 0",
         "LADRC_ERR_RLS_P_INITIAL: rls p_initial must be finite, > 0 and <= p_bound / n_params",
+        "LADRC_ERR_MIXER_KL_N_S2: mixer kL_N_s2 must be finite and > 0",
+        "LADRC_ERR_MIXER_ARM_M: mixer arm_m must be finite and > 0",
+        "LADRC_ERR_MIXER_B_NM_S2: mixer b_Nm_s2 must be finite and > 0",
+        "LADRC_ERR_MIXER_MASS_KG: mixer mass_kg must be finite and > 0",
+        "LADRC_ERR_MIXER_G_M_S2: mixer g_m_s2 must be finite and > 0",
+        "LADRC_ERR_MIXER_MODE: mixer mode is not a ladrc_mixer_mode_t",
+        "LADRC_ERR_MIXER_W2_MIN: mixer w2_min_rad2_s2 must be finite, and >= 0 unless ideal",
+        "LADRC_ERR_MIXER_W2_MAX: mixer w2_max_rad2_s2 must be finite and > w2_min_rad2_s2",
+        "LADRC_ERR_MIXER_TILT_MAX_RAD: mixer tilt_max_rad must lie in (0, pi/2)",
     };
     if ((unsigned)status >= (unsigned)LADRC_STATUS_COUNT) {
         return "LADRC_ERR_UNKNOWN: not a ladrc_status_t";

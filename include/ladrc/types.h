@@ -65,6 +65,15 @@ typedef enum {
     LADRC_ERR_RLS_LAMBDA0,        /**< rls lambda0_per_s not finite, < 0, or lambda0_per_s * dt_s > 1 */
     LADRC_ERR_RLS_P_BOUND,        /**< rls p_bound not finite or not > 0 */
     LADRC_ERR_RLS_P_INITIAL,      /**< rls p_initial not finite, not > 0, or n_params * p_initial > p_bound */
+    LADRC_ERR_MIXER_KL_N_S2,      /**< mixer kL_N_s2 (thrust coefficient) not finite or not > 0 */
+    LADRC_ERR_MIXER_ARM_M,        /**< mixer arm_m (rotor arm length l) not finite or not > 0 */
+    LADRC_ERR_MIXER_B_NM_S2,      /**< mixer b_Nm_s2 (drag coefficient) not finite or not > 0 */
+    LADRC_ERR_MIXER_MASS_KG,      /**< mixer mass_kg not finite or not > 0 */
+    LADRC_ERR_MIXER_G_M_S2,       /**< mixer g_m_s2 not finite or not > 0 */
+    LADRC_ERR_MIXER_MODE,         /**< mixer mode not a ladrc_mixer_mode_t */
+    LADRC_ERR_MIXER_W2_MIN,       /**< mixer w2_min_rad2_s2 not finite, or < 0 outside ideal mode */
+    LADRC_ERR_MIXER_W2_MAX,       /**< mixer w2_max_rad2_s2 not finite or not > w2_min_rad2_s2 */
+    LADRC_ERR_MIXER_TILT_MAX_RAD, /**< mixer tilt_max_rad not in (0, pi/2) */
     LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
 } ladrc_status_t;
 
@@ -102,11 +111,13 @@ static inline ladrc_real_t ladrc_sqrt(ladrc_real_t x) { return sqrt(x); }
 static inline ladrc_real_t ladrc_fabs(ladrc_real_t x) { return fabs(x); }
 static inline ladrc_real_t ladrc_exp(ladrc_real_t x) { return exp(x); }
 static inline ladrc_real_t ladrc_expm1(ladrc_real_t x) { return expm1(x); }
+static inline ladrc_real_t ladrc_cos(ladrc_real_t x) { return cos(x); }
 #else
 static inline ladrc_real_t ladrc_sqrt(ladrc_real_t x) { return sqrtf(x); }
 static inline ladrc_real_t ladrc_fabs(ladrc_real_t x) { return fabsf(x); }
 static inline ladrc_real_t ladrc_exp(ladrc_real_t x) { return expf(x); }
 static inline ladrc_real_t ladrc_expm1(ladrc_real_t x) { return expm1f(x); }
+static inline ladrc_real_t ladrc_cos(ladrc_real_t x) { return cosf(x); }
 #endif
 
 /** 1 if x is finite and strictly positive: the check most config fields need. */
