@@ -1,4 +1,4 @@
-/* One attitude axis: LADRC or PID behind one API (see axis.h). */
+/* One attitude axis: LADRC, its modified variants or PID behind one API (see axis.h). */
 #include "ladrc/axis.h"
 
 /* Paper settings (Section 5) used by ladrc_axis_config_default. */
@@ -11,6 +11,17 @@
 #define AXIS_DEFAULT_PID_KP LADRC_R(20.0)
 #define AXIS_DEFAULT_PID_KI LADRC_R(20.0)
 #define AXIS_DEFAULT_PID_KD LADRC_R(0.05)
+#define AXIS_DEFAULT_LP_LAMBDA0_PER_S LADRC_R(100.0)
+#define AXIS_DEFAULT_LP_K0_PER_S LADRC_R(300.0)
+/* HP: the search range covers the issue's 0.5..30 rad/s with margin; a
+ * forgetting rate of 1 /s (a 1 s memory) is the fastest that stayed stable in
+ * closed loop (2 /s diverged); 20 ms frequency samples keep 40 rad/s below a
+ * quarter turn per sample. */
+#define AXIS_DEFAULT_HP_FREQ_RAD_S LADRC_R(3.0)
+#define AXIS_DEFAULT_HP_FREQ_MIN_RAD_S LADRC_R(0.3)
+#define AXIS_DEFAULT_HP_FREQ_MAX_RAD_S LADRC_R(40.0)
+#define AXIS_DEFAULT_HP_LAMBDA0_PER_S LADRC_R(1.0)
+#define AXIS_DEFAULT_HP_FREQ_SAMPLE_S LADRC_R(0.02)
 
 void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant,
                                ladrc_real_t dt_s, ladrc_real_t inertia_kg_m2)
@@ -33,26 +44,64 @@ void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant
     cfg->pid_kd = AXIS_DEFAULT_PID_KD;
     cfg->pid_d_filter_tau_s = LADRC_R(0.0);
     cfg->pid_i_limit_Nm = unlimited;
+    cfg->lp_lambda0_per_s = AXIS_DEFAULT_LP_LAMBDA0_PER_S;
+    cfg->lp_k0_per_s = AXIS_DEFAULT_LP_K0_PER_S;
+    cfg->hp_freq_mode = LADRC_HP_FREQ_ONLINE;
+    cfg->hp_freq_rad_s = AXIS_DEFAULT_HP_FREQ_RAD_S;
+    cfg->hp_freq_min_rad_s = AXIS_DEFAULT_HP_FREQ_MIN_RAD_S;
+    cfg->hp_freq_max_rad_s = AXIS_DEFAULT_HP_FREQ_MAX_RAD_S;
+    cfg->hp_lambda0_per_s = AXIS_DEFAULT_HP_LAMBDA0_PER_S;
+    cfg->hp_freq_lambda0_per_s = AXIS_DEFAULT_HP_LAMBDA0_PER_S;
+    const ladrc_real_t ticks = AXIS_DEFAULT_HP_FREQ_SAMPLE_S / dt_s;
+    cfg->hp_decimation = (ticks >= LADRC_R(1.0) && ticks < LADRC_R(65535.0))
+                             ? (uint16_t)(ticks + LADRC_R(0.5))
+                             : 1u;
 }
 
-static ladrc_status_t init_ladrc(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
+static ladrc_status_t init_shaper(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
+{
+    if (cfg->shaper == LADRC_SHAPER_TD) {
+        const ladrc_td_config_t td_cfg = {cfg->dt_s, cfg->td_accel_rad_s2, cfg->td_h0_s};
+        return ladrc_td_init(&axis->shaping.td, &td_cfg);
+    }
+    return (cfg->shaper == LADRC_SHAPER_NONE) ? LADRC_OK : LADRC_ERR_SHAPER;
+}
+
+static ladrc_status_t init_estimator(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
+{
+    if (cfg->variant == LADRC_VARIANT_LP_MLADRC) {
+        const ladrc_lp_config_t lp = {cfg->dt_s, cfg->lp_lambda0_per_s, cfg->lp_k0_per_s};
+        return ladrc_lp_init(&axis->part.lp, &lp);
+    }
+    if (cfg->variant == LADRC_VARIANT_HP_MLADRC) {
+        const ladrc_hp_config_t hp = {cfg->dt_s,
+                                      cfg->hp_freq_mode,
+                                      cfg->hp_freq_rad_s,
+                                      cfg->hp_freq_min_rad_s,
+                                      cfg->hp_freq_max_rad_s,
+                                      cfg->hp_lambda0_per_s,
+                                      cfg->hp_freq_lambda0_per_s,
+                                      cfg->hp_decimation};
+        return ladrc_hp_init(&axis->part.hp, &hp);
+    }
+    return LADRC_OK;
+}
+
+static ladrc_status_t init_adrc(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
 {
     if (!ladrc_is_positive(cfg->wc_rad_s)) {
         return LADRC_ERR_WC_RAD_S;
     }
     const ladrc_leso_config_t leso_cfg = {cfg->dt_s, cfg->wo_rad_s, cfg->b0, cfg->leso_method};
     ladrc_status_t status = ladrc_leso_init(&axis->leso, &leso_cfg);
+    if (status == LADRC_OK) {
+        status = init_shaper(axis, cfg);
+    }
+    if (status == LADRC_OK) {
+        status = init_estimator(axis, cfg);
+    }
     if (status != LADRC_OK) {
         return status;
-    }
-    if (cfg->shaper == LADRC_SHAPER_TD) {
-        const ladrc_td_config_t td_cfg = {cfg->dt_s, cfg->td_accel_rad_s2, cfg->td_h0_s};
-        status = ladrc_td_init(&axis->td, &td_cfg);
-        if (status != LADRC_OK) {
-            return status;
-        }
-    } else if (cfg->shaper != LADRC_SHAPER_NONE) {
-        return LADRC_ERR_SHAPER;
     }
     axis->shaper = cfg->shaper;
     axis->kp = cfg->wc_rad_s * cfg->wc_rad_s;
@@ -67,7 +116,7 @@ static ladrc_status_t init_pid(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
                                         cfg->pid_ki,         cfg->pid_kd,
                                         cfg->pid_d_filter_tau_s, cfg->pid_i_limit_Nm,
                                         cfg->u_min_Nm,       cfg->u_max_Nm};
-    return ladrc_pid_init(&axis->pid, &pid_cfg);
+    return ladrc_pid_init(&axis->part.pid, &pid_cfg);
 }
 
 ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
@@ -84,14 +133,12 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
     ladrc_status_t status;
     switch (cfg->variant) {
     case LADRC_VARIANT_LADRC:
-        status = init_ladrc(axis, cfg);
+    case LADRC_VARIANT_LP_MLADRC:
+    case LADRC_VARIANT_HP_MLADRC:
+        status = init_adrc(axis, cfg);
         break;
     case LADRC_VARIANT_PID:
         status = init_pid(axis, cfg);
-        break;
-    case LADRC_VARIANT_LP_MLADRC:
-    case LADRC_VARIANT_HP_MLADRC:
-        status = LADRC_ERR_VARIANT_UNSUPPORTED;
         break;
     default:
         status = LADRC_ERR_VARIANT;
@@ -103,6 +150,7 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
     axis->variant = cfg->variant;
     axis->u_min_Nm = cfg->u_min_Nm;
     axis->u_max_Nm = cfg->u_max_Nm;
+    axis->f_rate_rad_s3 = LADRC_R(0.0);
     ladrc_axis_reset(axis, LADRC_R(0.0));
     return LADRC_OK;
 }
@@ -112,40 +160,67 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
     LADRC_ASSERT(axis != NULL);
     const ladrc_real_t angle = ladrc_is_finite(angle_rad) ? angle_rad : LADRC_R(0.0);
     if (axis->variant == LADRC_VARIANT_PID) {
-        ladrc_pid_reset(&axis->pid, angle);
+        ladrc_pid_reset(&axis->part.pid, angle);
     } else {
         ladrc_leso_reset(&axis->leso, angle);
         if (axis->shaper == LADRC_SHAPER_TD) {
-            ladrc_td_reset(&axis->td, angle);
+            ladrc_td_reset(&axis->shaping.td, angle);
+        }
+        if (axis->variant == LADRC_VARIANT_LP_MLADRC) {
+            ladrc_lp_reset(&axis->part.lp);
+        } else if (axis->variant == LADRC_VARIANT_HP_MLADRC) {
+            ladrc_hp_reset(&axis->part.hp, ladrc_hp_get_freq(&axis->part.hp));
         }
     }
     axis->ref.r = angle;
     axis->ref.dr = LADRC_R(0.0);
     axis->ref.ddr = LADRC_R(0.0);
+    axis->d_hat_rad_s2 = LADRC_R(0.0);
     axis->output_Nm = LADRC_R(0.0);
     axis->applied_Nm = LADRC_R(0.0);
     axis->consecutive_faults = 0u;
     axis->faults = LADRC_FAULT_NONE;
 }
 
-/* LADRC tick on finite ref and angle; returns the state fault, if any. */
-static ladrc_fault_t step_ladrc(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad)
+/* The estimators' view of this tick; returns the new d_hat. Their own faults
+ * (e.g. a missing rate) only hold their estimate, so they are not reported
+ * as axis faults beyond LADRC_FAULT_RATE. */
+static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, const ladrc_real_t *rate_rad_s)
+{
+    if (axis->variant == LADRC_VARIANT_LP_MLADRC) {
+        if (rate_rad_s != NULL && ladrc_is_finite(*rate_rad_s)) {
+            (void)ladrc_lp_step(&axis->part.lp, *rate_rad_s, axis->b0 * axis->applied_Nm);
+        }
+        return ladrc_lp_get_estimate(&axis->part.lp);
+    }
+    if (axis->variant == LADRC_VARIANT_HP_MLADRC) {
+        (void)ladrc_hp_step(&axis->part.hp, axis->leso.z3 + axis->d_hat_rad_s2);
+        return ladrc_hp_get_estimate(&axis->part.hp);
+    }
+    return LADRC_R(0.0);
+}
+
+/* ADRC tick on finite ref and angle; returns the state fault, if any. */
+static ladrc_fault_t step_adrc(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
+                               const ladrc_real_t *rate_rad_s)
 {
     const ladrc_leso_t *leso = &axis->leso;
-    /* The LESO error dynamics must see the torque that really acted. */
+    /* The LESO must see what really acted: applied torque and the estimate. */
     ladrc_fault_t faults = ladrc_leso_step(&axis->leso, angle_rad, axis->applied_Nm,
-                                           LADRC_R(0.0), LADRC_R(0.0));
+                                           axis->d_hat_rad_s2, axis->f_rate_rad_s3);
     ladrc_ref_t ref = {ref_rad, LADRC_R(0.0), LADRC_R(0.0)};
     if (axis->shaper == LADRC_SHAPER_TD) {
-        faults |= ladrc_td_step(&axis->td, ref_rad, &ref);
+        faults |= ladrc_td_step(&axis->shaping.td, ref_rad, &ref);
     }
+    const ladrc_real_t d_hat = estimate_disturbance(axis, rate_rad_s);
     const ladrc_real_t u0 =
         axis->kp * (ref.r - leso->z1) + axis->kd * (ref.dr - leso->z2) + ref.ddr;
-    const ladrc_real_t u = (u0 - leso->z3) / axis->b0;
+    const ladrc_real_t u = (u0 - leso->z3 - d_hat) / axis->b0;
     axis->ref = ref;
     if (!ladrc_is_finite(u)) {
         return (ladrc_fault_t)(faults | LADRC_FAULT_STATE);
     }
+    axis->d_hat_rad_s2 = d_hat;
     axis->output_Nm = ladrc_clamp(u, axis->u_min_Nm, axis->u_max_Nm);
     return faults;
 }
@@ -161,11 +236,11 @@ static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_re
     if (!(ladrc_is_finite(ref_rad) && ladrc_is_finite(angle_rad))) {
         faults |= LADRC_FAULT_INPUT;
     } else if (axis->variant == LADRC_VARIANT_PID) {
-        axis->output_Nm = ladrc_pid_step(&axis->pid, ref_rad, angle_rad, rate_rad_s);
-        faults |= ladrc_pid_get_faults(&axis->pid);
+        axis->output_Nm = ladrc_pid_step(&axis->part.pid, ref_rad, angle_rad, rate_rad_s);
+        faults |= ladrc_pid_get_faults(&axis->part.pid);
         axis->ref.r = ref_rad;
     } else {
-        faults |= step_ladrc(axis, ref_rad, angle_rad);
+        faults |= step_adrc(axis, ref_rad, angle_rad, rate_rad_s);
     }
     axis->applied_Nm = axis->output_Nm;
     axis->faults = faults;
@@ -198,8 +273,22 @@ void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
     }
     axis->applied_Nm = torque_Nm;
     if (axis->variant == LADRC_VARIANT_PID) {
-        ladrc_pid_set_applied(&axis->pid, torque_Nm);
+        ladrc_pid_set_applied(&axis->part.pid, torque_Nm);
     }
+}
+
+void ladrc_axis_set_disturbance_rate(ladrc_axis_t *axis, ladrc_real_t rate_rad_s3)
+{
+    LADRC_ASSERT(axis != NULL);
+    axis->f_rate_rad_s3 = ladrc_is_finite(rate_rad_s3) ? rate_rad_s3 : LADRC_R(0.0);
+}
+
+ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis)
+{
+    if (axis->variant == LADRC_VARIANT_PID) {
+        return LADRC_R(0.0);
+    }
+    return axis->b0 * axis->applied_Nm + axis->leso.z3 + axis->d_hat_rad_s2;
 }
 
 ladrc_fault_t ladrc_axis_get_faults(const ladrc_axis_t *axis) { return axis->faults; }
@@ -215,12 +304,12 @@ void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad,
                              ladrc_real_t *rate_rad_s, ladrc_real_t *disturbance_rad_s2)
 {
     if (axis->variant == LADRC_VARIANT_PID) {
-        *angle_rad = axis->pid.prev_meas_rad;
-        *rate_rad_s = axis->pid.d_filtered_rad_s;
+        *angle_rad = axis->part.pid.prev_meas_rad;
+        *rate_rad_s = axis->part.pid.d_filtered_rad_s;
         *disturbance_rad_s2 = LADRC_R(0.0);
     } else {
         *angle_rad = axis->leso.z1;
         *rate_rad_s = axis->leso.z2;
-        *disturbance_rad_s2 = axis->leso.z3;
+        *disturbance_rad_s2 = axis->leso.z3 + axis->d_hat_rad_s2;
     }
 }

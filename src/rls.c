@@ -63,6 +63,13 @@ static void restart_p(ladrc_rls_t *rls)
     }
 }
 
+/* lambda0 h <= 1 keeps the trace map monotone, so the bound holds (rls.h). */
+static int lambda0_is_valid(ladrc_real_t lambda0_per_s, ladrc_real_t dt_s)
+{
+    return ladrc_is_finite(lambda0_per_s) && lambda0_per_s >= LADRC_R(0.0) &&
+           lambda0_per_s * dt_s <= LADRC_R(1.0);
+}
+
 ladrc_status_t ladrc_rls_init(ladrc_rls_t *rls, const ladrc_rls_config_t *cfg)
 {
     if (rls == NULL || cfg == NULL) {
@@ -74,9 +81,7 @@ ladrc_status_t ladrc_rls_init(ladrc_rls_t *rls, const ladrc_rls_config_t *cfg)
     if (!ladrc_is_positive(cfg->dt_s)) {
         return LADRC_ERR_DT_S;
     }
-    /* lambda0 h <= 1 keeps the trace map monotone, so the bound holds (rls.h). */
-    if (!ladrc_is_finite(cfg->lambda0_per_s) || cfg->lambda0_per_s < LADRC_R(0.0) ||
-        cfg->lambda0_per_s * cfg->dt_s > LADRC_R(1.0)) {
+    if (!lambda0_is_valid(cfg->lambda0_per_s, cfg->dt_s)) {
         return LADRC_ERR_RLS_LAMBDA0;
     }
     if (!ladrc_is_positive(cfg->p_bound)) {
@@ -270,4 +275,14 @@ ladrc_fault_t ladrc_rls_get_faults(const ladrc_rls_t *rls)
 {
     LADRC_ASSERT(rls != NULL);
     return rls->faults;
+}
+
+ladrc_status_t ladrc_rls_set_lambda0(ladrc_rls_t *rls, ladrc_real_t lambda0_per_s)
+{
+    LADRC_ASSERT(rls != NULL);
+    if (!lambda0_is_valid(lambda0_per_s, rls->dt_s)) {
+        return LADRC_ERR_RLS_LAMBDA0;
+    }
+    rls->lambda0_per_s = lambda0_per_s;
+    return LADRC_OK;
 }

@@ -16,7 +16,6 @@ const char *ladrc_status_str(ladrc_status_t status)
         "LADRC_ERR_TD_ACCEL_RAD_S2: td accel_rad_s2 must be finite and > 0",
         "LADRC_ERR_TD_H0_S: td h0_s must be finite and >= dt_s",
         "LADRC_ERR_VARIANT: variant is not a ladrc_variant_t",
-        "LADRC_ERR_VARIANT_UNSUPPORTED: variant not available in this library version",
         "LADRC_ERR_U_LIMITS: u_min_Nm < u_max_Nm required, neither NaN",
         "LADRC_ERR_PID_KP: kp must be finite and >= 0",
         "LADRC_ERR_PID_KI: ki must be finite and >= 0",
@@ -40,6 +39,14 @@ const char *ladrc_status_str(ladrc_status_t status)
         "LADRC_ERR_MIXER_W2_MIN: mixer w2_min_rad2_s2 must be finite, and >= 0 unless ideal",
         "LADRC_ERR_MIXER_W2_MAX: mixer w2_max_rad2_s2 must be finite and > w2_min_rad2_s2",
         "LADRC_ERR_MIXER_TILT_MAX_RAD: mixer tilt_max_rad must lie in (0, pi/2)",
+        "LADRC_ERR_EST_LAMBDA0: estimator lambda0_per_s must be finite and > 0",
+        "LADRC_ERR_EST_K0: estimator k0_per_s must be finite and > 0",
+        "LADRC_ERR_HP_FREQ_MODE: hp freq_mode is not a ladrc_hp_freq_mode_t",
+        "LADRC_ERR_HP_FREQ_RAD_S: hp freq_rad_s must be finite, > 0 and < pi / dt_s",
+        "LADRC_ERR_HP_FREQ_RANGE: hp needs 0 < freq_min < freq_max and freq_max T < pi/2",
+        "LADRC_ERR_HP_DECIMATION: hp decimation must be >= 1",
+        "LADRC_ERR_DRAG_NMS: drag_Nms must be finite and >= 0",
+        "LADRC_ERR_COUPLING_FEED: coupling_feed must be 0 or 1",
     };
     if ((unsigned)status >= (unsigned)LADRC_STATUS_COUNT) {
         return "LADRC_ERR_UNKNOWN: not a ladrc_status_t";

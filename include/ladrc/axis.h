@@ -9,16 +9,19 @@
  *
  * LADRC tick k, measured angle y_k, raw reference ref_k (PAPER.md eq. 9-14):
  *
- *     LESO   z   <- step(y_k, applied torque of tick k-1)     (leso.h)
- *     shaper (r, r', r'') <- TD(ref_k) | (ref_k, 0, 0)       (td.h)
+ *     LESO   z   <- step(y_k, applied torque of tick k-1, d_hat_k-1, h_k-1)  (leso.h)
+ *     shaper (r, r', r'') <- TD(ref_k) | (ref_k, 0, 0)
+ *     d_hat_k <- LP(rate_k) | HP(z3 + d_hat_k-1) | 0 (plain LADRC)         (estimator.h)
  *     law    u0 = wc^2 (r - z1) + 2 wc (r' - z2) + r''
- *            u_k = clamp((u0 - z3) / b0, u_min_Nm, u_max_Nm)
+ *            u_k = clamp((u0 - z3 - d_hat_k) / b0, u_min_Nm, u_max_Nm)
  *
  * with b0 in rad/s^2 per N m (1/J for an axis of inertia J: the paper's b0 = 1
- * on an acceleration command). The LESO is fed the torque actually applied:
- * u_k itself unless the caller reports another value with
- * ladrc_axis_set_applied (e.g. after the mixer saturated), so saturation never
- * winds the observer up.
+ * on an acceleration command). The estimate d_hat enters the LESO as a known
+ * acceleration, so z3 carries only what the estimator misses. h is the known
+ * rate of change of the total disturbance (the coupling feed of attitude.h),
+ * 0 unless set. The LESO is fed the torque actually applied: u_k itself
+ * unless the caller reports another value with ladrc_axis_set_applied (e.g.
+ * after the mixer saturated), so saturation never winds the observer up.
  *
  * Faults: a non-finite reference or angle leaves every state untouched, holds
  * the previous command and raises LADRC_FAULT_INPUT; the next finite tick
@@ -28,6 +31,7 @@
 #ifndef LADRC_AXIS_H
 #define LADRC_AXIS_H
 
+#include "ladrc/estimator.h"
 #include "ladrc/leso.h"
 #include "ladrc/pid.h"
 #include "ladrc/td.h"
@@ -39,8 +43,8 @@ extern "C" {
 
 typedef enum {
     LADRC_VARIANT_LADRC = 0,    /**< traditional LADRC: TD + LESO + control law */
-    LADRC_VARIANT_LP_MLADRC = 1,/**< modified, low precision: not in this version (init rejects) */
-    LADRC_VARIANT_HP_MLADRC = 2,/**< modified, high precision: not in this version (init rejects) */
+    LADRC_VARIANT_LP_MLADRC = 1,/**< LADRC + LP estimator (needs the measured rate) */
+    LADRC_VARIANT_HP_MLADRC = 2,/**< LADRC + HP estimator (angle only) */
     LADRC_VARIANT_PID = 3,      /**< PID baseline (pid.h) */
     LADRC_VARIANT_COUNT
 } ladrc_variant_t;
@@ -74,6 +78,17 @@ typedef struct {
     ladrc_real_t pid_kd;          /**< N m s / rad */
     ladrc_real_t pid_d_filter_tau_s; /**< derivative filter time constant (s), 0 = none */
     ladrc_real_t pid_i_limit_Nm;  /**< |integral| bound (N m), INFINITY = none */
+    /* LP-MLADRC (estimator.h) */
+    ladrc_real_t lp_lambda0_per_s; /**< maximum forgetting rate (1/s); paper 100 */
+    ladrc_real_t lp_k0_per_s;      /**< gain bound (1/s); paper 300 */
+    /* HP-MLADRC (estimator.h) */
+    ladrc_hp_freq_mode_t hp_freq_mode;
+    ladrc_real_t hp_freq_rad_s;    /**< KNOWN: the disturbance frequency; ONLINE: first guess */
+    ladrc_real_t hp_freq_min_rad_s;/**< ONLINE search range */
+    ladrc_real_t hp_freq_max_rad_s;
+    ladrc_real_t hp_lambda0_per_s; /**< forgetting rate of the amplitude RLS (1/s) */
+    ladrc_real_t hp_freq_lambda0_per_s; /**< forgetting rate of the frequency RLS (1/s) */
+    uint16_t hp_decimation;        /**< ticks per frequency sample */
 } ladrc_axis_config_t;
 
 /** Axis state; owned by the caller, read through the getters. */
@@ -82,10 +97,18 @@ typedef struct {
     ladrc_shaper_t shaper;
     ladrc_real_t u_min_Nm, u_max_Nm;
     ladrc_real_t kp, kd, b0;      /**< wc^2, 2 wc, b0 */
-    ladrc_td_t td;
-    ladrc_leso_t leso;
-    ladrc_pid_t pid;
+    ladrc_leso_t leso;            /**< all variants but PID */
+    union {
+        ladrc_td_t td;
+    } shaping;                    /**< by shaper */
+    union {
+        ladrc_pid_t pid;
+        ladrc_lp_estimator_t lp;
+        ladrc_hp_estimator_t hp;
+    } part;                       /**< by variant */
     ladrc_ref_t ref;              /**< shaped reference of the latest tick */
+    ladrc_real_t d_hat_rad_s2;    /**< estimator output applied over the current step */
+    ladrc_real_t f_rate_rad_s3;   /**< known rate of change of f for the next LESO step */
     ladrc_real_t output_Nm;       /**< latest command */
     ladrc_real_t applied_Nm;      /**< torque the LESO sees at the next tick */
     uint32_t consecutive_faults;  /**< ticks in a row with LADRC_FAULT_INPUT or _STATE */
@@ -97,12 +120,15 @@ typedef struct {
  * b0 = 1 / inertia_kg_m2, ZOH LESO, TD shaping (R = 20 rad/s^2, h0 = dt_s);
  * PID kp = 20, ki = 20, kd = 0.05, no derivative filter; no torque or
  * integral limits (ideal actuators, as in the paper: set real ones for flight).
+ * LP: lambda0 = 100 /s, k0 = 300 /s (paper). HP: online frequency in
+ * [0.3, 40] rad/s starting at 3 rad/s, forgetting 1 /s for both RLS, frequency
+ * samples every 10 ticks at 1 kHz (a known frequency: set hp_freq_mode).
  */
 void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant,
                                ladrc_real_t dt_s, ladrc_real_t inertia_kg_m2);
 
 /** Validates the fields the variant reads (status names the first bad one)
- *  and resets at angle 0. LP/HP variants: LADRC_ERR_VARIANT_UNSUPPORTED. */
+ *  and resets at angle 0. */
 ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg);
 
 /** Restarts at rest on angle_rad (reference shaper and observer start there). */
@@ -111,14 +137,23 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad);
 /** One tick with angle only. @return torque command (N m) */
 ladrc_real_t ladrc_axis_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad);
 
-/** One tick with a measured rate too (PID uses it for its derivative; LADRC
- *  estimates the rate itself and ignores it). @return torque command (N m) */
+/** One tick with a measured rate too: PID uses it for its derivative and
+ *  LP-MLADRC for its disturbance sample (without a rate LP holds its
+ *  estimate); LADRC and HP-MLADRC ignore it. @return torque command (N m) */
 ladrc_real_t ladrc_axis_step_with_rate(ladrc_axis_t *axis, ladrc_real_t ref_rad,
                                        ladrc_real_t angle_rad, ladrc_real_t rate_rad_s);
 
 /** Reports the torque actually applied since the last tick (N m), e.g. after
  *  mixer saturation. Non-finite: ignored, LADRC_FAULT_APPLIED raised. */
 void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm);
+
+/** Known rate of change of the total disturbance for the next tick (rad/s^3),
+ *  the coupling feed; held until set again. Non-finite: ignored, 0 used. */
+void ladrc_axis_set_disturbance_rate(ladrc_axis_t *axis, ladrc_real_t rate_rad_s3);
+
+/** Angular acceleration the model expects over the current step (rad/s^2):
+ *  b0 * applied torque + z3 + d_hat. PID: 0. */
+ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis);
 
 /** Fault flags of the latest tick (and of set_applied since). */
 ladrc_fault_t ladrc_axis_get_faults(const ladrc_axis_t *axis);
@@ -129,8 +164,8 @@ uint32_t ladrc_axis_get_consecutive_faults(const ladrc_axis_t *axis);
 /** Shaped reference of the latest tick (PID: raw reference, zero derivatives). */
 void ladrc_axis_get_reference(const ladrc_axis_t *axis, ladrc_ref_t *ref);
 
-/** Observer estimates: angle (rad), rate (rad/s), total disturbance (rad/s^2).
- *  PID has no observer: last measured angle, its filtered rate, and 0. */
+/** Observer estimates: angle (rad), rate (rad/s), total disturbance z3 + d_hat
+ *  (rad/s^2). PID has no observer: last measured angle, its filtered rate, and 0. */
 void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad,
                              ladrc_real_t *rate_rad_s, ladrc_real_t *disturbance_rad_s2);
 

@@ -128,6 +128,11 @@ ladrc_real_t ladrc_rls_get_p(const ladrc_rls_t *rls, uint8_t row, uint8_t col);
  *  check; 0 after init or reset. */
 ladrc_real_t ladrc_rls_get_lambda(const ladrc_rls_t *rls);
 
+/** Changes the maximum forgetting rate from the next update on (e.g. a memory
+ *  that follows a signal's period). Rejected, state unchanged, as init would
+ *  reject it: LADRC_ERR_RLS_LAMBDA0. */
+ladrc_status_t ladrc_rls_set_lambda0(ladrc_rls_t *rls, ladrc_real_t lambda0_per_s);
+
 /** Flags of the latest update. */
 ladrc_fault_t ladrc_rls_get_faults(const ladrc_rls_t *rls);
 

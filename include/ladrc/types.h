@@ -50,7 +50,6 @@ typedef enum {
     LADRC_ERR_TD_ACCEL_RAD_S2,    /**< td_accel_rad_s2 not finite or not > 0 */
     LADRC_ERR_TD_H0_S,            /**< td_h0_s not finite or < dt_s */
     LADRC_ERR_VARIANT,            /**< variant not a ladrc_variant_t */
-    LADRC_ERR_VARIANT_UNSUPPORTED,/**< variant known but not built into this library version */
     LADRC_ERR_U_LIMITS,           /**< u_min_Nm / u_max_Nm NaN or u_min_Nm >= u_max_Nm (infinite = no limit) */
     LADRC_ERR_PID_KP,             /**< kp not finite or < 0 */
     LADRC_ERR_PID_KI,             /**< ki not finite or < 0 */
@@ -74,6 +73,14 @@ typedef enum {
     LADRC_ERR_MIXER_W2_MIN,       /**< mixer w2_min_rad2_s2 not finite, or < 0 outside ideal mode */
     LADRC_ERR_MIXER_W2_MAX,       /**< mixer w2_max_rad2_s2 not finite or not > w2_min_rad2_s2 */
     LADRC_ERR_MIXER_TILT_MAX_RAD, /**< mixer tilt_max_rad not in (0, pi/2) */
+    LADRC_ERR_EST_LAMBDA0,        /**< estimator forgetting rate not finite or not > 0 */
+    LADRC_ERR_EST_K0,             /**< estimator gain bound k0 not finite or not > 0 */
+    LADRC_ERR_HP_FREQ_MODE,       /**< hp freq_mode not a ladrc_hp_freq_mode_t */
+    LADRC_ERR_HP_FREQ_RAD_S,      /**< hp freq_rad_s not finite, not > 0, or >= pi / dt_s */
+    LADRC_ERR_HP_FREQ_RANGE,      /**< hp online range: need 0 < min < max and max T < pi/2 */
+    LADRC_ERR_HP_DECIMATION,      /**< hp decimation < 1 */
+    LADRC_ERR_DRAG_NMS,           /**< attitude drag_Nms not finite or < 0 */
+    LADRC_ERR_COUPLING_FEED,      /**< attitude coupling_feed not 0 or 1 */
     LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
 } ladrc_status_t;
 
@@ -112,12 +119,16 @@ static inline ladrc_real_t ladrc_fabs(ladrc_real_t x) { return fabs(x); }
 static inline ladrc_real_t ladrc_exp(ladrc_real_t x) { return exp(x); }
 static inline ladrc_real_t ladrc_expm1(ladrc_real_t x) { return expm1(x); }
 static inline ladrc_real_t ladrc_cos(ladrc_real_t x) { return cos(x); }
+static inline ladrc_real_t ladrc_sin(ladrc_real_t x) { return sin(x); }
+static inline ladrc_real_t ladrc_asin(ladrc_real_t x) { return asin(x); }
 #else
 static inline ladrc_real_t ladrc_sqrt(ladrc_real_t x) { return sqrtf(x); }
 static inline ladrc_real_t ladrc_fabs(ladrc_real_t x) { return fabsf(x); }
 static inline ladrc_real_t ladrc_exp(ladrc_real_t x) { return expf(x); }
 static inline ladrc_real_t ladrc_expm1(ladrc_real_t x) { return expm1f(x); }
 static inline ladrc_real_t ladrc_cos(ladrc_real_t x) { return cosf(x); }
+static inline ladrc_real_t ladrc_sin(ladrc_real_t x) { return sinf(x); }
+static inline ladrc_real_t ladrc_asin(ladrc_real_t x) { return asinf(x); }
 #endif
 
 /** 1 if x is finite and strictly positive: the check most config fields need. */

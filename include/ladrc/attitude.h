@@ -1,0 +1,87 @@
+/**
+ * @file attitude.h
+ * @brief Three axes (roll, pitch, yaw) ticked together, with the paper's
+ *        decoupling-free coupling feed (PAPER.md section 4).
+ *
+ * The cross-axis coupling of the rigid body stays in each axis's total
+ * disturbance f, but its rate of change h = f' is partly known from the other
+ * axes' estimates, so it is fed to each LESO as a known input:
+ *
+ *     h_roll  = (Jy - Jz)/Jx (pitch'' yaw'  + pitch' yaw'' ) - kt/Jx roll''
+ *     h_pitch = (Jz - Jx)/Jy (roll''  yaw'  + roll'  yaw'' ) - kt/Jy pitch''
+ *     h_yaw   = (Jx - Jy)/Jz (roll''  pitch' + roll' pitch'') - kt/Jz yaw''
+ *
+ * with rates from each LESO's z2 and accelerations b0 * applied torque + z3 +
+ * d_hat (ladrc_axis_get_accel), computed at the start of each tick from the
+ * previous tick's estimates. The feed only applies to LADRC-family axes; a
+ * PID axis contributes zero acceleration and receives no feed.
+ *
+ * One tick: ladrc_attitude_step -> mixer -> ladrc_attitude_set_applied with
+ * the torques actually achieved (so saturation never winds an observer up).
+ */
+#ifndef LADRC_ATTITUDE_H
+#define LADRC_ATTITUDE_H
+
+#include "ladrc/axis.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum { LADRC_ROLL = 0, LADRC_PITCH = 1, LADRC_YAW = 2, LADRC_AXES = 3 };
+
+typedef struct {
+    ladrc_axis_config_t axis[LADRC_AXES];   /**< roll, pitch, yaw; equal dt_s */
+    ladrc_real_t inertia_kg_m2[LADRC_AXES]; /**< Jx, Jy, Jz the feed assumes, > 0 */
+    ladrc_real_t drag_Nms;                  /**< rotational drag kt (N m s), >= 0 */
+    uint8_t coupling_feed;                  /**< 1: feed h to the observers, 0: off */
+} ladrc_attitude_config_t;
+
+typedef struct {
+    ladrc_axis_t axis[LADRC_AXES];
+    ladrc_real_t coupling[LADRC_AXES];      /**< (Jy-Jz)/Jx, (Jz-Jx)/Jy, (Jx-Jy)/Jz */
+    ladrc_real_t drag_per_s[LADRC_AXES];    /**< kt / J per axis (1/s) */
+    ladrc_real_t feed_rad_s3[LADRC_AXES];   /**< h fed at the latest tick */
+    uint8_t coupling_feed;
+} ladrc_attitude_t;
+
+/**
+ * Fills cfg with ladrc_axis_config_default for each axis (inertia from
+ * inertia_kg_m2), the given drag and the feed on.
+ */
+void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t variant,
+                                   ladrc_real_t dt_s, const ladrc_real_t inertia_kg_m2[LADRC_AXES],
+                                   ladrc_real_t drag_Nms);
+
+/**
+ * Validates the vehicle fields (LADRC_ERR_INERTIA_KG_M2, LADRC_ERR_DRAG_NMS,
+ * LADRC_ERR_COUPLING_FEED, LADRC_ERR_DT_S when the axes' steps differ) and
+ * each axis in turn; failed_axis (may be NULL) receives the index of the axis
+ * whose config was rejected, or -1.
+ */
+ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_config_t *cfg,
+                                   int *failed_axis);
+
+/** Restarts every axis at rest on the given angles (rad). */
+void ladrc_attitude_reset(ladrc_attitude_t *att, const ladrc_real_t angle_rad[LADRC_AXES]);
+
+/**
+ * One tick of the three axes.
+ * @param ref_rad     references (rad)
+ * @param angle_rad   measured angles (rad)
+ * @param rate_rad_s  measured body rates (rad/s), or NULL
+ * @param torque_Nm   out: torque commands (N m)
+ * @return the union of the axes' fault flags
+ */
+ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
+                                  const ladrc_real_t angle_rad[LADRC_AXES],
+                                  const ladrc_real_t *rate_rad_s, ladrc_real_t torque_Nm[LADRC_AXES]);
+
+/** Reports the torques the mixer achieved (N m) to each axis. */
+void ladrc_attitude_set_applied(ladrc_attitude_t *att, const ladrc_real_t torque_Nm[LADRC_AXES]);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LADRC_ATTITUDE_H */

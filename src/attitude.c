@@ -1,0 +1,116 @@
+/* Three axes with the decoupling-free coupling feed (see attitude.h). */
+#include "ladrc/attitude.h"
+
+void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t variant,
+                                   ladrc_real_t dt_s, const ladrc_real_t inertia_kg_m2[LADRC_AXES],
+                                   ladrc_real_t drag_Nms)
+{
+    LADRC_ASSERT(cfg != NULL);
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        ladrc_axis_config_default(&cfg->axis[i], variant, dt_s, inertia_kg_m2[i]);
+        cfg->inertia_kg_m2[i] = inertia_kg_m2[i];
+    }
+    cfg->drag_Nms = drag_Nms;
+    cfg->coupling_feed = 1u;
+}
+
+ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_config_t *cfg,
+                                   int *failed_axis)
+{
+    if (failed_axis != NULL) {
+        *failed_axis = -1;
+    }
+    if (att == NULL || cfg == NULL) {
+        return LADRC_ERR_NULL;
+    }
+    const ladrc_real_t *j = cfg->inertia_kg_m2;
+    if (!(ladrc_is_positive(j[0]) && ladrc_is_positive(j[1]) && ladrc_is_positive(j[2]))) {
+        return LADRC_ERR_INERTIA_KG_M2;
+    }
+    if (!ladrc_is_finite(cfg->drag_Nms) || cfg->drag_Nms < LADRC_R(0.0)) {
+        return LADRC_ERR_DRAG_NMS;
+    }
+    if (cfg->coupling_feed > 1u) {
+        return LADRC_ERR_COUPLING_FEED;
+    }
+    for (int i = 0; i < LADRC_AXES; ++i) {
+        /* The feed mixes the axes' states tick by tick: one clock for all. */
+        ladrc_status_t status = (cfg->axis[i].dt_s == cfg->axis[0].dt_s) ? LADRC_OK : LADRC_ERR_DT_S;
+        if (status == LADRC_OK) {
+            status = ladrc_axis_init(&att->axis[i], &cfg->axis[i]);
+        }
+        if (status != LADRC_OK) {
+            if (failed_axis != NULL) {
+                *failed_axis = i;
+            }
+            return status;
+        }
+    }
+    att->coupling[LADRC_ROLL] = (j[1] - j[2]) / j[0];
+    att->coupling[LADRC_PITCH] = (j[2] - j[0]) / j[1];
+    att->coupling[LADRC_YAW] = (j[0] - j[1]) / j[2];
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        att->drag_per_s[i] = cfg->drag_Nms / j[i];
+        att->feed_rad_s3[i] = LADRC_R(0.0);
+    }
+    att->coupling_feed = cfg->coupling_feed;
+    return LADRC_OK;
+}
+
+void ladrc_attitude_reset(ladrc_attitude_t *att, const ladrc_real_t angle_rad[LADRC_AXES])
+{
+    LADRC_ASSERT(att != NULL);
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        ladrc_axis_reset(&att->axis[i], angle_rad[i]);
+        att->feed_rad_s3[i] = LADRC_R(0.0);
+        ladrc_axis_set_disturbance_rate(&att->axis[i], LADRC_R(0.0));
+    }
+}
+
+/* h for each axis from the other axes' rate and acceleration estimates. */
+static void update_feed(ladrc_attitude_t *att)
+{
+    ladrc_real_t rate[LADRC_AXES];
+    ladrc_real_t accel[LADRC_AXES];
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        const ladrc_axis_t *ax = &att->axis[i];
+        const int observed = ax->variant != LADRC_VARIANT_PID;
+        rate[i] = observed ? ax->leso.z2 : LADRC_R(0.0);
+        accel[i] = ladrc_axis_get_accel(ax);
+    }
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        const unsigned a = (i + 1u) % LADRC_AXES; /* roll: pitch, yaw; pitch: yaw, roll; ... */
+        const unsigned b = (i + 2u) % LADRC_AXES;
+        const ladrc_real_t h = att->coupling[i] * (accel[a] * rate[b] + rate[a] * accel[b]) -
+                               att->drag_per_s[i] * accel[i];
+        att->feed_rad_s3[i] = (att->axis[i].variant != LADRC_VARIANT_PID) ? h : LADRC_R(0.0);
+        ladrc_axis_set_disturbance_rate(&att->axis[i], att->feed_rad_s3[i]);
+    }
+}
+
+ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
+                                  const ladrc_real_t angle_rad[LADRC_AXES],
+                                  const ladrc_real_t *rate_rad_s, ladrc_real_t torque_Nm[LADRC_AXES])
+{
+    LADRC_ASSERT(att != NULL);
+    if (att->coupling_feed) {
+        update_feed(att);
+    }
+    ladrc_fault_t faults = LADRC_FAULT_NONE;
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        ladrc_axis_t *ax = &att->axis[i];
+        torque_Nm[i] = (rate_rad_s != NULL)
+                           ? ladrc_axis_step_with_rate(ax, ref_rad[i], angle_rad[i], rate_rad_s[i])
+                           : ladrc_axis_step(ax, ref_rad[i], angle_rad[i]);
+        faults |= ladrc_axis_get_faults(ax);
+    }
+    return faults;
+}
+
+void ladrc_attitude_set_applied(ladrc_attitude_t *att, const ladrc_real_t torque_Nm[LADRC_AXES])
+{
+    LADRC_ASSERT(att != NULL);
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        ladrc_axis_set_applied(&att->axis[i], torque_Nm[i]);
+    }
+}
