@@ -32,19 +32,24 @@ static void set_freq(ladrc_hp_estimator_t *est, ladrc_real_t w_rad_s)
     est->sin_step = ladrc_sin(w_rad_s * est->dt_s);
 }
 
+/* Forgetting rate that keeps one period of the modelled tone, at most cap. */
+static ladrc_real_t one_period_rate(const ladrc_hp_estimator_t *est, ladrc_real_t cap)
+{
+    const ladrc_real_t rate = est->w_rad_s / (LADRC_R(2.0) * HP_PI);
+    return rate < cap ? rate : cap;
+}
+
 /* Memory of the fits and the gate. A fit that explains the signal keeps about
  * one period of data, which it needs to tell the bias, the sinusoid and a
  * neighbouring tone apart; a fit that does not (start, frequency jump) forgets
  * at the configured maximum rate so it can find the new signal quickly. */
 static void set_memory(ladrc_hp_estimator_t *est, ladrc_real_t explained)
 {
-    const ladrc_real_t one_period = est->w_rad_s / (LADRC_R(2.0) * HP_PI);
     const int fits = explained >= GATE_Q_OFF;
-    est->window_rate_per_s = (fits && one_period < est->lambda0_max) ? one_period : est->lambda0_max;
+    est->window_rate_per_s = fits ? one_period_rate(est, est->lambda0_max) : est->lambda0_max;
     (void)ladrc_rls_set_lambda0(&est->amp, est->window_rate_per_s);
-    (void)ladrc_rls_set_lambda0(&est->freq, (fits && one_period < est->freq_lambda0_max)
-                                          ? one_period
-                                          : est->freq_lambda0_max);
+    (void)ladrc_rls_set_lambda0(&est->freq, fits ? one_period_rate(est, est->freq_lambda0_max)
+                                                 : est->freq_lambda0_max);
 }
 
 ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t *cfg)
@@ -62,10 +67,10 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
     if (!ladrc_is_positive(cfg->freq_rad_s) || cfg->freq_rad_s * cfg->dt_s >= HP_PI) {
         return LADRC_ERR_HP_FREQ_RAD_S;
     }
-    const ladrc_real_t period_s = (ladrc_real_t)cfg->decimation * cfg->dt_s;
     if (cfg->decimation < 1u) {
         return LADRC_ERR_HP_DECIMATION;
     }
+    const ladrc_real_t period_s = (ladrc_real_t)cfg->decimation * cfg->dt_s;
     if (cfg->freq_mode == LADRC_HP_FREQ_ONLINE &&
         !(ladrc_is_positive(cfg->freq_min_rad_s) && ladrc_is_finite(cfg->freq_max_rad_s) &&
           cfg->freq_min_rad_s < cfg->freq_max_rad_s &&
@@ -134,11 +139,7 @@ static void update_freq(ladrc_hp_estimator_t *est, ladrc_real_t x)
                 /* Data fitted at another frequency would hold the fit back for a
                  * whole window: start the fit afresh from its current values.
                  * Only while nothing is compensated, so a restart cannot kick. */
-                ladrc_real_t theta[3];
-                for (unsigned i = 0; i < 3u; ++i) {
-                    theta[i] = ladrc_rls_get_theta(&est->amp)[i];
-                }
-                ladrc_rls_reset(&est->amp, theta);
+                ladrc_rls_reset(&est->amp, ladrc_rls_get_theta(&est->amp));
             }
             set_freq(est, w_new);
         }
@@ -155,9 +156,7 @@ static void update_freq(ladrc_hp_estimator_t *est, ladrc_real_t x)
  * locally does not look like a good model. */
 static ladrc_real_t update_gate(ladrc_hp_estimator_t *est, ladrc_real_t centred, ladrc_real_t err)
 {
-    const ladrc_real_t one_period = est->w_rad_s / (LADRC_R(2.0) * HP_PI);
-    const ladrc_real_t alpha =
-        (one_period < est->lambda0_max ? one_period : est->lambda0_max) * est->dt_s;
+    const ladrc_real_t alpha = one_period_rate(est, est->lambda0_max) * est->dt_s;
     est->sig_power += alpha * (centred * centred - est->sig_power);
     est->err_power += alpha * (err * err - est->err_power);
     const ladrc_real_t explained = (est->sig_power > GATE_MIN_POWER)
@@ -191,13 +190,13 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
         const ladrc_real_t err = sample_rad_s2 - ladrc_rls_predict(&est->amp, phi);
         est->faults = ladrc_rls_update(&est->amp, phi, sample_rad_s2);
         set_memory(est, update_gate(est, sample_rad_s2 - ladrc_rls_get_theta(&est->amp)[0], err));
-        est->dec_sum += sample_rad_s2;
-        if (++est->dec_count >= est->decimation) {
-            if (est->online) {
+        if (est->online) {
+            est->dec_sum += sample_rad_s2;
+            if (++est->dec_count >= est->decimation) {
                 update_freq(est, est->dec_sum / (ladrc_real_t)est->decimation);
+                est->dec_sum = LADRC_R(0.0);
+                est->dec_count = 0u;
             }
-            est->dec_sum = LADRC_R(0.0);
-            est->dec_count = 0u;
         }
     }
     const ladrc_real_t phi[3] = {LADRC_R(1.0), est->cos_psi, est->sin_psi};

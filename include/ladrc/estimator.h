@@ -22,10 +22,14 @@
  *     x_j - 2 x_j-1 + x_j-2 = -kappa x_j-1 + kappa c,   kappa = 4 sin^2(w T / 2)
  * solved by a two-parameter RLS (the second difference keeps the regression
  * well scaled where 2 cos(w T) would sit within float resolution of 2).
- * A confidence gate compares the model's prediction error power with the
- * sample's power around its bias; the compensation weight ramps towards 1
- * only while the model explains the signal, and towards 0 (plain LADRC)
- * otherwise, at a bounded rate.
+ * Both fits keep about one period of the modelled tone in memory while the
+ * model explains the signal (enough to tell the bias, the tone and a
+ * neighbouring tone apart), and forget at the configured maximum rate while it
+ * does not (start-up, a frequency jump). A confidence gate compares the
+ * model's prediction error power with the sample's power around its bias,
+ * both averaged over a period: the compensation weight ramps towards 1 only
+ * while the model explains more than 99.5% of it, and towards 0 (plain LADRC)
+ * below 97%, at most 1 per second.
  */
 #ifndef LADRC_ESTIMATOR_H
 #define LADRC_ESTIMATOR_H
