@@ -81,8 +81,12 @@ static ladrc_status_t init_estimator(ladrc_axis_t *axis, const ladrc_axis_config
                                       cfg->hp_freq_max_rad_s,
                                       cfg->hp_lambda0_per_s,
                                       cfg->hp_freq_lambda0_per_s,
-                                      cfg->hp_decimation};
-        return ladrc_hp_init(&axis->part.hp, &hp);
+                                      cfg->hp_decimation,
+                                      cfg->wo_rad_s};
+        /* The shadow copies the LESO, so its config was validated with it. */
+        const ladrc_leso_config_t shadow = {cfg->dt_s, cfg->wo_rad_s, cfg->b0, cfg->leso_method};
+        (void)ladrc_leso_init(&axis->part.hp.shadow, &shadow);
+        return ladrc_hp_init(&axis->part.hp.est, &hp);
     }
     return LADRC_OK;
 }
@@ -169,7 +173,8 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
         if (axis->variant == LADRC_VARIANT_LP_MLADRC) {
             ladrc_lp_reset(&axis->part.lp);
         } else if (axis->variant == LADRC_VARIANT_HP_MLADRC) {
-            ladrc_hp_reset(&axis->part.hp, ladrc_hp_get_freq(&axis->part.hp));
+            ladrc_hp_reset(&axis->part.hp.est, ladrc_hp_get_freq(&axis->part.hp.est));
+            ladrc_leso_reset(&axis->part.hp.shadow, LADRC_R(0.0));
         }
     }
     axis->ref.r = angle;
@@ -194,8 +199,14 @@ static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, const ladrc_real_t 
         return ladrc_lp_get_estimate(&axis->part.lp);
     }
     if (axis->variant == LADRC_VARIANT_HP_MLADRC) {
-        (void)ladrc_hp_step(&axis->part.hp, axis->leso.z3 + axis->d_hat_rad_s2);
-        return ladrc_hp_get_estimate(&axis->part.hp);
+        /* z3 holds f - d_hat seen through the observer's lag; the shadow, an
+         * identical observer of a still plant told the same d_hat, holds the
+         * d_hat part, so the difference is the observer's view of f alone and
+         * the fit does not chase its own output. */
+        ladrc_leso_t *shadow = &axis->part.hp.shadow;
+        (void)ladrc_leso_step(shadow, LADRC_R(0.0), LADRC_R(0.0), axis->d_hat_rad_s2, LADRC_R(0.0));
+        (void)ladrc_hp_step(&axis->part.hp.est, axis->leso.z3 - shadow->z3);
+        return ladrc_hp_get_estimate(&axis->part.hp.est);
     }
     return LADRC_R(0.0);
 }

@@ -30,6 +30,9 @@ static void set_freq(ladrc_hp_estimator_t *est, ladrc_real_t w_rad_s)
     est->w_rad_s = w_rad_s;
     est->cos_step = ladrc_cos(w_rad_s * est->dt_s);
     est->sin_step = ladrc_sin(w_rad_s * est->dt_s);
+    const ladrc_real_t x = (est->lag_wo_rad_s > LADRC_R(0.0)) ? w_rad_s / est->lag_wo_rad_s : LADRC_R(0.0);
+    est->lead_re = LADRC_R(1.0) - LADRC_R(3.0) * x * x;
+    est->lead_im = LADRC_R(3.0) * x - x * x * x;
 }
 
 /* Forgetting rate that keeps one period of the modelled tone, at most cap. */
@@ -80,6 +83,9 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
     if (!ladrc_is_positive(cfg->lambda0_per_s) || !ladrc_is_positive(cfg->freq_lambda0_per_s)) {
         return LADRC_ERR_EST_LAMBDA0;
     }
+    if (!ladrc_is_finite(cfg->sample_lag_wo_rad_s) || cfg->sample_lag_wo_rad_s < LADRC_R(0.0)) {
+        return LADRC_ERR_HP_SAMPLE_LAG;
+    }
     est->lambda0_max = cfg->lambda0_per_s;
     est->freq_lambda0_max = cfg->freq_lambda0_per_s;
     ladrc_status_t status = init_rls(&est->amp, 3u, cfg->dt_s, cfg->lambda0_per_s);
@@ -90,6 +96,7 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
         return status;
     }
     est->dt_s = cfg->dt_s;
+    est->lag_wo_rad_s = cfg->sample_lag_wo_rad_s;
     est->freq_min_rad_s = cfg->freq_min_rad_s;
     est->freq_max_rad_s = cfg->freq_max_rad_s;
     est->decimation = cfg->decimation;
@@ -179,6 +186,16 @@ static void advance_phase(ladrc_hp_estimator_t *est)
     est->sin_psi = s * norm;
 }
 
+/* The model at the current phase with the sample's lag undone: the phasor
+ * (a - j b) turned and scaled by (1 + j w / wo)^3; the bias has no lag. */
+static ladrc_real_t model_ahead_of_lag(const ladrc_hp_estimator_t *est)
+{
+    const ladrc_real_t *theta = ladrc_rls_get_theta(&est->amp);
+    const ladrc_real_t x = theta[1] * est->lead_re + theta[2] * est->lead_im;
+    const ladrc_real_t y = theta[1] * est->lead_im - theta[2] * est->lead_re;
+    return theta[0] + x * est->cos_psi - y * est->sin_psi;
+}
+
 ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s2)
 {
     LADRC_ASSERT(est != NULL);
@@ -199,8 +216,7 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
             }
         }
     }
-    const ladrc_real_t phi[3] = {LADRC_R(1.0), est->cos_psi, est->sin_psi};
-    est->estimate = est->weight * ladrc_rls_predict(&est->amp, phi);
+    est->estimate = est->weight * model_ahead_of_lag(est);
     advance_phase(est);
     return est->faults;
 }

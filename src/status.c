@@ -45,6 +45,7 @@ const char *ladrc_status_str(ladrc_status_t status)
         "LADRC_ERR_HP_FREQ_RAD_S: hp freq_rad_s must be finite, > 0 and < pi / dt_s",
         "LADRC_ERR_HP_FREQ_RANGE: hp needs 0 < freq_min < freq_max and freq_max T < pi/2",
         "LADRC_ERR_HP_DECIMATION: hp decimation must be >= 1",
+        "LADRC_ERR_HP_SAMPLE_LAG: hp sample_lag_wo_rad_s must be finite and >= 0",
         "LADRC_ERR_DRAG_NMS: drag_Nms must be finite and >= 0",
         "LADRC_ERR_COUPLING_FEED: coupling_feed must be 0 or 1",
     };

@@ -11,7 +11,7 @@
  *
  *     LESO   z   <- step(y_k, applied torque of tick k-1, d_hat_k-1, h_k-1)  (leso.h)
  *     shaper (r, r', r'') <- TD(ref_k) | (ref_k, 0, 0)
- *     d_hat_k <- LP(rate_k) | HP(z3 + d_hat_k-1) | 0 (plain LADRC)         (estimator.h)
+ *     d_hat_k <- LP(rate_k) | HP(z3 - z3_shadow) | 0 (plain LADRC)        (estimator.h)
  *     law    u0 = wc^2 (r - z1) + 2 wc (r' - z2) + r''
  *            u_k = clamp((u0 - z3 - d_hat_k) / b0, u_min_Nm, u_max_Nm)
  *
@@ -104,7 +104,10 @@ typedef struct {
     union {
         ladrc_pid_t pid;
         ladrc_lp_estimator_t lp;
-        ladrc_hp_estimator_t hp;
+        struct {
+            ladrc_hp_estimator_t est;
+            ladrc_leso_t shadow;  /**< the LESO's view of a still plant: z3 caused by d_hat alone */
+        } hp;
     } part;                       /**< by variant */
     ladrc_ref_t ref;              /**< shaped reference of the latest tick */
     ladrc_real_t d_hat_rad_s2;    /**< estimator output applied over the current step */

@@ -12,8 +12,12 @@
  * paper's forgetting (lambda0 = 100 /s, k0 = 300 /s) makes d_hat a
  * first-order tracker of s with bandwidth lambda0 k0 / (lambda0 + k0) = 75 rad/s.
  *
- * HP ("high precision", angle only): the sample is the LESO's total
- * disturbance plus the applied estimate, s_k = z3_k + d_hat_k-1 (~ f). Model
+ * HP ("high precision", angle only): the sample is the LESO's view of f
+ * alone, s_k = z3_k - z3_shadow_k, where the shadow is an identical observer
+ * of a still plant told the same d_hat: its z3 is the part of z3 that d_hat
+ * caused, so the fit never chases its own output (no adaptation loop through
+ * the observer). The sample lags f by the observer's wo^3 / (s + wo)^3, which
+ * the estimate undoes at the modelled frequency. Model
  *     d(t) = c + a cos(psi) + b sin(psi),   psi' = w
  * with (c, a, b) from a three-parameter RLS and psi kept as a unit phasor
  * rotated by w h each tick (bounded, no time variable). The frequency w is
@@ -89,6 +93,8 @@ typedef struct {
     ladrc_real_t lambda0_per_s;      /**< forgetting rate of the (c, a, b) RLS (1/s), > 0 */
     ladrc_real_t freq_lambda0_per_s; /**< forgetting rate of the frequency RLS (1/s), > 0 */
     uint16_t decimation;             /**< ticks per frequency sample, >= 1 */
+    ladrc_real_t sample_lag_wo_rad_s;/**< samples come through a LESO of this bandwidth, whose z3
+                                          lags f by wo^3 / (s + wo)^3: undone at w; 0 = no lag */
 } ladrc_hp_config_t;
 
 typedef struct {
@@ -102,6 +108,8 @@ typedef struct {
     ladrc_real_t w_rad_s;            /**< frequency in use */
     ladrc_real_t cos_psi, sin_psi;   /**< phase as a unit phasor */
     ladrc_real_t cos_step, sin_step; /**< rotation by w h */
+    ladrc_real_t lag_wo_rad_s;       /**< bandwidth of the sample's lag, 0 = none */
+    ladrc_real_t lead_re, lead_im;   /**< (1 + j w / wo)^3: undoes the lag at w */
     ladrc_real_t dec_sum;            /**< sum of the current decimation block */
     ladrc_real_t x1, x2;             /**< the two previous decimated samples */
     ladrc_real_t sig_power;          /**< gate: sample power around the bias, over a period */
@@ -123,7 +131,8 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
 void ladrc_hp_reset(ladrc_hp_estimator_t *est, ladrc_real_t freq_rad_s);
 
 /**
- * One tick on the disturbance sample s_k = z3_k + d_hat_k-1 (rad/s^2).
+ * One tick on the disturbance sample (rad/s^2): f as the axis's observer sees
+ * it, without the compensation's part (see above).
  * Non-finite: held, LADRC_FAULT_INPUT (the phase still advances, so the model
  * stays in step with time).
  */

@@ -79,6 +79,7 @@ typedef enum {
     LADRC_ERR_HP_FREQ_RAD_S,      /**< hp freq_rad_s not finite, not > 0, or >= pi / dt_s */
     LADRC_ERR_HP_FREQ_RANGE,      /**< hp online range: need 0 < min < max and max T < pi/2 */
     LADRC_ERR_HP_DECIMATION,      /**< hp decimation < 1 */
+    LADRC_ERR_HP_SAMPLE_LAG,      /**< hp sample_lag_wo_rad_s not finite or < 0 */
     LADRC_ERR_DRAG_NMS,           /**< attitude drag_Nms not finite or < 0 */
     LADRC_ERR_COUPLING_FEED,      /**< attitude coupling_feed not 0 or 1 */
     LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
