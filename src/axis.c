@@ -13,10 +13,10 @@
 #define AXIS_DEFAULT_PID_KD LADRC_R(0.05)
 #define AXIS_DEFAULT_LP_LAMBDA0_PER_S LADRC_R(100.0)
 #define AXIS_DEFAULT_LP_K0_PER_S LADRC_R(300.0)
-/* HP: the search range covers the issue's 0.5..30 rad/s with margin; a
- * forgetting rate of 1 /s (a 1 s memory) is the fastest that stayed stable in
- * closed loop (2 /s diverged); 20 ms frequency samples keep 40 rad/s below a
- * quarter turn per sample. */
+/* HP: the search range covers 0.5..30 rad/s with margin; 1 /s is the
+ * fastest forgetting (a 1 s memory, used while the model does not fit; a
+ * fitting model keeps one period); 20 ms frequency samples keep 40 rad/s
+ * below a quarter turn per sample. */
 #define AXIS_DEFAULT_HP_FREQ_RAD_S LADRC_R(3.0)
 #define AXIS_DEFAULT_HP_FREQ_MIN_RAD_S LADRC_R(0.3)
 #define AXIS_DEFAULT_HP_FREQ_MAX_RAD_S LADRC_R(40.0)
