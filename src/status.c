@@ -27,6 +27,14 @@ const char *ladrc_status_str(ladrc_status_t status)
         "LADRC_ERR_PLANT_ORDER: plant order must be 1, 2 or 3",
         "LADRC_ERR_INERTIA_KG_M2: inertia_kg_m2 must be finite and > 0",
         "LADRC_ERR_WO_RATIO: the observer/controller bandwidth ratio must be finite and > 0",
+        "LADRC_ERR_LEVANT_METHOD: method is not a ladrc_levant_method_t",
+        "LADRC_ERR_LEVANT_GAINS: gains is not a ladrc_levant_gains_t",
+        "LADRC_ERR_LEVANT_LIPSCHITZ: lipschitz_rad_s4 must be finite and > 0",
+        "LADRC_ERR_LEVANT_L1: l1 must be finite and > 0",
+        "LADRC_ERR_LEVANT_L2: l2 must be finite and > 0",
+        "LADRC_ERR_LEVANT_L3: l3 must be finite and > 0",
+        "LADRC_ERR_LEVANT_L4: l4 must be finite and > 0",
+        "LADRC_ERR_LEVANT_RANGE: dt_s and the gains give per-sample coefficients out of range",
     };
     if ((unsigned)status >= (unsigned)LADRC_STATUS_COUNT) {
         return "LADRC_ERR_UNKNOWN: not a ladrc_status_t";

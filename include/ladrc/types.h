@@ -61,6 +61,14 @@ typedef enum {
     LADRC_ERR_PLANT_ORDER,        /**< plant order outside 1..3 */
     LADRC_ERR_INERTIA_KG_M2,      /**< inertia not finite or not > 0 */
     LADRC_ERR_WO_RATIO,           /**< observer-to-controller bandwidth ratio not finite or not > 0 */
+    LADRC_ERR_LEVANT_METHOD,      /**< Levant method not a ladrc_levant_method_t */
+    LADRC_ERR_LEVANT_GAINS,       /**< Levant gains not a ladrc_levant_gains_t */
+    LADRC_ERR_LEVANT_LIPSCHITZ,   /**< lipschitz_rad_s4 not finite or not > 0 */
+    LADRC_ERR_LEVANT_L1,          /**< Levant l1 not finite or not > 0 */
+    LADRC_ERR_LEVANT_L2,          /**< Levant l2 not finite or not > 0 */
+    LADRC_ERR_LEVANT_L3,          /**< Levant l3 not finite or not > 0 */
+    LADRC_ERR_LEVANT_L4,          /**< Levant l4 not finite or not > 0 */
+    LADRC_ERR_LEVANT_RANGE,       /**< Levant per-sample coefficients overflow or vanish for this dt_s */
     LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
 } ladrc_status_t;
 
@@ -98,11 +106,13 @@ static inline ladrc_real_t ladrc_sqrt(ladrc_real_t x) { return sqrt(x); }
 static inline ladrc_real_t ladrc_fabs(ladrc_real_t x) { return fabs(x); }
 static inline ladrc_real_t ladrc_exp(ladrc_real_t x) { return exp(x); }
 static inline ladrc_real_t ladrc_expm1(ladrc_real_t x) { return expm1(x); }
+static inline ladrc_real_t ladrc_cbrt(ladrc_real_t x) { return cbrt(x); }
 #else
 static inline ladrc_real_t ladrc_sqrt(ladrc_real_t x) { return sqrtf(x); }
 static inline ladrc_real_t ladrc_fabs(ladrc_real_t x) { return fabsf(x); }
 static inline ladrc_real_t ladrc_exp(ladrc_real_t x) { return expf(x); }
 static inline ladrc_real_t ladrc_expm1(ladrc_real_t x) { return expm1f(x); }
+static inline ladrc_real_t ladrc_cbrt(ladrc_real_t x) { return cbrtf(x); }
 #endif
 
 /** 1 if x is finite and strictly positive: the check most config fields need. */
