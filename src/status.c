@@ -48,6 +48,14 @@ const char *ladrc_status_str(ladrc_status_t status)
         "LADRC_ERR_HP_SAMPLE_LAG: hp sample_lag_wo_rad_s must be finite and >= 0",
         "LADRC_ERR_DRAG_NMS: drag_Nms must be finite and >= 0",
         "LADRC_ERR_COUPLING_FEED: coupling_feed must be 0 or 1",
+        "LADRC_ERR_LEVANT_METHOD: method is not a ladrc_levant_method_t",
+        "LADRC_ERR_LEVANT_GAINS: gains is not a ladrc_levant_gains_t",
+        "LADRC_ERR_LEVANT_LIPSCHITZ: lipschitz_rad_s4 must be finite and > 0",
+        "LADRC_ERR_LEVANT_L1: l1 must be finite and > 0",
+        "LADRC_ERR_LEVANT_L2: l2 must be finite and > 0",
+        "LADRC_ERR_LEVANT_L3: l3 must be finite and > 0",
+        "LADRC_ERR_LEVANT_L4: l4 must be finite and > 0",
+        "LADRC_ERR_LEVANT_RANGE: dt_s and the gains give per-sample coefficients out of range",
     };
     if ((unsigned)status >= (unsigned)LADRC_STATUS_COUNT) {
         return "LADRC_ERR_UNKNOWN: not a ladrc_status_t";

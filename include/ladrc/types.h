@@ -82,6 +82,14 @@ typedef enum {
     LADRC_ERR_HP_SAMPLE_LAG,      /**< hp sample_lag_wo_rad_s not finite or < 0 */
     LADRC_ERR_DRAG_NMS,           /**< attitude drag_Nms not finite or < 0 */
     LADRC_ERR_COUPLING_FEED,      /**< attitude coupling_feed not 0 or 1 */
+    LADRC_ERR_LEVANT_METHOD,      /**< Levant method not a ladrc_levant_method_t */
+    LADRC_ERR_LEVANT_GAINS,       /**< Levant gains not a ladrc_levant_gains_t */
+    LADRC_ERR_LEVANT_LIPSCHITZ,   /**< lipschitz_rad_s4 not finite or not > 0 */
+    LADRC_ERR_LEVANT_L1,          /**< Levant l1 not finite or not > 0 */
+    LADRC_ERR_LEVANT_L2,          /**< Levant l2 not finite or not > 0 */
+    LADRC_ERR_LEVANT_L3,          /**< Levant l3 not finite or not > 0 */
+    LADRC_ERR_LEVANT_L4,          /**< Levant l4 not finite or not > 0 */
+    LADRC_ERR_LEVANT_RANGE,       /**< Levant per-sample coefficients overflow or vanish for this dt_s */
     LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
 } ladrc_status_t;
 
@@ -122,6 +130,7 @@ static inline ladrc_real_t ladrc_expm1(ladrc_real_t x) { return expm1(x); }
 static inline ladrc_real_t ladrc_cos(ladrc_real_t x) { return cos(x); }
 static inline ladrc_real_t ladrc_sin(ladrc_real_t x) { return sin(x); }
 static inline ladrc_real_t ladrc_asin(ladrc_real_t x) { return asin(x); }
+static inline ladrc_real_t ladrc_cbrt(ladrc_real_t x) { return cbrt(x); }
 #else
 static inline ladrc_real_t ladrc_sqrt(ladrc_real_t x) { return sqrtf(x); }
 static inline ladrc_real_t ladrc_fabs(ladrc_real_t x) { return fabsf(x); }
@@ -130,6 +139,7 @@ static inline ladrc_real_t ladrc_expm1(ladrc_real_t x) { return expm1f(x); }
 static inline ladrc_real_t ladrc_cos(ladrc_real_t x) { return cosf(x); }
 static inline ladrc_real_t ladrc_sin(ladrc_real_t x) { return sinf(x); }
 static inline ladrc_real_t ladrc_asin(ladrc_real_t x) { return asinf(x); }
+static inline ladrc_real_t ladrc_cbrt(ladrc_real_t x) { return cbrtf(x); }
 #endif
 
 /** 1 if x is finite and strictly positive: the check most config fields need. */
