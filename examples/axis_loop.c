@@ -3,7 +3,7 @@
  * simulated airframe axis (the paper's vehicle: J = 5.445e-3 kg m^2, rotor
  * drag kt = 0.09 N m s). The reference steps by 10 deg at 0.5 s, a constant
  * 8 rad/s^2 disturbance (the paper's Table 2) acts from 1.5 s, and the motors
- * deliver at most 0.05 N m. Prints a short comparison of LADRC and PID.
+ * deliver at most 0.05 N m. Prints a short comparison of the four controllers.
  */
 #include "ladrc/axis.h"
 
@@ -44,7 +44,8 @@ static int run(ladrc_variant_t variant, result_t *res)
         const double ref = (t >= 0.5) ? step : 0.0;
         const double dist = (t >= 1.5) ? 8.0 : 0.0;
         /* the tick: measure, step the controller, drive the motors */
-        const ladrc_real_t cmd = ladrc_axis_step(&axis, (ladrc_real_t)ref, (ladrc_real_t)angle);
+        const ladrc_real_t cmd =
+            ladrc_axis_step_with_rate(&axis, (ladrc_real_t)ref, (ladrc_real_t)angle, (ladrc_real_t)rate);
         const ladrc_real_t applied = ladrc_clamp(cmd, -TORQUE_LIMIT_NM, TORQUE_LIMIT_NM);
         ladrc_axis_set_applied(&axis, applied); /* what the motors really gave */
         /* the airframe over one tick (semi-implicit Euler, 10 substeps) */
@@ -67,18 +68,19 @@ static int run(ladrc_variant_t variant, result_t *res)
 
 int main(void)
 {
-    const ladrc_variant_t variants[] = {LADRC_VARIANT_LADRC, LADRC_VARIANT_PID};
-    const char *const names[] = {"LADRC", "PID"};
+    const ladrc_variant_t variants[] = {LADRC_VARIANT_LADRC, LADRC_VARIANT_LP_MLADRC,
+                                        LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_PID};
+    const char *const names[] = {"LADRC", "LP-MLADRC", "HP-MLADRC", "PID"};
     printf("10 deg step at 0.5 s, 8 rad/s^2 disturbance from 1.5 s, |torque| <= %.2f N m\n",
            (double)TORQUE_LIMIT_NM);
-    printf("%-6s %14s %24s %18s\n", "", "settling 2% (s)", "peak error, disturbance (deg)",
+    printf("%-10s %16s %30s %18s\n", "", "settling 2% (s)", "peak error, disturbance (deg)",
            "final error (deg)");
-    for (unsigned i = 0; i < 2; ++i) {
+    for (unsigned i = 0; i < 4; ++i) {
         result_t res;
         if (run(variants[i], &res) != 0) {
             return 1;
         }
-        printf("%-6s %14.3f %24.3f %18.5f\n", names[i], res.settling_s, res.peak_dist_deg,
+        printf("%-10s %16.3f %30.3f %18.5f\n", names[i], res.settling_s, res.peak_dist_deg,
                res.final_err_deg);
     }
     return 0;

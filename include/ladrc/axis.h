@@ -10,7 +10,7 @@
  * LADRC tick k, measured angle y_k, raw reference ref_k (PAPER.md eq. 9-14):
  *
  *     LESO   z   <- step(y_k, applied torque of tick k-1, d_hat_k-1, h_k-1)  (leso.h)
- *     shaper (r, r', r'') <- TD(ref_k) | (ref_k, 0, 0)
+ *     shaper (r, r', r'') <- TD(ref_k) | Levant(ref_k) | (ref_k, 0, 0)
  *     d_hat_k <- LP(rate_k) | HP(z3 - z3_shadow) | 0 (plain LADRC)        (estimator.h)
  *     law    u0 = wc^2 (r - z1) + 2 wc (r' - z2) + r''
  *            u_k = clamp((u0 - z3 - d_hat_k) / b0, u_min_Nm, u_max_Nm)
@@ -33,6 +33,7 @@
 
 #include "ladrc/estimator.h"
 #include "ladrc/leso.h"
+#include "ladrc/levant.h"
 #include "ladrc/pid.h"
 #include "ladrc/td.h"
 #include "ladrc/types.h"
@@ -50,8 +51,9 @@ typedef enum {
 } ladrc_variant_t;
 
 typedef enum {
-    LADRC_SHAPER_TD = 0,  /**< Han's tracking differentiator gives r, r', r'' */
-    LADRC_SHAPER_NONE = 1 /**< raw reference, r' = r'' = 0 */
+    LADRC_SHAPER_TD = 0,     /**< Han's tracking differentiator gives r, r', r'' */
+    LADRC_SHAPER_NONE = 1,   /**< raw reference, r' = r'' = 0 */
+    LADRC_SHAPER_LEVANT = 2  /**< Levant's robust exact differentiator (levant.h) */
 } ladrc_shaper_t;
 
 /**
@@ -72,6 +74,8 @@ typedef struct {
     ladrc_shaper_t shaper;
     ladrc_real_t td_accel_rad_s2; /**< TD acceleration bound (rad/s^2), > 0 (shaper TD only) */
     ladrc_real_t td_h0_s;         /**< TD filter factor (s), >= dt_s (shaper TD only) */
+    ladrc_levant_method_t levant_method; /**< shaper LEVANT only */
+    ladrc_real_t levant_lipschitz_rad_s4; /**< bound on |r''''| (rad/s^4), > 0 (shaper LEVANT only) */
     /* PID */
     ladrc_real_t pid_kp;          /**< N m / rad */
     ladrc_real_t pid_ki;          /**< N m / (rad s) */
@@ -100,6 +104,7 @@ typedef struct {
     ladrc_leso_t leso;            /**< all variants but PID */
     union {
         ladrc_td_t td;
+        ladrc_levant_t levant;
     } shaping;                    /**< by shaper */
     union {
         ladrc_pid_t pid;
@@ -123,6 +128,7 @@ typedef struct {
  * b0 = 1 / inertia_kg_m2, ZOH LESO, TD shaping (R = 20 rad/s^2, h0 = dt_s);
  * PID kp = 20, ki = 20, kd = 0.05, no derivative filter; no torque or
  * integral limits (ideal actuators, as in the paper: set real ones for flight).
+ * LP and HP shape the reference with Levant (implicit, L = 1000 rad/s^4).
  * LP: lambda0 = 100 /s, k0 = 300 /s (paper). HP: online frequency in
  * [0.3, 40] rad/s starting at 3 rad/s, forgetting 1 /s for both RLS, frequency
  * samples every 10 ticks at 1 kHz (a known frequency: set hp_freq_mode).
