@@ -1,0 +1,125 @@
+/*
+ * Scenario files: a small INI-like text format (documented in
+ * docs/scenario-format.md) describing one simulation: vehicle, run length and
+ * steps, references and disturbances as expressions of t over time windows,
+ * sensors, rotor limits, controllers to compare and metric windows. Angles are
+ * degrees in files and radians here; everything else is SI.
+ */
+#ifndef LADRC_SIM_SCENARIO_H
+#define LADRC_SIM_SCENARIO_H
+
+#include <stdint.h>
+
+#include "expr.h"
+
+#define SIM_MAX_PIECES 8
+#define SIM_MAX_CONTROLLERS 8
+#define SIM_NAME_LEN 64
+#define SIM_PATH_LEN 512
+
+/* A signal defined piecewise over windows (from_s, to_s]; 0 outside them.
+ * A piece with from_s = -inf, to_s = +inf covers all t. */
+typedef struct {
+    double from_s[SIM_MAX_PIECES];
+    double to_s[SIM_MAX_PIECES];
+    sim_expr_t expr[SIM_MAX_PIECES];
+    double scale;      /* applied to the expression's value: deg -> rad for references */
+    int n_pieces;
+} sim_signal_t;
+
+/* Value of the first piece whose window holds t, times scale; 0 if none. */
+double sim_signal_eval(const sim_signal_t *sig, double t_s);
+
+typedef enum { SIM_KIND_ATTITUDE = 0, SIM_KIND_DIFFERENTIATOR = 1 } sim_kind_t;
+
+typedef enum {
+    SIM_CTRL_HP_MLADRC = 0,
+    SIM_CTRL_LP_MLADRC,
+    SIM_CTRL_LADRC,
+    SIM_CTRL_PID,
+    SIM_CTRL_COUNT
+} sim_controller_id_t;
+
+/* Optional per-controller overrides; NaN (or -1 for enums) = library default. */
+typedef struct {
+    double wc_rad_s, wo_rad_s;
+    int leso_method;          /* -1, or ladrc_leso_method_t */
+    int hp_freq_mode;         /* -1, or ladrc_hp_freq_mode_t */
+    double hp_freq_rad_s;
+    double levant_lipschitz_rad_s4;
+    double td_accel_rad_s2;
+    double pid_kp, pid_ki, pid_kd;
+    int coupling_feed;        /* -1, 0 or 1 */
+} sim_overrides_t;
+
+typedef struct {
+    char name[SIM_NAME_LEN];      /* from the file name without extension */
+    char path[SIM_PATH_LEN];
+    sim_kind_t kind;              /* [run] kind = attitude | differentiator */
+
+    /* [run] */
+    double duration_s;
+    double control_dt_s;
+    int plant_substeps;           /* plant RK4 steps per control step, >= 1 */
+    uint64_t seed;
+    char output_dir[SIM_PATH_LEN];/* relative paths are relative to the current directory */
+    int n_controllers;
+    sim_controller_id_t controllers[SIM_MAX_CONTROLLERS];
+
+    /* [vehicle] (the plant) */
+    double mass_kg, inertia_kg_m2[3], arm_m, thrust_coeff_N_s2, yaw_coeff_Nm_s2,
+        rot_drag_Nm_s, g_m_s2;
+
+    /* [rotors] */
+    int rotors_ideal;             /* 1: no limits (paper); 0: limited */
+    double w2_min_rad2_s2, w2_max_rad2_s2, motor_tau_s, tilt_max_rad;
+
+    /* [sensors] */
+    double angle_noise_std_rad;   /* file gives angle_noise_var_deg2 or angle_noise_std_deg */
+    double rate_noise_std_rad_s;
+    int delay_ticks;
+    int use_rate;                 /* controllers get the measured rate */
+
+    /* [mismatch]: what the controllers assume, as factors of the plant's values */
+    double inertia_scale[3], rot_drag_scale;
+
+    /* [reference] roll, pitch, yaw (deg in the file, rad here) and
+     * [disturbance] roll, pitch, yaw (rad/s^2) */
+    sim_signal_t reference[3];
+    sim_signal_t disturbance[3];
+
+    /* [controller NAME] sections */
+    sim_overrides_t overrides[SIM_CTRL_COUNT];
+
+    /* [metrics] */
+    double error_window_s[2];     /* Table 4 statistics over this window */
+    double steady_window_s[2];    /* Table 5 steady band over this window */
+    double settle_band_deg;       /* Table 5 settling: |error| stays within this ... */
+    double settle_after_s;        /* ... measured from this instant */
+
+    /* [differentiator] (kind = differentiator): signal r(t) with noise, and
+     * its exact derivative for the error */
+    sim_signal_t diff_signal, diff_derivative;
+    double diff_noise_var;        /* variance of the noise added per sample */
+    double diff_levant_lipschitz, diff_td_accel, diff_td_h0_s;
+} sim_scenario_t;
+
+/* Where a parse failed, as file:line:column: message. */
+typedef struct {
+    char path[SIM_PATH_LEN];
+    int line;
+    int column;
+    char message[160];
+} sim_parse_error_t;
+
+/* Fills sc with the defaults of every key, then reads the file. Returns 0, or
+ * -1 with *err set (the first error); sc is then unusable. */
+int sim_scenario_load(sim_scenario_t *sc, const char *path, sim_parse_error_t *err);
+
+/* The same from text in memory (path is only used in messages). */
+int sim_scenario_parse(sim_scenario_t *sc, const char *text, const char *path, sim_parse_error_t *err);
+
+/* "HP-MLADRC", "LP-MLADRC", "LADRC", "PID" */
+const char *sim_controller_name(sim_controller_id_t id);
+
+#endif
