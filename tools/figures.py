@@ -1,0 +1,322 @@
+#!/usr/bin/env python3
+"""Draws the paper's figures (Dong et al., Actuators 2025, 14(10), 504: Figs. 5-12)
+from the output of ladrc_sil.
+
+Usage: figures.py OUT_DIR FIG_DIR [--paper NAME] [--noisy NAME] [--diff NAME]
+
+OUT_DIR holds one directory per scenario, as written by `ladrc_sil --out OUT_DIR`:
+<scenario>/<controller>.csv, <scenario>/differentiator.csv, <scenario>/metrics.csv.
+The PNGs go to FIG_DIR. A scenario that is absent is reported and its figures skipped;
+the exit status is then 1.
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+CONTROLLERS = ["HP-MLADRC", "LP-MLADRC", "LADRC", "PID"]
+COLOURS = {"HP-MLADRC": "#1f77b4", "LP-MLADRC": "#2ca02c", "LADRC": "#d62728", "PID": "#9467bd"}
+WIDTHS = {"HP-MLADRC": 1.4, "LP-MLADRC": 1.2, "LADRC": 1.0, "PID": 1.0}
+AXES = ["roll", "pitch", "yaw"]
+AXIS_SYMBOLS = {"roll": "roll φ", "pitch": "pitch θ", "yaw": "yaw ψ"}
+ONSETS_S = [2.0, 6.0, 12.0, 25.0]   # where the paper's Table 2 disturbance changes
+ZOOM_S = (-0.3, 1.2)                # zoom window around each onset
+SIZE_IN = (10, 6)
+DPI = 110
+MAX_POINTS = 6000                   # per line on full-length plots
+
+plt.rcParams.update({"font.size": 10, "axes.grid": True, "grid.alpha": 0.3,
+                     "legend.fontsize": 9, "figure.dpi": DPI})
+
+
+def load_csv(path):
+    """Columns of a CSV with a header row, as a dict of float arrays."""
+    with open(path, newline="") as f:
+        names = next(csv.reader(f))
+    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    return {name: data[:, i] for i, name in enumerate(names)}
+
+
+def load_runs(scen_dir):
+    runs = {}
+    for c in CONTROLLERS:
+        path = os.path.join(scen_dir, c + ".csv")
+        if os.path.exists(path):
+            runs[c] = load_csv(path)
+    return runs
+
+
+def load_metrics(scen_dir):
+    """{(controller, table, quantity, axis): value} from metrics.csv."""
+    out = {}
+    path = os.path.join(scen_dir, "metrics.csv")
+    if not os.path.exists(path):
+        return out
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            out[(row["controller"], row["table"], row["quantity"], row["axis"])] = float(row["value"])
+    return out
+
+
+def stride(n):
+    return max(1, n // MAX_POINTS)
+
+
+def mark_onsets(ax, t_end):
+    for t0 in ONSETS_S:
+        if t0 < t_end:
+            ax.axvline(t0, color="0.5", lw=0.8, ls=":")
+
+
+def save(fig, fig_dir, name):
+    path = os.path.join(fig_dir, name)
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+    print("figures.py: wrote", path)
+
+
+def fig_differentiator(d, metrics, fig_dir):
+    """Fig. 5: TD and Levant derivatives of the noisy sine against the exact derivative."""
+    t = d["t_s"]
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=SIZE_IN)
+    rms = {k: metrics.get((k, "3", "derivative_error_rms", "-"), math.nan) for k in ("TD", "Levant")}
+    lines = [("dr_true", "exact derivative", "k", 1.6),
+             ("dr_td", "TD (RMS error %.3f)" % rms["TD"], "#ff7f0e", 0.9),
+             ("dr_levant", "Levant (RMS error %.3f)" % rms["Levant"], "#1f77b4", 0.9)]
+    s = stride(t.size)
+    for key, label, colour, lw in lines:
+        top.plot(t[::s], d[key][::s], color=colour, lw=lw, label=label)
+    top.set_title("Fig. 5: derivative of the noisy signal, TD vs Levant")
+    top.set_ylabel("derivative (units/s)")
+    top.legend(loc="upper right", ncol=3)
+    # Zoom: one second in the middle of the run, every sample.
+    mid = t[0] + 0.5 * (t[-1] - t[0])
+    m = (t >= mid) & (t <= mid + 1.0)
+    for key, label, colour, lw in lines:
+        bottom.plot(t[m], d[key][m], color=colour, lw=lw, label=label)
+    bottom.set_title("zoom on [%.1f, %.1f] s, every sample" % (mid, mid + 1.0))
+    bottom.set_xlabel("time (s)")
+    bottom.set_ylabel("derivative (units/s)")
+    top.set_xlabel("time (s)")
+    fig.tight_layout()
+    save(fig, fig_dir, "fig05_td_levant.png")
+
+
+def plot_per_axis(runs, key_fmt, title, ylabel, fig_dir, name, with_ref):
+    """Three panels (roll, pitch, yaw) over the whole run, all controllers."""
+    fig, axes = plt.subplots(3, 1, figsize=SIZE_IN, sharex=True)
+    t_end = max(r["t_s"][-1] for r in runs.values())
+    for ax, axis in zip(axes, AXES):
+        if with_ref:
+            r = next(iter(runs.values()))
+            ax.plot(r["t_s"], r["ref_%s_deg" % axis], color="k", lw=1.6, ls="--", label="reference", zorder=5)
+        for c, r in runs.items():
+            s = stride(r["t_s"].size)
+            ax.plot(r["t_s"][::s], r[key_fmt % axis][::s], color=COLOURS[c], lw=WIDTHS[c], label=c)
+        mark_onsets(ax, t_end)
+        ax.set_ylabel("%s (%s)" % (AXIS_SYMBOLS[axis], ylabel))
+    axes[0].set_title(title)
+    axes[0].legend(loc="upper right", ncol=5)
+    axes[-1].set_xlabel("time (s)   (dotted lines: disturbance changes at %s s)"
+                        % ", ".join("%g" % x for x in ONSETS_S))
+    fig.tight_layout()
+    save(fig, fig_dir, name)
+
+
+def plot_onsets(runs, key_fmt, title, ylabel, fig_dir, name, with_ref):
+    """Grid of zooms: rows are axes, columns the disturbance onsets; every sample."""
+    t_end = max(r["t_s"][-1] for r in runs.values())
+    onsets = [t0 for t0 in ONSETS_S if t0 < t_end]
+    if not onsets:
+        return
+    fig, axes = plt.subplots(3, len(onsets), figsize=SIZE_IN, squeeze=False)
+    for j, t0 in enumerate(onsets):
+        for i, axis in enumerate(AXES):
+            ax = axes[i][j]
+            for c, r in runs.items():
+                t = r["t_s"]
+                m = (t >= t0 + ZOOM_S[0]) & (t <= t0 + ZOOM_S[1])
+                if with_ref and c == next(iter(runs)):
+                    ax.plot(t[m], r["ref_%s_deg" % axis][m], color="k", lw=1.4, ls="--", label="reference")
+                ax.plot(t[m], r[key_fmt % axis][m], color=COLOURS[c], lw=WIDTHS[c], label=c)
+            ax.axvline(t0, color="0.5", lw=0.8, ls=":")
+            ax.tick_params(labelsize=8)
+            if i == 0:
+                ax.set_title("onset at %g s" % t0, fontsize=10)
+            if i == 2:
+                ax.set_xlabel("time (s)")
+            if j == 0:
+                ax.set_ylabel("%s (%s)" % (AXIS_SYMBOLS[axis], ylabel))
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="upper center", ncol=5, bbox_to_anchor=(0.5, 0.955))
+    fig.suptitle(title)
+    fig.tight_layout(rect=(0, 0, 1, 0.91))
+    save(fig, fig_dir, name)
+
+
+def radar_scores(metrics):
+    """Table 5 scores per controller, normalised so 1 = best of the controllers, larger = better.
+
+    Each quantity q (max error, settling time, steady band) on each axis: score = min over
+    controllers of q / this controller's q; a run that never settles (settling -1) scores 0.
+    """
+    quantities = [("max_error_deg", "max error"), ("settling_s", "settling"), ("steady_band_deg", "band")]
+    spokes, scores = [], {c: [] for c in CONTROLLERS}
+    present = [c for c in CONTROLLERS if (c, "5", "max_error_deg", "roll") in metrics]
+    for q, label in quantities:
+        for axis in AXES:
+            vals = {c: metrics[(c, "5", q, axis)] for c in present}
+            valid = [v for v in vals.values() if v >= 0 and math.isfinite(v)]
+            floor = 1e-6
+            best = max(min(valid), floor) if valid else floor
+            for c in present:
+                v = vals[c]
+                scores[c].append(0.0 if v < 0 or not math.isfinite(v) else min(1.0, best / max(v, floor)))
+            spokes.append("%s\n%s" % (label, axis))
+    return spokes, {c: s for c, s in scores.items() if c in present}
+
+
+def fig_radar(metrics, fig_dir, name, title):
+    """Fig. 8: radar chart of the Table 5 scores."""
+    spokes, scores = radar_scores(metrics)
+    if not scores:
+        return
+    angles = np.linspace(0, 2 * np.pi, len(spokes), endpoint=False)
+    fig = plt.figure(figsize=SIZE_IN)
+    ax = fig.add_subplot(111, projection="polar")
+    closed = np.append(angles, angles[0])
+    for c, s in scores.items():
+        vals = np.append(s, s[0])
+        ax.plot(closed, vals, color=COLOURS[c], lw=1.8, label=c)
+        ax.fill(closed, vals, color=COLOURS[c], alpha=0.08)
+    ax.set_xticks(angles)
+    ax.set_xticklabels(spokes, fontsize=9)
+    ax.set_ylim(0, 1.05)
+    ax.set_yticks([0.25, 0.5, 0.75, 1.0])
+    ax.set_yticklabels(["0.25", "0.5", "0.75", "1"], fontsize=8)
+    ax.set_title(title, pad=22)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.12, 1.05))
+    fig.text(0.02, 0.02,
+             "score = (smallest value among the controllers) / (this controller's value): 1 = best, "
+             "larger = better;\nmax error and steady band in deg, settling time in s; a run that never "
+             "settles scores 0 (Table 5 of the report).", fontsize=9)
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
+    save(fig, fig_dir, name)
+
+
+def fig_disturbance(runs, fig_dir):
+    """Fig. 9: the true total disturbance f and the controllers' estimates, and the estimate error."""
+    est = {c: r for c, r in runs.items() if not np.all(np.isnan(r["f_est_roll_rad_s2"]))}
+    if not est:
+        return
+    fig, axes = plt.subplots(3, 2, figsize=(10, 7), sharex=True)
+    first = next(iter(est.values()))
+    t_end = first["t_s"][-1]
+    for i, axis in enumerate(AXES):
+        left, right = axes[i]
+        s = stride(first["t_s"].size)
+        left.plot(first["t_s"][::s], first["f_%s_rad_s2" % axis][::s], color="k", lw=2.2,
+                  label="true f (with %s)" % next(iter(est)))
+        for c, r in est.items():
+            s = stride(r["t_s"].size)
+            t = r["t_s"][::s]
+            left.plot(t, r["f_est_%s_rad_s2" % axis][::s], color=COLOURS[c], lw=WIDTHS[c] * 0.8,
+                      label="estimate, " + c)
+            right.plot(t, (r["f_est_%s_rad_s2" % axis] - r["f_%s_rad_s2" % axis])[::s],
+                       color=COLOURS[c], lw=WIDTHS[c] * 0.8, label=c)
+        for ax in (left, right):
+            mark_onsets(ax, t_end)
+        left.set_ylabel("%s (rad/s²)" % AXIS_SYMBOLS[axis])
+    axes[0][0].set_title("total disturbance f and estimate z3 + d̂")
+    axes[0][1].set_title("estimate error z3 + d̂ − f")
+    axes[0][0].legend(loc="lower left", fontsize=8)
+    axes[2][0].set_xlabel("time (s)")
+    axes[2][1].set_xlabel("time (s)")
+    fig.suptitle("Fig. 9: total disturbance (external + coupling + drag) and its estimate")
+    fig.tight_layout()
+    save(fig, fig_dir, "fig09_disturbance.png")
+
+
+def fig_rotors(runs, fig_dir):
+    """Fig. 12: rotor speed squared (as in Table 7; the paper's ideal rotors can go below 0)."""
+    fig, axes = plt.subplots(2, 2, figsize=SIZE_IN, sharex=True)
+    t_end = max(r["t_s"][-1] for r in runs.values())
+    for k, ax in enumerate(axes.flat):
+        for c, r in runs.items():
+            s = stride(r["t_s"].size)
+            # Widest first, so that curves lying on each other stay visible.
+            ax.plot(r["t_s"][::s], r["w2_%d" % (k + 1)][::s] / 1e3, color=COLOURS[c],
+                    lw=2.6 - 0.6 * CONTROLLERS.index(c), label=c)
+        ax.axhline(0, color="k", lw=0.6)
+        mark_onsets(ax, t_end)
+        ax.set_title("rotor %d" % (k + 1), fontsize=10)
+        ax.set_ylabel("ω² (10³ rad²/s²)")
+        if k >= 2:
+            ax.set_xlabel("time (s)")
+    axes[0][0].legend(loc="upper left", fontsize=8)
+    fig.suptitle("Fig. 12: rotor speed squared ω² (Table 7's quantity; ideal rotors, so ω² < 0 can occur)")
+    fig.tight_layout()
+    save(fig, fig_dir, "fig12_rotors.png")
+
+
+def main(argv):
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("out_dir")
+    p.add_argument("fig_dir")
+    p.add_argument("--paper", default="paper", help="scenario of Figs. 6-9 and 12 (default: paper)")
+    p.add_argument("--noisy", default="paper_noisy", help="scenario of Figs. 10-11 (default: paper_noisy)")
+    p.add_argument("--diff", default="table3_differentiator",
+                   help="scenario of Fig. 5 (default: table3_differentiator)")
+    a = p.parse_args(argv)
+    os.makedirs(a.fig_dir, exist_ok=True)
+    missing = []
+
+    diff_dir = os.path.join(a.out_dir, a.diff)
+    if os.path.exists(os.path.join(diff_dir, "differentiator.csv")):
+        fig_differentiator(load_csv(os.path.join(diff_dir, "differentiator.csv")), load_metrics(diff_dir),
+                           a.fig_dir)
+    else:
+        missing.append(a.diff)
+
+    paper_dir = os.path.join(a.out_dir, a.paper)
+    runs = load_runs(paper_dir)
+    if runs:
+        plot_per_axis(runs, "angle_%s_deg", "Fig. 6: attitude tracking, paper case", "deg", a.fig_dir,
+                      "fig06_tracking.png", True)
+        plot_onsets(runs, "angle_%s_deg", "Fig. 6 (zoom): attitude at the disturbance onsets, paper case",
+                    "deg", a.fig_dir, "fig06_tracking_onsets.png", True)
+        plot_per_axis(runs, "error_%s_deg", "Fig. 7: tracking error (reference − angle), paper case", "deg",
+                      a.fig_dir, "fig07_errors.png", False)
+        plot_onsets(runs, "error_%s_deg", "Fig. 7 (zoom): tracking error at the disturbance onsets, paper case",
+                    "deg", a.fig_dir, "fig07_errors_onsets.png", False)
+        fig_radar(load_metrics(paper_dir), a.fig_dir, "fig08_radar.png",
+                  "Fig. 8: Table 5 scores, paper case (larger = better)")
+        fig_disturbance(runs, a.fig_dir)
+        fig_rotors(runs, a.fig_dir)
+    else:
+        missing.append(a.paper)
+
+    noisy = load_runs(os.path.join(a.out_dir, a.noisy))
+    if noisy:
+        plot_per_axis(noisy, "angle_%s_deg", "Fig. 10: attitude tracking with angle noise", "deg", a.fig_dir,
+                      "fig10_noisy_tracking.png", True)
+        plot_per_axis(noisy, "error_%s_deg", "Fig. 11: tracking error with angle noise", "deg", a.fig_dir,
+                      "fig11_noisy_errors.png", False)
+    else:
+        missing.append(a.noisy)
+
+    for name in missing:
+        print("figures.py: no output of scenario '%s' in %s; its figures are skipped" % (name, a.out_dir),
+              file=sys.stderr)
+    return 1 if missing else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

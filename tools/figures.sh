@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Flies the paper's scenarios (tools/paper.sh) and draws the figures and the report:
+# docs/figures/*.png and docs/report.md.
+#
+# Usage: tools/figures.sh [OUT_DIR]
+#   OUT_DIR  where the simulator's CSV output goes (default: build/paper-out)
+#
+# Needs Python 3 with matplotlib and numpy; on Debian:
+#   apt-get install python3-matplotlib python3-numpy
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+# Debian's interpreter sees Debian's packages; another python3 first on PATH may not.
+py=python3
+[[ -x /usr/bin/python3 ]] && py=/usr/bin/python3
+if ! "$py" -c 'import matplotlib, numpy' >/dev/null 2>&1; then
+  echo "error: $py cannot import matplotlib and numpy; install them with" >&2
+  echo "  apt-get install python3-matplotlib python3-numpy" >&2
+  exit 1
+fi
+
+out=${1:-build/paper-out}
+rm -rf "$out/paper" "$out/paper_noisy" "$out/table3_differentiator"
+mkdir -p "$out"
+echo "== flying the paper's scenarios into $out"
+tools/paper.sh --out "$out" --quiet | tee "$out/tables.txt"
+echo "== figures and report"
+rm -f docs/figures/*.png
+"$py" tools/figures.py "$out" docs/figures
+"$py" tools/report.py "$out" docs/report.md

@@ -1,0 +1,290 @@
+#!/usr/bin/env python3
+"""Writes a Markdown report that sets the simulator's Tables 3-7 beside the paper's.
+
+Usage: report.py OUT_DIR REPORT_MD [--paper NAME] [--noisy NAME] [--diff NAME]
+
+OUT_DIR holds one directory per scenario with its metrics.csv, as written by
+`ladrc_sil --out OUT_DIR`. If OUT_DIR/tables.txt holds ladrc_sil's printed tables, their
+headings (the averaging windows and definitions) are quoted in the report.
+Every number of ours comes from metrics.csv; the paper's are the data below.
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+
+# Dong, Y. et al., "Decoupling-Free Attitude Control of UAV Considering High-Frequency
+# Disturbances: A Modified Linear Active Disturbance Rejection Method", Actuators 2025,
+# 14(10), 504: the published values of Tables 3-7 (Section 5).
+PAPER_REF = ("Dong et al., *Actuators* 2025, 14(10), 504, Section 5")
+PAPER_T3_RMS = {"TD": 2.767, "Levant": 0.695}
+# Table 4: (mean, std, RMS) in deg per controller and axis.
+PAPER_T4 = {
+    "HP-MLADRC": {"roll": (0.0078, 1.1823, 1.1823), "pitch": (0.0419, 1.1092, 1.1100),
+                  "yaw": (0.0000, 1.3289, 1.3289)},
+    "LP-MLADRC": {"roll": (-0.0231, 0.5680, 0.5684), "pitch": (0.0203, 0.5248, 0.5251),
+                  "yaw": (-0.0034, 0.2474, 0.2474)},
+    "LADRC": {"roll": (0.2188, 7.6786, 7.6816), "pitch": (0.1837, 8.1964, 8.1984),
+              "yaw": (-0.1157, 7.8811, 7.8818)},
+    "PID": {"roll": (0.0466, 1.4897, 1.4904), "pitch": (0.0352, 1.5643, 1.5646),
+            "yaw": (-0.0299, 3.0787, 3.0788)},
+}
+# Table 5: max error (deg), settling time (s), steady-state band (+- deg); one value per
+# controller, not per axis.
+PAPER_T5 = {"HP-MLADRC": (9.43, 0.465, 0.0073), "LP-MLADRC": (1.78, 0.124, 0.3639),
+            "LADRC": (16.941, 11.335, 13.8988), "PID": (11.4166, 0.395, 5.2999)}
+# Table 6: disturbance estimate error (mean, std, RMS) in rad/s^2; one set, the controller
+# is not named.
+PAPER_T6 = {"roll": (0.805, 9.949, 9.981), "pitch": (-0.628, 9.957, 9.977),
+            "yaw": (0.772, 10.244, 10.273)}
+# Table 7: rotor speed squared (mean, std) in rad^2/s^2, LP-MLADRC.
+PAPER_T7 = {"1": (100035, 51297), "2": (39612, 118466), "3": (75442, 119115), "4": (55776, 49497)}
+
+CONTROLLERS = ["HP-MLADRC", "LP-MLADRC", "LADRC", "PID"]
+AXES = ["roll", "pitch", "yaw"]
+
+
+def load_metrics(scen_dir):
+    out = {}
+    path = os.path.join(scen_dir, "metrics.csv")
+    if not os.path.exists(path):
+        return None
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            out[(row["controller"], row["table"], row["quantity"], row["axis"])] = float(row["value"])
+    return out
+
+
+def table_headings(path):
+    """{scenario: {"run": line, "3": heading, "4": heading, ...}} from ladrc_sil's printed tables."""
+    out, current = {}, None
+    if not os.path.exists(path):
+        return out
+    with open(path) as f:
+        for line in f:
+            line = line.strip()
+            if line.startswith("== "):
+                current = out.setdefault(line[3:].split(" ", 1)[0], {})
+                current["run"] = line[3:]
+            elif current is not None and line.startswith("Table "):
+                current[line.split(".", 1)[0].split()[1]] = line
+    return out
+
+
+def num(v, digits=4):
+    if v is None or (isinstance(v, float) and math.isnan(v)):
+        return "—"
+    if abs(v) >= 1e4:
+        return "%.0f" % v
+    if v != 0 and abs(v) < 10 ** -(digits - 1):
+        return "%.2e" % v
+    return "%.*f" % (digits, v)
+
+
+def rel(ours, paper):
+    """Relative difference (ours - paper) / |paper| in percent."""
+    if ours is None or paper == 0 or math.isnan(ours):
+        return "—"
+    return "%+.0f %%" % (100.0 * (ours - paper) / abs(paper))
+
+
+def absdiff(ours, paper, digits=4):
+    if ours is None or math.isnan(ours):
+        return "—"
+    return "%+.*f" % (digits, ours - paper)
+
+
+class Report:
+    def __init__(self):
+        self.lines = []
+
+    def add(self, *lines):
+        self.lines.extend(lines)
+
+    def table(self, header, rows):
+        self.add("| " + " | ".join(header) + " |", "|" + "---|" * len(header))
+        for r in rows:
+            self.add("| " + " | ".join(r) + " |")
+        self.add("")
+
+    def heading_of(self, headings, scenario, table):
+        h = headings.get(scenario, {}).get(table)
+        if h:
+            self.add("Definition, as printed by ladrc_sil: *%s*" % h, "")
+
+
+def section_t3(rep, m, headings, scen):
+    rep.add("## Table 3: reference differentiation, TD vs Levant", "")
+    rep.heading_of(headings, scen, "3")
+    rows = []
+    for k in ("TD", "Levant"):
+        ours = m.get((k, "3", "derivative_error_rms", "-"))
+        rows.append([k, num(m.get((k, "3", "derivative_error_mean", "-"))),
+                     num(m.get((k, "3", "derivative_error_std", "-"))), num(PAPER_T3_RMS[k], 3), num(ours),
+                     rel(ours, PAPER_T3_RMS[k])])
+    rep.table(["shaper", "error mean (ours)", "error std (ours)", "error RMS (paper)", "error RMS (ours)",
+               "RMS: ours vs paper"], rows)
+    td, lv = m.get(("TD", "3", "derivative_error_rms", "-")), m.get(("Levant", "3", "derivative_error_rms", "-"))
+    if td and lv:
+        rep.add("TD / Levant RMS ratio: paper %.2f, ours %.2f." % (PAPER_T3_RMS["TD"] / PAPER_T3_RMS["Levant"],
+                                                                   td / lv), "")
+
+
+def section_t4(rep, m, headings, scen, with_paper):
+    rep.add("Definition, as printed by ladrc_sil: *%s*" % headings[scen]["4"] if "4" in headings.get(scen, {})
+            else "Tracking error = reference − angle, in deg.", "")
+    rows = []
+    for c in CONTROLLERS:
+        if (c, "4", "error_rms_deg", "roll") not in m:
+            continue
+        for axis in AXES:
+            mean, std, rms = (m.get((c, "4", q, axis)) for q in ("error_mean_deg", "error_std_deg", "error_rms_deg"))
+            if with_paper:
+                pm, ps, pr = PAPER_T4[c][axis]
+                rows.append([c, axis, "%s / %s (%s)" % (num(pm), num(mean), absdiff(mean, pm)),
+                             "%s / %s (%s)" % (num(ps), num(std), rel(std, ps)),
+                             "%s / %s (%s)" % (num(pr), num(rms), rel(rms, pr))])
+            else:
+                rows.append([c, axis, num(mean), num(std), num(rms)])
+    if with_paper:
+        rep.table(["controller", "axis", "mean, deg: paper / ours (Δ)", "std, deg: paper / ours (Δ)",
+                   "RMS, deg: paper / ours (Δ)"], rows)
+    else:
+        rep.table(["controller", "axis", "mean (deg)", "std (deg)", "RMS (deg)"], rows)
+
+
+def section_t5(rep, m, headings, scen, with_paper):
+    rep.heading_of(headings, scen, "5")
+    quantities = [("max_error_deg", "max error (deg)"), ("settling_s", "settling time (s)"),
+                  ("steady_band_deg", "steady band (± deg)")]
+    rows = []
+    for c in CONTROLLERS:
+        if (c, "5", "max_error_deg", "roll") not in m:
+            continue
+        for qi, (q, label) in enumerate(quantities):
+            row = [c, label]
+            if with_paper:
+                row.append(num(PAPER_T5[c][qi]))
+            for axis in AXES:
+                v = m.get((c, "5", q, axis))
+                text = "never" if q == "settling_s" and v is not None and v < 0 else num(v)
+                if with_paper and text != "never":
+                    text += " (%s)" % rel(v, PAPER_T5[c][qi])
+                row.append(text)
+            rows.append(row)
+    header = ["controller", "quantity"] + (["paper"] if with_paper else [])
+    header += [a + (" (ours vs paper)" if with_paper else "") for a in AXES]
+    rep.table(header, rows)
+
+
+def section_t6(rep, m, headings, scen):
+    rep.add("## Table 6: disturbance estimate error", "")
+    rep.heading_of(headings, scen, "6")
+    rep.add("The paper gives one set of values without naming the controller; each of our estimating "
+            "controllers is set beside it. PID has no disturbance estimate.", "")
+    present = [c for c in CONTROLLERS if (c, "6", "dist_error_rms", "roll") in m]
+    rows = []
+    for axis in AXES:
+        for qi, q in enumerate(("mean", "std", "rms")):
+            paper = PAPER_T6[axis][qi]
+            row = [axis, q if q != "rms" else "RMS", num(paper, 3)]
+            for c in present:
+                v = m.get((c, "6", "dist_error_" + q, axis))
+                row.append("%s (%s)" % (num(v, 3), absdiff(v, paper, 3) if q == "mean" else rel(v, paper)))
+            rows.append(row)
+    rep.table(["axis", "quantity", "paper (rad/s²)"] + ["%s (ours vs paper)" % c for c in present], rows)
+
+
+def section_t7(rep, m, headings, scen):
+    rep.add("## Table 7: rotor speed squared", "")
+    rep.heading_of(headings, scen, "7")
+    rep.add("The paper gives the LP-MLADRC row (the other controllers within a few %); each of our "
+            "controllers is set beside it.", "")
+    present = [c for c in CONTROLLERS if (c, "7", "w2_mean", "1") in m]
+    rows = []
+    for rotor in ("1", "2", "3", "4"):
+        for qi, q in enumerate(("mean", "std")):
+            paper = PAPER_T7[rotor][qi]
+            row = [rotor, q, num(paper)]
+            for c in present:
+                v = m.get((c, "7", "w2_" + q, rotor))
+                row.append("%s (%s)" % (num(v, 0), rel(v, paper)))
+            rows.append(row)
+    rep.table(["rotor", "quantity", "paper LP-MLADRC (rad²/s²)"] + ["%s (ours vs paper)" % c for c in present],
+              rows)
+
+
+def health(rep, m, scen):
+    bad = []
+    for c in CONTROLLERS:
+        finite = m.get((c, "-", "finite", "-"))
+        faults = m.get((c, "-", "fault_ticks", "-"))
+        if finite is not None and (finite != 1 or faults):
+            bad.append("%s: %s, %d fault ticks" % (c, "finite" if finite == 1 else "DIVERGED", faults or 0))
+    rep.add("Run health (%s): %s" % (scen, "; ".join(bad) if bad else
+                                     "every run stayed finite with no controller fault."), "")
+
+
+def main(argv):
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("out_dir")
+    p.add_argument("report_md")
+    p.add_argument("--paper", default="paper")
+    p.add_argument("--noisy", default="paper_noisy")
+    p.add_argument("--diff", default="table3_differentiator")
+    a = p.parse_args(argv)
+    headings = table_headings(os.path.join(a.out_dir, "tables.txt"))
+    rep = Report()
+    rep.add("# Simulation results beside the paper's", "",
+            "Generated by `tools/report.py` from the metrics that `ladrc_sil` wrote (`tools/figures.sh` "
+            "regenerates it); the paper's numbers are the published Tables 3-7 of %s. Relative differences "
+            "are (ours − paper) / |paper|; for means, which sit near zero, the difference ours − paper is "
+            "given instead." % PAPER_REF, "")
+    for scen in (a.diff, a.paper, a.noisy):
+        if "run" in headings.get(scen, {}):
+            rep.add("- `%s`" % headings[scen]["run"])
+    rep.add("")
+    missing = []
+
+    m = load_metrics(os.path.join(a.out_dir, a.diff))
+    if m is None:
+        missing.append(a.diff)
+    else:
+        section_t3(rep, m, headings, a.diff)
+
+    m = load_metrics(os.path.join(a.out_dir, a.paper))
+    if m is None:
+        missing.append(a.paper)
+    else:
+        rep.add("## Table 4: tracking error", "")
+        section_t4(rep, m, headings, a.paper, True)
+        rep.add("## Table 5: max error, settling time, steady band", "")
+        rep.add("The paper gives one value per controller; ours are per axis.", "")
+        section_t5(rep, m, headings, a.paper, True)
+        section_t6(rep, m, headings, a.paper)
+        section_t7(rep, m, headings, a.paper)
+        health(rep, m, a.paper)
+
+    m = load_metrics(os.path.join(a.out_dir, a.noisy))
+    if m is None:
+        missing.append(a.noisy)
+    else:
+        rep.add("## Noisy case (Figs. 10-11): Tables 4 and 5", "",
+                "The paper publishes no tables for this case; these are ours.", "")
+        section_t4(rep, m, headings, a.noisy, False)
+        section_t5(rep, m, headings, a.noisy, False)
+        health(rep, m, a.noisy)
+
+    for name in missing:
+        rep.add("*No output of scenario `%s` was found; its tables are missing.*" % name, "")
+        print("report.py: no metrics of scenario '%s' in %s" % (name, a.out_dir), file=sys.stderr)
+    os.makedirs(os.path.dirname(os.path.abspath(a.report_md)), exist_ok=True)
+    with open(a.report_md, "w") as f:
+        f.write("\n".join(rep.lines).rstrip() + "\n")
+    print("report.py: wrote", a.report_md)
+    return 1 if missing else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
