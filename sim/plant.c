@@ -1,0 +1,147 @@
+#include "plant.h"
+
+#include <math.h>
+#include <stddef.h>
+
+/* RK4 state: angles, rates, rotor w^2 (the last four only move with a lag). */
+enum { N_ANGLE = 0, N_RATE = 3, N_ROTOR = 6, N_STATE = 10 };
+
+void sim_vehicle_paper(sim_vehicle_t *v)
+{
+    v->mass_kg = 0.8;
+    v->inertia_kg_m2[0] = 5.445e-3;
+    v->inertia_kg_m2[1] = 5.445e-3;
+    v->inertia_kg_m2[2] = 1.089e-2;
+    v->arm_m = 0.165;
+    v->thrust_coeff_N_s2 = 2.98e-5;
+    v->yaw_coeff_Nm_s2 = 2e-6;
+    v->rot_drag_Nm_s = 9e-2;
+    v->g_m_s2 = 9.81;
+    v->rotors_ideal = 1;
+    v->w2_min_rad2_s2 = 0.0;
+    v->w2_max_rad2_s2 = HUGE_VAL;
+    v->motor_tau_s = 0.0;
+}
+
+static double clamp_rotor(const sim_vehicle_t *v, double w2)
+{
+    if (v->rotors_ideal) {
+        return w2;
+    }
+    if (w2 < v->w2_min_rad2_s2) {
+        return v->w2_min_rad2_s2;
+    }
+    if (w2 > v->w2_max_rad2_s2) {
+        return v->w2_max_rad2_s2;
+    }
+    return w2;  /* NaN stays NaN: a bad command shows in the state */
+}
+
+void sim_plant_init(sim_plant_t *p, const sim_vehicle_t *v)
+{
+    p->v = *v;
+    p->t_s = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        p->angle_rad[i] = 0.0;
+        p->rate_rad_s[i] = 0.0;
+    }
+    const double hover = v->mass_kg * v->g_m_s2 / (4.0 * v->thrust_coeff_N_s2);
+    for (int i = 0; i < 4; ++i) {
+        p->w2_rad2_s2[i] = clamp_rotor(v, hover);
+    }
+}
+
+void sim_plant_forces(const sim_vehicle_t *v, const double w2[4], double *thrust_N, double torque_Nm[3])
+{
+    const double kl = v->thrust_coeff_N_s2;
+    if (thrust_N != NULL) {
+        *thrust_N = kl * (w2[0] + w2[1] + w2[2] + w2[3]);
+    }
+    torque_Nm[0] = v->arm_m * kl * (w2[1] - w2[3]);
+    torque_Nm[1] = v->arm_m * kl * (w2[2] - w2[0]);
+    torque_Nm[2] = v->yaw_coeff_Nm_s2 * (-w2[0] + w2[1] - w2[2] + w2[3]);
+}
+
+static void body_accel(const sim_vehicle_t *v, const double rate[3], const double torque[3],
+                       const double dist[3], double accel[3])
+{
+    const double *j = v->inertia_kg_m2;
+    const double kt = v->rot_drag_Nm_s;
+    accel[0] = (torque[0] + (j[1] - j[2]) * rate[1] * rate[2] - kt * rate[0]) / j[0] + dist[0];
+    accel[1] = (torque[1] + (j[2] - j[0]) * rate[0] * rate[2] - kt * rate[1]) / j[1] + dist[1];
+    accel[2] = (torque[2] + (j[0] - j[1]) * rate[1] * rate[0] - kt * rate[2]) / j[2] + dist[2];
+}
+
+void sim_plant_accel(const sim_plant_t *p, const double torque_Nm[3], const double dist[3],
+                     double accel_out[3])
+{
+    static const double none[3] = {0.0, 0.0, 0.0};
+    body_accel(&p->v, p->rate_rad_s, torque_Nm, dist != NULL ? dist : none, accel_out);
+}
+
+/* dx/dt at time t for the held (clamped) command. */
+static void derivative(const sim_vehicle_t *v, const double cmd[4], double t, const double x[N_STATE],
+                       sim_disturbance_fn dist, void *ctx, double dx[N_STATE])
+{
+    const int lag = v->motor_tau_s > 0.0;
+    const double *w2 = lag ? &x[N_ROTOR] : cmd;
+    double torque[3], d[3];
+    sim_plant_forces(v, w2, NULL, torque);
+    for (int i = 0; i < 3; ++i) {
+        d[i] = dist != NULL ? dist(i, t, ctx) : 0.0;
+        dx[N_ANGLE + i] = x[N_RATE + i];
+    }
+    body_accel(v, &x[N_RATE], torque, d, &dx[N_RATE]);
+    for (int i = 0; i < 4; ++i) {
+        dx[N_ROTOR + i] = lag ? (cmd[i] - x[N_ROTOR + i]) / v->motor_tau_s : 0.0;
+    }
+}
+
+void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int substeps,
+                    sim_disturbance_fn dist, void *ctx)
+{
+    if (!(dt_s > 0.0)) {
+        return;
+    }
+    const int n = substeps < 1 ? 1 : substeps;
+    const double h = dt_s / n;
+    const double t0 = p->t_s;
+    double cmd[4], x[N_STATE];
+    for (int i = 0; i < 4; ++i) {
+        cmd[i] = clamp_rotor(&p->v, w2_cmd[i]);
+        x[N_ROTOR + i] = p->w2_rad2_s2[i];
+    }
+    for (int i = 0; i < 3; ++i) {
+        x[N_ANGLE + i] = p->angle_rad[i];
+        x[N_RATE + i] = p->rate_rad_s[i];
+    }
+    for (int s = 0; s < n; ++s) {
+        /* stage times from t0 each substep: no drift from summing h */
+        const double t = t0 + s * h;
+        double k1[N_STATE], k2[N_STATE], k3[N_STATE], k4[N_STATE], y[N_STATE];
+        derivative(&p->v, cmd, t, x, dist, ctx, k1);
+        for (int i = 0; i < N_STATE; ++i) {
+            y[i] = x[i] + 0.5 * h * k1[i];
+        }
+        derivative(&p->v, cmd, t + 0.5 * h, y, dist, ctx, k2);
+        for (int i = 0; i < N_STATE; ++i) {
+            y[i] = x[i] + 0.5 * h * k2[i];
+        }
+        derivative(&p->v, cmd, t + 0.5 * h, y, dist, ctx, k3);
+        for (int i = 0; i < N_STATE; ++i) {
+            y[i] = x[i] + h * k3[i];
+        }
+        derivative(&p->v, cmd, t + h, y, dist, ctx, k4);
+        for (int i = 0; i < N_STATE; ++i) {
+            x[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+        }
+    }
+    for (int i = 0; i < 3; ++i) {
+        p->angle_rad[i] = x[N_ANGLE + i];
+        p->rate_rad_s[i] = x[N_RATE + i];
+    }
+    for (int i = 0; i < 4; ++i) {
+        p->w2_rad2_s2[i] = p->v.motor_tau_s > 0.0 ? x[N_ROTOR + i] : cmd[i];
+    }
+    p->t_s = t0 + dt_s;
+}

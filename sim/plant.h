@@ -1,0 +1,84 @@
+/*
+ * The quadrotor attitude plant of the paper (PAPER.md section 1, eq. 1-3),
+ * in double precision, for the software-in-the-loop simulator.
+ *
+ * Plus frame, rotor i at speed w_i; the state holds w_i^2 (rad^2/s^2):
+ *   U_L   = kL (w1^2 + w2^2 + w3^2 + w4^2)
+ *   tau_x = l kL (w2^2 - w4^2)
+ *   tau_y = l kL (w3^2 - w1^2)
+ *   tau_z = b (-w1^2 + w2^2 - w3^2 + w4^2)
+ *   phi''   = (tau_x + (Jy - Jz) theta' psi' - kt phi'  ) / Jx + d_phi(t)
+ *   theta'' = (tau_y + (Jz - Jx) phi'   psi' - kt theta') / Jy + d_theta(t)
+ *   psi''   = (tau_z + (Jx - Jy) theta' phi' - kt psi'  ) / Jz + d_psi(t)
+ * Index 0, 1, 2 = roll phi about body X, pitch theta about Y, yaw psi about
+ * Z. As in the paper the Euler-angle rates are the body rates (no kinematic
+ * transformation) and the angles are not wrapped. d(t) is an angular
+ * acceleration in rad/s^2 (PAPER.md section 1, [choice]). The altitude is not
+ * simulated: the thrust holds it by construction (eq. 4).
+ *
+ * Rotors: the command w2_cmd is held over a step (zero-order hold). With
+ * rotors_ideal it acts as given, any sign (the paper). Otherwise it is first
+ * clamped to [w2_min, w2_max]. With motor_tau_s > 0 the rotors' w^2 follows
+ * the (clamped) command through a first-order lag
+ *   (w_i^2)' = (w2_cmd_i - w_i^2) / motor_tau_s,
+ * integrated with the attitude in the same RK4 state; with motor_tau_s = 0
+ * w^2 equals the command throughout the step.
+ *
+ * No heap, no stdio, no globals.
+ */
+#ifndef LADRC_SIM_PLANT_H
+#define LADRC_SIM_PLANT_H
+
+typedef struct {
+    double mass_kg;
+    double inertia_kg_m2[3];        /* Jx, Jy, Jz */
+    double arm_m;                   /* l */
+    double thrust_coeff_N_s2;       /* kL */
+    double yaw_coeff_Nm_s2;         /* b */
+    double rot_drag_Nm_s;           /* kt */
+    double g_m_s2;
+    int rotors_ideal;               /* 1: w^2 as commanded, any sign (paper) */
+    double w2_min_rad2_s2, w2_max_rad2_s2; /* limits when not ideal */
+    double motor_tau_s;             /* first-order lag of w^2 towards the command, 0 = none */
+} sim_vehicle_t;
+
+/* Disturbance angular acceleration (rad/s^2) on axis 0..2 at time t_s. */
+typedef double (*sim_disturbance_fn)(int axis, double t_s, void *ctx);
+
+typedef struct {
+    sim_vehicle_t v;
+    double t_s;
+    double angle_rad[3];
+    double rate_rad_s[3];
+    double w2_rad2_s2[4];           /* what the rotors give now (after limits and lag) */
+} sim_plant_t;
+
+/* The paper's vehicle (Table 1): m = 0.8 kg, J = (5.445e-3, 5.445e-3,
+ * 1.089e-2) kg m^2, l = 0.165 m, kL = 2.98e-5 N s^2, b = 2e-6 N m s^2,
+ * kt = 9e-2 N m s, g = 9.81 m/s^2; ideal rotors without lag (the limits,
+ * unused then, are 0 and HUGE_VAL). */
+void sim_vehicle_paper(sim_vehicle_t *v);
+
+/* Copies *v; time 0, level, at rest, each rotor at the hover value
+ * m g / (4 kL) (clamped to the limits when not ideal). The vehicle is not
+ * validated: J_i > 0, kL > 0, and motor_tau_s >= 0 are the caller's to
+ * ensure. */
+void sim_plant_init(sim_plant_t *p, const sim_vehicle_t *v);
+
+/* Thrust and body torques of the four w^2 values, as given (no limits).
+ * thrust_N may be NULL. */
+void sim_plant_forces(const sim_vehicle_t *v, const double w2[4], double *thrust_N, double torque_Nm[3]);
+
+/* Advances p by dt_s with w2_cmd held, in `substeps` classical RK4 steps
+ * (values below 1 count as 1); dist (may be NULL: no disturbance) is called
+ * with each axis at each stage time t, t + h/2, t + h/2, t + h of every
+ * substep. Does nothing when dt_s is not > 0. */
+void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int substeps,
+                    sim_disturbance_fn dist, void *ctx);
+
+/* The angular accelerations (rad/s^2) of eq. 2 at p's current rates for the
+ * given torques and disturbance accelerations (dist may be NULL: zero). */
+void sim_plant_accel(const sim_plant_t *p, const double torque_Nm[3], const double dist[3],
+                     double accel_out[3]);
+
+#endif
