@@ -188,6 +188,8 @@ static const key_def_t KEYS[] = {
     {SEC_DIFFERENTIATOR, "td_accel_rad_s2", V_REAL, SC(diff_td_accel), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0, 0,
      NULL},
     {SEC_DIFFERENTIATOR, "td_h0_s", V_REAL, SC(diff_td_h0_s), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0, 0, NULL},
+    {SEC_DIFFERENTIATOR, "error_window_s", V_WINDOW, SC(error_window_s[0]), SC(error_window_s[1]), R_ANY, 0, 0,
+     NULL, FOR_BOTH, 0, 0, NULL},
 
     {SEC_CONTROLLER, "wc_rad_s", V_REAL, OV(wc_rad_s), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0, LADRC_FAMILY, NULL},
     {SEC_CONTROLLER, "wo_rad_s", V_REAL, OV(wo_rad_s), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0, LADRC_FAMILY, NULL},
@@ -903,7 +905,8 @@ static void check_differentiator(parser_t *p)
 static void finish(parser_t *p)
 {
     sim_scenario_t *sc = p->sc;
-    if (seen_key(p, SEC_METRICS, "error_window_s")->line == 0) {
+    if (seen_key(p, SEC_METRICS, "error_window_s")->line == 0 &&
+        seen_key(p, SEC_DIFFERENTIATOR, "error_window_s")->line == 0) {
         sc->error_window_s[0] = 0.0;
         sc->error_window_s[1] = sc->duration_s;
     }
