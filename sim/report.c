@@ -109,12 +109,13 @@ static void table3(FILE *out, const sim_scenario_result_t *r)
 void sim_report_tables(FILE *out, const sim_scenario_result_t *r)
 {
     const sim_scenario_t *sc = r->sc;
-    fprintf(out, "\n== %s (%s): %g s, control step %g ms, %d plant steps per control step\n", sc->name, sc->path,
-            sc->duration_s, sc->control_dt_s * 1e3, sc->plant_substeps);
     if (r->diff != NULL) {
+        fprintf(out, "\n== %s (%s): %g s, step %g ms\n", sc->name, sc->path, sc->duration_s, sc->control_dt_s * 1e3);
         table3(out, r);
         return;
     }
+    fprintf(out, "\n== %s (%s): %g s, control step %g ms, %d plant steps per control step\n", sc->name, sc->path,
+            sc->duration_s, sc->control_dt_s * 1e3, sc->plant_substeps);
     for (int c = 0; c < sc->n_controllers; ++c) {
         const sim_metrics_t *m = &r->attitude[c];
         if (!m->finite) {
