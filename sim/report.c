@@ -3,16 +3,22 @@
 
 static const char *const AXES[3] = {"roll", "pitch", "yaw"};
 
+/* The first column's title, then one column per controller. */
+static void column_titles(FILE *out, const sim_scenario_t *sc, const char *first, int width)
+{
+    fprintf(out, "%-6s", first);
+    for (int c = 0; c < sc->n_controllers; ++c) {
+        fprintf(out, " | %-*s", width, sim_controller_name(sc->controllers[c]));
+    }
+    fputc('\n', out);
+}
+
 static void table4(FILE *out, const sim_scenario_result_t *r)
 {
     const sim_scenario_t *sc = r->sc;
-    fprintf(out, "\nTable 4. Tracking error, deg: mean / std / RMS over [%g, %g] s\n", sc->error_window_s[0],
+    fprintf(out, "\nTable 4. Tracking error, deg: mean / std / RMS over (%g, %g] s\n", sc->error_window_s[0],
             sc->error_window_s[1]);
-    fprintf(out, "%-6s", "axis");
-    for (int c = 0; c < sc->n_controllers; ++c) {
-        fprintf(out, " | %-28s", sim_controller_name(sc->controllers[c]));
-    }
-    fputc('\n', out);
+    column_titles(out, sc, "axis", 28);
     for (int i = 0; i < 3; ++i) {
         fprintf(out, "%-6s", AXES[i]);
         for (int c = 0; c < sc->n_controllers; ++c) {
@@ -27,15 +33,11 @@ static void table5(FILE *out, const sim_scenario_result_t *r)
 {
     const sim_scenario_t *sc = r->sc;
     fprintf(out,
-            "\nTable 5. Max error (deg) over [%g, %g] s / settling time (s): from %g s until |error| stays "
-            "within %g deg up to %g s (-1: never) / steady band (+-deg) over [%g, %g] s\n",
+            "\nTable 5. Max error (deg) over (%g, %g] s / settling time (s): from %g s until |error| stays "
+            "within %g deg up to %g s (-1: never) / steady band (+-deg) over (%g, %g] s\n",
             sc->error_window_s[0], sc->error_window_s[1], sc->settle_after_s, sc->settle_band_deg,
             sc->settle_until_s, sc->steady_window_s[0], sc->steady_window_s[1]);
-    fprintf(out, "%-6s", "axis");
-    for (int c = 0; c < sc->n_controllers; ++c) {
-        fprintf(out, " | %-28s", sim_controller_name(sc->controllers[c]));
-    }
-    fputc('\n', out);
+    column_titles(out, sc, "axis", 28);
     for (int i = 0; i < 3; ++i) {
         fprintf(out, "%-6s", AXES[i]);
         for (int c = 0; c < sc->n_controllers; ++c) {
@@ -50,13 +52,9 @@ static void table6(FILE *out, const sim_scenario_result_t *r)
 {
     const sim_scenario_t *sc = r->sc;
     fprintf(out, "\nTable 6. Disturbance estimate error (z3 + d_hat - true total disturbance), rad/s^2: "
-                 "mean / std / RMS over [%g, %g] s\n",
+                 "mean / std / RMS over (%g, %g] s\n",
             sc->error_window_s[0], sc->error_window_s[1]);
-    fprintf(out, "%-6s", "axis");
-    for (int c = 0; c < sc->n_controllers; ++c) {
-        fprintf(out, " | %-28s", sim_controller_name(sc->controllers[c]));
-    }
-    fputc('\n', out);
+    column_titles(out, sc, "axis", 28);
     for (int i = 0; i < 3; ++i) {
         fprintf(out, "%-6s", AXES[i]);
         for (int c = 0; c < sc->n_controllers; ++c) {
@@ -76,11 +74,7 @@ static void table7(FILE *out, const sim_scenario_result_t *r)
 {
     const sim_scenario_t *sc = r->sc;
     fprintf(out, "\nTable 7. Rotor speed squared, rad^2/s^2: mean / std / variance over the run\n");
-    fprintf(out, "%-6s", "rotor");
-    for (int c = 0; c < sc->n_controllers; ++c) {
-        fprintf(out, " | %-32s", sim_controller_name(sc->controllers[c]));
-    }
-    fputc('\n', out);
+    column_titles(out, sc, "rotor", 32);
     for (int k = 0; k < 4; ++k) {
         fprintf(out, "%-6d", k + 1);
         for (int c = 0; c < sc->n_controllers; ++c) {
@@ -95,7 +89,7 @@ static void table7(FILE *out, const sim_scenario_result_t *r)
 static void table3(FILE *out, const sim_scenario_result_t *r)
 {
     const sim_scenario_t *sc = r->sc;
-    fprintf(out, "\nTable 3. Derivative of the noisy signal (noise variance %g), error over [%g, %g] s: "
+    fprintf(out, "\nTable 3. Derivative of the noisy signal (noise variance %g), error over (%g, %g] s: "
                  "mean / std / RMS\n",
             sc->diff_noise_var, sc->error_window_s[0], sc->error_window_s[1]);
     const sim_stat_t *s[2] = {&r->diff->td_error, &r->diff->levant_error};
