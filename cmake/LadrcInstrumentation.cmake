@@ -12,8 +12,9 @@ if(LADRC_COVERAGE)
     message(FATAL_ERROR "LADRC_COVERAGE needs GCC (gcov data for gcovr)")
   endif()
   # -O0 comes last so it wins over the build type's level: branch counts
-  # then map onto the source as written.
-  add_compile_options(--coverage -O0)
+  # then map onto the source as written. The simulator runs the library on
+  # several threads: atomic counter updates keep the counts exact.
+  add_compile_options(--coverage -fprofile-update=atomic -O0)
   add_link_options(--coverage)
 endif()
 

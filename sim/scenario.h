@@ -95,7 +95,8 @@ typedef struct {
     double error_window_s[2];     /* Table 4 statistics over this window */
     double steady_window_s[2];    /* Table 5 steady band over this window */
     double settle_band_deg;       /* Table 5 settling: |error| stays within this ... */
-    double settle_after_s;        /* ... measured from this instant */
+    double settle_after_s;        /* ... measured from this instant ... */
+    double settle_until_s;        /* ... up to this one ([metrics] settle_window_s) */
 
     /* [differentiator] (kind = differentiator): signal r(t) with noise, and
      * its exact derivative for the error */
@@ -104,7 +105,8 @@ typedef struct {
     double diff_levant_lipschitz, diff_td_accel, diff_td_h0_s;
 } sim_scenario_t;
 
-/* Where a parse failed, as file:line:column: message. */
+/* Where a parse failed, as file:line:column: message (line and column are
+ * 1-based; both are 0 when the file could not be read at all). */
 typedef struct {
     char path[SIM_PATH_LEN];
     int line;
@@ -119,7 +121,7 @@ int sim_scenario_load(sim_scenario_t *sc, const char *path, sim_parse_error_t *e
 /* The same from text in memory (path is only used in messages). */
 int sim_scenario_parse(sim_scenario_t *sc, const char *text, const char *path, sim_parse_error_t *err);
 
-/* "HP-MLADRC", "LP-MLADRC", "LADRC", "PID" */
+/* "HP-MLADRC", "LP-MLADRC", "LADRC", "PID"; "?" for anything else */
 const char *sim_controller_name(sim_controller_id_t id);
 
 #endif

@@ -1,0 +1,429 @@
+/*
+ * Expression compiler: recursive descent straight to postfix.
+ *
+ *   sum     := product (('+' | '-') product)*
+ *   product := unary (('*' | '/') unary)*
+ *   unary   := ('-' | '+') unary | power
+ *   power   := primary ('^' unary)?
+ *   primary := number | name | function '(' sum (',' sum)? ')' | '(' sum ')'
+ *
+ * The exponent of ^ is a unary, so a power chain recurses to the right and
+ * a minus in front of a power applies to the whole power.
+ */
+#include "expr.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum {
+    OP_CONST,
+    OP_T,
+    OP_NEG,
+    OP_ADD,
+    OP_SUB,
+    OP_MUL,
+    OP_DIV,
+    OP_POW,
+    OP_SIN,
+    OP_COS,
+    OP_TAN,
+    OP_ASIN,
+    OP_ACOS,
+    OP_ATAN,
+    OP_EXP,
+    OP_LOG,
+    OP_SQRT,
+    OP_ABS,
+    OP_FLOOR,
+    OP_CEIL,
+    OP_STEP,
+    OP_SIGN,
+    OP_MIN,
+    OP_MAX
+};
+
+typedef struct {
+    const char *name;
+    unsigned char op;
+    int arity;
+} function_t;
+
+static const function_t FUNCTIONS[] = {
+    {"sin", OP_SIN, 1},     {"cos", OP_COS, 1},     {"tan", OP_TAN, 1},   {"asin", OP_ASIN, 1},
+    {"acos", OP_ACOS, 1},   {"atan", OP_ATAN, 1},   {"exp", OP_EXP, 1},   {"log", OP_LOG, 1},
+    {"sqrt", OP_SQRT, 1},   {"abs", OP_ABS, 1},     {"floor", OP_FLOOR, 1}, {"ceil", OP_CEIL, 1},
+    {"step", OP_STEP, 1},   {"sign", OP_SIGN, 1},   {"min", OP_MIN, 2},   {"max", OP_MAX, 2},
+};
+
+/* Parentheses, unary signs and powers nest the parser's recursion. */
+#define MAX_NESTING 64
+/* Longest number token converted (digits, point, exponent). */
+#define MAX_NUMBER_CHARS 63
+
+typedef struct {
+    const char *text;
+    const char *p;
+    sim_expr_t *out;
+    sim_expr_error_t *err;
+    int depth;    /* values on the evaluation stack after the emitted ops */
+    int nesting;
+    int failed;
+} parser_t;
+
+static int is_digit(char c) { return c >= '0' && c <= '9'; }
+static int is_name_start(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
+static int is_name_char(char c) { return is_name_start(c) || is_digit(c); }
+
+size_t sim_expr_scan_number(const char *s, double *value)
+{
+    size_t n = 0;
+    size_t digits = 0;
+    while (is_digit(s[n])) {
+        ++n;
+        ++digits;
+    }
+    if (s[n] == '.') {
+        ++n;
+        while (is_digit(s[n])) {
+            ++n;
+            ++digits;
+        }
+    }
+    if (digits == 0) {
+        return 0;
+    }
+    if (s[n] == 'e' || s[n] == 'E') {
+        size_t k = n + 1;
+        if (s[k] == '+' || s[k] == '-') {
+            ++k;
+        }
+        if (is_digit(s[k])) {
+            while (is_digit(s[k])) {
+                ++k;
+            }
+            n = k;
+        }
+    }
+    char buf[MAX_NUMBER_CHARS + 1];
+    if (n > MAX_NUMBER_CHARS) {
+        /* Only absurdly padded numbers get here; strtod reads the rest. */
+        *value = strtod(s, NULL);
+        return n;
+    }
+    memcpy(buf, s, n);
+    buf[n] = '\0';
+    *value = strtod(buf, NULL);
+    return n;
+}
+
+static int column_of(const parser_t *ps, const char *at) { return (int)(at - ps->text) + 1; }
+
+static void fail(parser_t *ps, const char *at, const char *message)
+{
+    if (ps->failed) {
+        return;
+    }
+    ps->failed = 1;
+    ps->err->column = column_of(ps, at);
+    snprintf(ps->err->message, sizeof ps->err->message, "%s", message);
+}
+
+static void fail_name(parser_t *ps, const char *at, const char *format, const char *name, size_t len)
+{
+    char message[sizeof ps->err->message];
+    int shown = len > 40 ? 40 : (int)len;
+    snprintf(message, sizeof message, format, shown, name);
+    fail(ps, at, message);
+}
+
+static void skip_space(parser_t *ps)
+{
+    while (*ps->p == ' ' || *ps->p == '\t') {
+        ++ps->p;
+    }
+}
+
+/* Appends one instruction; `at` is the token it comes from, for errors. */
+static void emit(parser_t *ps, unsigned char op, double value, const char *at)
+{
+    if (ps->failed) {
+        return;
+    }
+    if (ps->out->n_ops >= SIM_EXPR_MAX_OPS) {
+        fail(ps, at, "expression too long");
+        return;
+    }
+    if (op == OP_CONST || op == OP_T) {
+        ++ps->depth;
+    } else if (op >= OP_ADD && op <= OP_POW) {
+        --ps->depth;
+    } else if (op == OP_MIN || op == OP_MAX) {
+        --ps->depth;
+    }
+    if (ps->depth > SIM_EXPR_MAX_STACK) {
+        fail(ps, at, "expression too deeply nested");
+        return;
+    }
+    ps->out->op[ps->out->n_ops] = op;
+    ps->out->value[ps->out->n_ops] = value;
+    ++ps->out->n_ops;
+}
+
+static void parse_sum(parser_t *ps);
+static void parse_unary(parser_t *ps);
+
+static void expect(parser_t *ps, char c, const char *message)
+{
+    skip_space(ps);
+    if (*ps->p != c) {
+        fail(ps, ps->p, message);
+        return;
+    }
+    ++ps->p;
+}
+
+static void parse_call(parser_t *ps, const function_t *fn, const char *at)
+{
+    ++ps->p; /* '(' */
+    parse_sum(ps);
+    for (int arg = 1; arg < fn->arity && !ps->failed; ++arg) {
+        expect(ps, ',', "expected ','");
+        if (!ps->failed) {
+            parse_sum(ps);
+        }
+    }
+    if (!ps->failed) {
+        expect(ps, ')', "expected ')'");
+    }
+    emit(ps, fn->op, 0.0, at);
+}
+
+static void parse_name(parser_t *ps)
+{
+    const char *start = ps->p;
+    while (is_name_char(*ps->p)) {
+        ++ps->p;
+    }
+    size_t len = (size_t)(ps->p - start);
+    skip_space(ps);
+    if (*ps->p == '(') {
+        for (size_t i = 0; i < sizeof FUNCTIONS / sizeof FUNCTIONS[0]; ++i) {
+            if (strlen(FUNCTIONS[i].name) == len && strncmp(FUNCTIONS[i].name, start, len) == 0) {
+                parse_call(ps, &FUNCTIONS[i], start);
+                return;
+            }
+        }
+        fail_name(ps, start, "unknown function '%.*s'", start, len);
+        return;
+    }
+    if (len == 1 && start[0] == 't') {
+        emit(ps, OP_T, 0.0, start);
+    } else if (len == 2 && strncmp(start, "pi", 2) == 0) {
+        emit(ps, OP_CONST, 3.14159265358979323846, start);
+    } else if (len == 1 && start[0] == 'e') {
+        emit(ps, OP_CONST, 2.71828182845904523536, start);
+    } else {
+        for (size_t i = 0; i < sizeof FUNCTIONS / sizeof FUNCTIONS[0]; ++i) {
+            if (strlen(FUNCTIONS[i].name) == len && strncmp(FUNCTIONS[i].name, start, len) == 0) {
+                fail_name(ps, ps->p, "expected '(' after '%.*s'", start, len);
+                return;
+            }
+        }
+        fail_name(ps, start, "unknown name '%.*s'", start, len);
+    }
+}
+
+static void parse_primary(parser_t *ps)
+{
+    skip_space(ps);
+    const char *at = ps->p;
+    double value;
+    size_t n = sim_expr_scan_number(at, &value);
+    if (n > 0) {
+        ps->p += n;
+        if (!isfinite(value)) {
+            fail(ps, at, "number out of range");
+            return;
+        }
+        emit(ps, OP_CONST, value, at);
+    } else if (is_name_start(*at)) {
+        parse_name(ps);
+    } else if (*at == '(') {
+        ++ps->p;
+        parse_sum(ps);
+        if (!ps->failed) {
+            expect(ps, ')', "expected ')'");
+        }
+    } else {
+        fail(ps, at, "expected a number, name or '('");
+    }
+}
+
+static void parse_power(parser_t *ps)
+{
+    parse_primary(ps);
+    skip_space(ps);
+    if (!ps->failed && *ps->p == '^') {
+        const char *at = ps->p++;
+        parse_unary(ps);
+        emit(ps, OP_POW, 0.0, at);
+    }
+}
+
+static void parse_unary(parser_t *ps)
+{
+    skip_space(ps);
+    if (++ps->nesting > MAX_NESTING) {
+        fail(ps, ps->p, "expression too deeply nested");
+    } else if (*ps->p == '-' || *ps->p == '+') {
+        const char *at = ps->p++;
+        parse_unary(ps);
+        if (*at == '-') {
+            emit(ps, OP_NEG, 0.0, at);
+        }
+    } else {
+        parse_power(ps);
+    }
+    --ps->nesting;
+}
+
+static void parse_product(parser_t *ps)
+{
+    parse_unary(ps);
+    for (;;) {
+        skip_space(ps);
+        if (ps->failed || (*ps->p != '*' && *ps->p != '/')) {
+            return;
+        }
+        const char *at = ps->p++;
+        parse_unary(ps);
+        emit(ps, *at == '*' ? OP_MUL : OP_DIV, 0.0, at);
+    }
+}
+
+static void parse_sum(parser_t *ps)
+{
+    parse_product(ps);
+    for (;;) {
+        skip_space(ps);
+        if (ps->failed || (*ps->p != '+' && *ps->p != '-')) {
+            return;
+        }
+        const char *at = ps->p++;
+        parse_product(ps);
+        emit(ps, *at == '+' ? OP_ADD : OP_SUB, 0.0, at);
+    }
+}
+
+int sim_expr_compile(sim_expr_t *expr, const char *text, sim_expr_error_t *err)
+{
+    sim_expr_error_t ignored;
+    parser_t ps;
+    if (err == NULL) {
+        err = &ignored;
+    }
+    err->column = 0;
+    err->message[0] = '\0';
+    if (expr == NULL || text == NULL) {
+        snprintf(err->message, sizeof err->message, "no expression");
+        return -1;
+    }
+    expr->n_ops = 0;
+    ps.text = text;
+    ps.p = text;
+    ps.out = expr;
+    ps.err = err;
+    ps.depth = 0;
+    ps.nesting = 0;
+    ps.failed = 0;
+    parse_sum(&ps);
+    skip_space(&ps);
+    if (!ps.failed && *ps.p != '\0') {
+        fail(&ps, ps.p, "trailing characters");
+    }
+    if (ps.failed) {
+        expr->n_ops = 0;
+        return -1;
+    }
+    return 0;
+}
+
+static double nan_or(double x, double value) { return isnan(x) ? x : value; }
+
+double sim_expr_eval(const sim_expr_t *expr, double t_s)
+{
+    double stack[SIM_EXPR_MAX_STACK];
+    int sp = 0;
+    if (expr->n_ops <= 0) {
+        return NAN;
+    }
+    for (int i = 0; i < expr->n_ops; ++i) {
+        const unsigned char op = expr->op[i];
+        if (op == OP_CONST || op == OP_T) {
+            stack[sp++] = (op == OP_T) ? t_s : expr->value[i];
+            continue;
+        }
+        double *x = &stack[sp - 1];
+        if (op >= OP_ADD && op <= OP_POW) {
+            const double b = *x;
+            x = &stack[sp - 2];
+            --sp;
+            switch (op) {
+            case OP_ADD: *x += b; break;
+            case OP_SUB: *x -= b; break;
+            case OP_MUL: *x *= b; break;
+            case OP_DIV: *x /= b; break;
+            default: *x = pow(*x, b); break;
+            }
+            continue;
+        }
+        if (op == OP_MIN || op == OP_MAX) {
+            const double b = *x;
+            x = &stack[sp - 2];
+            --sp;
+            if (isnan(b)) {
+                *x = b;
+            } else if (!isnan(*x) && (op == OP_MIN ? b < *x : b > *x)) {
+                *x = b;
+            }
+            continue;
+        }
+        switch (op) {
+        case OP_NEG: *x = -*x; break;
+        case OP_SIN: *x = sin(*x); break;
+        case OP_COS: *x = cos(*x); break;
+        case OP_TAN: *x = tan(*x); break;
+        case OP_ASIN: *x = asin(*x); break;
+        case OP_ACOS: *x = acos(*x); break;
+        case OP_ATAN: *x = atan(*x); break;
+        case OP_EXP: *x = exp(*x); break;
+        case OP_LOG: *x = log(*x); break;
+        case OP_SQRT: *x = sqrt(*x); break;
+        case OP_ABS: *x = fabs(*x); break;
+        case OP_FLOOR: *x = floor(*x); break;
+        case OP_CEIL: *x = ceil(*x); break;
+        case OP_STEP: *x = nan_or(*x, *x >= 0.0 ? 1.0 : 0.0); break;
+        case OP_SIGN: *x = nan_or(*x, *x > 0.0 ? 1.0 : (*x < 0.0 ? -1.0 : 0.0)); break;
+        default: return NAN;
+        }
+    }
+    return stack[0];
+}
+
+int sim_expr_is_constant(const sim_expr_t *expr, double *value)
+{
+    if (expr->n_ops <= 0) {
+        return 0;
+    }
+    for (int i = 0; i < expr->n_ops; ++i) {
+        if (expr->op[i] == OP_T) {
+            return 0;
+        }
+    }
+    if (value != NULL) {
+        *value = sim_expr_eval(expr, 0.0);
+    }
+    return 1;
+}

@@ -1,0 +1,315 @@
+/*
+ * ladrc_sil: runs scenario files against the ladrc library on a simulated
+ * quadrotor and prints the paper's comparison tables. Independent runs are
+ * spread over worker threads; results do not depend on their number.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "report.h"
+#include "runner.h"
+#include "scenario.h"
+
+#define MAX_SCENARIOS 32
+
+typedef struct {
+    const sim_scenario_t *sc;
+    int controller_index;          /* into sc->controllers; -1 for a differentiator run */
+    char csv_path[SIM_PATH_LEN + 64];
+    sim_metrics_t *attitude;       /* where the result goes */
+    sim_diff_metrics_t *diff;
+    volatile long ticks_done;      /* progress hint, written by the worker only */
+    char error[SIM_PATH_LEN + 160];
+    int failed;
+} job_t;
+
+typedef struct {
+    job_t *jobs;
+    int n_jobs;
+    int next;                      /* next job to take, under lock */
+    int done;
+    pthread_mutex_t lock;
+} pool_t;
+
+static void usage(FILE *out)
+{
+    fputs("usage: ladrc_sil SCENARIO... [--jobs N] [--controllers LIST] [--out DIR] [--no-csv] [--quiet]\n"
+          "  SCENARIO          a scenario file (format: docs/scenario-format.md)\n"
+          "  --jobs N          worker threads (default: the number of cores)\n"
+          "  --controllers L   comma-separated subset of HP-MLADRC,LP-MLADRC,LADRC,PID\n"
+          "                    (default: each scenario's own list)\n"
+          "  --out DIR         write every scenario's output under DIR/<scenario name>\n"
+          "                    (default: each scenario's output_dir)\n"
+          "  --no-csv          no time series, only metrics.csv and the tables\n"
+          "  --quiet           no progress on stderr\n"
+          "Prints the comparison tables on stdout; writes <out>/<controller>.csv time series and\n"
+          "<out>/metrics.csv. Exit status 0, 1 if a run failed, 2 for bad usage or a bad scenario\n"
+          "(then nothing is run or written).\n",
+          out);
+}
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* mkdir -p */
+static int make_dirs(const char *path)
+{
+    char buf[SIM_PATH_LEN + 64];
+    if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf) {
+        return -1;
+    }
+    for (char *p = buf + 1; *p != '\0'; ++p) {
+        if (*p == '/') {
+            *p = '\0';
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST) {
+                return -1;
+            }
+            *p = '/';
+        }
+    }
+    return (mkdir(buf, 0777) != 0 && errno != EEXIST) ? -1 : 0;
+}
+
+static void *worker(void *arg)
+{
+    pool_t *pool = (pool_t *)arg;
+    for (;;) {
+        pthread_mutex_lock(&pool->lock);
+        const int i = pool->next < pool->n_jobs ? pool->next++ : -1;
+        pthread_mutex_unlock(&pool->lock);
+        if (i < 0) {
+            return NULL;
+        }
+        job_t *job = &pool->jobs[i];
+        const sim_progress_t progress = {&job->ticks_done};
+        const char *csv = job->csv_path[0] != '\0' ? job->csv_path : NULL;
+        const int rc = (job->controller_index < 0)
+                           ? sim_run_differentiator(job->sc, csv, &progress, job->diff, job->error,
+                                                    sizeof job->error)
+                           : sim_run_attitude(job->sc, job->sc->controllers[job->controller_index], csv,
+                                              &progress, job->attitude, job->error, sizeof job->error);
+        job->failed = rc != 0;
+        pthread_mutex_lock(&pool->lock);
+        pool->done++;
+        pthread_mutex_unlock(&pool->lock);
+    }
+}
+
+static int parse_controllers(const char *list, sim_controller_id_t *ids, int *n)
+{
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", list);
+    *n = 0;
+    for (char *tok = strtok(buf, ","); tok != NULL; tok = strtok(NULL, ",")) {
+        int found = -1;
+        for (int c = 0; c < SIM_CTRL_COUNT; ++c) {
+            if (strcmp(tok, sim_controller_name((sim_controller_id_t)c)) == 0) {
+                found = c;
+            }
+        }
+        if (found < 0 || *n >= SIM_MAX_CONTROLLERS) {
+            fprintf(stderr, "ladrc_sil: --controllers: unknown controller '%s' (expected HP-MLADRC, LP-MLADRC, "
+                            "LADRC or PID)\n",
+                    tok);
+            return -1;
+        }
+        ids[(*n)++] = (sim_controller_id_t)found;
+    }
+    return *n > 0 ? 0 : -1;
+}
+
+/* Progress on stderr while the pool works, for runs longer than a second. */
+static void wait_with_progress(pool_t *pool, long total_ticks, int quiet)
+{
+    const double start = now_s();
+    double last_print = start;
+    const int tty = isatty(fileno(stderr));
+    for (;;) {
+        pthread_mutex_lock(&pool->lock);
+        const int done = pool->done;
+        pthread_mutex_unlock(&pool->lock);
+        if (done == pool->n_jobs) {
+            break;
+        }
+        const struct timespec pause = {0, 100000000L};
+        nanosleep(&pause, NULL);
+        const double t = now_s();
+        if (!quiet && t - start > 1.0 && t - last_print >= (tty ? 0.5 : 2.0)) {
+            long ticks = 0;
+            for (int i = 0; i < pool->n_jobs; ++i) {
+                ticks += pool->jobs[i].ticks_done;
+            }
+            fprintf(stderr, "%sladrc_sil: %3.0f%% (%d of %d runs done, %.1f s)%s", tty ? "\r" : "",
+                    100.0 * (double)ticks / (double)total_ticks, done, pool->n_jobs, t - start, tty ? "" : "\n");
+            last_print = t;
+        }
+    }
+    if (!quiet && tty && now_s() - start > 1.0) {
+        fputc('\n', stderr);
+    }
+}
+
+int main(int argc, char **argv)
+{
+    static sim_scenario_t scenarios[MAX_SCENARIOS];
+    int n_sc = 0;
+    long jobs_wanted = sysconf(_SC_NPROCESSORS_ONLN);
+    const char *out_root = NULL;
+    int want_csv = 1, quiet = 0, n_override = 0;
+    sim_controller_id_t override_ids[SIM_MAX_CONTROLLERS];
+    const char *paths[MAX_SCENARIOS];
+    int n_paths = 0;
+
+    for (int a = 1; a < argc; ++a) {
+        const char *arg = argv[a];
+        if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
+            usage(stdout);
+            return 0;
+        } else if (strcmp(arg, "--jobs") == 0 && a + 1 < argc) {
+            char *end = NULL;
+            jobs_wanted = strtol(argv[++a], &end, 10);
+            if (*end != '\0' || jobs_wanted < 1 || jobs_wanted > 256) {
+                fprintf(stderr, "ladrc_sil: --jobs: expected a whole number from 1 to 256, got '%s'\n", argv[a]);
+                return 2;
+            }
+        } else if (strcmp(arg, "--controllers") == 0 && a + 1 < argc) {
+            if (parse_controllers(argv[++a], override_ids, &n_override) != 0) {
+                return 2;
+            }
+        } else if (strcmp(arg, "--out") == 0 && a + 1 < argc) {
+            out_root = argv[++a];
+        } else if (strcmp(arg, "--no-csv") == 0) {
+            want_csv = 0;
+        } else if (strcmp(arg, "--quiet") == 0) {
+            quiet = 1;
+        } else if (arg[0] == '-') {
+            fprintf(stderr, "ladrc_sil: unknown or incomplete option '%s'\n", arg);
+            usage(stderr);
+            return 2;
+        } else if (n_paths < MAX_SCENARIOS) {
+            paths[n_paths++] = arg;
+        } else {
+            fprintf(stderr, "ladrc_sil: at most %d scenarios per call\n", MAX_SCENARIOS);
+            return 2;
+        }
+    }
+    if (n_paths == 0) {
+        usage(stderr);
+        return 2;
+    }
+    /* Every scenario is read before anything runs: one bad file, nothing written. */
+    for (int i = 0; i < n_paths; ++i) {
+        sim_parse_error_t perr;
+        if (sim_scenario_load(&scenarios[n_sc], paths[i], &perr) != 0) {
+            if (perr.line > 0) {
+                fprintf(stderr, "%s:%d:%d: %s\n", perr.path, perr.line, perr.column, perr.message);
+            } else {
+                fprintf(stderr, "%s: %s\n", perr.path, perr.message); /* could not be read */
+            }
+            return 2;
+        }
+        sim_scenario_t *sc = &scenarios[n_sc++];
+        if (n_override > 0) {
+            sc->n_controllers = n_override;
+            memcpy(sc->controllers, override_ids, sizeof override_ids);
+        }
+        if (out_root != NULL) {
+            char dir[sizeof sc->output_dir];
+            if (snprintf(dir, sizeof dir, "%s/%s", out_root, sc->name) >= (int)sizeof dir) {
+                fprintf(stderr, "ladrc_sil: --out: path too long\n");
+                return 2;
+            }
+            memcpy(sc->output_dir, dir, sizeof dir);
+        }
+    }
+
+    /* One job per controller of each attitude scenario, one per differentiator. */
+    static sim_metrics_t attitude[MAX_SCENARIOS][SIM_MAX_CONTROLLERS];
+    static sim_diff_metrics_t diff[MAX_SCENARIOS];
+    static job_t jobs[MAX_SCENARIOS * SIM_MAX_CONTROLLERS];
+    int n_jobs = 0;
+    long total_ticks = 0;
+    for (int s = 0; s < n_sc; ++s) {
+        const sim_scenario_t *sc = &scenarios[s];
+        if (make_dirs(sc->output_dir) != 0) {
+            fprintf(stderr, "ladrc_sil: %s: cannot create output directory '%s': %s\n", sc->path, sc->output_dir,
+                    strerror(errno));
+            return 1;
+        }
+        const int n = sc->kind == SIM_KIND_DIFFERENTIATOR ? 1 : sc->n_controllers;
+        for (int c = 0; c < n; ++c) {
+            job_t *job = &jobs[n_jobs++];
+            memset(job, 0, sizeof *job);
+            job->sc = sc;
+            job->controller_index = sc->kind == SIM_KIND_DIFFERENTIATOR ? -1 : c;
+            job->attitude = &attitude[s][c];
+            job->diff = &diff[s];
+            if (want_csv) {
+                snprintf(job->csv_path, sizeof job->csv_path, "%s/%s.csv", sc->output_dir,
+                         job->controller_index < 0 ? "differentiator"
+                                                   : sim_controller_name(sc->controllers[c]));
+            }
+            total_ticks += sim_run_ticks(sc);
+        }
+    }
+
+    pool_t pool = {jobs, n_jobs, 0, 0, PTHREAD_MUTEX_INITIALIZER};
+    const int n_threads = (int)(jobs_wanted < n_jobs ? jobs_wanted : n_jobs);
+    pthread_t threads[256];
+    const double start = now_s();
+    for (int t = 0; t < n_threads; ++t) {
+        if (pthread_create(&threads[t], NULL, worker, &pool) != 0) {
+            fprintf(stderr, "ladrc_sil: cannot start a worker thread\n");
+            return 1;
+        }
+    }
+    wait_with_progress(&pool, total_ticks, quiet);
+    for (int t = 0; t < n_threads; ++t) {
+        pthread_join(threads[t], NULL);
+    }
+    const double wall = now_s() - start;
+
+    int status = 0;
+    int scenario_failed[MAX_SCENARIOS] = {0};
+    for (int j = 0; j < n_jobs; ++j) {
+        if (jobs[j].failed) {
+            fprintf(stderr, "ladrc_sil: %s\n", jobs[j].error);
+            scenario_failed[jobs[j].sc - scenarios] = 1;
+            status = 1;
+        }
+    }
+    double simulated = 0.0;
+    for (int s = 0; s < n_sc; ++s) {
+        const sim_scenario_t *sc = &scenarios[s];
+        if (scenario_failed[s]) {
+            continue; /* no tables from a run that did not happen */
+        }
+        const sim_scenario_result_t res = {sc, sc->kind == SIM_KIND_DIFFERENTIATOR ? NULL : attitude[s],
+                                           sc->kind == SIM_KIND_DIFFERENTIATOR ? &diff[s] : NULL};
+        sim_report_tables(stdout, &res);
+        char path[SIM_PATH_LEN + 32];
+        snprintf(path, sizeof path, "%s/metrics.csv", sc->output_dir);
+        FILE *f = fopen(path, "w");
+        if (f == NULL || sim_report_metrics_csv(f, &res, 1) != 0 || fclose(f) != 0) {
+            fprintf(stderr, "ladrc_sil: %s: cannot write\n", path);
+            status = 1;
+        }
+        simulated += sc->duration_s * (sc->kind == SIM_KIND_DIFFERENTIATOR ? 1 : sc->n_controllers);
+    }
+    if (!quiet) {
+        fprintf(stderr, "ladrc_sil: %d runs, %.1f s simulated in %.2f s with %d jobs (%.0fx real time)\n", n_jobs,
+                simulated, wall, n_threads, simulated / wall);
+    }
+    return status;
+}

@@ -1,0 +1,307 @@
+#define _POSIX_C_SOURCE 200809L
+/* One simulation run (see runner.h). */
+#include "runner.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include "ladrc/attitude.h"
+#include "ladrc/levant.h"
+#include "ladrc/mixer.h"
+#include "ladrc/td.h"
+#include "plant.h"
+#include "rng.h"
+#include "sensor.h"
+
+#define RAD2DEG (180.0 / 3.14159265358979323846)
+
+long sim_run_ticks(const sim_scenario_t *sc) { return (long)floor(sc->duration_s / sc->control_dt_s + 0.5); }
+
+static double wall_now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static ladrc_variant_t variant_of(sim_controller_id_t id)
+{
+    switch (id) {
+    case SIM_CTRL_HP_MLADRC: return LADRC_VARIANT_HP_MLADRC;
+    case SIM_CTRL_LP_MLADRC: return LADRC_VARIANT_LP_MLADRC;
+    case SIM_CTRL_LADRC: return LADRC_VARIANT_LADRC;
+    default: return LADRC_VARIANT_PID;
+    }
+}
+
+/* The scenario's overrides on top of the library defaults, for one axis. */
+static void apply_overrides(ladrc_axis_config_t *a, const sim_overrides_t *o)
+{
+    if (!isnan(o->wc_rad_s)) a->wc_rad_s = (ladrc_real_t)o->wc_rad_s;
+    if (!isnan(o->wo_rad_s)) a->wo_rad_s = (ladrc_real_t)o->wo_rad_s;
+    if (o->leso_method >= 0) a->leso_method = (ladrc_leso_method_t)o->leso_method;
+    if (o->hp_freq_mode >= 0) a->hp_freq_mode = (ladrc_hp_freq_mode_t)o->hp_freq_mode;
+    if (!isnan(o->hp_freq_rad_s)) a->hp_freq_rad_s = (ladrc_real_t)o->hp_freq_rad_s;
+    if (!isnan(o->levant_lipschitz_rad_s4)) a->levant_lipschitz_rad_s4 = (ladrc_real_t)o->levant_lipschitz_rad_s4;
+    if (!isnan(o->td_accel_rad_s2)) a->td_accel_rad_s2 = (ladrc_real_t)o->td_accel_rad_s2;
+    if (!isnan(o->pid_kp)) a->pid_kp = (ladrc_real_t)o->pid_kp;
+    if (!isnan(o->pid_ki)) a->pid_ki = (ladrc_real_t)o->pid_ki;
+    if (!isnan(o->pid_kd)) a->pid_kd = (ladrc_real_t)o->pid_kd;
+}
+
+/* What the controllers assume: the plant's vehicle times the mismatch factors. */
+static int configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_t *att,
+                     ladrc_mixer_t *mixer, char *err, size_t err_len)
+{
+    ladrc_real_t inertia[3];
+    for (int i = 0; i < 3; ++i) {
+        inertia[i] = (ladrc_real_t)(sc->inertia_kg_m2[i] * sc->inertia_scale[i]);
+    }
+    ladrc_attitude_config_t cfg;
+    ladrc_attitude_config_default(&cfg, variant_of(id), (ladrc_real_t)sc->control_dt_s, inertia,
+                                  (ladrc_real_t)(sc->rot_drag_Nm_s * sc->rot_drag_scale));
+    const sim_overrides_t *o = &sc->overrides[id];
+    for (int i = 0; i < 3; ++i) {
+        apply_overrides(&cfg.axis[i], o);
+    }
+    if (o->coupling_feed >= 0) {
+        cfg.coupling_feed = (uint8_t)o->coupling_feed;
+    }
+    int bad_axis = -1;
+    ladrc_status_t st = ladrc_attitude_init(att, &cfg, &bad_axis);
+    if (st != LADRC_OK) {
+        snprintf(err, err_len, "%s: controller %s, axis %d: %s", sc->path, sim_controller_name(id), bad_axis,
+                 ladrc_status_str(st));
+        return -1;
+    }
+    /* Ideal rotors have no limits; the mixer still wants finite ones. */
+    const double w2_min = sc->rotors_ideal ? 0.0 : sc->w2_min_rad2_s2;
+    const double w2_max = sc->rotors_ideal ? 1e12 : sc->w2_max_rad2_s2;
+    const ladrc_mixer_config_t mix = {
+        (ladrc_real_t)sc->thrust_coeff_N_s2, (ladrc_real_t)sc->arm_m,  (ladrc_real_t)sc->yaw_coeff_Nm_s2,
+        (ladrc_real_t)sc->mass_kg,           (ladrc_real_t)sc->g_m_s2, (ladrc_real_t)w2_min,
+        (ladrc_real_t)w2_max,                (ladrc_real_t)sc->tilt_max_rad,
+        sc->rotors_ideal ? LADRC_MIXER_IDEAL : LADRC_MIXER_SATURATE};
+    st = ladrc_mixer_init(mixer, &mix);
+    if (st != LADRC_OK) {
+        snprintf(err, err_len, "%s: mixer: %s", sc->path, ladrc_status_str(st));
+        return -1;
+    }
+    return 0;
+}
+
+static double disturbance(int axis, double t_s, void *ctx)
+{
+    const sim_scenario_t *sc = (const sim_scenario_t *)ctx;
+    return sim_signal_eval(&sc->disturbance[axis], t_s);
+}
+
+static FILE *open_csv(const char *path, const char *header, char *err, size_t err_len)
+{
+    if (path == NULL) {
+        return NULL;
+    }
+    FILE *f = fopen(path, "w");
+    if (f == NULL) {
+        snprintf(err, err_len, "%s: cannot write: %s", path, strerror(errno));
+        return NULL;
+    }
+    fputs(header, f);
+    return f;
+}
+
+static const char ATTITUDE_CSV_HEADER[] =
+    "t_s,ref_roll_deg,ref_pitch_deg,ref_yaw_deg,angle_roll_deg,angle_pitch_deg,angle_yaw_deg,"
+    "error_roll_deg,error_pitch_deg,error_yaw_deg,torque_cmd_roll_Nm,torque_cmd_pitch_Nm,torque_cmd_yaw_Nm,"
+    "torque_roll_Nm,torque_pitch_Nm,torque_yaw_Nm,w2_1,w2_2,w2_3,w2_4,"
+    "dist_roll_rad_s2,dist_pitch_rad_s2,dist_yaw_rad_s2,f_roll_rad_s2,f_pitch_rad_s2,f_yaw_rad_s2,"
+    "f_est_roll_rad_s2,f_est_pitch_rad_s2,f_est_yaw_rad_s2\n";
+
+/* Metric windows hold (from, to], as signal windows do. */
+static int in_window(const double w[2], double t) { return t > w[0] && t <= w[1]; }
+
+int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const char *csv_path,
+                     const sim_progress_t *progress, sim_metrics_t *m, char *err, size_t err_len)
+{
+    ladrc_attitude_t att;
+    ladrc_mixer_t mixer;
+    memset(m, 0, sizeof *m);
+    if (configure(sc, ctrl, &att, &mixer, err, err_len) != 0) {
+        return -1;
+    }
+    const sim_vehicle_t vehicle = {sc->mass_kg,         {sc->inertia_kg_m2[0], sc->inertia_kg_m2[1], sc->inertia_kg_m2[2]},
+                                   sc->arm_m,           sc->thrust_coeff_N_s2,
+                                   sc->yaw_coeff_Nm_s2, sc->rot_drag_Nm_s,
+                                   sc->g_m_s2,          sc->rotors_ideal,
+                                   sc->w2_min_rad2_s2,  sc->w2_max_rad2_s2,
+                                   sc->motor_tau_s};
+    sim_plant_t plant;
+    sim_plant_init(&plant, &vehicle);
+    sim_sensor_t sensor;
+    if (sim_sensor_init(&sensor, sc->angle_noise_std_rad, sc->rate_noise_std_rad_s, sc->delay_ticks, sc->seed) != 0) {
+        snprintf(err, err_len, "%s: bad sensor settings", sc->path);
+        return -1;
+    }
+    FILE *csv = open_csv(csv_path, ATTITUDE_CSV_HEADER, err, err_len);
+    if (csv_path != NULL && csv == NULL) {
+        return -1;
+    }
+    const double start = wall_now_s();
+    const long n = sim_run_ticks(sc);
+    const double dt = sc->control_dt_s;
+    double last_out_s[3] = {sc->settle_after_s, sc->settle_after_s, sc->settle_after_s};
+    const double band_rad = sc->settle_band_deg / RAD2DEG;
+    m->has_estimate = ctrl != SIM_CTRL_PID;
+    m->finite = 1;
+    for (int i = 0; i < 3; ++i) {
+        m->settle_s[i] = -1.0;
+    }
+    for (long k = 0; k < n; ++k) {
+        const double t = (double)k * dt;
+        double meas_angle[3], meas_rate[3];
+        sim_sensor_measure(&sensor, plant.angle_rad, plant.rate_rad_s, meas_angle, meas_rate);
+        ladrc_real_t ref[3], angle[3], rate[3], torque[3];
+        for (int i = 0; i < 3; ++i) {
+            ref[i] = (ladrc_real_t)sim_signal_eval(&sc->reference[i], t);
+            angle[i] = (ladrc_real_t)meas_angle[i];
+            rate[i] = (ladrc_real_t)meas_rate[i];
+        }
+        if (ladrc_attitude_step(&att, ref, angle, sc->use_rate ? rate : NULL, torque) != LADRC_FAULT_NONE) {
+            m->faults++;
+        }
+        ladrc_mixer_output_t out;
+        ladrc_mixer_step(&mixer, ladrc_mixer_thrust_from_tilt(&mixer, angle[0], angle[1]), torque, &out);
+        ladrc_attitude_set_applied(&att, out.torque_Nm);
+
+        /* The truth at this tick: the disturbance the observer should see is
+         * the plant's acceleration minus what the applied torque explains. */
+        double w2_cmd[4], applied[3], dist[3], accel[3], f_true[3], f_est[3], err_rad[3];
+        for (int r = 0; r < 4; ++r) {
+            w2_cmd[r] = out.w2_rad2_s2[r];
+        }
+        for (int i = 0; i < 3; ++i) {
+            applied[i] = out.torque_Nm[i];
+            dist[i] = sim_signal_eval(&sc->disturbance[i], t);
+        }
+        double thrust_actual, torque_actual[3];
+        sim_plant_forces(&plant.v, plant.w2_rad2_s2, &thrust_actual, torque_actual);
+        sim_plant_accel(&plant, torque_actual, dist, accel);
+        for (int i = 0; i < 3; ++i) {
+            f_true[i] = accel[i] - applied[i] / (sc->inertia_kg_m2[i] * sc->inertia_scale[i]);
+            ladrc_real_t a_est, r_est, d_est;
+            ladrc_axis_get_estimate(&att.axis[i], &a_est, &r_est, &d_est);
+            f_est[i] = d_est;
+            err_rad[i] = (double)ref[i] - plant.angle_rad[i];
+            const double e_deg = err_rad[i] * RAD2DEG;
+            if (in_window(sc->error_window_s, t)) {
+                sim_stat_add(&m->error_deg[i], e_deg);
+                if (fabs(e_deg) > m->max_error_deg[i]) m->max_error_deg[i] = fabs(e_deg);
+                if (m->has_estimate) sim_stat_add(&m->dist_error[i], f_est[i] - f_true[i]);
+            }
+            if (in_window(sc->steady_window_s, t) && fabs(e_deg) > m->band_deg[i]) {
+                m->band_deg[i] = fabs(e_deg);
+            }
+            if (t >= sc->settle_after_s && t <= sc->settle_until_s && fabs(err_rad[i]) > band_rad) {
+                last_out_s[i] = t + dt;
+            }
+        }
+        for (int r = 0; r < 4; ++r) {
+            sim_stat_add(&m->rotor_w2[r], plant.w2_rad2_s2[r]);
+        }
+        if (csv != NULL) {
+            fprintf(csv, "%.4f", t);
+            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", (double)ref[i] * RAD2DEG);
+            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", plant.angle_rad[i] * RAD2DEG);
+            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", err_rad[i] * RAD2DEG);
+            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", (double)torque[i]);
+            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", applied[i]);
+            for (int r = 0; r < 4; ++r) fprintf(csv, ",%.7g", plant.w2_rad2_s2[r]);
+            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", dist[i]);
+            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", f_true[i]);
+            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", m->has_estimate ? f_est[i] : NAN);
+            fputc('\n', csv);
+        }
+        sim_plant_step(&plant, w2_cmd, dt, sc->plant_substeps, disturbance, (void *)sc);
+        if (!(isfinite(plant.angle_rad[0]) && isfinite(plant.angle_rad[1]) && isfinite(plant.angle_rad[2]))) {
+            m->finite = 0;
+            break;
+        }
+        if (progress != NULL && progress->ticks_done != NULL && (k & 1023) == 1023) {
+            *progress->ticks_done += 1024;
+        }
+    }
+    for (int i = 0; i < 3; ++i) { /* -1: still outside the band at the window's end */
+        m->settle_s[i] = (last_out_s[i] > sc->settle_until_s) ? -1.0 : last_out_s[i] - sc->settle_after_s;
+    }
+    m->wall_s = wall_now_s() - start;
+    if (csv != NULL && fclose(csv) != 0) {
+        snprintf(err, err_len, "%s: write failed", csv_path);
+        return -1;
+    }
+    return 0;
+}
+
+int sim_run_differentiator(const sim_scenario_t *sc, const char *csv_path, const sim_progress_t *progress,
+                           sim_diff_metrics_t *m, char *err, size_t err_len)
+{
+    memset(m, 0, sizeof *m);
+    const ladrc_real_t dt = (ladrc_real_t)sc->control_dt_s;
+    ladrc_levant_config_t lcfg;
+    memset(&lcfg, 0, sizeof lcfg);
+    lcfg.dt_s = dt;
+    lcfg.method = LADRC_LEVANT_IMPLICIT;
+    lcfg.gains = LADRC_LEVANT_GAINS_LIPSCHITZ;
+    lcfg.lipschitz_rad_s4 = (ladrc_real_t)sc->diff_levant_lipschitz;
+    const ladrc_td_config_t tcfg = {dt, (ladrc_real_t)sc->diff_td_accel, (ladrc_real_t)sc->diff_td_h0_s};
+    ladrc_levant_t lev;
+    ladrc_td_t td;
+    ladrc_status_t st = ladrc_levant_init(&lev, &lcfg);
+    if (st == LADRC_OK) {
+        st = ladrc_td_init(&td, &tcfg);
+    }
+    if (st != LADRC_OK) {
+        snprintf(err, err_len, "%s: differentiator: %s", sc->path, ladrc_status_str(st));
+        return -1;
+    }
+    const double r0 = sim_signal_eval(&sc->diff_signal, 0.0);
+    ladrc_levant_reset(&lev, (ladrc_real_t)r0);
+    ladrc_td_reset(&td, (ladrc_real_t)r0);
+    sim_rng_t rng;
+    sim_rng_seed(&rng, sc->seed);
+    FILE *csv = open_csv(csv_path, "t_s,r_noisy,dr_true,dr_levant,dr_td\n", err, err_len);
+    if (csv_path != NULL && csv == NULL) {
+        return -1;
+    }
+    const double start = wall_now_s();
+    const long n = sim_run_ticks(sc);
+    const double noise_std = sqrt(sc->diff_noise_var);
+    for (long k = 0; k < n; ++k) {
+        const double t = (double)k * sc->control_dt_s;
+        const double r = sim_signal_eval(&sc->diff_signal, t) + noise_std * sim_rng_gauss(&rng);
+        const double dr = sim_signal_eval(&sc->diff_derivative, t);
+        /* the TD's output belongs to the next instant (td.h), Levant's to this one */
+        const double dr_next = sim_signal_eval(&sc->diff_derivative, t + sc->control_dt_s);
+        ladrc_ref_t lev_out, td_out;
+        ladrc_levant_step(&lev, (ladrc_real_t)r, &lev_out);
+        ladrc_td_step(&td, (ladrc_real_t)r, &td_out);
+        if (in_window(sc->error_window_s, t)) {
+            sim_stat_add(&m->levant_error, (double)lev_out.dr - dr);
+            sim_stat_add(&m->td_error, (double)td_out.dr - dr_next);
+        }
+        if (csv != NULL) {
+            fprintf(csv, "%.4f,%.7g,%.7g,%.7g,%.7g\n", t, r, dr, (double)lev_out.dr, (double)td_out.dr);
+        }
+        if (progress != NULL && progress->ticks_done != NULL && (k & 1023) == 1023) {
+            *progress->ticks_done += 1024;
+        }
+    }
+    m->wall_s = wall_now_s() - start;
+    if (csv != NULL && fclose(csv) != 0) {
+        snprintf(err, err_len, "%s: write failed", csv_path);
+        return -1;
+    }
+    return 0;
+}

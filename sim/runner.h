@@ -1,0 +1,33 @@
+/*
+ * One simulation run: a scenario flown by one controller (attitude kind), or
+ * the two reference shapers on a noisy signal (differentiator kind). The
+ * library is driven exactly as firmware would: same float build, one
+ * ladrc_attitude_step, mixer step and set_applied per control tick.
+ */
+#ifndef LADRC_SIM_RUNNER_H
+#define LADRC_SIM_RUNNER_H
+
+#include <stddef.h>
+
+#include "metrics.h"
+#include "scenario.h"
+
+/* Progress: the run adds its completed control ticks here (may be NULL);
+ * the caller reads it from another thread, so it is only a hint. */
+typedef struct {
+    volatile long *ticks_done;
+} sim_progress_t;
+
+/* Runs one controller on an attitude scenario. csv_path NULL: no time series.
+ * Returns 0, or -1 with a message in err (nothing was run). */
+int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const char *csv_path,
+                     const sim_progress_t *progress, sim_metrics_t *out, char *err, size_t err_len);
+
+/* Runs Levant and the TD on the differentiator scenario's noisy signal. */
+int sim_run_differentiator(const sim_scenario_t *sc, const char *csv_path, const sim_progress_t *progress,
+                           sim_diff_metrics_t *out, char *err, size_t err_len);
+
+/* Control ticks a run of sc takes (for progress). */
+long sim_run_ticks(const sim_scenario_t *sc);
+
+#endif

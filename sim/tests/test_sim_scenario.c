@@ -1,0 +1,766 @@
+/* Scenario files: the defaults, every key read into its field with its unit,
+ * piecewise signals and their (from, to] windows, the shipped scenarios, and
+ * each malformed input with the error's line, column and message. */
+#include "unity.h"
+#include "scenario.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#ifndef SIM_SCENARIO_DIR
+#error "SIM_SCENARIO_DIR must name the scenarios directory"
+#endif
+
+/* Values are parsed with strtod and converted with one multiplication (deg
+ * -> rad) or a square root and a multiplication (variance -> std), so they
+ * match the same double computation here to an ulp or two; 1e-12 relative
+ * is far below any wrong unit or field. */
+#define REL_TOL 1e-12
+
+static const double PI = 3.14159265358979323846;
+#define DEG (PI / 180.0)
+
+/* large: one scenario holds 8 signals of 8 compiled expressions */
+static sim_scenario_t sc;
+static sim_parse_error_t err;
+
+void setUp(void) { memset(&err, 0, sizeof err); }
+void tearDown(void) {}
+
+static void assert_close(double expected, double actual, const char *what)
+{
+    char message[200];
+    snprintf(message, sizeof message, "%s: expected %.17g, got %.17g", what, expected, actual);
+    TEST_ASSERT_TRUE_MESSAGE(fabs(actual - expected) <= REL_TOL * (1.0 + fabs(expected)), message);
+}
+
+/* Parses text that must be valid. */
+static void parse_ok(const char *text)
+{
+    const int rc = sim_scenario_parse(&sc, text, "dir/test.ini", &err);
+    char message[300];
+    snprintf(message, sizeof message, "%d:%d: %s", err.line, err.column, err.message);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, rc, message);
+}
+
+typedef struct {
+    const char *text;
+    int line;
+    int column;
+    const char *message;
+} bad_case_t;
+
+static void check_bad_cases(const bad_case_t *cases, size_t n)
+{
+    for (size_t i = 0; i < n; ++i) {
+        const bad_case_t *c = &cases[i];
+        char what[400];
+        snprintf(what, sizeof what, "case %u <<%s>>", (unsigned)i, c->text);
+        memset(&err, 0, sizeof err);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(-1, sim_scenario_parse(&sc, c->text, "bad.ini", &err), what);
+        TEST_ASSERT_EQUAL_STRING_MESSAGE(c->message, err.message, what);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(c->line, err.line, what);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(c->column, err.column, what);
+        TEST_ASSERT_EQUAL_STRING_MESSAGE("bad.ini", err.path, what);
+    }
+}
+
+#define CHECK_BAD_CASES(cases) check_bad_cases((cases), sizeof(cases) / sizeof((cases)[0]))
+
+/* ---- well-formed input ----------------------------------------------------- */
+
+static void test_defaults_fill_every_key_not_given(void)
+{
+    parse_ok("[run]\nduration_s = 12\n");
+    TEST_ASSERT_EQUAL_STRING("test", sc.name);
+    TEST_ASSERT_EQUAL_STRING("dir/test.ini", sc.path);
+    TEST_ASSERT_EQUAL_INT(SIM_KIND_ATTITUDE, sc.kind);
+    assert_close(12.0, sc.duration_s, "duration_s");
+    assert_close(0.001, sc.control_dt_s, "control_dt_s");
+    TEST_ASSERT_EQUAL_INT(10, sc.plant_substeps);
+    TEST_ASSERT_TRUE(sc.seed == 1u);
+    TEST_ASSERT_EQUAL_STRING("out/test", sc.output_dir);
+    TEST_ASSERT_EQUAL_INT(4, sc.n_controllers);
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_HP_MLADRC, sc.controllers[0]);
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_LP_MLADRC, sc.controllers[1]);
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_LADRC, sc.controllers[2]);
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_PID, sc.controllers[3]);
+
+    /* paper Table 1 */
+    assert_close(0.8, sc.mass_kg, "mass_kg");
+    assert_close(5.445e-3, sc.inertia_kg_m2[0], "Jx");
+    assert_close(5.445e-3, sc.inertia_kg_m2[1], "Jy");
+    assert_close(1.089e-2, sc.inertia_kg_m2[2], "Jz");
+    assert_close(0.165, sc.arm_m, "arm_m");
+    assert_close(2.98e-5, sc.thrust_coeff_N_s2, "kL");
+    assert_close(2e-6, sc.yaw_coeff_Nm_s2, "b");
+    assert_close(0.09, sc.rot_drag_Nm_s, "kt");
+    assert_close(9.81, sc.g_m_s2, "g");
+
+    TEST_ASSERT_EQUAL_INT(1, sc.rotors_ideal);
+    assert_close(0.0, sc.w2_min_rad2_s2, "w2_min");
+    TEST_ASSERT_TRUE(isinf(sc.w2_max_rad2_s2) && sc.w2_max_rad2_s2 > 0.0);
+    assert_close(0.0, sc.motor_tau_s, "motor_tau_s");
+    assert_close(40.0 * DEG, sc.tilt_max_rad, "tilt_max");
+
+    assert_close(0.0, sc.angle_noise_std_rad, "angle noise");
+    assert_close(0.0, sc.rate_noise_std_rad_s, "rate noise");
+    TEST_ASSERT_EQUAL_INT(0, sc.delay_ticks);
+    TEST_ASSERT_EQUAL_INT(1, sc.use_rate);
+    for (int i = 0; i < 3; ++i) {
+        assert_close(1.0, sc.inertia_scale[i], "inertia_scale");
+        TEST_ASSERT_EQUAL_INT(0, sc.reference[i].n_pieces);
+        TEST_ASSERT_EQUAL_INT(0, sc.disturbance[i].n_pieces);
+        assert_close(DEG, sc.reference[i].scale, "reference scale");
+        assert_close(1.0, sc.disturbance[i].scale, "disturbance scale");
+        assert_close(0.0, sim_signal_eval(&sc.reference[i], 3.0), "reference value");
+        assert_close(0.0, sim_signal_eval(&sc.disturbance[i], 3.0), "disturbance value");
+    }
+    assert_close(1.0, sc.rot_drag_scale, "rot_drag_scale");
+
+    for (int c = 0; c < SIM_CTRL_COUNT; ++c) {
+        const sim_overrides_t *o = &sc.overrides[c];
+        TEST_ASSERT_TRUE(isnan(o->wc_rad_s) && isnan(o->wo_rad_s) && isnan(o->hp_freq_rad_s));
+        TEST_ASSERT_TRUE(isnan(o->levant_lipschitz_rad_s4) && isnan(o->td_accel_rad_s2));
+        TEST_ASSERT_TRUE(isnan(o->pid_kp) && isnan(o->pid_ki) && isnan(o->pid_kd));
+        TEST_ASSERT_EQUAL_INT(-1, o->leso_method);
+        TEST_ASSERT_EQUAL_INT(-1, o->hp_freq_mode);
+        TEST_ASSERT_EQUAL_INT(-1, o->coupling_feed);
+    }
+
+    /* metric windows: the whole run */
+    assert_close(0.0, sc.error_window_s[0], "error from");
+    assert_close(12.0, sc.error_window_s[1], "error to");
+    assert_close(0.0, sc.steady_window_s[0], "steady from");
+    assert_close(12.0, sc.steady_window_s[1], "steady to");
+    assert_close(0.5, sc.settle_band_deg, "settle band");
+    assert_close(0.0, sc.settle_after_s, "settle from");
+    assert_close(12.0, sc.settle_until_s, "settle to");
+
+    TEST_ASSERT_EQUAL_INT(0, sc.diff_signal.n_pieces);
+    TEST_ASSERT_EQUAL_INT(0, sc.diff_derivative.n_pieces);
+    assert_close(0.0, sc.diff_noise_var, "diff noise");
+    TEST_ASSERT_TRUE(isnan(sc.diff_levant_lipschitz) && isnan(sc.diff_td_accel) && isnan(sc.diff_td_h0_s));
+}
+
+static void test_every_attitude_key_lands_in_its_field_in_its_unit(void)
+{
+    parse_ok("[run]\n"
+             "kind = attitude\n"
+             "duration_s = 20\n"
+             "control_dt_s = 2e-3\n"
+             "plant_substeps = 4\n"
+             "seed = 18446744073709551615\n"
+             "output_dir = results/my run\n"
+             "controllers = PID LADRC\n"
+             "[vehicle]\n"
+             "mass_kg = 1.5\n"
+             "inertia_kg_m2 = 1e-2 2e-2 3e-2\n"
+             "arm_m = .25\n"
+             "thrust_coeff_N_s2 = 3e-5\n"
+             "yaw_coeff_Nm_s2 = 4e-6\n"
+             "rot_drag_Nm_s = 0\n"
+             "g_m_s2 = 9.8\n"
+             "[rotors]\n"
+             "ideal = no\n"
+             "w2_min_rad2_s2 = 1e4\n"
+             "w2_max_rad2_s2 = 2e5\n"
+             "motor_tau_s = 0.02\n"
+             "tilt_max_deg = 30\n"
+             "[sensors]\n"
+             "angle_noise_var_deg2 = 0.04\n"
+             "rate_noise_std_deg_s = 0.5\n"
+             "delay_ticks = 64\n"
+             "use_rate = no\n"
+             "[mismatch]\n"
+             "inertia_scale = 1.1 0.9 1.2\n"
+             "rot_drag_scale = 0.5\n"
+             "[reference]\n"
+             "roll = 10\n"
+             "pitch = -t\n"
+             "yaw = 1 .. : 3\n"
+             "[disturbance]\n"
+             "roll = 2 .. 6 : 8\n"
+             "pitch = 6\n"
+             "yaw = .. 1 : -4\n"
+             "[metrics]\n"
+             "error_window_s = 1 20\n"
+             "steady_window_s = 15 18.5\n"
+             "settle_band_deg = 0.2\n"
+             "settle_window_s = 2 4\n");
+    TEST_ASSERT_EQUAL_INT(SIM_KIND_ATTITUDE, sc.kind);
+    assert_close(20.0, sc.duration_s, "duration_s");
+    assert_close(2e-3, sc.control_dt_s, "control_dt_s");
+    TEST_ASSERT_EQUAL_INT(4, sc.plant_substeps);
+    TEST_ASSERT_TRUE(sc.seed == UINT64_MAX);
+    TEST_ASSERT_EQUAL_STRING("results/my run", sc.output_dir);
+    TEST_ASSERT_EQUAL_INT(2, sc.n_controllers);
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_PID, sc.controllers[0]);
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_LADRC, sc.controllers[1]);
+
+    assert_close(1.5, sc.mass_kg, "mass_kg");
+    assert_close(1e-2, sc.inertia_kg_m2[0], "Jx");
+    assert_close(2e-2, sc.inertia_kg_m2[1], "Jy");
+    assert_close(3e-2, sc.inertia_kg_m2[2], "Jz");
+    assert_close(0.25, sc.arm_m, "arm_m");
+    assert_close(3e-5, sc.thrust_coeff_N_s2, "kL");
+    assert_close(4e-6, sc.yaw_coeff_Nm_s2, "b");
+    assert_close(0.0, sc.rot_drag_Nm_s, "kt");
+    assert_close(9.8, sc.g_m_s2, "g");
+
+    TEST_ASSERT_EQUAL_INT(0, sc.rotors_ideal);
+    assert_close(1e4, sc.w2_min_rad2_s2, "w2_min");
+    assert_close(2e5, sc.w2_max_rad2_s2, "w2_max");
+    assert_close(0.02, sc.motor_tau_s, "motor_tau_s");
+    assert_close(30.0 * DEG, sc.tilt_max_rad, "tilt_max");
+
+    assert_close(0.2 * DEG, sc.angle_noise_std_rad, "angle noise from a variance");
+    assert_close(0.5 * DEG, sc.rate_noise_std_rad_s, "rate noise");
+    TEST_ASSERT_EQUAL_INT(64, sc.delay_ticks);
+    TEST_ASSERT_EQUAL_INT(0, sc.use_rate);
+
+    assert_close(1.1, sc.inertia_scale[0], "inertia_scale x");
+    assert_close(0.9, sc.inertia_scale[1], "inertia_scale y");
+    assert_close(1.2, sc.inertia_scale[2], "inertia_scale z");
+    assert_close(0.5, sc.rot_drag_scale, "rot_drag_scale");
+
+    assert_close(10.0 * DEG, sim_signal_eval(&sc.reference[0], 7.0), "roll ref, degrees to rad");
+    assert_close(-7.0 * DEG, sim_signal_eval(&sc.reference[1], 7.0), "pitch ref");
+    assert_close(0.0, sim_signal_eval(&sc.reference[2], 1.0), "yaw ref at 1");
+    assert_close(3.0 * DEG, sim_signal_eval(&sc.reference[2], 1.5), "yaw ref after 1");
+    assert_close(8.0, sim_signal_eval(&sc.disturbance[0], 4.0), "roll d");
+    assert_close(6.0, sim_signal_eval(&sc.disturbance[1], -3.0), "pitch d everywhere");
+    assert_close(-4.0, sim_signal_eval(&sc.disturbance[2], 1.0), "yaw d up to 1");
+    assert_close(0.0, sim_signal_eval(&sc.disturbance[2], 1.001), "yaw d after 1");
+
+    assert_close(1.0, sc.error_window_s[0], "error from");
+    assert_close(20.0, sc.error_window_s[1], "error to");
+    assert_close(15.0, sc.steady_window_s[0], "steady from");
+    assert_close(18.5, sc.steady_window_s[1], "steady to");
+    assert_close(0.2, sc.settle_band_deg, "settle band");
+    assert_close(2.0, sc.settle_after_s, "settle from");
+    assert_close(4.0, sc.settle_until_s, "settle to");
+}
+
+static void test_std_and_variance_keys_set_the_same_noise(void)
+{
+    parse_ok("[run]\nduration_s = 1\n[sensors]\nangle_noise_std_deg = 0.03\nrate_noise_var_deg2_s2 = 4\n");
+    assert_close(0.03 * DEG, sc.angle_noise_std_rad, "angle std");
+    assert_close(2.0 * DEG, sc.rate_noise_std_rad_s, "rate from variance");
+    parse_ok("[run]\nduration_s = 1\n[sensors]\nangle_noise_var_deg2 = 0.001\n");
+    assert_close(sqrt(0.001) * DEG, sc.angle_noise_std_rad, "paper noise");
+}
+
+static void test_every_override_key_lands_in_its_controller(void)
+{
+    parse_ok("[run]\nduration_s = 1\n"
+             "[controller HP-MLADRC]\n"
+             "wc_rad_s = 15\nwo_rad_s = 75\nleso_method = euler\ncoupling_feed = no\n"
+             "hp_freq_mode = online\nhp_freq_rad_s = 3\nlevant_lipschitz_rad_s4 = 500\n"
+             "[controller LP-MLADRC]\n"
+             "levant_lipschitz_rad_s4 = 200\nleso_method = zoh\ncoupling_feed = yes\n"
+             "[controller LADRC]\n"
+             "td_accel_rad_s2 = 25\nwc_rad_s = 10\n"
+             "[controller PID]\n"
+             "pid_kp = 20\npid_ki = 20\npid_kd = 0.05\n");
+    const sim_overrides_t *hp = &sc.overrides[SIM_CTRL_HP_MLADRC];
+    assert_close(15.0, hp->wc_rad_s, "hp wc");
+    assert_close(75.0, hp->wo_rad_s, "hp wo");
+    TEST_ASSERT_EQUAL_INT(1, hp->leso_method); /* LADRC_LESO_EULER */
+    TEST_ASSERT_EQUAL_INT(0, hp->coupling_feed);
+    TEST_ASSERT_EQUAL_INT(1, hp->hp_freq_mode); /* LADRC_HP_FREQ_ONLINE */
+    assert_close(3.0, hp->hp_freq_rad_s, "hp freq");
+    assert_close(500.0, hp->levant_lipschitz_rad_s4, "hp L");
+    TEST_ASSERT_TRUE(isnan(hp->td_accel_rad_s2) && isnan(hp->pid_kp));
+
+    const sim_overrides_t *lp = &sc.overrides[SIM_CTRL_LP_MLADRC];
+    assert_close(200.0, lp->levant_lipschitz_rad_s4, "lp L");
+    TEST_ASSERT_EQUAL_INT(0, lp->leso_method); /* LADRC_LESO_ZOH */
+    TEST_ASSERT_EQUAL_INT(1, lp->coupling_feed);
+    TEST_ASSERT_TRUE(isnan(lp->wc_rad_s));
+    TEST_ASSERT_EQUAL_INT(-1, lp->hp_freq_mode);
+
+    const sim_overrides_t *ladrc = &sc.overrides[SIM_CTRL_LADRC];
+    assert_close(25.0, ladrc->td_accel_rad_s2, "ladrc R");
+    assert_close(10.0, ladrc->wc_rad_s, "ladrc wc");
+    TEST_ASSERT_TRUE(isnan(ladrc->wo_rad_s));
+
+    const sim_overrides_t *pid = &sc.overrides[SIM_CTRL_PID];
+    assert_close(20.0, pid->pid_kp, "kp");
+    assert_close(20.0, pid->pid_ki, "ki");
+    assert_close(0.05, pid->pid_kd, "kd");
+    TEST_ASSERT_TRUE(isnan(pid->wc_rad_s));
+    TEST_ASSERT_EQUAL_INT(-1, pid->coupling_feed);
+}
+
+static void test_every_differentiator_key_lands_in_its_field(void)
+{
+    parse_ok("[run]\nkind = differentiator\nduration_s = 10\ncontrol_dt_s = 0.002\nseed = 7\n"
+             "output_dir = o\n"
+             "[differentiator]\nsignal = sin(t)\nderivative = cos(t)\nnoise_var = 0.001\n"
+             "levant_lipschitz_rad_s4 = 10\ntd_accel_rad_s2 = 12\ntd_h0_s = 0.002\n");
+    TEST_ASSERT_EQUAL_INT(SIM_KIND_DIFFERENTIATOR, sc.kind);
+    assert_close(10.0, sc.duration_s, "duration_s");
+    assert_close(0.002, sc.control_dt_s, "dt");
+    TEST_ASSERT_TRUE(sc.seed == 7u);
+    TEST_ASSERT_EQUAL_STRING("o", sc.output_dir);
+    TEST_ASSERT_EQUAL_INT(0, sc.n_controllers);
+    assert_close(sin(0.4), sim_signal_eval(&sc.diff_signal, 0.4), "signal, no unit factor");
+    assert_close(cos(0.4), sim_signal_eval(&sc.diff_derivative, 0.4), "derivative");
+    assert_close(0.001, sc.diff_noise_var, "noise_var");
+    assert_close(10.0, sc.diff_levant_lipschitz, "L");
+    assert_close(12.0, sc.diff_td_accel, "R");
+    assert_close(0.002, sc.diff_td_h0_s, "h0");
+}
+
+static void test_signal_windows_hold_from_exclusive_to_inclusive(void)
+{
+    parse_ok("[run]\nduration_s = 30\n[disturbance]\n"
+             "roll = 2 .. 6 : 8\n"
+             "roll = 6 .. 12 : 20 - t\n"
+             "roll = 25 .. : 1\n");
+    const sim_signal_t *d = &sc.disturbance[0];
+    TEST_ASSERT_EQUAL_INT(3, d->n_pieces);
+    assert_close(0.0, sim_signal_eval(d, 0.0), "before");
+    assert_close(0.0, sim_signal_eval(d, 2.0), "at from: outside");
+    assert_close(8.0, sim_signal_eval(d, nextafter(2.0, 3.0)), "just after from");
+    assert_close(8.0, sim_signal_eval(d, 6.0), "at to: inside");
+    assert_close(20.0 - nextafter(6.0, 7.0), sim_signal_eval(d, nextafter(6.0, 7.0)), "next piece");
+    assert_close(8.0, sim_signal_eval(d, 12.0), "12 is the second piece's end");
+    assert_close(0.0, sim_signal_eval(d, nextafter(12.0, 13.0)), "gap");
+    assert_close(0.0, sim_signal_eval(d, 25.0), "unbounded piece starts after 25");
+    assert_close(1.0, sim_signal_eval(d, 1e9), "unbounded above");
+    TEST_ASSERT_TRUE(isinf(d->to_s[2]) && d->to_s[2] > 0.0);
+    assert_close(2.0, d->from_s[0], "first piece's start");
+}
+
+static void test_signal_eval_takes_the_first_piece_that_holds_t_and_scales_it(void)
+{
+    static sim_signal_t sig;
+    memset(&sig, 0, sizeof sig);
+    sig.scale = 2.0;
+    TEST_ASSERT_EQUAL_INT(0, sim_expr_compile(&sig.expr[0], "1", NULL));
+    TEST_ASSERT_EQUAL_INT(0, sim_expr_compile(&sig.expr[1], "t", NULL));
+    sig.from_s[0] = 0.0;
+    sig.to_s[0] = 1.0;
+    sig.from_s[1] = -INFINITY;
+    sig.to_s[1] = INFINITY;
+    sig.n_pieces = 2;
+    assert_close(2.0, sim_signal_eval(&sig, 0.5), "first piece");
+    assert_close(2.0, sim_signal_eval(&sig, 1.0), "first piece at its end");
+    assert_close(0.0, sim_signal_eval(&sig, 0.0), "second piece at 0: t");
+    assert_close(-6.0, sim_signal_eval(&sig, -3.0), "second piece");
+    sig.n_pieces = 0;
+    assert_close(0.0, sim_signal_eval(&sig, 0.5), "no pieces");
+}
+
+static void test_layout_comments_blank_lines_crlf_tabs_and_bom(void)
+{
+    parse_ok("\xEF\xBB\xBF# heading\r\n"
+             "\r\n"
+             "  [ run ]   # a section\r\n"
+             "\tduration_s=5# no spaces\r\n"
+             "controllers =\tLADRC   PID  \r\n"
+             "[reference]\n"
+             "roll = 2*t  # comment after an expression\n"
+             "   \t\n"
+             "# [vehicle]\n"
+             "# mass_kg = oops");
+    assert_close(5.0, sc.duration_s, "duration_s");
+    TEST_ASSERT_EQUAL_INT(2, sc.n_controllers);
+    assert_close(6.0 * DEG, sim_signal_eval(&sc.reference[0], 3.0), "roll");
+    assert_close(0.8, sc.mass_kg, "commented key not read");
+}
+
+static void test_name_and_default_output_dir_come_from_the_file_name(void)
+{
+    TEST_ASSERT_EQUAL_INT(0, sim_scenario_parse(&sc, "[run]\nduration_s = 1\n", "a/b.c/gust.v2.ini", &err));
+    TEST_ASSERT_EQUAL_STRING("gust.v2", sc.name);
+    TEST_ASSERT_EQUAL_STRING("out/gust.v2", sc.output_dir);
+    TEST_ASSERT_EQUAL_INT(0, sim_scenario_parse(&sc, "[run]\nduration_s = 1\n", "plain", &err));
+    TEST_ASSERT_EQUAL_STRING("plain", sc.name);
+    TEST_ASSERT_EQUAL_INT(0, sim_scenario_parse(&sc, "[run]\nduration_s = 1\n", NULL, &err));
+    TEST_ASSERT_EQUAL_STRING("scenario", sc.name);
+    TEST_ASSERT_EQUAL_STRING("out/scenario", sc.output_dir);
+}
+
+static void test_controller_names(void)
+{
+    TEST_ASSERT_EQUAL_STRING("HP-MLADRC", sim_controller_name(SIM_CTRL_HP_MLADRC));
+    TEST_ASSERT_EQUAL_STRING("LP-MLADRC", sim_controller_name(SIM_CTRL_LP_MLADRC));
+    TEST_ASSERT_EQUAL_STRING("LADRC", sim_controller_name(SIM_CTRL_LADRC));
+    TEST_ASSERT_EQUAL_STRING("PID", sim_controller_name(SIM_CTRL_PID));
+    TEST_ASSERT_EQUAL_STRING("?", sim_controller_name(SIM_CTRL_COUNT));
+}
+
+/* ---- shipped scenarios ---------------------------------------------------- */
+
+static void load_ok(const char *file)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", SIM_SCENARIO_DIR, file);
+    const int rc = sim_scenario_load(&sc, path, &err);
+    char message[SIM_PATH_LEN + 200];
+    snprintf(message, sizeof message, "%s:%d:%d: %s", err.path, err.line, err.column, err.message);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, rc, message);
+}
+
+/* The paper's Table 2 disturbance of one axis, as PAPER.md states it. */
+static double table2(int axis, double t)
+{
+    const double sign = (axis == 1) ? 1.0 : -1.0; /* pitch has +120 */
+    if (t <= 2.0 || t > 25.0) {
+        return 0.0;
+    }
+    if (t <= 6.0) {
+        return axis == 0 ? 8.0 : 6.0;
+    }
+    if (t <= 12.0) {
+        return 20.0 + sign * 120.0 * sin(0.25 * PI * t);
+    }
+    return 20.0 + sign * 120.0 * sin(3.0 * t);
+}
+
+static void check_paper_case(const char *name)
+{
+    TEST_ASSERT_EQUAL_STRING(name, sc.name);
+    TEST_ASSERT_EQUAL_INT(SIM_KIND_ATTITUDE, sc.kind);
+    assert_close(30.0, sc.duration_s, "duration_s");
+    assert_close(0.001, sc.control_dt_s, "dt");
+    TEST_ASSERT_EQUAL_INT(10, sc.plant_substeps);
+    TEST_ASSERT_EQUAL_INT(4, sc.n_controllers);
+    TEST_ASSERT_EQUAL_INT(1, sc.rotors_ideal);
+    assert_close(0.8, sc.mass_kg, "m");
+    assert_close(1.089e-2, sc.inertia_kg_m2[2], "Jz");
+    for (double t = 0.0; t <= 30.0; t += 0.01) {
+        assert_close((5.0 + 15.0 * cos(PI * t / 2.0)) * DEG, sim_signal_eval(&sc.reference[0], t), "roll ref");
+        assert_close(10.0 * cos(PI * t / 2.0) * DEG, sim_signal_eval(&sc.reference[1], t), "pitch ref");
+        assert_close(0.0, sim_signal_eval(&sc.reference[2], t), "yaw ref");
+        for (int axis = 0; axis < 3; ++axis) {
+            assert_close(table2(axis, t), sim_signal_eval(&sc.disturbance[axis], t), "Table 2");
+        }
+    }
+    /* the window edges exactly */
+    const double edges[] = {2.0, 6.0, 12.0, 25.0};
+    for (int i = 0; i < 4; ++i) {
+        for (int axis = 0; axis < 3; ++axis) {
+            assert_close(table2(axis, edges[i]), sim_signal_eval(&sc.disturbance[axis], edges[i]), "edge");
+            const double after = nextafter(edges[i], 100.0);
+            assert_close(table2(axis, after), sim_signal_eval(&sc.disturbance[axis], after), "after edge");
+        }
+    }
+    assert_close(0.0, sc.error_window_s[0], "error from");
+    assert_close(30.0, sc.error_window_s[1], "error to");
+    assert_close(20.0, sc.steady_window_s[0], "steady from");
+    assert_close(25.0, sc.steady_window_s[1], "steady to");
+}
+
+static void test_shipped_paper_scenario(void)
+{
+    load_ok("paper.ini");
+    check_paper_case("paper");
+    assert_close(0.0, sc.angle_noise_std_rad, "no noise");
+}
+
+static void test_shipped_paper_noisy_scenario(void)
+{
+    load_ok("paper_noisy.ini");
+    check_paper_case("paper_noisy");
+    assert_close(sqrt(0.001) * DEG, sc.angle_noise_std_rad, "variance 0.001 deg^2");
+    assert_close(0.0, sc.rate_noise_std_rad_s, "clean rates");
+}
+
+static void test_shipped_table3_differentiator_scenario(void)
+{
+    load_ok("table3_differentiator.ini");
+    TEST_ASSERT_EQUAL_INT(SIM_KIND_DIFFERENTIATOR, sc.kind);
+    assert_close(10.0, sc.duration_s, "duration");
+    assert_close(0.001, sc.control_dt_s, "1 kHz");
+    assert_close(sin(2.0), sim_signal_eval(&sc.diff_signal, 2.0), "signal");
+    assert_close(cos(2.0), sim_signal_eval(&sc.diff_derivative, 2.0), "derivative");
+    assert_close(0.001, sc.diff_noise_var, "noise");
+    assert_close(10.0, sc.diff_levant_lipschitz, "L");
+    assert_close(10.0, sc.diff_td_accel, "R");
+    assert_close(0.01, sc.diff_td_h0_s, "h0");
+}
+
+static void test_shipped_steps_scenario(void)
+{
+    load_ok("steps.ini");
+    TEST_ASSERT_EQUAL_INT(0, sc.rotors_ideal);
+    assert_close(1e4, sc.w2_min_rad2_s2, "w2 min");
+    assert_close(2e5, sc.w2_max_rad2_s2, "w2 max");
+    assert_close(0.02, sc.motor_tau_s, "lag");
+    TEST_ASSERT_EQUAL_INT(1, sc.use_rate);
+    const double step_at[3] = {1.0, 4.0, 7.0};
+    for (int axis = 0; axis < 3; ++axis) {
+        assert_close(0.0, sim_signal_eval(&sc.reference[axis], step_at[axis]), "before the step");
+        assert_close(10.0 * DEG, sim_signal_eval(&sc.reference[axis], nextafter(step_at[axis], 10.0)), "step");
+        assert_close(0.0, sim_signal_eval(&sc.disturbance[axis], 5.0), "no disturbance");
+    }
+}
+
+static void test_load_reports_a_missing_file_at_line_0(void)
+{
+    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_load(&sc, "no/such/file.ini", &err));
+    TEST_ASSERT_EQUAL_STRING("no/such/file.ini", err.path);
+    TEST_ASSERT_EQUAL_INT(0, err.line);
+    TEST_ASSERT_EQUAL_INT(0, err.column);
+    TEST_ASSERT_EQUAL_INT(0, strncmp(err.message, "cannot open: ", 13));
+}
+
+static void test_load_rejects_a_nul_byte_where_it_is(void)
+{
+    const char *path = "test_sim_scenario_nul.ini";
+    FILE *f = fopen(path, "wb");
+    TEST_ASSERT_NOT_NULL(f);
+    static const char text[] = "[run]\nduration_s = 1\nse\0ed = 2\n";
+    TEST_ASSERT_EQUAL_UINT(sizeof text - 1, (unsigned)fwrite(text, 1, sizeof text - 1, f));
+    fclose(f);
+    const int rc = sim_scenario_load(&sc, path, &err);
+    remove(path);
+    TEST_ASSERT_EQUAL_INT(-1, rc);
+    TEST_ASSERT_EQUAL_STRING("unexpected NUL byte", err.message);
+    TEST_ASSERT_EQUAL_INT(3, err.line);
+    TEST_ASSERT_EQUAL_INT(3, err.column);
+}
+
+/* ---- malformed input -------------------------------------------------------- */
+
+static void test_structure_errors(void)
+{
+    static const bad_case_t cases[] = {
+        {"[runn]\n", 1, 2, "unknown section [runn]"},
+        {"[run\nduration_s = 1\n", 1, 5, "expected ']'"},
+        {"[run] x\n", 1, 7, "trailing characters after ']'"},
+        {"[ ]\n", 1, 3, "expected a section name"},
+        {"[run extra]\n", 1, 6, "unexpected 'extra' in the section header"},
+        {"[controller]\n", 1, 12, "expected a controller name after 'controller'"},
+        {"[controller PDI]\n", 1, 13, "unknown controller 'PDI' (expected HP-MLADRC, LP-MLADRC, LADRC or PID)"},
+        {"[controller PID PID]\n", 1, 17, "unexpected 'PID' in the section header"},
+        {"[run]\nduration_s = 1\n\n[run]\n", 4, 1, "section [run] already given on line 1"},
+        {"[run]\nduration_s = 1\n[controller PID]\n[controller PID]\n", 4, 1,
+         "section [controller PID] already given on line 3"},
+        {"# top\nduration_s = 1\n", 2, 1, "key 'duration_s' before any [section]"},
+        {"[run]\nduraton_s = 3\n", 2, 1, "unknown key 'duraton_s' in [run]"},
+        {"[vehicle]\n  mass = 3\n", 2, 3, "unknown key 'mass' in [vehicle]"},
+        {"[controller LADRC]\nkp = 3\n", 2, 1, "unknown key 'kp' in [controller LADRC]"},
+        {"[run]\nduration_s 3\n", 2, 12, "expected '=' after 'duration_s'"},
+        {"[run]\nduration-s = 3\n", 2, 9, "expected '=' after 'duration'"},
+        {"[run]\nduration_s =\n", 2, 13, "missing value for 'duration_s'"},
+        {"[run]\nduration_s =   # nothing\n", 2, 13, "missing value for 'duration_s'"},
+        {"[run]\n= 3\n", 2, 1, "expected a key or a [section]"},
+        {"[run]\nduration_s = 1\nseed = 1\nduration_s = 2\n", 4, 1,
+         "duplicate key 'duration_s' (first given on line 2)"},
+        {"[run]\nduration_s = 1\n[sensors]\nangle_noise_std_deg = 0.1\nangle_noise_var_deg2 = 0.01\n", 5, 1,
+         "'angle_noise_var_deg2' and 'angle_noise_std_deg' (line 4) set the same value"},
+        {"[run]\nduration_s = 1\n[sensors]\nrate_noise_var_deg2_s2 = 1\nrate_noise_std_deg_s = 1\n", 5, 1,
+         "'rate_noise_std_deg_s' and 'rate_noise_var_deg2_s2' (line 4) set the same value"},
+        {"[controller LADRC]\npid_kp = 1\n", 2, 1, "'pid_kp' does not apply to LADRC"},
+        {"[controller PID]\nwc_rad_s = 1\n", 2, 1, "'wc_rad_s' does not apply to PID"},
+        {"[controller LP-MLADRC]\nhp_freq_mode = known\n", 2, 1, "'hp_freq_mode' does not apply to LP-MLADRC"},
+        {"[controller LADRC]\nlevant_lipschitz_rad_s4 = 1\n", 2, 1,
+         "'levant_lipschitz_rad_s4' does not apply to LADRC"},
+        {"[controller HP-MLADRC]\ntd_accel_rad_s2 = 1\n", 2, 1, "'td_accel_rad_s2' does not apply to HP-MLADRC"},
+        {"[controller PID]\ncoupling_feed = no\n", 2, 1, "'coupling_feed' does not apply to PID"},
+    };
+    CHECK_BAD_CASES(cases);
+}
+
+static void test_value_errors(void)
+{
+    static const bad_case_t cases[] = {
+        {"[run]\nduration_s = 3x\n", 2, 14, "expected a number, got '3x'"},
+        {"[run]\nduration_s = 3 4\n", 2, 16, "expected a single number"},
+        {"[run]\nduration_s = abc\n", 2, 14, "expected a number, got 'abc'"},
+        {"[run]\nduration_s = -\n", 2, 14, "expected a number, got '-'"},
+        {"[run]\nduration_s = 0x10\n", 2, 14, "expected a number, got '0x10'"},
+        {"[run]\nduration_s = inf\n", 2, 14, "expected a number, got 'inf'"},
+        {"[run]\nduration_s = 1e999\n", 2, 14, "number out of range"},
+        {"[run]\nduration_s = -1\n", 2, 14, "duration_s must be > 0"},
+        {"[run]\nduration_s = 0\n", 2, 14, "duration_s must be > 0"},
+        {"[run]\ncontrol_dt_s = 0\n", 2, 16, "control_dt_s must be > 0"},
+        {"[run]\ncontrol_dt_s = -1e-3\n", 2, 16, "control_dt_s must be > 0"},
+        {"[run]\nplant_substeps = 0\n", 2, 18, "plant_substeps must be >= 1"},
+        {"[run]\nplant_substeps = 2.5\n", 2, 18, "expected an integer, got '2.5'"},
+        {"[run]\nplant_substeps = 2 3\n", 2, 20, "expected a single integer, got '3'"},
+        {"[run]\nplant_substeps = 99999999999\n", 2, 18, "number out of range"},
+        {"[run]\nseed = -1\n", 2, 8, "expected an unsigned integer, got '-1'"},
+        {"[run]\nseed = 18446744073709551616\n", 2, 8, "seed out of range (at most 18446744073709551615)"},
+        {"[run]\nkind = attitud\n", 2, 8, "expected attitude or differentiator, got 'attitud'"},
+        {"[run]\ncontrollers = LADRC PDI\n", 2, 21,
+         "unknown controller 'PDI' (expected HP-MLADRC, LP-MLADRC, LADRC or PID)"},
+        {"[run]\ncontrollers = ladrc\n", 2, 15,
+         "unknown controller 'ladrc' (expected HP-MLADRC, LP-MLADRC, LADRC or PID)"},
+        {"[run]\ncontrollers = LADRC PID LADRC\n", 2, 25, "controller 'LADRC' listed twice"},
+        {"[vehicle]\ninertia_kg_m2 = 1 2\n", 2, 20, "expected 3 numbers"},
+        {"[vehicle]\ninertia_kg_m2 = 1 2 3 4\n", 2, 23, "expected 3 numbers"},
+        {"[vehicle]\ninertia_kg_m2 = 1 -2 3\n", 2, 19, "inertia_kg_m2 must be > 0"},
+        {"[vehicle]\nmass_kg = 0\n", 2, 11, "mass_kg must be > 0"},
+        {"[vehicle]\nrot_drag_Nm_s = -0.1\n", 2, 17, "rot_drag_Nm_s must be >= 0"},
+        {"[rotors]\nideal = maybe\n", 2, 9, "expected yes or no, got 'maybe'"},
+        {"[rotors]\nideal = yes no\n", 2, 13, "expected yes or no, got 'no'"},
+        {"[rotors]\nmotor_tau_s = -0.02\n", 2, 15, "motor_tau_s must be >= 0"},
+        {"[rotors]\ntilt_max_deg = 90\n", 2, 16, "tilt_max_deg must be > 0 and < 90"},
+        {"[sensors]\nangle_noise_std_deg = -0.1\n", 2, 23, "angle_noise_std_deg must be >= 0"},
+        {"[sensors]\nangle_noise_var_deg2 = -1e-3\n", 2, 24, "angle_noise_var_deg2 must be >= 0"},
+        {"[sensors]\ndelay_ticks = 65\n", 2, 15, "delay_ticks must be between 0 and 64"},
+        {"[sensors]\ndelay_ticks = -1\n", 2, 15, "delay_ticks must be between 0 and 64"},
+        {"[mismatch]\ninertia_scale = 1 1 0\n", 2, 21, "inertia_scale must be > 0"},
+        {"[metrics]\nerror_window_s = 5 5\n", 2, 18, "error_window_s: window start must be before its end"},
+        {"[metrics]\nsteady_window_s = 6 5\n", 2, 19, "steady_window_s: window start must be before its end"},
+        {"[metrics]\nsettle_window_s = -1 5\n", 2, 19, "settle_window_s must start at or after 0"},
+        {"[metrics]\nerror_window_s = 5\n", 2, 19, "expected two numbers FROM TO"},
+        {"[metrics]\nerror_window_s = 1 2 3\n", 2, 22, "expected two numbers FROM TO"},
+        {"[metrics]\nsettle_band_deg = 0\n", 2, 19, "settle_band_deg must be > 0"},
+        {"[controller LADRC]\nwc_rad_s = 0\n", 2, 12, "wc_rad_s must be > 0"},
+        {"[controller LADRC]\nleso_method = rk4\n", 2, 15, "expected zoh or euler, got 'rk4'"},
+        {"[controller HP-MLADRC]\nhp_freq_mode = guess\n", 2, 16, "expected known or online, got 'guess'"},
+        {"[controller PID]\npid_kd = -0.05\n", 2, 10, "pid_kd must be >= 0"},
+        {"[differentiator]\nnoise_var = -1\n", 2, 13, "noise_var must be >= 0"},
+        {"[differentiator]\ntd_h0_s = 0\n", 2, 11, "td_h0_s must be > 0"},
+    };
+    CHECK_BAD_CASES(cases);
+}
+
+static void test_signal_errors_point_into_the_expression(void)
+{
+    static char nine_pieces[400];
+    strcpy(nine_pieces, "[disturbance]\n");
+    for (int i = 0; i < 9; ++i) {
+        char line[40];
+        snprintf(line, sizeof line, "yaw = %d .. %d : 1\n", i, i + 1);
+        strcat(nine_pieces, line);
+    }
+    static char too_long[400];
+    strcpy(too_long, "[reference]\nroll = t");
+    for (int i = 1; i < 49; ++i) {
+        strcat(too_long, "+t");
+    }
+    const bad_case_t cases[] = {
+        {"[reference]\nroll = 5 + sn(t)\n", 2, 12, "unknown function 'sn'"},
+        {"[reference]\n  roll =\t5 + 15*cos(pi*t/2\n", 2, 27, "expected ')'"},
+        {"[reference]\nroll = 5 +\n", 2, 11, "expected a number, name or '('"},
+        {"[reference]\nroll = 5 5\n", 2, 10, "trailing characters"},
+        {"[disturbance]\nroll = 2 .. 6 : 8 +\n", 2, 20, "expected a number, name or '('"},
+        {"[disturbance]\nroll = 2 .. 6 :   x\n", 2, 19, "unknown name 'x'"},
+        {"[disturbance]\nroll = 2 .. 6 :\n", 2, 16, "expected an expression after ':'"},
+        {"[disturbance]\nroll = 6 .. 2 : 1\n", 2, 8, "window start must be before its end"},
+        {"[disturbance]\nroll = 2 .. 2 : 1\n", 2, 8, "window start must be before its end"},
+        {"[disturbance]\nroll = 2 .. x : 1\n", 2, 13, "expected a number, got 'x'"},
+        {"[disturbance]\nroll = 2 3 .. 4 : 1\n", 2, 8, "expected a number, got '2 3'"},
+        {"[disturbance]\nroll = 2 : 1\n", 2, 8, "expected 'FROM .. TO' before ':'"},
+        {"[disturbance]\nroll = 2 .. 6 1\n", 2, 10, "expected ':' between the window and the expression"},
+        {"[disturbance]\nroll = 2 .. 6 : 1\nroll = 5 .. 8 : 2\n", 3, 8, "window (5, 8] overlaps the one given on line 2"},
+        {"[disturbance]\nroll = 1\nroll = 5 .. 8 : 2\n", 3, 8, "window (5, 8] overlaps the one given on line 2"},
+        {"[disturbance]\nroll = 5 .. 8 : 2\nroll = 1\n", 3, 8, "window (-inf, inf] overlaps the one given on line 2"},
+        {"[disturbance]\nroll = .. 6 : 2\nroll = 5 .. : 1\n", 3, 8, "window (5, inf] overlaps the one given on line 2"},
+        {nine_pieces, 10, 1, "more than 8 pieces for 'yaw'"},
+        {too_long, 2, 103, "expression too long"},
+        {"[differentiator]\nsignal = sin(t\n", 2, 15, "expected ')'"},
+    };
+    CHECK_BAD_CASES(cases);
+}
+
+static void test_errors_checked_after_the_whole_file(void)
+{
+    static const bad_case_t cases[] = {
+        {"", 1, 1, "missing required key 'duration_s' in [run]"},
+        {"[vehicle]\nmass_kg = 1\n", 1, 1, "missing required key 'duration_s' in [run]"},
+        {"[vehicle]\nmass_kg = 1\n[run]\nseed = 3\n", 3, 1, "missing required key 'duration_s' in [run]"},
+        {"[run]\nkind = differentiator\nduration_s = 1\n", 1, 1,
+         "missing required key 'signal' in [differentiator]"},
+        {"[run]\nkind = differentiator\nduration_s = 1\n[differentiator]\nsignal = t\n", 4, 1,
+         "missing required key 'derivative' in [differentiator]"},
+        {"[vehicle]\nmass_kg = 1\n[run]\nkind = differentiator\nduration_s = 1\n[differentiator]\n"
+         "signal = t\nderivative = 1\n",
+         1, 1, "[vehicle] does not apply to kind = differentiator"},
+        {"[run]\nkind = differentiator\nduration_s = 1\n[differentiator]\nsignal = t\nderivative = 1\n"
+         "[controller PID]\npid_kp = 1\n",
+         7, 1, "[controller PID] does not apply to kind = differentiator"},
+        {"[run]\nduration_s = 1\n[differentiator]\nsignal = t\nderivative = 1\n", 3, 1,
+         "[differentiator] does not apply to kind = attitude"},
+        {"[run]\nduration_s = 1\ncontrollers = PID\nkind = differentiator\n[differentiator]\nsignal = t\n"
+         "derivative = 1\n",
+         3, 1, "'controllers' does not apply to kind = differentiator"},
+        {"[run]\nplant_substeps = 2\nkind = differentiator\nduration_s = 1\n[differentiator]\nsignal = t\n"
+         "derivative = 1\n",
+         2, 1, "'plant_substeps' does not apply to kind = differentiator"},
+        {"[run]\nduration_s = 0.01\ncontrol_dt_s = 0.02\n", 3, 16, "control_dt_s (0.02) must not exceed duration_s (0.01)"},
+        {"[run]\nduration_s = 0.0005\n", 2, 14, "control_dt_s (0.001) must not exceed duration_s (0.0005)"},
+        {"[metrics]\nerror_window_s = 0 31\n[run]\nduration_s = 30\n", 2, 18,
+         "error_window_s ends after the run (duration_s = 30)"},
+        {"[run]\nduration_s = 30\n[metrics]\nsteady_window_s = 20 30.5\n", 4, 19,
+         "steady_window_s ends after the run (duration_s = 30)"},
+        {"[run]\nduration_s = 3\n[metrics]\nsettle_window_s = 0 4\n", 4, 19,
+         "settle_window_s ends after the run (duration_s = 3)"},
+        /* two of them: the earlier in the file is reported */
+        {"[run]\nduration_s = 1\n[metrics]\nsettle_window_s = 0 4\nerror_window_s = 0 2\n", 4, 19,
+         "settle_window_s ends after the run (duration_s = 1)"},
+        {"[metrics]\nerror_window_s = 0 50\n[run]\nduration_s = 10\ncontrol_dt_s = 20\n", 2, 18,
+         "error_window_s ends after the run (duration_s = 10)"},
+        {"[run]\nduration_s = 10\ncontrol_dt_s = 20\n[metrics]\nerror_window_s = 0 50\n", 3, 16,
+         "control_dt_s (20) must not exceed duration_s (10)"},
+        {"[run]\nduration_s = 1\n[rotors]\nideal = no\n", 4, 9, "ideal = no needs w2_max_rad2_s2"},
+        {"[run]\nduration_s = 1\n[rotors]\nw2_max_rad2_s2 = 1e4\nw2_min_rad2_s2 = 2e4\nideal = no\n", 4, 18,
+         "w2_max_rad2_s2 must be > w2_min_rad2_s2 (20000)"},
+        {"[run]\nduration_s = 1\n[rotors]\nw2_min_rad2_s2 = 1e4\n", 4, 1,
+         "'w2_min_rad2_s2' does not apply with ideal = yes"},
+        {"[run]\nduration_s = 1\n[rotors]\nideal = yes\nw2_max_rad2_s2 = 1e4\n", 5, 1,
+         "'w2_max_rad2_s2' does not apply with ideal = yes"},
+        {"[run]\nkind = differentiator\nduration_s = 1\ncontrol_dt_s = 0.01\n[differentiator]\nsignal = t\n"
+         "derivative = 1\ntd_h0_s = 0.005\n",
+         8, 11, "td_h0_s must be >= control_dt_s (0.01)"},
+    };
+    CHECK_BAD_CASES(cases);
+}
+
+static void test_long_values_are_rejected_not_truncated(void)
+{
+    static char text[2048];
+    strcpy(text, "[run]\nduration_s = 1\noutput_dir = ");
+    for (int i = 0; i < SIM_PATH_LEN; ++i) {
+        strcat(text, "a");
+    }
+    strcat(text, "\n");
+    const bad_case_t cases[] = {{text, 3, 14, "output_dir longer than 511 characters"}};
+    CHECK_BAD_CASES(cases);
+}
+
+static void test_null_arguments_are_refused_and_err_is_optional(void)
+{
+    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_parse(NULL, "[run]\nduration_s = 1\n", "x.ini", &err));
+    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_parse(&sc, NULL, "x.ini", &err));
+    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_load(&sc, NULL, &err));
+    TEST_ASSERT_EQUAL_INT(0, sim_scenario_parse(&sc, "[run]\nduration_s = 1\n", "x.ini", NULL));
+    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_parse(&sc, "[run]\n", "x.ini", NULL));
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_defaults_fill_every_key_not_given);
+    RUN_TEST(test_every_attitude_key_lands_in_its_field_in_its_unit);
+    RUN_TEST(test_std_and_variance_keys_set_the_same_noise);
+    RUN_TEST(test_every_override_key_lands_in_its_controller);
+    RUN_TEST(test_every_differentiator_key_lands_in_its_field);
+    RUN_TEST(test_signal_windows_hold_from_exclusive_to_inclusive);
+    RUN_TEST(test_signal_eval_takes_the_first_piece_that_holds_t_and_scales_it);
+    RUN_TEST(test_layout_comments_blank_lines_crlf_tabs_and_bom);
+    RUN_TEST(test_name_and_default_output_dir_come_from_the_file_name);
+    RUN_TEST(test_controller_names);
+    RUN_TEST(test_shipped_paper_scenario);
+    RUN_TEST(test_shipped_paper_noisy_scenario);
+    RUN_TEST(test_shipped_table3_differentiator_scenario);
+    RUN_TEST(test_shipped_steps_scenario);
+    RUN_TEST(test_load_reports_a_missing_file_at_line_0);
+    RUN_TEST(test_load_rejects_a_nul_byte_where_it_is);
+    RUN_TEST(test_structure_errors);
+    RUN_TEST(test_value_errors);
+    RUN_TEST(test_signal_errors_point_into_the_expression);
+    RUN_TEST(test_errors_checked_after_the_whole_file);
+    RUN_TEST(test_long_values_are_rejected_not_truncated);
+    RUN_TEST(test_null_arguments_are_refused_and_err_is_optional);
+    return UNITY_END();
+}

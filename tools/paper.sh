@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# The main job: builds the simulator in Release and flies the paper's scenarios
+# (Table 2 case, its noisy variant, and the Table 3 differentiator case) with
+# the four controllers, printing Tables 3-7. Extra arguments go to ladrc_sil
+# (e.g. --jobs 1, --no-csv, --controllers HP-MLADRC,LADRC).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cmake --preset host-release >/dev/null
+cmake --build --preset host-release --target ladrc_sil --parallel 2 >/dev/null
+exec build/host-release/sim/ladrc_sil scenarios/paper.ini scenarios/paper_noisy.ini \
+    scenarios/table3_differentiator.ini "$@"
