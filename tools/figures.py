@@ -23,7 +23,9 @@ import numpy as np  # noqa: E402
 
 CONTROLLERS = ["HP-MLADRC", "LP-MLADRC", "LADRC", "PID"]
 COLOURS = {"HP-MLADRC": "#1f77b4", "LP-MLADRC": "#2ca02c", "LADRC": "#d62728", "PID": "#9467bd"}
-WIDTHS = {"HP-MLADRC": 1.4, "LP-MLADRC": 1.2, "LADRC": 1.0, "PID": 1.0}
+# Wider lines lie underneath, so that a curve lying on another stays visible.
+WIDTHS = {"HP-MLADRC": 1.0, "LP-MLADRC": 1.3, "LADRC": 2.0, "PID": 1.6}
+ZORDER = {"HP-MLADRC": 4, "LP-MLADRC": 3, "LADRC": 1, "PID": 2}
 AXES = ["roll", "pitch", "yaw"]
 AXIS_SYMBOLS = {"roll": "roll φ", "pitch": "pitch θ", "yaw": "yaw ψ"}
 ONSETS_S = [2.0, 6.0, 12.0, 25.0]   # where the paper's Table 2 disturbance changes
@@ -65,6 +67,25 @@ def load_metrics(scen_dir):
     return out
 
 
+def style(c, scale=1.0):
+    return {"color": COLOURS[c], "lw": WIDTHS[c] * scale, "zorder": ZORDER[c], "label": c}
+
+
+def clip_ylim(ax, values, what):
+    """Limits the y range to the bulk of the values (0.2 to 99.8 percentile, with a margin), so that
+    short spikes at steps do not flatten the rest, and says so in the panel."""
+    v = np.concatenate([x[np.isfinite(x)] for x in values])
+    if v.size == 0:
+        return
+    lo, hi = np.percentile(v, [0.2, 99.8])
+    pad = 0.15 * max(hi - lo, 1e-9)
+    lo, hi = lo - pad, hi + pad
+    if v.min() < lo or v.max() > hi:
+        ax.set_ylim(lo, hi)
+        ax.text(0.99, 0.03, "%s clipped (peaks %.3g, %.3g)" % (what, v.min(), v.max()), transform=ax.transAxes,
+                ha="right", va="bottom", fontsize=7, color="0.3")
+
+
 def stride(n):
     return max(1, n // MAX_POINTS)
 
@@ -88,13 +109,13 @@ def fig_differentiator(d, metrics, fig_dir):
     fig, (top, bottom) = plt.subplots(2, 1, figsize=SIZE_IN)
     rms = {k: metrics.get((k, "3", "derivative_error_rms", "-"), math.nan) for k in ("TD", "Levant")}
     lines = [("dr_true", "exact derivative", "k", 1.6),
-             ("dr_td", "TD (RMS error %.3f)" % rms["TD"], "#ff7f0e", 0.9),
-             ("dr_levant", "Levant (RMS error %.3f)" % rms["Levant"], "#1f77b4", 0.9)]
+             ("dr_td", "TD (Table 3 RMS error %.3f)" % rms["TD"], "#ff7f0e", 0.9),
+             ("dr_levant", "Levant (Table 3 RMS error %.3f)" % rms["Levant"], "#1f77b4", 0.9)]
     s = stride(t.size)
     for key, label, colour, lw in lines:
         top.plot(t[::s], d[key][::s], color=colour, lw=lw, label=label)
     top.set_title("Fig. 5: derivative of the noisy signal, TD vs Levant")
-    top.set_ylabel("derivative (units/s)")
+    top.set_ylabel("dr/dt (1/s)")
     top.legend(loc="upper right", ncol=3)
     # Zoom: one second in the middle of the run, every sample.
     mid = t[0] + 0.5 * (t[-1] - t[0])
@@ -103,29 +124,44 @@ def fig_differentiator(d, metrics, fig_dir):
         bottom.plot(t[m], d[key][m], color=colour, lw=lw, label=label)
     bottom.set_title("zoom on [%.1f, %.1f] s, every sample" % (mid, mid + 1.0))
     bottom.set_xlabel("time (s)")
-    bottom.set_ylabel("derivative (units/s)")
+    bottom.set_ylabel("dr/dt (1/s)")
     top.set_xlabel("time (s)")
     fig.tight_layout()
     save(fig, fig_dir, "fig05_td_levant.png")
 
 
-def plot_per_axis(runs, key_fmt, title, ylabel, fig_dir, name, with_ref):
-    """Three panels (roll, pitch, yaw) over the whole run, all controllers."""
-    fig, axes = plt.subplots(3, 1, figsize=SIZE_IN, sharex=True)
+def plot_per_axis(runs, key_fmt, title, ylabel, fig_dir, name, with_ref, zoom_end_s=0.0):
+    """Three panels (roll, pitch, yaw) over the whole run, all controllers; with zoom_end_s > 0,
+    a second column shows the last zoom_end_s seconds, every sample."""
+    cols = 2 if zoom_end_s > 0 else 1
+    fig, axes = plt.subplots(3, cols, figsize=SIZE_IN, sharex="col", squeeze=False,
+                             gridspec_kw={"width_ratios": [2.2, 1][:cols]})
     t_end = max(r["t_s"][-1] for r in runs.values())
-    for ax, axis in zip(axes, AXES):
-        if with_ref:
-            r = next(iter(runs.values()))
-            ax.plot(r["t_s"], r["ref_%s_deg" % axis], color="k", lw=1.6, ls="--", label="reference", zorder=5)
-        for c, r in runs.items():
-            s = stride(r["t_s"].size)
-            ax.plot(r["t_s"][::s], r[key_fmt % axis][::s], color=COLOURS[c], lw=WIDTHS[c], label=c)
-        mark_onsets(ax, t_end)
-        ax.set_ylabel("%s (%s)" % (AXIS_SYMBOLS[axis], ylabel))
-    axes[0].set_title(title)
-    axes[0].legend(loc="upper right", ncol=5)
-    axes[-1].set_xlabel("time (s)   (dotted lines: disturbance changes at %s s)"
-                        % ", ".join("%g" % x for x in ONSETS_S))
+    zoom = (t_end - min(zoom_end_s, t_end / 3), t_end)
+    for i, axis in enumerate(AXES):
+        for j in range(cols):
+            ax = axes[i][j]
+            if with_ref:
+                r = next(iter(runs.values()))
+                ax.plot(r["t_s"], r["ref_%s_deg" % axis], color="k", lw=1.6, ls="--", label="reference", zorder=5)
+            for c, r in runs.items():
+                t, y = r["t_s"], r[key_fmt % axis]
+                if j == 0:
+                    s = stride(t.size)
+                    ax.plot(t[::s], y[::s], **style(c))
+                else:
+                    m = (t >= zoom[0]) & (t <= zoom[1])
+                    ax.plot(t[m], y[m], **style(c, 0.7))
+            if j == 0:
+                mark_onsets(ax, t_end)
+                ax.set_ylabel("%s (%s)" % (AXIS_SYMBOLS[axis], ylabel))
+    axes[0][0].set_title(title)
+    if cols == 2:
+        axes[0][1].set_title("zoom: last %g s, every sample" % (zoom[1] - zoom[0]), fontsize=10)
+        axes[-1][1].set_xlabel("time (s)")
+    axes[0][0].legend(loc="upper right", ncol=5 if cols == 1 else 3, fontsize=8)
+    axes[-1][0].set_xlabel("time (s)   (dotted lines: disturbance changes at %s s)"
+                           % ", ".join("%g" % x for x in ONSETS_S))
     fig.tight_layout()
     save(fig, fig_dir, name)
 
@@ -145,7 +181,7 @@ def plot_onsets(runs, key_fmt, title, ylabel, fig_dir, name, with_ref):
                 m = (t >= t0 + ZOOM_S[0]) & (t <= t0 + ZOOM_S[1])
                 if with_ref and c == next(iter(runs)):
                     ax.plot(t[m], r["ref_%s_deg" % axis][m], color="k", lw=1.4, ls="--", label="reference")
-                ax.plot(t[m], r[key_fmt % axis][m], color=COLOURS[c], lw=WIDTHS[c], label=c)
+                ax.plot(t[m], r[key_fmt % axis][m], **style(c))
             ax.axvline(t0, color="0.5", lw=0.8, ls=":")
             ax.tick_params(labelsize=8)
             if i == 0:
@@ -157,7 +193,7 @@ def plot_onsets(runs, key_fmt, title, ylabel, fig_dir, name, with_ref):
     handles, labels = axes[0][0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="upper center", ncol=5, bbox_to_anchor=(0.5, 0.955))
     fig.suptitle(title)
-    fig.tight_layout(rect=(0, 0, 1, 0.91))
+    fig.tight_layout(rect=(0, 0, 1, 0.935))
     save(fig, fig_dir, name)
 
 
@@ -166,13 +202,18 @@ def radar_scores(metrics):
 
     Each quantity q (max error, settling time, steady band) on each axis: score = min over
     controllers of q / this controller's q; a run that never settles (settling -1) scores 0.
+    A spoke on which every controller has the same value tells nothing and is left out; its
+    name is returned in the third value.
     """
     quantities = [("max_error_deg", "max error"), ("settling_s", "settling"), ("steady_band_deg", "band")]
-    spokes, scores = [], {c: [] for c in CONTROLLERS}
+    spokes, ties, scores = [], [], {c: [] for c in CONTROLLERS}
     present = [c for c in CONTROLLERS if (c, "5", "max_error_deg", "roll") in metrics]
     for q, label in quantities:
         for axis in AXES:
             vals = {c: metrics[(c, "5", q, axis)] for c in present}
+            if len(set(vals.values())) == 1:
+                ties.append("%s %s (%g for all)" % (label, axis, next(iter(vals.values()))))
+                continue
             valid = [v for v in vals.values() if v >= 0 and math.isfinite(v)]
             floor = 1e-6
             best = max(min(valid), floor) if valid else floor
@@ -180,13 +221,13 @@ def radar_scores(metrics):
                 v = vals[c]
                 scores[c].append(0.0 if v < 0 or not math.isfinite(v) else min(1.0, best / max(v, floor)))
             spokes.append("%s\n%s" % (label, axis))
-    return spokes, {c: s for c, s in scores.items() if c in present}
+    return spokes, {c: s for c, s in scores.items() if c in present}, ties
 
 
 def fig_radar(metrics, fig_dir, name, title):
     """Fig. 8: radar chart of the Table 5 scores."""
-    spokes, scores = radar_scores(metrics)
-    if not scores:
+    spokes, scores, ties = radar_scores(metrics)
+    if not scores or len(spokes) < 3:
         return
     angles = np.linspace(0, 2 * np.pi, len(spokes), endpoint=False)
     fig = plt.figure(figsize=SIZE_IN)
@@ -194,20 +235,23 @@ def fig_radar(metrics, fig_dir, name, title):
     closed = np.append(angles, angles[0])
     for c, s in scores.items():
         vals = np.append(s, s[0])
-        ax.plot(closed, vals, color=COLOURS[c], lw=1.8, label=c)
+        ax.plot(closed, vals, color=COLOURS[c], lw=1.8, zorder=ZORDER[c], label=c)
         ax.fill(closed, vals, color=COLOURS[c], alpha=0.08)
     ax.set_xticks(angles)
     ax.set_xticklabels(spokes, fontsize=9)
     ax.set_ylim(0, 1.05)
     ax.set_yticks([0.25, 0.5, 0.75, 1.0])
     ax.set_yticklabels(["0.25", "0.5", "0.75", "1"], fontsize=8)
+    ax.set_rlabel_position(180.0 / len(spokes))
     ax.set_title(title, pad=22)
     ax.legend(loc="upper left", bbox_to_anchor=(1.12, 1.05))
-    fig.text(0.02, 0.02,
-             "score = (smallest value among the controllers) / (this controller's value): 1 = best, "
-             "larger = better;\nmax error and steady band in deg, settling time in s; a run that never "
-             "settles scores 0 (Table 5 of the report).", fontsize=9)
-    fig.tight_layout(rect=(0, 0.07, 1, 1))
+    note = ("score = (smallest value among the controllers) / (this controller's value): 1 = best, "
+            "larger = better;\nmax error and steady band in deg, settling time in s (Table 5 of the report); "
+            "a run that never settles scores 0.")
+    if ties:
+        note += "\nLeft out, equal for every controller: " + "; ".join(ties) + "."
+    fig.text(0.02, 0.02, note, fontsize=9)
+    fig.tight_layout(rect=(0, 0.1, 1, 1))
     save(fig, fig_dir, name)
 
 
@@ -222,25 +266,28 @@ def fig_disturbance(runs, fig_dir):
     for i, axis in enumerate(AXES):
         left, right = axes[i]
         s = stride(first["t_s"].size)
-        left.plot(first["t_s"][::s], first["f_%s_rad_s2" % axis][::s], color="k", lw=2.2,
-                  label="true f (with %s)" % next(iter(est)))
+        left.plot(first["t_s"][::s], first["f_%s_rad_s2" % axis][::s], color="k", lw=2.6, zorder=0,
+                  label="true f (run of %s)" % next(iter(est)))
+        errors = []
         for c, r in est.items():
             s = stride(r["t_s"].size)
             t = r["t_s"][::s]
-            left.plot(t, r["f_est_%s_rad_s2" % axis][::s], color=COLOURS[c], lw=WIDTHS[c] * 0.8,
-                      label="estimate, " + c)
-            right.plot(t, (r["f_est_%s_rad_s2" % axis] - r["f_%s_rad_s2" % axis])[::s],
-                       color=COLOURS[c], lw=WIDTHS[c] * 0.8, label=c)
+            left.plot(t, r["f_est_%s_rad_s2" % axis][::s], **style(c, 0.7))
+            errors.append(r["f_est_%s_rad_s2" % axis] - r["f_%s_rad_s2" % axis])
+            right.plot(t, errors[-1][::s], **style(c, 0.7))
+        clip_ylim(right, errors, "spikes at the steps")
         for ax in (left, right):
             mark_onsets(ax, t_end)
         left.set_ylabel("%s (rad/s²)" % AXIS_SYMBOLS[axis])
     axes[0][0].set_title("total disturbance f and estimate z3 + d̂")
     axes[0][1].set_title("estimate error z3 + d̂ − f")
-    axes[0][0].legend(loc="lower left", fontsize=8)
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="upper center", ncol=4, bbox_to_anchor=(0.5, 0.955), fontsize=9)
     axes[2][0].set_xlabel("time (s)")
     axes[2][1].set_xlabel("time (s)")
-    fig.suptitle("Fig. 9: total disturbance (external + coupling + drag) and its estimate")
-    fig.tight_layout()
+    fig.suptitle("Fig. 9: total disturbance f (external + coupling + drag) and its estimate; each "
+                 "error against the f of its own run")
+    fig.tight_layout(rect=(0, 0, 1, 0.93))
     save(fig, fig_dir, "fig09_disturbance.png")
 
 
@@ -251,9 +298,8 @@ def fig_rotors(runs, fig_dir):
     for k, ax in enumerate(axes.flat):
         for c, r in runs.items():
             s = stride(r["t_s"].size)
-            # Widest first, so that curves lying on each other stay visible.
-            ax.plot(r["t_s"][::s], r["w2_%d" % (k + 1)][::s] / 1e3, color=COLOURS[c],
-                    lw=2.6 - 0.6 * CONTROLLERS.index(c), label=c)
+            ax.plot(r["t_s"][::s], r["w2_%d" % (k + 1)][::s] / 1e3, **style(c))
+        clip_ylim(ax, [r["w2_%d" % (k + 1)] / 1e3 for r in runs.values()], "spikes")
         ax.axhline(0, color="k", lw=0.6)
         mark_onsets(ax, t_end)
         ax.set_title("rotor %d" % (k + 1), fontsize=10)
@@ -261,7 +307,7 @@ def fig_rotors(runs, fig_dir):
         if k >= 2:
             ax.set_xlabel("time (s)")
     axes[0][0].legend(loc="upper left", fontsize=8)
-    fig.suptitle("Fig. 12: rotor speed squared ω² (Table 7's quantity; ideal rotors, so ω² < 0 can occur)")
+    fig.suptitle("Fig. 12: rotor speed squared ω² (Table 7's quantity; the paper's ideal rotors allow ω² < 0)")
     fig.tight_layout()
     save(fig, fig_dir, "fig12_rotors.png")
 
@@ -308,7 +354,7 @@ def main(argv):
         plot_per_axis(noisy, "angle_%s_deg", "Fig. 10: attitude tracking with angle noise", "deg", a.fig_dir,
                       "fig10_noisy_tracking.png", True)
         plot_per_axis(noisy, "error_%s_deg", "Fig. 11: tracking error with angle noise", "deg", a.fig_dir,
-                      "fig11_noisy_errors.png", False)
+                      "fig11_noisy_errors.png", False, zoom_end_s=3.0)
     else:
         missing.append(a.noisy)
 
