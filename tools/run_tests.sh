@@ -35,6 +35,14 @@ REQUIREMENTS=(
   "no-heap arm-none-eabi-gcc gcc-arm-none-eabi"
   "no-heap newlib libnewlib-arm-none-eabi"
   "cppcheck cppcheck cppcheck"
+  "host-debug py:matplotlib python3-matplotlib"
+  "host-debug py:numpy python3-numpy"
+  "host-double py:matplotlib python3-matplotlib"
+  "host-double py:numpy python3-numpy"
+  "coverage py:matplotlib python3-matplotlib"
+  "coverage py:numpy python3-numpy"
+  "asan-ubsan py:matplotlib python3-matplotlib"
+  "asan-ubsan py:numpy python3-numpy"
 )
 
 JOBS=2
@@ -43,7 +51,8 @@ usage() { sed -n '2,16s/^# \{0,1\}//p' "$0"; }
 
 have() {
   case $1 in
-    py:*) python3 -c "import ${1#py:}" >/dev/null 2>&1 ;;
+    # Debian's interpreter, when there is one: it is the one that sees Debian's packages.
+    py:*) "$(command -v /usr/bin/python3 || echo python3)" -c "import ${1#py:}" >/dev/null 2>&1 ;;
     newlib) echo '#include <stdio.h>' | arm-none-eabi-gcc -E -x c - >/dev/null 2>&1 ;;
     *) command -v "$1" >/dev/null 2>&1 ;;
   esac

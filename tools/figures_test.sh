@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# ctest check of tools/figures.py and tools/report.py: flies the short scenarios
+# of tests/data (the paper's cases cut to a few seconds) and checks that every
+# figure and the report come out and are not trivial.
+# Usage: figures_test.sh LADRC_SIL SOURCE_DIR
+# Exit status 77 (reported by ctest as skipped) when matplotlib or numpy is missing.
+set -uo pipefail
+sil=$1
+src=$2
+
+py=python3
+[[ -x /usr/bin/python3 ]] && py=/usr/bin/python3
+if ! "$py" -c 'import matplotlib, numpy' >/dev/null 2>&1; then
+  echo "SKIPPED: $py cannot import matplotlib and numpy (apt-get install python3-matplotlib python3-numpy)"
+  exit 77
+fi
+
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+check() { # name, condition exit code
+  if [[ $2 -eq 0 ]]; then echo "figures_test.sh:$1:PASS"; else echo "figures_test.sh:$1:FAIL"; failures=$((failures + 1)); fi
+}
+
+"$sil" "$src/tests/data/short_paper.ini" "$src/tests/data/short_paper_noisy.ini" \
+  "$src/tests/data/short_differentiator.ini" --out "$work/out" --quiet > "$work/out.tables.txt"
+check simulator_runs $?
+mv "$work/out.tables.txt" "$work/out/tables.txt"
+names=(--paper short_paper --noisy short_paper_noisy --diff short_differentiator)
+
+"$py" "$src/tools/figures.py" "$work/out" "$work/fig" "${names[@]}"
+check figures_py_succeeds $?
+"$py" "$src/tools/report.py" "$work/out" "$work/report.md" "${names[@]}"
+check report_py_succeeds $?
+
+# Every figure: a PNG (signature), at least 800 x 500 pixels (IHDR), more than 20 kB.
+for fig in fig05_td_levant fig06_tracking fig06_tracking_onsets fig07_errors fig07_errors_onsets \
+           fig08_radar fig09_disturbance fig10_noisy_tracking fig11_noisy_errors fig12_rotors; do
+  f="$work/fig/$fig.png"
+  ok=1
+  if [[ -f $f ]]; then
+    read -r -a hdr < <(od -An -tu1 -N24 "$f" | tr -s ' \n' ' ')
+    width=$(( (hdr[16] << 24) | (hdr[17] << 16) | (hdr[18] << 8) | hdr[19] ))
+    height=$(( (hdr[20] << 24) | (hdr[21] << 16) | (hdr[22] << 8) | hdr[23] ))
+    size=$(wc -c < "$f")
+    echo "$fig.png: ${width}x${height}, $size bytes"
+    [[ ${hdr[1]} -eq 80 && ${hdr[2]} -eq 78 && ${hdr[3]} -eq 71 && $width -ge 800 && $height -ge 500 &&
+       $size -gt 20000 ]] && ok=0
+  fi
+  check "$fig" $ok
+done
+
+# The report: every table's heading, the paper's numbers, and ours from metrics.csv.
+r="$work/report.md"
+for heading in "## Table 3" "## Table 4" "## Table 5" "## Table 6" "## Table 7" "## Noisy case"; do
+  grep -q "^$heading" "$r"; check "report_has_${heading#\#\# }" $?
+done
+grep -q "| TD | .* | 2.767 |" "$r"; check report_has_paper_table3 $?
+grep -q "1.1823 / " "$r"; check report_has_paper_table4 $?
+grep -q "100035" "$r"; check report_has_paper_table7 $?
+# (report.py's format: 4 decimals, or 3 significant digits below 0.001)
+ours=$(awk -F, '$2 == "LADRC" && $4 == "error_rms_deg" && $5 == "roll" {
+  v = $6 < 0 ? -$6 : $6; printf ((v < 0.001 && v != 0) ? "%.2e" : "%.4f"), $6 }' \
+  "$work/out/short_paper/metrics.csv")
+[[ -n $ours ]] && grep -qF "7.6816 / $ours (" "$r"; check report_has_our_table4_value $?
+! grep -q "No output of scenario" "$r"; check report_complete $?
+
+echo "$failures failed"
+[[ $failures -eq 0 ]]
