@@ -217,9 +217,9 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
 static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, const ladrc_real_t *rate_rad_s)
 {
     if (axis->variant == LADRC_VARIANT_LP_MLADRC) {
-        if (rate_rad_s != NULL && ladrc_is_finite(*rate_rad_s)) {
-            (void)ladrc_lp_step(&axis->part.lp, *rate_rad_s, axis->b0 * axis->applied_Nm);
-        }
+        /* A tick without a rate is a gap: LP holds and restarts its difference. */
+        const ladrc_real_t rate = (rate_rad_s != NULL) ? *rate_rad_s : (ladrc_real_t)NAN;
+        (void)ladrc_lp_step(&axis->part.lp, rate, axis->b0 * axis->applied_Nm);
         return ladrc_lp_get_estimate(&axis->part.lp);
     }
     if (axis->variant == LADRC_VARIANT_HP_MLADRC) {

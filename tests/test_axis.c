@@ -429,6 +429,20 @@ static void test_a_run_repeated_after_reset_or_split_across_calls_is_identical(v
     }
 }
 
+static void test_lp_treats_a_tick_without_rate_as_a_gap(void)
+{
+    /* given LP with a rate, then a tick without one, then a rate 1 rad/s higher */
+    ladrc_axis_t axis;
+    ladrc_axis_config_t cfg;
+    ladrc_axis_config_default(&cfg, LADRC_VARIANT_LP_MLADRC, (ladrc_real_t)DT_S, (ladrc_real_t)J_KG_M2);
+    ladrc_axis_init(&axis, &cfg);
+    ladrc_axis_step_with_rate(&axis, 0.0f, 0.0f, 0.0f);
+    ladrc_axis_step(&axis, 0.0f, 0.0f);
+    ladrc_axis_step_with_rate(&axis, 0.0f, 0.0f, 1.0f);
+    /* then no 1 / (2 dt) = 500 rad/s^2 sample reached the estimate */
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 0.0f, axis.d_hat_rad_s2);
+}
+
 static void test_estimates_report_the_observer_or_the_pid_measurement(void)
 {
     ladrc_axis_t axis;
@@ -467,6 +481,7 @@ int main(void)
     RUN_TEST(test_non_finite_rate_raises_a_flag_and_the_tick_runs_without_it);
     RUN_TEST(test_non_finite_applied_torque_is_ignored_and_flagged);
     RUN_TEST(test_a_run_repeated_after_reset_or_split_across_calls_is_identical);
+    RUN_TEST(test_lp_treats_a_tick_without_rate_as_a_gap);
     RUN_TEST(test_estimates_report_the_observer_or_the_pid_measurement);
     return UNITY_END();
 }
