@@ -15,18 +15,19 @@ import math
 import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from sim_output import AXES, CONTROLLERS, load_metrics  # noqa: E402
+
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-CONTROLLERS = ["HP-MLADRC", "LP-MLADRC", "LADRC", "PID"]
 COLOURS = {"HP-MLADRC": "#1f77b4", "LP-MLADRC": "#2ca02c", "LADRC": "#d62728", "PID": "#9467bd"}
 # Wider lines lie underneath, so that a curve lying on another stays visible.
 WIDTHS = {"HP-MLADRC": 1.0, "LP-MLADRC": 1.3, "LADRC": 2.0, "PID": 1.6}
 ZORDER = {"HP-MLADRC": 4, "LP-MLADRC": 3, "LADRC": 1, "PID": 2}
-AXES = ["roll", "pitch", "yaw"]
 AXIS_SYMBOLS = {"roll": "roll φ", "pitch": "pitch θ", "yaw": "yaw ψ"}
 ONSETS_S = [2.0, 6.0, 12.0, 25.0]   # where the paper's Table 2 disturbance changes
 ZOOM_S = (-0.3, 1.2)                # zoom window around each onset
@@ -55,16 +56,6 @@ def load_runs(scen_dir):
     return runs
 
 
-def load_metrics(scen_dir):
-    """{(controller, table, quantity, axis): value} from metrics.csv."""
-    out = {}
-    path = os.path.join(scen_dir, "metrics.csv")
-    if not os.path.exists(path):
-        return out
-    with open(path, newline="") as f:
-        for row in csv.DictReader(f):
-            out[(row["controller"], row["table"], row["quantity"], row["axis"])] = float(row["value"])
-    return out
 
 
 def style(c, scale=1.0):
@@ -326,7 +317,7 @@ def main(argv):
 
     diff_dir = os.path.join(a.out_dir, a.diff)
     if os.path.exists(os.path.join(diff_dir, "differentiator.csv")):
-        fig_differentiator(load_csv(os.path.join(diff_dir, "differentiator.csv")), load_metrics(diff_dir),
+        fig_differentiator(load_csv(os.path.join(diff_dir, "differentiator.csv")), load_metrics(diff_dir) or {},
                            a.fig_dir)
     else:
         missing.append(a.diff)
@@ -342,7 +333,7 @@ def main(argv):
                       a.fig_dir, "fig07_errors.png", False)
         plot_onsets(runs, "error_%s_deg", "Fig. 7 (zoom): tracking error at the disturbance onsets, paper case",
                     "deg", a.fig_dir, "fig07_errors_onsets.png", False)
-        fig_radar(load_metrics(paper_dir), a.fig_dir, "fig08_radar.png",
+        fig_radar(load_metrics(paper_dir) or {}, a.fig_dir, "fig08_radar.png",
                   "Fig. 8: Table 5 scores, paper case (larger = better)")
         fig_disturbance(runs, a.fig_dir)
         fig_rotors(runs, a.fig_dir)

@@ -9,10 +9,12 @@ headings (the averaging windows and definitions) are quoted in the report.
 Every number of ours comes from metrics.csv; the paper's are the data below.
 """
 import argparse
-import csv
 import math
 import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from sim_output import AXES, CONTROLLERS, load_metrics  # noqa: E402
 
 # Dong, Y. et al., "Decoupling-Free Attitude Control of UAV Considering High-Frequency
 # Disturbances: A Modified Linear Active Disturbance Rejection Method", Actuators 2025,
@@ -41,19 +43,8 @@ PAPER_T6 = {"roll": (0.805, 9.949, 9.981), "pitch": (-0.628, 9.957, 9.977),
 # Table 7: rotor speed squared (mean, std) in rad^2/s^2, LP-MLADRC.
 PAPER_T7 = {"1": (100035, 51297), "2": (39612, 118466), "3": (75442, 119115), "4": (55776, 49497)}
 
-CONTROLLERS = ["HP-MLADRC", "LP-MLADRC", "LADRC", "PID"]
-AXES = ["roll", "pitch", "yaw"]
 
 
-def load_metrics(scen_dir):
-    out = {}
-    path = os.path.join(scen_dir, "metrics.csv")
-    if not os.path.exists(path):
-        return None
-    with open(path, newline="") as f:
-        for row in csv.DictReader(f):
-            out[(row["controller"], row["table"], row["quantity"], row["axis"])] = float(row["value"])
-    return out
 
 
 def table_headings(path):
