@@ -265,6 +265,29 @@ void UnityAssertGreaterOrLessOrEqualNumber(UNITY_INT threshold, UNITY_INT actual
     }
 }
 
+/* Unity's checks before comparing two arrays: fails on an empty length or a
+ * NULL side; returns 0 when both are the same pointer (nothing to compare). */
+static int arrays_to_compare(const void *expected, const void *actual, UNITY_UINT32 num, const char *msg,
+                             UNITY_LINE_TYPE line)
+{
+    if (num == 0u) {
+        fail_begin(line);
+        print(" You Asked Me To Compare Nothing, Which Was Pointless.");
+        add_message(msg);
+        fail_and_bail();
+    }
+    if (expected == actual) {
+        return 0;
+    }
+    if (expected == NULL || actual == NULL) {
+        fail_begin(line);
+        print(expected == NULL ? " Expected pointer to be NULL" : " Actual pointer was NULL");
+        add_message(msg);
+        fail_and_bail();
+    }
+    return 1;
+}
+
 void UnityAssertEqualIntArray(const void *expected, const void *actual, UNITY_UINT32 num,
                               const char *msg, UNITY_LINE_TYPE line)
 {
@@ -273,20 +296,8 @@ void UnityAssertEqualIntArray(const void *expected, const void *actual, UNITY_UI
     UNITY_UINT32 i;
 
     return_if_done();
-    if (num == 0u) {
-        fail_begin(line);
-        print(" You Asked Me To Compare Nothing, Which Was Pointless.");
-        add_message(msg);
-        fail_and_bail();
-    }
-    if (e == a) {
+    if (!arrays_to_compare(e, a, num, msg, line)) {
         return;
-    }
-    if (e == NULL || a == NULL) {
-        fail_begin(line);
-        print(e == NULL ? " Expected pointer to be NULL" : " Actual pointer was NULL");
-        add_message(msg);
-        fail_and_bail();
     }
     for (i = 0; i < num; i++) {
         if (e[i] != a[i]) {
@@ -311,20 +322,8 @@ void UnityAssertEqualMemory(const void *expected, const void *actual, UNITY_UINT
     UNITY_UINT32 i;
 
     return_if_done();
-    if (len == 0u) {
-        fail_begin(line);
-        print(" You Asked Me To Compare Nothing, Which Was Pointless.");
-        add_message(msg);
-        fail_and_bail();
-    }
-    if (e == a) {
+    if (!arrays_to_compare(e, a, len, msg, line)) {
         return;
-    }
-    if (e == NULL || a == NULL) {
-        fail_begin(line);
-        print(e == NULL ? " Expected pointer to be NULL" : " Actual pointer was NULL");
-        add_message(msg);
-        fail_and_bail();
     }
     for (i = 0; i < len; i++) {
         if (e[i] != a[i]) {
@@ -457,20 +456,8 @@ void UnityAssertEqualFloatArray(const UNITY_FLOAT *expected, const UNITY_FLOAT *
     UNITY_UINT32 i;
 
     return_if_done();
-    if (num == 0u) {
-        fail_begin(line);
-        print(" You Asked Me To Compare Nothing, Which Was Pointless.");
-        add_message(msg);
-        fail_and_bail();
-    }
-    if (expected == actual) {
+    if (!arrays_to_compare(expected, actual, num, msg, line)) {
         return;
-    }
-    if (expected == NULL || actual == NULL) {
-        fail_begin(line);
-        print(expected == NULL ? " Expected pointer to be NULL" : " Actual pointer was NULL");
-        add_message(msg);
-        fail_and_bail();
     }
     for (i = 0; i < num; i++) {
         if (!floats_within(expected[i] * UNITY_FLOAT_PRECISION, expected[i], actual[i])) {
