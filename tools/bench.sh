@@ -2,7 +2,8 @@
 # Measures the cost of the controllers and prints one Markdown table, each
 # figure marked against the budget of issue 6 ("meets" / "over").
 #
-# Usage: tools/bench.sh
+# Usage: tools/bench.sh            print the table
+#        tools/bench.sh --readme   also rewrite README.md's Performance table
 #
 #  - instructions per tick on the Cortex-M4F: build/bench-m4f (the cortex-m4f
 #    preset with LADRC_BUILD_BENCH=ON), image run under qemu mps2-an386 with
@@ -17,6 +18,20 @@
 # Needs what the cortex-m4f and host-release builds need (tools/run_tests.sh
 # installs it) and python3. Not part of run_tests.sh or CI: the budget is not met yet.
 set -euo pipefail
+
+if [[ ${1:-} == --readme ]]; then
+  table=$("$0")
+  echo "$table"
+  python3 - "$table" "$(dirname "${BASH_SOURCE[0]}")/../README.md" <<'PY'
+import sys
+table, path = sys.argv[1], sys.argv[2]
+start, end = "<!-- performance:start -->", "<!-- performance:end -->"
+text = open(path).read()
+i, j = text.index(start) + len(start), text.index(end)
+open(path, "w").write(text[:i] + "\n" + table + "\n" + text[j:])
+PY
+  exit 0
+fi
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
