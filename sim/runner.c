@@ -93,10 +93,29 @@ static int configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_att
     return 0;
 }
 
+/* The plant asks for d(t) at every RK4 stage: t, t + h/2 twice, t + h, and
+ * the next substep starts at t + h again. Remembering the last two times per
+ * axis halves the evaluations, with the same values bit for bit. */
+typedef struct {
+    const sim_scenario_t *sc;
+    double t_s[3][2];
+    double value[3][2];
+    int next[3];
+} disturbance_cache_t;
+
 static double disturbance(int axis, double t_s, void *ctx)
 {
-    const sim_scenario_t *sc = (const sim_scenario_t *)ctx;
-    return sim_signal_eval(&sc->disturbance[axis], t_s);
+    disturbance_cache_t *c = (disturbance_cache_t *)ctx;
+    for (int i = 0; i < 2; ++i) {
+        if (c->t_s[axis][i] == t_s) {
+            return c->value[axis][i];
+        }
+    }
+    const int slot = c->next[axis];
+    c->next[axis] = 1 - slot;
+    c->t_s[axis][slot] = t_s;
+    c->value[axis][slot] = sim_signal_eval(&c->sc->disturbance[axis], t_s);
+    return c->value[axis][slot];
 }
 
 static FILE *open_csv(const char *path, const char *header, char *err, size_t err_len)
@@ -148,6 +167,12 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
     FILE *csv = open_csv(csv_path, ATTITUDE_CSV_HEADER, err, err_len);
     if (csv_path != NULL && csv == NULL) {
         return -1;
+    }
+    disturbance_cache_t cache;
+    memset(&cache, 0, sizeof cache);
+    cache.sc = sc;
+    for (int i = 0; i < 3; ++i) {
+        cache.t_s[i][0] = cache.t_s[i][1] = NAN; /* never equal: empty */
     }
     const double start = wall_now_s();
     const long n = sim_run_ticks(sc);
@@ -224,7 +249,7 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
             for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", m->has_estimate ? f_est[i] : NAN);
             fputc('\n', csv);
         }
-        sim_plant_step(&plant, w2_cmd, dt, sc->plant_substeps, disturbance, (void *)sc);
+        sim_plant_step(&plant, w2_cmd, dt, sc->plant_substeps, disturbance, &cache);
         if (!(isfinite(plant.angle_rad[0]) && isfinite(plant.angle_rad[1]) && isfinite(plant.angle_rad[2]))) {
             m->finite = 0;
             break;
