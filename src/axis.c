@@ -105,9 +105,9 @@ static ladrc_status_t init_estimator(ladrc_axis_t *axis, const ladrc_axis_config
                                       cfg->hp_freq_lambda0_per_s,
                                       cfg->hp_decimation,
                                       cfg->wo_rad_s};
-        /* The shadow copies the LESO, so its config was validated with it. */
-        const ladrc_leso_config_t shadow = {cfg->dt_s, cfg->wo_rad_s, cfg->b0, cfg->leso_method};
-        (void)ladrc_leso_init(&axis->part.hp.shadow, &shadow);
+        /* The shadow is the LESO itself (initialised just before), reset. */
+        axis->part.hp.shadow = axis->leso;
+        ladrc_leso_reset(&axis->part.hp.shadow, LADRC_R(0.0));
         return ladrc_hp_init(&axis->part.hp.est, &hp);
     }
     return LADRC_OK;
