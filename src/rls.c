@@ -28,23 +28,6 @@ static ladrc_real_t trace_of(const ladrc_real_t *u, const ladrc_real_t *d, unsig
     return tr;
 }
 
-/* U unit upper triangular is always invertible: P > 0 exactly when D > 0. */
-static int factors_valid(const ladrc_real_t *u, const ladrc_real_t *d, unsigned n)
-{
-    int ok = 1;
-    for (unsigned k = 0u; k < n * (n - 1u) / 2u; ++k) {
-        if (!ladrc_is_finite(u[k])) {
-            ok = 0;
-        }
-    }
-    for (unsigned j = 0u; j < n; ++j) {
-        if (!ladrc_is_positive(d[j])) {
-            ok = 0;
-        }
-    }
-    return ok;
-}
-
 static void commit_theta(ladrc_rls_t *rls, const ladrc_real_t *theta)
 {
     for (unsigned i = 0u; i < rls->n_params; ++i) {
@@ -61,6 +44,7 @@ static void restart_p(ladrc_rls_t *rls)
     for (unsigned j = 0u; j < LADRC_RLS_MAX_PARAMS; ++j) {
         rls->d[j] = (j < rls->n_params) ? rls->p_initial : LADRC_R(0.0);
     }
+    rls->trace = trace_of(rls->u, rls->d, rls->n_params);
 }
 
 /* lambda0 h <= 1 keeps the trace map monotone, so the bound holds (rls.h). */
@@ -138,7 +122,7 @@ ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_
     }
 
     const ladrc_real_t h = rls->dt_s;
-    const ladrc_real_t room = LADRC_R(1.0) - trace_of(rls->u, rls->d, n) / rls->p_bound;
+    const ladrc_real_t room = LADRC_R(1.0) - rls->trace / rls->p_bound;
     const ladrc_real_t lambda = (room > RLS_FORGET_DEADBAND) ? rls->lambda0_per_s * room : LADRC_R(0.0);
     rls->lambda_per_s = lambda;
     const ladrc_real_t mu = ladrc_exp(-lambda * h);
@@ -161,50 +145,58 @@ ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_
     /* Bierman's update, one column at a time, with
      * beta_j = mu + h sum_{k<=j} D_k f_k^2:
      *   D_j <- D_j beta_j-1 / (beta_j mu),  U_ij <- U_ij - nu_i f_j / beta_j-1,
-     * nu accumulating the unnormalised gain; the gain is nu / beta_n. */
+     * nu accumulating the unnormalised gain; the gain is nu / beta_n. The new
+     * trace and the soundness of the new factors are gathered on the way. */
     ladrc_real_t nu[LADRC_RLS_MAX_PARAMS];
     ladrc_real_t u_new[LADRC_RLS_U_SIZE];
     ladrc_real_t d_new[LADRC_RLS_MAX_PARAMS];
     ladrc_real_t beta_prev = mu;
     ladrc_real_t inv_beta_prev = inv_mu;
+    ladrc_real_t tr = LADRC_R(0.0);
+    int sound = 1;
     for (unsigned j = 0u; j < n; ++j) {
         const ladrc_real_t beta = beta_prev + f[j] * g[j];
         const ladrc_real_t inv_beta = LADRC_R(1.0) / beta;
         d_new[j] = rls->d[j] * beta_prev * inv_beta * inv_mu;
         const ladrc_real_t p = -f[j] * inv_beta_prev;
+        ladrc_real_t col = LADRC_R(1.0);
         for (unsigned i = 0u; i < j; ++i) {
             const unsigned k = u_index(i, j);
-            u_new[k] = rls->u[k] + nu[i] * p;
+            const ladrc_real_t uk = rls->u[k] + nu[i] * p;
+            u_new[k] = uk;
+            col += uk * uk;
             nu[i] += rls->u[k] * g[j];
+            sound &= ladrc_is_finite(uk);
         }
+        tr += d_new[j] * col;
+        sound &= ladrc_is_positive(d_new[j]);
         nu[j] = g[j];
         beta_prev = beta;
         inv_beta_prev = inv_beta;
     }
 
+    /* nu becomes the new theta. */
     const ladrc_real_t step = e * inv_beta_prev;
-    ladrc_real_t theta_new[LADRC_RLS_MAX_PARAMS];
     int theta_ok = 1;
     for (unsigned i = 0u; i < n; ++i) {
-        theta_new[i] = rls->theta[i] + nu[i] * step;
-        if (!ladrc_is_finite(theta_new[i])) {
-            theta_ok = 0;
-        }
+        nu[i] = rls->theta[i] + nu[i] * step;
+        theta_ok &= ladrc_is_finite(nu[i]);
     }
     /* Bound: only rounding can take the trace above k0 (rls.h). */
-    const ladrc_real_t tr = trace_of(u_new, d_new, n);
     if (tr > rls->p_bound) {
         const ladrc_real_t scale = rls->p_bound * RLS_CLAMP_FRACTION / tr;
         for (unsigned j = 0u; j < n; ++j) {
             d_new[j] *= scale;
+            sound &= ladrc_is_positive(d_new[j]);
         }
+        tr = trace_of(u_new, d_new, n);
     }
-    if (!factors_valid(u_new, d_new, n)) {
+    if (!sound) {
         /* Restart P so that the next sample meets a sound covariance; theta
          * still takes its update if that is finite. */
         restart_p(rls);
         if (theta_ok) {
-            commit_theta(rls, theta_new);
+            commit_theta(rls, nu);
         }
         rls->faults = LADRC_FAULT_STATE;
         return rls->faults;
@@ -213,13 +205,14 @@ ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_
         rls->faults = LADRC_FAULT_STATE; /* refused: state held */
         return rls->faults;
     }
-    commit_theta(rls, theta_new);
+    commit_theta(rls, nu);
     for (unsigned k = 0u; k < n * (n - 1u) / 2u; ++k) {
         rls->u[k] = u_new[k];
     }
     for (unsigned j = 0u; j < n; ++j) {
         rls->d[j] = d_new[j];
     }
+    rls->trace = tr;
     rls->faults = LADRC_FAULT_NONE;
     return rls->faults;
 }
@@ -243,7 +236,7 @@ const ladrc_real_t *ladrc_rls_get_theta(const ladrc_rls_t *rls)
 ladrc_real_t ladrc_rls_get_p_norm(const ladrc_rls_t *rls)
 {
     LADRC_ASSERT(rls != NULL);
-    return trace_of(rls->u, rls->d, rls->n_params);
+    return rls->trace;
 }
 
 ladrc_real_t ladrc_rls_get_p(const ladrc_rls_t *rls, uint8_t row, uint8_t col)

@@ -38,9 +38,10 @@
  * - P is held as P = U D U^T (U unit upper triangular, D diagonal; Bierman's
  *   factorised update): symmetric by construction, positive definite while
  *   D > 0, and accurate when one sample of huge excitation makes P nearly
- *   singular, where the plain update loses definiteness in float. 10 reals
- *   for n = 4, as many as the upper triangle of P. Cost per update: one
- *   exp, n + 2 divisions and about 80 multiply-adds for n = 4.
+ *   singular, where the plain update loses definiteness in float. 6 reals
+ *   for n = 3, as many as the upper triangle of P. Cost per update: one
+ *   exp, n + 2 divisions and about 50 multiply-adds for n = 3; tr(P) is
+ *   kept with the factors, so the forgetting rate costs one division.
  *
  * Guards: a non-finite phi or y leaves the state untouched
  * (LADRC_FAULT_INPUT). A step whose factors come out not finite or with a
@@ -58,7 +59,9 @@ extern "C" {
 #endif
 
 /** Largest number of parameters; sets the state size at compile time. */
-#define LADRC_RLS_MAX_PARAMS 4
+#ifndef LADRC_RLS_MAX_PARAMS
+#define LADRC_RLS_MAX_PARAMS 3 /* the most any estimator here uses (HP: c, a, b) */
+#endif
 /** Entries of the strict upper triangle of U. */
 #define LADRC_RLS_U_SIZE (LADRC_RLS_MAX_PARAMS * (LADRC_RLS_MAX_PARAMS - 1) / 2)
 
@@ -78,6 +81,7 @@ typedef struct {
     ladrc_real_t theta[LADRC_RLS_MAX_PARAMS]; /**< parameter estimate */
     ladrc_real_t u[LADRC_RLS_U_SIZE];         /**< U(i,j), i < j, at u[j (j - 1) / 2 + i] */
     ladrc_real_t d[LADRC_RLS_MAX_PARAMS];     /**< D(j), > 0 */
+    ladrc_real_t trace;                       /**< tr(U D U^T), kept with the factors */
     ladrc_real_t lambda_per_s;                /**< forgetting rate of the last update */
     ladrc_real_t dt_s;
     ladrc_real_t lambda0_per_s;
