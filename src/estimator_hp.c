@@ -18,6 +18,11 @@
 /* Below this sample power (rad/s^2)^2 there is nothing worth compensating. */
 #define GATE_MIN_POWER LADRC_R(1.0e-6)
 
+/* Which memory the RLS were last given (set_memory). */
+#define HP_MEMORY_SHORT 0u
+#define HP_MEMORY_PERIOD 1u
+#define HP_MEMORY_STALE 2u /* the frequency moved: set them again */
+
 static ladrc_status_t init_rls(ladrc_rls_t *rls, uint8_t n, ladrc_real_t h, ladrc_real_t lambda0)
 {
     const ladrc_rls_config_t cfg = {n, h, lambda0, HP_P_BOUND_PER_SAMPLE / h,
@@ -25,21 +30,26 @@ static ladrc_status_t init_rls(ladrc_rls_t *rls, uint8_t n, ladrc_real_t h, ladr
     return ladrc_rls_init(rls, &cfg);
 }
 
+/* Forgetting rate that keeps one period of a tone at w, at most cap. */
+static ladrc_real_t one_period_rate(ladrc_real_t w_rad_s, ladrc_real_t cap)
+{
+    const ladrc_real_t rate = w_rad_s / (LADRC_R(2.0) * HP_PI);
+    return rate < cap ? rate : cap;
+}
+
+/* The frequency and what follows from it; the RLS memories follow at the
+ * next set_memory. */
 static void set_freq(ladrc_hp_estimator_t *est, ladrc_real_t w_rad_s)
 {
     est->w_rad_s = w_rad_s;
+    est->period_rate_per_s = one_period_rate(w_rad_s, est->lambda0_max);
+    est->freq_period_rate_per_s = one_period_rate(w_rad_s, est->freq_lambda0_max);
+    est->memory = HP_MEMORY_STALE;
     est->cos_step = ladrc_cos(w_rad_s * est->dt_s);
     est->sin_step = ladrc_sin(w_rad_s * est->dt_s);
     const ladrc_real_t x = (est->lag_wo_rad_s > LADRC_R(0.0)) ? w_rad_s / est->lag_wo_rad_s : LADRC_R(0.0);
     est->lead_re = LADRC_R(1.0) - LADRC_R(3.0) * x * x;
     est->lead_im = LADRC_R(3.0) * x - x * x * x;
-}
-
-/* Forgetting rate that keeps one period of the modelled tone, at most cap. */
-static ladrc_real_t one_period_rate(const ladrc_hp_estimator_t *est, ladrc_real_t cap)
-{
-    const ladrc_real_t rate = est->w_rad_s / (LADRC_R(2.0) * HP_PI);
-    return rate < cap ? rate : cap;
 }
 
 /* Memory of the fits and the gate. A fit that explains the signal keeps about
@@ -48,11 +58,14 @@ static ladrc_real_t one_period_rate(const ladrc_hp_estimator_t *est, ladrc_real_
  * at the configured maximum rate so it can find the new signal quickly. */
 static void set_memory(ladrc_hp_estimator_t *est, ladrc_real_t explained)
 {
-    const int fits = explained >= GATE_Q_OFF;
-    est->window_rate_per_s = fits ? one_period_rate(est, est->lambda0_max) : est->lambda0_max;
-    (void)ladrc_rls_set_lambda0(&est->amp, est->window_rate_per_s);
-    (void)ladrc_rls_set_lambda0(&est->freq, fits ? one_period_rate(est, est->freq_lambda0_max)
-                                                 : est->freq_lambda0_max);
+    const uint8_t memory = (explained >= GATE_Q_OFF) ? HP_MEMORY_PERIOD : HP_MEMORY_SHORT;
+    if (memory == est->memory) {
+        return; /* the RLS already have these rates */
+    }
+    est->memory = memory;
+    const int fits = memory == HP_MEMORY_PERIOD;
+    (void)ladrc_rls_set_lambda0(&est->amp, fits ? est->period_rate_per_s : est->lambda0_max);
+    (void)ladrc_rls_set_lambda0(&est->freq, fits ? est->freq_period_rate_per_s : est->freq_lambda0_max);
 }
 
 ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t *cfg)
@@ -163,7 +176,7 @@ static void update_freq(ladrc_hp_estimator_t *est, ladrc_real_t x)
  * locally does not look like a good model. */
 static ladrc_real_t update_gate(ladrc_hp_estimator_t *est, ladrc_real_t centred, ladrc_real_t err)
 {
-    const ladrc_real_t alpha = one_period_rate(est, est->lambda0_max) * est->dt_s;
+    const ladrc_real_t alpha = est->period_rate_per_s * est->dt_s;
     est->sig_power += alpha * (centred * centred - est->sig_power);
     est->err_power += alpha * (err * err - est->err_power);
     const ladrc_real_t explained = (est->sig_power > GATE_MIN_POWER)

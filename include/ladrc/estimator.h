@@ -104,7 +104,8 @@ typedef struct {
     ladrc_real_t freq_min_rad_s, freq_max_rad_s;
     ladrc_real_t lambda0_max;        /**< configured forgetting rate of the (c, a, b) RLS */
     ladrc_real_t freq_lambda0_max;   /**< configured forgetting rate of the frequency RLS */
-    ladrc_real_t window_rate_per_s;  /**< 1 / memory of the fit and the gate: w / 2 pi, capped */
+    ladrc_real_t period_rate_per_s;  /**< w / 2 pi, at most lambda0_max: one period's memory */
+    ladrc_real_t freq_period_rate_per_s; /**< the same, at most freq_lambda0_max */
     ladrc_real_t w_rad_s;            /**< frequency in use */
     ladrc_real_t cos_psi, sin_psi;   /**< phase as a unit phasor */
     ladrc_real_t cos_step, sin_step; /**< rotation by w h */
@@ -119,6 +120,7 @@ typedef struct {
     uint16_t decimation, dec_count;
     uint8_t n_dec_samples;           /**< decimated samples seen, saturates at 2 */
     uint8_t online;
+    uint8_t memory;                  /**< memory the RLS were given last (estimator_hp.c) */
     ladrc_fault_t faults;
 } ladrc_hp_estimator_t;
 
