@@ -1,6 +1,8 @@
 /* Bounded-gain RLS on the factors P = U D U^T (see rls.h). */
 #include "ladrc/rls.h"
 
+#include <string.h>
+
 /* Forgetting stops when tr(P) is within this fraction of k0. It is far above
  * the rounding of the trace (about n eps = 5e-7 in float), so without
  * excitation P lands on an exact fixed point, and far below anything the
@@ -26,13 +28,6 @@ static ladrc_real_t trace_of(const ladrc_real_t *u, const ladrc_real_t *d, unsig
         tr += d[j] * col;
     }
     return tr;
-}
-
-static void commit_theta(ladrc_rls_t *rls, const ladrc_real_t *theta)
-{
-    for (unsigned i = 0u; i < rls->n_params; ++i) {
-        rls->theta[i] = theta[i];
-    }
 }
 
 /* P = p_initial I; unused entries zero so that states compare bitwise. */
@@ -150,6 +145,11 @@ ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_
     ladrc_real_t nu[LADRC_RLS_MAX_PARAMS];
     ladrc_real_t u_new[LADRC_RLS_U_SIZE];
     ladrc_real_t d_new[LADRC_RLS_MAX_PARAMS];
+    /* Whole-array copies of a fixed size compile to a few moves; entries past
+     * n_params keep their values. */
+    (void)memcpy(nu, rls->theta, sizeof nu);
+    (void)memcpy(u_new, rls->u, sizeof u_new);
+    (void)memcpy(d_new, rls->d, sizeof d_new);
     ladrc_real_t beta_prev = mu;
     ladrc_real_t inv_beta_prev = inv_mu;
     ladrc_real_t tr = LADRC_R(0.0);
@@ -196,7 +196,7 @@ ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_
          * still takes its update if that is finite. */
         restart_p(rls);
         if (theta_ok) {
-            commit_theta(rls, nu);
+            (void)memcpy(rls->theta, nu, sizeof nu);
         }
         rls->faults = LADRC_FAULT_STATE;
         return rls->faults;
@@ -205,13 +205,9 @@ ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_
         rls->faults = LADRC_FAULT_STATE; /* refused: state held */
         return rls->faults;
     }
-    commit_theta(rls, nu);
-    for (unsigned k = 0u; k < n * (n - 1u) / 2u; ++k) {
-        rls->u[k] = u_new[k];
-    }
-    for (unsigned j = 0u; j < n; ++j) {
-        rls->d[j] = d_new[j];
-    }
+    (void)memcpy(rls->theta, nu, sizeof nu);
+    (void)memcpy(rls->u, u_new, sizeof u_new);
+    (void)memcpy(rls->d, d_new, sizeof d_new);
     rls->trace = tr;
     rls->faults = LADRC_FAULT_NONE;
     return rls->faults;
