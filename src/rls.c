@@ -122,64 +122,71 @@ ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_
     rls->lambda_per_s = lambda;
     const ladrc_real_t mu = ladrc_exp(-lambda * h);
     const ladrc_real_t inv_mu = LADRC_R(1.0) / mu;
+    const ladrc_real_t *u = rls->u;
+    const ladrc_real_t *d = rls->d;
+    const ladrc_real_t *theta = rls->theta;
 
-    /* f = U^T phi, g = h D f (h: P is in continuous units), prior error e. */
-    ladrc_real_t f[LADRC_RLS_MAX_PARAMS];
-    ladrc_real_t g[LADRC_RLS_MAX_PARAMS];
-    ladrc_real_t e = y;
-    for (unsigned j = 0u; j < n; ++j) {
-        ladrc_real_t fj = phi[j];
-        for (unsigned i = 0u; i < j; ++i) {
-            fj += rls->u[u_index(i, j)] * phi[i];
-        }
-        f[j] = fj;
-        g[j] = h * rls->d[j] * fj;
-        e -= phi[j] * rls->theta[j];
-    }
+    /* The columns are written out for n <= 3 (LADRC_RLS_MAX_PARAMS): at the
+     * sizes used here the loops cost more than the arithmetic. Entries past
+     * n_params keep their values (whole-array moves of a fixed size compile
+     * to a few instructions). */
+    ladrc_real_t nu[LADRC_RLS_MAX_PARAMS];
+    ladrc_real_t u_new[LADRC_RLS_U_SIZE];
+    ladrc_real_t d_new[LADRC_RLS_MAX_PARAMS];
+    (void)memcpy(nu, theta, sizeof nu);
+    (void)memcpy(u_new, u, sizeof u_new);
+    (void)memcpy(d_new, d, sizeof d_new);
 
-    /* Bierman's update, one column at a time, with
+    /* f = U^T phi, g = h D f (h: P is in continuous units), prior error e;
+     * then Bierman's update, one column j at a time, with
      * beta_j = mu + h sum_{k<=j} D_k f_k^2:
      *   D_j <- D_j beta_j-1 / (beta_j mu),  U_ij <- U_ij - nu_i f_j / beta_j-1,
      * nu accumulating the unnormalised gain; the gain is nu / beta_n. The new
      * trace and the soundness of the new factors are gathered on the way. */
-    ladrc_real_t nu[LADRC_RLS_MAX_PARAMS];
-    ladrc_real_t u_new[LADRC_RLS_U_SIZE];
-    ladrc_real_t d_new[LADRC_RLS_MAX_PARAMS];
-    /* Whole-array copies of a fixed size compile to a few moves; entries past
-     * n_params keep their values. */
-    (void)memcpy(nu, rls->theta, sizeof nu);
-    (void)memcpy(u_new, rls->u, sizeof u_new);
-    (void)memcpy(d_new, rls->d, sizeof d_new);
-    ladrc_real_t beta_prev = mu;
-    ladrc_real_t inv_beta_prev = inv_mu;
-    ladrc_real_t tr = LADRC_R(0.0);
-    int sound = 1;
-    for (unsigned j = 0u; j < n; ++j) {
-        const ladrc_real_t beta = beta_prev + f[j] * g[j];
-        const ladrc_real_t inv_beta = LADRC_R(1.0) / beta;
-        d_new[j] = rls->d[j] * beta_prev * inv_beta * inv_mu;
-        const ladrc_real_t p = -f[j] * inv_beta_prev;
-        ladrc_real_t col = LADRC_R(1.0);
-        for (unsigned i = 0u; i < j; ++i) {
-            const unsigned k = u_index(i, j);
-            const ladrc_real_t uk = rls->u[k] + nu[i] * p;
-            u_new[k] = uk;
-            col += uk * uk;
-            nu[i] += rls->u[k] * g[j];
-            sound &= ladrc_is_finite(uk);
+    ladrc_real_t e = y - phi[0] * theta[0];
+    const ladrc_real_t g0 = h * d[0] * phi[0];
+    const ladrc_real_t beta0 = mu + phi[0] * g0;
+    ladrc_real_t inv_beta = LADRC_R(1.0) / beta0;
+    d_new[0] = d[0] * mu * inv_beta * inv_mu;
+    nu[0] = g0;
+    ladrc_real_t tr = d_new[0];
+    int sound = ladrc_is_positive(d_new[0]);
+    if (n > 1u) {
+        const ladrc_real_t f1 = phi[1] + u[0] * phi[0];
+        const ladrc_real_t g1 = h * d[1] * f1;
+        e -= phi[1] * theta[1];
+        const ladrc_real_t beta1 = beta0 + f1 * g1;
+        const ladrc_real_t p1 = -f1 * inv_beta;
+        inv_beta = LADRC_R(1.0) / beta1;
+        d_new[1] = d[1] * beta0 * inv_beta * inv_mu;
+        u_new[0] = u[0] + nu[0] * p1;
+        nu[0] += u[0] * g1;
+        nu[1] = g1;
+        tr += d_new[1] * (LADRC_R(1.0) + u_new[0] * u_new[0]);
+        sound &= ladrc_is_positive(d_new[1]) & ladrc_is_finite(u_new[0]);
+        if (n > 2u) {
+            const ladrc_real_t f2 = phi[2] + u[1] * phi[0] + u[2] * phi[1];
+            const ladrc_real_t g2 = h * d[2] * f2;
+            e -= phi[2] * theta[2];
+            const ladrc_real_t beta2 = beta1 + f2 * g2;
+            const ladrc_real_t p2 = -f2 * inv_beta;
+            inv_beta = LADRC_R(1.0) / beta2;
+            d_new[2] = d[2] * beta1 * inv_beta * inv_mu;
+            u_new[1] = u[1] + nu[0] * p2;
+            nu[0] += u[1] * g2;
+            u_new[2] = u[2] + nu[1] * p2;
+            nu[1] += u[2] * g2;
+            nu[2] = g2;
+            tr += d_new[2] * (LADRC_R(1.0) + u_new[1] * u_new[1] + u_new[2] * u_new[2]);
+            sound &= ladrc_is_positive(d_new[2]) & ladrc_is_finite(u_new[1]) & ladrc_is_finite(u_new[2]);
         }
-        tr += d_new[j] * col;
-        sound &= ladrc_is_positive(d_new[j]);
-        nu[j] = g[j];
-        beta_prev = beta;
-        inv_beta_prev = inv_beta;
     }
 
     /* nu becomes the new theta. */
-    const ladrc_real_t step = e * inv_beta_prev;
+    const ladrc_real_t step = e * inv_beta;
     int theta_ok = 1;
     for (unsigned i = 0u; i < n; ++i) {
-        nu[i] = rls->theta[i] + nu[i] * step;
+        nu[i] = theta[i] + nu[i] * step;
         theta_ok &= ladrc_is_finite(nu[i]);
     }
     /* Bound: only rounding can take the trace above k0 (rls.h). */

@@ -58,10 +58,9 @@
 extern "C" {
 #endif
 
-/** Largest number of parameters; sets the state size at compile time. */
-#ifndef LADRC_RLS_MAX_PARAMS
+/** Largest number of parameters; sets the state size. The update is written
+ *  out for up to 3 columns (rls.c). */
 #define LADRC_RLS_MAX_PARAMS 3 /* the most any estimator here uses (HP: c, a, b) */
-#endif
 /** Entries of the strict upper triangle of U. */
 #define LADRC_RLS_U_SIZE (LADRC_RLS_MAX_PARAMS * (LADRC_RLS_MAX_PARAMS - 1) / 2)
 
