@@ -39,7 +39,11 @@ static void restart_p(ladrc_rls_t *rls)
     for (unsigned j = 0u; j < LADRC_RLS_MAX_PARAMS; ++j) {
         rls->d[j] = (j < rls->n_params) ? rls->p_initial : LADRC_R(0.0);
     }
-    rls->trace = trace_of(rls->u, rls->d, rls->n_params);
+    /* tr = sum of the D_j, added as trace_of adds them (U = I). */
+    rls->trace = LADRC_R(0.0);
+    for (unsigned j = 0u; j < rls->n_params; ++j) {
+        rls->trace += rls->p_initial;
+    }
 }
 
 /* lambda0 h <= 1 keeps the trace map monotone, so the bound holds (rls.h). */
