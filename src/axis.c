@@ -105,9 +105,8 @@ static ladrc_status_t init_estimator(ladrc_axis_t *axis, const ladrc_axis_config
                                       cfg->hp_freq_lambda0_per_s,
                                       cfg->hp_decimation,
                                       cfg->wo_rad_s};
-        /* The shadow is the LESO itself (initialised just before), reset. */
-        axis->part.hp.shadow = axis->leso;
-        ladrc_leso_reset(&axis->part.hp.shadow, LADRC_R(0.0));
+        /* The shadow runs with the LESO's gains (initialised just before). */
+        ladrc_leso_twin_reset(&axis->part.hp.shadow, LADRC_R(0.0));
         return ladrc_hp_init(&axis->part.hp.est, &hp);
     }
     return LADRC_OK;
@@ -198,7 +197,7 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
             ladrc_lp_reset(&axis->part.lp);
         } else if (axis->variant == LADRC_VARIANT_HP_MLADRC) {
             ladrc_hp_reset(&axis->part.hp.est, ladrc_hp_get_freq(&axis->part.hp.est));
-            ladrc_leso_reset(&axis->part.hp.shadow, LADRC_R(0.0));
+            ladrc_leso_twin_reset(&axis->part.hp.shadow, LADRC_R(0.0));
         }
     }
     axis->ref.r = angle;
@@ -227,8 +226,9 @@ static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, const ladrc_real_t 
          * identical observer of a still plant told the same d_hat, holds the
          * d_hat part, so the difference is the observer's view of f alone and
          * the fit does not chase its own output. */
-        ladrc_leso_t *shadow = &axis->part.hp.shadow;
-        (void)ladrc_leso_step(shadow, LADRC_R(0.0), LADRC_R(0.0), axis->d_hat_rad_s2, LADRC_R(0.0));
+        ladrc_leso_twin_t *shadow = &axis->part.hp.shadow;
+        (void)ladrc_leso_step_twin(&axis->leso, shadow, LADRC_R(0.0), LADRC_R(0.0), axis->d_hat_rad_s2,
+                                   LADRC_R(0.0));
         (void)ladrc_hp_step(&axis->part.hp.est, axis->leso.z3 - shadow->z3);
         return ladrc_hp_get_estimate(&axis->part.hp.est);
     }

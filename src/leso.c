@@ -56,14 +56,15 @@ void ladrc_leso_reset(ladrc_leso_t *obs, ladrc_real_t y0)
     obs->faults = LADRC_FAULT_NONE;
 }
 
-ladrc_fault_t ladrc_leso_step(ladrc_leso_t *obs, ladrc_real_t y, ladrc_real_t u,
-                              ladrc_real_t accel_known, ladrc_real_t f_rate_known)
+/* One tick of the estimate (*z1, *z2, *z3) with obs's gains; it is kept when
+ * an argument or the result is not finite. */
+static ladrc_fault_t advance(const ladrc_leso_t *obs, ladrc_real_t *z1_io, ladrc_real_t *z2_io,
+                             ladrc_real_t *z3_io, ladrc_real_t y, ladrc_real_t u,
+                             ladrc_real_t accel_known, ladrc_real_t f_rate_known)
 {
-    LADRC_ASSERT(obs != NULL);
     if (!(ladrc_is_finite(y) && ladrc_is_finite(u) && ladrc_is_finite(accel_known) &&
           ladrc_is_finite(f_rate_known))) {
-        obs->faults = LADRC_FAULT_INPUT;
-        return obs->faults;
+        return LADRC_FAULT_INPUT;
     }
     const ladrc_real_t h = obs->h_s;
     const ladrc_real_t a = obs->b0 * u + accel_known;
@@ -74,28 +75,49 @@ ladrc_fault_t ladrc_leso_step(ladrc_leso_t *obs, ladrc_real_t y, ladrc_real_t u,
     ladrc_real_t err;
     if (obs->method == LADRC_LESO_ZOH) {
         /* Predict with the exact ZOH model, then correct with the newest y. */
-        const ladrc_real_t acc = obs->z3 + a;
-        p1 = obs->z1 + h * obs->z2 + obs->h2_2 * acc + obs->h3_6 * g;
-        p2 = obs->z2 + h * acc + obs->h2_2 * g;
-        p3 = obs->z3 + h * g;
+        const ladrc_real_t acc = *z3_io + a;
+        p1 = *z1_io + h * *z2_io + obs->h2_2 * acc + obs->h3_6 * g;
+        p2 = *z2_io + h * acc + obs->h2_2 * g;
+        p3 = *z3_io + h * g;
         err = y - p1;
     } else {
         /* Explicit Euler: the correction uses the error of the old estimate. */
-        p1 = obs->z1 + h * obs->z2;
-        p2 = obs->z2 + h * (obs->z3 + a);
-        p3 = obs->z3 + h * g;
-        err = y - obs->z1;
+        p1 = *z1_io + h * *z2_io;
+        p2 = *z2_io + h * (*z3_io + a);
+        p3 = *z3_io + h * g;
+        err = y - *z1_io;
     }
     const ladrc_real_t z1 = p1 + obs->l1 * err;
     const ladrc_real_t z2 = p2 + obs->l2 * err;
     const ladrc_real_t z3 = p3 + obs->l3 * err;
     if (!(ladrc_is_finite(z1) && ladrc_is_finite(z2) && ladrc_is_finite(z3))) {
-        obs->faults = LADRC_FAULT_STATE;
-        return obs->faults;
+        return LADRC_FAULT_STATE;
     }
-    obs->z1 = z1;
-    obs->z2 = z2;
-    obs->z3 = z3;
-    obs->faults = LADRC_FAULT_NONE;
+    *z1_io = z1;
+    *z2_io = z2;
+    *z3_io = z3;
+    return LADRC_FAULT_NONE;
+}
+
+ladrc_fault_t ladrc_leso_step(ladrc_leso_t *obs, ladrc_real_t y, ladrc_real_t u,
+                              ladrc_real_t accel_known, ladrc_real_t f_rate_known)
+{
+    LADRC_ASSERT(obs != NULL);
+    obs->faults = advance(obs, &obs->z1, &obs->z2, &obs->z3, y, u, accel_known, f_rate_known);
     return obs->faults;
+}
+
+ladrc_fault_t ladrc_leso_step_twin(const ladrc_leso_t *obs, ladrc_leso_twin_t *twin, ladrc_real_t y,
+                                   ladrc_real_t u, ladrc_real_t accel_known, ladrc_real_t f_rate_known)
+{
+    LADRC_ASSERT(obs != NULL && twin != NULL);
+    return advance(obs, &twin->z1, &twin->z2, &twin->z3, y, u, accel_known, f_rate_known);
+}
+
+void ladrc_leso_twin_reset(ladrc_leso_twin_t *twin, ladrc_real_t y0)
+{
+    LADRC_ASSERT(twin != NULL);
+    twin->z1 = ladrc_is_finite(y0) ? y0 : LADRC_R(0.0);
+    twin->z2 = LADRC_R(0.0);
+    twin->z3 = LADRC_R(0.0);
 }

@@ -272,6 +272,55 @@ static void test_reset_restarts_at_rest_on_the_given_output(void)
     TEST_ASSERT_FLOAT_WITHIN(1e-9f, 0.0f, obs.z3);
 }
 
+static void test_a_twin_fed_the_same_inputs_follows_the_observer_bit_for_bit(void)
+{
+    /* given an observer and a twin on its gains, both at rest on 0.1 rad */
+    ladrc_leso_t obs;
+    const ladrc_leso_config_t cfg = config(LADRC_LESO_ZOH);
+    ladrc_leso_init(&obs, &cfg);
+    ladrc_leso_reset(&obs, 0.1f);
+    ladrc_leso_twin_t twin;
+    ladrc_leso_twin_reset(&twin, 0.1f);
+    const ladrc_leso_t gains_before = obs;
+    for (int k = 0; k < 200; ++k) {
+        /* when both see the same samples, the twin stepped first */
+        const ladrc_real_t y = (ladrc_real_t)(0.1 + 0.05 * sin(0.03 * k));
+        const ladrc_real_t u = (ladrc_real_t)cos(0.02 * k);
+        const ladrc_leso_t untouched = obs;
+        TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, ladrc_leso_step_twin(&obs, &twin, y, u, 2.0f, 0.5f));
+        /* then the observer itself was not changed by its twin */
+        TEST_ASSERT_EQUAL_MEMORY(&untouched, &obs, sizeof obs);
+        ladrc_leso_step(&obs, y, u, 2.0f, 0.5f);
+        /* and both estimates are the same numbers */
+        TEST_ASSERT_EQUAL_MEMORY(&obs.z1, &twin.z1, sizeof(ladrc_real_t));
+        TEST_ASSERT_EQUAL_MEMORY(&obs.z2, &twin.z2, sizeof(ladrc_real_t));
+        TEST_ASSERT_EQUAL_MEMORY(&obs.z3, &twin.z3, sizeof(ladrc_real_t));
+    }
+    TEST_ASSERT_EQUAL_MEMORY(&gains_before.l1, &obs.l1, 3 * sizeof(ladrc_real_t));
+}
+
+static void test_a_twin_holds_its_estimate_on_bad_input_and_restarts_on_a_finite_output(void)
+{
+    ladrc_leso_t obs;
+    const ladrc_leso_config_t cfg = config(LADRC_LESO_EULER);
+    ladrc_leso_init(&obs, &cfg);
+    ladrc_leso_twin_t twin;
+    ladrc_leso_twin_reset(&twin, (ladrc_real_t)NAN);
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, twin.z1);
+    ladrc_leso_step_twin(&obs, &twin, 0.2f, 1.0f, 0.0f, 0.0f);
+    const ladrc_leso_twin_t before = twin;
+    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT,
+                           ladrc_leso_step_twin(&obs, &twin, 0.2f, (ladrc_real_t)NAN, 0.0f, 0.0f));
+    TEST_ASSERT_EQUAL_MEMORY(&before, &twin, sizeof twin);
+    const ladrc_real_t huge = (ladrc_real_t)(sizeof(ladrc_real_t) == 4 ? 3e38 : 1.7e308);
+    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_leso_step_twin(&obs, &twin, huge, huge, huge, 0.0f));
+    TEST_ASSERT_EQUAL_MEMORY(&before, &twin, sizeof twin);
+    ladrc_leso_twin_reset(&twin, 0.3f);
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.3f, twin.z1);
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, twin.z2);
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, twin.z3);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -288,5 +337,7 @@ int main(void)
     RUN_TEST(test_non_finite_inputs_hold_the_state_and_raise_a_fault);
     RUN_TEST(test_an_overflowing_update_is_refused_and_flagged);
     RUN_TEST(test_reset_restarts_at_rest_on_the_given_output);
+    RUN_TEST(test_a_twin_fed_the_same_inputs_follows_the_observer_bit_for_bit);
+    RUN_TEST(test_a_twin_holds_its_estimate_on_bad_input_and_restarts_on_a_finite_output);
     return UNITY_END();
 }

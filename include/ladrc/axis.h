@@ -111,7 +111,7 @@ typedef struct {
         ladrc_lp_estimator_t lp;
         struct {
             ladrc_hp_estimator_t est;
-            ladrc_leso_t shadow;  /**< the LESO's view of a still plant: z3 caused by d_hat alone */
+            ladrc_leso_twin_t shadow; /**< the LESO's view of a still plant: z3 caused by d_hat alone */
         } hp;
     } part;                       /**< by variant */
     ladrc_ref_t ref;              /**< shaped reference of the latest tick */

@@ -74,6 +74,20 @@ void ladrc_leso_reset(ladrc_leso_t *obs, ladrc_real_t y0);
 ladrc_fault_t ladrc_leso_step(ladrc_leso_t *obs, ladrc_real_t y, ladrc_real_t u,
                               ladrc_real_t accel_known, ladrc_real_t f_rate_known);
 
+/** A second estimate run with an observer's gains (e.g. the observer's view
+ *  of a still plant): 12 bytes instead of a whole ladrc_leso_t. */
+typedef struct {
+    ladrc_real_t z1, z2, z3; /**< as in ladrc_leso_t */
+} ladrc_leso_twin_t;
+
+/** Starts a twin at rest on y0: z = (y0, 0, 0) (non-finite y0: 0). */
+void ladrc_leso_twin_reset(ladrc_leso_twin_t *twin, ladrc_real_t y0);
+
+/** One tick of twin with obs's gains, the same equations and guards as
+ *  ladrc_leso_step (returns its flags); obs is not changed. */
+ladrc_fault_t ladrc_leso_step_twin(const ladrc_leso_t *obs, ladrc_leso_twin_t *twin, ladrc_real_t y,
+                                   ladrc_real_t u, ladrc_real_t accel_known, ladrc_real_t f_rate_known);
+
 #ifdef __cplusplus
 }
 #endif
