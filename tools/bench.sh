@@ -1,25 +1,39 @@
 #!/usr/bin/env bash
-# Measures the cost of the controllers and prints one Markdown table, each
-# figure marked against the budget of issue 6 ("meets" / "over").
+# Measures the cost of the controllers and prints Markdown tables, each
+# budget figure marked against the budget of issue 6 ("meets" / "over").
 #
-# Usage: tools/bench.sh            print the table
-#        tools/bench.sh --readme   also rewrite README.md's Performance table
+# Usage: tools/bench.sh            print the tables
+#        tools/bench.sh --readme   also rewrite README.md's Performance tables
+#        tools/bench.sh --check    deterministic figures only, against the
+#                                  limits in tools/bench/limits.txt (CI: the
+#                                  bench stage of tools/run_tests.sh); exits 1
+#                                  naming every figure above its limit
 #
 #  - instructions per tick on the Cortex-M4F: build/bench-m4f (the cortex-m4f
 #    preset with LADRC_BUILD_BENCH=ON), image run under qemu mps2-an386 with
-#    -icount shift=0, twice: the two outputs must be identical;
+#    -icount shift=0, twice: the two outputs must be identical; the same
+#    image times each module alone (where the instructions go);
 #  - sizeof of the state and config structs (same image);
 #  - flash and RAM of libladrc.a per object (arm-none-eabi-size);
 #  - worst-case stack of one tick from -fcallgraph-info=su (tools/bench/stack.py);
+#  - host: build/bench-host (the host-release preset with LADRC_BUILD_BENCH=ON),
+#    ns per tick (median of 15 blocks) and instructions per tick under
+#    valgrind --tool=callgrind (installed with apt-get when missing);
 #  - simulator throughput: build/host-release ladrc_sil on scenarios/paper.ini,
 #    wall time by the shell, best of 5 runs; the 1 -> 2 jobs speed-up also on
 #    a batch of the scenario given 4 times (16 independent runs).
 #
 # Needs what the cortex-m4f and host-release builds need (tools/run_tests.sh
-# installs it) and python3. Not part of run_tests.sh or CI: the budget is not met yet.
+# installs it) and python3. --check needs only the cortex-m4f part.
 set -euo pipefail
 
-if [[ ${1:-} == --readme ]]; then
+MODE=${1:-}
+case $MODE in
+  "" | --readme | --check) ;;
+  *) echo "usage: tools/bench.sh [--readme | --check]" >&2; exit 2 ;;
+esac
+
+if [[ $MODE == --readme ]]; then
   table=$("$0")
   echo "$table"
   python3 - "$table" "$(dirname "${BASH_SOURCE[0]}")/../README.md" <<'PY'
@@ -37,6 +51,8 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 JOBS=2
 CROSS=build/bench-m4f
+BENCH_HOST=build/bench-host
+LIMITS=tools/bench/limits.txt
 HOST=build/host-release
 SCENARIO=scenarios/paper.ini
 ROOTS=(ladrc_attitude_step ladrc_mixer_thrust_from_tilt ladrc_mixer_step ladrc_attitude_set_applied)
@@ -46,9 +62,6 @@ log() { echo "-- $*" >&2; }
 log "building the Cortex-M4F benchmark ($CROSS)"
 [[ -f $CROSS/CMakeCache.txt ]] || cmake --preset cortex-m4f -B "$CROSS" -DLADRC_BUILD_BENCH=ON >&2
 cmake --build "$CROSS" -j "$JOBS" --target ladrc_bench_m4f >&2
-log "building the simulator ($HOST)"
-[[ -f $HOST/CMakeCache.txt ]] || cmake --preset host-release >&2
-cmake --build --preset host-release --target ladrc_sil >&2
 
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -87,6 +100,83 @@ stack_root=$(awk '$1 == "STACK" && $3 > m { m = $3; r = $2 } END { print r }' "$
 stack_chain=$(awk -v r="$stack_root" '$1 == "STACK" && $2 == r { $1 = $2 = $3 = ""; sub(/^ +/, ""); print }' "$tmp/stack")
 stack_ext=$(awk '$1 == "EXTERNAL" { $1 = ""; sub(/^ /, ""); print }' "$tmp/stack")
 
+# --- check: the deterministic figures against tools/bench/limits.txt --------
+# Gated figures by the keys limits.txt uses.
+declare -A measured=(
+  [flash.library]=$((lib_text + lib_data))
+  [stack.tick]=$stack_worst
+  [sizeof.ladrc_attitude_t]=$(size_of ladrc_attitude_t)
+)
+for v in PID LADRC LP-MLADRC HP-MLADRC; do
+  measured[insn.axis.$v]=$(insn "$v" 1)
+  measured[insn.3axes.$v]=$(insn "$v" 2)
+done
+if [[ $MODE == --check ]]; then
+  over=()
+  printf '%-26s %10s %10s  %-8s %s\n' key value limit kind status
+  while read -r key limit kind _; do
+    [[ -z $key || $key == \#* ]] && continue
+    if [[ $kind != budget && $kind != ceiling ]]; then
+      echo "error: $LIMITS: $key: kind '$kind' is neither budget nor ceiling" >&2
+      exit 2
+    fi
+    value=${measured[$key]:-}
+    if [[ ! $value =~ ^[0-9]+(\.[0-9]+)?$ || ! $limit =~ ^[0-9]+(\.[0-9]+)?$ ]]; then
+      echo "error: $LIMITS: $key: no number to compare (measured '$value', limit '$limit'; keys: ${!measured[*]})" >&2
+      exit 2
+    fi
+    if awk -v x="$value" -v l="$limit" 'BEGIN { exit !(x <= l) }'; then
+      status=ok
+    else
+      status=OVER
+      over+=("$key = $value > $limit ($kind)")
+    fi
+    printf '%-26s %10s %10s  %-8s %s\n' "$key" "$value" "$limit" "$kind" "$status"
+  done <"$LIMITS"
+  if ((${#over[@]} > 0)); then
+    echo "error: ${#over[@]} figure(s) above their limit in $LIMITS:" >&2
+    printf '  %s\n' "${over[@]}" >&2
+    exit 1
+  fi
+  echo "all gated figures within $LIMITS"
+  exit 0
+fi
+
+log "building the simulator ($HOST)"
+[[ -f $HOST/CMakeCache.txt ]] || cmake --preset host-release >&2
+cmake --build --preset host-release --target ladrc_sil >&2
+
+# --- host: time per tick and callgrind instruction counts ---------------------
+log "building the host benchmark ($BENCH_HOST)"
+[[ -f $BENCH_HOST/CMakeCache.txt ]] || cmake --preset host-release -B "$BENCH_HOST" -DLADRC_BUILD_BENCH=ON >&2
+cmake --build "$BENCH_HOST" -j "$JOBS" --target ladrc_bench_host >&2
+HOST_BIN=$BENCH_HOST/tools/bench/ladrc_bench_host
+if ! command -v valgrind >/dev/null 2>&1; then
+  log "installing valgrind"
+  sudo=()
+  [[ $(id -u) -ne 0 ]] && sudo=(sudo)
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update >&2
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends valgrind >&2
+fi
+log "timing the host benchmark"
+"$HOST_BIN" >"$tmp/host"
+host_ns() { awk -v v="$1" -v c="$2" '$2 == "host" && $3 == v { print $(3 + c) }' "$tmp/host"; }
+callgrind_ir() { # instructions counted inside bench_collect() for one case
+  valgrind --tool=callgrind --toggle-collect=bench_collect --callgrind-out-file="$tmp/cg.out" \
+    "$HOST_BIN" --callgrind "$1" >"$tmp/cg.log" 2>&1 || { cat "$tmp/cg.log" >&2; return 1; }
+  awk '/^totals:/ { print $2 }' "$tmp/cg.out"
+}
+log "counting host instructions under callgrind"
+declare -A host_insn
+cg_empty=$(callgrind_ir empty)
+cg_ticks=$(sed -n 's/^BENCH host collected [^ ]* \([0-9]*\) ticks$/\1/p' "$tmp/cg.log")
+for v in PID LADRC LP-MLADRC HP-MLADRC; do
+  for c in axis attitude; do
+    ir=$(callgrind_ir "$c:$v")
+    host_insn[$c:$v]=$(awk -v a="$ir" -v b="$cg_empty" -v n="$cg_ticks" 'BEGIN { printf "%.1f", (a - b) / n }')
+  done
+done
+cpu=$(awk -F': *' '/^model name/ { print $2; exit }' /proc/cpuinfo)
 # --- simulator throughput --------------------------------------------------
 duration=$(awk -F= '/^\[/ { s = $0 } s == "[run]" && $1 ~ /^duration_s/ { gsub(/[ \t]/, "", $2); print $2 }' "$SCENARIO")
 runs=$(awk -F= '/^\[/ { s = $0 } s == "[run]" && $1 ~ /^controllers/ { sub(/#.*/, "", $2); print split($2, a, " ") }' "$SCENARIO")
@@ -138,6 +228,16 @@ for v in PID LADRC LP-MLADRC; do
 done
 row "HP-MLADRC, 3 axes + mixer, instructions/tick" "$hp3" "<= 1500" "$(mark "$hp3" "<=" 1500)"
 row "ratio HP-MLADRC / PID, 3 axes + mixer" "$ratio" "" ""
+for c in 1 2; do
+  for v in PID LADRC LP-MLADRC HP-MLADRC; do
+    row "$v, $([[ $c == 1 ]] && echo "one axis" || echo "3 axes + mixer"), host, ns/tick" "$(host_ns "$v" "$c")" "" ""
+  done
+done
+for c in axis attitude; do
+  for v in PID LADRC LP-MLADRC HP-MLADRC; do
+    row "$v, $([[ $c == axis ]] && echo "one axis" || echo "3 axes + mixer"), host, instructions/tick (callgrind)" "${host_insn[$c:$v]}" "" ""
+  done
+done
 row "3-axis state, sizeof(ladrc_attitude_t), B" "$att_size" "<= 512" "$(mark "$att_size" "<=" 512)"
 row "mixer state, sizeof(ladrc_mixer_t), B" "$mix_size" "" ""
 for t in ladrc_attitude_config_t ladrc_axis_t ladrc_axis_config_t ladrc_mixer_config_t \
@@ -160,5 +260,51 @@ row "simulator, paper x${#BATCH[@]} ($((runs * ${#BATCH[@]})) runs), no CSV, spe
 echo
 echo "$(sed -n 's/^BENCH clock //p' "$tmp/run1"); the empty loop (same inputs, no call) is subtracted; two runs gave identical counts."
 echo "Mixer in LADRC_MIXER_SATURATE (rotor limits 1e4..2e5 rad^2/s^2), thrust from ladrc_mixer_thrust_from_tilt; inputs: paper references and a lagging, disturbed angle from t = 12 s."
+echo "Host: $cpu, gcc Release (-O3) build $BENCH_HOST; ns/tick: $(sed -n 's/^BENCH host clock //p' "$tmp/host"). Instructions/tick: x86-64 instructions counted by valgrind --tool=callgrind --toggle-collect=bench_collect (only the $cg_ticks measured ticks, after the same warm-up), minus the same count for the empty loop, divided by $cg_ticks; deterministic, not comparable with the Cortex-M4F counts."
 echo "Stack: deepest of ${ROOTS[*]}; chain: $stack_chain; not counted (C library): $stack_ext."
 echo "Simulator: $runs runs of $duration s ($simulated s simulated), best wall time of 5; x real time = simulated s / wall s on $(nproc) cores."
+
+# --- where the instructions go -------------------------------------------------
+mod() { awk -v k="$1" '$2 == "module" && $3 == k { print $4 }' "$tmp/run1"; }
+calc() { awk "BEGIN { printf \"%.2f\", $1 }"; }
+decimation=$(awk '$2 == "hp_decimation" { print $3 }' "$tmp/run1")
+leso=$(mod ladrc_leso_step)
+levant=$(mod ladrc_levant_step)
+hp=$(mod ladrc_hp_step)
+rls3=$(mod ladrc_rls_update_3)
+rls2=$(mod ladrc_rls_update_2)
+lone=$(mod lone_hp_axes_x3)
+thrust=$(mod ladrc_mixer_thrust_from_tilt)
+mixer=$(mod ladrc_mixer_step)
+hp_own=$(calc "$hp - $rls3 - $rls2 / $decimation")
+axis_rest=$(calc "$lone / 3 - 2 * $leso - $levant - $hp")
+att_rest=$(calc "$hp3 - $lone - $thrust - $mixer")
+share() { calc "100 * $1 * $2 / $hp3"; }
+brow() { # module, instructions/call, calls per tick (0: not part of the tick, no share)
+  if [[ $3 == 0 ]]; then
+    printf '| %s | %s | 0 |  |\n' "$1" "$2"
+  else
+    printf '| %s | %s | %s | %s %% |\n' "$1" "$2" "$3" "$(share "$2" "$3")"
+  fi
+}
+
+echo
+echo "Where the instructions of the HP-MLADRC 3-axis + mixer tick go (Cortex-M4F, same build and method):"
+echo
+echo "| module | instructions/call | calls per HP 3-axis tick | share of the HP 3-axis tick |"
+echo "|---|---:|---:|---:|"
+brow "ladrc_leso_step (each axis's observer and its HP shadow)" "$leso" 6
+brow "ladrc_levant_step (implicit, the HP axis default)" "$levant" 3
+brow "ladrc_hp_step without its RLS updates (gate, phase, model)" "$hp_own" 3
+brow "ladrc_rls_update, 3 params (HP fit of bias and sinusoid, every tick)" "$rls3" 3
+brow "ladrc_rls_update, 2 params (HP frequency fit, every $decimation ticks)" "$rls2" "$(calc "3 / $decimation")"
+brow "rest of ladrc_axis_step_with_rate (checks, control law): a lone HP axis minus the rows above" "$axis_rest" 3
+brow "ladrc_mixer_thrust_from_tilt" "$thrust" 1
+brow "ladrc_mixer_step (allocate, saturate)" "$mixer" 1
+brow "rest of the 3-axis tick (coupling feed, set_applied): the tick minus 3 lone axes and the mixer rows" "$att_rest" 1
+brow "HP-MLADRC 3 axes + mixer, measured" "$hp3" 1
+brow "not in this tick: ladrc_td_step (LADRC's shaper)" "$(mod ladrc_td_step)" 0
+brow "not in this tick: ladrc_lp_step (LP-MLADRC, with its 1-param RLS)" "$(mod ladrc_lp_step)" 0
+brow "not in this tick: ladrc_pid_step (PID)" "$(mod ladrc_pid_step)" 0
+echo
+echo "Each module is timed alone like the ticks ($(sed -n 's/^BENCH clock .*; \([0-9]* ticks per block.*\)$/\1/p' "$tmp/run1")), configured as the axis defaults configure it, on the inputs it sees in the HP 3-axis case: the recorded torques and thrust of that case, the references and angles; ladrc_hp_step and the RLS on the disturbance 20 + 120 sin(3 t) rad/s^2 plus uniform noise of +-0.5 and its regressors. Lone axes: three HP-MLADRC axes stepped side by side, no attitude layer, no mixer ($lone instructions per tick for the three). The two \"rest\" rows make the shares add up to the measured tick, so they also carry any difference between the modules alone and inside the tick."

@@ -12,13 +12,15 @@
 #   cortex-m4f   cross build, suite under qemu (mps2-an386), library size
 #   no-heap      no heap/stdio use and no writable globals, host + cross archive
 #   cppcheck     static analysis of src/
+#   bench        tools/bench.sh --check: instructions per tick on the Cortex-M4F,
+#                sizes and tick stack against tools/bench/limits.txt
 #
 # Missing tools are installed with apt-get (as root, or through sudo).
 set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
-STAGES=(host-debug host-double coverage asan-ubsan cortex-m4f no-heap cppcheck)
+STAGES=(host-debug host-double coverage asan-ubsan cortex-m4f no-heap cppcheck bench)
 
 # What each stage needs: "stage check package". A check is a command name,
 # "py:<module>" for a Python module, or "newlib" for the Arm C library;
@@ -35,6 +37,11 @@ REQUIREMENTS=(
   "no-heap arm-none-eabi-gcc gcc-arm-none-eabi"
   "no-heap newlib libnewlib-arm-none-eabi"
   "cppcheck cppcheck cppcheck"
+  "bench arm-none-eabi-gcc gcc-arm-none-eabi"
+  "bench newlib libnewlib-arm-none-eabi"
+  "bench qemu-system-arm qemu-system-arm"
+  "bench arm-none-eabi-size binutils-arm-none-eabi"
+  "bench python3 python3"
   "host-debug py:matplotlib python3-matplotlib"
   "host-debug py:numpy python3-numpy"
   "host-double py:matplotlib python3-matplotlib"
@@ -47,7 +54,7 @@ REQUIREMENTS=(
 
 JOBS=2
 
-usage() { sed -n '2,16s/^# \{0,1\}//p' "$0"; }
+usage() { sed -n '2,18s/^# \{0,1\}//p' "$0"; }
 
 have() {
   case $1 in
@@ -127,6 +134,10 @@ stage_cppcheck() {
     -I include src
   echo "cppcheck: no findings"
 }
+
+# Deterministic figures only (no wall clock): instruction counts under qemu
+# -icount, sizes, stack.
+stage_bench() { tools/bench.sh --check; }
 
 case ${1:-} in
   -h | --help) usage; exit 0 ;;
