@@ -67,24 +67,38 @@ void ladrc_attitude_reset(ladrc_attitude_t *att, const ladrc_real_t angle_rad[LA
     }
 }
 
-/* h for each axis from the other axes' rate and acceleration estimates. */
+/* h of one axis from the other two axes' rates and accelerations (a, b in
+ * roll -> pitch -> yaw -> roll order after the axis). */
+static ladrc_real_t feed(const ladrc_attitude_t *att, unsigned i, ladrc_real_t rate_a,
+                         ladrc_real_t accel_a, ladrc_real_t rate_b, ladrc_real_t accel_b,
+                         ladrc_real_t accel_i)
+{
+    return att->coupling[i] * (accel_a * rate_b + rate_a * accel_b) - att->drag_per_s[i] * accel_i;
+}
+
+/* Sets h on each axis from the other axes' rate and acceleration estimates.
+ * Kept out of line so that its locals are not on the stack of the axis steps. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
 static void update_feed(ladrc_attitude_t *att)
 {
-    ladrc_real_t rate[LADRC_AXES];
-    ladrc_real_t accel[LADRC_AXES];
+    ladrc_axis_t *ax = att->axis;
+    /* A PID axis has no observer: rate and acceleration 0, and it gets no feed. */
+    const ladrc_real_t w0 = (ax[0].variant != LADRC_VARIANT_PID) ? ax[0].leso.z2 : LADRC_R(0.0);
+    const ladrc_real_t w1 = (ax[1].variant != LADRC_VARIANT_PID) ? ax[1].leso.z2 : LADRC_R(0.0);
+    const ladrc_real_t w2 = (ax[2].variant != LADRC_VARIANT_PID) ? ax[2].leso.z2 : LADRC_R(0.0);
+    const ladrc_real_t a0 = ladrc_axis_get_accel(&ax[0]);
+    const ladrc_real_t a1 = ladrc_axis_get_accel(&ax[1]);
+    const ladrc_real_t a2 = ladrc_axis_get_accel(&ax[2]);
+    att->feed_rad_s3[LADRC_ROLL] = feed(att, LADRC_ROLL, w1, a1, w2, a2, a0);
+    att->feed_rad_s3[LADRC_PITCH] = feed(att, LADRC_PITCH, w2, a2, w0, a0, a1);
+    att->feed_rad_s3[LADRC_YAW] = feed(att, LADRC_YAW, w0, a0, w1, a1, a2);
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
-        const ladrc_axis_t *ax = &att->axis[i];
-        const int observed = ax->variant != LADRC_VARIANT_PID;
-        rate[i] = observed ? ax->leso.z2 : LADRC_R(0.0);
-        accel[i] = ladrc_axis_get_accel(ax);
-    }
-    for (unsigned i = 0; i < LADRC_AXES; ++i) {
-        const unsigned a = (i + 1u) % LADRC_AXES; /* roll: pitch, yaw; pitch: yaw, roll; ... */
-        const unsigned b = (i + 2u) % LADRC_AXES;
-        const ladrc_real_t h = att->coupling[i] * (accel[a] * rate[b] + rate[a] * accel[b]) -
-                               att->drag_per_s[i] * accel[i];
-        att->feed_rad_s3[i] = (att->axis[i].variant != LADRC_VARIANT_PID) ? h : LADRC_R(0.0);
-        ladrc_axis_set_disturbance_rate(&att->axis[i], att->feed_rad_s3[i]);
+        if (ax[i].variant == LADRC_VARIANT_PID) {
+            att->feed_rad_s3[i] = LADRC_R(0.0);
+        }
+        ladrc_axis_set_disturbance_rate(&ax[i], att->feed_rad_s3[i]);
     }
 }
 
@@ -102,7 +116,7 @@ ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_
         torque_Nm[i] = (rate_rad_s != NULL)
                            ? ladrc_axis_step_with_rate(ax, ref_rad[i], angle_rad[i], rate_rad_s[i])
                            : ladrc_axis_step(ax, ref_rad[i], angle_rad[i]);
-        faults |= ladrc_axis_get_faults(ax);
+        faults |= ax->faults;
     }
     return faults;
 }

@@ -7,21 +7,19 @@
 
 #include <stddef.h>
 
-/* Sign of each rotor's share of the yaw torque (drag direction). */
-static const ladrc_real_t yaw_sign[4] = {LADRC_R(-1.0), LADRC_R(1.0), LADRC_R(-1.0), LADRC_R(1.0)};
-
 /* Just below pi/2 in both builds (float rounds pi/2 itself upwards). */
 #define HALF_PI_BELOW LADRC_R(1.5707963)
 
+/* 1 if all n values are finite: x * 0 is 0 for finite x and NaN otherwise, so
+ * one comparison of the sum checks them all. */
 static int all_finite(const ladrc_real_t *v, int n)
 {
+    ladrc_real_t zero_if_finite = LADRC_R(0.0);
     int i;
     for (i = 0; i < n; ++i) {
-        if (!ladrc_is_finite(v[i])) {
-            return 0;
-        }
+        zero_if_finite += v[i] * LADRC_R(0.0);
     }
-    return 1;
+    return zero_if_finite == LADRC_R(0.0);
 }
 
 static ladrc_real_t min4(const ladrc_real_t v[4])
@@ -84,24 +82,12 @@ ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *c
     mx->r4_per_Nm = LADRC_R(0.25) / cfg->b_Nm_s2;
     mx->weight_N = cfg->mass_kg * cfg->g_m_s2;
     mx->cos_tilt_min = ladrc_cos(cfg->tilt_max_rad);
+    mx->thrust_max_N = mx->weight_N / mx->cos_tilt_min;
     mx->w2_min_rad2_s2 = cfg->w2_min_rad2_s2;
     mx->w2_max_rad2_s2 = cfg->w2_max_rad2_s2;
     mx->mode = cfg->mode;
     ladrc_mixer_reset(mx);
     return LADRC_OK;
-}
-
-void ladrc_mixer_reset(ladrc_mixer_t *mx)
-{
-    static const ladrc_real_t no_torque[3] = {LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0)};
-    ladrc_real_t w2[4];
-
-    LADRC_ASSERT(mx != NULL);
-    if (mx == NULL) {
-        return;
-    }
-    ladrc_mixer_allocate(mx, mx->weight_N, no_torque, w2);
-    ladrc_mixer_saturate(mx, w2, mx->weight_N, no_torque, &mx->out);
 }
 
 ladrc_real_t ladrc_mixer_thrust_from_tilt(const ladrc_mixer_t *mx, ladrc_real_t roll_rad,
@@ -114,49 +100,71 @@ ladrc_real_t ladrc_mixer_thrust_from_tilt(const ladrc_mixer_t *mx, ladrc_real_t 
         return LADRC_R(0.0);
     }
     c = ladrc_cos(roll_rad) * ladrc_cos(pitch_rad);
-    if (!ladrc_is_finite(c)) {
-        return mx->weight_N; /* attitude unknown: no tilt compensation */
+    if (c > mx->cos_tilt_min) {
+        return mx->weight_N / c;
     }
-    /* The floor also catches inverted flight, where the product is <= 0. */
-    return mx->weight_N / ((c > mx->cos_tilt_min) ? c : mx->cos_tilt_min);
+    /* Beyond the tilt limit, inverted flight (c <= 0) included: the capped thrust.
+     * NaN (attitude unknown): no tilt compensation. */
+    return (c == c) ? mx->thrust_max_N : mx->weight_N;
+}
+
+/* Allocation without argument checks (see ladrc_mixer_allocate). */
+static void allocate(const ladrc_mixer_t *mx, ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
+                     ladrc_real_t w2[4])
+{
+    const ladrc_real_t a4 = thrust_N * mx->a4_per_N;
+    const ladrc_real_t p2 = torque_Nm[0] * mx->p2_per_Nm;
+    const ladrc_real_t q2 = torque_Nm[1] * mx->p2_per_Nm;
+    const ladrc_real_t r4 = torque_Nm[2] * mx->r4_per_Nm;
+    w2[0] = a4 - q2 - r4;
+    w2[1] = a4 + p2 + r4;
+    w2[2] = a4 + q2 - r4;
+    w2[3] = a4 - p2 + r4;
 }
 
 void ladrc_mixer_allocate(const ladrc_mixer_t *mx, ladrc_real_t thrust_N,
                           const ladrc_real_t torque_Nm[3], ladrc_real_t w2_rad2_s2[4])
 {
     LADRC_ASSERT(mx != NULL && torque_Nm != NULL && w2_rad2_s2 != NULL);
-    if (mx == NULL || torque_Nm == NULL || w2_rad2_s2 == NULL) {
-        return;
+    if (mx != NULL && torque_Nm != NULL && w2_rad2_s2 != NULL) {
+        allocate(mx, thrust_N, torque_Nm, w2_rad2_s2);
     }
-    {
-        const ladrc_real_t a4 = thrust_N * mx->a4_per_N;
-        const ladrc_real_t p2 = torque_Nm[0] * mx->p2_per_Nm;
-        const ladrc_real_t q2 = torque_Nm[1] * mx->p2_per_Nm;
-        const ladrc_real_t r4 = torque_Nm[2] * mx->r4_per_Nm;
-        w2_rad2_s2[0] = a4 - q2 - r4;
-        w2_rad2_s2[1] = a4 + p2 + r4;
-        w2_rad2_s2[2] = a4 + q2 - r4;
-        w2_rad2_s2[3] = a4 - p2 + r4;
-    }
+}
+
+/* Forward model without argument checks: f = {thrust (N), roll, pitch, yaw torque (N m)}. */
+static void forward(const ladrc_mixer_t *mx, const ladrc_real_t w[4], ladrc_real_t f[4])
+{
+    f[0] = mx->kL_N_s2 * ((w[0] + w[2]) + (w[1] + w[3]));
+    f[1] = mx->lkL_Nm_s2 * (w[1] - w[3]);
+    f[2] = mx->lkL_Nm_s2 * (w[2] - w[0]);
+    f[3] = mx->b_Nm_s2 * ((w[1] + w[3]) - (w[0] + w[2]));
 }
 
 void ladrc_mixer_forward(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[4],
                          ladrc_real_t *thrust_N, ladrc_real_t torque_Nm[3])
 {
-    const ladrc_real_t *w = w2_rad2_s2;
+    ladrc_real_t f[4];
 
     LADRC_ASSERT(mx != NULL && w2_rad2_s2 != NULL && thrust_N != NULL && torque_Nm != NULL);
     if (mx == NULL || w2_rad2_s2 == NULL || thrust_N == NULL || torque_Nm == NULL) {
         return;
     }
-    *thrust_N = mx->kL_N_s2 * ((w[0] + w[2]) + (w[1] + w[3]));
-    torque_Nm[0] = mx->lkL_Nm_s2 * (w[1] - w[3]);
-    torque_Nm[1] = mx->lkL_Nm_s2 * (w[2] - w[0]);
-    torque_Nm[2] = mx->b_Nm_s2 * ((w[1] + w[3]) - (w[0] + w[2]));
+    forward(mx, w2_rad2_s2, f);
+    *thrust_N = f[0];
+    torque_Nm[0] = f[1];
+    torque_Nm[1] = f[2];
+    torque_Nm[2] = f[3];
+}
+
+/* 1 when no rotor limit acts: ideal mode, or every w^2 within [w2_min, w2_max]. */
+static int within_limits(const ladrc_mixer_t *mx, const ladrc_real_t w2[4])
+{
+    return mx->mode != LADRC_MIXER_SATURATE ||
+           !(min4(w2) < mx->w2_min_rad2_s2 || max4(w2) > mx->w2_max_rad2_s2);
 }
 
 /* Moves w2 into [w2_min, w2_max] by priority; returns the LADRC_MIXER_SAT_*
- * bits of the axes it had to change. */
+ * bits of the axes it had to change. Rotors 2 and 4 carry +yaw/4, 1 and 3 -yaw/4. */
 static uint8_t desaturate(const ladrc_mixer_t *mx, ladrc_real_t w2[4])
 {
     const ladrc_real_t lo = mx->w2_min_rad2_s2;
@@ -164,17 +172,18 @@ static uint8_t desaturate(const ladrc_mixer_t *mx, ladrc_real_t w2[4])
     const ladrc_real_t range = hi - lo;
     const ladrc_real_t collective = LADRC_R(0.25) * ((w2[0] + w2[2]) + (w2[1] + w2[3]));
     const ladrc_real_t yaw = LADRC_R(0.25) * ((w2[1] + w2[3]) - (w2[0] + w2[2]));
+    const ladrc_real_t dy = LADRC_R(2.0) * ladrc_fabs(yaw); /* yaw spread between the pairs */
     ladrc_real_t rp[4];
     ladrc_real_t spread;
-    ladrc_real_t k_yaw = LADRC_R(1.0);
+    ladrc_real_t yaw_kept = yaw;
     ladrc_real_t c;
     uint8_t changed = 0u;
     int i;
-    int j;
 
-    for (i = 0; i < 4; ++i) {
-        rp[i] = w2[i] - collective - yaw_sign[i] * yaw;
-    }
+    rp[0] = w2[0] - collective + yaw;
+    rp[1] = w2[1] - collective - yaw;
+    rp[2] = w2[2] - collective + yaw;
+    rp[3] = w2[3] - collective - yaw;
     /* 1. Roll and pitch alone must fit the range: scale both alike if not. */
     spread = max4(rp) - min4(rp);
     if (spread > range) {
@@ -184,24 +193,22 @@ static uint8_t desaturate(const ladrc_mixer_t *mx, ladrc_real_t w2[4])
         }
         changed = (uint8_t)(LADRC_MIXER_SAT_ROLL | LADRC_MIXER_SAT_PITCH); /* first cut */
     }
-    /* 2. Largest yaw share k with every pairwise difference of rp + k yaw
-     *    within the range; at k = 0 all fit after step 1. */
-    for (i = 0; i < 4; ++i) {
-        for (j = 0; j < 4; ++j) {
-            const ladrc_real_t dy = (yaw_sign[i] - yaw_sign[j]) * yaw;
-            if (dy > LADRC_R(0.0)) {
-                const ladrc_real_t k = (range - (rp[i] - rp[j])) / dy;
-                k_yaw = (k < k_yaw) ? k : k_yaw;
-            }
+    /* 2. Largest yaw share k <= 1 with the highest rotor of the pair that yaw raises
+     *    and the lowest of the other within the range; at k = 0 all fit after step 1. */
+    if (dy > LADRC_R(0.0)) {
+        const int up = (yaw > LADRC_R(0.0)) ? 1 : 0; /* first rotor of the raised pair */
+        const ladrc_real_t top = (rp[up] > rp[up + 2]) ? rp[up] : rp[up + 2];
+        const ladrc_real_t bottom = (rp[1 - up] < rp[3 - up]) ? rp[1 - up] : rp[3 - up];
+        const ladrc_real_t k = (range - (top - bottom)) / dy;
+        if (k < LADRC_R(1.0)) {
+            yaw_kept = ((k > LADRC_R(0.0)) ? k : LADRC_R(0.0)) * yaw; /* rounding after step 1 */
+            changed = (uint8_t)(changed | LADRC_MIXER_SAT_YAW);
         }
     }
-    if (k_yaw < LADRC_R(1.0)) {
-        k_yaw = (k_yaw > LADRC_R(0.0)) ? k_yaw : LADRC_R(0.0); /* rounding after step 1 */
-        changed = (uint8_t)(changed | LADRC_MIXER_SAT_YAW);
-    }
-    for (i = 0; i < 4; ++i) {
-        rp[i] += yaw_sign[i] * (k_yaw * yaw);
-    }
+    rp[0] -= yaw_kept;
+    rp[1] += yaw_kept;
+    rp[2] -= yaw_kept;
+    rp[3] += yaw_kept;
     /* 3. The collective nearest the request that keeps every rotor in range. */
     c = ladrc_clamp(collective, lo - min4(rp), hi - max4(rp));
     if (c != collective) {
@@ -214,80 +221,115 @@ static uint8_t desaturate(const ladrc_mixer_t *mx, ladrc_real_t w2[4])
     return changed;
 }
 
-/* Achieved value of one axis: its request unless the axis was cut back. */
-static ladrc_real_t achieved(ladrc_real_t requested, ladrc_real_t mixed, uint8_t changed,
-                             unsigned bit, uint8_t *saturated)
+/* Desaturates w2 and turns f (thrust, roll, pitch, yaw: the request on entry)
+ * into the achieved values: the forward model of w2 on an axis that was cut
+ * back, the request itself on the others. Returns the LADRC_MIXER_SAT_* bits. */
+static uint8_t limit(const ladrc_mixer_t *mx, ladrc_real_t w2[4], ladrc_real_t f[4])
 {
-    if ((changed & bit) == 0u || mixed == requested) {
-        return requested;
+    static const uint8_t bit[4] = {LADRC_MIXER_SAT_THRUST, LADRC_MIXER_SAT_ROLL,
+                                   LADRC_MIXER_SAT_PITCH, LADRC_MIXER_SAT_YAW};
+    const uint8_t changed = desaturate(mx, w2);
+    ladrc_real_t mixed[4];
+    uint8_t saturated = 0u;
+    int i;
+
+    forward(mx, w2, mixed);
+    for (i = 0; i < 4; ++i) {
+        if ((changed & bit[i]) != 0u && mixed[i] != f[i]) {
+            f[i] = mixed[i];
+            saturated = (uint8_t)(saturated | bit[i]);
+        }
     }
-    *saturated = (uint8_t)(*saturated | bit);
-    return mixed;
+    return saturated;
+}
+
+/* Writes one mix to out: w^2, w, achieved f = {thrust, roll, pitch, yaw}, bits. */
+static void commit(ladrc_mixer_output_t *out, const ladrc_real_t w2[4], const ladrc_real_t f[4],
+                   uint8_t saturated)
+{
+    int i;
+    for (i = 0; i < 4; ++i) {
+        out->w2_rad2_s2[i] = w2[i];
+        out->w_rad_s[i] = (w2[i] > LADRC_R(0.0)) ? ladrc_sqrt(w2[i]) : LADRC_R(0.0);
+    }
+    out->thrust_N = f[0];
+    out->torque_Nm[0] = f[1];
+    out->torque_Nm[1] = f[2];
+    out->torque_Nm[2] = f[3];
+    out->saturated = saturated;
+    out->faults = LADRC_FAULT_NONE;
 }
 
 void ladrc_mixer_saturate(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[4],
                           ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
                           ladrc_mixer_output_t *out)
 {
-    static const unsigned axis_bit[3] = {LADRC_MIXER_SAT_ROLL, LADRC_MIXER_SAT_PITCH,
-                                         LADRC_MIXER_SAT_YAW};
-    ladrc_real_t thrust_mixed_N;
-    ladrc_real_t torque_mixed_Nm[3];
-    uint8_t changed = 0u;
+    ladrc_real_t w2[4];
+    ladrc_real_t f[4];
+    uint8_t saturated = 0u;
     int i;
 
     LADRC_ASSERT(mx != NULL && w2_rad2_s2 != NULL && torque_Nm != NULL && out != NULL);
     if (mx == NULL || w2_rad2_s2 == NULL || torque_Nm == NULL || out == NULL) {
         return;
     }
+    f[0] = thrust_N;
+    f[1] = torque_Nm[0];
+    f[2] = torque_Nm[1];
+    f[3] = torque_Nm[2];
     for (i = 0; i < 4; ++i) {
-        out->w2_rad2_s2[i] = w2_rad2_s2[i];
+        w2[i] = w2_rad2_s2[i];
     }
-    /* Nothing to do when every rotor is already in range. */
-    if (mx->mode == LADRC_MIXER_SATURATE &&
-        (min4(w2_rad2_s2) < mx->w2_min_rad2_s2 || max4(w2_rad2_s2) > mx->w2_max_rad2_s2)) {
-        changed = desaturate(mx, out->w2_rad2_s2);
+    if (!within_limits(mx, w2)) {
+        saturated = limit(mx, w2, f);
     }
-    ladrc_mixer_forward(mx, out->w2_rad2_s2, &thrust_mixed_N, torque_mixed_Nm);
-    out->saturated = 0u;
-    out->thrust_N =
-        achieved(thrust_N, thrust_mixed_N, changed, LADRC_MIXER_SAT_THRUST, &out->saturated);
-    for (i = 0; i < 3; ++i) {
-        out->torque_Nm[i] =
-            achieved(torque_Nm[i], torque_mixed_Nm[i], changed, axis_bit[i], &out->saturated);
+    commit(out, w2, f, saturated);
+}
+
+void ladrc_mixer_reset(ladrc_mixer_t *mx)
+{
+    static const ladrc_real_t no_torque[3] = {LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0)};
+
+    LADRC_ASSERT(mx != NULL);
+    if (mx == NULL) {
+        return;
     }
-    for (i = 0; i < 4; ++i) {
-        const ladrc_real_t w2 = out->w2_rad2_s2[i];
-        out->w_rad_s[i] = (w2 > LADRC_R(0.0)) ? ladrc_sqrt(w2) : LADRC_R(0.0);
-    }
-    out->faults = LADRC_FAULT_NONE;
+    (void)ladrc_mixer_step(mx, mx->weight_N, no_torque, NULL);
+    mx->out.faults = LADRC_FAULT_NONE;
 }
 
 ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N,
                                const ladrc_real_t torque_Nm[3], ladrc_mixer_output_t *out)
 {
-    ladrc_fault_t faults = LADRC_FAULT_NONE;
+    ladrc_fault_t faults = LADRC_FAULT_INPUT;
 
     LADRC_ASSERT(mx != NULL && torque_Nm != NULL);
     if (mx == NULL) {
         return LADRC_FAULT_NONE;
     }
-    if (torque_Nm == NULL || !ladrc_is_finite(thrust_N) || !all_finite(torque_Nm, 3)) {
-        faults = LADRC_FAULT_INPUT;
-    } else {
-        ladrc_real_t w2[4];
-        ladrc_mixer_output_t next;
-        ladrc_mixer_allocate(mx, thrust_N, torque_Nm, w2);
-        /* Huge finite requests can overflow the allocation or the forward model. */
-        if (!all_finite(w2, 4)) {
+    if (torque_Nm != NULL) {
+        /* The request, then what was achieved of it: thrust, roll, pitch, yaw. */
+        ladrc_real_t f[4];
+        f[0] = thrust_N;
+        f[1] = torque_Nm[0];
+        f[2] = torque_Nm[1];
+        f[3] = torque_Nm[2];
+        if (all_finite(f, 4)) {
+            ladrc_real_t w2[4];
+            uint8_t saturated = 0u;
+            int finite;
+            allocate(mx, thrust_N, torque_Nm, w2);
+            /* Huge finite requests can overflow the allocation, the limits or the
+             * forward model; within the limits the result is the finite request. */
+            finite = all_finite(w2, 4);
+            if (finite && !within_limits(mx, w2)) {
+                saturated = limit(mx, w2, f);
+                finite = all_finite(w2, 4) && all_finite(f, 4);
+            }
             faults = LADRC_FAULT_STATE;
-        } else {
-            ladrc_mixer_saturate(mx, w2, thrust_N, torque_Nm, &next);
-            if (!all_finite(next.w2_rad2_s2, 4) || !all_finite(&next.thrust_N, 1) ||
-                !all_finite(next.torque_Nm, 3)) {
-                faults = LADRC_FAULT_STATE;
-            } else {
-                mx->out = next;
+            if (finite) {
+                commit(&mx->out, w2, f, saturated);
+                faults = LADRC_FAULT_NONE;
             }
         }
     }

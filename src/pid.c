@@ -65,9 +65,10 @@ ladrc_status_t ladrc_pid_init(ladrc_pid_t *pid, const ladrc_pid_config_t *cfg)
 
     pid->dt_s = cfg->dt_s;
     pid->kp = cfg->kp;
-    pid->ki = cfg->ki;
+    pid->ki_dt = cfg->ki * cfg->dt_s;
     pid->kd = cfg->kd;
     pid->d_alpha = cfg->dt_s / (cfg->d_filter_tau_s + cfg->dt_s);
+    pid->d_keep = LADRC_R(1.0) - pid->d_alpha;
     pid->i_limit_Nm = cfg->i_limit_Nm;
     pid->u_min_Nm = cfg->u_min_Nm;
     pid->u_max_Nm = cfg->u_max_Nm;
@@ -107,7 +108,6 @@ ladrc_real_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t
                             const ladrc_real_t *rate_rad_s)
 {
     ladrc_fault_t faults = LADRC_FAULT_NONE;
-    int rate_ok;
     ladrc_real_t error_rad;
     ladrc_real_t d_in_rad_s;
     ladrc_real_t d_rad_s;
@@ -118,39 +118,40 @@ ladrc_real_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t
     if (pid == NULL) {
         return LADRC_R(0.0);
     }
-
-    rate_ok = (rate_rad_s != NULL) && ladrc_is_finite(*rate_rad_s);
-    if (rate_rad_s != NULL && !rate_ok) {
-        faults |= LADRC_FAULT_RATE;
-    }
     if (!ladrc_is_finite(ref_rad) || !ladrc_is_finite(meas_rad)) {
-        pid->faults = (ladrc_fault_t)(faults | LADRC_FAULT_INPUT);
+        faults = LADRC_FAULT_INPUT;
+    }
+    /* Derivative on measurement: a reference step gives no derivative kick. */
+    if (rate_rad_s != NULL && ladrc_is_finite(*rate_rad_s)) {
+        d_in_rad_s = *rate_rad_s;
+    } else {
+        if (rate_rad_s != NULL) {
+            faults |= LADRC_FAULT_RATE;
+        }
+        /* 0 on the first sample: nothing to difference yet. */
+        d_in_rad_s = (pid->has_prev_meas != 0u) ? (meas_rad - pid->prev_meas_rad) / pid->dt_s
+                                                 : LADRC_R(0.0);
+    }
+    if ((faults & LADRC_FAULT_INPUT) != 0u) {
+        pid->faults = faults;
         return pid->output_Nm;
     }
 
     error_rad = ref_rad - meas_rad;
-
-    /* Derivative on measurement: a reference step gives no derivative kick. */
-    if (rate_ok) {
-        d_in_rad_s = *rate_rad_s;
-    } else if (pid->has_prev_meas != 0u) {
-        d_in_rad_s = (meas_rad - pid->prev_meas_rad) / pid->dt_s;
-    } else {
-        d_in_rad_s = LADRC_R(0.0); /* first sample: nothing to difference yet */
-    }
     /* Written as a blend so that alpha = 1 (tau = 0) gives d = m exactly. */
-    d_rad_s = (LADRC_R(1.0) - pid->d_alpha) * pid->d_filtered_rad_s + pid->d_alpha * d_in_rad_s;
+    d_rad_s = pid->d_keep * pid->d_filtered_rad_s + pid->d_alpha * d_in_rad_s;
 
     integral_Nm = pid->integral_Nm;
     if (!integrator_frozen(pid, error_rad)) {
-        integral_Nm = ladrc_clamp(integral_Nm + pid->ki * pid->dt_s * error_rad, -pid->i_limit_Nm,
-                                  pid->i_limit_Nm);
+        integral_Nm =
+            ladrc_clamp(integral_Nm + pid->ki_dt * error_rad, -pid->i_limit_Nm, pid->i_limit_Nm);
     }
     unclamped_Nm = pid->kp * error_rad + integral_Nm - pid->kd * d_rad_s;
 
-    /* Huge finite inputs can overflow; keep the last good state and output. */
-    if (!ladrc_is_finite(d_rad_s) || !ladrc_is_finite(integral_Nm) ||
-        !ladrc_is_finite(unclamped_Nm)) {
+    /* Huge finite inputs can overflow; keep the last good state and output.
+     * x * 0 is 0 for finite x and NaN otherwise: one test covers all three. */
+    if (!(d_rad_s * LADRC_R(0.0) + integral_Nm * LADRC_R(0.0) + unclamped_Nm * LADRC_R(0.0) ==
+          LADRC_R(0.0))) {
         pid->faults = (ladrc_fault_t)(faults | LADRC_FAULT_STATE);
         return pid->output_Nm;
     }

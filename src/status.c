@@ -1,64 +1,101 @@
-/* Status code texts: one static const table, so it lives in flash. */
+/*
+ * Status code texts, in flash: one pool of strings and a table of 16-bit
+ * offsets into it. Each text is the enum name itself, followed by ": " and an
+ * explanation unless the library is built with LADRC_STATUS_NAMES_ONLY (CMake
+ * option LADRC_STATUS_TEXTS=names), which keeps only the names.
+ */
 #include "ladrc/types.h"
+
+#include <stddef.h>
+
+/* X(code, explanation), in the order of ladrc_status_t. */
+#define LADRC_STATUS_LIST(X) \
+    X(LADRC_OK, "no error") \
+    X(LADRC_ERR_NULL, "a pointer argument is NULL") \
+    X(LADRC_ERR_DT_S, "dt_s must be finite and > 0") \
+    X(LADRC_ERR_WO_RAD_S, "wo_rad_s must be finite and > 0") \
+    X(LADRC_ERR_WC_RAD_S, "wc_rad_s must be finite and > 0") \
+    X(LADRC_ERR_B0, "b0 must be finite and non-zero") \
+    X(LADRC_ERR_LESO_METHOD, "leso_method is not a ladrc_leso_method_t") \
+    X(LADRC_ERR_LESO_EULER_UNSTABLE, "Euler LESO needs wo_rad_s * dt_s < 2") \
+    X(LADRC_ERR_SHAPER, "shaper is not a ladrc_shaper_t") \
+    X(LADRC_ERR_TD_ACCEL_RAD_S2, "td accel_rad_s2 must be finite and > 0") \
+    X(LADRC_ERR_TD_H0_S, "td h0_s must be finite and >= dt_s") \
+    X(LADRC_ERR_VARIANT, "variant is not a ladrc_variant_t") \
+    X(LADRC_ERR_U_LIMITS, "u_min_Nm < u_max_Nm required, neither NaN") \
+    X(LADRC_ERR_PID_KP, "kp must be finite and >= 0") \
+    X(LADRC_ERR_PID_KI, "ki must be finite and >= 0") \
+    X(LADRC_ERR_PID_KD, "kd must be finite and >= 0") \
+    X(LADRC_ERR_PID_D_TAU_S, "d_filter_tau_s must be finite and >= 0") \
+    X(LADRC_ERR_PID_I_LIMIT_NM, "i_limit_Nm must be >= 0 and not NaN") \
+    X(LADRC_ERR_SETTLING_TIME_S, "settling_time_s must be finite and > 0") \
+    X(LADRC_ERR_PLANT_ORDER, "plant order must be 1, 2 or 3") \
+    X(LADRC_ERR_INERTIA_KG_M2, "inertia_kg_m2 must be finite and > 0") \
+    X(LADRC_ERR_WO_RATIO, "the observer/controller bandwidth ratio must be finite and > 0") \
+    X(LADRC_ERR_RLS_N_PARAMS, "rls n_params must be 1..LADRC_RLS_MAX_PARAMS") \
+    X(LADRC_ERR_RLS_LAMBDA0, "rls lambda0_per_s must be finite, >= 0 and <= 1 / dt_s") \
+    X(LADRC_ERR_RLS_P_BOUND, "rls p_bound must be finite and > 0") \
+    X(LADRC_ERR_RLS_P_INITIAL, "rls p_initial must be finite, > 0 and <= p_bound / n_params") \
+    X(LADRC_ERR_MIXER_KL_N_S2, "mixer kL_N_s2 must be finite and > 0") \
+    X(LADRC_ERR_MIXER_ARM_M, "mixer arm_m must be finite and > 0") \
+    X(LADRC_ERR_MIXER_B_NM_S2, "mixer b_Nm_s2 must be finite and > 0") \
+    X(LADRC_ERR_MIXER_MASS_KG, "mixer mass_kg must be finite and > 0") \
+    X(LADRC_ERR_MIXER_G_M_S2, "mixer g_m_s2 must be finite and > 0") \
+    X(LADRC_ERR_MIXER_MODE, "mixer mode is not a ladrc_mixer_mode_t") \
+    X(LADRC_ERR_MIXER_W2_MIN, "mixer w2_min_rad2_s2 must be finite, and >= 0 unless ideal") \
+    X(LADRC_ERR_MIXER_W2_MAX, "mixer w2_max_rad2_s2 must be finite and > w2_min_rad2_s2") \
+    X(LADRC_ERR_MIXER_TILT_MAX_RAD, "mixer tilt_max_rad must lie in (0, pi/2)") \
+    X(LADRC_ERR_EST_LAMBDA0, "estimator lambda0_per_s must be finite and > 0") \
+    X(LADRC_ERR_EST_K0, "estimator k0_per_s must be finite and > 0") \
+    X(LADRC_ERR_HP_FREQ_MODE, "hp freq_mode is not a ladrc_hp_freq_mode_t") \
+    X(LADRC_ERR_HP_FREQ_RAD_S, "hp freq_rad_s must be finite, > 0 and < pi / dt_s") \
+    X(LADRC_ERR_HP_FREQ_RANGE, "hp needs 0 < freq_min < freq_max and freq_max T < pi/2") \
+    X(LADRC_ERR_HP_DECIMATION, "hp decimation must be >= 1") \
+    X(LADRC_ERR_HP_SAMPLE_LAG, "hp sample_lag_wo_rad_s must be finite and >= 0") \
+    X(LADRC_ERR_DRAG_NMS, "drag_Nms must be finite and >= 0") \
+    X(LADRC_ERR_COUPLING_FEED, "coupling_feed must be 0 or 1") \
+    X(LADRC_ERR_LEVANT_METHOD, "method is not a ladrc_levant_method_t") \
+    X(LADRC_ERR_LEVANT_GAINS, "gains is not a ladrc_levant_gains_t") \
+    X(LADRC_ERR_LEVANT_LIPSCHITZ, "lipschitz_rad_s4 must be finite and > 0") \
+    X(LADRC_ERR_LEVANT_L1, "l1 must be finite and > 0") \
+    X(LADRC_ERR_LEVANT_L2, "l2 must be finite and > 0") \
+    X(LADRC_ERR_LEVANT_L3, "l3 must be finite and > 0") \
+    X(LADRC_ERR_LEVANT_L4, "l4 must be finite and > 0") \
+    X(LADRC_ERR_LEVANT_RANGE, "dt_s and the gains give per-sample coefficients out of range")
+
+#ifdef LADRC_STATUS_NAMES_ONLY
+#define STATUS_TEXT(code, explanation) #code
+#else
+#define STATUS_TEXT(code, explanation) #code ": " explanation
+#endif
+
+/* The list must follow the enum: each code's position in the list is checked
+ * against its value at compile time (a negative array size otherwise). */
+#define POSITION(code, explanation) position_##code,
+enum { LADRC_STATUS_LIST(POSITION) list_length };
+#define CHECK_POSITION(code, explanation) typedef char check_##code[(position_##code == (int)code) ? 1 : -1];
+LADRC_STATUS_LIST(CHECK_POSITION)
+typedef char check_list_length[(list_length == (int)LADRC_STATUS_COUNT) ? 1 : -1];
+
+/* One array per text, so offsetof gives each text's place in the pool. */
+#define POOL_MEMBER(code, explanation) char code[sizeof STATUS_TEXT(code, explanation)];
+#define POOL_TEXT(code, explanation) STATUS_TEXT(code, explanation),
+#define POOL_OFFSET(code, explanation) (uint16_t)offsetof(status_pool_t, code),
+
+typedef struct {
+    LADRC_STATUS_LIST(POOL_MEMBER)
+    char unknown[sizeof STATUS_TEXT(LADRC_ERR_UNKNOWN, "not a ladrc_status_t")];
+} status_pool_t;
+
+static const status_pool_t pool = {
+    LADRC_STATUS_LIST(POOL_TEXT) STATUS_TEXT(LADRC_ERR_UNKNOWN, "not a ladrc_status_t")};
+
+static const uint16_t offsets[LADRC_STATUS_COUNT] = {LADRC_STATUS_LIST(POOL_OFFSET)};
 
 const char *ladrc_status_str(ladrc_status_t status)
 {
-    static const char *const texts[LADRC_STATUS_COUNT] = {
-        "LADRC_OK",
-        "LADRC_ERR_NULL: a pointer argument is NULL",
-        "LADRC_ERR_DT_S: dt_s must be finite and > 0",
-        "LADRC_ERR_WO_RAD_S: wo_rad_s must be finite and > 0",
-        "LADRC_ERR_WC_RAD_S: wc_rad_s must be finite and > 0",
-        "LADRC_ERR_B0: b0 must be finite and non-zero",
-        "LADRC_ERR_LESO_METHOD: leso_method is not a ladrc_leso_method_t",
-        "LADRC_ERR_LESO_EULER_UNSTABLE: Euler LESO needs wo_rad_s * dt_s < 2",
-        "LADRC_ERR_SHAPER: shaper is not a ladrc_shaper_t",
-        "LADRC_ERR_TD_ACCEL_RAD_S2: td accel_rad_s2 must be finite and > 0",
-        "LADRC_ERR_TD_H0_S: td h0_s must be finite and >= dt_s",
-        "LADRC_ERR_VARIANT: variant is not a ladrc_variant_t",
-        "LADRC_ERR_U_LIMITS: u_min_Nm < u_max_Nm required, neither NaN",
-        "LADRC_ERR_PID_KP: kp must be finite and >= 0",
-        "LADRC_ERR_PID_KI: ki must be finite and >= 0",
-        "LADRC_ERR_PID_KD: kd must be finite and >= 0",
-        "LADRC_ERR_PID_D_TAU_S: d_filter_tau_s must be finite and >= 0",
-        "LADRC_ERR_PID_I_LIMIT_NM: i_limit_Nm must be >= 0 and not NaN",
-        "LADRC_ERR_SETTLING_TIME_S: settling_time_s must be finite and > 0",
-        "LADRC_ERR_PLANT_ORDER: plant order must be 1, 2 or 3",
-        "LADRC_ERR_INERTIA_KG_M2: inertia_kg_m2 must be finite and > 0",
-        "LADRC_ERR_WO_RATIO: the observer/controller bandwidth ratio must be finite and > 0",
-        "LADRC_ERR_RLS_N_PARAMS: rls n_params must be 1..LADRC_RLS_MAX_PARAMS",
-        "LADRC_ERR_RLS_LAMBDA0: rls lambda0_per_s must be finite, >= 0 and <= 1 / dt_s",
-        "LADRC_ERR_RLS_P_BOUND: rls p_bound must be finite and > 0",
-        "LADRC_ERR_RLS_P_INITIAL: rls p_initial must be finite, > 0 and <= p_bound / n_params",
-        "LADRC_ERR_MIXER_KL_N_S2: mixer kL_N_s2 must be finite and > 0",
-        "LADRC_ERR_MIXER_ARM_M: mixer arm_m must be finite and > 0",
-        "LADRC_ERR_MIXER_B_NM_S2: mixer b_Nm_s2 must be finite and > 0",
-        "LADRC_ERR_MIXER_MASS_KG: mixer mass_kg must be finite and > 0",
-        "LADRC_ERR_MIXER_G_M_S2: mixer g_m_s2 must be finite and > 0",
-        "LADRC_ERR_MIXER_MODE: mixer mode is not a ladrc_mixer_mode_t",
-        "LADRC_ERR_MIXER_W2_MIN: mixer w2_min_rad2_s2 must be finite, and >= 0 unless ideal",
-        "LADRC_ERR_MIXER_W2_MAX: mixer w2_max_rad2_s2 must be finite and > w2_min_rad2_s2",
-        "LADRC_ERR_MIXER_TILT_MAX_RAD: mixer tilt_max_rad must lie in (0, pi/2)",
-        "LADRC_ERR_EST_LAMBDA0: estimator lambda0_per_s must be finite and > 0",
-        "LADRC_ERR_EST_K0: estimator k0_per_s must be finite and > 0",
-        "LADRC_ERR_HP_FREQ_MODE: hp freq_mode is not a ladrc_hp_freq_mode_t",
-        "LADRC_ERR_HP_FREQ_RAD_S: hp freq_rad_s must be finite, > 0 and < pi / dt_s",
-        "LADRC_ERR_HP_FREQ_RANGE: hp needs 0 < freq_min < freq_max and freq_max T < pi/2",
-        "LADRC_ERR_HP_DECIMATION: hp decimation must be >= 1",
-        "LADRC_ERR_HP_SAMPLE_LAG: hp sample_lag_wo_rad_s must be finite and >= 0",
-        "LADRC_ERR_DRAG_NMS: drag_Nms must be finite and >= 0",
-        "LADRC_ERR_COUPLING_FEED: coupling_feed must be 0 or 1",
-        "LADRC_ERR_LEVANT_METHOD: method is not a ladrc_levant_method_t",
-        "LADRC_ERR_LEVANT_GAINS: gains is not a ladrc_levant_gains_t",
-        "LADRC_ERR_LEVANT_LIPSCHITZ: lipschitz_rad_s4 must be finite and > 0",
-        "LADRC_ERR_LEVANT_L1: l1 must be finite and > 0",
-        "LADRC_ERR_LEVANT_L2: l2 must be finite and > 0",
-        "LADRC_ERR_LEVANT_L3: l3 must be finite and > 0",
-        "LADRC_ERR_LEVANT_L4: l4 must be finite and > 0",
-        "LADRC_ERR_LEVANT_RANGE: dt_s and the gains give per-sample coefficients out of range",
-    };
     if ((unsigned)status >= (unsigned)LADRC_STATUS_COUNT) {
-        return "LADRC_ERR_UNKNOWN: not a ladrc_status_t";
+        return pool.unknown;
     }
-    return texts[status];
+    return (const char *)&pool + offsets[status];
 }

@@ -8,23 +8,16 @@
 
 #include <stddef.h>
 
-ladrc_real_t ladrc_fhan(ladrc_real_t x1, ladrc_real_t x2, ladrc_real_t accel, ladrc_real_t h0_s)
+/* fhan on validated accel > 0 and h0_s > 0, with d = accel h0 and d0 = h0 d. */
+static ladrc_real_t fhan(ladrc_real_t x1, ladrc_real_t x2, ladrc_real_t accel, ladrc_real_t h0_s,
+                         ladrc_real_t d, ladrc_real_t d0)
 {
-    ladrc_real_t d;
-    ladrc_real_t d0;
-    ladrc_real_t y;
+    const ladrc_real_t y = x1 + h0_s * x2; /* position error predicted one h0 ahead */
     ladrc_real_t a;
     ladrc_real_t u;
 
-    /* No meaningful bound to respect: the safe acceleration is none. */
-    if (!ladrc_is_positive(accel) || !ladrc_is_positive(h0_s)) {
-        return LADRC_R(0.0);
-    }
-
-    d = accel * h0_s;   /* speed change over one h0 at full acceleration */
-    d0 = h0_s * d;      /* half-width of the linear zone around the switching curve */
-    y = x1 + h0_s * x2; /* position error predicted one h0 ahead */
-
+    /* d: speed change over one h0 at full acceleration; d0: half-width of the
+     * linear zone around the switching curve. */
     if (ladrc_fabs(y) > d0) {
         /* Follow the switching curve. Here 8 accel |y| > 8 d^2, so a0 > 3 d and
          * a0 - d does not cancel. An overflow makes a0 and a infinite, which
@@ -44,8 +37,18 @@ ladrc_real_t ladrc_fhan(ladrc_real_t x1, ladrc_real_t x2, ladrc_real_t accel, la
         u = -ladrc_clamp(a / h0_s, -accel, accel);
     }
 
-    /* NaN only comes from non-finite inputs (inf - inf); push nothing then. */
+    /* NaN only comes from non-finite inputs (inf - inf), or from the all-zero
+     * instance a rejected init leaves (0 / 0); push nothing then. */
     return ladrc_is_finite(u) ? u : LADRC_R(0.0);
+}
+
+ladrc_real_t ladrc_fhan(ladrc_real_t x1, ladrc_real_t x2, ladrc_real_t accel, ladrc_real_t h0_s)
+{
+    /* No meaningful bound to respect: the safe acceleration is none. */
+    if (!ladrc_is_positive(accel) || !ladrc_is_positive(h0_s)) {
+        return LADRC_R(0.0);
+    }
+    return fhan(x1, x2, accel, h0_s, accel * h0_s, h0_s * (accel * h0_s));
 }
 
 static void write_held(const ladrc_td_t *td, ladrc_ref_t *out)
@@ -79,6 +82,8 @@ ladrc_status_t ladrc_td_init(ladrc_td_t *td, const ladrc_td_config_t *cfg)
     td->dt_s = cfg->dt_s;
     td->accel_rad_s2 = cfg->accel_rad_s2;
     td->h0_s = cfg->h0_s;
+    td->d = cfg->accel_rad_s2 * cfg->h0_s;
+    td->d0 = cfg->h0_s * td->d;
     return LADRC_OK;
 }
 
@@ -116,10 +121,11 @@ ladrc_fault_t ladrc_td_step(ladrc_td_t *td, ladrc_real_t r_rad, ladrc_ref_t *out
     }
 
     /* x1 - r may overflow to +-inf for huge finite inputs; fhan saturates then. */
-    a = ladrc_fhan(td->x1 - r_rad, td->x2, td->accel_rad_s2, td->h0_s);
+    a = fhan(td->x1 - r_rad, td->x2, td->accel_rad_s2, td->h0_s, td->d, td->d0);
     x1_next = td->x1 + td->dt_s * td->x2;
     x2_next = td->x2 + td->dt_s * a;
-    if (!ladrc_is_finite(x1_next) || !ladrc_is_finite(x2_next)) {
+    /* x * 0 is 0 for finite x and NaN otherwise: one test checks both. */
+    if (!(x1_next * LADRC_R(0.0) + x2_next * LADRC_R(0.0) == LADRC_R(0.0))) {
         td->faults = LADRC_FAULT_STATE;
         write_held(td, out);
         return td->faults;

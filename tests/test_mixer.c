@@ -803,6 +803,34 @@ static void test_mixer_rejected_by_init_keeps_its_rotors_at_zero(void)
     }
 }
 
+static void test_mixer_allocate_then_saturate_gives_exactly_the_output_of_a_step(void)
+{
+    /* given: one request within the limits and one whose roll is beyond them */
+    const ladrc_real_t torque_Nm[2][3] = {{LADRC_R(0.01), LADRC_R(-0.02), LADRC_R(0.001)},
+                                          {LADRC_R(2.0), LADRC_R(-0.3), LADRC_R(0.05)}};
+    const uint8_t expect_saturated[2] = {0u, 1u};
+    ladrc_mixer_t mx;
+    int k;
+    init_mixer(&mx, LADRC_MIXER_SATURATE);
+    for (k = 0; k < 2; ++k) {
+        ladrc_real_t w2[4];
+        ladrc_mixer_output_t pure;
+        ladrc_mixer_output_t stepped;
+        /* when: the two pure stages, and a step on the same request */
+        ladrc_mixer_allocate(&mx, LADRC_R(9.0), torque_Nm[k], w2);
+        ladrc_mixer_saturate(&mx, w2, LADRC_R(9.0), torque_Nm[k], &pure);
+        (void)ladrc_mixer_step(&mx, LADRC_R(9.0), torque_Nm[k], &stepped);
+        /* then: the same output bit for bit, cut back only in the second case */
+        TEST_ASSERT_EQUAL_INT(expect_saturated[k], stepped.saturated != 0u);
+        TEST_ASSERT_EQUAL_HEX8(stepped.saturated, pure.saturated);
+        TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, pure.faults);
+        TEST_ASSERT_EQUAL_MEMORY(stepped.w2_rad2_s2, pure.w2_rad2_s2, sizeof pure.w2_rad2_s2);
+        TEST_ASSERT_EQUAL_MEMORY(stepped.w_rad_s, pure.w_rad_s, sizeof pure.w_rad_s);
+        TEST_ASSERT_EQUAL_MEMORY(&stepped.thrust_N, &pure.thrust_N, sizeof pure.thrust_N);
+        TEST_ASSERT_EQUAL_MEMORY(stepped.torque_Nm, pure.torque_Nm, sizeof pure.torque_Nm);
+    }
+}
+
 static void test_mixer_functions_tolerate_null_pointers(void)
 {
     /* given */
@@ -884,6 +912,7 @@ int main(void)
     RUN_TEST(test_mixer_init_accepts_negative_w2_min_only_in_ideal_mode);
     RUN_TEST(test_mixer_init_rejects_null_pointers);
     RUN_TEST(test_mixer_rejected_by_init_keeps_its_rotors_at_zero);
+    RUN_TEST(test_mixer_allocate_then_saturate_gives_exactly_the_output_of_a_step);
     RUN_TEST(test_mixer_functions_tolerate_null_pointers);
     RUN_TEST(test_mixer_reset_returns_to_hover_and_clears_faults);
     return UNITY_END();

@@ -100,6 +100,7 @@ typedef struct {
     ladrc_real_t r4_per_Nm;     /**< 1 / (4 b) */
     ladrc_real_t weight_N;      /**< m g */
     ladrc_real_t cos_tilt_min;  /**< cos(tilt_max_rad) */
+    ladrc_real_t thrust_max_N;  /**< m g / cos(tilt_max_rad): thrust_from_tilt's cap */
     ladrc_real_t w2_min_rad2_s2, w2_max_rad2_s2;
     ladrc_mixer_mode_t mode;
     ladrc_mixer_output_t out;   /**< last good output */

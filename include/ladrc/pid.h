@@ -45,8 +45,11 @@ typedef struct {
 
 /** PID state; owned by the caller. */
 typedef struct {
-    ladrc_real_t dt_s, kp, ki, kd;
+    ladrc_real_t dt_s;
+    ladrc_real_t kp, kd;
+    ladrc_real_t ki_dt;            /**< ki h: integral gain per sample (N m / rad) */
     ladrc_real_t d_alpha;          /**< h / (tau + h), derived at init */
+    ladrc_real_t d_keep;           /**< 1 - d_alpha */
     ladrc_real_t i_limit_Nm, u_min_Nm, u_max_Nm;
     ladrc_real_t integral_Nm;      /**< integral term (N m) */
     ladrc_real_t d_filtered_rad_s; /**< filtered derivative of the measurement (rad/s) */

@@ -41,6 +41,8 @@ typedef struct {
     ladrc_real_t dt_s;
     ladrc_real_t accel_rad_s2;
     ladrc_real_t h0_s;
+    ladrc_real_t d;            /**< accel h0: fhan's speed step (rad/s), derived at init */
+    ladrc_real_t d0;           /**< h0 d: fhan's linear-zone half-width (rad) */
     ladrc_real_t x1;           /**< shaped reference (rad) */
     ladrc_real_t x2;           /**< its rate (rad/s) */
     ladrc_real_t a;            /**< last acceleration (rad/s^2) */
