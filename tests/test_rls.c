@@ -912,13 +912,21 @@ static void test_limit_values_of_the_config_are_accepted(void)
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_rls_init(&rls, &cfg));
 }
 
+static void assert_text_names(const char *name, ladrc_status_t status)
+{
+    /* the enum name, then ": why" unless built with LADRC_STATUS_TEXTS=names */
+    const char *text = ladrc_status_str(status);
+    const size_t n = strlen(name);
+    TEST_ASSERT_EQUAL_INT(0, strncmp(name, text, n));
+    TEST_ASSERT_TRUE(text[n] == '\0' || text[n] == ':');
+}
+
 static void test_every_status_of_the_module_has_its_text(void)
 {
-    TEST_ASSERT_EQUAL_STRING("LADRC_ERR_RLS_N_PARAMS: rls n_params must be 1..LADRC_RLS_MAX_PARAMS",
-                             ladrc_status_str(LADRC_ERR_RLS_N_PARAMS));
-    TEST_ASSERT_EQUAL_INT(0, strncmp("LADRC_ERR_RLS_LAMBDA0:", ladrc_status_str(LADRC_ERR_RLS_LAMBDA0), 22));
-    TEST_ASSERT_EQUAL_INT(0, strncmp("LADRC_ERR_RLS_P_BOUND:", ladrc_status_str(LADRC_ERR_RLS_P_BOUND), 22));
-    TEST_ASSERT_EQUAL_INT(0, strncmp("LADRC_ERR_RLS_P_INITIAL:", ladrc_status_str(LADRC_ERR_RLS_P_INITIAL), 24));
+    assert_text_names("LADRC_ERR_RLS_N_PARAMS", LADRC_ERR_RLS_N_PARAMS);
+    assert_text_names("LADRC_ERR_RLS_LAMBDA0", LADRC_ERR_RLS_LAMBDA0);
+    assert_text_names("LADRC_ERR_RLS_P_BOUND", LADRC_ERR_RLS_P_BOUND);
+    assert_text_names("LADRC_ERR_RLS_P_INITIAL", LADRC_ERR_RLS_P_INITIAL);
 }
 
 int main(void)
