@@ -213,12 +213,11 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
 /* The estimators' view of this tick; returns the new d_hat. Their own faults
  * (e.g. a missing rate) only hold their estimate, so they are not reported
  * as axis faults beyond LADRC_FAULT_RATE. */
-static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, const ladrc_real_t *rate_rad_s)
+static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, ladrc_real_t rate_rad_s)
 {
     if (axis->variant == LADRC_VARIANT_LP_MLADRC) {
-        /* A tick without a rate is a gap: LP holds and restarts its difference. */
-        const ladrc_real_t rate = (rate_rad_s != NULL) ? *rate_rad_s : (ladrc_real_t)NAN;
-        (void)ladrc_lp_step(&axis->part.lp, rate, axis->b0 * axis->applied_Nm);
+        /* A tick without a rate (NaN) is a gap: LP holds and restarts its difference. */
+        (void)ladrc_lp_step(&axis->part.lp, rate_rad_s, axis->b0 * axis->applied_Nm);
         return ladrc_lp_get_estimate(&axis->part.lp);
     }
     if (axis->variant == LADRC_VARIANT_HP_MLADRC) {
@@ -237,23 +236,27 @@ static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, const ladrc_real_t 
 
 /* ADRC tick on finite ref and angle; returns the state fault, if any. */
 static ladrc_fault_t step_adrc(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
-                               const ladrc_real_t *rate_rad_s)
+                               ladrc_real_t rate_rad_s)
 {
     const ladrc_leso_t *leso = &axis->leso;
     /* The LESO must see what really acted: applied torque and the estimate. */
     ladrc_fault_t faults = ladrc_leso_step(&axis->leso, angle_rad, axis->applied_Nm,
                                            axis->d_hat_rad_s2, axis->f_rate_rad_s3);
-    ladrc_ref_t ref = {ref_rad, LADRC_R(0.0), LADRC_R(0.0)};
+    /* The shapers write straight into the axis: no copy on the stack. */
+    ladrc_ref_t *ref = &axis->ref;
     if (axis->shaper == LADRC_SHAPER_TD) {
-        faults |= ladrc_td_step(&axis->shaping.td, ref_rad, &ref);
+        faults |= ladrc_td_step(&axis->shaping.td, ref_rad, ref);
     } else if (axis->shaper == LADRC_SHAPER_LEVANT) {
-        faults |= ladrc_levant_step(&axis->shaping.levant, ref_rad, &ref);
+        faults |= ladrc_levant_step(&axis->shaping.levant, ref_rad, ref);
+    } else {
+        ref->r = ref_rad;
+        ref->dr = LADRC_R(0.0);
+        ref->ddr = LADRC_R(0.0);
     }
     const ladrc_real_t d_hat = estimate_disturbance(axis, rate_rad_s);
     const ladrc_real_t u0 =
-        axis->kp * (ref.r - leso->z1) + axis->kd * (ref.dr - leso->z2) + ref.ddr;
+        axis->kp * (ref->r - leso->z1) + axis->kd * (ref->dr - leso->z2) + ref->ddr;
     const ladrc_real_t u = (u0 - leso->z3 - d_hat) / axis->b0;
-    axis->ref = ref;
     if (!ladrc_is_finite(u)) {
         return (ladrc_fault_t)(faults | LADRC_FAULT_STATE);
     }
@@ -262,22 +265,24 @@ static ladrc_fault_t step_adrc(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_r
     return faults;
 }
 
+/* rate_rad_s is read only when has_rate; the rate goes by value so the
+ * deepest path (HP) keeps no copy of it on the stack. */
 static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
-                              const ladrc_real_t *rate_rad_s)
+                              ladrc_real_t rate_rad_s, int has_rate)
 {
     LADRC_ASSERT(axis != NULL);
     ladrc_fault_t faults = LADRC_FAULT_NONE;
-    if (rate_rad_s != NULL && !ladrc_is_finite(*rate_rad_s)) {
+    if (has_rate && !ladrc_is_finite(rate_rad_s)) {
         faults |= LADRC_FAULT_RATE;
     }
     if (!(ladrc_is_finite(ref_rad) && ladrc_is_finite(angle_rad))) {
         faults |= LADRC_FAULT_INPUT;
     } else if (axis->variant == LADRC_VARIANT_PID) {
-        axis->output_Nm = ladrc_pid_step(&axis->part.pid, ref_rad, angle_rad, rate_rad_s);
+        axis->output_Nm = ladrc_pid_step(&axis->part.pid, ref_rad, angle_rad, has_rate ? &rate_rad_s : NULL);
         faults |= ladrc_pid_get_faults(&axis->part.pid);
         axis->ref.r = ref_rad;
     } else {
-        faults |= step_adrc(axis, ref_rad, angle_rad, rate_rad_s);
+        faults |= step_adrc(axis, ref_rad, angle_rad, has_rate ? rate_rad_s : (ladrc_real_t)NAN);
     }
     axis->applied_Nm = axis->output_Nm;
     axis->faults = faults;
@@ -291,13 +296,13 @@ static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_re
 
 ladrc_real_t ladrc_axis_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad)
 {
-    return step_axis(axis, ref_rad, angle_rad, NULL);
+    return step_axis(axis, ref_rad, angle_rad, LADRC_R(0.0), 0);
 }
 
 ladrc_real_t ladrc_axis_step_with_rate(ladrc_axis_t *axis, ladrc_real_t ref_rad,
                                        ladrc_real_t angle_rad, ladrc_real_t rate_rad_s)
 {
-    return step_axis(axis, ref_rad, angle_rad, &rate_rad_s);
+    return step_axis(axis, ref_rad, angle_rad, rate_rad_s, 1);
 }
 
 void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
