@@ -36,6 +36,7 @@ typedef struct {
     int next;                      /* next job to take, under lock */
     int done;
     pthread_mutex_t lock;
+    pthread_cond_t finished;       /* signalled as each job ends */
 } pool_t;
 
 static void usage(FILE *out)
@@ -102,6 +103,7 @@ static void *worker(void *arg)
         job->failed = rc != 0;
         pthread_mutex_lock(&pool->lock);
         pool->done++;
+        pthread_cond_signal(&pool->finished);
         pthread_mutex_unlock(&pool->lock);
     }
 }
@@ -129,23 +131,27 @@ static int parse_controllers(const char *list, sim_controller_id_t *ids, int *n)
     return *n > 0 ? 0 : -1;
 }
 
-/* Progress on stderr while the pool works, for runs longer than a second. */
+/* Waits for every job, printing progress on stderr for runs longer than a
+ * second. Woken by each finished job, so the wall time is not rounded up to
+ * a polling period. */
 static void wait_with_progress(pool_t *pool, long total_ticks, int quiet)
 {
     const double start = now_s();
     double last_print = start;
     const int tty = isatty(fileno(stderr));
-    for (;;) {
-        pthread_mutex_lock(&pool->lock);
-        const int done = pool->done;
-        pthread_mutex_unlock(&pool->lock);
-        if (done == pool->n_jobs) {
-            break;
+    pthread_mutex_lock(&pool->lock);
+    while (pool->done < pool->n_jobs) {
+        struct timespec until;
+        clock_gettime(CLOCK_REALTIME, &until);
+        until.tv_nsec += 100000000L;
+        if (until.tv_nsec >= 1000000000L) {
+            until.tv_sec += 1;
+            until.tv_nsec -= 1000000000L;
         }
-        const struct timespec pause = {0, 100000000L};
-        nanosleep(&pause, NULL);
+        pthread_cond_timedwait(&pool->finished, &pool->lock, &until);
+        const int done = pool->done;
         const double t = now_s();
-        if (!quiet && t - start > 1.0 && t - last_print >= (tty ? 0.5 : 2.0)) {
+        if (done < pool->n_jobs && !quiet && t - start > 1.0 && t - last_print >= (tty ? 0.5 : 2.0)) {
             long ticks = 0;
             for (int i = 0; i < pool->n_jobs; ++i) {
                 ticks += pool->jobs[i].ticks_done;
@@ -155,6 +161,7 @@ static void wait_with_progress(pool_t *pool, long total_ticks, int quiet)
             last_print = t;
         }
     }
+    pthread_mutex_unlock(&pool->lock);
     if (!quiet && tty && now_s() - start > 1.0) {
         fputc('\n', stderr);
     }
@@ -264,7 +271,7 @@ int main(int argc, char **argv)
         }
     }
 
-    pool_t pool = {jobs, n_jobs, 0, 0, PTHREAD_MUTEX_INITIALIZER};
+    pool_t pool = {jobs, n_jobs, 0, 0, PTHREAD_MUTEX_INITIALIZER, PTHREAD_COND_INITIALIZER};
     const int n_threads = (int)(jobs_wanted < n_jobs ? jobs_wanted : n_jobs);
     pthread_t threads[256];
     const double start = now_s();
