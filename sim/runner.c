@@ -93,29 +93,33 @@ static int configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_att
     return 0;
 }
 
-/* The plant asks for d(t) at every RK4 stage: t, t + h/2 twice, t + h, and
- * the next substep starts at t + h again. Remembering the last two times per
- * axis halves the evaluations, with the same values bit for bit. */
+/* The plant asks for d(t) at t, t + h/2 and t + h of every substep, and
+ * the next substep starts at t + h again. Remembering the last two times
+ * saves one evaluation in three, with the same values bit for bit. */
 typedef struct {
     const sim_scenario_t *sc;
-    double t_s[3][2];
-    double value[3][2];
-    int next[3];
+    double t_s[2];
+    double value[2][3];
+    int next;
 } disturbance_cache_t;
 
-static double disturbance(int axis, double t_s, void *ctx)
+static void disturbance(double t_s, void *ctx, double d_out[3])
 {
     disturbance_cache_t *c = (disturbance_cache_t *)ctx;
-    for (int i = 0; i < 2; ++i) {
-        if (c->t_s[axis][i] == t_s) {
-            return c->value[axis][i];
+    int slot = c->t_s[0] == t_s ? 0 : (c->t_s[1] == t_s ? 1 : -1);
+    if (slot < 0) {
+        slot = c->next;
+        c->next = 1 - slot;
+        c->t_s[slot] = t_s;
+        sim_expr_memo_t memo; /* the axes often share sin(w t) */
+        sim_expr_memo_clear(&memo);
+        for (int i = 0; i < 3; ++i) {
+            c->value[slot][i] = sim_signal_eval_memo(&c->sc->disturbance[i], t_s, &memo);
         }
     }
-    const int slot = c->next[axis];
-    c->next[axis] = 1 - slot;
-    c->t_s[axis][slot] = t_s;
-    c->value[axis][slot] = sim_signal_eval(&c->sc->disturbance[axis], t_s);
-    return c->value[axis][slot];
+    for (int i = 0; i < 3; ++i) {
+        d_out[i] = c->value[slot][i];
+    }
 }
 
 static FILE *open_csv(const char *path, const char *header, char *err, size_t err_len)
@@ -171,9 +175,7 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
     disturbance_cache_t cache;
     memset(&cache, 0, sizeof cache);
     cache.sc = sc;
-    for (int i = 0; i < 3; ++i) {
-        cache.t_s[i][0] = cache.t_s[i][1] = NAN; /* never equal: empty */
-    }
+    cache.t_s[0] = cache.t_s[1] = NAN; /* never equal: empty */
     const double start = wall_now_s();
     const long n = sim_run_ticks(sc);
     const double dt = sc->control_dt_s;
@@ -189,8 +191,10 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
         double meas_angle[3], meas_rate[3];
         sim_sensor_measure(&sensor, plant.angle_rad, plant.rate_rad_s, meas_angle, meas_rate);
         ladrc_real_t ref[3], angle[3], rate[3], torque[3];
+        sim_expr_memo_t memo; /* shared by the references, then the disturbances at t */
+        sim_expr_memo_clear(&memo);
         for (int i = 0; i < 3; ++i) {
-            ref[i] = (ladrc_real_t)sim_signal_eval(&sc->reference[i], t);
+            ref[i] = (ladrc_real_t)sim_signal_eval_memo(&sc->reference[i], t, &memo);
             angle[i] = (ladrc_real_t)meas_angle[i];
             rate[i] = (ladrc_real_t)meas_rate[i];
         }
@@ -209,7 +213,7 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
         }
         for (int i = 0; i < 3; ++i) {
             applied[i] = out.torque_Nm[i];
-            dist[i] = sim_signal_eval(&sc->disturbance[i], t);
+            dist[i] = sim_signal_eval_memo(&sc->disturbance[i], t, &memo);
         }
         double thrust_actual, torque_actual[3];
         sim_plant_forces(&plant.v, plant.w2_rad2_s2, &thrust_actual, torque_actual);
