@@ -12,6 +12,7 @@
 #include "ladrc/levant.h"
 #include "ladrc/mixer.h"
 #include "ladrc/td.h"
+#include "numfmt.h"
 #include "plant.h"
 #include "rng.h"
 #include "sensor.h"
@@ -122,6 +123,9 @@ static void disturbance(double t_s, void *ctx, double d_out[3])
     }
 }
 
+/* stdio buffer of a time series: fewer, larger writes */
+#define CSV_BUFFER_BYTES (1 << 20)
+
 static FILE *open_csv(const char *path, const char *header, char *err, size_t err_len)
 {
     if (path == NULL) {
@@ -132,8 +136,30 @@ static FILE *open_csv(const char *path, const char *header, char *err, size_t er
         snprintf(err, err_len, "%s: cannot write: %s", path, strerror(errno));
         return NULL;
     }
+    setvbuf(f, NULL, _IOFBF, CSV_BUFFER_BYTES);
     fputs(header, f);
     return f;
+}
+
+/* One CSV line in memory, written with one fwrite. */
+typedef struct {
+    char text[64 * SIM_NUMFMT_MAX];
+    int len;
+} csv_line_t;
+
+static void line_f4(csv_line_t *l, double x) { l->len += sim_fmt_f4(l->text + l->len, x); }
+
+static void line_g(csv_line_t *l, double x, int precision)
+{
+    l->text[l->len++] = ',';
+    l->len += sim_fmt_g(l->text + l->len, x, precision);
+}
+
+static void line_end(csv_line_t *l, FILE *f)
+{
+    l->text[l->len++] = '\n';
+    fwrite(l->text, 1, (size_t)l->len, f);
+    l->len = 0;
 }
 
 static const char ATTITUDE_CSV_HEADER[] =
@@ -176,6 +202,8 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
     memset(&cache, 0, sizeof cache);
     cache.sc = sc;
     cache.t_s[0] = cache.t_s[1] = NAN; /* never equal: empty */
+    csv_line_t line;
+    line.len = 0;
     const double start = wall_now_s();
     const long n = sim_run_ticks(sc);
     const double dt = sc->control_dt_s;
@@ -240,18 +268,18 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
         for (int r = 0; r < 4; ++r) {
             sim_stat_add(&m->rotor_w2[r], plant.w2_rad2_s2[r]);
         }
-        if (csv != NULL) {
-            fprintf(csv, "%.4f", t);
-            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", (double)ref[i] * RAD2DEG);
-            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", plant.angle_rad[i] * RAD2DEG);
-            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", err_rad[i] * RAD2DEG);
-            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", (double)torque[i]);
-            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", applied[i]);
-            for (int r = 0; r < 4; ++r) fprintf(csv, ",%.7g", plant.w2_rad2_s2[r]);
-            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", dist[i]);
-            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", f_true[i]);
-            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", m->has_estimate ? f_est[i] : NAN);
-            fputc('\n', csv);
+        if (csv != NULL) { /* the text of %.4f, %.6g and %.7g (numfmt.h) */
+            line_f4(&line, t);
+            for (int i = 0; i < 3; ++i) line_g(&line, (double)ref[i] * RAD2DEG, 6);
+            for (int i = 0; i < 3; ++i) line_g(&line, plant.angle_rad[i] * RAD2DEG, 6);
+            for (int i = 0; i < 3; ++i) line_g(&line, err_rad[i] * RAD2DEG, 6);
+            for (int i = 0; i < 3; ++i) line_g(&line, (double)torque[i], 6);
+            for (int i = 0; i < 3; ++i) line_g(&line, applied[i], 6);
+            for (int r = 0; r < 4; ++r) line_g(&line, plant.w2_rad2_s2[r], 7);
+            for (int i = 0; i < 3; ++i) line_g(&line, dist[i], 6);
+            for (int i = 0; i < 3; ++i) line_g(&line, f_true[i], 6);
+            for (int i = 0; i < 3; ++i) line_g(&line, m->has_estimate ? f_est[i] : NAN, 6);
+            line_end(&line, csv);
         }
         sim_plant_step(&plant, w2_cmd, dt, sc->plant_substeps, disturbance, &cache);
         if (!(isfinite(plant.angle_rad[0]) && isfinite(plant.angle_rad[1]) && isfinite(plant.angle_rad[2]))) {
@@ -304,6 +332,8 @@ int sim_run_differentiator(const sim_scenario_t *sc, const char *csv_path, const
     if (csv_path != NULL && csv == NULL) {
         return -1;
     }
+    csv_line_t line;
+    line.len = 0;
     const double start = wall_now_s();
     const long n = sim_run_ticks(sc);
     const double noise_std = sqrt(sc->diff_noise_var);
@@ -320,8 +350,13 @@ int sim_run_differentiator(const sim_scenario_t *sc, const char *csv_path, const
             sim_stat_add(&m->levant_error, (double)lev_out.dr - dr);
             sim_stat_add(&m->td_error, (double)td_out.dr - dr_next);
         }
-        if (csv != NULL) {
-            fprintf(csv, "%.4f,%.7g,%.7g,%.7g,%.7g\n", t, r, dr, (double)lev_out.dr, (double)td_out.dr);
+        if (csv != NULL) { /* "%.4f,%.7g,%.7g,%.7g,%.7g\n" */
+            line_f4(&line, t);
+            line_g(&line, r, 7);
+            line_g(&line, dr, 7);
+            line_g(&line, (double)lev_out.dr, 7);
+            line_g(&line, (double)td_out.dr, 7);
+            line_end(&line, csv);
         }
         if (progress != NULL && progress->ticks_done != NULL && (k & 1023) == 1023) {
             *progress->ticks_done += 1024;
