@@ -1,6 +1,7 @@
 #include "numfmt.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -28,10 +29,11 @@ static int scale10(double x, int k, double *out)
     return 1;
 }
 
-/* Rounds m >= 0 to the nearest integer; 0 when m is too close to a tie. */
+/* Rounds m >= 0 (below 2^62) to the nearest integer; 0 when m is too close
+ * to a tie. */
 static int round_clear(double m, double *r)
 {
-    const double fl = floor(m);
+    const double fl = (double)(long long)m; /* floor for these m, without a call */
     const double frac = m - fl;
     if (fabs(frac - 0.5) < TIE_MARGIN) {
         return 0;
@@ -40,19 +42,38 @@ static int round_clear(double m, double *r)
     return 1;
 }
 
-/* Writes the decimal digits of the integer r (< 10^16) right-aligned into
- * digits[0..n); returns n. */
-static int integer_digits(double r, char *digits)
+static const char PAIRS[] = "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+                           "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+                           "8081828384858687888990919293949596979899";
+
+/* Writes the n lowest decimal digits of v into digits[0..n), two at a time. */
+static void write_digits(uint64_t v, int n, char *digits)
 {
-    char tmp[24];
-    int n = 0;
-    unsigned long long v = (unsigned long long)r;
-    do {
-        tmp[n++] = (char)('0' + (int)(v % 10u));
-        v /= 10u;
-    } while (v != 0u);
-    for (int i = 0; i < n; ++i) {
-        digits[i] = tmp[n - 1 - i];
+    int i = n;
+    while (v >= UINT64_C(0x100000000) && i >= 2) {
+        const uint64_t q = v / 100u;
+        memcpy(&digits[i - 2], &PAIRS[2u * (unsigned)(v - 100u * q)], 2);
+        v = q;
+        i -= 2;
+    }
+    uint32_t w = (uint32_t)v;
+    while (i >= 2) {
+        const uint32_t q = w / 100u;
+        memcpy(&digits[i - 2], &PAIRS[2u * (w - 100u * q)], 2);
+        w = q;
+        i -= 2;
+    }
+    if (i == 1) {
+        digits[0] = (char)('0' + w % 10u);
+    }
+}
+
+/* Number of decimal digits of v (1 for 0). */
+static int count_digits(uint64_t v)
+{
+    int n = 1;
+    while (n < 20 && v >= (uint64_t)POW10[n]) {
+        ++n;
     }
     return n;
 }
@@ -60,8 +81,12 @@ static int integer_digits(double r, char *digits)
 int sim_fmt_g(char *buf, double x, int precision)
 {
     const int p = precision < 1 ? 1 : precision;
-    if (p > 15 || !isfinite(x)) {
+    if (p > 15 || isinf(x)) {
         return slow_g(buf, x, p);
+    }
+    if (isnan(x)) { /* the PID's missing estimate: every row */
+        strcpy(buf, signbit(x) ? "-nan" : "nan");
+        return signbit(x) ? 4 : 3;
     }
     if (x == 0.0) {
         strcpy(buf, signbit(x) ? "-0" : "0");
@@ -70,9 +95,15 @@ int sim_fmt_g(char *buf, double x, int precision)
     const double ax = fabs(x);
     /* first guess of the decimal exponent from the binary one: low by at
      * most one (log10(2) rounded down) */
-    int be;
-    (void)frexp(ax, &be);
-    int e = (int)floor((double)(be - 1) * 0.30102999566398119);
+    uint64_t bits;
+    memcpy(&bits, &ax, sizeof bits);
+    const int be = (int)(bits >> 52) - 1022; /* ax in [2^(be-1), 2^be) when normal */
+    if (be <= -1021) {
+        return slow_g(buf, x, p); /* subnormal */
+    }
+    /* floor((be - 1) log10(2)) with 78913 / 2^18 just below log10(2) */
+    const int q = (be - 1) * 78913;
+    int e = q >= 0 ? q / (1 << 18) : -((-q + (1 << 18) - 1) / (1 << 18));
     double m = 0.0, r = 0.0;
     int settled = 0;
     for (int tries = 0; tries < 3 && !settled; ++tries) {
@@ -95,10 +126,8 @@ int sim_fmt_g(char *buf, double x, int precision)
         return slow_g(buf, x, p);
     }
     char digits[24];
-    int nd = integer_digits(r, digits); /* p digits: 10^(p-1) <= r < 10^p */
-    if (nd != p) {
-        return slow_g(buf, x, p);
-    }
+    int nd = p; /* settled: 10^(p-1) <= r < 10^p */
+    write_digits((uint64_t)r, p, digits);
     while (nd > 1 && digits[nd - 1] == '0') {
         --nd; /* %g drops trailing zeros */
     }
@@ -151,7 +180,8 @@ int sim_fmt_f4(char *buf, double x)
         return snprintf(buf, SIM_NUMFMT_MAX, "%.4f", x);
     }
     char digits[24];
-    const int nd = integer_digits(r, digits);
+    const int nd = count_digits((uint64_t)r);
+    write_digits((uint64_t)r, nd, digits);
     char *o = buf;
     if (signbit(x)) {
         *o++ = '-'; /* printf keeps the sign of values that round to 0 */
