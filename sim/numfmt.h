@@ -3,8 +3,10 @@
  * and "%.4f" character for character, several times faster. The common
  * case scales the value to an integer of P digits with one correctly rounded
  * operation by an exact power of ten; whenever that could round differently
- * from printf (a value within 1e-6 of a rounding tie, outside the range of
- * exact powers, zero's sign aside non-finite values) it asks snprintf.
+ * from printf (within 1e-6 of a unit of a rounding tie, beyond the exact
+ * powers 1e-22..1e22, subnormal, infinite) it asks snprintf. Zeros keep
+ * their sign and NaN is written as glibc writes it ("nan", "-nan"); the
+ * test compares every case with snprintf.
  */
 #ifndef LADRC_SIM_NUMFMT_H
 #define LADRC_SIM_NUMFMT_H
