@@ -13,6 +13,7 @@
 #include "expr.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -317,6 +318,8 @@ static void parse_sum(parser_t *ps)
     }
 }
 
+static void build_code(sim_expr_t *expr);
+
 int sim_expr_compile(sim_expr_t *expr, const char *text, sim_expr_error_t *err)
 {
     sim_expr_error_t ignored;
@@ -331,6 +334,7 @@ int sim_expr_compile(sim_expr_t *expr, const char *text, sim_expr_error_t *err)
         return -1;
     }
     expr->n_ops = 0;
+    expr->n_code = 0;
     ps.text = text;
     ps.p = text;
     ps.out = expr;
@@ -345,14 +349,53 @@ int sim_expr_compile(sim_expr_t *expr, const char *text, sim_expr_error_t *err)
     }
     if (ps.failed) {
         expr->n_ops = 0;
+        expr->n_code = 0;
         return -1;
     }
+    build_code(expr);
     return 0;
 }
 
 static double nan_or(double x, double value) { return isnan(x) ? x : value; }
 
-double sim_expr_eval(const sim_expr_t *expr, double t_s)
+/* a op b for the binary operators, a the left operand; NaN wins in min/max */
+static double apply_binary(unsigned char op, double a, double b)
+{
+    switch (op) {
+    case OP_ADD: return a + b;
+    case OP_SUB: return a - b;
+    case OP_MUL: return a * b;
+    case OP_DIV: return a / b;
+    case OP_POW: return pow(a, b);
+    case OP_MIN: return isnan(b) ? b : ((!isnan(a) && b < a) ? b : a);
+    default: return isnan(b) ? b : ((!isnan(a) && b > a) ? b : a); /* OP_MAX */
+    }
+}
+
+static double apply_unary(unsigned char op, double x)
+{
+    switch (op) {
+    case OP_NEG: return -x;
+    case OP_SIN: return sin(x);
+    case OP_COS: return cos(x);
+    case OP_TAN: return tan(x);
+    case OP_ASIN: return asin(x);
+    case OP_ACOS: return acos(x);
+    case OP_ATAN: return atan(x);
+    case OP_EXP: return exp(x);
+    case OP_LOG: return log(x);
+    case OP_SQRT: return sqrt(x);
+    case OP_ABS: return fabs(x);
+    case OP_FLOOR: return floor(x);
+    case OP_CEIL: return ceil(x);
+    case OP_STEP: return nan_or(x, x >= 0.0 ? 1.0 : 0.0);
+    default: return nan_or(x, x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0)); /* OP_SIGN */
+    }
+}
+
+static int is_binary(unsigned char op) { return (op >= OP_ADD && op <= OP_POW) || op == OP_MIN || op == OP_MAX; }
+
+double sim_expr_eval_postfix(const sim_expr_t *expr, double t_s)
 {
     double stack[SIM_EXPR_MAX_STACK];
     int sp = 0;
@@ -363,54 +406,194 @@ double sim_expr_eval(const sim_expr_t *expr, double t_s)
         const unsigned char op = expr->op[i];
         if (op == OP_CONST || op == OP_T) {
             stack[sp++] = (op == OP_T) ? t_s : expr->value[i];
-            continue;
-        }
-        double *x = &stack[sp - 1];
-        if (op >= OP_ADD && op <= OP_POW) {
-            const double b = *x;
-            x = &stack[sp - 2];
+        } else if (is_binary(op)) {
             --sp;
-            switch (op) {
-            case OP_ADD: *x += b; break;
-            case OP_SUB: *x -= b; break;
-            case OP_MUL: *x *= b; break;
-            case OP_DIV: *x /= b; break;
-            default: *x = pow(*x, b); break;
-            }
-            continue;
-        }
-        if (op == OP_MIN || op == OP_MAX) {
-            const double b = *x;
-            x = &stack[sp - 2];
-            --sp;
-            if (isnan(b)) {
-                *x = b;
-            } else if (!isnan(*x) && (op == OP_MIN ? b < *x : b > *x)) {
-                *x = b;
-            }
-            continue;
-        }
-        switch (op) {
-        case OP_NEG: *x = -*x; break;
-        case OP_SIN: *x = sin(*x); break;
-        case OP_COS: *x = cos(*x); break;
-        case OP_TAN: *x = tan(*x); break;
-        case OP_ASIN: *x = asin(*x); break;
-        case OP_ACOS: *x = acos(*x); break;
-        case OP_ATAN: *x = atan(*x); break;
-        case OP_EXP: *x = exp(*x); break;
-        case OP_LOG: *x = log(*x); break;
-        case OP_SQRT: *x = sqrt(*x); break;
-        case OP_ABS: *x = fabs(*x); break;
-        case OP_FLOOR: *x = floor(*x); break;
-        case OP_CEIL: *x = ceil(*x); break;
-        case OP_STEP: *x = nan_or(*x, *x >= 0.0 ? 1.0 : 0.0); break;
-        case OP_SIGN: *x = nan_or(*x, *x > 0.0 ? 1.0 : (*x < 0.0 ? -1.0 : 0.0)); break;
-        default: return NAN;
+            stack[sp - 1] = apply_binary(op, stack[sp - 1], stack[sp]);
+        } else {
+            stack[sp - 1] = apply_unary(op, stack[sp - 1]);
         }
     }
     return stack[0];
 }
+
+/* ---- the evaluated form ------------------------------------------------
+ *
+ * The postfix program becomes a tree; subtrees without t are folded to
+ * constants with apply_unary/apply_binary, the functions the postfix
+ * evaluation uses. The tree is then emitted for an accumulator machine:
+ * every instruction leaves its result in acc. A binary operation whose right
+ * operand is a constant or t takes it directly (modes C and T); one whose
+ * left operand is (RC, RT) takes the accumulator as its right operand;
+ * otherwise the left value is pushed while the right one is worked out (S). */
+
+enum { MODE_C, MODE_T, MODE_S, MODE_RC, MODE_RT, N_MODES };
+enum { X_LOADC, X_LOADT, X_PUSH, X_UNARY };
+/* unary op u: X_UNARY + u - OP_NEG (OP_NEG .. OP_SIGN but the binary ones);
+ * binary: X_BINARY + index * N_MODES + mode */
+#define X_BINARY (X_UNARY + OP_SIGN - OP_NEG + 1)
+
+static int binary_index(unsigned char op)
+{
+    return op == OP_MIN ? 5 : (op == OP_MAX ? 6 : op - OP_ADD);
+}
+
+typedef struct {
+    unsigned char op;      /* OP_CONST (folded or written), OP_T, or an operator */
+    int left, right;       /* children, -1 when absent; a unary has left only */
+    double value;          /* OP_CONST */
+} node_t;
+
+typedef struct {
+    node_t node[SIM_EXPR_MAX_OPS];
+    sim_expr_t *out;
+} builder_t;
+
+static int is_leaf(const node_t *n) { return n->op == OP_CONST || n->op == OP_T; }
+
+static void put(builder_t *b, unsigned char code, double operand)
+{
+    b->out->code[b->out->n_code] = code;
+    b->out->operand[b->out->n_code] = operand;
+    ++b->out->n_code;
+}
+
+static void emit_node(builder_t *b, int k)
+{
+    const node_t *n = &b->node[k];
+    if (n->op == OP_CONST) {
+        put(b, X_LOADC, n->value);
+    } else if (n->op == OP_T) {
+        put(b, X_LOADT, 0.0);
+    } else if (n->right < 0) {
+        emit_node(b, n->left);
+        put(b, (unsigned char)(X_UNARY + n->op - OP_NEG), 0.0);
+    } else {
+        const node_t *l = &b->node[n->left], *r = &b->node[n->right];
+        const int base = X_BINARY + binary_index(n->op) * N_MODES;
+        if (is_leaf(r)) {
+            emit_node(b, n->left);
+            put(b, (unsigned char)(base + (r->op == OP_T ? MODE_T : MODE_C)), r->value);
+        } else if (is_leaf(l)) {
+            emit_node(b, n->right);
+            put(b, (unsigned char)(base + (l->op == OP_T ? MODE_RT : MODE_RC)), l->value);
+        } else {
+            emit_node(b, n->left);
+            put(b, X_PUSH, 0.0);
+            emit_node(b, n->right);
+            put(b, (unsigned char)(base + MODE_S), 0.0);
+        }
+    }
+}
+
+static void build_code(sim_expr_t *expr)
+{
+    static const double none = 0.0;
+    builder_t b;
+    int stack[SIM_EXPR_MAX_STACK];
+    int sp = 0;
+    b.out = expr;
+    for (int i = 0; i < expr->n_ops; ++i) {
+        node_t *n = &b.node[i];
+        n->op = expr->op[i];
+        n->value = (n->op == OP_CONST) ? expr->value[i] : none;
+        n->left = n->right = -1;
+        if (n->op != OP_CONST && n->op != OP_T) {
+            if (is_binary(n->op)) {
+                n->right = stack[--sp];
+            }
+            n->left = stack[--sp];
+            const node_t *l = &b.node[n->left];
+            const node_t *r = n->right >= 0 ? &b.node[n->right] : NULL;
+            if (l->op == OP_CONST && (r == NULL || r->op == OP_CONST)) {
+                n->value = r == NULL ? apply_unary(n->op, l->value) : apply_binary(n->op, l->value, r->value);
+                n->op = OP_CONST;
+                n->left = n->right = -1;
+            }
+        }
+        stack[sp++] = i;
+    }
+    expr->n_code = 0;
+    emit_node(&b, stack[0]);
+}
+
+void sim_expr_memo_clear(sim_expr_memo_t *memo)
+{
+    memo->n = 0;
+    memo->next = 0;
+}
+
+static int same_bits(double a, double b)
+{
+    uint64_t x, y;
+    memcpy(&x, &a, sizeof x);
+    memcpy(&y, &b, sizeof y);
+    return x == y;
+}
+
+/* apply_unary through the memo for the functions worth remembering */
+static double unary_memo(unsigned char op, double x, sim_expr_memo_t *memo)
+{
+    if (memo == NULL || op < OP_SIN || op > OP_LOG) {
+        return apply_unary(op, x);
+    }
+    for (int i = 0; i < memo->n; ++i) {
+        if (memo->fn[i] == op && same_bits(memo->arg[i], x)) {
+            return memo->result[i];
+        }
+    }
+    const double y = apply_unary(op, x);
+    int slot = memo->n;
+    if (slot < SIM_EXPR_MEMO_SIZE) {
+        memo->n++;
+    } else {
+        slot = memo->next;
+        memo->next = (slot + 1) % SIM_EXPR_MEMO_SIZE;
+    }
+    memo->fn[slot] = op;
+    memo->arg[slot] = x;
+    memo->result[slot] = y;
+    return y;
+}
+
+#define BINARY_CASES(op)                                                                                          \
+    case X_BINARY + (op) * N_MODES + MODE_C: acc = BIN_##op(acc, expr->operand[i]); break;                         \
+    case X_BINARY + (op) * N_MODES + MODE_T: acc = BIN_##op(acc, t_s); break;                                      \
+    case X_BINARY + (op) * N_MODES + MODE_S: --sp; acc = BIN_##op(stack[sp], acc); break;                         \
+    case X_BINARY + (op) * N_MODES + MODE_RC: acc = BIN_##op(expr->operand[i], acc); break;                        \
+    case X_BINARY + (op) * N_MODES + MODE_RT: acc = BIN_##op(t_s, acc); break;
+#define BIN_0(a, b) ((a) + (b))
+#define BIN_1(a, b) ((a) - (b))
+#define BIN_2(a, b) ((a) * (b))
+#define BIN_3(a, b) ((a) / (b))
+#define BIN_4(a, b) pow((a), (b))
+#define BIN_5(a, b) apply_binary(OP_MIN, (a), (b))
+#define BIN_6(a, b) apply_binary(OP_MAX, (a), (b))
+
+double sim_expr_eval_memo(const sim_expr_t *expr, double t_s, sim_expr_memo_t *memo)
+{
+    double stack[SIM_EXPR_MAX_STACK];
+    int sp = 0;
+    double acc = NAN; /* an empty program gives NaN */
+    for (int i = 0; i < expr->n_code; ++i) {
+        const unsigned char c = expr->code[i];
+        switch (c) {
+        case X_LOADC: acc = expr->operand[i]; break;
+        case X_LOADT: acc = t_s; break;
+        case X_PUSH: stack[sp++] = acc; break;
+        BINARY_CASES(0)
+        BINARY_CASES(1)
+        BINARY_CASES(2)
+        BINARY_CASES(3)
+        BINARY_CASES(4)
+        BINARY_CASES(5)
+        BINARY_CASES(6)
+        default: acc = unary_memo((unsigned char)(c - X_UNARY + OP_NEG), acc, memo); break;
+        }
+    }
+    return acc;
+}
+
+double sim_expr_eval(const sim_expr_t *expr, double t_s) { return sim_expr_eval_memo(expr, t_s, NULL); }
 
 int sim_expr_is_constant(const sim_expr_t *expr, double *value)
 {
@@ -423,7 +606,7 @@ int sim_expr_is_constant(const sim_expr_t *expr, double *value)
         }
     }
     if (value != NULL) {
-        *value = sim_expr_eval(expr, 0.0);
+        *value = sim_expr_eval_postfix(expr, 0.0);
     }
     return 1;
 }

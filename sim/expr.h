@@ -10,6 +10,12 @@
  * separated by a comma, the other functions one. Names and functions are
  * case-sensitive; spaces and tabs between tokens are ignored. NaN arguments
  * give NaN from every function (step and sign included).
+ *
+ * Evaluation runs a second form of the program, made by the compiler from
+ * the postfix one: constant subexpressions folded (with the same double
+ * operations, so to the same bits), and an accumulator machine whose binary
+ * operations take a constant or t directly as an operand. Its results are
+ * those of the postfix program bit for bit (sim_expr_eval_postfix, tested).
  */
 #ifndef LADRC_SIM_EXPR_H
 #define LADRC_SIM_EXPR_H
@@ -24,7 +30,28 @@ typedef struct {
     unsigned char op[SIM_EXPR_MAX_OPS];  /* opcode per instruction */
     double value[SIM_EXPR_MAX_OPS];      /* operand of push-constant instructions */
     int n_ops;
+    /* the evaluated form: accumulator code; one instruction per postfix one
+     * at most, plus a push per binary operation (at most half of them) */
+    unsigned char code[SIM_EXPR_MAX_OPS + SIM_EXPR_MAX_OPS / 2];
+    double operand[SIM_EXPR_MAX_OPS + SIM_EXPR_MAX_OPS / 2];
+    int n_code;
 } sim_expr_t;
+
+/* Results of the costly functions (sin, cos, exp, ...) by argument, shared by
+ * the evaluations of several expressions at one instant: the disturbances of
+ * three axes often call sin with the same argument. Bits in, bits out: a hit
+ * returns exactly what the call would. */
+#define SIM_EXPR_MEMO_SIZE 4
+typedef struct {
+    double arg[SIM_EXPR_MEMO_SIZE];
+    double result[SIM_EXPR_MEMO_SIZE];
+    unsigned char fn[SIM_EXPR_MEMO_SIZE];
+    int n;      /* entries filled */
+    int next;   /* entry replaced next once full */
+} sim_expr_memo_t;
+
+/* Empties a memo. */
+void sim_expr_memo_clear(sim_expr_memo_t *memo);
 
 /* Where and why a compile failed: 1-based column within the text, and a
  * message naming what was expected ("expected ')'", "unknown name 'sn'"). */
@@ -39,6 +66,13 @@ int sim_expr_compile(sim_expr_t *expr, const char *text, sim_expr_error_t *err);
 /* Value at time t_s (non-finite results are returned as they are). expr must
  * come from a successful sim_expr_compile; an empty program gives NaN. */
 double sim_expr_eval(const sim_expr_t *expr, double t_s);
+
+/* The same with the function results kept in / taken from memo (NULL: none). */
+double sim_expr_eval_memo(const sim_expr_t *expr, double t_s, sim_expr_memo_t *memo);
+
+/* The same value from the postfix program as written, without folding or
+ * memo: the reference the evaluated form is tested against. */
+double sim_expr_eval_postfix(const sim_expr_t *expr, double t_s);
 
 /* A constant expression (no t): 1 and *value set; else 0. */
 int sim_expr_is_constant(const sim_expr_t *expr, double *value);

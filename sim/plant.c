@@ -79,21 +79,61 @@ void sim_plant_accel(const sim_plant_t *p, const double torque_Nm[3], const doub
     body_accel(&p->v, p->rate_rad_s, torque_Nm, dist != NULL ? dist : none, accel_out);
 }
 
-/* dx/dt at time t for the held (clamped) command. */
-static void derivative(const sim_vehicle_t *v, const double cmd[4], double t, const double x[N_STATE],
-                       sim_disturbance_fn dist, void *ctx, double dx[N_STATE])
+/* dx/dt for the held (clamped) command and the disturbance d at the stage
+ * time. Without lag the torque is the command's, worked out once per step;
+ * with it, the rotors' w^2 are state and the torque follows them. */
+static void derivative(const sim_vehicle_t *v, int lag, const double cmd[4], const double cmd_torque[3],
+                       const double x[N_STATE], const double d[3], double dx[N_STATE])
 {
-    const int lag = v->motor_tau_s > 0.0;
-    const double *w2 = lag ? &x[N_ROTOR] : cmd;
-    double torque[3], d[3];
-    sim_plant_forces(v, w2, NULL, torque);
+    double lag_torque[3];
+    const double *torque = cmd_torque;
+    if (lag) {
+        sim_plant_forces(v, &x[N_ROTOR], NULL, lag_torque);
+        torque = lag_torque;
+        for (int i = 0; i < 4; ++i) {
+            dx[N_ROTOR + i] = (cmd[i] - x[N_ROTOR + i]) / v->motor_tau_s;
+        }
+    }
     for (int i = 0; i < 3; ++i) {
-        d[i] = dist != NULL ? dist(i, t, ctx) : 0.0;
         dx[N_ANGLE + i] = x[N_RATE + i];
     }
     body_accel(v, &x[N_RATE], torque, d, &dx[N_RATE]);
-    for (int i = 0; i < 4; ++i) {
-        dx[N_ROTOR + i] = lag ? (cmd[i] - x[N_ROTOR + i]) / v->motor_tau_s : 0.0;
+}
+
+static void disturbance_at(sim_disturbance_fn dist, void *ctx, double t, double d[3])
+{
+    if (dist != NULL) {
+        dist(t, ctx, d);
+    } else {
+        d[0] = d[1] = d[2] = 0.0;
+    }
+}
+
+/* One classical RK4 step of length h from time t; the rotor states only take
+ * part with a lag (without one their derivative is 0 and they stay put). */
+static void rk4_substep(const sim_vehicle_t *v, int lag, const double cmd[4], const double cmd_torque[3],
+                        double t, double h, sim_disturbance_fn dist, void *ctx, double x[N_STATE])
+{
+    const int n = lag ? N_STATE : N_ROTOR;
+    double k1[N_STATE], k2[N_STATE], k3[N_STATE], k4[N_STATE], y[N_STATE], d[3];
+    disturbance_at(dist, ctx, t, d);
+    derivative(v, lag, cmd, cmd_torque, x, d, k1);
+    for (int i = 0; i < n; ++i) {
+        y[i] = x[i] + 0.5 * h * k1[i];
+    }
+    disturbance_at(dist, ctx, t + 0.5 * h, d); /* the same for k2 and k3 */
+    derivative(v, lag, cmd, cmd_torque, y, d, k2);
+    for (int i = 0; i < n; ++i) {
+        y[i] = x[i] + 0.5 * h * k2[i];
+    }
+    derivative(v, lag, cmd, cmd_torque, y, d, k3);
+    for (int i = 0; i < n; ++i) {
+        y[i] = x[i] + h * k3[i];
+    }
+    disturbance_at(dist, ctx, t + h, d);
+    derivative(v, lag, cmd, cmd_torque, y, d, k4);
+    for (int i = 0; i < n; ++i) {
+        x[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
     }
 }
 
@@ -106,11 +146,13 @@ void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int sub
     const int n = substeps < 1 ? 1 : substeps;
     const double h = dt_s / n;
     const double t0 = p->t_s;
-    double cmd[4], x[N_STATE];
+    const int lag = p->v.motor_tau_s > 0.0;
+    double cmd[4], cmd_torque[3], x[N_STATE];
     for (int i = 0; i < 4; ++i) {
         cmd[i] = clamp_rotor(&p->v, w2_cmd[i]);
         x[N_ROTOR + i] = p->w2_rad2_s2[i];
     }
+    sim_plant_forces(&p->v, cmd, NULL, cmd_torque);
     for (int i = 0; i < 3; ++i) {
         x[N_ANGLE + i] = p->angle_rad[i];
         x[N_RATE + i] = p->rate_rad_s[i];
@@ -118,22 +160,10 @@ void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int sub
     for (int s = 0; s < n; ++s) {
         /* stage times from t0 each substep: no drift from summing h */
         const double t = t0 + s * h;
-        double k1[N_STATE], k2[N_STATE], k3[N_STATE], k4[N_STATE], y[N_STATE];
-        derivative(&p->v, cmd, t, x, dist, ctx, k1);
-        for (int i = 0; i < N_STATE; ++i) {
-            y[i] = x[i] + 0.5 * h * k1[i];
-        }
-        derivative(&p->v, cmd, t + 0.5 * h, y, dist, ctx, k2);
-        for (int i = 0; i < N_STATE; ++i) {
-            y[i] = x[i] + 0.5 * h * k2[i];
-        }
-        derivative(&p->v, cmd, t + 0.5 * h, y, dist, ctx, k3);
-        for (int i = 0; i < N_STATE; ++i) {
-            y[i] = x[i] + h * k3[i];
-        }
-        derivative(&p->v, cmd, t + h, y, dist, ctx, k4);
-        for (int i = 0; i < N_STATE; ++i) {
-            x[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+        if (lag) {
+            rk4_substep(&p->v, 1, cmd, cmd_torque, t, h, dist, ctx, x);
+        } else {
+            rk4_substep(&p->v, 0, cmd, cmd_torque, t, h, dist, ctx, x);
         }
     }
     for (int i = 0; i < 3; ++i) {

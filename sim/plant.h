@@ -42,8 +42,9 @@ typedef struct {
     double motor_tau_s;             /* first-order lag of w^2 towards the command, 0 = none */
 } sim_vehicle_t;
 
-/* Disturbance angular acceleration (rad/s^2) on axis 0..2 at time t_s. */
-typedef double (*sim_disturbance_fn)(int axis, double t_s, void *ctx);
+/* Disturbance angular accelerations (rad/s^2) of axes 0..2 at time t_s,
+ * written to d_out[3]. */
+typedef void (*sim_disturbance_fn)(double t_s, void *ctx, double d_out[3]);
 
 typedef struct {
     sim_vehicle_t v;
@@ -71,8 +72,8 @@ void sim_plant_forces(const sim_vehicle_t *v, const double w2[4], double *thrust
 
 /* Advances p by dt_s with w2_cmd held, in `substeps` classical RK4 steps
  * (values below 1 count as 1); dist (may be NULL: no disturbance) is called
- * with each axis at each stage time t, t + h/2, t + h/2, t + h of every
- * substep. Does nothing when dt_s is not > 0. */
+ * at the stage times t, t + h/2 and t + h of every substep, in that order
+ * (the two middle stages share one call). Does nothing when dt_s is not > 0. */
 void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int substeps,
                     sim_disturbance_fn dist, void *ctx);
 

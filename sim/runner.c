@@ -12,6 +12,7 @@
 #include "ladrc/levant.h"
 #include "ladrc/mixer.h"
 #include "ladrc/td.h"
+#include "numfmt.h"
 #include "plant.h"
 #include "rng.h"
 #include "sensor.h"
@@ -93,30 +94,37 @@ static int configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_att
     return 0;
 }
 
-/* The plant asks for d(t) at every RK4 stage: t, t + h/2 twice, t + h, and
- * the next substep starts at t + h again. Remembering the last two times per
- * axis halves the evaluations, with the same values bit for bit. */
+/* The plant asks for d(t) at t, t + h/2 and t + h of every substep, and
+ * the next substep starts at t + h again. Remembering the last two times
+ * saves one evaluation in three, with the same values bit for bit. */
 typedef struct {
     const sim_scenario_t *sc;
-    double t_s[3][2];
-    double value[3][2];
-    int next[3];
+    double t_s[2];
+    double value[2][3];
+    int next;
 } disturbance_cache_t;
 
-static double disturbance(int axis, double t_s, void *ctx)
+static void disturbance(double t_s, void *ctx, double d_out[3])
 {
     disturbance_cache_t *c = (disturbance_cache_t *)ctx;
-    for (int i = 0; i < 2; ++i) {
-        if (c->t_s[axis][i] == t_s) {
-            return c->value[axis][i];
+    int slot = c->t_s[0] == t_s ? 0 : (c->t_s[1] == t_s ? 1 : -1);
+    if (slot < 0) {
+        slot = c->next;
+        c->next = 1 - slot;
+        c->t_s[slot] = t_s;
+        sim_expr_memo_t memo; /* the axes often share sin(w t) */
+        sim_expr_memo_clear(&memo);
+        for (int i = 0; i < 3; ++i) {
+            c->value[slot][i] = sim_signal_eval_memo(&c->sc->disturbance[i], t_s, &memo);
         }
     }
-    const int slot = c->next[axis];
-    c->next[axis] = 1 - slot;
-    c->t_s[axis][slot] = t_s;
-    c->value[axis][slot] = sim_signal_eval(&c->sc->disturbance[axis], t_s);
-    return c->value[axis][slot];
+    for (int i = 0; i < 3; ++i) {
+        d_out[i] = c->value[slot][i];
+    }
 }
+
+/* stdio buffer of a time series: fewer, larger writes */
+#define CSV_BUFFER_BYTES (1 << 20)
 
 static FILE *open_csv(const char *path, const char *header, char *err, size_t err_len)
 {
@@ -128,8 +136,30 @@ static FILE *open_csv(const char *path, const char *header, char *err, size_t er
         snprintf(err, err_len, "%s: cannot write: %s", path, strerror(errno));
         return NULL;
     }
+    setvbuf(f, NULL, _IOFBF, CSV_BUFFER_BYTES);
     fputs(header, f);
     return f;
+}
+
+/* One CSV line in memory, written with one fwrite. */
+typedef struct {
+    char text[64 * SIM_NUMFMT_MAX];
+    int len;
+} csv_line_t;
+
+static void line_f4(csv_line_t *l, double x) { l->len += sim_fmt_f4(l->text + l->len, x); }
+
+static void line_g(csv_line_t *l, double x, int precision)
+{
+    l->text[l->len++] = ',';
+    l->len += sim_fmt_g(l->text + l->len, x, precision);
+}
+
+static void line_end(csv_line_t *l, FILE *f)
+{
+    l->text[l->len++] = '\n';
+    fwrite(l->text, 1, (size_t)l->len, f);
+    l->len = 0;
 }
 
 static const char ATTITUDE_CSV_HEADER[] =
@@ -171,9 +201,9 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
     disturbance_cache_t cache;
     memset(&cache, 0, sizeof cache);
     cache.sc = sc;
-    for (int i = 0; i < 3; ++i) {
-        cache.t_s[i][0] = cache.t_s[i][1] = NAN; /* never equal: empty */
-    }
+    cache.t_s[0] = cache.t_s[1] = NAN; /* never equal: empty */
+    csv_line_t line;
+    line.len = 0;
     const double start = wall_now_s();
     const long n = sim_run_ticks(sc);
     const double dt = sc->control_dt_s;
@@ -189,8 +219,10 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
         double meas_angle[3], meas_rate[3];
         sim_sensor_measure(&sensor, plant.angle_rad, plant.rate_rad_s, meas_angle, meas_rate);
         ladrc_real_t ref[3], angle[3], rate[3], torque[3];
+        sim_expr_memo_t memo; /* shared by the references, then the disturbances at t */
+        sim_expr_memo_clear(&memo);
         for (int i = 0; i < 3; ++i) {
-            ref[i] = (ladrc_real_t)sim_signal_eval(&sc->reference[i], t);
+            ref[i] = (ladrc_real_t)sim_signal_eval_memo(&sc->reference[i], t, &memo);
             angle[i] = (ladrc_real_t)meas_angle[i];
             rate[i] = (ladrc_real_t)meas_rate[i];
         }
@@ -209,7 +241,7 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
         }
         for (int i = 0; i < 3; ++i) {
             applied[i] = out.torque_Nm[i];
-            dist[i] = sim_signal_eval(&sc->disturbance[i], t);
+            dist[i] = sim_signal_eval_memo(&sc->disturbance[i], t, &memo);
         }
         double thrust_actual, torque_actual[3];
         sim_plant_forces(&plant.v, plant.w2_rad2_s2, &thrust_actual, torque_actual);
@@ -236,18 +268,18 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
         for (int r = 0; r < 4; ++r) {
             sim_stat_add(&m->rotor_w2[r], plant.w2_rad2_s2[r]);
         }
-        if (csv != NULL) {
-            fprintf(csv, "%.4f", t);
-            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", (double)ref[i] * RAD2DEG);
-            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", plant.angle_rad[i] * RAD2DEG);
-            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", err_rad[i] * RAD2DEG);
-            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", (double)torque[i]);
-            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", applied[i]);
-            for (int r = 0; r < 4; ++r) fprintf(csv, ",%.7g", plant.w2_rad2_s2[r]);
-            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", dist[i]);
-            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", f_true[i]);
-            for (int i = 0; i < 3; ++i) fprintf(csv, ",%.6g", m->has_estimate ? f_est[i] : NAN);
-            fputc('\n', csv);
+        if (csv != NULL) { /* the text of %.4f, %.6g and %.7g (numfmt.h) */
+            line_f4(&line, t);
+            for (int i = 0; i < 3; ++i) line_g(&line, (double)ref[i] * RAD2DEG, 6);
+            for (int i = 0; i < 3; ++i) line_g(&line, plant.angle_rad[i] * RAD2DEG, 6);
+            for (int i = 0; i < 3; ++i) line_g(&line, err_rad[i] * RAD2DEG, 6);
+            for (int i = 0; i < 3; ++i) line_g(&line, (double)torque[i], 6);
+            for (int i = 0; i < 3; ++i) line_g(&line, applied[i], 6);
+            for (int r = 0; r < 4; ++r) line_g(&line, plant.w2_rad2_s2[r], 7);
+            for (int i = 0; i < 3; ++i) line_g(&line, dist[i], 6);
+            for (int i = 0; i < 3; ++i) line_g(&line, f_true[i], 6);
+            for (int i = 0; i < 3; ++i) line_g(&line, m->has_estimate ? f_est[i] : NAN, 6);
+            line_end(&line, csv);
         }
         sim_plant_step(&plant, w2_cmd, dt, sc->plant_substeps, disturbance, &cache);
         if (!(isfinite(plant.angle_rad[0]) && isfinite(plant.angle_rad[1]) && isfinite(plant.angle_rad[2]))) {
@@ -300,6 +332,8 @@ int sim_run_differentiator(const sim_scenario_t *sc, const char *csv_path, const
     if (csv_path != NULL && csv == NULL) {
         return -1;
     }
+    csv_line_t line;
+    line.len = 0;
     const double start = wall_now_s();
     const long n = sim_run_ticks(sc);
     const double noise_std = sqrt(sc->diff_noise_var);
@@ -316,8 +350,13 @@ int sim_run_differentiator(const sim_scenario_t *sc, const char *csv_path, const
             sim_stat_add(&m->levant_error, (double)lev_out.dr - dr);
             sim_stat_add(&m->td_error, (double)td_out.dr - dr_next);
         }
-        if (csv != NULL) {
-            fprintf(csv, "%.4f,%.7g,%.7g,%.7g,%.7g\n", t, r, dr, (double)lev_out.dr, (double)td_out.dr);
+        if (csv != NULL) { /* "%.4f,%.7g,%.7g,%.7g,%.7g\n" */
+            line_f4(&line, t);
+            line_g(&line, r, 7);
+            line_g(&line, dr, 7);
+            line_g(&line, (double)lev_out.dr, 7);
+            line_g(&line, (double)td_out.dr, 7);
+            line_end(&line, csv);
         }
         if (progress != NULL && progress->ticks_done != NULL && (k & 1023) == 1023) {
             *progress->ticks_done += 1024;

@@ -42,15 +42,17 @@ const char *sim_controller_name(sim_controller_id_t id)
     return ((int)id >= 0 && id < SIM_CTRL_COUNT) ? CONTROLLER_NAMES[id] : "?";
 }
 
-double sim_signal_eval(const sim_signal_t *sig, double t_s)
+double sim_signal_eval_memo(const sim_signal_t *sig, double t_s, sim_expr_memo_t *memo)
 {
     for (int i = 0; i < sig->n_pieces; ++i) {
         if (sig->from_s[i] < t_s && t_s <= sig->to_s[i]) {
-            return sig->scale * sim_expr_eval(&sig->expr[i], t_s);
+            return sig->scale * sim_expr_eval_memo(&sig->expr[i], t_s, memo);
         }
     }
     return 0.0;
 }
+
+double sim_signal_eval(const sim_signal_t *sig, double t_s) { return sim_signal_eval_memo(sig, t_s, NULL); }
 
 /* ---- sections and keys --------------------------------------------------- */
 

@@ -30,6 +30,10 @@ typedef struct {
 /* Value of the first piece whose window holds t, times scale; 0 if none. */
 double sim_signal_eval(const sim_signal_t *sig, double t_s);
 
+/* The same, sharing function results with other signals at the same t
+ * through memo (NULL: none); bit for bit the value of sim_signal_eval. */
+double sim_signal_eval_memo(const sim_signal_t *sig, double t_s, sim_expr_memo_t *memo);
+
 typedef enum { SIM_KIND_ATTITUDE = 0, SIM_KIND_DIFFERENTIATOR = 1 } sim_kind_t;
 
 typedef enum {

@@ -179,7 +179,8 @@ done
 cpu=$(awk -F': *' '/^model name/ { print $2; exit }' /proc/cpuinfo)
 # --- simulator throughput --------------------------------------------------
 duration=$(awk -F= '/^\[/ { s = $0 } s == "[run]" && $1 ~ /^duration_s/ { gsub(/[ \t]/, "", $2); print $2 }' "$SCENARIO")
-runs=$(awk -F= '/^\[/ { s = $0 } s == "[run]" && $1 ~ /^controllers/ { sub(/#.*/, "", $2); print split($2, a, " ") }' "$SCENARIO")
+controllers=$(awk -F= '/^\[/ { s = $0 } s == "[run]" && $1 ~ /^controllers/ { sub(/#.*/, "", $2); print $2 }' "$SCENARIO")
+runs=$(echo $controllers | wc -w)
 simulated=$(awk -v d="$duration" -v n="$runs" 'BEGIN { print d * n }')
 BATCH=("$SCENARIO" "$SCENARIO" "$SCENARIO" "$SCENARIO")
 wall() { # best (least disturbed) wall seconds of 5 runs of ladrc_sil with the given options
@@ -191,9 +192,14 @@ wall() { # best (least disturbed) wall seconds of 5 runs of ladrc_sil with the g
 }
 log "timing the simulator ($SCENARIO: $runs runs of $duration s)"
 SCENARIOS=("$SCENARIO")
+mkdir -p "$tmp/csv"
+declare -A w_ctrl_nocsv w_ctrl_csv
+for c in $controllers; do # one controller at a time: what each costs
+  w_ctrl_nocsv[$c]=$(wall --no-csv --jobs 1 --controllers "$c")
+  w_ctrl_csv[$c]=$(wall --jobs 1 --controllers "$c" --out "$tmp/csv")
+done
 w_nocsv1=$(wall --no-csv --jobs 1)
 w_nocsv2=$(wall --no-csv --jobs 2)
-mkdir -p "$tmp/csv"
 w_csv1=$(wall --jobs 1 --out "$tmp/csv")
 w_csv2=$(wall --jobs 2 --out "$tmp/csv")
 SCENARIOS=("${BATCH[@]}")
@@ -202,7 +208,7 @@ w_batch2=$(wall --no-csv --jobs 2)
 
 # --- table -------------------------------------------------------------------
 mark() { awk -v x="$1" -v op="$2" -v lim="$3" 'BEGIN { ok = op == "<=" ? x <= lim : x >= lim; print ok ? "meets" : "over" }'; }
-rate() { awk -v s="$simulated" -v w="$1" 'BEGIN { printf "%.0f", s / w }'; }
+rate() { awk -v s="${2:-$simulated}" -v w="$1" 'BEGIN { printf "%.0f", s / w }'; }
 row() { printf '| %s | %s | %s | %s |\n' "$@"; }
 
 hp3=$(insn HP-MLADRC 2)
@@ -251,8 +257,13 @@ while read -r text data _bss _dec _hex obj _rest; do
 done < <(grep '\.obj ' "$tmp/size")
 row "library RAM (data + bss), B" "$ram" "" ""
 row "worst-case stack of one tick, B" "$stack_worst" "<= 256" "$(mark "$stack_worst" "<=" 256)"
+for c in $controllers; do
+  row "simulator, paper, $c alone, no CSV, --jobs 1, x real time" "$(rate "${w_ctrl_nocsv[$c]}" "$duration")" "" ""
+  row "simulator, paper, $c alone, full CSV, --jobs 1, x real time" "$(rate "${w_ctrl_csv[$c]}" "$duration")" "" ""
+done
 row "simulator, paper, no CSV, --jobs 1, x real time" "$r_nocsv" ">= 2000" "$(mark "$r_nocsv" ">=" 2000)"
 row "simulator, paper, full CSV, --jobs 1, x real time" "$r_csv" ">= 300" "$(mark "$r_csv" ">=" 300)"
+row "simulator, paper x${#BATCH[@]} ($((runs * ${#BATCH[@]})) runs), no CSV, --jobs 2, x real time" "$(rate "$w_batch2" "$(awk -v s="$simulated" -v n="${#BATCH[@]}" 'BEGIN { print s * n }')")" "" ""
 row "simulator, paper ($runs runs), no CSV, speed-up --jobs 1 -> 2" "$speedup_nocsv" "" ""
 row "simulator, paper ($runs runs), full CSV, speed-up --jobs 1 -> 2" "$speedup_csv" "" ""
 row "simulator, paper x${#BATCH[@]} ($((runs * ${#BATCH[@]})) runs), no CSV, speed-up --jobs 1 -> 2" "$speedup_batch" ">= 1.8" "$(mark "$speedup_batch" ">=" 1.8)"
@@ -262,7 +273,7 @@ echo "$(sed -n 's/^BENCH clock //p' "$tmp/run1"); the empty loop (same inputs, n
 echo "Mixer in LADRC_MIXER_SATURATE (rotor limits 1e4..2e5 rad^2/s^2), thrust from ladrc_mixer_thrust_from_tilt; inputs: paper references and a lagging, disturbed angle from t = 12 s."
 echo "Host: $cpu, gcc Release (-O3) build $BENCH_HOST; ns/tick: $(sed -n 's/^BENCH host clock //p' "$tmp/host"). Instructions/tick: x86-64 instructions counted by valgrind --tool=callgrind --toggle-collect=bench_collect (only the $cg_ticks measured ticks, after the same warm-up), minus the same count for the empty loop, divided by $cg_ticks; deterministic, not comparable with the Cortex-M4F counts."
 echo "Stack: deepest of ${ROOTS[*]}; chain: $stack_chain; not counted (C library): $stack_ext."
-echo "Simulator: $runs runs of $duration s ($simulated s simulated), best wall time of 5; x real time = simulated s / wall s on $(nproc) cores."
+echo "Simulator: $runs runs of $duration s ($simulated s simulated), best wall time of 5; x real time = simulated s / wall s on $(nproc) cores; one controller alone: --controllers NAME, $duration s simulated."
 
 # --- where the instructions go -------------------------------------------------
 mod() { awk -v k="$1" '$2 == "module" && $3 == k { print $4 }' "$tmp/run1"; }

@@ -22,6 +22,20 @@ cmp -s "$work/j1.txt" "$work/j2.txt"; check tables_identical_for_1_and_2_jobs $?
 diff -r "$work/j1" "$work/j2" > /dev/null; check outputs_identical_for_1_and_2_jobs $?
 [ "$(ls "$work/j1/paper" | wc -l)" -eq 5 ]; check writes_four_series_and_metrics $?
 
+# --controllers flies only the listed controllers, in the list's order, with
+# the results each has in the full run, series included.
+"$sil" "$scenarios/paper.ini" --controllers PID,HP-MLADRC --jobs 2 --out "$work/sub" --quiet > /dev/null
+check controllers_subset_runs $?
+[ "$(cut -d, -f2 "$work/sub/paper/metrics.csv" | sed 1d | uniq | tr '\n' ' ')" = "PID HP-MLADRC " ]
+check controllers_subset_writes_only_those $?
+grep -E '^paper,(PID|HP-MLADRC),' "$work/j1/paper/metrics.csv" | sort > "$work/full_sub.csv"
+sed 1d "$work/sub/paper/metrics.csv" | sort > "$work/sub_only.csv"
+cmp -s "$work/full_sub.csv" "$work/sub_only.csv" && cmp -s "$work/j1/paper/PID.csv" "$work/sub/paper/PID.csv" &&
+  [ ! -e "$work/sub/paper/LADRC.csv" ]
+check controllers_subset_results_identical_to_full_run $?
+"$sil" "$scenarios/paper.ini" --controllers PID,XYZ --out "$work/badc" --quiet > /dev/null 2>&1
+[ $? -eq 2 ] && [ ! -e "$work/badc" ]; check unknown_controller_exits_2 $?
+
 # A malformed scenario: exit 2, the error names file:line:column, nothing written.
 printf '[run]\nduration_s = 3\ncontrol_dt_s = 0.001\n[reference]\nroll = 5 + * 2\n' > "$work/bad.ini"
 "$sil" "$work/bad.ini" --out "$work/bad_out" --quiet > /dev/null 2> "$work/bad.err"
@@ -37,5 +51,5 @@ grep -q "bad.ini:5:" "$work/bad.err"; check malformed_error_names_file_and_line 
 "$sil" --jobs zero "$scenarios/paper.ini" > /dev/null 2>&1
 [ $? -eq 2 ]; check bad_option_exits_2 $?
 
-echo "$(( 9 - failures )) passed, $failures failed"
+echo "$(( 13 - failures )) passed, $failures failed"
 [ "$failures" -eq 0 ]

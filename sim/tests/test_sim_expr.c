@@ -299,6 +299,78 @@ static void test_program_and_stack_limits_are_errors_at_the_token_that_overflows
     assert_error(text, 65, "expression too deeply nested");
 }
 
+static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+
+/* Expressions covering every operator in every operand position (constant,
+ * t, subexpression, on either side), foldable parts and NaN/inf results. */
+static const char *const FOLDING_CORPUS[] = {
+    "20 - 120*sin(3*t)", "20 + 120*sin(0.25*pi*t)", "5 + 15*cos(pi*t/2)", "10*cos(pi*t/2)", "8", "-t",
+    "2^t", "t^2", "t^t", "2^3^2", "-2^2", "(1 + 2) * t", "t * (1 + 2)", "t / (2*pi)", "(2*pi) / t",
+    "min(t, 1)", "min(1, t)", "max(t, 0.5)", "max(0.5, t)", "min(sin(t), cos(t))", "max(sin(t), 0/0)",
+    "min(0/0, t)", "sin(t)*sin(t) + cos(t)*cos(t)", "(t + 1) - (t - 1)", "(t+1)/(t-1)", "(t*2)^(t/3)",
+    "tan(t) + asin(t/40) + acos(t/40) + atan(t)", "exp(-t) * log(t + 1) + sqrt(t)", "abs(t - 3) + floor(t) + ceil(t)",
+    "step(t - 2) + sign(t - 5) + step(0/0)", "1/t", "log(t)", "0/0", "sin(1) + t", "t + sin(1)",
+    "-(t - 3)", "+t", "1 - (2 - (3 - (4 - t)))", "((t))", "max(min(t, 1), -1)", "2 - t - 3",
+};
+
+static void test_the_folded_program_gives_the_postfix_programs_bits(void)
+{
+    static const double times[] = {0.0, -0.0, 1e-3, 0.5, 2.0, 3.0, 6.000001, 12.5, 24.9999, 30.0, -4.25, 1e9};
+    for (size_t k = 0; k < sizeof FOLDING_CORPUS / sizeof FOLDING_CORPUS[0]; ++k) {
+        sim_expr_t e;
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_expr_compile(&e, FOLDING_CORPUS[k], NULL), FOLDING_CORPUS[k]);
+        TEST_ASSERT_TRUE_MESSAGE(e.n_code > 0, FOLDING_CORPUS[k]);
+        for (size_t j = 0; j < sizeof times / sizeof times[0]; ++j) {
+            char message[160];
+            const double want = sim_expr_eval_postfix(&e, times[j]);
+            const double got = sim_expr_eval(&e, times[j]);
+            snprintf(message, sizeof message, "'%s' at t = %g: postfix %.17g, evaluated %.17g", FOLDING_CORPUS[k],
+                     times[j], want, got);
+            TEST_ASSERT_TRUE_MESSAGE(same_bits(want, got), message);
+        }
+    }
+}
+
+static void test_constant_parts_are_folded_to_one_operand(void)
+{
+    sim_expr_t e;
+    /* 20 - 120*sin(0.25*pi*t): 10 postfix ops; the folded form loads
+     * 0.25*pi, multiplies by t, takes sin, then two constant operations */
+    TEST_ASSERT_EQUAL_INT(0, sim_expr_compile(&e, "20 - 120*sin(0.25*pi*t)", NULL));
+    TEST_ASSERT_EQUAL_INT(10, e.n_ops);
+    TEST_ASSERT_EQUAL_INT(5, e.n_code);
+    TEST_ASSERT_EQUAL_INT(0, sim_expr_compile(&e, "2*pi*sqrt(4)", NULL));
+    TEST_ASSERT_EQUAL_INT(1, e.n_code);
+    assert_close(4.0 * PI, sim_expr_eval(&e, 0.0), "folded constant");
+}
+
+static void test_a_memo_returns_the_bits_of_the_call_it_replaces(void)
+{
+    sim_expr_t a, b, c;
+    TEST_ASSERT_EQUAL_INT(0, sim_expr_compile(&a, "20 - 120*sin(3*t)", NULL));
+    TEST_ASSERT_EQUAL_INT(0, sim_expr_compile(&b, "20 + 120*sin(3*t) + cos(t) + exp(t) + log(t) + atan(t)", NULL));
+    TEST_ASSERT_EQUAL_INT(0, sim_expr_compile(&c, "sin(t) + sin(-t) + sin(3*t)", NULL));
+    static const double times[] = {0.0, -0.0, 0.7, 13.25};
+    for (size_t j = 0; j < sizeof times / sizeof times[0]; ++j) {
+        sim_expr_memo_t memo;
+        sim_expr_memo_clear(&memo);
+        const double t = times[j];
+        /* b fills the memo past its size, so c's sin(3*t) may have been replaced */
+        TEST_ASSERT_TRUE(same_bits(sim_expr_eval(&a, t), sim_expr_eval_memo(&a, t, &memo)));
+        TEST_ASSERT_TRUE(same_bits(sim_expr_eval(&b, t), sim_expr_eval_memo(&b, t, &memo)));
+        TEST_ASSERT_TRUE(same_bits(sim_expr_eval(&c, t), sim_expr_eval_memo(&c, t, &memo)));
+        TEST_ASSERT_TRUE(same_bits(sim_expr_eval(&a, t), sim_expr_eval_memo(&a, t, &memo)));
+        TEST_ASSERT_TRUE(memo.n == SIM_EXPR_MEMO_SIZE);
+    }
+    /* sin(-0) is -0 and sin(0) is 0: the memo tells them apart */
+    sim_expr_t s;
+    TEST_ASSERT_EQUAL_INT(0, sim_expr_compile(&s, "sin(t)", NULL));
+    sim_expr_memo_t memo;
+    sim_expr_memo_clear(&memo);
+    TEST_ASSERT_TRUE(same_bits(0.0, sim_expr_eval_memo(&s, 0.0, &memo)));
+    TEST_ASSERT_TRUE(same_bits(-0.0, sim_expr_eval_memo(&s, -0.0, &memo)));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -315,5 +387,8 @@ int main(void)
     RUN_TEST(test_syntax_errors_name_what_was_expected_and_where);
     RUN_TEST(test_name_errors_quote_the_name);
     RUN_TEST(test_program_and_stack_limits_are_errors_at_the_token_that_overflows);
+    RUN_TEST(test_the_folded_program_gives_the_postfix_programs_bits);
+    RUN_TEST(test_constant_parts_are_folded_to_one_operand);
+    RUN_TEST(test_a_memo_returns_the_bits_of_the_call_it_replaces);
     return UNITY_END();
 }
