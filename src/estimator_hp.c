@@ -86,6 +86,10 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
     if (cfg->decimation < 1u) {
         return LADRC_ERR_HP_DECIMATION;
     }
+    /* A fit sample must see the tone turn by less than a quarter turn. */
+    const ladrc_real_t fit_period_s = (ladrc_real_t)cfg->fit_decimation * cfg->dt_s;
+    const ladrc_real_t fastest_rad_s =
+        (cfg->freq_mode == LADRC_HP_FREQ_ONLINE) ? cfg->freq_max_rad_s : cfg->freq_rad_s;
     const ladrc_real_t period_s = (ladrc_real_t)cfg->decimation * cfg->dt_s;
     if (cfg->freq_mode == LADRC_HP_FREQ_ONLINE &&
         !(ladrc_is_positive(cfg->freq_min_rad_s) && ladrc_is_finite(cfg->freq_max_rad_s) &&
@@ -96,12 +100,15 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
     if (!ladrc_is_positive(cfg->lambda0_per_s) || !ladrc_is_positive(cfg->freq_lambda0_per_s)) {
         return LADRC_ERR_EST_LAMBDA0;
     }
+    if (cfg->fit_decimation < 1u || !(fastest_rad_s * fit_period_s < LADRC_R(0.5) * HP_PI)) {
+        return LADRC_ERR_HP_FIT_DECIMATION;
+    }
     if (!ladrc_is_finite(cfg->sample_lag_wo_rad_s) || cfg->sample_lag_wo_rad_s < LADRC_R(0.0)) {
         return LADRC_ERR_HP_SAMPLE_LAG;
     }
     est->lambda0_max = cfg->lambda0_per_s;
     est->freq_lambda0_max = cfg->freq_lambda0_per_s;
-    ladrc_status_t status = init_rls(&est->amp, 3u, cfg->dt_s, cfg->lambda0_per_s);
+    ladrc_status_t status = init_rls(&est->amp, 3u, fit_period_s, cfg->lambda0_per_s);
     if (status == LADRC_OK) {
         status = init_rls(&est->freq, 2u, period_s, cfg->freq_lambda0_per_s);
     }
@@ -113,6 +120,7 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
     est->freq_min_rad_s = cfg->freq_min_rad_s;
     est->freq_max_rad_s = cfg->freq_max_rad_s;
     est->decimation = cfg->decimation;
+    est->fit_decimation = cfg->fit_decimation;
     est->online = (cfg->freq_mode == LADRC_HP_FREQ_ONLINE) ? 1u : 0u;
     ladrc_hp_reset(est, cfg->freq_rad_s);
     return LADRC_OK;
@@ -129,6 +137,7 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est, ladrc_real_t freq_rad_s)
     est->sin_psi = LADRC_R(0.0);
     est->dec_sum = LADRC_R(0.0);
     est->dec_count = 0u;
+    est->fit_count = 0u;
     est->x1 = LADRC_R(0.0);
     est->x2 = LADRC_R(0.0);
     est->n_dec_samples = 0u;
@@ -176,7 +185,8 @@ static void update_freq(ladrc_hp_estimator_t *est, ladrc_real_t x)
  * locally does not look like a good model. */
 static ladrc_real_t update_gate(ladrc_hp_estimator_t *est, ladrc_real_t centred, ladrc_real_t err)
 {
-    const ladrc_real_t alpha = est->period_rate_per_s * est->dt_s;
+    const ladrc_real_t fit_period_s = (ladrc_real_t)est->fit_decimation * est->dt_s;
+    const ladrc_real_t alpha = est->period_rate_per_s * fit_period_s;
     est->sig_power += alpha * (centred * centred - est->sig_power);
     est->err_power += alpha * (err * err - est->err_power);
     const ladrc_real_t explained = (est->sig_power > GATE_MIN_POWER)
@@ -184,7 +194,7 @@ static ladrc_real_t update_gate(ladrc_hp_estimator_t *est, ladrc_real_t centred,
                                        : LADRC_R(0.0);
     const ladrc_real_t target = ladrc_clamp((explained - GATE_Q_OFF) / (GATE_Q_ON - GATE_Q_OFF),
                                             LADRC_R(0.0), LADRC_R(1.0));
-    const ladrc_real_t max_move = GATE_RATE_PER_S * est->dt_s;
+    const ladrc_real_t max_move = GATE_RATE_PER_S * fit_period_s;
     est->weight += ladrc_clamp(target - est->weight, -max_move, max_move);
     return explained;
 }
@@ -216,10 +226,12 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
     if (!ladrc_is_finite(sample_rad_s2)) {
         est->faults = LADRC_FAULT_INPUT;
     } else {
-        const ladrc_real_t phi[3] = {LADRC_R(1.0), est->cos_psi, est->sin_psi};
-        const ladrc_real_t err = sample_rad_s2 - ladrc_rls_predict(&est->amp, phi);
-        est->faults = ladrc_rls_update(&est->amp, phi, sample_rad_s2);
-        set_memory(est, update_gate(est, sample_rad_s2 - ladrc_rls_get_theta(&est->amp)[0], err));
+        if (est->fit_count == 0u) {
+            const ladrc_real_t phi[3] = {LADRC_R(1.0), est->cos_psi, est->sin_psi};
+            const ladrc_real_t err = sample_rad_s2 - ladrc_rls_predict(&est->amp, phi);
+            est->faults = ladrc_rls_update(&est->amp, phi, sample_rad_s2);
+            set_memory(est, update_gate(est, sample_rad_s2 - ladrc_rls_get_theta(&est->amp)[0], err));
+        }
         if (est->online) {
             est->dec_sum += sample_rad_s2;
             if (++est->dec_count >= est->decimation) {
@@ -228,6 +240,10 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
                 est->dec_count = 0u;
             }
         }
+    }
+    /* The fit's clock runs on every tick, fitted or not, so it stays in step. */
+    if (++est->fit_count >= est->fit_decimation) {
+        est->fit_count = 0u;
     }
     est->estimate = est->weight * model_ahead_of_lag(est);
     advance_phase(est);

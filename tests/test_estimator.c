@@ -36,7 +36,8 @@ static ladrc_hp_config_t hp_config(ladrc_hp_freq_mode_t mode, double freq)
     ladrc_hp_config_t cfg = {(ladrc_real_t)DT_S,        mode,
                              (ladrc_real_t)freq,        axis.hp_freq_min_rad_s,
                              axis.hp_freq_max_rad_s,    axis.hp_lambda0_per_s,
-                             axis.hp_freq_lambda0_per_s, axis.hp_decimation, 0.0f};
+                             axis.hp_freq_lambda0_per_s, axis.hp_decimation, 0.0f,
+                             axis.hp_fit_decimation};
     return cfg;
 }
 
@@ -101,11 +102,12 @@ static void test_hp_online_reconverges_after_the_papers_frequency_jump(void)
     TEST_ASSERT_TRUE_MESSAGE(t_back >= 0.0 && t_back < REJUMP_S, msg);
 }
 
-static void test_hp_known_frequency_fits_the_amplitude_and_opens_the_gate(void)
+static void hp_known_fits_with_fit_decimation(uint16_t fit_decimation)
 {
     ladrc_hp_estimator_t est;
-    const ladrc_hp_config_t cfg = hp_config(LADRC_HP_FREQ_KNOWN, 3.0);
-    ladrc_hp_init(&est, &cfg);
+    ladrc_hp_config_t cfg = hp_config(LADRC_HP_FREQ_KNOWN, 3.0);
+    cfg.fit_decimation = fit_decimation;
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_hp_init(&est, &cfg));
     for (int k = 0; k < 3000; ++k) {
         ladrc_hp_step(&est, (ladrc_real_t)(20.0 + 120.0 * sin(3.0 * k * DT_S)));
     }
@@ -115,6 +117,14 @@ static void test_hp_known_frequency_fits_the_amplitude_and_opens_the_gate(void)
     /* the applied estimate is the model: within 1% of the signal's amplitude */
     const double d_now = 20.0 + 120.0 * sin(3.0 * 2999 * DT_S); /* phase of the last sample */
     TEST_ASSERT_FLOAT_WITHIN(1.2, d_now, ladrc_hp_get_estimate(&est));
+}
+
+static void test_hp_known_frequency_fits_the_amplitude_and_opens_the_gate(void)
+{
+    /* every tick, the 4 ms default at 1 kHz, and a sample every 20 ms */
+    hp_known_fits_with_fit_decimation(1u);
+    hp_known_fits_with_fit_decimation(4u);
+    hp_known_fits_with_fit_decimation(20u);
 }
 
 static void test_hp_undoes_the_observer_lag_of_its_samples(void)
@@ -244,6 +254,13 @@ static void test_hp_invalid_fields_are_rejected(void)
     cfg = good;
     cfg.sample_lag_wo_rad_s = -75.0f;
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_SAMPLE_LAG, ladrc_hp_init(&est, &cfg));
+    cfg = good;
+    cfg.fit_decimation = 0u;
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_FIT_DECIMATION, ladrc_hp_init(&est, &cfg));
+    cfg.fit_decimation = 40u; /* 40 rad/s * 40 ms > pi / 2 */
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_FIT_DECIMATION, ladrc_hp_init(&est, &cfg));
+    cfg.freq_mode = LADRC_HP_FREQ_KNOWN; /* 3 rad/s * 40 ms is fine */
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_hp_init(&est, &cfg));
     cfg = good;
     cfg.freq_mode = LADRC_HP_FREQ_KNOWN;
     cfg.freq_max_rad_s = (ladrc_real_t)NAN; /* the range is not read in KNOWN mode */

@@ -61,6 +61,7 @@ static const char *const status_names[LADRC_STATUS_COUNT] = {
     "LADRC_ERR_LEVANT_L3",
     "LADRC_ERR_LEVANT_L4",
     "LADRC_ERR_LEVANT_RANGE",
+    "LADRC_ERR_HP_FIT_DECIMATION",
 };
 
 /* 1 if text is name alone (names-only build) or name ": " and an explanation. */

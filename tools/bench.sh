@@ -279,6 +279,7 @@ echo "Simulator: $runs runs of $duration s ($simulated s simulated), best wall t
 mod() { awk -v k="$1" '$2 == "module" && $3 == k { print $4 }' "$tmp/run1"; }
 calc() { awk "BEGIN { printf \"%.2f\", $1 }"; }
 decimation=$(awk '$2 == "hp_decimation" { print $3 }' "$tmp/run1")
+fit_decimation=$(awk '$2 == "hp_fit_decimation" { print $3 }' "$tmp/run1")
 leso=$(mod ladrc_leso_step)
 levant=$(mod ladrc_levant_step)
 hp=$(mod ladrc_hp_step)
@@ -287,7 +288,7 @@ rls2=$(mod ladrc_rls_update_2)
 lone=$(mod lone_hp_axes_x3)
 thrust=$(mod ladrc_mixer_thrust_from_tilt)
 mixer=$(mod ladrc_mixer_step)
-hp_own=$(calc "$hp - $rls3 - $rls2 / $decimation")
+hp_own=$(calc "$hp - $rls3 / $fit_decimation - $rls2 / $decimation")
 axis_rest=$(calc "$lone / 3 - 2 * $leso - $levant - $hp")
 att_rest=$(calc "$hp3 - $lone - $thrust - $mixer")
 share() { calc "100 * $1 * $2 / $hp3"; }
@@ -307,7 +308,7 @@ echo "|---|---:|---:|---:|"
 brow "ladrc_leso_step (each axis's observer and its HP shadow)" "$leso" 6
 brow "ladrc_levant_step (implicit, the HP axis default)" "$levant" 3
 brow "ladrc_hp_step without its RLS updates (gate, phase, model)" "$hp_own" 3
-brow "ladrc_rls_update, 3 params (HP fit of bias and sinusoid, every tick)" "$rls3" 3
+brow "ladrc_rls_update, 3 params (HP fit of bias and sinusoid, every $fit_decimation ticks)" "$rls3" "$(calc "3 / $fit_decimation")"
 brow "ladrc_rls_update, 2 params (HP frequency fit, every $decimation ticks)" "$rls2" "$(calc "3 / $decimation")"
 brow "rest of ladrc_axis_step_with_rate (checks, control law): a lone HP axis minus the rows above" "$axis_rest" 3
 brow "ladrc_mixer_thrust_from_tilt" "$thrust" 1

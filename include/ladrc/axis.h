@@ -93,6 +93,7 @@ typedef struct {
     ladrc_real_t hp_lambda0_per_s; /**< forgetting rate of the amplitude RLS (1/s) */
     ladrc_real_t hp_freq_lambda0_per_s; /**< forgetting rate of the frequency RLS (1/s) */
     uint16_t hp_decimation;        /**< ticks per frequency sample */
+    uint16_t hp_fit_decimation;    /**< ticks per sample of the amplitude fit and the gate */
 } ladrc_axis_config_t;
 
 /** Axis state; owned by the caller, read through the getters. */
@@ -131,7 +132,8 @@ typedef struct {
  * LP and HP shape the reference with Levant (implicit, L = 1000 rad/s^4).
  * LP: lambda0 = 100 /s, k0 = 300 /s (paper). HP: online frequency in
  * [0.3, 40] rad/s starting at 3 rad/s, forgetting 1 /s for both RLS, frequency
- * samples every 10 ticks at 1 kHz (a known frequency: set hp_freq_mode).
+ * samples every 20 ms and amplitude-fit samples every 4 ms (at least every
+ * tick; a known frequency: set hp_freq_mode).
  */
 void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant,
                                ladrc_real_t dt_s, ladrc_real_t inertia_kg_m2);

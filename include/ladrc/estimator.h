@@ -26,6 +26,10 @@
  *     x_j - 2 x_j-1 + x_j-2 = -kappa x_j-1 + kappa c,   kappa = 4 sin^2(w T / 2)
  * solved by a two-parameter RLS (the second difference keeps the regression
  * well scaled where 2 cos(w T) would sit within float resolution of 2).
+ * The (c, a, b) fit and the gate take every fit_decimation-th sample: the
+ * sample is smooth (it comes through the observer, bandwidth wo), so a few
+ * milliseconds between fit samples lose little, and the fit's cost is shared
+ * by that many ticks; the estimate itself is evaluated every tick.
  * Both fits keep about one period of the modelled tone in memory while the
  * model explains the signal (enough to tell the bias, the tone and a
  * neighbouring tone apart), and forget at the configured maximum rate while it
@@ -95,6 +99,8 @@ typedef struct {
     uint16_t decimation;             /**< ticks per frequency sample, >= 1 */
     ladrc_real_t sample_lag_wo_rad_s;/**< samples come through a LESO of this bandwidth, whose z3
                                           lags f by wo^3 / (s + wo)^3: undone at w; 0 = no lag */
+    uint16_t fit_decimation;         /**< ticks per sample of the (c, a, b) fit and the gate, >= 1;
+                                          the tone may turn at most pi/2 per fit sample */
 } ladrc_hp_config_t;
 
 typedef struct {
@@ -118,6 +124,7 @@ typedef struct {
     ladrc_real_t weight;             /**< compensation weight in [0, 1] */
     ladrc_real_t estimate;           /**< weight * model: the applied d_hat (rad/s^2) */
     uint16_t decimation, dec_count;
+    uint16_t fit_decimation, fit_count; /**< the fit takes the sample of every fit_decimation-th tick */
     uint8_t n_dec_samples;           /**< decimated samples seen, saturates at 2 */
     uint8_t online;
     uint8_t memory;                  /**< memory the RLS were given last (estimator_hp.c) */

@@ -94,6 +94,7 @@ static struct {
     ladrc_mixer_output_t out;
     ladrc_real_t b0;
     uint16_t decimation;
+    uint16_t fit_decimation;
 } mod;
 
 static ladrc_real_t torque_in[BENCH_SAMPLES][LADRC_AXES]; /* commanded, N m */
@@ -232,6 +233,7 @@ static int setup_modules(void)
     ladrc_axis_config_default(&pid, LADRC_VARIANT_PID, BENCH_DT_S, bench_inertia[0]);
     mod.b0 = hp.b0;
     mod.decimation = hp.hp_decimation;
+    mod.fit_decimation = hp.hp_fit_decimation;
     if (record_inputs(hp.hp_decimation) != 0) {
         return -1;
     }
@@ -250,10 +252,12 @@ static int setup_modules(void)
     const ladrc_lp_config_t lp = {hp.dt_s, hp.lp_lambda0_per_s, hp.lp_k0_per_s};
     const ladrc_hp_config_t hpc = {hp.dt_s, hp.hp_freq_mode, hp.hp_freq_rad_s,
                                    hp.hp_freq_min_rad_s, hp.hp_freq_max_rad_s, hp.hp_lambda0_per_s,
-                                   hp.hp_freq_lambda0_per_s, hp.hp_decimation, hp.wo_rad_s};
+                                   hp.hp_freq_lambda0_per_s, hp.hp_decimation, hp.wo_rad_s,
+                                   hp.hp_fit_decimation};
     /* The HP estimator's two fits: P bound 1e4 and initial P 1e3 per sample. */
     const float h2 = (float)hp.hp_decimation * hp.dt_s;
-    const ladrc_rls_config_t rls3 = {3u, hp.dt_s, hp.hp_lambda0_per_s, 1e4f / hp.dt_s, 1e3f / hp.dt_s};
+    const float h3 = (float)hp.hp_fit_decimation * hp.dt_s;
+    const ladrc_rls_config_t rls3 = {3u, h3, hp.hp_lambda0_per_s, 1e4f / h3, 1e3f / h3};
     const ladrc_rls_config_t rls2 = {2u, h2, hp.hp_freq_lambda0_per_s, 1e4f / h2, 1e3f / h2};
     const ladrc_pid_config_t pidc = {pid.dt_s, pid.pid_kp, pid.pid_ki, pid.pid_kd,
                                      pid.pid_d_filter_tau_s, pid.pid_i_limit_Nm, pid.u_min_Nm,
@@ -338,6 +342,7 @@ int main(void)
         return 1;
     }
     printf("BENCH hp_decimation %u\n", (unsigned)mod.decimation);
+    printf("BENCH hp_fit_decimation %u\n", (unsigned)mod.fit_decimation);
     print_module("lone_hp_axes_x3", RUN_LONE_AXES, ipc);
     print_module("ladrc_leso_step", RUN_LESO, ipc);
     print_module("ladrc_td_step", RUN_TD, ipc);
