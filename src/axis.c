@@ -76,6 +76,7 @@ void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant
     cfg->hp_freq_lambda0_per_s = AXIS_DEFAULT_HP_LAMBDA0_PER_S;
     cfg->hp_decimation = ticks_in(AXIS_DEFAULT_HP_FREQ_SAMPLE_S, dt_s);
     cfg->hp_fit_decimation = ticks_in(AXIS_DEFAULT_HP_FIT_SAMPLE_S, dt_s);
+    cfg->hp_fit_phase = 0u;
 }
 
 static ladrc_status_t init_shaper(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
@@ -114,7 +115,8 @@ static ladrc_status_t init_estimator(ladrc_axis_t *axis, const ladrc_axis_config
                                       cfg->hp_freq_lambda0_per_s,
                                       cfg->hp_decimation,
                                       cfg->wo_rad_s,
-                                      cfg->hp_fit_decimation};
+                                      cfg->hp_fit_decimation,
+                                      cfg->hp_fit_phase};
         /* The shadow runs with the LESO's gains (initialised just before). */
         ladrc_leso_twin_reset(&axis->part.hp.shadow, LADRC_R(0.0));
         return ladrc_hp_init(&axis->part.hp.est, &hp);

@@ -100,7 +100,8 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
     if (!ladrc_is_positive(cfg->lambda0_per_s) || !ladrc_is_positive(cfg->freq_lambda0_per_s)) {
         return LADRC_ERR_EST_LAMBDA0;
     }
-    if (cfg->fit_decimation < 1u || !(fastest_rad_s * fit_period_s < LADRC_R(0.5) * HP_PI)) {
+    if (cfg->fit_decimation < 1u || cfg->fit_phase >= cfg->fit_decimation ||
+        !(fastest_rad_s * fit_period_s < LADRC_R(0.5) * HP_PI)) {
         return LADRC_ERR_HP_FIT_DECIMATION;
     }
     if (!ladrc_is_finite(cfg->sample_lag_wo_rad_s) || cfg->sample_lag_wo_rad_s < LADRC_R(0.0)) {
@@ -121,6 +122,7 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
     est->freq_max_rad_s = cfg->freq_max_rad_s;
     est->decimation = cfg->decimation;
     est->fit_decimation = cfg->fit_decimation;
+    est->fit_phase = cfg->fit_phase;
     est->online = (cfg->freq_mode == LADRC_HP_FREQ_ONLINE) ? 1u : 0u;
     ladrc_hp_reset(est, cfg->freq_rad_s);
     return LADRC_OK;
@@ -226,7 +228,7 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
     if (!ladrc_is_finite(sample_rad_s2)) {
         est->faults = LADRC_FAULT_INPUT;
     } else {
-        if (est->fit_count == 0u) {
+        if (est->fit_count == est->fit_phase) {
             const ladrc_real_t phi[3] = {LADRC_R(1.0), est->cos_psi, est->sin_psi};
             const ladrc_real_t err = sample_rad_s2 - ladrc_rls_predict(&est->amp, phi);
             est->faults = ladrc_rls_update(&est->amp, phi, sample_rad_s2);

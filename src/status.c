@@ -62,7 +62,7 @@
     X(LADRC_ERR_LEVANT_L3, "l3 must be finite and > 0") \
     X(LADRC_ERR_LEVANT_L4, "l4 must be finite and > 0") \
     X(LADRC_ERR_LEVANT_RANGE, "dt_s and the gains give per-sample coefficients out of range") \
-    X(LADRC_ERR_HP_FIT_DECIMATION, "hp fit_decimation must be >= 1 with freq * fit_decimation * dt_s < pi/2")
+    X(LADRC_ERR_HP_FIT_DECIMATION, "hp needs 1 <= fit_decimation, fit_phase < fit_decimation, freq * fit_decimation * dt_s < pi/2")
 
 #ifdef LADRC_STATUS_NAMES_ONLY
 #define STATUS_TEXT(code, explanation) #code

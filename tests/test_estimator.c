@@ -37,7 +37,7 @@ static ladrc_hp_config_t hp_config(ladrc_hp_freq_mode_t mode, double freq)
                              (ladrc_real_t)freq,        axis.hp_freq_min_rad_s,
                              axis.hp_freq_max_rad_s,    axis.hp_lambda0_per_s,
                              axis.hp_freq_lambda0_per_s, axis.hp_decimation, 0.0f,
-                             axis.hp_fit_decimation};
+                             axis.hp_fit_decimation, axis.hp_fit_phase};
     return cfg;
 }
 
@@ -125,6 +125,27 @@ static void test_hp_known_frequency_fits_the_amplitude_and_opens_the_gate(void)
     hp_known_fits_with_fit_decimation(1u);
     hp_known_fits_with_fit_decimation(4u);
     hp_known_fits_with_fit_decimation(20u);
+}
+
+static void test_hp_fits_on_the_tick_its_phase_names(void)
+{
+    /* given two estimators fitting every 4th tick, at phases 0 and 3 */
+    ladrc_hp_estimator_t first, last;
+    ladrc_hp_config_t cfg = hp_config(LADRC_HP_FREQ_KNOWN, 3.0);
+    cfg.fit_decimation = 4u;
+    ladrc_hp_init(&first, &cfg);
+    cfg.fit_phase = 3u;
+    ladrc_hp_init(&last, &cfg);
+    /* when ticks 0..2 see a sample */
+    for (int k = 0; k < 3; ++k) {
+        ladrc_hp_step(&first, 50.0f);
+        ladrc_hp_step(&last, 50.0f);
+    }
+    /* then only phase 0 has fitted (on tick 0), phase 3 fits on tick 3 */
+    TEST_ASSERT_TRUE(ladrc_rls_get_theta(&first.amp)[0] > 0.0f);
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, ladrc_rls_get_theta(&last.amp)[0]);
+    ladrc_hp_step(&last, 50.0f);
+    TEST_ASSERT_TRUE(ladrc_rls_get_theta(&last.amp)[0] > 0.0f);
 }
 
 static void test_hp_undoes_the_observer_lag_of_its_samples(void)
@@ -257,6 +278,10 @@ static void test_hp_invalid_fields_are_rejected(void)
     cfg = good;
     cfg.fit_decimation = 0u;
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_FIT_DECIMATION, ladrc_hp_init(&est, &cfg));
+    cfg.fit_decimation = 4u;
+    cfg.fit_phase = 4u;
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_FIT_DECIMATION, ladrc_hp_init(&est, &cfg));
+    cfg.fit_phase = 0u;
     cfg.fit_decimation = 40u; /* 40 rad/s * 40 ms > pi / 2 */
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_FIT_DECIMATION, ladrc_hp_init(&est, &cfg));
     cfg.freq_mode = LADRC_HP_FREQ_KNOWN; /* 3 rad/s * 40 ms is fine */
@@ -340,6 +365,7 @@ int main(void)
     RUN_TEST(test_hp_online_finds_frequency_and_amplitude_across_the_range);
     RUN_TEST(test_hp_online_reconverges_after_the_papers_frequency_jump);
     RUN_TEST(test_hp_known_frequency_fits_the_amplitude_and_opens_the_gate);
+    RUN_TEST(test_hp_fits_on_the_tick_its_phase_names);
     RUN_TEST(test_hp_undoes_the_observer_lag_of_its_samples);
     RUN_TEST(test_hp_online_stays_bounded_with_noise);
     RUN_TEST(test_hp_gate_stays_shut_on_noise_without_a_tone);

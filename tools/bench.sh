@@ -85,6 +85,8 @@ if ! cmp -s "$tmp/run1" "$tmp/run2"; then
   exit 1
 fi
 insn() { awk -v v="$1" -v c="$2" '$2 == "insn" && $3 == v { print $(3 + c) }' "$tmp/run1"; }
+ipc=$(sed -n 's/^BENCH clock .*: \([0-9]*\) instructions per count.*/\1/p' "$tmp/run1")
+worst() { awk -v v="$1" '$2 == "worst" && $3 == v { print $4 }' "$tmp/run1"; }
 size_of() { awk -v t="$1" '$2 == "sizeof" && $3 == t { print $4 }' "$tmp/run1"; }
 
 # --- library size ------------------------------------------------------------
@@ -110,6 +112,7 @@ declare -A measured=(
 for v in PID LADRC LP-MLADRC HP-MLADRC; do
   measured[insn.axis.$v]=$(insn "$v" 1)
   measured[insn.3axes.$v]=$(insn "$v" 2)
+  measured[insn.worst.$v]=$(worst "$v")
 done
 if [[ $MODE == --check ]]; then
   over=()
@@ -234,6 +237,9 @@ for v in PID LADRC LP-MLADRC; do
 done
 row "HP-MLADRC, 3 axes + mixer, instructions/tick" "$hp3" "<= 1500" "$(mark "$hp3" "<=" 1500)"
 row "ratio HP-MLADRC / PID, 3 axes + mixer" "$ratio" "" ""
+for v in PID LADRC LP-MLADRC HP-MLADRC; do
+  row "$v, 3 axes + mixer, dearest single tick, instructions (+-$ipc)" "$(worst "$v")" "" ""
+done
 for c in 1 2; do
   for v in PID LADRC LP-MLADRC HP-MLADRC; do
     row "$v, $([[ $c == 1 ]] && echo "one axis" || echo "3 axes + mixer"), host, ns/tick" "$(host_ns "$v" "$c")" "" ""

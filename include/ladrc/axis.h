@@ -94,6 +94,7 @@ typedef struct {
     ladrc_real_t hp_freq_lambda0_per_s; /**< forgetting rate of the frequency RLS (1/s) */
     uint16_t hp_decimation;        /**< ticks per frequency sample */
     uint16_t hp_fit_decimation;    /**< ticks per sample of the amplitude fit and the gate */
+    uint16_t hp_fit_phase;         /**< tick of each such block that fits, < hp_fit_decimation */
 } ladrc_axis_config_t;
 
 /** Axis state; owned by the caller, read through the getters. */

@@ -101,6 +101,9 @@ typedef struct {
                                           lags f by wo^3 / (s + wo)^3: undone at w; 0 = no lag */
     uint16_t fit_decimation;         /**< ticks per sample of the (c, a, b) fit and the gate, >= 1;
                                           the tone may turn at most pi/2 per fit sample */
+    uint16_t fit_phase;              /**< which tick of each fit_decimation block fits, < fit_decimation
+                                          (give the axes of one controller different phases so a
+                                          tick carries at most one fit) */
 } ladrc_hp_config_t;
 
 typedef struct {
@@ -125,6 +128,7 @@ typedef struct {
     ladrc_real_t estimate;           /**< weight * model: the applied d_hat (rad/s^2) */
     uint16_t decimation, dec_count;
     uint16_t fit_decimation, fit_count; /**< the fit takes the sample of every fit_decimation-th tick */
+    uint16_t fit_phase;              /**< fit when fit_count equals it */
     uint8_t n_dec_samples;           /**< decimated samples seen, saturates at 2 */
     uint8_t online;
     uint8_t memory;                  /**< memory the RLS were given last (estimator_hp.c) */

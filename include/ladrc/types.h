@@ -90,7 +90,8 @@ typedef enum {
     LADRC_ERR_LEVANT_L3,          /**< Levant l3 not finite or not > 0 */
     LADRC_ERR_LEVANT_L4,          /**< Levant l4 not finite or not > 0 */
     LADRC_ERR_LEVANT_RANGE,       /**< Levant per-sample coefficients overflow or vanish for this dt_s */
-    LADRC_ERR_HP_FIT_DECIMATION,  /**< hp fit_decimation < 1, or the tone turns too far per fit sample */
+    LADRC_ERR_HP_FIT_DECIMATION,  /**< hp fit_decimation < 1, fit_phase >= fit_decimation, or the tone
+                                       turns too far per fit sample */
     LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
 } ladrc_status_t;
 
