@@ -61,7 +61,7 @@ log() { echo "-- $*" >&2; }
 
 log "building the Cortex-M4F benchmark ($CROSS)"
 [[ -f $CROSS/CMakeCache.txt ]] || cmake --preset cortex-m4f -B "$CROSS" -DLADRC_BUILD_BENCH=ON >&2
-cmake --build "$CROSS" -j "$JOBS" --target ladrc_bench_m4f >&2
+cmake --build "$CROSS" -j "$JOBS" --target ladrc_bench_m4f ladrc_fw_hp >&2
 
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -94,6 +94,9 @@ arm-none-eabi-size -t "$CROSS/libladrc.a" >"$tmp/size"
 lib_text=$(awk '/\(TOTALS\)/ { print $1 }' "$tmp/size")
 lib_data=$(awk '/\(TOTALS\)/ { print $2 }' "$tmp/size")
 lib_bss=$(awk '/\(TOTALS\)/ { print $3 }' "$tmp/size")
+# What an HP-MLADRC firmware links of it (tools/bench/fw_hp.c, --gc-sections).
+python3 tools/bench/linked.py "$CROSS/tools/bench/ladrc_fw_hp.map" libladrc.a >"$tmp/linked"
+linked_hp=$(awk '$2 == "total" { print $3 }' "$tmp/linked")
 
 # --- stack ---------------------------------------------------------------------
 python3 tools/bench/stack.py "$CROSS/CMakeFiles/ladrc.dir" "${ROOTS[@]}" >"$tmp/stack"
@@ -107,6 +110,7 @@ stack_ext=$(awk '$1 == "EXTERNAL" { $1 = ""; sub(/^ /, ""); print }' "$tmp/stack
 declare -A measured=(
   [flash.library]=$((lib_text + lib_data))
   [stack.tick]=$stack_worst
+  [flash.linked_hp]=$linked_hp
   [sizeof.ladrc_attitude_t]=$(size_of ladrc_attitude_t)
 )
 for v in PID LADRC LP-MLADRC HP-MLADRC; do
@@ -262,6 +266,7 @@ while read -r text data _bss _dec _hex obj _rest; do
   row "flash of ${obj%.obj}, B" "$((text + data))" "" ""
 done < <(grep '\.obj ' "$tmp/size")
 row "library RAM (data + bss), B" "$ram" "" ""
+row "library flash an HP-MLADRC firmware links (tools/bench/fw_hp.c, --gc-sections), B" "$linked_hp" "" ""
 row "worst-case stack of one tick, B" "$stack_worst" "<= 256" "$(mark "$stack_worst" "<=" 256)"
 for c in $controllers; do
   row "simulator, paper, $c alone, no CSV, --jobs 1, x real time" "$(rate "${w_ctrl_nocsv[$c]}" "$duration")" "" ""
