@@ -101,7 +101,7 @@ typedef struct {
     ladrc_real_t weight_N;      /**< m g */
     ladrc_real_t cos_tilt_min;  /**< cos(tilt_max_rad) */
     ladrc_real_t thrust_max_N;  /**< m g / cos(tilt_max_rad): thrust_from_tilt's cap */
-    ladrc_real_t w2_min_rad2_s2, w2_max_rad2_s2;
+    ladrc_real_t w2_min_rad2_s2, w2_max_rad2_s2; /**< rotor limits; ideal mode: -+ the largest finite value */
     ladrc_mixer_mode_t mode;
     ladrc_mixer_output_t out;   /**< last good output */
 } ladrc_mixer_t;
