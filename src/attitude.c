@@ -76,6 +76,34 @@ static ladrc_real_t feed(const ladrc_attitude_t *att, unsigned i, ladrc_real_t r
     return att->coupling[i] * (accel_a * rate_b + rate_a * accel_b) - att->drag_per_s[i] * accel_i;
 }
 
+/* Rate z2 and acceleration b0 * applied torque + z3 + d_hat of one axis, read
+ * straight from it (attitude owns its axes; the sum as ladrc_axis_get_accel
+ * forms it). A PID axis has no observer: 0 and 0. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void observed(const ladrc_axis_t *ax, ladrc_real_t *rate, ladrc_real_t *accel)
+{
+    *rate = LADRC_R(0.0);
+    *accel = LADRC_R(0.0);
+    if (ax->variant != LADRC_VARIANT_PID) {
+        *rate = ax->leso.z2;
+        *accel = ax->b0 * ax->applied_Nm + ax->leso.z3 + ax->d_hat_rad_s2;
+    }
+}
+
+/* Feeds h to axis i; a PID axis gets none, and a non-finite h is fed as 0
+ * (as ladrc_axis_set_disturbance_rate does). */
+static inline void put_feed(ladrc_attitude_t *att, unsigned i, ladrc_real_t h)
+{
+    ladrc_axis_t *ax = &att->axis[i];
+    if (ax->variant == LADRC_VARIANT_PID) {
+        h = LADRC_R(0.0);
+    }
+    att->feed_rad_s3[i] = h;
+    ax->f_rate_rad_s3 = ladrc_is_finite(h) ? h : LADRC_R(0.0);
+}
+
 /* Sets h on each axis from the other axes' rate and acceleration estimates.
  * Kept out of line so that its locals are not on the stack of the axis steps. */
 #if defined(__GNUC__)
@@ -83,23 +111,13 @@ __attribute__((noinline))
 #endif
 static void update_feed(ladrc_attitude_t *att)
 {
-    ladrc_axis_t *ax = att->axis;
-    /* A PID axis has no observer: rate and acceleration 0, and it gets no feed. */
-    const ladrc_real_t w0 = (ax[0].variant != LADRC_VARIANT_PID) ? ax[0].leso.z2 : LADRC_R(0.0);
-    const ladrc_real_t w1 = (ax[1].variant != LADRC_VARIANT_PID) ? ax[1].leso.z2 : LADRC_R(0.0);
-    const ladrc_real_t w2 = (ax[2].variant != LADRC_VARIANT_PID) ? ax[2].leso.z2 : LADRC_R(0.0);
-    const ladrc_real_t a0 = ladrc_axis_get_accel(&ax[0]);
-    const ladrc_real_t a1 = ladrc_axis_get_accel(&ax[1]);
-    const ladrc_real_t a2 = ladrc_axis_get_accel(&ax[2]);
-    att->feed_rad_s3[LADRC_ROLL] = feed(att, LADRC_ROLL, w1, a1, w2, a2, a0);
-    att->feed_rad_s3[LADRC_PITCH] = feed(att, LADRC_PITCH, w2, a2, w0, a0, a1);
-    att->feed_rad_s3[LADRC_YAW] = feed(att, LADRC_YAW, w0, a0, w1, a1, a2);
-    for (unsigned i = 0; i < LADRC_AXES; ++i) {
-        if (ax[i].variant == LADRC_VARIANT_PID) {
-            att->feed_rad_s3[i] = LADRC_R(0.0);
-        }
-        ladrc_axis_set_disturbance_rate(&ax[i], att->feed_rad_s3[i]);
-    }
+    ladrc_real_t w0, w1, w2, a0, a1, a2;
+    observed(&att->axis[0], &w0, &a0);
+    observed(&att->axis[1], &w1, &a1);
+    observed(&att->axis[2], &w2, &a2);
+    put_feed(att, LADRC_ROLL, feed(att, LADRC_ROLL, w1, a1, w2, a2, a0));
+    put_feed(att, LADRC_PITCH, feed(att, LADRC_PITCH, w2, a2, w0, a0, a1));
+    put_feed(att, LADRC_YAW, feed(att, LADRC_YAW, w0, a0, w1, a1, a2));
 }
 
 ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
@@ -125,6 +143,13 @@ void ladrc_attitude_set_applied(ladrc_attitude_t *att, const ladrc_real_t torque
 {
     LADRC_ASSERT(att != NULL);
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
-        ladrc_axis_set_applied(&att->axis[i], torque_Nm[i]);
+        ladrc_axis_t *ax = &att->axis[i];
+        /* The common case straight into the axis; a PID axis or a non-finite
+         * torque takes the axis's own path. */
+        if (ax->variant != LADRC_VARIANT_PID && ladrc_is_finite(torque_Nm[i])) {
+            ax->applied_Nm = torque_Nm[i];
+        } else {
+            ladrc_axis_set_applied(ax, torque_Nm[i]);
+        }
     }
 }
