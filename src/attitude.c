@@ -24,8 +24,10 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
         return LADRC_ERR_NULL;
     }
     const ladrc_real_t *j = cfg->inertia_kg_m2;
-    if (!(ladrc_is_positive(j[0]) && ladrc_is_positive(j[1]) && ladrc_is_positive(j[2]))) {
-        return LADRC_ERR_INERTIA_KG_M2;
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        if (!ladrc_is_positive(j[i])) {
+            return LADRC_ERR_INERTIA_KG_M2;
+        }
     }
     if (!ladrc_is_finite(cfg->drag_Nms) || cfg->drag_Nms < LADRC_R(0.0)) {
         return LADRC_ERR_DRAG_NMS;
@@ -33,7 +35,8 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
     if (cfg->coupling_feed > 1u) {
         return LADRC_ERR_COUPLING_FEED;
     }
-    for (int i = 0; i < LADRC_AXES; ++i) {
+    att->observers = 1u;
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
         /* The feed mixes the axes' states tick by tick: one clock for all. */
         ladrc_status_t status = (cfg->axis[i].dt_s == cfg->axis[0].dt_s) ? LADRC_OK : LADRC_ERR_DT_S;
         if (status == LADRC_OK) {
@@ -41,15 +44,17 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
         }
         if (status != LADRC_OK) {
             if (failed_axis != NULL) {
-                *failed_axis = i;
+                *failed_axis = (int)i;
             }
             return status;
         }
-    }
-    att->coupling[LADRC_ROLL] = (j[1] - j[2]) / j[0];
-    att->coupling[LADRC_PITCH] = (j[2] - j[0]) / j[1];
-    att->coupling[LADRC_YAW] = (j[0] - j[1]) / j[2];
-    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        if (cfg->axis[i].variant == LADRC_VARIANT_PID) {
+            att->observers = 0u;
+        }
+        /* (J of the next axis - J of the one after) / J, roll -> pitch -> yaw -> roll */
+        const unsigned next = (i == LADRC_YAW) ? 0u : i + 1u;
+        const unsigned after = (next == LADRC_YAW) ? 0u : next + 1u;
+        att->coupling[i] = (j[next] - j[after]) / j[i];
         att->drag_per_s[i] = cfg->drag_Nms / j[i];
         att->feed_rad_s3[i] = LADRC_R(0.0);
     }
@@ -124,32 +129,40 @@ ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_
                                   const ladrc_real_t angle_rad[LADRC_AXES],
                                   const ladrc_real_t *rate_rad_s, ladrc_real_t torque_Nm[LADRC_AXES])
 {
+    ladrc_axis_t *ax = att->axis;
     LADRC_ASSERT(att != NULL);
     if (att->coupling_feed) {
         update_feed(att);
     }
-    ladrc_fault_t faults = LADRC_FAULT_NONE;
-    for (unsigned i = 0; i < LADRC_AXES; ++i) {
-        ladrc_axis_t *ax = &att->axis[i];
-        torque_Nm[i] = (rate_rad_s != NULL)
-                           ? ladrc_axis_step_with_rate(ax, ref_rad[i], angle_rad[i], rate_rad_s[i])
-                           : ladrc_axis_step(ax, ref_rad[i], angle_rad[i]);
-        faults |= ax->faults;
+    /* Three calls written out: no loop counter, one test of the rate. */
+    if (rate_rad_s != NULL) {
+        torque_Nm[0] = ladrc_axis_step_with_rate(&ax[0], ref_rad[0], angle_rad[0], rate_rad_s[0]);
+        torque_Nm[1] = ladrc_axis_step_with_rate(&ax[1], ref_rad[1], angle_rad[1], rate_rad_s[1]);
+        torque_Nm[2] = ladrc_axis_step_with_rate(&ax[2], ref_rad[2], angle_rad[2], rate_rad_s[2]);
+    } else {
+        torque_Nm[0] = ladrc_axis_step(&ax[0], ref_rad[0], angle_rad[0]);
+        torque_Nm[1] = ladrc_axis_step(&ax[1], ref_rad[1], angle_rad[1]);
+        torque_Nm[2] = ladrc_axis_step(&ax[2], ref_rad[2], angle_rad[2]);
     }
-    return faults;
+    return (ladrc_fault_t)(ax[0].faults | ax[1].faults | ax[2].faults);
 }
 
 void ladrc_attitude_set_applied(ladrc_attitude_t *att, const ladrc_real_t torque_Nm[LADRC_AXES])
 {
     LADRC_ASSERT(att != NULL);
-    for (unsigned i = 0; i < LADRC_AXES; ++i) {
-        ladrc_axis_t *ax = &att->axis[i];
-        /* The common case straight into the axis; a PID axis or a non-finite
-         * torque takes the axis's own path. */
-        if (ax->variant != LADRC_VARIANT_PID && ladrc_is_finite(torque_Nm[i])) {
-            ax->applied_Nm = torque_Nm[i];
-        } else {
-            ladrc_axis_set_applied(ax, torque_Nm[i]);
+    const ladrc_real_t t0 = torque_Nm[0];
+    const ladrc_real_t t1 = torque_Nm[1];
+    const ladrc_real_t t2 = torque_Nm[2];
+    /* x * 0 is 0 for finite x, NaN otherwise: one test for the three. */
+    if (att->observers && t0 * LADRC_R(0.0) + t1 * LADRC_R(0.0) + t2 * LADRC_R(0.0) == LADRC_R(0.0)) {
+        /* The common case straight into the axes (all they do with a finite
+         * torque when they have no PID to tell). */
+        att->axis[0].applied_Nm = t0;
+        att->axis[1].applied_Nm = t1;
+        att->axis[2].applied_Nm = t2;
+    } else {
+        for (unsigned i = 0; i < LADRC_AXES; ++i) {
+            ladrc_axis_set_applied(&att->axis[i], torque_Nm[i]);
         }
     }
 }

@@ -29,6 +29,10 @@ static int all_finite(const ladrc_real_t *v, int n)
     return zero_if_finite == LADRC_R(0.0);
 }
 
+/* Out of line (min4, max4): only the limits need them, four times. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
 static ladrc_real_t min4(const ladrc_real_t v[4])
 {
     const ladrc_real_t a = (v[0] < v[1]) ? v[0] : v[1];
@@ -36,6 +40,9 @@ static ladrc_real_t min4(const ladrc_real_t v[4])
     return (a < b) ? a : b;
 }
 
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
 static ladrc_real_t max4(const ladrc_real_t v[4])
 {
     const ladrc_real_t a = (v[0] > v[1]) ? v[0] : v[1];
@@ -45,27 +52,25 @@ static ladrc_real_t max4(const ladrc_real_t v[4])
 
 ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *cfg)
 {
+    /* The fields that must be finite and > 0, in the order of their status codes
+     * (LADRC_ERR_MIXER_KL_N_S2 .. _G_M_S2). */
+    static const uint8_t positive[5] = {
+        offsetof(ladrc_mixer_config_t, kL_N_s2), offsetof(ladrc_mixer_config_t, arm_m),
+        offsetof(ladrc_mixer_config_t, b_Nm_s2), offsetof(ladrc_mixer_config_t, mass_kg),
+        offsetof(ladrc_mixer_config_t, g_m_s2)};
     const ladrc_mixer_t zero = {0};
+    int i;
 
     if (mx == NULL || cfg == NULL) {
         return LADRC_ERR_NULL;
     }
     /* A rejected config leaves an all-zero instance: limits [0, 0], rotors off. */
     *mx = zero;
-    if (!ladrc_is_positive(cfg->kL_N_s2)) {
-        return LADRC_ERR_MIXER_KL_N_S2;
-    }
-    if (!ladrc_is_positive(cfg->arm_m)) {
-        return LADRC_ERR_MIXER_ARM_M;
-    }
-    if (!ladrc_is_positive(cfg->b_Nm_s2)) {
-        return LADRC_ERR_MIXER_B_NM_S2;
-    }
-    if (!ladrc_is_positive(cfg->mass_kg)) {
-        return LADRC_ERR_MIXER_MASS_KG;
-    }
-    if (!ladrc_is_positive(cfg->g_m_s2)) {
-        return LADRC_ERR_MIXER_G_M_S2;
+    for (i = 0; i < 5; ++i) {
+        const ladrc_real_t *field = (const ladrc_real_t *)((const char *)cfg + positive[i]);
+        if (!ladrc_is_positive(*field)) {
+            return (ladrc_status_t)(LADRC_ERR_MIXER_KL_N_S2 + i);
+        }
     }
     if (cfg->mode != LADRC_MIXER_SATURATE && cfg->mode != LADRC_MIXER_IDEAL) {
         return LADRC_ERR_MIXER_MODE;
