@@ -217,9 +217,12 @@ static uint8_t desaturate(const ladrc_mixer_t *mx, ladrc_real_t w2[4])
     /* 2. Largest yaw share k <= 1 with the highest rotor of the pair that yaw raises
      *    and the lowest of the other within the range; at k = 0 all fit after step 1. */
     if (dy > LADRC_R(0.0)) {
-        const int up = (yaw > LADRC_R(0.0)) ? 1 : 0; /* first rotor of the raised pair */
-        const ladrc_real_t top = (rp[up] > rp[up + 2]) ? rp[up] : rp[up + 2];
-        const ladrc_real_t bottom = (rp[1 - up] < rp[3 - up]) ? rp[1 - up] : rp[3 - up];
+        /* The pair yaw raises (2 and 4 for yaw > 0) and the other, each as its
+         * first rotor; the second is two on. */
+        const ladrc_real_t *raised = (yaw > LADRC_R(0.0)) ? &rp[1] : &rp[0];
+        const ladrc_real_t *lowered = (yaw > LADRC_R(0.0)) ? &rp[0] : &rp[1];
+        const ladrc_real_t top = (raised[0] > raised[2]) ? raised[0] : raised[2];
+        const ladrc_real_t bottom = (lowered[0] < lowered[2]) ? lowered[0] : lowered[2];
         const ladrc_real_t k = (range - (top - bottom)) / dy;
         if (k < LADRC_R(1.0)) {
             yaw_kept = ((k > LADRC_R(0.0)) ? k : LADRC_R(0.0)) * yaw; /* rounding after step 1 */
