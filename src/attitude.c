@@ -129,8 +129,8 @@ ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_
                                   const ladrc_real_t angle_rad[LADRC_AXES],
                                   const ladrc_real_t *rate_rad_s, ladrc_real_t torque_Nm[LADRC_AXES])
 {
-    ladrc_axis_t *ax = att->axis;
     LADRC_ASSERT(att != NULL);
+    ladrc_axis_t *ax = att->axis;
     if (att->coupling_feed) {
         update_feed(att);
     }

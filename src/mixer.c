@@ -52,24 +52,23 @@ static ladrc_real_t max4(const ladrc_real_t v[4])
 
 ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *cfg)
 {
-    /* The fields that must be finite and > 0, in the order of their status codes
-     * (LADRC_ERR_MIXER_KL_N_S2 .. _G_M_S2). */
-    static const uint8_t positive[5] = {
-        offsetof(ladrc_mixer_config_t, kL_N_s2), offsetof(ladrc_mixer_config_t, arm_m),
-        offsetof(ladrc_mixer_config_t, b_Nm_s2), offsetof(ladrc_mixer_config_t, mass_kg),
-        offsetof(ladrc_mixer_config_t, g_m_s2)};
     const ladrc_mixer_t zero = {0};
-    int i;
 
     if (mx == NULL || cfg == NULL) {
         return LADRC_ERR_NULL;
     }
     /* A rejected config leaves an all-zero instance: limits [0, 0], rotors off. */
     *mx = zero;
-    for (i = 0; i < 5; ++i) {
-        const ladrc_real_t *field = (const ladrc_real_t *)((const char *)cfg + positive[i]);
-        if (!ladrc_is_positive(*field)) {
-            return (ladrc_status_t)(LADRC_ERR_MIXER_KL_N_S2 + i);
+    {
+        /* The fields that must be finite and > 0, in the order of their status
+         * codes (LADRC_ERR_MIXER_KL_N_S2 .. _G_M_S2): one check in a loop. */
+        const ladrc_real_t positive[5] = {cfg->kL_N_s2, cfg->arm_m, cfg->b_Nm_s2, cfg->mass_kg,
+                                          cfg->g_m_s2};
+        int i;
+        for (i = 0; i < 5; ++i) {
+            if (!ladrc_is_positive(positive[i])) {
+                return (ladrc_status_t)(LADRC_ERR_MIXER_KL_N_S2 + i);
+            }
         }
     }
     if (cfg->mode != LADRC_MIXER_SATURATE && cfg->mode != LADRC_MIXER_IDEAL) {
@@ -373,7 +372,7 @@ ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N,
         const ladrc_real_t p2 = roll * mx->p2_per_Nm;
         const ladrc_real_t q2 = pitch * mx->p2_per_Nm;
         const ladrc_real_t r4 = yaw * mx->r4_per_Nm;
-        const ladrc_real_t w0 = a4 - q2 - r4; /* as allocate() */
+        const ladrc_real_t w0 = a4 - q2 - r4; /* allocate()'s expressions, bit for bit */
         const ladrc_real_t w1 = a4 + p2 + r4;
         const ladrc_real_t w2 = a4 + q2 - r4;
         const ladrc_real_t w3 = a4 - p2 + r4;

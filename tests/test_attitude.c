@@ -49,6 +49,8 @@ static void test_feed_follows_the_papers_coupling_derivative(void)
         att.axis[i].leso.z3 = (ladrc_real_t)z3[i];
         att.axis[i].applied_Nm = (ladrc_real_t)torque[i];
         accel[i] = torque[i] / inertia[i] + z3[i];
+        /* (the acceleration the feed reads from the axis is the axis's own) */
+        TEST_ASSERT_FLOAT_WITHIN(FEED_REL_TOL * fabs(accel[i]), accel[i], ladrc_axis_get_accel(&att.axis[i]));
     }
     /* when a tick starts */
     const ladrc_real_t zero[3] = {0.0f, 0.0f, 0.0f};
@@ -99,6 +101,7 @@ static void test_a_pid_axis_among_observers_adds_nothing_to_the_feed_and_gets_no
         att.axis[i].applied_Nm = (ladrc_real_t)torque[i];
         accel[i] = torque[i] / inertia[i] + z3[i];
     }
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, ladrc_axis_get_accel(&att.axis[0]));
     /* when a tick starts */
     const ladrc_real_t zero[3] = {0.0f, 0.0f, 0.0f};
     ladrc_real_t out[3];

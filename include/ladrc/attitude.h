@@ -18,6 +18,12 @@
  *
  * One tick: ladrc_attitude_step -> mixer -> ladrc_attitude_set_applied with
  * the torques actually achieved (so saturation never winds an observer up).
+ *
+ * The layer owns its axes and, on the tick's path, reads their estimates and
+ * writes their fed rate and applied torque directly, with the results of
+ * ladrc_axis_get_accel, ladrc_axis_set_disturbance_rate and
+ * ladrc_axis_set_applied (which it still calls for a PID axis or a
+ * non-finite torque).
  */
 #ifndef LADRC_ATTITUDE_H
 #define LADRC_ATTITUDE_H
