@@ -24,8 +24,10 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
         return LADRC_ERR_NULL;
     }
     const ladrc_real_t *j = cfg->inertia_kg_m2;
-    if (!(ladrc_is_positive(j[0]) && ladrc_is_positive(j[1]) && ladrc_is_positive(j[2]))) {
-        return LADRC_ERR_INERTIA_KG_M2;
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        if (!ladrc_is_positive(j[i])) {
+            return LADRC_ERR_INERTIA_KG_M2;
+        }
     }
     if (!ladrc_is_finite(cfg->drag_Nms) || cfg->drag_Nms < LADRC_R(0.0)) {
         return LADRC_ERR_DRAG_NMS;
@@ -33,7 +35,8 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
     if (cfg->coupling_feed > 1u) {
         return LADRC_ERR_COUPLING_FEED;
     }
-    for (int i = 0; i < LADRC_AXES; ++i) {
+    att->observers = 1u;
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
         /* The feed mixes the axes' states tick by tick: one clock for all. */
         ladrc_status_t status = (cfg->axis[i].dt_s == cfg->axis[0].dt_s) ? LADRC_OK : LADRC_ERR_DT_S;
         if (status == LADRC_OK) {
@@ -41,15 +44,17 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
         }
         if (status != LADRC_OK) {
             if (failed_axis != NULL) {
-                *failed_axis = i;
+                *failed_axis = (int)i;
             }
             return status;
         }
-    }
-    att->coupling[LADRC_ROLL] = (j[1] - j[2]) / j[0];
-    att->coupling[LADRC_PITCH] = (j[2] - j[0]) / j[1];
-    att->coupling[LADRC_YAW] = (j[0] - j[1]) / j[2];
-    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        if (cfg->axis[i].variant == LADRC_VARIANT_PID) {
+            att->observers = 0u;
+        }
+        /* (J of the next axis - J of the one after) / J, roll -> pitch -> yaw -> roll */
+        const unsigned next = (i == LADRC_YAW) ? 0u : i + 1u;
+        const unsigned after = (next == LADRC_YAW) ? 0u : next + 1u;
+        att->coupling[i] = (j[next] - j[after]) / j[i];
         att->drag_per_s[i] = cfg->drag_Nms / j[i];
         att->feed_rad_s3[i] = LADRC_R(0.0);
     }
@@ -76,6 +81,34 @@ static ladrc_real_t feed(const ladrc_attitude_t *att, unsigned i, ladrc_real_t r
     return att->coupling[i] * (accel_a * rate_b + rate_a * accel_b) - att->drag_per_s[i] * accel_i;
 }
 
+/* Rate z2 and acceleration b0 * applied torque + z3 + d_hat of one axis, read
+ * straight from it (attitude owns its axes; the sum as ladrc_axis_get_accel
+ * forms it). A PID axis has no observer: 0 and 0. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void observed(const ladrc_axis_t *ax, ladrc_real_t *rate, ladrc_real_t *accel)
+{
+    *rate = LADRC_R(0.0);
+    *accel = LADRC_R(0.0);
+    if (ax->variant != LADRC_VARIANT_PID) {
+        *rate = ax->leso.z2;
+        *accel = ax->b0 * ax->applied_Nm + ax->leso.z3 + ax->d_hat_rad_s2;
+    }
+}
+
+/* Feeds h to axis i; a PID axis gets none, and a non-finite h is fed as 0
+ * (as ladrc_axis_set_disturbance_rate does). */
+static inline void put_feed(ladrc_attitude_t *att, unsigned i, ladrc_real_t h)
+{
+    ladrc_axis_t *ax = &att->axis[i];
+    if (ax->variant == LADRC_VARIANT_PID) {
+        h = LADRC_R(0.0);
+    }
+    att->feed_rad_s3[i] = h;
+    ax->f_rate_rad_s3 = ladrc_is_finite(h) ? h : LADRC_R(0.0);
+}
+
 /* Sets h on each axis from the other axes' rate and acceleration estimates.
  * Kept out of line so that its locals are not on the stack of the axis steps. */
 #if defined(__GNUC__)
@@ -83,23 +116,13 @@ __attribute__((noinline))
 #endif
 static void update_feed(ladrc_attitude_t *att)
 {
-    ladrc_axis_t *ax = att->axis;
-    /* A PID axis has no observer: rate and acceleration 0, and it gets no feed. */
-    const ladrc_real_t w0 = (ax[0].variant != LADRC_VARIANT_PID) ? ax[0].leso.z2 : LADRC_R(0.0);
-    const ladrc_real_t w1 = (ax[1].variant != LADRC_VARIANT_PID) ? ax[1].leso.z2 : LADRC_R(0.0);
-    const ladrc_real_t w2 = (ax[2].variant != LADRC_VARIANT_PID) ? ax[2].leso.z2 : LADRC_R(0.0);
-    const ladrc_real_t a0 = ladrc_axis_get_accel(&ax[0]);
-    const ladrc_real_t a1 = ladrc_axis_get_accel(&ax[1]);
-    const ladrc_real_t a2 = ladrc_axis_get_accel(&ax[2]);
-    att->feed_rad_s3[LADRC_ROLL] = feed(att, LADRC_ROLL, w1, a1, w2, a2, a0);
-    att->feed_rad_s3[LADRC_PITCH] = feed(att, LADRC_PITCH, w2, a2, w0, a0, a1);
-    att->feed_rad_s3[LADRC_YAW] = feed(att, LADRC_YAW, w0, a0, w1, a1, a2);
-    for (unsigned i = 0; i < LADRC_AXES; ++i) {
-        if (ax[i].variant == LADRC_VARIANT_PID) {
-            att->feed_rad_s3[i] = LADRC_R(0.0);
-        }
-        ladrc_axis_set_disturbance_rate(&ax[i], att->feed_rad_s3[i]);
-    }
+    ladrc_real_t w0, w1, w2, a0, a1, a2;
+    observed(&att->axis[0], &w0, &a0);
+    observed(&att->axis[1], &w1, &a1);
+    observed(&att->axis[2], &w2, &a2);
+    put_feed(att, LADRC_ROLL, feed(att, LADRC_ROLL, w1, a1, w2, a2, a0));
+    put_feed(att, LADRC_PITCH, feed(att, LADRC_PITCH, w2, a2, w0, a0, a1));
+    put_feed(att, LADRC_YAW, feed(att, LADRC_YAW, w0, a0, w1, a1, a2));
 }
 
 ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
@@ -107,24 +130,39 @@ ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_
                                   const ladrc_real_t *rate_rad_s, ladrc_real_t torque_Nm[LADRC_AXES])
 {
     LADRC_ASSERT(att != NULL);
+    ladrc_axis_t *ax = att->axis;
     if (att->coupling_feed) {
         update_feed(att);
     }
-    ladrc_fault_t faults = LADRC_FAULT_NONE;
-    for (unsigned i = 0; i < LADRC_AXES; ++i) {
-        ladrc_axis_t *ax = &att->axis[i];
-        torque_Nm[i] = (rate_rad_s != NULL)
-                           ? ladrc_axis_step_with_rate(ax, ref_rad[i], angle_rad[i], rate_rad_s[i])
-                           : ladrc_axis_step(ax, ref_rad[i], angle_rad[i]);
-        faults |= ax->faults;
+    /* Three calls written out: no loop counter, one test of the rate. */
+    if (rate_rad_s != NULL) {
+        torque_Nm[0] = ladrc_axis_step_with_rate(&ax[0], ref_rad[0], angle_rad[0], rate_rad_s[0]);
+        torque_Nm[1] = ladrc_axis_step_with_rate(&ax[1], ref_rad[1], angle_rad[1], rate_rad_s[1]);
+        torque_Nm[2] = ladrc_axis_step_with_rate(&ax[2], ref_rad[2], angle_rad[2], rate_rad_s[2]);
+    } else {
+        torque_Nm[0] = ladrc_axis_step(&ax[0], ref_rad[0], angle_rad[0]);
+        torque_Nm[1] = ladrc_axis_step(&ax[1], ref_rad[1], angle_rad[1]);
+        torque_Nm[2] = ladrc_axis_step(&ax[2], ref_rad[2], angle_rad[2]);
     }
-    return faults;
+    return (ladrc_fault_t)(ax[0].faults | ax[1].faults | ax[2].faults);
 }
 
 void ladrc_attitude_set_applied(ladrc_attitude_t *att, const ladrc_real_t torque_Nm[LADRC_AXES])
 {
     LADRC_ASSERT(att != NULL);
-    for (unsigned i = 0; i < LADRC_AXES; ++i) {
-        ladrc_axis_set_applied(&att->axis[i], torque_Nm[i]);
+    const ladrc_real_t t0 = torque_Nm[0];
+    const ladrc_real_t t1 = torque_Nm[1];
+    const ladrc_real_t t2 = torque_Nm[2];
+    /* x * 0 is 0 for finite x, NaN otherwise: one test for the three. */
+    if (att->observers && t0 * LADRC_R(0.0) + t1 * LADRC_R(0.0) + t2 * LADRC_R(0.0) == LADRC_R(0.0)) {
+        /* The common case straight into the axes (all they do with a finite
+         * torque when they have no PID to tell). */
+        att->axis[0].applied_Nm = t0;
+        att->axis[1].applied_Nm = t1;
+        att->axis[2].applied_Nm = t2;
+    } else {
+        for (unsigned i = 0; i < LADRC_AXES; ++i) {
+            ladrc_axis_set_applied(&att->axis[i], torque_Nm[i]);
+        }
     }
 }

@@ -5,7 +5,14 @@
  */
 #include "ladrc/mixer.h"
 
+#include <float.h>
 #include <stddef.h>
+
+#ifdef LADRC_REAL_DOUBLE
+#define REAL_MAX DBL_MAX
+#else
+#define REAL_MAX FLT_MAX
+#endif
 
 /* Just below pi/2 in both builds (float rounds pi/2 itself upwards). */
 #define HALF_PI_BELOW LADRC_R(1.5707963)
@@ -22,6 +29,10 @@ static int all_finite(const ladrc_real_t *v, int n)
     return zero_if_finite == LADRC_R(0.0);
 }
 
+/* Out of line (min4, max4): only the limits need them, four times. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
 static ladrc_real_t min4(const ladrc_real_t v[4])
 {
     const ladrc_real_t a = (v[0] < v[1]) ? v[0] : v[1];
@@ -29,6 +40,9 @@ static ladrc_real_t min4(const ladrc_real_t v[4])
     return (a < b) ? a : b;
 }
 
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
 static ladrc_real_t max4(const ladrc_real_t v[4])
 {
     const ladrc_real_t a = (v[0] > v[1]) ? v[0] : v[1];
@@ -45,20 +59,17 @@ ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *c
     }
     /* A rejected config leaves an all-zero instance: limits [0, 0], rotors off. */
     *mx = zero;
-    if (!ladrc_is_positive(cfg->kL_N_s2)) {
-        return LADRC_ERR_MIXER_KL_N_S2;
-    }
-    if (!ladrc_is_positive(cfg->arm_m)) {
-        return LADRC_ERR_MIXER_ARM_M;
-    }
-    if (!ladrc_is_positive(cfg->b_Nm_s2)) {
-        return LADRC_ERR_MIXER_B_NM_S2;
-    }
-    if (!ladrc_is_positive(cfg->mass_kg)) {
-        return LADRC_ERR_MIXER_MASS_KG;
-    }
-    if (!ladrc_is_positive(cfg->g_m_s2)) {
-        return LADRC_ERR_MIXER_G_M_S2;
+    {
+        /* The fields that must be finite and > 0, in the order of their status
+         * codes (LADRC_ERR_MIXER_KL_N_S2 .. _G_M_S2): one check in a loop. */
+        const ladrc_real_t positive[5] = {cfg->kL_N_s2, cfg->arm_m, cfg->b_Nm_s2, cfg->mass_kg,
+                                          cfg->g_m_s2};
+        int i;
+        for (i = 0; i < 5; ++i) {
+            if (!ladrc_is_positive(positive[i])) {
+                return (ladrc_status_t)(LADRC_ERR_MIXER_KL_N_S2 + i);
+            }
+        }
     }
     if (cfg->mode != LADRC_MIXER_SATURATE && cfg->mode != LADRC_MIXER_IDEAL) {
         return LADRC_ERR_MIXER_MODE;
@@ -85,6 +96,11 @@ ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *c
     mx->thrust_max_N = mx->weight_N / mx->cos_tilt_min;
     mx->w2_min_rad2_s2 = cfg->w2_min_rad2_s2;
     mx->w2_max_rad2_s2 = cfg->w2_max_rad2_s2;
+    if (cfg->mode == LADRC_MIXER_IDEAL) {
+        /* No limits: every finite w^2 is in range. */
+        mx->w2_min_rad2_s2 = -REAL_MAX;
+        mx->w2_max_rad2_s2 = REAL_MAX;
+    }
     mx->mode = cfg->mode;
     ladrc_mixer_reset(mx);
     return LADRC_OK;
@@ -156,11 +172,15 @@ void ladrc_mixer_forward(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[
     torque_Nm[2] = f[3];
 }
 
-/* 1 when no rotor limit acts: ideal mode, or every w^2 within [w2_min, w2_max]. */
-static int within_limits(const ladrc_mixer_t *mx, const ladrc_real_t w2[4])
+/* 1 when every w^2 lies within [w2_min, w2_max]: nothing to limit. NaN fails
+ * every comparison, and in ideal mode the bounds are +-REAL_MAX, so this is
+ * also the step's finiteness test of the allocation. */
+static int in_range(const ladrc_mixer_t *mx, const ladrc_real_t w2[4])
 {
-    return mx->mode != LADRC_MIXER_SATURATE ||
-           !(min4(w2) < mx->w2_min_rad2_s2 || max4(w2) > mx->w2_max_rad2_s2);
+    const ladrc_real_t lo = mx->w2_min_rad2_s2;
+    const ladrc_real_t hi = mx->w2_max_rad2_s2;
+    return (w2[0] >= lo && w2[0] <= hi) && (w2[1] >= lo && w2[1] <= hi) &&
+           (w2[2] >= lo && w2[2] <= hi) && (w2[3] >= lo && w2[3] <= hi);
 }
 
 /* Moves w2 into [w2_min, w2_max] by priority; returns the LADRC_MIXER_SAT_*
@@ -196,9 +216,12 @@ static uint8_t desaturate(const ladrc_mixer_t *mx, ladrc_real_t w2[4])
     /* 2. Largest yaw share k <= 1 with the highest rotor of the pair that yaw raises
      *    and the lowest of the other within the range; at k = 0 all fit after step 1. */
     if (dy > LADRC_R(0.0)) {
-        const int up = (yaw > LADRC_R(0.0)) ? 1 : 0; /* first rotor of the raised pair */
-        const ladrc_real_t top = (rp[up] > rp[up + 2]) ? rp[up] : rp[up + 2];
-        const ladrc_real_t bottom = (rp[1 - up] < rp[3 - up]) ? rp[1 - up] : rp[3 - up];
+        /* The pair yaw raises (2 and 4 for yaw > 0) and the other, each as its
+         * first rotor; the second is two on. */
+        const ladrc_real_t *raised = (yaw > LADRC_R(0.0)) ? &rp[1] : &rp[0];
+        const ladrc_real_t *lowered = (yaw > LADRC_R(0.0)) ? &rp[0] : &rp[1];
+        const ladrc_real_t top = (raised[0] > raised[2]) ? raised[0] : raised[2];
+        const ladrc_real_t bottom = (lowered[0] < lowered[2]) ? lowered[0] : lowered[2];
         const ladrc_real_t k = (range - (top - bottom)) / dy;
         if (k < LADRC_R(1.0)) {
             yaw_kept = ((k > LADRC_R(0.0)) ? k : LADRC_R(0.0)) * yaw; /* rounding after step 1 */
@@ -243,14 +266,24 @@ static uint8_t limit(const ladrc_mixer_t *mx, ladrc_real_t w2[4], ladrc_real_t f
     return saturated;
 }
 
-/* Writes one mix to out: w^2, w, achieved f = {thrust, roll, pitch, yaw}, bits. */
+/* Writes rotor i of a good mix: w^2 and w = sqrt(max(w^2, 0)). Inlined: a
+ * call would cost the step as much as the work. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void put_rotor(ladrc_mixer_output_t *out, int i, ladrc_real_t w2)
+{
+    out->w2_rad2_s2[i] = w2;
+    out->w_rad_s[i] = (w2 > LADRC_R(0.0)) ? ladrc_sqrt(w2) : LADRC_R(0.0);
+}
+
+/* Writes one good mix to out: rotors, achieved f = {thrust, roll, pitch, yaw}, bits. */
 static void commit(ladrc_mixer_output_t *out, const ladrc_real_t w2[4], const ladrc_real_t f[4],
                    uint8_t saturated)
 {
     int i;
     for (i = 0; i < 4; ++i) {
-        out->w2_rad2_s2[i] = w2[i];
-        out->w_rad_s[i] = (w2[i] > LADRC_R(0.0)) ? ladrc_sqrt(w2[i]) : LADRC_R(0.0);
+        put_rotor(out, i, w2[i]);
     }
     out->thrust_N = f[0];
     out->torque_Nm[0] = f[1];
@@ -260,13 +293,38 @@ static void commit(ladrc_mixer_output_t *out, const ladrc_real_t w2[4], const la
     out->faults = LADRC_FAULT_NONE;
 }
 
+/* The mix of a request f = {thrust, roll, pitch, yaw} from its allocation w2:
+ * refused if w2 is not finite (every input reaches some w^2 with a non-zero
+ * factor, so a non-finite input always ends here), limited if out of range,
+ * written to out unless the limits overflowed; f becomes what was achieved.
+ * Out of line: the step's common case (in range) does not come here. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static ladrc_fault_t mix(const ladrc_mixer_t *mx, ladrc_real_t w2[4], ladrc_real_t f[4],
+                         ladrc_mixer_output_t *out)
+{
+    uint8_t saturated = 0u;
+
+    if (!all_finite(w2, 4)) {
+        return all_finite(f, 4) ? LADRC_FAULT_STATE : LADRC_FAULT_INPUT;
+    }
+    if (!in_range(mx, w2)) {
+        saturated = limit(mx, w2, f);
+        if (!(all_finite(w2, 4) && all_finite(f, 4))) {
+            return LADRC_FAULT_STATE;
+        }
+    }
+    commit(out, w2, f, saturated);
+    return LADRC_FAULT_NONE;
+}
+
 void ladrc_mixer_saturate(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[4],
                           ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
                           ladrc_mixer_output_t *out)
 {
     ladrc_real_t w2[4];
     ladrc_real_t f[4];
-    uint8_t saturated = 0u;
     int i;
 
     LADRC_ASSERT(mx != NULL && w2_rad2_s2 != NULL && torque_Nm != NULL && out != NULL);
@@ -280,10 +338,7 @@ void ladrc_mixer_saturate(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2
     for (i = 0; i < 4; ++i) {
         w2[i] = w2_rad2_s2[i];
     }
-    if (!within_limits(mx, w2)) {
-        saturated = limit(mx, w2, f);
-    }
-    commit(out, w2, f, saturated);
+    (void)mix(mx, w2, f, out);
 }
 
 void ladrc_mixer_reset(ladrc_mixer_t *mx)
@@ -308,29 +363,47 @@ ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N,
         return LADRC_FAULT_NONE;
     }
     if (torque_Nm != NULL) {
-        /* The request, then what was achieved of it: thrust, roll, pitch, yaw. */
-        ladrc_real_t f[4];
-        f[0] = thrust_N;
-        f[1] = torque_Nm[0];
-        f[2] = torque_Nm[1];
-        f[3] = torque_Nm[2];
-        if (all_finite(f, 4)) {
-            ladrc_real_t w2[4];
-            uint8_t saturated = 0u;
-            int finite;
-            allocate(mx, thrust_N, torque_Nm, w2);
-            /* Huge finite requests can overflow the allocation, the limits or the
-             * forward model; within the limits the result is the finite request. */
-            finite = all_finite(w2, 4);
-            if (finite && !within_limits(mx, w2)) {
-                saturated = limit(mx, w2, f);
-                finite = all_finite(w2, 4) && all_finite(f, 4);
-            }
-            faults = LADRC_FAULT_STATE;
-            if (finite) {
-                commit(&mx->out, w2, f, saturated);
-                faults = LADRC_FAULT_NONE;
-            }
+        /* The request, then what was achieved of it: thrust, roll, pitch, yaw.
+         * Scalars, so that the common case below stays in registers. */
+        const ladrc_real_t roll = torque_Nm[0];
+        const ladrc_real_t pitch = torque_Nm[1];
+        const ladrc_real_t yaw = torque_Nm[2];
+        const ladrc_real_t a4 = thrust_N * mx->a4_per_N;
+        const ladrc_real_t p2 = roll * mx->p2_per_Nm;
+        const ladrc_real_t q2 = pitch * mx->p2_per_Nm;
+        const ladrc_real_t r4 = yaw * mx->r4_per_Nm;
+        const ladrc_real_t w0 = a4 - q2 - r4; /* allocate()'s expressions, bit for bit */
+        const ladrc_real_t w1 = a4 + p2 + r4;
+        const ladrc_real_t w2 = a4 + q2 - r4;
+        const ladrc_real_t w3 = a4 - p2 + r4;
+        const ladrc_real_t lo = mx->w2_min_rad2_s2;
+        const ladrc_real_t hi = mx->w2_max_rad2_s2;
+        /* As in_range(): false for NaN, so also the finiteness test. */
+        if ((w0 >= lo && w0 <= hi) && (w1 >= lo && w1 <= hi) && (w2 >= lo && w2 <= hi) &&
+            (w3 >= lo && w3 <= hi)) {
+            /* The common case: nothing to limit, the request achieved as it is. */
+            put_rotor(&mx->out, 0, w0);
+            put_rotor(&mx->out, 1, w1);
+            put_rotor(&mx->out, 2, w2);
+            put_rotor(&mx->out, 3, w3);
+            mx->out.thrust_N = thrust_N;
+            mx->out.torque_Nm[0] = roll;
+            mx->out.torque_Nm[1] = pitch;
+            mx->out.torque_Nm[2] = yaw;
+            mx->out.saturated = 0u;
+            faults = LADRC_FAULT_NONE;
+        } else {
+            ladrc_real_t w[4];
+            ladrc_real_t f[4];
+            w[0] = w0;
+            w[1] = w1;
+            w[2] = w2;
+            w[3] = w3;
+            f[0] = thrust_N;
+            f[1] = roll;
+            f[2] = pitch;
+            f[3] = yaw;
+            faults = mix(mx, w, f, &mx->out);
         }
     }
     mx->out.faults = faults;

@@ -5,6 +5,7 @@
 #include "ladrc/mixer.h"
 #include "test_rigid_body.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 
@@ -13,6 +14,12 @@
 #define DEG (PI / 180.0)
 /* The feed is a handful of float products: 1e-6 relative. */
 #define FEED_REL_TOL 1e-5
+
+#ifdef LADRC_REAL_DOUBLE
+#define REAL_MAX DBL_MAX
+#else
+#define REAL_MAX FLT_MAX
+#endif
 
 static const ladrc_real_t inertia[3] = {5.445e-3f, 5.445e-3f, 1.089e-2f};
 static const ladrc_real_t drag_Nms = 9e-2f;
@@ -42,6 +49,8 @@ static void test_feed_follows_the_papers_coupling_derivative(void)
         att.axis[i].leso.z3 = (ladrc_real_t)z3[i];
         att.axis[i].applied_Nm = (ladrc_real_t)torque[i];
         accel[i] = torque[i] / inertia[i] + z3[i];
+        /* (the acceleration the feed reads from the axis is the axis's own) */
+        TEST_ASSERT_FLOAT_WITHIN(FEED_REL_TOL * fabs(accel[i]), accel[i], ladrc_axis_get_accel(&att.axis[i]));
     }
     /* when a tick starts */
     const ladrc_real_t zero[3] = {0.0f, 0.0f, 0.0f};
@@ -71,6 +80,84 @@ static void test_feed_off_leaves_the_observers_alone(void)
         TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, att.feed_rad_s3[i]);
         TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, att.axis[i].f_rate_rad_s3);
     }
+}
+
+static void test_a_pid_axis_among_observers_adds_nothing_to_the_feed_and_gets_none(void)
+{
+    /* given roll flown by PID, pitch and yaw with observers in known states
+     * (roll is the axis whose own coupling factor (Jy - Jz)/Jx is not 0) */
+    ladrc_attitude_config_t cfg;
+    ladrc_attitude_config_default(&cfg, LADRC_VARIANT_LADRC, (ladrc_real_t)DT_S, inertia, drag_Nms);
+    ladrc_axis_config_default(&cfg.axis[0], LADRC_VARIANT_PID, (ladrc_real_t)DT_S, inertia[0]);
+    ladrc_attitude_t att;
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_attitude_init(&att, &cfg, NULL));
+    const double rate[3] = {0.0, -0.2, 0.5};
+    const double z3[3] = {0.0, -6.0, 2.0};
+    const double torque[3] = {0.0, 0.02, -0.03};
+    double accel[3] = {0.0, 0.0, 0.0};
+    for (int i = 1; i < 3; ++i) {
+        att.axis[i].leso.z2 = (ladrc_real_t)rate[i];
+        att.axis[i].leso.z3 = (ladrc_real_t)z3[i];
+        att.axis[i].applied_Nm = (ladrc_real_t)torque[i];
+        accel[i] = torque[i] / inertia[i] + z3[i];
+    }
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, ladrc_axis_get_accel(&att.axis[0]));
+    /* when a tick starts */
+    const ladrc_real_t zero[3] = {0.0f, 0.0f, 0.0f};
+    ladrc_real_t out[3];
+    ladrc_attitude_step(&att, zero, zero, NULL, out);
+    /* then roll's rate and acceleration count as 0 in the others' feeds, and
+     * roll itself, whose h from pitch and yaw would not be 0, is fed nothing */
+    const double j[3] = {inertia[0], inertia[1], inertia[2]};
+    const double expected[3] = {0.0, -drag_Nms / j[1] * accel[1], -drag_Nms / j[2] * accel[2]};
+    /* (what roll would get: 1.01 rad/s^3, so feeding it would show) */
+    const double roll_if_fed = (j[1] - j[2]) / j[0] * (accel[1] * rate[2] + rate[1] * accel[2]);
+    TEST_ASSERT_GREATER_THAN_FLOAT(0.5f, (float)fabs(roll_if_fed));
+    for (int i = 0; i < 3; ++i) {
+        TEST_ASSERT_FLOAT_WITHIN(FEED_REL_TOL * fabs(expected[i]), expected[i], att.feed_rad_s3[i]);
+        TEST_ASSERT_FLOAT_WITHIN(FEED_REL_TOL * fabs(expected[i]), expected[i], att.axis[i].f_rate_rad_s3);
+    }
+}
+
+static void test_a_feed_that_overflows_reaches_the_observers_as_zero(void)
+{
+    /* given rates and disturbances so large that their products overflow */
+    ladrc_attitude_t att;
+    make(&att, LADRC_VARIANT_LADRC, 1u);
+    for (int i = 0; i < 3; ++i) {
+        att.axis[i].leso.z2 = REAL_MAX;
+        att.axis[i].leso.z3 = REAL_MAX;
+    }
+    /* when a tick starts */
+    const ladrc_real_t zero[3] = {0.0f, 0.0f, 0.0f};
+    ladrc_real_t out[3];
+    ladrc_attitude_step(&att, zero, zero, NULL, out);
+    /* then h is reported as computed, but the observers are fed 0 */
+    for (int i = 0; i < 3; ++i) {
+        TEST_ASSERT_FLOAT_IS_NOT_DETERMINATE(att.feed_rad_s3[i]);
+        TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, att.axis[i].f_rate_rad_s3);
+    }
+}
+
+static void test_a_non_finite_applied_torque_flags_its_axis_which_keeps_its_own_command(void)
+{
+    /* given observers on every axis after one tick */
+    ladrc_attitude_t att;
+    make(&att, LADRC_VARIANT_HP_MLADRC, 1u);
+    const ladrc_real_t ref[3] = {0.1f, -0.1f, 0.05f};
+    const ladrc_real_t angle[3] = {0.0f, 0.0f, 0.0f};
+    ladrc_real_t torque[3];
+    ladrc_attitude_step(&att, ref, angle, NULL, torque);
+    /* when the mixer reports a NaN on pitch */
+    const ladrc_real_t applied[3] = {0.01f, (ladrc_real_t)NAN, -0.02f};
+    ladrc_attitude_set_applied(&att, applied);
+    /* then pitch is flagged and its observer sees its own command; the others
+     * take the reported torques as they are */
+    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_APPLIED, ladrc_axis_get_faults(&att.axis[1]) & LADRC_FAULT_APPLIED);
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, torque[1], att.axis[1].applied_Nm);
+    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, ladrc_axis_get_faults(&att.axis[0]));
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, applied[0], att.axis[0].applied_Nm);
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, applied[2], att.axis[2].applied_Nm);
 }
 
 /* Paper references (deg): roll 5 + 15 cos(pi t / 2), pitch 10 cos(pi t / 2), yaw 0. */
@@ -306,6 +393,9 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_feed_follows_the_papers_coupling_derivative);
     RUN_TEST(test_feed_off_leaves_the_observers_alone);
+    RUN_TEST(test_a_pid_axis_among_observers_adds_nothing_to_the_feed_and_gets_none);
+    RUN_TEST(test_a_feed_that_overflows_reaches_the_observers_as_zero);
+    RUN_TEST(test_a_non_finite_applied_torque_flags_its_axis_which_keeps_its_own_command);
     RUN_TEST(test_feed_improves_the_disturbance_estimate_on_the_coupled_body);
     RUN_TEST(test_every_variant_tracks_the_paper_references_through_the_ideal_mixer);
     RUN_TEST(test_saturating_mixer_does_not_wind_up_the_observers);

@@ -706,6 +706,26 @@ static void test_mixer_refuses_a_request_that_overflows_with_a_state_fault(void)
     }
 }
 
+static void test_mixer_ideal_mode_refuses_non_finite_and_overflowing_requests(void)
+{
+    /* given an ideal mixer that mixed one good request: no limits, so only
+     * finiteness stands between a request and the rotors */
+    const ladrc_real_t good[3] = {LADRC_R(0.05), LADRC_R(-0.02), LADRC_R(0.01)};
+    const ladrc_real_t nan_roll[3] = {(ladrc_real_t)NAN, LADRC_R(0.0), LADRC_R(0.0)};
+    ladrc_mixer_t mx;
+    ladrc_mixer_output_t first;
+    ladrc_mixer_output_t held;
+    init_mixer(&mx, LADRC_MIXER_IDEAL);
+    (void)ladrc_mixer_step(&mx, LADRC_R(9.0), good, &first);
+    /* when / then: a NaN torque is an input fault, a thrust whose a/4 = U_L/(4 kL)
+     * overflows is a state fault; both hold the previous rotors */
+    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_mixer_step(&mx, LADRC_R(9.0), nan_roll, &held));
+    TEST_ASSERT_EQUAL_MEMORY(first.w2_rad2_s2, held.w2_rad2_s2, sizeof first.w2_rad2_s2);
+    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_mixer_step(&mx, REAL_MAX, good, &held));
+    TEST_ASSERT_EQUAL_MEMORY(first.w2_rad2_s2, held.w2_rad2_s2, sizeof first.w2_rad2_s2);
+    TEST_ASSERT_EQUAL_MEMORY(first.torque_Nm, held.torque_Nm, sizeof first.torque_Nm);
+}
+
 /* ----------------------------------------------------------------- config */
 
 static void test_mixer_init_rejects_every_invalid_field_with_its_own_status(void)
@@ -907,6 +927,7 @@ int main(void)
     RUN_TEST(test_mixer_non_finite_request_returns_the_previous_output_with_an_input_fault);
     RUN_TEST(test_mixer_non_finite_first_request_gives_hover);
     RUN_TEST(test_mixer_refuses_a_request_that_overflows_with_a_state_fault);
+    RUN_TEST(test_mixer_ideal_mode_refuses_non_finite_and_overflowing_requests);
     RUN_TEST(test_mixer_init_rejects_every_invalid_field_with_its_own_status);
     RUN_TEST(test_mixer_init_rejects_an_unknown_mode);
     RUN_TEST(test_mixer_init_accepts_negative_w2_min_only_in_ideal_mode);

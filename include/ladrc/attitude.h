@@ -18,6 +18,12 @@
  *
  * One tick: ladrc_attitude_step -> mixer -> ladrc_attitude_set_applied with
  * the torques actually achieved (so saturation never winds an observer up).
+ *
+ * The layer owns its axes and, on the tick's path, reads their estimates and
+ * writes their fed rate and applied torque directly, with the results of
+ * ladrc_axis_get_accel, ladrc_axis_set_disturbance_rate and
+ * ladrc_axis_set_applied (which it still calls for a PID axis or a
+ * non-finite torque).
  */
 #ifndef LADRC_ATTITUDE_H
 #define LADRC_ATTITUDE_H
@@ -38,11 +44,13 @@ typedef struct {
 } ladrc_attitude_config_t;
 
 typedef struct {
-    ladrc_axis_t axis[LADRC_AXES];
+    /* The feed's constants first: short offsets from the struct's address. */
     ladrc_real_t coupling[LADRC_AXES];      /**< (Jy-Jz)/Jx, (Jz-Jx)/Jy, (Jx-Jy)/Jz */
     ladrc_real_t drag_per_s[LADRC_AXES];    /**< kt / J per axis (1/s) */
     ladrc_real_t feed_rad_s3[LADRC_AXES];   /**< h fed at the latest tick */
     uint8_t coupling_feed;
+    uint8_t observers;                      /**< 1 when no axis is PID (every axis has an LESO) */
+    ladrc_axis_t axis[LADRC_AXES];
 } ladrc_attitude_t;
 
 /**

@@ -101,7 +101,7 @@ typedef struct {
     ladrc_real_t weight_N;      /**< m g */
     ladrc_real_t cos_tilt_min;  /**< cos(tilt_max_rad) */
     ladrc_real_t thrust_max_N;  /**< m g / cos(tilt_max_rad): thrust_from_tilt's cap */
-    ladrc_real_t w2_min_rad2_s2, w2_max_rad2_s2;
+    ladrc_real_t w2_min_rad2_s2, w2_max_rad2_s2; /**< rotor limits; ideal mode: -+ the largest finite value */
     ladrc_mixer_mode_t mode;
     ladrc_mixer_output_t out;   /**< last good output */
 } ladrc_mixer_t;
@@ -134,7 +134,8 @@ void ladrc_mixer_allocate(const ladrc_mixer_t *mx, ladrc_real_t thrust_N,
 /**
  * Step 2, pure: rotor limits by priority (roll/pitch, then yaw, then thrust; see
  * the file comment), achieved values and saturation bits. Inputs must be finite
- * (ladrc_mixer_step checks them). out->faults is set to LADRC_FAULT_NONE.
+ * (ladrc_mixer_step checks them): a non-finite w^2, or limits that overflow, leave
+ * *out untouched. out->faults is set to LADRC_FAULT_NONE.
  * @param w2_rad2_s2 allocation of the request, from ladrc_mixer_allocate
  * @param thrust_N, torque_Nm the request that was allocated (reported back unchanged
  *        on the axes that were not cut back)
