@@ -8,10 +8,10 @@
 #include <stddef.h>
 
 /* Newton iterations on the implicit step's quartic: 3 at most (the last one
- * only confirms) over seventy decades of d for Levant's coefficients and for
- * the paper's gains (measured). The cap only bounds the worst case (gains
- * skewed by 1e4 need about 20); hitting it leaves u above the root: a
- * finite, slightly larger correction. */
+ * only confirms) from the set-valued band up to |q| = 1e30, for Levant's
+ * coefficients (L = 1 to 1e6) and for the paper's gains (measured). The cap
+ * only bounds the worst case (gains skewed by 1e4 need about 20); hitting it
+ * leaves u above the root: a finite, slightly larger correction. */
 #define LEVANT_NEWTON_MAX 16
 
 /* Newton's error after a step of relative size t is about c t^2 with
@@ -210,10 +210,9 @@ ladrc_fault_t ladrc_levant_step(ladrc_levant_t *lev, ladrc_real_t r_rad, ladrc_r
     if (lev == NULL) {
         return LADRC_FAULT_STATE;
     }
+    /* h is 0 in an instance never initialised, or rejected: its update is
+     * computed (finite work, whatever it gives) and refused below. */
     h = lev->h_s;
-    if (!(h > LADRC_R(0.0))) {
-        return refuse(lev, r_rad, out); /* never initialised, or rejected */
-    }
 
     /* Old estimate of r minus the new sample. Consecutive samples are close,
      * so their difference is (nearly) exact and the small offset w keeps all
@@ -264,7 +263,7 @@ ladrc_fault_t ladrc_levant_step(ladrc_levant_t *lev, ladrc_real_t r_rad, ladrc_r
     /* Non-finite whenever w or r_rad is: a bad sample is caught here too,
      * and refuse() tells it from an overflowing update. */
     r_est = r_rad + w;
-    if (!all_finite(r_est, z1, z2, z3)) {
+    if (!(h > LADRC_R(0.0)) || !all_finite(r_est, z1, z2, z3)) {
         return refuse(lev, r_rad, out);
     }
 
