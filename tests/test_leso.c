@@ -276,6 +276,22 @@ static void test_reset_restarts_at_rest_on_the_given_output(void)
     TEST_ASSERT_FLOAT_WITHIN(1e-9f, 0.0f, obs.z3);
 }
 
+static void test_reset_on_a_non_finite_output_restarts_at_rest_on_zero(void)
+{
+    /* given an observer that has moved */
+    ladrc_leso_t obs;
+    const ladrc_leso_config_t cfg = config(LADRC_LESO_ZOH);
+    ladrc_leso_init(&obs, &cfg);
+    ladrc_leso_step(&obs, 1.0f, 1.0f, 0.0f, 0.0f);
+    /* when it is reset on a NaN */
+    ladrc_leso_reset(&obs, (ladrc_real_t)NAN);
+    /* then it rests on 0, and the next finite step runs */
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, obs.z1);
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, obs.z2);
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, obs.z3);
+    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, ladrc_leso_step(&obs, 0.1f, 0.0f, 0.0f, 0.0f));
+}
+
 static void test_a_twin_fed_the_same_inputs_follows_the_observer_bit_for_bit(void)
 {
     /* given an observer and a twin on its gains, both at rest on 0.1 rad */
@@ -403,6 +419,7 @@ int main(void)
     RUN_TEST(test_non_finite_inputs_hold_the_state_and_raise_a_fault);
     RUN_TEST(test_an_overflowing_update_is_refused_and_flagged);
     RUN_TEST(test_reset_restarts_at_rest_on_the_given_output);
+    RUN_TEST(test_reset_on_a_non_finite_output_restarts_at_rest_on_zero);
     RUN_TEST(test_a_twin_fed_the_same_inputs_follows_the_observer_bit_for_bit);
     RUN_TEST(test_a_twin_holds_its_estimate_on_bad_input_and_restarts_on_a_finite_output);
     RUN_TEST(test_a_twin_told_only_an_acceleration_matches_the_general_twin_step_bit_for_bit);
