@@ -56,16 +56,22 @@ void ladrc_leso_reset(ladrc_leso_t *obs, ladrc_real_t y0)
     obs->faults = LADRC_FAULT_NONE;
 }
 
+/* 1 when a, b and c are all finite: x * 0 is 0 for a finite x and NaN for
+ * an infinity or a NaN. One test instead of three. */
+static int all_finite(ladrc_real_t a, ladrc_real_t b, ladrc_real_t c)
+{
+    return (a * LADRC_R(0.0) + b * LADRC_R(0.0) + c * LADRC_R(0.0)) == LADRC_R(0.0);
+}
+
 /* One tick of the estimate (*z1, *z2, *z3) with obs's gains; it is kept when
- * an argument or the result is not finite. */
+ * an argument or the result is not finite. Every argument reaches the result
+ * through +, - and * only (b0 != 0, h > 0), where an infinity or a NaN never
+ * turns finite again: the arguments are checked only when the result is bad,
+ * to tell an input fault from a state fault. */
 static ladrc_fault_t advance(const ladrc_leso_t *obs, ladrc_real_t *z1_io, ladrc_real_t *z2_io,
                              ladrc_real_t *z3_io, ladrc_real_t y, ladrc_real_t u,
                              ladrc_real_t accel_known, ladrc_real_t f_rate_known)
 {
-    if (!(ladrc_is_finite(y) && ladrc_is_finite(u) && ladrc_is_finite(accel_known) &&
-          ladrc_is_finite(f_rate_known))) {
-        return LADRC_FAULT_INPUT;
-    }
     const ladrc_real_t h = obs->h_s;
     const ladrc_real_t a = obs->b0 * u + accel_known;
     const ladrc_real_t g = f_rate_known;
@@ -90,8 +96,9 @@ static ladrc_fault_t advance(const ladrc_leso_t *obs, ladrc_real_t *z1_io, ladrc
     const ladrc_real_t z1 = p1 + obs->l1 * err;
     const ladrc_real_t z2 = p2 + obs->l2 * err;
     const ladrc_real_t z3 = p3 + obs->l3 * err;
-    if (!(ladrc_is_finite(z1) && ladrc_is_finite(z2) && ladrc_is_finite(z3))) {
-        return LADRC_FAULT_STATE;
+    if (!all_finite(z1, z2, z3)) {
+        const int inputs_finite = all_finite(y, u, accel_known) && ladrc_is_finite(f_rate_known);
+        return inputs_finite ? LADRC_FAULT_STATE : LADRC_FAULT_INPUT;
     }
     *z1_io = z1;
     *z2_io = z2;
@@ -112,6 +119,40 @@ ladrc_fault_t ladrc_leso_step_twin(const ladrc_leso_t *obs, ladrc_leso_twin_t *t
 {
     LADRC_ASSERT(obs != NULL && twin != NULL);
     return advance(obs, &twin->z1, &twin->z2, &twin->z3, y, u, accel_known, f_rate_known);
+}
+
+ladrc_fault_t ladrc_leso_step_twin_accel(const ladrc_leso_t *obs, ladrc_leso_twin_t *twin,
+                                         ladrc_real_t accel_known)
+{
+    /* advance() with y = u = f_rate_known = 0 and the terms they zero left
+     * out: b0 u, the h^k/k! g and y itself. Leaving out an exact zero only
+     * changes the sign of a zero sum, and only when z2 or z3 is -0 already,
+     * which reset and step never write. */
+    LADRC_ASSERT(obs != NULL && twin != NULL);
+    const ladrc_real_t h = obs->h_s;
+    ladrc_real_t p1;
+    ladrc_real_t p2;
+    ladrc_real_t err;
+    if (obs->method == LADRC_LESO_ZOH) {
+        const ladrc_real_t acc = twin->z3 + accel_known;
+        p1 = twin->z1 + h * twin->z2 + obs->h2_2 * acc;
+        p2 = twin->z2 + h * acc;
+        err = LADRC_R(0.0) - p1;
+    } else {
+        p1 = twin->z1 + h * twin->z2;
+        p2 = twin->z2 + h * (twin->z3 + accel_known);
+        err = LADRC_R(0.0) - twin->z1;
+    }
+    const ladrc_real_t z1 = p1 + obs->l1 * err;
+    const ladrc_real_t z2 = p2 + obs->l2 * err;
+    const ladrc_real_t z3 = twin->z3 + obs->l3 * err;
+    if (!all_finite(z1, z2, z3)) {
+        return ladrc_is_finite(accel_known) ? LADRC_FAULT_STATE : LADRC_FAULT_INPUT;
+    }
+    twin->z1 = z1;
+    twin->z2 = z2;
+    twin->z3 = z3;
+    return LADRC_FAULT_NONE;
 }
 
 void ladrc_leso_twin_reset(ladrc_leso_twin_t *twin, ladrc_real_t y0)

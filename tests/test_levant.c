@@ -38,6 +38,15 @@
  * (measured: the error equation's residual is 6.7 % of q). */
 #define NEWTON_CAP_REL_TOL (0.2)
 
+/* The implicit step's root against the earlier solver (Newton from the
+ * smallest bound until a step no longer decreases, reference_quartic_root):
+ * both stop within about an ulp of u, and e = s u^4 multiplies that by 4
+ * plus the roundings of u^2 u^2. Measured over the sweep: at most 6.0
+ * REAL_EPS relative in e in float, 6.2 in double, about 1.5 ulps of u; the
+ * tolerance leaves 4 times that. Stopping one iteration early (a step of
+ * 2^-12) would differ by 1e-3. */
+#define ROOT_AGREEMENT_REL_TOL (24.0 * REAL_EPS)
+
 /* The published non-recursive coefficients 4.16 and 3.06 are the products
  * 2 * 3^(2/3) = 4.1602 and 1.5 * sqrt(2) * 3^(1/3) = 3.0596 rounded to three
  * digits: relative differences 5e-5 and 1.3e-4. */
@@ -208,6 +217,31 @@ static void start_moving(ladrc_levant_t *lev, ladrc_levant_method_t method, doub
     lev->z3 = (ladrc_real_t)v3;
 }
 
+/* The implicit step's quartic as levant.c solved it before its Newton
+ * iterations started from a blend of the term bounds and stopped on the
+ * step's size: from the smallest of the quartic, quadratic and linear bounds,
+ * until a step no longer decreases (at most 16). */
+static ladrc_real_t reference_quartic_root(ladrc_real_t d, ladrc_real_t a3, ladrc_real_t a2,
+                                           ladrc_real_t a1)
+{
+    ladrc_real_t u = ladrc_sqrt(ladrc_sqrt(d));
+    ladrc_real_t bound = ladrc_sqrt(d / a2);
+    int i;
+    u = (bound < u) ? bound : u;
+    bound = d / a1;
+    u = (bound < u) ? bound : u;
+    for (i = 0; i < 16; ++i) {
+        const ladrc_real_t p = (((u + a3) * u + a2) * u + a1) * u - d;
+        const ladrc_real_t dp = ((LADRC_R(4.0) * u + LADRC_R(3.0) * a3) * u + LADRC_R(2.0) * a2) * u + a1;
+        const ladrc_real_t next = u - p / dp;
+        if (!(next < u)) {
+            break;
+        }
+        u = next;
+    }
+    return u;
+}
+
 static void test_implicit_step_solves_its_error_equation_and_updates_as_documented(void)
 {
     /* given: an implicit differentiator in motion, and a sample far from its prediction */
@@ -241,6 +275,56 @@ static void test_implicit_step_solves_its_error_equation_and_updates_as_document
         TEST_ASSERT_FLOAT_WITHIN(HAND_REL_TOL * (fabs(p1) + fabs(z1)), z1, out.dr);
         TEST_ASSERT_FLOAT_WITHIN(HAND_REL_TOL * (fabs(p2) + fabs(z2)), z2, out.ddr);
         TEST_ASSERT_FLOAT_WITHIN(HAND_REL_TOL * (fabs(v3) + fabs(z3)), z3, ladrc_levant_get_dddr(&lev));
+    }
+}
+
+static void test_implicit_root_agrees_with_the_earlier_solver_over_forty_decades_of_error(void)
+{
+    /* given: Levant's gains for three L and the paper's, each at rest at 0 */
+    const ladrc_levant_config_t cfgs[] = {
+        lipschitz_config(LADRC_LEVANT_IMPLICIT, 1.0), lipschitz_config(LADRC_LEVANT_IMPLICIT, 1000.0),
+        lipschitz_config(LADRC_LEVANT_IMPLICIT, 1e6),
+        explicit_config(LADRC_LEVANT_IMPLICIT, CHATTER_L123, CHATTER_L123, CHATTER_L123, CHATTER_L4)};
+    double worst = 0.0;
+    int steps = 0;
+    size_t c;
+    for (c = 0; c < sizeof cfgs / sizeof cfgs[0]; ++c) {
+        ladrc_levant_t lev;
+        init_ok(&lev, &cfgs[c]);
+        {
+            const ladrc_real_t h = lev.h_s;
+            const ladrc_real_t a0 = h * h * h * lev.g0; /* as the step forms it */
+            double mag;
+            /* when: one step on a sample -q, from just above the set-valued
+             * band up to 1e30 rad, both signs; from rest the predicted error is q */
+            for (mag = (double)a0 * 1.001; mag < 1e30; mag *= 1.1) {
+                int sign;
+                for (sign = -1; sign <= 1; sign += 2) {
+                    const ladrc_real_t q = (ladrc_real_t)(sign * mag);
+                    ladrc_real_t u;
+                    ladrc_real_t u2;
+                    double expected;
+                    ladrc_levant_reset(&lev, LADRC_R(0.0));
+                    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, ladrc_levant_step(&lev, -q, NULL));
+                    /* then: the new error e = s u^4 (white-box: kept in w) is the earlier one */
+                    u = reference_quartic_root(ladrc_fabs(q) - a0, lev.g3, h * lev.g2, h * h * lev.g1);
+                    u2 = u * u;
+                    expected = (double)((ladrc_real_t)sign * u2 * u2);
+                    {
+                        const double rel = fabs((double)lev.w - expected) / fabs(expected);
+                        TEST_ASSERT_LESS_THAN_FLOAT(ROOT_AGREEMENT_REL_TOL, rel);
+                        worst = (rel > worst) ? rel : worst;
+                    }
+                    ++steps;
+                }
+            }
+        }
+    }
+    {
+        char msg[120];
+        snprintf(msg, sizeof msg, "%d steps: largest relative difference in e %.3g (%.2f REAL_EPS)",
+                 steps, worst, worst / REAL_EPS);
+        TEST_MESSAGE(msg);
     }
 }
 
@@ -674,6 +758,8 @@ static void test_rejected_instance_refuses_every_step_and_outputs_zero(void)
     /* when / then */
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_levant_step(&lev, LADRC_R(1.0), &out));
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_levant_step(&lev, LADRC_R(0.0), &out));
+    /* and a non-finite sample is named as the cause */
+    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_levant_step(&lev, (ladrc_real_t)NAN, &out));
     TEST_ASSERT_FLOAT_WITHIN(0.0, 0.0, out.r);
     TEST_ASSERT_FLOAT_WITHIN(0.0, 0.0, out.dr);
     TEST_ASSERT_FLOAT_WITHIN(0.0, 0.0, out.ddr);
@@ -943,6 +1029,7 @@ int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_implicit_step_solves_its_error_equation_and_updates_as_documented);
+    RUN_TEST(test_implicit_root_agrees_with_the_earlier_solver_over_forty_decades_of_error);
     RUN_TEST(test_implicit_step_absorbs_a_small_error_with_the_set_valued_sign);
     RUN_TEST(test_explicit_steps_follow_the_hd_and_euler_equations);
     RUN_TEST(test_recursive_gains_convert_to_the_published_non_recursive_ones);

@@ -41,8 +41,9 @@
  *   Exact on cubics (r'''' = 0) up to rounding. Float samples are rounded
  *   to about 1e-8 rad, usually more than h^3 g0: what is left is that
  *   rounding noise through the differentiator, not a limit cycle. Cost: the
- *   quartic in |e|^(1/4) is solved by Newton's method, at most 7 iterations
- *   (measured, Levant's coefficients) of about 12 flops and a division.
+ *   quartic in |e|^(1/4) is solved by Newton's method from a start blended
+ *   from its terms' bounds, at most 3 iterations (measured, Levant's
+ *   coefficients and the paper's gains) of about 12 flops and a division.
  *   The new state estimates the instant t_k of r_k.
  * - HD: the homogeneous discrete differentiator (Livne and Levant 2014), with
  *   the prediction error e = z0 - r_k:
