@@ -8,6 +8,8 @@ void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t
     LADRC_ASSERT(cfg != NULL);
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
         ladrc_axis_config_default(&cfg->axis[i], variant, dt_s, inertia_kg_m2[i]);
+        /* HP axes fit on different ticks, so one tick carries at most one fit. */
+        cfg->axis[i].hp_fit_phase = (uint16_t)(i % cfg->axis[i].hp_fit_decimation);
         cfg->inertia_kg_m2[i] = inertia_kg_m2[i];
     }
     cfg->drag_Nms = drag_Nms;

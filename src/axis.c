@@ -238,8 +238,7 @@ static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, ladrc_real_t rate_r
          * d_hat part, so the difference is the observer's view of f alone and
          * the fit does not chase its own output. */
         ladrc_leso_twin_t *shadow = &axis->part.hp.shadow;
-        (void)ladrc_leso_step_twin(&axis->leso, shadow, LADRC_R(0.0), LADRC_R(0.0), axis->d_hat_rad_s2,
-                                   LADRC_R(0.0));
+        (void)ladrc_leso_step_twin_accel(&axis->leso, shadow, axis->d_hat_rad_s2);
         (void)ladrc_hp_step(&axis->part.hp.est, axis->leso.z3 - shadow->z3);
         return ladrc_hp_get_estimate(&axis->part.hp.est);
     }

@@ -139,6 +139,7 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est, ladrc_real_t freq_rad_s)
     est->sin_psi = LADRC_R(0.0);
     est->dec_sum = LADRC_R(0.0);
     est->dec_count = 0u;
+    est->dec_delay = est->fit_phase;
     est->fit_count = 0u;
     est->x1 = LADRC_R(0.0);
     est->x2 = LADRC_R(0.0);
@@ -234,7 +235,11 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
             est->faults = ladrc_rls_update(&est->amp, phi, sample_rad_s2);
             set_memory(est, update_gate(est, sample_rad_s2 - ladrc_rls_get_theta(&est->amp)[0], err));
         }
-        if (est->online) {
+        if (est->dec_delay > 0u) {
+            /* Frequency blocks start fit_phase ticks late, so estimators on
+             * different phases do not update their frequency on one tick. */
+            est->dec_delay--;
+        } else if (est->online) {
             est->dec_sum += sample_rad_s2;
             if (++est->dec_count >= est->decimation) {
                 update_freq(est, est->dec_sum / (ladrc_real_t)est->decimation);

@@ -388,10 +388,23 @@ static void test_reset_restarts_every_axis_on_the_given_angles(void)
     }
 }
 
+static void test_default_axes_fit_their_hp_models_on_different_ticks(void)
+{
+    ladrc_attitude_config_t cfg;
+    ladrc_attitude_config_default(&cfg, LADRC_VARIANT_HP_MLADRC, (ladrc_real_t)DT_S, inertia, drag_Nms);
+    for (unsigned a = 0; a < LADRC_AXES; ++a) {
+        TEST_ASSERT_EQUAL_INT(4, cfg.axis[a].hp_fit_decimation); /* 4 ms at 1 kHz */
+        TEST_ASSERT_EQUAL_INT((int)a, cfg.axis[a].hp_fit_phase);
+    }
+    ladrc_attitude_t att;
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_attitude_init(&att, &cfg, NULL));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_feed_follows_the_papers_coupling_derivative);
+    RUN_TEST(test_default_axes_fit_their_hp_models_on_different_ticks);
     RUN_TEST(test_feed_off_leaves_the_observers_alone);
     RUN_TEST(test_a_pid_axis_among_observers_adds_nothing_to_the_feed_and_gets_none);
     RUN_TEST(test_a_feed_that_overflows_reaches_the_observers_as_zero);

@@ -127,6 +127,32 @@ static void test_hp_known_frequency_fits_the_amplitude_and_opens_the_gate(void)
     hp_known_fits_with_fit_decimation(20u);
 }
 
+/* Tick on which the frequency estimate first moves from its start value. */
+static int first_frequency_update(uint16_t fit_phase)
+{
+    ladrc_hp_estimator_t est;
+    ladrc_hp_config_t cfg = hp_config(LADRC_HP_FREQ_ONLINE, 3.0);
+    cfg.fit_decimation = 4u;
+    cfg.fit_phase = fit_phase;
+    ladrc_hp_init(&est, &cfg);
+    for (int k = 0; k < 1000; ++k) {
+        ladrc_hp_step(&est, (ladrc_real_t)(120.0 * sin(10.0 * k * DT_S)));
+        if (ladrc_hp_get_freq(&est) != 3.0f) {
+            return k;
+        }
+    }
+    return -1;
+}
+
+static void test_hp_frequency_blocks_start_fit_phase_ticks_late(void)
+{
+    /* so estimators on different phases never update their frequency on one tick */
+    const int first = first_frequency_update(0u);
+    TEST_ASSERT_TRUE(first > 0);
+    TEST_ASSERT_EQUAL_INT(first + 1, first_frequency_update(1u));
+    TEST_ASSERT_EQUAL_INT(first + 3, first_frequency_update(3u));
+}
+
 static void test_hp_fits_on_the_tick_its_phase_names(void)
 {
     /* given two estimators fitting every 4th tick, at phases 0 and 3 */
@@ -366,6 +392,7 @@ int main(void)
     RUN_TEST(test_hp_online_reconverges_after_the_papers_frequency_jump);
     RUN_TEST(test_hp_known_frequency_fits_the_amplitude_and_opens_the_gate);
     RUN_TEST(test_hp_fits_on_the_tick_its_phase_names);
+    RUN_TEST(test_hp_frequency_blocks_start_fit_phase_ticks_late);
     RUN_TEST(test_hp_undoes_the_observer_lag_of_its_samples);
     RUN_TEST(test_hp_online_stays_bounded_with_noise);
     RUN_TEST(test_hp_gate_stays_shut_on_noise_without_a_tone);

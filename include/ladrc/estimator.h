@@ -129,6 +129,7 @@ typedef struct {
     uint16_t decimation, dec_count;
     uint16_t fit_decimation, fit_count; /**< the fit takes the sample of every fit_decimation-th tick */
     uint16_t fit_phase;              /**< fit when fit_count equals it */
+    uint16_t dec_delay;              /**< ticks before the first frequency block starts (fit_phase) */
     uint8_t n_dec_samples;           /**< decimated samples seen, saturates at 2 */
     uint8_t online;
     uint8_t memory;                  /**< memory the RLS were given last (estimator_hp.c) */
