@@ -155,8 +155,7 @@ void ladrc_attitude_set_applied(ladrc_attitude_t *att, const ladrc_real_t torque
     const ladrc_real_t t0 = torque_Nm[0];
     const ladrc_real_t t1 = torque_Nm[1];
     const ladrc_real_t t2 = torque_Nm[2];
-    /* x * 0 is 0 for finite x, NaN otherwise: one test for the three. */
-    if (att->observers && t0 * LADRC_R(0.0) + t1 * LADRC_R(0.0) + t2 * LADRC_R(0.0) == LADRC_R(0.0)) {
+    if (att->observers && ladrc_all_finite3(t0, t1, t2)) {
         /* The common case straight into the axes (all they do with a finite
          * torque when they have no PID to tell). */
         att->axis[0].applied_Nm = t0;

@@ -56,13 +56,6 @@ void ladrc_leso_reset(ladrc_leso_t *obs, ladrc_real_t y0)
     obs->faults = LADRC_FAULT_NONE;
 }
 
-/* 1 when a, b and c are all finite: x * 0 is 0 for a finite x and NaN for
- * an infinity or a NaN. One test instead of three. */
-static int all_finite(ladrc_real_t a, ladrc_real_t b, ladrc_real_t c)
-{
-    return (a * LADRC_R(0.0) + b * LADRC_R(0.0) + c * LADRC_R(0.0)) == LADRC_R(0.0);
-}
-
 /* One tick of the estimate (*z1, *z2, *z3) with obs's gains; it is kept when
  * an argument or the result is not finite. Every argument reaches the result
  * through +, - and * only (b0 != 0, h > 0), where an infinity or a NaN never
@@ -96,8 +89,8 @@ static ladrc_fault_t advance(const ladrc_leso_t *obs, ladrc_real_t *z1_io, ladrc
     const ladrc_real_t z1 = p1 + obs->l1 * err;
     const ladrc_real_t z2 = p2 + obs->l2 * err;
     const ladrc_real_t z3 = p3 + obs->l3 * err;
-    if (!all_finite(z1, z2, z3)) {
-        const int inputs_finite = all_finite(y, u, accel_known) && ladrc_is_finite(f_rate_known);
+    if (!ladrc_all_finite3(z1, z2, z3)) {
+        const int inputs_finite = ladrc_all_finite4(y, u, accel_known, f_rate_known);
         return inputs_finite ? LADRC_FAULT_STATE : LADRC_FAULT_INPUT;
     }
     *z1_io = z1;
@@ -146,7 +139,7 @@ ladrc_fault_t ladrc_leso_step_twin_accel(const ladrc_leso_t *obs, ladrc_leso_twi
     const ladrc_real_t z1 = p1 + obs->l1 * err;
     const ladrc_real_t z2 = p2 + obs->l2 * err;
     const ladrc_real_t z3 = twin->z3 + obs->l3 * err;
-    if (!all_finite(z1, z2, z3)) {
+    if (!ladrc_all_finite3(z1, z2, z3)) {
         return ladrc_is_finite(accel_known) ? LADRC_FAULT_STATE : LADRC_FAULT_INPUT;
     }
     twin->z1 = z1;

@@ -183,13 +183,6 @@ static ladrc_fault_t refuse(ladrc_levant_t *lev, ladrc_real_t r_rad, ladrc_ref_t
     return fault;
 }
 
-/* 1 when a, b, c and d are all finite: x * 0 is 0 for a finite x and NaN for
- * an infinity or a NaN. One test instead of four. */
-static int all_finite(ladrc_real_t a, ladrc_real_t b, ladrc_real_t c, ladrc_real_t d)
-{
-    return (a * LADRC_R(0.0) + b * LADRC_R(0.0) + c * LADRC_R(0.0) + d * LADRC_R(0.0)) == LADRC_R(0.0);
-}
-
 ladrc_fault_t ladrc_levant_step(ladrc_levant_t *lev, ladrc_real_t r_rad, ladrc_ref_t *out)
 {
     ladrc_real_t h;
@@ -263,7 +256,7 @@ ladrc_fault_t ladrc_levant_step(ladrc_levant_t *lev, ladrc_real_t r_rad, ladrc_r
     /* Non-finite whenever w or r_rad is: a bad sample is caught here too,
      * and refuse() tells it from an overflowing update. */
     r_est = r_rad + w;
-    if (!(h > LADRC_R(0.0)) || !all_finite(r_est, z1, z2, z3)) {
+    if (!(h > LADRC_R(0.0)) || !ladrc_all_finite4(r_est, z1, z2, z3)) {
         return refuse(lev, r_rad, out);
     }
 

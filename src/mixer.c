@@ -17,16 +17,10 @@
 /* Just below pi/2 in both builds (float rounds pi/2 itself upwards). */
 #define HALF_PI_BELOW LADRC_R(1.5707963)
 
-/* 1 if all n values are finite: x * 0 is 0 for finite x and NaN otherwise, so
- * one comparison of the sum checks them all. */
-static int all_finite(const ladrc_real_t *v, int n)
+/* 1 if the four values are all finite (one comparison, types.h). */
+static int all_finite(const ladrc_real_t v[4])
 {
-    ladrc_real_t zero_if_finite = LADRC_R(0.0);
-    int i;
-    for (i = 0; i < n; ++i) {
-        zero_if_finite += v[i] * LADRC_R(0.0);
-    }
-    return zero_if_finite == LADRC_R(0.0);
+    return ladrc_all_finite4(v[0], v[1], v[2], v[3]);
 }
 
 /* Out of line (min4, max4): only the limits need them, four times. */
@@ -306,12 +300,12 @@ static ladrc_fault_t mix(const ladrc_mixer_t *mx, ladrc_real_t w2[4], ladrc_real
 {
     uint8_t saturated = 0u;
 
-    if (!all_finite(w2, 4)) {
-        return all_finite(f, 4) ? LADRC_FAULT_STATE : LADRC_FAULT_INPUT;
+    if (!all_finite(w2)) {
+        return all_finite(f) ? LADRC_FAULT_STATE : LADRC_FAULT_INPUT;
     }
     if (!in_range(mx, w2)) {
         saturated = limit(mx, w2, f);
-        if (!(all_finite(w2, 4) && all_finite(f, 4))) {
+        if (!(all_finite(w2) && all_finite(f))) {
             return LADRC_FAULT_STATE;
         }
     }

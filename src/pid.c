@@ -148,10 +148,8 @@ ladrc_real_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t
     }
     unclamped_Nm = pid->kp * error_rad + integral_Nm - pid->kd * d_rad_s;
 
-    /* Huge finite inputs can overflow; keep the last good state and output.
-     * x * 0 is 0 for finite x and NaN otherwise: one test covers all three. */
-    if (!(d_rad_s * LADRC_R(0.0) + integral_Nm * LADRC_R(0.0) + unclamped_Nm * LADRC_R(0.0) ==
-          LADRC_R(0.0))) {
+    /* Huge finite inputs can overflow; keep the last good state and output. */
+    if (!ladrc_all_finite3(d_rad_s, integral_Nm, unclamped_Nm)) {
         pid->faults = (ladrc_fault_t)(faults | LADRC_FAULT_STATE);
         return pid->output_Nm;
     }

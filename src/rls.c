@@ -30,6 +30,16 @@ static ladrc_real_t trace_of(const ladrc_real_t *u, const ladrc_real_t *d, unsig
     return tr;
 }
 
+/* tr(p_initial I), summed as trace_of sums it (U = I). */
+static ladrc_real_t initial_trace(ladrc_real_t p_initial, unsigned n)
+{
+    ladrc_real_t tr = LADRC_R(0.0);
+    for (unsigned j = 0u; j < n; ++j) {
+        tr += p_initial;
+    }
+    return tr;
+}
+
 /* P = p_initial I; unused entries zero so that states compare bitwise. */
 static void restart_p(ladrc_rls_t *rls)
 {
@@ -39,11 +49,7 @@ static void restart_p(ladrc_rls_t *rls)
     for (unsigned j = 0u; j < LADRC_RLS_MAX_PARAMS; ++j) {
         rls->d[j] = (j < rls->n_params) ? rls->p_initial : LADRC_R(0.0);
     }
-    /* tr = sum of the D_j, added as trace_of adds them (U = I). */
-    rls->trace = LADRC_R(0.0);
-    for (unsigned j = 0u; j < rls->n_params; ++j) {
-        rls->trace += rls->p_initial;
-    }
+    rls->trace = initial_trace(rls->p_initial, rls->n_params);
 }
 
 /* lambda0 h <= 1 keeps the trace map monotone, so the bound holds (rls.h). */
@@ -73,12 +79,8 @@ ladrc_status_t ladrc_rls_init(ladrc_rls_t *rls, const ladrc_rls_config_t *cfg)
     if (!ladrc_is_positive(cfg->p_initial)) {
         return LADRC_ERR_RLS_P_INITIAL;
     }
-    /* Summed as trace_of sums it, so the start state itself meets the bound. */
-    ladrc_real_t tr0 = LADRC_R(0.0);
-    for (unsigned j = 0u; j < cfg->n_params; ++j) {
-        tr0 += cfg->p_initial;
-    }
-    if (tr0 > cfg->p_bound) {
+    /* The trace the start state will hold must itself meet the bound. */
+    if (initial_trace(cfg->p_initial, cfg->n_params) > cfg->p_bound) {
         return LADRC_ERR_RLS_P_INITIAL;
     }
     rls->n_params = cfg->n_params;

@@ -124,8 +124,7 @@ ladrc_fault_t ladrc_td_step(ladrc_td_t *td, ladrc_real_t r_rad, ladrc_ref_t *out
     a = fhan(td->x1 - r_rad, td->x2, td->accel_rad_s2, td->h0_s, td->d, td->d0);
     x1_next = td->x1 + td->dt_s * td->x2;
     x2_next = td->x2 + td->dt_s * a;
-    /* x * 0 is 0 for finite x and NaN otherwise: one test checks both. */
-    if (!(x1_next * LADRC_R(0.0) + x2_next * LADRC_R(0.0) == LADRC_R(0.0))) {
+    if (!ladrc_all_finite2(x1_next, x2_next)) {
         td->faults = LADRC_FAULT_STATE;
         write_held(td, out);
         return td->faults;

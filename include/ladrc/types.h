@@ -114,6 +114,26 @@ typedef uint8_t ladrc_fault_t;
 /** 1 if x is neither NaN nor infinite. */
 static inline int ladrc_is_finite(ladrc_real_t x) { return isfinite(x) ? 1 : 0; }
 
+/* 1 if every argument is finite, in one comparison: x * 0 is 0 for a finite
+ * x and NaN for an infinity or a NaN, so the sum is 0 exactly when all are
+ * finite. Cheaper than ladrc_is_finite per value on the hot paths. */
+static inline int ladrc_all_finite2(ladrc_real_t a, ladrc_real_t b)
+{
+    return (a * LADRC_R(0.0) + b * LADRC_R(0.0) == LADRC_R(0.0)) ? 1 : 0;
+}
+
+static inline int ladrc_all_finite3(ladrc_real_t a, ladrc_real_t b, ladrc_real_t c)
+{
+    return (a * LADRC_R(0.0) + b * LADRC_R(0.0) + c * LADRC_R(0.0) == LADRC_R(0.0)) ? 1 : 0;
+}
+
+static inline int ladrc_all_finite4(ladrc_real_t a, ladrc_real_t b, ladrc_real_t c, ladrc_real_t d)
+{
+    return (a * LADRC_R(0.0) + b * LADRC_R(0.0) + c * LADRC_R(0.0) + d * LADRC_R(0.0) == LADRC_R(0.0))
+               ? 1
+               : 0;
+}
+
 static inline ladrc_real_t ladrc_clamp(ladrc_real_t x, ladrc_real_t lo, ladrc_real_t hi)
 {
     return (x < lo) ? lo : ((x > hi) ? hi : x);
