@@ -45,7 +45,7 @@ static void apply_overrides(ladrc_axis_config_t *a, const sim_overrides_t *o)
     if (!isnan(o->wo_rad_s)) a->wo_rad_s = (ladrc_real_t)o->wo_rad_s;
     if (o->leso_method >= 0) a->leso_method = (ladrc_leso_method_t)o->leso_method;
     if (o->hp_freq_mode >= 0) a->hp_freq_mode = (ladrc_hp_freq_mode_t)o->hp_freq_mode;
-    if (!isnan(o->hp_freq_rad_s)) a->hp_freq_rad_s = (ladrc_real_t)o->hp_freq_rad_s;
+    if (!isnan(o->hp_freq_rad_s)) a->hp_freq_rad_s[0] = (ladrc_real_t)o->hp_freq_rad_s;
     if (!isnan(o->levant_lipschitz_rad_s4)) a->levant_lipschitz_rad_s4 = (ladrc_real_t)o->levant_lipschitz_rad_s4;
     if (!isnan(o->td_accel_rad_s2)) a->td_accel_rad_s2 = (ladrc_real_t)o->td_accel_rad_s2;
     if (!isnan(o->pid_kp)) a->pid_kp = (ladrc_real_t)o->pid_kp;

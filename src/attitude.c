@@ -71,6 +71,7 @@ void ladrc_attitude_reset(ladrc_attitude_t *att, const ladrc_real_t angle_rad[LA
         ladrc_axis_reset(&att->axis[i], angle_rad[i]);
         att->feed_rad_s3[i] = LADRC_R(0.0);
         ladrc_axis_set_disturbance_rate(&att->axis[i], LADRC_R(0.0));
+        ladrc_axis_set_known_disturbance(&att->axis[i], LADRC_R(0.0));
     }
 }
 
@@ -111,8 +112,17 @@ static inline void put_feed(ladrc_attitude_t *att, unsigned i, ladrc_real_t h)
     ax->f_rate_rad_s3 = ladrc_is_finite(h) ? h : LADRC_R(0.0);
 }
 
-/* Sets h on each axis from the other axes' rate and acceleration estimates.
- * Kept out of line so that its locals are not on the stack of the axis steps. */
+/* The known part of axis i's f from the rates (same order as feed): the
+ * coupling product and the drag, whose derivative feed() gives. */
+static ladrc_real_t known_part(const ladrc_attitude_t *att, unsigned i, ladrc_real_t rate_a,
+                               ladrc_real_t rate_b, ladrc_real_t rate_i)
+{
+    return att->coupling[i] * rate_a * rate_b - att->drag_per_s[i] * rate_i;
+}
+
+/* Sets h and the known part of f on each axis from the other axes' rate and
+ * acceleration estimates. Kept out of line so that its locals are not on the
+ * stack of the axis steps. */
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
@@ -125,6 +135,9 @@ static void update_feed(ladrc_attitude_t *att)
     put_feed(att, LADRC_ROLL, feed(att, LADRC_ROLL, w1, a1, w2, a2, a0));
     put_feed(att, LADRC_PITCH, feed(att, LADRC_PITCH, w2, a2, w0, a0, a1));
     put_feed(att, LADRC_YAW, feed(att, LADRC_YAW, w0, a0, w1, a1, a2));
+    ladrc_axis_set_known_disturbance(&att->axis[LADRC_ROLL], known_part(att, LADRC_ROLL, w1, w2, w0));
+    ladrc_axis_set_known_disturbance(&att->axis[LADRC_PITCH], known_part(att, LADRC_PITCH, w2, w0, w1));
+    ladrc_axis_set_known_disturbance(&att->axis[LADRC_YAW], known_part(att, LADRC_YAW, w0, w1, w2));
 }
 
 ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],

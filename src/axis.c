@@ -19,15 +19,22 @@
 #define AXIS_DEFAULT_PID_KD LADRC_R(0.05)
 #define AXIS_DEFAULT_LP_LAMBDA0_PER_S LADRC_R(100.0)
 #define AXIS_DEFAULT_LP_K0_PER_S LADRC_R(300.0)
-/* HP: the search range covers 0.5..30 rad/s with margin; 1 /s is the
- * fastest forgetting (a 1 s memory, used while the model does not fit; a
- * fitting model keeps one period); 20 ms frequency samples keep 40 rad/s
- * below a quarter turn per sample. */
+/* HP: the search range covers 0.5..30 rad/s with margin. The fit forgets at
+ * most 5 /s: a change is followed within 0.2 s, and (estimator.h) slower
+ * locked tones lengthen the memory to a radian of their phase. Tracking at a
+ * quarter of that rate is critically damped (estimator.h). The acquisition
+ * filter at 10 rad/s passes the range's middle with little lag and still
+ * weights 40 rad/s by (10/40)^4 (only the ratio of its two averages counts,
+ * so a lone tone gives its exact frequency at any wf). First guesses 3 and
+ * 8 rad/s: mid-range and apart. */
+#define AXIS_DEFAULT_HP_N_TONES 2u
 #define AXIS_DEFAULT_HP_FREQ_RAD_S LADRC_R(3.0)
+#define AXIS_DEFAULT_HP_FREQ2_RAD_S LADRC_R(8.0)
 #define AXIS_DEFAULT_HP_FREQ_MIN_RAD_S LADRC_R(0.3)
 #define AXIS_DEFAULT_HP_FREQ_MAX_RAD_S LADRC_R(40.0)
-#define AXIS_DEFAULT_HP_LAMBDA0_PER_S LADRC_R(1.0)
-#define AXIS_DEFAULT_HP_FREQ_SAMPLE_S LADRC_R(0.02)
+#define AXIS_DEFAULT_HP_LAMBDA0_PER_S LADRC_R(5.0)
+#define AXIS_DEFAULT_HP_FREQ_LAMBDA0_PER_S LADRC_R(5.0)
+#define AXIS_DEFAULT_HP_FREQ_FILTER_RAD_S LADRC_R(10.0)
 /* The fit samples the observer's output (bandwidth 75 rad/s, a time constant
  * of 13 ms) every 4 ms: a quarter of the work of fitting every tick at 1 kHz,
  * and 40 rad/s turns by only 0.16 rad between fit samples. */
@@ -69,12 +76,17 @@ void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant
     cfg->lp_lambda0_per_s = AXIS_DEFAULT_LP_LAMBDA0_PER_S;
     cfg->lp_k0_per_s = AXIS_DEFAULT_LP_K0_PER_S;
     cfg->hp_freq_mode = LADRC_HP_FREQ_ONLINE;
-    cfg->hp_freq_rad_s = AXIS_DEFAULT_HP_FREQ_RAD_S;
+    cfg->hp_n_tones = (uint8_t)(AXIS_DEFAULT_HP_N_TONES < LADRC_HP_MAX_TONES ? AXIS_DEFAULT_HP_N_TONES
+                                                                            : LADRC_HP_MAX_TONES);
+    for (unsigned k = 0u; k < LADRC_HP_MAX_TONES; ++k) {
+        cfg->hp_freq_rad_s[k] = (k == 0u) ? AXIS_DEFAULT_HP_FREQ_RAD_S
+                                          : AXIS_DEFAULT_HP_FREQ2_RAD_S * (ladrc_real_t)k;
+    }
     cfg->hp_freq_min_rad_s = AXIS_DEFAULT_HP_FREQ_MIN_RAD_S;
     cfg->hp_freq_max_rad_s = AXIS_DEFAULT_HP_FREQ_MAX_RAD_S;
     cfg->hp_lambda0_per_s = AXIS_DEFAULT_HP_LAMBDA0_PER_S;
-    cfg->hp_freq_lambda0_per_s = AXIS_DEFAULT_HP_LAMBDA0_PER_S;
-    cfg->hp_decimation = ticks_in(AXIS_DEFAULT_HP_FREQ_SAMPLE_S, dt_s);
+    cfg->hp_freq_lambda0_per_s = AXIS_DEFAULT_HP_FREQ_LAMBDA0_PER_S;
+    cfg->hp_freq_filter_rad_s = AXIS_DEFAULT_HP_FREQ_FILTER_RAD_S;
     cfg->hp_fit_decimation = ticks_in(AXIS_DEFAULT_HP_FIT_SAMPLE_S, dt_s);
     cfg->hp_fit_phase = 0u;
 }
@@ -106,17 +118,21 @@ static ladrc_status_t init_estimator(ladrc_axis_t *axis, const ladrc_axis_config
         return ladrc_lp_init(&axis->part.lp, &lp);
     }
     if (cfg->variant == LADRC_VARIANT_HP_MLADRC) {
-        const ladrc_hp_config_t hp = {cfg->dt_s,
-                                      cfg->hp_freq_mode,
-                                      cfg->hp_freq_rad_s,
-                                      cfg->hp_freq_min_rad_s,
-                                      cfg->hp_freq_max_rad_s,
-                                      cfg->hp_lambda0_per_s,
-                                      cfg->hp_freq_lambda0_per_s,
-                                      cfg->hp_decimation,
-                                      cfg->wo_rad_s,
-                                      cfg->hp_fit_decimation,
-                                      cfg->hp_fit_phase};
+        ladrc_hp_config_t hp = {
+            .dt_s = cfg->dt_s,
+            .freq_mode = cfg->hp_freq_mode,
+            .n_tones = cfg->hp_n_tones,
+            .freq_min_rad_s = cfg->hp_freq_min_rad_s,
+            .freq_max_rad_s = cfg->hp_freq_max_rad_s,
+            .lambda0_per_s = cfg->hp_lambda0_per_s,
+            .freq_lambda0_per_s = cfg->hp_freq_lambda0_per_s,
+            .freq_filter_rad_s = cfg->hp_freq_filter_rad_s,
+            .sample_lag_wo_rad_s = cfg->wo_rad_s, /* the sample comes through this axis's LESO */
+            .fit_decimation = cfg->hp_fit_decimation,
+            .fit_phase = cfg->hp_fit_phase};
+        for (unsigned k = 0u; k < LADRC_HP_MAX_TONES; ++k) {
+            hp.freq_rad_s[k] = cfg->hp_freq_rad_s[k];
+        }
         /* The shadow runs with the LESO's gains (initialised just before). */
         ladrc_leso_twin_reset(&axis->part.hp.shadow, LADRC_R(0.0));
         return ladrc_hp_init(&axis->part.hp.est, &hp);
@@ -188,6 +204,7 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
     axis->u_min_Nm = cfg->u_min_Nm;
     axis->u_max_Nm = cfg->u_max_Nm;
     axis->f_rate_rad_s3 = LADRC_R(0.0);
+    axis->f_known_rad_s2 = LADRC_R(0.0);
     ladrc_axis_reset(axis, LADRC_R(0.0));
     return LADRC_OK;
 }
@@ -208,7 +225,7 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
         if (axis->variant == LADRC_VARIANT_LP_MLADRC) {
             ladrc_lp_reset(&axis->part.lp);
         } else if (axis->variant == LADRC_VARIANT_HP_MLADRC) {
-            ladrc_hp_reset(&axis->part.hp.est, ladrc_hp_get_freq(&axis->part.hp.est));
+            ladrc_hp_reset(&axis->part.hp.est);
             ladrc_leso_twin_reset(&axis->part.hp.shadow, LADRC_R(0.0));
         }
     }
@@ -233,12 +250,15 @@ static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, ladrc_real_t rate_r
         return ladrc_lp_get_estimate(&axis->part.lp);
     }
     if (axis->variant == LADRC_VARIANT_HP_MLADRC) {
-        /* z3 holds f - d_hat seen through the observer's lag; the shadow, an
-         * identical observer of a still plant told the same d_hat, holds the
-         * d_hat part, so the difference is the observer's view of f alone and
-         * the fit does not chase its own output. */
+        /* z3 holds f - d_hat seen through the observer's lag, plus what the
+         * fed rate h put in; the shadow, a twin of the observer on a still
+         * plant told d_hat - f_known and the same h, holds exactly the parts
+         * of z3 that d_hat, h and the known f_known put there (the observer
+         * is linear), so the difference is the observer's view of the
+         * unknown f alone and the fit does not chase its own output. */
         ladrc_leso_twin_t *shadow = &axis->part.hp.shadow;
-        (void)ladrc_leso_step_twin_accel(&axis->leso, shadow, axis->d_hat_rad_s2);
+        (void)ladrc_leso_step_twin(&axis->leso, shadow, LADRC_R(0.0), LADRC_R(0.0),
+                                   axis->d_hat_rad_s2 - axis->f_known_rad_s2, axis->f_rate_rad_s3);
         (void)ladrc_hp_step(&axis->part.hp.est, axis->leso.z3 - shadow->z3);
         return ladrc_hp_get_estimate(&axis->part.hp.est);
     }
@@ -334,6 +354,12 @@ void ladrc_axis_set_disturbance_rate(ladrc_axis_t *axis, ladrc_real_t rate_rad_s
 {
     LADRC_ASSERT(axis != NULL);
     axis->f_rate_rad_s3 = ladrc_is_finite(rate_rad_s3) ? rate_rad_s3 : LADRC_R(0.0);
+}
+
+void ladrc_axis_set_known_disturbance(ladrc_axis_t *axis, ladrc_real_t f_known_rad_s2)
+{
+    LADRC_ASSERT(axis != NULL);
+    axis->f_known_rad_s2 = ladrc_is_finite(f_known_rad_s2) ? f_known_rad_s2 : LADRC_R(0.0);
 }
 
 ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis)

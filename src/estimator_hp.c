@@ -1,105 +1,118 @@
-/* HP disturbance estimator: bias + sinusoid fitted by RLS at a known or
- * online-estimated frequency, behind a confidence gate (see estimator.h). */
+/* HP disturbance estimator: a bias and up to LADRC_HP_MAX_TONES tones fitted
+ * by one RLS at known or online-estimated frequencies, behind a gate that
+ * checks the frequencies themselves (see estimator.h). */
 #include "ladrc/estimator.h"
 
 #define HP_PI LADRC_R(3.14159265358979)
 /* Initial P of the RLS per sample (P h, rls.h keeps P in continuous units):
  * large against the gains it settles to, small enough that the first updates
- * do not amplify float rounding. */
+ * do not amplify float rounding; the bound leaves room for 1 + 2 K of them. */
 #define HP_P_INITIAL_PER_SAMPLE LADRC_R(1.0e3)
 #define HP_P_BOUND_PER_SAMPLE LADRC_R(1.0e4)
-/* Confidence gate: the weight aims at 0 below GATE_Q_OFF of explained power,
- * at 1 above GATE_Q_ON, and moves at most GATE_RATE_PER_S per second so a
- * wrong model cannot kick the loop. A second tone with 2% of the power of the
- * modelled one is enough to hold the compensation back partly. */
-#define GATE_Q_OFF LADRC_R(0.97)
-#define GATE_Q_ON LADRC_R(0.995)
-#define GATE_RATE_PER_S LADRC_R(1.0)
-/* Below this sample power (rad/s^2)^2 there is nothing worth compensating. */
-#define GATE_MIN_POWER LADRC_R(1.0e-6)
+/* The fit keeps at least this much of a significant tone's phase in memory
+ * (rad), enough to tell the bias and the tone apart... */
+#define FIT_MEMORY_RAD LADRC_R(0.5)
+/* ...and this much of the relative phase of two significant tones. */
+#define SEPARATION_MEMORY_RAD LADRC_R(1.0)
+/* Slip (turn rate of a fitted phasor) averaged at this rate (1/s): a few
+ * fit memories, so one noisy fit sample does not unlock a tone. */
+#define SLIP_AVERAGE_PER_S LADRC_R(10.0)
+/* A tone locks while |slip| < SLIP_TOL_FRACTION * lambda (the fit then
+ * follows the turning phasor with a phase error of about slip / lambda) and
+ * unlocks above SLIP_UNLOCK_FACTOR times that. */
+#define SLIP_TOL_FRACTION LADRC_R(0.1)
+#define SLIP_UNLOCK_FACTOR LADRC_R(3.0)
+/* A tone is significant while its power a^2/2 is at least this share of the
+ * sample's power around the bias and its amplitude above AMP_FLOOR. */
+#define AMP_SHARE LADRC_R(0.01)
+#define AMP_FLOOR_RAD_S2 LADRC_R(0.05)
+/* The weight moves at most this much per second. */
+#define GATE_RATE_PER_S LADRC_R(5.0)
+/* Sample and residue powers averaged at this rate (1/s). */
+#define POWER_AVERAGE_PER_S LADRC_R(3.0)
+/* Change detection: fast and slow averages of the prior error power (1/s);
+ * a change is a fast average CHANGE_RATIO times the slow one and at least
+ * CHANGE_SHARE of the sample's power; the fit then forgets at
+ * CHANGE_BOOST_FACTOR times lambda0 (at most 1 / T) for CHANGE_BOOST_S. */
+#define CHANGE_FAST_PER_S LADRC_R(20.0)
+#define CHANGE_SLOW_PER_S LADRC_R(1.0)
+#define CHANGE_RATIO LADRC_R(10.0)
+#define CHANGE_SHARE LADRC_R(0.01)
+#define CHANGE_BOOST_S LADRC_R(0.1)
+#define CHANGE_BOOST_FACTOR LADRC_R(5.0)
+/* ONLINE tones: a residue of TONE_START_SHARE of the sample's power starts a
+ * tone; a tone insignificant for TONE_QUIET_S stops; two tones within
+ * TONE_SEPARATION (relative) are one too many; at least TONE_HOLD_S between
+ * such decisions, so the fit settles in between. */
+#define TONE_START_SHARE LADRC_R(0.02)
+#define TONE_QUIET_S LADRC_R(1.0)
+#define TONE_SEPARATION LADRC_R(0.15)
+#define TONE_HOLD_S LADRC_R(0.5)
+/* The derivative filter's averages need this much power ((rad/s^3)^2). */
+#define FILTER_MIN_POWER LADRC_R(1.0e-6)
 
-/* Which memory the RLS were last given (set_memory). */
-#define HP_MEMORY_SHORT 0u
-#define HP_MEMORY_PERIOD 1u
-#define HP_MEMORY_STALE 2u /* the frequency moved: set them again */
+static unsigned theta_a(unsigned k) { return 1u + 2u * k; }
 
-static ladrc_status_t init_rls(ladrc_rls_t *rls, uint8_t n, ladrc_real_t h, ladrc_real_t lambda0)
+static ladrc_real_t min_real(ladrc_real_t a, ladrc_real_t b) { return (b < a) ? b : a; }
+
+/* cos and sin of a small angle x by their series to x^8 and x^9: exact to
+ * rounding in float and double for the per-tick turns used here (|x| <= 0.04
+ * at 40 rad/s and 1 kHz, checked below pi at init where the series is still
+ * within 4e-4 and the phasor is renormalised every tick), and cheap enough
+ * for a frequency update on every fit sample. */
+static void small_rotation(ladrc_real_t x, ladrc_real_t *c, ladrc_real_t *s)
 {
-    const ladrc_rls_config_t cfg = {n, h, lambda0, HP_P_BOUND_PER_SAMPLE / h,
-                                    HP_P_INITIAL_PER_SAMPLE / h};
-    return ladrc_rls_init(rls, &cfg);
+    const ladrc_real_t x2 = x * x;
+    *c = LADRC_R(1.0) - x2 / LADRC_R(2.0) *
+                            (LADRC_R(1.0) - x2 / LADRC_R(12.0) *
+                                                (LADRC_R(1.0) - x2 / LADRC_R(30.0) * (LADRC_R(1.0) - x2 / LADRC_R(56.0))));
+    *s = x * (LADRC_R(1.0) - x2 / LADRC_R(6.0) *
+                                 (LADRC_R(1.0) - x2 / LADRC_R(20.0) *
+                                                     (LADRC_R(1.0) - x2 / LADRC_R(42.0) * (LADRC_R(1.0) - x2 / LADRC_R(72.0)))));
 }
 
-/* Forgetting rate that keeps one period of a tone at w, at most cap. */
-static ladrc_real_t one_period_rate(ladrc_real_t w_rad_s, ladrc_real_t cap)
+/* A tone's frequency and what follows from it. */
+static void set_tone_freq(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone, ladrc_real_t w_rad_s)
 {
-    const ladrc_real_t rate = w_rad_s / (LADRC_R(2.0) * HP_PI);
-    return rate < cap ? rate : cap;
-}
-
-/* The frequency and what follows from it; the RLS memories follow at the
- * next set_memory. */
-static void set_freq(ladrc_hp_estimator_t *est, ladrc_real_t w_rad_s)
-{
-    est->w_rad_s = w_rad_s;
-    est->period_rate_per_s = one_period_rate(w_rad_s, est->lambda0_max);
-    est->freq_period_rate_per_s = one_period_rate(w_rad_s, est->freq_lambda0_max);
-    est->memory = HP_MEMORY_STALE;
-    est->cos_step = ladrc_cos(w_rad_s * est->dt_s);
-    est->sin_step = ladrc_sin(w_rad_s * est->dt_s);
+    tone->w_rad_s = w_rad_s;
+    small_rotation(w_rad_s * est->dt_s, &tone->cos_step, &tone->sin_step);
     const ladrc_real_t x = (est->lag_wo_rad_s > LADRC_R(0.0)) ? w_rad_s / est->lag_wo_rad_s : LADRC_R(0.0);
-    est->lead_re = LADRC_R(1.0) - LADRC_R(3.0) * x * x;
-    est->lead_im = LADRC_R(3.0) * x - x * x * x;
+    tone->lead_re = LADRC_R(1.0) - LADRC_R(3.0) * x * x;
+    tone->lead_im = LADRC_R(3.0) * x - x * x * x;
 }
 
-/* Memory of the fits and the gate. A fit that explains the signal keeps about
- * one period of data, which it needs to tell the bias, the sinusoid and a
- * neighbouring tone apart; a fit that does not (start, frequency jump) forgets
- * at the configured maximum rate so it can find the new signal quickly. */
-static void set_memory(ladrc_hp_estimator_t *est, ladrc_real_t explained)
+static ladrc_status_t check_config(const ladrc_hp_config_t *cfg)
 {
-    const uint8_t memory = (explained >= GATE_Q_OFF) ? HP_MEMORY_PERIOD : HP_MEMORY_SHORT;
-    if (memory == est->memory) {
-        return; /* the RLS already have these rates */
-    }
-    est->memory = memory;
-    const int fits = memory == HP_MEMORY_PERIOD;
-    (void)ladrc_rls_set_lambda0(&est->amp, fits ? est->period_rate_per_s : est->lambda0_max);
-    (void)ladrc_rls_set_lambda0(&est->freq, fits ? est->freq_period_rate_per_s : est->freq_lambda0_max);
-}
-
-ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t *cfg)
-{
-    if (est == NULL || cfg == NULL) {
-        return LADRC_ERR_NULL;
-    }
     if (!ladrc_is_positive(cfg->dt_s)) {
         return LADRC_ERR_DT_S;
     }
     if (cfg->freq_mode != LADRC_HP_FREQ_KNOWN && cfg->freq_mode != LADRC_HP_FREQ_ONLINE) {
         return LADRC_ERR_HP_FREQ_MODE;
     }
-    /* The phasor must turn by less than half a turn per tick. */
-    if (!ladrc_is_positive(cfg->freq_rad_s) || cfg->freq_rad_s * cfg->dt_s >= HP_PI) {
-        return LADRC_ERR_HP_FREQ_RAD_S;
+    if (cfg->n_tones < 1u || cfg->n_tones > LADRC_HP_MAX_TONES) {
+        return LADRC_ERR_HP_N_TONES;
     }
-    if (cfg->decimation < 1u) {
-        return LADRC_ERR_HP_DECIMATION;
+    const int online = cfg->freq_mode == LADRC_HP_FREQ_ONLINE;
+    ladrc_real_t fastest_rad_s = online ? cfg->freq_max_rad_s : LADRC_R(0.0);
+    for (unsigned k = 0u; k < cfg->n_tones; ++k) {
+        const ladrc_real_t w = cfg->freq_rad_s[k];
+        /* The phasor must turn by less than half a turn per tick. */
+        if (!ladrc_is_positive(w) || w * cfg->dt_s >= HP_PI) {
+            return LADRC_ERR_HP_FREQ_RAD_S;
+        }
+        if (!online && w > fastest_rad_s) {
+            fastest_rad_s = w;
+        }
     }
-    /* A fit sample must see the tone turn by less than a quarter turn. */
-    const ladrc_real_t fit_period_s = (ladrc_real_t)cfg->fit_decimation * cfg->dt_s;
-    const ladrc_real_t fastest_rad_s =
-        (cfg->freq_mode == LADRC_HP_FREQ_ONLINE) ? cfg->freq_max_rad_s : cfg->freq_rad_s;
-    const ladrc_real_t period_s = (ladrc_real_t)cfg->decimation * cfg->dt_s;
-    if (cfg->freq_mode == LADRC_HP_FREQ_ONLINE &&
-        !(ladrc_is_positive(cfg->freq_min_rad_s) && ladrc_is_finite(cfg->freq_max_rad_s) &&
-          cfg->freq_min_rad_s < cfg->freq_max_rad_s &&
-          cfg->freq_max_rad_s * period_s < LADRC_R(0.5) * HP_PI)) {
+    if (online && !(ladrc_is_positive(cfg->freq_min_rad_s) && ladrc_is_finite(cfg->freq_max_rad_s) &&
+                    cfg->freq_min_rad_s < cfg->freq_max_rad_s && cfg->freq_max_rad_s * cfg->dt_s < HP_PI)) {
         return LADRC_ERR_HP_FREQ_RANGE;
     }
-    if (!ladrc_is_positive(cfg->lambda0_per_s) || !ladrc_is_positive(cfg->freq_lambda0_per_s)) {
+    const ladrc_real_t fit_period_s = (ladrc_real_t)cfg->fit_decimation * cfg->dt_s;
+    if (!ladrc_is_positive(cfg->lambda0_per_s) || cfg->lambda0_per_s * fit_period_s > LADRC_R(1.0)) {
         return LADRC_ERR_EST_LAMBDA0;
     }
+    /* A fit sample must see every tone turn by less than a quarter turn. */
     if (cfg->fit_decimation < 1u || cfg->fit_phase >= cfg->fit_decimation ||
         !(fastest_rad_s * fit_period_s < LADRC_R(0.5) * HP_PI)) {
         return LADRC_ERR_HP_FIT_DECIMATION;
@@ -107,119 +120,361 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
     if (!ladrc_is_finite(cfg->sample_lag_wo_rad_s) || cfg->sample_lag_wo_rad_s < LADRC_R(0.0)) {
         return LADRC_ERR_HP_SAMPLE_LAG;
     }
-    est->lambda0_max = cfg->lambda0_per_s;
-    est->freq_lambda0_max = cfg->freq_lambda0_per_s;
-    ladrc_status_t status = init_rls(&est->amp, 3u, fit_period_s, cfg->lambda0_per_s);
-    if (status == LADRC_OK) {
-        status = init_rls(&est->freq, 2u, period_s, cfg->freq_lambda0_per_s);
+    if (online && !(ladrc_is_positive(cfg->freq_lambda0_per_s) &&
+                    cfg->freq_lambda0_per_s * fit_period_s <= LADRC_R(1.0))) {
+        return LADRC_ERR_HP_FREQ_LAMBDA0;
     }
+    /* The derivative filter is integrated once per fit sample. */
+    if (online && !(ladrc_is_positive(cfg->freq_filter_rad_s) &&
+                    cfg->freq_filter_rad_s * fit_period_s < LADRC_R(0.2))) {
+        return LADRC_ERR_HP_FREQ_FILTER;
+    }
+    return LADRC_OK;
+}
+
+/* (Re)starts the fit with n tones and the given estimate (NULL: 0). */
+static void start_fit(ladrc_hp_estimator_t *est, unsigned n, const ladrc_real_t *theta0)
+{
+    const ladrc_rls_config_t fit = {(uint8_t)(1u + 2u * n), est->fit_period_s, est->fit_rate_per_s,
+                                    HP_P_BOUND_PER_SAMPLE / est->fit_period_s,
+                                    HP_P_INITIAL_PER_SAMPLE / est->fit_period_s};
+    /* Valid: checked at init for the largest n and lambda0. */
+    (void)ladrc_rls_init(&est->fit, &fit);
+    ladrc_rls_reset(&est->fit, theta0);
+    est->n_active = (uint8_t)n;
+    est->hold = 0u;
+}
+
+ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t *cfg)
+{
+    if (est == NULL || cfg == NULL) {
+        return LADRC_ERR_NULL;
+    }
+    ladrc_status_t status = check_config(cfg);
+    if (status != LADRC_OK) {
+        return status;
+    }
+    const ladrc_real_t fit_period_s = (ladrc_real_t)cfg->fit_decimation * cfg->dt_s;
+    /* The largest fit, checked once: every later start_fit is smaller or equal. */
+    const ladrc_rls_config_t fit = {(uint8_t)(1u + 2u * cfg->n_tones), fit_period_s, cfg->lambda0_per_s,
+                                    HP_P_BOUND_PER_SAMPLE / fit_period_s,
+                                    HP_P_INITIAL_PER_SAMPLE / fit_period_s};
+    status = ladrc_rls_init(&est->fit, &fit);
     if (status != LADRC_OK) {
         return status;
     }
     est->dt_s = cfg->dt_s;
+    est->fit_period_s = fit_period_s;
     est->lag_wo_rad_s = cfg->sample_lag_wo_rad_s;
+    est->online = (cfg->freq_mode == LADRC_HP_FREQ_ONLINE) ? 1u : 0u;
     est->freq_min_rad_s = cfg->freq_min_rad_s;
     est->freq_max_rad_s = cfg->freq_max_rad_s;
-    est->decimation = cfg->decimation;
+    est->lambda0_max = cfg->lambda0_per_s;
+    est->boost_rate_per_s = min_real(CHANGE_BOOST_FACTOR * cfg->lambda0_per_s, LADRC_R(1.0) / fit_period_s);
+    est->freq_lambda0_per_s = cfg->freq_lambda0_per_s;
+    est->filter_rad_s = cfg->freq_filter_rad_s;
     est->fit_decimation = cfg->fit_decimation;
     est->fit_phase = cfg->fit_phase;
-    est->online = (cfg->freq_mode == LADRC_HP_FREQ_ONLINE) ? 1u : 0u;
-    ladrc_hp_reset(est, cfg->freq_rad_s);
+    est->n_tones = cfg->n_tones;
+    for (unsigned k = 0u; k < LADRC_HP_MAX_TONES; ++k) {
+        set_tone_freq(est, &est->tone[k], (k < cfg->n_tones) ? cfg->freq_rad_s[k] : LADRC_R(0.0));
+    }
+    ladrc_hp_reset(est);
     return LADRC_OK;
 }
 
-void ladrc_hp_reset(ladrc_hp_estimator_t *est, ladrc_real_t freq_rad_s)
+void ladrc_hp_reset(ladrc_hp_estimator_t *est)
 {
     LADRC_ASSERT(est != NULL);
-    ladrc_rls_reset(&est->amp, NULL);
-    ladrc_rls_reset(&est->freq, NULL);
-    set_freq(est, freq_rad_s);
-    set_memory(est, LADRC_R(0.0));
-    est->cos_psi = LADRC_R(1.0);
-    est->sin_psi = LADRC_R(0.0);
-    est->dec_sum = LADRC_R(0.0);
-    est->dec_count = 0u;
-    est->dec_delay = est->fit_phase;
-    est->fit_count = 0u;
-    est->x1 = LADRC_R(0.0);
-    est->x2 = LADRC_R(0.0);
-    est->n_dec_samples = 0u;
+    est->fit_rate_per_s = est->lambda0_max;
+    start_fit(est, est->online ? 1u : est->n_tones, NULL);
+    for (unsigned k = 0u; k < LADRC_HP_MAX_TONES; ++k) {
+        ladrc_hp_tone_t *tone = &est->tone[k];
+        tone->cos_psi = LADRC_R(1.0);
+        tone->sin_psi = LADRC_R(0.0);
+        tone->prev_a = LADRC_R(0.0);
+        tone->prev_b = LADRC_R(0.0);
+        tone->slip_rad_s = LADRC_R(0.0);
+        for (unsigned i = 0u; i < 4u; ++i) {
+            tone->filt[i] = LADRC_R(0.0);
+        }
+        tone->d1d1 = LADRC_R(0.0);
+        tone->d3d1 = LADRC_R(0.0);
+        tone->quiet = 0u;
+        tone->significant = 0u;
+        tone->locked = 0u;
+    }
     est->sig_power = LADRC_R(0.0);
-    est->err_power = LADRC_R(0.0);
+    est->resid_power = LADRC_R(0.0);
+    est->err_fast = LADRC_R(0.0);
+    est->err_slow = LADRC_R(0.0);
     est->weight = LADRC_R(0.0);
     est->estimate = LADRC_R(0.0);
+    est->fit_count = 0u;
+    est->boost_left = 0u;
     est->faults = LADRC_FAULT_NONE;
 }
 
-/* A frequency estimate that moves by more than this fraction restarts the fit. */
-#define HP_REFIT_FREQ_STEP LADRC_R(0.03)
-
-/* Frequency from one decimated sample x: second-difference regression. */
-static void update_freq(ladrc_hp_estimator_t *est, ladrc_real_t x)
+/* Fitted value of active tone k at its current phase, as sampled (lagged)
+ * or with the sample's lag undone (lead). */
+static ladrc_real_t tone_value(const ladrc_hp_estimator_t *est, unsigned k, int lead)
 {
-    if (est->n_dec_samples >= 2u) {
-        const ladrc_real_t phi[2] = {-est->x1, LADRC_R(1.0)};
-        const ladrc_real_t d2x = x - LADRC_R(2.0) * est->x1 + est->x2;
-        (void)ladrc_rls_update(&est->freq, phi, d2x);
-        const ladrc_real_t kappa = ladrc_rls_get_theta(&est->freq)[0];
-        if (kappa > LADRC_R(0.0) && kappa < LADRC_R(2.0)) {
-            const ladrc_real_t period_s = (ladrc_real_t)est->decimation * est->dt_s;
-            const ladrc_real_t w = LADRC_R(2.0) * ladrc_asin(LADRC_R(0.5) * ladrc_sqrt(kappa)) / period_s;
-            const ladrc_real_t w_new = ladrc_clamp(w, est->freq_min_rad_s, est->freq_max_rad_s);
-            if (est->weight <= LADRC_R(0.0) &&
-                ladrc_fabs(w_new - est->w_rad_s) > HP_REFIT_FREQ_STEP * est->w_rad_s) {
-                /* Data fitted at another frequency would hold the fit back for a
-                 * whole window: start the fit afresh from its current values.
-                 * Only while nothing is compensated, so a restart cannot kick. */
-                ladrc_rls_reset(&est->amp, ladrc_rls_get_theta(&est->amp));
-            }
-            set_freq(est, w_new);
-        }
-    } else {
-        est->n_dec_samples++;
+    const ladrc_hp_tone_t *tone = &est->tone[k];
+    const ladrc_real_t *theta = ladrc_rls_get_theta(&est->fit);
+    const ladrc_real_t a = theta[theta_a(k)];
+    const ladrc_real_t b = theta[theta_a(k) + 1u];
+    if (!lead) {
+        return a * tone->cos_psi + b * tone->sin_psi;
     }
-    est->x2 = est->x1;
-    est->x1 = x;
+    /* (a - j b) turned and scaled by (1 + j w / wo)^3, real part at psi. */
+    const ladrc_real_t x = a * tone->lead_re + b * tone->lead_im;
+    const ladrc_real_t y = a * tone->lead_im - b * tone->lead_re;
+    return x * tone->cos_psi - y * tone->sin_psi;
 }
 
-/* Moves the weight towards what the explained power says, at a bounded rate;
- * returns the explained fraction. Powers are averaged over a period of the
- * modelled tone, so a short-memory fit that follows a mixture of tones
- * locally does not look like a good model. */
-static ladrc_real_t update_gate(ladrc_hp_estimator_t *est, ladrc_real_t centred, ladrc_real_t err)
+/* Turn of a tone's fitted phasor since the previous fit sample, as a rate
+ * (rad/s), averaged into its slip; returns |slip|. */
+static ladrc_real_t update_slip(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone, ladrc_real_t a,
+                                ladrc_real_t b)
 {
-    const ladrc_real_t fit_period_s = (ladrc_real_t)est->fit_decimation * est->dt_s;
-    const ladrc_real_t alpha = est->period_rate_per_s * fit_period_s;
-    est->sig_power += alpha * (centred * centred - est->sig_power);
-    est->err_power += alpha * (err * err - est->err_power);
-    const ladrc_real_t explained = (est->sig_power > GATE_MIN_POWER)
-                                       ? LADRC_R(1.0) - est->err_power / est->sig_power
-                                       : LADRC_R(0.0);
-    const ladrc_real_t target = ladrc_clamp((explained - GATE_Q_OFF) / (GATE_Q_ON - GATE_Q_OFF),
-                                            LADRC_R(0.0), LADRC_R(1.0));
-    const ladrc_real_t max_move = GATE_RATE_PER_S * fit_period_s;
+    /* (a - j b) conj(prev_a - j prev_b): its angle is the turn. */
+    const ladrc_real_t re = a * tone->prev_a + b * tone->prev_b;
+    const ladrc_real_t im = a * tone->prev_b - b * tone->prev_a;
+    tone->prev_a = a;
+    tone->prev_b = b;
+    /* tan of the turn for turns under an eighth; a larger turn (or a
+     * vanished phasor) counts as a quarter turn. */
+    ladrc_real_t turn = LADRC_R(0.5) * HP_PI;
+    if (re > LADRC_R(0.0) && ladrc_fabs(im) < re) {
+        turn = im / re;
+    } else if (im < LADRC_R(0.0)) {
+        turn = -turn;
+    }
+    const ladrc_real_t rate = turn / est->fit_period_s;
+    tone->slip_rad_s += SLIP_AVERAGE_PER_S * est->fit_period_s * (rate - tone->slip_rad_s);
+    return ladrc_fabs(tone->slip_rad_s);
+}
+
+/* One fit sample of x through a tone's derivative filter (wf / (s + wf))^4,
+ * whose states are x and its first three derivatives (semi-implicit Euler,
+ * the highest derivative first), and the two averages of its frequency fit;
+ * returns the frequency they give, or 0 while they give none in range.
+ * Each state is the backward difference of the next lower one, so x3 of
+ * this sample is the second difference of x1 centred on the previous
+ * sample: for a tone, x3_k = -(2 sin(w T / 2) / T)^2 x1_k-1 exactly, and the
+ * ratio of the averages of x3_k x1_k-1 and x1_k-1^2 is that factor at every
+ * instant (no ripple from the averaging); its root s gives
+ * w = (2 / T) asin(s T / 2), here to the cubic term. */
+static ladrc_real_t update_frequency_fit(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone, ladrc_real_t x)
+{
+    const ladrc_real_t wf = est->filter_rad_s;
+    const ladrc_real_t wf2 = wf * wf;
+    const ladrc_real_t t = est->fit_period_s;
+    ladrc_real_t *v = tone->filt;
+    const ladrc_real_t x1_prev = v[1];
+    const ladrc_real_t d4 = wf2 * wf2 * (x - v[0]) - LADRC_R(4.0) * wf2 * wf * v[1] -
+                            LADRC_R(6.0) * wf2 * v[2] - LADRC_R(4.0) * wf * v[3];
+    v[3] += t * d4;
+    v[2] += t * v[3];
+    v[1] += t * v[2];
+    v[0] += t * v[1];
+    const ladrc_real_t alpha = est->freq_lambda0_per_s * t;
+    tone->d1d1 += alpha * (x1_prev * x1_prev - tone->d1d1);
+    tone->d3d1 += alpha * (v[3] * x1_prev - tone->d3d1);
+    if (!(tone->d1d1 > FILTER_MIN_POWER)) {
+        return LADRC_R(0.0);
+    }
+    const ladrc_real_t s2 = -tone->d3d1 / tone->d1d1;
+    const ladrc_real_t w_min = est->freq_min_rad_s;
+    const ladrc_real_t w_max = est->freq_max_rad_s;
+    if (!(s2 > LADRC_R(0.0))) {
+        return LADRC_R(0.0);
+    }
+    const ladrc_real_t s = ladrc_sqrt(s2);
+    const ladrc_real_t w = s + s2 * s * t * t / LADRC_R(24.0);
+    return (w > w_min && w < w_max) ? w : LADRC_R(0.0);
+}
+
+/* Change detection on the fit's prior error (see estimator.h); returns 1
+ * while a change's fast forgetting lasts. */
+static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
+{
+    const ladrc_real_t t = est->fit_period_s;
+    const ladrc_real_t e2 = err * err;
+    est->err_fast += CHANGE_FAST_PER_S * t * (e2 - est->err_fast);
+    if (est->err_fast > CHANGE_RATIO * est->err_slow && est->err_fast > CHANGE_SHARE * est->sig_power) {
+        est->boost_left = (uint16_t)(CHANGE_BOOST_S / t + LADRC_R(0.5));
+    }
+    if (est->boost_left > 0u) {
+        est->boost_left--;
+        return 1;
+    }
+    /* The long average learns only outside changes, so a change stays one. */
+    est->err_slow += CHANGE_SLOW_PER_S * t * (e2 - est->err_slow);
+    return 0;
+}
+
+/* ONLINE: stops tone k (an active one), moving the last active tone into
+ * its place; the fit restarts with the values of the remaining tones. */
+static void stop_tone(ladrc_hp_estimator_t *est, unsigned k)
+{
+    ladrc_real_t theta[LADRC_RLS_MAX_PARAMS];
+    const ladrc_real_t *old = ladrc_rls_get_theta(&est->fit);
+    const unsigned last = est->n_active - 1u;
+    for (unsigned i = 0u; i < theta_a(last); ++i) {
+        theta[i] = old[i];
+    }
+    if (k != last) {
+        const ladrc_hp_tone_t moved = est->tone[last];
+        est->tone[last] = est->tone[k];
+        est->tone[k] = moved;
+        theta[theta_a(k)] = old[theta_a(last)];
+        theta[theta_a(k) + 1u] = old[theta_a(last) + 1u];
+    }
+    start_fit(est, last, theta);
+}
+
+/* ONLINE: starts the next tone at frequency w with a zero amplitude. */
+static void start_tone(ladrc_hp_estimator_t *est, ladrc_real_t w)
+{
+    ladrc_real_t theta[LADRC_RLS_MAX_PARAMS];
+    const ladrc_real_t *old = ladrc_rls_get_theta(&est->fit);
+    const unsigned k = est->n_active;
+    for (unsigned i = 0u; i < theta_a(k); ++i) {
+        theta[i] = old[i];
+    }
+    theta[theta_a(k)] = LADRC_R(0.0);
+    theta[theta_a(k) + 1u] = LADRC_R(0.0);
+    ladrc_hp_tone_t *tone = &est->tone[k];
+    set_tone_freq(est, tone, w);
+    tone->prev_a = LADRC_R(0.0);
+    tone->prev_b = LADRC_R(0.0);
+    tone->slip_rad_s = LADRC_R(0.0);
+    tone->quiet = 0u;
+    tone->locked = 0u;
+    start_fit(est, k + 1u, theta);
+}
+
+/* ONLINE: each tone's frequency from its own part of the sample, then at
+ * most one tone started or stopped (see estimator.h). */
+static void update_frequencies(ladrc_hp_estimator_t *est, ladrc_real_t sample)
+{
+    ladrc_real_t value[LADRC_HP_MAX_TONES];
+    /* The derivative filter does not see the bias: the raw sample serves. */
+    ladrc_real_t residue = sample;
+    for (unsigned k = 0u; k < est->n_active; ++k) {
+        value[k] = tone_value(est, k, 0);
+        residue -= value[k];
+    }
+    const ladrc_real_t t = est->fit_period_s;
+    const ladrc_real_t unexplained = residue - ladrc_rls_get_theta(&est->fit)[0];
+    est->resid_power += POWER_AVERAGE_PER_S * t * (unexplained * unexplained - est->resid_power);
+    ladrc_real_t candidate = LADRC_R(0.0);
+    for (unsigned k = 0u; k < est->n_tones; ++k) {
+        ladrc_hp_tone_t *tone = &est->tone[k];
+        /* An active tone's part: the residue with its own value back. */
+        const ladrc_real_t own = (k < est->n_active) ? residue + value[k] : residue;
+        const ladrc_real_t w = update_frequency_fit(est, tone, own);
+        if (k < est->n_active && w > LADRC_R(0.0)) {
+            set_tone_freq(est, tone, w);
+        } else if (k == est->n_active) {
+            candidate = w;
+        }
+    }
+    if (est->hold < UINT16_MAX) {
+        est->hold++;
+    }
+    if ((ladrc_real_t)est->hold * t < TONE_HOLD_S) {
+        return;
+    }
+    for (unsigned k = 0u; k < est->n_active && est->n_active > 1u; ++k) {
+        const ladrc_hp_tone_t *b = &est->tone[k];
+        if ((ladrc_real_t)b->quiet * t >= TONE_QUIET_S) {
+            stop_tone(est, k);
+            return;
+        }
+        for (unsigned j = 0u; j < k; ++j) {
+            const ladrc_hp_tone_t *a = &est->tone[j];
+            if (ladrc_fabs(a->w_rad_s - b->w_rad_s) < TONE_SEPARATION * a->w_rad_s) {
+                stop_tone(est, (b->significant && !a->significant) ? j : k);
+                return;
+            }
+        }
+    }
+    if (est->n_active < est->n_tones && candidate > LADRC_R(0.0) &&
+        est->resid_power > TONE_START_SHARE * est->sig_power) {
+        for (unsigned k = 0u; k < est->n_active; ++k) {
+            if (ladrc_fabs(candidate - est->tone[k].w_rad_s) < TONE_SEPARATION * est->tone[k].w_rad_s) {
+                return;
+            }
+        }
+        start_tone(est, candidate);
+    }
+}
+
+/* One fit sample: the RLS, the change detection, per tone its slip and
+ * lock, the gate, the fit's memory, then the ONLINE frequencies. */
+static void fit_sample(ladrc_hp_estimator_t *est, ladrc_real_t sample)
+{
+    ladrc_real_t phi[LADRC_RLS_MAX_PARAMS];
+    phi[0] = LADRC_R(1.0);
+    for (unsigned k = 0u; k < est->n_active; ++k) {
+        phi[theta_a(k)] = est->tone[k].cos_psi;
+        phi[theta_a(k) + 1u] = est->tone[k].sin_psi;
+    }
+    const ladrc_real_t err = sample - ladrc_rls_predict(&est->fit, phi);
+    est->faults = ladrc_rls_update(&est->fit, phi, sample);
+    const ladrc_real_t *theta = ladrc_rls_get_theta(&est->fit);
+    const ladrc_real_t t = est->fit_period_s;
+    const ladrc_real_t centred = sample - theta[0];
+    est->sig_power += POWER_AVERAGE_PER_S * t * (centred * centred - est->sig_power);
+    const int changing = detect_change(est, err);
+    const ladrc_real_t power_floor = LADRC_R(0.5) * AMP_FLOOR_RAD_S2 * AMP_FLOOR_RAD_S2;
+    const ladrc_real_t tol = SLIP_TOL_FRACTION * est->fit_rate_per_s;
+    ladrc_real_t rate = est->lambda0_max;
+    int any_locked = 0;
+    int all_locked = 1;
+    for (unsigned k = 0u; k < est->n_active; ++k) {
+        ladrc_hp_tone_t *tone = &est->tone[k];
+        const ladrc_real_t a = theta[theta_a(k)];
+        const ladrc_real_t b = theta[theta_a(k) + 1u];
+        const ladrc_real_t slip = update_slip(est, tone, a, b);
+        const ladrc_real_t power = LADRC_R(0.5) * (a * a + b * b);
+        tone->significant = (power >= AMP_SHARE * est->sig_power && power >= power_floor) ? 1u : 0u;
+        if (!tone->significant) {
+            tone->locked = 0u;
+            tone->quiet = (tone->quiet < UINT16_MAX) ? (uint16_t)(tone->quiet + 1u) : tone->quiet;
+            continue;
+        }
+        tone->quiet = 0u;
+        tone->locked = (slip < (tone->locked ? SLIP_UNLOCK_FACTOR * tol : tol)) ? 1u : 0u;
+        any_locked |= tone->locked;
+        all_locked &= tone->locked;
+        rate = min_real(rate, tone->w_rad_s / FIT_MEMORY_RAD);
+        for (unsigned j = 0u; j < k; ++j) {
+            if (est->tone[j].significant) {
+                rate = min_real(rate, ladrc_fabs(tone->w_rad_s - est->tone[j].w_rad_s) / SEPARATION_MEMORY_RAD);
+            }
+        }
+    }
+    const ladrc_real_t max_move = GATE_RATE_PER_S * t;
+    const ladrc_real_t target = (any_locked && all_locked && !changing) ? LADRC_R(1.0) : LADRC_R(0.0);
     est->weight += ladrc_clamp(target - est->weight, -max_move, max_move);
-    return explained;
+    est->fit_rate_per_s = rate;
+    (void)ladrc_rls_set_lambda0(&est->fit, changing ? est->boost_rate_per_s : rate);
+    if (est->online) {
+        update_frequencies(est, sample);
+    }
 }
 
-/* Rotates the phasor by w h, renormalising to first order so it stays unit. */
-static void advance_phase(ladrc_hp_estimator_t *est)
+/* Rotates a tone's phasor by w h, renormalising to first order so it stays unit. */
+static void advance_phase(ladrc_hp_tone_t *tone)
 {
-    const ladrc_real_t c = est->cos_psi * est->cos_step - est->sin_psi * est->sin_step;
-    const ladrc_real_t s = est->sin_psi * est->cos_step + est->cos_psi * est->sin_step;
+    const ladrc_real_t c = tone->cos_psi * tone->cos_step - tone->sin_psi * tone->sin_step;
+    const ladrc_real_t s = tone->sin_psi * tone->cos_step + tone->cos_psi * tone->sin_step;
     const ladrc_real_t norm = LADRC_R(1.5) - LADRC_R(0.5) * (c * c + s * s);
-    est->cos_psi = c * norm;
-    est->sin_psi = s * norm;
-}
-
-/* The model at the current phase with the sample's lag undone: the phasor
- * (a - j b) turned and scaled by (1 + j w / wo)^3; the bias has no lag. */
-static ladrc_real_t model_ahead_of_lag(const ladrc_hp_estimator_t *est)
-{
-    const ladrc_real_t *theta = ladrc_rls_get_theta(&est->amp);
-    const ladrc_real_t x = theta[1] * est->lead_re + theta[2] * est->lead_im;
-    const ladrc_real_t y = theta[1] * est->lead_im - theta[2] * est->lead_re;
-    return theta[0] + x * est->cos_psi - y * est->sin_psi;
+    tone->cos_psi = c * norm;
+    tone->sin_psi = s * norm;
 }
 
 ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s2)
@@ -228,43 +483,50 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
     est->faults = LADRC_FAULT_NONE;
     if (!ladrc_is_finite(sample_rad_s2)) {
         est->faults = LADRC_FAULT_INPUT;
-    } else {
-        if (est->fit_count == est->fit_phase) {
-            const ladrc_real_t phi[3] = {LADRC_R(1.0), est->cos_psi, est->sin_psi};
-            const ladrc_real_t err = sample_rad_s2 - ladrc_rls_predict(&est->amp, phi);
-            est->faults = ladrc_rls_update(&est->amp, phi, sample_rad_s2);
-            set_memory(est, update_gate(est, sample_rad_s2 - ladrc_rls_get_theta(&est->amp)[0], err));
-        }
-        if (est->dec_delay > 0u) {
-            /* Frequency blocks start fit_phase ticks late, so estimators on
-             * different phases do not update their frequency on one tick. */
-            est->dec_delay--;
-        } else if (est->online) {
-            est->dec_sum += sample_rad_s2;
-            if (++est->dec_count >= est->decimation) {
-                update_freq(est, est->dec_sum / (ladrc_real_t)est->decimation);
-                est->dec_sum = LADRC_R(0.0);
-                est->dec_count = 0u;
-            }
-        }
+    } else if (est->fit_count == est->fit_phase) {
+        fit_sample(est, sample_rad_s2);
     }
     /* The fit's clock runs on every tick, fitted or not, so it stays in step. */
     if (++est->fit_count >= est->fit_decimation) {
         est->fit_count = 0u;
     }
-    est->estimate = est->weight * model_ahead_of_lag(est);
-    advance_phase(est);
+    ladrc_real_t model = ladrc_rls_get_theta(&est->fit)[0];
+    for (unsigned k = 0u; k < est->n_active; ++k) {
+        model += tone_value(est, k, 1);
+    }
+    /* Every tone turns, active or not, so a tone that starts is in phase. */
+    for (unsigned k = 0u; k < est->n_tones; ++k) {
+        advance_phase(&est->tone[k]);
+    }
+    est->estimate = est->weight * model;
     return est->faults;
 }
 
 ladrc_real_t ladrc_hp_get_estimate(const ladrc_hp_estimator_t *est) { return est->estimate; }
 
-ladrc_real_t ladrc_hp_get_freq(const ladrc_hp_estimator_t *est) { return est->w_rad_s; }
+unsigned ladrc_hp_get_active_tones(const ladrc_hp_estimator_t *est) { return est->n_active; }
 
-ladrc_real_t ladrc_hp_get_amplitude(const ladrc_hp_estimator_t *est)
+ladrc_real_t ladrc_hp_get_freq(const ladrc_hp_estimator_t *est, unsigned k)
 {
-    const ladrc_real_t *theta = ladrc_rls_get_theta(&est->amp);
-    return ladrc_sqrt(theta[1] * theta[1] + theta[2] * theta[2]);
+    return (k < est->n_active) ? est->tone[k].w_rad_s : LADRC_R(0.0);
+}
+
+ladrc_real_t ladrc_hp_get_amplitude(const ladrc_hp_estimator_t *est, unsigned k)
+{
+    if (k >= est->n_active) {
+        return LADRC_R(0.0);
+    }
+    const ladrc_real_t *theta = ladrc_rls_get_theta(&est->fit);
+    const ladrc_real_t a = theta[theta_a(k)];
+    const ladrc_real_t b = theta[theta_a(k) + 1u];
+    return ladrc_sqrt(a * a + b * b);
+}
+
+int ladrc_hp_tone_locked(const ladrc_hp_estimator_t *est, unsigned k)
+{
+    return (k < est->n_active) ? (int)est->tone[k].locked : 0;
 }
 
 ladrc_real_t ladrc_hp_get_weight(const ladrc_hp_estimator_t *est) { return est->weight; }
+
+ladrc_real_t ladrc_hp_get_bias(const ladrc_hp_estimator_t *est) { return ladrc_rls_get_theta(&est->fit)[0]; }

@@ -114,40 +114,6 @@ ladrc_fault_t ladrc_leso_step_twin(const ladrc_leso_t *obs, ladrc_leso_twin_t *t
     return advance(obs, &twin->z1, &twin->z2, &twin->z3, y, u, accel_known, f_rate_known);
 }
 
-ladrc_fault_t ladrc_leso_step_twin_accel(const ladrc_leso_t *obs, ladrc_leso_twin_t *twin,
-                                         ladrc_real_t accel_known)
-{
-    /* advance() with y = u = f_rate_known = 0 and the terms they zero left
-     * out: b0 u, the h^k/k! g and y itself. Leaving out an exact zero only
-     * changes the sign of a zero sum, and only when z2 or z3 is -0 already,
-     * which reset and step never write. */
-    LADRC_ASSERT(obs != NULL && twin != NULL);
-    const ladrc_real_t h = obs->h_s;
-    ladrc_real_t p1;
-    ladrc_real_t p2;
-    ladrc_real_t err;
-    if (obs->method == LADRC_LESO_ZOH) {
-        const ladrc_real_t acc = twin->z3 + accel_known;
-        p1 = twin->z1 + h * twin->z2 + obs->h2_2 * acc;
-        p2 = twin->z2 + h * acc;
-        err = LADRC_R(0.0) - p1;
-    } else {
-        p1 = twin->z1 + h * twin->z2;
-        p2 = twin->z2 + h * (twin->z3 + accel_known);
-        err = LADRC_R(0.0) - twin->z1;
-    }
-    const ladrc_real_t z1 = p1 + obs->l1 * err;
-    const ladrc_real_t z2 = p2 + obs->l2 * err;
-    const ladrc_real_t z3 = twin->z3 + obs->l3 * err;
-    if (!ladrc_all_finite3(z1, z2, z3)) {
-        return ladrc_is_finite(accel_known) ? LADRC_FAULT_STATE : LADRC_FAULT_INPUT;
-    }
-    twin->z1 = z1;
-    twin->z2 = z2;
-    twin->z3 = z3;
-    return LADRC_FAULT_NONE;
-}
-
 void ladrc_leso_twin_reset(ladrc_leso_twin_t *twin, ladrc_real_t y0)
 {
     LADRC_ASSERT(twin != NULL);

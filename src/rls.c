@@ -13,7 +13,7 @@
 #define RLS_CLAMP_FRACTION LADRC_R(0.99995)
 
 /* U(i,j), i < j, stored by columns: column j holds rows 0..j-1. */
-static unsigned u_index(unsigned i, unsigned j) { return j * (j - 1u) / 2u + i; }
+static unsigned u_index(unsigned i, unsigned j) { return (j * (j - 1u)) / 2u + i; }
 
 /* tr(U D U^T) = sum_j D_j (1 + sum_{i<j} U_ij^2). */
 static ladrc_real_t trace_of(const ladrc_real_t *u, const ladrc_real_t *d, unsigned n)
@@ -132,10 +132,6 @@ ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_
     const ladrc_real_t *d = rls->d;
     const ladrc_real_t *theta = rls->theta;
 
-    /* The columns are written out for n <= 3 (LADRC_RLS_MAX_PARAMS): at the
-     * sizes used here the loops cost more than the arithmetic. Entries past
-     * n_params keep their values (whole-array moves of a fixed size compile
-     * to a few instructions). */
     ladrc_real_t nu[LADRC_RLS_MAX_PARAMS];
     ladrc_real_t u_new[LADRC_RLS_U_SIZE];
     ladrc_real_t d_new[LADRC_RLS_MAX_PARAMS];
@@ -149,43 +145,35 @@ ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_
      *   D_j <- D_j beta_j-1 / (beta_j mu),  U_ij <- U_ij - nu_i f_j / beta_j-1,
      * nu accumulating the unnormalised gain; the gain is nu / beta_n. The new
      * trace and the soundness of the new factors are gathered on the way. */
-    ladrc_real_t e = y - phi[0] * theta[0];
-    const ladrc_real_t g0 = h * d[0] * phi[0];
-    const ladrc_real_t beta0 = mu + phi[0] * g0;
-    ladrc_real_t inv_beta = LADRC_R(1.0) / beta0;
-    d_new[0] = d[0] * mu * inv_beta * inv_mu;
-    nu[0] = g0;
-    ladrc_real_t tr = d_new[0];
-    int sound = ladrc_is_positive(d_new[0]);
-    if (n > 1u) {
-        const ladrc_real_t f1 = phi[1] + u[0] * phi[0];
-        const ladrc_real_t g1 = h * d[1] * f1;
-        e -= phi[1] * theta[1];
-        const ladrc_real_t beta1 = beta0 + f1 * g1;
-        const ladrc_real_t p1 = -f1 * inv_beta;
-        inv_beta = LADRC_R(1.0) / beta1;
-        d_new[1] = d[1] * beta0 * inv_beta * inv_mu;
-        u_new[0] = u[0] + nu[0] * p1;
-        nu[0] += u[0] * g1;
-        nu[1] = g1;
-        tr += d_new[1] * (LADRC_R(1.0) + u_new[0] * u_new[0]);
-        sound &= ladrc_is_positive(d_new[1]) & ladrc_is_finite(u_new[0]);
-        if (n > 2u) {
-            const ladrc_real_t f2 = phi[2] + u[1] * phi[0] + u[2] * phi[1];
-            const ladrc_real_t g2 = h * d[2] * f2;
-            e -= phi[2] * theta[2];
-            const ladrc_real_t beta2 = beta1 + f2 * g2;
-            const ladrc_real_t p2 = -f2 * inv_beta;
-            inv_beta = LADRC_R(1.0) / beta2;
-            d_new[2] = d[2] * beta1 * inv_beta * inv_mu;
-            u_new[1] = u[1] + nu[0] * p2;
-            nu[0] += u[1] * g2;
-            u_new[2] = u[2] + nu[1] * p2;
-            nu[1] += u[2] * g2;
-            nu[2] = g2;
-            tr += d_new[2] * (LADRC_R(1.0) + u_new[1] * u_new[1] + u_new[2] * u_new[2]);
-            sound &= ladrc_is_positive(d_new[2]) & ladrc_is_finite(u_new[1]) & ladrc_is_finite(u_new[2]);
+    ladrc_real_t e = y;
+    ladrc_real_t beta = mu;
+    ladrc_real_t inv_beta = inv_mu;
+    ladrc_real_t tr = LADRC_R(0.0);
+    int sound = 1;
+    for (unsigned j = 0u; j < n; ++j) {
+        const unsigned col = u_index(0u, j); /* U(i,j) at u[col + i] */
+        ladrc_real_t f = phi[j];
+        for (unsigned i = 0u; i < j; ++i) {
+            f += u[col + i] * phi[i];
         }
+        const ladrc_real_t g = h * d[j] * f;
+        e -= phi[j] * theta[j];
+        const ladrc_real_t beta_prev = beta;
+        const ladrc_real_t p = -f * inv_beta;
+        beta = beta_prev + f * g;
+        inv_beta = LADRC_R(1.0) / beta;
+        d_new[j] = d[j] * beta_prev * inv_beta * inv_mu;
+        ladrc_real_t column_norm = LADRC_R(1.0);
+        for (unsigned i = 0u; i < j; ++i) {
+            const ladrc_real_t uij = u[col + i] + nu[i] * p;
+            u_new[col + i] = uij;
+            nu[i] += u[col + i] * g;
+            column_norm += uij * uij;
+            sound &= ladrc_is_finite(uij);
+        }
+        nu[j] = g;
+        tr += d_new[j] * column_norm;
+        sound &= ladrc_is_positive(d_new[j]);
     }
 
     /* nu becomes the new theta. */

@@ -48,9 +48,9 @@
     X(LADRC_ERR_EST_LAMBDA0, "estimator lambda0_per_s must be finite and > 0") \
     X(LADRC_ERR_EST_K0, "estimator k0_per_s must be finite and > 0") \
     X(LADRC_ERR_HP_FREQ_MODE, "hp freq_mode is not a ladrc_hp_freq_mode_t") \
-    X(LADRC_ERR_HP_FREQ_RAD_S, "hp freq_rad_s must be finite, > 0 and < pi / dt_s") \
-    X(LADRC_ERR_HP_FREQ_RANGE, "hp needs 0 < freq_min < freq_max and freq_max T < pi/2") \
-    X(LADRC_ERR_HP_DECIMATION, "hp decimation must be >= 1") \
+    X(LADRC_ERR_HP_FREQ_RAD_S, "hp freq_rad_s of each modelled tone must be finite, > 0 and < pi / dt_s") \
+    X(LADRC_ERR_HP_FREQ_RANGE, "hp needs 0 < freq_min < freq_max and freq_max dt_s < pi") \
+    X(LADRC_ERR_HP_N_TONES, "hp n_tones must be 1..LADRC_HP_MAX_TONES") \
     X(LADRC_ERR_HP_SAMPLE_LAG, "hp sample_lag_wo_rad_s must be finite and >= 0") \
     X(LADRC_ERR_DRAG_NMS, "drag_Nms must be finite and >= 0") \
     X(LADRC_ERR_COUPLING_FEED, "coupling_feed must be 0 or 1") \
@@ -62,7 +62,9 @@
     X(LADRC_ERR_LEVANT_L3, "l3 must be finite and > 0") \
     X(LADRC_ERR_LEVANT_L4, "l4 must be finite and > 0") \
     X(LADRC_ERR_LEVANT_RANGE, "dt_s and the gains give per-sample coefficients out of range") \
-    X(LADRC_ERR_HP_FIT_DECIMATION, "hp needs 1 <= fit_decimation, fit_phase < fit_decimation, freq * fit_decimation * dt_s < pi/2")
+    X(LADRC_ERR_HP_FIT_DECIMATION, "hp needs 1 <= fit_decimation, fit_phase < fit_decimation, freq * fit_decimation * dt_s < pi/2") \
+    X(LADRC_ERR_HP_FREQ_LAMBDA0, "hp freq_lambda0_per_s must be finite, > 0 and at most 1 / (fit_decimation * dt_s)") \
+    X(LADRC_ERR_HP_FREQ_FILTER, "hp freq_filter_rad_s must be finite, > 0 and < 0.2 / (fit_decimation * dt_s)")
 
 #ifdef LADRC_STATUS_NAMES_ONLY
 #define STATUS_TEXT(code, explanation) #code

@@ -87,13 +87,15 @@ typedef struct {
     ladrc_real_t lp_k0_per_s;      /**< gain bound (1/s); paper 300 */
     /* HP-MLADRC (estimator.h) */
     ladrc_hp_freq_mode_t hp_freq_mode;
-    ladrc_real_t hp_freq_rad_s;    /**< KNOWN: the disturbance frequency; ONLINE: first guess */
+    uint8_t hp_n_tones;            /**< tones modelled, 1..LADRC_HP_MAX_TONES */
+    ladrc_real_t hp_freq_rad_s[LADRC_HP_MAX_TONES]; /**< KNOWN: the disturbance frequencies;
+                                        ONLINE: first guesses (rad/s) */
     ladrc_real_t hp_freq_min_rad_s;/**< ONLINE search range */
     ladrc_real_t hp_freq_max_rad_s;
-    ladrc_real_t hp_lambda0_per_s; /**< forgetting rate of the amplitude RLS (1/s) */
-    ladrc_real_t hp_freq_lambda0_per_s; /**< forgetting rate of the frequency RLS (1/s) */
-    uint16_t hp_decimation;        /**< ticks per frequency sample */
-    uint16_t hp_fit_decimation;    /**< ticks per sample of the amplitude fit and the gate */
+    ladrc_real_t hp_lambda0_per_s; /**< fastest forgetting of the fit (1/s) */
+    ladrc_real_t hp_freq_lambda0_per_s; /**< ONLINE forgetting of the frequency fits (1/s) */
+    ladrc_real_t hp_freq_filter_rad_s;  /**< ONLINE derivative filter bandwidth (rad/s) */
+    uint16_t hp_fit_decimation;    /**< ticks per sample of the fit */
     uint16_t hp_fit_phase;         /**< tick of each such block that fits, < hp_fit_decimation */
 } ladrc_axis_config_t;
 
@@ -119,6 +121,7 @@ typedef struct {
     ladrc_ref_t ref;              /**< shaped reference of the latest tick */
     ladrc_real_t d_hat_rad_s2;    /**< estimator output applied over the current step */
     ladrc_real_t f_rate_rad_s3;   /**< known rate of change of f for the next LESO step */
+    ladrc_real_t f_known_rad_s2;  /**< known part of f (HP: kept out of the estimator's sample) */
     ladrc_real_t output_Nm;       /**< latest command */
     ladrc_real_t applied_Nm;      /**< torque the LESO sees at the next tick */
     uint32_t consecutive_faults;  /**< ticks in a row with LADRC_FAULT_INPUT or _STATE */
@@ -162,6 +165,16 @@ void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm);
 /** Known rate of change of the total disturbance for the next tick (rad/s^3),
  *  the coupling feed; held until set again. Non-finite: ignored, 0 used. */
 void ladrc_axis_set_disturbance_rate(ladrc_axis_t *axis, ladrc_real_t rate_rad_s3);
+
+/**
+ * Part of the total disturbance f that is known for the next tick (rad/s^2),
+ * e.g. drag and coupling computed from the estimated rates (attitude.h does
+ * this); held until set again; non-finite: 0 used. Only HP-MLADRC reads it:
+ * its shadow observer is told -f_known (and the fed rate h), so that
+ *     sample = z3 - z3_shadow = L(s) (f - f_known),  L = wo^3 / (s + wo)^3
+ * and the fit sees only what is not already known. Other variants ignore it.
+ */
+void ladrc_axis_set_known_disturbance(ladrc_axis_t *axis, ladrc_real_t f_known_rad_s2);
 
 /** Angular acceleration the model expects over the current step (rad/s^2):
  *  b0 * applied torque + z3 + d_hat. PID: 0. */

@@ -12,32 +12,54 @@
  * paper's forgetting (lambda0 = 100 /s, k0 = 300 /s) makes d_hat a
  * first-order tracker of s with bandwidth lambda0 k0 / (lambda0 + k0) = 75 rad/s.
  *
- * HP ("high precision", angle only): the sample is the LESO's view of f
- * alone, s_k = z3_k - z3_shadow_k, where the shadow is an identical observer
- * of a still plant told the same d_hat: its z3 is the part of z3 that d_hat
- * caused, so the fit never chases its own output (no adaptation loop through
- * the observer). The sample lags f by the observer's wo^3 / (s + wo)^3, which
- * the estimate undoes at the modelled frequency. Model
- *     d(t) = c + a cos(psi) + b sin(psi),   psi' = w
- * with (c, a, b) from a three-parameter RLS and psi kept as a unit phasor
- * rotated by w h each tick (bounded, no time variable). The frequency w is
- * given (KNOWN, the paper's assumption) or estimated (ONLINE) from decimated
- * samples x_j (mean of `decimation` ticks, period T) by the linear prediction
- *     x_j - 2 x_j-1 + x_j-2 = -kappa x_j-1 + kappa c,   kappa = 4 sin^2(w T / 2)
- * solved by a two-parameter RLS (the second difference keeps the regression
- * well scaled where 2 cos(w T) would sit within float resolution of 2).
- * The (c, a, b) fit and the gate take every fit_decimation-th sample: the
- * sample is smooth (it comes through the observer, bandwidth wo), so a few
- * milliseconds between fit samples lose little, and the fit's cost is shared
- * by that many ticks; the estimate itself is evaluated every tick.
- * Both fits keep about one period of the modelled tone in memory while the
- * model explains the signal (enough to tell the bias, the tone and a
- * neighbouring tone apart), and forget at the configured maximum rate while it
- * does not (start-up, a frequency jump). A confidence gate compares the
- * model's prediction error power with the sample's power around its bias,
- * both averaged over a period: the compensation weight ramps towards 1 only
- * while the model explains more than 99.5% of it, and towards 0 (plain LADRC)
- * below 97%, at most 1 per second.
+ * HP ("high precision", angle only): the sample is the LESO's view of the
+ * unknown part of f, s_k = z3_k - z3_shadow_k, where the shadow is a twin of
+ * the axis's observer on a still plant, told d_hat minus the known part of f
+ * and the same fed rate h (axis.h): the observer is linear, so the shadow's
+ * z3 holds exactly what d_hat, h and the known part put into z3, and the fit
+ * never chases its own output (no adaptation loop through the observer) nor
+ * the drag and coupling that move with the reference. The sample lags the
+ * unknown f by the observer's wo^3 / (s + wo)^3, which the estimate undoes
+ * per tone.
+ *
+ * Model, n active tones (1..n_tones, n_tones <= LADRC_HP_MAX_TONES):
+ *     d(t) = c + sum_k (a_k cos(psi_k) + b_k sin(psi_k)),   psi_k' = w_k
+ * (c, a_1, b_1, ..., a_n, b_n) from one RLS (rls.h) on every
+ * fit_decimation-th sample (period T); each psi_k is kept as a unit phasor
+ * rotated by w_k h every tick (bounded, no time variable). The fit forgets at
+ *     lambda = min(lambda0, w_k / FIT_MEMORY_RAD, |w_j - w_k| / SEPARATION_MEMORY_RAD)
+ * over the significant tones: at least a fraction of a radian of the slowest
+ * tone's phase (to tell the bias and that tone apart) and a radian of the
+ * relative phase of two tones (to tell them apart), and otherwise as short
+ * as lambda0 allows, so a change is followed within about 1 / lambda0.
+ *
+ * Gate: the frequency itself is checked. At the right frequency the fitted
+ * phasor P_k = a_k - j b_k stands still; at w_k + dw it turns at dw. Its
+ * averaged turn rate (slip) must stay below a tenth of lambda (a phase error
+ * under 0.1 rad) for the tone to be locked; a short-memory fit's explained
+ * power could not tell this (it explains almost anything locally). The
+ * compensation weight moves at a bounded rate towards 1 while every
+ * significant tone (a real share of the sample's power) is locked and no
+ * change is under way, else towards 0 (plain LADRC): d_hat = weight * model.
+ *
+ * Changes: a short average of the fit's prior error power far above its long
+ * average (a frequency jump, an onset, a stop, a bias step) makes the fit
+ * forget at several times lambda0 for a moment instead of waiting for its
+ * memory to fade, and holds the weight back meanwhile.
+ *
+ * ONLINE frequencies: for each tone, a bias-free least squares on
+ * state-variable-filtered derivatives of the part of the sample the other
+ * tones do not explain,
+ *     w_k^2 = <x3 x1> / <x1 x1> with the sign flipped,
+ * x1 and x3 the first and third derivative of that signal through
+ * (wf / (s + wf))^4, the averages forgetting at freq_lambda0. It is exact for
+ * one tone whatever its amplitude, phase and bias (a bias step only kicks
+ * it briefly). Tones start one at a time: the first is active from the
+ * start; another starts, at the frequency its filter sees in what the active
+ * tones leave unexplained, when that residue keeps a real share of the
+ * sample's power; a tone that stays insignificant, or that runs onto another
+ * tone's frequency, stops (the fit is restarted with its current values for
+ * the remaining tones).
  */
 #ifndef LADRC_ESTIMATOR_H
 #define LADRC_ESTIMATOR_H
@@ -84,85 +106,106 @@ ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s,
 ladrc_real_t ladrc_lp_get_estimate(const ladrc_lp_estimator_t *est);
 
 typedef enum {
-    LADRC_HP_FREQ_KNOWN = 0, /**< the disturbance frequency is given (paper) */
+    LADRC_HP_FREQ_KNOWN = 0, /**< the disturbance frequencies are given (paper) */
     LADRC_HP_FREQ_ONLINE = 1 /**< estimated online within [freq_min, freq_max] */
 } ladrc_hp_freq_mode_t;
 
 typedef struct {
     ladrc_real_t dt_s;               /**< fixed step h (s), > 0 */
     ladrc_hp_freq_mode_t freq_mode;
-    ladrc_real_t freq_rad_s;         /**< KNOWN: the frequency; ONLINE: the first guess (rad/s), > 0 */
+    uint8_t n_tones;                 /**< tones modelled at most, 1..LADRC_HP_MAX_TONES */
+    ladrc_real_t freq_rad_s[LADRC_HP_MAX_TONES]; /**< KNOWN: the frequencies; ONLINE: the first
+                                          guesses (rad/s), > 0; the first n_tones are read */
     ladrc_real_t freq_min_rad_s;     /**< ONLINE search range (rad/s), 0 < min < max */
-    ladrc_real_t freq_max_rad_s;     /**< ONLINE: max * T < pi/2 with T = decimation * dt_s */
-    ladrc_real_t lambda0_per_s;      /**< forgetting rate of the (c, a, b) RLS (1/s), > 0 */
-    ladrc_real_t freq_lambda0_per_s; /**< forgetting rate of the frequency RLS (1/s), > 0 */
-    uint16_t decimation;             /**< ticks per frequency sample, >= 1 */
+    ladrc_real_t freq_max_rad_s;
+    ladrc_real_t lambda0_per_s;      /**< fastest forgetting of the fit (1/s), > 0, lambda0 T <= 1 */
+    ladrc_real_t freq_lambda0_per_s; /**< ONLINE: forgetting of the frequency averages (1/s) */
+    ladrc_real_t freq_filter_rad_s;  /**< ONLINE: bandwidth wf of the derivative filter (rad/s) */
     ladrc_real_t sample_lag_wo_rad_s;/**< samples come through a LESO of this bandwidth, whose z3
-                                          lags f by wo^3 / (s + wo)^3: undone at w; 0 = no lag */
-    uint16_t fit_decimation;         /**< ticks per sample of the (c, a, b) fit and the gate, >= 1;
-                                          the tone may turn at most pi/2 per fit sample */
-    uint16_t fit_phase;              /**< which tick of each fit_decimation block fits, < fit_decimation
+                                          lags f by wo^3 / (s + wo)^3: undone per tone; 0 = no lag */
+    uint16_t fit_decimation;         /**< ticks per fit sample (T = fit_decimation dt_s), >= 1;
+                                          every tone turns less than pi/2 per fit sample */
+    uint16_t fit_phase;              /**< which tick of each block fits, < fit_decimation
                                           (give the axes of one controller different phases so a
                                           tick carries at most one fit) */
 } ladrc_hp_config_t;
 
+/** One tone. */
 typedef struct {
-    ladrc_rls_t amp;                 /**< theta = (c, a, b) */
-    ladrc_rls_t freq;                /**< theta = (kappa, kappa c) */
-    ladrc_real_t dt_s;
-    ladrc_real_t freq_min_rad_s, freq_max_rad_s;
-    ladrc_real_t lambda0_max;        /**< configured forgetting rate of the (c, a, b) RLS */
-    ladrc_real_t freq_lambda0_max;   /**< configured forgetting rate of the frequency RLS */
-    ladrc_real_t period_rate_per_s;  /**< w / 2 pi, at most lambda0_max: one period's memory */
-    ladrc_real_t freq_period_rate_per_s; /**< the same, at most freq_lambda0_max */
     ladrc_real_t w_rad_s;            /**< frequency in use */
     ladrc_real_t cos_psi, sin_psi;   /**< phase as a unit phasor */
     ladrc_real_t cos_step, sin_step; /**< rotation by w h */
+    ladrc_real_t lead_re, lead_im;   /**< (1 + j w / wo)^3: undoes the sample's lag at w */
+    ladrc_real_t prev_a, prev_b;     /**< fitted (a, b) at the previous fit sample */
+    ladrc_real_t slip_rad_s;         /**< averaged turn rate of the fitted phasor */
+    ladrc_real_t filt[4];            /**< ONLINE derivative filter: x, x1, x2, x3 */
+    ladrc_real_t d1d1, d3d1;         /**< ONLINE averages of x1^2 and x3 x1 */
+    uint16_t quiet;                  /**< fit samples in a row insignificant */
+    uint8_t significant;             /**< carries a real share of the sample's power */
+    uint8_t locked;                  /**< significant and its phasor stands still */
+} ladrc_hp_tone_t;
+
+typedef struct {
+    ladrc_rls_t fit;                 /**< theta = (c, a_1, b_1, ..., a_n, b_n), n = n_active */
+    ladrc_hp_tone_t tone[LADRC_HP_MAX_TONES]; /**< the first n_active are in the fit */
+    ladrc_real_t dt_s, fit_period_s;
+    ladrc_real_t freq_min_rad_s, freq_max_rad_s;
+    ladrc_real_t lambda0_max;        /**< configured fastest forgetting of the fit */
+    ladrc_real_t fit_rate_per_s;     /**< forgetting rate of the fit outside changes */
+    ladrc_real_t boost_rate_per_s;   /**< forgetting rate of the fit during a change */
+    ladrc_real_t freq_lambda0_per_s;
+    ladrc_real_t filter_rad_s;       /**< derivative filter bandwidth wf */
     ladrc_real_t lag_wo_rad_s;       /**< bandwidth of the sample's lag, 0 = none */
-    ladrc_real_t lead_re, lead_im;   /**< (1 + j w / wo)^3: undoes the lag at w */
-    ladrc_real_t dec_sum;            /**< sum of the current decimation block */
-    ladrc_real_t x1, x2;             /**< the two previous decimated samples */
-    ladrc_real_t sig_power;          /**< gate: sample power around the bias, over a period */
-    ladrc_real_t err_power;          /**< gate: prediction error power, over a period */
+    ladrc_real_t sig_power;          /**< sample power around the bias, averaged */
+    ladrc_real_t resid_power;        /**< power the active tones leave unexplained, averaged */
+    ladrc_real_t err_fast, err_slow; /**< short and long averages of the fit's prior error power */
     ladrc_real_t weight;             /**< compensation weight in [0, 1] */
-    ladrc_real_t estimate;           /**< weight * model: the applied d_hat (rad/s^2) */
-    uint16_t decimation, dec_count;
-    uint16_t fit_decimation, fit_count; /**< the fit takes the sample of every fit_decimation-th tick */
-    uint16_t fit_phase;              /**< fit when fit_count equals it */
-    uint16_t dec_delay;              /**< ticks before the first frequency block starts (fit_phase) */
-    uint8_t n_dec_samples;           /**< decimated samples seen, saturates at 2 */
+    ladrc_real_t estimate;           /**< the applied d_hat (rad/s^2) */
+    uint16_t fit_decimation, fit_count, fit_phase;
+    uint16_t boost_left;             /**< fit samples left of a change's fast forgetting */
+    uint16_t hold;                   /**< ONLINE: fit samples since the last tone started or stopped */
+    uint8_t n_tones, n_active;
     uint8_t online;
-    uint8_t memory;                  /**< memory the RLS were given last (estimator_hp.c) */
     ladrc_fault_t faults;
 } ladrc_hp_estimator_t;
 
-/** Validates (LADRC_ERR_DT_S, _HP_FREQ_MODE, _HP_FREQ_RAD_S, _HP_FREQ_RANGE, _EST_LAMBDA0,
- *  _HP_DECIMATION) and resets. */
+/** Validates (LADRC_ERR_DT_S, _HP_FREQ_MODE, _HP_N_TONES, _HP_FREQ_RAD_S, _HP_FREQ_RANGE,
+ *  _EST_LAMBDA0, _HP_FIT_DECIMATION, _HP_SAMPLE_LAG, _HP_FREQ_LAMBDA0, _HP_FREQ_FILTER)
+ *  and resets. */
 ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t *cfg);
 
-/** Forgets the model and the frequency history; the phase restarts at 0 and the
- *  frequency at the configured one. */
-void ladrc_hp_reset(ladrc_hp_estimator_t *est, ladrc_real_t freq_rad_s);
+/** Forgets the model and the frequency averages; phases restart at 0, the
+ *  frequencies stay where they are, ONLINE mode goes back to one active tone. */
+void ladrc_hp_reset(ladrc_hp_estimator_t *est);
 
 /**
- * One tick on the disturbance sample (rad/s^2): f as the axis's observer sees
- * it, without the compensation's part (see above).
- * Non-finite: held, LADRC_FAULT_INPUT (the phase still advances, so the model
+ * One tick on the disturbance sample (rad/s^2): the unknown part of f as the
+ * axis's observer sees it (see above).
+ * Non-finite: held, LADRC_FAULT_INPUT (the phases still advance, so the model
  * stays in step with time).
  */
 ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s2);
 
-/** Applied estimate d_hat (rad/s^2): weight times the model at the current phase. */
+/** Applied estimate d_hat (rad/s^2): weight times the bias and the active tones. */
 ladrc_real_t ladrc_hp_get_estimate(const ladrc_hp_estimator_t *est);
 
-/** Frequency in use (rad/s). */
-ladrc_real_t ladrc_hp_get_freq(const ladrc_hp_estimator_t *est);
+/** Tones in the model now (KNOWN: n_tones). */
+unsigned ladrc_hp_get_active_tones(const ladrc_hp_estimator_t *est);
 
-/** Amplitude sqrt(a^2 + b^2) of the modelled sinusoid (rad/s^2). */
-ladrc_real_t ladrc_hp_get_amplitude(const ladrc_hp_estimator_t *est);
+/** Frequency of active tone k (rad/s); 0 for k >= the active tones. */
+ladrc_real_t ladrc_hp_get_freq(const ladrc_hp_estimator_t *est, unsigned k);
 
-/** Compensation weight in [0, 1] set by the confidence gate. */
+/** Amplitude sqrt(a_k^2 + b_k^2) of active tone k (rad/s^2); 0 for k >= the active tones. */
+ladrc_real_t ladrc_hp_get_amplitude(const ladrc_hp_estimator_t *est, unsigned k);
+
+/** 1 while active tone k is significant and its phasor stands still (locked). */
+int ladrc_hp_tone_locked(const ladrc_hp_estimator_t *est, unsigned k);
+
+/** Compensation weight in [0, 1] set by the gate. */
 ladrc_real_t ladrc_hp_get_weight(const ladrc_hp_estimator_t *est);
+
+/** Fitted bias c (rad/s^2). */
+ladrc_real_t ladrc_hp_get_bias(const ladrc_hp_estimator_t *est);
 
 #ifdef __cplusplus
 }

@@ -88,13 +88,6 @@ void ladrc_leso_twin_reset(ladrc_leso_twin_t *twin, ladrc_real_t y0);
 ladrc_fault_t ladrc_leso_step_twin(const ladrc_leso_t *obs, ladrc_leso_twin_t *twin, ladrc_real_t y,
                                    ladrc_real_t u, ladrc_real_t accel_known, ladrc_real_t f_rate_known);
 
-/** ladrc_leso_step_twin(obs, twin, 0, 0, accel_known, 0) for less: the
- *  twin of an observer told only a known acceleration (rad/s^2), e.g. the
- *  observer's view of a still plant. Bit for bit the same for every twin
- *  reached through ladrc_leso_twin_reset and steps; same flags. */
-ladrc_fault_t ladrc_leso_step_twin_accel(const ladrc_leso_t *obs, ladrc_leso_twin_t *twin,
-                                         ladrc_real_t accel_known);
-
 #ifdef __cplusplus
 }
 #endif

@@ -40,7 +40,7 @@
  *   D > 0, and accurate when one sample of huge excitation makes P nearly
  *   singular, where the plain update loses definiteness in float. 6 reals
  *   for n = 3, as many as the upper triangle of P. Cost per update: one
- *   exp, n + 2 divisions and about 50 multiply-adds for n = 3; tr(P) is
+ *   exp, n + 2 divisions and about 2 n^2 + 10 n multiply-adds; tr(P) is
  *   kept with the factors, so the forgetting rate costs one division.
  *
  * Guards: a non-finite phi or y leaves the state untouched
@@ -58,9 +58,14 @@
 extern "C" {
 #endif
 
-/** Largest number of parameters; sets the state size. The update is written
- *  out for up to 3 columns (rls.c). */
-#define LADRC_RLS_MAX_PARAMS 3 /* the most any estimator here uses (HP: c, a, b) */
+/** Most tones the HP estimator models per axis (estimator.h); a build-time
+ *  constant because it sets the state size. At least 1. */
+#ifndef LADRC_HP_MAX_TONES
+#define LADRC_HP_MAX_TONES 2
+#endif
+/** Largest number of parameters; sets the state size: the most any estimator
+ *  here uses (HP: a bias and a cosine and sine per tone). */
+#define LADRC_RLS_MAX_PARAMS (1 + 2 * LADRC_HP_MAX_TONES)
 /** Entries of the strict upper triangle of U. */
 #define LADRC_RLS_U_SIZE (LADRC_RLS_MAX_PARAMS * (LADRC_RLS_MAX_PARAMS - 1) / 2)
 

@@ -76,9 +76,9 @@ typedef enum {
     LADRC_ERR_EST_LAMBDA0,        /**< estimator forgetting rate not finite or not > 0 */
     LADRC_ERR_EST_K0,             /**< estimator gain bound k0 not finite or not > 0 */
     LADRC_ERR_HP_FREQ_MODE,       /**< hp freq_mode not a ladrc_hp_freq_mode_t */
-    LADRC_ERR_HP_FREQ_RAD_S,      /**< hp freq_rad_s not finite, not > 0, or >= pi / dt_s */
-    LADRC_ERR_HP_FREQ_RANGE,      /**< hp online range: need 0 < min < max and max T < pi/2 */
-    LADRC_ERR_HP_DECIMATION,      /**< hp decimation < 1 */
+    LADRC_ERR_HP_FREQ_RAD_S,      /**< hp freq_rad_s of a modelled tone not finite, not > 0, or >= pi / dt_s */
+    LADRC_ERR_HP_FREQ_RANGE,      /**< hp online range: need 0 < min < max, max dt_s < pi */
+    LADRC_ERR_HP_N_TONES,         /**< hp n_tones outside 1..LADRC_HP_MAX_TONES */
     LADRC_ERR_HP_SAMPLE_LAG,      /**< hp sample_lag_wo_rad_s not finite or < 0 */
     LADRC_ERR_DRAG_NMS,           /**< attitude drag_Nms not finite or < 0 */
     LADRC_ERR_COUPLING_FEED,      /**< attitude coupling_feed not 0 or 1 */
@@ -92,6 +92,8 @@ typedef enum {
     LADRC_ERR_LEVANT_RANGE,       /**< Levant per-sample coefficients overflow or vanish for this dt_s */
     LADRC_ERR_HP_FIT_DECIMATION,  /**< hp fit_decimation < 1, fit_phase >= fit_decimation, or the tone
                                        turns too far per fit sample */
+    LADRC_ERR_HP_FREQ_LAMBDA0,    /**< hp freq_lambda0_per_s not finite, not > 0, or above 1 / T */
+    LADRC_ERR_HP_FREQ_FILTER,     /**< hp freq_filter_rad_s not finite, not > 0, or too fast for the fit sample */
     LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
 } ladrc_status_t;
 
