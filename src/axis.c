@@ -260,6 +260,11 @@ static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, ladrc_real_t rate_r
         (void)ladrc_leso_step_twin(&axis->leso, shadow, LADRC_R(0.0), LADRC_R(0.0),
                                    axis->d_hat_rad_s2 - axis->f_known_rad_s2, axis->f_rate_rad_s3);
         (void)ladrc_hp_step(&axis->part.hp.est, axis->leso.z3 - shadow->z3);
+        /* What the weight moved in or out of d_hat leaves or enters z3 at
+         * once, in both observers (the sample stays as it was). */
+        const ladrc_real_t handover = ladrc_hp_get_handover(&axis->part.hp.est);
+        ladrc_leso_hand_over(&axis->leso, handover);
+        ladrc_leso_twin_hand_over(shadow, handover);
         return ladrc_hp_get_estimate(&axis->part.hp.est);
     }
     return LADRC_R(0.0);

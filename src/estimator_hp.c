@@ -11,7 +11,7 @@
 #define HP_P_BOUND_PER_SAMPLE LADRC_R(1.0e4)
 /* The fit keeps at least this much of a significant tone's phase in memory
  * (rad), enough to tell the bias and the tone apart... */
-#define FIT_MEMORY_RAD LADRC_R(0.5)
+#define FIT_MEMORY_RAD LADRC_R(1.0)
 /* ...and this much of the relative phase of two significant tones. */
 #define SEPARATION_MEMORY_RAD LADRC_R(1.0)
 /* Slip (turn rate of a fitted phasor) averaged at this rate (1/s): a few
@@ -48,6 +48,21 @@
 #define TONE_QUIET_S LADRC_R(1.0)
 #define TONE_SEPARATION LADRC_R(0.15)
 #define TONE_HOLD_S LADRC_R(0.5)
+/* ONLINE: a locked tone's frequency follows its slip at this fraction of
+ * the fit's forgetting rate: the loop of the slip through the fit's lag is
+ * then well damped. */
+#define TRACK_FRACTION LADRC_R(0.25)
+/* ONLINE: a tone locks only while the impurity (1 - correlation^2 of x3 and
+ * x1 in its frequency fit, 0 for one clean tone) is below IMPURITY_LOCK, and
+ * unlocks above IMPURITY_UNLOCK. */
+#define IMPURITY_LOCK LADRC_R(0.01)
+#define IMPURITY_UNLOCK LADRC_R(0.5)
+/* The frequency fit's averages keep at least this much of a tone's phase (rad). */
+#define FREQ_MEMORY_RAD LADRC_R(1.0)
+/* After a change the frequency averages restart once the derivative filters
+ * have let its transient pass (s): (s + wf)^-4 at 10 rad/s is down to 1e-3
+ * of a step's response after about 1 s. */
+#define FILTER_SETTLE_S LADRC_R(0.8)
 /* The derivative filter's averages need this much power ((rad/s^3)^2). */
 #define FILTER_MIN_POWER LADRC_R(1.0e-6)
 
@@ -200,6 +215,8 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
         }
         tone->d1d1 = LADRC_R(0.0);
         tone->d3d1 = LADRC_R(0.0);
+        tone->d3d3 = LADRC_R(0.0);
+        tone->impurity = LADRC_R(1.0);
         tone->quiet = 0u;
         tone->significant = 0u;
         tone->locked = 0u;
@@ -210,8 +227,10 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
     est->err_slow = LADRC_R(0.0);
     est->weight = LADRC_R(0.0);
     est->estimate = LADRC_R(0.0);
+    est->handover = LADRC_R(0.0);
     est->fit_count = 0u;
     est->boost_left = 0u;
+    est->settle_left = 0u;
     est->faults = LADRC_FAULT_NONE;
 }
 
@@ -265,7 +284,8 @@ static ladrc_real_t update_slip(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t
  * ratio of the averages of x3_k x1_k-1 and x1_k-1^2 is that factor at every
  * instant (no ripple from the averaging); its root s gives
  * w = (2 / T) asin(s T / 2), here to the cubic term. */
-static ladrc_real_t update_frequency_fit(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone, ladrc_real_t x)
+static ladrc_real_t update_frequency_fit(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone, ladrc_real_t x,
+                                         int average)
 {
     const ladrc_real_t wf = est->filter_rad_s;
     const ladrc_real_t wf2 = wf * wf;
@@ -278,9 +298,17 @@ static ladrc_real_t update_frequency_fit(const ladrc_hp_estimator_t *est, ladrc_
     v[2] += t * v[3];
     v[1] += t * v[2];
     v[0] += t * v[1];
-    const ladrc_real_t alpha = est->freq_lambda0_per_s * t;
+    if (!average) {
+        return LADRC_R(0.0);
+    }
+    /* The averages keep at least FREQ_MEMORY_RAD of the tone's phase. */
+    const ladrc_real_t alpha = min_real(est->freq_lambda0_per_s, tone->w_rad_s / FREQ_MEMORY_RAD) * t;
     tone->d1d1 += alpha * (x1_prev * x1_prev - tone->d1d1);
     tone->d3d1 += alpha * (v[3] * x1_prev - tone->d3d1);
+    tone->d3d3 += alpha * (v[3] * v[3] - tone->d3d3);
+    /* Purity: 1 - correlation^2 of x3 and x1, 0 for a lone tone. */
+    const ladrc_real_t spread = tone->d1d1 * tone->d3d3;
+    tone->impurity = (spread > LADRC_R(0.0)) ? LADRC_R(1.0) - tone->d3d1 * tone->d3d1 / spread : LADRC_R(1.0);
     if (!(tone->d1d1 > FILTER_MIN_POWER)) {
         return LADRC_R(0.0);
     }
@@ -304,13 +332,13 @@ static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
     est->err_fast += CHANGE_FAST_PER_S * t * (e2 - est->err_fast);
     if (est->err_fast > CHANGE_RATIO * est->err_slow && est->err_fast > CHANGE_SHARE * est->sig_power) {
         est->boost_left = (uint16_t)(CHANGE_BOOST_S / t + LADRC_R(0.5));
+        est->settle_left = (uint16_t)((CHANGE_BOOST_S + FILTER_SETTLE_S) / t + LADRC_R(0.5));
     }
+    est->err_slow += CHANGE_SLOW_PER_S * t * (e2 - est->err_slow);
     if (est->boost_left > 0u) {
         est->boost_left--;
         return 1;
     }
-    /* The long average learns only outside changes, so a change stays one. */
-    est->err_slow += CHANGE_SLOW_PER_S * t * (e2 - est->err_slow);
     return 0;
 }
 
@@ -356,11 +384,12 @@ static void start_tone(ladrc_hp_estimator_t *est, ladrc_real_t w)
 }
 
 /* ONLINE: each tone's frequency from its own part of the sample, then at
- * most one tone started or stopped (see estimator.h). */
+ * most one tone started or stopped (see estimator.h). The derivative
+ * filters do not see the bias, so they take the raw sample: the fitted
+ * bias follows a slow tone over a short memory and would hide it. */
 static void update_frequencies(ladrc_hp_estimator_t *est, ladrc_real_t sample)
 {
     ladrc_real_t value[LADRC_HP_MAX_TONES];
-    /* The derivative filter does not see the bias: the raw sample serves. */
     ladrc_real_t residue = sample;
     for (unsigned k = 0u; k < est->n_active; ++k) {
         value[k] = tone_value(est, k, 0);
@@ -369,13 +398,30 @@ static void update_frequencies(ladrc_hp_estimator_t *est, ladrc_real_t sample)
     const ladrc_real_t t = est->fit_period_s;
     const ladrc_real_t unexplained = residue - ladrc_rls_get_theta(&est->fit)[0];
     est->resid_power += POWER_AVERAGE_PER_S * t * (unexplained * unexplained - est->resid_power);
+    /* After a change the filters carry its transient, which the third
+     * derivative weighs heavily: the averages wait for it to pass and then
+     * start afresh. */
+    const int settling = est->settle_left > 0u;
+    if (settling && --est->settle_left == 0u) {
+        for (unsigned k = 0u; k < est->n_tones; ++k) {
+            est->tone[k].d1d1 = LADRC_R(0.0);
+            est->tone[k].d3d1 = LADRC_R(0.0);
+            est->tone[k].d3d3 = LADRC_R(0.0);
+        }
+    }
     ladrc_real_t candidate = LADRC_R(0.0);
     for (unsigned k = 0u; k < est->n_tones; ++k) {
         ladrc_hp_tone_t *tone = &est->tone[k];
         /* An active tone's part: the residue with its own value back. */
         const ladrc_real_t own = (k < est->n_active) ? residue + value[k] : residue;
-        const ladrc_real_t w = update_frequency_fit(est, tone, own);
-        if (k < est->n_active && w > LADRC_R(0.0)) {
+        const ladrc_real_t w = update_frequency_fit(est, tone, own, !settling);
+        if (k < est->n_active && tone->locked) {
+            /* Locked: the phasor's slip is the frequency error, free of the
+             * loop's transients that the third derivative weighs heavily. */
+            const ladrc_real_t rate = TRACK_FRACTION * est->fit_rate_per_s;
+            set_tone_freq(est, tone, ladrc_clamp(tone->w_rad_s + rate * t * tone->slip_rad_s,
+                                                 est->freq_min_rad_s, est->freq_max_rad_s));
+        } else if (k < est->n_active && w > LADRC_R(0.0)) {
             set_tone_freq(est, tone, w);
         } else if (k == est->n_active) {
             candidate = w;
@@ -447,7 +493,9 @@ static void fit_sample(ladrc_hp_estimator_t *est, ladrc_real_t sample)
             continue;
         }
         tone->quiet = 0u;
-        tone->locked = (slip < (tone->locked ? SLIP_UNLOCK_FACTOR * tol : tol)) ? 1u : 0u;
+        /* ONLINE: the frequency fit must also see one clean tone. */
+        const int pure = !est->online || tone->impurity < (tone->locked ? IMPURITY_UNLOCK : IMPURITY_LOCK);
+        tone->locked = (pure && slip < (tone->locked ? SLIP_UNLOCK_FACTOR * tol : tol)) ? 1u : 0u;
         any_locked |= tone->locked;
         all_locked &= tone->locked;
         rate = min_real(rate, tone->w_rad_s / FIT_MEMORY_RAD);
@@ -481,6 +529,7 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
 {
     LADRC_ASSERT(est != NULL);
     est->faults = LADRC_FAULT_NONE;
+    const ladrc_real_t weight_before = est->weight;
     if (!ladrc_is_finite(sample_rad_s2)) {
         est->faults = LADRC_FAULT_INPUT;
     } else if (est->fit_count == est->fit_phase) {
@@ -499,10 +548,13 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
         advance_phase(&est->tone[k]);
     }
     est->estimate = est->weight * model;
+    est->handover = (est->weight - weight_before) * model;
     return est->faults;
 }
 
 ladrc_real_t ladrc_hp_get_estimate(const ladrc_hp_estimator_t *est) { return est->estimate; }
+
+ladrc_real_t ladrc_hp_get_handover(const ladrc_hp_estimator_t *est) { return est->handover; }
 
 unsigned ladrc_hp_get_active_tones(const ladrc_hp_estimator_t *est) { return est->n_active; }
 

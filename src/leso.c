@@ -114,6 +114,27 @@ ladrc_fault_t ladrc_leso_step_twin(const ladrc_leso_t *obs, ladrc_leso_twin_t *t
     return advance(obs, &twin->z1, &twin->z2, &twin->z3, y, u, accel_known, f_rate_known);
 }
 
+/* z3 -= accel, kept finite (shared by the observer and its twins). */
+static void hand_over(ladrc_real_t *z3, ladrc_real_t accel_rad_s2)
+{
+    const ladrc_real_t z = *z3 - accel_rad_s2;
+    if (ladrc_is_finite(z)) {
+        *z3 = z;
+    }
+}
+
+void ladrc_leso_hand_over(ladrc_leso_t *obs, ladrc_real_t accel_rad_s2)
+{
+    LADRC_ASSERT(obs != NULL);
+    hand_over(&obs->z3, accel_rad_s2);
+}
+
+void ladrc_leso_twin_hand_over(ladrc_leso_twin_t *twin, ladrc_real_t accel_rad_s2)
+{
+    LADRC_ASSERT(twin != NULL);
+    hand_over(&twin->z3, accel_rad_s2);
+}
+
 void ladrc_leso_twin_reset(ladrc_leso_twin_t *twin, ladrc_real_t y0)
 {
     LADRC_ASSERT(twin != NULL);

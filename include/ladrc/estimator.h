@@ -139,7 +139,8 @@ typedef struct {
     ladrc_real_t prev_a, prev_b;     /**< fitted (a, b) at the previous fit sample */
     ladrc_real_t slip_rad_s;         /**< averaged turn rate of the fitted phasor */
     ladrc_real_t filt[4];            /**< ONLINE derivative filter: x, x1, x2, x3 */
-    ladrc_real_t d1d1, d3d1;         /**< ONLINE averages of x1^2 and x3 x1 */
+    ladrc_real_t d1d1, d3d1, d3d3;   /**< ONLINE averages of x1^2, x3 x1 and x3^2 */
+    ladrc_real_t impurity;           /**< ONLINE 1 - correlation^2 of x3 and x1: 0 for one tone */
     uint16_t quiet;                  /**< fit samples in a row insignificant */
     uint8_t significant;             /**< carries a real share of the sample's power */
     uint8_t locked;                  /**< significant and its phasor stands still */
@@ -161,8 +162,10 @@ typedef struct {
     ladrc_real_t err_fast, err_slow; /**< short and long averages of the fit's prior error power */
     ladrc_real_t weight;             /**< compensation weight in [0, 1] */
     ladrc_real_t estimate;           /**< the applied d_hat (rad/s^2) */
+    ladrc_real_t handover;           /**< part of estimate's latest change due to the weight */
     uint16_t fit_decimation, fit_count, fit_phase;
     uint16_t boost_left;             /**< fit samples left of a change's fast forgetting */
+    uint16_t settle_left;            /**< ONLINE: fit samples until the frequency averages restart */
     uint16_t hold;                   /**< ONLINE: fit samples since the last tone started or stopped */
     uint8_t n_tones, n_active;
     uint8_t online;
@@ -188,6 +191,16 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
 
 /** Applied estimate d_hat (rad/s^2): weight times the bias and the active tones. */
 ladrc_real_t ladrc_hp_get_estimate(const ladrc_hp_estimator_t *est);
+
+/**
+ * Part of the latest change of the estimate that came from the weight, not
+ * from the model (rad/s^2): (weight_k - weight_k-1) * model_k. An observer
+ * whose z3 already holds the disturbance must hand that part over to the
+ * known input at once (z3 -= handover), or z3 + d_hat counts it twice for
+ * the observer's settling time: engaging and dropping the compensation is
+ * then bumpless.
+ */
+ladrc_real_t ladrc_hp_get_handover(const ladrc_hp_estimator_t *est);
 
 /** Tones in the model now (KNOWN: n_tones). */
 unsigned ladrc_hp_get_active_tones(const ladrc_hp_estimator_t *est);

@@ -74,11 +74,21 @@ void ladrc_leso_reset(ladrc_leso_t *obs, ladrc_real_t y0);
 ladrc_fault_t ladrc_leso_step(ladrc_leso_t *obs, ladrc_real_t y, ladrc_real_t u,
                               ladrc_real_t accel_known, ladrc_real_t f_rate_known);
 
+/**
+ * Hands the part accel_rad_s2 of the disturbance estimate z3 over to a known
+ * input that starts with the next step (z3 -= accel_rad_s2), so that
+ * z3 + known input stays what it was. Non-finite: ignored.
+ */
+void ladrc_leso_hand_over(ladrc_leso_t *obs, ladrc_real_t accel_rad_s2);
+
 /** A second estimate run with an observer's gains (e.g. the observer's view
  *  of a still plant): 12 bytes instead of a whole ladrc_leso_t. */
 typedef struct {
     ladrc_real_t z1, z2, z3; /**< as in ladrc_leso_t */
 } ladrc_leso_twin_t;
+
+/** ladrc_leso_hand_over for a twin. */
+void ladrc_leso_twin_hand_over(ladrc_leso_twin_t *twin, ladrc_real_t accel_rad_s2);
 
 /** Starts a twin at rest on y0: z = (y0, 0, 0) (non-finite y0: 0). */
 void ladrc_leso_twin_reset(ladrc_leso_twin_t *twin, ladrc_real_t y0);
