@@ -40,31 +40,28 @@
 #define CHANGE_SHARE LADRC_R(0.01)
 #define CHANGE_BOOST_S LADRC_R(0.1)
 #define CHANGE_BOOST_FACTOR LADRC_R(5.0)
-/* ONLINE tones: a residue of TONE_START_SHARE of the sample's power starts a
- * tone; a tone insignificant for TONE_QUIET_S stops; two tones within
- * TONE_SEPARATION (relative) are one too many; at least TONE_HOLD_S between
- * such decisions, so the fit settles in between. */
-#define TONE_START_SHARE LADRC_R(0.02)
-#define TONE_QUIET_S LADRC_R(1.0)
+/* ONLINE: a model with another number of tones replaces the tones only
+ * after TONE_HOLD_S without such a change, so the fit settles in between;
+ * two tones must lie more than TONE_SEPARATION (relative) apart. */
 #define TONE_SEPARATION LADRC_R(0.15)
 #define TONE_HOLD_S LADRC_R(0.5)
 /* ONLINE: a locked tone's frequency follows its slip at this fraction of
- * the fit's forgetting rate: the loop of the slip through the fit's lag is
- * then well damped. */
+ * the fit's forgetting rate. */
 #define TRACK_FRACTION LADRC_R(0.25)
-/* ONLINE: a tone locks only while the impurity (1 - correlation^2 of x3 and
- * x1 in its frequency fit, 0 for one clean tone) is below IMPURITY_LOCK, and
- * unlocks above IMPURITY_UNLOCK. */
-#define IMPURITY_LOCK LADRC_R(0.01)
-#define IMPURITY_UNLOCK LADRC_R(0.5)
-/* The frequency fit's averages keep at least this much of a tone's phase (rad). */
+/* ONLINE: a model is clean while it leaves less than this share of the
+ * highest derivative's power unexplained (1 - correlation^2 for one tone). */
+#define IMPURITY_MAX LADRC_R(0.01)
+/* The frequency fit's averages keep at least this much of the slowest
+ * tone's phase (rad). */
 #define FREQ_MEMORY_RAD LADRC_R(1.0)
-/* After a change the frequency averages restart once the derivative filters
- * have let its transient pass (s): (s + wf)^-4 at 10 rad/s is down to 1e-3
- * of a step's response after about 1 s. */
-#define FILTER_SETTLE_S LADRC_R(0.8)
-/* The derivative filter's averages need this much power ((rad/s^3)^2). */
+/* The frequency fit needs this much derivative power ((rad/s^3)^2). */
 #define FILTER_MIN_POWER LADRC_R(1.0e-6)
+/* Indices of the frequency fit's averages: x1 x1, x3 x1, x3 x3, x5 x1, x5 x3, x5 x5. */
+enum { SPEC_11 = 0, SPEC_31, SPEC_33, SPEC_51, SPEC_53, SPEC_55, SPEC_COUNT };
+
+#if LADRC_HP_MAX_TONES < 1 || LADRC_HP_MAX_TONES > 2
+#error "the online frequency fit resolves one or two tones: LADRC_HP_MAX_TONES must be 1 or 2"
+#endif
 
 static unsigned theta_a(unsigned k) { return 1u + 2u * k; }
 
@@ -210,19 +207,20 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
         tone->prev_a = LADRC_R(0.0);
         tone->prev_b = LADRC_R(0.0);
         tone->slip_rad_s = LADRC_R(0.0);
-        for (unsigned i = 0u; i < 4u; ++i) {
-            tone->filt[i] = LADRC_R(0.0);
-        }
-        tone->d1d1 = LADRC_R(0.0);
-        tone->d3d1 = LADRC_R(0.0);
-        tone->d3d3 = LADRC_R(0.0);
-        tone->impurity = LADRC_R(1.0);
-        tone->quiet = 0u;
         tone->significant = 0u;
         tone->locked = 0u;
     }
     est->sig_power = LADRC_R(0.0);
-    est->resid_power = LADRC_R(0.0);
+    for (unsigned i = 0u; i < 6u; ++i) {
+        est->spec_x[i] = LADRC_R(0.0);
+    }
+    for (unsigned i = 0u; i < SPEC_COUNT; ++i) {
+        est->spec_avg[i] = LADRC_R(0.0);
+    }
+    est->spec_x1_prev[0] = LADRC_R(0.0);
+    est->spec_x1_prev[1] = LADRC_R(0.0);
+    est->spec_x3_prev = LADRC_R(0.0);
+    est->clean = 0u;
     est->err_fast = LADRC_R(0.0);
     est->err_slow = LADRC_R(0.0);
     est->weight = LADRC_R(0.0);
@@ -230,7 +228,6 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
     est->handover = LADRC_R(0.0);
     est->fit_count = 0u;
     est->boost_left = 0u;
-    est->settle_left = 0u;
     est->faults = LADRC_FAULT_NONE;
 }
 
@@ -274,55 +271,6 @@ static ladrc_real_t update_slip(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t
     return ladrc_fabs(tone->slip_rad_s);
 }
 
-/* One fit sample of x through a tone's derivative filter (wf / (s + wf))^4,
- * whose states are x and its first three derivatives (semi-implicit Euler,
- * the highest derivative first), and the two averages of its frequency fit;
- * returns the frequency they give, or 0 while they give none in range.
- * Each state is the backward difference of the next lower one, so x3 of
- * this sample is the second difference of x1 centred on the previous
- * sample: for a tone, x3_k = -(2 sin(w T / 2) / T)^2 x1_k-1 exactly, and the
- * ratio of the averages of x3_k x1_k-1 and x1_k-1^2 is that factor at every
- * instant (no ripple from the averaging); its root s gives
- * w = (2 / T) asin(s T / 2), here to the cubic term. */
-static ladrc_real_t update_frequency_fit(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone, ladrc_real_t x,
-                                         int average)
-{
-    const ladrc_real_t wf = est->filter_rad_s;
-    const ladrc_real_t wf2 = wf * wf;
-    const ladrc_real_t t = est->fit_period_s;
-    ladrc_real_t *v = tone->filt;
-    const ladrc_real_t x1_prev = v[1];
-    const ladrc_real_t d4 = wf2 * wf2 * (x - v[0]) - LADRC_R(4.0) * wf2 * wf * v[1] -
-                            LADRC_R(6.0) * wf2 * v[2] - LADRC_R(4.0) * wf * v[3];
-    v[3] += t * d4;
-    v[2] += t * v[3];
-    v[1] += t * v[2];
-    v[0] += t * v[1];
-    if (!average) {
-        return LADRC_R(0.0);
-    }
-    /* The averages keep at least FREQ_MEMORY_RAD of the tone's phase. */
-    const ladrc_real_t alpha = min_real(est->freq_lambda0_per_s, tone->w_rad_s / FREQ_MEMORY_RAD) * t;
-    tone->d1d1 += alpha * (x1_prev * x1_prev - tone->d1d1);
-    tone->d3d1 += alpha * (v[3] * x1_prev - tone->d3d1);
-    tone->d3d3 += alpha * (v[3] * v[3] - tone->d3d3);
-    /* Purity: 1 - correlation^2 of x3 and x1, 0 for a lone tone. */
-    const ladrc_real_t spread = tone->d1d1 * tone->d3d3;
-    tone->impurity = (spread > LADRC_R(0.0)) ? LADRC_R(1.0) - tone->d3d1 * tone->d3d1 / spread : LADRC_R(1.0);
-    if (!(tone->d1d1 > FILTER_MIN_POWER)) {
-        return LADRC_R(0.0);
-    }
-    const ladrc_real_t s2 = -tone->d3d1 / tone->d1d1;
-    const ladrc_real_t w_min = est->freq_min_rad_s;
-    const ladrc_real_t w_max = est->freq_max_rad_s;
-    if (!(s2 > LADRC_R(0.0))) {
-        return LADRC_R(0.0);
-    }
-    const ladrc_real_t s = ladrc_sqrt(s2);
-    const ladrc_real_t w = s + s2 * s * t * t / LADRC_R(24.0);
-    return (w > w_min && w < w_max) ? w : LADRC_R(0.0);
-}
-
 /* Change detection on the fit's prior error (see estimator.h); returns 1
  * while a change's fast forgetting lasts. */
 static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
@@ -332,7 +280,6 @@ static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
     est->err_fast += CHANGE_FAST_PER_S * t * (e2 - est->err_fast);
     if (est->err_fast > CHANGE_RATIO * est->err_slow && est->err_fast > CHANGE_SHARE * est->sig_power) {
         est->boost_left = (uint16_t)(CHANGE_BOOST_S / t + LADRC_R(0.5));
-        est->settle_left = (uint16_t)((CHANGE_BOOST_S + FILTER_SETTLE_S) / t + LADRC_R(0.5));
     }
     est->err_slow += CHANGE_SLOW_PER_S * t * (e2 - est->err_slow);
     if (est->boost_left > 0u) {
@@ -342,119 +289,187 @@ static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
     return 0;
 }
 
-/* ONLINE: stops tone k (an active one), moving the last active tone into
- * its place; the fit restarts with the values of the remaining tones. */
-static void stop_tone(ladrc_hp_estimator_t *est, unsigned k)
+/* ONLINE: a locked tone's frequency follows its slip at TRACK_FRACTION of
+ * the fit's forgetting rate (the loop of the slip through the fit's lag is
+ * then well damped). */
+static void track_slip(ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone)
 {
-    ladrc_real_t theta[LADRC_RLS_MAX_PARAMS];
-    const ladrc_real_t *old = ladrc_rls_get_theta(&est->fit);
-    const unsigned last = est->n_active - 1u;
-    for (unsigned i = 0u; i < theta_a(last); ++i) {
-        theta[i] = old[i];
+    if (tone->locked) {
+        const ladrc_real_t gain = TRACK_FRACTION * est->fit_rate_per_s * est->fit_period_s;
+        set_tone_freq(est, tone, ladrc_clamp(tone->w_rad_s + gain * tone->slip_rad_s, est->freq_min_rad_s,
+                                             est->freq_max_rad_s));
     }
-    if (k != last) {
-        const ladrc_hp_tone_t moved = est->tone[last];
-        est->tone[last] = est->tone[k];
-        est->tone[k] = moved;
-        theta[theta_a(k)] = old[theta_a(last)];
-        theta[theta_a(k) + 1u] = old[theta_a(last) + 1u];
-    }
-    start_fit(est, last, theta);
 }
 
-/* ONLINE: starts the next tone at frequency w with a zero amplitude. */
-static void start_tone(ladrc_hp_estimator_t *est, ladrc_real_t w)
+/* ONLINE: n active tones at the frequencies w; each takes over the state and
+ * fitted values of the active tone nearest to it within TONE_SEPARATION
+ * (its phasor and frequency too while that tone is locked), the others start
+ * at zero amplitude; the fit restarts with those values. */
+static void change_tone_count(ladrc_hp_estimator_t *est, unsigned n, const ladrc_real_t w[LADRC_HP_MAX_TONES])
 {
-    ladrc_real_t theta[LADRC_RLS_MAX_PARAMS];
     const ladrc_real_t *old = ladrc_rls_get_theta(&est->fit);
-    const unsigned k = est->n_active;
-    for (unsigned i = 0u; i < theta_a(k); ++i) {
-        theta[i] = old[i];
+    ladrc_real_t theta[LADRC_RLS_MAX_PARAMS];
+    ladrc_hp_tone_t tones[LADRC_HP_MAX_TONES];
+    unsigned used = 0u; /* bit j: old tone j taken */
+    theta[0] = old[0];
+    for (unsigned k = 0u; k < n; ++k) {
+        unsigned nearest = est->n_active;
+        for (unsigned j = 0u; j < est->n_active; ++j) {
+            const ladrc_real_t gap = ladrc_fabs(est->tone[j].w_rad_s - w[k]);
+            if ((used & (1u << j)) == 0u && gap < TONE_SEPARATION * w[k] &&
+                (nearest == est->n_active || gap < ladrc_fabs(est->tone[nearest].w_rad_s - w[k]))) {
+                nearest = j;
+            }
+        }
+        tones[k] = est->tone[k];
+        theta[theta_a(k)] = LADRC_R(0.0);
+        theta[theta_a(k) + 1u] = LADRC_R(0.0);
+        if (nearest < est->n_active) {
+            used |= 1u << nearest;
+            tones[k] = est->tone[nearest];
+            theta[theta_a(k)] = old[theta_a(nearest)];
+            theta[theta_a(k) + 1u] = old[theta_a(nearest) + 1u];
+        } else {
+            tones[k].prev_a = LADRC_R(0.0);
+            tones[k].prev_b = LADRC_R(0.0);
+            tones[k].slip_rad_s = LADRC_R(0.0);
+            tones[k].locked = 0u;
+            tones[k].significant = 0u;
+        }
     }
-    theta[theta_a(k)] = LADRC_R(0.0);
-    theta[theta_a(k) + 1u] = LADRC_R(0.0);
-    ladrc_hp_tone_t *tone = &est->tone[k];
-    set_tone_freq(est, tone, w);
-    tone->prev_a = LADRC_R(0.0);
-    tone->prev_b = LADRC_R(0.0);
-    tone->slip_rad_s = LADRC_R(0.0);
-    tone->quiet = 0u;
-    tone->locked = 0u;
-    start_fit(est, k + 1u, theta);
+    for (unsigned k = 0u; k < n; ++k) {
+        est->tone[k] = tones[k];
+        if (!est->tone[k].locked) {
+            set_tone_freq(est, &est->tone[k], w[k]);
+        }
+    }
+    start_fit(est, n, theta);
 }
 
-/* ONLINE: each tone's frequency from its own part of the sample, then at
- * most one tone started or stopped (see estimator.h). The derivative
- * filters do not see the bias, so they take the raw sample: the fitted
- * bias follows a slow tone over a short memory and would hide it. */
+/* ONLINE frequency fit (see estimator.h). One fit sample of the raw sample
+ * x through (wf / (s + wf))^6, whose states are x and its first five
+ * derivatives (semi-implicit Euler, the highest derivative first), and the
+ * averages of the products of x1, x3 and x5.
+ * Each state is the backward difference of the next lower one, so for a
+ * tone x3_k = -sigma^2 x1_k-1 and x5_k = sigma^4 x1_k-2 exactly, with
+ * sigma = 2 sin(w T / 2) / T: the averages pair x1_k-2, x3_k-1 and x5_k,
+ * and every ratio of them is exact at every instant (no ripple from the
+ * averaging). The filter does not see the bias, so it needs no fitted bias
+ * (which over a short memory would also follow a slow tone and hide it). */
+static void update_spectrum(ladrc_hp_estimator_t *est, ladrc_real_t x)
+{
+    const ladrc_real_t wf = est->filter_rad_s;
+    const ladrc_real_t t = est->fit_period_s;
+    ladrc_real_t *v = est->spec_x;
+    /* (s + wf)^6 = s^6 + 6 wf s^5 + 15 wf^2 s^4 + 20 wf^3 s^3 + 15 wf^4 s^2 + 6 wf^5 s + wf^6 */
+    const ladrc_real_t w2 = wf * wf;
+    const ladrc_real_t w3 = w2 * wf;
+    const ladrc_real_t d6 = w3 * w3 * (x - v[0]) - LADRC_R(6.0) * w3 * w2 * v[1] - LADRC_R(15.0) * w2 * w2 * v[2] -
+                            LADRC_R(20.0) * w3 * v[3] - LADRC_R(15.0) * w2 * v[4] - LADRC_R(6.0) * wf * v[5];
+    const ladrc_real_t x1_2 = est->spec_x1_prev[1];
+    const ladrc_real_t x3_1 = est->spec_x3_prev;
+    est->spec_x1_prev[1] = est->spec_x1_prev[0];
+    est->spec_x1_prev[0] = v[1];
+    est->spec_x3_prev = v[3];
+    v[5] += t * d6;
+    for (unsigned i = 5u; i > 0u; --i) {
+        v[i - 1u] += t * v[i];
+    }
+    const ladrc_real_t x5 = v[5];
+    /* The averages keep at least FREQ_MEMORY_RAD of the slowest tone's phase. */
+    ladrc_real_t slowest = est->tone[0].w_rad_s;
+    for (unsigned k = 1u; k < est->n_active; ++k) {
+        slowest = min_real(slowest, est->tone[k].w_rad_s);
+    }
+    const ladrc_real_t alpha = min_real(est->freq_lambda0_per_s, slowest / FREQ_MEMORY_RAD) * t;
+    ladrc_real_t *m = est->spec_avg;
+    m[SPEC_11] += alpha * (x1_2 * x1_2 - m[SPEC_11]);
+    m[SPEC_31] += alpha * (x3_1 * x1_2 - m[SPEC_31]);
+    m[SPEC_33] += alpha * (x3_1 * x3_1 - m[SPEC_33]);
+    m[SPEC_51] += alpha * (x5 * x1_2 - m[SPEC_51]);
+    m[SPEC_53] += alpha * (x5 * x3_1 - m[SPEC_53]);
+    m[SPEC_55] += alpha * (x5 * x5 - m[SPEC_55]);
+}
+
+/* w from sigma^2 = (2 sin(w T / 2) / T)^2: w = (2 / T) asin(sigma T / 2),
+ * here to the cubic term (relative error under 1e-5 for w T < 0.2); 0 when
+ * sigma^2 gives no frequency in range. */
+static ladrc_real_t freq_of(const ladrc_hp_estimator_t *est, ladrc_real_t sigma2)
+{
+    if (!(sigma2 > LADRC_R(0.0))) {
+        return LADRC_R(0.0);
+    }
+    const ladrc_real_t s = ladrc_sqrt(sigma2);
+    const ladrc_real_t t = est->fit_period_s;
+    const ladrc_real_t w = s + sigma2 * s * t * t / LADRC_R(24.0);
+    return (w > est->freq_min_rad_s && w < est->freq_max_rad_s) ? w : LADRC_R(0.0);
+}
+
+/* The clean model the averages show: one tone if x3 = -sigma^2 x1 explains
+ * x3, else (n_tones 2) two tones if x5 + p1 x3 + p2 x1 = 0 explains x5, the
+ * roots of sigma^4 - p1 sigma^2 + p2 giving the two; returns the number of
+ * tones found (0: none clean) and their frequencies in w, ascending. */
+static unsigned clean_tones(const ladrc_hp_estimator_t *est, ladrc_real_t w[LADRC_HP_MAX_TONES])
+{
+    const ladrc_real_t *m = est->spec_avg;
+    if (!(m[SPEC_11] > FILTER_MIN_POWER && m[SPEC_33] > LADRC_R(0.0))) {
+        return 0u;
+    }
+    /* One tone: 1 - correlation^2 of x3 and x1 is the share of x3 it leaves. */
+    const ladrc_real_t det = m[SPEC_33] * m[SPEC_11] - m[SPEC_31] * m[SPEC_31];
+    if (det < IMPURITY_MAX * m[SPEC_33] * m[SPEC_11]) {
+        w[0] = freq_of(est, -m[SPEC_31] / m[SPEC_11]);
+        return (w[0] > LADRC_R(0.0)) ? 1u : 0u;
+    }
+    if (est->n_tones < 2u || !(m[SPEC_55] > LADRC_R(0.0))) {
+        return 0u;
+    }
+    /* Two tones: least squares for (p1, p2) on x5 = -p1 x3 - p2 x1. */
+    const ladrc_real_t p1 = -(m[SPEC_53] * m[SPEC_11] - m[SPEC_51] * m[SPEC_31]) / det;
+    const ladrc_real_t p2 = -(m[SPEC_33] * m[SPEC_51] - m[SPEC_31] * m[SPEC_53]) / det;
+    const ladrc_real_t left = m[SPEC_55] + p1 * m[SPEC_53] + p2 * m[SPEC_51];
+    const ladrc_real_t disc = p1 * p1 - LADRC_R(4.0) * p2;
+    if (!(left < IMPURITY_MAX * m[SPEC_55]) || !(p2 > LADRC_R(0.0)) || !(disc > LADRC_R(0.0))) {
+        return 0u;
+    }
+    const ladrc_real_t root = ladrc_sqrt(disc);
+    w[0] = freq_of(est, LADRC_R(0.5) * (p1 - root));
+    w[1] = freq_of(est, LADRC_R(0.5) * (p1 + root));
+    const int apart = w[1] > (LADRC_R(1.0) + TONE_SEPARATION) * w[0];
+    return (w[0] > LADRC_R(0.0) && w[1] > LADRC_R(0.0) && apart) ? 2u : 0u;
+}
+
+/* ONLINE: the active tones follow the clean model: a locked tone by its
+ * slip (free of the loop's transients, which the derivatives weigh heavily),
+ * the others by the fit; a model with another number of tones replaces the
+ * tones (the nearest keeps its state), after TONE_HOLD_S without change. */
 static void update_frequencies(ladrc_hp_estimator_t *est, ladrc_real_t sample)
 {
-    ladrc_real_t value[LADRC_HP_MAX_TONES];
-    ladrc_real_t residue = sample;
-    for (unsigned k = 0u; k < est->n_active; ++k) {
-        value[k] = tone_value(est, k, 0);
-        residue -= value[k];
-    }
+    update_spectrum(est, sample);
+    ladrc_real_t w[LADRC_HP_MAX_TONES];
+    const unsigned found = clean_tones(est, w);
+    est->clean = (found == est->n_active) ? 1u : 0u;
     const ladrc_real_t t = est->fit_period_s;
-    const ladrc_real_t unexplained = residue - ladrc_rls_get_theta(&est->fit)[0];
-    est->resid_power += POWER_AVERAGE_PER_S * t * (unexplained * unexplained - est->resid_power);
-    /* After a change the filters carry its transient, which the third
-     * derivative weighs heavily: the averages wait for it to pass and then
-     * start afresh. */
-    const int settling = est->settle_left > 0u;
-    if (settling && --est->settle_left == 0u) {
-        for (unsigned k = 0u; k < est->n_tones; ++k) {
-            est->tone[k].d1d1 = LADRC_R(0.0);
-            est->tone[k].d3d1 = LADRC_R(0.0);
-            est->tone[k].d3d3 = LADRC_R(0.0);
-        }
-    }
-    ladrc_real_t candidate = LADRC_R(0.0);
-    for (unsigned k = 0u; k < est->n_tones; ++k) {
-        ladrc_hp_tone_t *tone = &est->tone[k];
-        /* An active tone's part: the residue with its own value back. */
-        const ladrc_real_t own = (k < est->n_active) ? residue + value[k] : residue;
-        const ladrc_real_t w = update_frequency_fit(est, tone, own, !settling);
-        if (k < est->n_active && tone->locked) {
-            /* Locked: the phasor's slip is the frequency error, free of the
-             * loop's transients that the third derivative weighs heavily. */
-            const ladrc_real_t rate = TRACK_FRACTION * est->fit_rate_per_s;
-            set_tone_freq(est, tone, ladrc_clamp(tone->w_rad_s + rate * t * tone->slip_rad_s,
-                                                 est->freq_min_rad_s, est->freq_max_rad_s));
-        } else if (k < est->n_active && w > LADRC_R(0.0)) {
-            set_tone_freq(est, tone, w);
-        } else if (k == est->n_active) {
-            candidate = w;
-        }
-    }
     if (est->hold < UINT16_MAX) {
         est->hold++;
     }
-    if ((ladrc_real_t)est->hold * t < TONE_HOLD_S) {
+    if (found == 0u || (found != est->n_active && (ladrc_real_t)est->hold * t < TONE_HOLD_S)) {
+        for (unsigned k = 0u; k < est->n_active; ++k) {
+            track_slip(est, &est->tone[k]);
+        }
         return;
     }
-    for (unsigned k = 0u; k < est->n_active && est->n_active > 1u; ++k) {
-        const ladrc_hp_tone_t *b = &est->tone[k];
-        if ((ladrc_real_t)b->quiet * t >= TONE_QUIET_S) {
-            stop_tone(est, k);
-            return;
-        }
-        for (unsigned j = 0u; j < k; ++j) {
-            const ladrc_hp_tone_t *a = &est->tone[j];
-            if (ladrc_fabs(a->w_rad_s - b->w_rad_s) < TONE_SEPARATION * a->w_rad_s) {
-                stop_tone(est, (b->significant && !a->significant) ? j : k);
-                return;
-            }
-        }
+    if (found != est->n_active) {
+        change_tone_count(est, found, w);
+        return;
     }
-    if (est->n_active < est->n_tones && candidate > LADRC_R(0.0) &&
-        est->resid_power > TONE_START_SHARE * est->sig_power) {
-        for (unsigned k = 0u; k < est->n_active; ++k) {
-            if (ladrc_fabs(candidate - est->tone[k].w_rad_s) < TONE_SEPARATION * est->tone[k].w_rad_s) {
-                return;
-            }
+    for (unsigned k = 0u; k < est->n_active; ++k) {
+        ladrc_hp_tone_t *tone = &est->tone[k];
+        if (tone->locked) {
+            track_slip(est, tone);
+        } else {
+            set_tone_freq(est, tone, w[k]);
         }
-        start_tone(est, candidate);
     }
 }
 
@@ -489,13 +504,11 @@ static void fit_sample(ladrc_hp_estimator_t *est, ladrc_real_t sample)
         tone->significant = (power >= AMP_SHARE * est->sig_power && power >= power_floor) ? 1u : 0u;
         if (!tone->significant) {
             tone->locked = 0u;
-            tone->quiet = (tone->quiet < UINT16_MAX) ? (uint16_t)(tone->quiet + 1u) : tone->quiet;
             continue;
         }
-        tone->quiet = 0u;
-        /* ONLINE: the frequency fit must also see one clean tone. */
-        const int pure = !est->online || tone->impurity < (tone->locked ? IMPURITY_UNLOCK : IMPURITY_LOCK);
-        tone->locked = (pure && slip < (tone->locked ? SLIP_UNLOCK_FACTOR * tol : tol)) ? 1u : 0u;
+        /* ONLINE: a tone locks only while the frequency fit sees a clean model. */
+        const int clean = !est->online || tone->locked || est->clean;
+        tone->locked = (clean && slip < (tone->locked ? SLIP_UNLOCK_FACTOR * tol : tol)) ? 1u : 0u;
         any_locked |= tone->locked;
         all_locked &= tone->locked;
         rate = min_real(rate, tone->w_rad_s / FIT_MEMORY_RAD);

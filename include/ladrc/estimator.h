@@ -138,10 +138,6 @@ typedef struct {
     ladrc_real_t lead_re, lead_im;   /**< (1 + j w / wo)^3: undoes the sample's lag at w */
     ladrc_real_t prev_a, prev_b;     /**< fitted (a, b) at the previous fit sample */
     ladrc_real_t slip_rad_s;         /**< averaged turn rate of the fitted phasor */
-    ladrc_real_t filt[4];            /**< ONLINE derivative filter: x, x1, x2, x3 */
-    ladrc_real_t d1d1, d3d1, d3d3;   /**< ONLINE averages of x1^2, x3 x1 and x3^2 */
-    ladrc_real_t impurity;           /**< ONLINE 1 - correlation^2 of x3 and x1: 0 for one tone */
-    uint16_t quiet;                  /**< fit samples in a row insignificant */
     uint8_t significant;             /**< carries a real share of the sample's power */
     uint8_t locked;                  /**< significant and its phasor stands still */
 } ladrc_hp_tone_t;
@@ -158,17 +154,20 @@ typedef struct {
     ladrc_real_t filter_rad_s;       /**< derivative filter bandwidth wf */
     ladrc_real_t lag_wo_rad_s;       /**< bandwidth of the sample's lag, 0 = none */
     ladrc_real_t sig_power;          /**< sample power around the bias, averaged */
-    ladrc_real_t resid_power;        /**< power the active tones leave unexplained, averaged */
+    ladrc_real_t spec_x[6];          /**< ONLINE derivative filter: x and its first five derivatives */
+    ladrc_real_t spec_x1_prev[2];    /**< ONLINE x1 one and two fit samples ago */
+    ladrc_real_t spec_x3_prev;       /**< ONLINE x3 one fit sample ago */
+    ladrc_real_t spec_avg[6];        /**< ONLINE averages of x1 x1, x3 x1, x3 x3, x5 x1, x5 x3, x5 x5 */
     ladrc_real_t err_fast, err_slow; /**< short and long averages of the fit's prior error power */
     ladrc_real_t weight;             /**< compensation weight in [0, 1] */
     ladrc_real_t estimate;           /**< the applied d_hat (rad/s^2) */
     ladrc_real_t handover;           /**< part of estimate's latest change due to the weight */
     uint16_t fit_decimation, fit_count, fit_phase;
     uint16_t boost_left;             /**< fit samples left of a change's fast forgetting */
-    uint16_t settle_left;            /**< ONLINE: fit samples until the frequency averages restart */
     uint16_t hold;                   /**< ONLINE: fit samples since the last tone started or stopped */
     uint8_t n_tones, n_active;
     uint8_t online;
+    uint8_t clean;                   /**< ONLINE: the frequency fit sees as many clean tones as are active */
     ladrc_fault_t faults;
 } ladrc_hp_estimator_t;
 
