@@ -32,9 +32,9 @@
 #define AXIS_DEFAULT_HP_FREQ2_RAD_S LADRC_R(8.0)
 #define AXIS_DEFAULT_HP_FREQ_MIN_RAD_S LADRC_R(0.3)
 #define AXIS_DEFAULT_HP_FREQ_MAX_RAD_S LADRC_R(40.0)
-#define AXIS_DEFAULT_HP_LAMBDA0_PER_S LADRC_R(5.0)
+#define AXIS_DEFAULT_HP_LAMBDA0_PER_S LADRC_R(8.0)
 #define AXIS_DEFAULT_HP_FREQ_LAMBDA0_PER_S LADRC_R(5.0)
-#define AXIS_DEFAULT_HP_FREQ_FILTER_RAD_S LADRC_R(25.0)
+#define AXIS_DEFAULT_HP_FREQ_FILTER_RAD_S LADRC_R(20.0)
 /* The fit samples the observer's output (bandwidth 75 rad/s, a time constant
  * of 13 ms) every 4 ms: a quarter of the work of fitting every tick at 1 kHz,
  * and 40 rad/s turns by only 0.16 rad between fit samples. */

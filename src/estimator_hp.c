@@ -11,7 +11,7 @@
 #define HP_P_BOUND_PER_SAMPLE LADRC_R(1.0e4)
 /* The fit keeps at least this much of a significant tone's phase in memory
  * (rad), enough to tell the bias and the tone apart... */
-#define FIT_MEMORY_RAD LADRC_R(1.0)
+#define FIT_MEMORY_RAD LADRC_R(0.5)
 /* ...and this much of the relative phase of two significant tones. */
 #define SEPARATION_MEMORY_RAD LADRC_R(1.0)
 /* Slip (turn rate of a fitted phasor) averaged at this rate (1/s): a few
@@ -32,14 +32,12 @@
 #define POWER_AVERAGE_PER_S LADRC_R(3.0)
 /* Change detection: fast and slow averages of the prior error power (1/s);
  * a change is a fast average CHANGE_RATIO times the slow one and at least
- * CHANGE_SHARE of the sample's power; the fit then forgets at
- * CHANGE_BOOST_FACTOR times lambda0 (at most 1 / T) for CHANGE_BOOST_S. */
+ * CHANGE_SHARE of the sample's power; no tone locks for CHANGE_HOLD_S after. */
 #define CHANGE_FAST_PER_S LADRC_R(20.0)
 #define CHANGE_SLOW_PER_S LADRC_R(1.0)
 #define CHANGE_RATIO LADRC_R(10.0)
 #define CHANGE_SHARE LADRC_R(0.01)
-#define CHANGE_BOOST_S LADRC_R(0.1)
-#define CHANGE_BOOST_FACTOR LADRC_R(5.0)
+#define CHANGE_HOLD_S LADRC_R(0.1)
 /* ONLINE: a model with another number of tones replaces the tones only
  * after TONE_HOLD_S without such a change, so the fit settles in between;
  * two tones must lie more than TONE_SEPARATION (relative) apart. */
@@ -54,6 +52,10 @@
 /* The frequency fit's averages keep at least this much of the slowest
  * tone's phase (rad). */
 #define FREQ_MEMORY_RAD LADRC_R(1.0)
+/* A change's transient has passed the frequency fit's filter (wf / (s + wf))^6
+ * FILTER_SETTLE_PER_WF / wf seconds after it (u^5 e^-u is below 1e-3 of its
+ * peak from u = 16 on). */
+#define FILTER_SETTLE_PER_WF LADRC_R(16.0)
 /* The frequency fit needs this much derivative power ((rad/s^3)^2). */
 #define FILTER_MIN_POWER LADRC_R(1.0e-6)
 /* Indices of the frequency fit's averages: x1 x1, x3 x1, x3 x3, x5 x1, x5 x3, x5 x5. */
@@ -182,7 +184,6 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
     est->freq_min_rad_s = cfg->freq_min_rad_s;
     est->freq_max_rad_s = cfg->freq_max_rad_s;
     est->lambda0_max = cfg->lambda0_per_s;
-    est->boost_rate_per_s = min_real(CHANGE_BOOST_FACTOR * cfg->lambda0_per_s, LADRC_R(1.0) / fit_period_s);
     est->freq_lambda0_per_s = cfg->freq_lambda0_per_s;
     est->filter_rad_s = cfg->freq_filter_rad_s;
     est->fit_decimation = cfg->fit_decimation;
@@ -227,7 +228,8 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
     est->estimate = LADRC_R(0.0);
     est->handover = LADRC_R(0.0);
     est->fit_count = 0u;
-    est->boost_left = 0u;
+    est->change_left = 0u;
+    est->spec_restart_left = 0u;
     est->faults = LADRC_FAULT_NONE;
 }
 
@@ -271,22 +273,37 @@ static ladrc_real_t update_slip(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t
     return ladrc_fabs(tone->slip_rad_s);
 }
 
-/* Change detection on the fit's prior error (see estimator.h); returns 1
- * while a change's fast forgetting lasts. */
+/* Change detection on the fit's prior error (see estimator.h). A change
+ * restarts the fit on fresh data at once (its old values would hold it back
+ * for a memory, and a slow tone's would swing with the new data), drops the
+ * weight (bumpless, see ladrc_hp_get_handover) and unlocks every tone; the
+ * frequency fit restarts once the change has passed its filter. Returns 1
+ * for CHANGE_HOLD_S after a change, while no tone may lock. */
 static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
 {
     const ladrc_real_t t = est->fit_period_s;
     const ladrc_real_t e2 = err * err;
     est->err_fast += CHANGE_FAST_PER_S * t * (e2 - est->err_fast);
-    if (est->err_fast > CHANGE_RATIO * est->err_slow && est->err_fast > CHANGE_SHARE * est->sig_power) {
-        est->boost_left = (uint16_t)(CHANGE_BOOST_S / t + LADRC_R(0.5));
-    }
     est->err_slow += CHANGE_SLOW_PER_S * t * (e2 - est->err_slow);
-    if (est->boost_left > 0u) {
-        est->boost_left--;
+    if (est->change_left > 0u) {
+        est->change_left--;
         return 1;
     }
-    return 0;
+    if (!(est->err_fast > CHANGE_RATIO * est->err_slow && est->err_fast > CHANGE_SHARE * est->sig_power)) {
+        return 0;
+    }
+    est->change_left = (uint16_t)(CHANGE_HOLD_S / t + LADRC_R(0.5));
+    est->spec_restart_left = (uint16_t)(FILTER_SETTLE_PER_WF / (est->filter_rad_s * t) + LADRC_R(0.5));
+    ladrc_rls_reset(&est->fit, NULL);
+    est->weight = LADRC_R(0.0);
+    for (unsigned k = 0u; k < est->n_active; ++k) {
+        ladrc_hp_tone_t *tone = &est->tone[k];
+        tone->prev_a = LADRC_R(0.0);
+        tone->prev_b = LADRC_R(0.0);
+        tone->slip_rad_s = LADRC_R(0.0);
+        tone->locked = 0u;
+    }
+    return 1;
 }
 
 /* ONLINE: a locked tone's frequency follows its slip at TRACK_FRACTION of
@@ -383,6 +400,14 @@ static void update_spectrum(ladrc_hp_estimator_t *est, ladrc_real_t x)
     }
     const ladrc_real_t alpha = min_real(est->freq_lambda0_per_s, slowest / FREQ_MEMORY_RAD) * t;
     ladrc_real_t *m = est->spec_avg;
+    if (est->spec_restart_left > 0u) {
+        if (--est->spec_restart_left == 0u) {
+            for (unsigned i = 0u; i < SPEC_COUNT; ++i) {
+                m[i] = LADRC_R(0.0);
+            }
+        }
+        return;
+    }
     m[SPEC_11] += alpha * (x1_2 * x1_2 - m[SPEC_11]);
     m[SPEC_31] += alpha * (x3_1 * x1_2 - m[SPEC_31]);
     m[SPEC_33] += alpha * (x3_1 * x3_1 - m[SPEC_33]);
@@ -483,13 +508,12 @@ static void fit_sample(ladrc_hp_estimator_t *est, ladrc_real_t sample)
         phi[theta_a(k)] = est->tone[k].cos_psi;
         phi[theta_a(k) + 1u] = est->tone[k].sin_psi;
     }
-    const ladrc_real_t err = sample - ladrc_rls_predict(&est->fit, phi);
+    const int changing = detect_change(est, sample - ladrc_rls_predict(&est->fit, phi));
     est->faults = ladrc_rls_update(&est->fit, phi, sample);
     const ladrc_real_t *theta = ladrc_rls_get_theta(&est->fit);
     const ladrc_real_t t = est->fit_period_s;
     const ladrc_real_t centred = sample - theta[0];
     est->sig_power += POWER_AVERAGE_PER_S * t * (centred * centred - est->sig_power);
-    const int changing = detect_change(est, err);
     const ladrc_real_t power_floor = LADRC_R(0.5) * AMP_FLOOR_RAD_S2 * AMP_FLOOR_RAD_S2;
     const ladrc_real_t tol = SLIP_TOL_FRACTION * est->fit_rate_per_s;
     ladrc_real_t rate = est->lambda0_max;
@@ -522,7 +546,7 @@ static void fit_sample(ladrc_hp_estimator_t *est, ladrc_real_t sample)
     const ladrc_real_t target = (any_locked && all_locked && !changing) ? LADRC_R(1.0) : LADRC_R(0.0);
     est->weight += ladrc_clamp(target - est->weight, -max_move, max_move);
     est->fit_rate_per_s = rate;
-    (void)ladrc_rls_set_lambda0(&est->fit, changing ? est->boost_rate_per_s : rate);
+    (void)ladrc_rls_set_lambda0(&est->fit, rate);
     if (est->online) {
         update_frequencies(est, sample);
     }

@@ -43,9 +43,10 @@
  * change is under way, else towards 0 (plain LADRC): d_hat = weight * model.
  *
  * Changes: a short average of the fit's prior error power far above its long
- * average (a frequency jump, an onset, a stop, a bias step) makes the fit
- * forget at several times lambda0 for a moment instead of waiting for its
- * memory to fade, and holds the weight back meanwhile.
+ * average (a frequency jump, an onset, a stop, a bias step) restarts the fit
+ * on fresh data instead of waiting for its memory to fade, drops the weight
+ * at once (bumpless, see ladrc_hp_get_handover) and holds it back for a
+ * moment.
  *
  * ONLINE frequencies: for each tone, a bias-free least squares on
  * state-variable-filtered derivatives of the part of the sample the other
@@ -149,7 +150,6 @@ typedef struct {
     ladrc_real_t freq_min_rad_s, freq_max_rad_s;
     ladrc_real_t lambda0_max;        /**< configured fastest forgetting of the fit */
     ladrc_real_t fit_rate_per_s;     /**< forgetting rate of the fit outside changes */
-    ladrc_real_t boost_rate_per_s;   /**< forgetting rate of the fit during a change */
     ladrc_real_t freq_lambda0_per_s;
     ladrc_real_t filter_rad_s;       /**< derivative filter bandwidth wf */
     ladrc_real_t lag_wo_rad_s;       /**< bandwidth of the sample's lag, 0 = none */
@@ -163,7 +163,8 @@ typedef struct {
     ladrc_real_t estimate;           /**< the applied d_hat (rad/s^2) */
     ladrc_real_t handover;           /**< part of estimate's latest change due to the weight */
     uint16_t fit_decimation, fit_count, fit_phase;
-    uint16_t boost_left;             /**< fit samples left of a change's fast forgetting */
+    uint16_t change_left;            /**< fit samples left of a change's hold */
+    uint16_t spec_restart_left;      /**< ONLINE: fit samples until the frequency fit's averages restart */
     uint16_t hold;                   /**< ONLINE: fit samples since the last tone started or stopped */
     uint8_t n_tones, n_active;
     uint8_t online;
