@@ -26,6 +26,9 @@
  * sample's power around the bias and its amplitude above AMP_FLOOR. */
 #define AMP_SHARE LADRC_R(0.01)
 #define AMP_FLOOR_RAD_S2 LADRC_R(0.05)
+/* The fit has settled while its recent prior error power is below this
+ * share of the sample's power. */
+#define SETTLED_SHARE LADRC_R(0.01)
 /* The weight moves at most this much per second. */
 #define GATE_RATE_PER_S LADRC_R(5.0)
 /* Sample and residue powers averaged at this rate (1/s). */
@@ -54,8 +57,10 @@
 #define FREQ_MEMORY_RAD LADRC_R(1.0)
 /* A change's transient has passed the frequency fit's filter (wf / (s + wf))^6
  * FILTER_SETTLE_PER_WF / wf seconds after it (u^5 e^-u is below 1e-3 of its
- * peak from u = 16 on). */
-#define FILTER_SETTLE_PER_WF LADRC_R(16.0)
+ * peak from u = 12 on; what is left is a small share of a fresh average). */
+#define FILTER_SETTLE_PER_WF LADRC_R(12.0)
+/* The frequency fit speaks only after this much data since its (re)start (s). */
+#define SPEC_MIN_S LADRC_R(0.1)
 /* The frequency fit needs this much derivative power ((rad/s^3)^2). */
 #define FILTER_MIN_POWER LADRC_R(1.0e-6)
 /* Indices of the frequency fit's averages: x1 x1, x3 x1, x3 x3, x5 x1, x5 x3, x5 x5. */
@@ -221,6 +226,7 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
     est->spec_x1_prev[0] = LADRC_R(0.0);
     est->spec_x1_prev[1] = LADRC_R(0.0);
     est->spec_x3_prev = LADRC_R(0.0);
+    est->spec_count = 0u;
     est->clean = 0u;
     est->err_fast = LADRC_R(0.0);
     est->err_slow = LADRC_R(0.0);
@@ -293,7 +299,11 @@ static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
         return 0;
     }
     est->change_left = (uint16_t)(CHANGE_HOLD_S / t + LADRC_R(0.5));
-    est->spec_restart_left = (uint16_t)(FILTER_SETTLE_PER_WF / (est->filter_rad_s * t) + LADRC_R(0.5));
+    /* One restart of the frequency fit per series of changes: a change
+     * seen again before the fit has spoken does not delay it further. */
+    if (est->spec_restart_left == 0u && (ladrc_real_t)est->spec_count * t >= SPEC_MIN_S) {
+        est->spec_restart_left = (uint16_t)(FILTER_SETTLE_PER_WF / (est->filter_rad_s * t) + LADRC_R(0.5));
+    }
     ladrc_rls_reset(&est->fit, NULL);
     est->weight = LADRC_R(0.0);
     for (unsigned k = 0u; k < est->n_active; ++k) {
@@ -393,20 +403,27 @@ static void update_spectrum(ladrc_hp_estimator_t *est, ladrc_real_t x)
         v[i - 1u] += t * v[i];
     }
     const ladrc_real_t x5 = v[5];
-    /* The averages keep at least FREQ_MEMORY_RAD of the slowest tone's phase. */
-    ladrc_real_t slowest = est->tone[0].w_rad_s;
-    for (unsigned k = 1u; k < est->n_active; ++k) {
-        slowest = min_real(slowest, est->tone[k].w_rad_s);
+    /* The averages keep at least FREQ_MEMORY_RAD of the slowest locked
+     * tone's phase (a tone not locked may be far off its frequency). */
+    ladrc_real_t rate = est->freq_lambda0_per_s;
+    for (unsigned k = 0u; k < est->n_active; ++k) {
+        if (est->tone[k].locked) {
+            rate = min_real(rate, est->tone[k].w_rad_s / FREQ_MEMORY_RAD);
+        }
     }
-    const ladrc_real_t alpha = min_real(est->freq_lambda0_per_s, slowest / FREQ_MEMORY_RAD) * t;
+    const ladrc_real_t alpha = rate * t;
     ladrc_real_t *m = est->spec_avg;
     if (est->spec_restart_left > 0u) {
         if (--est->spec_restart_left == 0u) {
             for (unsigned i = 0u; i < SPEC_COUNT; ++i) {
                 m[i] = LADRC_R(0.0);
             }
+            est->spec_count = 0u;
         }
         return;
+    }
+    if (est->spec_count < UINT16_MAX) {
+        est->spec_count++;
     }
     m[SPEC_11] += alpha * (x1_2 * x1_2 - m[SPEC_11]);
     m[SPEC_31] += alpha * (x3_1 * x1_2 - m[SPEC_31]);
@@ -437,7 +454,8 @@ static ladrc_real_t freq_of(const ladrc_hp_estimator_t *est, ladrc_real_t sigma2
 static unsigned clean_tones(const ladrc_hp_estimator_t *est, ladrc_real_t w[LADRC_HP_MAX_TONES])
 {
     const ladrc_real_t *m = est->spec_avg;
-    if (!(m[SPEC_11] > FILTER_MIN_POWER && m[SPEC_33] > LADRC_R(0.0))) {
+    if ((ladrc_real_t)est->spec_count * est->fit_period_s < SPEC_MIN_S || est->spec_restart_left > 0u ||
+        !(m[SPEC_11] > FILTER_MIN_POWER && m[SPEC_33] > LADRC_R(0.0))) {
         return 0u;
     }
     /* One tone: 1 - correlation^2 of x3 and x1 is the share of x3 it leaves. */
@@ -515,6 +533,7 @@ static void fit_sample(ladrc_hp_estimator_t *est, ladrc_real_t sample)
     const ladrc_real_t centred = sample - theta[0];
     est->sig_power += POWER_AVERAGE_PER_S * t * (centred * centred - est->sig_power);
     const ladrc_real_t power_floor = LADRC_R(0.5) * AMP_FLOOR_RAD_S2 * AMP_FLOOR_RAD_S2;
+    const int settled = !changing && est->err_fast < SETTLED_SHARE * est->sig_power;
     const ladrc_real_t tol = SLIP_TOL_FRACTION * est->fit_rate_per_s;
     ladrc_real_t rate = est->lambda0_max;
     int any_locked = 0;
@@ -530,9 +549,11 @@ static void fit_sample(ladrc_hp_estimator_t *est, ladrc_real_t sample)
             tone->locked = 0u;
             continue;
         }
-        /* ONLINE: a tone locks only while the frequency fit sees a clean model. */
-        const int clean = !est->online || tone->locked || est->clean;
-        tone->locked = (clean && slip < (tone->locked ? SLIP_UNLOCK_FACTOR * tol : tol)) ? 1u : 0u;
+        /* A tone locks only once the fit predicts the sample (its phasor also
+         * turns while the fit converges) and, ONLINE, while the frequency fit
+         * sees a clean model. */
+        const int ready = tone->locked || (settled && (!est->online || est->clean));
+        tone->locked = (ready && slip < (tone->locked ? SLIP_UNLOCK_FACTOR * tol : tol)) ? 1u : 0u;
         any_locked |= tone->locked;
         all_locked &= tone->locked;
         rate = min_real(rate, tone->w_rad_s / FIT_MEMORY_RAD);
