@@ -31,7 +31,8 @@
 #define SETTLED_SHARE LADRC_R(0.01)
 /* The weight moves at most this much per second. */
 #define GATE_RATE_PER_S LADRC_R(5.0)
-/* Sample and residue powers averaged at this rate (1/s). */
+/* The sample's mean and its power around it are averaged at these rates (1/s). */
+#define MEAN_AVERAGE_PER_S LADRC_R(1.0)
 #define POWER_AVERAGE_PER_S LADRC_R(3.0)
 /* Change detection: fast and slow averages of the prior error power (1/s);
  * a change is a fast average CHANGE_RATIO times the slow one and at least
@@ -216,6 +217,7 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
         tone->significant = 0u;
         tone->locked = 0u;
     }
+    est->sample_mean = LADRC_R(0.0);
     est->sig_power = LADRC_R(0.0);
     for (unsigned i = 0u; i < 6u; ++i) {
         est->spec_x[i] = LADRC_R(0.0);
@@ -510,6 +512,18 @@ static void update_frequencies(ladrc_hp_estimator_t *est, ladrc_real_t sample)
         ladrc_hp_tone_t *tone = &est->tone[k];
         if (tone->locked) {
             track_slip(est, tone);
+        } else if (ladrc_fabs(w[k] - tone->w_rad_s) > TONE_SEPARATION * tone->w_rad_s) {
+            /* A jump: what the fit holds for this tone belongs to another
+             * frequency; the fit restarts without it. */
+            ladrc_real_t theta[LADRC_RLS_MAX_PARAMS];
+            const ladrc_real_t *old = ladrc_rls_get_theta(&est->fit);
+            for (unsigned i = 0u; i < theta_a(est->n_active); ++i) {
+                theta[i] = old[i];
+            }
+            theta[theta_a(k)] = LADRC_R(0.0);
+            theta[theta_a(k) + 1u] = LADRC_R(0.0);
+            set_tone_freq(est, tone, w[k]);
+            start_fit(est, est->n_active, theta);
         } else {
             set_tone_freq(est, tone, w[k]);
         }
@@ -530,7 +544,10 @@ static void fit_sample(ladrc_hp_estimator_t *est, ladrc_real_t sample)
     est->faults = ladrc_rls_update(&est->fit, phi, sample);
     const ladrc_real_t *theta = ladrc_rls_get_theta(&est->fit);
     const ladrc_real_t t = est->fit_period_s;
-    const ladrc_real_t centred = sample - theta[0];
+    /* The sample's power around its own mean: a measure of scale that does
+     * not depend on the fit. */
+    est->sample_mean += MEAN_AVERAGE_PER_S * t * (sample - est->sample_mean);
+    const ladrc_real_t centred = sample - est->sample_mean;
     est->sig_power += POWER_AVERAGE_PER_S * t * (centred * centred - est->sig_power);
     const ladrc_real_t power_floor = LADRC_R(0.5) * AMP_FLOOR_RAD_S2 * AMP_FLOOR_RAD_S2;
     const int settled = !changing && est->err_fast < SETTLED_SHARE * est->sig_power;

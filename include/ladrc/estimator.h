@@ -153,7 +153,8 @@ typedef struct {
     ladrc_real_t freq_lambda0_per_s;
     ladrc_real_t filter_rad_s;       /**< derivative filter bandwidth wf */
     ladrc_real_t lag_wo_rad_s;       /**< bandwidth of the sample's lag, 0 = none */
-    ladrc_real_t sig_power;          /**< sample power around the bias, averaged */
+    ladrc_real_t sample_mean;        /**< the sample's mean, averaged */
+    ladrc_real_t sig_power;          /**< the sample's power around its mean, averaged */
     ladrc_real_t spec_x[6];          /**< ONLINE derivative filter: x and its first five derivatives */
     ladrc_real_t spec_x1_prev[2];    /**< ONLINE x1 one and two fit samples ago */
     ladrc_real_t spec_x3_prev;       /**< ONLINE x3 one fit sample ago */
