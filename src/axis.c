@@ -33,7 +33,7 @@
 #define AXIS_DEFAULT_HP_FREQ_MIN_RAD_S LADRC_R(0.3)
 #define AXIS_DEFAULT_HP_FREQ_MAX_RAD_S LADRC_R(40.0)
 #define AXIS_DEFAULT_HP_LAMBDA0_PER_S LADRC_R(8.0)
-#define AXIS_DEFAULT_HP_FREQ_LAMBDA0_PER_S LADRC_R(5.0)
+#define AXIS_DEFAULT_HP_FREQ_LAMBDA0_PER_S LADRC_R(2.0)
 #define AXIS_DEFAULT_HP_FREQ_FILTER_RAD_S LADRC_R(20.0)
 /* The fit samples the observer's output (bandwidth 75 rad/s, a time constant
  * of 13 ms) every 4 ms: a quarter of the work of fitting every tick at 1 kHz,

@@ -59,7 +59,7 @@
 /* A change's transient has passed the frequency fit's filter (wf / (s + wf))^6
  * FILTER_SETTLE_PER_WF / wf seconds after it (u^5 e^-u is below 1e-3 of its
  * peak from u = 12 on; what is left is a small share of a fresh average). */
-#define FILTER_SETTLE_PER_WF LADRC_R(12.0)
+#define FILTER_SETTLE_PER_WF LADRC_R(20.0)
 /* The frequency fit speaks only after this much data since its (re)start (s). */
 #define SPEC_MIN_S LADRC_R(0.1)
 /* The frequency fit needs this much derivative power ((rad/s^3)^2). */
@@ -413,7 +413,6 @@ static void update_spectrum(ladrc_hp_estimator_t *est, ladrc_real_t x)
             rate = min_real(rate, est->tone[k].w_rad_s / FREQ_MEMORY_RAD);
         }
     }
-    const ladrc_real_t alpha = rate * t;
     ladrc_real_t *m = est->spec_avg;
     if (est->spec_restart_left > 0u) {
         if (--est->spec_restart_left == 0u) {
@@ -427,6 +426,9 @@ static void update_spectrum(ladrc_hp_estimator_t *est, ladrc_real_t x)
     if (est->spec_count < UINT16_MAX) {
         est->spec_count++;
     }
+    /* Plain means of everything since the (re)start until those hold as
+     * many samples as the forgetting's memory, then forgetting. */
+    const ladrc_real_t alpha = ladrc_clamp(LADRC_R(1.0) / (ladrc_real_t)est->spec_count, rate * t, LADRC_R(1.0));
     m[SPEC_11] += alpha * (x1_2 * x1_2 - m[SPEC_11]);
     m[SPEC_31] += alpha * (x3_1 * x1_2 - m[SPEC_31]);
     m[SPEC_33] += alpha * (x3_1 * x3_1 - m[SPEC_33]);
