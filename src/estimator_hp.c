@@ -57,8 +57,8 @@
  * tone's phase (rad). */
 #define FREQ_MEMORY_RAD LADRC_R(1.0)
 /* A change's transient has passed the frequency fit's filter (wf / (s + wf))^6
- * FILTER_SETTLE_PER_WF / wf seconds after it (u^5 e^-u is below 1e-3 of its
- * peak from u = 12 on; what is left is a small share of a fresh average). */
+ * FILTER_SETTLE_PER_WF / wf seconds after it: u^5 e^-u, the slowest term of
+ * its response, is down to 3e-4 of its peak at u = 20. */
 #define FILTER_SETTLE_PER_WF LADRC_R(20.0)
 /* The frequency fit speaks only after this much data since its (re)start (s). */
 #define SPEC_MIN_S LADRC_R(0.1)
@@ -266,8 +266,12 @@ static ladrc_real_t update_slip(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t
     /* (a - j b) conj(prev_a - j prev_b): its angle is the turn. */
     const ladrc_real_t re = a * tone->prev_a + b * tone->prev_b;
     const ladrc_real_t im = a * tone->prev_b - b * tone->prev_a;
+    const int fresh = tone->prev_a == LADRC_R(0.0) && tone->prev_b == LADRC_R(0.0);
     tone->prev_a = a;
     tone->prev_b = b;
+    if (fresh) {
+        return ladrc_fabs(tone->slip_rad_s); /* a (re)started fit: nothing to compare yet */
+    }
     /* tan of the turn for turns under an eighth; a larger turn (or a
      * vanished phasor) counts as a quarter turn. */
     ladrc_real_t turn = LADRC_R(0.5) * HP_PI;
@@ -301,9 +305,9 @@ static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
         return 0;
     }
     est->change_left = (uint16_t)(CHANGE_HOLD_S / t + LADRC_R(0.5));
-    /* One restart of the frequency fit per series of changes: a change
-     * seen again before the fit has spoken does not delay it further. */
-    if (est->spec_restart_left == 0u && (ladrc_real_t)est->spec_count * t >= SPEC_MIN_S) {
+    /* One restart of the frequency fit at a time: a change seen again while
+     * one is pending does not delay it further. */
+    if (est->spec_restart_left == 0u) {
         est->spec_restart_left = (uint16_t)(FILTER_SETTLE_PER_WF / (est->filter_rad_s * t) + LADRC_R(0.5));
     }
     ladrc_rls_reset(&est->fit, NULL);
@@ -486,10 +490,13 @@ static unsigned clean_tones(const ladrc_hp_estimator_t *est, ladrc_real_t w[LADR
     return (w[0] > LADRC_R(0.0) && w[1] > LADRC_R(0.0) && apart) ? 2u : 0u;
 }
 
-/* ONLINE: the active tones follow the clean model: a locked tone by its
- * slip (free of the loop's transients, which the derivatives weigh heavily),
- * the others by the fit; a model with another number of tones replaces the
- * tones (the nearest keeps its state), after TONE_HOLD_S without change. */
+/* ONLINE: the active tones follow the frequency fit while it sees a clean
+ * model with as many tones (exact for one clean tone); while it does not
+ * (the loop's transients, which the derivatives weigh heavily, blur it), and
+ * for a locked pair of tones (their fit uses the fifth derivative, noisier
+ * than their slips), a locked tone follows its slip instead. A clean model with another number
+ * of tones replaces the tones (the nearest keeps its state), after
+ * TONE_HOLD_S without such a change. */
 static void update_frequencies(ladrc_hp_estimator_t *est, ladrc_real_t sample)
 {
     update_spectrum(est, sample);
@@ -512,8 +519,12 @@ static void update_frequencies(ladrc_hp_estimator_t *est, ladrc_real_t sample)
     }
     for (unsigned k = 0u; k < est->n_active; ++k) {
         ladrc_hp_tone_t *tone = &est->tone[k];
-        if (tone->locked) {
+        if (tone->locked && (found > 1u || ladrc_fabs(w[k] - tone->w_rad_s) > TONE_SEPARATION * tone->w_rad_s)) {
+            /* Two tones come from the fifth derivative, noisier than a
+             * locked pair's slips; a far frequency is another tone. */
             track_slip(est, tone);
+        } else if (tone->locked) {
+            set_tone_freq(est, tone, w[k]);
         } else if (ladrc_fabs(w[k] - tone->w_rad_s) > TONE_SEPARATION * tone->w_rad_s) {
             /* A jump: what the fit holds for this tone belongs to another
              * frequency; the fit restarts without it. */

@@ -345,8 +345,8 @@ static void test_invalid_vehicle_fields_and_axes_are_rejected_with_the_axis_name
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_DT_S, ladrc_attitude_init(&att, &cfg, &failed));
     TEST_ASSERT_EQUAL_INT(1, failed);
     cfg = good;
-    cfg.axis[2].hp_decimation = 0u;
-    TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_DECIMATION, ladrc_attitude_init(&att, &cfg, &failed));
+    cfg.axis[2].hp_n_tones = 0u;
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_N_TONES, ladrc_attitude_init(&att, &cfg, &failed));
     TEST_ASSERT_EQUAL_INT(2, failed);
     cfg = good;
     cfg.axis[0].variant = LADRC_VARIANT_LP_MLADRC;

@@ -281,7 +281,7 @@ static void test_every_invalid_field_is_rejected_with_its_status(void)
         {LADRC_VARIANT_PID, FIELD(pid_d_filter_tau_s), -1.0f, LADRC_ERR_PID_D_TAU_S},
         {LADRC_VARIANT_PID, FIELD(pid_i_limit_Nm), -1.0f, LADRC_ERR_PID_I_LIMIT_NM},
         {LADRC_VARIANT_HP_MLADRC, FIELD(levant_lipschitz_rad_s4), 0.0f, LADRC_ERR_LEVANT_LIPSCHITZ},
-        {LADRC_VARIANT_HP_MLADRC, FIELD(hp_freq_rad_s), nan_, LADRC_ERR_HP_FREQ_RAD_S},
+        {LADRC_VARIANT_HP_MLADRC, FIELD(hp_freq_rad_s[0]), nan_, LADRC_ERR_HP_FREQ_RAD_S},
         {LADRC_VARIANT_HP_MLADRC, FIELD(hp_lambda0_per_s), 0.0f, LADRC_ERR_EST_LAMBDA0},
         {LADRC_VARIANT_LP_MLADRC, FIELD(lp_lambda0_per_s), inf, LADRC_ERR_EST_LAMBDA0},
         {LADRC_VARIANT_LP_MLADRC, FIELD(lp_k0_per_s), -300.0f, LADRC_ERR_EST_K0},

@@ -9,21 +9,18 @@
 
 #define DT_S 1e-3
 #define PI 3.14159265358979
-/* The accuracy targets for the online HP estimator. */
+/* Accuracy targets for the online HP estimator. */
 #define FREQ_REL_TOL 0.02
 #define AMP_REL_TOL 0.05
-/* Time allowed to reach them, noise-free (the issue's 2 s); measured 0.13 to
- * 0.37 s from 0.5 to 30 rad/s. */
+/* Time allowed to reach them, noise-free, from a first guess of 3 rad/s
+ * (measured 0.3 to 1.3 s from 0.5 to 30 rad/s). */
 #define CONVERGE_S 2.0
-/* After the paper's jump from 0.785 to 3 rad/s the frequency fit still holds
- * one period (8 s) of the old tone; measured 5.3 s to let go. 8 s leaves the
- * last 5 s of the paper's 13 s window at 3 rad/s compensated. */
-#define REJUMP_S 8.0
+/* After the paper's jump from 0.785 to 3 rad/s: the change restarts the fit
+ * at once and the frequency fit once the change has passed its filter
+ * (1 s); measured 1.2 s to be back within the targets. */
+#define REJUMP_S 2.0
 /* With noise, accuracy is judged after the start-up transient. */
 #define NOISY_SETTLE_S 5.0
-
-
-
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -33,12 +30,32 @@ static ladrc_hp_config_t hp_config(ladrc_hp_freq_mode_t mode, double freq)
     /* the axis defaults: one place says what a sensible HP setting is */
     ladrc_axis_config_t axis;
     ladrc_axis_config_default(&axis, LADRC_VARIANT_HP_MLADRC, (ladrc_real_t)DT_S, 1.0f);
-    ladrc_hp_config_t cfg = {(ladrc_real_t)DT_S,        mode,
-                             (ladrc_real_t)freq,        axis.hp_freq_min_rad_s,
-                             axis.hp_freq_max_rad_s,    axis.hp_lambda0_per_s,
-                             axis.hp_freq_lambda0_per_s, axis.hp_decimation, 0.0f,
-                             axis.hp_fit_decimation, axis.hp_fit_phase};
+    ladrc_hp_config_t cfg = {.dt_s = (ladrc_real_t)DT_S,
+                             .freq_mode = mode,
+                             .n_tones = axis.hp_n_tones,
+                             .freq_min_rad_s = axis.hp_freq_min_rad_s,
+                             .freq_max_rad_s = axis.hp_freq_max_rad_s,
+                             .lambda0_per_s = axis.hp_lambda0_per_s,
+                             .freq_lambda0_per_s = axis.hp_freq_lambda0_per_s,
+                             .freq_filter_rad_s = axis.hp_freq_filter_rad_s,
+                             .sample_lag_wo_rad_s = 0.0f,
+                             .fit_decimation = axis.hp_fit_decimation,
+                             .fit_phase = axis.hp_fit_phase};
+    for (unsigned k = 0; k < LADRC_HP_MAX_TONES; ++k) {
+        cfg.freq_rad_s[k] = axis.hp_freq_rad_s[k];
+    }
+    cfg.freq_rad_s[0] = (ladrc_real_t)freq;
+    if (mode == LADRC_HP_FREQ_KNOWN) {
+        cfg.n_tones = 1u;
+    }
     return cfg;
+}
+
+/* Whether tone k of est has frequency w and amplitude a within the targets. */
+static int tone_is(const ladrc_hp_estimator_t *est, unsigned k, double w, double a)
+{
+    return fabs(ladrc_hp_get_freq(est, k) - w) < FREQ_REL_TOL * w &&
+           fabs(ladrc_hp_get_amplitude(est, k) - a) < AMP_REL_TOL * a;
 }
 
 /* Runs HP on c + A sin(w t + p) and returns the last time (s) it was outside
@@ -52,8 +69,7 @@ static double hp_convergence_time(double c, double a, double w, int n, ladrc_hp_
     for (int k = 0; k < n; ++k) {
         const double t = k * DT_S;
         ladrc_hp_step(est, (ladrc_real_t)(c + a * sin(w * t + 0.3)));
-        inside = fabs(ladrc_hp_get_freq(est) - w) < FREQ_REL_TOL * w &&
-                 fabs(ladrc_hp_get_amplitude(est) - a) < AMP_REL_TOL * a;
+        inside = ladrc_hp_get_active_tones(est) == 1u && tone_is(est, 0u, w, a);
         if (!inside) {
             last_out = t + DT_S;
         }
@@ -66,14 +82,47 @@ static void test_hp_online_finds_frequency_and_amplitude_across_the_range(void)
     const double freqs[] = {0.5, 0.785, 1.0, 3.0, 10.0, 30.0};
     for (unsigned i = 0; i < sizeof freqs / sizeof freqs[0]; ++i) {
         ladrc_hp_estimator_t est;
-        const double t = hp_convergence_time(20.0, 120.0, freqs[i], 4000, &est);
+        const double t = hp_convergence_time(20.0, 120.0, freqs[i], 6000, &est);
         char msg[96];
         snprintf(msg, sizeof msg, "w %.3f rad/s: within 2%%/5%% from %.3f s, w_hat %.4f, A_hat %.2f",
-                 freqs[i], t, ladrc_hp_get_freq(&est), ladrc_hp_get_amplitude(&est));
+                 freqs[i], t, ladrc_hp_get_freq(&est, 0u), ladrc_hp_get_amplitude(&est, 0u));
         TEST_MESSAGE(msg);
         TEST_ASSERT_TRUE_MESSAGE(t >= 0.0, msg);
         TEST_ASSERT_LESS_OR_EQUAL_FLOAT_MESSAGE(CONVERGE_S, t, msg);
     }
+}
+
+static void test_hp_online_frequency_is_exact_for_a_lone_tone_whatever_its_bias(void)
+{
+    /* The derivative fit pairs x1, x3 and x5 so that a tone's ratio is exact
+     * at every instant: after 3 s only float rounding is left (measured
+     * 2e-6 relative; 1e-4 is the bar). */
+    const double freqs[] = {0.5, 3.0, 30.0};
+    const double biases[] = {0.0, -500.0};
+    for (unsigned i = 0; i < 3u; ++i) {
+        for (unsigned j = 0; j < 2u; ++j) {
+            ladrc_hp_estimator_t est;
+            (void)hp_convergence_time(biases[j], 120.0, freqs[i], 3000, &est);
+            TEST_ASSERT_FLOAT_WITHIN(1e-4 * freqs[i], freqs[i], ladrc_hp_get_freq(&est, 0u));
+        }
+    }
+}
+
+static void test_hp_online_resolves_two_tones(void)
+{
+    /* given 120 sin(3 t) + 30 sin(8 t) over a bias: the fit of x5 on x3 and
+     * x1 finds both, and the model holds both at their amplitudes */
+    ladrc_hp_estimator_t est;
+    const ladrc_hp_config_t cfg = hp_config(LADRC_HP_FREQ_ONLINE, 3.0);
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_hp_init(&est, &cfg));
+    for (int k = 0; k < 8000; ++k) {
+        const double t = k * DT_S;
+        ladrc_hp_step(&est, (ladrc_real_t)(20.0 + 120.0 * sin(3.0 * t) + 30.0 * sin(8.0 * t + 1.0)));
+    }
+    TEST_ASSERT_EQUAL_UINT(2u, ladrc_hp_get_active_tones(&est));
+    TEST_ASSERT_TRUE(tone_is(&est, 0u, 3.0, 120.0));
+    TEST_ASSERT_TRUE(tone_is(&est, 1u, 8.0, 30.0));
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.0f, ladrc_hp_get_weight(&est));
 }
 
 static void test_hp_online_reconverges_after_the_papers_frequency_jump(void)
@@ -87,8 +136,7 @@ static void test_hp_online_reconverges_after_the_papers_frequency_jump(void)
         const double t = k * DT_S;
         const double d = (t <= 12.0) ? 20.0 - 120.0 * sin(0.25 * PI * t) : 20.0 - 120.0 * sin(3.0 * t);
         ladrc_hp_step(&est, (ladrc_real_t)d);
-        const int ok = t > 12.0 && fabs(ladrc_hp_get_freq(&est) - 3.0) < FREQ_REL_TOL * 3.0 &&
-                       fabs(ladrc_hp_get_amplitude(&est) - 120.0) < AMP_REL_TOL * 120.0;
+        const int ok = t > 12.0 && ladrc_hp_get_active_tones(&est) == 1u && tone_is(&est, 0u, 3.0, 120.0);
         if (!ok) {
             t_back = -1.0;
         } else if (t_back < 0.0) {
@@ -111,8 +159,8 @@ static void hp_known_fits_with_fit_decimation(uint16_t fit_decimation)
     for (int k = 0; k < 3000; ++k) {
         ladrc_hp_step(&est, (ladrc_real_t)(20.0 + 120.0 * sin(3.0 * k * DT_S)));
     }
-    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 3.0f, ladrc_hp_get_freq(&est));
-    TEST_ASSERT_FLOAT_WITHIN(AMP_REL_TOL * 120.0, 120.0f, ladrc_hp_get_amplitude(&est));
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 3.0f, ladrc_hp_get_freq(&est, 0u));
+    TEST_ASSERT_FLOAT_WITHIN(AMP_REL_TOL * 120.0, 120.0f, ladrc_hp_get_amplitude(&est, 0u));
     TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.0f, ladrc_hp_get_weight(&est));
     /* the applied estimate is the model: within 1% of the signal's amplitude */
     const double d_now = 20.0 + 120.0 * sin(3.0 * 2999 * DT_S); /* phase of the last sample */
@@ -125,32 +173,6 @@ static void test_hp_known_frequency_fits_the_amplitude_and_opens_the_gate(void)
     hp_known_fits_with_fit_decimation(1u);
     hp_known_fits_with_fit_decimation(4u);
     hp_known_fits_with_fit_decimation(20u);
-}
-
-/* Tick on which the frequency estimate first moves from its start value. */
-static int first_frequency_update(uint16_t fit_phase)
-{
-    ladrc_hp_estimator_t est;
-    ladrc_hp_config_t cfg = hp_config(LADRC_HP_FREQ_ONLINE, 3.0);
-    cfg.fit_decimation = 4u;
-    cfg.fit_phase = fit_phase;
-    ladrc_hp_init(&est, &cfg);
-    for (int k = 0; k < 1000; ++k) {
-        ladrc_hp_step(&est, (ladrc_real_t)(120.0 * sin(10.0 * k * DT_S)));
-        if (ladrc_hp_get_freq(&est) != 3.0f) {
-            return k;
-        }
-    }
-    return -1;
-}
-
-static void test_hp_frequency_blocks_start_fit_phase_ticks_late(void)
-{
-    /* so estimators on different phases never update their frequency on one tick */
-    const int first = first_frequency_update(0u);
-    TEST_ASSERT_TRUE(first > 0);
-    TEST_ASSERT_EQUAL_INT(first + 1, first_frequency_update(1u));
-    TEST_ASSERT_EQUAL_INT(first + 3, first_frequency_update(3u));
 }
 
 static void test_hp_fits_on_the_tick_its_phase_names(void)
@@ -168,10 +190,10 @@ static void test_hp_fits_on_the_tick_its_phase_names(void)
         ladrc_hp_step(&last, 50.0f);
     }
     /* then only phase 0 has fitted (on tick 0), phase 3 fits on tick 3 */
-    TEST_ASSERT_TRUE(ladrc_rls_get_theta(&first.amp)[0] > 0.0f);
-    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, ladrc_rls_get_theta(&last.amp)[0]);
+    TEST_ASSERT_TRUE(ladrc_hp_get_bias(&first) > 0.0f);
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, ladrc_hp_get_bias(&last));
     ladrc_hp_step(&last, 50.0f);
-    TEST_ASSERT_TRUE(ladrc_rls_get_theta(&last.amp)[0] > 0.0f);
+    TEST_ASSERT_TRUE(ladrc_hp_get_bias(&last) > 0.0f);
 }
 
 static void test_hp_undoes_the_observer_lag_of_its_samples(void)
@@ -193,6 +215,35 @@ static void test_hp_undoes_the_observer_lag_of_its_samples(void)
     TEST_ASSERT_FLOAT_WITHIN(1.2, 120.0 * sin(w * 2999 * DT_S), ladrc_hp_get_estimate(&est));
 }
 
+static void test_hp_hands_over_what_the_weight_moves(void)
+{
+    /* given a locked model, the handover of each tick is the change of the
+     * estimate the weight made: (w_k - w_k-1) * model; 0 while it stands */
+    ladrc_hp_estimator_t est;
+    const ladrc_hp_config_t cfg = hp_config(LADRC_HP_FREQ_KNOWN, 3.0);
+    ladrc_hp_init(&est, &cfg);
+    double handed = 0.0;
+    for (int k = 0; k < 3000; ++k) {
+        ladrc_hp_step(&est, (ladrc_real_t)(20.0 + 120.0 * sin(3.0 * k * DT_S)));
+        handed += ladrc_hp_get_handover(&est);
+    }
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.0f, ladrc_hp_get_weight(&est));
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, ladrc_hp_get_handover(&est));
+    /* when the tone stops, the change drops the weight on that fit sample and
+     * hands the whole estimate back at once */
+    const float before = (float)ladrc_hp_get_estimate(&est);
+    int k = 3000;
+    while (ladrc_hp_get_weight(&est) > 0.0f && k < 3500) {
+        ladrc_hp_step(&est, 0.0f);
+        ++k;
+    }
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, ladrc_hp_get_weight(&est));
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, ladrc_hp_get_estimate(&est));
+    TEST_ASSERT_TRUE(k < 3100); /* within 0.1 s of the stop */
+    TEST_ASSERT_TRUE(fabsf(before) > 1.0f);
+    TEST_ASSERT_TRUE(fabs(handed) > 0.0);
+}
+
 /* HP online on 20 + 120 sin(3 t) plus seeded uniform white noise of the
  * given RMS; returns the worst frequency error after 5 s and the largest
  * |d_hat| over the run. */
@@ -210,7 +261,7 @@ static void hp_with_noise(double noise_rms, double *worst_freq_err, double *max_
         ladrc_hp_step(est, (ladrc_real_t)(20.0 + 120.0 * sin(3.0 * k * DT_S) + noise));
         *max_estimate = fmax(*max_estimate, fabs(ladrc_hp_get_estimate(est)));
         if (k * DT_S > NOISY_SETTLE_S) {
-            *worst_freq_err = fmax(*worst_freq_err, fabs(ladrc_hp_get_freq(est) - 3.0));
+            *worst_freq_err = fmax(*worst_freq_err, fabs(ladrc_hp_get_freq(est, 0u) - 3.0));
         }
     }
 }
@@ -260,12 +311,23 @@ static void test_hp_non_finite_samples_are_skipped_and_flagged(void)
     for (int k = 0; k < 1000; ++k) {
         ladrc_hp_step(&est, (ladrc_real_t)(120.0 * sin(3.0 * k * DT_S)));
     }
-    const float amp = (float)ladrc_hp_get_amplitude(&est);
+    const float amp = (float)ladrc_hp_get_amplitude(&est, 0u);
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_hp_step(&est, (ladrc_real_t)NAN));
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_hp_step(&est, (ladrc_real_t)INFINITY));
-    TEST_ASSERT_FLOAT_WITHIN(0.0f, amp, (float)ladrc_hp_get_amplitude(&est));
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, amp, (float)ladrc_hp_get_amplitude(&est, 0u));
     TEST_ASSERT_FLOAT_IS_DETERMINATE(ladrc_hp_get_estimate(&est));
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, ladrc_hp_step(&est, 1.0f));
+}
+
+static void test_hp_getters_of_tones_out_of_range_give_zero(void)
+{
+    ladrc_hp_estimator_t est;
+    const ladrc_hp_config_t cfg = hp_config(LADRC_HP_FREQ_KNOWN, 3.0);
+    ladrc_hp_init(&est, &cfg);
+    TEST_ASSERT_EQUAL_UINT(1u, ladrc_hp_get_active_tones(&est));
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, ladrc_hp_get_freq(&est, 1u));
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, ladrc_hp_get_amplitude(&est, 1u));
+    TEST_ASSERT_EQUAL_INT(0, ladrc_hp_tone_locked(&est, 1u));
 }
 
 static void test_hp_invalid_fields_are_rejected(void)
@@ -279,25 +341,35 @@ static void test_hp_invalid_fields_are_rejected(void)
     cfg.freq_mode = (ladrc_hp_freq_mode_t)4;
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_FREQ_MODE, ladrc_hp_init(&est, &cfg));
     cfg = good;
-    cfg.freq_rad_s = (ladrc_real_t)NAN;
+    cfg.n_tones = 0u;
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_N_TONES, ladrc_hp_init(&est, &cfg));
+    cfg.n_tones = LADRC_HP_MAX_TONES + 1u;
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_N_TONES, ladrc_hp_init(&est, &cfg));
+    cfg = good;
+    cfg.freq_rad_s[0] = (ladrc_real_t)NAN;
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_FREQ_RAD_S, ladrc_hp_init(&est, &cfg));
-    cfg.freq_rad_s = 4000.0f; /* more than half a turn per tick */
+    cfg.freq_rad_s[0] = 4000.0f; /* more than half a turn per tick */
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_FREQ_RAD_S, ladrc_hp_init(&est, &cfg));
+    cfg = good;
+    cfg.freq_rad_s[cfg.n_tones - 1u] = -1.0f; /* every modelled tone is read */
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_FREQ_RAD_S, ladrc_hp_init(&est, &cfg));
     cfg = good;
     cfg.freq_min_rad_s = cfg.freq_max_rad_s;
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_FREQ_RANGE, ladrc_hp_init(&est, &cfg));
     cfg = good;
-    cfg.freq_max_rad_s = 100.0f; /* 100 * 0.02 s > pi / 2 */
+    cfg.freq_max_rad_s = 4000.0f; /* more than half a turn per tick */
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_FREQ_RANGE, ladrc_hp_init(&est, &cfg));
-    cfg = good;
-    cfg.decimation = 0u;
-    TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_DECIMATION, ladrc_hp_init(&est, &cfg));
     cfg = good;
     cfg.lambda0_per_s = -1.0f;
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_EST_LAMBDA0, ladrc_hp_init(&est, &cfg));
+    cfg.lambda0_per_s = 1000.0f; /* more than one memory per fit sample */
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_EST_LAMBDA0, ladrc_hp_init(&est, &cfg));
     cfg = good;
     cfg.freq_lambda0_per_s = 0.0f;
-    TEST_ASSERT_EQUAL_INT(LADRC_ERR_EST_LAMBDA0, ladrc_hp_init(&est, &cfg));
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_FREQ_LAMBDA0, ladrc_hp_init(&est, &cfg));
+    cfg = good;
+    cfg.freq_filter_rad_s = 100.0f; /* 100 rad/s * 4 ms is too coarse for the filter */
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_FREQ_FILTER, ladrc_hp_init(&est, &cfg));
     cfg = good;
     cfg.sample_lag_wo_rad_s = -75.0f;
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_SAMPLE_LAG, ladrc_hp_init(&est, &cfg));
@@ -309,12 +381,15 @@ static void test_hp_invalid_fields_are_rejected(void)
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_FIT_DECIMATION, ladrc_hp_init(&est, &cfg));
     cfg.fit_phase = 0u;
     cfg.fit_decimation = 40u; /* 40 rad/s * 40 ms > pi / 2 */
+    cfg.freq_filter_rad_s = 1.0f;
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_FIT_DECIMATION, ladrc_hp_init(&est, &cfg));
     cfg.freq_mode = LADRC_HP_FREQ_KNOWN; /* 3 rad/s * 40 ms is fine */
+    cfg.n_tones = 1u;
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_hp_init(&est, &cfg));
     cfg = good;
     cfg.freq_mode = LADRC_HP_FREQ_KNOWN;
     cfg.freq_max_rad_s = (ladrc_real_t)NAN; /* the range is not read in KNOWN mode */
+    cfg.freq_filter_rad_s = (ladrc_real_t)NAN;
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_hp_init(&est, &cfg));
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_NULL, ladrc_hp_init(NULL, &good));
 }
@@ -389,14 +464,17 @@ int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_hp_online_finds_frequency_and_amplitude_across_the_range);
+    RUN_TEST(test_hp_online_frequency_is_exact_for_a_lone_tone_whatever_its_bias);
+    RUN_TEST(test_hp_online_resolves_two_tones);
     RUN_TEST(test_hp_online_reconverges_after_the_papers_frequency_jump);
     RUN_TEST(test_hp_known_frequency_fits_the_amplitude_and_opens_the_gate);
     RUN_TEST(test_hp_fits_on_the_tick_its_phase_names);
-    RUN_TEST(test_hp_frequency_blocks_start_fit_phase_ticks_late);
     RUN_TEST(test_hp_undoes_the_observer_lag_of_its_samples);
+    RUN_TEST(test_hp_hands_over_what_the_weight_moves);
     RUN_TEST(test_hp_online_stays_bounded_with_noise);
     RUN_TEST(test_hp_gate_stays_shut_on_noise_without_a_tone);
     RUN_TEST(test_hp_non_finite_samples_are_skipped_and_flagged);
+    RUN_TEST(test_hp_getters_of_tones_out_of_range_give_zero);
     RUN_TEST(test_hp_invalid_fields_are_rejected);
     RUN_TEST(test_lp_tracks_the_measured_acceleration_minus_the_known_input);
     RUN_TEST(test_lp_bandwidth_is_lambda0_k0_over_their_sum);
