@@ -46,6 +46,12 @@ static void apply_overrides(ladrc_axis_config_t *a, const sim_overrides_t *o)
     if (o->leso_method >= 0) a->leso_method = (ladrc_leso_method_t)o->leso_method;
     if (o->hp_freq_mode >= 0) a->hp_freq_mode = (ladrc_hp_freq_mode_t)o->hp_freq_mode;
     if (!isnan(o->hp_freq_rad_s)) a->hp_freq_rad_s[0] = (ladrc_real_t)o->hp_freq_rad_s;
+#if LADRC_HP_MAX_TONES > 1
+    if (!isnan(o->hp_freq2_rad_s)) a->hp_freq_rad_s[1] = (ladrc_real_t)o->hp_freq2_rad_s;
+#endif
+    /* Known frequencies: as many tones as frequencies given, unless said. */
+    if (a->hp_freq_mode == LADRC_HP_FREQ_KNOWN) a->hp_n_tones = isnan(o->hp_freq2_rad_s) ? 1u : 2u;
+    if (o->hp_tones > 0) a->hp_n_tones = (uint8_t)o->hp_tones;
     if (!isnan(o->levant_lipschitz_rad_s4)) a->levant_lipschitz_rad_s4 = (ladrc_real_t)o->levant_lipschitz_rad_s4;
     if (!isnan(o->td_accel_rad_s2)) a->td_accel_rad_s2 = (ladrc_real_t)o->td_accel_rad_s2;
     if (!isnan(o->pid_kp)) a->pid_kp = (ladrc_real_t)o->pid_kp;

@@ -94,7 +94,7 @@ typedef enum {
     V_SIGNAL       /* [FROM .. TO :] expression, repeatable */
 } value_type_t;
 
-typedef enum { R_ANY, R_POSITIVE, R_NONNEGATIVE, R_TILT, R_DELAY, R_AT_LEAST_1 } range_t;
+typedef enum { R_ANY, R_POSITIVE, R_NONNEGATIVE, R_TILT, R_DELAY, R_AT_LEAST_1, R_HP_TONES } range_t;
 
 typedef struct {
     const char *name;
@@ -200,6 +200,10 @@ static const key_def_t KEYS[] = {
     {SEC_CONTROLLER, "hp_freq_mode", V_CHOICE, OV(hp_freq_mode), 0, R_ANY, 0, 0, HP_FREQ_MODES, FOR_BOTH, 0,
      CTRL_BIT(SIM_CTRL_HP_MLADRC), NULL},
     {SEC_CONTROLLER, "hp_freq_rad_s", V_REAL, OV(hp_freq_rad_s), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0,
+     CTRL_BIT(SIM_CTRL_HP_MLADRC), NULL},
+    {SEC_CONTROLLER, "hp_freq2_rad_s", V_REAL, OV(hp_freq2_rad_s), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0,
+     CTRL_BIT(SIM_CTRL_HP_MLADRC), NULL},
+    {SEC_CONTROLLER, "hp_tones", V_INT, OV(hp_tones), 0, R_HP_TONES, 0, 0, NULL, FOR_BOTH, 0,
      CTRL_BIT(SIM_CTRL_HP_MLADRC), NULL},
     {SEC_CONTROLLER, "levant_lipschitz_rad_s4", V_REAL, OV(levant_lipschitz_rad_s4), 0, R_POSITIVE, 0, 0, NULL,
      FOR_BOTH, 0, CTRL_BIT(SIM_CTRL_HP_MLADRC) | CTRL_BIT(SIM_CTRL_LP_MLADRC), NULL},
@@ -339,6 +343,10 @@ static int check_range(parser_t *p, const key_def_t *def, const char *tok, doubl
                    : fail(p, tok, "%s must be between 0 and %d", def->name, SIM_SENSOR_MAX_DELAY);
     case R_AT_LEAST_1:
         return v >= 1.0 ? 0 : fail(p, tok, "%s must be >= 1", def->name);
+    case R_HP_TONES:
+        return (v >= 1.0 && v <= LADRC_HP_MAX_TONES)
+                   ? 0
+                   : fail(p, tok, "%s must be between 1 and %d", def->name, LADRC_HP_MAX_TONES);
     default:
         return 0;
     }
@@ -794,7 +802,8 @@ static void set_defaults(sim_scenario_t *sc)
         sim_overrides_t *o = &sc->overrides[i];
         o->wc_rad_s = o->wo_rad_s = NAN;
         o->leso_method = o->hp_freq_mode = o->coupling_feed = -1;
-        o->hp_freq_rad_s = o->levant_lipschitz_rad_s4 = o->td_accel_rad_s2 = NAN;
+        o->hp_freq_rad_s = o->hp_freq2_rad_s = o->levant_lipschitz_rad_s4 = o->td_accel_rad_s2 = NAN;
+        o->hp_tones = -1;
         o->pid_kp = o->pid_ki = o->pid_kd = NAN;
     }
 

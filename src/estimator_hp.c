@@ -29,6 +29,10 @@
 /* The fit has settled while its recent prior error power is below this
  * share of the sample's power. */
 #define SETTLED_SHARE LADRC_R(0.01)
+/* The fit's forgetting rate, times this once the weight has been 1 for
+ * ENGAGED_SETTLE_S. */
+#define ENGAGED_RATE_FRACTION LADRC_R(0.5)
+#define ENGAGED_SETTLE_S LADRC_R(1.0)
 /* The weight moves at most this much per second. */
 #define GATE_RATE_PER_S LADRC_R(5.0)
 /* The sample's mean and its power around it are averaged at these rates (1/s). */
@@ -233,6 +237,7 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
     est->err_fast = LADRC_R(0.0);
     est->err_slow = LADRC_R(0.0);
     est->weight = LADRC_R(0.0);
+    est->engaged = 0u;
     est->estimate = LADRC_R(0.0);
     est->handover = LADRC_R(0.0);
     est->fit_count = 0u;
@@ -596,6 +601,13 @@ static void fit_sample(ladrc_hp_estimator_t *est, ladrc_real_t sample)
     const ladrc_real_t max_move = GATE_RATE_PER_S * t;
     const ladrc_real_t target = (any_locked && all_locked && !changing) ? LADRC_R(1.0) : LADRC_R(0.0);
     est->weight += ladrc_clamp(target - est->weight, -max_move, max_move);
+    /* Engaged for a while (the fit has converged), the fit keeps a longer
+     * memory: less noise in the compensation; a change restarts it anyway. */
+    est->engaged = (est->weight >= LADRC_R(1.0)) ? (uint16_t)(est->engaged < UINT16_MAX ? est->engaged + 1u : est->engaged)
+                                                 : 0u;
+    if ((ladrc_real_t)est->engaged * t >= ENGAGED_SETTLE_S) {
+        rate *= ENGAGED_RATE_FRACTION;
+    }
     est->fit_rate_per_s = rate;
     (void)ladrc_rls_set_lambda0(&est->fit, rate);
     if (est->online) {

@@ -165,6 +165,7 @@ typedef struct {
     ladrc_real_t handover;           /**< part of estimate's latest change due to the weight */
     uint16_t fit_decimation, fit_count, fit_phase;
     uint16_t change_left;            /**< fit samples left of a change's hold */
+    uint16_t engaged;                /**< fit samples in a row with the weight at 1 */
     uint16_t spec_restart_left;      /**< ONLINE: fit samples until the frequency fit's averages restart */
     uint16_t spec_count;             /**< ONLINE: fit samples in the frequency fit's averages since their start */
     uint16_t hold;                   /**< ONLINE: fit samples since the last tone started or stopped */
