@@ -67,6 +67,34 @@ static void test_feed_follows_the_papers_coupling_derivative(void)
     }
 }
 
+static void test_each_axis_is_told_the_known_part_of_its_disturbance(void)
+{
+    /* given known observer rates z2 */
+    ladrc_attitude_t att;
+    make(&att, LADRC_VARIANT_HP_MLADRC, 1u);
+    const double rate[3] = {0.3, -0.2, 0.5};
+    for (int i = 0; i < 3; ++i) {
+        att.axis[i].leso.z2 = (ladrc_real_t)rate[i];
+    }
+    const ladrc_real_t zero[3] = {0.0f, 0.0f, 0.0f};
+    ladrc_real_t out[3];
+    ladrc_attitude_step(&att, zero, zero, NULL, out);
+    /* then the known part is (Jy-Jz)/Jx th' ps' - kt/Jx ph', and cyclic: the
+     * f whose derivative the feed gives */
+    const double j[3] = {inertia[0], inertia[1], inertia[2]};
+    const double expected[3] = {(j[1] - j[2]) / j[0] * rate[1] * rate[2] - drag_Nms / j[0] * rate[0],
+                                (j[2] - j[0]) / j[1] * rate[0] * rate[2] - drag_Nms / j[1] * rate[1],
+                                (j[0] - j[1]) / j[2] * rate[0] * rate[1] - drag_Nms / j[2] * rate[2]};
+    for (int i = 0; i < 3; ++i) {
+        TEST_ASSERT_FLOAT_WITHIN(FEED_REL_TOL * fabs(expected[i]), expected[i], att.axis[i].f_known_rad_s2);
+    }
+    /* and a reset forgets it */
+    ladrc_attitude_reset(&att, zero);
+    for (int i = 0; i < 3; ++i) {
+        TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, att.axis[i].f_known_rad_s2);
+    }
+}
+
 static void test_feed_off_leaves_the_observers_alone(void)
 {
     ladrc_attitude_t att;
@@ -405,6 +433,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_feed_follows_the_papers_coupling_derivative);
     RUN_TEST(test_default_axes_fit_their_hp_models_on_different_ticks);
+    RUN_TEST(test_each_axis_is_told_the_known_part_of_its_disturbance);
     RUN_TEST(test_feed_off_leaves_the_observers_alone);
     RUN_TEST(test_a_pid_axis_among_observers_adds_nothing_to_the_feed_and_gets_none);
     RUN_TEST(test_a_feed_that_overflows_reaches_the_observers_as_zero);

@@ -443,6 +443,42 @@ static void test_lp_treats_a_tick_without_rate_as_a_gap(void)
     TEST_ASSERT_FLOAT_WITHIN(1e-3f, 0.0f, axis.d_hat_rad_s2);
 }
 
+/* HP axis on y'' = b u + 50 (rad/s^2) for 3 s with the given known part
+ * of f; returns the bias HP fitted to its sample. */
+static double hp_bias_with_known_part(double known_rad_s2)
+{
+    ladrc_axis_config_t cfg;
+    ladrc_axis_config_default(&cfg, LADRC_VARIANT_HP_MLADRC, (ladrc_real_t)DT_S, (ladrc_real_t)J_KG_M2);
+    ladrc_axis_t axis;
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&axis, &cfg));
+    const test_sine_t d = {50.0, 0.0, 0.0, 0.0};
+    test_double_integrator_t plant;
+    test_plant_init(&plant, 1.0 / J_KG_M2, test_sine_disturbance, &d);
+    for (int k = 0; k < 3000; ++k) {
+        ladrc_axis_set_known_disturbance(&axis, (ladrc_real_t)known_rad_s2);
+        const double u = ladrc_axis_step(&axis, 0.0f, (ladrc_real_t)plant.y_rad);
+        test_plant_step(&plant, u, DT_S, 1);
+    }
+    return ladrc_hp_get_bias(&axis.part.hp.est);
+}
+
+static void test_hp_samples_only_the_part_of_f_that_is_not_known(void)
+{
+    /* given a constant disturbance of 50 rad/s^2: unknown, HP's sample holds
+     * it; known, the shadow observer takes it out and the sample holds ~0
+     * (1% of it: the fit's settling after the onset) */
+    TEST_ASSERT_FLOAT_WITHIN(0.5f, 50.0f, (float)hp_bias_with_known_part(0.0));
+    TEST_ASSERT_FLOAT_WITHIN(0.5f, 0.0f, (float)hp_bias_with_known_part(50.0));
+    /* a non-finite known part counts as none */
+    ladrc_axis_t axis;
+    ladrc_axis_config_t cfg;
+    ladrc_axis_config_default(&cfg, LADRC_VARIANT_HP_MLADRC, (ladrc_real_t)DT_S, (ladrc_real_t)J_KG_M2);
+    ladrc_axis_init(&axis, &cfg);
+    ladrc_axis_set_known_disturbance(&axis, 3.0f);
+    ladrc_axis_set_known_disturbance(&axis, (ladrc_real_t)NAN);
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, axis.f_known_rad_s2);
+}
+
 static void test_estimates_report_the_observer_or_the_pid_measurement(void)
 {
     ladrc_axis_t axis;
@@ -482,6 +518,7 @@ int main(void)
     RUN_TEST(test_non_finite_applied_torque_is_ignored_and_flagged);
     RUN_TEST(test_a_run_repeated_after_reset_or_split_across_calls_is_identical);
     RUN_TEST(test_lp_treats_a_tick_without_rate_as_a_gap);
+    RUN_TEST(test_hp_samples_only_the_part_of_f_that_is_not_known);
     RUN_TEST(test_estimates_report_the_observer_or_the_pid_measurement);
     return UNITY_END();
 }

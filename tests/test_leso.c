@@ -341,6 +341,39 @@ static void test_a_twin_holds_its_estimate_on_bad_input_and_restarts_on_a_finite
     TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, twin.z3);
 }
 
+static void test_a_hand_over_moves_part_of_z3_into_the_known_input_seamlessly(void)
+{
+    /* given an observer that has converged on a constant disturbance of 50
+     * rad/s^2, and its twin */
+    ladrc_leso_t obs;
+    const ladrc_leso_config_t cfg = config(LADRC_LESO_ZOH);
+    ladrc_leso_init(&obs, &cfg);
+    ladrc_leso_twin_t twin;
+    ladrc_leso_twin_reset(&twin, 0.0f);
+    for (int k = 0; k < 2000; ++k) {
+        ladrc_leso_step(&obs, 0.0f, -50.0f / (ladrc_real_t)B0, 0.0f, 0.0f); /* input cancels f */
+        ladrc_leso_step_twin(&obs, &twin, 0.0f, -50.0f / (ladrc_real_t)B0, 0.0f, 0.0f);
+    }
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 50.0f, obs.z3);
+    /* when 30 of it is handed over to a known input from now on */
+    ladrc_leso_hand_over(&obs, 30.0f);
+    ladrc_leso_twin_hand_over(&twin, 30.0f);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 20.0f, obs.z3);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 20.0f, twin.z3);
+    /* then z3 + known input stays at 50 tick after tick: nothing to relearn */
+    for (int k = 0; k < 500; ++k) {
+        ladrc_leso_step(&obs, 0.0f, -50.0f / (ladrc_real_t)B0, 30.0f, 0.0f);
+        TEST_ASSERT_FLOAT_WITHIN(1e-3f, 50.0f, obs.z3 + 30.0f);
+    }
+    /* and a non-finite hand-over is ignored */
+    const ladrc_leso_t before = obs;
+    ladrc_leso_hand_over(&obs, (ladrc_real_t)NAN);
+    ladrc_leso_hand_over(&obs, (ladrc_real_t)INFINITY);
+    TEST_ASSERT_EQUAL_MEMORY(&before, &obs, sizeof obs);
+    const ladrc_leso_twin_t twin_before = twin;
+    ladrc_leso_twin_hand_over(&twin, (ladrc_real_t)-INFINITY);
+    TEST_ASSERT_EQUAL_MEMORY(&twin_before, &twin, sizeof twin);
+}
 
 int main(void)
 {
@@ -361,5 +394,6 @@ int main(void)
     RUN_TEST(test_reset_on_a_non_finite_output_restarts_at_rest_on_zero);
     RUN_TEST(test_a_twin_fed_the_same_inputs_follows_the_observer_bit_for_bit);
     RUN_TEST(test_a_twin_holds_its_estimate_on_bad_input_and_restarts_on_a_finite_output);
+    RUN_TEST(test_a_hand_over_moves_part_of_z3_into_the_known_input_seamlessly);
     return UNITY_END();
 }

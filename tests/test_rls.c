@@ -853,13 +853,16 @@ static void test_p_outside_n_params_reads_as_zero(void)
     TEST_ASSERT_FLOAT_WITHIN(0.0f, (ladrc_real_t)P0, ladrc_rls_get_p(&rls, 1, 1));
 }
 
-static void test_state_is_sixteen_reals(void)
+static void test_state_holds_the_factors_and_six_scalars(void)
 {
     char msg[64];
     snprintf(msg, sizeof msg, "sizeof(ladrc_rls_t) = %u bytes", (unsigned)sizeof(ladrc_rls_t));
     TEST_MESSAGE(msg);
-    /* theta 3 + U 3 + D 3 + trace + 5 scalars, plus two bytes and padding */
-    TEST_ASSERT_LESS_OR_EQUAL_MESSAGE(16 * sizeof(ladrc_real_t), sizeof(ladrc_rls_t), msg);
+    /* theta n + U n(n-1)/2 + D n + trace + 5 scalars, plus two bytes and
+     * padding (one real) */
+    const unsigned n = LADRC_RLS_MAX_PARAMS;
+    const unsigned reals = n + n * (n - 1u) / 2u + n + 1u + 5u + 1u;
+    TEST_ASSERT_LESS_OR_EQUAL_MESSAGE(reals * sizeof(ladrc_real_t), sizeof(ladrc_rls_t), msg);
 }
 
 /* ------------------------------------------------------- validation */
@@ -956,7 +959,7 @@ int main(void)
     RUN_TEST(test_reset_takes_theta0_and_restarts_p);
     RUN_TEST(test_predict_is_phi_dot_theta);
     RUN_TEST(test_p_outside_n_params_reads_as_zero);
-    RUN_TEST(test_state_is_sixteen_reals);
+    RUN_TEST(test_state_holds_the_factors_and_six_scalars);
     RUN_TEST(test_every_invalid_config_field_is_rejected_with_its_status);
     RUN_TEST(test_limit_values_of_the_config_are_accepted);
     RUN_TEST(test_every_status_of_the_module_has_its_text);

@@ -49,7 +49,7 @@ static const char *const status_names[LADRC_STATUS_COUNT] = {
     "LADRC_ERR_HP_FREQ_MODE",
     "LADRC_ERR_HP_FREQ_RAD_S",
     "LADRC_ERR_HP_FREQ_RANGE",
-    "LADRC_ERR_HP_DECIMATION",
+    "LADRC_ERR_HP_N_TONES",
     "LADRC_ERR_HP_SAMPLE_LAG",
     "LADRC_ERR_DRAG_NMS",
     "LADRC_ERR_COUPLING_FEED",
@@ -62,6 +62,8 @@ static const char *const status_names[LADRC_STATUS_COUNT] = {
     "LADRC_ERR_LEVANT_L4",
     "LADRC_ERR_LEVANT_RANGE",
     "LADRC_ERR_HP_FIT_DECIMATION",
+    "LADRC_ERR_HP_FREQ_LAMBDA0",
+    "LADRC_ERR_HP_FREQ_FILTER",
 };
 
 /* 1 if text is name alone (names-only build) or name ": " and an explanation. */
