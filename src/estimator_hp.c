@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* HP disturbance estimator: bias + sinusoid fitted by RLS at a known or
  * online-estimated frequency, behind a confidence gate (see estimator.h). */
 #include "ladrc/estimator.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file mixer.c
  * @brief Plus-frame allocation (paper eq. 33), priority desaturation and the

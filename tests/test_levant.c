@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of Levant's 3rd-order differentiator (levant.c): its discrete
  * equations, exactness on cubics, noise against Han's TD, chattering against
  * explicit Euler, validation, fault handling and determinism. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Mixer: allocation against the forward model, hover and tilt thrust on the
  * paper's vehicle, saturation priorities, flags, ideal mode and faults. */
 #include "unity.h"

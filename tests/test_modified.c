@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The modified LADRC in closed loop on a double-integrator test plant at
  * 1 kHz (wc = 15, wo = 75, J = 5.445e-3 kg m^2): the HP and LP estimators
  * against plain LADRC under the paper's periodic disturbance, with noise, and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of the PID baseline (pid.c). */
 #include "unity.h"
 #include "ladrc/pid.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of Han's tracking differentiator (fhan, td.c). */
 #include "unity.h"
 #include "ladrc/td.h"

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Runs every check of the project, stopping at the first failure.
 #
 # Usage: tools/run_tests.sh [STAGE]

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file types.h
  * @brief The real type, status codes, fault flags and small numeric helpers
