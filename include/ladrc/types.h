@@ -31,6 +31,7 @@
 #include LADRC_STRINGIFY(LADRC_CONFIG)
 #endif
 
+#include <float.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -43,10 +44,13 @@ extern "C" {
 #ifdef LADRC_REAL_DOUBLE
 typedef double ladrc_real_t;
 #define LADRC_R(x) (x)
+#define LADRC_REAL_MAX DBL_MAX
 #else
 typedef float ladrc_real_t;
 /* Appends the f suffix so float builds never promote to double. */
 #define LADRC_R(x) (x##f)
+/** Largest finite ladrc_real_t. */
+#define LADRC_REAL_MAX FLT_MAX
 #endif
 
 /** Programmer-error check (null pointers in debug builds); never used on flight data.
@@ -329,7 +333,7 @@ static inline int ladrc_is_positive(ladrc_real_t x)
     return (ladrc_finite_bits_(x) && x > LADRC_R(0.0)) ? 1 : 0;
 #else
     /* Two comparisons, both false for NaN: small enough to be inlined. */
-    return (x > LADRC_R(0.0) && x < (ladrc_real_t)INFINITY) ? 1 : 0;
+    return (x > LADRC_R(0.0) && x <= LADRC_REAL_MAX) ? 1 : 0;
 #endif
 }
 
