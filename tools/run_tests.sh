@@ -17,7 +17,8 @@
 #                sizes and tick stack against tools/bench/limits.txt
 #   host-release the suite in Release (-O3), Python binding included
 #   asserts      the suite with LADRC_ASSERT = assert() (LADRC_CONFIG hook)
-#   fast-math    library and non-finite-input tests built with -ffast-math
+#   fast-math    library and non-finite-input tests built with -ffast-math,
+#                then test_nonfinite with -ffinite-math-only alone
 #   consumers    tools/consumer_test.sh: find_package on an installed prefix,
 #                pkg-config, shared library, add_subdirectory, FetchContent,
 #                plain Makefile, float/double link failure
@@ -80,7 +81,7 @@ REQUIREMENTS=(
 
 JOBS=2
 
-usage() { sed -n '3,33s/^# \{0,1\}//p' "$0"; }
+usage() { sed -n '3,34s/^# \{0,1\}//p' "$0"; }
 
 have() {
   case $1 in
@@ -169,7 +170,13 @@ stage_bench() { tools/bench.sh --check; }
 
 stage_host-release() { workflow host-release; }
 stage_asserts() { workflow host-asserts; }
-stage_fast-math() { workflow host-fastmath; }
+stage_fast-math() {
+  workflow host-fastmath
+  # -ffinite-math-only alone: the non-finite-input tests only.
+  cmake --preset host-fastmath -B build/host-finitemath -DCMAKE_C_FLAGS=-ffinite-math-only >/dev/null
+  cmake --build build/host-finitemath --target test_nonfinite
+  build/host-finitemath/tests/test_nonfinite
+}
 stage_consumers() { tools/consumer_test.sh build/consumer; }
 
 stage_cxx() {
