@@ -17,13 +17,17 @@ set(LADRC_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/ladrc" CACHE STRING
 install(TARGETS ladrc EXPORT ladrcTargets
   ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}"
   LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}"
-  RUNTIME DESTINATION "${CMAKE_INSTALL_BINDIR}"
-  INCLUDES DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}")
+  RUNTIME DESTINATION "${CMAKE_INSTALL_BINDIR}")
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/include/ladrc"
         DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}"
         FILES_MATCHING PATTERN "*.h")
 install(FILES "${PROJECT_BINARY_DIR}/include/ladrc/version.h"
         DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/ladrc")
+# A LADRC_CONFIG header goes with the headers: the exported target and
+# ladrc.pc name it, so users of the installed library compile as it was built.
+if(LADRC_CONFIG_HEADER)
+  install(FILES "${LADRC_CONFIG_HEADER}" DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}")
+endif()
 install(EXPORT ladrcTargets NAMESPACE ladrc:: DESTINATION "${LADRC_INSTALL_CMAKEDIR}")
 
 configure_package_config_file("${PROJECT_SOURCE_DIR}/cmake/templates/ladrcConfig.cmake.in"
@@ -43,6 +47,10 @@ if(LADRC_REAL_DOUBLE)
 endif()
 if(LADRC_STATUS_TEXTS STREQUAL "names")
   string(APPEND LADRC_PC_CFLAGS " -DLADRC_STATUS_NAMES_ONLY")
+endif()
+if(LADRC_CONFIG_HEADER)
+  get_filename_component(_ladrc_pc_config "${LADRC_CONFIG_HEADER}" NAME)
+  string(APPEND LADRC_PC_CFLAGS " -DLADRC_CONFIG=${_ladrc_pc_config}")
 endif()
 set(LADRC_PC_LIBS "")
 set(LADRC_PC_LIBS_PRIVATE "")
