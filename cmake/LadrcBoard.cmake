@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Board support for running test images on qemu's mps2-an386 (Cortex-M4
 # with FPU). Only executables get it; the library stays board-free.
 include_guard(GLOBAL)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Coverage gate (gcovr 5.2) over the library sources only, after ctest:
 #   cmake --build --preset coverage --target coverage
 # Fails when line coverage < 95 % or branch coverage < 85 %.

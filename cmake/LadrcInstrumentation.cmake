@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Coverage and sanitizer flags apply to every target of the build, so the
 # test executables link the matching runtimes. Host builds only.
 if((LADRC_COVERAGE OR LADRC_SANITIZE) AND CMAKE_CROSSCOMPILING)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Size reports (text/data/bss).
 #   ladrc_size                   target: totals of the library archive
 #   ladrc_print_image_size(tgt)  prints a linked image's size after each link

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # ladrc_add_unit_test(<name> <source>...)
 # Builds one Unity test program and registers it with ctest under <name>.
 # Reusable by other suites (e.g. sim/). On the cross build the program is

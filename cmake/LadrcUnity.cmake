@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Picks the unit-test framework and exposes it as the INTERFACE target
 # `ladrc_unity`, first match wins:
 #   a) FETCHCONTENT_SOURCE_DIR_UNITY: a local Unity source tree

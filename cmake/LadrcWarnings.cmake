@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Warning sets.
 #   LIBRARY: strict, the flight code must be free of implicit conversions
 #            and float->double promotions (they cost cycles on a single

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Cross toolchain: Cortex-M4F (single-precision FPU, hard-float ABI),
 # GNU Arm Embedded toolchain with newlib.
 set(CMAKE_SYSTEM_NAME Generic)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * One roll axis in a 1 kHz loop, as firmware would run it, against a
  * simulated airframe axis (the paper's vehicle: J = 5.445e-3 kg m^2, rotor

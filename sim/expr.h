@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * Arithmetic expressions of time t for scenario files: numbers, t, pi, e,
  * + - * / ^ (right-associative power), unary minus, parentheses, and the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * ladrc_sil: runs scenario files against the ladrc library on a simulated
  * quadrotor and prints the paper's comparison tables. Independent runs are

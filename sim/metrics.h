@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * The paper's metrics (Tables 3-7), accumulated tick by tick.
  */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * Number formatting for the time series, the same text as printf's "%.Pg"
  * and "%.4f" character for character, several times faster. The common

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * The quadrotor attitude plant of the paper (PAPER.md section 1, eq. 1-3),
  * in double precision, for the software-in-the-loop simulator.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tables 3-7 on stdout and the metrics summary (see report.h). */
 #include "report.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * The comparison tables on stdout (the paper's Tables 3-7) and the metrics
  * summary file.

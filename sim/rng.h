@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * Deterministic pseudo-random numbers for the simulator: xoshiro256**
  * (Blackman and Vigna, "Scrambled linear pseudorandom number generators",

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * One simulation run: a scenario flown by one controller (attitude kind), or
  * the two reference shapers on a noisy signal (differentiator kind). The

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * Scenario parser. The text is copied once and cut up in place: each line
  * is NUL-terminated, its comment removed, and values are handed to the key

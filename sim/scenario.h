@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * Scenario files: a small INI-like text format (documented in
  * docs/scenario-format.md) describing one simulation: vehicle, run length and

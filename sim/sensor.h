@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * Attitude sensor model for the simulator: the measured angles and rates are
  * the true ones delay_ticks calls ago plus zero-mean Gaussian noise of the

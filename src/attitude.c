@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Three axes with the decoupling-free coupling feed (see attitude.h). */
 #include "ladrc/attitude.h"
 

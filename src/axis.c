@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* One attitude axis: LADRC, its modified variants or PID behind one API (see axis.h). */
 #include "ladrc/axis.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* HP disturbance estimator: a bias and up to LADRC_HP_MAX_TONES tones fitted
  * by one RLS at known or online-estimated frequencies, behind a gate that
  * checks the frequencies themselves (see estimator.h). */

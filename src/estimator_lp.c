@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* LP disturbance estimator: measured acceleration minus known input, tracked
  * by a one-parameter bounded-gain RLS (see estimator.h). */
 #include "ladrc/estimator.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Third-order LESO: ZOH current observer and explicit Euler (see leso.h). */
 #include "ladrc/leso.h"
 

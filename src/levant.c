@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file levant.c
  * @brief Levant's 3rd-order robust exact differentiator (non-recursive form)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file mixer.c
  * @brief Plus-frame allocation (paper eq. 33), priority desaturation and the
@@ -110,12 +111,23 @@ ladrc_real_t ladrc_mixer_thrust_from_tilt(const ladrc_mixer_t *mx, ladrc_real_t 
         return LADRC_R(0.0);
     }
     c = ladrc_cos(roll_rad) * ladrc_cos(pitch_rad);
+#if LADRC_FINITE_BY_BITS
+    /* -ffast-math may turn the comparison below into its reverse, which a NaN
+     * would pass: the attitude-unknown case goes first there. */
+    if (!ladrc_is_finite(c)) {
+        return mx->weight_N;
+    }
+#endif
     if (c > mx->cos_tilt_min) {
         return mx->weight_N / c;
     }
     /* Beyond the tilt limit, inverted flight (c <= 0) included: the capped thrust.
      * NaN (attitude unknown): no tilt compensation. */
+#if LADRC_FINITE_BY_BITS
+    return mx->thrust_max_N;
+#else
     return (c == c) ? mx->thrust_max_N : mx->weight_N;
+#endif
 }
 
 /* Allocation without argument checks (see ladrc_mixer_allocate). */

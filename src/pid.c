@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file pid.c
  * @brief PID baseline: derivative on measurement, first-order derivative

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Bounded-gain RLS on the factors P = U D U^T (see rls.h). */
 #include "ladrc/rls.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * Status code texts, in flash: one pool of strings and a table of 16-bit
  * offsets into it. Each text is the enum name itself, followed by ": " and an

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file td.c
  * @brief Han's tracking differentiator (fhan), written from the discrete

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tuning helpers (see tuning.h). */
 #include "ladrc/tuning.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Three axes together: the decoupling-free coupling feed, closed loops on the
  * paper's rigid-body dynamics, the mixer in the loop, validation and faults. */
 #include "unity.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* One axis in closed loop on a double-integrator test plant: settling,
  * disturbance rejection against the analytic transfer function, saturation
  * handling, validation, faults and determinism. */

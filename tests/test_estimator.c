@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* LP and HP disturbance estimators fed known signals (no loop): convergence,
  * frequency tracking, the gate, validation and faults. */
 #include "unity.h"

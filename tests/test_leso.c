@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* LESO: pole placement of both discretisations, disturbance estimation,
  * known inputs, validation and fault handling. */
 #include "unity.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of Levant's 3rd-order differentiator (levant.c): its discrete
  * equations, exactness on cubics, noise against Han's TD, chattering against
  * explicit Euler, validation, fault handling and determinism. */
@@ -646,12 +647,23 @@ typedef struct {
     ladrc_status_t expected;
 } config_case_t;
 
+/* Every field of a rejected instance is zero (field by field: the padding
+ * bytes of "*lev = zero" are not defined, and optimised builds leave them). */
+static void assert_levant_zeroed(const ladrc_levant_t *lev, const char *msg)
+{
+    const ladrc_real_t fields[] = {lev->w, lev->r_last, lev->z1, lev->z2, lev->z3,
+                                   lev->h_s, lev->g3, lev->g2, lev->g1, lev->g0};
+    const ladrc_real_t zeros[sizeof fields / sizeof fields[0]] = {0};
+    TEST_ASSERT_EQUAL_MEMORY_MESSAGE(zeros, fields, sizeof fields, msg);
+    TEST_ASSERT_EQUAL_UINT8_MESSAGE(0u, lev->method, msg);
+    TEST_ASSERT_EQUAL_UINT8_MESSAGE(0u, lev->faults, msg);
+}
+
 static void test_init_rejects_each_invalid_field_with_its_own_status(void)
 {
     const double bad[] = {0.0, -1.0, (double)NAN, (double)INFINITY, (double)-INFINITY};
     const ladrc_levant_config_t lip_ok = lipschitz_config(LADRC_LEVANT_IMPLICIT, 10.0);
     const ladrc_levant_config_t exp_ok = explicit_config(LADRC_LEVANT_HD, 20.0, 20.0, 20.0, 100.0);
-    const ladrc_levant_t zero = {0};
     config_case_t cases[64];
     size_t n = 0;
     size_t i;
@@ -734,7 +746,7 @@ static void test_init_rejects_each_invalid_field_with_its_own_status(void)
         /* when / then */
         TEST_ASSERT_EQUAL_INT_MESSAGE(cases[i].expected, ladrc_levant_init(&lev, &cases[i].cfg), msg);
         if (cases[i].expected != LADRC_OK) {
-            TEST_ASSERT_EQUAL_MEMORY_MESSAGE(&zero, &lev, sizeof lev, msg);
+            assert_levant_zeroed(&lev, msg);
         }
     }
 }
@@ -962,6 +974,9 @@ static void test_implicit_step_with_extremely_skewed_gains_stays_finite_near_its
 
 static void test_step_reset_and_getters_tolerate_null_pointers(void)
 {
+    if (LADRC_ASSERTS_ENABLED) {
+        TEST_IGNORE_MESSAGE("passes NULL instances: with LADRC_ASSERT on, that is the programmer error it catches");
+    }
     /* given */
     const ladrc_levant_config_t cfg = lipschitz_config(LADRC_LEVANT_IMPLICIT, 10.0);
     ladrc_levant_t lev;

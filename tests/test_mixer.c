@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Mixer: allocation against the forward model, hover and tilt thrust on the
  * paper's vehicle, saturation priorities, flags, ideal mode and faults. */
 #include "unity.h"
@@ -853,6 +854,9 @@ static void test_mixer_allocate_then_saturate_gives_exactly_the_output_of_a_step
 
 static void test_mixer_functions_tolerate_null_pointers(void)
 {
+    if (LADRC_ASSERTS_ENABLED) {
+        TEST_IGNORE_MESSAGE("passes NULL instances: with LADRC_ASSERT on, that is the programmer error it catches");
+    }
     /* given */
     ladrc_mixer_t mx;
     ladrc_mixer_output_t out;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The modified LADRC in closed loop on a double-integrator test plant at
  * 1 kHz (wc = 15, wo = 75, J = 5.445e-3 kg m^2): HP-MLADRC against plain
  * LADRC and LP-MLADRC on one tone, a sweep of tones, two tones, a chirp,

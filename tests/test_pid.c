@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of the PID baseline (pid.c). */
 #include "unity.h"
 #include "ladrc/pid.h"
@@ -753,6 +754,9 @@ static void test_pid_reset_with_a_non_finite_measurement_waits_for_a_good_one(vo
 
 static void test_pid_functions_tolerate_a_null_instance(void)
 {
+    if (LADRC_ASSERTS_ENABLED) {
+        TEST_IGNORE_MESSAGE("passes NULL instances: with LADRC_ASSERT on, that is the programmer error it catches");
+    }
     /* when / then: no crash, neutral results */
     const ladrc_real_t rate = LADRC_R(1.0);
     TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.0,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* RLS: agreement with the textbook update, convergence, forgetting, the
  * covariance guards over long and hostile runs, validation and faults. */
 #include "unity.h"

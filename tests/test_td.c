@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of Han's tracking differentiator (fhan, td.c). */
 #include "unity.h"
 #include "ladrc/td.h"
@@ -570,6 +571,9 @@ static void test_td_brakes_at_full_bound_when_the_error_overflows(void)
 
 static void test_td_step_and_reset_tolerate_null_pointers(void)
 {
+    if (LADRC_ASSERTS_ENABLED) {
+        TEST_IGNORE_MESSAGE("passes NULL instances: with LADRC_ASSERT on, that is the programmer error it catches");
+    }
     /* given */
     ladrc_td_t td;
     init_td(&td, 100.0, 0.01);

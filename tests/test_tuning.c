@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tuning helpers: the paper's rule, the exact settling rule, wo and b0. */
 #include "unity.h"
 #include "ladrc/tuning.h"

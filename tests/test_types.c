@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Shared types: status texts and numeric helpers. */
 #include "unity.h"
 #include "ladrc/types.h"

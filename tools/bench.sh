@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Measures the cost of the controllers and prints Markdown tables, each
 # budget figure marked against the budget of issue 6 ("meets" / "over").
 #

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Usage: tools/check_no_heap.sh LIBRARY_ARCHIVE [NM]
 #
 # Checks two flight-code rules on a built library archive:

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Builds the library and the example in Release and runs one axis in a 1 kHz
 # loop against a simulated airframe axis (LADRC vs PID).
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Draws the paper's figures (Dong et al., Actuators 2025, 14(10), 504: Figs. 5-12)
 from the output of ladrc_sil.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Flies the paper's scenarios (tools/paper.sh) and draws the figures and the report:
 # docs/figures/*.png and docs/report.md.
 #

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # ctest check of tools/figures.py and tools/report.py: flies the short scenarios
 # of tests/data (the paper's cases cut to a few seconds) and checks that every
 # figure and the report come out and are not trivial.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The main job: builds the simulator in Release and flies the paper's scenarios
 # (Table 2 case, its noisy variant, and the Table 3 differentiator case) with
 # the four controllers, printing Tables 3-7. Extra arguments go to ladrc_sil

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Writes a Markdown report that sets the simulator's Tables 3-7 beside the paper's.
 
 Usage: report.py OUT_DIR REPORT_MD [--paper NAME] [--noisy NAME] [--diff NAME]

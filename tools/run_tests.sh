@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Runs every check of the project, stopping at the first failure.
 #
 # Usage: tools/run_tests.sh [STAGE]
@@ -14,13 +15,26 @@
 #   cppcheck     static analysis of src/
 #   bench        tools/bench.sh --check: instructions per tick on the Cortex-M4F,
 #                sizes and tick stack against tools/bench/limits.txt
+#   host-release the suite in Release (-O3), Python binding included
+#   asserts      the suite with LADRC_ASSERT = assert() (LADRC_CONFIG hook)
+#   fast-math    library and non-finite-input tests built with -ffast-math,
+#                then test_nonfinite with -ffinite-math-only alone
+#   consumers    tools/consumer_test.sh: find_package on an installed prefix,
+#                pkg-config, shared library, add_subdirectory, FetchContent,
+#                plain Makefile, float/double link failure
+#   cxx          public headers as C++17 (-Wall -Wextra -Wpedantic
+#                -Wold-style-cast -Werror), linked and run
+#   cross        library with -Werror for Cortex-M0 (soft float), Cortex-M7
+#                (fpv5-d16, LADRC_REAL_DOUBLE) and RV32IMAC (picolibc), each
+#                linked into a small program; no-heap check of each archive
 #
 # Missing tools are installed with apt-get (as root, or through sudo).
 set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
-STAGES=(host-debug host-double coverage asan-ubsan cortex-m4f no-heap cppcheck bench)
+STAGES=(host-debug host-double coverage asan-ubsan cortex-m4f no-heap cppcheck bench
+        host-release asserts fast-math consumers cxx cross)
 
 # What each stage needs: "stage check package". A check is a command name,
 # "py:<module>" for a Python module, or "newlib" for the Arm C library;
@@ -50,17 +64,32 @@ REQUIREMENTS=(
   "coverage py:numpy python3-numpy"
   "asan-ubsan py:matplotlib python3-matplotlib"
   "asan-ubsan py:numpy python3-numpy"
+  "host-release py:matplotlib python3-matplotlib"
+  "host-release py:numpy python3-numpy"
+  "asserts py:matplotlib python3-matplotlib"
+  "asserts py:numpy python3-numpy"
+  "consumers pkg-config pkg-config"
+  "consumers git git"
+  "consumers make make"
+  "cxx g++ g++"
+  "cross arm-none-eabi-gcc gcc-arm-none-eabi"
+  "cross newlib libnewlib-arm-none-eabi"
+  "cross arm-none-eabi-nm binutils-arm-none-eabi"
+  "cross riscv64-unknown-elf-gcc gcc-riscv64-unknown-elf"
+  "cross picolibc-rv32 picolibc-riscv64-unknown-elf"
 )
 
 JOBS=2
 
-usage() { sed -n '2,18s/^# \{0,1\}//p' "$0"; }
+usage() { sed -n '3,34s/^# \{0,1\}//p' "$0"; }
 
 have() {
   case $1 in
     # Debian's interpreter, when there is one: it is the one that sees Debian's packages.
     py:*) "$(command -v /usr/bin/python3 || echo python3)" -c "import ${1#py:}" >/dev/null 2>&1 ;;
     newlib) echo '#include <stdio.h>' | arm-none-eabi-gcc -E -x c - >/dev/null 2>&1 ;;
+    picolibc-rv32) echo '#include <math.h>' |
+      riscv64-unknown-elf-gcc -march=rv32imac -mabi=ilp32 --specs=picolibc.specs -E -x c - >/dev/null 2>&1 ;;
     *) command -v "$1" >/dev/null 2>&1 ;;
   esac
 }
@@ -138,6 +167,51 @@ stage_cppcheck() {
 # Deterministic figures only (no wall clock): instruction counts under qemu
 # -icount, sizes, stack.
 stage_bench() { tools/bench.sh --check; }
+
+stage_host-release() { workflow host-release; }
+stage_asserts() { workflow host-asserts; }
+stage_fast-math() {
+  workflow host-fastmath
+  # -ffinite-math-only alone: the non-finite-input tests only.
+  cmake --preset host-fastmath -B build/host-finitemath -DCMAKE_C_FLAGS=-ffinite-math-only >/dev/null
+  cmake --build build/host-finitemath --target test_nonfinite
+  build/host-finitemath/tests/test_nonfinite
+}
+stage_consumers() { tools/consumer_test.sh build/consumer; }
+
+stage_cxx() {
+  build_library host-release
+  g++ -std=c++17 -Wall -Wextra -Wpedantic -Wold-style-cast -Werror -Iinclude -Ibuild/host-release/include \
+    tests/cxx/headers.cpp build/host-release/libladrc.a -lm -o build/host-release/cxx_headers
+  build/host-release/cxx_headers
+  # The double build's headers too (compile only).
+  g++ -std=c++17 -Wall -Wextra -Wpedantic -Wold-style-cast -Werror -DLADRC_REAL_DOUBLE -Iinclude \
+    -Ibuild/host-release/include -fsyntax-only tests/cxx/headers.cpp
+  echo "cxx: public headers clean as C++17, linked and ran"
+}
+
+# preset  C compiler  nm  flags of the link check
+CROSS_BUILDS=(
+  "cortex-m0 arm-none-eabi-gcc arm-none-eabi-nm -mcpu=cortex-m0 -mthumb -mfloat-abi=soft --specs=nosys.specs"
+  "cortex-m7-double arm-none-eabi-gcc arm-none-eabi-nm -mcpu=cortex-m7 -mthumb -mfpu=fpv5-d16 -mfloat-abi=hard --specs=nosys.specs -DLADRC_REAL_DOUBLE"
+  "rv32imac riscv64-unknown-elf-gcc riscv64-unknown-elf-nm -march=rv32imac -mabi=ilp32 --specs=picolibc.specs"
+)
+
+stage_cross() {
+  local entry preset cc nm flags
+  for entry in "${CROSS_BUILDS[@]}"; do
+    read -r preset cc nm flags <<<"$entry"
+    echo "-- cross: $preset"
+    cmake --preset "$preset" >/dev/null
+    cmake --build --preset "$preset"
+    tools/check_no_heap.sh "build/$preset/libladrc.a" "$nm"
+    # shellcheck disable=SC2086
+    "$cc" $flags -std=c99 -Os -Wall -Wextra -Werror -ffunction-sections -fdata-sections -Wl,--gc-sections \
+      -Iinclude tests/consumer/app.c "build/$preset/libladrc.a" -lm -o "build/$preset/app.elf"
+    "${cc%gcc}size" "build/$preset/libladrc.a" | awk 'NR > 1 { t += $1 + $2 } END { print "-- library text + data: " t " B" }'
+    "${cc%gcc}size" "build/$preset/app.elf"
+  done
+}
 
 case ${1:-} in
   -h | --help) usage; exit 0 ;;

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """What ladrc_sil writes, as the figure and report tools read it."""
 
 import csv

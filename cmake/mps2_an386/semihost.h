@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Arm semihosting calls (handled by qemu with -semihosting-config enable=on). */
 #ifndef LADRC_SEMIHOST_H
 #define LADRC_SEMIHOST_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * Startup for test images on qemu mps2-an386: vector table, reset handler
  * and fault handlers.

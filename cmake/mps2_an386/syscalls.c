@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * Minimal newlib system calls for test images on qemu mps2-an386: console
  * output and exit through semihosting, a heap for stdio buffers, and stubs

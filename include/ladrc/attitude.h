@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file attitude.h
  * @brief Three axes (roll, pitch, yaw) ticked together, with the paper's

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file axis.h
  * @brief One attitude axis behind one config and one state: LADRC (reference

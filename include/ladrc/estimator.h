@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file estimator.h
  * @brief Adaptive disturbance estimators of the modified LADRC (PAPER.md

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file leso.h
  * @brief Third-order linear extended state observer (LESO) for one axis

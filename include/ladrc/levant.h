@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file levant.h
  * @brief Levant's 3rd-order robust exact differentiator: the reference shaper

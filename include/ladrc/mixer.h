@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file mixer.h
  * @brief Plus-frame quadrotor mixer: thrust and body torques in, rotor speeds

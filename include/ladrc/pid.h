@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file pid.h
  * @brief PID baseline on one attitude axis: angle error in rad in, torque in

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file rls.h
  * @brief Small fixed-size recursive least squares (RLS) estimator with

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file td.h
  * @brief Han's tracking differentiator (TD, "fhan"): the traditional LADRC

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file tuning.h
  * @brief Tuning helpers for LADRC: controller bandwidth from a settling time,

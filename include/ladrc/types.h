@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file types.h
  * @brief The real type, status codes, fault flags and small numeric helpers
@@ -10,9 +11,31 @@
 #ifndef LADRC_TYPES_H
 #define LADRC_TYPES_H
 
+/*
+ * Build configuration hook. Compile the library and every file that
+ * includes ladrc headers with -DLADRC_CONFIG=my_ladrc_config.h (a header
+ * name without quotes, found on the include path) and this header includes
+ * it first. It may define:
+ *   LADRC_ASSERT(cond)   the check of programmer errors (NULL pointers);
+ *                        e.g. assert(cond) after #include <assert.h>
+ *   LADRC_SQRT(x), LADRC_FABS(x), LADRC_EXP(x), LADRC_EXPM1(x), LADRC_COS(x),
+ *   LADRC_SIN(x), LADRC_ASIN(x), LADRC_CBRT(x)
+ *                        the math functions on ladrc_real_t (default: the
+ *                        <math.h> function of the real type, e.g. sqrtf)
+ * CMake: -DLADRC_CONFIG_HEADER=path/to/my_ladrc_config.h sets both.
+ * Avoid directory or file names that are macros (e.g. "unix" with gnu99).
+ */
+#ifdef LADRC_CONFIG
+#define LADRC_STRINGIFY_(x) #x
+#define LADRC_STRINGIFY(x) LADRC_STRINGIFY_(x)
+#include LADRC_STRINGIFY(LADRC_CONFIG)
+#endif
+
+#include <float.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -21,17 +44,58 @@ extern "C" {
 #ifdef LADRC_REAL_DOUBLE
 typedef double ladrc_real_t;
 #define LADRC_R(x) (x)
+#define LADRC_REAL_MAX DBL_MAX
 #else
 typedef float ladrc_real_t;
 /* Appends the f suffix so float builds never promote to double. */
 #define LADRC_R(x) (x##f)
+/** Largest finite ladrc_real_t. */
+#define LADRC_REAL_MAX FLT_MAX
 #endif
 
 /** Programmer-error check (null pointers in debug builds); never used on flight data.
- *  Override by defining LADRC_ASSERT before including any ladrc header. */
+ *  Override by defining LADRC_ASSERT in the LADRC_CONFIG header (or before
+ *  including any ladrc header, with the same definition for the library).
+ *  LADRC_ASSERTS_ENABLED is 1 when it is defined, 0 when it does nothing:
+ *  with asserts on, passing NULL is a programmer error that the assert
+ *  catches; with them off, the functions return LADRC_ERR_NULL or do nothing. */
 #ifndef LADRC_ASSERT
 #define LADRC_ASSERT(cond) ((void)0)
+#define LADRC_ASSERTS_ENABLED 0
+#elif !defined(LADRC_ASSERTS_ENABLED)
+#define LADRC_ASSERTS_ENABLED 1
 #endif
+
+/*
+ * ABI guard. The functions every user of a module calls (the inits, the
+ * config defaults and the tuning helpers) carry the real type in their
+ * symbol names: ladrc_axis_init is ladrc_axis_init_float, or
+ * ladrc_axis_init_double with LADRC_REAL_DOUBLE. A library built with one
+ * real type and an application built with the other fail to link
+ * ("undefined reference to ladrc_axis_init_double") instead of passing
+ * floats where doubles are read. Call the functions by their plain names.
+ */
+#ifdef LADRC_REAL_DOUBLE
+#define LADRC_ABI_NAME_(name) name##_double
+#else
+#define LADRC_ABI_NAME_(name) name##_float
+#endif
+#define ladrc_attitude_config_default LADRC_ABI_NAME_(ladrc_attitude_config_default)
+#define ladrc_attitude_init LADRC_ABI_NAME_(ladrc_attitude_init)
+#define ladrc_axis_config_default LADRC_ABI_NAME_(ladrc_axis_config_default)
+#define ladrc_axis_init LADRC_ABI_NAME_(ladrc_axis_init)
+#define ladrc_hp_init LADRC_ABI_NAME_(ladrc_hp_init)
+#define ladrc_leso_init LADRC_ABI_NAME_(ladrc_leso_init)
+#define ladrc_levant_init LADRC_ABI_NAME_(ladrc_levant_init)
+#define ladrc_lp_init LADRC_ABI_NAME_(ladrc_lp_init)
+#define ladrc_mixer_init LADRC_ABI_NAME_(ladrc_mixer_init)
+#define ladrc_pid_init LADRC_ABI_NAME_(ladrc_pid_init)
+#define ladrc_rls_init LADRC_ABI_NAME_(ladrc_rls_init)
+#define ladrc_td_init LADRC_ABI_NAME_(ladrc_td_init)
+#define ladrc_tune_b0_from_inertia LADRC_ABI_NAME_(ladrc_tune_b0_from_inertia)
+#define ladrc_tune_wc_from_settling LADRC_ABI_NAME_(ladrc_tune_wc_from_settling)
+#define ladrc_tune_wc_from_settling_exact LADRC_ABI_NAME_(ladrc_tune_wc_from_settling_exact)
+#define ladrc_tune_wo_from_wc LADRC_ABI_NAME_(ladrc_tune_wo_from_wc)
 
 /**
  * Result of an init or a configuration helper. Each error names the one
@@ -113,6 +177,56 @@ enum {
 };
 typedef uint8_t ladrc_fault_t;
 
+/*
+ * Finiteness tests. The default ones rest on IEEE semantics (isfinite, and
+ * x * 0 == 0 for a finite x). -ffast-math and -ffinite-math-only let the
+ * compiler assume that no value is NaN or infinite and fold those tests to
+ * "finite", which would let a NaN measurement through. Under those flags
+ * (__FINITE_MATH_ONLY__, which -ffast-math sets) the tests read the exponent
+ * bits instead: all ones is an infinity or a NaN, whatever the flags.
+ */
+#if (defined(__FINITE_MATH_ONLY__) && __FINITE_MATH_ONLY__) || defined(__FAST_MATH__)
+#define LADRC_FINITE_BY_BITS 1
+#else
+#define LADRC_FINITE_BY_BITS 0
+#endif
+
+#if LADRC_FINITE_BY_BITS
+#ifdef LADRC_REAL_DOUBLE
+/* 1 if the exponent field of x is not all ones. */
+static inline int ladrc_finite_bits_(ladrc_real_t x)
+{
+    uint64_t u;
+    memcpy(&u, &x, sizeof u);
+    return ((u & UINT64_C(0x7ff0000000000000)) != UINT64_C(0x7ff0000000000000)) ? 1 : 0;
+}
+#else
+static inline int ladrc_finite_bits_(ladrc_real_t x)
+{
+    uint32_t u;
+    memcpy(&u, &x, sizeof u);
+    return ((u & UINT32_C(0x7f800000)) != UINT32_C(0x7f800000)) ? 1 : 0;
+}
+#endif
+
+/** 1 if x is neither NaN nor infinite. */
+static inline int ladrc_is_finite(ladrc_real_t x) { return ladrc_finite_bits_(x); }
+
+static inline int ladrc_all_finite2(ladrc_real_t a, ladrc_real_t b)
+{
+    return ladrc_finite_bits_(a) & ladrc_finite_bits_(b);
+}
+
+static inline int ladrc_all_finite3(ladrc_real_t a, ladrc_real_t b, ladrc_real_t c)
+{
+    return ladrc_finite_bits_(a) & ladrc_finite_bits_(b) & ladrc_finite_bits_(c);
+}
+
+static inline int ladrc_all_finite4(ladrc_real_t a, ladrc_real_t b, ladrc_real_t c, ladrc_real_t d)
+{
+    return ladrc_finite_bits_(a) & ladrc_finite_bits_(b) & ladrc_finite_bits_(c) & ladrc_finite_bits_(d);
+}
+#else
 /** 1 if x is neither NaN nor infinite. */
 static inline int ladrc_is_finite(ladrc_real_t x) { return isfinite(x) ? 1 : 0; }
 
@@ -135,6 +249,7 @@ static inline int ladrc_all_finite4(ladrc_real_t a, ladrc_real_t b, ladrc_real_t
                ? 1
                : 0;
 }
+#endif
 
 static inline ladrc_real_t ladrc_clamp(ladrc_real_t x, ladrc_real_t lo, ladrc_real_t hi)
 {
@@ -146,31 +261,82 @@ static inline ladrc_real_t ladrc_sign(ladrc_real_t x)
     return (x > LADRC_R(0.0)) ? LADRC_R(1.0) : ((x < LADRC_R(0.0)) ? LADRC_R(-1.0) : LADRC_R(0.0));
 }
 
+/* The math functions on ladrc_real_t; a LADRC_CONFIG header may replace any of them. */
+#ifndef LADRC_SQRT
 #ifdef LADRC_REAL_DOUBLE
-static inline ladrc_real_t ladrc_sqrt(ladrc_real_t x) { return sqrt(x); }
-static inline ladrc_real_t ladrc_fabs(ladrc_real_t x) { return fabs(x); }
-static inline ladrc_real_t ladrc_exp(ladrc_real_t x) { return exp(x); }
-static inline ladrc_real_t ladrc_expm1(ladrc_real_t x) { return expm1(x); }
-static inline ladrc_real_t ladrc_cos(ladrc_real_t x) { return cos(x); }
-static inline ladrc_real_t ladrc_sin(ladrc_real_t x) { return sin(x); }
-static inline ladrc_real_t ladrc_asin(ladrc_real_t x) { return asin(x); }
-static inline ladrc_real_t ladrc_cbrt(ladrc_real_t x) { return cbrt(x); }
+#define LADRC_SQRT(x) sqrt(x)
 #else
-static inline ladrc_real_t ladrc_sqrt(ladrc_real_t x) { return sqrtf(x); }
-static inline ladrc_real_t ladrc_fabs(ladrc_real_t x) { return fabsf(x); }
-static inline ladrc_real_t ladrc_exp(ladrc_real_t x) { return expf(x); }
-static inline ladrc_real_t ladrc_expm1(ladrc_real_t x) { return expm1f(x); }
-static inline ladrc_real_t ladrc_cos(ladrc_real_t x) { return cosf(x); }
-static inline ladrc_real_t ladrc_sin(ladrc_real_t x) { return sinf(x); }
-static inline ladrc_real_t ladrc_asin(ladrc_real_t x) { return asinf(x); }
-static inline ladrc_real_t ladrc_cbrt(ladrc_real_t x) { return cbrtf(x); }
+#define LADRC_SQRT(x) sqrtf(x)
 #endif
+#endif
+#ifndef LADRC_FABS
+#ifdef LADRC_REAL_DOUBLE
+#define LADRC_FABS(x) fabs(x)
+#else
+#define LADRC_FABS(x) fabsf(x)
+#endif
+#endif
+#ifndef LADRC_EXP
+#ifdef LADRC_REAL_DOUBLE
+#define LADRC_EXP(x) exp(x)
+#else
+#define LADRC_EXP(x) expf(x)
+#endif
+#endif
+#ifndef LADRC_EXPM1
+#ifdef LADRC_REAL_DOUBLE
+#define LADRC_EXPM1(x) expm1(x)
+#else
+#define LADRC_EXPM1(x) expm1f(x)
+#endif
+#endif
+#ifndef LADRC_COS
+#ifdef LADRC_REAL_DOUBLE
+#define LADRC_COS(x) cos(x)
+#else
+#define LADRC_COS(x) cosf(x)
+#endif
+#endif
+#ifndef LADRC_SIN
+#ifdef LADRC_REAL_DOUBLE
+#define LADRC_SIN(x) sin(x)
+#else
+#define LADRC_SIN(x) sinf(x)
+#endif
+#endif
+#ifndef LADRC_ASIN
+#ifdef LADRC_REAL_DOUBLE
+#define LADRC_ASIN(x) asin(x)
+#else
+#define LADRC_ASIN(x) asinf(x)
+#endif
+#endif
+#ifndef LADRC_CBRT
+#ifdef LADRC_REAL_DOUBLE
+#define LADRC_CBRT(x) cbrt(x)
+#else
+#define LADRC_CBRT(x) cbrtf(x)
+#endif
+#endif
+
+static inline ladrc_real_t ladrc_sqrt(ladrc_real_t x) { return LADRC_SQRT(x); }
+static inline ladrc_real_t ladrc_fabs(ladrc_real_t x) { return LADRC_FABS(x); }
+static inline ladrc_real_t ladrc_exp(ladrc_real_t x) { return LADRC_EXP(x); }
+static inline ladrc_real_t ladrc_expm1(ladrc_real_t x) { return LADRC_EXPM1(x); }
+static inline ladrc_real_t ladrc_cos(ladrc_real_t x) { return LADRC_COS(x); }
+static inline ladrc_real_t ladrc_sin(ladrc_real_t x) { return LADRC_SIN(x); }
+static inline ladrc_real_t ladrc_asin(ladrc_real_t x) { return LADRC_ASIN(x); }
+static inline ladrc_real_t ladrc_cbrt(ladrc_real_t x) { return LADRC_CBRT(x); }
 
 /** 1 if x is finite and strictly positive: the check most config fields need. */
 static inline int ladrc_is_positive(ladrc_real_t x)
 {
+#if LADRC_FINITE_BY_BITS
+    return (ladrc_finite_bits_(x) && x > LADRC_R(0.0)) ? 1 : 0;
+#else
     /* Two comparisons, both false for NaN: small enough to be inlined. */
-    return (x > LADRC_R(0.0) && x < (ladrc_real_t)INFINITY) ? 1 : 0;
+    return (x > LADRC_R(0.0) && x <= LADRC_REAL_MAX) ? 1 : 0;
+#endif
 }
 
 #ifdef __cplusplus

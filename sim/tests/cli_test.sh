@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # End-to-end checks of the ladrc_sil command: results independent of --jobs,
 # malformed scenarios rejected with file:line:column and nothing written.
 # Usage: cli_test.sh LADRC_SIL SCENARIO_DIR

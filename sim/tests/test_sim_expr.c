@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Simulator expressions: number syntax, precedence and associativity, names
  * and functions, NaN propagation, constants, and every compile error with its
  * column and message. */

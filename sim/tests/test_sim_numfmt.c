@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Time-series number formatting: the same text as printf's %.6g, %.7g and
  * %.4f for every value, ties, exponent changes and special values included. */
 #include "unity.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Simulator plant: forces and their inverse, hover, the attitude dynamics
  * term by term against closed-form solutions, RK4 accuracy, disturbance
  * timing, the motor lag and the rotor limits. */

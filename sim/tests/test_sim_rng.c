@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Simulator RNG: published reference outputs, determinism, and the moments
  * of the uniform and normal deviates. */
 #include "unity.h"

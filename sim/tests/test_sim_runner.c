@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* SIL regression: the paper's scenario flown by the four controllers through
  * the runner. Checks the plant, mixer and disturbance units against the
  * paper's Table 7, that every run stays finite, and the orderings the paper

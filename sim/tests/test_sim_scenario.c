@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Scenario files: the defaults, every key read into its field with its unit,
  * piecewise signals and their (from, to] windows, the shipped scenarios, and
  * each malformed input with the error's line, column and message. */

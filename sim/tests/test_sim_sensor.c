@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Simulator sensor: argument checks, exact pass-through without noise, the
  * delay line, and the noise statistics. */
 #include "unity.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Small plants simulated inside the tests, in double precision so the
  * reference never limits what a test can resolve. */
 #ifndef LADRC_TEST_PLANT_H

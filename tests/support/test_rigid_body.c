@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 #include "test_rigid_body.h"
 
 void test_rigid_body_init(test_rigid_body_t *b)

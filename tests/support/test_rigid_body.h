@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The paper's attitude dynamics (PAPER.md eq. 2) for closed-loop tests, in
  * double precision:
  *   phi''   = (tau_x + (Jy - Jz) theta' psi' - kt phi'  ) / Jx + d_phi

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * Self-test of the Unity-compatible runner: a failing assertion must end
  * its test at once and be counted; ignores and passes must be counted too.

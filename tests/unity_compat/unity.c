@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * Unity-compatible test runner (see unity.h for scope and differences).
  * Output format follows Unity:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * Unity-compatible test runner: the subset of Unity's API (v2.6) that the
  * ladrc tests use, with Unity's semantics and output format, so the same

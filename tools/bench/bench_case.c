@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Inputs and setup of the benchmark cases (see bench_case.h). */
 #include "bench_case.h"
 

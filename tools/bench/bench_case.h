@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * What the benchmarks run, shared by bench_m4f.c (instructions on the
  * Cortex-M4F) and bench_host.c (host time and callgrind counts): the inputs,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * Cost of one control tick on the host (plain C, the library built in
  * Release), for the same cases and inputs as bench_m4f.c (bench_case.h).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * Cost of one control tick on the Cortex-M4F, run under qemu mps2-an386 in
  * icount mode (qemu -icount shift=S: every instruction advances virtual time

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * The library as an HP-MLADRC quadrotor firmware links it: the 3-axis
  * controller and the mixer from their defaults, the status text of a failed

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Bytes of one archive that a linked image carries, from the GNU ld map.
 
 Usage: linked.py MAP ARCHIVE_NAME

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Worst-case stack of the tick functions, from gcc's -fcallgraph-info=su files.
 
 Usage: stack.py DIR ROOT...

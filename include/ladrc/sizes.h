@@ -1,0 +1,39 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/**
+ * @file sizes.h
+ * @brief The library's own sizes of its types, for bindings (ctypes, FFI)
+ *        that allocate states and fill configs without a C compiler.
+ *
+ * Each function returns sizeof the type as the library was compiled, so a
+ * binding can check its mirror of a struct against the real one and allocate
+ * opaque states of the right size. Firmware has no use for them: they sit in
+ * their own object (src/sizes.c), which a linker with --gc-sections, or a
+ * static link that never calls them, leaves out.
+ */
+#ifndef LADRC_SIZES_H
+#define LADRC_SIZES_H
+
+#include "ladrc/types.h"
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** sizeof(ladrc_real_t): 4 (float) or 8 (LADRC_REAL_DOUBLE). */
+size_t ladrc_sizeof_real(void);
+size_t ladrc_sizeof_axis_t(void);
+size_t ladrc_sizeof_axis_config_t(void);
+size_t ladrc_sizeof_attitude_t(void);
+size_t ladrc_sizeof_attitude_config_t(void);
+size_t ladrc_sizeof_mixer_t(void);
+size_t ladrc_sizeof_mixer_config_t(void);
+size_t ladrc_sizeof_mixer_output_t(void);
+size_t ladrc_sizeof_ref_t(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LADRC_SIZES_H */

@@ -1,0 +1,182 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Non-finite inputs through the public API, checked without relying on IEEE
+ * comparisons: the values are made from bit patterns and the results are
+ * compared by their bits. The same program runs in the normal suites and in
+ * the fast-math stage of tools/run_tests.sh, where the library and this file
+ * are compiled with -ffast-math: the guards must hold there too. */
+#include "unity.h"
+#include "ladrc/attitude.h"
+#include "ladrc/axis.h"
+#include "ladrc/mixer.h"
+
+#include <stdint.h>
+#include <string.h>
+
+#define DT_S LADRC_R(0.001)
+#define N_TICKS 400
+#define BAD_AT 200
+
+/* NaN, +inf and -inf from their bit patterns, through volatile so that no
+ * compiler flag can fold them. */
+static ladrc_real_t make_special(int which)
+{
+#ifdef LADRC_REAL_DOUBLE
+    static const uint64_t bits[3] = {UINT64_C(0x7ff8000000000000), UINT64_C(0x7ff0000000000000),
+                                     UINT64_C(0xfff0000000000000)};
+    volatile uint64_t b = bits[which];
+    uint64_t u = b;
+#else
+    static const uint32_t bits[3] = {UINT32_C(0x7fc00000), UINT32_C(0x7f800000), UINT32_C(0xff800000)};
+    volatile uint32_t b = bits[which];
+    uint32_t u = b;
+#endif
+    ladrc_real_t x;
+    memcpy(&x, &u, sizeof x);
+    return x;
+}
+
+static int finite_bits(ladrc_real_t x)
+{
+#ifdef LADRC_REAL_DOUBLE
+    uint64_t u;
+    memcpy(&u, &x, sizeof u);
+    return (u & UINT64_C(0x7ff0000000000000)) != UINT64_C(0x7ff0000000000000);
+#else
+    uint32_t u;
+    memcpy(&u, &x, sizeof u);
+    return (u & UINT32_C(0x7f800000)) != UINT32_C(0x7f800000);
+#endif
+}
+
+void setUp(void) {}
+void tearDown(void) {}
+
+static int same_bits(ladrc_real_t a, ladrc_real_t b) { return memcmp(&a, &b, sizeof a) == 0; }
+
+/* A deterministic, non-trivial input sequence: reference steps and a
+ * lagging angle. */
+static ladrc_real_t ref_at(int k) { return (k < 50) ? LADRC_R(0.0) : LADRC_R(0.17); }
+static ladrc_real_t angle_at(int k) { return LADRC_R(0.17) * (ladrc_real_t)k / (ladrc_real_t)(k + 150); }
+static ladrc_real_t rate_at(int k) { return LADRC_R(25.5) / (ladrc_real_t)((k + 150) * (k + 150)) * LADRC_R(1000.0); }
+
+static void check_axis_variant(ladrc_variant_t variant)
+{
+    static const int kinds[4][2] = {{0, -1}, {-1, 0}, {1, -1}, {-1, 2}}; /* bad ref / bad angle */
+    ladrc_axis_config_t cfg;
+    ladrc_axis_t clean;
+    ladrc_axis_t hit;
+    ladrc_real_t held;
+    int k;
+    int b;
+
+    ladrc_axis_config_default(&cfg, variant, DT_S, LADRC_R(5.445e-3));
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&clean, &cfg));
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&hit, &cfg));
+    for (k = 0; k < N_TICKS; ++k) {
+        const ladrc_real_t u_clean = ladrc_axis_step_with_rate(&clean, ref_at(k), angle_at(k), rate_at(k));
+        ladrc_real_t u_hit;
+        if (k == BAD_AT - 1) {
+            /* the last good tick, then four bad ones in between */
+            u_hit = ladrc_axis_step_with_rate(&hit, ref_at(k), angle_at(k), rate_at(k));
+            TEST_ASSERT_TRUE(same_bits(u_clean, u_hit));
+            for (b = 0; b < 4; ++b) {
+                const ladrc_real_t r = kinds[b][0] >= 0 ? make_special(kinds[b][0]) : ref_at(k + 1);
+                const ladrc_real_t y = kinds[b][1] >= 0 ? make_special(kinds[b][1]) : angle_at(k + 1);
+                held = ladrc_axis_step_with_rate(&hit, r, y, rate_at(k + 1));
+                TEST_ASSERT_TRUE_MESSAGE(ladrc_axis_get_faults(&hit) & LADRC_FAULT_INPUT, "no input fault");
+                TEST_ASSERT_TRUE_MESSAGE(finite_bits(held), "command not finite");
+                TEST_ASSERT_TRUE_MESSAGE(same_bits(held, u_hit), "command not held");
+                TEST_ASSERT_EQUAL_UINT32((uint32_t)(b + 1), ladrc_axis_get_consecutive_faults(&hit));
+            }
+            /* a non-finite applied torque is ignored with its own flag */
+            ladrc_axis_set_applied(&hit, make_special(0));
+            TEST_ASSERT_TRUE(ladrc_axis_get_faults(&hit) & LADRC_FAULT_APPLIED);
+            ladrc_axis_set_applied(&clean, u_clean);
+            ladrc_axis_set_applied(&hit, u_hit);
+            continue;
+        }
+        u_hit = ladrc_axis_step_with_rate(&hit, ref_at(k), angle_at(k), rate_at(k));
+        /* then: every tick equals the run without the bad ticks, bit for bit */
+        TEST_ASSERT_TRUE_MESSAGE(finite_bits(u_hit), "command not finite");
+        TEST_ASSERT_TRUE_MESSAGE(same_bits(u_clean, u_hit), "run differs from the clean run");
+        ladrc_axis_set_applied(&clean, u_clean);
+        ladrc_axis_set_applied(&hit, u_hit);
+        if (k == BAD_AT) {
+            TEST_ASSERT_EQUAL_UINT32(0u, ladrc_axis_get_consecutive_faults(&hit));
+        }
+    }
+}
+
+static void test_axis_ladrc_holds_on_non_finite_input(void) { check_axis_variant(LADRC_VARIANT_LADRC); }
+static void test_axis_lp_holds_on_non_finite_input(void) { check_axis_variant(LADRC_VARIANT_LP_MLADRC); }
+static void test_axis_hp_holds_on_non_finite_input(void) { check_axis_variant(LADRC_VARIANT_HP_MLADRC); }
+static void test_axis_pid_holds_on_non_finite_input(void) { check_axis_variant(LADRC_VARIANT_PID); }
+
+static void test_attitude_and_mixer_hold_on_non_finite_input(void)
+{
+    static const ladrc_real_t inertia[3] = {LADRC_R(5.445e-3), LADRC_R(5.445e-3), LADRC_R(1.089e-2)};
+    static const ladrc_mixer_config_t mix = {LADRC_R(2.98e-5), LADRC_R(0.165), LADRC_R(2e-6), LADRC_R(0.8),
+                                             LADRC_R(9.81),    LADRC_R(1e4),   LADRC_R(2e5),  LADRC_R(0.7),
+                                             LADRC_MIXER_SATURATE};
+    ladrc_attitude_config_t cfg;
+    ladrc_attitude_t att;
+    ladrc_mixer_t mixer;
+    ladrc_mixer_output_t out;
+    ladrc_mixer_output_t before;
+    ladrc_real_t torque[3];
+    ladrc_real_t held[3];
+    int k;
+    int i;
+
+    ladrc_attitude_config_default(&cfg, LADRC_VARIANT_HP_MLADRC, DT_S, inertia, LADRC_R(0.09));
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_attitude_init(&att, &cfg, NULL));
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_mixer_init(&mixer, &mix));
+    for (k = 0; k < N_TICKS; ++k) {
+        const ladrc_real_t ref[3] = {ref_at(k), -ref_at(k), LADRC_R(0.5) * ref_at(k)};
+        const ladrc_real_t angle[3] = {angle_at(k), -angle_at(k), LADRC_R(0.5) * angle_at(k)};
+        const ladrc_fault_t f = ladrc_attitude_step(&att, ref, angle, NULL, torque);
+        TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, f);
+        TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE,
+                               ladrc_mixer_step(&mixer, ladrc_mixer_thrust_from_tilt(&mixer, angle[0], angle[1]),
+                                                torque, &out));
+        ladrc_attitude_set_applied(&att, out.torque_Nm);
+    }
+    /* a NaN angle on one axis: input fault, torques held */
+    {
+        const ladrc_real_t ref[3] = {LADRC_R(0.1), LADRC_R(0.1), LADRC_R(0.1)};
+        const ladrc_real_t angle[3] = {LADRC_R(0.1), make_special(0), LADRC_R(0.1)};
+        const ladrc_fault_t f = ladrc_attitude_step(&att, ref, angle, NULL, held);
+        TEST_ASSERT_TRUE(f & LADRC_FAULT_INPUT);
+        TEST_ASSERT_TRUE(same_bits(held[1], torque[1]));
+        for (i = 0; i < 3; ++i) {
+            TEST_ASSERT_TRUE(finite_bits(held[i]));
+        }
+        /* thrust of an unknown attitude: the weight, finite */
+        TEST_ASSERT_TRUE(finite_bits(ladrc_mixer_thrust_from_tilt(&mixer, LADRC_R(0.1), make_special(0))));
+    }
+    /* the mixer: a non-finite torque or thrust request is refused, output held */
+    memcpy(&before, &out, sizeof out);
+    for (i = 0; i < 4; ++i) {
+        ladrc_real_t t[3] = {torque[0], torque[1], torque[2]};
+        ladrc_real_t thrust = LADRC_R(8.0);
+        if (i < 3) {
+            t[i] = make_special(i);
+        } else {
+            thrust = make_special(0);
+        }
+        TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_mixer_step(&mixer, thrust, t, &out));
+        TEST_ASSERT_EQUAL_MEMORY(before.w2_rad2_s2, out.w2_rad2_s2, sizeof out.w2_rad2_s2);
+        TEST_ASSERT_EQUAL_MEMORY(before.torque_Nm, out.torque_Nm, sizeof out.torque_Nm);
+    }
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_axis_ladrc_holds_on_non_finite_input);
+    RUN_TEST(test_axis_lp_holds_on_non_finite_input);
+    RUN_TEST(test_axis_hp_holds_on_non_finite_input);
+    RUN_TEST(test_axis_pid_holds_on_non_finite_input);
+    RUN_TEST(test_attitude_and_mixer_hold_on_non_finite_input);
+    return UNITY_END();
+}

@@ -1,0 +1,42 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* sizes.h: the library reports the sizes this compilation sees, and the
+ * real type of the build (what the Python binding relies on). */
+#include "unity.h"
+#include "ladrc/attitude.h"
+#include "ladrc/axis.h"
+#include "ladrc/mixer.h"
+#include "ladrc/sizes.h"
+#include "ladrc/td.h"
+
+void setUp(void) {}
+void tearDown(void) {}
+
+static void test_every_reported_size_is_the_sizeof_of_its_type(void)
+{
+    TEST_ASSERT_EQUAL_UINT32(sizeof(ladrc_real_t), ladrc_sizeof_real());
+    TEST_ASSERT_EQUAL_UINT32(sizeof(ladrc_axis_t), ladrc_sizeof_axis_t());
+    TEST_ASSERT_EQUAL_UINT32(sizeof(ladrc_axis_config_t), ladrc_sizeof_axis_config_t());
+    TEST_ASSERT_EQUAL_UINT32(sizeof(ladrc_attitude_t), ladrc_sizeof_attitude_t());
+    TEST_ASSERT_EQUAL_UINT32(sizeof(ladrc_attitude_config_t), ladrc_sizeof_attitude_config_t());
+    TEST_ASSERT_EQUAL_UINT32(sizeof(ladrc_mixer_t), ladrc_sizeof_mixer_t());
+    TEST_ASSERT_EQUAL_UINT32(sizeof(ladrc_mixer_config_t), ladrc_sizeof_mixer_config_t());
+    TEST_ASSERT_EQUAL_UINT32(sizeof(ladrc_mixer_output_t), ladrc_sizeof_mixer_output_t());
+    TEST_ASSERT_EQUAL_UINT32(sizeof(ladrc_ref_t), ladrc_sizeof_ref_t());
+}
+
+static void test_the_real_size_matches_the_build(void)
+{
+#ifdef LADRC_REAL_DOUBLE
+    TEST_ASSERT_EQUAL_UINT32(8u, ladrc_sizeof_real());
+#else
+    TEST_ASSERT_EQUAL_UINT32(4u, ladrc_sizeof_real());
+#endif
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_every_reported_size_is_the_sizeof_of_its_type);
+    RUN_TEST(test_the_real_size_matches_the_build);
+    return UNITY_END();
+}

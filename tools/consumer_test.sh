@@ -1,0 +1,119 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
+# Builds and runs the tiny application tests/consumer/app.c through every way
+# of consuming ladrc, from this source tree, without network:
+#   install     cmake --install of the static library, then find_package(ladrc 0.2)
+#   pkg-config  the same prefix through ladrc.pc
+#   shared      BUILD_SHARED_LIBS=ON installed, find_package, run
+#   subdir      add_subdirectory(ladrc)
+#   fetch       FetchContent from a file:// git URL of this repository at HEAD
+#               (when it is a git checkout) and with FETCHCONTENT_SOURCE_DIR_LADRC
+#   make        include/ and src/ copied into a plain Makefile project (-lm)
+#   abi         a library built with LADRC_REAL_DOUBLE and an application built
+#               without it (and the reverse) must fail to link; matching ones link
+# Usage: tools/consumer_test.sh [WORKDIR]   (default build/consumer)
+set -euo pipefail
+
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+src=$PWD
+work=${1:-build/consumer}
+rm -rf "$work"
+mkdir -p "$work"
+work=$(cd "$work" && pwd)
+cons=$src/tests/consumer
+jobs=${CMAKE_BUILD_PARALLEL_LEVEL:-2}
+
+log() { echo "-- consumer: $*"; }
+
+# Builds the library alone (no tests, no simulator) and installs it.
+install_ladrc() { # name prefix [cmake args...]
+  local name=$1 prefix=$2
+  shift 2
+  cmake -S "$src" -B "$work/lib-$name" -DCMAKE_BUILD_TYPE=Release -DLADRC_BUILD_TESTS=OFF \
+    -DLADRC_INSTALL=ON -DLADRC_WERROR=ON -DCMAKE_INSTALL_PREFIX="$prefix" "$@" >/dev/null
+  cmake --build "$work/lib-$name" -j "$jobs" --target ladrc >/dev/null
+  cmake --install "$work/lib-$name" >/dev/null
+}
+
+# Configures, builds and runs a consumer project.
+cmake_app() { # name source-dir [cmake args...]
+  local name=$1 dir=$2
+  shift 2
+  cmake -S "$dir" -B "$work/$name" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+  cmake --build "$work/$name" -j "$jobs" >/dev/null
+  "$work/$name/app"
+  log "$name: built and ran"
+}
+
+log "install: static library into $work/prefix"
+install_ladrc static "$work/prefix"
+for f in include/ladrc/version.h include/ladrc/axis.h lib/cmake/ladrc/ladrcConfig.cmake \
+         lib/cmake/ladrc/ladrcConfigVersion.cmake lib/pkgconfig/ladrc.pc lib/libladrc.a \
+         share/doc/ladrc/LICENSE; do
+  [[ -f $work/prefix/$f ]] || { echo "error: not installed: $f" >&2; exit 1; }
+done
+cmake_app install "$cons/find_package" -DCMAKE_PREFIX_PATH="$work/prefix"
+
+# A version the package does not satisfy must be refused (SameMajorVersion).
+mkdir -p "$work/v1src"
+sed 's/find_package(ladrc 0.2 REQUIRED)/find_package(ladrc 1.0 REQUIRED)/; s|\.\./app\.c|'"$cons"'/app.c|' \
+  "$cons/find_package/CMakeLists.txt" >"$work/v1src/CMakeLists.txt"
+if cmake -S "$work/v1src" -B "$work/install-v1" -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null 2>&1; then
+  echo "error: find_package(ladrc 1.0) accepted version 0.2" >&2
+  exit 1
+fi
+log "install: find_package(ladrc 1.0) refused, as it should"
+
+log "pkg-config"
+export PKG_CONFIG_PATH=$work/prefix/lib/pkgconfig
+[[ $(pkg-config --modversion ladrc) == "$(sed -n 's/^project(ladrc VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt)" ]]
+# shellcheck disable=SC2046
+cc -std=c99 -Wall -Wextra -Werror -DLADRC_CONSUMER_HAS_VERSION $(pkg-config --cflags ladrc) \
+  "$cons/app.c" -o "$work/app-pkgconfig" $(pkg-config --libs ladrc)
+"$work/app-pkgconfig"
+log "pkg-config: built and ran"
+unset PKG_CONFIG_PATH
+
+log "shared: BUILD_SHARED_LIBS=ON"
+install_ladrc shared "$work/prefix-shared" -DBUILD_SHARED_LIBS=ON
+ls "$work/prefix-shared/lib/"libladrc.so* >/dev/null
+cmake_app shared "$cons/find_package" -DCMAKE_PREFIX_PATH="$work/prefix-shared"
+ldd "$work/shared/app" | grep -q "libladrc.so" || { echo "error: app not linked to libladrc.so" >&2; exit 1; }
+
+cmake_app subdir "$cons/add_subdirectory" -DLADRC_DIR="$src"
+
+cmake_app fetch-source-dir "$cons/fetchcontent" -DFETCHCONTENT_SOURCE_DIR_LADRC="$src" \
+  -DLADRC_GIT_URL=unused -DLADRC_GIT_TAG=unused
+if git -C "$src" rev-parse --verify -q HEAD >/dev/null 2>&1; then
+  cmake_app fetch-git "$cons/fetchcontent" -DLADRC_GIT_URL="file://$src" \
+    -DLADRC_GIT_TAG="$(git -C "$src" rev-parse HEAD)"
+else
+  log "fetch-git: skipped, $src is not a git checkout"
+fi
+
+log "make: include/ and src/ copied into a Makefile project"
+mkdir -p "$work/make"
+cp -r "$src/include" "$src/src" "$cons/Makefile" "$cons/app.c" "$work/make/"
+make -s -C "$work/make" >/dev/null
+"$work/make/app"
+log "make: built and ran"
+
+log "abi: real type of the library against the application's"
+install_ladrc double "$work/prefix-double" -DLADRC_REAL_DOUBLE=ON
+abi_link() { # prefix app-flags -> 0 if it links
+  cc -std=c99 -I"$1/include" $2 "$cons/app.c" -o "$work/app-abi" -L"$1/lib" -lladrc -lm 2>"$work/abi.log"
+}
+abi_link "$work/prefix-double" "-DLADRC_REAL_DOUBLE" && "$work/app-abi"
+if abi_link "$work/prefix-double" ""; then
+  echo "error: a float application linked against a double library" >&2
+  exit 1
+fi
+grep -q "ladrc_attitude_init_float" "$work/abi.log"
+if abi_link "$work/prefix" "-DLADRC_REAL_DOUBLE"; then
+  echo "error: a double application linked against a float library" >&2
+  exit 1
+fi
+grep -q "ladrc_attitude_init_double" "$work/abi.log"
+log "abi: mismatches fail to link naming the real type, matching builds link and run"
+
+echo "consumer tests: all passed"
