@@ -24,7 +24,7 @@
 #define SLIP_TOL_FRACTION LADRC_R(0.1)
 #define SLIP_UNLOCK_FACTOR LADRC_R(3.0)
 /* A tone is significant while its power a^2/2 is at least this share of the
- * sample's power around the bias and its amplitude above AMP_FLOOR. */
+ * sample's power around its mean and its amplitude above AMP_FLOOR. */
 #define AMP_SHARE LADRC_R(0.01)
 #define AMP_FLOOR_RAD_S2 LADRC_R(0.05)
 /* The fit has settled while its recent prior error power is below this
@@ -81,10 +81,10 @@ static unsigned theta_a(unsigned k) { return 1u + 2u * k; }
 static ladrc_real_t min_real(ladrc_real_t a, ladrc_real_t b) { return (b < a) ? b : a; }
 
 /* cos and sin of a small angle x by their series to x^8 and x^9: exact to
- * rounding in float and double for the per-tick turns used here (|x| <= 0.04
- * at 40 rad/s and 1 kHz, checked below pi at init where the series is still
- * within 4e-4 and the phasor is renormalised every tick), and cheap enough
- * for a frequency update on every fit sample. */
+ * float rounding for the per-tick turns of the defaults (|x| <= 0.04 at
+ * 40 rad/s and 1 kHz) and within 3e-5 at the largest init allows (pi/2: a
+ * quarter turn per fit sample); the phasor is renormalised every tick. Cheap
+ * enough for a frequency update on every fit sample. */
 static void small_rotation(ladrc_real_t x, ladrc_real_t *c, ladrc_real_t *s)
 {
     const ladrc_real_t x2 = x * x;
@@ -497,12 +497,12 @@ static unsigned clean_tones(const ladrc_hp_estimator_t *est, ladrc_real_t w[LADR
 }
 
 /* ONLINE: the active tones follow the frequency fit while it sees a clean
- * model with as many tones (exact for one clean tone); while it does not
+ * model with as many tones (exact for one clean tone). While it does not
  * (the loop's transients, which the derivatives weigh heavily, blur it), and
  * for a locked pair of tones (their fit uses the fifth derivative, noisier
- * than their slips), a locked tone follows its slip instead. A clean model with another number
- * of tones replaces the tones (the nearest keeps its state), after
- * TONE_HOLD_S without such a change. */
+ * than their slips), a locked tone follows its slip instead. A clean model
+ * with another number of tones replaces the tones (the nearest keeps its
+ * state), after TONE_HOLD_S without such a change. */
 static void update_frequencies(ladrc_hp_estimator_t *est, ladrc_real_t sample)
 {
     update_spectrum(est, sample);

@@ -16,3 +16,4 @@ size_t ladrc_sizeof_mixer_t(void) { return sizeof(ladrc_mixer_t); }
 size_t ladrc_sizeof_mixer_config_t(void) { return sizeof(ladrc_mixer_config_t); }
 size_t ladrc_sizeof_mixer_output_t(void) { return sizeof(ladrc_mixer_output_t); }
 size_t ladrc_sizeof_ref_t(void) { return sizeof(ladrc_ref_t); }
+size_t ladrc_hp_max_tones(void) { return LADRC_HP_MAX_TONES; }

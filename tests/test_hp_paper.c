@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* HP-MLADRC on the paper's case: the paper's vehicle (rigid body with drag
  * and coupling), references and Table 2 disturbances, the attitude layer at
  * 1 kHz with ideal actuators; the figures the method is judged by, known and

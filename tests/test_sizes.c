@@ -22,6 +22,7 @@ static void test_every_reported_size_is_the_sizeof_of_its_type(void)
     TEST_ASSERT_EQUAL_UINT32(sizeof(ladrc_mixer_config_t), ladrc_sizeof_mixer_config_t());
     TEST_ASSERT_EQUAL_UINT32(sizeof(ladrc_mixer_output_t), ladrc_sizeof_mixer_output_t());
     TEST_ASSERT_EQUAL_UINT32(sizeof(ladrc_ref_t), ladrc_sizeof_ref_t());
+    TEST_ASSERT_EQUAL_UINT32(LADRC_HP_MAX_TONES, ladrc_hp_max_tones());
 }
 
 static void test_the_real_size_matches_the_build(void)

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: BSD-3-Clause
-"""Draws the paper's figures (Dong et al., Actuators 2025, 14(10), 504: Figs. 5-12)
-from the output of ladrc_sil.
+"""Draws the paper's figures (Dong et al., Actuators 2025, 14(10), 504: Figs. 5-12), and Fig. 13
+(HP-MLADRC with its frequency known and online), from the output of ladrc_sil.
 
-Usage: figures.py OUT_DIR FIG_DIR [--paper NAME] [--noisy NAME] [--diff NAME]
+Usage: figures.py OUT_DIR FIG_DIR [--paper NAME] [--noisy NAME] [--known NAME] [--diff NAME]
 
 OUT_DIR holds one directory per scenario, as written by `ladrc_sil --out OUT_DIR`:
 <scenario>/<controller>.csv, <scenario>/differentiator.csv, <scenario>/metrics.csv.
@@ -304,12 +304,43 @@ def fig_rotors(runs, fig_dir):
     save(fig, fig_dir, "fig12_rotors.png")
 
 
+def fig_hp_modes(online, known, fig_dir):
+    """Fig. 13 (ours): |tracking error| on a log scale around the frequency jump at 12 s and the steady
+    window, HP-MLADRC with the frequency estimated online and given (known), LP-MLADRC and LADRC."""
+    fig, axes = plt.subplots(3, 1, figsize=(SIZE_IN[0], 8), sharex=True)
+    lines = [("HP-MLADRC", online, "HP-MLADRC, online frequency", COLOURS["HP-MLADRC"], "-"),
+             ("HP-MLADRC", known, "HP-MLADRC, known frequency", "#17becf", "--"),
+             ("LP-MLADRC", online, "LP-MLADRC", COLOURS["LP-MLADRC"], "-"),
+             ("LADRC", online, "LADRC", COLOURS["LADRC"], "-")]
+    for ax, axis in zip(axes, AXES):
+        for c, runs, label, colour, dash in lines:
+            if c not in runs:
+                continue
+            t = runs[c]["t_s"]
+            keep = (t > 10.0) & (t <= 27.0)
+            err = np.abs(runs[c]["error_%s_deg" % axis][keep])
+            ax.semilogy(t[keep], np.maximum(err, 1e-6), color=colour, ls=dash, lw=1.0, label=label)
+        ax.axhline(0.0073, color="0.4", lw=0.8, ls=":")
+        ax.axvspan(20.0, 25.0, color="0.9", zorder=0)
+        ax.set_ylim(1e-5, 20.0)
+        ax.set_ylabel("|error| %s (deg)" % AXIS_SYMBOLS[axis])
+    axes[0].text(20.1, 0.0073 * 1.3, "paper's band 0.0073 deg", fontsize=7, color="0.3")
+    axes[0].text(20.1, 5.0, "steady window (20, 25] s", fontsize=7, color="0.3")
+    axes[0].legend(loc="lower left", fontsize=8, ncol=2)
+    axes[-1].set_xlabel("time (s): the tone jumps from π/4 to 3 rad/s at 12 s and stops at 25 s")
+    fig.suptitle("Fig. 13 (ours): HP-MLADRC with the frequency known and estimated online, paper case")
+    fig.tight_layout()
+    save(fig, fig_dir, "fig13_hp_modes.png")
+
+
 def main(argv):
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("out_dir")
     p.add_argument("fig_dir")
     p.add_argument("--paper", default="paper", help="scenario of Figs. 6-9 and 12 (default: paper)")
     p.add_argument("--noisy", default="paper_noisy", help="scenario of Figs. 10-11 (default: paper_noisy)")
+    p.add_argument("--known", default="paper_known",
+                   help="the paper case with HP's frequency known, for Fig. 13 (default: paper_known)")
     p.add_argument("--diff", default="table3_differentiator",
                    help="scenario of Fig. 5 (default: table3_differentiator)")
     a = p.parse_args(argv)
@@ -338,6 +369,11 @@ def main(argv):
                   "Fig. 8: Table 5 scores, paper case (larger = better)")
         fig_disturbance(runs, a.fig_dir)
         fig_rotors(runs, a.fig_dir)
+        known = load_runs(os.path.join(a.out_dir, a.known))
+        if known:
+            fig_hp_modes(runs, known, a.fig_dir)
+        else:
+            missing.append(a.known)
     else:
         missing.append(a.paper)
 

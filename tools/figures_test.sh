@@ -24,19 +24,21 @@ check() { # name, condition exit code
 }
 
 "$sil" "$src/tests/data/short_paper.ini" "$src/tests/data/short_paper_noisy.ini" \
+  "$src/tests/data/short_paper_known.ini" "$src/tests/data/short_paper_noisy_known.ini" \
   "$src/tests/data/short_differentiator.ini" --out "$work/out" --quiet > "$work/out.tables.txt"
 check simulator_runs $?
 mv "$work/out.tables.txt" "$work/out/tables.txt"
-names=(--paper short_paper --noisy short_paper_noisy --diff short_differentiator)
+names=(--paper short_paper --noisy short_paper_noisy --known short_paper_known --diff short_differentiator)
+report_names=("${names[@]}" --noisy-known short_paper_noisy_known)
 
 "$py" "$src/tools/figures.py" "$work/out" "$work/fig" "${names[@]}"
 check figures_py_succeeds $?
-"$py" "$src/tools/report.py" "$work/out" "$work/report.md" "${names[@]}"
+"$py" "$src/tools/report.py" "$work/out" "$work/report.md" "${report_names[@]}"
 check report_py_succeeds $?
 
 # Every figure: a PNG (signature), at least 800 x 500 pixels (IHDR), more than 20 kB.
 for fig in fig05_td_levant fig06_tracking fig06_tracking_onsets fig07_errors fig07_errors_onsets \
-           fig08_radar fig09_disturbance fig10_noisy_tracking fig11_noisy_errors fig12_rotors; do
+           fig08_radar fig09_disturbance fig10_noisy_tracking fig11_noisy_errors fig12_rotors fig13_hp_modes; do
   f="$work/fig/$fig.png"
   ok=1
   if [[ -f $f ]]; then
@@ -53,7 +55,7 @@ done
 
 # The report: every table's heading, the paper's numbers, and ours from metrics.csv.
 r="$work/report.md"
-for heading in "## Table 3" "## Table 4" "## Table 5" "## Table 6" "## Table 7" "## Noisy case"; do
+for heading in "## Table 3" "## Table 4" "## Table 5" "## Table 6" "## Table 7" "## Noisy case" "## HP-MLADRC: frequency known"; do
   grep -q "^$heading" "$r"; check "report_has_${heading#\#\# }" $?
 done
 grep -q "| TD | .* | 2.767 |" "$r"; check report_has_paper_table3 $?

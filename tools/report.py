@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Writes a Markdown report that sets the simulator's Tables 3-7 beside the paper's.
 
-Usage: report.py OUT_DIR REPORT_MD [--paper NAME] [--noisy NAME] [--diff NAME]
+Usage: report.py OUT_DIR REPORT_MD [--paper NAME] [--noisy NAME] [--known NAME] [--noisy-known NAME]
+                 [--diff NAME]
 
 OUT_DIR holds one directory per scenario with its metrics.csv, as written by
 `ladrc_sil --out OUT_DIR`. If OUT_DIR/tables.txt holds ladrc_sil's printed tables, their
@@ -219,6 +220,25 @@ def section_t7(rep, m, headings, scen):
               rows)
 
 
+def section_hp_modes(rep, cases):
+    """HP-MLADRC with the frequency given (the paper's assumption) and estimated online, beside
+    LP-MLADRC and LADRC: steady band and RMS per axis. cases: [(title, online metrics, known metrics)]."""
+    rep.add("## HP-MLADRC: frequency known and estimated online", "",
+            "The paper assumes HP-MLADRC knows the disturbance frequency; `paper_known.ini` and "
+            "`paper_noisy_known.ini` tell it the steady tone's 3 rad/s, `paper.ini` and `paper_noisy.ini` "
+            "let it estimate its frequencies online. Band: Table 5's steady band (±deg over the steady "
+            "window, the paper's ±%s for HP-MLADRC); RMS: Table 4's RMS error." % num(PAPER_T5["HP-MLADRC"][2]), "")
+    rows = []
+    for title, online, known in cases:
+        for label, m, c in (("HP-MLADRC, online", online, "HP-MLADRC"), ("HP-MLADRC, known", known, "HP-MLADRC"),
+                            ("LP-MLADRC", online, "LP-MLADRC"), ("LADRC", online, "LADRC")):
+            row = [title, label]
+            for q in (("5", "steady_band_deg"), ("4", "error_rms_deg")):
+                row.append(" / ".join(num(m.get((c, q[0], q[1], axis))) for axis in AXES))
+            rows.append(row)
+    rep.table(["case", "controller", "band roll / pitch / yaw (deg)", "RMS roll / pitch / yaw (deg)"], rows)
+
+
 def health(rep, m, scen):
     bad = []
     for c in CONTROLLERS:
@@ -236,6 +256,8 @@ def main(argv):
     p.add_argument("report_md")
     p.add_argument("--paper", default="paper")
     p.add_argument("--noisy", default="paper_noisy")
+    p.add_argument("--known", default="paper_known")
+    p.add_argument("--noisy-known", default="paper_noisy_known")
     p.add_argument("--diff", default="table3_differentiator")
     a = p.parse_args(argv)
     headings = table_headings(os.path.join(a.out_dir, "tables.txt"))
@@ -245,7 +267,7 @@ def main(argv):
             "regenerates it); the paper's numbers are the published Tables 3-7 of %s. Relative differences "
             "are (ours − paper) / |paper|, with the ratio ours / paper added when it is beyond 10 or below 0.1; for means, which sit near zero, the difference ours − paper is "
             "given instead." % PAPER_REF, "")
-    for scen in (a.diff, a.paper, a.noisy):
+    for scen in (a.diff, a.paper, a.noisy, a.known, a.noisy_known):
         if "run" in headings.get(scen, {}):
             rep.add("- `%s`" % headings[scen]["run"])
     rep.add("")
@@ -280,6 +302,18 @@ def main(argv):
         section_t4(rep, m, headings, a.noisy, False, clean)
         section_t5(rep, m, headings, a.noisy, False)
         health(rep, m, a.noisy)
+
+    cases = []
+    for title, online_name, known_name in (("paper case", a.paper, a.known), ("noisy case", a.noisy, a.noisy_known)):
+        online = load_metrics(os.path.join(a.out_dir, online_name))
+        known = load_metrics(os.path.join(a.out_dir, known_name))
+        if known is None:
+            missing.append(known_name)
+        elif online is not None:
+            cases.append((title, online, known))
+            health(rep, known, known_name)
+    if cases:
+        section_hp_modes(rep, cases)
 
     for name in missing:
         rep.add("*No output of scenario `%s` was found; its tables are missing.*" % name, "")

@@ -31,6 +31,8 @@ size_t ladrc_sizeof_mixer_t(void);
 size_t ladrc_sizeof_mixer_config_t(void);
 size_t ladrc_sizeof_mixer_output_t(void);
 size_t ladrc_sizeof_ref_t(void);
+/** LADRC_HP_MAX_TONES: the length of ladrc_axis_config_t's hp_freq_rad_s. */
+size_t ladrc_hp_max_tones(void);
 
 #ifdef __cplusplus
 }

@@ -97,6 +97,10 @@ class _Library:
         else:
             raise LadrcLayoutError(f"{path}: sizeof(ladrc_real_t) = {size}")
         self._suffix = suffix
+        fn = self.dll.ladrc_hp_max_tones
+        fn.restype = ctypes.c_size_t
+        fn.argtypes = []
+        self.hp_max_tones = fn()
         self._structs()
         self._check_sizes()
         self._prototypes()
@@ -106,6 +110,7 @@ class _Library:
         i = ctypes.c_int  # C enums: int on the ABIs this binding supports (checked by size)
         u16 = ctypes.c_uint16
         u8 = ctypes.c_uint8
+        tones = self.hp_max_tones  # LADRC_HP_MAX_TONES as the library was built
 
         class AxisConfig(ctypes.Structure):
             _fields_ = [("variant", i), ("dt_s", r), ("u_min_Nm", r), ("u_max_Nm", r),
@@ -114,9 +119,9 @@ class _Library:
                         ("levant_method", i), ("levant_lipschitz_rad_s4", r),
                         ("pid_kp", r), ("pid_ki", r), ("pid_kd", r), ("pid_d_filter_tau_s", r),
                         ("pid_i_limit_Nm", r), ("lp_lambda0_per_s", r), ("lp_k0_per_s", r),
-                        ("hp_freq_mode", i), ("hp_freq_rad_s", r), ("hp_freq_min_rad_s", r),
-                        ("hp_freq_max_rad_s", r), ("hp_lambda0_per_s", r),
-                        ("hp_freq_lambda0_per_s", r), ("hp_decimation", u16),
+                        ("hp_freq_mode", i), ("hp_n_tones", u8), ("hp_freq_rad_s", r * tones),
+                        ("hp_freq_min_rad_s", r), ("hp_freq_max_rad_s", r), ("hp_lambda0_per_s", r),
+                        ("hp_freq_lambda0_per_s", r), ("hp_freq_filter_rad_s", r),
                         ("hp_fit_decimation", u16), ("hp_fit_phase", u16)]
 
         class AttitudeConfig(ctypes.Structure):
@@ -238,11 +243,18 @@ def _check(lib, status, axis=-1):
 
 
 def _apply(struct, overrides, what):
-    names = [f[0] for f in struct._fields_]
+    fields = dict(struct._fields_)
     for key, value in overrides.items():
-        if key not in names:
-            raise KeyError(f"{what}: no field '{key}' (fields: {', '.join(names)})")
-        setattr(struct, key, _enum_value(key, value) if key in ENUMS else value)
+        if key not in fields:
+            raise KeyError(f"{what}: no field '{key}' (fields: {', '.join(fields)})")
+        if issubclass(fields[key], ctypes.Array):
+            array = getattr(struct, key)
+            if len(value) > len(array):
+                raise ValueError(f"{what}: {key} takes at most {len(array)} values")
+            for k, v in enumerate(value):
+                array[k] = v
+        else:
+            setattr(struct, key, _enum_value(key, value) if key in ENUMS else value)
 
 
 def _axis_config(lib, variant, dt_s, inertia, overrides):
