@@ -10,6 +10,9 @@
 #                                  bench stage of tools/run_tests.sh); exits 1
 #                                  naming every figure above its limit
 #
+#  - cases (tools/bench/bench_case.h): PID, LADRC, LP-MLADRC and HP-MLADRC on
+#    the recorded closed loop of HP-MLADRC under the paper's one-tone
+#    disturbance, and HP-MLADRC-2tones on a two-tone disturbance;
 #  - instructions per tick on the Cortex-M4F: build/bench-m4f (the cortex-m4f
 #    preset with LADRC_BUILD_BENCH=ON), image run under qemu mps2-an386 with
 #    -icount shift=0, twice: the two outputs must be identical; the same
@@ -114,7 +117,8 @@ declare -A measured=(
   [flash.linked_hp]=$linked_hp
   [sizeof.ladrc_attitude_t]=$(size_of ladrc_attitude_t)
 )
-for v in PID LADRC LP-MLADRC HP-MLADRC; do
+CASES=(PID LADRC LP-MLADRC HP-MLADRC HP-MLADRC-2tones)
+for v in "${CASES[@]}"; do
   measured[insn.axis.$v]=$(insn "$v" 1)
   measured[insn.3axes.$v]=$(insn "$v" 2)
   measured[insn.worst.$v]=$(worst "$v")
@@ -178,7 +182,7 @@ log "counting host instructions under callgrind"
 declare -A host_insn
 cg_empty=$(callgrind_ir empty)
 cg_ticks=$(sed -n 's/^BENCH host collected [^ ]* \([0-9]*\) ticks$/\1/p' "$tmp/cg.log")
-for v in PID LADRC LP-MLADRC HP-MLADRC; do
+for v in "${CASES[@]}"; do
   for c in axis attitude; do
     ir=$(callgrind_ir "$c:$v")
     host_insn[$c:$v]=$(awk -v a="$ir" -v b="$cg_empty" -v n="$cg_ticks" 'BEGIN { printf "%.1f", (a - b) / n }')
@@ -234,25 +238,27 @@ speedup_batch=$(awk -v a="$w_batch1" -v b="$w_batch2" 'BEGIN { printf "%.2f", a 
 
 echo "| measure | value | budget | status |"
 echo "|---|---:|---:|---|"
-for v in PID LADRC LP-MLADRC HP-MLADRC; do
-  row "$v, one axis (ladrc_axis_step_with_rate), instructions/tick" "$(insn "$v" 1)" "" ""
+label() { [[ $1 == HP-MLADRC-2tones ]] && echo "HP-MLADRC (two tones)" || echo "$1"; }
+for v in "${CASES[@]}"; do
+  row "$(label "$v"), one axis (ladrc_axis_step_with_rate), instructions/tick" "$(insn "$v" 1)" "" ""
 done
 for v in PID LADRC LP-MLADRC; do
   row "$v, 3 axes + mixer, instructions/tick" "$(insn "$v" 2)" "" ""
 done
 row "HP-MLADRC, 3 axes + mixer, instructions/tick" "$hp3" "<= 1500" "$(mark "$hp3" "<=" 1500)"
+row "HP-MLADRC (two tones), 3 axes + mixer, instructions/tick" "$(insn HP-MLADRC-2tones 2)" "" ""
 row "ratio HP-MLADRC / PID, 3 axes + mixer" "$ratio" "" ""
-for v in PID LADRC LP-MLADRC HP-MLADRC; do
-  row "$v, 3 axes + mixer, dearest single tick, instructions (+-$ipc)" "$(worst "$v")" "" ""
+for v in "${CASES[@]}"; do
+  row "$(label "$v"), 3 axes + mixer, dearest single tick, instructions (+-$ipc)" "$(worst "$v")" "" ""
 done
 for c in 1 2; do
-  for v in PID LADRC LP-MLADRC HP-MLADRC; do
-    row "$v, $([[ $c == 1 ]] && echo "one axis" || echo "3 axes + mixer"), host, ns/tick" "$(host_ns "$v" "$c")" "" ""
+  for v in "${CASES[@]}"; do
+    row "$(label "$v"), $([[ $c == 1 ]] && echo "one axis" || echo "3 axes + mixer"), host, ns/tick" "$(host_ns "$v" "$c")" "" ""
   done
 done
 for c in axis attitude; do
-  for v in PID LADRC LP-MLADRC HP-MLADRC; do
-    row "$v, $([[ $c == axis ]] && echo "one axis" || echo "3 axes + mixer"), host, instructions/tick (callgrind)" "${host_insn[$c:$v]}" "" ""
+  for v in "${CASES[@]}"; do
+    row "$(label "$v"), $([[ $c == axis ]] && echo "one axis" || echo "3 axes + mixer"), host, instructions/tick (callgrind)" "${host_insn[$c:$v]}" "" ""
   done
 done
 row "3-axis state, sizeof(ladrc_attitude_t), B" "$att_size" "<= 512" "$(mark "$att_size" "<=" 512)"
@@ -281,8 +287,10 @@ row "simulator, paper ($runs runs), full CSV, speed-up --jobs 1 -> 2" "$speedup_
 row "simulator, paper x${#BATCH[@]} ($((runs * ${#BATCH[@]})) runs), no CSV, speed-up --jobs 1 -> 2" "$speedup_batch" ">= 1.8" "$(mark "$speedup_batch" ">=" 1.8)"
 
 echo
+BENCH_TICKS=$(sed -n 's/^BENCH clock .*; \([0-9]*\) ticks per block.*$/\1/p' "$tmp/run1")
 echo "$(sed -n 's/^BENCH clock //p' "$tmp/run1"); the empty loop (same inputs, no call) is subtracted; two runs gave identical counts."
-echo "Mixer in LADRC_MIXER_SATURATE (rotor limits 1e4..2e5 rad^2/s^2), thrust from ladrc_mixer_thrust_from_tilt; inputs: paper references and a lagging, disturbed angle from t = 12 s."
+engaged() { awk -v c="$1" -v k="$2" '$2 == "engaged" && $3 == c && $4 == k { print "weight " $6 " from tick " $11 ", " $8 " tone(s)" }' "$tmp/run1"; }
+echo "Mixer in LADRC_MIXER_SATURATE (rotor limits 1e4..2e5 rad^2/s^2), thrust from ladrc_mixer_thrust_from_tilt. Inputs: the paper references from t = 12 s and the angles and rates of the closed loop the HP-MLADRC controller itself flies from reset (rigid body with the paper's inertia, drag 0.09 N m s and gyroscopic coupling; achieved torques applied) under the Table 2 disturbance 20 -+ 120 sin(3 t) rad/s^2 on roll and pitch, a quarter of it on yaw, or for the two-tone case the same plus 30 sin(8 t) (yaw: a quarter); so the timed HP-MLADRC cases repeat that closed loop and their estimators run engaged over the measured ticks (checked: one tone, 3 axes: $(engaged HP-MLADRC attitude), one axis: $(engaged HP-MLADRC axis); two tones, 3 axes: $(engaged HP-MLADRC-2tones attitude), one axis: $(engaged HP-MLADRC-2tones axis)). The warm-up is long enough for that. The other variants see the same angles in open loop. The disturbance's peaks ask for more roll and pitch torque than the rotor limits leave at hover thrust, so in the HP-MLADRC 3-axis cases the mixer cuts thrust or yaw back on $(awk '$2 == "saturated" && $3 == "HP-MLADRC" { print $4 }' "$tmp/run1") (one tone) and $(awk '$2 == "saturated" && $3 == "HP-MLADRC-2tones" { print $4 }' "$tmp/run1") (two tones) of the $BENCH_TICKS measured ticks, and ladrc_mixer_step takes its saturating path."
 echo "Host: $cpu, gcc Release (-O3) build $BENCH_HOST; ns/tick: $(sed -n 's/^BENCH host clock //p' "$tmp/host"). Instructions/tick: x86-64 instructions counted by valgrind --tool=callgrind --toggle-collect=bench_collect (only the $cg_ticks measured ticks, after the same warm-up), minus the same count for the empty loop, divided by $cg_ticks; deterministic, not comparable with the Cortex-M4F counts."
 echo "Stack: deepest of ${ROOTS[*]}; chain: $stack_chain; not counted (C library): $stack_ext."
 echo "Simulator: $runs runs of $duration s ($simulated s simulated), best wall time of 5; x real time = simulated s / wall s on $(nproc) cores; one controller alone: --controllers NAME, $duration s simulated."
@@ -290,18 +298,20 @@ echo "Simulator: $runs runs of $duration s ($simulated s simulated), best wall t
 # --- where the instructions go -------------------------------------------------
 mod() { awk -v k="$1" '$2 == "module" && $3 == k { print $4 }' "$tmp/run1"; }
 calc() { awk "BEGIN { printf \"%.2f\", $1 }"; }
-decimation=$(awk '$2 == "hp_decimation" { print $3 }' "$tmp/run1")
 fit_decimation=$(awk '$2 == "hp_fit_decimation" { print $3 }' "$tmp/run1")
 leso=$(mod ladrc_leso_step)
 levant=$(mod ladrc_levant_step)
 hp=$(mod ladrc_hp_step)
+twin=$(mod ladrc_leso_step_twin)
+hp2=$(mod ladrc_hp_step_2tones)
 rls3=$(mod ladrc_rls_update_3)
-rls2=$(mod ladrc_rls_update_2)
+rls5=$(mod ladrc_rls_update_5)
 lone=$(mod lone_hp_axes_x3)
 thrust=$(mod ladrc_mixer_thrust_from_tilt)
 mixer=$(mod ladrc_mixer_step)
-hp_own=$(calc "$hp - $rls3 / $fit_decimation - $rls2 / $decimation")
-axis_rest=$(calc "$lone / 3 - 2 * $leso - $levant - $hp")
+hp_own=$(calc "$hp - $rls3 / $fit_decimation")
+hp2_own=$(calc "$hp2 - $rls5 / $fit_decimation")
+axis_rest=$(calc "$lone / 3 - $leso - $twin - $levant - $hp")
 att_rest=$(calc "$hp3 - $lone - $thrust - $mixer")
 share() { calc "100 * $1 * $2 / $hp3"; }
 brow() { # module, instructions/call, calls per tick (0: not part of the tick, no share)
@@ -317,18 +327,21 @@ echo "Where the instructions of the HP-MLADRC 3-axis + mixer tick go (Cortex-M4F
 echo
 echo "| module | instructions/call | calls per HP 3-axis tick | share of the HP 3-axis tick |"
 echo "|---|---:|---:|---:|"
-brow "ladrc_leso_step (each axis's observer and its HP shadow)" "$leso" 6
+brow "ladrc_leso_step (each axis's observer)" "$leso" 3
+brow "ladrc_leso_step_twin (each HP axis's shadow observer)" "$twin" 3
 brow "ladrc_levant_step (implicit, the HP axis default)" "$levant" 3
-brow "ladrc_hp_step without its RLS updates (gate, phase, model)" "$hp_own" 3
-brow "ladrc_rls_update, 3 params (HP fit of bias and sinusoid, every $fit_decimation ticks)" "$rls3" "$(calc "3 / $fit_decimation")"
-brow "ladrc_rls_update, 2 params (HP frequency fit, every $decimation ticks)" "$rls2" "$(calc "3 / $decimation")"
-brow "rest of ladrc_axis_step_with_rate (checks, control law): a lone HP axis minus the rows above" "$axis_rest" 3
+brow "ladrc_hp_step without its RLS update (gate, tones, online frequencies, model), one tone" "$hp_own" 3
+brow "ladrc_rls_update, 3 params (HP fit of bias and one tone, every $fit_decimation ticks)" "$rls3" "$(calc "3 / $fit_decimation")"
+brow "rest of ladrc_axis_step_with_rate (checks, hand-over, control law) and the feed setters: a lone HP axis minus the rows above" "$axis_rest" 3
 brow "ladrc_mixer_thrust_from_tilt" "$thrust" 1
 brow "ladrc_mixer_step (allocate, saturate)" "$mixer" 1
-brow "rest of the 3-axis tick (coupling feed, set_applied): the tick minus 3 lone axes and the mixer rows" "$att_rest" 1
+brow "rest of the 3-axis tick (coupling feed, known part): the tick minus 3 lone axes and the mixer rows" "$att_rest" 1
 brow "HP-MLADRC 3 axes + mixer, measured" "$hp3" 1
+brow "not in this tick: ladrc_hp_step without its RLS update, two tones" "$hp2_own" 0
+brow "not in this tick: ladrc_rls_update, 5 params (HP fit of bias and two tones)" "$rls5" 0
+brow "not in this tick: HP-MLADRC (two tones) 3 axes + mixer, measured" "$(insn HP-MLADRC-2tones 2)" 0
 brow "not in this tick: ladrc_td_step (LADRC's shaper)" "$(mod ladrc_td_step)" 0
 brow "not in this tick: ladrc_lp_step (LP-MLADRC, with its 1-param RLS)" "$(mod ladrc_lp_step)" 0
 brow "not in this tick: ladrc_pid_step (PID)" "$(mod ladrc_pid_step)" 0
 echo
-echo "Each module is timed alone like the ticks ($(sed -n 's/^BENCH clock .*; \([0-9]* ticks per block.*\)$/\1/p' "$tmp/run1")), configured as the axis defaults configure it, on the inputs it sees in the HP 3-axis case: the recorded torques and thrust of that case, the references and angles; ladrc_hp_step and the RLS on the disturbance 20 + 120 sin(3 t) rad/s^2 plus uniform noise of +-0.5 and its regressors. Lone axes: three HP-MLADRC axes stepped side by side, no attitude layer, no mixer ($lone instructions per tick for the three). The two \"rest\" rows make the shares add up to the measured tick, so they also carry any difference between the modules alone and inside the tick."
+echo "Each module is timed alone like the ticks ($(sed -n 's/^BENCH clock .*; \([0-9]* ticks per block.*\)$/\1/p' "$tmp/run1")), configured as the axis defaults configure it, on the inputs it sees in the HP 3-axis case (replayed): its torques, thrust, applied torques, d_hat, fed rates and known parts, the references and angles; ladrc_hp_step on roll's recorded HP sample (z3 - z3 of the shadow), one tone and two tones, engaged over the measured ticks like the axes ($(awk '$2 == "hp_state" && $3 ~ /^ladrc_hp_step/ { printf "%s%s: weight %s, %s tone(s)", sep, $3, $5, $7; sep = "; " }' "$tmp/run1")); the RLS on the regressors of the fit (bias, the phasors at 3 and 8 rad/s at the fit samples' times) and the disturbance, at the engaged fit's forgetting. Lone axes: the three HP-MLADRC axes configured as the attitude configures them, each tick given the recorded fed rate, known part and applied torque, stepped side by side, no attitude layer, no mixer ($lone instructions per tick for the three). The two \"rest\" rows make the shares add up to the measured tick, so they also carry any difference between the modules alone and inside the tick."

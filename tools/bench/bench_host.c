@@ -14,7 +14,8 @@
  *                                   ticks; under valgrind --tool=callgrind
  *                                   --toggle-collect=bench_collect only those
  *                                   are counted. CASE: empty, or
- *                                   axis|attitude:VARIANT (e.g. attitude:PID).
+ *                                   axis|attitude:CASE (e.g. attitude:PID,
+ *                                   attitude:HP-MLADRC-2tones).
  *
  * Output: lines "BENCH host ..." for tools/bench.sh.
  */
@@ -41,23 +42,24 @@ static volatile ladrc_real_t sink;
 static ladrc_axis_t axis;
 static ladrc_attitude_t att;
 static ladrc_mixer_t mixer;
+static const bench_inputs_t *in;
 
 static void run_block(kind_t kind, int from, int n)
 {
     switch (kind) {
     case KIND_EMPTY:
         for (int i = from; i < from + n; ++i) {
-            sink = bench_empty_tick(i);
+            sink = bench_empty_tick(in, i);
         }
         break;
     case KIND_AXIS:
         for (int i = from; i < from + n; ++i) {
-            sink = bench_axis_tick(&axis, i);
+            sink = bench_axis_tick(&axis, in, i);
         }
         break;
     case KIND_ATTITUDE:
         for (int i = from; i < from + n; ++i) {
-            sink = bench_attitude_tick(&att, &mixer, i);
+            sink = bench_attitude_tick(&att, &mixer, in, i);
         }
         break;
     }
@@ -69,6 +71,7 @@ BENCH_NOINLINE void bench_collect(kind_t kind) { run_block(kind, BENCH_WARMUP, B
 
 static int setup(kind_t kind, int variant)
 {
+    in = &bench_in[bench_case_inputs[variant]];
     if (kind == KIND_AXIS) {
         return bench_setup_axis(&axis, variant);
     }
@@ -114,13 +117,13 @@ static int time_all(void)
     printf("BENCH host clock CLOCK_MONOTONIC; median of %d blocks of %d ticks, each after reset "
            "and %d untimed ticks; empty loop %.2f ns/tick subtracted\n",
            BENCH_HOST_REPEATS, BENCH_TICKS, BENCH_WARMUP, empty);
-    for (int v = 0; v < BENCH_VARIANTS; ++v) {
+    for (int v = 0; v < BENCH_CASES; ++v) {
         const double ax = median_ns(KIND_AXIS, v), at = median_ns(KIND_ATTITUDE, v);
         if (ax < 0.0 || at < 0.0) {
-            printf("BENCH error: init failed for %s\n", bench_variant_name[v]);
+            printf("BENCH error: init failed for %s\n", bench_case_name[v]);
             return 1;
         }
-        printf("BENCH host %s %.1f %.1f\n", bench_variant_name[v], ax - empty, at - empty);
+        printf("BENCH host %s %.1f %.1f\n", bench_case_name[v], ax - empty, at - empty);
     }
     return 0;
 }
@@ -140,12 +143,12 @@ static int collect_one(const char *spec)
             fprintf(stderr, "bench_host: bad case '%s'\n", spec);
             return 2;
         }
-        for (variant = 0; variant < BENCH_VARIANTS; ++variant) {
-            if (strcmp(colon + 1, bench_variant_name[variant]) == 0) {
+        for (variant = 0; variant < BENCH_CASES; ++variant) {
+            if (strcmp(colon + 1, bench_case_name[variant]) == 0) {
                 break;
             }
         }
-        if (variant == BENCH_VARIANTS) {
+        if (variant == BENCH_CASES) {
             fprintf(stderr, "bench_host: unknown variant '%s'\n", colon + 1);
             return 2;
         }
@@ -162,7 +165,10 @@ static int collect_one(const char *spec)
 
 int main(int argc, char **argv)
 {
-    bench_make_inputs();
+    if (bench_make_inputs() != 0) {
+        printf("BENCH error: init failed while recording the inputs\n");
+        return 1;
+    }
     if (argc == 1) {
         return time_all();
     }

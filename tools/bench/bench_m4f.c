@@ -11,7 +11,8 @@
  * still loads the inputs and stores the output), so the figure includes the
  * call, argument passing and return as firmware would pay them.
  *
- * Cases (bench_case.h): each variant on one axis and on 3 axes + mixer.
+ * Cases (bench_case.h): each variant on one axis and on 3 axes + mixer, and
+ * HP-MLADRC on a two-tone disturbance.
  * Modules: each building block of a tick timed alone the same way, on the
  * inputs it sees in a tick (see setup_modules), to show where the
  * instructions of the HP-MLADRC 3-axis tick go.
@@ -62,16 +63,18 @@ static uint32_t timed_spin(uint32_t n)
 
 /* What a block runs. */
 typedef enum {
-    RUN_AXIS,        /* one axis of the current variant */
-    RUN_ATTITUDE,    /* 3 axes + mixer of the current variant */
-    RUN_LONE_AXES,   /* three HP-MLADRC axes side by side, no attitude, no mixer */
+    RUN_AXIS,        /* one axis of the current case */
+    RUN_ATTITUDE,    /* 3 axes + mixer of the current case */
+    RUN_LONE_AXES,   /* the three HP-MLADRC axes of the 3-axis case side by side, no attitude, no mixer */
     RUN_LESO,
+    RUN_TWIN,
     RUN_TD,
     RUN_LEVANT,
     RUN_LP,
     RUN_HP,
+    RUN_HP2,
     RUN_RLS3,
-    RUN_RLS2,
+    RUN_RLS5,
     RUN_PID,
     RUN_THRUST,
     RUN_MIXER
@@ -80,31 +83,38 @@ typedef enum {
 static ladrc_axis_t axis;
 static ladrc_attitude_t att;
 static ladrc_mixer_t mixer;
+static const bench_inputs_t *in; /* inputs of the current case */
 
 /* The modules alone, and what they are fed. */
 static struct {
     ladrc_axis_t lone[LADRC_AXES];
     ladrc_leso_t leso;
+    ladrc_leso_twin_t twin;
     ladrc_td_t td;
     ladrc_levant_t levant;
     ladrc_lp_estimator_t lp;
-    ladrc_hp_estimator_t hp;
-    ladrc_rls_t rls3, rls2;
+    ladrc_hp_estimator_t hp, hp2;
+    ladrc_rls_t rls3, rls5;
     ladrc_pid_t pid;
     ladrc_mixer_t mixer;
     ladrc_mixer_output_t out;
     ladrc_real_t b0;
-    uint16_t decimation;
+    ladrc_real_t fit_rate_per_s, fit_rate2_per_s; /* the engaged fits' forgetting, one and two tones */
     uint16_t fit_decimation;
 } mod;
 
-static ladrc_real_t torque_in[BENCH_SAMPLES][LADRC_AXES]; /* commanded, N m */
-static ladrc_real_t applied_in[BENCH_SAMPLES];            /* achieved roll torque, N m */
-static ladrc_real_t thrust_in[BENCH_SAMPLES];             /* N */
-static ladrc_real_t hp_in[BENCH_SAMPLES];                 /* rad/s^2 */
-static ladrc_real_t phi3_in[BENCH_SAMPLES][3];
-static ladrc_real_t phi2_in[BENCH_SAMPLES][2];
-static ladrc_real_t y2_in[BENCH_SAMPLES];
+/* Recorded from the HP-MLADRC 3-axis case (one tone unless named 2). */
+static ladrc_real_t torque_in[BENCH_SAMPLES][LADRC_AXES];  /* commanded, N m */
+static ladrc_real_t applied_in[BENCH_SAMPLES][LADRC_AXES]; /* achieved, N m */
+static ladrc_real_t thrust_in[BENCH_SAMPLES];              /* N */
+static ladrc_real_t known_in[BENCH_SAMPLES][LADRC_AXES];   /* known part of f told each axis, rad/s^2 */
+static ladrc_real_t frate_in[BENCH_SAMPLES][LADRC_AXES];   /* fed rate h, rad/s^3 */
+static ladrc_real_t dhat_in[BENCH_SAMPLES];                /* roll d_hat, rad/s^2 */
+static ladrc_real_t hp_in[BENCH_SAMPLES];                  /* roll HP sample z3 - z3_shadow, rad/s^2 */
+static ladrc_real_t hp2_in[BENCH_SAMPLES];
+/* Regressors and samples of the fits at the fit samples' times. */
+static ladrc_real_t phi5_in[BENCH_SAMPLES][5];
+static ladrc_real_t y3_in[BENCH_SAMPLES], y5_in[BENCH_SAMPLES];
 
 /* Ticks the block from the first sample (warm-up) or after it; "empty" runs
  * the same loop and loads with the call left out. */
@@ -117,6 +127,28 @@ static ladrc_real_t y2_in[BENCH_SAMPLES];
         }                                                                                          \
     }
 
+static ladrc_real_t lone_tick(int i)
+{
+    ladrc_real_t u = 0.0f;
+    for (int a = 0; a < LADRC_AXES; ++a) {
+        ladrc_axis_set_disturbance_rate(&mod.lone[a], frate_in[i][a]);
+        ladrc_axis_set_known_disturbance(&mod.lone[a], known_in[i][a]);
+        u = ladrc_axis_step_with_rate(&mod.lone[a], bench_ref[i][a], in->ang[i][a], in->rate[i][a]);
+        ladrc_axis_set_applied(&mod.lone[a], applied_in[i][a]);
+    }
+    return u;
+}
+
+static ladrc_real_t lone_empty(int i)
+{
+    ladrc_real_t s = 0.0f;
+    for (int a = 0; a < LADRC_AXES; ++a) {
+        s += frate_in[i][a] + known_in[i][a] + bench_ref[i][a] + in->ang[i][a] + in->rate[i][a] +
+             applied_in[i][a];
+    }
+    return s;
+}
+
 static uint32_t run(run_t what, int warm, int timed)
 {
     const int from = warm ? 0 : BENCH_WARMUP;
@@ -124,20 +156,22 @@ static uint32_t run(run_t what, int warm, int timed)
     uint32_t t0 = timer_now();
     switch (what) {
     case RUN_AXIS:
-        BLOCK(sink = bench_axis_tick(&axis, i), bench_empty_tick(i));
+        BLOCK(sink = bench_axis_tick(&axis, in, i), bench_empty_tick(in, i));
         break;
     case RUN_ATTITUDE:
-        BLOCK(sink = bench_attitude_tick(&att, &mixer, i), bench_empty_tick(i));
+        BLOCK(sink = bench_attitude_tick(&att, &mixer, in, i), bench_empty_tick(in, i));
         break;
     case RUN_LONE_AXES:
-        BLOCK(for (int a = 0; a < LADRC_AXES; ++a) sink = ladrc_axis_step_with_rate(
-                  &mod.lone[a], bench_ref[i][a], bench_ang[i][a], bench_rate[i][a]),
-              bench_empty_tick(i) + bench_ref[i][1] + bench_ang[i][1] + bench_rate[i][1] +
-                  bench_ref[i][2] + bench_ang[i][2] + bench_rate[i][2]);
+        BLOCK(sink = lone_tick(i), lone_empty(i));
         break;
     case RUN_LESO:
-        BLOCK((void)ladrc_leso_step(&mod.leso, bench_ang[i][0], applied_in[i], 0.0f, 0.0f),
-              bench_ang[i][0] + applied_in[i]);
+        BLOCK((void)ladrc_leso_step(&mod.leso, in->ang[i][0], applied_in[i][0], dhat_in[i], frate_in[i][0]),
+              in->ang[i][0] + applied_in[i][0] + dhat_in[i] + frate_in[i][0]);
+        break;
+    case RUN_TWIN:
+        BLOCK((void)ladrc_leso_step_twin(&mod.leso, &mod.twin, 0.0f, 0.0f, dhat_in[i] - known_in[i][0],
+                                         frate_in[i][0]),
+              dhat_in[i] - known_in[i][0] + frate_in[i][0]);
         break;
     case RUN_TD: {
         ladrc_ref_t r;
@@ -150,25 +184,28 @@ static uint32_t run(run_t what, int warm, int timed)
         break;
     }
     case RUN_LP:
-        BLOCK((void)ladrc_lp_step(&mod.lp, bench_rate[i][0], mod.b0 * applied_in[i]),
-              bench_rate[i][0] + mod.b0 * applied_in[i]);
+        BLOCK((void)ladrc_lp_step(&mod.lp, in->rate[i][0], mod.b0 * applied_in[i][0]),
+              in->rate[i][0] + mod.b0 * applied_in[i][0]);
         break;
     case RUN_HP:
         BLOCK((void)ladrc_hp_step(&mod.hp, hp_in[i]), hp_in[i]);
         break;
-    case RUN_RLS3:
-        BLOCK((void)ladrc_rls_update(&mod.rls3, phi3_in[i], hp_in[i]), phi3_in[i][1] + hp_in[i]);
+    case RUN_HP2:
+        BLOCK((void)ladrc_hp_step(&mod.hp2, hp2_in[i]), hp2_in[i]);
         break;
-    case RUN_RLS2:
-        BLOCK((void)ladrc_rls_update(&mod.rls2, phi2_in[i], y2_in[i]), phi2_in[i][0] + y2_in[i]);
+    case RUN_RLS3:
+        BLOCK((void)ladrc_rls_update(&mod.rls3, phi5_in[i], y3_in[i]), phi5_in[i][1] + y3_in[i]);
+        break;
+    case RUN_RLS5:
+        BLOCK((void)ladrc_rls_update(&mod.rls5, phi5_in[i], y5_in[i]), phi5_in[i][1] + y5_in[i]);
         break;
     case RUN_PID:
-        BLOCK(sink = ladrc_pid_step(&mod.pid, bench_ref[i][0], bench_ang[i][0], &bench_rate[i][0]),
-              bench_empty_tick(i));
+        BLOCK(sink = ladrc_pid_step(&mod.pid, bench_ref[i][0], in->ang[i][0], &in->rate[i][0]),
+              bench_empty_tick(in, i));
         break;
     case RUN_THRUST:
-        BLOCK(sink = ladrc_mixer_thrust_from_tilt(&mod.mixer, bench_ang[i][0], bench_ang[i][1]),
-              bench_ang[i][0] + bench_ang[i][1]);
+        BLOCK(sink = ladrc_mixer_thrust_from_tilt(&mod.mixer, in->ang[i][0], in->ang[i][1]),
+              in->ang[i][0] + in->ang[i][1]);
         break;
     case RUN_MIXER:
         BLOCK((void)ladrc_mixer_step(&mod.mixer, thrust_in[i], torque_in[i], &mod.out),
@@ -178,102 +215,124 @@ static uint32_t run(run_t what, int warm, int timed)
     return timer_since(t0);
 }
 
-/* Deterministic noise in [-1, 1). */
-static float noise(uint32_t *seed)
+/* Replays the HP-MLADRC 3-axis case of one disturbance (as bench_attitude_tick)
+ * and records what its modules see; sample: roll's HP sample. Returns the
+ * roll fit's forgetting rate at the end (the engaged one). */
+static ladrc_real_t record_attitude(int bench_case, int full, ladrc_real_t *sample)
 {
-    *seed = *seed * 1664525u + 1013904223u;
-    return (float)(*seed >> 8) * (2.0f / 16777216.0f) - 1.0f;
+    const bench_inputs_t *r = &bench_in[bench_case_inputs[bench_case]];
+    (void)bench_setup_attitude(&att, &mixer, bench_case);
+    for (int i = 0; i < BENCH_SAMPLES; ++i) {
+        ladrc_real_t torque[LADRC_AXES];
+        ladrc_mixer_output_t out;
+        const ladrc_real_t thrust = ladrc_mixer_thrust_from_tilt(&mixer, r->ang[i][0], r->ang[i][1]);
+        (void)ladrc_attitude_step(&att, bench_ref[i], r->ang[i], r->rate[i], torque);
+        (void)ladrc_mixer_step(&mixer, thrust, torque, &out);
+        ladrc_attitude_set_applied(&att, out.torque_Nm);
+        const ladrc_axis_t *roll = &att.axis[0];
+        sample[i] = roll->leso.z3 - roll->part.hp.shadow.z3;
+        if (full) {
+            thrust_in[i] = thrust;
+            dhat_in[i] = roll->d_hat_rad_s2;
+            for (int a = 0; a < LADRC_AXES; ++a) {
+                torque_in[i][a] = torque[a];
+                applied_in[i][a] = out.torque_Nm[a];
+                known_in[i][a] = att.axis[a].f_known_rad_s2;
+                frate_in[i][a] = att.axis[a].f_rate_rad_s3;
+            }
+        }
+    }
+    return att.axis[0].part.hp.est.fit_rate_per_s;
 }
 
-/* The Table 2 disturbance with a little measurement noise, rad/s^2. */
-static float disturbance(float t, uint32_t *seed) { return 20.0f + 120.0f * sinf(3.0f * t) + 0.5f * noise(seed); }
-
-/* Inputs of the modules: the torques and thrust of the HP-MLADRC 3-axis case
- * (recorded from a run), the disturbance for the HP estimator, and the
- * regressors its two RLS see (3 params: bias and the phasor at 3 rad/s;
- * 2 params: second differences of the decimated samples). */
-static int record_inputs(uint16_t decimation)
+/* Inputs of the modules: the torques, thrust, feeds and HP samples of the
+ * HP-MLADRC 3-axis cases (replayed), and the regressors of the HP fit at its
+ * sample times (bias and the phasors at 3 and 8 rad/s) with the disturbance
+ * they fit. */
+static void record_inputs(void)
 {
-    if (bench_setup_attitude(&att, &mixer, BENCH_VARIANTS - 1) != 0) {
-        return -1;
-    }
+    mod.fit_rate_per_s = record_attitude(BENCH_CASE_HP, 1, hp_in);
+    mod.fit_rate2_per_s = record_attitude(BENCH_CASE_HP2, 0, hp2_in);
+    const float period_s = (float)mod.fit_decimation * BENCH_DT_S;
     for (int i = 0; i < BENCH_SAMPLES; ++i) {
-        ladrc_mixer_output_t out;
-        thrust_in[i] = ladrc_mixer_thrust_from_tilt(&mixer, bench_ang[i][0], bench_ang[i][1]);
-        (void)ladrc_attitude_step(&att, bench_ref[i], bench_ang[i], bench_rate[i], torque_in[i]);
-        (void)ladrc_mixer_step(&mixer, thrust_in[i], torque_in[i], &out);
-        ladrc_attitude_set_applied(&att, out.torque_Nm);
-        applied_in[i] = out.torque_Nm[0];
+        const float t = BENCH_T0_S + (float)i * period_s;
+        phi5_in[i][0] = 1.0f;
+        phi5_in[i][1] = cosf(3.0f * t);
+        phi5_in[i][2] = sinf(3.0f * t);
+        phi5_in[i][3] = cosf(8.0f * t);
+        phi5_in[i][4] = sinf(8.0f * t);
+        y3_in[i] = bench_disturbance(BENCH_ONE_TONE, 0, t);
+        y5_in[i] = bench_disturbance(BENCH_TWO_TONES, 0, t);
     }
-    uint32_t seed = 1u, seed2 = 2u;
-    const float period_s = (float)decimation * BENCH_DT_S;
-    float x0 = disturbance(0.0f, &seed2), x1 = disturbance(period_s, &seed2);
-    for (int i = 0; i < BENCH_SAMPLES; ++i) {
-        const float t = (float)i * BENCH_DT_S;
-        hp_in[i] = disturbance(t, &seed);
-        phi3_in[i][0] = 1.0f;
-        phi3_in[i][1] = cosf(3.0f * t);
-        phi3_in[i][2] = sinf(3.0f * t);
-        const float x2 = disturbance((float)(i + 2) * period_s, &seed2);
-        phi2_in[i][0] = -x1;
-        phi2_in[i][1] = 1.0f;
-        y2_in[i] = x2 - 2.0f * x1 + x0;
-        x0 = x1;
-        x1 = x2;
+}
+
+/* ladrc_hp_config_t of a 3-axis HP axis config, as ladrc_axis_init builds it. */
+static ladrc_hp_config_t hp_config(const ladrc_axis_config_t *c)
+{
+    ladrc_hp_config_t hp = {.dt_s = c->dt_s,
+                            .freq_mode = c->hp_freq_mode,
+                            .n_tones = c->hp_n_tones,
+                            .freq_min_rad_s = c->hp_freq_min_rad_s,
+                            .freq_max_rad_s = c->hp_freq_max_rad_s,
+                            .lambda0_per_s = c->hp_lambda0_per_s,
+                            .freq_lambda0_per_s = c->hp_freq_lambda0_per_s,
+                            .freq_filter_rad_s = c->hp_freq_filter_rad_s,
+                            .sample_lag_wo_rad_s = c->wo_rad_s,
+                            .fit_decimation = c->hp_fit_decimation,
+                            .fit_phase = c->hp_fit_phase};
+    for (unsigned k = 0u; k < LADRC_HP_MAX_TONES; ++k) {
+        hp.freq_rad_s[k] = c->hp_freq_rad_s[k];
     }
-    return 0;
+    return hp;
 }
 
 /* Each module configured as the axis defaults configure it (HP-MLADRC for
- * the LESO, Levant and estimators, LADRC for TD, PID for PID). */
+ * the LESO, Levant and estimators, LADRC for TD, PID for PID), the HP axes as
+ * the attitude defaults configure them. */
 static int setup_modules(void)
 {
-    ladrc_axis_config_t hp, ladrc, pid;
-    ladrc_axis_config_default(&hp, LADRC_VARIANT_HP_MLADRC, BENCH_DT_S, bench_inertia[0]);
+    ladrc_attitude_config_t hp3;
+    ladrc_axis_config_t ladrc, pid;
+    ladrc_attitude_config_default(&hp3, LADRC_VARIANT_HP_MLADRC, BENCH_DT_S, bench_inertia, 0.09f);
+    const ladrc_axis_config_t *hp = &hp3.axis[0];
     ladrc_axis_config_default(&ladrc, LADRC_VARIANT_LADRC, BENCH_DT_S, bench_inertia[0]);
     ladrc_axis_config_default(&pid, LADRC_VARIANT_PID, BENCH_DT_S, bench_inertia[0]);
-    mod.b0 = hp.b0;
-    mod.decimation = hp.hp_decimation;
-    mod.fit_decimation = hp.hp_fit_decimation;
-    if (record_inputs(hp.hp_decimation) != 0) {
-        return -1;
-    }
+    mod.b0 = hp->b0;
+    mod.fit_decimation = hp->hp_fit_decimation;
+    record_inputs();
+    in = &bench_in[BENCH_ONE_TONE];
     for (int a = 0; a < LADRC_AXES; ++a) {
-        ladrc_axis_config_t cfg;
-        ladrc_axis_config_default(&cfg, LADRC_VARIANT_HP_MLADRC, BENCH_DT_S, bench_inertia[a]);
-        if (ladrc_axis_init(&mod.lone[a], &cfg) != LADRC_OK) {
+        if (ladrc_axis_init(&mod.lone[a], &hp3.axis[a]) != LADRC_OK) {
             return -1;
         }
-        ladrc_axis_reset(&mod.lone[a], bench_ang[0][a]);
+        ladrc_axis_reset(&mod.lone[a], in->ang[0][a]);
     }
-    const ladrc_leso_config_t leso = {hp.dt_s, hp.wo_rad_s, hp.b0, hp.leso_method};
+    const ladrc_leso_config_t leso = {hp->dt_s, hp->wo_rad_s, hp->b0, hp->leso_method};
     const ladrc_td_config_t td = {ladrc.dt_s, ladrc.td_accel_rad_s2, ladrc.td_h0_s};
-    const ladrc_levant_config_t lev = {hp.dt_s, hp.levant_method, LADRC_LEVANT_GAINS_LIPSCHITZ,
-                                       hp.levant_lipschitz_rad_s4, 0.0f, 0.0f, 0.0f, 0.0f};
-    const ladrc_lp_config_t lp = {hp.dt_s, hp.lp_lambda0_per_s, hp.lp_k0_per_s};
-    const ladrc_hp_config_t hpc = {hp.dt_s, hp.hp_freq_mode, hp.hp_freq_rad_s,
-                                   hp.hp_freq_min_rad_s, hp.hp_freq_max_rad_s, hp.hp_lambda0_per_s,
-                                   hp.hp_freq_lambda0_per_s, hp.hp_decimation, hp.wo_rad_s,
-                                   hp.hp_fit_decimation, hp.hp_fit_phase};
-    /* The HP estimator's two fits: P bound 1e4 and initial P 1e3 per sample. */
-    const float h2 = (float)hp.hp_decimation * hp.dt_s;
-    const float h3 = (float)hp.hp_fit_decimation * hp.dt_s;
-    const ladrc_rls_config_t rls3 = {3u, h3, hp.hp_lambda0_per_s, 1e4f / h3, 1e3f / h3};
-    const ladrc_rls_config_t rls2 = {2u, h2, hp.hp_freq_lambda0_per_s, 1e4f / h2, 1e3f / h2};
+    const ladrc_levant_config_t lev = {hp->dt_s, hp->levant_method, LADRC_LEVANT_GAINS_LIPSCHITZ,
+                                       hp->levant_lipschitz_rad_s4, 0.0f, 0.0f, 0.0f, 0.0f};
+    const ladrc_lp_config_t lp = {hp->dt_s, hp->lp_lambda0_per_s, hp->lp_k0_per_s};
+    const ladrc_hp_config_t hpc = hp_config(hp);
+    /* The HP fit as the estimator runs it engaged: P bound 1e4 and initial P
+     * 1e3 per sample, its engaged forgetting rate. */
+    const float t3 = (float)hp->hp_fit_decimation * hp->dt_s;
+    const ladrc_rls_config_t rls3 = {3u, t3, mod.fit_rate_per_s, 1e4f / t3, 1e3f / t3};
+    const ladrc_rls_config_t rls5 = {5u, t3, mod.fit_rate2_per_s, 1e4f / t3, 1e3f / t3};
     const ladrc_pid_config_t pidc = {pid.dt_s, pid.pid_kp, pid.pid_ki, pid.pid_kd,
                                      pid.pid_d_filter_tau_s, pid.pid_i_limit_Nm, pid.u_min_Nm,
                                      pid.u_max_Nm};
     if (ladrc_leso_init(&mod.leso, &leso) != LADRC_OK || ladrc_td_init(&mod.td, &td) != LADRC_OK ||
         ladrc_levant_init(&mod.levant, &lev) != LADRC_OK || ladrc_lp_init(&mod.lp, &lp) != LADRC_OK ||
-        ladrc_hp_init(&mod.hp, &hpc) != LADRC_OK || ladrc_rls_init(&mod.rls3, &rls3) != LADRC_OK ||
-        ladrc_rls_init(&mod.rls2, &rls2) != LADRC_OK || ladrc_pid_init(&mod.pid, &pidc) != LADRC_OK ||
-        ladrc_mixer_init(&mod.mixer, &bench_mixer_cfg) != LADRC_OK) {
+        ladrc_hp_init(&mod.hp, &hpc) != LADRC_OK || ladrc_hp_init(&mod.hp2, &hpc) != LADRC_OK ||
+        ladrc_rls_init(&mod.rls3, &rls3) != LADRC_OK || ladrc_rls_init(&mod.rls5, &rls5) != LADRC_OK ||
+        ladrc_pid_init(&mod.pid, &pidc) != LADRC_OK || ladrc_mixer_init(&mod.mixer, &bench_mixer_cfg) != LADRC_OK) {
         return -1;
     }
-    ladrc_leso_reset(&mod.leso, bench_ang[0][0]);
+    ladrc_leso_reset(&mod.leso, in->ang[0][0]);
+    ladrc_leso_twin_reset(&mod.twin, 0.0f);
     ladrc_td_reset(&mod.td, bench_ref[0][0]);
     ladrc_levant_reset(&mod.levant, bench_ref[0][0]);
-    ladrc_pid_reset(&mod.pid, bench_ang[0][0]);
+    ladrc_pid_reset(&mod.pid, in->ang[0][0]);
     return 0;
 }
 
@@ -300,6 +359,14 @@ static void print_module(const char *name, run_t what, uint32_t ipc)
            (unsigned long)(x100 % 100u), (unsigned long)c, (unsigned long)c0);
 }
 
+/* An HP estimator's state after its measured block (it should be engaged). */
+static void print_hp_state(const char *name, const ladrc_hp_estimator_t *est)
+{
+    const float w = (float)ladrc_hp_get_weight(est);
+    printf("BENCH hp_state %s weight %d.%03d tones %u\n", name, (int)w, (int)(1000.0f * (w - (float)(int)w)),
+           ladrc_hp_get_active_tones(est));
+}
+
 /* The dearest single 3-axis tick of the block, in instructions to within one
  * SysTick count (ipc instructions): each tick timed alone, less the cheapest
  * empty tick. Averages hide the ticks on which decimated work falls. */
@@ -309,13 +376,13 @@ static uint32_t worst_attitude_tick(uint32_t ipc)
     uint32_t empty = UINT32_MAX;
     for (int i = BENCH_WARMUP; i < BENCH_WARMUP + BENCH_TICKS; ++i) {
         const uint32_t t0 = timer_now();
-        sink = bench_attitude_tick(&att, &mixer, i);
+        sink = bench_attitude_tick(&att, &mixer, in, i);
         const uint32_t c = timer_since(t0);
         worst = (c > worst) ? c : worst;
     }
     for (int i = BENCH_WARMUP; i < BENCH_WARMUP + BENCH_TICKS; ++i) {
         const uint32_t t0 = timer_now();
-        sink = bench_empty_tick(i);
+        sink = bench_empty_tick(in, i);
         const uint32_t c = timer_since(t0);
         empty = (c < empty) ? c : empty;
     }
@@ -326,7 +393,6 @@ static uint32_t worst_attitude_tick(uint32_t ipc)
 
 int main(void)
 {
-    bench_make_inputs();
     timer_start();
 
     /* Calibration: the difference of two spins is exactly 2 * (n2 - n1) instructions;
@@ -346,15 +412,39 @@ int main(void)
            "(%lu instructions in %lu counts); %d ticks per block after %d warm-up ticks\n",
            (unsigned long)ipc, (unsigned long)insns, (unsigned long)counts, BENCH_TICKS, BENCH_WARMUP);
 
-    for (int v = 0; v < BENCH_VARIANTS; ++v) {
+    if (bench_make_inputs() != 0) {
+        printf("BENCH error: init failed while recording the inputs\n");
+        return 1;
+    }
+    /* The HP-MLADRC cases must run their estimators engaged over the measured
+     * ticks (weight 1, the disturbance's tones active). */
+    for (int d = 0; d < BENCH_DISTURBANCES; ++d) {
+        static const char *const kind[2] = {"attitude", "axis"};
+        const bench_engagement_t *e[2] = {&bench_engaged_attitude[d], &bench_engaged_axis[d]};
+        for (int k = 0; k < 2; ++k) {
+            const unsigned tones = (d == BENCH_TWO_TONES) ? 2u : 1u;
+            printf("BENCH engaged %s %s weight_min %d.%03d tones %u %u from %d\n", bench_case_name[BENCH_CASE_HP + d],
+                   kind[k], (int)e[k]->weight_min, (int)(1000.0f * (e[k]->weight_min - (float)(int)e[k]->weight_min)),
+                   e[k]->tones_min, e[k]->tones_max, e[k]->engaged_from);
+            if (e[k]->weight_min < 1.0f || e[k]->tones_min != tones || e[k]->tones_max != tones) {
+                printf("BENCH error: %s (%s) does not run engaged with %u tone(s) over the measured ticks\n",
+                       bench_case_name[BENCH_CASE_HP + d], kind[k], tones);
+                return 1;
+            }
+        }
+        printf("BENCH saturated %s %d\n", bench_case_name[BENCH_CASE_HP + d], bench_engaged_attitude[d].saturated);
+    }
+
+    for (int v = 0; v < BENCH_CASES; ++v) {
+        in = &bench_in[bench_case_inputs[v]];
         if (bench_setup_axis(&axis, v) != 0 || bench_setup_attitude(&att, &mixer, v) != 0) {
-            printf("BENCH error: init failed for %s\n", bench_variant_name[v]);
+            printf("BENCH error: init failed for %s\n", bench_case_name[v]);
             return 1;
         }
         uint32_t ax, ax0, at, at0;
         const uint32_t ax100 = measure(RUN_AXIS, ipc, &ax, &ax0);
         const uint32_t at100 = measure(RUN_ATTITUDE, ipc, &at, &at0);
-        printf("BENCH insn %s %lu.%02lu %lu.%02lu counts %lu %lu %lu %lu\n", bench_variant_name[v],
+        printf("BENCH insn %s %lu.%02lu %lu.%02lu counts %lu %lu %lu %lu\n", bench_case_name[v],
                (unsigned long)(ax100 / 100u), (unsigned long)(ax100 % 100u),
                (unsigned long)(at100 / 100u), (unsigned long)(at100 % 100u),
                (unsigned long)ax, (unsigned long)ax0, (unsigned long)at, (unsigned long)at0);
@@ -362,26 +452,32 @@ int main(void)
             return 1;
         }
         (void)run(RUN_ATTITUDE, 1, 1);
-        printf("BENCH worst %s %lu\n", bench_variant_name[v], (unsigned long)worst_attitude_tick(ipc));
+        printf("BENCH worst %s %lu\n", bench_case_name[v], (unsigned long)worst_attitude_tick(ipc));
     }
 
     if (setup_modules() != 0) {
         printf("BENCH error: init of a module failed\n");
         return 1;
     }
-    printf("BENCH hp_decimation %u\n", (unsigned)mod.decimation);
     printf("BENCH hp_fit_decimation %u\n", (unsigned)mod.fit_decimation);
     print_module("lone_hp_axes_x3", RUN_LONE_AXES, ipc);
     print_module("ladrc_leso_step", RUN_LESO, ipc);
+    print_module("ladrc_leso_step_twin", RUN_TWIN, ipc);
     print_module("ladrc_td_step", RUN_TD, ipc);
     print_module("ladrc_levant_step", RUN_LEVANT, ipc);
     print_module("ladrc_lp_step", RUN_LP, ipc);
     print_module("ladrc_hp_step", RUN_HP, ipc);
+    print_hp_state("ladrc_hp_step", &mod.hp);
+    print_module("ladrc_hp_step_2tones", RUN_HP2, ipc);
+    print_hp_state("ladrc_hp_step_2tones", &mod.hp2);
     print_module("ladrc_rls_update_3", RUN_RLS3, ipc);
-    print_module("ladrc_rls_update_2", RUN_RLS2, ipc);
+    print_module("ladrc_rls_update_5", RUN_RLS5, ipc);
     print_module("ladrc_pid_step", RUN_PID, ipc);
     print_module("ladrc_mixer_thrust_from_tilt", RUN_THRUST, ipc);
     print_module("ladrc_mixer_step", RUN_MIXER, ipc);
+    for (int a = 0; a < LADRC_AXES; ++a) {
+        print_hp_state("lone_hp_axis", &mod.lone[a].part.hp.est);
+    }
 
     SIZE_LINE(ladrc_attitude_t);
     SIZE_LINE(ladrc_attitude_config_t);
