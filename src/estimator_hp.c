@@ -340,46 +340,65 @@ static void track_slip(ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone)
     }
 }
 
-/* ONLINE: n active tones at the frequencies w; each takes over the state and
- * fitted values of the active tone nearest to it within TONE_SEPARATION
- * (its phasor and frequency too while that tone is locked), the others start
- * at zero amplitude; the fit restarts with those values. */
-static void change_tone_count(ladrc_hp_estimator_t *est, unsigned n, const ladrc_real_t w[LADRC_HP_MAX_TONES])
+/* ONLINE: the slot of the active tone within TONE_SEPARATION of w nearest
+ * to it, or n_active if none. */
+static unsigned nearest_tone(const ladrc_hp_estimator_t *est, ladrc_real_t w)
 {
-    const ladrc_real_t *old = ladrc_rls_get_theta(&est->fit);
-    ladrc_real_t theta[LADRC_RLS_MAX_PARAMS];
-    ladrc_hp_tone_t tones[LADRC_HP_MAX_TONES];
-    unsigned used = 0u; /* bit j: old tone j taken */
-    theta[0] = old[0];
-    for (unsigned k = 0u; k < n; ++k) {
-        unsigned nearest = est->n_active;
-        for (unsigned j = 0u; j < est->n_active; ++j) {
-            const ladrc_real_t gap = ladrc_fabs(est->tone[j].w_rad_s - w[k]);
-            if ((used & (1u << j)) == 0u && gap < TONE_SEPARATION * w[k] &&
-                (nearest == est->n_active || gap < ladrc_fabs(est->tone[nearest].w_rad_s - w[k]))) {
-                nearest = j;
-            }
-        }
-        tones[k] = est->tone[k];
-        theta[theta_a(k)] = LADRC_R(0.0);
-        theta[theta_a(k) + 1u] = LADRC_R(0.0);
-        if (nearest < est->n_active) {
-            used |= 1u << nearest;
-            tones[k] = est->tone[nearest];
-            theta[theta_a(k)] = old[theta_a(nearest)];
-            theta[theta_a(k) + 1u] = old[theta_a(nearest) + 1u];
-        } else {
-            tones[k].prev_a = LADRC_R(0.0);
-            tones[k].prev_b = LADRC_R(0.0);
-            tones[k].slip_rad_s = LADRC_R(0.0);
-            tones[k].locked = 0u;
-            tones[k].significant = 0u;
+    unsigned nearest = est->n_active;
+    for (unsigned j = 0u; j < est->n_active; ++j) {
+        const ladrc_real_t gap = ladrc_fabs(est->tone[j].w_rad_s - w);
+        if (gap < TONE_SEPARATION * w &&
+            (nearest == est->n_active || gap < ladrc_fabs(est->tone[nearest].w_rad_s - w))) {
+            nearest = j;
         }
     }
+    return nearest;
+}
+
+/* ONLINE: one tone becomes two or two one (LADRC_HP_MAX_TONES <= 2). A tone
+ * that is still there keeps its state and fitted values (and, unless locked,
+ * takes the frequency found for it); a new one starts at its frequency with
+ * zero amplitude; the fit restarts with those values. */
+static void change_tone_count(ladrc_hp_estimator_t *est, unsigned n, const ladrc_real_t w[LADRC_HP_MAX_TONES])
+{
+    ladrc_real_t theta[LADRC_RLS_MAX_PARAMS];
+    const ladrc_real_t *old = ladrc_rls_get_theta(&est->fit);
+    for (unsigned i = 0u; i < LADRC_RLS_MAX_PARAMS; ++i) {
+        theta[i] = (i < theta_a(est->n_active)) ? old[i] : LADRC_R(0.0);
+    }
+    ladrc_real_t target[LADRC_HP_MAX_TONES];
+    unsigned fresh; /* bit k: slot k starts a new tone */
+    if (n < est->n_active) {
+        /* two -> one: the tone nearest w[0] stays, in slot 0 */
+        const unsigned kept = nearest_tone(est, w[0]);
+        if (kept == 1u) {
+            est->tone[0] = est->tone[1];
+            theta[theta_a(0u)] = theta[theta_a(1u)];
+            theta[theta_a(0u) + 1u] = theta[theta_a(1u) + 1u];
+        }
+        target[0] = w[0];
+        fresh = (kept < est->n_active) ? 0u : 1u;
+    } else {
+        /* one -> two: tone 0 keeps the frequency it is near, slot 1 the other */
+        const unsigned near_first = nearest_tone(est, w[0]) == 0u;
+        const unsigned near_second = !near_first && nearest_tone(est, w[n - 1u]) == 0u;
+        target[0] = near_second ? w[n - 1u] : w[0];
+        target[n - 1u] = near_second ? w[0] : w[n - 1u];
+        fresh = (near_first || near_second) ? 2u : 3u;
+    }
     for (unsigned k = 0u; k < n; ++k) {
-        est->tone[k] = tones[k];
-        if (!est->tone[k].locked) {
-            set_tone_freq(est, &est->tone[k], w[k]);
+        ladrc_hp_tone_t *tone = &est->tone[k];
+        if ((fresh & (1u << k)) != 0u) {
+            theta[theta_a(k)] = LADRC_R(0.0);
+            theta[theta_a(k) + 1u] = LADRC_R(0.0);
+            tone->prev_a = LADRC_R(0.0);
+            tone->prev_b = LADRC_R(0.0);
+            tone->slip_rad_s = LADRC_R(0.0);
+            tone->locked = 0u;
+            tone->significant = 0u;
+        }
+        if (!tone->locked) {
+            set_tone_freq(est, tone, target[k]);
         }
     }
     start_fit(est, n, theta);
@@ -643,9 +662,6 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
     ladrc_real_t model = ladrc_rls_get_theta(&est->fit)[0];
     for (unsigned k = 0u; k < est->n_active; ++k) {
         model += tone_value(est, k, 1);
-    }
-    /* Every tone turns, active or not, so a tone that starts is in phase. */
-    for (unsigned k = 0u; k < est->n_tones; ++k) {
         advance_phase(&est->tone[k]);
     }
     est->estimate = est->weight * model;

@@ -2,7 +2,6 @@
 /* Bounded-gain RLS on the factors P = U D U^T (see rls.h). */
 #include "ladrc/rls.h"
 
-#include <string.h>
 
 /* Forgetting stops when tr(P) is within this fraction of k0. It is far above
  * the rounding of the trace (about n eps = 5e-7 in float), so without
@@ -129,33 +128,28 @@ ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_
     rls->lambda_per_s = lambda;
     const ladrc_real_t mu = ladrc_exp(-lambda * h);
     const ladrc_real_t inv_mu = LADRC_R(1.0) / mu;
-    const ladrc_real_t *u = rls->u;
-    const ladrc_real_t *d = rls->d;
+    ladrc_real_t *u = rls->u;
+    ladrc_real_t *d = rls->d;
     const ladrc_real_t *theta = rls->theta;
 
-    ladrc_real_t nu[LADRC_RLS_MAX_PARAMS];
-    ladrc_real_t u_new[LADRC_RLS_U_SIZE];
-    ladrc_real_t d_new[LADRC_RLS_MAX_PARAMS];
-    (void)memcpy(nu, theta, sizeof nu);
-    (void)memcpy(u_new, u, sizeof u_new);
-    (void)memcpy(d_new, d, sizeof d_new);
-
     /* f = U^T phi, g = h D f (h: P is in continuous units), prior error e;
-     * then Bierman's update, one column j at a time, with
-     * beta_j = mu + h sum_{k<=j} D_k f_k^2:
+     * then Bierman's update, one column j at a time and in place (column j
+     * reads only columns < j of the old factors, and U_ij before it writes
+     * it), with beta_j = mu + h sum_{k<=j} D_k f_k^2:
      *   D_j <- D_j beta_j-1 / (beta_j mu),  U_ij <- U_ij - nu_i f_j / beta_j-1,
      * nu accumulating the unnormalised gain; the gain is nu / beta_n. The new
      * trace and the soundness of the new factors are gathered on the way. */
+    ladrc_real_t nu[LADRC_RLS_MAX_PARAMS];
     ladrc_real_t e = y;
     ladrc_real_t beta = mu;
     ladrc_real_t inv_beta = inv_mu;
     ladrc_real_t tr = LADRC_R(0.0);
     int sound = 1;
     for (unsigned j = 0u; j < n; ++j) {
-        const unsigned col = u_index(0u, j); /* U(i,j) at u[col + i] */
+        ladrc_real_t *col = &u[u_index(0u, j)]; /* U(i,j) at col[i] */
         ladrc_real_t f = phi[j];
         for (unsigned i = 0u; i < j; ++i) {
-            f += u[col + i] * phi[i];
+            f += col[i] * phi[i];
         }
         const ladrc_real_t g = h * d[j] * f;
         e -= phi[j] * theta[j];
@@ -163,18 +157,18 @@ ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_
         const ladrc_real_t p = -f * inv_beta;
         beta = beta_prev + f * g;
         inv_beta = LADRC_R(1.0) / beta;
-        d_new[j] = d[j] * beta_prev * inv_beta * inv_mu;
+        d[j] *= beta_prev * inv_beta * inv_mu;
         ladrc_real_t column_norm = LADRC_R(1.0);
         for (unsigned i = 0u; i < j; ++i) {
-            const ladrc_real_t uij = u[col + i] + nu[i] * p;
-            u_new[col + i] = uij;
-            nu[i] += u[col + i] * g;
-            column_norm += uij * uij;
-            sound &= ladrc_is_finite(uij);
+            const ladrc_real_t old = col[i];
+            col[i] = old + nu[i] * p;
+            nu[i] += old * g;
+            column_norm += col[i] * col[i];
+            sound &= ladrc_is_finite(col[i]);
         }
         nu[j] = g;
-        tr += d_new[j] * column_norm;
-        sound &= ladrc_is_positive(d_new[j]);
+        tr += d[j] * column_norm;
+        sound &= ladrc_is_positive(d[j]);
     }
 
     /* nu becomes the new theta. */
@@ -185,33 +179,28 @@ ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_
         theta_ok &= ladrc_is_finite(nu[i]);
     }
     /* Bound: only rounding can take the trace above k0 (rls.h). */
-    if (tr > rls->p_bound) {
+    if (sound && tr > rls->p_bound) {
         const ladrc_real_t scale = rls->p_bound * RLS_CLAMP_FRACTION / tr;
         for (unsigned j = 0u; j < n; ++j) {
-            d_new[j] *= scale;
-            sound &= ladrc_is_positive(d_new[j]);
+            d[j] *= scale;
+            sound &= ladrc_is_positive(d[j]);
         }
-        tr = trace_of(u_new, d_new, n);
+        tr = trace_of(u, d, n);
     }
-    if (!sound) {
+    if (!sound || !theta_ok) {
         /* Restart P so that the next sample meets a sound covariance; theta
-         * still takes its update if that is finite. */
+         * takes its update only if that is finite. */
         restart_p(rls);
-        if (theta_ok) {
-            (void)memcpy(rls->theta, nu, sizeof nu);
-        }
         rls->faults = LADRC_FAULT_STATE;
-        return rls->faults;
+    } else {
+        rls->trace = tr;
+        rls->faults = LADRC_FAULT_NONE;
     }
-    if (!theta_ok) {
-        rls->faults = LADRC_FAULT_STATE; /* refused: state held */
-        return rls->faults;
+    if (theta_ok) {
+        for (unsigned i = 0u; i < n; ++i) {
+            rls->theta[i] = nu[i];
+        }
     }
-    (void)memcpy(rls->theta, nu, sizeof nu);
-    (void)memcpy(rls->u, u_new, sizeof u_new);
-    (void)memcpy(rls->d, d_new, sizeof d_new);
-    rls->trace = tr;
-    rls->faults = LADRC_FAULT_NONE;
     return rls->faults;
 }
 

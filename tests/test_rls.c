@@ -712,20 +712,24 @@ static void test_a_non_finite_factor_after_an_update_restarts_p(void)
 
 static void test_an_update_whose_theta_would_overflow_is_refused(void)
 {
-    /* given an estimate near the largest finite value */
+    /* given an estimate near the largest finite value and a P that learnt */
     ladrc_rls_t rls;
     init_rls(&rls, NP, LAMBDA0_PER_S, P0);
     const ladrc_real_t big = (ladrc_real_t)(sizeof(ladrc_real_t) == 4 ? 3e38 : 1.7e308);
     const ladrc_real_t theta0[NP] = {big, 0.0f, 0.0f};
     ladrc_rls_reset(&rls, theta0);
-    const snapshot_t before = snapshot(&rls);
+    const ladrc_real_t other[NP] = {0.0f, 1.0f, 0.0f};
+    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, ladrc_rls_update(&rls, other, 0.0f));
+    TEST_ASSERT_TRUE(ladrc_rls_get_p(&rls, 1, 1) < (ladrc_real_t)P0);
+    const ladrc_real_t theta_before = ladrc_rls_get_theta(&rls)[0];
     /* when the prediction error overflows */
     const ladrc_real_t phi[NP] = {1.0f, 0.0f, 0.0f};
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_rls_update(&rls, phi, -big));
-    /* then nothing of the state changes but the lambda it computed */
-    snapshot_t after = snapshot(&rls);
-    after.lambda = before.lambda;
-    TEST_ASSERT_EQUAL_MEMORY(&before, &after, sizeof before);
+    /* then theta is held and P restarts: a P that made theta overflow is not kept */
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, theta_before, ladrc_rls_get_theta(&rls)[0]);
+    for (uint8_t i = 0; i < NP; ++i) {
+        TEST_ASSERT_FLOAT_WITHIN(0.0f, (ladrc_real_t)P0, ladrc_rls_get_p(&rls, i, i));
+    }
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_rls_get_faults(&rls));
 }
 

@@ -46,9 +46,10 @@
  *
  * Guards: a non-finite phi or y leaves the state untouched
  * (LADRC_FAULT_INPUT). A step whose factors come out not finite or with a
- * D not > 0 restarts P at p_initial I, keeping theta's update if it is
- * finite (LADRC_FAULT_STATE). Otherwise a step whose theta would not be
- * finite is refused, state held (LADRC_FAULT_STATE).
+ * D not > 0, or whose theta would not be finite, restarts P at p_initial I
+ * and keeps theta's update only if that is finite (LADRC_FAULT_STATE): the
+ * update runs in place on the factors (no copy of them on the stack), and a
+ * P that made theta overflow is not one to keep.
  */
 #ifndef LADRC_RLS_H
 #define LADRC_RLS_H
