@@ -264,8 +264,10 @@ static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, ladrc_real_t rate_r
         /* What the weight moved in or out of d_hat leaves or enters z3 at
          * once, in both observers (the sample stays as it was). */
         const ladrc_real_t handover = ladrc_hp_get_handover(&axis->part.hp.est);
-        ladrc_leso_hand_over(&axis->leso, handover);
-        ladrc_leso_twin_hand_over(shadow, handover);
+        if (handover != LADRC_R(0.0)) { /* only while the weight moves */
+            ladrc_leso_hand_over(&axis->leso, handover);
+            ladrc_leso_twin_hand_over(shadow, handover);
+        }
         return ladrc_hp_get_estimate(&axis->part.hp.est);
     }
     return LADRC_R(0.0);

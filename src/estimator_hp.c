@@ -65,6 +65,8 @@
  * FILTER_SETTLE_PER_WF / wf seconds after it: u^5 e^-u, the slowest term of
  * its response, is down to 3e-4 of its peak at u = 20. */
 #define FILTER_SETTLE_PER_WF LADRC_R(20.0)
+/* The frequency fit's model is judged every this many fit samples. */
+#define SPEC_DECIDE 4u
 /* The frequency fit speaks only after this much data since its (re)start (s). */
 #define SPEC_MIN_S LADRC_R(0.1)
 /* The frequency fit needs this much derivative power ((rad/s^3)^2). */
@@ -74,6 +76,14 @@ enum { SPEC_11 = 0, SPEC_31, SPEC_33, SPEC_51, SPEC_53, SPEC_55, SPEC_COUNT };
 
 #if LADRC_HP_MAX_TONES < 1 || LADRC_HP_MAX_TONES > 2
 #error "the online frequency fit resolves one or two tones: LADRC_HP_MAX_TONES must be 1 or 2"
+#endif
+
+/* Kept out of line so that the rarely taken paths' locals are not on the
+ * stack of the path through the RLS update, the deepest of a tick. */
+#if defined(__GNUC__)
+#define HP_OUT_OF_LINE __attribute__((noinline))
+#else
+#define HP_OUT_OF_LINE
 #endif
 
 static unsigned theta_a(unsigned k) { return 1u + 2u * k; }
@@ -160,12 +170,8 @@ static ladrc_status_t check_config(const ladrc_hp_config_t *cfg)
 /* (Re)starts the fit with n tones and the given estimate (NULL: 0). */
 static void start_fit(ladrc_hp_estimator_t *est, unsigned n, const ladrc_real_t *theta0)
 {
-    const ladrc_rls_config_t fit = {(uint8_t)(1u + 2u * n), est->fit_period_s, est->fit_rate_per_s,
-                                    HP_P_BOUND_PER_SAMPLE / est->fit_period_s,
-                                    HP_P_INITIAL_PER_SAMPLE / est->fit_period_s};
-    /* Valid: checked at init for the largest n and lambda0. */
-    (void)ladrc_rls_init(&est->fit, &fit);
-    ladrc_rls_reset(&est->fit, theta0);
+    /* Valid: init checked the largest n. */
+    (void)ladrc_rls_restart(&est->fit, (uint8_t)(1u + 2u * n), theta0);
     est->n_active = (uint8_t)n;
     est->hold = 0u;
 }
@@ -211,6 +217,7 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
 {
     LADRC_ASSERT(est != NULL);
     est->fit_rate_per_s = est->lambda0_max;
+    (void)ladrc_rls_set_lambda0(&est->fit, est->fit_rate_per_s);
     start_fit(est, est->online ? 1u : est->n_tones, NULL);
     for (unsigned k = 0u; k < LADRC_HP_MAX_TONES; ++k) {
         ladrc_hp_tone_t *tone = &est->tone[k];
@@ -234,6 +241,9 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
     est->spec_x1_prev[1] = LADRC_R(0.0);
     est->spec_x3_prev = LADRC_R(0.0);
     est->spec_count = 0u;
+    est->spec_decide = 0u;
+    est->found_rad_s[0] = LADRC_R(0.0);
+    est->found_rad_s[LADRC_HP_MAX_TONES - 1u] = LADRC_R(0.0);
     est->clean = 0u;
     est->err_fast = LADRC_R(0.0);
     est->err_slow = LADRC_R(0.0);
@@ -355,19 +365,22 @@ static unsigned nearest_tone(const ladrc_hp_estimator_t *est, ladrc_real_t w)
     return nearest;
 }
 
-/* ONLINE: one tone becomes two or two one (LADRC_HP_MAX_TONES <= 2). A tone
- * that is still there keeps its state and fitted values (and, unless locked,
- * takes the frequency found for it); a new one starts at its frequency with
- * zero amplitude; the fit restarts with those values. */
-static void change_tone_count(ladrc_hp_estimator_t *est, unsigned n, const ladrc_real_t w[LADRC_HP_MAX_TONES])
+/* ONLINE: the fit restarts with n tones at the frequencies found (ascending;
+ * LADRC_HP_MAX_TONES <= 2): one tone becomes two, two one, or a tone that is
+ * not locked jumped. A tone that is still there keeps its state and fitted
+ * values (and, unless locked, takes the frequency found for it); a new one
+ * starts at its frequency with zero amplitude. Called from ladrc_hp_step,
+ * beside the RLS update, to keep the stack of a tick shallow. */
+HP_OUT_OF_LINE static void restart_tones(ladrc_hp_estimator_t *est, unsigned n)
 {
+    const ladrc_real_t *w = est->found_rad_s;
     ladrc_real_t theta[LADRC_RLS_MAX_PARAMS];
     const ladrc_real_t *old = ladrc_rls_get_theta(&est->fit);
     for (unsigned i = 0u; i < LADRC_RLS_MAX_PARAMS; ++i) {
         theta[i] = (i < theta_a(est->n_active)) ? old[i] : LADRC_R(0.0);
     }
     ladrc_real_t target[LADRC_HP_MAX_TONES];
-    unsigned fresh; /* bit k: slot k starts a new tone */
+    unsigned fresh = 0u; /* bit k: slot k starts a new tone */
     if (n < est->n_active) {
         /* two -> one: the tone nearest w[0] stays, in slot 0 */
         const unsigned kept = nearest_tone(est, w[0]);
@@ -378,13 +391,21 @@ static void change_tone_count(ladrc_hp_estimator_t *est, unsigned n, const ladrc
         }
         target[0] = w[0];
         fresh = (kept < est->n_active) ? 0u : 1u;
-    } else {
+    } else if (n > est->n_active) {
         /* one -> two: tone 0 keeps the frequency it is near, slot 1 the other */
         const unsigned near_first = nearest_tone(est, w[0]) == 0u;
         const unsigned near_second = !near_first && nearest_tone(est, w[n - 1u]) == 0u;
         target[0] = near_second ? w[n - 1u] : w[0];
         target[n - 1u] = near_second ? w[0] : w[n - 1u];
         fresh = (near_first || near_second) ? 2u : 3u;
+    } else {
+        /* as many: a tone that is not locked and far from its frequency jumped */
+        for (unsigned k = 0u; k < n; ++k) {
+            target[k] = w[k];
+            if (!est->tone[k].locked && ladrc_fabs(w[k] - est->tone[k].w_rad_s) > TONE_SEPARATION * w[k]) {
+                fresh |= 1u << k;
+            }
+        }
     }
     for (unsigned k = 0u; k < n; ++k) {
         ladrc_hp_tone_t *tone = &est->tone[k];
@@ -519,67 +540,62 @@ static unsigned clean_tones(const ladrc_hp_estimator_t *est, ladrc_real_t w[LADR
  * model with as many tones (exact for one clean tone). While it does not
  * (the loop's transients, which the derivatives weigh heavily, blur it), and
  * for a locked pair of tones (their fit uses the fifth derivative, noisier
- * than their slips), a locked tone follows its slip instead. A clean model
- * with another number of tones replaces the tones (the nearest keeps its
- * state), after TONE_HOLD_S without such a change. */
-static void update_frequencies(ladrc_hp_estimator_t *est, ladrc_real_t sample)
+ * than their slips), a locked tone follows its slip instead. Returns the
+ * number of tones the fit must restart with (restart_tones, at the
+ * frequencies found), 0 if none: a clean model with another number of
+ * tones (after TONE_HOLD_S without such a change), or a tone not locked
+ * that jumped. */
+HP_OUT_OF_LINE static unsigned update_frequencies(ladrc_hp_estimator_t *est, ladrc_real_t sample)
 {
     update_spectrum(est, sample);
-    ladrc_real_t w[LADRC_HP_MAX_TONES];
+    /* The model is judged every SPEC_DECIDE-th fit sample: its averages
+     * change slowly, and the judgement costs divisions and roots. */
+    if (++est->spec_decide < SPEC_DECIDE) {
+        /* in between, the tones that follow their slips follow them */
+        if (!est->clean || est->n_active > 1u) {
+            for (unsigned k = 0u; k < est->n_active; ++k) {
+                track_slip(est, &est->tone[k]);
+            }
+        }
+        return 0u;
+    }
+    est->spec_decide = 0u;
+    ladrc_real_t *w = est->found_rad_s;
     const unsigned found = clean_tones(est, w);
     est->clean = (found == est->n_active) ? 1u : 0u;
-    const ladrc_real_t t = est->fit_period_s;
     if (est->hold < UINT16_MAX) {
         est->hold++;
     }
-    if (found == 0u || (found != est->n_active && (ladrc_real_t)est->hold * t < TONE_HOLD_S)) {
+    if (found == 0u || (found != est->n_active && (ladrc_real_t)est->hold * est->fit_period_s < TONE_HOLD_S)) {
         for (unsigned k = 0u; k < est->n_active; ++k) {
             track_slip(est, &est->tone[k]);
         }
-        return;
+        return 0u;
     }
     if (found != est->n_active) {
-        change_tone_count(est, found, w);
-        return;
+        return found;
     }
+    unsigned jumped = 0u;
     for (unsigned k = 0u; k < est->n_active; ++k) {
         ladrc_hp_tone_t *tone = &est->tone[k];
-        if (tone->locked && (found > 1u || ladrc_fabs(w[k] - tone->w_rad_s) > TONE_SEPARATION * tone->w_rad_s)) {
+        const int far = ladrc_fabs(w[k] - tone->w_rad_s) > TONE_SEPARATION * tone->w_rad_s;
+        if (tone->locked && (found > 1u || far)) {
             /* Two tones come from the fifth derivative, noisier than a
              * locked pair's slips; a far frequency is another tone. */
             track_slip(est, tone);
-        } else if (tone->locked) {
-            set_tone_freq(est, tone, w[k]);
-        } else if (ladrc_fabs(w[k] - tone->w_rad_s) > TONE_SEPARATION * tone->w_rad_s) {
-            /* A jump: what the fit holds for this tone belongs to another
-             * frequency; the fit restarts without it. */
-            ladrc_real_t theta[LADRC_RLS_MAX_PARAMS];
-            const ladrc_real_t *old = ladrc_rls_get_theta(&est->fit);
-            for (unsigned i = 0u; i < theta_a(est->n_active); ++i) {
-                theta[i] = old[i];
-            }
-            theta[theta_a(k)] = LADRC_R(0.0);
-            theta[theta_a(k) + 1u] = LADRC_R(0.0);
-            set_tone_freq(est, tone, w[k]);
-            start_fit(est, est->n_active, theta);
+        } else if (!tone->locked && far) {
+            jumped = 1u; /* what the fit holds for it belongs to another frequency */
         } else {
             set_tone_freq(est, tone, w[k]);
         }
     }
+    return jumped ? found : 0u;
 }
 
-/* One fit sample: the RLS, the change detection, per tone its slip and
- * lock, the gate, the fit's memory, then the ONLINE frequencies. */
-static void fit_sample(ladrc_hp_estimator_t *est, ladrc_real_t sample)
+/* After the RLS took a fit sample: per tone its slip and lock, the gate and
+ * the fit's memory (the ONLINE frequencies follow). */
+HP_OUT_OF_LINE static void after_fit(ladrc_hp_estimator_t *est, ladrc_real_t sample, int changing)
 {
-    ladrc_real_t phi[LADRC_RLS_MAX_PARAMS];
-    phi[0] = LADRC_R(1.0);
-    for (unsigned k = 0u; k < est->n_active; ++k) {
-        phi[theta_a(k)] = est->tone[k].cos_psi;
-        phi[theta_a(k) + 1u] = est->tone[k].sin_psi;
-    }
-    const int changing = detect_change(est, sample - ladrc_rls_predict(&est->fit, phi));
-    est->faults = ladrc_rls_update(&est->fit, phi, sample);
     const ladrc_real_t *theta = ladrc_rls_get_theta(&est->fit);
     const ladrc_real_t t = est->fit_period_s;
     /* The sample's power around its own mean: a measure of scale that does
@@ -628,10 +644,9 @@ static void fit_sample(ladrc_hp_estimator_t *est, ladrc_real_t sample)
     if ((ladrc_real_t)est->engaged * t >= ENGAGED_SETTLE_S) {
         rate *= ENGAGED_RATE_FRACTION;
     }
-    est->fit_rate_per_s = rate;
-    (void)ladrc_rls_set_lambda0(&est->fit, rate);
-    if (est->online) {
-        update_frequencies(est, sample);
+    if (rate != est->fit_rate_per_s) {
+        est->fit_rate_per_s = rate;
+        (void)ladrc_rls_set_lambda0(&est->fit, rate);
     }
 }
 
@@ -653,7 +668,22 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
     if (!ladrc_is_finite(sample_rad_s2)) {
         est->faults = LADRC_FAULT_INPUT;
     } else if (est->fit_count == est->fit_phase) {
-        fit_sample(est, sample_rad_s2);
+        /* One fit sample: the change detection on the prior error, the RLS
+         * (called from here: the deepest path of a tick), the gate, the
+         * ONLINE frequencies. */
+        ladrc_real_t *phi = est->phi; /* in the state: off the deepest stack of a tick */
+        phi[0] = LADRC_R(1.0);
+        for (unsigned k = 0u; k < est->n_active; ++k) {
+            phi[theta_a(k)] = est->tone[k].cos_psi;
+            phi[theta_a(k) + 1u] = est->tone[k].sin_psi;
+        }
+        const int changing = detect_change(est, sample_rad_s2 - ladrc_rls_predict(&est->fit, phi));
+        est->faults = ladrc_rls_update(&est->fit, phi, sample_rad_s2);
+        after_fit(est, sample_rad_s2, changing);
+        const unsigned restart = est->online ? update_frequencies(est, sample_rad_s2) : 0u;
+        if (restart > 0u) {
+            restart_tones(est, restart);
+        }
     }
     /* The fit's clock runs on every tick, fitted or not, so it stays in step. */
     if (++est->fit_count >= est->fit_decimation) {

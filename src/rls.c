@@ -15,8 +15,12 @@
 /* U(i,j), i < j, stored by columns: column j holds rows 0..j-1. */
 static unsigned u_index(unsigned i, unsigned j) { return (j * (j - 1u)) / 2u + i; }
 
-/* tr(U D U^T) = sum_j D_j (1 + sum_{i<j} U_ij^2). */
-static ladrc_real_t trace_of(const ladrc_real_t *u, const ladrc_real_t *d, unsigned n)
+/* tr(U D U^T) = sum_j D_j (1 + sum_{i<j} U_ij^2). Inline: the update, the
+ * deepest function of a tick, calls it. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline ladrc_real_t trace_of(const ladrc_real_t *u, const ladrc_real_t *d, unsigned n)
 {
     ladrc_real_t tr = LADRC_R(0.0);
     for (unsigned j = 0u; j < n; ++j) {
@@ -40,8 +44,12 @@ static ladrc_real_t initial_trace(ladrc_real_t p_initial, unsigned n)
     return tr;
 }
 
-/* P = p_initial I; unused entries zero so that states compare bitwise. */
-static void restart_p(ladrc_rls_t *rls)
+/* P = p_initial I; unused entries zero so that states compare bitwise.
+ * Inline: called from the update, the deepest function of a tick. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void restart_p(ladrc_rls_t *rls)
 {
     for (unsigned k = 0u; k < LADRC_RLS_U_SIZE; ++k) {
         rls->u[k] = LADRC_R(0.0);
@@ -107,10 +115,27 @@ void ladrc_rls_reset(ladrc_rls_t *rls, const ladrc_real_t *theta0)
     rls->faults = LADRC_FAULT_NONE;
 }
 
-ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_real_t y)
+ladrc_status_t ladrc_rls_restart(ladrc_rls_t *rls, uint8_t n_params, const ladrc_real_t *theta0)
 {
-    LADRC_ASSERT(rls != NULL && phi != NULL);
-    const unsigned n = rls->n_params;
+    LADRC_ASSERT(rls != NULL);
+    if (n_params < 1u || n_params > LADRC_RLS_MAX_PARAMS) {
+        return LADRC_ERR_RLS_N_PARAMS;
+    }
+    if (initial_trace(rls->p_initial, n_params) > rls->p_bound) {
+        return LADRC_ERR_RLS_P_INITIAL;
+    }
+    rls->n_params = n_params;
+    ladrc_rls_reset(rls, theta0);
+    return LADRC_OK;
+}
+
+/* The update for n parameters, inlined into ladrc_rls_update: where n is a
+ * constant the compiler lays the loops out flat (one formula, written once). */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline ladrc_fault_t update_n(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_real_t y, const unsigned n)
+{
     int finite = ladrc_is_finite(y);
     for (unsigned i = 0u; i < n; ++i) {
         if (!ladrc_is_finite(phi[i])) {
@@ -202,6 +227,21 @@ ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_
         }
     }
     return rls->faults;
+}
+
+ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_real_t y)
+{
+    LADRC_ASSERT(rls != NULL && phi != NULL);
+    /* The counts the estimators use most laid out flat (LP: 1; HP, one
+     * tone: 3); the others through the loops. */
+    switch (rls->n_params) {
+    case 1u:
+        return update_n(rls, phi, y, 1u);
+    case 3u:
+        return update_n(rls, phi, y, 3u);
+    default:
+        return update_n(rls, phi, y, rls->n_params);
+    }
 }
 
 ladrc_real_t ladrc_rls_predict(const ladrc_rls_t *rls, const ladrc_real_t *phi)

@@ -146,6 +146,7 @@ typedef struct {
 
 typedef struct {
     ladrc_rls_t fit;                 /**< theta = (c, a_1, b_1, ..., a_n, b_n), n = n_active */
+    ladrc_real_t phi[LADRC_RLS_MAX_PARAMS]; /**< the fit's regressors at the latest fit sample */
     ladrc_hp_tone_t tone[LADRC_HP_MAX_TONES]; /**< the first n_active are in the fit */
     ladrc_real_t dt_s, fit_period_s;
     ladrc_real_t freq_min_rad_s, freq_max_rad_s;
@@ -160,6 +161,7 @@ typedef struct {
     ladrc_real_t spec_x1_prev[2];    /**< ONLINE x1 one and two fit samples ago */
     ladrc_real_t spec_x3_prev;       /**< ONLINE x3 one fit sample ago */
     ladrc_real_t spec_avg[6];        /**< ONLINE averages of x1 x1, x3 x1, x3 x3, x5 x1, x5 x3, x5 x5 */
+    ladrc_real_t found_rad_s[LADRC_HP_MAX_TONES]; /**< ONLINE frequencies of the latest clean model */
     ladrc_real_t err_fast, err_slow; /**< short and long averages of the fit's prior error power */
     ladrc_real_t weight;             /**< compensation weight in [0, 1] */
     ladrc_real_t estimate;           /**< the applied d_hat (rad/s^2) */
@@ -169,6 +171,7 @@ typedef struct {
     uint16_t engaged;                /**< fit samples in a row with the weight at 1 */
     uint16_t spec_restart_left;      /**< ONLINE: fit samples until the frequency fit's averages restart */
     uint16_t spec_count;             /**< ONLINE: fit samples in the frequency fit's averages since their start */
+    uint8_t spec_decide;             /**< ONLINE: fit samples since the frequency fit's model was last judged */
     uint16_t hold;                   /**< ONLINE: fit samples since the last tone started or stopped */
     uint8_t n_tones, n_active;
     uint8_t online;

@@ -113,6 +113,14 @@ ladrc_status_t ladrc_rls_init(ladrc_rls_t *rls, const ladrc_rls_config_t *cfg);
 void ladrc_rls_reset(ladrc_rls_t *rls, const ladrc_real_t *theta0);
 
 /**
+ * Restarts with n_params parameters (the others settings kept) at theta0, as
+ * ladrc_rls_reset does (theta0 may be this estimator's own theta). Rejected,
+ * state unchanged, as init would reject the count: LADRC_ERR_RLS_N_PARAMS,
+ * LADRC_ERR_RLS_P_INITIAL (n_params p_initial > p_bound).
+ */
+ladrc_status_t ladrc_rls_restart(ladrc_rls_t *rls, uint8_t n_params, const ladrc_real_t *theta0);
+
+/**
  * One sample of y = phi^T theta (see the file comment for the equations).
  * @param phi regressor, n_params entries
  * @param y   measurement

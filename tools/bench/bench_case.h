@@ -25,10 +25,10 @@
 #include "ladrc/mixer.h"
 
 #define BENCH_TICKS 2000
-/* The estimator engages about 1.3 s (one tone) to 2 s (two tones) after a
- * reset and keeps a longer memory 1 s after that: 4 s of warm-up reach the
- * steady state. */
-#define BENCH_WARMUP 4000
+/* The estimator engages about 1.3 s (one tone) to 6 s (two tones on the
+ * lone axis) after a reset and keeps a longer memory 1 s after that: 8 s of
+ * warm-up reach the steady state. */
+#define BENCH_WARMUP 8000
 #define BENCH_SAMPLES (BENCH_WARMUP + BENCH_TICKS)
 #define BENCH_DT_S 0.001f
 #define BENCH_T0_S 12.0f
