@@ -23,6 +23,10 @@
  * unlocks above SLIP_UNLOCK_FACTOR times that. */
 #define SLIP_TOL_FRACTION LADRC_R(0.1)
 #define SLIP_UNLOCK_FACTOR LADRC_R(3.0)
+/* A change of size counts at this weight beside the turn: a third, so a fit
+ * whose amplitude still settles after a restart may lock, the tail of a
+ * transient (decaying at several times lambda) may not. */
+#define DRIFT_WEIGHT LADRC_R(0.33)
 /* A tone is significant while its power a^2/2 is at least this share of the
  * sample's power around its mean and its amplitude above AMP_FLOOR. */
 #define AMP_SHARE LADRC_R(0.01)
@@ -47,6 +51,7 @@
 #define CHANGE_RATIO LADRC_R(10.0)
 #define CHANGE_SHARE LADRC_R(0.01)
 #define CHANGE_HOLD_S LADRC_R(0.1)
+enum { CHANGE_HOLD = 1, CHANGE_NEW = 2 };
 /* ONLINE: a model with another number of tones replaces the tones only
  * after TONE_HOLD_S without such a change, so the fit settles in between;
  * two tones must lie more than TONE_SEPARATION (relative) apart. */
@@ -226,6 +231,7 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
         tone->prev_a = LADRC_R(0.0);
         tone->prev_b = LADRC_R(0.0);
         tone->slip_rad_s = LADRC_R(0.0);
+        tone->drift_per_s = LADRC_R(0.0);
         tone->significant = 0u;
         tone->locked = 0u;
     }
@@ -275,18 +281,23 @@ static ladrc_real_t tone_value(const ladrc_hp_estimator_t *est, unsigned k, int 
 }
 
 /* Turn of a tone's fitted phasor since the previous fit sample, as a rate
- * (rad/s), averaged into its slip; returns |slip|. */
+ * (rad/s), averaged into its slip, and the relative change of its size, as
+ * a rate (1/s), averaged into its drift; returns |slip| + DRIFT_WEIGHT
+ * |drift|, how far the phasor is from standing still (a tone that decays or
+ * grows, e.g. the tail of a transient, does not stand still either). */
 static ladrc_real_t update_slip(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone, ladrc_real_t a,
                                 ladrc_real_t b)
 {
-    /* (a - j b) conj(prev_a - j prev_b): its angle is the turn. */
+    /* (a - j b) conj(prev_a - j prev_b) = |prev|^2 P / P_prev: its angle is
+     * the turn, its real part over |prev|^2 the change of size plus 1. */
     const ladrc_real_t re = a * tone->prev_a + b * tone->prev_b;
     const ladrc_real_t im = a * tone->prev_b - b * tone->prev_a;
-    const int fresh = tone->prev_a == LADRC_R(0.0) && tone->prev_b == LADRC_R(0.0);
+    const ladrc_real_t prev2 = tone->prev_a * tone->prev_a + tone->prev_b * tone->prev_b;
     tone->prev_a = a;
     tone->prev_b = b;
-    if (fresh) {
-        return ladrc_fabs(tone->slip_rad_s); /* a (re)started fit: nothing to compare yet */
+    if (!(prev2 > LADRC_R(0.0))) {
+        /* a (re)started fit: nothing to compare yet */
+        return ladrc_fabs(tone->slip_rad_s) + DRIFT_WEIGHT * ladrc_fabs(tone->drift_per_s);
     }
     /* tan of the turn for turns under an eighth; a larger turn (or a
      * vanished phasor) counts as a quarter turn. */
@@ -296,17 +307,21 @@ static ladrc_real_t update_slip(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t
     } else if (im < LADRC_R(0.0)) {
         turn = -turn;
     }
-    const ladrc_real_t rate = turn / est->fit_period_s;
-    tone->slip_rad_s += SLIP_AVERAGE_PER_S * est->fit_period_s * (rate - tone->slip_rad_s);
-    return ladrc_fabs(tone->slip_rad_s);
+    const ladrc_real_t grow = ladrc_clamp(re / prev2 - LADRC_R(1.0), LADRC_R(-1.0), LADRC_R(1.0));
+    const ladrc_real_t alpha = SLIP_AVERAGE_PER_S * est->fit_period_s;
+    tone->slip_rad_s += alpha * (turn / est->fit_period_s - tone->slip_rad_s);
+    tone->drift_per_s += alpha * (grow / est->fit_period_s - tone->drift_per_s);
+    return ladrc_fabs(tone->slip_rad_s) + DRIFT_WEIGHT * ladrc_fabs(tone->drift_per_s);
 }
 
 /* Change detection on the fit's prior error (see estimator.h). A change
  * restarts the fit on fresh data at once (its old values would hold it back
- * for a memory, and a slow tone's would swing with the new data), drops the
- * weight (bumpless, see ladrc_hp_get_handover) and unlocks every tone; the
- * frequency fit restarts once the change has passed its filter. Returns 1
- * for CHANGE_HOLD_S after a change, while no tone may lock. */
+ * for a memory, and a slow tone's would swing with the new data), discards
+ * the compensation (weight 0, not handed over: the model no longer describes
+ * the disturbance) and unlocks every tone; the frequency fit restarts once
+ * the change has passed its filter. Returns CHANGE_NEW on the fit sample of
+ * a change, CHANGE_HOLD for CHANGE_HOLD_S after it (no tone may lock), 0
+ * otherwise. */
 static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
 {
     const ladrc_real_t t = est->fit_period_s;
@@ -315,7 +330,7 @@ static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
     est->err_slow += CHANGE_SLOW_PER_S * t * (e2 - est->err_slow);
     if (est->change_left > 0u) {
         est->change_left--;
-        return 1;
+        return CHANGE_HOLD;
     }
     if (!(est->err_fast > CHANGE_RATIO * est->err_slow && est->err_fast > CHANGE_SHARE * est->sig_power)) {
         return 0;
@@ -333,9 +348,10 @@ static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
         tone->prev_a = LADRC_R(0.0);
         tone->prev_b = LADRC_R(0.0);
         tone->slip_rad_s = LADRC_R(0.0);
+        tone->drift_per_s = LADRC_R(0.0);
         tone->locked = 0u;
     }
-    return 1;
+    return CHANGE_NEW;
 }
 
 /* ONLINE: a locked tone's frequency follows its slip at TRACK_FRACTION of
@@ -415,6 +431,7 @@ HP_OUT_OF_LINE static void restart_tones(ladrc_hp_estimator_t *est, unsigned n)
             tone->prev_a = LADRC_R(0.0);
             tone->prev_b = LADRC_R(0.0);
             tone->slip_rad_s = LADRC_R(0.0);
+            tone->drift_per_s = LADRC_R(0.0);
             tone->locked = 0u;
             tone->significant = 0u;
         }
@@ -664,7 +681,7 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
 {
     LADRC_ASSERT(est != NULL);
     est->faults = LADRC_FAULT_NONE;
-    const ladrc_real_t weight_before = est->weight;
+    ladrc_real_t weight_before = est->weight;
     if (!ladrc_is_finite(sample_rad_s2)) {
         est->faults = LADRC_FAULT_INPUT;
     } else if (est->fit_count == est->fit_phase) {
@@ -678,6 +695,9 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
             phi[theta_a(k) + 1u] = est->tone[k].sin_psi;
         }
         const int changing = detect_change(est, sample_rad_s2 - ladrc_rls_predict(&est->fit, phi));
+        if (changing == CHANGE_NEW) {
+            weight_before = LADRC_R(0.0); /* discarded, not handed over */
+        }
         est->faults = ladrc_rls_update(&est->fit, phi, sample_rad_s2);
         after_fit(est, sample_rad_s2, changing);
         const unsigned restart = est->online ? update_frequencies(est, sample_rad_s2) : 0u;

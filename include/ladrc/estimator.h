@@ -36,8 +36,10 @@
  *
  * Gate: the frequency itself is checked. At the right frequency the fitted
  * phasor P_k = a_k - j b_k stands still; at w_k + dw it turns at dw. Its
- * averaged turn rate (slip) must stay below a tenth of lambda (a phase error
- * under 0.1 rad) for the tone to be locked; a short-memory fit's explained
+ * averaged turn rate (slip), plus the averaged relative rate at which its
+ * size changes (a decaying transient does not stand still either), must stay
+ * below a tenth of lambda (a phase error under 0.1 rad) for the tone to be
+ * locked; a short-memory fit's explained
  * power could not tell this (it explains almost anything locally). The
  * compensation weight moves at a bounded rate towards 1 while every
  * significant tone (a real share of the sample's power) is locked and no
@@ -45,9 +47,10 @@
  *
  * Changes: a short average of the fit's prior error power far above its long
  * average (a frequency jump, an onset, a stop, a bias step) restarts the fit
- * on fresh data instead of waiting for its memory to fade, drops the weight
- * at once (bumpless, see ladrc_hp_get_handover) and holds it back for a
- * moment.
+ * on fresh data instead of waiting for its memory to fade and discards the
+ * compensation at once (the model no longer describes the disturbance, so
+ * it is not handed over to the observer: after a stop, the observer has
+ * nothing to unlearn), holding it back for a moment.
  *
  * ONLINE frequencies: for each tone, a bias-free least squares on
  * state-variable-filtered derivatives of the part of the sample the other
@@ -140,6 +143,7 @@ typedef struct {
     ladrc_real_t lead_re, lead_im;   /**< (1 + j w / wo)^3: undoes the sample's lag at w */
     ladrc_real_t prev_a, prev_b;     /**< fitted (a, b) at the previous fit sample */
     ladrc_real_t slip_rad_s;         /**< averaged turn rate of the fitted phasor */
+    ladrc_real_t drift_per_s;        /**< averaged relative rate of change of its size */
     uint8_t significant;             /**< carries a real share of the sample's power */
     uint8_t locked;                  /**< significant and its phasor stands still */
 } ladrc_hp_tone_t;
@@ -200,12 +204,12 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
 ladrc_real_t ladrc_hp_get_estimate(const ladrc_hp_estimator_t *est);
 
 /**
- * Part of the latest change of the estimate that came from the weight, not
- * from the model (rad/s^2): (weight_k - weight_k-1) * model_k. An observer
- * whose z3 already holds the disturbance must hand that part over to the
- * known input at once (z3 -= handover), or z3 + d_hat counts it twice for
- * the observer's settling time: engaging and dropping the compensation is
- * then bumpless.
+ * Part of the latest change of the estimate that came from the gate's weight
+ * moving, not from the model (rad/s^2): (weight_k - weight_k-1) * model_k;
+ * 0 when a change discarded the model. An observer whose z3 already holds the
+ * disturbance must hand that part over to the known input at once
+ * (z3 -= handover), or z3 + d_hat counts it twice for the observer's
+ * settling time: engaging and releasing the compensation is then bumpless.
  */
 ladrc_real_t ladrc_hp_get_handover(const ladrc_hp_estimator_t *est);
 
