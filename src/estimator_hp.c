@@ -630,7 +630,7 @@ HP_OUT_OF_LINE static void after_fit(ladrc_hp_estimator_t *est, ladrc_real_t sam
         ladrc_hp_tone_t *tone = &est->tone[k];
         const ladrc_real_t a = theta[theta_a(k)];
         const ladrc_real_t b = theta[theta_a(k) + 1u];
-        const ladrc_real_t slip = update_slip(est, tone, a, b);
+        const ladrc_real_t motion = update_slip(est, tone, a, b);
         const ladrc_real_t power = LADRC_R(0.5) * (a * a + b * b);
         tone->significant = (power >= AMP_SHARE * est->sig_power && power >= power_floor) ? 1u : 0u;
         if (!tone->significant) {
@@ -641,7 +641,10 @@ HP_OUT_OF_LINE static void after_fit(ladrc_hp_estimator_t *est, ladrc_real_t sam
          * turns while the fit converges) and, ONLINE, while the frequency fit
          * sees a clean model. */
         const int ready = tone->locked || (settled && (!est->online || est->clean));
-        tone->locked = (ready && slip < (tone->locked ? SLIP_UNLOCK_FACTOR * tol : tol)) ? 1u : 0u;
+        /* to lock, the phasor must stand still; to stay locked, it must not
+         * turn (two tones' fitted sizes breathe a little as they settle) */
+        const ladrc_real_t moving = tone->locked ? ladrc_fabs(tone->slip_rad_s) : motion;
+        tone->locked = (ready && moving < (tone->locked ? SLIP_UNLOCK_FACTOR * tol : tol)) ? 1u : 0u;
         any_locked |= tone->locked;
         all_locked &= tone->locked;
         rate = min_real(rate, tone->w_rad_s / FIT_MEMORY_RAD);
