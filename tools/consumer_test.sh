@@ -78,7 +78,9 @@ log "shared: BUILD_SHARED_LIBS=ON"
 install_ladrc shared "$work/prefix-shared" -DBUILD_SHARED_LIBS=ON
 ls "$work/prefix-shared/lib/"libladrc.so* >/dev/null
 cmake_app shared "$cons/find_package" -DCMAKE_PREFIX_PATH="$work/prefix-shared"
-ldd "$work/shared/app" | grep -q "libladrc.so" || { echo "error: app not linked to libladrc.so" >&2; exit 1; }
+# (ldd's output in full first: grep -q stopping early would make ldd fail under pipefail)
+linked=$(ldd "$work/shared/app")
+[[ $linked == *libladrc.so* ]] || { echo "error: app not linked to libladrc.so" >&2; exit 1; }
 
 cmake_app subdir "$cons/add_subdirectory" -DLADRC_DIR="$src"
 
