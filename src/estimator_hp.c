@@ -121,6 +121,17 @@ static void set_tone_freq(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone
     tone->lead_im = LADRC_R(3.0) * x - x * x * x;
 }
 
+/* A tone whose fit starts over: no phasor history, not significant, not locked. */
+static void forget_tone(ladrc_hp_tone_t *tone)
+{
+    tone->prev_a = LADRC_R(0.0);
+    tone->prev_b = LADRC_R(0.0);
+    tone->slip_rad_s = LADRC_R(0.0);
+    tone->drift_per_s = LADRC_R(0.0);
+    tone->significant = 0u;
+    tone->locked = 0u;
+}
+
 static ladrc_status_t check_config(const ladrc_hp_config_t *cfg)
 {
     if (!ladrc_is_positive(cfg->dt_s)) {
@@ -228,12 +239,7 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
         ladrc_hp_tone_t *tone = &est->tone[k];
         tone->cos_psi = LADRC_R(1.0);
         tone->sin_psi = LADRC_R(0.0);
-        tone->prev_a = LADRC_R(0.0);
-        tone->prev_b = LADRC_R(0.0);
-        tone->slip_rad_s = LADRC_R(0.0);
-        tone->drift_per_s = LADRC_R(0.0);
-        tone->significant = 0u;
-        tone->locked = 0u;
+        forget_tone(tone);
     }
     est->sample_mean = LADRC_R(0.0);
     est->sig_power = LADRC_R(0.0);
@@ -428,12 +434,7 @@ HP_OUT_OF_LINE static void restart_tones(ladrc_hp_estimator_t *est, unsigned n)
         if ((fresh & (1u << k)) != 0u) {
             theta[theta_a(k)] = LADRC_R(0.0);
             theta[theta_a(k) + 1u] = LADRC_R(0.0);
-            tone->prev_a = LADRC_R(0.0);
-            tone->prev_b = LADRC_R(0.0);
-            tone->slip_rad_s = LADRC_R(0.0);
-            tone->drift_per_s = LADRC_R(0.0);
-            tone->locked = 0u;
-            tone->significant = 0u;
+            forget_tone(tone);
         }
         if (!tone->locked) {
             set_tone_freq(est, tone, target[k]);
