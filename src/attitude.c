@@ -32,8 +32,22 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
             return LADRC_ERR_INERTIA_KG_M2;
         }
     }
+    /* A rigid body's principal inertias obey the triangle inequality; the
+     * coupling coefficients (J_next - J_after) / J_i then lie in [-1, 1]. */
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        if (j[i] > j[(i + 1u) % LADRC_AXES] + j[(i + 2u) % LADRC_AXES]) {
+            return LADRC_ERR_INERTIA_TRIANGLE;
+        }
+    }
     if (!ladrc_is_finite(cfg->drag_Nms) || cfg->drag_Nms < LADRC_R(0.0)) {
         return LADRC_ERR_DRAG_NMS;
+    }
+    /* The drag's rate drag / J fed over one step must stay below 1 / dt_s, or
+     * the known part it adds to the observers overshoots every step. */
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        if (cfg->drag_Nms * cfg->axis[0].dt_s > j[i]) {
+            return LADRC_ERR_DRAG_NMS;
+        }
     }
     if (cfg->coupling_feed > 1u) {
         return LADRC_ERR_COUPLING_FEED;
@@ -169,12 +183,14 @@ void ladrc_attitude_set_applied(ladrc_attitude_t *att, const ladrc_real_t torque
     const ladrc_real_t t0 = torque_Nm[0];
     const ladrc_real_t t1 = torque_Nm[1];
     const ladrc_real_t t2 = torque_Nm[2];
-    if (att->observers && ladrc_all_finite3(t0, t1, t2)) {
+    ladrc_axis_t *ax = att->axis;
+    if (att->observers && ladrc_within(t0, ax[0].applied_limit_Nm) && ladrc_within(t1, ax[1].applied_limit_Nm) &&
+        ladrc_within(t2, ax[2].applied_limit_Nm)) {
         /* The common case straight into the axes (all they do with a finite
          * torque when they have no PID to tell). */
-        att->axis[0].applied_Nm = t0;
-        att->axis[1].applied_Nm = t1;
-        att->axis[2].applied_Nm = t2;
+        ax[0].applied_Nm = t0;
+        ax[1].applied_Nm = t1;
+        ax[2].applied_Nm = t2;
     } else {
         for (unsigned i = 0; i < LADRC_AXES; ++i) {
             ladrc_axis_set_applied(&att->axis[i], torque_Nm[i]);

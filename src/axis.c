@@ -41,6 +41,17 @@
  * and 40 rad/s turns by only 0.16 rad between fit samples. */
 #define AXIS_DEFAULT_HP_FIT_SAMPLE_S LADRC_R(0.004)
 
+/* Plausible ranges: beyond any real flight, far inside float. An unwrapped
+ * yaw reaches 1000 rad after 160 turns (float still resolves 6e-5 rad there);
+ * gyros saturate at 35-70 rad/s; 1e4 rad/s^2 is ten times a racing quad's
+ * angular acceleration. */
+#define AXIS_DEFAULT_ANGLE_LIMIT_RAD LADRC_R(1000.0)
+#define AXIS_DEFAULT_RATE_LIMIT_RAD_S LADRC_R(100.0)
+#define AXIS_DEFAULT_ACCEL_LIMIT_RAD_S2 LADRC_R(1e4)
+/* wc dt below 1: the sampled loop (s + wc)^2 on a double integrator held over
+ * each step has its poles inside the unit circle (Jury: 4 - 4 wc dt > 0). */
+#define AXIS_WC_DT_LIMIT LADRC_R(1.0)
+
 /* Ticks of dt_s in period_s, at least 1 (a period shorter than a tick: every tick). */
 static uint16_t ticks_in(ladrc_real_t period_s, ladrc_real_t dt_s)
 {
@@ -57,6 +68,9 @@ void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant
     cfg->dt_s = dt_s;
     cfg->u_min_Nm = -unlimited;
     cfg->u_max_Nm = unlimited;
+    cfg->angle_limit_rad = AXIS_DEFAULT_ANGLE_LIMIT_RAD;
+    cfg->rate_limit_rad_s = AXIS_DEFAULT_RATE_LIMIT_RAD_S;
+    cfg->applied_limit_Nm = AXIS_DEFAULT_ACCEL_LIMIT_RAD_S2 * inertia_kg_m2;
     cfg->wc_rad_s = AXIS_DEFAULT_WC_RAD_S;
     cfg->wo_rad_s = AXIS_DEFAULT_WO_RAD_S;
     cfg->b0 = LADRC_R(1.0) / inertia_kg_m2;
@@ -143,8 +157,12 @@ static ladrc_status_t init_estimator(ladrc_axis_t *axis, const ladrc_axis_config
 
 static ladrc_status_t init_adrc(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
 {
-    if (!ladrc_is_positive(cfg->wc_rad_s)) {
+    if (!ladrc_is_positive(cfg->wc_rad_s) || !(cfg->wc_rad_s * cfg->dt_s < AXIS_WC_DT_LIMIT)) {
         return LADRC_ERR_WC_RAD_S;
+    }
+    /* The law divides by b0. */
+    if (!ladrc_is_finite(cfg->b0) || !ladrc_is_finite(LADRC_R(1.0) / cfg->b0)) {
+        return LADRC_ERR_B0;
     }
     const ladrc_leso_config_t leso_cfg = {cfg->dt_s, cfg->wo_rad_s, cfg->b0, cfg->leso_method};
     ladrc_status_t status = ladrc_leso_init(&axis->leso, &leso_cfg);
@@ -178,11 +196,15 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
     if (axis == NULL || cfg == NULL) {
         return LADRC_ERR_NULL;
     }
-    if (!ladrc_is_positive(cfg->dt_s)) {
+    if (!ladrc_dt_is_valid(cfg->dt_s)) {
         return LADRC_ERR_DT_S;
     }
     if (isnan(cfg->u_min_Nm) || isnan(cfg->u_max_Nm) || !(cfg->u_min_Nm < cfg->u_max_Nm)) {
         return LADRC_ERR_U_LIMITS;
+    }
+    if (!(ladrc_is_positive(cfg->angle_limit_rad) && ladrc_is_positive(cfg->rate_limit_rad_s) &&
+          ladrc_is_positive(cfg->applied_limit_Nm))) {
+        return LADRC_ERR_INPUT_LIMITS;
     }
     ladrc_status_t status;
     switch (cfg->variant) {
@@ -204,36 +226,45 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
     axis->variant = cfg->variant;
     axis->u_min_Nm = cfg->u_min_Nm;
     axis->u_max_Nm = cfg->u_max_Nm;
+    axis->angle_limit_rad = cfg->angle_limit_rad;
+    axis->rate_limit_rad_s = cfg->rate_limit_rad_s;
+    axis->applied_limit_Nm = cfg->applied_limit_Nm;
     axis->f_rate_rad_s3 = LADRC_R(0.0);
     axis->f_known_rad_s2 = LADRC_R(0.0);
     ladrc_axis_reset(axis, LADRC_R(0.0));
     return LADRC_OK;
 }
 
+/* The observer at rest on angle_rad and the estimator from scratch (an ADRC axis). */
+static void restart_estimates(ladrc_axis_t *axis, ladrc_real_t angle_rad)
+{
+    ladrc_leso_reset(&axis->leso, angle_rad);
+    if (axis->variant == LADRC_VARIANT_LP_MLADRC) {
+        ladrc_lp_reset(&axis->part.lp);
+    } else if (axis->variant == LADRC_VARIANT_HP_MLADRC) {
+        ladrc_hp_reset(&axis->part.hp.est);
+        ladrc_leso_twin_reset(&axis->part.hp.shadow, LADRC_R(0.0));
+    }
+    axis->d_hat_rad_s2 = LADRC_R(0.0);
+}
+
 void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
 {
     LADRC_ASSERT(axis != NULL);
-    const ladrc_real_t angle = ladrc_is_finite(angle_rad) ? angle_rad : LADRC_R(0.0);
+    const ladrc_real_t angle = ladrc_within(angle_rad, axis->angle_limit_rad) ? angle_rad : LADRC_R(0.0);
     if (axis->variant == LADRC_VARIANT_PID) {
         ladrc_pid_reset(&axis->part.pid, angle);
     } else {
-        ladrc_leso_reset(&axis->leso, angle);
+        restart_estimates(axis, angle);
         if (axis->shaper == LADRC_SHAPER_TD) {
             ladrc_td_reset(&axis->shaping.td, angle);
         } else if (axis->shaper == LADRC_SHAPER_LEVANT) {
             ladrc_levant_reset(&axis->shaping.levant, angle);
         }
-        if (axis->variant == LADRC_VARIANT_LP_MLADRC) {
-            ladrc_lp_reset(&axis->part.lp);
-        } else if (axis->variant == LADRC_VARIANT_HP_MLADRC) {
-            ladrc_hp_reset(&axis->part.hp.est);
-            ladrc_leso_twin_reset(&axis->part.hp.shadow, LADRC_R(0.0));
-        }
     }
     axis->ref.r = angle;
     axis->ref.dr = LADRC_R(0.0);
     axis->ref.ddr = LADRC_R(0.0);
-    axis->d_hat_rad_s2 = LADRC_R(0.0);
     axis->output_Nm = LADRC_R(0.0);
     axis->applied_Nm = LADRC_R(0.0);
     axis->consecutive_faults = 0u;
@@ -297,6 +328,9 @@ static ladrc_fault_t step_adrc(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_r
         axis->kp * (ref->r - leso->z1) + axis->kd * (ref->dr - leso->z2) + ref->ddr;
     const ladrc_real_t u = (u0 - leso->z3 - d_hat) / axis->b0;
     if (!ladrc_is_finite(u)) {
+        /* The command is held; what made it non-finite must not outlive the
+         * tick, so the estimates restart from the measurement. */
+        restart_estimates(axis, angle_rad);
         return (ladrc_fault_t)(faults | LADRC_FAULT_STATE);
     }
     axis->d_hat_rad_s2 = d_hat;
@@ -311,10 +345,11 @@ static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_re
 {
     LADRC_ASSERT(axis != NULL);
     ladrc_fault_t faults = LADRC_FAULT_NONE;
-    if (has_rate && !ladrc_is_finite(rate_rad_s)) {
+    if (has_rate && !ladrc_within(rate_rad_s, axis->rate_limit_rad_s)) {
         faults |= LADRC_FAULT_RATE;
+        has_rate = 0; /* the tick runs without it */
     }
-    if (!(ladrc_is_finite(ref_rad) && ladrc_is_finite(angle_rad))) {
+    if (!(ladrc_within(ref_rad, axis->angle_limit_rad) && ladrc_within(angle_rad, axis->angle_limit_rad))) {
         faults |= LADRC_FAULT_INPUT;
     } else if (axis->variant == LADRC_VARIANT_PID) {
         axis->output_Nm = ladrc_pid_step(&axis->part.pid, ref_rad, angle_rad, has_rate ? &rate_rad_s : NULL);
@@ -347,7 +382,7 @@ ladrc_real_t ladrc_axis_step_with_rate(ladrc_axis_t *axis, ladrc_real_t ref_rad,
 void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
 {
     LADRC_ASSERT(axis != NULL);
-    if (!ladrc_is_finite(torque_Nm)) {
+    if (!ladrc_within(torque_Nm, axis->applied_limit_Nm)) {
         axis->faults |= LADRC_FAULT_APPLIED;
         axis->applied_Nm = axis->output_Nm;
         return;

@@ -5,6 +5,13 @@
 #include "ladrc/estimator.h"
 
 #define HP_PI LADRC_R(3.14159265358979)
+/* Largest sample the fit takes (rad/s^2): a hundred times the largest
+ * angular acceleration a multirotor reaches, so squares and fifth
+ * derivatives of it stay far inside float. A larger one is a bad input. */
+#define HP_SAMPLE_LIMIT_RAD_S2 LADRC_R(1e6)
+/* The lead that undoes the observer's lag, (1 + j w / wo)^3, grows as
+ * (w / wo)^3: beyond w = 10 wo it would amplify the sample a thousandfold. */
+#define HP_LEAD_RATIO_MAX LADRC_R(10.0)
 /* Initial P of the RLS per sample (P h, rls.h keeps P in continuous units):
  * large against the gains it settles to, small enough that the first updates
  * do not amplify float rounding; the bound leaves room for 1 + 2 K of them. */
@@ -134,7 +141,7 @@ static void forget_tone(ladrc_hp_tone_t *tone)
 
 static ladrc_status_t check_config(const ladrc_hp_config_t *cfg)
 {
-    if (!ladrc_is_positive(cfg->dt_s)) {
+    if (!ladrc_dt_is_valid(cfg->dt_s)) {
         return LADRC_ERR_DT_S;
     }
     if (cfg->freq_mode != LADRC_HP_FREQ_KNOWN && cfg->freq_mode != LADRC_HP_FREQ_ONLINE) {
@@ -168,7 +175,9 @@ static ladrc_status_t check_config(const ladrc_hp_config_t *cfg)
         !(fastest_rad_s * fit_period_s < LADRC_R(0.5) * HP_PI)) {
         return LADRC_ERR_HP_FIT_DECIMATION;
     }
-    if (!ladrc_is_finite(cfg->sample_lag_wo_rad_s) || cfg->sample_lag_wo_rad_s < LADRC_R(0.0)) {
+    const ladrc_real_t lag_wo = cfg->sample_lag_wo_rad_s;
+    if (!ladrc_is_finite(lag_wo) || lag_wo < LADRC_R(0.0) ||
+        (lag_wo > LADRC_R(0.0) && !(fastest_rad_s <= HP_LEAD_RATIO_MAX * lag_wo))) {
         return LADRC_ERR_HP_SAMPLE_LAG;
     }
     if (online && !(ladrc_is_positive(cfg->freq_lambda0_per_s) &&
@@ -686,7 +695,7 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
     LADRC_ASSERT(est != NULL);
     est->faults = LADRC_FAULT_NONE;
     ladrc_real_t weight_before = est->weight;
-    if (!ladrc_is_finite(sample_rad_s2)) {
+    if (!ladrc_within(sample_rad_s2, HP_SAMPLE_LIMIT_RAD_S2)) {
         est->faults = LADRC_FAULT_INPUT;
     } else if (est->fit_count == est->fit_phase) {
         /* One fit sample: the change detection on the prior error, the RLS
@@ -720,6 +729,12 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
     }
     est->estimate = est->weight * model;
     est->handover = (est->weight - weight_before) * model;
+    if (!ladrc_all_finite2(est->estimate, est->handover)) {
+        /* Nothing inside the sample's range gets here; should it, the fit
+         * starts over rather than hold a state it cannot leave. */
+        ladrc_hp_reset(est);
+        est->faults = LADRC_FAULT_STATE;
+    }
     return est->faults;
 }
 

@@ -8,7 +8,7 @@ ladrc_status_t ladrc_lp_init(ladrc_lp_estimator_t *est, const ladrc_lp_config_t 
     if (est == NULL || cfg == NULL) {
         return LADRC_ERR_NULL;
     }
-    if (!ladrc_is_positive(cfg->dt_s)) {
+    if (!ladrc_dt_is_valid(cfg->dt_s)) {
         return LADRC_ERR_DT_S;
     }
     if (!ladrc_is_positive(cfg->lambda0_per_s)) {

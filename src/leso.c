@@ -10,7 +10,7 @@ ladrc_status_t ladrc_leso_init(ladrc_leso_t *obs, const ladrc_leso_config_t *cfg
     if (obs == NULL || cfg == NULL) {
         return LADRC_ERR_NULL;
     }
-    if (!ladrc_is_positive(cfg->dt_s)) {
+    if (!ladrc_dt_is_valid(cfg->dt_s)) {
         return LADRC_ERR_DT_S;
     }
     if (!ladrc_is_positive(cfg->wo_rad_s)) {

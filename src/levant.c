@@ -74,7 +74,7 @@ ladrc_status_t ladrc_levant_init(ladrc_levant_t *lev, const ladrc_levant_config_
     /* A rejected config leaves an all-zero instance, which every step refuses. */
     *lev = zero;
     h = cfg->dt_s;
-    if (!ladrc_is_positive(h)) {
+    if (!ladrc_dt_is_valid(h)) {
         return LADRC_ERR_DT_S;
     }
     if ((unsigned)cfg->method > (unsigned)LADRC_LEVANT_EULER) {

@@ -39,7 +39,7 @@ ladrc_status_t ladrc_pid_init(ladrc_pid_t *pid, const ladrc_pid_config_t *cfg)
     /* A rejected config leaves an all-zero instance: u_min = u_max = 0 clamps
      * every step's output to 0. */
     *pid = zero;
-    if (!ladrc_is_positive(cfg->dt_s)) {
+    if (!ladrc_dt_is_valid(cfg->dt_s)) {
         return LADRC_ERR_DT_S;
     }
     if (!is_non_negative(cfg->kp)) {

@@ -75,7 +75,7 @@ ladrc_status_t ladrc_rls_init(ladrc_rls_t *rls, const ladrc_rls_config_t *cfg)
     if (cfg->n_params < 1u || cfg->n_params > LADRC_RLS_MAX_PARAMS) {
         return LADRC_ERR_RLS_N_PARAMS;
     }
-    if (!ladrc_is_positive(cfg->dt_s)) {
+    if (!ladrc_dt_is_valid(cfg->dt_s)) {
         return LADRC_ERR_DT_S;
     }
     if (!lambda0_is_valid(cfg->lambda0_per_s, cfg->dt_s)) {

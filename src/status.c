@@ -13,10 +13,10 @@
 #define LADRC_STATUS_LIST(X) \
     X(LADRC_OK, "no error") \
     X(LADRC_ERR_NULL, "a pointer argument is NULL") \
-    X(LADRC_ERR_DT_S, "dt_s must be finite and > 0") \
+    X(LADRC_ERR_DT_S, "dt_s must be finite and within 1e-6..1 s") \
     X(LADRC_ERR_WO_RAD_S, "wo_rad_s must be finite and > 0") \
-    X(LADRC_ERR_WC_RAD_S, "wc_rad_s must be finite and > 0") \
-    X(LADRC_ERR_B0, "b0 must be finite and non-zero") \
+    X(LADRC_ERR_WC_RAD_S, "wc_rad_s must be finite, > 0 and below 1 / dt_s") \
+    X(LADRC_ERR_B0, "b0 must be finite, non-zero and have a finite inverse") \
     X(LADRC_ERR_LESO_METHOD, "leso_method is not a ladrc_leso_method_t") \
     X(LADRC_ERR_LESO_EULER_UNSTABLE, "Euler LESO needs wo_rad_s * dt_s < 2") \
     X(LADRC_ERR_SHAPER, "shaper is not a ladrc_shaper_t") \
@@ -52,8 +52,8 @@
     X(LADRC_ERR_HP_FREQ_RAD_S, "hp freq_rad_s of each modelled tone must be finite, > 0 and < pi / dt_s") \
     X(LADRC_ERR_HP_FREQ_RANGE, "hp needs 0 < freq_min < freq_max and freq_max dt_s < pi") \
     X(LADRC_ERR_HP_N_TONES, "hp n_tones must be 1..LADRC_HP_MAX_TONES") \
-    X(LADRC_ERR_HP_SAMPLE_LAG, "hp sample_lag_wo_rad_s must be finite and >= 0") \
-    X(LADRC_ERR_DRAG_NMS, "drag_Nms must be finite and >= 0") \
+    X(LADRC_ERR_HP_SAMPLE_LAG, "hp sample_lag_wo_rad_s must be finite, >= 0 and 0 or above a tenth of the fastest tone") \
+    X(LADRC_ERR_DRAG_NMS, "drag_Nms must be finite, >= 0 and at most J / dt_s on every axis") \
     X(LADRC_ERR_COUPLING_FEED, "coupling_feed must be 0 or 1") \
     X(LADRC_ERR_LEVANT_METHOD, "method is not a ladrc_levant_method_t") \
     X(LADRC_ERR_LEVANT_GAINS, "gains is not a ladrc_levant_gains_t") \
@@ -65,7 +65,9 @@
     X(LADRC_ERR_LEVANT_RANGE, "dt_s and the gains give per-sample coefficients out of range") \
     X(LADRC_ERR_HP_FIT_DECIMATION, "hp needs 1 <= fit_decimation, fit_phase < fit_decimation, freq * fit_decimation * dt_s < pi/2") \
     X(LADRC_ERR_HP_FREQ_LAMBDA0, "hp freq_lambda0_per_s must be finite, > 0 and at most 1 / (fit_decimation * dt_s)") \
-    X(LADRC_ERR_HP_FREQ_FILTER, "hp freq_filter_rad_s must be finite, > 0 and < 0.2 / (fit_decimation * dt_s)")
+    X(LADRC_ERR_HP_FREQ_FILTER, "hp freq_filter_rad_s must be finite, > 0 and < 0.2 / (fit_decimation * dt_s)") \
+    X(LADRC_ERR_INPUT_LIMITS, "angle_limit_rad, rate_limit_rad_s and applied_limit_Nm must be finite and > 0") \
+    X(LADRC_ERR_INERTIA_TRIANGLE, "each inertia must be at most the sum of the other two (a rigid body)")
 
 #ifdef LADRC_STATUS_NAMES_ONLY
 #define STATUS_TEXT(code, explanation) #code

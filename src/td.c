@@ -70,7 +70,7 @@ ladrc_status_t ladrc_td_init(ladrc_td_t *td, const ladrc_td_config_t *cfg)
     }
     /* A rejected config leaves an all-zero instance: its steps output 0 and never move. */
     *td = zero;
-    if (!ladrc_is_positive(cfg->dt_s)) {
+    if (!ladrc_dt_is_valid(cfg->dt_s)) {
         return LADRC_ERR_DT_S;
     }
     if (!ladrc_is_positive(cfg->accel_rad_s2)) {

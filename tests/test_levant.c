@@ -702,24 +702,23 @@ static void test_init_rejects_each_invalid_field_with_its_own_status(void)
     cases[n].cfg = lip_ok;
     cases[n].cfg.gains = (ladrc_levant_gains_t)-1;
     cases[n++].expected = LADRC_ERR_LEVANT_GAINS;
-    /* h^3 g0 = 1.1 h^4 L overflows */
+    /* steps no module discretises (types.h) */
     cases[n].cfg = lip_ok;
     cases[n].cfg.dt_s = (ladrc_real_t)sqrt((double)REAL_MAX);
-    cases[n++].expected = LADRC_ERR_LEVANT_RANGE;
+    cases[n++].expected = LADRC_ERR_DT_S;
+    cases[n].cfg = lip_ok;
+    cases[n].cfg.dt_s = (ladrc_real_t)cbrt((double)REAL_MIN);
+    cases[n++].expected = LADRC_ERR_DT_S;
     /* 1.1 L overflows */
     cases[n].cfg = lip_ok;
     cases[n].cfg.lipschitz_rad_s4 = REAL_MAX;
     cases[n++].expected = LADRC_ERR_LEVANT_RANGE;
     /* h^3 g0 = 1.1 h^4 L underflows to 0 */
     cases[n].cfg = lip_ok;
-    cases[n].cfg.dt_s = (ladrc_real_t)cbrt((double)REAL_MIN);
-    cases[n].cfg.lipschitz_rad_s4 = (ladrc_real_t)1e-3;
+    cases[n].cfg.dt_s = LADRC_DT_MIN_S;
+    cases[n].cfg.lipschitz_rad_s4 = REAL_MIN;
     cases[n++].expected = LADRC_ERR_LEVANT_RANGE;
-    /* g3 = h L1 overflows */
-    cases[n].cfg = exp_ok;
-    cases[n].cfg.dt_s = LADRC_R(2.0);
-    cases[n].cfg.l1 = REAL_MAX;
-    cases[n++].expected = LADRC_ERR_LEVANT_RANGE;
+    /* (g3 = h L1 cannot overflow: h <= LADRC_DT_MAX_S = 1 s) */
     /* k1 = L3 L2^(1/2) L1^(1/3) overflows */
     cases[n].cfg = exp_ok;
     cases[n].cfg.l3 = REAL_MAX;

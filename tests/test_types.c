@@ -65,6 +65,8 @@ static const char *const status_names[LADRC_STATUS_COUNT] = {
     "LADRC_ERR_HP_FIT_DECIMATION",
     "LADRC_ERR_HP_FREQ_LAMBDA0",
     "LADRC_ERR_HP_FREQ_FILTER",
+    "LADRC_ERR_INPUT_LIMITS",
+    "LADRC_ERR_INERTIA_TRIANGLE",
 };
 
 /* 1 if text is name alone (names-only build) or name ": " and an explanation. */

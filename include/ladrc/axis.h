@@ -24,10 +24,16 @@
  * unless the caller reports another value with ladrc_axis_set_applied (e.g.
  * after the mixer saturated), so saturation never winds the observer up.
  *
- * Faults: a non-finite reference or angle leaves every state untouched, holds
- * the previous command and raises LADRC_FAULT_INPUT; the next finite tick
- * continues from the held state. A non-finite rate raises LADRC_FAULT_RATE
- * and the tick runs without it.
+ * Faults: a reference or angle that is not finite or lies beyond
+ * angle_limit_rad leaves every state untouched, holds the previous command
+ * and raises LADRC_FAULT_INPUT; the next good tick continues from the held
+ * state. A rate that is not finite or beyond rate_limit_rad_s raises
+ * LADRC_FAULT_RATE and the tick runs without it; an applied torque that is
+ * not finite or beyond applied_limit_Nm raises LADRC_FAULT_APPLIED and the
+ * axis's own command is used. Should a tick still make the command
+ * non-finite (no input inside the ranges does), the command is held, the
+ * observer and estimator restart from the measured angle and
+ * LADRC_FAULT_STATE is raised: no fault outlives the tick that caused it.
  */
 #ifndef LADRC_AXIS_H
 #define LADRC_AXIS_H
@@ -67,6 +73,11 @@ typedef struct {
     ladrc_real_t dt_s;            /**< fixed control step (s), > 0 */
     ladrc_real_t u_min_Nm;        /**< torque command lower bound (N m), may be -INFINITY */
     ladrc_real_t u_max_Nm;        /**< torque command upper bound (N m), > u_min_Nm */
+    /* Plausible ranges (finite, > 0): a sample beyond is a bad input, held and
+     * flagged like a NaN. The defaults are far beyond any real flight. */
+    ladrc_real_t angle_limit_rad;  /**< |reference| and |measured angle| (rad); default 1000 */
+    ladrc_real_t rate_limit_rad_s; /**< |measured rate| (rad/s); default 100 */
+    ladrc_real_t applied_limit_Nm; /**< |applied torque| (N m); default 1e4 rad/s^2 times the inertia */
     /* LADRC */
     ladrc_real_t wc_rad_s;        /**< controller bandwidth (rad/s), > 0; closed loop (s + wc)^2 */
     ladrc_real_t wo_rad_s;        /**< observer bandwidth (rad/s), > 0 */
@@ -105,6 +116,7 @@ typedef struct {
     ladrc_variant_t variant;
     ladrc_shaper_t shaper;
     ladrc_real_t u_min_Nm, u_max_Nm;
+    ladrc_real_t angle_limit_rad, rate_limit_rad_s, applied_limit_Nm; /**< plausible ranges */
     ladrc_real_t kp, kd, b0;      /**< wc^2, 2 wc, b0 */
     ladrc_leso_t leso;            /**< all variants but PID */
     union {
@@ -135,10 +147,12 @@ typedef struct {
  * PID kp = 20, ki = 20, kd = 0.05, no derivative filter; no torque or
  * integral limits (ideal actuators, as in the paper: set real ones for flight).
  * LP and HP shape the reference with Levant (implicit, L = 1000 rad/s^4).
- * LP: lambda0 = 100 /s, k0 = 300 /s (paper). HP: online frequency in
- * [0.3, 40] rad/s starting at 3 rad/s, forgetting 1 /s for both RLS, frequency
- * samples every 20 ms and amplitude-fit samples every 4 ms (at least every
- * tick; a known frequency: set hp_freq_mode).
+ * LP: lambda0 = 100 /s, k0 = 300 /s (paper). HP: up to two tones found
+ * online in [0.3, 40] rad/s (first guesses 3 and 8 rad/s), the fit forgetting
+ * at most 8 /s and sampling every 4 ms (at least every tick), the frequency
+ * fits forgetting 2 /s behind a 20 rad/s derivative filter (a known
+ * frequency: set hp_freq_mode). Plausible ranges: angles 1000 rad, rates
+ * 100 rad/s, applied torque 1e4 rad/s^2 * inertia_kg_m2.
  */
 void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant,
                                ladrc_real_t dt_s, ladrc_real_t inertia_kg_m2);
@@ -160,7 +174,8 @@ ladrc_real_t ladrc_axis_step_with_rate(ladrc_axis_t *axis, ladrc_real_t ref_rad,
                                        ladrc_real_t angle_rad, ladrc_real_t rate_rad_s);
 
 /** Reports the torque actually applied since the last tick (N m), e.g. after
- *  mixer saturation. Non-finite: ignored, LADRC_FAULT_APPLIED raised. */
+ *  mixer saturation. Not finite or beyond applied_limit_Nm: ignored,
+ *  LADRC_FAULT_APPLIED raised. */
 void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm);
 
 /** Known rate of change of the total disturbance for the next tick (rad/s^3),

@@ -104,10 +104,10 @@ typedef float ladrc_real_t;
 typedef enum {
     LADRC_OK = 0,
     LADRC_ERR_NULL,               /**< a pointer argument is NULL */
-    LADRC_ERR_DT_S,               /**< dt_s not finite or not > 0 */
+    LADRC_ERR_DT_S,               /**< dt_s not finite or outside [LADRC_DT_MIN_S, LADRC_DT_MAX_S] (1e-6..1 s) */
     LADRC_ERR_WO_RAD_S,           /**< wo_rad_s not finite or not > 0 */
-    LADRC_ERR_WC_RAD_S,           /**< wc_rad_s not finite or not > 0 */
-    LADRC_ERR_B0,                 /**< b0 not finite or zero */
+    LADRC_ERR_WC_RAD_S,           /**< wc_rad_s not finite, not > 0, or wc_rad_s * dt_s >= 1 (the sampled loop is unstable) */
+    LADRC_ERR_B0,                 /**< b0 not finite, zero, or so small that 1 / b0 overflows */
     LADRC_ERR_LESO_METHOD,        /**< leso_method not a ladrc_leso_method_t */
     LADRC_ERR_LESO_EULER_UNSTABLE,/**< Euler LESO with wo_rad_s * dt_s >= 2: observer poles outside the unit circle */
     LADRC_ERR_SHAPER,             /**< shaper not a ladrc_shaper_t */
@@ -143,8 +143,8 @@ typedef enum {
     LADRC_ERR_HP_FREQ_RAD_S,      /**< hp freq_rad_s of a modelled tone not finite, not > 0, or >= pi / dt_s */
     LADRC_ERR_HP_FREQ_RANGE,      /**< hp online range: need 0 < min < max, max dt_s < pi */
     LADRC_ERR_HP_N_TONES,         /**< hp n_tones outside 1..LADRC_HP_MAX_TONES */
-    LADRC_ERR_HP_SAMPLE_LAG,      /**< hp sample_lag_wo_rad_s not finite or < 0 */
-    LADRC_ERR_DRAG_NMS,           /**< attitude drag_Nms not finite or < 0 */
+    LADRC_ERR_HP_SAMPLE_LAG,      /**< hp sample_lag_wo_rad_s not finite, < 0, or below a tenth of the fastest tone */
+    LADRC_ERR_DRAG_NMS,           /**< attitude drag_Nms not finite, < 0, or drag_Nms / J * dt_s > 1 on an axis */
     LADRC_ERR_COUPLING_FEED,      /**< attitude coupling_feed not 0 or 1 */
     LADRC_ERR_LEVANT_METHOD,      /**< Levant method not a ladrc_levant_method_t */
     LADRC_ERR_LEVANT_GAINS,       /**< Levant gains not a ladrc_levant_gains_t */
@@ -158,6 +158,8 @@ typedef enum {
                                        turns too far per fit sample */
     LADRC_ERR_HP_FREQ_LAMBDA0,    /**< hp freq_lambda0_per_s not finite, not > 0, or above 1 / T */
     LADRC_ERR_HP_FREQ_FILTER,     /**< hp freq_filter_rad_s not finite, not > 0, or too fast for the fit sample */
+    LADRC_ERR_INPUT_LIMITS,       /**< angle_limit_rad, rate_limit_rad_s or applied_limit_Nm not finite or not > 0 */
+    LADRC_ERR_INERTIA_TRIANGLE,   /**< attitude inertias no rigid body has (each must be <= the sum of the other two) */
     LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
 } ladrc_status_t;
 
@@ -170,9 +172,9 @@ const char *ladrc_status_str(ladrc_status_t status);
  */
 enum {
     LADRC_FAULT_NONE = 0u,
-    LADRC_FAULT_INPUT = 1u << 0,   /**< reference or measured angle not finite: state held */
-    LADRC_FAULT_RATE = 1u << 1,    /**< measured rate not finite: step ran without it */
-    LADRC_FAULT_APPLIED = 1u << 2, /**< applied command not finite: own command used instead */
+    LADRC_FAULT_INPUT = 1u << 0,   /**< reference or measured angle not finite or beyond angle_limit_rad: state held */
+    LADRC_FAULT_RATE = 1u << 1,    /**< measured rate not finite or beyond rate_limit_rad_s: step ran without it */
+    LADRC_FAULT_APPLIED = 1u << 2, /**< applied command not finite or beyond applied_limit_Nm: own command used instead */
     LADRC_FAULT_STATE = 1u << 3    /**< an update would have made the state non-finite: state held */
 };
 typedef uint8_t ladrc_fault_t;
@@ -337,6 +339,30 @@ static inline int ladrc_is_positive(ladrc_real_t x)
     /* Two comparisons, both false for NaN: small enough to be inlined. */
     return (x > LADRC_R(0.0) && x <= LADRC_REAL_MAX) ? 1 : 0;
 #endif
+}
+
+/** 1 if x is finite and |x| <= limit (limit finite, > 0): a sample inside its
+ *  plausible range. One comparison, false for NaN and for an infinity. */
+static inline int ladrc_within(ladrc_real_t x, ladrc_real_t limit)
+{
+#if LADRC_FINITE_BY_BITS
+    return (ladrc_finite_bits_(x) && ladrc_fabs(x) <= limit) ? 1 : 0;
+#else
+    return (ladrc_fabs(x) <= limit) ? 1 : 0;
+#endif
+}
+
+/** Shortest and longest control step every init accepts, s: 1 MHz to 1 Hz.
+ *  Outside, the per-step constants the modules derive (h^3 / 6, 1 / h^2,
+ *  powers of wo h) underflow or overflow in float. */
+#define LADRC_DT_MIN_S LADRC_R(1e-6)
+#define LADRC_DT_MAX_S LADRC_R(1.0)
+
+/** 1 if dt_s is a control step every module can discretise (finite, in
+ *  [LADRC_DT_MIN_S, LADRC_DT_MAX_S]). */
+static inline int ladrc_dt_is_valid(ladrc_real_t dt_s)
+{
+    return (ladrc_is_finite(dt_s) && dt_s >= LADRC_DT_MIN_S && dt_s <= LADRC_DT_MAX_S) ? 1 : 0;
 }
 
 #ifdef __cplusplus

@@ -114,6 +114,7 @@ class _Library:
 
         class AxisConfig(ctypes.Structure):
             _fields_ = [("variant", i), ("dt_s", r), ("u_min_Nm", r), ("u_max_Nm", r),
+                        ("angle_limit_rad", r), ("rate_limit_rad_s", r), ("applied_limit_Nm", r),
                         ("wc_rad_s", r), ("wo_rad_s", r), ("b0", r), ("leso_method", i),
                         ("shaper", i), ("td_accel_rad_s2", r), ("td_h0_s", r),
                         ("levant_method", i), ("levant_lipschitz_rad_s4", r),
