@@ -127,7 +127,8 @@ typedef struct {
     ladrc_real_t freq_lambda0_per_s; /**< ONLINE: forgetting of the frequency averages (1/s) */
     ladrc_real_t freq_filter_rad_s;  /**< ONLINE: bandwidth wf of the derivative filter (rad/s) */
     ladrc_real_t sample_lag_wo_rad_s;/**< samples come through a LESO of this bandwidth, whose z3
-                                          lags f by wo^3 / (s + wo)^3: undone per tone; 0 = no lag */
+                                          lags f by wo^3 / (s + wo)^3: undone per tone; 0 = no lag;
+                                          otherwise at least a tenth of the fastest tone */
     uint16_t fit_decimation;         /**< ticks per fit sample (T = fit_decimation dt_s), >= 1;
                                           every tone turns less than pi/2 per fit sample */
     uint16_t fit_phase;              /**< which tick of each block fits, < fit_decimation
@@ -195,8 +196,10 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est);
 /**
  * One tick on the disturbance sample (rad/s^2): the unknown part of f as the
  * axis's observer sees it (see above).
- * Non-finite: held, LADRC_FAULT_INPUT (the phases still advance, so the model
- * stays in step with time).
+ * Not finite or beyond 1e6 rad/s^2 (no multirotor comes near): held,
+ * LADRC_FAULT_INPUT (the phases still advance, so the model stays in step
+ * with time). Should the estimate still turn non-finite, the estimator resets
+ * (as ladrc_hp_reset) and raises LADRC_FAULT_STATE.
  */
 ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s2);
 
