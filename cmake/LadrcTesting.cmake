@@ -26,6 +26,8 @@ function(ladrc_add_unit_test name)
   ladrc_target_warnings(${name} TEST)
 
   if(CMAKE_CROSSCOMPILING)
+    # Campaigns run a short form on the emulated target (tests read it).
+    target_compile_definitions(${name} PRIVATE LADRC_TEST_ON_TARGET=1)
     ladrc_board_executable(${name})
     if(NOT LADRC_BOARD_CAN_RUN_TESTS)
       return()  # built, but nothing to run it on (warned at configure time)

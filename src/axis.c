@@ -48,6 +48,23 @@
 #define AXIS_DEFAULT_ANGLE_LIMIT_RAD LADRC_R(1000.0)
 #define AXIS_DEFAULT_RATE_LIMIT_RAD_S LADRC_R(100.0)
 #define AXIS_DEFAULT_ACCEL_LIMIT_RAD_S2 LADRC_R(1e4)
+/* The smallest angle and rate range accepted: a milliradian (per second),
+ * the resolution of a good IMU; below, float rounding alone leaves it. */
+#define AXIS_RANGE_MIN LADRC_R(1e-3)
+/* |b0| for an inertia between 1e-7 and 1000 kg m^2 (a 10 g toy to a 500 kg
+ * airframe): outside, the law's division by b0 or the observer's b0 u leaves
+ * float for commands a real actuator gives. */
+#define AXIS_B0_MIN LADRC_R(1e-3)
+#define AXIS_B0_MAX LADRC_R(1e7)
+/* The Euler observer (poles at 1 - wo h) closes a stable loop with the law
+ * only for wo h below a bound that shrinks as wc h grows: 0.90 at wc h -> 0,
+ * 0.63 at 0.2, 0.38 at 0.5, 0.20 at 0.99 (eigenvalues of the sampled loop on
+ * its matched model). 0.88 / (1 + 3.6 wc h) stays below it throughout. */
+#define AXIS_EULER_WOH_AT_0 LADRC_R(0.88)
+#define AXIS_EULER_WOH_SLOPE LADRC_R(3.6)
+/* Largest L dt^2 (rad/s^2) a Levant shaper may have on an axis: 1e7 rad/s^4
+ * at 1 kHz, ten thousand times the default. */
+#define AXIS_LEVANT_CHATTER_MAX_RAD_S2 LADRC_R(10.0)
 /* wc dt below 1: the sampled loop (s + wc)^2 on a double integrator held over
  * each step has its poles inside the unit circle (Jury: 4 - 4 wc dt > 0). */
 #define AXIS_WC_DT_LIMIT LADRC_R(1.0)
@@ -113,6 +130,11 @@ static ladrc_status_t init_shaper(ladrc_axis_t *axis, const ladrc_axis_config_t 
         return ladrc_td_init(&axis->shaping.td, &td_cfg);
     }
     if (cfg->shaper == LADRC_SHAPER_LEVANT) {
+        /* Levant's r'' chatters on the scale L h^2: beyond a few rad/s^2 the
+         * law would pass that chatter to the actuators as torque noise. */
+        if (!(cfg->levant_lipschitz_rad_s4 * cfg->dt_s * cfg->dt_s <= AXIS_LEVANT_CHATTER_MAX_RAD_S2)) {
+            return LADRC_ERR_LEVANT_LIPSCHITZ;
+        }
         const ladrc_levant_config_t lev_cfg = {cfg->dt_s,
                                                cfg->levant_method,
                                                LADRC_LEVANT_GAINS_LIPSCHITZ,
@@ -160,9 +182,13 @@ static ladrc_status_t init_adrc(ladrc_axis_t *axis, const ladrc_axis_config_t *c
     if (!ladrc_is_positive(cfg->wc_rad_s) || !(cfg->wc_rad_s * cfg->dt_s < AXIS_WC_DT_LIMIT)) {
         return LADRC_ERR_WC_RAD_S;
     }
-    /* The law divides by b0. */
-    if (!ladrc_is_finite(cfg->b0) || !ladrc_is_finite(LADRC_R(1.0) / cfg->b0)) {
+    if (!(ladrc_fabs(cfg->b0) >= AXIS_B0_MIN && ladrc_fabs(cfg->b0) <= AXIS_B0_MAX)) {
         return LADRC_ERR_B0;
+    }
+    const ladrc_real_t wch = cfg->wc_rad_s * cfg->dt_s;
+    if (cfg->leso_method == LADRC_LESO_EULER && ladrc_is_positive(cfg->wo_rad_s) &&
+        !(cfg->wo_rad_s * cfg->dt_s * (LADRC_R(1.0) + AXIS_EULER_WOH_SLOPE * wch) <= AXIS_EULER_WOH_AT_0)) {
+        return LADRC_ERR_LESO_EULER_UNSTABLE;
     }
     const ladrc_leso_config_t leso_cfg = {cfg->dt_s, cfg->wo_rad_s, cfg->b0, cfg->leso_method};
     ladrc_status_t status = ladrc_leso_init(&axis->leso, &leso_cfg);
@@ -182,12 +208,24 @@ static ladrc_status_t init_adrc(ladrc_axis_t *axis, const ladrc_axis_config_t *c
     return LADRC_OK;
 }
 
+/* The command's bounds: u_min_Nm..u_max_Nm inside +-applied_limit_Nm (the
+ * command is applied by default, so it must be a plausible applied torque). */
+static ladrc_real_t command_min(const ladrc_axis_config_t *cfg)
+{
+    return (cfg->u_min_Nm > -cfg->applied_limit_Nm) ? cfg->u_min_Nm : -cfg->applied_limit_Nm;
+}
+
+static ladrc_real_t command_max(const ladrc_axis_config_t *cfg)
+{
+    return (cfg->u_max_Nm < cfg->applied_limit_Nm) ? cfg->u_max_Nm : cfg->applied_limit_Nm;
+}
+
 static ladrc_status_t init_pid(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
 {
     const ladrc_pid_config_t pid_cfg = {cfg->dt_s,           cfg->pid_kp,
                                         cfg->pid_ki,         cfg->pid_kd,
                                         cfg->pid_d_filter_tau_s, cfg->pid_i_limit_Nm,
-                                        cfg->u_min_Nm,       cfg->u_max_Nm};
+                                        command_min(cfg),    command_max(cfg)};
     return ladrc_pid_init(&axis->part.pid, &pid_cfg);
 }
 
@@ -199,10 +237,12 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
     if (!ladrc_dt_is_valid(cfg->dt_s)) {
         return LADRC_ERR_DT_S;
     }
-    if (isnan(cfg->u_min_Nm) || isnan(cfg->u_max_Nm) || !(cfg->u_min_Nm < cfg->u_max_Nm)) {
+    /* Holding an attitude takes no torque: the bounds must bracket 0. */
+    if (!(cfg->u_min_Nm < LADRC_R(0.0) && cfg->u_max_Nm > LADRC_R(0.0))) {
         return LADRC_ERR_U_LIMITS;
     }
-    if (!(ladrc_is_positive(cfg->angle_limit_rad) && ladrc_is_positive(cfg->rate_limit_rad_s) &&
+    if (!(ladrc_is_finite(cfg->angle_limit_rad) && cfg->angle_limit_rad >= AXIS_RANGE_MIN &&
+          ladrc_is_finite(cfg->rate_limit_rad_s) && cfg->rate_limit_rad_s >= AXIS_RANGE_MIN &&
           ladrc_is_positive(cfg->applied_limit_Nm))) {
         return LADRC_ERR_INPUT_LIMITS;
     }
@@ -224,8 +264,8 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
         return status;
     }
     axis->variant = cfg->variant;
-    axis->u_min_Nm = cfg->u_min_Nm;
-    axis->u_max_Nm = cfg->u_max_Nm;
+    axis->u_min_Nm = command_min(cfg);
+    axis->u_max_Nm = command_max(cfg);
     axis->angle_limit_rad = cfg->angle_limit_rad;
     axis->rate_limit_rad_s = cfg->rate_limit_rad_s;
     axis->applied_limit_Nm = cfg->applied_limit_Nm;

@@ -16,14 +16,14 @@
     X(LADRC_ERR_DT_S, "dt_s must be finite and within 1e-6..1 s") \
     X(LADRC_ERR_WO_RAD_S, "wo_rad_s must be finite and > 0") \
     X(LADRC_ERR_WC_RAD_S, "wc_rad_s must be finite, > 0 and below 1 / dt_s") \
-    X(LADRC_ERR_B0, "b0 must be finite, non-zero and have a finite inverse") \
+    X(LADRC_ERR_B0, "b0 must be finite and non-zero; on an axis |b0| within 1e-3..1e7") \
     X(LADRC_ERR_LESO_METHOD, "leso_method is not a ladrc_leso_method_t") \
-    X(LADRC_ERR_LESO_EULER_UNSTABLE, "Euler LESO needs wo_rad_s * dt_s < 2") \
+    X(LADRC_ERR_LESO_EULER_UNSTABLE, "Euler LESO needs wo_rad_s * dt_s < 2, on an axis <= 0.88 / (1 + 3.6 wc_rad_s * dt_s)") \
     X(LADRC_ERR_SHAPER, "shaper is not a ladrc_shaper_t") \
     X(LADRC_ERR_TD_ACCEL_RAD_S2, "td accel_rad_s2 must be finite and > 0") \
     X(LADRC_ERR_TD_H0_S, "td h0_s must be finite and >= dt_s") \
     X(LADRC_ERR_VARIANT, "variant is not a ladrc_variant_t") \
-    X(LADRC_ERR_U_LIMITS, "u_min_Nm < u_max_Nm required, neither NaN") \
+    X(LADRC_ERR_U_LIMITS, "u_min_Nm < u_max_Nm required, neither NaN; on an axis u_min_Nm < 0 < u_max_Nm") \
     X(LADRC_ERR_PID_KP, "kp must be finite and >= 0") \
     X(LADRC_ERR_PID_KI, "ki must be finite and >= 0") \
     X(LADRC_ERR_PID_KD, "kd must be finite and >= 0") \
@@ -57,7 +57,7 @@
     X(LADRC_ERR_COUPLING_FEED, "coupling_feed must be 0 or 1") \
     X(LADRC_ERR_LEVANT_METHOD, "method is not a ladrc_levant_method_t") \
     X(LADRC_ERR_LEVANT_GAINS, "gains is not a ladrc_levant_gains_t") \
-    X(LADRC_ERR_LEVANT_LIPSCHITZ, "lipschitz_rad_s4 must be finite and > 0") \
+    X(LADRC_ERR_LEVANT_LIPSCHITZ, "lipschitz_rad_s4 must be finite and > 0, on an axis <= 10 / dt_s^2") \
     X(LADRC_ERR_LEVANT_L1, "l1 must be finite and > 0") \
     X(LADRC_ERR_LEVANT_L2, "l2 must be finite and > 0") \
     X(LADRC_ERR_LEVANT_L3, "l3 must be finite and > 0") \
@@ -66,7 +66,7 @@
     X(LADRC_ERR_HP_FIT_DECIMATION, "hp needs 1 <= fit_decimation, fit_phase < fit_decimation, freq * fit_decimation * dt_s < pi/2") \
     X(LADRC_ERR_HP_FREQ_LAMBDA0, "hp freq_lambda0_per_s must be finite, > 0 and at most 1 / (fit_decimation * dt_s)") \
     X(LADRC_ERR_HP_FREQ_FILTER, "hp freq_filter_rad_s must be finite, > 0 and < 0.2 / (fit_decimation * dt_s)") \
-    X(LADRC_ERR_INPUT_LIMITS, "angle_limit_rad, rate_limit_rad_s and applied_limit_Nm must be finite and > 0") \
+    X(LADRC_ERR_INPUT_LIMITS, "angle_limit_rad and rate_limit_rad_s must be finite and >= 1e-3, applied_limit_Nm finite and > 0") \
     X(LADRC_ERR_INERTIA_TRIANGLE, "each inertia must be at most the sum of the other two (a rigid body)")
 
 #ifdef LADRC_STATUS_NAMES_ONLY

@@ -71,17 +71,20 @@ typedef enum {
 typedef struct {
     ladrc_variant_t variant;
     ladrc_real_t dt_s;            /**< fixed control step (s), > 0 */
-    ladrc_real_t u_min_Nm;        /**< torque command lower bound (N m), may be -INFINITY */
-    ladrc_real_t u_max_Nm;        /**< torque command upper bound (N m), > u_min_Nm */
-    /* Plausible ranges (finite, > 0): a sample beyond is a bad input, held and
-     * flagged like a NaN. The defaults are far beyond any real flight. */
+    ladrc_real_t u_min_Nm;        /**< torque command lower bound (N m), < 0, may be -INFINITY */
+    ladrc_real_t u_max_Nm;        /**< torque command upper bound (N m), > 0; the command also
+                                       stays within +-applied_limit_Nm */
+    /* Plausible ranges (finite; angle and rate >= 1e-3, applied > 0): a sample
+     * beyond is a bad input, held and flagged like a NaN. The defaults are far
+     * beyond any real flight. */
     ladrc_real_t angle_limit_rad;  /**< |reference| and |measured angle| (rad); default 1000 */
     ladrc_real_t rate_limit_rad_s; /**< |measured rate| (rad/s); default 100 */
     ladrc_real_t applied_limit_Nm; /**< |applied torque| (N m); default 1e4 rad/s^2 times the inertia */
     /* LADRC */
     ladrc_real_t wc_rad_s;        /**< controller bandwidth (rad/s), > 0; closed loop (s + wc)^2 */
     ladrc_real_t wo_rad_s;        /**< observer bandwidth (rad/s), > 0 */
-    ladrc_real_t b0;              /**< rad/s^2 per N m (1/J), non-zero */
+    ladrc_real_t b0;              /**< rad/s^2 per N m (1/J), |b0| in [1e-3, 1e7] (J from 1e-7 to
+                                       1000 kg m^2) */
     ladrc_leso_method_t leso_method;
     ladrc_shaper_t shaper;
     ladrc_real_t td_accel_rad_s2; /**< TD acceleration bound (rad/s^2), > 0 (shaper TD only) */

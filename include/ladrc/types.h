@@ -107,14 +107,14 @@ typedef enum {
     LADRC_ERR_DT_S,               /**< dt_s not finite or outside [LADRC_DT_MIN_S, LADRC_DT_MAX_S] (1e-6..1 s) */
     LADRC_ERR_WO_RAD_S,           /**< wo_rad_s not finite or not > 0 */
     LADRC_ERR_WC_RAD_S,           /**< wc_rad_s not finite, not > 0, or wc_rad_s * dt_s >= 1 (the sampled loop is unstable) */
-    LADRC_ERR_B0,                 /**< b0 not finite, zero, or so small that 1 / b0 overflows */
+    LADRC_ERR_B0,                 /**< b0 not finite or zero; on an axis, |b0| outside [1e-3, 1e7] */
     LADRC_ERR_LESO_METHOD,        /**< leso_method not a ladrc_leso_method_t */
-    LADRC_ERR_LESO_EULER_UNSTABLE,/**< Euler LESO with wo_rad_s * dt_s >= 2: observer poles outside the unit circle */
+    LADRC_ERR_LESO_EULER_UNSTABLE,/**< Euler LESO with wo_rad_s * dt_s >= 2 (observer poles outside the unit circle); on an axis, wo dt above 0.88 / (1 + 3.6 wc dt) (the loop's) */
     LADRC_ERR_SHAPER,             /**< shaper not a ladrc_shaper_t */
     LADRC_ERR_TD_ACCEL_RAD_S2,    /**< td_accel_rad_s2 not finite or not > 0 */
     LADRC_ERR_TD_H0_S,            /**< td_h0_s not finite or < dt_s */
     LADRC_ERR_VARIANT,            /**< variant not a ladrc_variant_t */
-    LADRC_ERR_U_LIMITS,           /**< u_min_Nm / u_max_Nm NaN or u_min_Nm >= u_max_Nm (infinite = no limit) */
+    LADRC_ERR_U_LIMITS,           /**< u_min_Nm / u_max_Nm NaN or u_min_Nm >= u_max_Nm (infinite = no limit); on an axis, not u_min_Nm < 0 < u_max_Nm */
     LADRC_ERR_PID_KP,             /**< kp not finite or < 0 */
     LADRC_ERR_PID_KI,             /**< ki not finite or < 0 */
     LADRC_ERR_PID_KD,             /**< kd not finite or < 0 */
@@ -148,7 +148,7 @@ typedef enum {
     LADRC_ERR_COUPLING_FEED,      /**< attitude coupling_feed not 0 or 1 */
     LADRC_ERR_LEVANT_METHOD,      /**< Levant method not a ladrc_levant_method_t */
     LADRC_ERR_LEVANT_GAINS,       /**< Levant gains not a ladrc_levant_gains_t */
-    LADRC_ERR_LEVANT_LIPSCHITZ,   /**< lipschitz_rad_s4 not finite or not > 0 */
+    LADRC_ERR_LEVANT_LIPSCHITZ,   /**< lipschitz_rad_s4 not finite or not > 0; on an axis, above 10 / dt_s^2 */
     LADRC_ERR_LEVANT_L1,          /**< Levant l1 not finite or not > 0 */
     LADRC_ERR_LEVANT_L2,          /**< Levant l2 not finite or not > 0 */
     LADRC_ERR_LEVANT_L3,          /**< Levant l3 not finite or not > 0 */
@@ -158,7 +158,7 @@ typedef enum {
                                        turns too far per fit sample */
     LADRC_ERR_HP_FREQ_LAMBDA0,    /**< hp freq_lambda0_per_s not finite, not > 0, or above 1 / T */
     LADRC_ERR_HP_FREQ_FILTER,     /**< hp freq_filter_rad_s not finite, not > 0, or too fast for the fit sample */
-    LADRC_ERR_INPUT_LIMITS,       /**< angle_limit_rad, rate_limit_rad_s or applied_limit_Nm not finite or not > 0 */
+    LADRC_ERR_INPUT_LIMITS,       /**< angle_limit_rad or rate_limit_rad_s not finite or below 1e-3, or applied_limit_Nm not finite or not > 0 */
     LADRC_ERR_INERTIA_TRIANGLE,   /**< attitude inertias no rigid body has (each must be <= the sum of the other two) */
     LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
 } ladrc_status_t;
