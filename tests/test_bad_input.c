@@ -34,9 +34,11 @@
 #else
 #define DEFAULT_VECTORS 1000000L
 #endif
-/* A burst of hostile ticks, then a calm long enough to recover in: the
- * actuator (U_LIMIT_NM, about 90 rad/s^2 on this inertia) stops a 1 s
- * burst's worst drift well within the calm. */
+/* A 0.2 s burst of hostile ticks (a glitching sensor), then a calm long
+ * enough to recover in: at most 18 rad/s of drift at the actuator's
+ * 90 rad/s^2 (U_LIMIT_NM on this inertia), which it also takes back. 2.8 s
+ * left one PID burst in 333 at 0.13 rad (its kd on a glitched angle
+ * saturates it longest); 3.8 s leaves every variant under RECOVERED_RAD. */
 #define BURST_TICKS 200
 #define CALM_TICKS 3800
 #define U_LIMIT_NM 0.5
