@@ -8,6 +8,7 @@
 #include "ladrc/attitude.h"
 #include "ladrc/axis.h"
 #include "ladrc/mixer.h"
+#include "test_hostile.h"
 
 #include <stdint.h>
 #include <string.h>
@@ -33,19 +34,6 @@ static ladrc_real_t make_special(int which)
     ladrc_real_t x;
     memcpy(&x, &u, sizeof x);
     return x;
-}
-
-static int finite_bits(ladrc_real_t x)
-{
-#ifdef LADRC_REAL_DOUBLE
-    uint64_t u;
-    memcpy(&u, &x, sizeof u);
-    return (u & UINT64_C(0x7ff0000000000000)) != UINT64_C(0x7ff0000000000000);
-#else
-    uint32_t u;
-    memcpy(&u, &x, sizeof u);
-    return (u & UINT32_C(0x7f800000)) != UINT32_C(0x7f800000);
-#endif
 }
 
 void setUp(void) {}
@@ -84,7 +72,7 @@ static void check_axis_variant(ladrc_variant_t variant)
                 const ladrc_real_t y = kinds[b][1] >= 0 ? make_special(kinds[b][1]) : angle_at(k + 1);
                 held = ladrc_axis_step_with_rate(&hit, r, y, rate_at(k + 1));
                 TEST_ASSERT_TRUE_MESSAGE(ladrc_axis_get_faults(&hit) & LADRC_FAULT_INPUT, "no input fault");
-                TEST_ASSERT_TRUE_MESSAGE(finite_bits(held), "command not finite");
+                TEST_ASSERT_TRUE_MESSAGE(test_is_finite(held), "command not finite");
                 TEST_ASSERT_TRUE_MESSAGE(same_bits(held, u_hit), "command not held");
                 TEST_ASSERT_EQUAL_UINT32((uint32_t)(b + 1), ladrc_axis_get_consecutive_faults(&hit));
             }
@@ -97,7 +85,7 @@ static void check_axis_variant(ladrc_variant_t variant)
         }
         u_hit = ladrc_axis_step_with_rate(&hit, ref_at(k), angle_at(k), rate_at(k));
         /* then: every tick equals the run without the bad ticks, bit for bit */
-        TEST_ASSERT_TRUE_MESSAGE(finite_bits(u_hit), "command not finite");
+        TEST_ASSERT_TRUE_MESSAGE(test_is_finite(u_hit), "command not finite");
         TEST_ASSERT_TRUE_MESSAGE(same_bits(u_clean, u_hit), "run differs from the clean run");
         ladrc_axis_set_applied(&clean, u_clean);
         ladrc_axis_set_applied(&hit, u_hit);
@@ -149,10 +137,10 @@ static void test_attitude_and_mixer_hold_on_non_finite_input(void)
         TEST_ASSERT_TRUE(f & LADRC_FAULT_INPUT);
         TEST_ASSERT_TRUE(same_bits(held[1], torque[1]));
         for (i = 0; i < 3; ++i) {
-            TEST_ASSERT_TRUE(finite_bits(held[i]));
+            TEST_ASSERT_TRUE(test_is_finite(held[i]));
         }
         /* thrust of an unknown attitude: the weight, finite */
-        TEST_ASSERT_TRUE(finite_bits(ladrc_mixer_thrust_from_tilt(&mixer, LADRC_R(0.1), make_special(0))));
+        TEST_ASSERT_TRUE(test_is_finite(ladrc_mixer_thrust_from_tilt(&mixer, LADRC_R(0.1), make_special(0))));
     }
     /* the mixer: a non-finite torque or thrust request is refused, output held */
     memcpy(&before, &out, sizeof out);
