@@ -475,3 +475,13 @@ void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad,
         *disturbance_rad_s2 = axis->leso.z3 + axis->d_hat_rad_s2;
     }
 }
+
+const ladrc_hp_estimator_t *ladrc_axis_get_hp(const ladrc_axis_t *axis)
+{
+    return (axis->variant == LADRC_VARIANT_HP_MLADRC) ? &axis->part.hp.est : NULL;
+}
+
+const ladrc_lp_estimator_t *ladrc_axis_get_lp(const ladrc_axis_t *axis)
+{
+    return (axis->variant == LADRC_VARIANT_LP_MLADRC) ? &axis->part.lp : NULL;
+}

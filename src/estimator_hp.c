@@ -768,3 +768,5 @@ int ladrc_hp_tone_locked(const ladrc_hp_estimator_t *est, unsigned k)
 ladrc_real_t ladrc_hp_get_weight(const ladrc_hp_estimator_t *est) { return est->weight; }
 
 ladrc_real_t ladrc_hp_get_bias(const ladrc_hp_estimator_t *est) { return ladrc_rls_get_theta(&est->fit)[0]; }
+
+const ladrc_rls_t *ladrc_hp_get_fit(const ladrc_hp_estimator_t *est) { return &est->fit; }

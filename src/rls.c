@@ -266,6 +266,12 @@ ladrc_real_t ladrc_rls_get_p_norm(const ladrc_rls_t *rls)
     return rls->trace;
 }
 
+ladrc_real_t ladrc_rls_get_p_bound(const ladrc_rls_t *rls)
+{
+    LADRC_ASSERT(rls != NULL);
+    return rls->p_bound;
+}
+
 ladrc_real_t ladrc_rls_get_p(const ladrc_rls_t *rls, uint8_t row, uint8_t col)
 {
     LADRC_ASSERT(rls != NULL);

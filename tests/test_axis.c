@@ -501,6 +501,32 @@ static void test_estimates_report_the_observer_or_the_pid_measurement(void)
     TEST_ASSERT_FLOAT_WITHIN(1e-7f, 0.0f, dist);
 }
 
+static void test_estimators_are_reachable_only_on_their_variant(void)
+{
+    const ladrc_variant_t variants[] = {LADRC_VARIANT_LADRC, LADRC_VARIANT_LP_MLADRC, LADRC_VARIANT_HP_MLADRC,
+                                        LADRC_VARIANT_PID};
+    for (unsigned i = 0; i < sizeof variants / sizeof variants[0]; ++i) {
+        ladrc_axis_config_t cfg;
+        ladrc_axis_config_default(&cfg, variants[i], (ladrc_real_t)DT_S, (ladrc_real_t)J_KG_M2);
+        ladrc_axis_t axis;
+        TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&axis, &cfg));
+        const ladrc_hp_estimator_t *hp = ladrc_axis_get_hp(&axis);
+        const ladrc_lp_estimator_t *lp = ladrc_axis_get_lp(&axis);
+        TEST_ASSERT_TRUE(hp == (variants[i] == LADRC_VARIANT_HP_MLADRC ? &axis.part.hp.est : NULL));
+        TEST_ASSERT_TRUE(lp == (variants[i] == LADRC_VARIANT_LP_MLADRC ? &axis.part.lp : NULL));
+    }
+    /* what they show is what the axis applies */
+    ladrc_axis_config_t cfg;
+    ladrc_axis_config_default(&cfg, LADRC_VARIANT_LP_MLADRC, (ladrc_real_t)DT_S, (ladrc_real_t)J_KG_M2);
+    ladrc_axis_t axis;
+    ladrc_axis_init(&axis, &cfg);
+    for (int k = 0; k < 100; ++k) {
+        ladrc_axis_step_with_rate(&axis, 0.0f, 0.0f, (ladrc_real_t)(0.01 * k));
+    }
+    TEST_ASSERT_TRUE(ladrc_lp_get_estimate(ladrc_axis_get_lp(&axis)) != 0.0f);
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, axis.d_hat_rad_s2, ladrc_lp_get_estimate(ladrc_axis_get_lp(&axis)));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -521,5 +547,6 @@ int main(void)
     RUN_TEST(test_lp_treats_a_tick_without_rate_as_a_gap);
     RUN_TEST(test_hp_samples_only_the_part_of_f_that_is_not_known);
     RUN_TEST(test_estimates_report_the_observer_or_the_pid_measurement);
+    RUN_TEST(test_estimators_are_reachable_only_on_their_variant);
     return UNITY_END();
 }

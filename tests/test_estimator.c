@@ -335,6 +335,35 @@ static void test_hp_getters_of_tones_out_of_range_give_zero(void)
     TEST_ASSERT_EQUAL_INT(0, ladrc_hp_tone_locked(&est, 1u));
 }
 
+static void test_hp_fit_is_readable_and_its_trace_stays_within_the_bound(void)
+{
+    /* given the paper's tone with noise: the fit read through the estimator
+     * has a bias and a cosine and sine per active tone, and tr(P) never
+     * leaves (0, p_bound] on any tick */
+    ladrc_hp_estimator_t est;
+    const ladrc_hp_config_t cfg = hp_config(LADRC_HP_FREQ_ONLINE, 3.0);
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_hp_init(&est, &cfg));
+    const ladrc_rls_t *fit = ladrc_hp_get_fit(&est);
+    TEST_ASSERT_NOT_NULL(fit);
+    const double bound = (double)ladrc_rls_get_p_bound(fit);
+    TEST_ASSERT_TRUE(bound > 0.0);
+    unsigned state = 2463534242u;
+    double worst = 0.0;
+    for (int k = 0; k < 5000; ++k) {
+        state ^= state << 13; /* xorshift32: uniform in [-5, 5) */
+        state ^= state >> 17;
+        state ^= state << 5;
+        const double noise = ((state >> 8) / 16777216.0 - 0.5) * 10.0;
+        ladrc_hp_step(&est, (ladrc_real_t)(20.0 + 120.0 * sin(3.0 * k * DT_S) + noise));
+        const double tr = (double)ladrc_rls_get_p_norm(fit);
+        TEST_ASSERT_TRUE(tr > 0.0 && tr <= bound);
+        worst = fmax(worst, tr);
+    }
+    TEST_ASSERT_EQUAL_UINT(1u + 2u * ladrc_hp_get_active_tones(&est), fit->n_params);
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, ladrc_hp_get_bias(&est), ladrc_rls_get_theta(fit)[0]);
+    TEST_ASSERT_TRUE(worst <= bound);
+}
+
 static void test_hp_invalid_fields_are_rejected(void)
 {
     ladrc_hp_estimator_t est;
@@ -480,6 +509,7 @@ int main(void)
     RUN_TEST(test_hp_gate_stays_shut_on_noise_without_a_tone);
     RUN_TEST(test_hp_non_finite_samples_are_skipped_and_flagged);
     RUN_TEST(test_hp_getters_of_tones_out_of_range_give_zero);
+    RUN_TEST(test_hp_fit_is_readable_and_its_trace_stays_within_the_bound);
     RUN_TEST(test_hp_invalid_fields_are_rejected);
     RUN_TEST(test_lp_tracks_the_measured_acceleration_minus_the_known_input);
     RUN_TEST(test_lp_bandwidth_is_lambda0_k0_over_their_sum);

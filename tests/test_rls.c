@@ -273,6 +273,7 @@ static void test_init_starts_at_zero_with_p_initial_times_identity(void)
         }
     }
     TEST_ASSERT_FLOAT_WITHIN(0.0f, (ladrc_real_t)(NP * P0), ladrc_rls_get_p_norm(&rls));
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, (ladrc_real_t)K0, ladrc_rls_get_p_bound(&rls));
     TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, ladrc_rls_get_lambda(&rls));
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, ladrc_rls_get_faults(&rls));
 }

@@ -213,6 +213,15 @@ void ladrc_axis_get_reference(const ladrc_axis_t *axis, ladrc_ref_t *ref);
 void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad,
                              ladrc_real_t *rate_rad_s, ladrc_real_t *disturbance_rad_s2);
 
+/** The HP estimator of an HP-MLADRC axis, read-only (valid while axis is),
+ *  for diagnostics through the estimator.h getters (weight, tones, fit);
+ *  NULL for another variant. */
+const ladrc_hp_estimator_t *ladrc_axis_get_hp(const ladrc_axis_t *axis);
+
+/** The LP estimator of an LP-MLADRC axis, read-only (valid while axis is);
+ *  NULL for another variant. */
+const ladrc_lp_estimator_t *ladrc_axis_get_lp(const ladrc_axis_t *axis);
+
 #ifdef __cplusplus
 }
 #endif

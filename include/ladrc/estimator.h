@@ -234,6 +234,11 @@ ladrc_real_t ladrc_hp_get_weight(const ladrc_hp_estimator_t *est);
 /** Fitted bias c (rad/s^2). */
 ladrc_real_t ladrc_hp_get_bias(const ladrc_hp_estimator_t *est);
 
+/** The fit of the bias and the tones, read-only (valid while est is), for
+ *  diagnostics through the rls.h getters: e.g. tr(P), ladrc_rls_get_p_norm,
+ *  against its bound, ladrc_rls_get_p_bound. */
+const ladrc_rls_t *ladrc_hp_get_fit(const ladrc_hp_estimator_t *est);
+
 #ifdef __cplusplus
 }
 #endif

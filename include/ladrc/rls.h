@@ -138,6 +138,10 @@ const ladrc_real_t *ladrc_rls_get_theta(const ladrc_rls_t *rls);
 /** tr(P), the norm the forgetting and the bound use (1/(s phi^2)). */
 ladrc_real_t ladrc_rls_get_p_norm(const ladrc_rls_t *rls);
 
+/** k0, the configured bound on tr(P) (1/(s phi^2)): ladrc_rls_get_p_norm
+ *  never exceeds it after init, reset, restart or any update (file comment). */
+ladrc_real_t ladrc_rls_get_p_bound(const ladrc_rls_t *rls);
+
 /** Entry (row, col) of P = U D U^T, both < n_params (0 otherwise); P(i,j) and
  *  P(j,i) are the same number. */
 ladrc_real_t ladrc_rls_get_p(const ladrc_rls_t *rls, uint8_t row, uint8_t col);
