@@ -37,14 +37,14 @@
     X(LADRC_ERR_RLS_LAMBDA0, "rls lambda0_per_s must be finite, >= 0 and <= 1 / dt_s") \
     X(LADRC_ERR_RLS_P_BOUND, "rls p_bound must be finite and > 0") \
     X(LADRC_ERR_RLS_P_INITIAL, "rls p_initial must be finite, > 0 and <= p_bound / n_params") \
-    X(LADRC_ERR_MIXER_KL_N_S2, "mixer kL_N_s2 must be finite and > 0") \
-    X(LADRC_ERR_MIXER_ARM_M, "mixer arm_m must be finite and > 0") \
-    X(LADRC_ERR_MIXER_B_NM_S2, "mixer b_Nm_s2 must be finite and > 0") \
-    X(LADRC_ERR_MIXER_MASS_KG, "mixer mass_kg must be finite and > 0") \
-    X(LADRC_ERR_MIXER_G_M_S2, "mixer g_m_s2 must be finite and > 0") \
+    X(LADRC_ERR_MIXER_KL_N_S2, "mixer kL_N_s2 must lie in [1e-10, 0.1] N s^2") \
+    X(LADRC_ERR_MIXER_ARM_M, "mixer arm_m must lie in [1e-3, 10] m") \
+    X(LADRC_ERR_MIXER_B_NM_S2, "mixer b_Nm_s2 must lie in [1e-13, 0.1] N m s^2") \
+    X(LADRC_ERR_MIXER_MASS_KG, "mixer mass_kg must lie in [1e-3, 1e3] kg") \
+    X(LADRC_ERR_MIXER_G_M_S2, "mixer g_m_s2 must lie in [0.1, 100] m/s^2") \
     X(LADRC_ERR_MIXER_MODE, "mixer mode is not a ladrc_mixer_mode_t") \
     X(LADRC_ERR_MIXER_W2_MIN, "mixer w2_min_rad2_s2 must be finite, and >= 0 unless ideal") \
-    X(LADRC_ERR_MIXER_W2_MAX, "mixer w2_max_rad2_s2 must be finite and > w2_min_rad2_s2") \
+    X(LADRC_ERR_MIXER_W2_MAX, "mixer w2_max_rad2_s2 must be > w2_min_rad2_s2 and, unless ideal, in [1e2, 1e10]") \
     X(LADRC_ERR_MIXER_TILT_MAX_RAD, "mixer tilt_max_rad must lie in (0, pi/2)") \
     X(LADRC_ERR_EST_LAMBDA0, "estimator lambda0_per_s must be finite and > 0") \
     X(LADRC_ERR_EST_K0, "estimator k0_per_s must be finite and > 0") \

@@ -13,8 +13,12 @@
 
 #ifdef LADRC_REAL_DOUBLE
 #define REAL_MAX DBL_MAX
+#define REAL_EPS DBL_EPSILON
+#define REAL_MIN DBL_MIN
 #else
 #define REAL_MAX FLT_MAX
+#define REAL_EPS FLT_EPSILON
+#define REAL_MIN FLT_MIN
 #endif
 
 /* Paper vehicle (Table 1). */
@@ -53,6 +57,14 @@
 /* Ratio of scaled roll and pitch: cross product relative to |tau|^2. Measured
  * 4e-8; float rounding of w^2 on a 1e5 scale gives ~1e-7. */
 #define RATIO_REL_TOL 1e-5
+
+/* The report promise (mixer.h): an axis reports its request while the rotors give
+ * it within 8 eps coef sum|w^2| (+ 16 subnormals), the forward model otherwise.
+ * Against the forward model in double add the float forward model's own rounding
+ * (two sums and a product on sum|w^2|): 2 eps coef sum|w^2|. */
+#define REPORT_TOL_EPS 8.0
+#define FORWARD_ROUNDING_EPS 2.0
+#define REPORT_TOL_SUBNORMALS 32.0
 
 #define N_RANDOM 5000
 
@@ -115,6 +127,31 @@ static split_t split_double(double thrust_N, const ladrc_real_t torque_Nm[3])
     s.yaw[2] = -r4;
     s.yaw[3] = r4;
     return s;
+}
+
+/* Tolerance of the report on an axis with coefficient coef (kL, l kL or b) for
+ * rotors w2, against the double forward model. */
+static double report_tol(const ladrc_real_t w2[4], double coef)
+{
+    const double sum = fabs((double)w2[0]) + fabs((double)w2[1]) + fabs((double)w2[2]) +
+                       fabs((double)w2[3]);
+    return (REPORT_TOL_EPS + FORWARD_ROUNDING_EPS) * REAL_EPS * coef * sum +
+           REPORT_TOL_SUBNORMALS * REAL_MIN * REAL_EPS;
+}
+
+/* |actual - expected| <= tol, compared in double: the Unity float asserts round to
+ * float, coarser than the report tolerance of the double build. */
+#define ASSERT_REPORT_WITHIN(tol, expected, actual) \
+    assert_report_within((tol), (expected), (double)(actual), __LINE__)
+
+static void assert_report_within(double tol, double expected, double actual, int line)
+{
+    if (!(fabs(actual - expected) <= tol)) {
+        char msg[160];
+        snprintf(msg, sizeof msg, "Expected %.17g Was %.17g (tolerance %.3g), line %d", expected, actual,
+                 tol, line);
+        TEST_FAIL_MESSAGE(msg);
+    }
 }
 
 static double spread4(const double v[4])
@@ -515,10 +552,10 @@ static void test_mixer_achieved_values_are_the_forward_model_of_the_rotors(void)
         (void)ladrc_mixer_step(&mx, r.thrust_N, r.torque_Nm, &out);
         forward_double(out.w2_rad2_s2, &thrust_N, torque_Nm);
         /* then: copied or computed, the report is what the rotors give */
-        TEST_ASSERT_FLOAT_WITHIN(THRUST_ABS_TOL_N + THRUST_REL_TOL * fabs(thrust_N), thrust_N,
-                                 out.thrust_N);
+        ASSERT_REPORT_WITHIN(report_tol(out.w2_rad2_s2, KL_N_S2), thrust_N, out.thrust_N);
         for (i = 0; i < 3; ++i) {
-            TEST_ASSERT_FLOAT_WITHIN(TORQUE_TOL_NM, torque_Nm[i], out.torque_Nm[i]);
+            ASSERT_REPORT_WITHIN(report_tol(out.w2_rad2_s2, (i < 2) ? ARM_M * KL_N_S2 : B_NM_S2),
+                                 torque_Nm[i], out.torque_Nm[i]);
         }
     }
 }
@@ -572,6 +609,88 @@ static void test_mixer_priorities_hold_for_random_requests(void)
     TEST_MESSAGE(msg);
     /* the draw must exercise every branch */
     TEST_ASSERT_TRUE(counts[0] > 100 && counts[1] > 100 && counts[2] > 100);
+}
+
+/* ------------------------------------------- huge finite requests (defect A) */
+
+/* Every reported value against the forward model of the rotors the step gave. */
+static void assert_report_is_the_forward_model(const ladrc_mixer_output_t *out)
+{
+    double thrust_N;
+    double torque_Nm[3];
+    int i;
+    forward_double(out->w2_rad2_s2, &thrust_N, torque_Nm);
+    ASSERT_REPORT_WITHIN(report_tol(out->w2_rad2_s2, KL_N_S2), thrust_N, out->thrust_N);
+    for (i = 0; i < 3; ++i) {
+        ASSERT_REPORT_WITHIN(report_tol(out->w2_rad2_s2, (i < 2) ? ARM_M * KL_N_S2 : B_NM_S2),
+                             torque_Nm[i], out->torque_Nm[i]);
+    }
+}
+
+static void test_mixer_huge_roll_beside_a_huge_thrust_reports_what_the_rotors_give(void)
+{
+    /* given: roll 1e20 N m beside a thrust of 1e30 N. Split into w^2 parts, the
+     * roll part (1e25) vanished in the collective (8e33): the rotors gave no
+     * roll, yet 1e20 N m was reported achieved, unflagged. */
+    ladrc_mixer_t mx;
+    ladrc_mixer_output_t out;
+    const ladrc_real_t torque_Nm[3] = {LADRC_R(1e20), LADRC_R(0.0), LADRC_R(0.0)};
+    init_mixer(&mx, LADRC_MIXER_SATURATE);
+    /* when */
+    const ladrc_fault_t f = ladrc_mixer_step(&mx, LADRC_R(1e30), torque_Nm, &out);
+    /* then: the report is what the rotors give, roll and thrust flagged; roll
+     * keeps its priority over thrust: the most the rotors have, l kL (w2_max - w2_min) */
+    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, f);
+    assert_report_is_the_forward_model(&out);
+    TEST_ASSERT_EQUAL_HEX8(LADRC_MIXER_SAT_ROLL | LADRC_MIXER_SAT_THRUST, out.saturated);
+    TEST_ASSERT_FLOAT_WITHIN(SCENARIO_TORQUE_TOL_NM, ARM_M * KL_N_S2 * (W2_MAX - W2_MIN),
+                             out.torque_Nm[0]);
+}
+
+static void test_mixer_huge_yaw_does_not_take_the_place_of_roll_and_pitch(void)
+{
+    /* given: hover, roll 0.1 and pitch -0.1 N m (they fit), yaw 1e8 N m. The yaw
+     * part of w^2 (1.25e13) swamped the roll/pitch parts: the rotors dropped
+     * roll and pitch (priority inverted) and reported them achieved, unflagged. */
+    ladrc_mixer_t mx;
+    ladrc_mixer_output_t out;
+    const ladrc_real_t torque_Nm[3] = {LADRC_R(0.1), LADRC_R(-0.1), LADRC_R(1e8)};
+    double fwd_thrust_N;
+    double fwd_torque_Nm[3];
+    init_mixer(&mx, LADRC_MIXER_SATURATE);
+    /* when */
+    (void)ladrc_mixer_step(&mx, (ladrc_real_t)(MASS_KG * G_M_S2), torque_Nm, &out);
+    /* then: the rotors give roll and pitch as asked, yaw is what is left */
+    forward_double(out.w2_rad2_s2, &fwd_thrust_N, fwd_torque_Nm);
+    TEST_ASSERT_FLOAT_WITHIN(SCENARIO_TORQUE_TOL_NM, 0.1, fwd_torque_Nm[0]);
+    TEST_ASSERT_FLOAT_WITHIN(SCENARIO_TORQUE_TOL_NM, -0.1, fwd_torque_Nm[1]);
+    TEST_ASSERT_EQUAL_MEMORY(&torque_Nm[0], &out.torque_Nm[0], sizeof torque_Nm[0]);
+    TEST_ASSERT_EQUAL_MEMORY(&torque_Nm[1], &out.torque_Nm[1], sizeof torque_Nm[1]);
+    TEST_ASSERT_EQUAL_HEX8(0u, out.saturated & (LADRC_MIXER_SAT_ROLL | LADRC_MIXER_SAT_PITCH));
+    TEST_ASSERT_TRUE((out.saturated & LADRC_MIXER_SAT_YAW) != 0u);
+    TEST_ASSERT_TRUE(out.torque_Nm[2] > LADRC_R(0.0));
+    assert_report_is_the_forward_model(&out);
+}
+
+static void test_mixer_huge_roll_reports_the_yaw_the_rotors_give(void)
+{
+    /* given: hover and a roll of 1e20 N m, no yaw. The collective and yaw were
+     * recomputed from w^2 near 1e25, whose rounding left a yaw of -0.263 N m
+     * on the rotors while 0 was reported. */
+    ladrc_mixer_t mx;
+    ladrc_mixer_output_t out;
+    const ladrc_real_t torque_Nm[3] = {LADRC_R(1e20), LADRC_R(0.0), LADRC_R(0.0)};
+    double fwd_thrust_N;
+    double fwd_torque_Nm[3];
+    init_mixer(&mx, LADRC_MIXER_SATURATE);
+    /* when */
+    (void)ladrc_mixer_step(&mx, (ladrc_real_t)(MASS_KG * G_M_S2), torque_Nm, &out);
+    /* then: reported yaw = the rotors' yaw, and that is the 0 asked for */
+    forward_double(out.w2_rad2_s2, &fwd_thrust_N, fwd_torque_Nm);
+    ASSERT_REPORT_WITHIN(report_tol(out.w2_rad2_s2, B_NM_S2), fwd_torque_Nm[2], out.torque_Nm[2]);
+    TEST_ASSERT_FLOAT_WITHIN(SCENARIO_TORQUE_TOL_NM, 0.0, fwd_torque_Nm[2]);
+    TEST_ASSERT_EQUAL_HEX8(0u, out.saturated & (LADRC_MIXER_SAT_PITCH | LADRC_MIXER_SAT_YAW));
+    assert_report_is_the_forward_model(&out);
 }
 
 /* ------------------------------------------------------------- ideal mode */
@@ -681,29 +800,30 @@ static void test_mixer_non_finite_first_request_gives_hover(void)
     }
 }
 
-static void test_mixer_refuses_a_request_that_overflows_with_a_state_fault(void)
+static void test_mixer_mixes_a_finite_request_of_any_size_at_the_limits(void)
 {
-    /* given: a mixer that mixed one good request; thrusts whose allocation (a/4)
-     * or whose rotor sum overflows */
+    /* given: thrusts whose allocation (a/4) or rotor sum overflows, both signs.
+     * Before the request was limited these were refused with a state fault;
+     * now every finite request is mixed: the thrust is what the rotors can give. */
     const ladrc_real_t torque_Nm[3] = {LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0)};
-    const ladrc_real_t huge[2] = {REAL_MAX, REAL_MAX * (ladrc_real_t)(2.0 * KL_N_S2)};
+    const ladrc_real_t huge[3] = {REAL_MAX, REAL_MAX * (ladrc_real_t)(2.0 * KL_N_S2), -REAL_MAX};
+    const double limit[3] = {W2_MAX, W2_MAX, W2_MIN};
     ladrc_mixer_t mx;
-    ladrc_mixer_output_t first;
-    ladrc_mixer_output_t held;
+    ladrc_mixer_output_t out;
     int i;
     int j;
     init_mixer(&mx, LADRC_MIXER_SATURATE);
-    (void)ladrc_mixer_step(&mx, LADRC_R(9.0), torque_Nm, &first);
-    for (i = 0; i < 2; ++i) {
+    for (i = 0; i < 3; ++i) {
         /* when */
-        const ladrc_fault_t f = ladrc_mixer_step(&mx, huge[i], torque_Nm, &held);
-        /* then: state fault, previous output, all finite */
-        TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, f);
-        TEST_ASSERT_EQUAL_MEMORY(first.w2_rad2_s2, held.w2_rad2_s2, sizeof first.w2_rad2_s2);
-        TEST_ASSERT_FLOAT_IS_DETERMINATE(held.thrust_N);
+        const ladrc_fault_t f = ladrc_mixer_step(&mx, huge[i], torque_Nm, &out);
+        /* then: no fault, every rotor at the limit, thrust 4 kL w^2 flagged, no torque */
+        TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, f);
+        TEST_ASSERT_EQUAL_HEX8(LADRC_MIXER_SAT_THRUST, out.saturated);
         for (j = 0; j < 4; ++j) {
-            TEST_ASSERT_FLOAT_IS_DETERMINATE(held.w_rad_s[j]);
+            TEST_ASSERT_FLOAT_WITHIN(W2_TOL, limit[i], out.w2_rad2_s2[j]);
         }
+        TEST_ASSERT_FLOAT_WITHIN(SCENARIO_THRUST_TOL_N, 4.0 * KL_N_S2 * limit[i], out.thrust_N);
+        TEST_ASSERT_EQUAL_MEMORY(torque_Nm, out.torque_Nm, sizeof torque_Nm);
     }
 }
 
@@ -740,12 +860,15 @@ static void test_mixer_init_rejects_every_invalid_field_with_its_own_status(void
         {offsetof(ladrc_mixer_config_t, kL_N_s2), 0.0, LADRC_ERR_MIXER_KL_N_S2},
         {offsetof(ladrc_mixer_config_t, kL_N_s2), -1e-5, LADRC_ERR_MIXER_KL_N_S2},
         {offsetof(ladrc_mixer_config_t, kL_N_s2), (double)NAN, LADRC_ERR_MIXER_KL_N_S2},
+        {offsetof(ladrc_mixer_config_t, kL_N_s2), 1e-39, LADRC_ERR_MIXER_KL_N_S2}, /* denormal: 1/(4 kL) = Inf */
         {offsetof(ladrc_mixer_config_t, arm_m), 0.0, LADRC_ERR_MIXER_ARM_M},
         {offsetof(ladrc_mixer_config_t, arm_m), (double)INFINITY, LADRC_ERR_MIXER_ARM_M},
         {offsetof(ladrc_mixer_config_t, b_Nm_s2), -2e-6, LADRC_ERR_MIXER_B_NM_S2},
         {offsetof(ladrc_mixer_config_t, b_Nm_s2), (double)NAN, LADRC_ERR_MIXER_B_NM_S2},
+        {offsetof(ladrc_mixer_config_t, b_Nm_s2), 1e-40, LADRC_ERR_MIXER_B_NM_S2}, /* 1/(4 b) = Inf */
         {offsetof(ladrc_mixer_config_t, mass_kg), 0.0, LADRC_ERR_MIXER_MASS_KG},
         {offsetof(ladrc_mixer_config_t, mass_kg), (double)INFINITY, LADRC_ERR_MIXER_MASS_KG},
+        {offsetof(ladrc_mixer_config_t, mass_kg), 3.4e38, LADRC_ERR_MIXER_MASS_KG}, /* m g = Inf */
         {offsetof(ladrc_mixer_config_t, g_m_s2), -9.81, LADRC_ERR_MIXER_G_M_S2},
         {offsetof(ladrc_mixer_config_t, g_m_s2), (double)NAN, LADRC_ERR_MIXER_G_M_S2},
         {offsetof(ladrc_mixer_config_t, w2_min_rad2_s2), -1.0, LADRC_ERR_MIXER_W2_MIN},
@@ -773,6 +896,72 @@ static void test_mixer_init_rejects_every_invalid_field_with_its_own_status(void
         /* when / then */
         TEST_ASSERT_EQUAL_INT_MESSAGE(cases[i].expected, ladrc_mixer_init(&mx, &cfg), msg);
     }
+}
+
+static ladrc_real_t step_toward(ladrc_real_t x, double direction)
+{
+#ifdef LADRC_REAL_DOUBLE
+    return nextafter(x, direction);
+#else
+    return nextafterf(x, (float)direction);
+#endif
+}
+
+static void test_mixer_init_accepts_each_field_at_its_bounds_and_rejects_just_beyond(void)
+{
+    typedef struct {
+        size_t offset;
+        ladrc_real_t lo, hi;
+        ladrc_status_t status;
+    } bound_t;
+    const bound_t bounds[] = {
+        {offsetof(ladrc_mixer_config_t, kL_N_s2), LADRC_MIXER_KL_MIN_N_S2, LADRC_MIXER_KL_MAX_N_S2,
+         LADRC_ERR_MIXER_KL_N_S2},
+        {offsetof(ladrc_mixer_config_t, arm_m), LADRC_MIXER_ARM_MIN_M, LADRC_MIXER_ARM_MAX_M,
+         LADRC_ERR_MIXER_ARM_M},
+        {offsetof(ladrc_mixer_config_t, b_Nm_s2), LADRC_MIXER_B_MIN_NM_S2, LADRC_MIXER_B_MAX_NM_S2,
+         LADRC_ERR_MIXER_B_NM_S2},
+        {offsetof(ladrc_mixer_config_t, mass_kg), LADRC_MIXER_MASS_MIN_KG, LADRC_MIXER_MASS_MAX_KG,
+         LADRC_ERR_MIXER_MASS_KG},
+        {offsetof(ladrc_mixer_config_t, g_m_s2), LADRC_MIXER_G_MIN_M_S2, LADRC_MIXER_G_MAX_M_S2,
+         LADRC_ERR_MIXER_G_M_S2},
+        {offsetof(ladrc_mixer_config_t, w2_max_rad2_s2), LADRC_MIXER_W2_MAX_MIN_RAD2_S2,
+         LADRC_MIXER_W2_MAX_MAX_RAD2_S2, LADRC_ERR_MIXER_W2_MAX},
+    };
+    size_t i;
+    for (i = 0; i < sizeof bounds / sizeof bounds[0]; ++i) {
+        /* given: the paper's config with one field at, then just beyond, each bound
+         * (w2_min 0 so that w2_max may go down to its bound) */
+        const ladrc_real_t values[4] = {bounds[i].lo, bounds[i].hi, step_toward(bounds[i].lo, -INFINITY),
+                                        step_toward(bounds[i].hi, INFINITY)};
+        int k;
+        for (k = 0; k < 4; ++k) {
+            ladrc_mixer_config_t cfg = config(LADRC_MIXER_SATURATE);
+            ladrc_mixer_t mx;
+            char msg[64];
+            cfg.w2_min_rad2_s2 = LADRC_R(0.0);
+            memcpy((char *)&cfg + bounds[i].offset, &values[k], sizeof values[k]);
+            snprintf(msg, sizeof msg, "field %u, value %.9g", (unsigned)i, (double)values[k]);
+            /* when / then */
+            TEST_ASSERT_EQUAL_INT_MESSAGE((k < 2) ? LADRC_OK : bounds[i].status, ladrc_mixer_init(&mx, &cfg),
+                                          msg);
+        }
+    }
+}
+
+static void test_mixer_init_in_ideal_mode_does_not_bound_the_unused_rotor_limits(void)
+{
+    /* given: ideal rotors with limits a simulation may pass for "none" */
+    ladrc_mixer_config_t cfg = config(LADRC_MIXER_IDEAL);
+    ladrc_mixer_t mx;
+    cfg.w2_min_rad2_s2 = LADRC_R(-1e30);
+    cfg.w2_max_rad2_s2 = LADRC_R(1e30);
+    /* when / then */
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_mixer_init(&mx, &cfg));
+    cfg.mode = LADRC_MIXER_SATURATE;
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_MIXER_W2_MIN, ladrc_mixer_init(&mx, &cfg));
+    cfg.w2_min_rad2_s2 = LADRC_R(0.0);
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_MIXER_W2_MAX, ladrc_mixer_init(&mx, &cfg));
 }
 
 static void test_mixer_init_rejects_an_unknown_mode(void)
@@ -852,6 +1041,28 @@ static void test_mixer_allocate_then_saturate_gives_exactly_the_output_of_a_step
     }
 }
 
+static void test_mixer_saturate_leaves_its_output_alone_for_what_it_cannot_mix(void)
+{
+    /* given: an output filled with a marker, a non-finite w^2, and in ideal mode a
+     * w^2 beyond the range whose sums could overflow */
+    const ladrc_real_t torque_Nm[3] = {LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0)};
+    const ladrc_real_t nan_w2[4] = {(ladrc_real_t)NAN, LADRC_R(6e4), LADRC_R(6e4), LADRC_R(6e4)};
+    const ladrc_real_t huge_w2[4] = {REAL_MAX, REAL_MAX, REAL_MAX, REAL_MAX};
+    ladrc_mixer_t mx;
+    ladrc_mixer_t ideal;
+    ladrc_mixer_output_t marker;
+    ladrc_mixer_output_t out;
+    memset(&marker, 0x5a, sizeof marker);
+    init_mixer(&mx, LADRC_MIXER_SATURATE);
+    init_mixer(&ideal, LADRC_MIXER_IDEAL);
+    /* when / then: untouched */
+    out = marker;
+    ladrc_mixer_saturate(&mx, nan_w2, LADRC_R(7.0), torque_Nm, &out);
+    TEST_ASSERT_EQUAL_MEMORY(&marker, &out, sizeof out);
+    ladrc_mixer_saturate(&ideal, huge_w2, REAL_MAX, torque_Nm, &out);
+    TEST_ASSERT_EQUAL_MEMORY(&marker, &out, sizeof out);
+}
+
 static void test_mixer_functions_tolerate_null_pointers(void)
 {
     if (LADRC_ASSERTS_ENABLED) {
@@ -926,18 +1137,24 @@ int main(void)
     RUN_TEST(test_mixer_flags_an_axis_exactly_when_achieved_differs_from_requested);
     RUN_TEST(test_mixer_achieved_values_are_the_forward_model_of_the_rotors);
     RUN_TEST(test_mixer_priorities_hold_for_random_requests);
+    RUN_TEST(test_mixer_huge_roll_beside_a_huge_thrust_reports_what_the_rotors_give);
+    RUN_TEST(test_mixer_huge_yaw_does_not_take_the_place_of_roll_and_pitch);
+    RUN_TEST(test_mixer_huge_roll_reports_the_yaw_the_rotors_give);
     RUN_TEST(test_mixer_ideal_mode_lets_w2_go_negative_and_reports_the_request_exactly);
     RUN_TEST(test_mixer_ideal_mode_ignores_the_rotor_limits);
     RUN_TEST(test_mixer_non_finite_request_returns_the_previous_output_with_an_input_fault);
     RUN_TEST(test_mixer_non_finite_first_request_gives_hover);
-    RUN_TEST(test_mixer_refuses_a_request_that_overflows_with_a_state_fault);
+    RUN_TEST(test_mixer_mixes_a_finite_request_of_any_size_at_the_limits);
     RUN_TEST(test_mixer_ideal_mode_refuses_non_finite_and_overflowing_requests);
     RUN_TEST(test_mixer_init_rejects_every_invalid_field_with_its_own_status);
+    RUN_TEST(test_mixer_init_accepts_each_field_at_its_bounds_and_rejects_just_beyond);
+    RUN_TEST(test_mixer_init_in_ideal_mode_does_not_bound_the_unused_rotor_limits);
     RUN_TEST(test_mixer_init_rejects_an_unknown_mode);
     RUN_TEST(test_mixer_init_accepts_negative_w2_min_only_in_ideal_mode);
     RUN_TEST(test_mixer_init_rejects_null_pointers);
     RUN_TEST(test_mixer_rejected_by_init_keeps_its_rotors_at_zero);
     RUN_TEST(test_mixer_allocate_then_saturate_gives_exactly_the_output_of_a_step);
+    RUN_TEST(test_mixer_saturate_leaves_its_output_alone_for_what_it_cannot_mix);
     RUN_TEST(test_mixer_functions_tolerate_null_pointers);
     RUN_TEST(test_mixer_reset_returns_to_hover_and_clears_faults);
     return UNITY_END();

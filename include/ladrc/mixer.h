@@ -23,8 +23,14 @@
  *     w3^2 = a/4 + q/2 - r/4    w4^2 = a/4 - p/2 + r/4
  *
  * Saturation (mode LADRC_MIXER_SATURATE), only when some w^2 lies outside
- * [w2_min, w2_max]. Each w^2 is split into collective c = a/4, a yaw part
- * +-r/4 and a roll/pitch part; priorities, highest first:
+ * [w2_min, w2_max]. First each request is limited to the most the rotors can
+ * give at all: roll and pitch together to l kL (w2_max - w2_min) (both scaled
+ * by one factor, so their ratio is kept), yaw to 2 b (w2_max - w2_min), thrust
+ * to [4 kL w2_min, 4 kL w2_max]. In exact arithmetic this changes nothing below;
+ * in float it keeps every part of w^2 on the scale of the rotor range, so that
+ * a huge request (up to the largest float) cannot swamp the others in
+ * rounding. Each w^2 is then split into collective c = a/4, a yaw part +-r/4
+ * and a roll/pitch part; priorities, highest first:
  *   1. roll and pitch: if their spread over the rotors exceeds w2_max - w2_min,
  *      both are scaled by the same factor (their ratio, i.e. the torque
  *      direction, is kept);
@@ -32,22 +38,40 @@
  *      roll and pitch is kept;
  *   3. thrust: the collective moves to the value nearest the request that puts
  *      every rotor within the limits.
- * The achieved thrust and torques of an axis that step 1, 2 or 3 changed come
- * from the forward model of the final w^2; an axis that was not changed
- * reports its request itself, bit for bit. So achieved != requested exactly
- * when the axis was cut back: a PID or observer comparing applied with
- * commanded torque never mistakes rounding for saturation (the rotors of an
- * axis left alone give its request up to float rounding of w^2). Bit i of
- * `saturated` (LADRC_MIXER_SAT_*) is set exactly when achieved != requested.
+ *
+ * Achieved values and saturation bits, in both modes and on every step: the
+ * thrust and torques are the forward model of the w^2 the step outputs. An
+ * axis whose forward model agrees with its request within float rounding
+ * (|achieved - requested| <= 8 eps coef sum|w_i^2| + 16 x the smallest
+ * subnormal, with eps the epsilon of ladrc_real_t and coef = kL for thrust,
+ * l kL for roll and pitch, b for yaw: the allocation and the forward model
+ * round by at most about 4.5 eps coef sum|w_i^2|) reports its request itself,
+ * bit for bit, and its bit stays clear; any other axis reports the forward
+ * model and has its bit of `saturated` (LADRC_MIXER_SAT_*) set. So bit i is
+ * set exactly when achieved != requested, and the achieved values are always
+ * what the rotors give: a PID or observer comparing applied with commanded
+ * torque never mistakes rounding for saturation, nor saturation for success.
  *
  * Mode LADRC_MIXER_IDEAL applies no limits (w^2 may be negative, as the
- * paper's rotor 2 is in its simulation) and reports the request as achieved.
+ * paper's rotor 2 is in its simulation); its achieved values are the request
+ * (its forward model agrees within the tolerance above). A request whose w^2
+ * would pass +-(largest float)/4 (where the forward model's sums could
+ * overflow) is refused with LADRC_FAULT_STATE.
  *
  * Thrust that holds altitude at a tilt (paper eq. 4): U_L = m g / (cos phi cos theta),
  * with cos phi cos theta floored at cos(tilt_max_rad).
  *
  * The mixer is memoryless apart from the last good output, which a step with
  * non-finite input returns again (LADRC_FAULT_INPUT). No gains, no time step.
+ *
+ * Config bounds (LADRC_MIXER_*_MIN, _MAX below): init accepts each physical
+ * field only within a plausible range, wide enough for any multirotor from a
+ * 20 g micro (kL ~ 3e-8 N s^2, l ~ 0.03 m, b ~ 1e-9 N m s^2, rotors up to
+ * ~6000 rad/s, w^2 ~ 4e7) to a 50 kg heavy lifter (kL ~ 3e-3 N s^2, l ~ 1.5 m,
+ * rotors ~200 rad/s) with a factor of 6 or more to spare, and narrow enough that
+ * every constant init derives (1/(4 kL), 1/(2 l kL), 1/(4 b), m g, the request
+ * limits above) and the forward model of any w^2 the mixer outputs stay finite
+ * and normal in float. Init checks those derived constants too.
  */
 #ifndef LADRC_MIXER_H
 #define LADRC_MIXER_H
@@ -57,6 +81,24 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/** @name Bounds of the config fields that ladrc_mixer_init accepts (inclusive)
+ *  @{ */
+#define LADRC_MIXER_KL_MIN_N_S2 LADRC_R(1e-10)   /**< kL_N_s2 lowest (N s^2) */
+#define LADRC_MIXER_KL_MAX_N_S2 LADRC_R(0.1)     /**< kL_N_s2 highest (N s^2) */
+#define LADRC_MIXER_ARM_MIN_M LADRC_R(1e-3)      /**< arm_m shortest (m) */
+#define LADRC_MIXER_ARM_MAX_M LADRC_R(10.0)      /**< arm_m longest (m) */
+#define LADRC_MIXER_B_MIN_NM_S2 LADRC_R(1e-13)   /**< b_Nm_s2 lowest (N m s^2) */
+#define LADRC_MIXER_B_MAX_NM_S2 LADRC_R(0.1)     /**< b_Nm_s2 highest (N m s^2) */
+#define LADRC_MIXER_MASS_MIN_KG LADRC_R(1e-3)    /**< mass_kg lowest (kg) */
+#define LADRC_MIXER_MASS_MAX_KG LADRC_R(1e3)     /**< mass_kg highest (kg) */
+#define LADRC_MIXER_G_MIN_M_S2 LADRC_R(0.1)      /**< g_m_s2 lowest (m/s^2) */
+#define LADRC_MIXER_G_MAX_M_S2 LADRC_R(100.0)    /**< g_m_s2 highest (m/s^2) */
+/** w2_max_rad2_s2 lowest in saturate mode (rad^2/s^2; top speed 10 rad/s) */
+#define LADRC_MIXER_W2_MAX_MIN_RAD2_S2 LADRC_R(1e2)
+/** w2_max_rad2_s2 highest in saturate mode (rad^2/s^2; top speed 1e5 rad/s) */
+#define LADRC_MIXER_W2_MAX_MAX_RAD2_S2 LADRC_R(1e10)
+/** @} */
 
 typedef enum {
     LADRC_MIXER_SATURATE = 0, /**< rotor limits applied with priorities */
@@ -72,13 +114,14 @@ enum {
 };
 
 typedef struct {
-    ladrc_real_t kL_N_s2;        /**< rotor thrust coefficient kL (N s^2), > 0 */
-    ladrc_real_t arm_m;          /**< rotor arm length l from the centre (m), > 0 */
-    ladrc_real_t b_Nm_s2;        /**< rotor drag-torque coefficient b (N m s^2), > 0 */
-    ladrc_real_t mass_kg;        /**< vehicle mass m (kg), > 0 */
-    ladrc_real_t g_m_s2;         /**< gravity g (m/s^2), > 0 */
-    ladrc_real_t w2_min_rad2_s2; /**< lowest rotor speed squared, >= 0 (any finite value if IDEAL) */
-    ladrc_real_t w2_max_rad2_s2; /**< highest rotor speed squared, finite, > w2_min_rad2_s2 */
+    ladrc_real_t kL_N_s2;        /**< rotor thrust coefficient kL (N s^2), in [1e-10, 0.1] */
+    ladrc_real_t arm_m;          /**< rotor arm length l from the centre (m), in [1e-3, 10] */
+    ladrc_real_t b_Nm_s2;        /**< rotor drag-torque coefficient b (N m s^2), in [1e-13, 0.1] */
+    ladrc_real_t mass_kg;        /**< vehicle mass m (kg), in [1e-3, 1e3] */
+    ladrc_real_t g_m_s2;         /**< gravity g (m/s^2), in [0.1, 100] */
+    ladrc_real_t w2_min_rad2_s2; /**< lowest rotor speed squared, >= 0 (IDEAL: any finite value, unused) */
+    ladrc_real_t w2_max_rad2_s2; /**< highest rotor speed squared, > w2_min_rad2_s2 and in [1e2, 1e10]
+                                      (IDEAL: any finite value > w2_min_rad2_s2, unused) */
     ladrc_real_t tilt_max_rad;   /**< tilt beyond which thrust_from_tilt stops growing, in (0, pi/2) */
     ladrc_mixer_mode_t mode;     /**< saturate (flight) or ideal (paper) */
 } ladrc_mixer_config_t;
@@ -87,8 +130,8 @@ typedef struct {
 typedef struct {
     ladrc_real_t w2_rad2_s2[4]; /**< rotor speeds squared, rotors 1..4 */
     ladrc_real_t w_rad_s[4];    /**< sqrt(max(w^2, 0)) */
-    ladrc_real_t thrust_N;      /**< achieved U_L (the request if not cut back) */
-    ladrc_real_t torque_Nm[3];  /**< achieved roll, pitch, yaw torque (the request if not cut back) */
+    ladrc_real_t thrust_N;      /**< achieved U_L: forward model of w2_rad2_s2 (the request if within rounding) */
+    ladrc_real_t torque_Nm[3];  /**< achieved roll, pitch, yaw torque, likewise */
     uint8_t saturated;          /**< LADRC_MIXER_SAT_* bits */
     ladrc_fault_t faults;       /**< flags of the step that returned this output */
 } ladrc_mixer_output_t;
@@ -102,15 +145,21 @@ typedef struct {
     ladrc_real_t weight_N;      /**< m g */
     ladrc_real_t cos_tilt_min;  /**< cos(tilt_max_rad) */
     ladrc_real_t thrust_max_N;  /**< m g / cos(tilt_max_rad): thrust_from_tilt's cap */
-    ladrc_real_t w2_min_rad2_s2, w2_max_rad2_s2; /**< rotor limits; ideal mode: -+ the largest finite value */
+    ladrc_real_t w2_min_rad2_s2, w2_max_rad2_s2; /**< rotor limits; ideal mode: -+ (largest finite value)/4 */
+    ladrc_real_t rp_limit_Nm;   /**< l kL (w2_max - w2_min): most roll or pitch torque (0 if ideal) */
+    ladrc_real_t yaw_limit_Nm;  /**< 2 b (w2_max - w2_min): most yaw torque (0 if ideal) */
+    ladrc_real_t thrust_lo_N, thrust_hi_N; /**< 4 kL w2_min, 4 kL w2_max: thrust range (0 if ideal) */
     ladrc_mixer_mode_t mode;
     ladrc_mixer_output_t out;   /**< last good output */
 } ladrc_mixer_t;
 
-/** Validates every field (LADRC_ERR_MIXER_KL_N_S2, _ARM_M, _B_NM_S2, _MASS_KG, _G_M_S2,
- *  _MODE, _W2_MIN, _W2_MAX, _TILT_MAX_RAD, checked in that order; LADRC_ERR_NULL), derives
- *  the constants and resets. On a config error *mx is zeroed: every step then outputs
- *  w^2 = 0 (its achieved values mean nothing; do not fly a rejected mixer). */
+/** Validates every field against its bounds (LADRC_ERR_MIXER_KL_N_S2, _ARM_M, _B_NM_S2,
+ *  _MASS_KG, _G_M_S2, _MODE, _W2_MIN, _W2_MAX, _TILT_MAX_RAD, checked in that order;
+ *  LADRC_ERR_NULL), derives the constants and checks that each is finite and > 0 (a
+ *  failure is reported with the status of the last field, in that order, the constant
+ *  depends on; the bounds above make that unreachable, the check stays should they be
+ *  widened), then resets. On a config error *mx is zeroed: every step then outputs
+ *  w^2 = 0 and achieved values 0 (do not fly a rejected mixer). */
 ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *cfg);
 
 /** Sets the held output to the mix of level hover (U_L = m g, no torque) and clears faults. */
@@ -134,12 +183,14 @@ void ladrc_mixer_allocate(const ladrc_mixer_t *mx, ladrc_real_t thrust_N,
 
 /**
  * Step 2, pure: rotor limits by priority (roll/pitch, then yaw, then thrust; see
- * the file comment), achieved values and saturation bits. Inputs must be finite
- * (ladrc_mixer_step checks them): a non-finite w^2, or limits that overflow, leave
- * *out untouched. out->faults is set to LADRC_FAULT_NONE.
+ * the file comment), achieved values and saturation bits. If w^2 lies outside the
+ * limits, the request is limited and allocated again (scale-safe, file comment), so
+ * w^2 must be the allocation of that request. Inputs must be finite (ladrc_mixer_step
+ * checks them): a non-finite w^2 or request, or in ideal mode a w^2 beyond the
+ * range, leaves *out untouched. out->faults is set to LADRC_FAULT_NONE.
  * @param w2_rad2_s2 allocation of the request, from ladrc_mixer_allocate
- * @param thrust_N, torque_Nm the request that was allocated (reported back unchanged
- *        on the axes that were not cut back)
+ * @param thrust_N, torque_Nm the request that was allocated (reported back bit for
+ *        bit on the axes whose rotors give it within rounding)
  */
 void ladrc_mixer_saturate(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[4],
                           ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
@@ -152,8 +203,10 @@ void ladrc_mixer_forward(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[
 /**
  * One mix: allocate, then saturate; the result is held in the state and copied to
  * *out (out may be NULL). A non-finite request returns the held output again with
- * LADRC_FAULT_INPUT; a finite request too large to mix in range (overflow) does the
- * same with LADRC_FAULT_STATE. The held output starts as hover (see reset).
+ * LADRC_FAULT_INPUT. In saturate mode every finite request, up to the largest float,
+ * is mixed (limited as the file comment says). In ideal mode a finite request whose
+ * w^2 would pass +-(largest float)/4 returns the held output with LADRC_FAULT_STATE.
+ * The held output starts as hover (see reset).
  * @return the step's fault flags
  */
 ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N,

@@ -128,14 +128,14 @@ typedef enum {
     LADRC_ERR_RLS_LAMBDA0,        /**< rls lambda0_per_s not finite, < 0, or lambda0_per_s * dt_s > 1 */
     LADRC_ERR_RLS_P_BOUND,        /**< rls p_bound not finite or not > 0 */
     LADRC_ERR_RLS_P_INITIAL,      /**< rls p_initial not finite, not > 0, or n_params * p_initial > p_bound */
-    LADRC_ERR_MIXER_KL_N_S2,      /**< mixer kL_N_s2 (thrust coefficient) not finite or not > 0 */
-    LADRC_ERR_MIXER_ARM_M,        /**< mixer arm_m (rotor arm length l) not finite or not > 0 */
-    LADRC_ERR_MIXER_B_NM_S2,      /**< mixer b_Nm_s2 (drag coefficient) not finite or not > 0 */
-    LADRC_ERR_MIXER_MASS_KG,      /**< mixer mass_kg not finite or not > 0 */
-    LADRC_ERR_MIXER_G_M_S2,       /**< mixer g_m_s2 not finite or not > 0 */
+    LADRC_ERR_MIXER_KL_N_S2,      /**< mixer kL_N_s2 (thrust coefficient) outside [1e-10, 0.1] N s^2 */
+    LADRC_ERR_MIXER_ARM_M,        /**< mixer arm_m (rotor arm length l) outside [1e-3, 10] m */
+    LADRC_ERR_MIXER_B_NM_S2,      /**< mixer b_Nm_s2 (drag coefficient) outside [1e-13, 0.1] N m s^2 */
+    LADRC_ERR_MIXER_MASS_KG,      /**< mixer mass_kg outside [1e-3, 1e3] kg */
+    LADRC_ERR_MIXER_G_M_S2,       /**< mixer g_m_s2 outside [0.1, 100] m/s^2 */
     LADRC_ERR_MIXER_MODE,         /**< mixer mode not a ladrc_mixer_mode_t */
     LADRC_ERR_MIXER_W2_MIN,       /**< mixer w2_min_rad2_s2 not finite, or < 0 outside ideal mode */
-    LADRC_ERR_MIXER_W2_MAX,       /**< mixer w2_max_rad2_s2 not finite or not > w2_min_rad2_s2 */
+    LADRC_ERR_MIXER_W2_MAX,       /**< mixer w2_max_rad2_s2 not > w2_min_rad2_s2 or, unless ideal, outside [1e2, 1e10] */
     LADRC_ERR_MIXER_TILT_MAX_RAD, /**< mixer tilt_max_rad not in (0, pi/2) */
     LADRC_ERR_EST_LAMBDA0,        /**< estimator forgetting rate not finite or not > 0 */
     LADRC_ERR_EST_K0,             /**< estimator gain bound k0 not finite or not > 0 */
