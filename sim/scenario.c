@@ -976,10 +976,12 @@ static void check_run(parser_t *p)
         }
     }
     check_run_size(p);
-    static const char *const windows[] = {"error_window_s", "steady_window_s", "settle_window_s"};
-    const double ends[] = {sc->error_window_s[1], sc->steady_window_s[1], sc->settle_until_s};
-    for (int i = 0; i < 3; ++i) {
-        const loc_t *at = seen_key(p, SEC_METRICS, windows[i]);
+    /* [metrics] windows, and the error window of [differentiator] */
+    static const int sections[] = {SEC_METRICS, SEC_METRICS, SEC_METRICS, SEC_DIFFERENTIATOR};
+    static const char *const windows[] = {"error_window_s", "steady_window_s", "settle_window_s", "error_window_s"};
+    const double ends[] = {sc->error_window_s[1], sc->steady_window_s[1], sc->settle_until_s, sc->error_window_s[1]};
+    for (int i = 0; i < 4; ++i) {
+        const loc_t *at = seen_key(p, sections[i], windows[i]);
         if (at->line != 0 && ends[i] > sc->duration_s) {
             check_fail(p, at->line, at->value_col, "%s ends after the run (duration_s = %g)", windows[i],
                        sc->duration_s);

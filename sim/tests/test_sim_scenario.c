@@ -704,6 +704,10 @@ static void test_errors_checked_after_the_whole_file(void)
          "error_window_s ends after the run (duration_s = 0.004)"},
         {"[run]\nduration_s = 0.004\ncontrol_dt_s = 0.005\n[metrics]\nerror_window_s = 0 50\n", 3, 16,
          "control_dt_s (0.005) must not exceed duration_s (0.004)"},
+        /* found by tests/fuzz/fuzz_scenario: [differentiator] has a window too */
+        {"[run]\nkind = differentiator\nduration_s = 9\n[differentiator]\nsignal = sin(t)\nderivative = cos(t)\n"
+         "error_window_s = 2 10\n",
+         7, 18, "error_window_s ends after the run (duration_s = 9)"},
         {"[run]\nduration_s = 1\n[rotors]\nideal = no\n", 4, 9, "ideal = no needs w2_max_rad2_s2"},
         {"[run]\nduration_s = 1\n[rotors]\nw2_max_rad2_s2 = 1e4\nw2_min_rad2_s2 = 2e4\nideal = no\n", 4, 18,
          "w2_max_rad2_s2 must be > w2_min_rad2_s2 (20000)"},
