@@ -111,10 +111,10 @@ failed=0
 for i in "${!targets[@]}"; do
   target=${targets[$i]}
   log=$out/$target.log
-  stat() { sed -n "s/^stat::$1: *//p" "$log" | tail -n 1; }
-  runs=$(stat number_of_executed_units)
-  rate=$(stat average_exec_per_sec)
-  added=$(stat new_units_added)
+  final_stat() { sed -n "s/^stat::$1: *//p" "$log" | tail -n 1; }
+  runs=$(final_stat number_of_executed_units)
+  rate=$(final_stat average_exec_per_sec)
+  added=$(final_stat new_units_added)
   corpus=$(find "$out/corpus/$target" -type f | wc -l)
   findings=$(find "$out/artifacts/$target" -type f \
     \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) | wc -l)
