@@ -16,7 +16,10 @@
  * the postfix one: constant subexpressions folded (with the same double
  * operations, so to the same bits), and an accumulator machine whose binary
  * operations take a constant or t directly as an operand. Its results are
- * those of the postfix program bit for bit (sim_expr_eval_postfix, tested).
+ * those of the postfix program bit for bit (sim_expr_eval_postfix, tested
+ * and fuzzed), NaN results aside: those are NaN in both, but their sign and
+ * payload may differ, as C leaves them to the compiler, which may swap the
+ * operands of + and * (docs/fuzzing.md).
  */
 #ifndef LADRC_SIM_EXPR_H
 #define LADRC_SIM_EXPR_H

@@ -14,6 +14,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "progress.h"
 #include "report.h"
 #include "runner.h"
 #include "scenario.h"
@@ -128,6 +129,12 @@ static int parse_controllers(const char *list, sim_controller_id_t *ids, int *n)
                     tok);
             return -1;
         }
+        for (int i = 0; i < *n; ++i) {
+            if ((int)ids[i] == found) {
+                fprintf(stderr, "ladrc_sil: --controllers: '%s' listed twice\n", tok);
+                return -1;
+            }
+        }
         ids[(*n)++] = (sim_controller_id_t)found;
     }
     return *n > 0 ? 0 : -1;
@@ -164,9 +171,10 @@ static void order_longest_first(const job_t *jobs, int n, int *order)
 }
 
 /* Waits for every job, printing progress on stderr for runs longer than a
- * second. Woken by each finished job, so the wall time is not rounded up to
- * a polling period. */
-static void wait_with_progress(pool_t *pool, long total_ticks, int quiet)
+ * second: the share of control periods done, the runs done, the time so
+ * far and the time left at the pace so far. Woken by each finished job, so
+ * the wall time is not rounded up to a polling period. */
+static void wait_with_progress(pool_t *pool, double total_ticks, int quiet)
 {
     const double start = now_s();
     double last_print = start;
@@ -184,12 +192,13 @@ static void wait_with_progress(pool_t *pool, long total_ticks, int quiet)
         const int done = pool->done;
         const double t = now_s();
         if (done < pool->n_jobs && !quiet && t - start > 1.0 && t - last_print >= (tty ? 0.5 : 2.0)) {
-            long ticks = 0;
+            double ticks = 0.0;
             for (int i = 0; i < pool->n_jobs; ++i) {
-                ticks += pool->jobs[i].ticks_done;
+                ticks += (double)pool->jobs[i].ticks_done;
             }
-            fprintf(stderr, "%sladrc_sil: %3.0f%% (%d of %d runs done, %.1f s)%s", tty ? "\r" : "",
-                    100.0 * (double)ticks / (double)total_ticks, done, pool->n_jobs, t - start, tty ? "" : "\n");
+            char text[128];
+            sim_progress_text(text, sizeof text, ticks / total_ticks, done, pool->n_jobs, t - start);
+            fprintf(stderr, "%sladrc_sil: %s%s", tty ? "\r" : "", text, tty ? "\033[K" : "\n");
             last_print = t;
         }
     }
@@ -250,18 +259,15 @@ int main(int argc, char **argv)
     /* Every scenario is read before anything runs: one bad file, nothing written. */
     for (int i = 0; i < n_paths; ++i) {
         sim_parse_error_t perr;
-        if (sim_scenario_load(&scenarios[n_sc], paths[i], &perr) != 0) {
+        sim_scenario_t *sc = &scenarios[n_sc++];
+        if (sim_scenario_load(sc, paths[i], &perr) != 0 ||
+            (n_override > 0 && sim_scenario_set_controllers(sc, override_ids, n_override, &perr) != 0)) {
             if (perr.line > 0) {
                 fprintf(stderr, "%s:%d:%d: %s\n", perr.path, perr.line, perr.column, perr.message);
             } else {
                 fprintf(stderr, "%s: %s\n", perr.path, perr.message); /* could not be read */
             }
             return 2;
-        }
-        sim_scenario_t *sc = &scenarios[n_sc++];
-        if (n_override > 0) {
-            sc->n_controllers = n_override;
-            memcpy(sc->controllers, override_ids, sizeof override_ids);
         }
         if (out_root != NULL) {
             char dir[sizeof sc->output_dir];
@@ -278,7 +284,7 @@ int main(int argc, char **argv)
     static sim_diff_metrics_t diff[MAX_SCENARIOS];
     static job_t jobs[MAX_SCENARIOS * SIM_MAX_CONTROLLERS];
     int n_jobs = 0;
-    long total_ticks = 0;
+    double total_ticks = 0.0;
     for (int s = 0; s < n_sc; ++s) {
         const sim_scenario_t *sc = &scenarios[s];
         if (make_dirs(sc->output_dir) != 0) {
@@ -299,7 +305,7 @@ int main(int argc, char **argv)
                          job->controller_index < 0 ? "differentiator"
                                                    : sim_controller_name(sc->controllers[c]));
             }
-            total_ticks += sim_run_ticks(sc);
+            total_ticks += (double)sim_run_ticks(sc);
         }
     }
 

@@ -17,6 +17,7 @@
 #include "plant.h"
 #include "rng.h"
 #include "sensor.h"
+#include "setup.h"
 
 #define RAD2DEG (180.0 / 3.14159265358979323846)
 
@@ -29,55 +30,12 @@ static double wall_now_s(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-static ladrc_variant_t variant_of(sim_controller_id_t id)
-{
-    switch (id) {
-    case SIM_CTRL_HP_MLADRC: return LADRC_VARIANT_HP_MLADRC;
-    case SIM_CTRL_LP_MLADRC: return LADRC_VARIANT_LP_MLADRC;
-    case SIM_CTRL_LADRC: return LADRC_VARIANT_LADRC;
-    default: return LADRC_VARIANT_PID;
-    }
-}
-
-/* The scenario's overrides on top of the library defaults, for one axis. */
-static void apply_overrides(ladrc_axis_config_t *a, const sim_overrides_t *o)
-{
-    if (!isnan(o->wc_rad_s)) a->wc_rad_s = (ladrc_real_t)o->wc_rad_s;
-    if (!isnan(o->wo_rad_s)) a->wo_rad_s = (ladrc_real_t)o->wo_rad_s;
-    if (o->leso_method >= 0) a->leso_method = (ladrc_leso_method_t)o->leso_method;
-    if (o->hp_freq_mode >= 0) a->hp_freq_mode = (ladrc_hp_freq_mode_t)o->hp_freq_mode;
-    if (!isnan(o->hp_freq_rad_s)) a->hp_freq_rad_s[0] = (ladrc_real_t)o->hp_freq_rad_s;
-#if LADRC_HP_MAX_TONES > 1
-    if (!isnan(o->hp_freq2_rad_s)) a->hp_freq_rad_s[1] = (ladrc_real_t)o->hp_freq2_rad_s;
-#endif
-    /* Known frequencies: as many tones as frequencies given, unless said. */
-    if (a->hp_freq_mode == LADRC_HP_FREQ_KNOWN) a->hp_n_tones = isnan(o->hp_freq2_rad_s) ? 1u : 2u;
-    if (o->hp_tones > 0) a->hp_n_tones = (uint8_t)o->hp_tones;
-    if (!isnan(o->levant_lipschitz_rad_s4)) a->levant_lipschitz_rad_s4 = (ladrc_real_t)o->levant_lipschitz_rad_s4;
-    if (!isnan(o->td_accel_rad_s2)) a->td_accel_rad_s2 = (ladrc_real_t)o->td_accel_rad_s2;
-    if (!isnan(o->pid_kp)) a->pid_kp = (ladrc_real_t)o->pid_kp;
-    if (!isnan(o->pid_ki)) a->pid_ki = (ladrc_real_t)o->pid_ki;
-    if (!isnan(o->pid_kd)) a->pid_kd = (ladrc_real_t)o->pid_kd;
-}
-
-/* What the controllers assume: the plant's vehicle times the mismatch factors. */
+/* The controller and mixer of the run, configured as the parser checked them. */
 static int configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_t *att,
                      ladrc_mixer_t *mixer, char *err, size_t err_len)
 {
-    ladrc_real_t inertia[3];
-    for (int i = 0; i < 3; ++i) {
-        inertia[i] = (ladrc_real_t)(sc->inertia_kg_m2[i] * sc->inertia_scale[i]);
-    }
     ladrc_attitude_config_t cfg;
-    ladrc_attitude_config_default(&cfg, variant_of(id), (ladrc_real_t)sc->control_dt_s, inertia,
-                                  (ladrc_real_t)(sc->rot_drag_Nm_s * sc->rot_drag_scale));
-    const sim_overrides_t *o = &sc->overrides[id];
-    for (int i = 0; i < 3; ++i) {
-        apply_overrides(&cfg.axis[i], o);
-    }
-    if (o->coupling_feed >= 0) {
-        cfg.coupling_feed = (uint8_t)o->coupling_feed;
-    }
+    sim_setup_attitude(sc, id, &cfg);
     int bad_axis = -1;
     ladrc_status_t st = ladrc_attitude_init(att, &cfg, &bad_axis);
     if (st != LADRC_OK) {
@@ -85,14 +43,8 @@ static int configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_att
                  ladrc_status_str(st));
         return -1;
     }
-    /* Ideal rotors have no limits; the mixer still wants finite ones. */
-    const double w2_min = sc->rotors_ideal ? 0.0 : sc->w2_min_rad2_s2;
-    const double w2_max = sc->rotors_ideal ? 1e12 : sc->w2_max_rad2_s2;
-    const ladrc_mixer_config_t mix = {
-        (ladrc_real_t)sc->thrust_coeff_N_s2, (ladrc_real_t)sc->arm_m,  (ladrc_real_t)sc->yaw_coeff_Nm_s2,
-        (ladrc_real_t)sc->mass_kg,           (ladrc_real_t)sc->g_m_s2, (ladrc_real_t)w2_min,
-        (ladrc_real_t)w2_max,                (ladrc_real_t)sc->tilt_max_rad,
-        sc->rotors_ideal ? LADRC_MIXER_IDEAL : LADRC_MIXER_SATURATE};
+    ladrc_mixer_config_t mix;
+    sim_setup_mixer(sc, &mix);
     st = ladrc_mixer_init(mixer, &mix);
     if (st != LADRC_OK) {
         snprintf(err, err_len, "%s: mixer: %s", sc->path, ladrc_status_str(st));
@@ -312,14 +264,9 @@ int sim_run_differentiator(const sim_scenario_t *sc, const char *csv_path, const
                            sim_diff_metrics_t *m, char *err, size_t err_len)
 {
     memset(m, 0, sizeof *m);
-    const ladrc_real_t dt = (ladrc_real_t)sc->control_dt_s;
     ladrc_levant_config_t lcfg;
-    memset(&lcfg, 0, sizeof lcfg);
-    lcfg.dt_s = dt;
-    lcfg.method = LADRC_LEVANT_IMPLICIT;
-    lcfg.gains = LADRC_LEVANT_GAINS_LIPSCHITZ;
-    lcfg.lipschitz_rad_s4 = (ladrc_real_t)sc->diff_levant_lipschitz;
-    const ladrc_td_config_t tcfg = {dt, (ladrc_real_t)sc->diff_td_accel, (ladrc_real_t)sc->diff_td_h0_s};
+    ladrc_td_config_t tcfg;
+    sim_setup_differentiators(sc, &lcfg, &tcfg);
     ladrc_levant_t lev;
     ladrc_td_t td;
     ladrc_status_t st = ladrc_levant_init(&lev, &lcfg);

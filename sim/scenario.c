@@ -3,8 +3,10 @@
  * Scenario parser. The text is copied once and cut up in place: each line
  * is NUL-terminated, its comment removed, and values are handed to the key
  * table below, which says where each key goes, its unit factor and its
- * range. Checks that involve other keys (kind, duration_s, ideal rotors)
- * run once the whole file is read; the earliest of their errors is kept.
+ * range. Checks that involve other keys (kind, duration_s, ideal rotors,
+ * the run's limits) run once the whole file is read; the earliest of their
+ * errors is kept. Last, the library initialises what the run would fly
+ * (setup.h), so that a value it refuses is an error at its key.
  */
 #include "scenario.h"
 
@@ -20,6 +22,7 @@
 #include "ladrc/leso.h"
 #include "plant.h"
 #include "sensor.h"
+#include "setup.h"
 
 #if defined(__GNUC__)
 #define PRINTF_LIKE(f, a) __attribute__((format(printf, f, a)))
@@ -95,7 +98,17 @@ typedef enum {
     V_SIGNAL       /* [FROM .. TO :] expression, repeatable */
 } value_type_t;
 
-typedef enum { R_ANY, R_POSITIVE, R_NONNEGATIVE, R_TILT, R_DELAY, R_AT_LEAST_1, R_HP_TONES } range_t;
+typedef enum {
+    R_ANY,
+    R_POSITIVE,
+    R_NONNEGATIVE,
+    R_TILT,
+    R_DELAY,
+    R_HP_TONES,
+    R_DURATION,   /* > 0, <= SIM_DURATION_MAX_S */
+    R_CONTROL_DT, /* SIM_CONTROL_DT_MIN_S .. SIM_CONTROL_DT_MAX_S */
+    R_SUBSTEPS    /* 1 .. SIM_PLANT_SUBSTEPS_MAX */
+} range_t;
 
 typedef struct {
     const char *name;
@@ -133,9 +146,9 @@ typedef struct {
 
 static const key_def_t KEYS[] = {
     {SEC_RUN, "kind", V_KIND, SC(kind), 0, R_ANY, 0, 0, KINDS, FOR_BOTH, 0, 0, NULL},
-    {SEC_RUN, "duration_s", V_REAL, SC(duration_s), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 1, 0, NULL},
-    {SEC_RUN, "control_dt_s", V_REAL, SC(control_dt_s), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0, 0, NULL},
-    {SEC_RUN, "plant_substeps", V_INT, SC(plant_substeps), 0, R_AT_LEAST_1, 0, 0, NULL, FOR_ATTITUDE, 0, 0, NULL},
+    {SEC_RUN, "duration_s", V_REAL, SC(duration_s), 0, R_DURATION, 0, 0, NULL, FOR_BOTH, 1, 0, NULL},
+    {SEC_RUN, "control_dt_s", V_REAL, SC(control_dt_s), 0, R_CONTROL_DT, 0, 0, NULL, FOR_BOTH, 0, 0, NULL},
+    {SEC_RUN, "plant_substeps", V_INT, SC(plant_substeps), 0, R_SUBSTEPS, 0, 0, NULL, FOR_ATTITUDE, 0, 0, NULL},
     {SEC_RUN, "seed", V_SEED, SC(seed), 0, R_ANY, 0, 0, NULL, FOR_BOTH, 0, 0, NULL},
     {SEC_RUN, "output_dir", V_TEXT, SC(output_dir), 0, R_ANY, 0, 0, NULL, FOR_BOTH, 0, 0, NULL},
     {SEC_RUN, "controllers", V_CONTROLLERS, SC(controllers), 0, R_ANY, 0, 0, NULL, FOR_ATTITUDE, 0, 0, NULL},
@@ -342,12 +355,23 @@ static int check_range(parser_t *p, const key_def_t *def, const char *tok, doubl
         return (v >= 0.0 && v <= SIM_SENSOR_MAX_DELAY)
                    ? 0
                    : fail(p, tok, "%s must be between 0 and %d", def->name, SIM_SENSOR_MAX_DELAY);
-    case R_AT_LEAST_1:
-        return v >= 1.0 ? 0 : fail(p, tok, "%s must be >= 1", def->name);
     case R_HP_TONES:
         return (v >= 1.0 && v <= LADRC_HP_MAX_TONES)
                    ? 0
                    : fail(p, tok, "%s must be between 1 and %d", def->name, LADRC_HP_MAX_TONES);
+    case R_DURATION:
+        return (v > 0.0 && v <= SIM_DURATION_MAX_S)
+                   ? 0
+                   : fail(p, tok, "%s must be > 0 and at most %g", def->name, SIM_DURATION_MAX_S);
+    case R_CONTROL_DT:
+        return (v >= SIM_CONTROL_DT_MIN_S && v <= SIM_CONTROL_DT_MAX_S)
+                   ? 0
+                   : fail(p, tok, "%s must be between %g and %g", def->name, SIM_CONTROL_DT_MIN_S,
+                          SIM_CONTROL_DT_MAX_S);
+    case R_SUBSTEPS:
+        return (v >= 1.0 && v <= SIM_PLANT_SUBSTEPS_MAX)
+                   ? 0
+                   : fail(p, tok, "%s must be between 1 and %d", def->name, SIM_PLANT_SUBSTEPS_MAX);
     default:
         return 0;
     }
@@ -855,6 +879,88 @@ static void check_kind(parser_t *p)
     }
 }
 
+/* The first of the keys of a section that the file gives, or NULL. */
+static const loc_t *first_given(const parser_t *p, int sec, const char *const *names, int n)
+{
+    for (int i = 0; i < n; ++i) {
+        const loc_t *at = seen_key(p, sec, names[i]);
+        if (at->line != 0) {
+            return at;
+        }
+    }
+    return NULL;
+}
+
+/* Where a limit on the run's steps is reported: the first key given of
+ * plant_substeps (when it takes part), control_dt_s, duration_s. */
+static const loc_t *steps_key(const parser_t *p, int with_substeps)
+{
+    static const char *const keys[] = {"plant_substeps", "control_dt_s", "duration_s"};
+    return with_substeps ? first_given(p, SEC_RUN, keys, 3) : first_given(p, SEC_RUN, keys + 1, 2);
+}
+
+/* The run's size (control periods and plant steps) and the plant step
+ * against the plant's time constants; limits in scenario.h. */
+static void check_run_size(parser_t *p)
+{
+    const sim_scenario_t *sc = p->sc;
+    const double ticks = floor(sc->duration_s / sc->control_dt_s + 0.5); /* sim_run_ticks */
+    if (ticks > (double)SIM_RUN_TICKS_MAX) {
+        const loc_t *at = steps_key(p, 0);
+        check_fail(p, at->line, at->value_col,
+                   "the run takes %g control periods (duration_s / control_dt_s), more than %g", ticks,
+                   (double)SIM_RUN_TICKS_MAX);
+        return;
+    }
+    if (sc->kind != SIM_KIND_ATTITUDE) {
+        return;
+    }
+    const double steps = ticks * sc->plant_substeps;
+    if (steps > SIM_RUN_PLANT_STEPS_MAX) {
+        const loc_t *at = steps_key(p, 1);
+        check_fail(p, at->line, at->value_col,
+                   "the run takes %g plant steps (duration_s / control_dt_s x plant_substeps), more than %g", steps,
+                   SIM_RUN_PLANT_STEPS_MAX);
+        return;
+    }
+    /* RK4 is stable on a decay up to 2.8 time constants per step and loses
+     * its accuracy well before: the plant's truth resolves its fastest part. */
+    const double h = sc->control_dt_s / sc->plant_substeps;
+    double tau = INFINITY;
+    const char *what = NULL;
+    const loc_t *cause = NULL; /* the key that sets the time constant */
+    if (sc->motor_tau_s > 0.0) {
+        tau = sc->motor_tau_s;
+        what = "motor_tau_s";
+        cause = seen_key(p, SEC_ROTORS, "motor_tau_s");
+    }
+    for (int i = 0; i < 3; ++i) {
+        if (sc->rot_drag_Nm_s > 0.0 && sc->inertia_kg_m2[i] / sc->rot_drag_Nm_s < tau) {
+            tau = sc->inertia_kg_m2[i] / sc->rot_drag_Nm_s;
+            what = "the drag time constant J / rot_drag_Nm_s";
+            static const char *const vehicle[] = {"inertia_kg_m2", "rot_drag_Nm_s"};
+            cause = first_given(p, SEC_VEHICLE, vehicle, 2);
+        }
+    }
+    if (h > tau) {
+        static const char *const run[] = {"plant_substeps", "control_dt_s"};
+        const loc_t *at = first_given(p, SEC_RUN, run, 2);
+        if (at == NULL) {
+            at = cause != NULL ? cause : seen_key(p, SEC_RUN, "duration_s");
+        }
+        const double needed = ceil(sc->control_dt_s / tau);
+        char fix[64];
+        if (needed <= SIM_PLANT_SUBSTEPS_MAX) {
+            snprintf(fix, sizeof fix, "plant_substeps must be at least %.0f", needed);
+        } else {
+            snprintf(fix, sizeof fix, "more than %d plant_substeps would be needed", SIM_PLANT_SUBSTEPS_MAX);
+        }
+        check_fail(p, at->line, at->value_col,
+                   "the plant step control_dt_s / plant_substeps (%g s) is longer than %s (%g s): %s", h, what, tau,
+                   fix);
+    }
+}
+
 static void check_run(parser_t *p)
 {
     const sim_scenario_t *sc = p->sc;
@@ -869,10 +975,13 @@ static void check_run(parser_t *p)
                        sc->control_dt_s, sc->duration_s);
         }
     }
-    static const char *const windows[] = {"error_window_s", "steady_window_s", "settle_window_s"};
-    const double ends[] = {sc->error_window_s[1], sc->steady_window_s[1], sc->settle_until_s};
-    for (int i = 0; i < 3; ++i) {
-        const loc_t *at = seen_key(p, SEC_METRICS, windows[i]);
+    check_run_size(p);
+    /* [metrics] windows, and the error window of [differentiator] */
+    static const int sections[] = {SEC_METRICS, SEC_METRICS, SEC_METRICS, SEC_DIFFERENTIATOR};
+    static const char *const windows[] = {"error_window_s", "steady_window_s", "settle_window_s", "error_window_s"};
+    const double ends[] = {sc->error_window_s[1], sc->steady_window_s[1], sc->settle_until_s, sc->error_window_s[1]};
+    for (int i = 0; i < 4; ++i) {
+        const loc_t *at = seen_key(p, sections[i], windows[i]);
         if (at->line != 0 && ends[i] > sc->duration_s) {
             check_fail(p, at->line, at->value_col, "%s ends after the run (duration_s = %g)", windows[i],
                        sc->duration_s);
@@ -910,6 +1019,177 @@ static void check_differentiator(parser_t *p)
     const loc_t *h0 = seen_key(p, SEC_DIFFERENTIATOR, "td_h0_s");
     if (h0->line != 0 && sc->diff_td_h0_s < sc->control_dt_s) {
         check_fail(p, h0->line, h0->value_col, "td_h0_s must be >= control_dt_s (%g)", sc->control_dt_s);
+    }
+}
+
+/* ---- what the library accepts ------------------------------------------------
+ *
+ * The controllers, the mixer and the differentiators are initialised once
+ * here with the configurations the runner gives them (setup.h), so that a
+ * scenario the library refuses is an error of the file, at the key that sets
+ * the refused value, and not a failed run. */
+
+typedef struct {
+    int sec;          /* SEC_*; -1: the controller's own [controller NAME] */
+    const char *name;
+} key_ref_t;
+
+#define CTRL_SEC (-1)
+#define END_KEYS {0, NULL}
+
+/* The keys behind a refused value, most likely first (the first one the
+ * file gives is reported). */
+static const key_ref_t *keys_of_status(ladrc_status_t st, int known_freqs)
+{
+    static const key_ref_t dt[] = {{SEC_RUN, "control_dt_s"}, END_KEYS};
+    static const key_ref_t inertia[] = {{SEC_VEHICLE, "inertia_kg_m2"}, {SEC_MISMATCH, "inertia_scale"}, END_KEYS};
+    static const key_ref_t drag[] = {{SEC_VEHICLE, "rot_drag_Nm_s"}, {SEC_MISMATCH, "rot_drag_scale"}, END_KEYS};
+    static const key_ref_t wc[] = {{CTRL_SEC, "wc_rad_s"}, END_KEYS};
+    static const key_ref_t wo[] = {{CTRL_SEC, "wo_rad_s"}, END_KEYS};
+    static const key_ref_t euler[] = {
+        {CTRL_SEC, "wo_rad_s"}, {SEC_RUN, "control_dt_s"}, {CTRL_SEC, "leso_method"}, END_KEYS};
+    static const key_ref_t td_accel[] = {{CTRL_SEC, "td_accel_rad_s2"}, END_KEYS};
+    static const key_ref_t levant[] = {{CTRL_SEC, "levant_lipschitz_rad_s4"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
+    static const key_ref_t kp[] = {{CTRL_SEC, "pid_kp"}, END_KEYS};
+    static const key_ref_t ki[] = {{CTRL_SEC, "pid_ki"}, END_KEYS};
+    static const key_ref_t kd[] = {{CTRL_SEC, "pid_kd"}, END_KEYS};
+    static const key_ref_t freqs[] = {
+        {CTRL_SEC, "hp_freq_rad_s"}, {CTRL_SEC, "hp_freq2_rad_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
+    static const key_ref_t tones[] = {
+        {CTRL_SEC, "hp_tones"}, {CTRL_SEC, "hp_freq2_rad_s"}, {CTRL_SEC, "hp_freq_mode"}, END_KEYS};
+    static const key_ref_t mixer_kl[] = {{SEC_VEHICLE, "thrust_coeff_N_s2"}, END_KEYS};
+    static const key_ref_t mixer_arm[] = {{SEC_VEHICLE, "arm_m"}, END_KEYS};
+    static const key_ref_t mixer_b[] = {{SEC_VEHICLE, "yaw_coeff_Nm_s2"}, END_KEYS};
+    static const key_ref_t mixer_mass[] = {{SEC_VEHICLE, "mass_kg"}, END_KEYS};
+    static const key_ref_t mixer_g[] = {{SEC_VEHICLE, "g_m_s2"}, END_KEYS};
+    static const key_ref_t w2_min[] = {{SEC_ROTORS, "w2_min_rad2_s2"}, END_KEYS};
+    static const key_ref_t w2_max[] = {{SEC_ROTORS, "w2_max_rad2_s2"}, {SEC_ROTORS, "w2_min_rad2_s2"}, END_KEYS};
+    static const key_ref_t tilt[] = {{SEC_ROTORS, "tilt_max_deg"}, END_KEYS};
+    switch (st) {
+    case LADRC_ERR_INERTIA_KG_M2:
+    case LADRC_ERR_B0: return inertia;
+    case LADRC_ERR_DRAG_NMS: return drag;
+    case LADRC_ERR_WC_RAD_S: return wc;
+    case LADRC_ERR_WO_RAD_S:
+    case LADRC_ERR_HP_SAMPLE_LAG: return wo;
+    case LADRC_ERR_LESO_EULER_UNSTABLE: return euler;
+    case LADRC_ERR_TD_ACCEL_RAD_S2: return td_accel;
+    case LADRC_ERR_LEVANT_LIPSCHITZ:
+    case LADRC_ERR_LEVANT_RANGE: return levant;
+    case LADRC_ERR_PID_KP: return kp;
+    case LADRC_ERR_PID_KI: return ki;
+    case LADRC_ERR_PID_KD: return kd;
+    case LADRC_ERR_HP_FREQ_RAD_S: return freqs;
+    /* the fastest tone is a known frequency, or else the search range's top */
+    case LADRC_ERR_HP_FIT_DECIMATION: return known_freqs ? freqs : dt;
+    case LADRC_ERR_HP_N_TONES: return tones;
+    case LADRC_ERR_MIXER_KL_N_S2: return mixer_kl;
+    case LADRC_ERR_MIXER_ARM_M: return mixer_arm;
+    case LADRC_ERR_MIXER_B_NM_S2: return mixer_b;
+    case LADRC_ERR_MIXER_MASS_KG: return mixer_mass;
+    case LADRC_ERR_MIXER_G_M_S2: return mixer_g;
+    case LADRC_ERR_MIXER_W2_MIN: return w2_min;
+    case LADRC_ERR_MIXER_W2_MAX: return w2_max;
+    case LADRC_ERR_MIXER_TILT_MAX_RAD: return tilt;
+    default: return dt; /* the rest depend on the period alone (and library constants) */
+    }
+}
+
+static const key_ref_t *keys_of_differentiator_status(ladrc_status_t st)
+{
+    static const key_ref_t levant[] = {
+        {SEC_DIFFERENTIATOR, "levant_lipschitz_rad_s4"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
+    static const key_ref_t td_accel[] = {{SEC_DIFFERENTIATOR, "td_accel_rad_s2"}, END_KEYS};
+    static const key_ref_t td_h0[] = {{SEC_DIFFERENTIATOR, "td_h0_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
+    switch (st) {
+    case LADRC_ERR_LEVANT_LIPSCHITZ:
+    case LADRC_ERR_LEVANT_RANGE: return levant;
+    case LADRC_ERR_TD_ACCEL_RAD_S2: return td_accel;
+    case LADRC_ERR_TD_H0_S: return td_h0;
+    default: return keys_of_status(st, 0);
+    }
+}
+
+/* The first key of keys the file gives (errors point at its value); else
+ * the controller's section header (ctrl_sec >= 0), else line 1. */
+static loc_t locate(const parser_t *p, const key_ref_t *keys, int ctrl_sec)
+{
+    for (const key_ref_t *k = keys; k->name != NULL; ++k) {
+        const int sec = k->sec == CTRL_SEC ? ctrl_sec : k->sec;
+        if (sec < 0) {
+            continue;
+        }
+        const loc_t *at = seen_key(p, sec, k->name);
+        if (at->line != 0) {
+            return *at;
+        }
+    }
+    const loc_t header = {ctrl_sec >= 0 && p->section_line[ctrl_sec] != 0 ? p->section_line[ctrl_sec] : 1, 1, 1};
+    return header;
+}
+
+static void PRINTF_LIKE(4, 5) set_error(sim_parse_error_t *err, const char *path, loc_t at, const char *format, ...)
+{
+    memset(err, 0, sizeof *err);
+    snprintf(err->path, sizeof err->path, "%s", path);
+    va_list ap;
+    va_start(ap, format);
+    vset_error(err, at.line, at.value_col, format, ap);
+    va_end(ap);
+}
+
+/* Each controller on the scenario: an error for a listed one, kept in
+ * controller_error for the others (sim_scenario_set_controllers). */
+static void check_controllers(parser_t *p)
+{
+    sim_scenario_t *sc = p->sc;
+    for (int id = 0; id < SIM_CTRL_COUNT; ++id) {
+        ladrc_attitude_config_t cfg;
+        ladrc_attitude_t att;
+        sim_setup_attitude(sc, (sim_controller_id_t)id, &cfg);
+        const ladrc_status_t st = ladrc_attitude_init(&att, &cfg, NULL);
+        if (st == LADRC_OK) {
+            continue;
+        }
+        const int known = cfg.axis[0].hp_freq_mode == LADRC_HP_FREQ_KNOWN;
+        const loc_t at = locate(p, keys_of_status(st, known), SEC_CONTROLLER + id);
+        int listed = 0;
+        for (int i = 0; i < sc->n_controllers; ++i) {
+            listed |= (int)sc->controllers[i] == id;
+        }
+        if (listed) {
+            check_fail(p, at.line, at.value_col, "%s does not start: %s", CONTROLLER_NAMES[id], ladrc_status_str(st));
+        } else {
+            set_error(&sc->controller_error[id], sc->path, at, "%s does not start: %s", CONTROLLER_NAMES[id],
+                      ladrc_status_str(st));
+        }
+    }
+    ladrc_mixer_config_t mix;
+    ladrc_mixer_t mixer;
+    sim_setup_mixer(sc, &mix);
+    const ladrc_status_t st = ladrc_mixer_init(&mixer, &mix);
+    if (st != LADRC_OK) {
+        const loc_t at = locate(p, keys_of_status(st, 0), -1);
+        check_fail(p, at.line, at.value_col, "the mixer does not start: %s", ladrc_status_str(st));
+    }
+}
+
+static void check_differentiators(parser_t *p)
+{
+    ladrc_levant_config_t lcfg;
+    ladrc_td_config_t tcfg;
+    ladrc_levant_t lev;
+    ladrc_td_t td;
+    sim_setup_differentiators(p->sc, &lcfg, &tcfg);
+    ladrc_status_t st = ladrc_levant_init(&lev, &lcfg);
+    const char *which = "Levant's differentiator";
+    if (st == LADRC_OK) {
+        st = ladrc_td_init(&td, &tcfg);
+        which = "the tracking differentiator";
+    }
+    if (st != LADRC_OK) {
+        const loc_t at = locate(p, keys_of_differentiator_status(st), -1);
+        check_fail(p, at.line, at.value_col, "%s does not start: %s", which, ladrc_status_str(st));
     }
 }
 
@@ -1001,7 +1281,22 @@ static int parse_lines(parser_t *p, char *text)
     return 0;
 }
 
-int sim_scenario_parse(sim_scenario_t *sc, const char *text, const char *path, sim_parse_error_t *err)
+/* 1-based line and column of data[at] */
+static void position_of(const char *data, size_t at, int *line, int *column)
+{
+    size_t line_start = 0;
+    *line = 1;
+    for (size_t i = 0; i < at; ++i) {
+        if (data[i] == '\n') {
+            ++*line;
+            line_start = i + 1;
+        }
+    }
+    *column = (int)(at - line_start) + 1;
+}
+
+int sim_scenario_parse_buffer(sim_scenario_t *sc, const char *data, size_t len, const char *path,
+                              sim_parse_error_t *err)
 {
     sim_parse_error_t ignored;
     if (err == NULL) {
@@ -1012,8 +1307,14 @@ int sim_scenario_parse(sim_scenario_t *sc, const char *text, const char *path, s
     }
     memset(err, 0, sizeof *err);
     copy_path(err->path, path);
-    if (sc == NULL || text == NULL) {
+    if (sc == NULL || data == NULL) {
         snprintf(err->message, sizeof err->message, "no scenario or no text");
+        return -1;
+    }
+    const char *nul = memchr(data, '\0', len);
+    if (nul != NULL) {
+        position_of(data, (size_t)(nul - data), &err->line, &err->column);
+        snprintf(err->message, sizeof err->message, "unexpected NUL byte");
         return -1;
     }
     set_defaults(sc);
@@ -1021,14 +1322,15 @@ int sim_scenario_parse(sim_scenario_t *sc, const char *text, const char *path, s
     set_name(sc, path);
 
     parser_t *p = calloc(1, sizeof *p);
-    char *copy = malloc(strlen(text) + 1);
+    char *copy = malloc(len + 1);
     if (p == NULL || copy == NULL) {
         free(p);
         free(copy);
         snprintf(err->message, sizeof err->message, "out of memory");
         return -1;
     }
-    memcpy(copy, text, strlen(text) + 1);
+    memcpy(copy, data, len);
+    copy[len] = '\0';
     p->sc = sc;
     p->err = err;
     p->section = -1;
@@ -1042,6 +1344,14 @@ int sim_scenario_parse(sim_scenario_t *sc, const char *text, const char *path, s
         } else {
             check_differentiator(p);
         }
+        /* the library's own checks, once the file is consistent */
+        if (!p->checked) {
+            if (sc->kind == SIM_KIND_ATTITUDE) {
+                check_controllers(p);
+            } else {
+                check_differentiators(p);
+            }
+        }
         rc = p->checked ? -1 : 0;
     }
     if (rc == 0) {
@@ -1050,6 +1360,46 @@ int sim_scenario_parse(sim_scenario_t *sc, const char *text, const char *path, s
     free(copy);
     free(p);
     return rc;
+}
+
+int sim_scenario_parse(sim_scenario_t *sc, const char *text, const char *path, sim_parse_error_t *err)
+{
+    return sim_scenario_parse_buffer(sc, text, text != NULL ? strlen(text) : 0u, path, err);
+}
+
+int sim_scenario_set_controllers(sim_scenario_t *sc, const sim_controller_id_t *ids, int n, sim_parse_error_t *err)
+{
+    sim_parse_error_t ignored;
+    if (err == NULL) {
+        err = &ignored;
+    }
+    memset(err, 0, sizeof *err);
+    if (sc == NULL || ids == NULL || n < 1 || n > SIM_MAX_CONTROLLERS) {
+        snprintf(err->message, sizeof err->message, "expected 1 to %d controllers", SIM_MAX_CONTROLLERS);
+        return -1;
+    }
+    copy_path(err->path, sc->path);
+    for (int i = 0; i < n; ++i) {
+        if ((int)ids[i] < 0 || ids[i] >= SIM_CTRL_COUNT) {
+            snprintf(err->message, sizeof err->message, "unknown controller %d", (int)ids[i]);
+            return -1;
+        }
+        for (int k = 0; k < i; ++k) {
+            if (ids[k] == ids[i]) {
+                snprintf(err->message, sizeof err->message, "controller '%s' listed twice", CONTROLLER_NAMES[ids[i]]);
+                return -1;
+            }
+        }
+        if (sc->kind == SIM_KIND_ATTITUDE && sc->controller_error[ids[i]].line != 0) {
+            *err = sc->controller_error[ids[i]];
+            return -1;
+        }
+    }
+    for (int i = 0; i < n; ++i) {
+        sc->controllers[i] = ids[i];
+    }
+    sc->n_controllers = n;
+    return 0;
 }
 
 int sim_scenario_load(sim_scenario_t *sc, const char *path, sim_parse_error_t *err)
@@ -1089,24 +1439,7 @@ int sim_scenario_load(sim_scenario_t *sc, const char *path, sim_parse_error_t *e
         free(text);
         return -1;
     }
-    text[len] = '\0';
-    const char *nul = memchr(text, '\0', len);
-    if (nul != NULL) {
-        int line = 1;
-        const char *line_start = text;
-        for (const char *s = text; s < nul; ++s) {
-            if (*s == '\n') {
-                ++line;
-                line_start = s + 1;
-            }
-        }
-        err->line = line;
-        err->column = (int)(nul - line_start) + 1;
-        snprintf(err->message, sizeof err->message, "unexpected NUL byte");
-        free(text);
-        return -1;
-    }
-    const int rc = sim_scenario_parse(sc, text, path, err);
+    const int rc = sim_scenario_parse_buffer(sc, text, len, path, err);
     free(text);
     return rc;
 }

@@ -9,6 +9,7 @@
 #ifndef LADRC_SIM_SCENARIO_H
 #define LADRC_SIM_SCENARIO_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "expr.h"
@@ -17,6 +18,17 @@
 #define SIM_MAX_CONTROLLERS 8
 #define SIM_NAME_LEN 64
 #define SIM_PATH_LEN 512
+
+/* Limits of a run (docs/scenario-format.md, "Limits"): the parser refuses
+ * a scenario outside them, at the key responsible. */
+#define SIM_CONTROL_DT_MIN_S 1e-5        /* control period: 100 kHz ... */
+#define SIM_CONTROL_DT_MAX_S 0.1         /* ... to 10 Hz */
+#define SIM_PLANT_SUBSTEPS_MAX 1000      /* plant RK4 steps per control period */
+#define SIM_DURATION_MAX_S 1e5           /* run length: 27.8 h */
+#define SIM_RUN_TICKS_MAX 100000000L     /* control periods per run: 1e8 */
+#define SIM_RUN_PLANT_STEPS_MAX 1e9      /* plant RK4 steps per run */
+/* and the plant step control_dt_s / plant_substeps at most the plant's
+ * shortest time constant: motor_tau_s (when > 0) and each J / kt (when kt > 0) */
 
 /* A signal defined piecewise over windows (from_s, to_s]; 0 outside them.
  * A piece with from_s = -inf, to_s = +inf covers all t. */
@@ -58,6 +70,15 @@ typedef struct {
     double pid_kp, pid_ki, pid_kd;
     int coupling_feed;        /* -1, 0 or 1 */
 } sim_overrides_t;
+
+/* Where a parse failed, as file:line:column: message (line and column are
+ * 1-based; both are 0 when the file could not be read at all). */
+typedef struct {
+    char path[SIM_PATH_LEN];
+    int line;
+    int column;
+    char message[256];
+} sim_parse_error_t;
 
 typedef struct {
     char name[SIM_NAME_LEN];      /* from the file name without extension */
@@ -109,17 +130,13 @@ typedef struct {
      * its exact derivative for the error */
     sim_signal_t diff_signal, diff_derivative;
     double diff_noise_var;        /* variance of the noise added per sample */
-    double diff_levant_lipschitz, diff_td_accel, diff_td_h0_s;
-} sim_scenario_t;
+    double diff_levant_lipschitz, diff_td_accel, diff_td_h0_s; /* NaN: the library's default */
 
-/* Where a parse failed, as file:line:column: message (line and column are
- * 1-based; both are 0 when the file could not be read at all). */
-typedef struct {
-    char path[SIM_PATH_LEN];
-    int line;
-    int column;
-    char message[160];
-} sim_parse_error_t;
+    /* Why a controller that is not in `controllers` could not fly this
+     * scenario, where the parser would have reported it (line 0: it can);
+     * sim_scenario_set_controllers reports it when one is chosen. */
+    sim_parse_error_t controller_error[SIM_CTRL_COUNT];
+} sim_scenario_t;
 
 /* Fills sc with the defaults of every key, then reads the file. Returns 0, or
  * -1 with *err set (the first error); sc is then unusable. */
@@ -127,6 +144,17 @@ int sim_scenario_load(sim_scenario_t *sc, const char *path, sim_parse_error_t *e
 
 /* The same from text in memory (path is only used in messages). */
 int sim_scenario_parse(sim_scenario_t *sc, const char *text, const char *path, sim_parse_error_t *err);
+
+/* The same from len bytes that need not end with a NUL (a NUL byte among
+ * them is an error at its place): what sim_scenario_load does with the file. */
+int sim_scenario_parse_buffer(sim_scenario_t *sc, const char *data, size_t len, const char *path,
+                              sim_parse_error_t *err);
+
+/* Replaces an attitude scenario's controllers with ids[0..n-1] (the command
+ * line's --controllers; 1 <= n <= SIM_MAX_CONTROLLERS). Returns 0, or -1 with
+ * *err set, the list unchanged, when one of them cannot fly the scenario (the
+ * error the parser gives when it is listed in the file) or n is out of range. */
+int sim_scenario_set_controllers(sim_scenario_t *sc, const sim_controller_id_t *ids, int n, sim_parse_error_t *err);
 
 /* "HP-MLADRC", "LP-MLADRC", "LADRC", "PID"; "?" for anything else */
 const char *sim_controller_name(sim_controller_id_t id);

@@ -27,6 +27,8 @@
 #   cross        library with -Werror for Cortex-M0 (soft float), Cortex-M7
 #                (fpv5-d16, LADRC_REAL_DOUBLE) and RV32IMAC (picolibc), each
 #                linked into a small program; no-heap check of each archive
+#   fuzz         tools/fuzz.sh: the libFuzzer targets of the scenario parser
+#                and the expression compiler (clang, ASan + UBSan), 60 s each
 #
 # Missing tools are installed with apt-get (as root, or through sudo).
 set -euo pipefail
@@ -34,11 +36,12 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 STAGES=(host-debug host-double coverage asan-ubsan cortex-m4f no-heap cppcheck bench
-        host-release asserts fast-math consumers cxx cross)
+        host-release asserts fast-math consumers cxx cross fuzz)
 
 # What each stage needs: "stage check package". A check is a command name,
-# "py:<module>" for a Python module, or "newlib" for the Arm C library;
-# stage "all" applies to every stage. Add new requirements here.
+# "py:<module>" for a Python module, "newlib" for the Arm C library, or
+# "libfuzzer" for clang's libFuzzer runtime; stage "all" applies to every
+# stage. Add new requirements here.
 REQUIREMENTS=(
   "all cmake cmake"
   "all gcc gcc"
@@ -77,11 +80,13 @@ REQUIREMENTS=(
   "cross arm-none-eabi-nm binutils-arm-none-eabi"
   "cross riscv64-unknown-elf-gcc gcc-riscv64-unknown-elf"
   "cross picolibc-rv32 picolibc-riscv64-unknown-elf"
+  "fuzz clang clang"
+  "fuzz libfuzzer libclang-rt-14-dev"
 )
 
 JOBS=2
 
-usage() { sed -n '3,34s/^# \{0,1\}//p' "$0"; }
+usage() { sed -n '3,36s/^# \{0,1\}//p' "$0"; }
 
 have() {
   case $1 in
@@ -90,6 +95,8 @@ have() {
     newlib) echo '#include <stdio.h>' | arm-none-eabi-gcc -E -x c - >/dev/null 2>&1 ;;
     picolibc-rv32) echo '#include <math.h>' |
       riscv64-unknown-elf-gcc -march=rv32imac -mabi=ilp32 --specs=picolibc.specs -E -x c - >/dev/null 2>&1 ;;
+    libfuzzer) echo 'int LLVMFuzzerTestOneInput(const char *d, unsigned long n) { (void)d; (void)n; return 0; }' |
+      clang -fsanitize=fuzzer -x c - -o /dev/null >/dev/null 2>&1 ;;
     *) command -v "$1" >/dev/null 2>&1 ;;
   esac
 }
@@ -212,6 +219,9 @@ stage_cross() {
     "${cc%gcc}size" "build/$preset/app.elf"
   done
 }
+
+# libFuzzer targets, CI form (tools/fuzz.sh --long for the long one).
+stage_fuzz() { tools/fuzz.sh; }
 
 case ${1:-} in
   -h | --help) usage; exit 0 ;;

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # End-to-end checks of the ladrc_sil command: results independent of --jobs,
-# malformed scenarios rejected with file:line:column and nothing written.
+# malformed scenarios and runs outside the limits rejected with
+# file:line:column and nothing written.
 # Usage: cli_test.sh LADRC_SIL SCENARIO_DIR
 set -uo pipefail
 sil=$1
@@ -52,5 +53,30 @@ grep -q "bad.ini:5:" "$work/bad.err"; check malformed_error_names_file_and_line 
 "$sil" --jobs zero "$scenarios/paper.ini" > /dev/null 2>&1
 [ $? -eq 2 ]; check bad_option_exits_2 $?
 
-echo "$(( 13 - failures )) passed, $failures failed"
+# Runs the simulator cannot fly are scenario errors: exit 2 at file:line:column,
+# nothing written, and no endless run (timeout: the check fails, not the suite).
+refused() { # name, expected "file:line:column:", scenario text, options...
+    local name=$1 where=$2 text=$3
+    shift 3
+    printf "$text" > "$work/$name.ini"
+    timeout 60 "$sil" "$work/$name.ini" --out "$work/${name}_out" --quiet "$@" > /dev/null 2> "$work/$name.err"
+    local rc=$?
+    [ "$rc" -eq 2 ] && grep -q "^$work/$name.ini:$where " "$work/$name.err" && [ ! -e "$work/${name}_out" ]
+    check "$name" $?
+}
+refused tiny_control_dt_exits_2 3:16: '[run]\nduration_s = 1\ncontrol_dt_s = 1e-300\n'
+refused endless_duration_exits_2 2:14: '[run]\nduration_s = 1e9\n'
+refused endless_substeps_exits_2 3:18: '[run]\nduration_s = 1\nplant_substeps = 1000000000\n'
+refused too_many_control_periods_exits_2 3:16: '[run]\nduration_s = 1e5\ncontrol_dt_s = 1e-5\n'
+refused controller_the_library_refuses_exits_2 3:16: '[run]\nduration_s = 1\ncontrol_dt_s = 0.05\n'
+# a controller the file does not list, chosen on the command line
+refused chosen_controller_checked_exits_2 3:16: '[run]\nduration_s = 1\ncontrol_dt_s = 0.05\ncontrollers = PID\n' \
+    --controllers PID,HP-MLADRC
+printf '[run]\nduration_s = 1\ncontrol_dt_s = 0.05\ncontrollers = PID\n' > "$work/slow_loop.ini"
+"$sil" "$work/slow_loop.ini" --out "$work/slow_loop_out" --quiet > /dev/null
+check listed_controllers_fly_at_20_hz $?
+"$sil" "$scenarios/paper.ini" --controllers PID,PID --out "$work/twice" --quiet > /dev/null 2>&1
+[ $? -eq 2 ] && [ ! -e "$work/twice" ]; check controller_listed_twice_exits_2 $?
+
+echo "$(( 21 - failures )) passed, $failures failed"
 [ "$failures" -eq 0 ]

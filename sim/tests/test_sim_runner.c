@@ -9,6 +9,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #ifndef SIM_SCENARIO_DIR
 #error "SIM_SCENARIO_DIR must name the scenarios folder"
@@ -108,6 +109,40 @@ static void test_levant_differentiates_the_noisy_sine_better_than_the_td(void)
     TEST_ASSERT_LESS_THAN_FLOAT_MESSAGE((float)sim_stat_rms(&m.td_error), (float)sim_stat_rms(&m.levant_error), msg);
 }
 
+static void test_a_differentiator_scenario_without_its_optional_keys_runs(void)
+{
+    /* levant_lipschitz_rad_s4, td_accel_rad_s2 and td_h0_s absent: the library's
+     * defaults (they were passed on as NaN, and every such run failed) */
+    static sim_scenario_t sc;
+    sim_parse_error_t perr;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0,
+                                  sim_scenario_parse(&sc,
+                                                     "[run]\nkind = differentiator\nduration_s = 2\n"
+                                                     "[differentiator]\nsignal = sin(t)\nderivative = cos(t)\n",
+                                                     "defaults.ini", &perr),
+                                  perr.message);
+    sim_diff_metrics_t m;
+    char err[256] = "";
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_run_differentiator(&sc, NULL, NULL, &m, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT(1999, (int)m.levant_error.n);
+    /* both start at rest while cos(0) = 1: the start's transient is in the window */
+    TEST_ASSERT_TRUE(sim_stat_rms(&m.levant_error) < 0.3);
+    TEST_ASSERT_TRUE(sim_stat_rms(&m.td_error) < 0.3);
+}
+
+static void test_a_run_refuses_a_scenario_changed_after_parsing(void)
+{
+    static sim_scenario_t sc;
+    sim_parse_error_t perr;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_scenario_parse(&sc, "[run]\nduration_s = 1\n", "x.ini", &perr),
+                                  perr.message);
+    sc.control_dt_s = -1e-3;
+    sim_metrics_t m;
+    char err[256] = "";
+    TEST_ASSERT_EQUAL_INT(-1, sim_run_attitude(&sc, SIM_CTRL_PID, NULL, NULL, &m, err, sizeof err));
+    TEST_ASSERT_NOT_NULL(strstr(err, "LADRC_ERR_DT_S"));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -115,5 +150,7 @@ int main(void)
     RUN_TEST(test_rotor_statistics_match_the_papers_table_7);
     RUN_TEST(test_modified_variants_beat_plain_ladrc_from_12_to_25_s);
     RUN_TEST(test_levant_differentiates_the_noisy_sine_better_than_the_td);
+    RUN_TEST(test_a_differentiator_scenario_without_its_optional_keys_runs);
+    RUN_TEST(test_a_run_refuses_a_scenario_changed_after_parsing);
     return UNITY_END();
 }

@@ -4,6 +4,7 @@
  * each malformed input with the error's line, column and message. */
 #include "unity.h"
 #include "scenario.h"
+#include "ladrc/types.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -402,7 +403,7 @@ static void load_ok(const char *file)
     char path[512];
     snprintf(path, sizeof path, "%s/%s", SIM_SCENARIO_DIR, file);
     const int rc = sim_scenario_load(&sc, path, &err);
-    char message[SIM_PATH_LEN + 200];
+    char message[SIM_PATH_LEN + sizeof err.message + 32];
     snprintf(message, sizeof message, "%s:%d:%d: %s", err.path, err.line, err.column, err.message);
     TEST_ASSERT_EQUAL_INT_MESSAGE(0, rc, message);
 }
@@ -579,11 +580,11 @@ static void test_value_errors(void)
         {"[run]\nduration_s = 0x10\n", 2, 14, "expected a number, got '0x10'"},
         {"[run]\nduration_s = inf\n", 2, 14, "expected a number, got 'inf'"},
         {"[run]\nduration_s = 1e999\n", 2, 14, "number out of range"},
-        {"[run]\nduration_s = -1\n", 2, 14, "duration_s must be > 0"},
-        {"[run]\nduration_s = 0\n", 2, 14, "duration_s must be > 0"},
-        {"[run]\ncontrol_dt_s = 0\n", 2, 16, "control_dt_s must be > 0"},
-        {"[run]\ncontrol_dt_s = -1e-3\n", 2, 16, "control_dt_s must be > 0"},
-        {"[run]\nplant_substeps = 0\n", 2, 18, "plant_substeps must be >= 1"},
+        {"[run]\nduration_s = -1\n", 2, 14, "duration_s must be > 0 and at most 100000"},
+        {"[run]\nduration_s = 0\n", 2, 14, "duration_s must be > 0 and at most 100000"},
+        {"[run]\ncontrol_dt_s = 0\n", 2, 16, "control_dt_s must be between 1e-05 and 0.1"},
+        {"[run]\ncontrol_dt_s = -1e-3\n", 2, 16, "control_dt_s must be between 1e-05 and 0.1"},
+        {"[run]\nplant_substeps = 0\n", 2, 18, "plant_substeps must be between 1 and 1000"},
         {"[run]\nplant_substeps = 2.5\n", 2, 18, "expected an integer, got '2.5'"},
         {"[run]\nplant_substeps = 2 3\n", 2, 20, "expected a single integer, got '3'"},
         {"[run]\nplant_substeps = 99999999999\n", 2, 18, "number out of range"},
@@ -699,10 +700,14 @@ static void test_errors_checked_after_the_whole_file(void)
         /* two of them: the earlier in the file is reported */
         {"[run]\nduration_s = 1\n[metrics]\nsettle_window_s = 0 4\nerror_window_s = 0 2\n", 4, 19,
          "settle_window_s ends after the run (duration_s = 1)"},
-        {"[metrics]\nerror_window_s = 0 50\n[run]\nduration_s = 10\ncontrol_dt_s = 20\n", 2, 18,
-         "error_window_s ends after the run (duration_s = 10)"},
-        {"[run]\nduration_s = 10\ncontrol_dt_s = 20\n[metrics]\nerror_window_s = 0 50\n", 3, 16,
-         "control_dt_s (20) must not exceed duration_s (10)"},
+        {"[metrics]\nerror_window_s = 0 50\n[run]\nduration_s = 0.004\ncontrol_dt_s = 0.005\n", 2, 18,
+         "error_window_s ends after the run (duration_s = 0.004)"},
+        {"[run]\nduration_s = 0.004\ncontrol_dt_s = 0.005\n[metrics]\nerror_window_s = 0 50\n", 3, 16,
+         "control_dt_s (0.005) must not exceed duration_s (0.004)"},
+        /* found by tests/fuzz/fuzz_scenario: [differentiator] has a window too */
+        {"[run]\nkind = differentiator\nduration_s = 9\n[differentiator]\nsignal = sin(t)\nderivative = cos(t)\n"
+         "error_window_s = 2 10\n",
+         7, 18, "error_window_s ends after the run (duration_s = 9)"},
         {"[run]\nduration_s = 1\n[rotors]\nideal = no\n", 4, 9, "ideal = no needs w2_max_rad2_s2"},
         {"[run]\nduration_s = 1\n[rotors]\nw2_max_rad2_s2 = 1e4\nw2_min_rad2_s2 = 2e4\nideal = no\n", 4, 18,
          "w2_max_rad2_s2 must be > w2_min_rad2_s2 (20000)"},
@@ -715,6 +720,168 @@ static void test_errors_checked_after_the_whole_file(void)
          8, 11, "td_h0_s must be >= control_dt_s (0.01)"},
     };
     CHECK_BAD_CASES(cases);
+}
+
+static void test_run_limits_are_errors_at_the_key_responsible(void)
+{
+    static const bad_case_t cases[] = {
+        {"[run]\nduration_s = 1\ncontrol_dt_s = 1e-300\n", 3, 16, "control_dt_s must be between 1e-05 and 0.1"},
+        {"[run]\nduration_s = 1\ncontrol_dt_s = 9.9e-6\n", 3, 16, "control_dt_s must be between 1e-05 and 0.1"},
+        {"[run]\nduration_s = 1\ncontrol_dt_s = 0.11\n", 3, 16, "control_dt_s must be between 1e-05 and 0.1"},
+        {"[run]\nduration_s = 1e9\n", 2, 14, "duration_s must be > 0 and at most 100000"},
+        {"[run]\nduration_s = 100000.1\n", 2, 14, "duration_s must be > 0 and at most 100000"},
+        {"[run]\nduration_s = 1\nplant_substeps = 1000000000\n", 3, 18, "plant_substeps must be between 1 and 1000"},
+        {"[run]\nduration_s = 1\nplant_substeps = 1001\n", 3, 18, "plant_substeps must be between 1 and 1000"},
+        {"[run]\nduration_s = 1e5\ncontrol_dt_s = 1e-4\n", 3, 16,
+         "the run takes 1e+09 control periods (duration_s / control_dt_s), more than 1e+08"},
+        {"[run]\nkind = differentiator\nduration_s = 2000\ncontrol_dt_s = 1e-5\n[differentiator]\nsignal = t\n"
+         "derivative = 1\n",
+         4, 16, "the run takes 2e+08 control periods (duration_s / control_dt_s), more than 1e+08"},
+        {"[run]\nduration_s = 10000\nplant_substeps = 1000\n", 3, 18,
+         "the run takes 1e+10 plant steps (duration_s / control_dt_s x plant_substeps), more than 1e+09"},
+        {"[run]\nplant_substeps = 200\nduration_s = 10000\ncontrol_dt_s = 0.001\n", 2, 18,
+         "the run takes 2e+09 plant steps (duration_s / control_dt_s x plant_substeps), more than 1e+09"},
+        /* the plant step against the plant's time constants */
+        {"[run]\nduration_s = 1\n[rotors]\nmotor_tau_s = 1e-5\n", 4, 15,
+         "the plant step control_dt_s / plant_substeps (0.0001 s) is longer than motor_tau_s (1e-05 s): "
+         "plant_substeps must be at least 100"},
+        {"[run]\nduration_s = 1\ncontrol_dt_s = 0.1\nplant_substeps = 1\n", 4, 18,
+         "the plant step control_dt_s / plant_substeps (0.1 s) is longer than the drag time constant J / "
+         "rot_drag_Nm_s (0.0605 s): plant_substeps must be at least 2"},
+        {"[run]\nduration_s = 1\ncontrol_dt_s = 0.1\n[rotors]\nmotor_tau_s = 1e-5\n", 3, 16,
+         "the plant step control_dt_s / plant_substeps (0.01 s) is longer than motor_tau_s (1e-05 s): "
+         "more than 1000 plant_substeps would be needed"},
+        {"[run]\nduration_s = 1\n[vehicle]\nrot_drag_Nm_s = 100\n", 4, 17,
+         "the plant step control_dt_s / plant_substeps (0.0001 s) is longer than the drag time constant J / "
+         "rot_drag_Nm_s (5.445e-05 s): plant_substeps must be at least 19"},
+    };
+    CHECK_BAD_CASES(cases);
+}
+
+static void test_runs_at_the_limits_are_accepted(void)
+{
+    parse_ok("[run]\nduration_s = 1\ncontrol_dt_s = 1e-5\nplant_substeps = 1000\n");
+    parse_ok("[run]\nduration_s = 1e5\n"); /* 1e8 control periods, 1e9 plant steps */
+    TEST_ASSERT_EQUAL_INT(4, sc.n_controllers);
+    parse_ok("[run]\nduration_s = 1\ncontrol_dt_s = 0.1\nplant_substeps = 2\ncontrollers = LADRC PID\n");
+    parse_ok("[run]\nduration_s = 1\ncontrol_dt_s = 0.005\n"); /* every controller at 200 Hz */
+    parse_ok("[run]\nduration_s = 1\n[rotors]\nmotor_tau_s = 1e-4\n"); /* plant step = the lag */
+    parse_ok("[run]\nkind = differentiator\nduration_s = 1\ncontrol_dt_s = 0.1\n[differentiator]\nsignal = t\n"
+             "derivative = 1\n");
+}
+
+/* What the library refuses: message from ladrc_status_str, at the key. */
+typedef struct {
+    const char *text;
+    int line;
+    int column;
+    const char *who;
+    ladrc_status_t status;
+} refused_case_t;
+
+static void test_values_the_library_refuses_are_errors_at_their_key(void)
+{
+    static const refused_case_t cases[] = {
+        /* the modified variants' estimators need a faster loop than 20 Hz */
+        {"[run]\nduration_s = 1\ncontrol_dt_s = 0.05\n", 3, 16, "HP-MLADRC", LADRC_ERR_HP_FIT_DECIMATION},
+        {"[run]\nduration_s = 1\ncontrol_dt_s = 0.02\ncontrollers = LP-MLADRC\n", 3, 16, "LP-MLADRC",
+         LADRC_ERR_RLS_LAMBDA0},
+        /* what the controllers assume underflows even in double */
+        {"[run]\nduration_s = 1\n[vehicle]\nrot_drag_Nm_s = 0\ninertia_kg_m2 = 1 1e-200 1\n[mismatch]\n"
+         "inertia_scale = 1 1e-200 1\n",
+         5, 17, "HP-MLADRC", LADRC_ERR_INERTIA_KG_M2},
+#if !defined(LADRC_REAL_DOUBLE)
+        /* values that leave float's range on the way to the library */
+        {"[run]\nduration_s = 1\n[vehicle]\nrot_drag_Nm_s = 0\ninertia_kg_m2 = 1 1e-50 1\n", 5, 17, "HP-MLADRC",
+         LADRC_ERR_INERTIA_KG_M2},
+        {"[run]\nduration_s = 1\n[mismatch]\ninertia_scale = 1 1 1e-45\n", 4, 17, "HP-MLADRC", LADRC_ERR_INERTIA_KG_M2},
+        {"[run]\nduration_s = 1\n[controller PID]\npid_kp = 1e39\n", 4, 10, "PID", LADRC_ERR_PID_KP},
+        {"[run]\nduration_s = 1\n[controller LADRC]\nwc_rad_s = 1e-50\n", 4, 12, "LADRC", LADRC_ERR_WC_RAD_S},
+        {"[run]\nduration_s = 1\n[controller LADRC]\ntd_accel_rad_s2 = 1e39\n", 4, 19, "LADRC",
+         LADRC_ERR_TD_ACCEL_RAD_S2},
+        {"[run]\nduration_s = 1\n[controller LP-MLADRC]\nlevant_lipschitz_rad_s4 = 1e-40\n", 4, 27, "LP-MLADRC",
+         LADRC_ERR_LEVANT_RANGE},
+        {"[run]\nduration_s = 1\n[rotors]\nideal = no\nw2_max_rad2_s2 = 1e40\n", 5, 18, "the mixer",
+         LADRC_ERR_MIXER_W2_MAX},
+        {"[run]\nduration_s = 1\n[vehicle]\nmass_kg = 1e39\n", 4, 11, "the mixer", LADRC_ERR_MIXER_MASS_KG},
+        {"[run]\nduration_s = 1\n[vehicle]\nyaw_coeff_Nm_s2 = 1e-46\n", 4, 19, "the mixer", LADRC_ERR_MIXER_B_NM_S2},
+        {"[run]\nkind = differentiator\nduration_s = 1\n[differentiator]\nsignal = t\nderivative = 1\n"
+         "levant_lipschitz_rad_s4 = 1e-40\n",
+         7, 27, "Levant's differentiator", LADRC_ERR_LEVANT_RANGE},
+        {"[run]\nkind = differentiator\nduration_s = 1\n[differentiator]\nsignal = t\nderivative = 1\n"
+         "td_accel_rad_s2 = 1e39\n",
+         7, 19, "the tracking differentiator", LADRC_ERR_TD_ACCEL_RAD_S2},
+#endif
+        /* combinations */
+        {"[run]\nduration_s = 1\n[controller LADRC]\nleso_method = euler\nwo_rad_s = 3000\n", 5, 12, "LADRC",
+         LADRC_ERR_LESO_EULER_UNSTABLE},
+        {"[run]\nduration_s = 1\n[controller HP-MLADRC]\nhp_freq_rad_s = 5000\n", 4, 17, "HP-MLADRC",
+         LADRC_ERR_HP_FREQ_RAD_S},
+        {"[run]\nduration_s = 1\n[controller HP-MLADRC]\nhp_freq_mode = known\nhp_freq_rad_s = 500\n", 5, 17,
+         "HP-MLADRC", LADRC_ERR_HP_FIT_DECIMATION},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        const refused_case_t *c = &cases[i];
+        char what[400], message[300];
+        snprintf(what, sizeof what, "case %u <<%s>>", (unsigned)i, c->text);
+        snprintf(message, sizeof message, "%s does not start: %s", c->who, ladrc_status_str(c->status));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(-1, sim_scenario_parse(&sc, c->text, "bad.ini", &err), what);
+        TEST_ASSERT_EQUAL_STRING_MESSAGE(message, err.message, what);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(c->line, err.line, what);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(c->column, err.column, what);
+    }
+}
+
+static void test_a_controller_not_listed_is_checked_when_chosen(void)
+{
+    /* HP-MLADRC cannot run at 20 Hz; the file does not ask for it */
+    parse_ok("[run]\nduration_s = 1\ncontrol_dt_s = 0.05\ncontrollers = PID LADRC\n");
+    TEST_ASSERT_EQUAL_INT(0, sc.controller_error[SIM_CTRL_PID].line);
+    TEST_ASSERT_EQUAL_INT(3, sc.controller_error[SIM_CTRL_HP_MLADRC].line);
+
+    const sim_controller_id_t pid_hp[] = {SIM_CTRL_PID, SIM_CTRL_HP_MLADRC};
+    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_set_controllers(&sc, pid_hp, 2, &err));
+    TEST_ASSERT_EQUAL_STRING("dir/test.ini", err.path);
+    TEST_ASSERT_EQUAL_INT(3, err.line);
+    TEST_ASSERT_EQUAL_INT(16, err.column);
+    char message[300];
+    snprintf(message, sizeof message, "HP-MLADRC does not start: %s", ladrc_status_str(LADRC_ERR_HP_FIT_DECIMATION));
+    TEST_ASSERT_EQUAL_STRING(message, err.message);
+    TEST_ASSERT_EQUAL_INT(2, sc.n_controllers); /* unchanged */
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_PID, sc.controllers[0]);
+
+    const sim_controller_id_t ladrc_only[] = {SIM_CTRL_LADRC};
+    TEST_ASSERT_EQUAL_INT(0, sim_scenario_set_controllers(&sc, ladrc_only, 1, &err));
+    TEST_ASSERT_EQUAL_INT(1, sc.n_controllers);
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_LADRC, sc.controllers[0]);
+
+    const sim_controller_id_t twice[] = {SIM_CTRL_PID, SIM_CTRL_PID};
+    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_set_controllers(&sc, twice, 2, &err));
+    TEST_ASSERT_EQUAL_STRING("controller 'PID' listed twice", err.message);
+    TEST_ASSERT_EQUAL_INT(0, err.line);
+    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_set_controllers(&sc, ladrc_only, 0, &err));
+    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_set_controllers(NULL, ladrc_only, 1, NULL));
+    const sim_controller_id_t unknown[] = {SIM_CTRL_COUNT};
+    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_set_controllers(&sc, unknown, 1, &err));
+    TEST_ASSERT_EQUAL_INT(1, sc.n_controllers);
+}
+
+static void test_parse_buffer_needs_no_nul_and_refuses_one_inside(void)
+{
+    static const char text[] = "[run]\nduration_s = 7\nseed = 3";
+    /* without its last byte: seed = 3 still parses, as "seed = " would not */
+    TEST_ASSERT_EQUAL_INT(0, sim_scenario_parse_buffer(&sc, text, sizeof text - 1, "buf.ini", &err));
+    assert_close(7.0, sc.duration_s, "duration_s");
+    TEST_ASSERT_TRUE(sc.seed == 3u);
+    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_parse_buffer(&sc, text, sizeof text - 2, "buf.ini", &err));
+    TEST_ASSERT_EQUAL_STRING("missing value for 'seed'", err.message);
+    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_parse_buffer(&sc, text, sizeof text, "buf.ini", &err));
+    TEST_ASSERT_EQUAL_STRING("unexpected NUL byte", err.message);
+    TEST_ASSERT_EQUAL_INT(3, err.line);
+    TEST_ASSERT_EQUAL_INT(9, err.column);
+    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_parse_buffer(&sc, "", 0, "buf.ini", &err));
+    TEST_ASSERT_EQUAL_STRING("missing required key 'duration_s' in [run]", err.message);
+    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_parse_buffer(&sc, NULL, 0, "buf.ini", &err));
 }
 
 static void test_long_values_are_rejected_not_truncated(void)
@@ -761,6 +928,11 @@ int main(void)
     RUN_TEST(test_value_errors);
     RUN_TEST(test_signal_errors_point_into_the_expression);
     RUN_TEST(test_errors_checked_after_the_whole_file);
+    RUN_TEST(test_run_limits_are_errors_at_the_key_responsible);
+    RUN_TEST(test_runs_at_the_limits_are_accepted);
+    RUN_TEST(test_values_the_library_refuses_are_errors_at_their_key);
+    RUN_TEST(test_a_controller_not_listed_is_checked_when_chosen);
+    RUN_TEST(test_parse_buffer_needs_no_nul_and_refuses_one_inside);
     RUN_TEST(test_long_values_are_rejected_not_truncated);
     RUN_TEST(test_null_arguments_are_refused_and_err_is_optional);
     return UNITY_END();

@@ -1,0 +1,87 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Library configurations of a scenario (see setup.h). */
+#include "setup.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "ladrc/axis.h"
+
+static ladrc_variant_t variant_of(sim_controller_id_t id)
+{
+    switch (id) {
+    case SIM_CTRL_HP_MLADRC: return LADRC_VARIANT_HP_MLADRC;
+    case SIM_CTRL_LP_MLADRC: return LADRC_VARIANT_LP_MLADRC;
+    case SIM_CTRL_LADRC: return LADRC_VARIANT_LADRC;
+    default: return LADRC_VARIANT_PID;
+    }
+}
+
+/* The scenario's overrides on top of the library defaults, for one axis. */
+static void apply_overrides(ladrc_axis_config_t *a, const sim_overrides_t *o)
+{
+    if (!isnan(o->wc_rad_s)) a->wc_rad_s = (ladrc_real_t)o->wc_rad_s;
+    if (!isnan(o->wo_rad_s)) a->wo_rad_s = (ladrc_real_t)o->wo_rad_s;
+    if (o->leso_method >= 0) a->leso_method = (ladrc_leso_method_t)o->leso_method;
+    if (o->hp_freq_mode >= 0) a->hp_freq_mode = (ladrc_hp_freq_mode_t)o->hp_freq_mode;
+    if (!isnan(o->hp_freq_rad_s)) a->hp_freq_rad_s[0] = (ladrc_real_t)o->hp_freq_rad_s;
+#if LADRC_HP_MAX_TONES > 1
+    if (!isnan(o->hp_freq2_rad_s)) a->hp_freq_rad_s[1] = (ladrc_real_t)o->hp_freq2_rad_s;
+#endif
+    /* Known frequencies: as many tones as frequencies given, unless said. */
+    if (a->hp_freq_mode == LADRC_HP_FREQ_KNOWN) a->hp_n_tones = isnan(o->hp_freq2_rad_s) ? 1u : 2u;
+    if (o->hp_tones > 0) a->hp_n_tones = (uint8_t)o->hp_tones;
+    if (!isnan(o->levant_lipschitz_rad_s4)) a->levant_lipschitz_rad_s4 = (ladrc_real_t)o->levant_lipschitz_rad_s4;
+    if (!isnan(o->td_accel_rad_s2)) a->td_accel_rad_s2 = (ladrc_real_t)o->td_accel_rad_s2;
+    if (!isnan(o->pid_kp)) a->pid_kp = (ladrc_real_t)o->pid_kp;
+    if (!isnan(o->pid_ki)) a->pid_ki = (ladrc_real_t)o->pid_ki;
+    if (!isnan(o->pid_kd)) a->pid_kd = (ladrc_real_t)o->pid_kd;
+}
+
+void sim_setup_attitude(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_config_t *cfg)
+{
+    ladrc_real_t inertia[3];
+    for (int i = 0; i < 3; ++i) {
+        inertia[i] = (ladrc_real_t)(sc->inertia_kg_m2[i] * sc->inertia_scale[i]);
+    }
+    ladrc_attitude_config_default(cfg, variant_of(id), (ladrc_real_t)sc->control_dt_s, inertia,
+                                  (ladrc_real_t)(sc->rot_drag_Nm_s * sc->rot_drag_scale));
+    const sim_overrides_t *o = &sc->overrides[id];
+    for (int i = 0; i < 3; ++i) {
+        apply_overrides(&cfg->axis[i], o);
+    }
+    if (o->coupling_feed >= 0) {
+        cfg->coupling_feed = (uint8_t)o->coupling_feed;
+    }
+}
+
+void sim_setup_mixer(const sim_scenario_t *sc, ladrc_mixer_config_t *cfg)
+{
+    const double w2_min = sc->rotors_ideal ? 0.0 : sc->w2_min_rad2_s2;
+    const double w2_max = sc->rotors_ideal ? 1e12 : sc->w2_max_rad2_s2;
+    cfg->kL_N_s2 = (ladrc_real_t)sc->thrust_coeff_N_s2;
+    cfg->arm_m = (ladrc_real_t)sc->arm_m;
+    cfg->b_Nm_s2 = (ladrc_real_t)sc->yaw_coeff_Nm_s2;
+    cfg->mass_kg = (ladrc_real_t)sc->mass_kg;
+    cfg->g_m_s2 = (ladrc_real_t)sc->g_m_s2;
+    cfg->w2_min_rad2_s2 = (ladrc_real_t)w2_min;
+    cfg->w2_max_rad2_s2 = (ladrc_real_t)w2_max;
+    cfg->tilt_max_rad = (ladrc_real_t)sc->tilt_max_rad;
+    cfg->mode = sc->rotors_ideal ? LADRC_MIXER_IDEAL : LADRC_MIXER_SATURATE;
+}
+
+void sim_setup_differentiators(const sim_scenario_t *sc, ladrc_levant_config_t *lev, ladrc_td_config_t *td)
+{
+    const ladrc_real_t dt = (ladrc_real_t)sc->control_dt_s;
+    ladrc_axis_config_t axis; /* the library's defaults for the shapers */
+    ladrc_axis_config_default(&axis, LADRC_VARIANT_LADRC, dt, (ladrc_real_t)1.0);
+    memset(lev, 0, sizeof *lev);
+    lev->dt_s = dt;
+    lev->method = LADRC_LEVANT_IMPLICIT;
+    lev->gains = LADRC_LEVANT_GAINS_LIPSCHITZ;
+    lev->lipschitz_rad_s4 = isnan(sc->diff_levant_lipschitz) ? axis.levant_lipschitz_rad_s4
+                                                             : (ladrc_real_t)sc->diff_levant_lipschitz;
+    td->dt_s = dt;
+    td->accel_rad_s2 = isnan(sc->diff_td_accel) ? axis.td_accel_rad_s2 : (ladrc_real_t)sc->diff_td_accel;
+    td->h0_s = isnan(sc->diff_td_h0_s) ? axis.td_h0_s : (ladrc_real_t)sc->diff_td_h0_s;
+}

@@ -1,0 +1,29 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * The library configurations a scenario gives its controllers, the mixer and
+ * the differentiators: one place for the runner, which flies them, and the
+ * parser, which initialises them once to refuse a scenario they cannot fly.
+ */
+#ifndef LADRC_SIM_SETUP_H
+#define LADRC_SIM_SETUP_H
+
+#include "ladrc/attitude.h"
+#include "ladrc/levant.h"
+#include "ladrc/mixer.h"
+#include "ladrc/td.h"
+#include "scenario.h"
+
+/* Controller id on sc: the library defaults for the control period and the
+ * inertia and drag the controllers assume (the plant's times the mismatch
+ * factors), then the scenario's [controller NAME] overrides. */
+void sim_setup_attitude(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_config_t *cfg);
+
+/* The vehicle's mixer; ideal rotors get limits 0 and 1e12 (the mixer wants
+ * finite ones). */
+void sim_setup_mixer(const sim_scenario_t *sc, ladrc_mixer_config_t *cfg);
+
+/* Levant's differentiator and the TD of a differentiator scenario; an absent
+ * key takes the value the library gives an attitude axis (ladrc_axis_config_default). */
+void sim_setup_differentiators(const sim_scenario_t *sc, ladrc_levant_config_t *lev, ladrc_td_config_t *td);
+
+#endif
