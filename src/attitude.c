@@ -2,6 +2,11 @@
 /* Three axes with the decoupling-free coupling feed (see attitude.h). */
 #include "ladrc/attitude.h"
 
+/* Relative rounding allowed on the inertia triangle (a few float ulps). */
+#define ATTITUDE_TRIANGLE_SLACK LADRC_R(1.00001)
+/* Largest drag / J * dt_s. */
+#define ATTITUDE_DRAG_DT_MAX LADRC_R(2.0)
+
 void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t variant,
                                    ladrc_real_t dt_s, const ladrc_real_t inertia_kg_m2[LADRC_AXES],
                                    ladrc_real_t drag_Nms)
@@ -33,19 +38,20 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
         }
     }
     /* A rigid body's principal inertias obey the triangle inequality; the
-     * coupling coefficients (J_next - J_after) / J_i then lie in [-1, 1]. */
+     * coupling coefficients (J_next - J_after) / J_i then lie in [-1, 1]. A
+     * flat body sits on the edge (Jz = Jx + Jy), so rounding is allowed for. */
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
-        if (j[i] > j[(i + 1u) % LADRC_AXES] + j[(i + 2u) % LADRC_AXES]) {
+        if (j[i] > (j[(i + 1u) % LADRC_AXES] + j[(i + 2u) % LADRC_AXES]) * ATTITUDE_TRIANGLE_SLACK) {
             return LADRC_ERR_INERTIA_TRIANGLE;
         }
     }
     if (!ladrc_is_finite(cfg->drag_Nms) || cfg->drag_Nms < LADRC_R(0.0)) {
         return LADRC_ERR_DRAG_NMS;
     }
-    /* The drag's rate drag / J fed over one step must stay below 1 / dt_s, or
-     * the known part it adds to the observers overshoots every step. */
+    /* The drag's decay rate drag / J, fed to the observers one step at a
+     * time, is a stable explicit step only below 2 / dt_s. */
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
-        if (cfg->drag_Nms * cfg->axis[0].dt_s > j[i]) {
+        if (cfg->drag_Nms * cfg->axis[0].dt_s > ATTITUDE_DRAG_DT_MAX * j[i]) {
             return LADRC_ERR_DRAG_NMS;
         }
     }

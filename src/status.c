@@ -53,7 +53,7 @@
     X(LADRC_ERR_HP_FREQ_RANGE, "hp needs 0 < freq_min < freq_max and freq_max dt_s < pi") \
     X(LADRC_ERR_HP_N_TONES, "hp n_tones must be 1..LADRC_HP_MAX_TONES") \
     X(LADRC_ERR_HP_SAMPLE_LAG, "hp sample_lag_wo_rad_s must be finite, >= 0 and 0 or above a tenth of the fastest tone") \
-    X(LADRC_ERR_DRAG_NMS, "drag_Nms must be finite, >= 0 and at most J / dt_s on every axis") \
+    X(LADRC_ERR_DRAG_NMS, "drag_Nms must be finite, >= 0 and at most 2 J / dt_s on every axis") \
     X(LADRC_ERR_COUPLING_FEED, "coupling_feed must be 0 or 1") \
     X(LADRC_ERR_LEVANT_METHOD, "method is not a ladrc_levant_method_t") \
     X(LADRC_ERR_LEVANT_GAINS, "gains is not a ladrc_levant_gains_t") \

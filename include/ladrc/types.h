@@ -144,7 +144,7 @@ typedef enum {
     LADRC_ERR_HP_FREQ_RANGE,      /**< hp online range: need 0 < min < max, max dt_s < pi */
     LADRC_ERR_HP_N_TONES,         /**< hp n_tones outside 1..LADRC_HP_MAX_TONES */
     LADRC_ERR_HP_SAMPLE_LAG,      /**< hp sample_lag_wo_rad_s not finite, < 0, or below a tenth of the fastest tone */
-    LADRC_ERR_DRAG_NMS,           /**< attitude drag_Nms not finite, < 0, or drag_Nms / J * dt_s > 1 on an axis */
+    LADRC_ERR_DRAG_NMS,           /**< attitude drag_Nms not finite, < 0, or drag_Nms / J * dt_s > 2 on an axis */
     LADRC_ERR_COUPLING_FEED,      /**< attitude coupling_feed not 0 or 1 */
     LADRC_ERR_LEVANT_METHOD,      /**< Levant method not a ladrc_levant_method_t */
     LADRC_ERR_LEVANT_GAINS,       /**< Levant gains not a ladrc_levant_gains_t */
