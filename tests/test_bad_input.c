@@ -313,7 +313,10 @@ static void report_and_check(ladrc_variant_t v, entry_t e, tally_t t)
            t.violations);
     TEST_ASSERT_EQUAL_INT(0, (int)t.violations);
     TEST_ASSERT_EQUAL_INT(0, (int)t.not_recovered);
-    TEST_ASSERT_TRUE(t.hostile > t.vectors / 100); /* the campaign really is hostile */
+    /* the campaign really is hostile: 1.2-3.6 % of calls carry a value outside
+     * the ranges at 10^6 and 10^8 calls; the short form on the target, 1 %
+     * (its first 4 s settle the loop) */
+    TEST_ASSERT_TRUE(t.hostile > t.vectors / 200);
 }
 
 static void campaign(ladrc_variant_t v)
