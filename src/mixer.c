@@ -211,8 +211,9 @@ ladrc_real_t ladrc_mixer_thrust_from_tilt(const ladrc_mixer_t *mx, ladrc_real_t 
 #endif
 }
 
-/* Allocation without argument checks (see ladrc_mixer_allocate). */
-static void allocate(const ladrc_mixer_t *mx, ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
+/* Allocation without argument checks (see ladrc_mixer_allocate); inlined so
+ * that the step's common case keeps its w^2 in registers. */
+ALWAYS_INLINE static inline void allocate(const ladrc_mixer_t *mx, ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
                      ladrc_real_t w2[4])
 {
     const ladrc_real_t a4 = thrust_N * mx->a4_per_N;
@@ -489,12 +490,8 @@ ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N,
         /* The request: thrust, roll, pitch, yaw. Scalars and local arrays of
          * constant index, so that the common case below stays in registers. */
         const ladrc_real_t f[4] = {thrust_N, torque_Nm[0], torque_Nm[1], torque_Nm[2]};
-        const ladrc_real_t a4 = thrust_N * mx->a4_per_N;
-        const ladrc_real_t p2 = f[1] * mx->p2_per_Nm;
-        const ladrc_real_t q2 = f[2] * mx->p2_per_Nm;
-        const ladrc_real_t r4 = f[3] * mx->r4_per_Nm;
-        /* allocate()'s expressions, bit for bit */
-        const ladrc_real_t w2[4] = {a4 - q2 - r4, a4 + p2 + r4, a4 + q2 - r4, a4 - p2 + r4};
+        ladrc_real_t w2[4];
+        allocate(mx, thrust_N, &f[1], w2);
         const ladrc_real_t lo = mx->w2_min_rad2_s2;
         const ladrc_real_t hi = mx->w2_max_rad2_s2;
         /* As in_range(): false for NaN, so also the finiteness test. */
