@@ -20,6 +20,7 @@
  */
 #include "unity.h"
 #include "ladrc/mixer.h"
+#include "test_hostile.h"
 
 #include <float.h>
 #include <math.h>
@@ -106,24 +107,13 @@ static double size_from_env(const char *name, double fallback)
 
 /* -------------------------------------------------------------------- rng */
 
-/* A 64-bit state advanced by a Weyl step, output through a mixing function
- * (shift-xor-multiply rounds): enough for test vectors, same on every platform. */
-typedef struct {
-    uint64_t s;
-} rng_t;
+/* The shared generator (tests/support/test_hostile.h); draws below n by
+ * modulo, as this campaign's recorded figures were drawn. */
+typedef test_rng_t rng_t;
 
-static uint64_t next_u64(rng_t *r)
-{
-    uint64_t z;
-    r->s += UINT64_C(0x9e3779b97f4a7c15);
-    z = r->s;
-    z = (z ^ (z >> 30)) * UINT64_C(0xbf58476d1ce4e5b9);
-    z = (z ^ (z >> 27)) * UINT64_C(0x94d049bb133111eb);
-    return z ^ (z >> 31);
-}
+static uint64_t next_u64(rng_t *r) { return test_rng_next(r); }
 
-/* Uniform in [0, 1). */
-static double next_unit(rng_t *r) { return (double)(next_u64(r) >> 11) * (1.0 / 9007199254740992.0); }
+static double next_unit(rng_t *r) { return test_rng_uniform(r); }
 
 static double next_range(rng_t *r, double lo, double hi) { return lo + (hi - lo) * next_unit(r); }
 
@@ -136,30 +126,9 @@ static double next_sign(rng_t *r) { return (next_u64(r) & 1u) ? -1.0 : 1.0; }
 
 /* ---------------------------------------------------------- real values */
 
-static ladrc_real_t from_bits(int which)
-{
-    /* NaNs (quiet, negative, with payloads, signalling) and infinities */
-#ifdef LADRC_REAL_DOUBLE
-    static const uint64_t bits[7] = {UINT64_C(0x7ff8000000000000), UINT64_C(0xfff8000000000000),
-                                     UINT64_C(0x7ff8000000012345), UINT64_C(0x7ff0000000000001),
-                                     UINT64_C(0xffffffffffffffff), UINT64_C(0x7ff0000000000000),
-                                     UINT64_C(0xfff0000000000000)};
-    volatile uint64_t b = bits[which];
-    uint64_t u = b;
-#else
-    static const uint32_t bits[7] = {UINT32_C(0x7fc00000), UINT32_C(0xffc00000), UINT32_C(0x7fc12345),
-                                     UINT32_C(0x7f800001), UINT32_C(0xffffffff), UINT32_C(0x7f800000),
-                                     UINT32_C(0xff800000)};
-    volatile uint32_t b = bits[which];
-    uint32_t u = b;
-#endif
-    ladrc_real_t x;
-    memcpy(&x, &u, sizeof x);
-    return x;
-}
 
-static ladrc_real_t nan_value(rng_t *r) { return from_bits((int)next_below(r, 5u)); }
-static ladrc_real_t inf_value(rng_t *r) { return from_bits(5 + (int)next_below(r, 2u)); }
+static ladrc_real_t nan_value(rng_t *r) { return test_special_nan(next_below(r, TEST_NAN_KINDS)); }
+static ladrc_real_t inf_value(rng_t *r) { return test_special_value(1u + next_below(r, 2u)); }
 
 /* A macro, not a function: the checks call it a dozen times per step. */
 #define is_finite_real(x) (isfinite(x) ? 1 : 0)
@@ -533,7 +502,7 @@ static void test_mixer_step_keeps_its_promises_under_hostile_requests(void)
     rng_t r;
     size_t k;
     memset(&v, 0, sizeof v);
-    r.s = UINT64_C(20240611);
+    r.state = UINT64_C(20240611);
     vehicles[0] = vehicle("paper", 2.98e-5, 0.165, 2e-6, 0.8, 1e4, 2e5, LADRC_MIXER_SATURATE);
     vehicles[1] = vehicle("20 g micro", 2.9e-8, 0.046, 7e-10, 0.02, 0.0, 3.6e7, LADRC_MIXER_SATURATE);
     vehicles[2] = vehicle("50 kg lifter", 3e-3, 1.5, 1e-4, 50.0, 400.0, 9e4, LADRC_MIXER_SATURATE);
@@ -798,7 +767,7 @@ static void test_mixer_init_accepts_exactly_the_documented_configs_and_each_runs
     rng_t r;
     double n;
     memset(&v, 0, sizeof v);
-    r.s = UINT64_C(77777);
+    r.state = UINT64_C(77777);
     for (n = 0.0; n < n_configs; n += 1.0) {
         ladrc_mixer_config_t c;
         ladrc_mixer_t mx;

@@ -17,24 +17,6 @@
 #define N_TICKS 400
 #define BAD_AT 200
 
-/* NaN, +inf and -inf from their bit patterns, through volatile so that no
- * compiler flag can fold them. */
-static ladrc_real_t make_special(int which)
-{
-#ifdef LADRC_REAL_DOUBLE
-    static const uint64_t bits[3] = {UINT64_C(0x7ff8000000000000), UINT64_C(0x7ff0000000000000),
-                                     UINT64_C(0xfff0000000000000)};
-    volatile uint64_t b = bits[which];
-    uint64_t u = b;
-#else
-    static const uint32_t bits[3] = {UINT32_C(0x7fc00000), UINT32_C(0x7f800000), UINT32_C(0xff800000)};
-    volatile uint32_t b = bits[which];
-    uint32_t u = b;
-#endif
-    ladrc_real_t x;
-    memcpy(&x, &u, sizeof x);
-    return x;
-}
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -68,8 +50,8 @@ static void check_axis_variant(ladrc_variant_t variant)
             u_hit = ladrc_axis_step_with_rate(&hit, ref_at(k), angle_at(k), rate_at(k));
             TEST_ASSERT_TRUE(same_bits(u_clean, u_hit));
             for (b = 0; b < 4; ++b) {
-                const ladrc_real_t r = kinds[b][0] >= 0 ? make_special(kinds[b][0]) : ref_at(k + 1);
-                const ladrc_real_t y = kinds[b][1] >= 0 ? make_special(kinds[b][1]) : angle_at(k + 1);
+                const ladrc_real_t r = kinds[b][0] >= 0 ? test_special_value(kinds[b][0]) : ref_at(k + 1);
+                const ladrc_real_t y = kinds[b][1] >= 0 ? test_special_value(kinds[b][1]) : angle_at(k + 1);
                 held = ladrc_axis_step_with_rate(&hit, r, y, rate_at(k + 1));
                 TEST_ASSERT_TRUE_MESSAGE(ladrc_axis_get_faults(&hit) & LADRC_FAULT_INPUT, "no input fault");
                 TEST_ASSERT_TRUE_MESSAGE(test_is_finite(held), "command not finite");
@@ -77,7 +59,7 @@ static void check_axis_variant(ladrc_variant_t variant)
                 TEST_ASSERT_EQUAL_UINT32((uint32_t)(b + 1), ladrc_axis_get_consecutive_faults(&hit));
             }
             /* a non-finite applied torque is ignored with its own flag */
-            ladrc_axis_set_applied(&hit, make_special(0));
+            ladrc_axis_set_applied(&hit, test_special_value(0));
             TEST_ASSERT_TRUE(ladrc_axis_get_faults(&hit) & LADRC_FAULT_APPLIED);
             ladrc_axis_set_applied(&clean, u_clean);
             ladrc_axis_set_applied(&hit, u_hit);
@@ -132,7 +114,7 @@ static void test_attitude_and_mixer_hold_on_non_finite_input(void)
     /* a NaN angle on one axis: input fault, torques held */
     {
         const ladrc_real_t ref[3] = {LADRC_R(0.1), LADRC_R(0.1), LADRC_R(0.1)};
-        const ladrc_real_t angle[3] = {LADRC_R(0.1), make_special(0), LADRC_R(0.1)};
+        const ladrc_real_t angle[3] = {LADRC_R(0.1), test_special_value(0), LADRC_R(0.1)};
         const ladrc_fault_t f = ladrc_attitude_step(&att, ref, angle, NULL, held);
         TEST_ASSERT_TRUE(f & LADRC_FAULT_INPUT);
         TEST_ASSERT_TRUE(same_bits(held[1], torque[1]));
@@ -140,7 +122,7 @@ static void test_attitude_and_mixer_hold_on_non_finite_input(void)
             TEST_ASSERT_TRUE(test_is_finite(held[i]));
         }
         /* thrust of an unknown attitude: the weight, finite */
-        TEST_ASSERT_TRUE(test_is_finite(ladrc_mixer_thrust_from_tilt(&mixer, LADRC_R(0.1), make_special(0))));
+        TEST_ASSERT_TRUE(test_is_finite(ladrc_mixer_thrust_from_tilt(&mixer, LADRC_R(0.1), test_special_value(0))));
     }
     /* the mixer: a non-finite torque or thrust request is refused, output held */
     memcpy(&before, &out, sizeof out);
@@ -148,9 +130,9 @@ static void test_attitude_and_mixer_hold_on_non_finite_input(void)
         ladrc_real_t t[3] = {torque[0], torque[1], torque[2]};
         ladrc_real_t thrust = LADRC_R(8.0);
         if (i < 3) {
-            t[i] = make_special(i);
+            t[i] = test_special_value(i);
         } else {
-            thrust = make_special(0);
+            thrust = test_special_value(0);
         }
         TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_mixer_step(&mixer, thrust, t, &out));
         TEST_ASSERT_EQUAL_MEMORY(before.w2_rad2_s2, out.w2_rad2_s2, sizeof out.w2_rad2_s2);

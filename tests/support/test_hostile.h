@@ -38,6 +38,16 @@ ladrc_real_t test_value_of_class(test_rng_t *rng, test_value_class_t cls, double
 /* A value of a random class (normal half the time). */
 ladrc_real_t test_hostile_value(test_rng_t *rng, double scale, test_value_class_t *cls);
 
+/* Special values from their bit patterns, through volatile so that no
+ * compiler flag can fold them: 0 a quiet NaN, 1 +inf, 2 -inf, then NaNs
+ * that are negative (3), carry a payload (4), signal (5), all ones (6). */
+#define TEST_SPECIAL_VALUES 7u
+ladrc_real_t test_special_value(unsigned which);
+
+/* NaN kind k (0..TEST_NAN_KINDS-1) of those above. */
+#define TEST_NAN_KINDS 5u
+ladrc_real_t test_special_nan(unsigned k);
+
 /* 1 if x is finite, from its bits (no flag can fold the test). */
 int test_is_finite(ladrc_real_t x);
 
