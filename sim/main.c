@@ -21,6 +21,9 @@
 
 #define MAX_SCENARIOS 32
 
+/* Exit statuses (usage(), README "The simulator"). */
+enum { EXIT_RUN_FAILED = 1, EXIT_BAD_INPUT = 2, EXIT_DIVERGED = 3 };
+
 typedef struct {
     const sim_scenario_t *sc;
     int controller_index;          /* into sc->controllers; -1 for a differentiator run */
@@ -54,8 +57,12 @@ static void usage(FILE *out)
           "  --no-csv          no time series, only metrics.csv and the tables\n"
           "  --quiet           no progress on stderr\n"
           "Prints the comparison tables on stdout; writes <out>/<controller>.csv time series and\n"
-          "<out>/metrics.csv. Exit status 0, 1 if a run failed, 2 for bad usage or a bad scenario\n"
-          "(then nothing is run or written).\n",
+          "<out>/metrics.csv. A run diverges when |tracking error| on an axis exceeds the scenario's\n"
+          "diverge_limit_deg (default 90) or its state turns non-finite: it stops there, its statistics\n"
+          "print as \"diverged\", and stderr names it.\n"
+          "Exit status: 0 every run flew; 1 a run failed or an output could not be written;\n"
+          "2 bad usage or a bad scenario (then nothing is run or written); 3 every run and output\n"
+          "completed but a run diverged (1 wins over 3).\n",
           out);
 }
 
@@ -229,11 +236,11 @@ int main(int argc, char **argv)
             jobs_wanted = strtol(argv[++a], &end, 10);
             if (*end != '\0' || jobs_wanted < 1 || jobs_wanted > 256) {
                 fprintf(stderr, "ladrc_sil: --jobs: expected a whole number from 1 to 256, got '%s'\n", argv[a]);
-                return 2;
+                return EXIT_BAD_INPUT;
             }
         } else if (strcmp(arg, "--controllers") == 0 && a + 1 < argc) {
             if (parse_controllers(argv[++a], override_ids, &n_override) != 0) {
-                return 2;
+                return EXIT_BAD_INPUT;
             }
         } else if (strcmp(arg, "--out") == 0 && a + 1 < argc) {
             out_root = argv[++a];
@@ -244,17 +251,17 @@ int main(int argc, char **argv)
         } else if (arg[0] == '-') {
             fprintf(stderr, "ladrc_sil: unknown or incomplete option '%s'\n", arg);
             usage(stderr);
-            return 2;
+            return EXIT_BAD_INPUT;
         } else if (n_paths < MAX_SCENARIOS) {
             paths[n_paths++] = arg;
         } else {
             fprintf(stderr, "ladrc_sil: at most %d scenarios per call\n", MAX_SCENARIOS);
-            return 2;
+            return EXIT_BAD_INPUT;
         }
     }
     if (n_paths == 0) {
         usage(stderr);
-        return 2;
+        return EXIT_BAD_INPUT;
     }
     /* Every scenario is read before anything runs: one bad file, nothing written. */
     for (int i = 0; i < n_paths; ++i) {
@@ -267,13 +274,13 @@ int main(int argc, char **argv)
             } else {
                 fprintf(stderr, "%s: %s\n", perr.path, perr.message); /* could not be read */
             }
-            return 2;
+            return EXIT_BAD_INPUT;
         }
         if (out_root != NULL) {
             char dir[sizeof sc->output_dir];
             if (snprintf(dir, sizeof dir, "%s/%s", out_root, sc->name) >= (int)sizeof dir) {
                 fprintf(stderr, "ladrc_sil: --out: path too long\n");
-                return 2;
+                return EXIT_BAD_INPUT;
             }
             memcpy(sc->output_dir, dir, sizeof dir);
         }
@@ -290,7 +297,7 @@ int main(int argc, char **argv)
         if (make_dirs(sc->output_dir) != 0) {
             fprintf(stderr, "ladrc_sil: %s: cannot create output directory '%s': %s\n", sc->path, sc->output_dir,
                     strerror(errno));
-            return 1;
+            return EXIT_RUN_FAILED;
         }
         const int n = sc->kind == SIM_KIND_DIFFERENTIATOR ? 1 : sc->n_controllers;
         for (int c = 0; c < n; ++c) {
@@ -318,7 +325,7 @@ int main(int argc, char **argv)
     for (int t = 0; t < n_threads; ++t) {
         if (pthread_create(&threads[t], NULL, worker, &pool) != 0) {
             fprintf(stderr, "ladrc_sil: cannot start a worker thread\n");
-            return 1;
+            return EXIT_RUN_FAILED;
         }
     }
     wait_with_progress(&pool, total_ticks, quiet);
@@ -333,10 +340,11 @@ int main(int argc, char **argv)
         if (jobs[j].failed) {
             fprintf(stderr, "ladrc_sil: %s\n", jobs[j].error);
             scenario_failed[jobs[j].sc - scenarios] = 1;
-            status = 1;
+            status = EXIT_RUN_FAILED;
         }
     }
     double simulated = 0.0;
+    int any_diverged = 0;
     for (int s = 0; s < n_sc; ++s) {
         const sim_scenario_t *sc = &scenarios[s];
         if (scenario_failed[s]) {
@@ -350,9 +358,21 @@ int main(int argc, char **argv)
         FILE *f = fopen(path, "w");
         if (f == NULL || sim_report_metrics_csv(f, &res, 1) != 0 || fclose(f) != 0) {
             fprintf(stderr, "ladrc_sil: %s: cannot write\n", path);
-            status = 1;
+            status = EXIT_RUN_FAILED;
+        }
+        for (int c = 0; sc->kind == SIM_KIND_ATTITUDE && c < sc->n_controllers; ++c) {
+            if (attitude[s][c].diverged) {
+                char why[160];
+                sim_report_divergence_text(why, sizeof why, sc, &attitude[s][c]);
+                fprintf(stderr, "ladrc_sil: %s (%s): controller %s %s\n", sc->name, sc->path,
+                        sim_controller_name(sc->controllers[c]), why);
+                any_diverged = 1;
+            }
         }
         simulated += sc->duration_s * (sc->kind == SIM_KIND_DIFFERENTIATOR ? 1 : sc->n_controllers);
+    }
+    if (status == 0 && any_diverged) {
+        status = EXIT_DIVERGED;
     }
     if (!quiet) {
         fprintf(stderr, "ladrc_sil: %d runs, %.1f s simulated in %.2f s with %d jobs (%.0fx real time)\n", n_jobs,

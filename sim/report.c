@@ -2,7 +2,29 @@
 /* Tables 3-7 on stdout and the metrics summary (see report.h). */
 #include "report.h"
 
+#include <math.h>
+
 static const char *const AXES[3] = {"roll", "pitch", "yaw"};
+
+/* The axis a divergence was seen on: an attitude axis, or "-" (a rotor). */
+static const char *diverged_axis_name(const sim_metrics_t *m)
+{
+    return (m->diverged_axis >= 0 && m->diverged_axis < 3) ? AXES[m->diverged_axis] : "-";
+}
+
+void sim_report_divergence_text(char *buf, size_t len, const sim_scenario_t *sc, const sim_metrics_t *m)
+{
+    if (!m->diverged) {
+        snprintf(buf, len, "did not diverge");
+    } else if (isnan(m->diverged_error_deg)) {
+        snprintf(buf, len, "diverged at t = %.4f s: the state turned non-finite (%s%s)", m->diverged_at_s,
+                 m->diverged_axis >= 0 ? diverged_axis_name(m) : "a rotor's w^2",
+                 m->diverged_axis >= 0 ? " angle or rate" : "");
+    } else {
+        snprintf(buf, len, "diverged at t = %.4f s on %s: |tracking error| %.6g deg exceeds diverge_limit_deg = %g",
+                 m->diverged_at_s, diverged_axis_name(m), m->diverged_error_deg, sc->diverge_limit_deg);
+    }
+}
 
 /* The first column's title, then one column per controller. */
 static void column_titles(FILE *out, const sim_scenario_t *sc, const char *first, int width)
@@ -24,6 +46,10 @@ static void table4(FILE *out, const sim_scenario_result_t *r)
         fprintf(out, "%-6s", AXES[i]);
         for (int c = 0; c < sc->n_controllers; ++c) {
             const sim_stat_t *s = &r->attitude[c].error_deg[i];
+            if (r->attitude[c].diverged) {
+                fprintf(out, " | %-28s", SIM_TEXT_DIVERGED);
+                continue;
+            }
             fprintf(out, " | %8.4f / %8.4f / %8.4f", s->mean, sim_stat_std(s), sim_stat_rms(s));
         }
         fputc('\n', out);
@@ -35,15 +61,26 @@ static void table5(FILE *out, const sim_scenario_result_t *r)
     const sim_scenario_t *sc = r->sc;
     fprintf(out,
             "\nTable 5. Max error (deg) over (%g, %g] s / settling time (s): from %g s until |error| stays "
-            "within %g deg up to %g s (-1: never) / steady band (+-deg) over (%g, %g] s\n",
+            "within %g deg up to %g s (" SIM_TEXT_NOT_SETTLED ": outside it at %g s) / steady band (+-deg) over "
+            "(%g, %g] s\n",
             sc->error_window_s[0], sc->error_window_s[1], sc->settle_after_s, sc->settle_band_deg,
-            sc->settle_until_s, sc->steady_window_s[0], sc->steady_window_s[1]);
-    column_titles(out, sc, "axis", 28);
+            sc->settle_until_s, sc->settle_until_s, sc->steady_window_s[0], sc->steady_window_s[1]);
+    column_titles(out, sc, "axis", 33);
     for (int i = 0; i < 3; ++i) {
         fprintf(out, "%-6s", AXES[i]);
         for (int c = 0; c < sc->n_controllers; ++c) {
             const sim_metrics_t *m = &r->attitude[c];
-            fprintf(out, " | %8.4f / %8.3f / %8.4f", m->max_error_deg[i], m->settle_s[i], m->band_deg[i]);
+            if (m->diverged) {
+                fprintf(out, " | %-33s", SIM_TEXT_DIVERGED);
+                continue;
+            }
+            char settle[32];
+            if (m->settle_s[i] == SIM_NOT_SETTLED) {
+                snprintf(settle, sizeof settle, "%s", SIM_TEXT_NOT_SETTLED);
+            } else {
+                snprintf(settle, sizeof settle, "%11.3f", m->settle_s[i]);
+            }
+            fprintf(out, " | %8.4f / %11s / %8.4f", m->max_error_deg[i], settle, m->band_deg[i]);
         }
         fputc('\n', out);
     }
@@ -64,6 +101,10 @@ static void table6(FILE *out, const sim_scenario_result_t *r)
                 fprintf(out, " | %-28s", "(no estimate)");
                 continue;
             }
+            if (m->diverged) {
+                fprintf(out, " | %-28s", SIM_TEXT_DIVERGED);
+                continue;
+            }
             const sim_stat_t *s = &m->dist_error[i];
             fprintf(out, " | %8.3f / %8.3f / %8.3f", s->mean, sim_stat_std(s), sim_stat_rms(s));
         }
@@ -80,6 +121,10 @@ static void table7(FILE *out, const sim_scenario_result_t *r)
         fprintf(out, "%-6d", k + 1);
         for (int c = 0; c < sc->n_controllers; ++c) {
             const sim_stat_t *s = &r->attitude[c].rotor_w2[k];
+            if (r->attitude[c].diverged) {
+                fprintf(out, " | %-32s", SIM_TEXT_DIVERGED);
+                continue;
+            }
             const double sd = sim_stat_std(s);
             fprintf(out, " | %9.0f / %9.0f / %10.4g", s->mean, sd, sd * sd);
         }
@@ -113,8 +158,11 @@ void sim_report_tables(FILE *out, const sim_scenario_result_t *r)
             sc->duration_s, sc->control_dt_s * 1e3, sc->plant_substeps);
     for (int c = 0; c < sc->n_controllers; ++c) {
         const sim_metrics_t *m = &r->attitude[c];
-        if (!m->finite) {
-            fprintf(out, "%s: the run diverged (non-finite angle)\n", sim_controller_name(sc->controllers[c]));
+        if (m->diverged) {
+            char why[160];
+            sim_report_divergence_text(why, sizeof why, sc, m);
+            fprintf(out, "%s: DIVERGED: %s; the run stopped there and its statistics are withheld\n",
+                    sim_controller_name(sc->controllers[c]), why);
         }
     }
     table4(out, r);
@@ -123,10 +171,29 @@ void sim_report_tables(FILE *out, const sim_scenario_result_t *r)
     table7(out, r);
 }
 
+static void row_text(FILE *out, const sim_scenario_t *sc, const char *ctrl, const char *table,
+                     const char *quantity, const char *axis, const char *value)
+{
+    fprintf(out, "%s,%s,%s,%s,%s,%s\n", sc->name, ctrl, table, quantity, axis, value);
+}
+
 static void row(FILE *out, const sim_scenario_t *sc, const char *ctrl, const char *table, const char *quantity,
                 const char *axis, double value)
 {
-    fprintf(out, "%s,%s,%s,%s,%s,%.9g\n", sc->name, ctrl, table, quantity, axis, value);
+    char text[32];
+    snprintf(text, sizeof text, "%.9g", value);
+    row_text(out, sc, ctrl, table, quantity, axis, text);
+}
+
+/* A statistic of an attitude run: its value, or "diverged" when the run diverged. */
+static void stat_row(FILE *out, const sim_scenario_t *sc, const sim_metrics_t *m, const char *ctrl,
+                     const char *table, const char *quantity, const char *axis, double value)
+{
+    if (m->diverged) {
+        row_text(out, sc, ctrl, table, quantity, axis, SIM_TOKEN_DIVERGED);
+    } else {
+        row(out, sc, ctrl, table, quantity, axis, value);
+    }
 }
 
 int sim_report_metrics_csv(FILE *out, const sim_scenario_result_t *r, int header)
@@ -150,26 +217,38 @@ int sim_report_metrics_csv(FILE *out, const sim_scenario_result_t *r, int header
         const char *name = sim_controller_name(sc->controllers[c]);
         const sim_metrics_t *m = &r->attitude[c];
         for (int i = 0; i < 3; ++i) {
-            row(out, sc, name, "4", "error_mean_deg", AXES[i], m->error_deg[i].mean);
-            row(out, sc, name, "4", "error_std_deg", AXES[i], sim_stat_std(&m->error_deg[i]));
-            row(out, sc, name, "4", "error_rms_deg", AXES[i], sim_stat_rms(&m->error_deg[i]));
-            row(out, sc, name, "5", "max_error_deg", AXES[i], m->max_error_deg[i]);
-            row(out, sc, name, "5", "settling_s", AXES[i], m->settle_s[i]);
-            row(out, sc, name, "5", "steady_band_deg", AXES[i], m->band_deg[i]);
+            stat_row(out, sc, m, name, "4", "error_mean_deg", AXES[i], m->error_deg[i].mean);
+            stat_row(out, sc, m, name, "4", "error_std_deg", AXES[i], sim_stat_std(&m->error_deg[i]));
+            stat_row(out, sc, m, name, "4", "error_rms_deg", AXES[i], sim_stat_rms(&m->error_deg[i]));
+            stat_row(out, sc, m, name, "5", "max_error_deg", AXES[i], m->max_error_deg[i]);
+            if (!m->diverged && m->settle_s[i] == SIM_NOT_SETTLED) {
+                row_text(out, sc, name, "5", "settling_s", AXES[i], SIM_TOKEN_NOT_SETTLED);
+            } else {
+                stat_row(out, sc, m, name, "5", "settling_s", AXES[i], m->settle_s[i]);
+            }
+            stat_row(out, sc, m, name, "5", "steady_band_deg", AXES[i], m->band_deg[i]);
             if (m->has_estimate) {
-                row(out, sc, name, "6", "dist_error_mean", AXES[i], m->dist_error[i].mean);
-                row(out, sc, name, "6", "dist_error_std", AXES[i], sim_stat_std(&m->dist_error[i]));
-                row(out, sc, name, "6", "dist_error_rms", AXES[i], sim_stat_rms(&m->dist_error[i]));
+                stat_row(out, sc, m, name, "6", "dist_error_mean", AXES[i], m->dist_error[i].mean);
+                stat_row(out, sc, m, name, "6", "dist_error_std", AXES[i], sim_stat_std(&m->dist_error[i]));
+                stat_row(out, sc, m, name, "6", "dist_error_rms", AXES[i], sim_stat_rms(&m->dist_error[i]));
             }
         }
         for (int k = 0; k < 4; ++k) {
             const double sd = sim_stat_std(&m->rotor_w2[k]);
-            row(out, sc, name, "7", "w2_mean", ROTORS[k], m->rotor_w2[k].mean);
-            row(out, sc, name, "7", "w2_std", ROTORS[k], sd);
-            row(out, sc, name, "7", "w2_var", ROTORS[k], sd * sd);
+            stat_row(out, sc, m, name, "7", "w2_mean", ROTORS[k], m->rotor_w2[k].mean);
+            stat_row(out, sc, m, name, "7", "w2_std", ROTORS[k], sd);
+            stat_row(out, sc, m, name, "7", "w2_var", ROTORS[k], sd * sd);
         }
         row(out, sc, name, "-", "finite", "-", m->finite);
         row(out, sc, name, "-", "fault_ticks", "-", (double)m->faults);
+        row(out, sc, name, "-", "diverged", "-", m->diverged);
+        if (m->diverged) { /* the error is nan when the state turned non-finite */
+            row(out, sc, name, "-", "diverged_at_s", diverged_axis_name(m), m->diverged_at_s);
+            row(out, sc, name, "-", "diverged_error_deg", diverged_axis_name(m), m->diverged_error_deg);
+        } else {
+            row_text(out, sc, name, "-", "diverged_at_s", "-", SIM_TOKEN_NONE);
+            row_text(out, sc, name, "-", "diverged_error_deg", "-", SIM_TOKEN_NONE);
+        }
     }
     return ferror(out) ? -1 : 0;
 }

@@ -6,6 +6,7 @@
 #ifndef LADRC_SIM_REPORT_H
 #define LADRC_SIM_REPORT_H
 
+#include <stddef.h>
 #include <stdio.h>
 
 #include "metrics.h"
@@ -19,9 +20,25 @@ typedef struct {
     const sim_diff_metrics_t *diff;     /* or NULL */
 } sim_scenario_result_t;
 
+/* What the tables print in place of a number. */
+#define SIM_TEXT_DIVERGED "diverged"          /* every statistic of a run that diverged */
+#define SIM_TEXT_NOT_SETTLED "not settled"    /* a settling time when the error ends outside the band */
+
+/* The tokens of metrics.csv's value column in place of a number (README,
+ * "The simulator"; tools/sim_output.py reads them). */
+#define SIM_TOKEN_DIVERGED "diverged"         /* every statistic of a run that diverged */
+#define SIM_TOKEN_NOT_SETTLED "not_settled"   /* settling_s when the error ends outside the band */
+#define SIM_TOKEN_NONE "-"                    /* diverged_at_s, diverged_error_deg of a healthy run */
+
 void sim_report_tables(FILE *out, const sim_scenario_result_t *res);
 
-/* Appends the metrics as CSV rows: scenario,controller,table,quantity,axis,value.
+/* "diverged at t = ... s on roll: |tracking error| ... deg exceeds diverge_limit_deg = ..."
+ * or "...: the state turned non-finite (roll angle or rate)", for the tables and stderr. */
+void sim_report_divergence_text(char *buf, size_t len, const sim_scenario_t *sc, const sim_metrics_t *m);
+
+/* Appends the metrics as CSV rows: scenario,controller,table,quantity,axis,value,
+ * where value is a number (%.9g; "nan" for a diverged_error_deg of a non-finite
+ * state) or one of the tokens above.
  * Writes the header when header is non-zero. Returns 0, or -1 on a write error. */
 int sim_report_metrics_csv(FILE *out, const sim_scenario_result_t *res, int header);
 

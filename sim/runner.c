@@ -131,6 +131,55 @@ static const char ATTITUDE_CSV_HEADER[] =
 /* Metric windows hold (from, to], as signal windows do. */
 static int in_window(const double w[2], double t) { return t > w[0] && t <= w[1]; }
 
+/* Divergence at t (runner.h): the plant's state non-finite, or the tracking
+ * error ref - angle beyond the scenario's limit on an axis. Records the first
+ * cause found in m and returns 1; 0 while the run is healthy. */
+static int diverged(const sim_scenario_t *sc, const sim_plant_t *p, const double ref_rad[3], double t_s,
+                    sim_metrics_t *m)
+{
+    int axis = -2;
+    double error_deg = NAN;
+    for (int i = 0; i < 3 && axis == -2; ++i) {
+        const double e_deg = (ref_rad[i] - p->angle_rad[i]) * RAD2DEG;
+        if (!isfinite(e_deg) || !isfinite(p->rate_rad_s[i])) {
+            axis = i;
+            m->finite = 0;
+        } else if (fabs(e_deg) > sc->diverge_limit_deg) {
+            axis = i;
+            error_deg = fabs(e_deg);
+        }
+    }
+    for (int r = 0; r < 4 && axis == -2; ++r) {
+        if (!isfinite(p->w2_rad2_s2[r])) {
+            axis = -1;
+            m->finite = 0;
+        }
+    }
+    if (axis == -2) {
+        return 0;
+    }
+    m->diverged = 1;
+    m->diverged_at_s = t_s;
+    m->diverged_axis = axis;
+    m->diverged_error_deg = error_deg;
+    return 1;
+}
+
+/* The references at t, rad, as the controllers get them (ladrc_real_t). */
+static void references(const sim_scenario_t *sc, double t_s, sim_expr_memo_t *memo, ladrc_real_t ref[3])
+{
+    for (int i = 0; i < 3; ++i) {
+        ref[i] = (ladrc_real_t)sim_signal_eval_memo(&sc->reference[i], t_s, memo);
+    }
+}
+
+static void widen(const ladrc_real_t x[3], double out[3])
+{
+    for (int i = 0; i < 3; ++i) {
+        out[i] = (double)x[i];
+    }
+}
+
 int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const char *csv_path,
                      const sim_progress_t *progress, sim_metrics_t *m, char *err, size_t err_len)
 {
@@ -167,21 +216,30 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
     const long n = sim_run_ticks(sc);
     const double dt = sc->control_dt_s;
     double last_out_s[3] = {sc->settle_after_s, sc->settle_after_s, sc->settle_after_s};
+    int out_at_last[3] = {0, 0, 0}; /* outside the band at the settle window's latest sample so far */
     const double band_rad = sc->settle_band_deg / RAD2DEG;
     m->has_estimate = ctrl != SIM_CTRL_PID;
     m->finite = 1;
+    m->diverged_axis = -1;
+    m->diverged_at_s = m->diverged_error_deg = NAN;
     for (int i = 0; i < 3; ++i) {
-        m->settle_s[i] = -1.0;
+        m->settle_s[i] = SIM_NOT_SETTLED;
     }
-    for (long k = 0; k < n; ++k) {
+    long k = 0;
+    for (; k < n; ++k) {
         const double t = (double)k * dt;
         double meas_angle[3], meas_rate[3];
         sim_sensor_measure(&sensor, plant.angle_rad, plant.rate_rad_s, meas_angle, meas_rate);
         ladrc_real_t ref[3], angle[3], rate[3], torque[3];
         sim_expr_memo_t memo; /* shared by the references, then the disturbances at t */
         sim_expr_memo_clear(&memo);
+        references(sc, t, &memo, ref);
+        double ref_rad[3];
+        widen(ref, ref_rad);
+        if (diverged(sc, &plant, ref_rad, t, m)) {
+            break; /* nothing of this instant or later is recorded */
+        }
         for (int i = 0; i < 3; ++i) {
-            ref[i] = (ladrc_real_t)sim_signal_eval_memo(&sc->reference[i], t, &memo);
             angle[i] = (ladrc_real_t)meas_angle[i];
             rate[i] = (ladrc_real_t)meas_rate[i];
         }
@@ -210,7 +268,7 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
             ladrc_real_t a_est, r_est, d_est;
             ladrc_axis_get_estimate(&att.axis[i], &a_est, &r_est, &d_est);
             f_est[i] = d_est;
-            err_rad[i] = (double)ref[i] - plant.angle_rad[i];
+            err_rad[i] = ref_rad[i] - plant.angle_rad[i];
             const double e_deg = err_rad[i] * RAD2DEG;
             if (in_window(sc->error_window_s, t)) {
                 sim_stat_add(&m->error_deg[i], e_deg);
@@ -220,8 +278,11 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
             if (in_window(sc->steady_window_s, t) && fabs(e_deg) > m->band_deg[i]) {
                 m->band_deg[i] = fabs(e_deg);
             }
-            if (t >= sc->settle_after_s && t <= sc->settle_until_s && fabs(err_rad[i]) > band_rad) {
-                last_out_s[i] = t + dt;
+            if (t >= sc->settle_after_s && t <= sc->settle_until_s) {
+                out_at_last[i] = fabs(err_rad[i]) > band_rad;
+                if (out_at_last[i]) {
+                    last_out_s[i] = t + dt;
+                }
             }
         }
         for (int r = 0; r < 4; ++r) {
@@ -241,16 +302,22 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
             line_end(&line, csv);
         }
         sim_plant_step(&plant, w2_cmd, dt, sc->plant_substeps, disturbance, &cache);
-        if (!(isfinite(plant.angle_rad[0]) && isfinite(plant.angle_rad[1]) && isfinite(plant.angle_rad[2]))) {
-            m->finite = 0;
-            break;
-        }
         if (progress != NULL && progress->ticks_done != NULL && (k & 1023) == 1023) {
             *progress->ticks_done += 1024;
         }
     }
-    for (int i = 0; i < 3; ++i) { /* -1: still outside the band at the window's end */
-        m->settle_s[i] = (last_out_s[i] > sc->settle_until_s) ? -1.0 : last_out_s[i] - sc->settle_after_s;
+    if (k == n) { /* the state the last step left, at t = duration */
+        const double t = (double)n * dt;
+        sim_expr_memo_t memo;
+        sim_expr_memo_clear(&memo);
+        ladrc_real_t ref[3];
+        double ref_rad[3];
+        references(sc, t, &memo, ref);
+        widen(ref, ref_rad);
+        (void)diverged(sc, &plant, ref_rad, t, m);
+    }
+    for (int i = 0; i < 3; ++i) {
+        m->settle_s[i] = out_at_last[i] ? SIM_NOT_SETTLED : last_out_s[i] - sc->settle_after_s;
     }
     m->wall_s = wall_now_s() - start;
     if (csv != NULL && fclose(csv) != 0) {

@@ -20,7 +20,13 @@ typedef struct {
 } sim_progress_t;
 
 /* Runs one controller on an attitude scenario. csv_path NULL: no time series.
- * Returns 0, or -1 with a message in err (nothing was run). */
+ * Returns 0, or -1 with a message in err (nothing was run).
+ * Divergence: at each control instant t, before the controller acts, the
+ * plant's state is checked; if an angle, rate or rotor w^2 is not finite, or
+ * |reference - angle| on an axis exceeds the scenario's diverge_limit_deg,
+ * the run stops there with out->diverged set (still returning 0): its time
+ * series ends at the instant before, and no statistic of it is reported.
+ * The state the last step leaves at t = duration is checked the same way. */
 int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const char *csv_path,
                      const sim_progress_t *progress, sim_metrics_t *out, char *err, size_t err_len);
 

@@ -38,6 +38,7 @@
 #define DEFAULT_SEED 1u
 #define DEFAULT_TILT_MAX_DEG 40.0
 #define DEFAULT_SETTLE_BAND_DEG 0.5
+#define DEFAULT_DIVERGE_LIMIT_DEG 90.0
 
 static const char *const CONTROLLER_NAMES[SIM_CTRL_COUNT] = {"HP-MLADRC", "LP-MLADRC", "LADRC", "PID"};
 
@@ -195,6 +196,8 @@ static const key_def_t KEYS[] = {
     {SEC_METRICS, "settle_band_deg", V_REAL, SC(settle_band_deg), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0, 0, NULL},
     {SEC_METRICS, "settle_window_s", V_WINDOW, SC(settle_after_s), SC(settle_until_s), R_ANY, 0, 0, NULL, FOR_BOTH,
      0, 0, NULL},
+    {SEC_METRICS, "diverge_limit_deg", V_REAL, SC(diverge_limit_deg), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0, 0,
+     NULL},
 
     {SEC_DIFFERENTIATOR, "signal", V_SIGNAL, SC(diff_signal), 0, R_ANY, 0, 0, NULL, FOR_BOTH, 1, 0, NULL},
     {SEC_DIFFERENTIATOR, "derivative", V_SIGNAL, SC(diff_derivative), 0, R_ANY, 0, 0, NULL, FOR_BOTH, 1, 0, NULL},
@@ -833,6 +836,7 @@ static void set_defaults(sim_scenario_t *sc)
     }
 
     sc->settle_band_deg = DEFAULT_SETTLE_BAND_DEG;
+    sc->diverge_limit_deg = DEFAULT_DIVERGE_LIMIT_DEG;
     /* the metric windows default to the whole run, set once duration_s is known */
 
     sc->diff_signal.scale = 1.0;

@@ -125,6 +125,7 @@ typedef struct {
     double settle_band_deg;       /* Table 5 settling: |error| stays within this ... */
     double settle_after_s;        /* ... measured from this instant ... */
     double settle_until_s;        /* ... up to this one ([metrics] settle_window_s) */
+    double diverge_limit_deg;     /* a run diverges when |error| on an axis exceeds this */
 
     /* [differentiator] (kind = differentiator): signal r(t) with noise, and
      * its exact derivative for the error */
