@@ -55,7 +55,106 @@ static void test_every_controller_stays_finite_on_the_paper_case(void)
     fly_paper();
     for (int c = 0; c < SIM_CTRL_COUNT; ++c) {
         TEST_ASSERT_TRUE_MESSAGE(results[c].finite, sim_controller_name((sim_controller_id_t)c));
+        TEST_ASSERT_FALSE_MESSAGE(results[c].diverged, sim_controller_name((sim_controller_id_t)c));
     }
+}
+
+/* Flies text (a scenario) with one controller; the run itself must succeed. */
+static sim_metrics_t fly_text(const char *text, sim_controller_id_t ctrl)
+{
+    static sim_scenario_t sc;
+    sim_parse_error_t perr;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_scenario_parse(&sc, text, "divergence.ini", &perr), perr.message);
+    sim_metrics_t m;
+    char err[256] = "";
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_run_attitude(&sc, ctrl, NULL, NULL, &m, err, sizeof err), err);
+    return m;
+}
+
+/* Samples of the error window (0, duration] a run of control period DT_S
+ * holds when it stops at t_stop: the instants dt .. t_stop - dt. */
+#define DT_S 1e-3
+/* How far past the limit a slow divergence may be when caught: its envelope
+ * grows by a few % per oscillation period, far less than 10 deg in one tick. */
+#define CAUGHT_AT_LIMIT_DEG 10.0
+
+static void test_a_slowly_growing_oscillation_diverges_at_the_limit_while_finite(void)
+{
+    /* LADRC with a 55 ms motor lag it does not model: an oscillation whose
+     * envelope grows about 1.3 times per second from 5 deg (measured: 5.6 deg
+     * over 1-2 s, 55 deg over 10-11 s), finite throughout */
+    const sim_metrics_t m = fly_text("[run]\nduration_s = 15\ncontrollers = LADRC\n[reference]\nroll = 5\n"
+                                     "[rotors]\nmotor_tau_s = 0.055\n",
+                                     SIM_CTRL_LADRC);
+    char msg[160];
+    snprintf(msg, sizeof msg, "diverged %d at %.4f s on axis %d, |error| %.4f deg, finite %d", m.diverged,
+             m.diverged_at_s, m.diverged_axis, m.diverged_error_deg, m.finite);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_TRUE_MESSAGE(m.diverged, msg);
+    TEST_ASSERT_TRUE_MESSAGE(m.finite, msg);
+    /* slow: well after the first seconds, well before the end of the run */
+    TEST_ASSERT_TRUE_MESSAGE(m.diverged_at_s > 5.0 && m.diverged_at_s < 15.0, msg);
+    TEST_ASSERT_TRUE_MESSAGE(m.diverged_axis >= 0 && m.diverged_axis < 3, msg);
+    /* caught at the first instant beyond 90 deg (CAUGHT_AT_LIMIT_DEG) */
+    TEST_ASSERT_TRUE_MESSAGE(m.diverged_error_deg > 90.0 && m.diverged_error_deg < 90.0 + CAUGHT_AT_LIMIT_DEG, msg);
+    /* nothing from the instant of divergence on is in the statistics */
+    const long ticks_before = (long)floor(m.diverged_at_s / DT_S + 0.5);
+    for (int i = 0; i < 3; ++i) {
+        TEST_ASSERT_EQUAL_INT_MESSAGE((int)(ticks_before - 1), (int)m.error_deg[i].n, msg);
+        TEST_ASSERT_TRUE_MESSAGE(m.max_error_deg[i] <= 90.0, msg);
+    }
+}
+
+static void test_a_non_finite_state_diverges_at_the_first_instant_it_is_seen(void)
+{
+    /* an infinite disturbance from 1.5 s: the plant step from 1.5 to 1.501 s
+     * integrates it, and the controller never sees the result */
+    const sim_metrics_t m = fly_text("[run]\nduration_s = 3\ncontrollers = PID\n[disturbance]\n"
+                                     "roll = 1.5 .. 3 : 1e300 * 1e300\n",
+                                     SIM_CTRL_PID);
+    TEST_ASSERT_TRUE(m.diverged);
+    TEST_ASSERT_FALSE(m.finite);
+    TEST_ASSERT_FLOAT_WITHIN(0.1 * DT_S, 1.501, m.diverged_at_s); /* a tenth of a tick: the clock's rounding */
+    TEST_ASSERT_EQUAL_INT(0, m.diverged_axis);
+    TEST_ASSERT_TRUE(isnan(m.diverged_error_deg));
+    TEST_ASSERT_EQUAL_INT(0, (int)m.faults); /* the controller got only finite samples */
+    TEST_ASSERT_EQUAL_INT(1501, (int)m.rotor_w2[0].n); /* the instants 0 .. 1.5 s */
+}
+
+static void test_the_limit_is_the_scenarios(void)
+{
+    /* a 10 deg step: within the default 90 deg, beyond a 5 deg limit at t = 0 */
+    const char *step = "[run]\nduration_s = 1\ncontrollers = LADRC\n[reference]\nroll = 10\n";
+    char text[256];
+    const sim_metrics_t healthy = fly_text(step, SIM_CTRL_LADRC);
+    TEST_ASSERT_FALSE(healthy.diverged);
+    TEST_ASSERT_TRUE(isnan(healthy.diverged_at_s));
+    snprintf(text, sizeof text, "%s[metrics]\ndiverge_limit_deg = 5\n", step);
+    const sim_metrics_t m = fly_text(text, SIM_CTRL_LADRC);
+    TEST_ASSERT_TRUE(m.diverged);
+    TEST_ASSERT_TRUE(m.finite);
+    TEST_ASSERT_EQUAL_FLOAT(0.0f, (float)m.diverged_at_s);
+    TEST_ASSERT_EQUAL_INT(0, m.diverged_axis);
+    TEST_ASSERT_FLOAT_WITHIN(1e-4, 10.0, m.diverged_error_deg); /* the step in deg, through float */
+}
+
+static void test_a_limit_cycle_never_settles_and_a_step_response_does(void)
+{
+    /* PID with 1000 N m/rad and no damping: torque-limited oscillation of
+     * about +-45 deg (measured) to the end, within the 90 deg limit. It used
+     * to print the settle window's length as its settling time. */
+    const sim_metrics_t cycle = fly_text("[run]\nduration_s = 2\ncontrollers = PID\n[reference]\nroll = 10\n"
+                                         "[controller PID]\npid_kp = 1000\npid_kd = 0\n",
+                                         SIM_CTRL_PID);
+    TEST_ASSERT_FALSE(cycle.diverged);
+    for (int i = 0; i < 3; ++i) {
+        TEST_ASSERT_EQUAL_FLOAT((float)SIM_NOT_SETTLED, (float)cycle.settle_s[i]);
+    }
+    const sim_metrics_t step = fly_text("[run]\nduration_s = 2\ncontrollers = LADRC\n[reference]\nroll = 10\n",
+                                        SIM_CTRL_LADRC);
+    /* LADRC's default bandwidths settle a 10 deg step into 0.5 deg in 0.156 s
+     * (measured); 0.05 to 1 s says it settled, and when */
+    TEST_ASSERT_TRUE(step.settle_s[0] > 0.05 && step.settle_s[0] < 1.0);
 }
 
 static void test_rotor_statistics_match_the_papers_table_7(void)
@@ -147,6 +246,10 @@ int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_every_controller_stays_finite_on_the_paper_case);
+    RUN_TEST(test_a_slowly_growing_oscillation_diverges_at_the_limit_while_finite);
+    RUN_TEST(test_a_non_finite_state_diverges_at_the_first_instant_it_is_seen);
+    RUN_TEST(test_the_limit_is_the_scenarios);
+    RUN_TEST(test_a_limit_cycle_never_settles_and_a_step_response_does);
     RUN_TEST(test_rotor_statistics_match_the_papers_table_7);
     RUN_TEST(test_modified_variants_beat_plain_ladrc_from_12_to_25_s);
     RUN_TEST(test_levant_differentiates_the_noisy_sine_better_than_the_td);
