@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # End-to-end checks of the ladrc_sil command: results independent of --jobs,
 # malformed scenarios and runs outside the limits rejected with
-# file:line:column and nothing written.
+# file:line:column and nothing written, diverged runs reported with exit 3.
 # Usage: cli_test.sh LADRC_SIL SCENARIO_DIR
 set -uo pipefail
 sil=$1
@@ -78,5 +78,49 @@ check listed_controllers_fly_at_20_hz $?
 "$sil" "$scenarios/paper.ini" --controllers PID,PID --out "$work/twice" --quiet > /dev/null 2>&1
 [ $? -eq 2 ] && [ ! -e "$work/twice" ]; check controller_listed_twice_exits_2 $?
 
-echo "$(( 21 - failures )) passed, $failures failed"
+# Divergence: exit 3 after writing every output; stderr names scenario,
+# controller, axis, time and cause; metrics.csv says "diverged", never numbers.
+printf '[run]\nduration_s = 5\ncontrollers = LADRC PID\n[reference]\nroll = 10\n[rotors]\nmotor_tau_s = 0.3\n' \
+    > "$work/lag.ini"
+"$sil" "$work/lag.ini" --out "$work/lag_out" --quiet > "$work/lag.txt" 2> "$work/lag.err"
+[ $? -eq 3 ]; check diverged_run_exits_3 $?
+grep -q "^ladrc_sil: lag (.*lag.ini): controller PID diverged at t = [0-9.]* s on roll: |tracking error| 9[0-9.]* deg exceeds diverge_limit_deg = 90$" \
+    "$work/lag.err"; check diverged_run_named_on_stderr $?
+[ -s "$work/lag_out/lag/PID.csv" ] && [ -s "$work/lag_out/lag/LADRC.csv" ] && grep -q "^PID: DIVERGED: " "$work/lag.txt"
+check diverged_run_outputs_written $?
+# every statistic of PID: the token; then its time, which its time series stops short of
+awk -F, '$2 == "PID" && $3 != "-" && $6 != "diverged" { bad = 1 } $2 == "PID" && $3 != "-" { n++ }
+    END { exit (bad || n != 30) }' "$work/lag_out/lag/metrics.csv"; check diverged_statistics_are_tokens $?
+at=$(awk -F, '$2 == "PID" && $4 == "diverged_at_s" && $5 == "roll" { print $6 }' "$work/lag_out/lag/metrics.csv")
+last=$(tail -n 1 "$work/lag_out/lag/PID.csv" | cut -d, -f1)
+[ -n "$at" ] && awk -v a="$at" -v l="$last" 'BEGIN { exit !(a > 0 && l < a && a - l < 0.0015) }'
+check diverged_series_ends_at_divergence $?
+
+# A slow, finite growth (LADRC not modelling a 55 ms motor lag: about x1.3 per
+# second from 5 deg) is caught at the limit, not at overflow.
+printf '[run]\nduration_s = 15\ncontrollers = LADRC\n[reference]\nroll = 5\n[rotors]\nmotor_tau_s = 0.055\n' \
+    > "$work/slow.ini"
+"$sil" "$work/slow.ini" --out "$work/slow_out" --no-csv --quiet > /dev/null 2> "$work/slow.err"
+rc=$?
+[ "$rc" -eq 3 ] && grep -q "controller LADRC diverged at t = 1[0-4]\.[0-9]* s on .* exceeds diverge_limit_deg" "$work/slow.err" &&
+  grep -q "^slow,LADRC,-,finite,-,1$" "$work/slow_out/slow/metrics.csv" &&
+  grep -q "^slow,LADRC,-,diverged,-,1$" "$work/slow_out/slow/metrics.csv"
+check slow_finite_growth_caught_at_limit $?
+
+# A non-finite state; and a healthy scenario beside a diverging one still gets its outputs.
+printf '[run]\nduration_s = 3\ncontrollers = PID\n[disturbance]\nroll = 1.5 .. 3 : 1e300 * 1e300\n' > "$work/inf.ini"
+"$sil" "$work/inf.ini" "$work/slow_loop.ini" --out "$work/inf_out" --no-csv --quiet > /dev/null 2> "$work/inf.err"
+rc=$?
+[ "$rc" -eq 3 ] && grep -q "controller PID diverged at t = 1.5010 s: the state turned non-finite (roll angle or rate)" \
+    "$work/inf.err" && grep -q "^inf,PID,-,finite,-,0$" "$work/inf_out/inf/metrics.csv" &&
+  grep -q "^slow_loop,PID,-,diverged,-,0$" "$work/inf_out/slow_loop/metrics.csv"
+check non_finite_state_diverges $?
+
+# Healthy runs exit 0 and say so.
+"$sil" "$work/slow_loop.ini" --out "$work/ok_out" --quiet > /dev/null 2> "$work/ok.err"
+[ $? -eq 0 ] && ! grep -q diverged "$work/ok.err" && grep -q "^slow_loop,PID,-,diverged_at_s,-,-$" "$work/ok_out/slow_loop/metrics.csv"
+check healthy_run_exits_0 $?
+refused diverge_limit_zero_exits_2 2:21: '[metrics]\ndiverge_limit_deg = 0\n'
+
+echo "$(( 28 - failures )) passed, $failures failed"
 [ "$failures" -eq 0 ]
