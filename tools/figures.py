@@ -17,7 +17,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from sim_output import AXES, CONTROLLERS, load_metrics  # noqa: E402
+from sim_output import AXES, CONTROLLERS, divergence_text, is_number, load_metrics  # noqa: E402
 
 import matplotlib
 
@@ -59,8 +59,20 @@ def load_runs(scen_dir):
 
 
 
+# Legend labels: a controller's name, with where its run diverged (its series ends there).
+LABELS = {}
+
+
+def note_divergence(metrics):
+    LABELS.clear()
+    for c in CONTROLLERS:
+        text = divergence_text(metrics or {}, c)
+        if text:
+            LABELS[c] = "%s (%s)" % (c, text)
+
+
 def style(c, scale=1.0):
-    return {"color": COLOURS[c], "lw": WIDTHS[c] * scale, "zorder": ZORDER[c], "label": c}
+    return {"color": COLOURS[c], "lw": WIDTHS[c] * scale, "zorder": ZORDER[c], "label": LABELS.get(c, c)}
 
 
 def clip_ylim(ax, values, what):
@@ -193,7 +205,8 @@ def radar_scores(metrics):
     """Table 5 scores per controller, normalised so 1 = best of the controllers, larger = better.
 
     Each quantity q (max error, settling time, steady band) on each axis: score = min over
-    controllers of q / this controller's q; a run that never settles (settling -1) scores 0.
+    controllers of q / this controller's q; a run that never settles or diverged (a word in
+    metrics.csv, not a number) scores 0.
     A spoke on which every controller has the same value tells nothing and is left out; its
     name is returned in the third value.
     """
@@ -204,14 +217,16 @@ def radar_scores(metrics):
         for axis in AXES:
             vals = {c: metrics[(c, "5", q, axis)] for c in present}
             if len(set(vals.values())) == 1:
-                ties.append("%s %s (%g for all)" % (label, axis, next(iter(vals.values()))))
+                v = next(iter(vals.values()))
+                ties.append("%s %s (%s for all)" % (label, axis, ("%g" % v) if is_number(v) else v))
                 continue
-            valid = [v for v in vals.values() if v >= 0 and math.isfinite(v)]
+            valid = [v for v in vals.values() if is_number(v) and v >= 0 and math.isfinite(v)]
             floor = 1e-6
             best = max(min(valid), floor) if valid else floor
             for c in present:
                 v = vals[c]
-                scores[c].append(0.0 if v < 0 or not math.isfinite(v) else min(1.0, best / max(v, floor)))
+                ok = is_number(v) and v >= 0 and math.isfinite(v)
+                scores[c].append(min(1.0, best / max(v, floor)) if ok else 0.0)
             spokes.append("%s\n%s" % (label, axis))
     return spokes, {c: s for c, s in scores.items() if c in present}, ties
 
@@ -239,7 +254,7 @@ def fig_radar(metrics, fig_dir, name, title):
     ax.legend(loc="upper left", bbox_to_anchor=(1.12, 1.05))
     note = ("score = (smallest value among the controllers) / (this controller's value): 1 = best, "
             "larger = better;\nmax error and steady band in deg, settling time in s (Table 5 of the report); "
-            "a run that never settles scores 0.")
+            "a run that never settles or diverged scores 0.")
     if ties:
         note += "\nLeft out, equal for every controller: " + "; ".join(ties) + "."
     fig.text(0.02, 0.02, note, fontsize=9)
@@ -356,6 +371,7 @@ def main(argv):
 
     paper_dir = os.path.join(a.out_dir, a.paper)
     runs = load_runs(paper_dir)
+    note_divergence(load_metrics(paper_dir))
     if runs:
         plot_per_axis(runs, "angle_%s_deg", "Fig. 6: attitude tracking, paper case", "deg", a.fig_dir,
                       "fig06_tracking.png", True)
@@ -378,6 +394,7 @@ def main(argv):
         missing.append(a.paper)
 
     noisy = load_runs(os.path.join(a.out_dir, a.noisy))
+    note_divergence(load_metrics(os.path.join(a.out_dir, a.noisy)))
     if noisy:
         plot_per_axis(noisy, "angle_%s_deg", "Fig. 10: attitude tracking with angle noise", "deg", a.fig_dir,
                       "fig10_noisy_tracking.png", True)

@@ -68,5 +68,22 @@ ours=$(awk -F, '$2 == "LADRC" && $4 == "error_rms_deg" && $5 == "roll" {
 [[ -n $ours ]] && grep -qF "7.6816 / $ours (" "$r"; check report_has_our_table4_value $?
 ! grep -q "No output of scenario" "$r"; check report_complete $?
 
+# A paper case whose PID run diverges (a 60 ms motor lag no controller models): the
+# simulator exits 3, and the report and figures still come out, with words
+# ("diverged") where the statistics would be and the divergence in Run health.
+sed 's/^ideal = yes.*/ideal = yes\nmotor_tau_s = 0.06/' "$src/tests/data/short_paper.ini" > "$work/short_div.ini"
+"$sil" "$work/short_div.ini" --out "$work/out" --quiet > /dev/null 2>&1
+[[ $? -eq 3 ]]; check diverged_simulator_exits_3 $?
+div_names=(--paper short_div --noisy short_paper_noisy --known short_paper_known --diff short_differentiator)
+"$py" "$src/tools/figures.py" "$work/out" "$work/fig_div" "${div_names[@]}" > /dev/null
+[[ $? -eq 0 && -f $work/fig_div/fig08_radar.png && -f $work/fig_div/fig06_tracking.png ]]
+check figures_py_draws_diverged_runs $?
+"$py" "$src/tools/report.py" "$work/out" "$work/report_div.md" "${div_names[@]}" --noisy-known short_paper_noisy_known \
+  > /dev/null
+check report_py_reads_diverged_runs $?
+grep -q "^| PID | roll | 0.0466 / diverged (—) | 1.4897 / diverged (—) |" "$work/report_div.md" &&
+  grep -q "^Run health (short_div): .*PID: DIVERGED at [0-9.]* s on [a-z]* (|error| 9[0-9.]* deg)" "$work/report_div.md"
+check report_says_diverged $?
+
 echo "$failures failed"
 [[ $failures -eq 0 ]]

@@ -16,7 +16,8 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from sim_output import AXES, CONTROLLERS, load_metrics  # noqa: E402
+from sim_output import (AXES, CONTROLLERS, NOT_SETTLED, divergence, divergence_text, is_number,  # noqa: E402
+                        load_metrics)
 
 # Dong, Y. et al., "Decoupling-Free Attitude Control of UAV Considering High-Frequency
 # Disturbances: A Modified Linear Active Disturbance Rejection Method", Actuators 2025,
@@ -66,6 +67,9 @@ def table_headings(path):
 
 
 def num(v, digits=4):
+    """A value of metrics.csv as text: the number, "diverged", "not settled", or — for none."""
+    if isinstance(v, str):
+        return "not settled" if v == NOT_SETTLED else ("—" if v == "-" else v)
     if v is None or (isinstance(v, float) and math.isnan(v)):
         return "—"
     if abs(v) >= 1e4:
@@ -77,7 +81,7 @@ def num(v, digits=4):
 
 def rel(ours, paper):
     """Relative difference (ours - paper) / |paper| in percent, with the ratio when it is far from 1."""
-    if ours is None or paper == 0 or math.isnan(ours):
+    if not is_number(ours) or not isinstance(paper, (int, float)) or paper == 0 or math.isnan(ours):
         return "—"
     text = "%+.0f %%" % (100.0 * (ours - paper) / abs(paper))
     ratio = ours / paper
@@ -89,7 +93,7 @@ def rel(ours, paper):
 
 
 def absdiff(ours, paper, digits=4):
-    if ours is None or math.isnan(ours):
+    if not is_number(ours) or math.isnan(ours):
         return "—"
     d = ours - paper
     return ("+" if d >= 0 else "") + num(d, digits)
@@ -126,7 +130,7 @@ def section_t3(rep, m, headings, scen):
     rep.table(["shaper", "error mean (ours)", "error std (ours)", "error RMS (paper)", "error RMS (ours)",
                "RMS: ours vs paper"], rows)
     td, lv = m.get(("TD", "3", "derivative_error_rms", "-")), m.get(("Levant", "3", "derivative_error_rms", "-"))
-    if td and lv:
+    if is_number(td) and is_number(lv) and td and lv:
         rep.add("TD / Levant RMS ratio: paper %.2f, ours %.2f." % (PAPER_T3_RMS["TD"] / PAPER_T3_RMS["Levant"],
                                                                    td / lv), "")
 
@@ -149,7 +153,7 @@ def section_t4(rep, m, headings, scen, with_paper, clean=None):
                 row = [c, axis, num(mean), num(std), num(rms)]
                 if clean:
                     v = clean.get((c, "4", "error_rms_deg", axis))
-                    row += [num(v), rel(rms, v) if v else "—"]
+                    row += [num(v), rel(rms, v)]
                 rows.append(row)
     if with_paper:
         rep.table(["controller", "axis", "mean, deg: paper / ours (Δ)", "std, deg: paper / ours (Δ)",
@@ -173,8 +177,8 @@ def section_t5(rep, m, headings, scen, with_paper):
                 row.append(num(PAPER_T5[c][qi]))
             for axis in AXES:
                 v = m.get((c, "5", q, axis))
-                text = "never" if q == "settling_s" and v is not None and v < 0 else num(v)
-                if with_paper and text != "never":
+                text = num(v)
+                if with_paper and is_number(v):
                     text += " (%s)" % rel(v, PAPER_T5[c][qi])
                 row.append(text)
             rows.append(row)
@@ -240,14 +244,21 @@ def section_hp_modes(rep, cases):
 
 
 def health(rep, m, scen):
+    """One line per scenario: the runs that diverged (their statistics read "diverged" in the tables)
+    and those with controller faults."""
     bad = []
     for c in CONTROLLERS:
         finite = m.get((c, "-", "finite", "-"))
         faults = m.get((c, "-", "fault_ticks", "-"))
-        if finite is not None and (finite != 1 or faults):
-            bad.append("%s: %s, %d fault ticks" % (c, "finite" if finite == 1 else "DIVERGED", faults or 0))
+        if finite is None:
+            continue
+        if divergence(m, c) is not None:
+            bad.append("%s: %s, the run stopped there; %d fault ticks"
+                       % (c, divergence_text(m, c).replace("diverged", "DIVERGED", 1), faults or 0))
+        elif faults:
+            bad.append("%s: %d fault ticks" % (c, faults))
     rep.add("Run health (%s): %s" % (scen, "; ".join(bad) if bad else
-                                     "every run stayed finite with no controller fault."), "")
+                                     "no run diverged and no controller fault."), "")
 
 
 def main(argv):
