@@ -38,6 +38,10 @@ typedef double complex cplx;
 /* Divergence of a converged run: beyond a radian the small-angle loop is
  * meaningless. */
 #define DIVERGED_RAD 1.0
+#define WARMUP_TICKS 4
+/* Simulated check: an angle below this share of its peak has decayed to
+ * the float controller's rounding. */
+#define SIM_DECAYED 1e-6
 
 const char *ladrc_margins_status_str(ladrc_margins_status_t status)
 {
@@ -442,7 +446,9 @@ ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, cons
     discretise(&req->plant, &dp);
     psim_t ps;
     psim_reset(&ps);
-    const long n_conv = adaptive ? (long)(req->converge_s / dt + 0.5) : 0;
+    /* A few ticks at rest first: a PID differences its angle only from its
+     * second sample on, and the impulse must not land on the first. */
+    const long n_conv = adaptive ? (long)(req->converge_s / dt + 0.5) + WARMUP_TICKS : WARMUP_TICKS;
     ws->linearised_nominal = 0;
     if (!run_closed(ctl, &s[0], &ps, &dp, tone_w, tone_a, dt, 0, n_conv)) {
         /* No converged state on this plant: linearise on the controller's
@@ -874,21 +880,28 @@ ladrc_margins_status_t ladrc_margins_simulate(ladrc_margins_workspace_t *ws, con
     psim_reset(&ps);
     /* A 10 ms pulse of 1 rad/s^2: a small step of the rate, all frequencies excited. */
     const long pulse = (long)(0.01 / plant->dt_s + 0.5) + 1;
-    double early = 0.0, late = 0.0;
+    double third = 0.0, last = 0.0, peak = 0.0;
     for (long k = 0; k < n_ticks; ++k) {
         double y, r;
         psim_measure(&ps, &dp, &y, &r);
         const double u = ctl_step(ctl, &s[0], y, r);
         psim_step(&ps, &dp, u, k < pulse ? 1.0 : 0.0);
         const double a = fabs(ps.x[0]);
-        if (!isfinite(a)) {
-            late = INFINITY;
+        if (!(a < DIVERGED_RAD)) {
+            /* From a 1e-5 rad pulse response: diverged (beyond, the torque
+             * limits would turn the growth into a bounded limit cycle). */
+            last = INFINITY;
             break;
         }
-        if (k >= n_ticks / 8 && k < n_ticks / 4) early = fmax(early, a);
-        if (k >= n_ticks - n_ticks / 4) late = fmax(late, a);
+        peak = fmax(peak, a);
+        if (k >= n_ticks / 2 && k < n_ticks - n_ticks / 4) third = fmax(third, a);
+        if (k >= n_ticks - n_ticks / 4) last = fmax(last, a);
     }
-    *growth = early > 0.0 ? late / early : (late > 0.0 ? INFINITY : 0.0);
+    /* Consecutive quarters: in the end the slowest mode dominates, growing
+     * (> 1) or decaying (< 1); a response decayed to the float controller's
+     * rounding (1e-7 of its peak) counts as decayed whatever its ratio. */
+    const double floor_level = SIM_DECAYED * peak;
+    *growth = (last <= floor_level) ? 0.0 : last / fmax(third, floor_level);
     return LADRC_MARGINS_OK;
 }
 

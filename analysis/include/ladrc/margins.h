@@ -202,8 +202,9 @@ void ladrc_margins_of_loop(ladrc_margins_loop_fn fn, void *ctx, double dt_s, lad
 /**
  * Independent check: the same controller code and exact discrete plant flown
  * in closed loop for n_ticks after an acceleration-disturbance pulse.
- * *growth = max |angle| over the last quarter / max |angle| over the second
- * eighth (after the pulse); a stable loop's error decays (growth < 1).
+ * *growth = max |angle| over the last quarter / max |angle| over the
+ * quarter before (0 once the angle has decayed below 1e-6 of its peak, the
+ * float controller's rounding); a stable loop's error decays (growth < 1).
  * Linear controllers only need this; adaptive ones are flown as they are.
  */
 ladrc_margins_status_t ladrc_margins_simulate(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
