@@ -924,7 +924,7 @@ static ladrc_axis_config_t *tuner_axis(tuner_t *t)
 /* Sets the candidate's gains from the search parameters (w, shape index). */
 static void set_gains(tuner_t *t, double w, int shape, double j_model)
 {
-    static const double ratios[] = {3.0, 4.0, 5.0, 6.0, 8.0, 10.0};
+    static const double ratios[] = {3.0, 5.0, 8.0};
     static const double integral[] = {3.0, 5.0, 10.0};
     ladrc_axis_config_t *a = tuner_axis(t);
     if (a->variant == LADRC_VARIANT_PID) {
@@ -939,7 +939,7 @@ static void set_gains(tuner_t *t, double w, int shape, double j_model)
     }
 }
 
-static int n_shapes(const ladrc_axis_config_t *a) { return a->variant == LADRC_VARIANT_PID ? 3 : 6; }
+static int n_shapes(void) { return 3; }
 
 /* Margins of the candidate; 1 when it meets the targets. */
 static int evaluate(tuner_t *t, ladrc_margins_result_t *res)
@@ -989,11 +989,11 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
     double best_w = NAN;
     int best_shape = -1, best_met = 0;
     double fallback_score = -INFINITY;
-    for (int shape = 0; shape < n_shapes(a); ++shape) {
-        /* Coarse scan (factor 1.25) for the last w meeting the targets, then
-         * bisection between it and the next. */
+    for (int shape = 0; shape < n_shapes(); ++shape) {
+        /* Coarse scan (factor 1.5) for the last w meeting the targets, then
+         * bisection between it and the next to 1 %. */
         double ok_w = NAN, bad_w = NAN;
-        for (double w = w_lo; w <= w_hi; w *= 1.25) {
+        for (double w = w_lo; w <= w_hi; w *= 1.5) {
             set_gains(&t, w, shape, j_model);
             const int met = evaluate(&t, res);
             if (met) {

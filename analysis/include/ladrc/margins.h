@@ -227,7 +227,7 @@ typedef struct {
 /**
  * Tunes ctl's axis (its config is copied into *tuned, the axis_index-th axis
  * for an attitude, and the gains written there) for req->plant:
- * LADRC family: wo = r wc, r in {3, 4, 5, 6, 8, 10}; for each r the largest
+ * LADRC family: wo = r wc, r in {3, 5, 8}; for each r the largest
  * wc whose loop is stable with PM >= pm_min_deg and GM >= gm_min_db;
  * PID: kp = J w^2, kd = 2 J w, ki = kp w / m, m in {3, 5, 10}, derivative
  * filter 1 / (10 w) (none if below dt); the largest such w for each m.
