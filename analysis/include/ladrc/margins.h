@@ -1,0 +1,248 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/**
+ * @file margins.h
+ * @brief Host-side stability analysis of one configured attitude axis: the
+ *        sampled loop as it really runs (the library's own controller code on
+ *        the exact ZOH discretisation of the airframe), its gain, phase and
+ *        delay margins, peak sensitivity, a Nyquist stability verdict, the
+ *        largest stable motor lag and delay, and a margins-based tuning.
+ *
+ * Not part of the firmware library (target ladrc_analysis, host builds only):
+ * double precision inside, no heap (everything lives in a caller-owned
+ * workspace), no stdio. Method, equations and criterion: docs/margins.md.
+ *
+ * Plant (one axis, true inertia J = inertia_kg_m2 * inertia_factor):
+ *     tau_a' = (u - tau_a) / motor_tau_s        (tau_a = u when motor_tau_s = 0)
+ *     omega' = (tau_a - drag_Nm_s * omega) / J + d,   theta' = omega
+ * u held over each tick (zero-order hold), d an angular acceleration
+ * (rad/s^2); the controller measures theta and omega delay_ticks ticks late.
+ *
+ * Controller: measured, not re-derived. With the reference at 0 the map from
+ * measured angle (and rate) to torque is linear (LADRC, PID) or linearised
+ * about a converged run under a tone disturbance (LP-/HP-MLADRC: the
+ * difference between a perturbed and an unperturbed copy of the controller,
+ * averaged over start instants). The impulse responses h_k tend to a constant
+ * c (the controller's integrator); C(z) = sum_k (h_k - c) z^-k + c / (1 - z^-1).
+ * Loop broken at the plant input: L = -(C_angle P_angle + C_rate P_rate).
+ */
+#ifndef LADRC_MARGINS_H
+#define LADRC_MARGINS_H
+
+#include "ladrc/attitude.h"
+#include "ladrc/axis.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Longest controller impulse response (ticks); also the FFT length. */
+#define LADRC_MARGINS_MAX_TAPS 16384
+/** Points of the output frequency grid (plots, CSV). */
+#define LADRC_MARGINS_MAX_OUT 400
+/** Largest measurement delay analysed (ticks); the simulator's sensor limit. */
+#define LADRC_MARGINS_MAX_DELAY 64
+/** Crossovers of each kind kept in a result. */
+#define LADRC_MARGINS_MAX_CROSS 8
+
+typedef enum {
+    LADRC_MARGINS_OK = 0,
+    LADRC_MARGINS_ERR_NULL,            /**< a required pointer is NULL */
+    LADRC_MARGINS_ERR_DT_S,            /**< plant dt_s not > 0 or not the controller's */
+    LADRC_MARGINS_ERR_INERTIA,         /**< inertia_kg_m2 or inertia_factor not finite and > 0 */
+    LADRC_MARGINS_ERR_DRAG,            /**< drag_Nm_s not finite and >= 0 */
+    LADRC_MARGINS_ERR_MOTOR_TAU,       /**< motor_tau_s not finite and >= 0 */
+    LADRC_MARGINS_ERR_DELAY,           /**< delay_ticks outside 0..LADRC_MARGINS_MAX_DELAY */
+    LADRC_MARGINS_ERR_CONTROLLER,      /**< the controller config is refused by its init */
+    LADRC_MARGINS_ERR_REQUEST,         /**< a request field (tone, response length, grid) is invalid */
+    LADRC_MARGINS_ERR_NOT_SETTLED,     /**< the controller's response did not settle to a constant
+                                            within response_s (an unstable or undamped controller) */
+    LADRC_MARGINS_ERR_NOT_MEASURED,    /**< the workspace holds no measured controller */
+    LADRC_MARGINS_ERR_TARGETS_NOT_MET  /**< tuning: no setting meets the targets (best one reported) */
+} ladrc_margins_status_t;
+
+/** "LADRC_MARGINS_ERR_...: explanation"; never NULL. */
+const char *ladrc_margins_status_str(ladrc_margins_status_t status);
+
+/** The airframe as it really is. */
+typedef struct {
+    double dt_s;             /**< control period (s), the controller's dt_s */
+    double inertia_kg_m2;    /**< modelled axis inertia J (kg m^2) */
+    double inertia_factor;   /**< true J / modelled J (1: exact) */
+    double drag_Nm_s;        /**< rotational drag kt (N m s), >= 0 */
+    double motor_tau_s;      /**< first-order lag of the torque (s), 0 = none */
+    int delay_ticks;         /**< measurement delay (ticks), 0..LADRC_MARGINS_MAX_DELAY */
+} ladrc_margins_plant_t;
+
+/** The controller analysed: one axis of an attitude controller (what the
+ *  simulator and firmware fly: the coupling feed's drag term included), or a
+ *  bare axis. Exactly one of attitude and axis is non-NULL. */
+typedef struct {
+    const ladrc_attitude_config_t *attitude; /**< with axis_index */
+    int axis_index;                          /**< LADRC_ROLL, LADRC_PITCH or LADRC_YAW */
+    const ladrc_axis_config_t *axis;         /**< a bare axis */
+    int use_rate;                            /**< the controller gets the measured rate */
+} ladrc_margins_controller_t;
+
+/** How to measure. ladrc_margins_request_default fills every field. */
+typedef struct {
+    ladrc_margins_plant_t plant;
+    double response_s;       /**< length of the impulse responses (s); default 4 */
+    double tone_rad_s;       /**< adaptive variants: disturbance tone they converge on;
+                                  0: the axis's hp_freq_rad_s[0] (default) */
+    double tone_rad_s2;      /**< its amplitude (rad/s^2); default 20 */
+    double converge_s;       /**< adaptive variants: closed-loop run before the
+                                  linearisation (s); default 10 */
+    int n_starts;            /**< adaptive variants: start instants averaged over a
+                                  tone period; default 4 */
+    double out_min_rad_s;    /**< output grid: lowest frequency (rad/s); default 0.1 */
+    int n_out;               /**< output grid points, 2..LADRC_MARGINS_MAX_OUT; default 200 */
+} ladrc_margins_request_t;
+
+/** Margins and verdict of one loop. Margins that do not exist are +INFINITY
+ *  (no phase crossover: gain margin; no gain crossover: phase margin, delay
+ *  margin), their frequencies NaN. */
+typedef struct {
+    int stable;              /**< 1: every closed-loop pole inside the unit circle (Nyquist) */
+    int encirclements;       /**< closed-loop poles outside the unit circle (Nyquist count) */
+    double gm_db;            /**< gain margin (dB): smallest over phase crossovers with |L| < 1 */
+    double gm_rad_s;         /**< its frequency */
+    double gm_low_db;        /**< lower gain margin (dB, <= 0): gain reduction the loop
+                                  tolerates (phase crossovers with |L| > 1); -INFINITY if none */
+    double pm_deg;           /**< phase margin (deg): smallest over gain crossovers */
+    double wc_rad_s;         /**< its crossover frequency */
+    double dm_s;             /**< delay margin (s): smallest PM / w over gain crossovers; 0 if
+                                  a crossover has PM <= 0 */
+    double dm_ticks;         /**< the same in control periods */
+    double ms;               /**< peak sensitivity max |1 / (1 + L)| */
+    double ms_db;            /**< the same in dB */
+    double dist_peak_rad;    /**< peak |angle error / acceleration disturbance| (rad per rad/s^2) */
+    double dist_peak_rad_s;  /**< its frequency */
+    double tail_residue;     /**< largest |h_k - c| / max |h_k| over the last eighth of the
+                                  responses (how well they settled) */
+    int linearised_nominal;  /**< adaptive: the run on the requested plant diverged, so the
+                                  controller was linearised on the plant without lag and delay */
+    int n_out;               /**< output grid */
+    double w_rad_s[LADRC_MARGINS_MAX_OUT];
+    double l_re[LADRC_MARGINS_MAX_OUT], l_im[LADRC_MARGINS_MAX_OUT];   /**< L(e^jwT) */
+    double s_re[LADRC_MARGINS_MAX_OUT], s_im[LADRC_MARGINS_MAX_OUT];   /**< 1 / (1 + L) */
+    double de_re[LADRC_MARGINS_MAX_OUT], de_im[LADRC_MARGINS_MAX_OUT]; /**< angle error per
+                                  acceleration disturbance at the plant input (rad per rad/s^2) */
+} ladrc_margins_result_t;
+
+/** The measured controller and scratch space; large (about 1 MB): give it
+ *  static storage. Opaque: read it through the functions below. */
+typedef struct {
+    int measured;
+    int has_rate;
+    double dt_s;
+    int n_taps;
+    double tail[2];                          /**< c0 of the angle and rate responses' tails */
+    double ramp[2];                          /**< c1: h_k -> c0 + c1 k */
+    double tail_residue;
+    int linearised_nominal;
+    double h[2][LADRC_MARGINS_MAX_TAPS];     /**< angle (N m/rad), rate (N m s/rad) */
+    double grid_re[2][LADRC_MARGINS_MAX_TAPS / 2 + 1]; /**< C on w_m = 2 pi m / MAX_TAPS */
+    double grid_im[2][LADRC_MARGINS_MAX_TAPS / 2 + 1];
+    double fft_re[LADRC_MARGINS_MAX_TAPS], fft_im[LADRC_MARGINS_MAX_TAPS];
+    union {
+        ladrc_axis_t axis;
+        ladrc_attitude_t attitude;
+    } copy[4];                                /**< base, angle-, rate-perturbed, saved */
+    ladrc_margins_result_t scratch;           /**< the tuning's candidates */
+} ladrc_margins_workspace_t;
+
+/** Defaults for the given plant (see the fields). */
+void ladrc_margins_request_default(ladrc_margins_request_t *req, const ladrc_margins_plant_t *plant);
+
+/** Measures the controller's frequency response into ws (the plant of req
+ *  is used only for the adaptive variants' converged run). */
+ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
+                                             const ladrc_margins_request_t *req);
+
+/** Margins, verdict and output grid of the measured controller (ws) on
+ *  req->plant (which may differ from the one it was measured with). */
+ladrc_margins_status_t ladrc_margins_loop(ladrc_margins_workspace_t *ws, const ladrc_margins_request_t *req,
+                                          ladrc_margins_result_t *res);
+
+/** ladrc_margins_measure then ladrc_margins_loop. */
+ladrc_margins_status_t ladrc_margins_analyse(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
+                                             const ladrc_margins_request_t *req, ladrc_margins_result_t *res);
+
+/** Nyquist verdict only (fast): 1 stable, 0 not. */
+int ladrc_margins_is_stable(ladrc_margins_workspace_t *ws, const ladrc_margins_plant_t *plant);
+
+/** Largest motor lag (s) for which the measured controller's loop on plant
+ *  (motor_tau_s replaced) stays stable, by bisection on the Nyquist verdict
+ *  to a relative 1e-3; searched up to tau_max_s (returned if still stable).
+ *  0 if the loop is unstable without lag. */
+ladrc_margins_status_t ladrc_margins_max_motor_tau(ladrc_margins_workspace_t *ws, const ladrc_margins_plant_t *plant,
+                                                   double tau_max_s, double *tau_s);
+
+/** Largest stable measurement delay (whole ticks, delay_ticks replaced),
+ *  -1 if unstable at 0, LADRC_MARGINS_MAX_DELAY if stable throughout. */
+ladrc_margins_status_t ladrc_margins_max_delay(ladrc_margins_workspace_t *ws, const ladrc_margins_plant_t *plant,
+                                               int *ticks);
+
+/** Frequency responses at w (rad/s): plant from torque to measured angle and
+ *  rate (delay included), out[0..3] = angle re, im, rate re, im. */
+ladrc_margins_status_t ladrc_margins_plant_freq(const ladrc_margins_plant_t *plant, double w_rad_s, double out[4]);
+
+/** The measured controller at w (rad/s): out[0..3] = angle re, im, rate re, im
+ *  (torque per measured angle and per measured rate). */
+ladrc_margins_status_t ladrc_margins_controller_freq(const ladrc_margins_workspace_t *ws, double w_rad_s,
+                                                     double out[4]);
+
+/** Loop given as a function of complex z (re, im) -> L, with n_unit_poles
+ *  poles at z = 1 and every other pole strictly inside the unit circle:
+ *  margins and verdict by the same code (for textbook loops). The output
+ *  grid is left empty. */
+typedef void (*ladrc_margins_loop_fn)(void *ctx, double z_re, double z_im, double *l_re, double *l_im);
+void ladrc_margins_of_loop(ladrc_margins_loop_fn fn, void *ctx, double dt_s, ladrc_margins_result_t *res);
+
+/**
+ * Independent check: the same controller code and exact discrete plant flown
+ * in closed loop for n_ticks after an acceleration-disturbance pulse.
+ * *growth = max |angle| over the last quarter / max |angle| over the
+ * quarter before (0 once the angle has decayed below 1e-6 of its peak, the
+ * float controller's rounding); a stable loop's error decays (growth < 1).
+ * Linear controllers only need this; adaptive ones are flown as they are.
+ */
+ladrc_margins_status_t ladrc_margins_simulate(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
+                                              const ladrc_margins_plant_t *plant, long n_ticks, double *growth);
+
+/** Targets and search of the margins-based tuning. */
+typedef struct {
+    double pm_min_deg;       /**< default 45 */
+    double gm_min_db;        /**< default 6 */
+} ladrc_margins_targets_t;
+
+typedef struct {
+    int met;                  /**< 1 when the chosen setting meets the targets */
+    double wc_rad_s, wo_rad_s;/**< LADRC family */
+    double kp, ki, kd, d_filter_tau_s; /**< PID */
+    double peak_dist_rad;     /**< objective: peak |d -> error| of the chosen setting */
+    ladrc_margins_result_t margins; /**< of the chosen setting */
+} ladrc_margins_tuning_t;
+
+/**
+ * Tunes ctl's axis (its config is copied into *tuned, the axis_index-th axis
+ * for an attitude, and the gains written there) for req->plant:
+ * LADRC family: wo = r wc, r in {3, 5, 8}; for each r the largest
+ * wc whose loop is stable with PM >= pm_min_deg and GM >= gm_min_db;
+ * PID: kp = J w^2, kd = 2 J w, ki = kp w / m, m in {3, 5, 10}, derivative
+ * filter 1 / (10 w) (none if below dt); the largest such w for each m.
+ * Of these candidates the one with the smallest peak |disturbance -> error|
+ * wins. The adaptive variants' estimator settings are kept; their wc and wo
+ * are tuned on the plain LADRC loop (estimator off), then the margins of the
+ * full variant are reported. Returns LADRC_MARGINS_ERR_TARGETS_NOT_MET (best
+ * margins in *out, tuned left with the best setting) when none meets them.
+ */
+ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
+                                          const ladrc_margins_request_t *req, const ladrc_margins_targets_t *targets,
+                                          ladrc_axis_config_t *tuned, ladrc_margins_tuning_t *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LADRC_MARGINS_H */
