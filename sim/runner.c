@@ -128,6 +128,13 @@ static const char ATTITUDE_CSV_HEADER[] =
     "dist_roll_rad_s2,dist_pitch_rad_s2,dist_yaw_rad_s2,f_roll_rad_s2,f_pitch_rad_s2,f_yaw_rad_s2,"
     "f_est_roll_rad_s2,f_est_pitch_rad_s2,f_est_yaw_rad_s2\n";
 
+/* An angle into (-pi, pi], and itself bit for bit when it is there already. */
+static double wrap_pi(double x)
+{
+    const double pi = 3.14159265358979323846;
+    return (x > -pi && x <= pi) ? x : x - 2.0 * pi * ceil((x - pi) / (2.0 * pi));
+}
+
 /* Metric windows hold (from, to], as signal windows do. */
 static int in_window(const double w[2], double t) { return t > w[0] && t <= w[1]; }
 
@@ -168,6 +175,9 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
     const double dt = sc->control_dt_s;
     double last_out_s[3] = {sc->settle_after_s, sc->settle_after_s, sc->settle_after_s};
     const double band_rad = sc->settle_band_deg / RAD2DEG;
+    /* A wrapping controller is told yaw as an attitude estimator gives it,
+     * in (-pi, pi]; the plant's own yaw is continuous (not wrapped). */
+    const int wrap_yaw = sim_setup_wraps_yaw(sc, ctrl);
     m->has_estimate = ctrl != SIM_CTRL_PID;
     m->finite = 1;
     for (int i = 0; i < 3; ++i) {
@@ -177,6 +187,9 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
         const double t = (double)k * dt;
         double meas_angle[3], meas_rate[3];
         sim_sensor_measure(&sensor, plant.angle_rad, plant.rate_rad_s, meas_angle, meas_rate);
+        if (wrap_yaw) {
+            meas_angle[2] = wrap_pi(meas_angle[2]);
+        }
         ladrc_real_t ref[3], angle[3], rate[3], torque[3];
         sim_expr_memo_t memo; /* shared by the references, then the disturbances at t */
         sim_expr_memo_clear(&memo);
@@ -211,6 +224,9 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
             ladrc_axis_get_estimate(&att.axis[i], &a_est, &r_est, &d_est);
             f_est[i] = d_est;
             err_rad[i] = (double)ref[i] - plant.angle_rad[i];
+            if (i == 2 && wrap_yaw) {
+                err_rad[i] = wrap_pi(err_rad[i]); /* 359 deg of error is 1 deg */
+            }
             const double e_deg = err_rad[i] * RAD2DEG;
             if (in_window(sc->error_window_s, t)) {
                 sim_stat_add(&m->error_deg[i], e_deg);
