@@ -128,19 +128,33 @@ static const char ATTITUDE_CSV_HEADER[] =
     "dist_roll_rad_s2,dist_pitch_rad_s2,dist_yaw_rad_s2,f_roll_rad_s2,f_pitch_rad_s2,f_yaw_rad_s2,"
     "f_est_roll_rad_s2,f_est_pitch_rad_s2,f_est_yaw_rad_s2\n";
 
+/* An angle into (-pi, pi], and itself bit for bit when it is there already. */
+static double wrap_pi(double x)
+{
+    const double pi = 3.14159265358979323846;
+    return (x > -pi && x <= pi) ? x : x - 2.0 * pi * ceil((x - pi) / (2.0 * pi));
+}
+
+/* ref - angle (rad); on a wrapped axis taken into (-pi, pi]: 359 deg of error is 1 deg. */
+static double tracking_error_rad(double ref_rad, double angle_rad, int wrapped)
+{
+    const double e = ref_rad - angle_rad;
+    return wrapped ? wrap_pi(e) : e;
+}
+
 /* Metric windows hold (from, to], as signal windows do. */
 static int in_window(const double w[2], double t) { return t > w[0] && t <= w[1]; }
 
 /* Divergence at t (runner.h): the plant's state non-finite, or the tracking
  * error ref - angle beyond the scenario's limit on an axis. Records the first
  * cause found in m and returns 1; 0 while the run is healthy. */
-static int diverged(const sim_scenario_t *sc, const sim_plant_t *p, const double ref_rad[3], double t_s,
-                    sim_metrics_t *m)
+static int diverged(const sim_scenario_t *sc, const sim_plant_t *p, const double ref_rad[3], int wrap_yaw,
+                    double t_s, sim_metrics_t *m)
 {
     int axis = -2;
     double error_deg = NAN;
     for (int i = 0; i < 3 && axis == -2; ++i) {
-        const double e_deg = (ref_rad[i] - p->angle_rad[i]) * RAD2DEG;
+        const double e_deg = tracking_error_rad(ref_rad[i], p->angle_rad[i], i == 2 && wrap_yaw) * RAD2DEG;
         if (!isfinite(e_deg) || !isfinite(p->rate_rad_s[i])) {
             axis = i;
             m->finite = 0;
@@ -218,6 +232,9 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
     double last_out_s[3] = {sc->settle_after_s, sc->settle_after_s, sc->settle_after_s};
     int out_at_last[3] = {0, 0, 0}; /* outside the band at the settle window's latest sample so far */
     const double band_rad = sc->settle_band_deg / RAD2DEG;
+    /* A wrapping controller is told yaw as an attitude estimator gives it,
+     * in (-pi, pi]; the plant's own yaw is continuous (not wrapped). */
+    const int wrap_yaw = sim_setup_wraps_yaw(sc, ctrl);
     m->has_estimate = ctrl != SIM_CTRL_PID;
     m->finite = 1;
     m->diverged_axis = -1;
@@ -230,13 +247,16 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
         const double t = (double)k * dt;
         double meas_angle[3], meas_rate[3];
         sim_sensor_measure(&sensor, plant.angle_rad, plant.rate_rad_s, meas_angle, meas_rate);
+        if (wrap_yaw) {
+            meas_angle[2] = wrap_pi(meas_angle[2]);
+        }
         ladrc_real_t ref[3], angle[3], rate[3], torque[3];
         sim_expr_memo_t memo; /* shared by the references, then the disturbances at t */
         sim_expr_memo_clear(&memo);
         references(sc, t, &memo, ref);
         double ref_rad[3];
         widen(ref, ref_rad);
-        if (diverged(sc, &plant, ref_rad, t, m)) {
+        if (diverged(sc, &plant, ref_rad, wrap_yaw, t, m)) {
             break; /* nothing of this instant or later is recorded */
         }
         for (int i = 0; i < 3; ++i) {
@@ -268,7 +288,7 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
             ladrc_real_t a_est, r_est, d_est;
             ladrc_axis_get_estimate(&att.axis[i], &a_est, &r_est, &d_est);
             f_est[i] = d_est;
-            err_rad[i] = ref_rad[i] - plant.angle_rad[i];
+            err_rad[i] = tracking_error_rad(ref_rad[i], plant.angle_rad[i], i == 2 && wrap_yaw);
             const double e_deg = err_rad[i] * RAD2DEG;
             if (in_window(sc->error_window_s, t)) {
                 sim_stat_add(&m->error_deg[i], e_deg);
@@ -314,7 +334,7 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
         double ref_rad[3];
         references(sc, t, &memo, ref);
         widen(ref, ref_rad);
-        (void)diverged(sc, &plant, ref_rad, t, m);
+        (void)diverged(sc, &plant, ref_rad, wrap_yaw, t, m);
     }
     for (int i = 0; i < 3; ++i) {
         m->settle_s[i] = out_at_last[i] ? SIM_NOT_SETTLED : last_out_s[i] - sc->settle_after_s;

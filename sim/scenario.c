@@ -234,6 +234,12 @@ static const key_def_t KEYS[] = {
      NULL},
     {SEC_CONTROLLER, "coupling_feed", V_CHOICE, OV(coupling_feed), 0, R_ANY, 0, 0, YES_NO, FOR_BOTH, 0,
      LADRC_FAMILY, NULL},
+    {SEC_CONTROLLER, "model_motor_tau_s", V_REAL, OV(model_motor_tau_s), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0,
+     LADRC_FAMILY, NULL},
+    {SEC_CONTROLLER, "model_delay_ticks", V_INT, OV(model_delay_ticks), 0, R_DELAY, 0, 0, NULL, FOR_BOTH, 0,
+     LADRC_FAMILY, NULL},
+    {SEC_CONTROLLER, "wrap_yaw", V_CHOICE, OV(wrap_yaw), 0, R_ANY, 0, 0, YES_NO, FOR_BOTH, 0,
+     LADRC_FAMILY | CTRL_BIT(SIM_CTRL_PID), NULL},
 };
 
 #define N_KEYS ((int)(sizeof KEYS / sizeof KEYS[0]))
@@ -832,6 +838,8 @@ static void set_defaults(sim_scenario_t *sc)
         o->leso_method = o->hp_freq_mode = o->coupling_feed = -1;
         o->hp_freq_rad_s = o->hp_freq2_rad_s = o->levant_lipschitz_rad_s4 = o->td_accel_rad_s2 = NAN;
         o->hp_tones = -1;
+        o->model_motor_tau_s = NAN;
+        o->model_delay_ticks = o->wrap_yaw = -1;
         o->pid_kp = o->pid_ki = o->pid_kd = NAN;
     }
 
@@ -1069,6 +1077,8 @@ static const key_ref_t *keys_of_status(ladrc_status_t st, int known_freqs)
     static const key_ref_t w2_min[] = {{SEC_ROTORS, "w2_min_rad2_s2"}, END_KEYS};
     static const key_ref_t w2_max[] = {{SEC_ROTORS, "w2_max_rad2_s2"}, {SEC_ROTORS, "w2_min_rad2_s2"}, END_KEYS};
     static const key_ref_t tilt[] = {{SEC_ROTORS, "tilt_max_deg"}, END_KEYS};
+    static const key_ref_t motor_tau[] = {{CTRL_SEC, "model_motor_tau_s"}, {SEC_ROTORS, "motor_tau_s"}, END_KEYS};
+    static const key_ref_t delay[] = {{CTRL_SEC, "model_delay_ticks"}, {SEC_SENSORS, "delay_ticks"}, END_KEYS};
     switch (st) {
     case LADRC_ERR_INERTIA_KG_M2:
     case LADRC_ERR_B0: return inertia;
@@ -1095,6 +1105,8 @@ static const key_ref_t *keys_of_status(ladrc_status_t st, int known_freqs)
     case LADRC_ERR_MIXER_W2_MIN: return w2_min;
     case LADRC_ERR_MIXER_W2_MAX: return w2_max;
     case LADRC_ERR_MIXER_TILT_MAX_RAD: return tilt;
+    case LADRC_ERR_MOTOR_TAU_S: return motor_tau;
+    case LADRC_ERR_DELAY_TICKS: return delay;
     default: return dt; /* the rest depend on the period alone (and library constants) */
     }
 }

@@ -69,6 +69,9 @@ typedef struct {
     double td_accel_rad_s2;
     double pid_kp, pid_ki, pid_kd;
     int coupling_feed;        /* -1, 0 or 1 */
+    double model_motor_tau_s; /* NaN: [rotors] motor_tau_s; 0: no lag modelled (LADRC family) */
+    int model_delay_ticks;    /* -1: [sensors] delay_ticks (LADRC family) */
+    int wrap_yaw;             /* -1 (yes), 0 or 1: the controller's yaw wraps at +-180 deg */
 } sim_overrides_t;
 
 /* Where a parse failed, as file:line:column: message (line and column are

@@ -36,6 +36,13 @@ static void apply_overrides(ladrc_axis_config_t *a, const sim_overrides_t *o)
     if (!isnan(o->pid_kp)) a->pid_kp = (ladrc_real_t)o->pid_kp;
     if (!isnan(o->pid_ki)) a->pid_ki = (ladrc_real_t)o->pid_ki;
     if (!isnan(o->pid_kd)) a->pid_kd = (ladrc_real_t)o->pid_kd;
+    if (!isnan(o->model_motor_tau_s)) a->motor_tau_s = (ladrc_real_t)o->model_motor_tau_s;
+    if (o->model_delay_ticks >= 0) a->delay_ticks = (uint8_t)o->model_delay_ticks;
+}
+
+int sim_setup_wraps_yaw(const sim_scenario_t *sc, sim_controller_id_t id)
+{
+    return sc->overrides[id].wrap_yaw != 0;
 }
 
 void sim_setup_attitude(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_config_t *cfg)
@@ -48,8 +55,14 @@ void sim_setup_attitude(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_
                                   (ladrc_real_t)(sc->rot_drag_Nm_s * sc->rot_drag_scale));
     const sim_overrides_t *o = &sc->overrides[id];
     for (int i = 0; i < 3; ++i) {
+        /* The controllers model the airframe they fly, as they are given its
+         * inertia: its motors' lag and its sensors' delay (0 and 0: none,
+         * and the library's arithmetic is the unmodelled one bit for bit). */
+        cfg->axis[i].motor_tau_s = (ladrc_real_t)sc->motor_tau_s;
+        cfg->axis[i].delay_ticks = (uint8_t)(sc->delay_ticks > 255 ? 255 : sc->delay_ticks);
         apply_overrides(&cfg->axis[i], o);
     }
+    cfg->axis[2].wrap_angle = (uint8_t)sim_setup_wraps_yaw(sc, id);
     if (o->coupling_feed >= 0) {
         cfg->coupling_feed = (uint8_t)o->coupling_feed;
     }

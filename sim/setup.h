@@ -18,6 +18,11 @@
  * factors), then the scenario's [controller NAME] overrides. */
 void sim_setup_attitude(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_config_t *cfg);
 
+/* 1 when controller id's yaw wraps at +-180 deg ([controller NAME] wrap_yaw,
+ * default yes): its sensor then reports yaw in (-180, 180] deg and its yaw
+ * error is measured modulo 360 deg. */
+int sim_setup_wraps_yaw(const sim_scenario_t *sc, sim_controller_id_t id);
+
 /* The vehicle's mixer; ideal rotors get limits 0 and 1e12 (the mixer wants
  * finite ones). */
 void sim_setup_mixer(const sim_scenario_t *sc, ladrc_mixer_config_t *cfg);

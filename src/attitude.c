@@ -18,6 +18,7 @@ void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t
         cfg->axis[i].hp_fit_phase = (uint16_t)(i % cfg->axis[i].hp_fit_decimation);
         cfg->inertia_kg_m2[i] = inertia_kg_m2[i];
     }
+    cfg->axis[LADRC_YAW].wrap_angle = 1u; /* yaw lives on a circle, roll and pitch do not */
     cfg->drag_Nms = drag_Nms;
     cfg->coupling_feed = 1u;
 }
@@ -105,7 +106,7 @@ static ladrc_real_t feed(const ladrc_attitude_t *att, unsigned i, ladrc_real_t r
     return att->coupling[i] * (accel_a * rate_b + rate_a * accel_b) - att->drag_per_s[i] * accel_i;
 }
 
-/* Rate z2 and acceleration b0 * applied torque + z3 + d_hat of one axis, read
+/* Rate z2 and acceleration b0 * acting torque + z3 + d_hat of one axis, read
  * straight from it (attitude owns its axes; the sum as ladrc_axis_get_accel
  * forms it). A PID axis has no observer: 0 and 0. */
 #if defined(__GNUC__)
@@ -117,7 +118,7 @@ static inline void observed(const ladrc_axis_t *ax, ladrc_real_t *rate, ladrc_re
     *accel = LADRC_R(0.0);
     if (ax->variant != LADRC_VARIANT_PID) {
         *rate = ax->leso.z2;
-        *accel = ax->b0 * ax->applied_Nm + ax->leso.z3 + ax->d_hat_rad_s2;
+        *accel = ax->b0 * ladrc_axis_acting_Nm(ax) + ax->leso.z3 + ax->d_hat_rad_s2;
     }
 }
 

@@ -121,6 +121,9 @@ void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant
     cfg->hp_freq_filter_rad_s = AXIS_DEFAULT_HP_FREQ_FILTER_RAD_S;
     cfg->hp_fit_decimation = ticks_in(AXIS_DEFAULT_HP_FIT_SAMPLE_S, dt_s);
     cfg->hp_fit_phase = 0u;
+    cfg->motor_tau_s = LADRC_R(0.0);
+    cfg->delay_ticks = 0u;
+    cfg->wrap_angle = 0u;
 }
 
 static ladrc_status_t init_shaper(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
@@ -177,6 +180,57 @@ static ladrc_status_t init_estimator(ladrc_axis_t *axis, const ladrc_axis_config
     return LADRC_OK;
 }
 
+/* Below this h / tau the mean gain g = (x - 1 + exp(-x)) / x, x = h / tau,
+ * comes from its series (the direct form cancels: a relative error of
+ * 2 eps / x); the series' first omitted term, x^4 / 120, is then below
+ * 1e-6 of g = x / 2. */
+#define AXIS_MEAN_GAIN_SERIES_MAX LADRC_R(0.1)
+
+/* The actuator model's constants (axis.h), validated; the state starts at rest. */
+static ladrc_status_t init_actuator(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
+{
+    const ladrc_real_t tau = cfg->motor_tau_s;
+    if (!(ladrc_is_finite(tau) && tau >= LADRC_R(0.0) && tau <= LADRC_MOTOR_TAU_MAX_S)) {
+        return LADRC_ERR_MOTOR_TAU_S;
+    }
+    if (cfg->delay_ticks > LADRC_MAX_DELAY_TICKS) {
+        return LADRC_ERR_DELAY_TICKS;
+    }
+    ladrc_actuator_t *act = &axis->act;
+    act->alpha = LADRC_R(1.0);
+    act->mean_gain = LADRC_R(1.0);
+    if (tau > LADRC_R(0.0)) {
+        const ladrc_real_t x = cfg->dt_s / tau;
+        act->alpha = -ladrc_expm1(-x);
+        if (x < AXIS_MEAN_GAIN_SERIES_MAX) {
+            act->mean_gain = x * (LADRC_R(0.5) - x * (LADRC_R(1.0) / LADRC_R(6.0) -
+                                                      x * (LADRC_R(1.0) / LADRC_R(24.0))));
+        } else {
+            act->mean_gain = LADRC_R(1.0) - act->alpha / x;
+        }
+    }
+    act->delay_ticks = cfg->delay_ticks;
+    axis->model = (tau > LADRC_R(0.0) || cfg->delay_ticks > 0u) ? 1u : 0u;
+    return LADRC_OK;
+}
+
+/* Torque the observer step of this tick takes (axis.h): the model's mean
+ * over the step, which also advances the model by the step. */
+static ladrc_real_t advance_actuator(ladrc_axis_t *axis)
+{
+    const ladrc_real_t mean = ladrc_axis_acting_Nm(axis);
+    ladrc_actuator_t *act = &axis->act;
+    ladrc_real_t v = axis->applied_Nm;
+    if (act->delay_ticks != 0u) {
+        const uint8_t head = act->head;
+        v = act->delayed_Nm[head];
+        act->delayed_Nm[head] = axis->applied_Nm;
+        act->head = (uint8_t)((head + 1u < act->delay_ticks) ? head + 1u : 0u);
+    }
+    act->lag_Nm += act->alpha * (v - act->lag_Nm);
+    return mean;
+}
+
 static ladrc_status_t init_adrc(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
 {
     if (!ladrc_is_positive(cfg->wc_rad_s) || !(cfg->wc_rad_s * cfg->dt_s < AXIS_WC_DT_LIMIT)) {
@@ -190,8 +244,12 @@ static ladrc_status_t init_adrc(ladrc_axis_t *axis, const ladrc_axis_config_t *c
         !(cfg->wo_rad_s * cfg->dt_s * (LADRC_R(1.0) + AXIS_EULER_WOH_SLOPE * wch) <= AXIS_EULER_WOH_AT_0)) {
         return LADRC_ERR_LESO_EULER_UNSTABLE;
     }
+    ladrc_status_t status = init_actuator(axis, cfg);
+    if (status != LADRC_OK) {
+        return status;
+    }
     const ladrc_leso_config_t leso_cfg = {cfg->dt_s, cfg->wo_rad_s, cfg->b0, cfg->leso_method};
-    ladrc_status_t status = ladrc_leso_init(&axis->leso, &leso_cfg);
+    status = ladrc_leso_init(&axis->leso, &leso_cfg);
     if (status == LADRC_OK) {
         status = init_shaper(axis, cfg);
     }
@@ -225,7 +283,9 @@ static ladrc_status_t init_pid(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
     const ladrc_pid_config_t pid_cfg = {cfg->dt_s,           cfg->pid_kp,
                                         cfg->pid_ki,         cfg->pid_kd,
                                         cfg->pid_d_filter_tau_s, cfg->pid_i_limit_Nm,
-                                        command_min(cfg),    command_max(cfg)};
+                                        command_min(cfg),    command_max(cfg),
+                                        cfg->wrap_angle};
+    axis->model = 0u; /* no observer to tell (axis.h) */
     return ladrc_pid_init(&axis->part.pid, &pid_cfg);
 }
 
@@ -245,6 +305,9 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
           ladrc_is_finite(cfg->rate_limit_rad_s) && cfg->rate_limit_rad_s >= AXIS_RANGE_MIN &&
           ladrc_is_positive(cfg->applied_limit_Nm))) {
         return LADRC_ERR_INPUT_LIMITS;
+    }
+    if (cfg->wrap_angle > 1u) {
+        return LADRC_ERR_WRAP_ANGLE;
     }
     ladrc_status_t status;
     switch (cfg->variant) {
@@ -269,6 +332,7 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
     axis->angle_limit_rad = cfg->angle_limit_rad;
     axis->rate_limit_rad_s = cfg->rate_limit_rad_s;
     axis->applied_limit_Nm = cfg->applied_limit_Nm;
+    axis->wrap = cfg->wrap_angle;
     axis->f_rate_rad_s3 = LADRC_R(0.0);
     axis->f_known_rad_s2 = LADRC_R(0.0);
     ladrc_axis_reset(axis, LADRC_R(0.0));
@@ -307,6 +371,12 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
     axis->ref.ddr = LADRC_R(0.0);
     axis->output_Nm = LADRC_R(0.0);
     axis->applied_Nm = LADRC_R(0.0);
+    /* At rest: no torque acting, none on its way. */
+    for (unsigned k = 0u; k < LADRC_MAX_DELAY_TICKS; ++k) {
+        axis->act.delayed_Nm[k] = LADRC_R(0.0);
+    }
+    axis->act.lag_Nm = LADRC_R(0.0);
+    axis->act.head = 0u;
     axis->consecutive_faults = 0u;
     axis->faults = LADRC_FAULT_NONE;
 }
@@ -314,11 +384,14 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
 /* The estimators' view of this tick; returns the new d_hat. Their own faults
  * (e.g. a missing rate) only hold their estimate, so they are not reported
  * as axis faults beyond LADRC_FAULT_RATE. */
-static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, ladrc_real_t rate_rad_s)
+static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, ladrc_real_t rate_rad_s,
+                                         ladrc_real_t acting_Nm)
 {
     if (axis->variant == LADRC_VARIANT_LP_MLADRC) {
-        /* A tick without a rate (NaN) is a gap: LP holds and restarts its difference. */
-        (void)ladrc_lp_step(&axis->part.lp, rate_rad_s, axis->b0 * axis->applied_Nm);
+        /* A tick without a rate (NaN) is a gap: LP holds and restarts its
+         * difference. The rate is as old as the angle: the torque that acted
+         * over its difference is the observer's. */
+        (void)ladrc_lp_step(&axis->part.lp, rate_rad_s, axis->b0 * acting_Nm);
         return ladrc_lp_get_estimate(&axis->part.lp);
     }
     if (axis->variant == LADRC_VARIANT_HP_MLADRC) {
@@ -344,16 +417,49 @@ static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, ladrc_real_t rate_r
     return LADRC_R(0.0);
 }
 
+/* A wrapped axis: z1 and r both beyond +pi (or -pi) move one turn back,
+ * with the shaper's state. Both lie within 4 pi of 0 (pi past the bound at
+ * most, plus the |r - z1| < 2 pi the wrapped law allows), so each shift by
+ * LADRC_TWO_PI is exact (Sterbenz) and r - z1 keeps every bit: the law sees
+ * no change. Without it z1 and r would grow with every turn and lose a bit
+ * of resolution at each doubling (a float at 1000 rad resolves 6e-5 rad). */
+static void recentre(ladrc_axis_t *axis)
+{
+    const ladrc_real_t z1 = axis->leso.z1;
+    const ladrc_real_t r = axis->ref.r;
+    ladrc_real_t turn;
+    if (z1 > LADRC_PI && r > LADRC_PI) {
+        turn = -LADRC_TWO_PI;
+    } else if (z1 < -LADRC_PI && r < -LADRC_PI) {
+        turn = LADRC_TWO_PI;
+    } else {
+        return;
+    }
+    axis->leso.z1 = z1 + turn;
+    axis->ref.r = r + turn;
+    if (axis->shaper == LADRC_SHAPER_TD) {
+        axis->shaping.td.x1 += turn;
+    } else if (axis->shaper == LADRC_SHAPER_LEVANT) {
+        axis->shaping.levant.r_last += turn; /* z0 = r_last + w moves with it */
+    }
+}
+
 /* ADRC tick on finite ref and angle; returns the state fault, if any. */
 static ladrc_fault_t step_adrc(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
                                ladrc_real_t rate_rad_s)
 {
     const ladrc_leso_t *leso = &axis->leso;
-    /* The LESO must see what really acted: applied torque and the estimate. */
-    ladrc_fault_t faults = ladrc_leso_step(&axis->leso, angle_rad, axis->applied_Nm,
+    ladrc_ref_t *ref = &axis->ref;
+    if (axis->wrap) {
+        /* Whole turns off the measurement and the reference (axis.h). */
+        angle_rad = ladrc_unwrap_near(angle_rad, leso->z1);
+        ref_rad = ladrc_unwrap_near(ref_rad, ref->r);
+    }
+    /* The LESO must see what really acted: the acting torque and the estimate. */
+    const ladrc_real_t acting_Nm = axis->model ? advance_actuator(axis) : axis->applied_Nm;
+    ladrc_fault_t faults = ladrc_leso_step(&axis->leso, angle_rad, acting_Nm,
                                            axis->d_hat_rad_s2, axis->f_rate_rad_s3);
     /* The shapers write straight into the axis: no copy on the stack. */
-    ladrc_ref_t *ref = &axis->ref;
     if (axis->shaper == LADRC_SHAPER_TD) {
         faults |= ladrc_td_step(&axis->shaping.td, ref_rad, ref);
     } else if (axis->shaper == LADRC_SHAPER_LEVANT) {
@@ -363,9 +469,13 @@ static ladrc_fault_t step_adrc(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_r
         ref->dr = LADRC_R(0.0);
         ref->ddr = LADRC_R(0.0);
     }
-    const ladrc_real_t d_hat = estimate_disturbance(axis, rate_rad_s);
-    const ladrc_real_t u0 =
-        axis->kp * (ref->r - leso->z1) + axis->kd * (ref->dr - leso->z2) + ref->ddr;
+    const ladrc_real_t d_hat = estimate_disturbance(axis, rate_rad_s, acting_Nm);
+    ladrc_real_t error_rad = ref->r - leso->z1;
+    if (axis->wrap) {
+        error_rad = ladrc_wrap_pi(error_rad);
+        recentre(axis);
+    }
+    const ladrc_real_t u0 = axis->kp * error_rad + axis->kd * (ref->dr - leso->z2) + ref->ddr;
     const ladrc_real_t u = (u0 - leso->z3 - d_hat) / axis->b0;
     if (!ladrc_is_finite(u)) {
         /* The command is held; what made it non-finite must not outlive the
@@ -450,7 +560,7 @@ ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis)
     if (axis->variant == LADRC_VARIANT_PID) {
         return LADRC_R(0.0);
     }
-    return axis->b0 * axis->applied_Nm + axis->leso.z3 + axis->d_hat_rad_s2;
+    return axis->b0 * ladrc_axis_acting_Nm(axis) + axis->leso.z3 + axis->d_hat_rad_s2;
 }
 
 ladrc_fault_t ladrc_axis_get_faults(const ladrc_axis_t *axis) { return axis->faults; }

@@ -63,6 +63,9 @@ ladrc_status_t ladrc_pid_init(ladrc_pid_t *pid, const ladrc_pid_config_t *cfg)
     if (!(cfg->u_min_Nm < cfg->u_max_Nm)) {
         return LADRC_ERR_U_LIMITS;
     }
+    if (cfg->wrap_angle > 1u) {
+        return LADRC_ERR_WRAP_ANGLE;
+    }
 
     pid->dt_s = cfg->dt_s;
     pid->kp = cfg->kp;
@@ -73,6 +76,7 @@ ladrc_status_t ladrc_pid_init(ladrc_pid_t *pid, const ladrc_pid_config_t *cfg)
     pid->i_limit_Nm = cfg->i_limit_Nm;
     pid->u_min_Nm = cfg->u_min_Nm;
     pid->u_max_Nm = cfg->u_max_Nm;
+    pid->wrap = cfg->wrap_angle;
     clear_dynamic_state(pid);
     pid->prev_meas_rad = LADRC_R(0.0);
     pid->has_prev_meas = 0u;
@@ -130,8 +134,11 @@ ladrc_real_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t
             faults |= LADRC_FAULT_RATE;
         }
         /* 0 on the first sample: nothing to difference yet. */
-        d_in_rad_s = (pid->has_prev_meas != 0u) ? (meas_rad - pid->prev_meas_rad) / pid->dt_s
-                                                 : LADRC_R(0.0);
+        ladrc_real_t diff_rad = meas_rad - pid->prev_meas_rad;
+        if (pid->wrap) {
+            diff_rad = ladrc_wrap_pi(diff_rad);
+        }
+        d_in_rad_s = (pid->has_prev_meas != 0u) ? diff_rad / pid->dt_s : LADRC_R(0.0);
     }
     if ((faults & LADRC_FAULT_INPUT) != 0u) {
         pid->faults = faults;
@@ -139,6 +146,9 @@ ladrc_real_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t
     }
 
     error_rad = ref_rad - meas_rad;
+    if (pid->wrap) {
+        error_rad = ladrc_wrap_pi(error_rad);
+    }
     /* Written as a blend so that alpha = 1 (tau = 0) gives d = m exactly. */
     d_rad_s = pid->d_keep * pid->d_filtered_rad_s + pid->d_alpha * d_in_rad_s;
 

@@ -67,7 +67,10 @@
     X(LADRC_ERR_HP_FREQ_LAMBDA0, "hp freq_lambda0_per_s must be finite, > 0 and at most 1 / (fit_decimation * dt_s)") \
     X(LADRC_ERR_HP_FREQ_FILTER, "hp freq_filter_rad_s must be finite, > 0 and < 0.2 / (fit_decimation * dt_s)") \
     X(LADRC_ERR_INPUT_LIMITS, "angle_limit_rad and rate_limit_rad_s must be finite and >= 1e-3, applied_limit_Nm finite and > 0") \
-    X(LADRC_ERR_INERTIA_TRIANGLE, "each inertia must be at most the sum of the other two (a rigid body)")
+    X(LADRC_ERR_INERTIA_TRIANGLE, "each inertia must be at most the sum of the other two (a rigid body)") \
+    X(LADRC_ERR_MOTOR_TAU_S, "motor_tau_s must be finite, >= 0 and at most LADRC_MOTOR_TAU_MAX_S (1 s)") \
+    X(LADRC_ERR_DELAY_TICKS, "delay_ticks must be at most LADRC_MAX_DELAY_TICKS (8)") \
+    X(LADRC_ERR_WRAP_ANGLE, "wrap_angle must be 0 or 1")
 
 #ifdef LADRC_STATUS_NAMES_ONLY
 #define STATUS_TEXT(code, explanation) #code

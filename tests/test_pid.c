@@ -45,6 +45,7 @@ static ladrc_pid_config_t make_config(double kp, double ki, double kd)
     cfg.i_limit_Nm = (ladrc_real_t)INFINITY;
     cfg.u_min_Nm = (ladrc_real_t)-INFINITY;
     cfg.u_max_Nm = (ladrc_real_t)INFINITY;
+    cfg.wrap_angle = 0u;
     return cfg;
 }
 

@@ -67,6 +67,9 @@ static const char *const status_names[LADRC_STATUS_COUNT] = {
     "LADRC_ERR_HP_FREQ_FILTER",
     "LADRC_ERR_INPUT_LIMITS",
     "LADRC_ERR_INERTIA_TRIANGLE",
+    "LADRC_ERR_MOTOR_TAU_S",
+    "LADRC_ERR_DELAY_TICKS",
+    "LADRC_ERR_WRAP_ANGLE",
 };
 
 /* 1 if text is name alone (names-only build) or name ": " and an explanation. */

@@ -117,7 +117,7 @@ declare -A measured=(
   [flash.linked_hp]=$linked_hp
   [sizeof.ladrc_attitude_t]=$(size_of ladrc_attitude_t)
 )
-CASES=(PID LADRC LP-MLADRC HP-MLADRC HP-MLADRC-2tones)
+CASES=(PID LADRC LP-MLADRC HP-MLADRC HP-MLADRC-2tones HP-MLADRC-act)
 for v in "${CASES[@]}"; do
   measured[insn.axis.$v]=$(insn "$v" 1)
   measured[insn.3axes.$v]=$(insn "$v" 2)

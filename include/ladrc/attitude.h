@@ -12,8 +12,9 @@
  *     h_pitch = (Jz - Jx)/Jy (roll''  yaw'  + roll'  yaw'' ) - kt/Jy pitch''
  *     h_yaw   = (Jx - Jy)/Jz (roll''  pitch' + roll' pitch'') - kt/Jz yaw''
  *
- * with rates from each LESO's z2 and accelerations b0 * applied torque + z3 +
- * d_hat (ladrc_axis_get_accel), computed at the start of each tick from the
+ * with rates from each LESO's z2 and accelerations b0 * acting torque + z3 +
+ * d_hat (ladrc_axis_get_accel: the applied torque through the axis's
+ * actuator model, motor_tau_s and delay_ticks, when it has one), computed at the start of each tick from the
  * previous tick's estimates. The feed only applies to LADRC-family axes; a
  * PID axis contributes zero acceleration and receives no feed.
  *
@@ -56,7 +57,8 @@ typedef struct {
 
 /**
  * Fills cfg with ladrc_axis_config_default for each axis (inertia from
- * inertia_kg_m2), the given drag and the feed on; axis i fits its HP model on
+ * inertia_kg_m2), the given drag and the feed on, wrap_angle on for yaw
+ * (off for roll and pitch); axis i fits its HP model on
  * phase i of the fit blocks (hp_fit_phase), spreading that work over ticks.
  */
 void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t variant,

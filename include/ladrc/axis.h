@@ -24,6 +24,44 @@
  * unless the caller reports another value with ladrc_axis_set_applied (e.g.
  * after the mixer saturated), so saturation never winds the observer up.
  *
+ * Actuator model (motor_tau_s = tau, delay_ticks = d; LADRC family only).
+ * Motors answer a torque request with a first-order lag and measurements
+ * arrive d ticks late; the observer, the LP estimator and the acceleration
+ * of the coupling feed (ladrc_axis_get_accel) take as known input the torque
+ * ACTUALLY ACTING over the step they describe. With a_k the applied torque
+ * the axis holds at tick k (what set_applied reported, else its command),
+ * the observer step of tick k is fed
+ *
+ *     v_k    = a_k-1-d                    (ring buffer of d torques)
+ *     ubar_k = m_k + g (v_k - m_k)        mean acting torque over the step
+ *     m_k+1  = m_k + alpha (v_k - m_k)    acting torque at the step's end
+ *     alpha  = 1 - exp(-h / tau),  g = 1 - alpha tau / h   (tau = 0: 1, 1)
+ *
+ * the exact solution of m' = (v - m) / tau for v held over the step (ZOH)
+ * and its exact mean. The observer takes ubar_k, not m_k: its own ZOH
+ * discretisation (leso.h) assumes the input constant over the step, and the
+ * constant that gives the step's velocity change exactly is the mean (the
+ * lag state at either end would over- or under-state it by up to
+ * alpha (v - m)). A measurement d ticks old is thereby compared with a model
+ * driven by the torque of d ticks before, so the observer compares like with
+ * like: z estimates the state of d ticks ago and the law acts on it (no
+ * prediction across the delay). ladrc_axis_get_accel gives b0 ubar of the
+ * step the next tick's observer will take. tau = 0 and d = 0 bypass the
+ * model: the arithmetic is today's, bit for bit. The PID variant has no
+ * observer and ignores the model.
+ *
+ * Wrapped angles (wrap_angle = 1, e.g. yaw): the measured angle lives on a
+ * circle of 2 pi. Each tick the measurement is moved by whole turns to
+ * within pi of z1 (the innovation y - z1 is taken modulo 2 pi into
+ * (-pi, pi]), so z1 stays continuous while y wraps; the raw reference is
+ * moved by whole turns to within pi of the shaper's r (a reference crossing
+ * +-pi is no 2 pi step for the TD or Levant), and the law's error r - z1 is
+ * taken modulo 2 pi. When z1 and r are both beyond +pi (or -pi) they, and
+ * the shaper's state, are shifted by one turn (exactly, their difference
+ * unchanged), so a yaw turning for hours keeps full float resolution. Each
+ * of these steps returns its input bit for bit while no wrap is needed.
+ * PID wraps its error and its measured difference (pid.h).
+ *
  * Faults: a reference or angle that is not finite or lies beyond
  * angle_limit_rad leaves every state untouched, holds the previous command
  * and raises LADRC_FAULT_INPUT; the next good tick continues from the held
@@ -48,6 +86,11 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/** Largest delay_ticks: the ring buffer's fixed size (torques of the axis). */
+#define LADRC_MAX_DELAY_TICKS 8u
+/** Largest motor_tau_s (s): a large airframe's slow rotor, twenty times an ESC's lag. */
+#define LADRC_MOTOR_TAU_MAX_S LADRC_R(1.0)
 
 typedef enum {
     LADRC_VARIANT_LADRC = 0,    /**< traditional LADRC: TD + LESO + control law */
@@ -112,7 +155,21 @@ typedef struct {
     ladrc_real_t hp_freq_filter_rad_s;  /**< ONLINE derivative filter bandwidth (rad/s) */
     uint16_t hp_fit_decimation;    /**< ticks per sample of the fit */
     uint16_t hp_fit_phase;         /**< tick of each such block that fits, < hp_fit_decimation */
+    /* Actuator model (LADRC family; see above), default 0 and 0: none */
+    ladrc_real_t motor_tau_s;      /**< first-order lag of the torque (s), 0..LADRC_MOTOR_TAU_MAX_S, 0 = none */
+    uint8_t delay_ticks;           /**< transport delay (whole ticks), 0..LADRC_MAX_DELAY_TICKS */
+    uint8_t wrap_angle;            /**< 1: the angle lives on a circle of 2 pi (yaw); 0: a line */
 } ladrc_axis_config_t;
+
+/** Actuator model state of an axis (see above). */
+typedef struct {
+    ladrc_real_t delayed_Nm[LADRC_MAX_DELAY_TICKS]; /**< applied torques of the last d ticks */
+    ladrc_real_t lag_Nm;          /**< m: acting torque at the start of the next observer step */
+    ladrc_real_t alpha;           /**< 1 - exp(-h / tau) */
+    ladrc_real_t mean_gain;       /**< g = 1 - alpha tau / h */
+    uint8_t delay_ticks;          /**< d */
+    uint8_t head;                 /**< slot of the oldest torque, a_k-1-d */
+} ladrc_actuator_t;
 
 /** Axis state; owned by the caller, read through the getters. */
 typedef struct {
@@ -139,7 +196,10 @@ typedef struct {
     ladrc_real_t f_rate_rad_s3;   /**< known rate of change of f for the next LESO step */
     ladrc_real_t f_known_rad_s2;  /**< known part of f (HP: kept out of the estimator's sample) */
     ladrc_real_t output_Nm;       /**< latest command */
-    ladrc_real_t applied_Nm;      /**< torque the LESO sees at the next tick */
+    ladrc_real_t applied_Nm;      /**< torque applied since the latest tick */
+    ladrc_actuator_t act;         /**< actuator model (used when model is 1) */
+    uint8_t model;                /**< 1: motor_tau_s > 0 or delay_ticks > 0 (LADRC family) */
+    uint8_t wrap;                 /**< wrap_angle */
     uint32_t consecutive_faults;  /**< ticks in a row with LADRC_FAULT_INPUT or _STATE */
     ladrc_fault_t faults;         /**< flags of the latest tick */
 } ladrc_axis_t;
@@ -195,8 +255,20 @@ void ladrc_axis_set_disturbance_rate(ladrc_axis_t *axis, ladrc_real_t rate_rad_s
  */
 void ladrc_axis_set_known_disturbance(ladrc_axis_t *axis, ladrc_real_t f_known_rad_s2);
 
-/** Angular acceleration the model expects over the current step (rad/s^2):
- *  b0 * applied torque + z3 + d_hat. PID: 0. */
+/** Torque (N m) the next tick's observer step takes as acting: the applied
+ *  torque without a model, else its delayed and lagged mean (see above). */
+static inline ladrc_real_t ladrc_axis_acting_Nm(const ladrc_axis_t *axis)
+{
+    if (!axis->model) {
+        return axis->applied_Nm;
+    }
+    const ladrc_actuator_t *act = &axis->act;
+    const ladrc_real_t v = (act->delay_ticks != 0u) ? act->delayed_Nm[act->head] : axis->applied_Nm;
+    return act->lag_Nm + act->mean_gain * (v - act->lag_Nm);
+}
+
+/** Angular acceleration the model expects over the observer's next step
+ *  (rad/s^2): b0 * acting torque + z3 + d_hat. PID: 0. */
 ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis);
 
 /** Fault flags of the latest tick (and of set_applied since). */

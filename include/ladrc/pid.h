@@ -20,6 +20,11 @@
  * The comparison is exact: a mixer that did not saturate must report the
  * command itself (or not call set_applied), not a recomputed torque with
  * rounding error, or the integrator freezes spuriously.
+ * wrap_angle = 1 (an angle on a circle, e.g. yaw): e_k and the measured
+ * difference y_k - y_k-1 are taken modulo 2 pi into (-pi, pi]
+ * (ladrc_wrap_pi), so a measurement that wraps at +-pi is no 2 pi step for
+ * the error nor for the derivative; both are bit for bit the plain ones
+ * while no wrap is needed.
  * First step after init (or after a reset with a non-finite measurement):
  * no previous measurement, so the finite difference is 0.
  * Gains are continuous-time. Paper baseline: kp = 20, ki = 20, kd = 0.05.
@@ -42,6 +47,7 @@ typedef struct {
     ladrc_real_t i_limit_Nm;     /**< |integral term| bound (N m), >= 0 (may be INFINITY) */
     ladrc_real_t u_min_Nm;       /**< output lower bound (N m), may be -INFINITY */
     ladrc_real_t u_max_Nm;       /**< output upper bound (N m), > u_min_Nm, may be INFINITY */
+    uint8_t wrap_angle;          /**< 1: the angle lives on a circle of 2 pi; 0: a line */
 } ladrc_pid_config_t;
 
 /** PID state; owned by the caller. */
@@ -59,11 +65,12 @@ typedef struct {
     ladrc_real_t output_Nm;        /**< last command after clamping */
     ladrc_real_t applied_Nm;       /**< torque applied since the last step */
     uint8_t has_prev_meas;         /**< 0 until a first measurement was seen */
+    uint8_t wrap;                  /**< wrap_angle */
     ladrc_fault_t faults;          /**< flags of the latest step */
 } ladrc_pid_t;
 
 /** Validates every field (LADRC_ERR_DT_S, _PID_KP, _PID_KI, _PID_KD, _PID_D_TAU_S,
- *  _PID_I_LIMIT_NM, _U_LIMITS, checked in that order; LADRC_ERR_NULL) and resets.
+ *  _PID_I_LIMIT_NM, _U_LIMITS, _WRAP_ANGLE, checked in that order; LADRC_ERR_NULL) and resets.
  *  i_limit_Nm may be +INFINITY and u_min_Nm / u_max_Nm -INFINITY / +INFINITY (no
  *  clamp); NaN is rejected. On a config error *pid is zeroed: its output stays 0. */
 ladrc_status_t ladrc_pid_init(ladrc_pid_t *pid, const ladrc_pid_config_t *cfg);

@@ -160,6 +160,9 @@ typedef enum {
     LADRC_ERR_HP_FREQ_FILTER,     /**< hp freq_filter_rad_s not finite, not > 0, or too fast for the fit sample */
     LADRC_ERR_INPUT_LIMITS,       /**< angle_limit_rad or rate_limit_rad_s not finite or below 1e-3, or applied_limit_Nm not finite or not > 0 */
     LADRC_ERR_INERTIA_TRIANGLE,   /**< attitude inertias no rigid body has (each must be <= the sum of the other two) */
+    LADRC_ERR_MOTOR_TAU_S,        /**< axis motor_tau_s not finite, < 0, or above LADRC_MOTOR_TAU_MAX_S */
+    LADRC_ERR_DELAY_TICKS,        /**< axis delay_ticks above LADRC_MAX_DELAY_TICKS */
+    LADRC_ERR_WRAP_ANGLE,         /**< axis (or pid) wrap_angle not 0 or 1 */
     LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
 } ladrc_status_t;
 
@@ -363,6 +366,36 @@ static inline int ladrc_within(ladrc_real_t x, ladrc_real_t limit)
 static inline int ladrc_dt_is_valid(ladrc_real_t dt_s)
 {
     return (ladrc_is_finite(dt_s) && dt_s >= LADRC_DT_MIN_S && dt_s <= LADRC_DT_MAX_S) ? 1 : 0;
+}
+
+/** pi and 2 pi in the real type. LADRC_TWO_PI is the one period every wrap
+ *  and every shift by a turn uses, so that they agree to the last bit. */
+#define LADRC_PI LADRC_R(3.14159265358979323846)
+#define LADRC_TWO_PI LADRC_R(6.28318530717958647692)
+
+/** x into (-pi, pi] by whole turns of LADRC_TWO_PI, for any x (the out-of-line
+ *  branch of ladrc_wrap_pi, src/angle.c). Beyond 1e9 turns no fraction of
+ *  a turn is left to resolve in either real type: 0. NaN and infinities
+ *  give NaN. */
+ladrc_real_t ladrc_wrap_pi_far(ladrc_real_t x);
+
+/** 1 if x lies in (-pi, pi] (0 for NaN). */
+static inline int ladrc_in_half_turn(ladrc_real_t x) { return (x > -LADRC_PI && x <= LADRC_PI) ? 1 : 0; }
+
+/** An angle difference into (-pi, pi]: x itself, bit for bit, when it is
+ *  already there (two comparisons on the common path), else x minus whole
+ *  turns of LADRC_TWO_PI. NaN stays NaN. */
+static inline ladrc_real_t ladrc_wrap_pi(ladrc_real_t x)
+{
+    return ladrc_in_half_turn(x) ? x : ladrc_wrap_pi_far(x);
+}
+
+/** The angle x moved by whole turns to within pi of near (x - near wrapped,
+ *  added to near): x itself, bit for bit, when it is already there. */
+static inline ladrc_real_t ladrc_unwrap_near(ladrc_real_t x, ladrc_real_t near)
+{
+    const ladrc_real_t d = x - near;
+    return ladrc_in_half_turn(d) ? x : near + ladrc_wrap_pi_far(d);
 }
 
 #ifdef __cplusplus

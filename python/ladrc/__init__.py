@@ -123,7 +123,8 @@ class _Library:
                         ("hp_freq_mode", i), ("hp_n_tones", u8), ("hp_freq_rad_s", r * tones),
                         ("hp_freq_min_rad_s", r), ("hp_freq_max_rad_s", r), ("hp_lambda0_per_s", r),
                         ("hp_freq_lambda0_per_s", r), ("hp_freq_filter_rad_s", r),
-                        ("hp_fit_decimation", u16), ("hp_fit_phase", u16)]
+                        ("hp_fit_decimation", u16), ("hp_fit_phase", u16),
+                        ("motor_tau_s", r), ("delay_ticks", u8), ("wrap_angle", u8)]
 
         class AttitudeConfig(ctypes.Structure):
             _fields_ = [("axis", AxisConfig * 3), ("inertia_kg_m2", r * 3), ("drag_Nms", r),

@@ -4,6 +4,7 @@
  * each malformed input with the error's line, column and message. */
 #include "unity.h"
 #include "scenario.h"
+#include "setup.h"
 #include "ladrc/types.h"
 
 #include <math.h>
@@ -129,6 +130,9 @@ static void test_defaults_fill_every_key_not_given(void)
         TEST_ASSERT_EQUAL_INT(-1, o->leso_method);
         TEST_ASSERT_EQUAL_INT(-1, o->hp_freq_mode);
         TEST_ASSERT_EQUAL_INT(-1, o->coupling_feed);
+        TEST_ASSERT_TRUE(isnan(o->model_motor_tau_s));
+        TEST_ASSERT_EQUAL_INT(-1, o->model_delay_ticks);
+        TEST_ASSERT_EQUAL_INT(-1, o->wrap_yaw);
     }
 
     /* metric windows: the whole run */
@@ -190,7 +194,9 @@ static void test_every_attitude_key_lands_in_its_field_in_its_unit(void)
              "error_window_s = 1 20\n"
              "steady_window_s = 15 18.5\n"
              "settle_band_deg = 0.2\n"
-             "settle_window_s = 2 4\n");
+             "settle_window_s = 2 4\n"
+             "[controller LADRC]\n" /* the library models at most 8 ticks of delay */
+             "model_delay_ticks = 8\n");
     TEST_ASSERT_EQUAL_INT(SIM_KIND_ATTITUDE, sc.kind);
     assert_close(20.0, sc.duration_s, "duration_s");
     assert_close(2e-3, sc.control_dt_s, "control_dt_s");
@@ -294,6 +300,37 @@ static void test_every_override_key_lands_in_its_controller(void)
     assert_close(0.05, pid->pid_kd, "kd");
     TEST_ASSERT_TRUE(isnan(pid->wc_rad_s));
     TEST_ASSERT_EQUAL_INT(-1, pid->coupling_feed);
+}
+
+static void test_controllers_model_the_airframe_unless_told_otherwise(void)
+{
+    /* given: a lagging, late airframe; LADRC flies unmodelled, LP with its
+     * own model, PID without wrapping its yaw */
+    parse_ok("[run]\nduration_s = 1\n[rotors]\nmotor_tau_s = 0.03\n[sensors]\ndelay_ticks = 2\n"
+             "[controller LADRC]\nmodel_motor_tau_s = 0\nmodel_delay_ticks = 0\n"
+             "[controller LP-MLADRC]\nmodel_motor_tau_s = 0.02\nwrap_yaw = no\n"
+             "[controller PID]\nwrap_yaw = no\n");
+    ladrc_attitude_config_t cfg;
+    /* when / then */
+    sim_setup_attitude(&sc, SIM_CTRL_HP_MLADRC, &cfg);
+    for (int i = 0; i < 3; ++i) {
+        TEST_ASSERT_FLOAT_WITHIN(1e-9f, 0.03f, cfg.axis[i].motor_tau_s);
+        TEST_ASSERT_EQUAL_INT(2, cfg.axis[i].delay_ticks);
+        TEST_ASSERT_EQUAL_INT(i == 2, cfg.axis[i].wrap_angle);
+    }
+    TEST_ASSERT_EQUAL_INT(1, sim_setup_wraps_yaw(&sc, SIM_CTRL_HP_MLADRC));
+    sim_setup_attitude(&sc, SIM_CTRL_LADRC, &cfg);
+    TEST_ASSERT_EQUAL_FLOAT(0.0f, cfg.axis[0].motor_tau_s);
+    TEST_ASSERT_EQUAL_INT(0, cfg.axis[0].delay_ticks);
+    TEST_ASSERT_EQUAL_INT(1, cfg.axis[2].wrap_angle);
+    sim_setup_attitude(&sc, SIM_CTRL_LP_MLADRC, &cfg);
+    TEST_ASSERT_FLOAT_WITHIN(1e-9f, 0.02f, cfg.axis[1].motor_tau_s);
+    TEST_ASSERT_EQUAL_INT(2, cfg.axis[1].delay_ticks);
+    TEST_ASSERT_EQUAL_INT(0, cfg.axis[2].wrap_angle);
+    TEST_ASSERT_EQUAL_INT(0, sim_setup_wraps_yaw(&sc, SIM_CTRL_LP_MLADRC));
+    sim_setup_attitude(&sc, SIM_CTRL_PID, &cfg);
+    TEST_ASSERT_EQUAL_INT(0, cfg.axis[2].wrap_angle);
+    TEST_ASSERT_EQUAL_INT(0, sim_setup_wraps_yaw(&sc, SIM_CTRL_PID));
 }
 
 static void test_every_differentiator_key_lands_in_its_field(void)
@@ -813,6 +850,13 @@ static void test_values_the_library_refuses_are_errors_at_their_key(void)
          "td_accel_rad_s2 = 1e39\n",
          7, 19, "the tracking differentiator", LADRC_ERR_TD_ACCEL_RAD_S2},
 #endif
+        /* actuator models the library does not take: at the key that sets them */
+        {"[run]\nduration_s = 1\n[rotors]\nmotor_tau_s = 2\n", 4, 15, "HP-MLADRC", LADRC_ERR_MOTOR_TAU_S},
+        {"[run]\nduration_s = 1\n[sensors]\ndelay_ticks = 9\n", 4, 15, "HP-MLADRC", LADRC_ERR_DELAY_TICKS},
+        {"[run]\nduration_s = 1\n[controller LADRC]\nmodel_delay_ticks = 12\n", 4, 21, "LADRC",
+         LADRC_ERR_DELAY_TICKS},
+        {"[run]\nduration_s = 1\n[controller LP-MLADRC]\nmodel_motor_tau_s = 1.5\n", 4, 21, "LP-MLADRC",
+         LADRC_ERR_MOTOR_TAU_S},
         /* combinations */
         {"[run]\nduration_s = 1\n[controller LADRC]\nleso_method = euler\nwo_rad_s = 3000\n", 5, 12, "LADRC",
          LADRC_ERR_LESO_EULER_UNSTABLE},
@@ -911,6 +955,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_defaults_fill_every_key_not_given);
     RUN_TEST(test_every_attitude_key_lands_in_its_field_in_its_unit);
+    RUN_TEST(test_controllers_model_the_airframe_unless_told_otherwise);
     RUN_TEST(test_std_and_variance_keys_set_the_same_noise);
     RUN_TEST(test_every_override_key_lands_in_its_controller);
     RUN_TEST(test_every_differentiator_key_lands_in_its_field);

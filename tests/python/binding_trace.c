@@ -36,6 +36,9 @@ static void axis_overrides(ladrc_axis_config_t *cfg)
     cfg->wc_rad_s = LADRC_R(18.0);
     cfg->u_min_Nm = LADRC_R(-0.05);
     cfg->u_max_Nm = LADRC_R(0.05);
+    cfg->motor_tau_s = LADRC_R(0.02); /* the actuator model and the wrap in the mirror */
+    cfg->delay_ticks = 2u;
+    cfg->wrap_angle = 1u;
     if (cfg->variant == LADRC_VARIANT_HP_MLADRC) {
         cfg->hp_freq_mode = LADRC_HP_FREQ_ONLINE;
         cfg->hp_fit_phase = 1u;

@@ -28,7 +28,8 @@ VARIANTS = ["LADRC", "LP_MLADRC", "HP_MLADRC", "PID"]
 def axis_dict(variant):
     """The overrides of binding_trace.c's axis_overrides(), as a dict."""
     d = {"variant": variant, "dt_s": 0.001, "inertia_kg_m2": 5.445e-3,
-         "wc_rad_s": 18.0, "u_min_Nm": -0.05, "u_max_Nm": 0.05}
+         "wc_rad_s": 18.0, "u_min_Nm": -0.05, "u_max_Nm": 0.05,
+         "motor_tau_s": 0.02, "delay_ticks": 2, "wrap_angle": 1}
     if variant == "HP_MLADRC":
         d.update(hp_freq_mode="ONLINE", hp_fit_phase=1)
     if variant == "PID":
@@ -124,6 +125,15 @@ def main():
     except ladrc.LadrcError as e:
         if e.axis != 2 or not e.text.startswith("LADRC_ERR_WO_RAD_S"):
             failures.append(f"attitude error: axis {e.axis}, text {e.text}")
+    for field, value, status in (("motor_tau_s", -0.01, "LADRC_ERR_MOTOR_TAU_S"),
+                                 ("delay_ticks", 9, "LADRC_ERR_DELAY_TICKS"),
+                                 ("wrap_angle", 2, "LADRC_ERR_WRAP_ANGLE")):
+        try:
+            ladrc.Axis({"variant": "LADRC", "dt_s": 0.001, "inertia_kg_m2": 5.445e-3, field: value})
+            failures.append(f"{field} = {value} was accepted")
+        except ladrc.LadrcError as e:
+            if not str(e).startswith(status):
+                failures.append(f"{field} error text: {e}")
     try:
         ladrc.Axis({"variant": "LADRC", "dt_s": 0.001, "inertia_kg_m2": 1e-3, "wc": 3.0})
         failures.append("an unknown field was accepted")

@@ -15,12 +15,21 @@ bench_engagement_t bench_engaged_attitude[BENCH_DISTURBANCES];
 bench_engagement_t bench_engaged_axis[BENCH_DISTURBANCES];
 
 const char *const bench_case_name[BENCH_CASES] = {"PID", "LADRC", "LP-MLADRC", "HP-MLADRC",
-                                                  "HP-MLADRC-2tones"};
+                                                  "HP-MLADRC-2tones", "HP-MLADRC-act"};
 const ladrc_variant_t bench_case_variant[BENCH_CASES] = {
     LADRC_VARIANT_PID, LADRC_VARIANT_LADRC, LADRC_VARIANT_LP_MLADRC, LADRC_VARIANT_HP_MLADRC,
-    LADRC_VARIANT_HP_MLADRC};
+    LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_HP_MLADRC};
 const int bench_case_inputs[BENCH_CASES] = {BENCH_ONE_TONE, BENCH_ONE_TONE, BENCH_ONE_TONE,
-                                            BENCH_ONE_TONE, BENCH_TWO_TONES};
+                                            BENCH_ONE_TONE, BENCH_TWO_TONES, BENCH_ONE_TONE};
+
+/* The actuator model of the case's axes (none but for HP-MLADRC-act). */
+static void set_actuator(ladrc_axis_config_t *cfg, int bench_case)
+{
+    if (bench_case == BENCH_CASE_HP_ACT) {
+        cfg->motor_tau_s = BENCH_ACT_MOTOR_TAU_S;
+        cfg->delay_ticks = BENCH_ACT_DELAY_TICKS;
+    }
+}
 const ladrc_real_t bench_inertia[LADRC_AXES] = {5.445e-3f, 5.445e-3f, 1.089e-2f};
 
 /* Saturating mixer with rotor limits, as flown (the paper's is ideal). */
@@ -172,6 +181,7 @@ int bench_setup_axis(ladrc_axis_t *axis, int bench_case)
 {
     ladrc_axis_config_t cfg;
     ladrc_axis_config_default(&cfg, bench_case_variant[bench_case], BENCH_DT_S, bench_inertia[0]);
+    set_actuator(&cfg, bench_case);
     if (ladrc_axis_init(axis, &cfg) != LADRC_OK) {
         return -1;
     }
@@ -184,6 +194,9 @@ int bench_setup_attitude(ladrc_attitude_t *att, ladrc_mixer_t *mixer, int bench_
     ladrc_attitude_config_t cfg;
     int bad_axis = -1;
     ladrc_attitude_config_default(&cfg, bench_case_variant[bench_case], BENCH_DT_S, bench_inertia, DRAG_NMS);
+    for (int a = 0; a < LADRC_AXES; ++a) {
+        set_actuator(&cfg.axis[a], bench_case);
+    }
     if (ladrc_attitude_init(att, &cfg, &bad_axis) != LADRC_OK ||
         ladrc_mixer_init(mixer, &bench_mixer_cfg) != LADRC_OK) {
         return -1;

@@ -320,7 +320,7 @@ static int setup_modules(void)
     const ladrc_rls_config_t rls5 = {5u, t3, mod.fit_rate2_per_s, 1e4f / t3, 1e3f / t3};
     const ladrc_pid_config_t pidc = {pid.dt_s, pid.pid_kp, pid.pid_ki, pid.pid_kd,
                                      pid.pid_d_filter_tau_s, pid.pid_i_limit_Nm, pid.u_min_Nm,
-                                     pid.u_max_Nm};
+                                     pid.u_max_Nm, 0u};
     if (ladrc_leso_init(&mod.leso, &leso) != LADRC_OK || ladrc_td_init(&mod.td, &td) != LADRC_OK ||
         ladrc_levant_init(&mod.levant, &lev) != LADRC_OK || ladrc_lp_init(&mod.lp, &lp) != LADRC_OK ||
         ladrc_hp_init(&mod.hp, &hpc) != LADRC_OK || ladrc_hp_init(&mod.hp2, &hpc) != LADRC_OK ||
