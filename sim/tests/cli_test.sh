@@ -98,7 +98,7 @@ check diverged_series_ends_at_divergence $?
 
 # A slow, finite growth (LADRC not modelling a 55 ms motor lag: about x1.3 per
 # second from 5 deg) is caught at the limit, not at overflow.
-printf '[run]\nduration_s = 15\ncontrollers = LADRC\n[reference]\nroll = 5\n[rotors]\nmotor_tau_s = 0.055\n' \
+printf '[run]\nduration_s = 15\ncontrollers = LADRC\n[reference]\nroll = 5\n[rotors]\nmotor_tau_s = 0.055\n[controller LADRC]\nmodel_motor_tau_s = 0\n' \
     > "$work/slow.ini"
 "$sil" "$work/slow.ini" --out "$work/slow_out" --no-csv --quiet > /dev/null 2> "$work/slow.err"
 rc=$?

@@ -37,16 +37,22 @@ void tearDown(void) {}
 
 static void load(const char *controller, double inertia, double tau_s, int delay)
 {
+    /* The controller's actuator model stays fixed (none) while the plant's
+     * lag and delay vary: the boundary of one configured controller. */
+    char model[128] = "";
+    if (strcmp(controller, "PID") != 0) {
+        snprintf(model, sizeof model, "[controller %s]\nmodel_motor_tau_s = 0\nmodel_delay_ticks = 0\n", controller);
+    }
     char text[2048];
     snprintf(text, sizeof text,
              "[run]\nduration_s = %g\ncontrol_dt_s = 0.001\nplant_substeps = 10\ncontrollers = %s\n"
              "[vehicle]\nmass_kg = 0.8\ninertia_kg_m2 = %g %g %g\narm_m = 0.165\nthrust_coeff_N_s2 = 2.98e-5\n"
              "yaw_coeff_Nm_s2 = 2e-6\nrot_drag_Nm_s = 0.09\ng_m_s2 = 9.81\n"
              "[rotors]\nideal = yes\nmotor_tau_s = %.9g\n[sensors]\ndelay_ticks = %d\n"
-             "[disturbance]\nroll = 0.1 .. 0.11 : 1\n"
+             "[disturbance]\nroll = 0.1 .. 0.11 : 1\n%s"
              "[metrics]\nerror_window_s = %g %g\nsteady_window_s = %g %g\nsettle_band_deg = %g\n"
              "settle_window_s = 0 %g\n",
-             RUN_S, controller, inertia, inertia, 2.0 * inertia, tau_s, delay, RUN_S - 1.0, RUN_S, RUN_S - 2.0,
+             RUN_S, controller, inertia, inertia, 2.0 * inertia, tau_s, delay, model, RUN_S - 1.0, RUN_S, RUN_S - 2.0,
              RUN_S - 1.0, LIMIT_DEG, RUN_S);
     sim_parse_error_t err;
     const int rc = sim_scenario_parse(&sc, text, "boundary.ini", &err);

@@ -84,7 +84,7 @@ static void test_a_slowly_growing_oscillation_diverges_at_the_limit_while_finite
      * envelope grows about 1.3 times per second from 5 deg (measured: 5.6 deg
      * over 1-2 s, 55 deg over 10-11 s), finite throughout */
     const sim_metrics_t m = fly_text("[run]\nduration_s = 15\ncontrollers = LADRC\n[reference]\nroll = 5\n"
-                                     "[rotors]\nmotor_tau_s = 0.055\n",
+                                     "[rotors]\nmotor_tau_s = 0.055\n[controller LADRC]\nmodel_motor_tau_s = 0\n",
                                      SIM_CTRL_LADRC);
     char msg[160];
     snprintf(msg, sizeof msg, "diverged %d at %.4f s on axis %d, |error| %.4f deg, finite %d", m.diverged,
