@@ -180,15 +180,11 @@ int main(int argc, char **argv)
             ladrc_margins_request_t req;
             ladrc_margins_request_default(&req, &plant);
             const ladrc_margins_controller_t ctl = {&acfg, i, NULL, sc.use_rate};
-            ladrc_margins_status_t st = ladrc_margins_analyse(&ws, &ctl, &req, &res);
-            const char *note = "";
-            if (st == LADRC_MARGINS_ERR_NOT_SETTLED && acfg.axis[i].variant == LADRC_VARIANT_HP_MLADRC) {
-                /* Its converged tone model has no settled linear response:
-                 * the margins of its idle state (no tone, weight 0). */
-                req.tone_rad_s2 = 0.0;
-                st = ladrc_margins_analyse(&ws, &ctl, &req, &res);
-                note = "  (estimator idle: no settled linearisation under the tone)";
-            }
+            int idle = 0;
+            ladrc_margins_status_t st = ladrc_margins_analyse_reported(&ws, &ctl, &req, &res, &idle);
+            /* HP-MLADRC's converged tone model may have no settled linear
+             * response: then the margins of its idle state (no tone, weight 0). */
+            const char *note = idle ? "  (estimator idle: no settled linearisation under the tone)" : "";
             if (st != LADRC_MARGINS_OK) {
                 printf("%-10s %-5s analysis failed: %s\n", sim_controller_name(id), AXIS_NAMES[i],
                        ladrc_margins_status_str(st));
@@ -221,7 +217,6 @@ int main(int argc, char **argv)
             if (tune) {
                 const ladrc_margins_targets_t targets = {45.0, 6.0};
                 ladrc_axis_config_t tuned;
-                req.tone_rad_s2 = 20.0;
                 st = ladrc_margins_tune(&ws, &ctl, &req, &targets, &tuned, &tuning);
                 const ladrc_margins_result_t *m = &tuning.margins;
                 if (acfg.axis[i].variant == LADRC_VARIANT_PID) {
