@@ -15,7 +15,9 @@
 
 #include "ladrc/margins.h"
 #include "scenario.h"
+#include "report.h"
 #include "setup.h"
+#include "tune.h"
 
 /* Largest motor lag searched (s): ten times any real motor's. */
 #define TAU_SEARCH_MAX_S 0.5
@@ -39,7 +41,8 @@ static void usage(FILE *out)
           "Prints per controller and axis: gain margin, phase margin, delay margin,\n"
           "crossover, peak sensitivity, the verdict, and the largest stable motor lag\n"
           "and sensor delay. Exit status 0, 1 if an analysis failed or a loop is\n"
-          "unstable, 2 for bad usage or a bad scenario.\n",
+          "unstable, 2 for bad usage or a bad scenario (a tune = margins target that\n"
+          "cannot be met included).\n",
           out);
 }
 
@@ -160,12 +163,20 @@ int main(int argc, char **argv)
         fprintf(stderr, "ladrc_margins: %s: not an attitude scenario\n", path);
         return 2;
     }
+    /* tune = margins: the controllers are analysed with the gains it chooses. */
+    for (int c = 0; c < sc.n_controllers; ++c) {
+        if (sim_tune_controller(&sc, sc.controllers[c], &ws, &perr) != 0) {
+            fprintf(stderr, "%s:%d:%d: %s\n", perr.path, perr.line, perr.column, perr.message);
+            return 2;
+        }
+    }
     if (csv_dir != NULL && mkdir(csv_dir, 0777) != 0 && errno != EEXIST) {
         fprintf(stderr, "ladrc_margins: --csv: cannot create '%s': %s\n", csv_dir, strerror(errno));
         return 2;
     }
     printf("%s: dt %.4g s, motor lag %.4g s, sensor delay %d ticks, rate %s, true inertia x %.3g\n", sc.name,
            sc.control_dt_s, sc.motor_tau_s, sc.delay_ticks, sc.use_rate ? "used" : "not used", inertia_factor);
+    sim_report_tuning(stdout, &sc);
     printf("%-10s %-5s %9s %10s %8s %10s %14s %7s %6s %12s %10s\n", "controller", "axis", "GM", "GM at", "PM",
            "crossover", "delay margin", "Ms", "stable", "max lag", "max delay");
     int status = 0;

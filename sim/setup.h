@@ -15,7 +15,8 @@
 
 /* Controller id on sc: the library defaults for the control period and the
  * inertia and drag the controllers assume (the plant's times the mismatch
- * factors), then the scenario's [controller NAME] overrides. */
+ * factors), then the scenario's [controller NAME] overrides, then the gains
+ * tune = margins chose (sc->tuning[id], once sim_tune_controller has run). */
 void sim_setup_attitude(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_config_t *cfg);
 
 /* 1 when controller id's yaw wraps at +-180 deg ([controller NAME] wrap_yaw,
