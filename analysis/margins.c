@@ -1042,14 +1042,17 @@ static double search_up(tuner_t *t, int shape, double j_model, double w_lo, doub
     return lo;
 }
 
-/* Adaptive variants: from the core's w down (factor 1.5, to w_lo) to the
+/* Adaptive variants: from the core's w down (factor 1.1, to w_lo) to the
  * first w at which the whole variant meets the targets, refined by bisection
- * to 1 % against the scan point above it; NAN if none. */
+ * to 1 % against the scan point above it; NAN if none. The step is finer
+ * than the core's scan: the variant's margins need not fall monotonically
+ * with w (LP's gain bound adapts to what it sees), and a coarse step can
+ * jump over the highest band that meets them. */
 static double search_down(tuner_t *t, int shape, double j_model, double w_top, double w_lo, fallback_t *fb)
 {
     ladrc_margins_result_t *res = &t->ws->scratch;
     double bad_w = NAN;
-    for (double w = w_top; w >= w_lo; w /= 1.5) {
+    for (double w = w_top; w >= w_lo; w /= 1.1) {
         set_gains(t, w, shape, j_model);
         if (evaluate(t, res, 1)) {
             if (isnan(bad_w)) return w;

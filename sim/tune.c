@@ -77,6 +77,12 @@ static void copy_axis(sim_tuning_t *t, int to, int from)
     t->shared[to] = 1;
 }
 
+/* The targets of ladrc_margins_tune: stable, PM and both gain margins. */
+static int meets(const ladrc_margins_result_t *m, const ladrc_margins_targets_t *tg)
+{
+    return m->stable && m->pm_deg >= tg->pm_min_deg && m->gm_db >= tg->gm_min_db && m->gm_low_db <= -tg->gm_min_db;
+}
+
 int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margins_workspace_t *ws,
                         sim_parse_error_t *err)
 {
@@ -94,15 +100,31 @@ int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margin
     ladrc_attitude_config_t acfg;
     sim_setup_attitude(sc, id, &acfg); /* tuning[id] is clear: the defaults and the file's keys */
     for (int i = 0; i < 3; ++i) {
-        /* Roll and pitch of a symmetric airframe are one loop. */
-        if (i == 1 && sc->inertia_kg_m2[1] * sc->inertia_scale[1] == sc->inertia_kg_m2[0] * sc->inertia_scale[0]) {
-            copy_axis(t, 1, 0);
-            continue;
-        }
         ladrc_margins_plant_t plant;
         sim_tune_plant(sc, i, &plant);
         ladrc_margins_request_t req;
         ladrc_margins_request_default(&req, &plant);
+        /* Roll and pitch of a symmetric airframe are the same loop: pitch
+         * takes roll's gains when its own analysis with them meets the
+         * targets (an adaptive variant's linearisation under the tone may
+         * differ between the two), else it is tuned itself. */
+        if (i == 1 && plant.inertia_kg_m2 == sc->inertia_kg_m2[0] * sc->inertia_scale[0]) {
+            ladrc_attitude_config_t shared = acfg;
+            sim_setup_tuned_gains(t, 0, &shared.axis[1]);
+            const ladrc_margins_controller_t chk = {&shared, 1, NULL, sc->use_rate};
+            int idle = 0;
+            ladrc_margins_result_t *m = &ws->scratch;
+            if (ladrc_margins_analyse_reported(ws, &chk, &req, m, &idle) == LADRC_MARGINS_OK && meets(m, &targets)) {
+                copy_axis(t, 1, 0);
+                t->pm_deg[1] = m->pm_deg;
+                t->gm_db[1] = m->gm_db;
+                t->gm_low_db[1] = m->gm_low_db;
+                t->crossover_rad_s[1] = m->wc_rad_s;
+                t->ms[1] = m->ms;
+                t->idle[1] = idle;
+                continue;
+            }
+        }
         const ladrc_margins_controller_t ctl = {&acfg, i, NULL, sc->use_rate};
         ladrc_axis_config_t tuned;
         ladrc_margins_tuning_t result;
