@@ -941,12 +941,133 @@ static void set_gains(tuner_t *t, double w, int shape, double j_model)
 
 static int n_shapes(void) { return 3; }
 
-/* Margins of the candidate; 1 when it meets the targets. */
-static int evaluate(tuner_t *t, ladrc_margins_result_t *res)
+/* 1 when a result meets the targets: stable, PM and both gain margins. */
+static int meets(const ladrc_margins_result_t *res, const ladrc_margins_targets_t *tg)
 {
-    if (ladrc_margins_analyse(t->ws, &t->ctl, t->req, res) != LADRC_MARGINS_OK) return 0;
-    return res->stable && res->pm_deg >= t->tg->pm_min_deg && res->gm_db >= t->tg->gm_min_db &&
-           res->gm_low_db <= -t->tg->gm_min_db;
+    return res->stable && res->pm_deg >= tg->pm_min_deg && res->gm_db >= tg->gm_min_db &&
+           res->gm_low_db <= -tg->gm_min_db;
+}
+
+ladrc_margins_status_t ladrc_margins_analyse_reported(ladrc_margins_workspace_t *ws,
+                                                      const ladrc_margins_controller_t *ctl,
+                                                      const ladrc_margins_request_t *req,
+                                                      ladrc_margins_result_t *res, int *idle)
+{
+    if (idle != NULL) *idle = 0;
+    ladrc_margins_status_t st = ladrc_margins_analyse(ws, ctl, req, res);
+    if (st == LADRC_MARGINS_ERR_NOT_SETTLED && ctl != NULL && req != NULL &&
+        (ctl->attitude != NULL || ctl->axis != NULL) &&
+        (ctl->attitude == NULL || (ctl->axis_index >= 0 && ctl->axis_index < LADRC_AXES)) &&
+        ctl_axis_config(ctl)->variant == LADRC_VARIANT_HP_MLADRC) {
+        ladrc_margins_request_t quiet = *req;
+        quiet.tone_rad_s2 = 0.0;
+        st = ladrc_margins_analyse(ws, ctl, &quiet, res);
+        if (idle != NULL) *idle = st == LADRC_MARGINS_OK;
+    }
+    return st;
+}
+
+/* Margins of the candidate (whole: as ladrc_margins reports the variant;
+ * otherwise the search's LADRC core, margins only, no output grid); 1 when
+ * it meets the targets. */
+static int evaluate(tuner_t *t, ladrc_margins_result_t *res, int whole)
+{
+    if (whole) {
+        if (ladrc_margins_analyse_reported(t->ws, &t->ctl, t->req, res, NULL) != LADRC_MARGINS_OK) {
+            res->stable = 0; /* not analysable: no fallback either */
+            return 0;
+        }
+        return meets(res, t->tg);
+    }
+    loop_t lp;
+    if (ladrc_margins_measure(t->ws, &t->ctl, t->req) != LADRC_MARGINS_OK ||
+        make_loop(t->ws, &t->req->plant, &lp) != LADRC_MARGINS_OK) {
+        res->stable = 0;
+        return 0;
+    }
+    memset(res, 0, sizeof *res);
+    margins(&lp, t->req->plant.dt_s, res);
+    return meets(res, t->tg);
+}
+
+/* A missed candidate's distance to the targets (larger: closer). */
+static double miss_score(const ladrc_margins_result_t *res, const ladrc_margins_targets_t *tg)
+{
+    return fmin(res->pm_deg - tg->pm_min_deg, 3.0 * (res->gm_db - tg->gm_min_db));
+}
+
+/* The closest stable miss so far (the report when nothing meets the targets). */
+typedef struct {
+    double score, w;
+    int shape;
+} fallback_t;
+
+static void note_miss(fallback_t *f, const ladrc_margins_result_t *res, const ladrc_margins_targets_t *tg, double w,
+                      int shape)
+{
+    const double score = miss_score(res, tg);
+    if (res->stable && score > f->score) {
+        f->score = score;
+        f->w = w;
+        f->shape = shape;
+    }
+}
+
+/* Largest w on the geometric scan from w_lo (factor 1.5, up to w_hi) whose
+ * candidate meets the targets, refined by bisection to 1 % against the next
+ * scan point; NAN if none. */
+static double search_up(tuner_t *t, int shape, double j_model, double w_lo, double w_hi, int whole, fallback_t *fb)
+{
+    ladrc_margins_result_t *res = &t->ws->scratch;
+    double ok_w = NAN, bad_w = NAN;
+    for (double w = w_lo; w <= w_hi; w *= 1.5) {
+        set_gains(t, w, shape, j_model);
+        if (evaluate(t, res, whole)) {
+            ok_w = w;
+        } else {
+            note_miss(fb, res, t->tg, w, shape);
+            if (!isnan(ok_w)) {
+                bad_w = w;
+                break;
+            }
+        }
+    }
+    if (isnan(ok_w) || isnan(bad_w)) return ok_w;
+    double lo = ok_w, hi = bad_w;
+    while (hi - lo > 0.01 * lo) {
+        const double m = sqrt(lo * hi);
+        set_gains(t, m, shape, j_model);
+        if (evaluate(t, res, whole)) lo = m; else hi = m;
+    }
+    return lo;
+}
+
+/* Adaptive variants: from the core's w down (factor 1.1, to w_lo) to the
+ * first w at which the whole variant meets the targets, refined by bisection
+ * to 1 % against the scan point above it; NAN if none. The step is finer
+ * than the core's scan: the variant's margins need not fall monotonically
+ * with w (LP's gain bound adapts to what it sees), and a coarse step can
+ * jump over the highest band that meets them. */
+static double search_down(tuner_t *t, int shape, double j_model, double w_top, double w_lo, fallback_t *fb)
+{
+    ladrc_margins_result_t *res = &t->ws->scratch;
+    double bad_w = NAN;
+    for (double w = w_top; w >= w_lo; w /= 1.1) {
+        set_gains(t, w, shape, j_model);
+        if (evaluate(t, res, 1)) {
+            if (isnan(bad_w)) return w;
+            double lo = w, hi = bad_w;
+            while (hi - lo > 0.01 * lo) {
+                const double m = sqrt(lo * hi);
+                set_gains(t, m, shape, j_model);
+                if (evaluate(t, res, 1)) lo = m; else hi = m;
+            }
+            return lo;
+        }
+        note_miss(fb, res, t->tg, w, shape);
+        bad_w = w;
+    }
+    return NAN;
 }
 
 ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
@@ -983,66 +1104,63 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
     /* w from 0.5 rad/s up to the sampled loop's limit (wc dt < 1 for LADRC;
      * the same bound keeps PID's w below the Nyquist frequency). */
     const double w_lo = 0.5, w_hi = 0.95 / dt;
-    ladrc_margins_result_t *res = &ws->scratch;
+    const int adaptive = variant != a->variant;
     memset(out, 0, sizeof *out);
     out->peak_dist_rad = INFINITY;
+    /* closest misses of the searched core and of the whole adaptive variant */
+    fallback_t fb_core = {-INFINITY, NAN, -1}, fb_whole = {-INFINITY, NAN, -1};
     double best_w = NAN;
-    int best_shape = -1, best_met = 0;
-    double fallback_score = -INFINITY;
+    int best_shape = -1;
     for (int shape = 0; shape < n_shapes(); ++shape) {
-        /* Coarse scan (factor 1.5) for the last w meeting the targets, then
-         * bisection between it and the next to 1 %. */
-        double ok_w = NAN, bad_w = NAN;
-        for (double w = w_lo; w <= w_hi; w *= 1.5) {
-            set_gains(&t, w, shape, j_model);
-            const int met = evaluate(&t, res);
-            if (met) {
-                ok_w = w;
-            } else if (!isnan(ok_w)) {
-                bad_w = w;
-                break;
-            }
-            if (!met) {
-                /* Closest miss, for the report when nothing meets the targets. */
-                const double score = fmin(res->pm_deg - targets->pm_min_deg,
-                                          3.0 * (res->gm_db - targets->gm_min_db));
-                if (!best_met && res->stable && score > fallback_score) {
-                    fallback_score = score;
-                    best_w = w;
-                    best_shape = shape;
-                }
-            }
-        }
+        double ok_w = search_up(&t, shape, j_model, w_lo, w_hi, 0, &fb_core);
         if (isnan(ok_w)) continue;
-        if (!isnan(bad_w)) {
-            double lo = ok_w, hi = bad_w;
-            while (hi - lo > 0.01 * lo) {
-                const double m = sqrt(lo * hi);
-                set_gains(&t, m, shape, j_model);
-                if (evaluate(&t, res)) lo = m; else hi = m;
-            }
-            ok_w = lo;
+        if (adaptive) {
+            /* The whole variant at the core's bandwidth, and lower until it
+             * meets the targets too: its estimator adds phase lag. */
+            a->variant = variant;
+            ok_w = search_down(&t, shape, j_model, ok_w, w_lo, &fb_whole);
+            a->variant = LADRC_VARIANT_LADRC;
+            if (isnan(ok_w)) continue;
         }
+        a->variant = variant;
         set_gains(&t, ok_w, shape, j_model);
-        (void)evaluate(&t, res);
-        if (!best_met || res->dist_peak_rad < out->peak_dist_rad) {
-            best_met = 1;
+        ladrc_margins_result_t *res = &ws->scratch;
+        const ladrc_margins_status_t st_c = ladrc_margins_analyse_reported(ws, &t.ctl, req, res, NULL);
+        a->variant = adaptive ? LADRC_VARIANT_LADRC : variant;
+        if (st_c != LADRC_MARGINS_OK) continue;
+        if (best_shape < 0 || res->dist_peak_rad < out->peak_dist_rad) {
             best_w = ok_w;
             best_shape = shape;
             out->peak_dist_rad = res->dist_peak_rad;
         }
     }
-    if (best_shape < 0) {
-        out->met = 0;
-        *tuned = *ctl_axis_config(ctl);
-        return LADRC_MARGINS_ERR_TARGETS_NOT_MET;
+    const int found = best_shape >= 0;
+    const fallback_t fb = (adaptive && fb_whole.shape >= 0) ? fb_whole : fb_core;
+    if (!found) {
+        if (fb.shape < 0) {
+            /* Not one stable candidate: the margins of the controller as given. */
+            a->variant = variant;
+            *a = *ctl_axis_config(ctl);
+            (void)ladrc_margins_analyse_reported(ws, &t.ctl, req, &out->margins, NULL);
+            out->met = 0;
+            out->wc_rad_s = (double)a->wc_rad_s;
+            out->wo_rad_s = (double)a->wo_rad_s;
+            out->kp = (double)a->pid_kp;
+            out->ki = (double)a->pid_ki;
+            out->kd = (double)a->pid_kd;
+            out->d_filter_tau_s = (double)a->pid_d_filter_tau_s;
+            out->peak_dist_rad = out->margins.dist_peak_rad;
+            *tuned = *a;
+            return LADRC_MARGINS_ERR_TARGETS_NOT_MET;
+        }
+        best_w = fb.w;
+        best_shape = fb.shape;
     }
     set_gains(&t, best_w, best_shape, j_model);
     a->variant = variant;
-    /* Margins of the variant as it will fly. */
-    const ladrc_margins_status_t fin = ladrc_margins_analyse(ws, &t.ctl, req, &out->margins);
-    out->met = best_met && fin == LADRC_MARGINS_OK && out->margins.stable &&
-               out->margins.pm_deg >= targets->pm_min_deg && out->margins.gm_db >= targets->gm_min_db;
+    /* Margins of the variant as it will fly (and as ladrc_margins reports them). */
+    const ladrc_margins_status_t fin = ladrc_margins_analyse_reported(ws, &t.ctl, req, &out->margins, NULL);
+    out->met = found && fin == LADRC_MARGINS_OK && meets(&out->margins, targets);
     out->peak_dist_rad = out->margins.dist_peak_rad;
     out->wc_rad_s = (double)a->wc_rad_s;
     out->wo_rad_s = (double)a->wo_rad_s;

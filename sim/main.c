@@ -18,6 +18,7 @@
 #include "report.h"
 #include "runner.h"
 #include "scenario.h"
+#include "tune.h"
 
 #define MAX_SCENARIOS 32
 
@@ -45,6 +46,103 @@ typedef struct {
     pthread_cond_t finished;       /* signalled as each job ends */
 } pool_t;
 
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* tune = margins of one controller of one scenario, run before the flights. */
+typedef struct {
+    sim_scenario_t *sc;
+    sim_controller_id_t id;
+    sim_parse_error_t err;
+    int failed;
+} tune_task_t;
+
+typedef struct {
+    tune_task_t *tasks;
+    int n, next;
+    pthread_mutex_t lock;
+} tune_pool_t;
+
+static void *tune_worker(void *arg)
+{
+    tune_pool_t *pool = (tune_pool_t *)arg;
+    ladrc_margins_workspace_t *ws = malloc(sizeof *ws);
+    for (;;) {
+        pthread_mutex_lock(&pool->lock);
+        const int i = pool->next < pool->n ? pool->next++ : -1;
+        pthread_mutex_unlock(&pool->lock);
+        if (i < 0) {
+            break;
+        }
+        tune_task_t *t = &pool->tasks[i];
+        if (ws == NULL) {
+            snprintf(t->err.message, sizeof t->err.message, "tune = margins: out of memory");
+            t->failed = 1;
+            continue;
+        }
+        t->failed = sim_tune_controller(t->sc, t->id, ws, &t->err) != 0;
+    }
+    free(ws);
+    return NULL;
+}
+
+/* Tunes every listed controller with tune = margins, n_threads at a time.
+ * Returns 0, or -1 after printing the first failure (in task order). */
+static int tune_all(sim_scenario_t *scenarios, int n_sc, int n_threads, int quiet)
+{
+    static tune_task_t tasks[MAX_SCENARIOS * SIM_MAX_CONTROLLERS];
+    int n = 0;
+    for (int s = 0; s < n_sc; ++s) {
+        for (int c = 0; c < scenarios[s].n_controllers && scenarios[s].kind == SIM_KIND_ATTITUDE; ++c) {
+            if (sim_tune_wanted(&scenarios[s], scenarios[s].controllers[c])) {
+                memset(&tasks[n], 0, sizeof tasks[n]);
+                tasks[n].sc = &scenarios[s];
+                tasks[n].id = scenarios[s].controllers[c];
+                ++n;
+            }
+        }
+    }
+    if (n == 0) {
+        return 0;
+    }
+    const double start = now_s();
+    tune_pool_t pool = {tasks, n, 0, PTHREAD_MUTEX_INITIALIZER};
+    pthread_t threads[256];
+    int started = 0;
+    for (int t = 0; t < n_threads && t < n; ++t) {
+        if (pthread_create(&threads[t], NULL, tune_worker, &pool) != 0) {
+            break;
+        }
+        ++started;
+    }
+    if (started == 0) {
+        tune_worker(&pool);
+    }
+    for (int t = 0; t < started; ++t) {
+        pthread_join(threads[t], NULL);
+    }
+    for (int i = 0; i < n; ++i) {
+        if (tasks[i].failed) {
+            const sim_parse_error_t *e = &tasks[i].err;
+            if (e->line > 0) {
+                fprintf(stderr, "%s:%d:%d: %s\n", e->path, e->line, e->column, e->message);
+            } else {
+                fprintf(stderr, "%s: %s\n", tasks[i].sc->path, e->message);
+            }
+            return -1;
+        }
+    }
+    if (!quiet) {
+        fprintf(stderr, "ladrc_sil: tuned %d controllers (tune = margins) in %.2f s with %d jobs\n", n,
+                now_s() - start, started > 0 ? started : 1);
+    }
+    return 0;
+}
+
 static void usage(FILE *out)
 {
     fputs("usage: ladrc_sil SCENARIO... [--jobs N] [--controllers LIST] [--out DIR] [--no-csv] [--quiet]\n"
@@ -61,17 +159,12 @@ static void usage(FILE *out)
           "diverge_limit_deg (default 90) or its state turns non-finite: it stops there, its statistics\n"
           "print as \"diverged\", and stderr names it.\n"
           "Exit status: 0 every run flew; 1 a run failed or an output could not be written;\n"
-          "2 bad usage or a bad scenario (then nothing is run or written); 3 every run and output\n"
+          "2 bad usage or a bad scenario, a tune = margins target not met included (then nothing is\n"
+          "run or written); 3 every run and output\n"
           "completed but a run diverged (1 wins over 3).\n",
           out);
 }
 
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* mkdir -p */
 static int make_dirs(const char *path)
@@ -284,6 +377,12 @@ int main(int argc, char **argv)
             }
             memcpy(sc->output_dir, dir, sizeof dir);
         }
+    }
+
+    /* tune = margins, before anything is written: a target that cannot be
+     * met is an error of the file. */
+    if (tune_all(scenarios, n_sc, (int)jobs_wanted, quiet) != 0) {
+        return EXIT_BAD_INPUT;
     }
 
     /* One job per controller of each attitude scenario, one per differentiator. */

@@ -15,7 +15,9 @@
 
 #include "ladrc/margins.h"
 #include "scenario.h"
+#include "report.h"
 #include "setup.h"
+#include "tune.h"
 
 /* Largest motor lag searched (s): ten times any real motor's. */
 #define TAU_SEARCH_MAX_S 0.5
@@ -39,7 +41,8 @@ static void usage(FILE *out)
           "Prints per controller and axis: gain margin, phase margin, delay margin,\n"
           "crossover, peak sensitivity, the verdict, and the largest stable motor lag\n"
           "and sensor delay. Exit status 0, 1 if an analysis failed or a loop is\n"
-          "unstable, 2 for bad usage or a bad scenario.\n",
+          "unstable, 2 for bad usage or a bad scenario (a tune = margins target that\n"
+          "cannot be met included).\n",
           out);
 }
 
@@ -160,12 +163,20 @@ int main(int argc, char **argv)
         fprintf(stderr, "ladrc_margins: %s: not an attitude scenario\n", path);
         return 2;
     }
+    /* tune = margins: the controllers are analysed with the gains it chooses. */
+    for (int c = 0; c < sc.n_controllers; ++c) {
+        if (sim_tune_controller(&sc, sc.controllers[c], &ws, &perr) != 0) {
+            fprintf(stderr, "%s:%d:%d: %s\n", perr.path, perr.line, perr.column, perr.message);
+            return 2;
+        }
+    }
     if (csv_dir != NULL && mkdir(csv_dir, 0777) != 0 && errno != EEXIST) {
         fprintf(stderr, "ladrc_margins: --csv: cannot create '%s': %s\n", csv_dir, strerror(errno));
         return 2;
     }
     printf("%s: dt %.4g s, motor lag %.4g s, sensor delay %d ticks, rate %s, true inertia x %.3g\n", sc.name,
            sc.control_dt_s, sc.motor_tau_s, sc.delay_ticks, sc.use_rate ? "used" : "not used", inertia_factor);
+    sim_report_tuning(stdout, &sc);
     printf("%-10s %-5s %9s %10s %8s %10s %14s %7s %6s %12s %10s\n", "controller", "axis", "GM", "GM at", "PM",
            "crossover", "delay margin", "Ms", "stable", "max lag", "max delay");
     int status = 0;
@@ -180,15 +191,11 @@ int main(int argc, char **argv)
             ladrc_margins_request_t req;
             ladrc_margins_request_default(&req, &plant);
             const ladrc_margins_controller_t ctl = {&acfg, i, NULL, sc.use_rate};
-            ladrc_margins_status_t st = ladrc_margins_analyse(&ws, &ctl, &req, &res);
-            const char *note = "";
-            if (st == LADRC_MARGINS_ERR_NOT_SETTLED && acfg.axis[i].variant == LADRC_VARIANT_HP_MLADRC) {
-                /* Its converged tone model has no settled linear response:
-                 * the margins of its idle state (no tone, weight 0). */
-                req.tone_rad_s2 = 0.0;
-                st = ladrc_margins_analyse(&ws, &ctl, &req, &res);
-                note = "  (estimator idle: no settled linearisation under the tone)";
-            }
+            int idle = 0;
+            ladrc_margins_status_t st = ladrc_margins_analyse_reported(&ws, &ctl, &req, &res, &idle);
+            /* HP-MLADRC's converged tone model may have no settled linear
+             * response: then the margins of its idle state (no tone, weight 0). */
+            const char *note = idle ? "  (estimator idle: no settled linearisation under the tone)" : "";
             if (st != LADRC_MARGINS_OK) {
                 printf("%-10s %-5s analysis failed: %s\n", sim_controller_name(id), AXIS_NAMES[i],
                        ladrc_margins_status_str(st));
@@ -221,7 +228,6 @@ int main(int argc, char **argv)
             if (tune) {
                 const ladrc_margins_targets_t targets = {45.0, 6.0};
                 ladrc_axis_config_t tuned;
-                req.tone_rad_s2 = 20.0;
                 st = ladrc_margins_tune(&ws, &ctl, &req, &targets, &tuned, &tuning);
                 const ladrc_margins_result_t *m = &tuning.margins;
                 if (acfg.axis[i].variant == LADRC_VARIANT_PID) {

@@ -146,6 +146,30 @@ static void table3(FILE *out, const sim_scenario_result_t *r)
     }
 }
 
+void sim_report_tuning(FILE *out, const sim_scenario_t *sc)
+{
+    for (int c = 0; c < sc->n_controllers; ++c) {
+        const sim_controller_id_t id = sc->controllers[c];
+        const sim_tuning_t *t = &sc->tuning[id];
+        if (!t->tuned) {
+            continue;
+        }
+        for (int i = 0; i < 3; ++i) {
+            fprintf(out, "tuned %s %s: ", sim_controller_name(id), AXES[i]);
+            if (id == SIM_CTRL_PID) {
+                fprintf(out, "kp %.5g ki %.5g kd %.5g d_filter %.4g s", t->kp[i], t->ki[i], t->kd[i],
+                        t->d_filter_tau_s[i]);
+            } else {
+                fprintf(out, "wc %.5g rad/s wo %.5g rad/s", t->wc_rad_s[i], t->wo_rad_s[i]);
+            }
+            fprintf(out, " -> PM %.1f deg (>= %g), GM %.1f dB / %.1f dB (>= %g), crossover %.1f rad/s, Ms %.2f%s%s\n",
+                    t->pm_deg[i], t->pm_target_deg, t->gm_db[i], t->gm_low_db[i], t->gm_target_db,
+                    t->crossover_rad_s[i], t->ms[i], t->idle[i] ? " (estimator idle)" : "",
+                    t->shared[i] ? " (= roll)" : "");
+        }
+    }
+}
+
 void sim_report_tables(FILE *out, const sim_scenario_result_t *r)
 {
     const sim_scenario_t *sc = r->sc;
@@ -156,6 +180,7 @@ void sim_report_tables(FILE *out, const sim_scenario_result_t *r)
     }
     fprintf(out, "\n== %s (%s): %g s, control step %g ms, %d plant steps per control step\n", sc->name, sc->path,
             sc->duration_s, sc->control_dt_s * 1e3, sc->plant_substeps);
+    sim_report_tuning(out, sc);
     for (int c = 0; c < sc->n_controllers; ++c) {
         const sim_metrics_t *m = &r->attitude[c];
         if (m->diverged) {
@@ -238,6 +263,23 @@ int sim_report_metrics_csv(FILE *out, const sim_scenario_result_t *r, int header
             stat_row(out, sc, m, name, "7", "w2_mean", ROTORS[k], m->rotor_w2[k].mean);
             stat_row(out, sc, m, name, "7", "w2_std", ROTORS[k], sd);
             stat_row(out, sc, m, name, "7", "w2_var", ROTORS[k], sd * sd);
+        }
+        const sim_tuning_t *t = &sc->tuning[sc->controllers[c]];
+        for (int i = 0; t->tuned && i < 3; ++i) {
+            if (sc->controllers[c] == SIM_CTRL_PID) {
+                row(out, sc, name, "tune", "pid_kp", AXES[i], t->kp[i]);
+                row(out, sc, name, "tune", "pid_ki", AXES[i], t->ki[i]);
+                row(out, sc, name, "tune", "pid_kd", AXES[i], t->kd[i]);
+                row(out, sc, name, "tune", "pid_d_filter_tau_s", AXES[i], t->d_filter_tau_s[i]);
+            } else {
+                row(out, sc, name, "tune", "wc_rad_s", AXES[i], t->wc_rad_s[i]);
+                row(out, sc, name, "tune", "wo_rad_s", AXES[i], t->wo_rad_s[i]);
+            }
+            row(out, sc, name, "tune", "pm_deg", AXES[i], t->pm_deg[i]);
+            row(out, sc, name, "tune", "gm_db", AXES[i], t->gm_db[i]);
+            row(out, sc, name, "tune", "gm_low_db", AXES[i], t->gm_low_db[i]);
+            row(out, sc, name, "tune", "crossover_rad_s", AXES[i], t->crossover_rad_s[i]);
+            row(out, sc, name, "tune", "ms", AXES[i], t->ms[i]);
         }
         row(out, sc, name, "-", "finite", "-", m->finite);
         row(out, sc, name, "-", "fault_ticks", "-", (double)m->faults);

@@ -32,11 +32,19 @@ typedef struct {
 
 void sim_report_tables(FILE *out, const sim_scenario_result_t *res);
 
+/* One line per axis of each listed controller with tune = margins: the
+ * gains chosen and their margins against the targets (part of the tables'
+ * header; nothing for untuned controllers). */
+void sim_report_tuning(FILE *out, const sim_scenario_t *sc);
+
 /* "diverged at t = ... s on roll: |tracking error| ... deg exceeds diverge_limit_deg = ..."
  * or "...: the state turned non-finite (roll angle or rate)", for the tables and stderr. */
 void sim_report_divergence_text(char *buf, size_t len, const sim_scenario_t *sc, const sim_metrics_t *m);
 
 /* Appends the metrics as CSV rows: scenario,controller,table,quantity,axis,value,
+ * (a tuned controller adds table "tune": its gains wc_rad_s, wo_rad_s or
+ * pid_kp, pid_ki, pid_kd, pid_d_filter_tau_s, and pm_deg, gm_db, gm_low_db,
+ * crossover_rad_s, ms per axis; "inf" where a margin does not exist),
  * where value is a number (%.9g; "nan" for a diverged_error_deg of a non-finite
  * state) or one of the tokens above.
  * Writes the header when header is non-zero. Returns 0, or -1 on a write error. */

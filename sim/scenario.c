@@ -106,6 +106,7 @@ typedef enum {
     R_TILT,
     R_DELAY,
     R_HP_TONES,
+    R_PHASE_MARGIN, /* > 0, < 90 */
     R_DURATION,   /* > 0, <= SIM_DURATION_MAX_S */
     R_CONTROL_DT, /* SIM_CONTROL_DT_MIN_S .. SIM_CONTROL_DT_MAX_S */
     R_SUBSTEPS    /* 1 .. SIM_PLANT_SUBSTEPS_MAX */
@@ -120,6 +121,7 @@ static const choice_t YES_NO[] = {{"yes", 1}, {"no", 0}, {NULL, 0}};
 static const choice_t KINDS[] = {
     {"attitude", SIM_KIND_ATTITUDE}, {"differentiator", SIM_KIND_DIFFERENTIATOR}, {NULL, 0}};
 static const choice_t LESO_METHODS[] = {{"zoh", LADRC_LESO_ZOH}, {"euler", LADRC_LESO_EULER}, {NULL, 0}};
+static const choice_t TUNE_MODES[] = {{"none", SIM_TUNE_NONE}, {"margins", SIM_TUNE_MARGINS}, {NULL, 0}};
 static const choice_t HP_FREQ_MODES[] = {
     {"known", LADRC_HP_FREQ_KNOWN}, {"online", LADRC_HP_FREQ_ONLINE}, {NULL, 0}};
 
@@ -239,6 +241,12 @@ static const key_def_t KEYS[] = {
     {SEC_CONTROLLER, "model_delay_ticks", V_INT, OV(model_delay_ticks), 0, R_DELAY, 0, 0, NULL, FOR_BOTH, 0,
      LADRC_FAMILY, NULL},
     {SEC_CONTROLLER, "wrap_yaw", V_CHOICE, OV(wrap_yaw), 0, R_ANY, 0, 0, YES_NO, FOR_BOTH, 0,
+     LADRC_FAMILY | CTRL_BIT(SIM_CTRL_PID), NULL},
+    {SEC_CONTROLLER, "tune", V_CHOICE, OV(tune), 0, R_ANY, 0, 0, TUNE_MODES, FOR_BOTH, 0,
+     LADRC_FAMILY | CTRL_BIT(SIM_CTRL_PID), NULL},
+    {SEC_CONTROLLER, "tune_phase_margin_deg", V_REAL, OV(tune_pm_deg), 0, R_PHASE_MARGIN, 0, 0, NULL, FOR_BOTH, 0,
+     LADRC_FAMILY | CTRL_BIT(SIM_CTRL_PID), NULL},
+    {SEC_CONTROLLER, "tune_gain_margin_db", V_REAL, OV(tune_gm_db), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0,
      LADRC_FAMILY | CTRL_BIT(SIM_CTRL_PID), NULL},
 };
 
@@ -368,6 +376,8 @@ static int check_range(parser_t *p, const key_def_t *def, const char *tok, doubl
         return (v >= 1.0 && v <= LADRC_HP_MAX_TONES)
                    ? 0
                    : fail(p, tok, "%s must be between 1 and %d", def->name, LADRC_HP_MAX_TONES);
+    case R_PHASE_MARGIN:
+        return (v > 0.0 && v < 90.0) ? 0 : fail(p, tok, "%s must be > 0 and < 90", def->name);
     case R_DURATION:
         return (v > 0.0 && v <= SIM_DURATION_MAX_S)
                    ? 0
@@ -841,6 +851,8 @@ static void set_defaults(sim_scenario_t *sc)
         o->model_motor_tau_s = NAN;
         o->model_delay_ticks = o->wrap_yaw = -1;
         o->pid_kp = o->pid_ki = o->pid_kd = NAN;
+        o->tune = -1;
+        o->tune_pm_deg = o->tune_gm_db = NAN;
     }
 
     sc->settle_band_deg = DEFAULT_SETTLE_BAND_DEG;
@@ -1031,6 +1043,36 @@ static void check_differentiator(parser_t *p)
     const loc_t *h0 = seen_key(p, SEC_DIFFERENTIATOR, "td_h0_s");
     if (h0->line != 0 && sc->diff_td_h0_s < sc->control_dt_s) {
         check_fail(p, h0->line, h0->value_col, "td_h0_s must be >= control_dt_s (%g)", sc->control_dt_s);
+    }
+}
+
+/* tune = margins chooses the gains: a gain the file gives as well is an
+ * error at that gain; targets without tune = margins are an error too. */
+static void check_tuning(parser_t *p)
+{
+    static const char *const gains[] = {"wc_rad_s", "wo_rad_s", "pid_kp", "pid_ki", "pid_kd"};
+    static const char *const targets[] = {"tune_phase_margin_deg", "tune_gain_margin_db"};
+    for (int id = 0; id < SIM_CTRL_COUNT; ++id) {
+        const int sec = SEC_CONTROLLER + id;
+        const loc_t *tune = seen_key(p, sec, "tune");
+        if (p->sc->overrides[id].tune == SIM_TUNE_MARGINS) {
+            for (int g = 0; g < 5; ++g) {
+                const loc_t *at = seen_key(p, sec, gains[g]);
+                if (at->line != 0) {
+                    check_fail(p, at->line, at->key_col,
+                               "'%s' conflicts with tune = margins (line %d), which chooses the gains: "
+                               "give one of them",
+                               gains[g], tune->line);
+                }
+            }
+        } else {
+            for (int g = 0; g < 2; ++g) {
+                const loc_t *at = seen_key(p, sec, targets[g]);
+                if (at->line != 0) {
+                    check_fail(p, at->line, at->key_col, "'%s' applies only with tune = margins", targets[g]);
+                }
+            }
+        }
     }
 }
 
@@ -1232,6 +1274,11 @@ static void finish(parser_t *p)
     if (sc->output_dir[0] == '\0') {
         snprintf(sc->output_dir, sizeof sc->output_dir, "out/%s", sc->name);
     }
+    for (int id = 0; id < SIM_CTRL_COUNT; ++id) {
+        const loc_t *tune = seen_key(p, SEC_CONTROLLER + id, "tune");
+        sc->tune_line[id] = tune->line;
+        sc->tune_column[id] = tune->value_col;
+    }
 }
 
 /* name = the file name without directories and its last extension */
@@ -1357,6 +1404,7 @@ int sim_scenario_parse_buffer(sim_scenario_t *sc, const char *data, size_t len, 
         check_run(p);
         if (sc->kind == SIM_KIND_ATTITUDE) {
             check_rotors(p);
+            check_tuning(p);
         } else {
             check_differentiator(p);
         }

@@ -57,6 +57,13 @@ typedef enum {
     SIM_CTRL_COUNT
 } sim_controller_id_t;
 
+/* [controller NAME] tune: how the controller's gains are chosen. */
+typedef enum { SIM_TUNE_NONE = 0, SIM_TUNE_MARGINS = 1 } sim_tune_t;
+
+/* Targets of tune = margins when the file gives none. */
+#define SIM_TUNE_PM_DEG_DEFAULT 45.0
+#define SIM_TUNE_GM_DB_DEFAULT 6.0
+
 /* Optional per-controller overrides; NaN (or -1 for enums) = library default. */
 typedef struct {
     double wc_rad_s, wo_rad_s;
@@ -72,7 +79,24 @@ typedef struct {
     double model_motor_tau_s; /* NaN: [rotors] motor_tau_s; 0: no lag modelled (LADRC family) */
     int model_delay_ticks;    /* -1: [sensors] delay_ticks (LADRC family) */
     int wrap_yaw;             /* -1 (yes), 0 or 1: the controller's yaw wraps at +-180 deg */
+    int tune;                 /* -1 (none) or sim_tune_t */
+    double tune_pm_deg;       /* tune = margins: phase margin target (deg); NaN: SIM_TUNE_PM_DEG_DEFAULT */
+    double tune_gm_db;        /* gain margin target (dB); NaN: SIM_TUNE_GM_DB_DEFAULT */
 } sim_overrides_t;
+
+/* Gains chosen by tune = margins (sim_tune_controller, tune.h) for each axis
+ * (roll, pitch, yaw), and the margins ladrc_analysis computes for them on
+ * the scenario's airframe as the controller models it. */
+typedef struct {
+    int tuned;                    /* 1: these gains replace the defaults (sim_setup_attitude) */
+    double pm_target_deg, gm_target_db;
+    double wc_rad_s[3], wo_rad_s[3];                      /* LADRC family */
+    double kp[3], ki[3], kd[3], d_filter_tau_s[3];         /* PID */
+    double pm_deg[3], gm_db[3], gm_low_db[3], crossover_rad_s[3], ms[3];
+    int idle[3];                  /* HP-MLADRC margins of its idle estimator (margins.h) */
+    int shared[3];                /* 1: this axis took another's result (same airframe and controller) */
+    double wall_s;                /* time the tuning took */
+} sim_tuning_t;
 
 /* Where a parse failed, as file:line:column: message (line and column are
  * 1-based; both are 0 when the file could not be read at all). */
@@ -140,6 +164,11 @@ typedef struct {
      * scenario, where the parser would have reported it (line 0: it can);
      * sim_scenario_set_controllers reports it when one is chosen. */
     sim_parse_error_t controller_error[SIM_CTRL_COUNT];
+
+    /* Where each controller's `tune` key is (line 0: not given), for the
+     * errors of the tuning, and what the tuning chose (zero until it runs). */
+    int tune_line[SIM_CTRL_COUNT], tune_column[SIM_CTRL_COUNT];
+    sim_tuning_t tuning[SIM_CTRL_COUNT];
 } sim_scenario_t;
 
 /* Fills sc with the defaults of every key, then reads the file. Returns 0, or

@@ -40,6 +40,19 @@ static void apply_overrides(ladrc_axis_config_t *a, const sim_overrides_t *o)
     if (o->model_delay_ticks >= 0) a->delay_ticks = (uint8_t)o->model_delay_ticks;
 }
 
+void sim_setup_tuned_gains(const sim_tuning_t *t, int axis, ladrc_axis_config_t *a)
+{
+    if (a->variant == LADRC_VARIANT_PID) {
+        a->pid_kp = (ladrc_real_t)t->kp[axis];
+        a->pid_ki = (ladrc_real_t)t->ki[axis];
+        a->pid_kd = (ladrc_real_t)t->kd[axis];
+        a->pid_d_filter_tau_s = (ladrc_real_t)t->d_filter_tau_s[axis];
+    } else {
+        a->wc_rad_s = (ladrc_real_t)t->wc_rad_s[axis];
+        a->wo_rad_s = (ladrc_real_t)t->wo_rad_s[axis];
+    }
+}
+
 int sim_setup_wraps_yaw(const sim_scenario_t *sc, sim_controller_id_t id)
 {
     return sc->overrides[id].wrap_yaw != 0;
@@ -61,6 +74,9 @@ void sim_setup_attitude(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_
         cfg->axis[i].motor_tau_s = (ladrc_real_t)sc->motor_tau_s;
         cfg->axis[i].delay_ticks = (uint8_t)(sc->delay_ticks > 255 ? 255 : sc->delay_ticks);
         apply_overrides(&cfg->axis[i], o);
+        if (sc->tuning[id].tuned) { /* tune = margins: the file gives no gains */
+            sim_setup_tuned_gains(&sc->tuning[id], i, &cfg->axis[i]);
+        }
     }
     cfg->axis[2].wrap_angle = (uint8_t)sim_setup_wraps_yaw(sc, id);
     if (o->coupling_feed >= 0) {

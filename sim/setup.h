@@ -15,8 +15,13 @@
 
 /* Controller id on sc: the library defaults for the control period and the
  * inertia and drag the controllers assume (the plant's times the mismatch
- * factors), then the scenario's [controller NAME] overrides. */
+ * factors), then the scenario's [controller NAME] overrides, then the gains
+ * tune = margins chose (sc->tuning[id], once sim_tune_controller has run). */
 void sim_setup_attitude(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_config_t *cfg);
+
+/* The gains tuning t chose for axis (0 roll, 1 pitch, 2 yaw) into a: wc and
+ * wo, or PID's kp, ki, kd and derivative filter. */
+void sim_setup_tuned_gains(const sim_tuning_t *t, int axis, ladrc_axis_config_t *a);
 
 /* 1 when controller id's yaw wraps at +-180 deg ([controller NAME] wrap_yaw,
  * default yes): its sensor then reports yaw in (-180, 180] deg and its yaw

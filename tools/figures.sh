@@ -21,7 +21,8 @@ if ! "$py" -c 'import matplotlib, numpy' >/dev/null 2>&1; then
 fi
 
 out=${1:-build/paper-out}
-rm -rf "$out/paper" "$out/paper_noisy" "$out/paper_known" "$out/paper_noisy_known" "$out/table3_differentiator"
+rm -rf "$out/paper" "$out/paper_noisy" "$out/paper_known" "$out/paper_noisy_known" "$out/table3_differentiator" \
+  "$out"/real_paper_lag* "$out"/real_heavy_lag*
 mkdir -p "$out"
 echo "== flying the paper's scenarios into $out"
 tools/paper.sh --out "$out" --quiet | tee "$out/tables.txt"

@@ -261,6 +261,46 @@ def health(rep, m, scen):
                                      "no run diverged and no controller fault."), "")
 
 
+REAL_SCENARIOS = ["real_paper_lag20", "real_paper_lag30", "real_paper_lag40",
+                  "real_heavy_lag20", "real_heavy_lag30", "real_heavy_lag40"]
+
+
+def section_real(rep, out_dir, headings):
+    """The real airframes (scenarios/real_*.ini): per scenario and controller the tuned gains and
+    their margins (roll / yaw; pitch is roll's airframe), RMS error and steady band per axis, and
+    whether the run diverged."""
+    found = [(n, load_metrics(os.path.join(out_dir, n))) for n in REAL_SCENARIOS]
+    found = [(n, m) for n, m in found if m is not None]
+    if not found:
+        return
+    rep.add("## Real airframes: motor lag, sensor delay, limited rotors, noise", "",
+            "Every controller tuned by `tune = margins` (PM >= 45 deg, GM >= 6 dB on the scenario's "
+            "airframe, as `ladrc_margins` computes them); RMS over each scenario's error window, steady "
+            "band over its steady window.", "")
+    rows = []
+    for name, m in found:
+        for c in CONTROLLERS:
+            if m.get((c, "-", "finite", "-")) is None:
+                continue
+            gains = []
+            for axis in ("roll", "yaw"):
+                if c == "PID":
+                    g = "kp %s kd %s" % (num(m.get((c, "tune", "pid_kp", axis)), 3),
+                                         num(m.get((c, "tune", "pid_kd", axis)), 3))
+                else:
+                    g = "wc %s wo %s" % (num(m.get((c, "tune", "wc_rad_s", axis)), 3),
+                                         num(m.get((c, "tune", "wo_rad_s", axis)), 3))
+                gains.append("%s: %s, PM %s GM %s" % (axis, g, num(m.get((c, "tune", "pm_deg", axis)), 3),
+                                                      num(m.get((c, "tune", "gm_db", axis)), 3)))
+            div = divergence_text(m, c)
+            rows.append(["`%s`" % name, c, "<br>".join(gains),
+                         " / ".join(num(m.get((c, "4", "error_rms_deg", a))) for a in AXES),
+                         " / ".join(num(m.get((c, "5", "steady_band_deg", a))) for a in AXES),
+                         div if div else "no"])
+    rep.table(["scenario", "controller", "tuned gains (rad/s; N m/rad, N m s/rad), margins (deg, dB)",
+               "RMS roll / pitch / yaw (deg)", "band roll / pitch / yaw (deg)", "diverged"], rows)
+
+
 def main(argv):
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("out_dir")
@@ -325,6 +365,8 @@ def main(argv):
             health(rep, known, known_name)
     if cases:
         section_hp_modes(rep, cases)
+
+    section_real(rep, a.out_dir, headings)
 
     for name in missing:
         rep.add("*No output of scenario `%s` was found; its tables are missing.*" % name, "")

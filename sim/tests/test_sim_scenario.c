@@ -302,6 +302,57 @@ static void test_every_override_key_lands_in_its_controller(void)
     TEST_ASSERT_EQUAL_INT(-1, pid->coupling_feed);
 }
 
+static void test_tune_keys_land_in_their_controller_with_their_defaults(void)
+{
+    parse_ok("[run]\nduration_s = 1\n"
+             "[controller LADRC]\ntune = margins\ntune_phase_margin_deg = 50\ntune_gain_margin_db = 8\n"
+             "[controller PID]\ntune = margins\n"
+             "[controller LP-MLADRC]\ntune = none\n");
+    const sim_overrides_t *o = sc.overrides;
+    TEST_ASSERT_EQUAL_INT(SIM_TUNE_MARGINS, o[SIM_CTRL_LADRC].tune);
+    assert_close(50.0, o[SIM_CTRL_LADRC].tune_pm_deg, "pm target");
+    assert_close(8.0, o[SIM_CTRL_LADRC].tune_gm_db, "gm target");
+    TEST_ASSERT_EQUAL_INT(SIM_TUNE_MARGINS, o[SIM_CTRL_PID].tune);
+    TEST_ASSERT_TRUE(isnan(o[SIM_CTRL_PID].tune_pm_deg) && isnan(o[SIM_CTRL_PID].tune_gm_db));
+    TEST_ASSERT_EQUAL_INT(SIM_TUNE_NONE, o[SIM_CTRL_LP_MLADRC].tune);
+    TEST_ASSERT_EQUAL_INT(-1, o[SIM_CTRL_HP_MLADRC].tune); /* absent: none */
+    /* where the errors of the tuning point: the value of each tune key */
+    TEST_ASSERT_EQUAL_INT(4, sc.tune_line[SIM_CTRL_LADRC]);
+    TEST_ASSERT_EQUAL_INT(8, sc.tune_column[SIM_CTRL_LADRC]);
+    TEST_ASSERT_EQUAL_INT(8, sc.tune_line[SIM_CTRL_PID]);
+    TEST_ASSERT_EQUAL_INT(0, sc.tune_line[SIM_CTRL_HP_MLADRC]);
+    /* parsing tunes nothing: the gains stay the library's until sim_tune_controller runs */
+    for (int id = 0; id < SIM_CTRL_COUNT; ++id) TEST_ASSERT_EQUAL_INT(0, sc.tuning[id].tuned);
+    assert_close(45.0, SIM_TUNE_PM_DEG_DEFAULT, "default PM target");
+    assert_close(6.0, SIM_TUNE_GM_DB_DEFAULT, "default GM target");
+}
+
+static void test_tune_errors_name_the_key(void)
+{
+    static const bad_case_t cases[] = {
+        {"[run]\nduration_s = 1\n[controller LADRC]\ntune = auto\n", 4, 8,
+         "expected none or margins, got 'auto'"},
+        {"[run]\nduration_s = 1\n[controller LADRC]\ntune = margins\nwc_rad_s = 20\n", 5, 1,
+         "'wc_rad_s' conflicts with tune = margins (line 4), which chooses the gains: give one of them"},
+        {"[run]\nduration_s = 1\n[controller HP-MLADRC]\nwo_rad_s = 50\ntune = margins\n", 4, 1,
+         "'wo_rad_s' conflicts with tune = margins (line 5), which chooses the gains: give one of them"},
+        {"[run]\nduration_s = 1\n[controller PID]\ntune = margins\npid_kd = 0.1\n", 5, 1,
+         "'pid_kd' conflicts with tune = margins (line 4), which chooses the gains: give one of them"},
+        {"[run]\nduration_s = 1\n[controller LADRC]\ntune_phase_margin_deg = 50\n", 4, 1,
+         "'tune_phase_margin_deg' applies only with tune = margins"},
+        {"[run]\nduration_s = 1\n[controller PID]\ntune = none\ntune_gain_margin_db = 6\n", 5, 1,
+         "'tune_gain_margin_db' applies only with tune = margins"},
+        {"[run]\nduration_s = 1\n[controller LADRC]\ntune = margins\ntune_phase_margin_deg = 90\n", 5, 25,
+         "tune_phase_margin_deg must be > 0 and < 90"},
+        {"[run]\nduration_s = 1\n[controller LADRC]\ntune = margins\ntune_gain_margin_db = 0\n", 5, 23,
+         "tune_gain_margin_db must be > 0"},
+        {"[run]\nkind = differentiator\nduration_s = 1\n[differentiator]\nsignal = t\nderivative = 1\n"
+         "[controller LADRC]\ntune = margins\n",
+         7, 1, "[controller LADRC] does not apply to kind = differentiator"},
+    };
+    CHECK_BAD_CASES(cases);
+}
+
 static void test_controllers_model_the_airframe_unless_told_otherwise(void)
 {
     /* given: a lagging, late airframe; LADRC flies unmodelled, LP with its
@@ -537,6 +588,28 @@ static void test_shipped_steps_scenario(void)
         assert_close(0.0, sim_signal_eval(&sc.reference[axis], step_at[axis]), "before the step");
         assert_close(10.0 * DEG, sim_signal_eval(&sc.reference[axis], nextafter(step_at[axis], 10.0)), "step");
         assert_close(0.0, sim_signal_eval(&sc.disturbance[axis], 5.0), "no disturbance");
+    }
+}
+
+static void test_shipped_steps_and_real_scenarios_tune_every_controller(void)
+{
+    static const char *const files[] = {"steps.ini",           "real_paper_lag20.ini", "real_paper_lag30.ini",
+                                        "real_paper_lag40.ini", "real_heavy_lag20.ini", "real_heavy_lag30.ini",
+                                        "real_heavy_lag40.ini"};
+    for (unsigned f = 0; f < sizeof files / sizeof files[0]; ++f) {
+        load_ok(files[f]);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(SIM_CTRL_COUNT, sc.n_controllers, files[f]);
+        for (int id = 0; id < SIM_CTRL_COUNT; ++id) {
+            TEST_ASSERT_EQUAL_INT_MESSAGE(SIM_TUNE_MARGINS, sc.overrides[id].tune, files[f]);
+        }
+        if (f == 0) continue;
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, sc.rotors_ideal, files[f]);
+        TEST_ASSERT_TRUE_MESSAGE(sc.motor_tau_s >= 0.02 && sc.motor_tau_s <= 0.04, files[f]);
+        TEST_ASSERT_TRUE_MESSAGE(sc.delay_ticks >= 1 && sc.delay_ticks <= 2, files[f]);
+        TEST_ASSERT_TRUE_MESSAGE(sc.angle_noise_std_rad > 0.0 && sc.rate_noise_std_rad_s > 0.0, files[f]);
+        /* thrust-to-weight about 2: the top rotor limit is twice hover's w^2 */
+        const double hover_w2 = sc.mass_kg * sc.g_m_s2 / (4.0 * sc.thrust_coeff_N_s2);
+        TEST_ASSERT_TRUE_MESSAGE(fabs(sc.w2_max_rad2_s2 / hover_w2 - 2.0) < 0.02, files[f]);
     }
 }
 
@@ -956,6 +1029,8 @@ int main(void)
     RUN_TEST(test_defaults_fill_every_key_not_given);
     RUN_TEST(test_every_attitude_key_lands_in_its_field_in_its_unit);
     RUN_TEST(test_controllers_model_the_airframe_unless_told_otherwise);
+    RUN_TEST(test_tune_keys_land_in_their_controller_with_their_defaults);
+    RUN_TEST(test_tune_errors_name_the_key);
     RUN_TEST(test_std_and_variance_keys_set_the_same_noise);
     RUN_TEST(test_every_override_key_lands_in_its_controller);
     RUN_TEST(test_every_differentiator_key_lands_in_its_field);
@@ -968,6 +1043,7 @@ int main(void)
     RUN_TEST(test_shipped_paper_noisy_scenario);
     RUN_TEST(test_shipped_table3_differentiator_scenario);
     RUN_TEST(test_shipped_steps_scenario);
+    RUN_TEST(test_shipped_steps_and_real_scenarios_tune_every_controller);
     RUN_TEST(test_load_reports_a_missing_file_at_line_0);
     RUN_TEST(test_load_rejects_a_nul_byte_where_it_is);
     RUN_TEST(test_structure_errors);

@@ -168,6 +168,16 @@ ladrc_margins_status_t ladrc_margins_loop(ladrc_margins_workspace_t *ws, const l
 ladrc_margins_status_t ladrc_margins_analyse(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
                                              const ladrc_margins_request_t *req, ladrc_margins_result_t *res);
 
+/** ladrc_margins_analyse as ladrc_margins reports it: HP-MLADRC whose
+ *  converged tone model has no settled linear response
+ *  (LADRC_MARGINS_ERR_NOT_SETTLED under the tone) is analysed in its idle
+ *  state (req's tone amplitude 0, estimator weight 0), and *idle (may be
+ *  NULL) is set to 1. */
+ladrc_margins_status_t ladrc_margins_analyse_reported(ladrc_margins_workspace_t *ws,
+                                                      const ladrc_margins_controller_t *ctl,
+                                                      const ladrc_margins_request_t *req,
+                                                      ladrc_margins_result_t *res, int *idle);
+
 /** Nyquist verdict only (fast): 1 stable, 0 not. */
 int ladrc_margins_is_stable(ladrc_margins_workspace_t *ws, const ladrc_margins_plant_t *plant);
 
@@ -228,14 +238,21 @@ typedef struct {
  * Tunes ctl's axis (its config is copied into *tuned, the axis_index-th axis
  * for an attitude, and the gains written there) for req->plant:
  * LADRC family: wo = r wc, r in {3, 5, 8}; for each r the largest
- * wc whose loop is stable with PM >= pm_min_deg and GM >= gm_min_db;
+ * wc whose loop is stable with PM >= pm_min_deg and both gain margins
+ * >= gm_min_db (geometric scan by 1.5 from 0.5 rad/s to 0.95 / dt, then
+ * bisection to 1 %);
  * PID: kp = J w^2, kd = 2 J w, ki = kp w / m, m in {3, 5, 10}, derivative
  * filter 1 / (10 w) (none if below dt); the largest such w for each m.
+ * The adaptive variants' estimator settings are kept; their wc and wo are
+ * searched on the plain LADRC loop (estimator off), then lowered (by 1.5,
+ * then bisection to 1 %) until the whole variant, as
+ * ladrc_margins_analyse_reported analyses it, meets the targets too.
  * Of these candidates the one with the smallest peak |disturbance -> error|
- * wins. The adaptive variants' estimator settings are kept; their wc and wo
- * are tuned on the plain LADRC loop (estimator off), then the margins of the
- * full variant are reported. Returns LADRC_MARGINS_ERR_TARGETS_NOT_MET (best
- * margins in *out, tuned left with the best setting) when none meets them.
+ * of the variant as it flies wins; out->margins are its margins.
+ * Returns LADRC_MARGINS_ERR_TARGETS_NOT_MET when none meets them, with the
+ * closest stable miss (smallest shortfall, gain margin weighted 3 per dB
+ * against 1 per degree) in *tuned and its margins in out->margins (the
+ * controller as given when not one candidate was stable).
  */
 ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
                                           const ladrc_margins_request_t *req, const ladrc_margins_targets_t *targets,

@@ -1,0 +1,33 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * [controller NAME] tune = margins: the gains ladrc_margins_tune (ladrc_analysis,
+ * docs/margins.md) chooses for the controller on each axis of the scenario's
+ * airframe as the controller models it (its inertia, inertia_kg_m2 times
+ * inertia_scale, and drag, rot_drag_Nm_s times rot_drag_scale) with the
+ * scenario's motor lag, sensor delay and control period. The parser only
+ * reads the keys; ladrc_sil and ladrc_margins tune after loading, before
+ * anything runs.
+ */
+#ifndef LADRC_SIM_TUNE_H
+#define LADRC_SIM_TUNE_H
+
+#include "ladrc/margins.h"
+#include "scenario.h"
+
+/* 1 when controller id of sc has tune = margins. */
+int sim_tune_wanted(const sim_scenario_t *sc, sim_controller_id_t id);
+
+/* The plant the tuning of axis i designs for (above). */
+void sim_tune_plant(const sim_scenario_t *sc, int axis, ladrc_margins_plant_t *plant);
+
+/* Tunes controller id of sc (tune = margins) on each axis into
+ * sc->tuning[id]; ws is scratch (ladrc_margins_workspace_t is about 1 MB).
+ * Pitch takes roll's result when the two axes' modelled inertias are equal
+ * (the same loop). Returns 0; or -1 with *err set at the `tune` key
+ * (file:line:column) when an axis's targets cannot be met (the message
+ * gives the best margins reached) or its analysis fails; sc->tuning[id]
+ * then holds what was reached, with tuned = 0. Nothing to do: returns 0. */
+int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margins_workspace_t *ws,
+                        sim_parse_error_t *err);
+
+#endif
