@@ -6,7 +6,8 @@
 #        tools/run_tests.sh --help
 #
 # Stages, in order:
-#   host-debug   main unit-test suite (host, Debug, float, -Werror)
+#   host-debug   main unit-test suite (host, Debug, float, -Werror); the tests
+#                labelled slow run in host-release only
 #   host-double  the suite with ladrc_real_t = double
 #   coverage     suite with gcov, then the gcovr gate (line 95 %, branch 85 %)
 #   asan-ubsan   suite under AddressSanitizer + UndefinedBehaviorSanitizer
@@ -15,7 +16,9 @@
 #   cppcheck     static analysis of src/
 #   bench        tools/bench.sh --check: instructions per tick on the Cortex-M4F,
 #                sizes and tick stack against tools/bench/limits.txt
-#   host-release the suite in Release (-O3), Python binding included
+#   host-release the suite in Release (-O3), Python binding included, with the
+#                tests labelled slow (margins against the simulator, tuning,
+#                the real-airframe acceptance runs)
 #   asserts      the suite with LADRC_ASSERT = assert() (LADRC_CONFIG hook)
 #   fast-math    library and non-finite-input tests built with -ffast-math,
 #                then test_nonfinite with -ffinite-math-only alone
