@@ -154,7 +154,8 @@ static ladrc_status_t init_shaper(ladrc_axis_t *axis, const ladrc_axis_config_t 
 static ladrc_status_t init_estimator(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
 {
     if (cfg->variant == LADRC_VARIANT_LP_MLADRC) {
-        const ladrc_lp_config_t lp = {cfg->dt_s, cfg->lp_lambda0_per_s, cfg->lp_k0_per_s};
+        const ladrc_lp_config_t lp = {cfg->dt_s, cfg->lp_lambda0_per_s, cfg->lp_k0_per_s,
+                                      cfg->motor_tau_s, cfg->delay_ticks};
         return ladrc_lp_init(&axis->part.lp, &lp);
     }
     if (cfg->variant == LADRC_VARIANT_HP_MLADRC) {
@@ -169,7 +170,10 @@ static ladrc_status_t init_estimator(ladrc_axis_t *axis, const ladrc_axis_config
             .freq_filter_rad_s = cfg->hp_freq_filter_rad_s,
             .sample_lag_wo_rad_s = cfg->wo_rad_s, /* the sample comes through this axis's LESO */
             .fit_decimation = cfg->hp_fit_decimation,
-            .fit_phase = cfg->hp_fit_phase};
+            .fit_phase = cfg->hp_fit_phase,
+            /* the command's tones are advanced over the modelled actuator */
+            .act_tau_s = cfg->motor_tau_s,
+            .act_delay_ticks = cfg->delay_ticks};
         for (unsigned k = 0u; k < LADRC_HP_MAX_TONES; ++k) {
             hp.freq_rad_s[k] = cfg->hp_freq_rad_s[k];
         }
@@ -381,17 +385,20 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
     axis->faults = LADRC_FAULT_NONE;
 }
 
-/* The estimators' view of this tick; returns the new d_hat. Their own faults
- * (e.g. a missing rate) only hold their estimate, so they are not reported
- * as axis faults beyond LADRC_FAULT_RATE. */
+/* The estimators' view of this tick; returns the new d_hat (the observer's
+ * known input) and sets *command_rad_s2 to the compensation the command
+ * carries (d_hat itself, or d_hat advanced over the modelled actuator).
+ * Their own faults (e.g. a missing rate) only hold their estimate, so they
+ * are not reported as axis faults beyond LADRC_FAULT_RATE. */
 static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, ladrc_real_t rate_rad_s,
-                                         ladrc_real_t acting_Nm)
+                                         ladrc_real_t acting_Nm, ladrc_real_t *command_rad_s2)
 {
     if (axis->variant == LADRC_VARIANT_LP_MLADRC) {
         /* A tick without a rate (NaN) is a gap: LP holds and restarts its
          * difference. The rate is as old as the angle: the torque that acted
          * over its difference is the observer's. */
         (void)ladrc_lp_step(&axis->part.lp, rate_rad_s, axis->b0 * acting_Nm);
+        *command_rad_s2 = ladrc_lp_get_command(&axis->part.lp);
         return ladrc_lp_get_estimate(&axis->part.lp);
     }
     if (axis->variant == LADRC_VARIANT_HP_MLADRC) {
@@ -412,8 +419,10 @@ static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, ladrc_real_t rate_r
             ladrc_leso_hand_over(&axis->leso, handover);
             ladrc_leso_twin_hand_over(shadow, handover);
         }
+        *command_rad_s2 = ladrc_hp_get_command(&axis->part.hp.est);
         return ladrc_hp_get_estimate(&axis->part.hp.est);
     }
+    *command_rad_s2 = LADRC_R(0.0);
     return LADRC_R(0.0);
 }
 
@@ -469,14 +478,15 @@ static ladrc_fault_t step_adrc(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_r
         ref->dr = LADRC_R(0.0);
         ref->ddr = LADRC_R(0.0);
     }
-    const ladrc_real_t d_hat = estimate_disturbance(axis, rate_rad_s, acting_Nm);
+    ladrc_real_t d_cmd;
+    const ladrc_real_t d_hat = estimate_disturbance(axis, rate_rad_s, acting_Nm, &d_cmd);
     ladrc_real_t error_rad = ref->r - leso->z1;
     if (axis->wrap) {
         error_rad = ladrc_wrap_pi(error_rad);
         recentre(axis);
     }
     const ladrc_real_t u0 = axis->kp * error_rad + axis->kd * (ref->dr - leso->z2) + ref->ddr;
-    const ladrc_real_t u = (u0 - leso->z3 - d_hat) / axis->b0;
+    const ladrc_real_t u = (u0 - leso->z3 - d_cmd) / axis->b0;
     if (!ladrc_is_finite(u)) {
         /* The command is held; what made it non-finite must not outlive the
          * tick, so the estimates restart from the measurement. */

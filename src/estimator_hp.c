@@ -126,6 +126,20 @@ static void set_tone_freq(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone
     const ladrc_real_t x = (est->lag_wo_rad_s > LADRC_R(0.0)) ? w_rad_s / est->lag_wo_rad_s : LADRC_R(0.0);
     tone->lead_re = LADRC_R(1.0) - LADRC_R(3.0) * x * x;
     tone->lead_im = LADRC_R(3.0) * x - x * x * x;
+    if (est->advance) {
+        /* lead (1 + j w tau) e^{j w d h}: the rotation by w d h as d turns
+         * by w h (exact to rounding, no trig; d <= LADRC_MAX_DELAY_TICKS). */
+        const ladrc_real_t wt = min_real(w_rad_s * est->act_tau_s, HP_LEAD_RATIO_MAX);
+        ladrc_real_t re = tone->lead_re - wt * tone->lead_im;
+        ladrc_real_t im = tone->lead_im + wt * tone->lead_re;
+        for (unsigned i = 0u; i < est->act_delay_ticks; ++i) {
+            const ladrc_real_t turned = re * tone->cos_step - im * tone->sin_step;
+            im = im * tone->cos_step + re * tone->sin_step;
+            re = turned;
+        }
+        tone->cmd_re = re;
+        tone->cmd_im = im;
+    }
 }
 
 /* A tone whose fit starts over: no phasor history, not significant, not locked. */
@@ -175,6 +189,13 @@ static ladrc_status_t check_config(const ladrc_hp_config_t *cfg)
         !(fastest_rad_s * fit_period_s < LADRC_R(0.5) * HP_PI)) {
         return LADRC_ERR_HP_FIT_DECIMATION;
     }
+    if (!(ladrc_is_finite(cfg->act_tau_s) && cfg->act_tau_s >= LADRC_R(0.0) &&
+          cfg->act_tau_s <= LADRC_MOTOR_TAU_MAX_S)) {
+        return LADRC_ERR_MOTOR_TAU_S;
+    }
+    if (cfg->act_delay_ticks > LADRC_MAX_DELAY_TICKS) {
+        return LADRC_ERR_DELAY_TICKS;
+    }
     const ladrc_real_t lag_wo = cfg->sample_lag_wo_rad_s;
     if (!ladrc_is_finite(lag_wo) || lag_wo < LADRC_R(0.0) ||
         (lag_wo > LADRC_R(0.0) && !(fastest_rad_s <= HP_LEAD_RATIO_MAX * lag_wo))) {
@@ -222,6 +243,9 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
     est->dt_s = cfg->dt_s;
     est->fit_period_s = fit_period_s;
     est->lag_wo_rad_s = cfg->sample_lag_wo_rad_s;
+    est->act_tau_s = cfg->act_tau_s;
+    est->act_delay_ticks = cfg->act_delay_ticks;
+    est->advance = (cfg->act_tau_s > LADRC_R(0.0) || cfg->act_delay_ticks > 0u) ? 1u : 0u;
     est->online = (cfg->freq_mode == LADRC_HP_FREQ_ONLINE) ? 1u : 0u;
     est->freq_min_rad_s = cfg->freq_min_rad_s;
     est->freq_max_rad_s = cfg->freq_max_rad_s;
@@ -271,6 +295,7 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
     est->weight = LADRC_R(0.0);
     est->engaged = 0u;
     est->estimate = LADRC_R(0.0);
+    est->command = LADRC_R(0.0);
     est->handover = LADRC_R(0.0);
     est->fit_count = 0u;
     est->change_left = 0u;
@@ -278,8 +303,18 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
     est->faults = LADRC_FAULT_NONE;
 }
 
+/* The fitted phasor (a - j b) of a tone turned and scaled by (re + j im),
+ * real part at the tone's current phase psi. */
+static ladrc_real_t tone_turned(const ladrc_hp_tone_t *tone, ladrc_real_t a, ladrc_real_t b, ladrc_real_t re,
+                                ladrc_real_t im)
+{
+    const ladrc_real_t x = a * re + b * im;
+    const ladrc_real_t y = a * im - b * re;
+    return x * tone->cos_psi - y * tone->sin_psi;
+}
+
 /* Fitted value of active tone k at its current phase, as sampled (lagged)
- * or with the sample's lag undone (lead). */
+ * or with the sample's lag undone (lead: (1 + j w / wo)^3). */
 static ladrc_real_t tone_value(const ladrc_hp_estimator_t *est, unsigned k, int lead)
 {
     const ladrc_hp_tone_t *tone = &est->tone[k];
@@ -289,10 +324,7 @@ static ladrc_real_t tone_value(const ladrc_hp_estimator_t *est, unsigned k, int 
     if (!lead) {
         return a * tone->cos_psi + b * tone->sin_psi;
     }
-    /* (a - j b) turned and scaled by (1 + j w / wo)^3, real part at psi. */
-    const ladrc_real_t x = a * tone->lead_re + b * tone->lead_im;
-    const ladrc_real_t y = a * tone->lead_im - b * tone->lead_re;
-    return x * tone->cos_psi - y * tone->sin_psi;
+    return tone_turned(tone, a, b, tone->lead_re, tone->lead_im);
 }
 
 /* Turn of a tone's fitted phasor since the previous fit sample, as a rate
@@ -722,14 +754,29 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
     if (++est->fit_count >= est->fit_decimation) {
         est->fit_count = 0u;
     }
-    ladrc_real_t model = ladrc_rls_get_theta(&est->fit)[0];
-    for (unsigned k = 0u; k < est->n_active; ++k) {
-        model += tone_value(est, k, 1);
-        advance_phase(&est->tone[k]);
+    const ladrc_real_t *theta = ladrc_rls_get_theta(&est->fit);
+    ladrc_real_t model = theta[0];
+    if (est->advance) {
+        /* the command's compensation too: each tone advanced over the actuator */
+        ladrc_real_t command = model;
+        for (unsigned k = 0u; k < est->n_active; ++k) {
+            const ladrc_hp_tone_t *tone = &est->tone[k];
+            const ladrc_real_t a = theta[theta_a(k)];
+            const ladrc_real_t b = theta[theta_a(k) + 1u];
+            model += tone_turned(tone, a, b, tone->lead_re, tone->lead_im);
+            command += tone_turned(tone, a, b, tone->cmd_re, tone->cmd_im);
+            advance_phase(&est->tone[k]);
+        }
+        est->command = est->weight * command;
+    } else {
+        for (unsigned k = 0u; k < est->n_active; ++k) {
+            model += tone_value(est, k, 1);
+            advance_phase(&est->tone[k]);
+        }
     }
     est->estimate = est->weight * model;
     est->handover = (est->weight - weight_before) * model;
-    if (!ladrc_all_finite2(est->estimate, est->handover)) {
+    if (!ladrc_all_finite3(est->estimate, est->handover, est->command)) {
         /* Nothing inside the sample's range gets here; should it, the fit
          * starts over rather than hold a state it cannot leave. */
         ladrc_hp_reset(est);

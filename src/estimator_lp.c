@@ -24,7 +24,18 @@ ladrc_status_t ladrc_lp_init(ladrc_lp_estimator_t *est, const ladrc_lp_config_t 
     if (status != LADRC_OK) {
         return status;
     }
+    if (!(ladrc_is_finite(cfg->act_tau_s) && cfg->act_tau_s >= LADRC_R(0.0) &&
+          cfg->act_tau_s <= LADRC_MOTOR_TAU_MAX_S)) {
+        return LADRC_ERR_MOTOR_TAU_S;
+    }
+    if (cfg->act_delay_ticks > LADRC_MAX_DELAY_TICKS) {
+        return LADRC_ERR_DELAY_TICKS;
+    }
     est->dt_s = cfg->dt_s;
+    /* tau' = tau + d h: the lag and the delay as one first-order lag. */
+    const ladrc_real_t tau = cfg->act_tau_s + (ladrc_real_t)cfg->act_delay_ticks * cfg->dt_s;
+    est->lead = (tau > LADRC_R(0.0)) ? 1u : 0u;
+    est->lead_beta = est->lead ? -ladrc_expm1(-LADRC_LP_LEAD_MAX * cfg->dt_s / tau) : LADRC_R(1.0);
     ladrc_lp_reset(est);
     return LADRC_OK;
 }
@@ -35,6 +46,8 @@ void ladrc_lp_reset(ladrc_lp_estimator_t *est)
     ladrc_rls_reset(&est->rls, NULL);
     est->prev_rate_rad_s = LADRC_R(0.0);
     est->has_prev_rate = 0u;
+    est->lead_x = LADRC_R(0.0);
+    est->command = LADRC_R(0.0);
     est->faults = LADRC_FAULT_NONE;
 }
 
@@ -52,6 +65,13 @@ ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s,
         const ladrc_real_t sample = (rate_rad_s - est->prev_rate_rad_s) / est->dt_s - accel_known;
         const ladrc_real_t one = LADRC_R(1.0);
         est->faults = ladrc_rls_update(&est->rls, &one, sample);
+    }
+    if (est->lead) {
+        /* the bounded lead over the actuator (estimator.h) */
+        const ladrc_real_t d_hat = ladrc_rls_get_theta(&est->rls)[0];
+        const ladrc_real_t fast = d_hat - est->lead_x;
+        est->command = d_hat + (LADRC_LP_LEAD_MAX - LADRC_R(1.0)) * fast;
+        est->lead_x += est->lead_beta * fast;
     }
     est->prev_rate_rad_s = rate_rad_s;
     est->has_prev_rate = 1u;

@@ -432,7 +432,7 @@ static void test_lp_tracks_the_measured_acceleration_minus_the_known_input(void)
 {
     /* given a rate whose derivative is 30 rad/s^2, of which 10 came from the input */
     ladrc_lp_estimator_t est;
-    const ladrc_lp_config_t cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f};
+    const ladrc_lp_config_t cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f, 0.0f, 0u};
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_lp_init(&est, &cfg));
     for (int k = 0; k < 200; ++k) {
         ladrc_lp_step(&est, (ladrc_real_t)(30.0 * k * DT_S), 10.0f);
@@ -447,7 +447,7 @@ static void test_lp_bandwidth_is_lambda0_k0_over_their_sum(void)
     /* a step of the sample reaches 1 - 1/e after 1/75 s = 13 ms (discrete
      * gain per tick 0.075: 1 - 0.925^13 = 0.637, one tick = 5% of the rise) */
     ladrc_lp_estimator_t est;
-    const ladrc_lp_config_t cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f};
+    const ladrc_lp_config_t cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f, 0.0f, 0u};
     ladrc_lp_init(&est, &cfg);
     for (int k = 0; k < 1000; ++k) { /* let P settle on a zero sample */
         ladrc_lp_step(&est, 0.0f, 0.0f);
@@ -469,7 +469,7 @@ static void test_lp_bandwidth_is_lambda0_k0_over_their_sum(void)
 static void test_lp_rate_gap_restarts_the_difference(void)
 {
     ladrc_lp_estimator_t est;
-    const ladrc_lp_config_t cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f};
+    const ladrc_lp_config_t cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f, 0.0f, 0u};
     ladrc_lp_init(&est, &cfg);
     ladrc_lp_step(&est, 0.0f, 0.0f);
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_lp_step(&est, (ladrc_real_t)NAN, 0.0f));
@@ -481,7 +481,7 @@ static void test_lp_rate_gap_restarts_the_difference(void)
 static void test_lp_invalid_fields_are_rejected(void)
 {
     ladrc_lp_estimator_t est;
-    const ladrc_lp_config_t good = {(ladrc_real_t)DT_S, 100.0f, 300.0f};
+    const ladrc_lp_config_t good = {(ladrc_real_t)DT_S, 100.0f, 300.0f, 0.0f, 0u};
     ladrc_lp_config_t cfg = good;
     cfg.dt_s = (ladrc_real_t)NAN;
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_DT_S, ladrc_lp_init(&est, &cfg));
