@@ -385,20 +385,17 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
     axis->faults = LADRC_FAULT_NONE;
 }
 
-/* The estimators' view of this tick; returns the new d_hat (the observer's
- * known input) and sets *command_rad_s2 to the compensation the command
- * carries (d_hat itself, or d_hat advanced over the modelled actuator).
- * Their own faults (e.g. a missing rate) only hold their estimate, so they
- * are not reported as axis faults beyond LADRC_FAULT_RATE. */
+/* The estimators' view of this tick; returns the new d_hat. Their own faults
+ * (e.g. a missing rate) only hold their estimate, so they are not reported
+ * as axis faults beyond LADRC_FAULT_RATE. */
 static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, ladrc_real_t rate_rad_s,
-                                         ladrc_real_t acting_Nm, ladrc_real_t *command_rad_s2)
+                                         ladrc_real_t acting_Nm)
 {
     if (axis->variant == LADRC_VARIANT_LP_MLADRC) {
         /* A tick without a rate (NaN) is a gap: LP holds and restarts its
          * difference. The rate is as old as the angle: the torque that acted
          * over its difference is the observer's. */
         (void)ladrc_lp_step(&axis->part.lp, rate_rad_s, axis->b0 * acting_Nm);
-        *command_rad_s2 = ladrc_lp_get_command(&axis->part.lp);
         return ladrc_lp_get_estimate(&axis->part.lp);
     }
     if (axis->variant == LADRC_VARIANT_HP_MLADRC) {
@@ -419,11 +416,23 @@ static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, ladrc_real_t rate_r
             ladrc_leso_hand_over(&axis->leso, handover);
             ladrc_leso_twin_hand_over(shadow, handover);
         }
-        *command_rad_s2 = ladrc_hp_get_command(&axis->part.hp.est);
         return ladrc_hp_get_estimate(&axis->part.hp.est);
     }
-    *command_rad_s2 = LADRC_R(0.0);
     return LADRC_R(0.0);
+}
+
+/* With an actuator model: the compensation the command carries, d_hat
+ * advanced over the modelled actuator (estimator.h); d_hat stays the
+ * observer's known input. */
+static ladrc_real_t advanced_compensation(ladrc_axis_t *axis, ladrc_real_t d_hat)
+{
+    if (axis->variant == LADRC_VARIANT_LP_MLADRC) {
+        return ladrc_lp_step_lead(&axis->part.lp);
+    }
+    if (axis->variant == LADRC_VARIANT_HP_MLADRC) {
+        return ladrc_hp_get_command(&axis->part.hp.est);
+    }
+    return d_hat;
 }
 
 /* A wrapped axis: z1 and r both beyond +pi (or -pi) move one turn back,
@@ -478,8 +487,8 @@ static ladrc_fault_t step_adrc(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_r
         ref->dr = LADRC_R(0.0);
         ref->ddr = LADRC_R(0.0);
     }
-    ladrc_real_t d_cmd;
-    const ladrc_real_t d_hat = estimate_disturbance(axis, rate_rad_s, acting_Nm, &d_cmd);
+    const ladrc_real_t d_hat = estimate_disturbance(axis, rate_rad_s, acting_Nm);
+    const ladrc_real_t d_cmd = axis->model ? advanced_compensation(axis, d_hat) : d_hat;
     ladrc_real_t error_rad = ref->r - leso->z1;
     if (axis->wrap) {
         error_rad = ladrc_wrap_pi(error_rad);

@@ -127,14 +127,19 @@ static void set_tone_freq(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone
     tone->lead_re = LADRC_R(1.0) - LADRC_R(3.0) * x * x;
     tone->lead_im = LADRC_R(3.0) * x - x * x * x;
     if (est->advance) {
-        /* lead (1 + j w tau) e^{j w d h}: the rotation by w d h as d turns
-         * by w h (exact to rounding, no trig; d <= LADRC_MAX_DELAY_TICKS). */
+        /* lead (1 + j w tau) e^{j w d h}, times e^{-j w h}: the command is
+         * read after the tick has turned the phase by w h (estimator.h).
+         * The turn by w (d - 1) h as |d - 1| turns by w h (exact to
+         * rounding, no trig; d <= LADRC_MAX_DELAY_TICKS). */
         const ladrc_real_t wt = min_real(w_rad_s * est->act_tau_s, HP_LEAD_RATIO_MAX);
         ladrc_real_t re = tone->lead_re - wt * tone->lead_im;
         ladrc_real_t im = tone->lead_im + wt * tone->lead_re;
-        for (unsigned i = 0u; i < est->act_delay_ticks; ++i) {
-            const ladrc_real_t turned = re * tone->cos_step - im * tone->sin_step;
-            im = im * tone->cos_step + re * tone->sin_step;
+        const ladrc_real_t back = (est->act_delay_ticks == 0u) ? LADRC_R(-1.0) : LADRC_R(1.0);
+        const unsigned turns = (est->act_delay_ticks == 0u) ? 1u : est->act_delay_ticks - 1u;
+        for (unsigned i = 0u; i < turns; ++i) {
+            const ladrc_real_t sin_step = back * tone->sin_step;
+            const ladrc_real_t turned = re * tone->cos_step - im * sin_step;
+            im = im * tone->cos_step + re * sin_step;
             re = turned;
         }
         tone->cmd_re = re;
@@ -295,7 +300,6 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
     est->weight = LADRC_R(0.0);
     est->engaged = 0u;
     est->estimate = LADRC_R(0.0);
-    est->command = LADRC_R(0.0);
     est->handover = LADRC_R(0.0);
     est->fit_count = 0u;
     est->change_left = 0u;
@@ -754,29 +758,14 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
     if (++est->fit_count >= est->fit_decimation) {
         est->fit_count = 0u;
     }
-    const ladrc_real_t *theta = ladrc_rls_get_theta(&est->fit);
-    ladrc_real_t model = theta[0];
-    if (est->advance) {
-        /* the command's compensation too: each tone advanced over the actuator */
-        ladrc_real_t command = model;
-        for (unsigned k = 0u; k < est->n_active; ++k) {
-            const ladrc_hp_tone_t *tone = &est->tone[k];
-            const ladrc_real_t a = theta[theta_a(k)];
-            const ladrc_real_t b = theta[theta_a(k) + 1u];
-            model += tone_turned(tone, a, b, tone->lead_re, tone->lead_im);
-            command += tone_turned(tone, a, b, tone->cmd_re, tone->cmd_im);
-            advance_phase(&est->tone[k]);
-        }
-        est->command = est->weight * command;
-    } else {
-        for (unsigned k = 0u; k < est->n_active; ++k) {
-            model += tone_value(est, k, 1);
-            advance_phase(&est->tone[k]);
-        }
+    ladrc_real_t model = ladrc_rls_get_theta(&est->fit)[0];
+    for (unsigned k = 0u; k < est->n_active; ++k) {
+        model += tone_value(est, k, 1);
+        advance_phase(&est->tone[k]);
     }
     est->estimate = est->weight * model;
     est->handover = (est->weight - weight_before) * model;
-    if (!ladrc_all_finite3(est->estimate, est->handover, est->command)) {
+    if (!ladrc_all_finite2(est->estimate, est->handover)) {
         /* Nothing inside the sample's range gets here; should it, the fit
          * starts over rather than hold a state it cannot leave. */
         ladrc_hp_reset(est);
@@ -786,6 +775,22 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
 }
 
 ladrc_real_t ladrc_hp_get_estimate(const ladrc_hp_estimator_t *est) { return est->estimate; }
+
+ladrc_real_t ladrc_hp_get_command(const ladrc_hp_estimator_t *est)
+{
+    if (!est->advance) {
+        return est->estimate;
+    }
+    /* The tick's model with each tone turned by cmd instead of lead; the
+     * phases have moved on by w h since, which cmd takes back. */
+    const ladrc_real_t *theta = ladrc_rls_get_theta(&est->fit);
+    ladrc_real_t command = theta[0];
+    for (unsigned k = 0u; k < est->n_active; ++k) {
+        const ladrc_hp_tone_t *tone = &est->tone[k];
+        command += tone_turned(tone, theta[theta_a(k)], theta[theta_a(k) + 1u], tone->cmd_re, tone->cmd_im);
+    }
+    return est->weight * command;
+}
 
 ladrc_real_t ladrc_hp_get_handover(const ladrc_hp_estimator_t *est) { return est->handover; }
 

@@ -47,7 +47,6 @@ void ladrc_lp_reset(ladrc_lp_estimator_t *est)
     est->prev_rate_rad_s = LADRC_R(0.0);
     est->has_prev_rate = 0u;
     est->lead_x = LADRC_R(0.0);
-    est->command = LADRC_R(0.0);
     est->faults = LADRC_FAULT_NONE;
 }
 
@@ -66,13 +65,6 @@ ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s,
         const ladrc_real_t one = LADRC_R(1.0);
         est->faults = ladrc_rls_update(&est->rls, &one, sample);
     }
-    if (est->lead) {
-        /* the bounded lead over the actuator (estimator.h) */
-        const ladrc_real_t d_hat = ladrc_rls_get_theta(&est->rls)[0];
-        const ladrc_real_t fast = d_hat - est->lead_x;
-        est->command = d_hat + (LADRC_LP_LEAD_MAX - LADRC_R(1.0)) * fast;
-        est->lead_x += est->lead_beta * fast;
-    }
     est->prev_rate_rad_s = rate_rad_s;
     est->has_prev_rate = 1u;
     return est->faults;
@@ -81,4 +73,17 @@ ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s,
 ladrc_real_t ladrc_lp_get_estimate(const ladrc_lp_estimator_t *est)
 {
     return ladrc_rls_get_theta(&est->rls)[0];
+}
+
+ladrc_real_t ladrc_lp_step_lead(ladrc_lp_estimator_t *est)
+{
+    LADRC_ASSERT(est != NULL);
+    const ladrc_real_t d_hat = ladrc_rls_get_theta(&est->rls)[0];
+    if (!est->lead) {
+        return d_hat;
+    }
+    /* the bounded lead over the actuator (estimator.h) */
+    const ladrc_real_t fast = d_hat - est->lead_x;
+    est->lead_x += est->lead_beta * fast;
+    return d_hat + (LADRC_LP_LEAD_MAX - LADRC_R(1.0)) * fast;
 }

@@ -582,17 +582,19 @@ static void test_lp_lead_is_n_at_once_and_unity_at_dc(void)
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_lp_init(&est, &cfg));
     /* when: a still rate and a known input of -10 rad/s^2 (sample 10,
      * exact in float) for long enough for the RLS and the lead to settle */
+    double command = 0.0;
     for (int k = 0; k < 3000; ++k) {
         (void)ladrc_lp_step(&est, 0.0f, -10.0f);
+        command = ladrc_lp_step_lead(&est);
     }
-    const double settled = ladrc_lp_get_command(&est);
+    const double settled = command;
     /* then: unit DC gain */
     TEST_ASSERT_FLOAT_WITHIN(LEAD_SETTLED_TOL * 10.0, ladrc_lp_get_estimate(&est), settled);
     /* and: a change of d_hat passes N-fold at first (one tick) */
     const double before = ladrc_lp_get_estimate(&est);
     (void)ladrc_lp_step(&est, 0.0f, -30.0f);
     const double jump = ladrc_lp_get_estimate(&est) - before;
-    const double lead_jump = ladrc_lp_get_command(&est) - settled;
+    const double lead_jump = ladrc_lp_step_lead(&est) - settled;
     printf("d_hat moved %.4f, command %.4f (N = %.1f, tau' = %.3f s)\n", jump, lead_jump,
            (double)LADRC_LP_LEAD_MAX, tau_eff);
     TEST_ASSERT_TRUE(jump > 1.0);
@@ -600,8 +602,19 @@ static void test_lp_lead_is_n_at_once_and_unity_at_dc(void)
     /* and: back to d_hat within float rounding after 20 tau' / N */
     for (int k = 0; k < (int)(20.0 * tau_eff / LADRC_LP_LEAD_MAX / DT_S) + 3000; ++k) {
         (void)ladrc_lp_step(&est, 0.0f, -30.0f);
+        command = ladrc_lp_step_lead(&est);
     }
-    TEST_ASSERT_FLOAT_WITHIN(LEAD_SETTLED_TOL * 30.0, ladrc_lp_get_estimate(&est), ladrc_lp_get_command(&est));
+    TEST_ASSERT_FLOAT_WITHIN(LEAD_SETTLED_TOL * 30.0, ladrc_lp_get_estimate(&est), command);
+    /* and: without an actuator the lead is d_hat itself */
+    const ladrc_lp_config_t plain_cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f, 0.0f, 0u};
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_lp_init(&est, &plain_cfg));
+    int differ = 0;
+    for (int k = 0; k < 100; ++k) {
+        (void)ladrc_lp_step(&est, 0.0f, (ladrc_real_t)(-10.0 * k));
+        const ladrc_real_t lead = ladrc_lp_step_lead(&est), d_hat = ladrc_lp_get_estimate(&est);
+        differ |= memcmp(&lead, &d_hat, sizeof lead) != 0;
+    }
+    TEST_ASSERT_EQUAL_INT(0, differ);
     /* and: the field checks */
     ladrc_lp_config_t bad = cfg;
     bad.act_tau_s = -1.0f;

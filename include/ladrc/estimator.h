@@ -21,8 +21,9 @@
  * exp(-s d h) / (1 + tau s)) up to a few rad/s and amplifies what is faster
  * (the sample's noise) by at most N. Discretised as
  *     x_k = x_k-1 + beta (d_hat_k - x_k-1),   command_k = d_hat_k + (N - 1) (d_hat_k - x_k-1)
- * with beta = 1 - exp(-N h / tau'): a unit DC gain. d_hat itself stays the
- * observer's known input. tau = 0 and d = 0: command = d_hat, bit for bit.
+ * with beta = 1 - exp(-N h / tau'): a unit DC gain (ladrc_lp_step_lead). d_hat
+ * itself stays the observer's known input. tau = 0 and d = 0: command =
+ * d_hat, bit for bit.
  *
  * HP ("high precision", angle only): the sample is the LESO's view of the
  * unknown part of f, s_k = z3_k - z3_shadow_k, where the shadow is a twin of
@@ -123,7 +124,6 @@ typedef struct {
     ladrc_real_t prev_rate_rad_s;
     ladrc_real_t lead_x;        /**< the lead's low-pass state x (rad/s^2) */
     ladrc_real_t lead_beta;     /**< beta = 1 - exp(-N h / tau') */
-    ladrc_real_t command;       /**< the command's compensation (valid when lead) */
     uint8_t lead;               /**< 1: act_tau_s > 0 or act_delay_ticks > 0 */
     uint8_t has_prev_rate;
     ladrc_fault_t faults;
@@ -150,12 +150,11 @@ ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s,
 /** Current estimate d_hat (rad/s^2). */
 ladrc_real_t ladrc_lp_get_estimate(const ladrc_lp_estimator_t *est);
 
-/** The compensation the command should carry (rad/s^2): d_hat through the
- *  actuator's bounded lead (see above); d_hat itself without an actuator. */
-static inline ladrc_real_t ladrc_lp_get_command(const ladrc_lp_estimator_t *est)
-{
-    return est->lead ? est->command : est->rls.theta[0];
-}
+/** One tick of the command's lead over the actuator (see above) on the
+ *  current d_hat; call once per tick after ladrc_lp_step. Returns the
+ *  compensation the command should carry (rad/s^2): d_hat itself without an
+ *  actuator (then nothing is computed). */
+ladrc_real_t ladrc_lp_step_lead(ladrc_lp_estimator_t *est);
 
 typedef enum {
     LADRC_HP_FREQ_KNOWN = 0, /**< the disturbance frequencies are given (paper) */
@@ -192,7 +191,8 @@ typedef struct {
     ladrc_real_t cos_psi, sin_psi;   /**< phase as a unit phasor */
     ladrc_real_t cos_step, sin_step; /**< rotation by w h */
     ladrc_real_t lead_re, lead_im;   /**< (1 + j w / wo)^3: undoes the sample's lag at w */
-    ladrc_real_t cmd_re, cmd_im;     /**< lead (1 + j w tau) e^{j w d h}: also undoes the actuator's */
+    ladrc_real_t cmd_re, cmd_im;     /**< lead (1 + j w tau) e^{j w (d - 1) h}: also undoes the
+                                          actuator's (read one turn w h late) */
     ladrc_real_t prev_a, prev_b;     /**< fitted (a, b) at the previous fit sample */
     ladrc_real_t slip_rad_s;         /**< averaged turn rate of the fitted phasor */
     ladrc_real_t drift_per_s;        /**< averaged relative rate of change of its size */
@@ -221,7 +221,6 @@ typedef struct {
     ladrc_real_t err_fast, err_slow; /**< short and long averages of the fit's prior error power */
     ladrc_real_t weight;             /**< compensation weight in [0, 1] */
     ladrc_real_t estimate;           /**< the applied d_hat (rad/s^2) */
-    ladrc_real_t command;            /**< the command's compensation (advanced; valid when advance) */
     ladrc_real_t act_tau_s;          /**< actuator lag the command is advanced over (s) */
     ladrc_real_t handover;           /**< part of estimate's latest change due to the weight */
     uint16_t fit_decimation, fit_count, fit_phase;
@@ -261,13 +260,11 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
 /** Applied estimate d_hat (rad/s^2): weight times the bias and the active tones. */
 ladrc_real_t ladrc_hp_get_estimate(const ladrc_hp_estimator_t *est);
 
-/** The compensation the command should carry (rad/s^2): the estimate with
- *  each tone advanced over the actuator (see above); the estimate itself
- *  when there is no actuator to advance over. */
-static inline ladrc_real_t ladrc_hp_get_command(const ladrc_hp_estimator_t *est)
-{
-    return est->advance ? est->command : est->estimate;
-}
+/** The compensation the command should carry after the latest step
+ *  (rad/s^2): the estimate with each tone advanced over the actuator (see
+ *  above), computed on call; the estimate itself when there is no actuator
+ *  to advance over. */
+ladrc_real_t ladrc_hp_get_command(const ladrc_hp_estimator_t *est);
 
 /**
  * Part of the latest change of the estimate that came from the gate's weight
