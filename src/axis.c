@@ -424,6 +424,9 @@ static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, ladrc_real_t rate_r
 /* With an actuator model: the compensation the command carries, d_hat
  * advanced over the modelled actuator (estimator.h); d_hat stays the
  * observer's known input. */
+#if defined(__GNUC__)
+__attribute__((noinline)) /* off the path of an axis without a model */
+#endif
 static ladrc_real_t advanced_compensation(ladrc_axis_t *axis, ladrc_real_t d_hat)
 {
     if (axis->variant == LADRC_VARIANT_LP_MLADRC) {
@@ -488,14 +491,17 @@ static ladrc_fault_t step_adrc(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_r
         ref->ddr = LADRC_R(0.0);
     }
     const ladrc_real_t d_hat = estimate_disturbance(axis, rate_rad_s, acting_Nm);
-    const ladrc_real_t d_cmd = axis->model ? advanced_compensation(axis, d_hat) : d_hat;
     ladrc_real_t error_rad = ref->r - leso->z1;
     if (axis->wrap) {
         error_rad = ladrc_wrap_pi(error_rad);
         recentre(axis);
     }
     const ladrc_real_t u0 = axis->kp * error_rad + axis->kd * (ref->dr - leso->z2) + ref->ddr;
-    const ladrc_real_t u = (u0 - leso->z3 - d_cmd) / axis->b0;
+    ladrc_real_t u = (u0 - leso->z3 - d_hat) / axis->b0;
+    if (axis->model) {
+        /* the command carries d_hat advanced over the modelled actuator */
+        u = (u0 - leso->z3 - advanced_compensation(axis, d_hat)) / axis->b0;
+    }
     if (!ladrc_is_finite(u)) {
         /* The command is held; what made it non-finite must not outlive the
          * tick, so the estimates restart from the measurement. */

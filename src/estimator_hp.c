@@ -308,8 +308,12 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
 }
 
 /* The fitted phasor (a - j b) of a tone turned and scaled by (re + j im),
- * real part at the tone's current phase psi. */
-static ladrc_real_t tone_turned(const ladrc_hp_tone_t *tone, ladrc_real_t a, ladrc_real_t b, ladrc_real_t re,
+ * real part at the tone's current phase psi. Inlined into both readers: a
+ * call per tone and tick would cost more than the product. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline ladrc_real_t tone_turned(const ladrc_hp_tone_t *tone, ladrc_real_t a, ladrc_real_t b, ladrc_real_t re,
                                 ladrc_real_t im)
 {
     const ladrc_real_t x = a * re + b * im;
