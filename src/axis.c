@@ -424,9 +424,6 @@ static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, ladrc_real_t rate_r
 /* With an actuator model: the compensation the command carries, d_hat
  * advanced over the modelled actuator (estimator.h); d_hat stays the
  * observer's known input. */
-#if defined(__GNUC__)
-__attribute__((noinline)) /* off the path of an axis without a model */
-#endif
 static ladrc_real_t advanced_compensation(ladrc_axis_t *axis, ladrc_real_t d_hat)
 {
     if (axis->variant == LADRC_VARIANT_LP_MLADRC) {
