@@ -22,10 +22,6 @@ typedef double complex cplx;
 /* Points of the indentation quarter-circle and of the log-spaced band from
  * INDENT_EPS to the first FFT bin; the phase of 1 + L is refined wherever
  * two neighbours differ by more than MAX_PHASE_STEP. */
-/* Radius of the indentation around a converged HP's resonance e^{j theta}
- * (rad per tick): far below the FFT bin spacing (3.8e-4), far above double
- * rounding of |L| ~ 1 / eps. */
-#define RES_INDENT_EPS 1e-5
 #define INDENT_POINTS 16
 #define LOW_POINTS 160
 #define MAX_PHASE_STEP (PI / 4.0)
@@ -46,11 +42,6 @@ typedef double complex cplx;
 /* Simulated check: an angle below this share of its peak has decayed to
  * the float controller's rounding. */
 #define SIM_DECAYED 1e-6
-/* Simulated differential check about a converged run: the difference of
- * two float controllers on a tone run carries their rounding (1e-7 of the
- * tone's command) through the loop; below 1e-3 of the pulse response's
- * peak it has decayed into that. */
-#define SIM_DIFF_DECAYED 1e-3
 
 const char *ladrc_margins_status_str(ladrc_margins_status_t status)
 {
@@ -316,7 +307,7 @@ static void psim_measure(psim_t *ps, const dplant_t *dp, double *angle, double *
 
 static void psim_step(psim_t *ps, const dplant_t *dp, double u, double d)
 {
-    double nx[NX_MAX] = {0.0, 0.0, 0.0};
+    double nx[NX_MAX];
     for (int r = 0; r < dp->n; ++r) {
         double s = dp->b[r] * u + dp->e[r] * d;
         for (int c = 0; c < dp->n; ++c) s += dp->a[r][c] * ps->x[c];
@@ -404,84 +395,20 @@ static void fft(double *re, double *im, int n)
     }
 }
 
-/* The tail of response p at tick k: c0 + c1 k + sum_i a_i cos(theta_i k) + b_i sin(theta_i k). */
-static double tail_k(const ladrc_margins_workspace_t *ws, int p, int k)
-{
-    double v = ws->tail[p] + ws->ramp[p] * (double)k;
-    for (int i = 0; i < ws->n_res; ++i) {
-        v += ws->res_cos[p][i] * cos(ws->res_theta[i] * k) + ws->res_sin[p][i] * sin(ws->res_theta[i] * k);
-    }
-    return v;
-}
-
-/* The tail's transform: sum_k (c0 + c1 k) z^-k = c0 / (1 - z^-1) + c1 z^-1 / (1 - z^-1)^2, and per
- * resonance, with q = z^-1 e^{j theta}: sum_k cos(theta k) z^-k = (1/(1-q) + 1/(1-conj-q)) / 2,
- * sum_k sin(theta k) z^-k = (1/(1-q) - 1/(1-conj-q)) / 2j (conj-q = z^-1 e^{-j theta}). */
+/* The tail's transform: sum_k (c0 + c1 k) z^-k = c0 / (1 - z^-1) + c1 z^-1 / (1 - z^-1)^2. */
 static cplx tail_at(const ladrc_margins_workspace_t *ws, int p, cplx zi)
 {
     const cplx one_minus = 1.0 - zi;
-    cplx v = ws->tail[p] / one_minus + ws->ramp[p] * zi / (one_minus * one_minus);
-    for (int i = 0; i < ws->n_res; ++i) {
-        const cplx sp = 1.0 / (1.0 - zi * cexp(I * ws->res_theta[i]));
-        const cplx sm = 1.0 / (1.0 - zi * cexp(-I * ws->res_theta[i]));
-        v += ws->res_cos[p][i] * 0.5 * (sp + sm) + ws->res_sin[p][i] * (sp - sm) / (2.0 * I);
-    }
-    return v;
+    return ws->tail[p] / one_minus + ws->ramp[p] * zi / (one_minus * one_minus);
 }
 
-/* C(z) of response p: sum (h_k - tail_k) z^-k (Horner in z^-1) + the tail's. */
+/* C(z) of response p: sum (h_k - c0 - c1 k) z^-k (Horner in z^-1) + the tail's. */
 static cplx ctl_at(const ladrc_margins_workspace_t *ws, int p, cplx z)
 {
     const cplx zi = 1.0 / z;
     cplx acc = 0.0;
-    for (int k = ws->n_taps - 1; k >= 0; --k) acc = acc * zi + (ws->h[p][k] - tail_k(ws, p, k));
+    for (int k = ws->n_taps - 1; k >= 0; --k) acc = acc * zi + (ws->h[p][k] - ws->tail[p] - ws->ramp[p] * (double)k);
     return acc + tail_at(ws, p, zi);
-}
-
-/* Least squares of y_k over [from, to) on the columns 1, k, and cos, sin of
- * each resonance (k centred and scaled for conditioning); coefficients in
- * c (c0, c1, a_1, b_1, ...); returns 0 if the system is singular. */
-#define TAIL_MAX_COLS (2 + 2 * LADRC_HP_MAX_TONES)
-static int fit_tail(const ladrc_margins_workspace_t *ws, const double *y, int from, int to, double *c)
-{
-    const int nc = 2 + 2 * ws->n_res;
-    double m[TAIL_MAX_COLS][TAIL_MAX_COLS + 1];
-    memset(m, 0, sizeof m);
-    const double mid = 0.5 * (from + to), half = 0.5 * (to - from);
-    for (int k = from; k < to; ++k) {
-        double col[TAIL_MAX_COLS];
-        col[0] = 1.0;
-        col[1] = (k - mid) / half;
-        for (int i = 0; i < ws->n_res; ++i) {
-            col[2 + 2 * i] = cos(ws->res_theta[i] * k);
-            col[3 + 2 * i] = sin(ws->res_theta[i] * k);
-        }
-        for (int r = 0; r < nc; ++r) {
-            for (int q = 0; q < nc; ++q) m[r][q] += col[r] * col[q];
-            m[r][nc] += col[r] * y[k];
-        }
-    }
-    for (int piv = 0; piv < nc; ++piv) {
-        int best = piv;
-        for (int r = piv + 1; r < nc; ++r)
-            if (fabs(m[r][piv]) > fabs(m[best][piv])) best = r;
-        if (!(fabs(m[best][piv]) > 1e-12 * (to - from))) return 0;
-        for (int q = 0; q <= nc; ++q) {
-            const double t = m[piv][q];
-            m[piv][q] = m[best][q];
-            m[best][q] = t;
-        }
-        for (int r = 0; r < nc; ++r) {
-            if (r == piv) continue;
-            const double f = m[r][piv] / m[piv][piv];
-            for (int q = piv; q <= nc; ++q) m[r][q] -= f * m[piv][q];
-        }
-    }
-    for (int r = 0; r < nc; ++r) c[r] = m[r][nc] / m[r][r];
-    /* back to c0 + c1 k */
-    c[0] -= c[1] * mid / half;
-    c[1] /= half;
-    return 1;
 }
 
 ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
@@ -489,7 +416,6 @@ ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, cons
 {
     if (ws == NULL || ctl == NULL || req == NULL) return LADRC_MARGINS_ERR_NULL;
     ws->measured = 0;
-    ws->n_res = 0;
     ladrc_margins_status_t st = check_request(req);
     if (st != LADRC_MARGINS_OK) return st;
     if ((ctl->attitude == NULL) == (ctl->axis == NULL)) return LADRC_MARGINS_ERR_CONTROLLER;
@@ -502,7 +428,7 @@ ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, cons
     if (st != LADRC_MARGINS_OK) return st;
 
     const double dt = req->plant.dt_s;
-    int n = (int)(req->response_s / dt + 0.5);
+    const int n = (int)(req->response_s / dt + 0.5);
     const int adaptive = is_adaptive(acfg);
     double tone_w = 0.0, tone_a = 0.0;
     int starts = 1;
@@ -538,19 +464,6 @@ ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, cons
     }
     s[3] = s[0];
     const psim_t ps_saved = ps;
-    /* A converged HP-MLADRC (weight above 0) keeps an internal model of its
-     * tones: poles on the unit circle at e^{+-j w_i T}, a ringing tail. Its
-     * fit needs whole periods: the response runs LADRC_MARGINS_MAX_TAPS
-     * ticks and the tail is fitted over its last quarter. */
-    ws->n_res = 0;
-    const ladrc_axis_t *conv = ctl->attitude != NULL ? &s[3].attitude.axis[ctl->axis_index] : &s[3].axis;
-    const ladrc_hp_estimator_t *hp = ladrc_axis_get_hp(conv);
-    if (hp != NULL && ladrc_hp_get_weight(hp) > 0.0f) {
-        for (unsigned i = 0; i < ladrc_hp_get_active_tones(hp); ++i) {
-            ws->res_theta[ws->n_res++] = (double)ladrc_hp_get_freq(hp, i) * dt;
-        }
-        n = N_FFT;
-    }
     ws->has_rate = ctl->use_rate;
     memset(ws->h, 0, sizeof ws->h);
     for (int st_i = 0; st_i < starts; ++st_i) {
@@ -577,26 +490,25 @@ ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, cons
     /* The tail c0 + c1 k (the controller's integrators: one, or two when a
      * disturbance estimate integrates the command, as LP's does on the angle
      * path) by least squares over the last eighth, and how well it fits. */
-    /* (and the resonances: a cos + b sin per tone, the same least squares) */
-    const int tail_from = n - (ws->n_res > 0 ? n / 4 : n / 8);
+    const int tail_from = n - n / 8;
     double residue = 0.0;
-    for (int i = 0; i < ws->n_res; ++i) {
-        /* the window must hold a whole period of each resonance */
-        if (!(ws->res_theta[i] * (n - tail_from) > 2.0 * PI)) residue = INFINITY;
-    }
     for (int p = 0; p < 2; ++p) {
-        double c[TAIL_MAX_COLS] = {0.0};
-        double peak = 0.0;
-        if (!fit_tail(ws, ws->h[p], tail_from, n, c)) residue = INFINITY;
-        ws->tail[p] = c[0];
-        ws->ramp[p] = c[1];
-        for (int i = 0; i < ws->n_res; ++i) {
-            ws->res_cos[p][i] = c[2 + 2 * i];
-            ws->res_sin[p][i] = c[3 + 2 * i];
+        double sk = 0.0, skk = 0.0, sh = 0.0, skh = 0.0, peak = 0.0;
+        const double m = (double)(n - tail_from);
+        for (int i = tail_from; i < n; ++i) {
+            const double k = (double)i;
+            sk += k;
+            skk += k * k;
+            sh += ws->h[p][i];
+            skh += k * ws->h[p][i];
         }
+        const double c1 = (m * skh - sk * sh) / (m * skk - sk * sk);
+        const double c0 = (sh - c1 * sk) / m;
         for (int i = 0; i < n; ++i) peak = fmax(peak, fabs(ws->h[p][i]));
         double dev = 0.0;
-        for (int i = tail_from; i < n; ++i) dev = fmax(dev, fabs(ws->h[p][i] - tail_k(ws, p, i)));
+        for (int i = tail_from; i < n; ++i) dev = fmax(dev, fabs(ws->h[p][i] - c0 - c1 * (double)i));
+        ws->tail[p] = c0;
+        ws->ramp[p] = c1;
         if (peak > 0.0) residue = fmax(residue, dev / peak);
         if (!(peak < INFINITY)) residue = INFINITY;
     }
@@ -608,7 +520,7 @@ ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, cons
      * of h - c per response (zero beyond n, N_FFT >= n: no aliasing). */
     for (int p = 0; p < 2; ++p) {
         for (int i = 0; i < N_FFT; ++i) {
-            ws->fft_re[i] = (i < n) ? ws->h[p][i] - tail_k(ws, p, i) : 0.0;
+            ws->fft_re[i] = (i < n) ? ws->h[p][i] - ws->tail[p] - ws->ramp[p] * (double)i : 0.0;
             ws->fft_im[i] = 0.0;
         }
         fft(ws->fft_re, ws->fft_im, N_FFT);
@@ -686,28 +598,11 @@ static cplx loop_bin(const loop_t *lp, int m)
  * from w = eps to the first FFT bin (log-spaced), [2, 3] on to w = pi. */
 static double bin1(void) { return 2.0 * PI / N_FFT; }
 
-/* The resonance of lp's controller within RES_INDENT_EPS of w (rad per
- * tick), or -1. */
-static int near_resonance(const loop_t *lp, double w)
-{
-    if (lp->fn != NULL) return -1;
-    for (int i = 0; i < lp->ws->n_res; ++i)
-        if (fabs(w - lp->ws->res_theta[i]) < RES_INDENT_EPS) return i;
-    return -1;
-}
-
-static cplx contour_z(const loop_t *lp, double t)
+static cplx contour_z(double t)
 {
     if (t <= 1.0) return 1.0 + INDENT_EPS * cexp(I * t * PI / 2.0);
     if (t <= 2.0) return cexp(I * INDENT_EPS * pow(bin1() / INDENT_EPS, t - 1.0));
-    const double w = bin1() + (PI - bin1()) * (t - 2.0);
-    const int i = near_resonance(lp, w);
-    if (i >= 0) {
-        /* outward around the pole at e^{j theta}: a half-disc of radius RES_INDENT_EPS */
-        const double dw = w - lp->ws->res_theta[i];
-        return (1.0 + sqrt(RES_INDENT_EPS * RES_INDENT_EPS - dw * dw)) * cexp(I * w);
-    }
-    return cexp(I * w);
+    return cexp(I * (bin1() + (PI - bin1()) * (t - 2.0)));
 }
 
 /* Phase change of 1 + L from t0 to t1 (values f0, f1), refined by bisection
@@ -717,7 +612,7 @@ static double phase_change(const loop_t *lp, double t0, cplx f0, double t1, cplx
     const double d = carg(f1 / f0);
     if (fabs(d) <= MAX_PHASE_STEP || depth >= MAX_REFINE_DEPTH) return d;
     const double tm = 0.5 * (t0 + t1);
-    const cplx fm = 1.0 + loop_at(lp, contour_z(lp, tm));
+    const cplx fm = 1.0 + loop_at(lp, contour_z(tm));
     return phase_change(lp, t0, f0, tm, fm, depth + 1) + phase_change(lp, tm, fm, t1, f1, depth + 1);
 }
 
@@ -726,19 +621,18 @@ static int nyquist(const loop_t *lp)
 {
     double total = 0.0;
     double t_prev = 0.0;
-    cplx f_prev = 1.0 + loop_at(lp, contour_z(lp, 0.0));
+    cplx f_prev = 1.0 + loop_at(lp, contour_z(0.0));
     for (int i = 1; i <= INDENT_POINTS + LOW_POINTS; ++i) {
         const double t = (i <= INDENT_POINTS) ? (double)i / INDENT_POINTS
                                               : 1.0 + (double)(i - INDENT_POINTS) / LOW_POINTS;
-        const cplx f = 1.0 + loop_at(lp, contour_z(lp, t));
+        const cplx f = 1.0 + loop_at(lp, contour_z(t));
         total += phase_change(lp, t_prev, f_prev, t, f, 0);
         t_prev = t;
         f_prev = f;
     }
     for (int m = 2; m <= N_HALF; ++m) {
         const double t = 2.0 + (double)(m - 1) / (N_HALF - 1);
-        const cplx f = 1.0 + (near_resonance(lp, 2.0 * PI * m / N_FFT) >= 0 ? loop_at(lp, contour_z(lp, t))
-                                                                           : loop_bin(lp, m));
+        const cplx f = 1.0 + loop_bin(lp, m);
         total += phase_change(lp, t_prev, f_prev, t, f, 0);
         t_prev = t;
         f_prev = f;
@@ -809,11 +703,7 @@ static void margins(const loop_t *lp, double dt, ladrc_margins_result_t *res)
             const double dm = pm > 0.0 ? (pm * PI / 180.0) / (wc / dt) : 0.0;
             res->dm_s = fmin(res->dm_s, dm);
         }
-        /* (L passes through infinity at a resonance, not through the real axis) */
-        int spans_resonance = 0;
-        for (int r = 0; lp->fn == NULL && r < lp->ws->n_res; ++r)
-            spans_resonance |= lp->ws->res_theta[r] >= w_prev && lp->ws->res_theta[r] <= w;
-        if ((cimag(l) < 0.0) != (cimag(l_prev) < 0.0) && creal(l) < 0.0 && creal(l_prev) < 0.0 && !spans_resonance) {
+        if ((cimag(l) < 0.0) != (cimag(l_prev) < 0.0) && creal(l) < 0.0 && creal(l_prev) < 0.0) {
             const double wp = cross(lp, w_prev, w, 1);
             const cplx lpc = loop_w(lp, wp);
             if (creal(lpc) < 0.0) {
@@ -1011,62 +901,6 @@ ladrc_margins_status_t ladrc_margins_simulate(ladrc_margins_workspace_t *ws, con
      * (> 1) or decaying (< 1); a response decayed to the float controller's
      * rounding (1e-7 of its peak) counts as decayed whatever its ratio. */
     const double floor_level = SIM_DECAYED * peak;
-    *growth = (last <= floor_level) ? 0.0 : last / fmax(third, floor_level);
-    return LADRC_MARGINS_OK;
-}
-
-ladrc_margins_status_t ladrc_margins_simulate_converged(ladrc_margins_workspace_t *ws,
-                                                        const ladrc_margins_controller_t *ctl,
-                                                        const ladrc_margins_request_t *req, long n_ticks,
-                                                        double *growth)
-{
-    if (ws == NULL || ctl == NULL || req == NULL || growth == NULL) return LADRC_MARGINS_ERR_NULL;
-    ladrc_margins_status_t st = check_request(req);
-    if (st != LADRC_MARGINS_OK) return st;
-    if ((ctl->attitude == NULL) == (ctl->axis == NULL) || n_ticks < 64) return LADRC_MARGINS_ERR_REQUEST;
-    const ladrc_axis_config_t *acfg = ctl_axis_config(ctl);
-    ctl_state_t *s = (ctl_state_t *)(void *)ws->copy;
-    st = ctl_init(ctl, &s[0]);
-    if (st != LADRC_MARGINS_OK) return st;
-    const double dt = req->plant.dt_s;
-    const double tone_w = req->tone_rad_s > 0.0 ? req->tone_rad_s : (double)acfg->hp_freq_rad_s[0];
-    dplant_t dp;
-    discretise(&req->plant, &dp);
-    psim_t ps, pp;
-    psim_reset(&ps);
-    const long n_conv = (long)(req->converge_s / dt + 0.5) + WARMUP_TICKS;
-    if (!run_closed(ctl, &s[0], &ps, &dp, tone_w, req->tone_rad_s2, dt, 0, n_conv)) {
-        *growth = INFINITY;
-        return LADRC_MARGINS_OK;
-    }
-    s[1] = s[0];
-    pp = ps;
-    /* base and pulsed twin (10 ms of 1e-3 rad/s^2 on the twin's plant), the
-     * same tone on both: their difference is the linearised loop's response. */
-    const long pulse = (long)(0.01 / dt + 0.5) + 1;
-    double third = 0.0, last = 0.0, peak = 0.0;
-    for (long i = 0; i < n_ticks; ++i) {
-        const long k = n_conv + i;
-        const double d = req->tone_rad_s2 * sin(tone_w * dt * (double)k);
-        double y0, r0, y1, r1;
-        psim_measure(&ps, &dp, &y0, &r0);
-        psim_measure(&pp, &dp, &y1, &r1);
-        const double u0 = ctl_step(ctl, &s[0], y0, r0);
-        const double u1 = ctl_step(ctl, &s[1], y1, r1);
-        psim_step(&ps, &dp, u0, d);
-        psim_step(&pp, &dp, u1, d + (i < pulse ? 1e-3 : 0.0));
-        const double a = fabs(pp.x[0] - ps.x[0]);
-        if (!(fabs(pp.x[0]) < DIVERGED_RAD && fabs(ps.x[0]) < DIVERGED_RAD)) {
-            last = INFINITY;
-            break;
-        }
-        peak = fmax(peak, a);
-        if (i >= n_ticks / 2 && i < n_ticks - n_ticks / 4) third = fmax(third, a);
-        if (i >= n_ticks - n_ticks / 4) last = fmax(last, a);
-    }
-    /* as ladrc_margins_simulate; the floor is the float controller's
-     * rounding on the converged run (1e-4 of the pulse's peak response) */
-    const double floor_level = SIM_DIFF_DECAYED * peak;
     *growth = (last <= floor_level) ? 0.0 : last / fmax(third, floor_level);
     return LADRC_MARGINS_OK;
 }

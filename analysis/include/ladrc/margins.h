@@ -21,10 +21,8 @@
  * measured angle (and rate) to torque is linear (LADRC, PID) or linearised
  * about a converged run under a tone disturbance (LP-/HP-MLADRC: the
  * difference between a perturbed and an unperturbed copy of the controller,
- * averaged over start instants). The impulse responses h_k tend to
- * c0 + c1 k (the controller's integrators) plus, for a converged HP-MLADRC,
- * a cos(theta k) + b sin(theta k) per tone (its internal model, poles at
- * e^{+-j theta}); C(z) = sum_k (h_k - tail_k) z^-k + the tail's closed form.
+ * averaged over start instants). The impulse responses h_k tend to a constant
+ * c (the controller's integrator); C(z) = sum_k (h_k - c) z^-k + c / (1 - z^-1).
  * Loop broken at the plant input: L = -(C_angle P_angle + C_rate P_rate).
  */
 #ifndef LADRC_MARGINS_H
@@ -139,12 +137,7 @@ typedef struct {
     double dt_s;
     int n_taps;
     double tail[2];                          /**< c0 of the angle and rate responses' tails */
-    double ramp[2];                          /**< c1: h_k -> c0 + c1 k (+ the resonant terms) */
-    int n_res;                               /**< converged HP: its tones' internal-model poles on
-                                                  the unit circle at e^{+-j theta_i} (0: none) */
-    double res_theta[LADRC_HP_MAX_TONES];    /**< theta_i = w_i T (rad per tick) */
-    double res_cos[2][LADRC_HP_MAX_TONES];   /**< a_i: h_k -> ... + a_i cos(theta_i k) + b_i sin(theta_i k) */
-    double res_sin[2][LADRC_HP_MAX_TONES];   /**< b_i */
+    double ramp[2];                          /**< c1: h_k -> c0 + c1 k */
     double tail_residue;
     int linearised_nominal;
     double h[2][LADRC_MARGINS_MAX_TAPS];     /**< angle (N m/rad), rate (N m s/rad) */
@@ -216,19 +209,6 @@ void ladrc_margins_of_loop(ladrc_margins_loop_fn fn, void *ctx, double dt_s, lad
  */
 ladrc_margins_status_t ladrc_margins_simulate(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
                                               const ladrc_margins_plant_t *plant, long n_ticks, double *growth);
-
-/**
- * Independent check of a converged adaptive loop: the controller flown under
- * req's tone on req->plant for converge_s, then it and a twin whose plant
- * gets an extra 10 ms pulse of 1e-3 rad/s^2 flown on for n_ticks under the
- * same tone; *growth as ladrc_margins_simulate on the difference of their
- * angles (0 once it has decayed below 1e-3 of its peak, the two float
- * controllers' rounding), INFINITY if a run left 1 rad.
- */
-ladrc_margins_status_t ladrc_margins_simulate_converged(ladrc_margins_workspace_t *ws,
-                                                        const ladrc_margins_controller_t *ctl,
-                                                        const ladrc_margins_request_t *req, long n_ticks,
-                                                        double *growth);
 
 /** Targets and search of the margins-based tuning. */
 typedef struct {
