@@ -154,7 +154,8 @@ static ladrc_status_t init_shaper(ladrc_axis_t *axis, const ladrc_axis_config_t 
 static ladrc_status_t init_estimator(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
 {
     if (cfg->variant == LADRC_VARIANT_LP_MLADRC) {
-        const ladrc_lp_config_t lp = {cfg->dt_s, cfg->lp_lambda0_per_s, cfg->lp_k0_per_s};
+        const ladrc_lp_config_t lp = {cfg->dt_s, cfg->lp_lambda0_per_s, cfg->lp_k0_per_s,
+                                      cfg->motor_tau_s, cfg->delay_ticks};
         return ladrc_lp_init(&axis->part.lp, &lp);
     }
     if (cfg->variant == LADRC_VARIANT_HP_MLADRC) {
@@ -169,7 +170,10 @@ static ladrc_status_t init_estimator(ladrc_axis_t *axis, const ladrc_axis_config
             .freq_filter_rad_s = cfg->hp_freq_filter_rad_s,
             .sample_lag_wo_rad_s = cfg->wo_rad_s, /* the sample comes through this axis's LESO */
             .fit_decimation = cfg->hp_fit_decimation,
-            .fit_phase = cfg->hp_fit_phase};
+            .fit_phase = cfg->hp_fit_phase,
+            /* the command's tones are advanced over the modelled actuator */
+            .act_tau_s = cfg->motor_tau_s,
+            .act_delay_ticks = cfg->delay_ticks};
         for (unsigned k = 0u; k < LADRC_HP_MAX_TONES; ++k) {
             hp.freq_rad_s[k] = cfg->hp_freq_rad_s[k];
         }
@@ -417,6 +421,20 @@ static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, ladrc_real_t rate_r
     return LADRC_R(0.0);
 }
 
+/* With an actuator model: the compensation the command carries, d_hat
+ * advanced over the modelled actuator (estimator.h); d_hat stays the
+ * observer's known input. */
+static ladrc_real_t advanced_compensation(ladrc_axis_t *axis, ladrc_real_t d_hat)
+{
+    if (axis->variant == LADRC_VARIANT_LP_MLADRC) {
+        return ladrc_lp_step_lead(&axis->part.lp);
+    }
+    if (axis->variant == LADRC_VARIANT_HP_MLADRC) {
+        return ladrc_hp_get_command(&axis->part.hp.est);
+    }
+    return d_hat;
+}
+
 /* A wrapped axis: z1 and r both beyond +pi (or -pi) move one turn back,
  * with the shaper's state. Both lie within 4 pi of 0 (pi past the bound at
  * most, plus the |r - z1| < 2 pi the wrapped law allows), so each shift by
@@ -476,7 +494,11 @@ static ladrc_fault_t step_adrc(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_r
         recentre(axis);
     }
     const ladrc_real_t u0 = axis->kp * error_rad + axis->kd * (ref->dr - leso->z2) + ref->ddr;
-    const ladrc_real_t u = (u0 - leso->z3 - d_hat) / axis->b0;
+    ladrc_real_t u = (u0 - leso->z3 - d_hat) / axis->b0;
+    if (axis->model) {
+        /* the command carries d_hat advanced over the modelled actuator */
+        u = (u0 - leso->z3 - advanced_compensation(axis, d_hat)) / axis->b0;
+    }
     if (!ladrc_is_finite(u)) {
         /* The command is held; what made it non-finite must not outlive the
          * tick, so the estimates restart from the measurement. */

@@ -126,6 +126,25 @@ static void set_tone_freq(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone
     const ladrc_real_t x = (est->lag_wo_rad_s > LADRC_R(0.0)) ? w_rad_s / est->lag_wo_rad_s : LADRC_R(0.0);
     tone->lead_re = LADRC_R(1.0) - LADRC_R(3.0) * x * x;
     tone->lead_im = LADRC_R(3.0) * x - x * x * x;
+    if (est->advance) {
+        /* lead (1 + j w tau) e^{j w d h}, times e^{-j w h}: the command is
+         * read after the tick has turned the phase by w h (estimator.h).
+         * The turn by w (d - 1) h as |d - 1| turns by w h (exact to
+         * rounding, no trig; d <= LADRC_MAX_DELAY_TICKS). */
+        const ladrc_real_t wt = min_real(w_rad_s * est->act_tau_s, HP_LEAD_RATIO_MAX);
+        ladrc_real_t re = tone->lead_re - wt * tone->lead_im;
+        ladrc_real_t im = tone->lead_im + wt * tone->lead_re;
+        const ladrc_real_t back = (est->act_delay_ticks == 0u) ? LADRC_R(-1.0) : LADRC_R(1.0);
+        const unsigned turns = (est->act_delay_ticks == 0u) ? 1u : est->act_delay_ticks - 1u;
+        for (unsigned i = 0u; i < turns; ++i) {
+            const ladrc_real_t sin_step = back * tone->sin_step;
+            const ladrc_real_t turned = re * tone->cos_step - im * sin_step;
+            im = im * tone->cos_step + re * sin_step;
+            re = turned;
+        }
+        tone->cmd_re = re;
+        tone->cmd_im = im;
+    }
 }
 
 /* A tone whose fit starts over: no phasor history, not significant, not locked. */
@@ -175,6 +194,13 @@ static ladrc_status_t check_config(const ladrc_hp_config_t *cfg)
         !(fastest_rad_s * fit_period_s < LADRC_R(0.5) * HP_PI)) {
         return LADRC_ERR_HP_FIT_DECIMATION;
     }
+    if (!(ladrc_is_finite(cfg->act_tau_s) && cfg->act_tau_s >= LADRC_R(0.0) &&
+          cfg->act_tau_s <= LADRC_MOTOR_TAU_MAX_S)) {
+        return LADRC_ERR_MOTOR_TAU_S;
+    }
+    if (cfg->act_delay_ticks > LADRC_MAX_DELAY_TICKS) {
+        return LADRC_ERR_DELAY_TICKS;
+    }
     const ladrc_real_t lag_wo = cfg->sample_lag_wo_rad_s;
     if (!ladrc_is_finite(lag_wo) || lag_wo < LADRC_R(0.0) ||
         (lag_wo > LADRC_R(0.0) && !(fastest_rad_s <= HP_LEAD_RATIO_MAX * lag_wo))) {
@@ -222,6 +248,9 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
     est->dt_s = cfg->dt_s;
     est->fit_period_s = fit_period_s;
     est->lag_wo_rad_s = cfg->sample_lag_wo_rad_s;
+    est->act_tau_s = cfg->act_tau_s;
+    est->act_delay_ticks = cfg->act_delay_ticks;
+    est->advance = (cfg->act_tau_s > LADRC_R(0.0) || cfg->act_delay_ticks > 0u) ? 1u : 0u;
     est->online = (cfg->freq_mode == LADRC_HP_FREQ_ONLINE) ? 1u : 0u;
     est->freq_min_rad_s = cfg->freq_min_rad_s;
     est->freq_max_rad_s = cfg->freq_max_rad_s;
@@ -278,8 +307,22 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
     est->faults = LADRC_FAULT_NONE;
 }
 
+/* The fitted phasor (a - j b) of a tone turned and scaled by (re + j im),
+ * real part at the tone's current phase psi. Inlined into both readers: a
+ * call per tone and tick would cost more than the product. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline ladrc_real_t tone_turned(const ladrc_hp_tone_t *tone, ladrc_real_t a, ladrc_real_t b, ladrc_real_t re,
+                                ladrc_real_t im)
+{
+    const ladrc_real_t x = a * re + b * im;
+    const ladrc_real_t y = a * im - b * re;
+    return x * tone->cos_psi - y * tone->sin_psi;
+}
+
 /* Fitted value of active tone k at its current phase, as sampled (lagged)
- * or with the sample's lag undone (lead). */
+ * or with the sample's lag undone (lead: (1 + j w / wo)^3). */
 static ladrc_real_t tone_value(const ladrc_hp_estimator_t *est, unsigned k, int lead)
 {
     const ladrc_hp_tone_t *tone = &est->tone[k];
@@ -289,10 +332,7 @@ static ladrc_real_t tone_value(const ladrc_hp_estimator_t *est, unsigned k, int 
     if (!lead) {
         return a * tone->cos_psi + b * tone->sin_psi;
     }
-    /* (a - j b) turned and scaled by (1 + j w / wo)^3, real part at psi. */
-    const ladrc_real_t x = a * tone->lead_re + b * tone->lead_im;
-    const ladrc_real_t y = a * tone->lead_im - b * tone->lead_re;
-    return x * tone->cos_psi - y * tone->sin_psi;
+    return tone_turned(tone, a, b, tone->lead_re, tone->lead_im);
 }
 
 /* Turn of a tone's fitted phasor since the previous fit sample, as a rate
@@ -739,6 +779,22 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
 }
 
 ladrc_real_t ladrc_hp_get_estimate(const ladrc_hp_estimator_t *est) { return est->estimate; }
+
+ladrc_real_t ladrc_hp_get_command(const ladrc_hp_estimator_t *est)
+{
+    if (!est->advance) {
+        return est->estimate;
+    }
+    /* The tick's model with each tone turned by cmd instead of lead; the
+     * phases have moved on by w h since, which cmd takes back. */
+    const ladrc_real_t *theta = ladrc_rls_get_theta(&est->fit);
+    ladrc_real_t command = theta[0];
+    for (unsigned k = 0u; k < est->n_active; ++k) {
+        const ladrc_hp_tone_t *tone = &est->tone[k];
+        command += tone_turned(tone, theta[theta_a(k)], theta[theta_a(k) + 1u], tone->cmd_re, tone->cmd_im);
+    }
+    return est->weight * command;
+}
 
 ladrc_real_t ladrc_hp_get_handover(const ladrc_hp_estimator_t *est) { return est->handover; }
 

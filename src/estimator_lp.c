@@ -24,7 +24,18 @@ ladrc_status_t ladrc_lp_init(ladrc_lp_estimator_t *est, const ladrc_lp_config_t 
     if (status != LADRC_OK) {
         return status;
     }
+    if (!(ladrc_is_finite(cfg->act_tau_s) && cfg->act_tau_s >= LADRC_R(0.0) &&
+          cfg->act_tau_s <= LADRC_MOTOR_TAU_MAX_S)) {
+        return LADRC_ERR_MOTOR_TAU_S;
+    }
+    if (cfg->act_delay_ticks > LADRC_MAX_DELAY_TICKS) {
+        return LADRC_ERR_DELAY_TICKS;
+    }
     est->dt_s = cfg->dt_s;
+    /* tau' = tau + d h: the lag and the delay as one first-order lag. */
+    const ladrc_real_t tau = cfg->act_tau_s + (ladrc_real_t)cfg->act_delay_ticks * cfg->dt_s;
+    est->lead = (tau > LADRC_R(0.0)) ? 1u : 0u;
+    est->lead_beta = est->lead ? -ladrc_expm1(-LADRC_LP_LEAD_MAX * cfg->dt_s / tau) : LADRC_R(1.0);
     ladrc_lp_reset(est);
     return LADRC_OK;
 }
@@ -35,6 +46,7 @@ void ladrc_lp_reset(ladrc_lp_estimator_t *est)
     ladrc_rls_reset(&est->rls, NULL);
     est->prev_rate_rad_s = LADRC_R(0.0);
     est->has_prev_rate = 0u;
+    est->lead_x = LADRC_R(0.0);
     est->faults = LADRC_FAULT_NONE;
 }
 
@@ -61,4 +73,17 @@ ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s,
 ladrc_real_t ladrc_lp_get_estimate(const ladrc_lp_estimator_t *est)
 {
     return ladrc_rls_get_theta(&est->rls)[0];
+}
+
+ladrc_real_t ladrc_lp_step_lead(ladrc_lp_estimator_t *est)
+{
+    LADRC_ASSERT(est != NULL);
+    const ladrc_real_t d_hat = ladrc_rls_get_theta(&est->rls)[0];
+    if (!est->lead) {
+        return d_hat;
+    }
+    /* the bounded lead over the actuator (estimator.h) */
+    const ladrc_real_t fast = d_hat - est->lead_x;
+    est->lead_x += est->lead_beta * fast;
+    return d_hat + (LADRC_LP_LEAD_MAX - LADRC_R(1.0)) * fast;
 }

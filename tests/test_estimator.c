@@ -432,7 +432,7 @@ static void test_lp_tracks_the_measured_acceleration_minus_the_known_input(void)
 {
     /* given a rate whose derivative is 30 rad/s^2, of which 10 came from the input */
     ladrc_lp_estimator_t est;
-    const ladrc_lp_config_t cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f};
+    const ladrc_lp_config_t cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f, 0.0f, 0u};
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_lp_init(&est, &cfg));
     for (int k = 0; k < 200; ++k) {
         ladrc_lp_step(&est, (ladrc_real_t)(30.0 * k * DT_S), 10.0f);
@@ -447,7 +447,7 @@ static void test_lp_bandwidth_is_lambda0_k0_over_their_sum(void)
     /* a step of the sample reaches 1 - 1/e after 1/75 s = 13 ms (discrete
      * gain per tick 0.075: 1 - 0.925^13 = 0.637, one tick = 5% of the rise) */
     ladrc_lp_estimator_t est;
-    const ladrc_lp_config_t cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f};
+    const ladrc_lp_config_t cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f, 0.0f, 0u};
     ladrc_lp_init(&est, &cfg);
     for (int k = 0; k < 1000; ++k) { /* let P settle on a zero sample */
         ladrc_lp_step(&est, 0.0f, 0.0f);
@@ -469,7 +469,7 @@ static void test_lp_bandwidth_is_lambda0_k0_over_their_sum(void)
 static void test_lp_rate_gap_restarts_the_difference(void)
 {
     ladrc_lp_estimator_t est;
-    const ladrc_lp_config_t cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f};
+    const ladrc_lp_config_t cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f, 0.0f, 0u};
     ladrc_lp_init(&est, &cfg);
     ladrc_lp_step(&est, 0.0f, 0.0f);
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_lp_step(&est, (ladrc_real_t)NAN, 0.0f));
@@ -481,7 +481,7 @@ static void test_lp_rate_gap_restarts_the_difference(void)
 static void test_lp_invalid_fields_are_rejected(void)
 {
     ladrc_lp_estimator_t est;
-    const ladrc_lp_config_t good = {(ladrc_real_t)DT_S, 100.0f, 300.0f};
+    const ladrc_lp_config_t good = {(ladrc_real_t)DT_S, 100.0f, 300.0f, 0.0f, 0u};
     ladrc_lp_config_t cfg = good;
     cfg.dt_s = (ladrc_real_t)NAN;
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_DT_S, ladrc_lp_init(&est, &cfg));
@@ -492,6 +492,143 @@ static void test_lp_invalid_fields_are_rejected(void)
     cfg.k0_per_s = (ladrc_real_t)INFINITY;
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_EST_K0, ladrc_lp_init(&est, &cfg));
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_NULL, ladrc_lp_init(&est, NULL));
+}
+
+/* ---- the command advanced over an actuator --------------------------------- */
+
+/* The command's phasor against the estimate's: both are sums of the same
+ * fitted tone, so their ratio is the constant (1 + j w tau) e^{j w d h}
+ * exactly, up to the float rounding of a few products and of the lock-in's
+ * sums over 4000 ticks (relative 1e-4 leaves room tenfold). */
+#define ADVANCE_PHASOR_TOL 1e-4
+/* The bounded lead's response to a step of d_hat: N at once, then towards 1
+ * with the time constant tau' / N; after 20 such time constants within
+ * float rounding of 1 (relative 1e-5). */
+#define LEAD_SETTLED_TOL 1e-5
+
+/* Lock-in: phasor (cos, sin coefficients) of x_k on the tone w over n ticks. */
+static void lock_in(const double *x, int n, double w, double *re, double *im)
+{
+    double c = 0.0, s = 0.0;
+    for (int k = 0; k < n; ++k) {
+        c += x[k] * cos(w * DT_S * k);
+        s += x[k] * sin(w * DT_S * k);
+    }
+    *re = 2.0 * c / n;
+    *im = 2.0 * s / n;
+}
+
+static void test_hp_command_is_the_estimate_turned_by_the_inverse_actuator(void)
+{
+    /* given: a known 3 rad/s tone, the command advanced over 30 ms and 2 ticks */
+    const double w = 3.0, tau = 0.03;
+    const int d = 2;
+    ladrc_hp_config_t cfg = hp_config(LADRC_HP_FREQ_KNOWN, w);
+    cfg.act_tau_s = (ladrc_real_t)tau;
+    cfg.act_delay_ticks = (uint8_t)d;
+    static ladrc_hp_estimator_t est;
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_hp_init(&est, &cfg));
+    /* when: it converges on 2 + 5 sin(w t), then a whole number of periods is read */
+    const int n_conv = 6000, n = 4189; /* 4189 ticks: two periods of 3 rad/s to 1e-4 */
+    static double e[4189], c[4189];
+    for (int k = 0; k < n_conv + n; ++k) {
+        const double t = DT_S * k;
+        (void)ladrc_hp_step(&est, (ladrc_real_t)(2.0 + 5.0 * sin(w * t)));
+        if (k >= n_conv) {
+            e[k - n_conv] = ladrc_hp_get_estimate(&est) - ladrc_hp_get_bias(&est);
+            c[k - n_conv] = ladrc_hp_get_command(&est) - ladrc_hp_get_bias(&est);
+        }
+    }
+    TEST_ASSERT_EQUAL_FLOAT(1.0f, ladrc_hp_get_weight(&est));
+    double er, ei, cr, ci;
+    lock_in(e, n, w, &er, &ei);
+    lock_in(c, n, w, &cr, &ci);
+    /* then: command / estimate = (1 + j w tau) e^{j w d h}, as phasors a - j b */
+    const double complex_e_re = er, complex_e_im = -ei, complex_c_re = cr, complex_c_im = -ci;
+    const double den = complex_e_re * complex_e_re + complex_e_im * complex_e_im;
+    const double ratio_re = (complex_c_re * complex_e_re + complex_c_im * complex_e_im) / den;
+    const double ratio_im = (complex_c_im * complex_e_re - complex_c_re * complex_e_im) / den;
+    const double ph = w * d * DT_S;
+    const double want_re = cos(ph) - w * tau * sin(ph), want_im = sin(ph) + w * tau * cos(ph);
+    printf("command / estimate %.6f %+.6fj, want %.6f %+.6fj\n", ratio_re, ratio_im, want_re, want_im);
+    TEST_ASSERT_FLOAT_WITHIN(ADVANCE_PHASOR_TOL, want_re, ratio_re);
+    TEST_ASSERT_FLOAT_WITHIN(ADVANCE_PHASOR_TOL, want_im, ratio_im);
+}
+
+static void test_hp_without_actuator_command_is_the_estimate_bit_for_bit(void)
+{
+    /* given: the same estimator with no actuator to advance over */
+    const ladrc_hp_config_t cfg = hp_config(LADRC_HP_FREQ_ONLINE, 3.0);
+    static ladrc_hp_estimator_t est;
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_hp_init(&est, &cfg));
+    int differ = 0;
+    for (int k = 0; k < 5000; ++k) {
+        /* when */
+        (void)ladrc_hp_step(&est, (ladrc_real_t)(1.0 + 4.0 * sin(3.0 * DT_S * k)));
+        const ladrc_real_t command = ladrc_hp_get_command(&est), estimate = ladrc_hp_get_estimate(&est);
+        differ |= memcmp(&command, &estimate, sizeof command) != 0;
+    }
+    /* then */
+    TEST_ASSERT_EQUAL_INT(0, differ);
+    TEST_ASSERT_TRUE(ladrc_hp_get_weight(&est) > 0.0f); /* it did compensate */
+}
+
+static void test_lp_lead_is_n_at_once_and_unity_at_dc(void)
+{
+    /* given: LP with a 30 ms lag and 2 ticks to lead over, on a sample step */
+    const double tau_eff = 0.03 + 2.0 * DT_S;
+    const ladrc_lp_config_t cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f, 0.03f, 2u};
+    ladrc_lp_estimator_t est;
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_lp_init(&est, &cfg));
+    /* when: a still rate and a known input of -10 rad/s^2 (sample 10,
+     * exact in float) for long enough for the RLS and the lead to settle */
+    double command = 0.0;
+    for (int k = 0; k < 3000; ++k) {
+        (void)ladrc_lp_step(&est, 0.0f, -10.0f);
+        command = ladrc_lp_step_lead(&est);
+    }
+    const double settled = command;
+    /* then: unit DC gain */
+    TEST_ASSERT_FLOAT_WITHIN(LEAD_SETTLED_TOL * 10.0, ladrc_lp_get_estimate(&est), settled);
+    /* and: a change of d_hat passes N-fold at first (one tick) */
+    const double before = ladrc_lp_get_estimate(&est);
+    (void)ladrc_lp_step(&est, 0.0f, -30.0f);
+    const double jump = ladrc_lp_get_estimate(&est) - before;
+    const double lead_jump = ladrc_lp_step_lead(&est) - settled;
+    printf("d_hat moved %.4f, command %.4f (N = %.1f, tau' = %.3f s)\n", jump, lead_jump,
+           (double)LADRC_LP_LEAD_MAX, tau_eff);
+    TEST_ASSERT_TRUE(jump > 1.0);
+    TEST_ASSERT_FLOAT_WITHIN(LEAD_SETTLED_TOL * 30.0 * LADRC_LP_LEAD_MAX, LADRC_LP_LEAD_MAX * jump, lead_jump);
+    /* and: back to d_hat within float rounding after 20 tau' / N */
+    for (int k = 0; k < (int)(20.0 * tau_eff / LADRC_LP_LEAD_MAX / DT_S) + 3000; ++k) {
+        (void)ladrc_lp_step(&est, 0.0f, -30.0f);
+        command = ladrc_lp_step_lead(&est);
+    }
+    TEST_ASSERT_FLOAT_WITHIN(LEAD_SETTLED_TOL * 30.0, ladrc_lp_get_estimate(&est), command);
+    /* and: without an actuator the lead is d_hat itself */
+    const ladrc_lp_config_t plain_cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f, 0.0f, 0u};
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_lp_init(&est, &plain_cfg));
+    int differ = 0;
+    for (int k = 0; k < 100; ++k) {
+        (void)ladrc_lp_step(&est, 0.0f, (ladrc_real_t)(-10.0 * k));
+        const ladrc_real_t lead = ladrc_lp_step_lead(&est), d_hat = ladrc_lp_get_estimate(&est);
+        differ |= memcmp(&lead, &d_hat, sizeof lead) != 0;
+    }
+    TEST_ASSERT_EQUAL_INT(0, differ);
+    /* and: the field checks */
+    ladrc_lp_config_t bad = cfg;
+    bad.act_tau_s = -1.0f;
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_MOTOR_TAU_S, ladrc_lp_init(&est, &bad));
+    bad = cfg;
+    bad.act_delay_ticks = (uint8_t)(LADRC_MAX_DELAY_TICKS + 1u);
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_DELAY_TICKS, ladrc_lp_init(&est, &bad));
+    ladrc_hp_config_t hbad = hp_config(LADRC_HP_FREQ_KNOWN, 3.0);
+    static ladrc_hp_estimator_t hp;
+    hbad.act_tau_s = (ladrc_real_t)NAN;
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_MOTOR_TAU_S, ladrc_hp_init(&hp, &hbad));
+    hbad = hp_config(LADRC_HP_FREQ_KNOWN, 3.0);
+    hbad.act_delay_ticks = (uint8_t)(LADRC_MAX_DELAY_TICKS + 1u);
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_DELAY_TICKS, ladrc_hp_init(&hp, &hbad));
 }
 
 int main(void)
@@ -515,5 +652,8 @@ int main(void)
     RUN_TEST(test_lp_bandwidth_is_lambda0_k0_over_their_sum);
     RUN_TEST(test_lp_rate_gap_restarts_the_difference);
     RUN_TEST(test_lp_invalid_fields_are_rejected);
+    RUN_TEST(test_hp_command_is_the_estimate_turned_by_the_inverse_actuator);
+    RUN_TEST(test_hp_without_actuator_command_is_the_estimate_bit_for_bit);
+    RUN_TEST(test_lp_lead_is_n_at_once_and_unity_at_dc);
     return UNITY_END();
 }

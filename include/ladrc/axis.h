@@ -87,10 +87,7 @@
 extern "C" {
 #endif
 
-/** Largest delay_ticks: the ring buffer's fixed size (torques of the axis). */
-#define LADRC_MAX_DELAY_TICKS 8u
-/** Largest motor_tau_s (s): a large airframe's slow rotor, twenty times an ESC's lag. */
-#define LADRC_MOTOR_TAU_MAX_S LADRC_R(1.0)
+/* LADRC_MAX_DELAY_TICKS and LADRC_MOTOR_TAU_MAX_S: types.h (the HP estimator advances over them too). */
 
 typedef enum {
     LADRC_VARIANT_LADRC = 0,    /**< traditional LADRC: TD + LESO + control law */

@@ -13,6 +13,18 @@
  * paper's forgetting (lambda0 = 100 /s, k0 = 300 /s) makes d_hat a
  * first-order tracker of s with bandwidth lambda0 k0 / (lambda0 + k0) = 75 rad/s.
  *
+ * Through the actuator (act_tau_s = tau, act_delay_ticks = d): the
+ * compensation the command carries (ladrc_lp_get_command) is d_hat through
+ * the bounded lead
+ *     (1 + tau' s) / (1 + tau' s / N),   tau' = tau + d h,   N = LADRC_LP_LEAD_MAX
+ * which undoes the lag 1 / (1 + tau' s) (the first-order view of
+ * exp(-s d h) / (1 + tau s)) up to a few rad/s and amplifies what is faster
+ * (the sample's noise) by at most N. Discretised as
+ *     x_k = x_k-1 + beta (d_hat_k - x_k-1),   command_k = d_hat_k + (N - 1) (d_hat_k - x_k-1)
+ * with beta = 1 - exp(-N h / tau'): a unit DC gain (ladrc_lp_step_lead). d_hat
+ * itself stays the observer's known input. tau = 0 and d = 0: command =
+ * d_hat, bit for bit.
+ *
  * HP ("high precision", angle only): the sample is the LESO's view of the
  * unknown part of f, s_k = z3_k - z3_shadow_k, where the shadow is a twin of
  * the axis's observer on a still plant, told d_hat minus the known part of f
@@ -22,6 +34,21 @@
  * the drag and coupling that move with the reference. The sample lags the
  * unknown f by the observer's wo^3 / (s + wo)^3, which the estimate undoes
  * per tone.
+ *
+ * Through the actuator (act_tau_s = tau, act_delay_ticks = d): what the
+ * command asks for acts through A(jw) = exp(-jw d h) / (1 + jw tau) (a
+ * first-order lag and d ticks of delay, the axis's actuator model; the
+ * delay may sit in the measurement instead: the sample, and so the
+ * estimate, is then d ticks old, which needs the same advance). The
+ * estimate itself (d_hat, the observer's known input) stays the disturbance;
+ * the COMMAND's compensation (ladrc_hp_get_command) turns and scales each
+ * tone's phasor by 1 / A(jw) at the tone's frequency, so that what acts
+ * cancels the tone in phase:
+ *     command = weight (c + sum_k Re[(a_k - j b_k) lead_k (1 + jw_k tau) e^{jw_k d h} e^{j psi_k}])
+ * The bias passes unchanged (A(0) = 1). The constant per tone is computed
+ * when its frequency changes; w tau is bounded by HP_LEAD_RATIO_MAX (10:
+ * 84 deg of lead, a tenfold gain). tau = 0 and d = 0: command = estimate,
+ * bit for bit, nothing computed.
  *
  * Model, n active tones (1..n_tones, n_tones <= LADRC_HP_MAX_TONES):
  *     d(t) = c + sum_k (a_k cos(psi_k) + b_k sin(psi_k)),   psi_k' = w_k
@@ -80,17 +107,30 @@ typedef struct {
     ladrc_real_t dt_s;          /**< fixed step h (s), > 0 */
     ladrc_real_t lambda0_per_s; /**< maximum forgetting rate (1/s), > 0; paper 100 */
     ladrc_real_t k0_per_s;      /**< bound on the continuous-time gain P (1/s), > 0; paper 300 */
+    ladrc_real_t act_tau_s;     /**< the command acts through this first-order lag (s),
+                                     0..LADRC_MOTOR_TAU_MAX_S, 0 = none */
+    uint8_t act_delay_ticks;    /**< and this delay (ticks), 0..LADRC_MAX_DELAY_TICKS */
 } ladrc_lp_config_t;
+
+/** Largest gain of the LP command's lead (its high-frequency gain N): see
+ *  above; the measured trade-off is in docs (README, LP-MLADRC under lag). */
+#ifndef LADRC_LP_LEAD_MAX
+#define LADRC_LP_LEAD_MAX LADRC_R(4.0)
+#endif
 
 typedef struct {
     ladrc_rls_t rls;            /**< one parameter: d_hat */
     ladrc_real_t dt_s;
     ladrc_real_t prev_rate_rad_s;
+    ladrc_real_t lead_x;        /**< the lead's low-pass state x (rad/s^2) */
+    ladrc_real_t lead_beta;     /**< beta = 1 - exp(-N h / tau') */
+    uint8_t lead;               /**< 1: act_tau_s > 0 or act_delay_ticks > 0 */
     uint8_t has_prev_rate;
     ladrc_fault_t faults;
 } ladrc_lp_estimator_t;
 
-/** Validates (LADRC_ERR_DT_S, LADRC_ERR_EST_LAMBDA0, LADRC_ERR_EST_K0) and resets. */
+/** Validates (LADRC_ERR_DT_S, LADRC_ERR_EST_LAMBDA0, LADRC_ERR_EST_K0, LADRC_ERR_MOTOR_TAU_S,
+ *  LADRC_ERR_DELAY_TICKS) and resets. */
 ladrc_status_t ladrc_lp_init(ladrc_lp_estimator_t *est, const ladrc_lp_config_t *cfg);
 
 /** Forgets the estimate (d_hat = 0) and the rate history. */
@@ -109,6 +149,12 @@ ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s,
 
 /** Current estimate d_hat (rad/s^2). */
 ladrc_real_t ladrc_lp_get_estimate(const ladrc_lp_estimator_t *est);
+
+/** One tick of the command's lead over the actuator (see above) on the
+ *  current d_hat; call once per tick after ladrc_lp_step. Returns the
+ *  compensation the command should carry (rad/s^2): d_hat itself without an
+ *  actuator (then nothing is computed). */
+ladrc_real_t ladrc_lp_step_lead(ladrc_lp_estimator_t *est);
 
 typedef enum {
     LADRC_HP_FREQ_KNOWN = 0, /**< the disturbance frequencies are given (paper) */
@@ -134,6 +180,9 @@ typedef struct {
     uint16_t fit_phase;              /**< which tick of each block fits, < fit_decimation
                                           (give the axes of one controller different phases so a
                                           tick carries at most one fit) */
+    ladrc_real_t act_tau_s;          /**< the command acts through this first-order lag (s),
+                                          0..LADRC_MOTOR_TAU_MAX_S (axis.h), 0 = none */
+    uint8_t act_delay_ticks;         /**< and this delay (ticks), 0..LADRC_MAX_DELAY_TICKS */
 } ladrc_hp_config_t;
 
 /** One tone. */
@@ -142,6 +191,8 @@ typedef struct {
     ladrc_real_t cos_psi, sin_psi;   /**< phase as a unit phasor */
     ladrc_real_t cos_step, sin_step; /**< rotation by w h */
     ladrc_real_t lead_re, lead_im;   /**< (1 + j w / wo)^3: undoes the sample's lag at w */
+    ladrc_real_t cmd_re, cmd_im;     /**< lead (1 + j w tau) e^{j w (d - 1) h}: also undoes the
+                                          actuator's (read one turn w h late) */
     ladrc_real_t prev_a, prev_b;     /**< fitted (a, b) at the previous fit sample */
     ladrc_real_t slip_rad_s;         /**< averaged turn rate of the fitted phasor */
     ladrc_real_t drift_per_s;        /**< averaged relative rate of change of its size */
@@ -170,6 +221,7 @@ typedef struct {
     ladrc_real_t err_fast, err_slow; /**< short and long averages of the fit's prior error power */
     ladrc_real_t weight;             /**< compensation weight in [0, 1] */
     ladrc_real_t estimate;           /**< the applied d_hat (rad/s^2) */
+    ladrc_real_t act_tau_s;          /**< actuator lag the command is advanced over (s) */
     ladrc_real_t handover;           /**< part of estimate's latest change due to the weight */
     uint16_t fit_decimation, fit_count, fit_phase;
     uint16_t change_left;            /**< fit samples left of a change's hold */
@@ -181,12 +233,14 @@ typedef struct {
     uint8_t n_tones, n_active;
     uint8_t online;
     uint8_t clean;                   /**< ONLINE: the frequency fit sees as many clean tones as are active */
+    uint8_t act_delay_ticks;         /**< actuator delay the command is advanced over (ticks) */
+    uint8_t advance;                 /**< 1: act_tau_s > 0 or act_delay_ticks > 0 */
     ladrc_fault_t faults;
 } ladrc_hp_estimator_t;
 
 /** Validates (LADRC_ERR_DT_S, _HP_FREQ_MODE, _HP_N_TONES, _HP_FREQ_RAD_S, _HP_FREQ_RANGE,
- *  _EST_LAMBDA0, _HP_FIT_DECIMATION, _HP_SAMPLE_LAG, _HP_FREQ_LAMBDA0, _HP_FREQ_FILTER)
- *  and resets. */
+ *  _EST_LAMBDA0, _HP_FIT_DECIMATION, _HP_SAMPLE_LAG, _HP_FREQ_LAMBDA0, _HP_FREQ_FILTER,
+ *  _MOTOR_TAU_S, _DELAY_TICKS) and resets. */
 ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t *cfg);
 
 /** Forgets the model and the frequency averages; phases restart at 0, the
@@ -205,6 +259,12 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
 
 /** Applied estimate d_hat (rad/s^2): weight times the bias and the active tones. */
 ladrc_real_t ladrc_hp_get_estimate(const ladrc_hp_estimator_t *est);
+
+/** The compensation the command should carry after the latest step
+ *  (rad/s^2): the estimate with each tone advanced over the actuator (see
+ *  above), computed on call; the estimate itself when there is no actuator
+ *  to advance over. */
+ladrc_real_t ladrc_hp_get_command(const ladrc_hp_estimator_t *est);
 
 /**
  * Part of the latest change of the estimate that came from the gate's weight

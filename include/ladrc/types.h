@@ -368,6 +368,11 @@ static inline int ladrc_dt_is_valid(ladrc_real_t dt_s)
     return (ladrc_is_finite(dt_s) && dt_s >= LADRC_DT_MIN_S && dt_s <= LADRC_DT_MAX_S) ? 1 : 0;
 }
 
+/** Largest actuator delay an axis models (ticks): its ring buffer's fixed size. */
+#define LADRC_MAX_DELAY_TICKS 8u
+/** Largest motor lag an axis models (s): a large airframe's slow rotor, twenty times an ESC's lag. */
+#define LADRC_MOTOR_TAU_MAX_S LADRC_R(1.0)
+
 /** pi and 2 pi in the real type. LADRC_TWO_PI is the one period every wrap
  *  and every shift by a turn uses, so that they agree to the last bit. */
 #define LADRC_PI LADRC_R(3.14159265358979323846)

@@ -311,7 +311,7 @@ static int setup_modules(void)
     const ladrc_td_config_t td = {ladrc.dt_s, ladrc.td_accel_rad_s2, ladrc.td_h0_s};
     const ladrc_levant_config_t lev = {hp->dt_s, hp->levant_method, LADRC_LEVANT_GAINS_LIPSCHITZ,
                                        hp->levant_lipschitz_rad_s4, 0.0f, 0.0f, 0.0f, 0.0f};
-    const ladrc_lp_config_t lp = {hp->dt_s, hp->lp_lambda0_per_s, hp->lp_k0_per_s};
+    const ladrc_lp_config_t lp = {hp->dt_s, hp->lp_lambda0_per_s, hp->lp_k0_per_s, hp->motor_tau_s, hp->delay_ticks};
     const ladrc_hp_config_t hpc = hp_config(hp);
     /* The HP fit as the estimator runs it engaged: P bound 1e4 and initial P
      * 1e3 per sample, its engaged forgetting rate. */
