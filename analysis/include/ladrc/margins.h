@@ -220,6 +220,7 @@ typedef struct {
     int met;                  /**< 1 when the chosen setting meets the targets */
     double wc_rad_s, wo_rad_s;/**< LADRC family */
     double kp, ki, kd, d_filter_tau_s; /**< PID */
+    double indi_att_kp_per_s, indi_rate_kp_per_s, indi_filter_rad_s; /**< INDI */
     double peak_dist_rad;     /**< objective: peak |d -> error| of the chosen setting */
     ladrc_margins_result_t margins; /**< of the chosen setting */
 } ladrc_margins_tuning_t;
@@ -230,7 +231,10 @@ typedef struct {
  * LADRC family: wo = r wc, r in {3, 5, 8}; for each r the largest
  * wc whose loop is stable with PM >= pm_min_deg and GM >= gm_min_db;
  * PID: kp = J w^2, kd = 2 J w, ki = kp w / m, m in {3, 5, 10}, derivative
- * filter 1 / (10 w) (none if below dt); the largest such w for each m.
+ * filter 1 / (10 w) (none if below dt); the largest such w for each m;
+ * INDI: k_att = k_rate = w (the loop (s + w)^2 of LADRC's rule), filter
+ * w_f = r w, r in {3, 5, 8} (at most 0.9 pi / dt), the largest such w for
+ * each r; INDI needs use_rate (else LADRC_MARGINS_ERR_CONTROLLER).
  * Of these candidates the one with the smallest peak |disturbance -> error|
  * wins. The adaptive variants' estimator settings are kept; their wc and wo
  * are tuned on the plain LADRC loop (estimator off), then the margins of the
