@@ -206,7 +206,8 @@ static tally_t run_axis(ladrc_variant_t v, entry_t entry, long n)
         ladrc_real_t angle = (ladrc_real_t)plant.y_rad;
         ladrc_real_t rate = (ladrc_real_t)plant.rate_rad_s;
         ladrc_real_t applied = LADRC_R(0.0);
-        int rate_given = 0;
+        /* INDI flies only on a measured rate: its set_applied campaign gets the true one */
+        int rate_given = entry == ENTRY_APPLIED && v == LADRC_VARIANT_INDI;
         if (entry == ENTRY_APPLIED) {
             applied = draw(&rng, burst, 0.0, U_LIMIT_NM);
         } else {
