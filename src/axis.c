@@ -459,17 +459,6 @@ static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, ladrc_real_t rate_r
  * LADRC_TWO_PI is exact (Sterbenz) and r - z1 keeps every bit: the law sees
  * no change. Without it z1 and r would grow with every turn and lose a bit
  * of resolution at each doubling (a float at 1000 rad resolves 6e-5 rad). */
-static ladrc_real_t recentring_turn(ladrc_real_t z1, ladrc_real_t r)
-{
-    if (z1 > LADRC_PI && r > LADRC_PI) {
-        return -LADRC_TWO_PI;
-    }
-    if (z1 < -LADRC_PI && r < -LADRC_PI) {
-        return LADRC_TWO_PI;
-    }
-    return LADRC_R(0.0);
-}
-
 /* The shaped reference and the shaper's state moved by a turn. */
 static void shift_reference(ladrc_axis_t *axis, ladrc_real_t turn)
 {
@@ -483,16 +472,27 @@ static void shift_reference(ladrc_axis_t *axis, ladrc_real_t turn)
 
 static void recentre(ladrc_axis_t *axis)
 {
-    const ladrc_real_t turn = recentring_turn(axis->leso.z1, axis->ref.r);
-    if (turn != LADRC_R(0.0)) {
-        axis->leso.z1 += turn;
-        shift_reference(axis, turn);
+    const ladrc_real_t z1 = axis->leso.z1;
+    const ladrc_real_t r = axis->ref.r;
+    ladrc_real_t turn;
+    if (z1 > LADRC_PI && r > LADRC_PI) {
+        turn = -LADRC_TWO_PI;
+    } else if (z1 < -LADRC_PI && r < -LADRC_PI) {
+        turn = LADRC_TWO_PI;
+    } else {
+        return;
     }
+    axis->leso.z1 = z1 + turn;
+    shift_reference(axis, turn);
 }
 
 /* The shaper's tick on the raw reference: r, r', r'' into axis->ref (the
- * shapers write straight into the axis: no copy on the stack). */
-static ladrc_fault_t shape_reference(ladrc_axis_t *axis, ladrc_real_t ref_rad)
+ * shapers write straight into the axis: no copy on the stack). Inlined into
+ * both ticks: the call would cost the LADRC family's hot path. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline ladrc_fault_t shape_reference(ladrc_axis_t *axis, ladrc_real_t ref_rad)
 {
     ladrc_ref_t *ref = &axis->ref;
     if (axis->shaper == LADRC_SHAPER_TD) {
@@ -563,9 +563,10 @@ static ladrc_fault_t step_indi(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_r
     if (axis->wrap) {
         error_rad = ladrc_wrap_pi(error_rad);
         /* r alone decides: the error is taken modulo 2 pi anyway. */
-        const ladrc_real_t turn = recentring_turn(ref->r, ref->r);
-        if (turn != LADRC_R(0.0)) {
-            shift_reference(axis, turn);
+        if (ref->r > LADRC_PI) {
+            shift_reference(axis, -LADRC_TWO_PI);
+        } else if (ref->r < -LADRC_PI) {
+            shift_reference(axis, LADRC_TWO_PI);
         }
     }
     const ladrc_real_t u = ladrc_indi_command(indi, error_rad, ref->dr, ref->ddr, rate_rad_s);
@@ -596,10 +597,10 @@ static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_re
         axis->output_Nm = ladrc_pid_step(&axis->part.pid, ref_rad, angle_rad, has_rate ? &rate_rad_s : NULL);
         faults |= ladrc_pid_get_faults(&axis->part.pid);
         axis->ref.r = ref_rad;
-    } else if (axis->variant == LADRC_VARIANT_INDI) {
-        faults |= step_indi(axis, ref_rad, angle_rad, rate_rad_s, has_rate);
-    } else {
+    } else if (ladrc_variant_has_observer(axis->variant)) {
         faults |= step_adrc(axis, ref_rad, angle_rad, has_rate ? rate_rad_s : (ladrc_real_t)NAN);
+    } else {
+        faults |= step_indi(axis, ref_rad, angle_rad, rate_rad_s, has_rate);
     }
     axis->applied_Nm = axis->output_Nm;
     axis->faults = faults;

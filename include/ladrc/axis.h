@@ -279,8 +279,8 @@ void ladrc_axis_set_known_disturbance(ladrc_axis_t *axis, ladrc_real_t f_known_r
  *  observer state, coupling feed and disturbance estimate axis.leso holds. */
 static inline int ladrc_variant_has_observer(ladrc_variant_t variant)
 {
-    return variant == LADRC_VARIANT_LADRC || variant == LADRC_VARIANT_LP_MLADRC ||
-           variant == LADRC_VARIANT_HP_MLADRC;
+    /* LADRC, LP-MLADRC and HP-MLADRC are 0, 1 and 2: one comparison */
+    return ((unsigned)variant <= (unsigned)LADRC_VARIANT_HP_MLADRC) ? 1 : 0;
 }
 
 /** Torque (N m) the next tick's observer step takes as acting: the applied
