@@ -470,7 +470,8 @@ static void check_paper_case(const char *name)
     assert_close(30.0, sc.duration_s, "duration_s");
     assert_close(0.001, sc.control_dt_s, "dt");
     TEST_ASSERT_EQUAL_INT(10, sc.plant_substeps);
-    TEST_ASSERT_EQUAL_INT(4, sc.n_controllers);
+    TEST_ASSERT_EQUAL_INT(5, sc.n_controllers); /* the paper's four, then INDI */
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_INDI, sc.controllers[4]);
     TEST_ASSERT_EQUAL_INT(1, sc.rotors_ideal);
     assert_close(0.8, sc.mass_kg, "m");
     assert_close(1.089e-2, sc.inertia_kg_m2[2], "Jz");
