@@ -251,6 +251,13 @@ static const ladrc_axis_config_t *ctl_axis_config(const ladrc_margins_controller
 
 static ladrc_margins_status_t ctl_init(const ladrc_margins_controller_t *ctl, ctl_state_t *s)
 {
+    /* INDI holds its command without a rate: no loop to analyse. */
+    const ladrc_axis_config_t *own = (ctl->attitude != NULL)
+                                         ? ((ctl->axis_index >= 0 && ctl->axis_index < LADRC_AXES)
+                                                ? &ctl->attitude->axis[ctl->axis_index]
+                                                : NULL)
+                                         : ctl->axis;
+    if (own != NULL && own->variant == LADRC_VARIANT_INDI && !ctl->use_rate) return LADRC_MARGINS_ERR_CONTROLLER;
     if (ctl->attitude != NULL) {
         if (ctl->axis_index < 0 || ctl->axis_index >= LADRC_AXES) return LADRC_MARGINS_ERR_CONTROLLER;
         return ladrc_attitude_init(&s->attitude, ctl->attitude, NULL) == LADRC_OK ? LADRC_MARGINS_OK
@@ -927,7 +934,14 @@ static void set_gains(tuner_t *t, double w, int shape, double j_model)
     static const double ratios[] = {3.0, 5.0, 8.0};
     static const double integral[] = {3.0, 5.0, 10.0};
     ladrc_axis_config_t *a = tuner_axis(t);
-    if (a->variant == LADRC_VARIANT_PID) {
+    if (a->variant == LADRC_VARIANT_INDI) {
+        /* The LADRC rule with the acceleration filter in the observer's
+         * place: loop (s + w)^2, w_f = r w (at most 0.9 pi / dt). */
+        const double wf_max = 0.9 * PI / (double)a->dt_s;
+        a->indi_att_kp_per_s = (ladrc_real_t)w;
+        a->indi_rate_kp_per_s = (ladrc_real_t)w;
+        a->indi_filter_rad_s = (ladrc_real_t)fmin(ratios[shape] * w, wf_max);
+    } else if (a->variant == LADRC_VARIANT_PID) {
         a->pid_kp = (ladrc_real_t)(j_model * w * w);
         a->pid_kd = (ladrc_real_t)(2.0 * j_model * w);
         a->pid_ki = (ladrc_real_t)(j_model * w * w * w / integral[shape]);
@@ -1168,6 +1182,9 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
     out->ki = (double)a->pid_ki;
     out->kd = (double)a->pid_kd;
     out->d_filter_tau_s = (double)a->pid_d_filter_tau_s;
+    out->indi_att_kp_per_s = (double)a->indi_att_kp_per_s;
+    out->indi_rate_kp_per_s = (double)a->indi_rate_kp_per_s;
+    out->indi_filter_rad_s = (double)a->indi_filter_rad_s;
     *tuned = *a;
     if (fin != LADRC_MARGINS_OK) return fin;
     return out->met ? LADRC_MARGINS_OK : LADRC_MARGINS_ERR_TARGETS_NOT_MET;

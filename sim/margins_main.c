@@ -33,7 +33,7 @@ static void usage(FILE *out)
     fputs("usage: ladrc_margins SCENARIO [--controllers LIST] [--axis roll|pitch|yaw|all]\n"
           "                     [--inertia-factor F] [--csv DIR] [--tune]\n"
           "  SCENARIO           an attitude scenario file (docs/scenario-format.md)\n"
-          "  --controllers L    comma-separated subset of HP-MLADRC,LP-MLADRC,LADRC,PID\n"
+          "  --controllers L    comma-separated subset of HP-MLADRC,LP-MLADRC,LADRC,PID,CASCADED,INDI\n"
           "  --axis A           axis to analyse (default: all)\n"
           "  --inertia-factor F true inertia = F times the scenario's (default 1)\n"
           "  --csv DIR          write DIR/<controller>_<axis>.csv frequency responses\n"
@@ -230,7 +230,10 @@ int main(int argc, char **argv)
                 ladrc_axis_config_t tuned;
                 st = ladrc_margins_tune(&ws, &ctl, &req, &targets, &tuned, &tuning);
                 const ladrc_margins_result_t *m = &tuning.margins;
-                if (acfg.axis[i].variant == LADRC_VARIANT_PID) {
+                if (acfg.axis[i].variant == LADRC_VARIANT_INDI) {
+                    printf("  tuned: k_att %.4g /s k_rate %.4g /s w_f %.4g rad/s", tuning.indi_att_kp_per_s,
+                           tuning.indi_rate_kp_per_s, tuning.indi_filter_rad_s);
+                } else if (acfg.axis[i].variant == LADRC_VARIANT_PID) {
                     printf("  tuned: kp %.4g ki %.4g kd %.4g d_filter %.4g s", tuning.kp, tuning.ki, tuning.kd,
                            tuning.d_filter_tau_s);
                 } else {

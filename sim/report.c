@@ -4,6 +4,8 @@
 
 #include <math.h>
 
+#include "setup.h"
+
 static const char *const AXES[3] = {"roll", "pitch", "yaw"};
 
 /* The axis a divergence was seen on: an attitude axis, or "-" (a rotor). */
@@ -181,6 +183,20 @@ void sim_report_tables(FILE *out, const sim_scenario_result_t *r)
     fprintf(out, "\n== %s (%s): %g s, control step %g ms, %d plant steps per control step\n", sc->name, sc->path,
             sc->duration_s, sc->control_dt_s * 1e3, sc->plant_substeps);
     sim_report_tuning(out, sc);
+    for (int c = 0; c < sc->n_controllers; ++c) {
+        if (sc->controllers[c] != SIM_CTRL_INDI) {
+            continue; /* the paper's four keep their header as it was */
+        }
+        ladrc_attitude_config_t cfg;
+        sim_setup_attitude(sc, sc->controllers[c], &cfg);
+        fprintf(out, "%s gains (roll / pitch / yaw): k_att", sim_controller_name(sc->controllers[c]));
+        for (int i = 0; i < 3; ++i) fprintf(out, "%s%.4g", i ? " / " : " ", (double)cfg.axis[i].indi_att_kp_per_s);
+        fprintf(out, " 1/s, k_rate");
+        for (int i = 0; i < 3; ++i) fprintf(out, "%s%.4g", i ? " / " : " ", (double)cfg.axis[i].indi_rate_kp_per_s);
+        fprintf(out, " 1/s, w_f");
+        for (int i = 0; i < 3; ++i) fprintf(out, "%s%.4g", i ? " / " : " ", (double)cfg.axis[i].indi_filter_rad_s);
+        fprintf(out, " rad/s\n");
+    }
     for (int c = 0; c < sc->n_controllers; ++c) {
         const sim_metrics_t *m = &r->attitude[c];
         if (m->diverged) {

@@ -40,7 +40,8 @@
 #define DEFAULT_SETTLE_BAND_DEG 0.5
 #define DEFAULT_DIVERGE_LIMIT_DEG 90.0
 
-static const char *const CONTROLLER_NAMES[SIM_CTRL_COUNT] = {"HP-MLADRC", "LP-MLADRC", "LADRC", "PID"};
+static const char *const CONTROLLER_NAMES[SIM_CTRL_COUNT] = {"HP-MLADRC", "LP-MLADRC", "LADRC",
+                                                              "PID",       "CASCADED",  "INDI"};
 
 const char *sim_controller_name(sim_controller_id_t id)
 {
@@ -227,21 +228,27 @@ static const key_def_t KEYS[] = {
     {SEC_CONTROLLER, "levant_lipschitz_rad_s4", V_REAL, OV(levant_lipschitz_rad_s4), 0, R_POSITIVE, 0, 0, NULL,
      FOR_BOTH, 0, CTRL_BIT(SIM_CTRL_HP_MLADRC) | CTRL_BIT(SIM_CTRL_LP_MLADRC), NULL},
     {SEC_CONTROLLER, "td_accel_rad_s2", V_REAL, OV(td_accel_rad_s2), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0,
-     CTRL_BIT(SIM_CTRL_LADRC), NULL},
+     CTRL_BIT(SIM_CTRL_LADRC) | CTRL_BIT(SIM_CTRL_INDI), NULL},
     {SEC_CONTROLLER, "pid_kp", V_REAL, OV(pid_kp), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0, CTRL_BIT(SIM_CTRL_PID),
      NULL},
     {SEC_CONTROLLER, "pid_ki", V_REAL, OV(pid_ki), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0, CTRL_BIT(SIM_CTRL_PID),
      NULL},
     {SEC_CONTROLLER, "pid_kd", V_REAL, OV(pid_kd), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0, CTRL_BIT(SIM_CTRL_PID),
      NULL},
+    {SEC_CONTROLLER, "indi_att_kp_per_s", V_REAL, OV(indi_att_kp_per_s), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0,
+     CTRL_BIT(SIM_CTRL_INDI), NULL},
+    {SEC_CONTROLLER, "indi_rate_kp_per_s", V_REAL, OV(indi_rate_kp_per_s), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0,
+     CTRL_BIT(SIM_CTRL_INDI), NULL},
+    {SEC_CONTROLLER, "indi_filter_rad_s", V_REAL, OV(indi_filter_rad_s), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0,
+     CTRL_BIT(SIM_CTRL_INDI), NULL},
     {SEC_CONTROLLER, "coupling_feed", V_CHOICE, OV(coupling_feed), 0, R_ANY, 0, 0, YES_NO, FOR_BOTH, 0,
      LADRC_FAMILY, NULL},
     {SEC_CONTROLLER, "model_motor_tau_s", V_REAL, OV(model_motor_tau_s), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0,
-     LADRC_FAMILY, NULL},
+     LADRC_FAMILY | CTRL_BIT(SIM_CTRL_INDI), NULL},
     {SEC_CONTROLLER, "model_delay_ticks", V_INT, OV(model_delay_ticks), 0, R_DELAY, 0, 0, NULL, FOR_BOTH, 0,
-     LADRC_FAMILY, NULL},
+     LADRC_FAMILY | CTRL_BIT(SIM_CTRL_INDI), NULL},
     {SEC_CONTROLLER, "wrap_yaw", V_CHOICE, OV(wrap_yaw), 0, R_ANY, 0, 0, YES_NO, FOR_BOTH, 0,
-     LADRC_FAMILY | CTRL_BIT(SIM_CTRL_PID), NULL},
+     LADRC_FAMILY | CTRL_BIT(SIM_CTRL_PID) | CTRL_BIT(SIM_CTRL_INDI), NULL},
     {SEC_CONTROLLER, "tune", V_CHOICE, OV(tune), 0, R_ANY, 0, 0, TUNE_MODES, FOR_BOTH, 0,
      LADRC_FAMILY | CTRL_BIT(SIM_CTRL_PID), NULL},
     {SEC_CONTROLLER, "tune_phase_margin_deg", V_REAL, OV(tune_pm_deg), 0, R_PHASE_MARGIN, 0, 0, NULL, FOR_BOTH, 0,
@@ -520,7 +527,7 @@ static int controller_id(const char *name, size_t len)
 
 static int fail_unknown_controller(parser_t *p, const char *tok, size_t len)
 {
-    return fail(p, tok, "unknown controller '%.*s' (expected HP-MLADRC, LP-MLADRC, LADRC or PID)",
+    return fail(p, tok, "unknown controller '%.*s' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, CASCADED or INDI)",
                 SHOWN(len), tok);
 }
 
@@ -814,8 +821,8 @@ static void set_defaults(sim_scenario_t *sc)
     sc->control_dt_s = DEFAULT_CONTROL_DT_S;
     sc->plant_substeps = DEFAULT_PLANT_SUBSTEPS;
     sc->seed = DEFAULT_SEED;
-    sc->n_controllers = SIM_CTRL_COUNT;
-    for (int i = 0; i < SIM_CTRL_COUNT; ++i) {
+    sc->n_controllers = SIM_CTRL_DEFAULT_COUNT;
+    for (int i = 0; i < SIM_CTRL_DEFAULT_COUNT; ++i) {
         sc->controllers[i] = (sim_controller_id_t)i;
     }
 
@@ -853,6 +860,7 @@ static void set_defaults(sim_scenario_t *sc)
         o->pid_kp = o->pid_ki = o->pid_kd = NAN;
         o->tune = -1;
         o->tune_pm_deg = o->tune_gm_db = NAN;
+        o->indi_att_kp_per_s = o->indi_rate_kp_per_s = o->indi_filter_rad_s = NAN;
     }
 
     sc->settle_band_deg = DEFAULT_SETTLE_BAND_DEG;
@@ -1107,6 +1115,9 @@ static const key_ref_t *keys_of_status(ladrc_status_t st, int known_freqs)
     static const key_ref_t kp[] = {{CTRL_SEC, "pid_kp"}, END_KEYS};
     static const key_ref_t ki[] = {{CTRL_SEC, "pid_ki"}, END_KEYS};
     static const key_ref_t kd[] = {{CTRL_SEC, "pid_kd"}, END_KEYS};
+    static const key_ref_t indi_att[] = {{CTRL_SEC, "indi_att_kp_per_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
+    static const key_ref_t indi_rate[] = {{CTRL_SEC, "indi_rate_kp_per_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
+    static const key_ref_t indi_filter[] = {{CTRL_SEC, "indi_filter_rad_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
     static const key_ref_t freqs[] = {
         {CTRL_SEC, "hp_freq_rad_s"}, {CTRL_SEC, "hp_freq2_rad_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
     static const key_ref_t tones[] = {
@@ -1135,6 +1146,9 @@ static const key_ref_t *keys_of_status(ladrc_status_t st, int known_freqs)
     case LADRC_ERR_PID_KP: return kp;
     case LADRC_ERR_PID_KI: return ki;
     case LADRC_ERR_PID_KD: return kd;
+    case LADRC_ERR_INDI_ATT_KP: return indi_att;
+    case LADRC_ERR_INDI_RATE_KP: return indi_rate;
+    case LADRC_ERR_INDI_FILTER: return indi_filter;
     case LADRC_ERR_HP_FREQ_RAD_S: return freqs;
     /* the fastest tone is a known frequency, or else the search range's top */
     case LADRC_ERR_HP_FIT_DECIMATION: return known_freqs ? freqs : dt;
@@ -1206,15 +1220,27 @@ static void check_controllers(parser_t *p)
         ladrc_attitude_t att;
         sim_setup_attitude(sc, (sim_controller_id_t)id, &cfg);
         const ladrc_status_t st = ladrc_attitude_init(&att, &cfg, NULL);
+        int listed = 0;
+        for (int i = 0; i < sc->n_controllers; ++i) {
+            listed |= (int)sc->controllers[i] == id;
+        }
+        if (st == LADRC_OK && id == SIM_CTRL_INDI && !sc->use_rate) {
+            /* INDI holds its command without a rate (indi.h): it cannot fly */
+            static const key_ref_t use_rate[] = {{SEC_SENSORS, "use_rate"}, END_KEYS};
+            const loc_t at = locate(p, use_rate, -1);
+            if (listed) {
+                check_fail(p, at.line, at.value_col, "INDI needs the measured rate ([sensors] use_rate = yes)");
+            } else {
+                set_error(&sc->controller_error[id], sc->path, at,
+                          "INDI needs the measured rate ([sensors] use_rate = yes)");
+            }
+            continue;
+        }
         if (st == LADRC_OK) {
             continue;
         }
         const int known = cfg.axis[0].hp_freq_mode == LADRC_HP_FREQ_KNOWN;
         const loc_t at = locate(p, keys_of_status(st, known), SEC_CONTROLLER + id);
-        int listed = 0;
-        for (int i = 0; i < sc->n_controllers; ++i) {
-            listed |= (int)sc->controllers[i] == id;
-        }
         if (listed) {
             check_fail(p, at.line, at.value_col, "%s does not start: %s", CONTROLLER_NAMES[id], ladrc_status_str(st));
         } else {

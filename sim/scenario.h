@@ -54,7 +54,9 @@ typedef enum {
     SIM_CTRL_LP_MLADRC,
     SIM_CTRL_LADRC,
     SIM_CTRL_PID,
-    SIM_CTRL_COUNT
+    SIM_CTRL_CASCADED = 4, /* placeholder here: its library variant is built on its own branch */
+    SIM_CTRL_INDI = 5,
+    SIM_CTRL_COUNT = 6
 } sim_controller_id_t;
 
 /* [controller NAME] tune: how the controller's gains are chosen. */
@@ -63,6 +65,10 @@ typedef enum { SIM_TUNE_NONE = 0, SIM_TUNE_MARGINS = 1 } sim_tune_t;
 /* Targets of tune = margins when the file gives none. */
 #define SIM_TUNE_PM_DEG_DEFAULT 45.0
 #define SIM_TUNE_GM_DB_DEFAULT 6.0
+
+/* The controllers a scenario flies unless it names them: the first four
+ * (the paper's), so that the outputs of files without a list stay as they were. */
+#define SIM_CTRL_DEFAULT_COUNT 4
 
 /* Optional per-controller overrides; NaN (or -1 for enums) = library default. */
 typedef struct {
@@ -75,6 +81,7 @@ typedef struct {
     double levant_lipschitz_rad_s4;
     double td_accel_rad_s2;
     double pid_kp, pid_ki, pid_kd;
+    double indi_att_kp_per_s, indi_rate_kp_per_s, indi_filter_rad_s;
     int coupling_feed;        /* -1, 0 or 1 */
     double model_motor_tau_s; /* NaN: [rotors] motor_tau_s; 0: no lag modelled (LADRC family) */
     int model_delay_ticks;    /* -1: [sensors] delay_ticks (LADRC family) */
@@ -189,7 +196,7 @@ int sim_scenario_parse_buffer(sim_scenario_t *sc, const char *data, size_t len, 
  * error the parser gives when it is listed in the file) or n is out of range. */
 int sim_scenario_set_controllers(sim_scenario_t *sc, const sim_controller_id_t *ids, int n, sim_parse_error_t *err);
 
-/* "HP-MLADRC", "LP-MLADRC", "LADRC", "PID"; "?" for anything else */
+/* "HP-MLADRC", "LP-MLADRC", "LADRC", "PID", "CASCADED", "INDI"; "?" for anything else */
 const char *sim_controller_name(sim_controller_id_t id);
 
 #endif

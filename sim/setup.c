@@ -13,6 +13,8 @@ static ladrc_variant_t variant_of(sim_controller_id_t id)
     case SIM_CTRL_HP_MLADRC: return LADRC_VARIANT_HP_MLADRC;
     case SIM_CTRL_LP_MLADRC: return LADRC_VARIANT_LP_MLADRC;
     case SIM_CTRL_LADRC: return LADRC_VARIANT_LADRC;
+    case SIM_CTRL_CASCADED: return LADRC_VARIANT_CASCADED;
+    case SIM_CTRL_INDI: return LADRC_VARIANT_INDI;
     default: return LADRC_VARIANT_PID;
     }
 }
@@ -36,6 +38,9 @@ static void apply_overrides(ladrc_axis_config_t *a, const sim_overrides_t *o)
     if (!isnan(o->pid_kp)) a->pid_kp = (ladrc_real_t)o->pid_kp;
     if (!isnan(o->pid_ki)) a->pid_ki = (ladrc_real_t)o->pid_ki;
     if (!isnan(o->pid_kd)) a->pid_kd = (ladrc_real_t)o->pid_kd;
+    if (!isnan(o->indi_att_kp_per_s)) a->indi_att_kp_per_s = (ladrc_real_t)o->indi_att_kp_per_s;
+    if (!isnan(o->indi_rate_kp_per_s)) a->indi_rate_kp_per_s = (ladrc_real_t)o->indi_rate_kp_per_s;
+    if (!isnan(o->indi_filter_rad_s)) a->indi_filter_rad_s = (ladrc_real_t)o->indi_filter_rad_s;
     if (!isnan(o->model_motor_tau_s)) a->motor_tau_s = (ladrc_real_t)o->model_motor_tau_s;
     if (o->model_delay_ticks >= 0) a->delay_ticks = (uint8_t)o->model_delay_ticks;
 }

@@ -15,6 +15,11 @@
  * 100 leaves 0.18 deg, 10 leaves 4.8 deg (too slow for the start), and
  * 10000 lets the step's transient into HP (0.8 deg). */
 #define AXIS_DEFAULT_LEVANT_LIPSCHITZ_RAD_S4 LADRC_R(1000.0)
+/* INDI (axis.h): the LADRC default's closed loop (s + wc)^2 and its
+ * observer's bandwidth for the acceleration filter. */
+#define AXIS_DEFAULT_INDI_ATT_KP_PER_S AXIS_DEFAULT_WC_RAD_S
+#define AXIS_DEFAULT_INDI_RATE_KP_PER_S AXIS_DEFAULT_WC_RAD_S
+#define AXIS_DEFAULT_INDI_FILTER_RAD_S AXIS_DEFAULT_WO_RAD_S
 #define AXIS_DEFAULT_PID_KP LADRC_R(20.0)
 #define AXIS_DEFAULT_PID_KI LADRC_R(20.0)
 #define AXIS_DEFAULT_PID_KD LADRC_R(0.05)
@@ -124,6 +129,9 @@ void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant
     cfg->motor_tau_s = LADRC_R(0.0);
     cfg->delay_ticks = 0u;
     cfg->wrap_angle = 0u;
+    cfg->indi_att_kp_per_s = AXIS_DEFAULT_INDI_ATT_KP_PER_S;
+    cfg->indi_rate_kp_per_s = AXIS_DEFAULT_INDI_RATE_KP_PER_S;
+    cfg->indi_filter_rad_s = AXIS_DEFAULT_INDI_FILTER_RAD_S;
 }
 
 static ladrc_status_t init_shaper(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
@@ -293,6 +301,26 @@ static ladrc_status_t init_pid(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
     return ladrc_pid_init(&axis->part.pid, &pid_cfg);
 }
 
+static ladrc_status_t init_indi(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
+{
+    const ladrc_indi_config_t indi_cfg = {cfg->dt_s, cfg->b0, cfg->indi_att_kp_per_s, cfg->indi_rate_kp_per_s,
+                                          cfg->indi_filter_rad_s};
+    ladrc_status_t status = ladrc_indi_init(&axis->part.indi, &indi_cfg);
+    if (status == LADRC_OK) {
+        status = init_actuator(axis, cfg);
+    }
+    if (status == LADRC_OK) {
+        status = init_shaper(axis, cfg);
+    }
+    if (status == LADRC_OK) {
+        axis->shaper = cfg->shaper;
+        axis->b0 = cfg->b0;
+        axis->kp = LADRC_R(0.0);
+        axis->kd = LADRC_R(0.0);
+    }
+    return status;
+}
+
 ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
 {
     if (axis == NULL || cfg == NULL) {
@@ -322,6 +350,9 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
         break;
     case LADRC_VARIANT_PID:
         status = init_pid(axis, cfg);
+        break;
+    case LADRC_VARIANT_INDI:
+        status = init_indi(axis, cfg);
         break;
     default:
         status = LADRC_ERR_VARIANT;
@@ -363,7 +394,12 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
     if (axis->variant == LADRC_VARIANT_PID) {
         ladrc_pid_reset(&axis->part.pid, angle);
     } else {
-        restart_estimates(axis, angle);
+        if (axis->variant == LADRC_VARIANT_INDI) {
+            ladrc_indi_reset(&axis->part.indi);
+            axis->part.indi.angle_rad = angle;
+        } else {
+            restart_estimates(axis, angle);
+        }
         if (axis->shaper == LADRC_SHAPER_TD) {
             ladrc_td_reset(&axis->shaping.td, angle);
         } else if (axis->shaper == LADRC_SHAPER_LEVANT) {
@@ -441,6 +477,17 @@ static ladrc_real_t advanced_compensation(ladrc_axis_t *axis, ladrc_real_t d_hat
  * LADRC_TWO_PI is exact (Sterbenz) and r - z1 keeps every bit: the law sees
  * no change. Without it z1 and r would grow with every turn and lose a bit
  * of resolution at each doubling (a float at 1000 rad resolves 6e-5 rad). */
+/* The shaped reference and the shaper's state moved by a turn. */
+static void shift_reference(ladrc_axis_t *axis, ladrc_real_t turn)
+{
+    axis->ref.r += turn;
+    if (axis->shaper == LADRC_SHAPER_TD) {
+        axis->shaping.td.x1 += turn;
+    } else if (axis->shaper == LADRC_SHAPER_LEVANT) {
+        axis->shaping.levant.r_last += turn; /* z0 = r_last + w moves with it */
+    }
+}
+
 static void recentre(ladrc_axis_t *axis)
 {
     const ladrc_real_t z1 = axis->leso.z1;
@@ -454,12 +501,28 @@ static void recentre(ladrc_axis_t *axis)
         return;
     }
     axis->leso.z1 = z1 + turn;
-    axis->ref.r = r + turn;
+    shift_reference(axis, turn);
+}
+
+/* The shaper's tick on the raw reference: r, r', r'' into axis->ref (the
+ * shapers write straight into the axis: no copy on the stack). Inlined into
+ * both ticks: the call would cost the LADRC family's hot path. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline ladrc_fault_t shape_reference(ladrc_axis_t *axis, ladrc_real_t ref_rad)
+{
+    ladrc_ref_t *ref = &axis->ref;
     if (axis->shaper == LADRC_SHAPER_TD) {
-        axis->shaping.td.x1 += turn;
-    } else if (axis->shaper == LADRC_SHAPER_LEVANT) {
-        axis->shaping.levant.r_last += turn; /* z0 = r_last + w moves with it */
+        return ladrc_td_step(&axis->shaping.td, ref_rad, ref);
     }
+    if (axis->shaper == LADRC_SHAPER_LEVANT) {
+        return ladrc_levant_step(&axis->shaping.levant, ref_rad, ref);
+    }
+    ref->r = ref_rad;
+    ref->dr = LADRC_R(0.0);
+    ref->ddr = LADRC_R(0.0);
+    return LADRC_FAULT_NONE;
 }
 
 /* ADRC tick on finite ref and angle; returns the state fault, if any. */
@@ -477,16 +540,7 @@ static ladrc_fault_t step_adrc(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_r
     const ladrc_real_t acting_Nm = axis->model ? advance_actuator(axis) : axis->applied_Nm;
     ladrc_fault_t faults = ladrc_leso_step(&axis->leso, angle_rad, acting_Nm,
                                            axis->d_hat_rad_s2, axis->f_rate_rad_s3);
-    /* The shapers write straight into the axis: no copy on the stack. */
-    if (axis->shaper == LADRC_SHAPER_TD) {
-        faults |= ladrc_td_step(&axis->shaping.td, ref_rad, ref);
-    } else if (axis->shaper == LADRC_SHAPER_LEVANT) {
-        faults |= ladrc_levant_step(&axis->shaping.levant, ref_rad, ref);
-    } else {
-        ref->r = ref_rad;
-        ref->dr = LADRC_R(0.0);
-        ref->ddr = LADRC_R(0.0);
-    }
+    faults |= shape_reference(axis, ref_rad);
     const ladrc_real_t d_hat = estimate_disturbance(axis, rate_rad_s, acting_Nm);
     ladrc_real_t error_rad = ref->r - leso->z1;
     if (axis->wrap) {
@@ -510,6 +564,44 @@ static ladrc_fault_t step_adrc(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_r
     return faults;
 }
 
+/* INDI tick on finite ref and angle (indi.h); without a rate the command is
+ * held and LADRC_FAULT_RATE raised, while the reference, the actuator model
+ * and the filters' gap move on with time. Returns the tick's faults. */
+static ladrc_fault_t step_indi(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
+                               ladrc_real_t rate_rad_s, int has_rate)
+{
+    ladrc_indi_t *indi = &axis->part.indi;
+    ladrc_ref_t *ref = &axis->ref;
+    if (axis->wrap) {
+        ref_rad = ladrc_unwrap_near(ref_rad, ref->r);
+    }
+    const ladrc_real_t acting_Nm = axis->model ? advance_actuator(axis) : axis->applied_Nm;
+    ladrc_fault_t faults = shape_reference(axis, ref_rad);
+    if (!ladrc_indi_measure(indi, acting_Nm, rate_rad_s, has_rate)) {
+        return (ladrc_fault_t)(faults | LADRC_FAULT_RATE);
+    }
+    indi->angle_rad = angle_rad;
+    ladrc_real_t error_rad = ref->r - angle_rad;
+    if (axis->wrap) {
+        error_rad = ladrc_wrap_pi(error_rad);
+        /* r alone decides: the error is taken modulo 2 pi anyway. */
+        if (ref->r > LADRC_PI) {
+            shift_reference(axis, -LADRC_TWO_PI);
+        } else if (ref->r < -LADRC_PI) {
+            shift_reference(axis, LADRC_TWO_PI);
+        }
+    }
+    const ladrc_real_t u = ladrc_indi_command(indi, error_rad, ref->dr, ref->ddr, rate_rad_s);
+    if (!ladrc_is_finite(u)) { /* u sums both filters: they are finite when it is */
+        /* Held; the filters restart at rest (the next rate seeds again). */
+        ladrc_indi_reset(indi);
+        indi->angle_rad = angle_rad;
+        return (ladrc_fault_t)(faults | LADRC_FAULT_STATE);
+    }
+    axis->output_Nm = ladrc_clamp(u, axis->u_min_Nm, axis->u_max_Nm);
+    return faults;
+}
+
 /* rate_rad_s is read only when has_rate; the rate goes by value so the
  * deepest path (HP) keeps no copy of it on the stack. */
 static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
@@ -527,8 +619,10 @@ static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_re
         axis->output_Nm = ladrc_pid_step(&axis->part.pid, ref_rad, angle_rad, has_rate ? &rate_rad_s : NULL);
         faults |= ladrc_pid_get_faults(&axis->part.pid);
         axis->ref.r = ref_rad;
-    } else {
+    } else if (ladrc_variant_has_observer(axis->variant)) {
         faults |= step_adrc(axis, ref_rad, angle_rad, has_rate ? rate_rad_s : (ladrc_real_t)NAN);
+    } else {
+        faults |= step_indi(axis, ref_rad, angle_rad, rate_rad_s, has_rate);
     }
     axis->applied_Nm = axis->output_Nm;
     axis->faults = faults;
@@ -582,6 +676,9 @@ ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis)
     if (axis->variant == LADRC_VARIANT_PID) {
         return LADRC_R(0.0);
     }
+    if (axis->variant == LADRC_VARIANT_INDI) {
+        return axis->b0 * ladrc_axis_acting_Nm(axis) + ladrc_indi_disturbance(&axis->part.indi);
+    }
     return axis->b0 * ladrc_axis_acting_Nm(axis) + axis->leso.z3 + axis->d_hat_rad_s2;
 }
 
@@ -601,6 +698,10 @@ void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad,
         *angle_rad = axis->part.pid.prev_meas_rad;
         *rate_rad_s = axis->part.pid.d_filtered_rad_s;
         *disturbance_rad_s2 = LADRC_R(0.0);
+    } else if (axis->variant == LADRC_VARIANT_INDI) {
+        *angle_rad = axis->part.indi.angle_rad;
+        *rate_rad_s = axis->part.indi.rate_last_rad_s;
+        *disturbance_rad_s2 = ladrc_indi_disturbance(&axis->part.indi);
     } else {
         *angle_rad = axis->leso.z1;
         *rate_rad_s = axis->leso.z2;

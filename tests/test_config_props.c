@@ -97,7 +97,8 @@ static void draw_axis(test_rng_t *rng, ladrc_axis_config_t *c, ladrc_variant_t v
                                    &c->lp_lambda0_per_s, &c->lp_k0_per_s, &c->hp_freq_rad_s[0],
                                    &c->hp_freq_rad_s[LADRC_HP_MAX_TONES - 1], &c->hp_freq_min_rad_s,
                                    &c->hp_freq_max_rad_s, &c->hp_lambda0_per_s, &c->hp_freq_lambda0_per_s,
-                                   &c->hp_freq_filter_rad_s};
+                                   &c->hp_freq_filter_rad_s, &c->indi_att_kp_per_s, &c->indi_rate_kp_per_s,
+                                   &c->indi_filter_rad_s};
     const size_t n = sizeof reals / sizeof reals[0];
     /* a few fields off their defaults per config, so that some pass */
     const unsigned changes = 1u + test_rng_below(rng, 4u);
@@ -176,6 +177,7 @@ static void test_axis_ladrc_configs(void) { axis_campaign(LADRC_VARIANT_LADRC, "
 static void test_axis_lp_configs(void) { axis_campaign(LADRC_VARIANT_LP_MLADRC, "axis LP-MLADRC"); }
 static void test_axis_hp_configs(void) { axis_campaign(LADRC_VARIANT_HP_MLADRC, "axis HP-MLADRC"); }
 static void test_axis_pid_configs(void) { axis_campaign(LADRC_VARIANT_PID, "axis PID"); }
+static void test_axis_indi_configs(void) { axis_campaign(LADRC_VARIANT_INDI, "axis INDI"); }
 
 static void run_attitude(tally_t *t, ladrc_attitude_t *att, const ladrc_attitude_config_t *c, long n)
 {
@@ -215,7 +217,10 @@ static void test_attitude_configs(void)
         for (int i = 0; i < 3; ++i) {
             j[i] = (test_rng_uniform(&rng) < 0.3) ? (ladrc_real_t)5.445e-3 : field(&rng, 5.445e-3);
         }
-        const ladrc_variant_t v = (ladrc_variant_t)test_rng_below(&rng, (unsigned)LADRC_VARIANT_COUNT);
+        ladrc_variant_t v = (ladrc_variant_t)test_rng_below(&rng, (unsigned)LADRC_VARIANT_COUNT);
+        if (v == LADRC_VARIANT_CASCADED) {
+            v = LADRC_VARIANT_INDI; /* not built on this branch */
+        }
         const ladrc_real_t dt = (test_rng_uniform(&rng) < 0.5) ? LADRC_R(0.001) : field(&rng, 0.001);
         ladrc_attitude_config_default(&c, v, dt, j, field(&rng, 0.09));
         c.coupling_feed = (uint8_t)small_int(&rng, 1, 1);
@@ -237,6 +242,7 @@ int main(void)
     RUN_TEST(test_axis_lp_configs);
     RUN_TEST(test_axis_hp_configs);
     RUN_TEST(test_axis_pid_configs);
+    RUN_TEST(test_axis_indi_configs);
     RUN_TEST(test_attitude_configs);
     return UNITY_END();
 }

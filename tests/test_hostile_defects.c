@@ -110,6 +110,15 @@ static void test_an_absurd_finite_angle_never_reaches_the_observer(void)
     check_recovers(LADRC_VARIANT_LADRC, GLITCH_ANGLE, (ladrc_real_t)1e30);
 }
 
+static void test_indi_recovers_from_one_glitched_angle_torque_or_reference(void)
+{
+    /* An INDI tick with a bad angle leaves its filters alone, so the next
+     * acceleration spans two steps once: a transient, no latch. */
+    check_recovers(LADRC_VARIANT_INDI, GLITCH_ANGLE, (ladrc_real_t)1e30);
+    check_recovers(LADRC_VARIANT_INDI, GLITCH_APPLIED, (ladrc_real_t)1e30);
+    check_recovers(LADRC_VARIANT_INDI, GLITCH_REFERENCE, (ladrc_real_t)1e10);
+}
+
 static void test_the_ranges_are_inclusive_and_apply_to_every_input(void)
 {
     ladrc_axis_config_t cfg;
@@ -233,6 +242,7 @@ int main(void)
     RUN_TEST(test_one_huge_applied_torque_does_not_latch_hp_mladrc);
     RUN_TEST(test_an_absurd_reference_tick_never_reaches_the_levant_shaper);
     RUN_TEST(test_an_absurd_finite_angle_never_reaches_the_observer);
+    RUN_TEST(test_indi_recovers_from_one_glitched_angle_torque_or_reference);
     RUN_TEST(test_the_ranges_are_inclusive_and_apply_to_every_input);
     RUN_TEST(test_hp_refuses_a_sample_beyond_its_range_and_keeps_its_estimate);
     RUN_TEST(test_axis_init_refuses_what_it_cannot_discretise);

@@ -70,6 +70,9 @@ static const char *const status_names[LADRC_STATUS_COUNT] = {
     "LADRC_ERR_MOTOR_TAU_S",
     "LADRC_ERR_DELAY_TICKS",
     "LADRC_ERR_WRAP_ANGLE",
+    "LADRC_ERR_INDI_ATT_KP",
+    "LADRC_ERR_INDI_RATE_KP",
+    "LADRC_ERR_INDI_FILTER",
 };
 
 /* 1 if text is name alone (names-only build) or name ": " and an explanation. */

@@ -117,7 +117,7 @@ declare -A measured=(
   [flash.linked_hp]=$linked_hp
   [sizeof.ladrc_attitude_t]=$(size_of ladrc_attitude_t)
 )
-CASES=(PID LADRC LP-MLADRC HP-MLADRC HP-MLADRC-2tones HP-MLADRC-act)
+CASES=(PID LADRC LP-MLADRC HP-MLADRC HP-MLADRC-2tones HP-MLADRC-act INDI)
 for v in "${CASES[@]}"; do
   measured[insn.axis.$v]=$(insn "$v" 1)
   measured[insn.3axes.$v]=$(insn "$v" 2)
@@ -265,7 +265,7 @@ row "3-axis state, sizeof(ladrc_attitude_t), B" "$att_size" "<= 512" "$(mark "$a
 row "mixer state, sizeof(ladrc_mixer_t), B" "$mix_size" "" ""
 for t in ladrc_attitude_config_t ladrc_axis_t ladrc_axis_config_t ladrc_mixer_config_t \
          ladrc_pid_t ladrc_leso_t ladrc_td_t ladrc_levant_t ladrc_lp_estimator_t \
-         ladrc_hp_estimator_t ladrc_rls_t; do
+         ladrc_hp_estimator_t ladrc_rls_t ladrc_indi_t; do
   row "sizeof($t), B" "$(size_of "$t")" "" ""
 done
 row "library flash (text + data), B" "$flash" "<= 8192" "$(mark "$flash" "<=" 8192)"

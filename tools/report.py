@@ -144,7 +144,9 @@ def section_t4(rep, m, headings, scen, with_paper, clean=None):
             continue
         for axis in AXES:
             mean, std, rms = (m.get((c, "4", q, axis)) for q in ("error_mean_deg", "error_std_deg", "error_rms_deg"))
-            if with_paper:
+            if with_paper and c not in PAPER_T4:  # a baseline the paper does not fly
+                rows.append([c, axis, "— / %s" % num(mean), "— / %s" % num(std), "— / %s" % num(rms)])
+            elif with_paper:
                 pm, ps, pr = PAPER_T4[c][axis]
                 rows.append([c, axis, "%s / %s (%s)" % (num(pm), num(mean), absdiff(mean, pm)),
                              "%s / %s (%s)" % (num(ps), num(std), rel(std, ps)),
@@ -174,11 +176,11 @@ def section_t5(rep, m, headings, scen, with_paper):
         for qi, (q, label) in enumerate(quantities):
             row = [c, label]
             if with_paper:
-                row.append(num(PAPER_T5[c][qi]))
+                row.append(num(PAPER_T5[c][qi]) if c in PAPER_T5 else "—")
             for axis in AXES:
                 v = m.get((c, "5", q, axis))
                 text = num(v)
-                if with_paper and is_number(v):
+                if with_paper and is_number(v) and c in PAPER_T5:
                     text += " (%s)" % rel(v, PAPER_T5[c][qi])
                 row.append(text)
             rows.append(row)

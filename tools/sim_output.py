@@ -4,7 +4,8 @@
 import csv
 import os
 
-CONTROLLERS = ["HP-MLADRC", "LP-MLADRC", "LADRC", "PID"]
+# The paper's four, then the baselines flown today (not in the paper: no published values).
+CONTROLLERS = ["HP-MLADRC", "LP-MLADRC", "LADRC", "PID", "CASCADED", "INDI"]
 AXES = ["roll", "pitch", "yaw"]
 
 # The words metrics.csv's value column holds in place of a number (README, "The simulator").

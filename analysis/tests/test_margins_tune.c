@@ -34,18 +34,21 @@ static void tune_case(ladrc_variant_t variant, const airframe_t *a)
 {
     ladrc_axis_config_t cfg, tuned;
     ladrc_axis_config_default(&cfg, variant, 0.001f, (ladrc_real_t)a->j);
-    const ladrc_margins_controller_t ctl = {NULL, 0, &cfg, 0};
+    const int use_rate = variant == LADRC_VARIANT_INDI; /* INDI flies on the measured rate */
+    const ladrc_margins_controller_t ctl = {NULL, 0, &cfg, use_rate};
     const ladrc_margins_plant_t p = {0.001, a->j, 1.0, 0.09, a->tau, a->delay};
     ladrc_margins_request_t req;
     ladrc_margins_request_default(&req, &p);
     const ladrc_margins_targets_t targets = {45.0, 6.0};
     TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_tune(&ws, &ctl, &req, &targets, &tuned, &tuning));
     /* Analysed again, independently of the search. */
-    const ladrc_margins_controller_t again = {NULL, 0, &tuned, 0};
+    const ladrc_margins_controller_t again = {NULL, 0, &tuned, use_rate};
     TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_analyse(&ws, &again, &req, &res));
-    printf("%s J %g lag %g delay %d: wc %.1f wo %.1f kp %.3g ki %.3g kd %.3g -> PM %.1f GM %.1f\n",
-           variant == LADRC_VARIANT_PID ? "PID" : "LADRC", a->j, a->tau, a->delay, tuning.wc_rad_s, tuning.wo_rad_s,
-           tuning.kp, tuning.ki, tuning.kd, res.pm_deg, res.gm_db);
+    printf("%s J %g lag %g delay %d: wc %.1f wo %.1f kp %.3g ki %.3g kd %.3g k_att %.1f k_rate %.1f w_f %.1f"
+           " -> PM %.1f GM %.1f\n",
+           variant == LADRC_VARIANT_PID ? "PID" : (variant == LADRC_VARIANT_INDI ? "INDI" : "LADRC"), a->j, a->tau,
+           a->delay, tuning.wc_rad_s, tuning.wo_rad_s, tuning.kp, tuning.ki, tuning.kd, tuning.indi_att_kp_per_s,
+           tuning.indi_rate_kp_per_s, tuning.indi_filter_rad_s, res.pm_deg, res.gm_db);
     TEST_ASSERT_TRUE(res.stable);
     TEST_ASSERT_TRUE(res.pm_deg >= 45.0);
     TEST_ASSERT_TRUE(res.gm_db >= 6.0);
@@ -59,6 +62,25 @@ static void test_ladrc_tuning_meets_its_targets(void)
 static void test_pid_tuning_meets_its_targets(void)
 {
     for (unsigned i = 0; i < sizeof CASES / sizeof CASES[0]; ++i) tune_case(LADRC_VARIANT_PID, &CASES[i]);
+}
+
+static void test_indi_tuning_meets_its_targets(void)
+{
+    /* one case per airframe (lag and delay unmodelled by the controller) */
+    for (unsigned i = 0; i < sizeof CASES / sizeof CASES[0]; i += 4) tune_case(LADRC_VARIANT_INDI, &CASES[i]);
+}
+
+static void test_indi_without_its_rate_is_refused(void)
+{
+    ladrc_axis_config_t cfg, tuned;
+    ladrc_axis_config_default(&cfg, LADRC_VARIANT_INDI, 0.001f, 5.445e-3f);
+    const ladrc_margins_controller_t ctl = {NULL, 0, &cfg, 0};
+    const ladrc_margins_plant_t p = {0.001, 5.445e-3, 1.0, 0.09, 0.0, 0};
+    ladrc_margins_request_t req;
+    ladrc_margins_request_default(&req, &p);
+    const ladrc_margins_targets_t targets = {45.0, 6.0};
+    TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_ERR_CONTROLLER, ladrc_margins_analyse(&ws, &ctl, &req, &res));
+    TEST_ASSERT_NOT_EQUAL(LADRC_MARGINS_OK, ladrc_margins_tune(&ws, &ctl, &req, &targets, &tuned, &tuning));
 }
 
 static void test_lag_lowers_the_tuned_bandwidth(void)
@@ -92,6 +114,8 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_ladrc_tuning_meets_its_targets);
     RUN_TEST(test_pid_tuning_meets_its_targets);
+    RUN_TEST(test_indi_tuning_meets_its_targets);
+    RUN_TEST(test_indi_without_its_rate_is_refused);
     RUN_TEST(test_lag_lowers_the_tuned_bandwidth);
     RUN_TEST(test_impossible_targets_are_refused_with_the_best_margins);
     return UNITY_END();

@@ -2,8 +2,8 @@
 /**
  * @file axis.h
  * @brief One attitude axis behind one config and one state: LADRC (reference
- *        shaping + LESO + control law) or the PID baseline. The command of
- *        every variant is a torque in N m.
+ *        shaping + LESO + control law), the PID baseline or the INDI baseline
+ *        (indi.h). The command of every variant is a torque in N m.
  *
  * Sign convention: positive torque accelerates the angle positively; angles
  * in rad (roll = phi about body X, pitch = theta about Y, yaw = psi about Z).
@@ -48,7 +48,8 @@
  * prediction across the delay). ladrc_axis_get_accel gives b0 ubar of the
  * step the next tick's observer will take. tau = 0 and d = 0 bypass the
  * model: the arithmetic is today's, bit for bit. The PID variant has no
- * observer and ignores the model.
+ * observer and ignores the model. INDI pairs the same acting torque with the
+ * acceleration measured over the same step (indi.h): it reads the model too.
  *
  * Wrapped angles (wrap_angle = 1, e.g. yaw): the measured angle lives on a
  * circle of 2 pi. Each tick the measurement is moved by whole turns to
@@ -60,7 +61,9 @@
  * the shaper's state, are shifted by one turn (exactly, their difference
  * unchanged), so a yaw turning for hours keeps full float resolution. Each
  * of these steps returns its input bit for bit while no wrap is needed.
- * PID wraps its error and its measured difference (pid.h).
+ * PID wraps its error and its measured difference (pid.h); INDI moves the
+ * raw reference to within pi of r, wraps r - theta and shifts r and the
+ * shaper's state by a turn once r is beyond +-pi.
  *
  * Faults: a reference or angle that is not finite or lies beyond
  * angle_limit_rad leaves every state untouched, holds the previous command
@@ -77,6 +80,7 @@
 #define LADRC_AXIS_H
 
 #include "ladrc/estimator.h"
+#include "ladrc/indi.h"
 #include "ladrc/leso.h"
 #include "ladrc/levant.h"
 #include "ladrc/pid.h"
@@ -94,7 +98,10 @@ typedef enum {
     LADRC_VARIANT_LP_MLADRC = 1,/**< LADRC + LP estimator (needs the measured rate) */
     LADRC_VARIANT_HP_MLADRC = 2,/**< LADRC + HP estimator (angle only) */
     LADRC_VARIANT_PID = 3,      /**< PID baseline (pid.h) */
-    LADRC_VARIANT_COUNT
+    LADRC_VARIANT_CASCADED = 4, /**< cascaded P / PID baseline: a placeholder here, built on
+                                     its own branch (ladrc_axis_init refuses it) */
+    LADRC_VARIANT_INDI = 5,     /**< INDI baseline (indi.h; needs the measured rate) */
+    LADRC_VARIANT_COUNT = 6
 } ladrc_variant_t;
 
 typedef enum {
@@ -106,7 +113,8 @@ typedef enum {
 /**
  * Axis configuration; can live in flash. Only the fields the variant uses
  * are read and validated: LADRC reads the common fields, wc_rad_s .. td_h0_s;
- * PID reads the common fields and pid_*.
+ * PID reads the common fields and pid_*; INDI the common fields, b0, the
+ * shaper's fields, the actuator model and indi_*.
  */
 typedef struct {
     ladrc_variant_t variant;
@@ -156,6 +164,10 @@ typedef struct {
     ladrc_real_t motor_tau_s;      /**< first-order lag of the torque (s), 0..LADRC_MOTOR_TAU_MAX_S, 0 = none */
     uint8_t delay_ticks;           /**< transport delay (whole ticks), 0..LADRC_MAX_DELAY_TICKS */
     uint8_t wrap_angle;            /**< 1: the angle lives on a circle of 2 pi (yaw); 0: a line */
+    /* INDI (indi.h); b0 is its control effectiveness, the shaper gives r, r', r'' */
+    ladrc_real_t indi_att_kp_per_s;  /**< k_att (1/s): attitude error -> rate setpoint */
+    ladrc_real_t indi_rate_kp_per_s; /**< k_rate (1/s): rate error -> acceleration */
+    ladrc_real_t indi_filter_rad_s;  /**< w_f (rad/s): the acceleration and torque filter */
 } ladrc_axis_config_t;
 
 /** Actuator model state of an axis (see above). */
@@ -175,7 +187,7 @@ typedef struct {
     ladrc_real_t u_min_Nm, u_max_Nm;
     ladrc_real_t angle_limit_rad, rate_limit_rad_s, applied_limit_Nm; /**< plausible ranges */
     ladrc_real_t kp, kd, b0;      /**< wc^2, 2 wc, b0 */
-    ladrc_leso_t leso;            /**< all variants but PID */
+    ladrc_leso_t leso;            /**< the LADRC family (not PID, not INDI) */
     union {
         ladrc_td_t td;
         ladrc_levant_t levant;
@@ -187,6 +199,7 @@ typedef struct {
             ladrc_hp_estimator_t est;
             ladrc_leso_twin_t shadow; /**< the LESO's view of a still plant: z3 caused by d_hat alone */
         } hp;
+        ladrc_indi_t indi;
     } part;                       /**< by variant */
     ladrc_ref_t ref;              /**< shaped reference of the latest tick */
     ladrc_real_t d_hat_rad_s2;    /**< estimator output applied over the current step */
@@ -195,7 +208,7 @@ typedef struct {
     ladrc_real_t output_Nm;       /**< latest command */
     ladrc_real_t applied_Nm;      /**< torque applied since the latest tick */
     ladrc_actuator_t act;         /**< actuator model (used when model is 1) */
-    uint8_t model;                /**< 1: motor_tau_s > 0 or delay_ticks > 0 (LADRC family) */
+    uint8_t model;                /**< 1: motor_tau_s > 0 or delay_ticks > 0 (LADRC family, INDI) */
     uint8_t wrap;                 /**< wrap_angle */
     uint32_t consecutive_faults;  /**< ticks in a row with LADRC_FAULT_INPUT or _STATE */
     ladrc_fault_t faults;         /**< flags of the latest tick */
@@ -213,6 +226,11 @@ typedef struct {
  * fits forgetting 2 /s behind a 20 rad/s derivative filter (a known
  * frequency: set hp_freq_mode). Plausible ranges: angles 1000 rad, rates
  * 100 rad/s, applied torque 1e4 rad/s^2 * inertia_kg_m2.
+ * INDI, by the rule that it differs from LADRC only in how it learns the
+ * disturbance: the same closed loop from the reference, (s + wc)^2, so
+ * k_att = k_rate = wc = 15 /s, the same TD shaping, and the acceleration
+ * filter at the observer's bandwidth, w_f = wo = 75 rad/s (the observer's
+ * noise budget; F d then follows d with the lag 2 / w_f = 27 ms).
  */
 void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant,
                                ladrc_real_t dt_s, ladrc_real_t inertia_kg_m2);
@@ -227,9 +245,11 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad);
 /** One tick with angle only. @return torque command (N m) */
 ladrc_real_t ladrc_axis_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad);
 
-/** One tick with a measured rate too: PID uses it for its derivative and
+/** One tick with a measured rate too: PID uses it for its derivative,
  *  LP-MLADRC for its disturbance sample (without a rate LP holds its
- *  estimate); LADRC and HP-MLADRC ignore it. @return torque command (N m) */
+ *  estimate) and INDI for its rate loop and acceleration (without a rate
+ *  INDI holds its command and raises LADRC_FAULT_RATE, in ladrc_axis_step
+ *  too); LADRC and HP-MLADRC ignore it. @return torque command (N m) */
 ladrc_real_t ladrc_axis_step_with_rate(ladrc_axis_t *axis, ladrc_real_t ref_rad,
                                        ladrc_real_t angle_rad, ladrc_real_t rate_rad_s);
 
@@ -252,6 +272,14 @@ void ladrc_axis_set_disturbance_rate(ladrc_axis_t *axis, ladrc_real_t rate_rad_s
  */
 void ladrc_axis_set_known_disturbance(ladrc_axis_t *axis, ladrc_real_t f_known_rad_s2);
 
+/** 1 for the variants with a LESO (the LADRC family): the ones whose
+ *  observer state, coupling feed and disturbance estimate axis.leso holds. */
+static inline int ladrc_variant_has_observer(ladrc_variant_t variant)
+{
+    /* LADRC, LP-MLADRC and HP-MLADRC are 0, 1 and 2: one comparison */
+    return ((unsigned)variant <= (unsigned)LADRC_VARIANT_HP_MLADRC) ? 1 : 0;
+}
+
 /** Torque (N m) the next tick's observer step takes as acting: the applied
  *  torque without a model, else its delayed and lagged mean (see above). */
 static inline ladrc_real_t ladrc_axis_acting_Nm(const ladrc_axis_t *axis)
@@ -265,7 +293,8 @@ static inline ladrc_real_t ladrc_axis_acting_Nm(const ladrc_axis_t *axis)
 }
 
 /** Angular acceleration the model expects over the observer's next step
- *  (rad/s^2): b0 * acting torque + z3 + d_hat. PID: 0. */
+ *  (rad/s^2): b0 * acting torque + z3 + d_hat. PID: 0. INDI: b0 * acting
+ *  torque + its filtered disturbance. */
 ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis);
 
 /** Fault flags of the latest tick (and of set_applied since). */
@@ -278,7 +307,8 @@ uint32_t ladrc_axis_get_consecutive_faults(const ladrc_axis_t *axis);
 void ladrc_axis_get_reference(const ladrc_axis_t *axis, ladrc_ref_t *ref);
 
 /** Observer estimates: angle (rad), rate (rad/s), total disturbance z3 + d_hat
- *  (rad/s^2). PID has no observer: last measured angle, its filtered rate, and 0. */
+ *  (rad/s^2). PID has no observer: last measured angle, its filtered rate, and 0.
+ *  INDI: last angle and rate measured with a rate, and omegadot_f - b0 u_f. */
 void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad,
                              ladrc_real_t *rate_rad_s, ladrc_real_t *disturbance_rad_s2);
 

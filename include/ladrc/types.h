@@ -85,6 +85,7 @@ typedef float ladrc_real_t;
 #define ladrc_axis_config_default LADRC_ABI_NAME_(ladrc_axis_config_default)
 #define ladrc_axis_init LADRC_ABI_NAME_(ladrc_axis_init)
 #define ladrc_hp_init LADRC_ABI_NAME_(ladrc_hp_init)
+#define ladrc_indi_init LADRC_ABI_NAME_(ladrc_indi_init)
 #define ladrc_leso_init LADRC_ABI_NAME_(ladrc_leso_init)
 #define ladrc_levant_init LADRC_ABI_NAME_(ladrc_levant_init)
 #define ladrc_lp_init LADRC_ABI_NAME_(ladrc_lp_init)
@@ -163,6 +164,9 @@ typedef enum {
     LADRC_ERR_MOTOR_TAU_S,        /**< axis motor_tau_s not finite, < 0, or above LADRC_MOTOR_TAU_MAX_S */
     LADRC_ERR_DELAY_TICKS,        /**< axis delay_ticks above LADRC_MAX_DELAY_TICKS */
     LADRC_ERR_WRAP_ANGLE,         /**< axis (or pid) wrap_angle not 0 or 1 */
+    LADRC_ERR_INDI_ATT_KP,        /**< indi_att_kp_per_s not finite, not > 0, or times dt_s >= 1 */
+    LADRC_ERR_INDI_RATE_KP,       /**< indi_rate_kp_per_s not finite, not > 0, or times dt_s >= 1 */
+    LADRC_ERR_INDI_FILTER,        /**< indi_filter_rad_s not finite, not > 0, or times dt_s > pi */
     LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
 } ladrc_status_t;
 

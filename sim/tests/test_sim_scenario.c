@@ -127,6 +127,7 @@ static void test_defaults_fill_every_key_not_given(void)
         TEST_ASSERT_TRUE(isnan(o->wc_rad_s) && isnan(o->wo_rad_s) && isnan(o->hp_freq_rad_s));
         TEST_ASSERT_TRUE(isnan(o->levant_lipschitz_rad_s4) && isnan(o->td_accel_rad_s2));
         TEST_ASSERT_TRUE(isnan(o->pid_kp) && isnan(o->pid_ki) && isnan(o->pid_kd));
+        TEST_ASSERT_TRUE(isnan(o->indi_att_kp_per_s) && isnan(o->indi_rate_kp_per_s) && isnan(o->indi_filter_rad_s));
         TEST_ASSERT_EQUAL_INT(-1, o->leso_method);
         TEST_ASSERT_EQUAL_INT(-1, o->hp_freq_mode);
         TEST_ASSERT_EQUAL_INT(-1, o->coupling_feed);
@@ -481,6 +482,7 @@ static void test_controller_names(void)
     TEST_ASSERT_EQUAL_STRING("LP-MLADRC", sim_controller_name(SIM_CTRL_LP_MLADRC));
     TEST_ASSERT_EQUAL_STRING("LADRC", sim_controller_name(SIM_CTRL_LADRC));
     TEST_ASSERT_EQUAL_STRING("PID", sim_controller_name(SIM_CTRL_PID));
+    TEST_ASSERT_EQUAL_STRING("INDI", sim_controller_name(SIM_CTRL_INDI));
     TEST_ASSERT_EQUAL_STRING("?", sim_controller_name(SIM_CTRL_COUNT));
 }
 
@@ -519,7 +521,8 @@ static void check_paper_case(const char *name)
     assert_close(30.0, sc.duration_s, "duration_s");
     assert_close(0.001, sc.control_dt_s, "dt");
     TEST_ASSERT_EQUAL_INT(10, sc.plant_substeps);
-    TEST_ASSERT_EQUAL_INT(4, sc.n_controllers);
+    TEST_ASSERT_EQUAL_INT(5, sc.n_controllers); /* the paper's four, then INDI */
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_INDI, sc.controllers[4]);
     TEST_ASSERT_EQUAL_INT(1, sc.rotors_ideal);
     assert_close(0.8, sc.mass_kg, "m");
     assert_close(1.089e-2, sc.inertia_kg_m2[2], "Jz");
@@ -649,7 +652,7 @@ static void test_structure_errors(void)
         {"[ ]\n", 1, 3, "expected a section name"},
         {"[run extra]\n", 1, 6, "unexpected 'extra' in the section header"},
         {"[controller]\n", 1, 12, "expected a controller name after 'controller'"},
-        {"[controller PDI]\n", 1, 13, "unknown controller 'PDI' (expected HP-MLADRC, LP-MLADRC, LADRC or PID)"},
+        {"[controller PDI]\n", 1, 13, "unknown controller 'PDI' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, CASCADED or INDI)"},
         {"[controller PID PID]\n", 1, 17, "unexpected 'PID' in the section header"},
         {"[run]\nduration_s = 1\n\n[run]\n", 4, 1, "section [run] already given on line 1"},
         {"[run]\nduration_s = 1\n[controller PID]\n[controller PID]\n", 4, 1,
@@ -702,9 +705,9 @@ static void test_value_errors(void)
         {"[run]\nseed = 18446744073709551616\n", 2, 8, "seed out of range (at most 18446744073709551615)"},
         {"[run]\nkind = attitud\n", 2, 8, "expected attitude or differentiator, got 'attitud'"},
         {"[run]\ncontrollers = LADRC PDI\n", 2, 21,
-         "unknown controller 'PDI' (expected HP-MLADRC, LP-MLADRC, LADRC or PID)"},
+         "unknown controller 'PDI' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, CASCADED or INDI)"},
         {"[run]\ncontrollers = ladrc\n", 2, 15,
-         "unknown controller 'ladrc' (expected HP-MLADRC, LP-MLADRC, LADRC or PID)"},
+         "unknown controller 'ladrc' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, CASCADED or INDI)"},
         {"[run]\ncontrollers = LADRC PID LADRC\n", 2, 25, "controller 'LADRC' listed twice"},
         {"[vehicle]\ninertia_kg_m2 = 1 2\n", 2, 20, "expected 3 numbers"},
         {"[vehicle]\ninertia_kg_m2 = 1 2 3 4\n", 2, 23, "expected 3 numbers"},
@@ -930,6 +933,13 @@ static void test_values_the_library_refuses_are_errors_at_their_key(void)
          LADRC_ERR_DELAY_TICKS},
         {"[run]\nduration_s = 1\n[controller LP-MLADRC]\nmodel_motor_tau_s = 1.5\n", 4, 21, "LP-MLADRC",
          LADRC_ERR_MOTOR_TAU_S},
+        /* INDI's gains beyond the sampled loop's bound, its filter beyond Nyquist */
+        {"[run]\nduration_s = 1\ncontrollers = INDI\n[controller INDI]\nindi_rate_kp_per_s = 1000\n", 5, 22, "INDI",
+         LADRC_ERR_INDI_RATE_KP},
+        {"[run]\nduration_s = 1\ncontrollers = INDI\n[controller INDI]\nindi_att_kp_per_s = 2000\n", 5, 21, "INDI",
+         LADRC_ERR_INDI_ATT_KP},
+        {"[run]\nduration_s = 1\ncontrollers = INDI\n[controller INDI]\nindi_filter_rad_s = 4000\n", 5, 21, "INDI",
+         LADRC_ERR_INDI_FILTER},
         /* combinations */
         {"[run]\nduration_s = 1\n[controller LADRC]\nleso_method = euler\nwo_rad_s = 3000\n", 5, 12, "LADRC",
          LADRC_ERR_LESO_EULER_UNSTABLE},
@@ -982,6 +992,38 @@ static void test_a_controller_not_listed_is_checked_when_chosen(void)
     const sim_controller_id_t unknown[] = {SIM_CTRL_COUNT};
     TEST_ASSERT_EQUAL_INT(-1, sim_scenario_set_controllers(&sc, unknown, 1, &err));
     TEST_ASSERT_EQUAL_INT(1, sc.n_controllers);
+}
+
+static void test_indi_keys_land_and_indi_needs_the_rate(void)
+{
+    /* given: INDI listed with its three gains */
+    parse_ok("[run]\nduration_s = 1\ncontrollers = LADRC INDI\n[controller INDI]\nindi_att_kp_per_s = 12\n"
+             "indi_rate_kp_per_s = 30\nindi_filter_rad_s = 60\ntd_accel_rad_s2 = 30\n");
+    ladrc_attitude_config_t cfg;
+    sim_setup_attitude(&sc, SIM_CTRL_INDI, &cfg);
+    /* then: they reach every axis; the variant is INDI */
+    for (int i = 0; i < 3; ++i) {
+        TEST_ASSERT_EQUAL_INT(LADRC_VARIANT_INDI, cfg.axis[i].variant);
+        TEST_ASSERT_EQUAL_FLOAT(12.0f, cfg.axis[i].indi_att_kp_per_s);
+        TEST_ASSERT_EQUAL_FLOAT(30.0f, cfg.axis[i].indi_rate_kp_per_s);
+        TEST_ASSERT_EQUAL_FLOAT(60.0f, cfg.axis[i].indi_filter_rad_s);
+        TEST_ASSERT_EQUAL_FLOAT(30.0f, cfg.axis[i].td_accel_rad_s2);
+    }
+    TEST_ASSERT_EQUAL_INT(2, sc.n_controllers);
+    /* an INDI key on another controller is an error */
+    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_parse(&sc, "[run]\nduration_s = 1\n[controller LADRC]\nindi_filter_rad_s = 9\n",
+                                                 "bad.ini", &err));
+    /* without the measured rate INDI cannot fly: refused where it is listed ... */
+    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_parse(&sc, "[run]\nduration_s = 1\ncontrollers = INDI\n[sensors]\nuse_rate = no\n",
+                                                 "bad.ini", &err));
+    TEST_ASSERT_EQUAL_STRING("INDI needs the measured rate ([sensors] use_rate = yes)", err.message);
+    TEST_ASSERT_EQUAL_INT(5, err.line);
+    /* ... and kept for --controllers where it is not */
+    parse_ok("[run]\nduration_s = 1\n[sensors]\nuse_rate = no\n");
+    TEST_ASSERT_EQUAL_INT(4, sc.n_controllers); /* the default list: the paper's four */
+    TEST_ASSERT_EQUAL_INT(4, sc.controller_error[SIM_CTRL_INDI].line);
+    const sim_controller_id_t indi[] = {SIM_CTRL_INDI};
+    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_set_controllers(&sc, indi, 1, &err));
 }
 
 static void test_parse_buffer_needs_no_nul_and_refuses_one_inside(void)
@@ -1054,6 +1096,7 @@ int main(void)
     RUN_TEST(test_runs_at_the_limits_are_accepted);
     RUN_TEST(test_values_the_library_refuses_are_errors_at_their_key);
     RUN_TEST(test_a_controller_not_listed_is_checked_when_chosen);
+    RUN_TEST(test_indi_keys_land_and_indi_needs_the_rate);
     RUN_TEST(test_parse_buffer_needs_no_nul_and_refuses_one_inside);
     RUN_TEST(test_long_values_are_rejected_not_truncated);
     RUN_TEST(test_null_arguments_are_refused_and_err_is_optional);

@@ -22,7 +22,7 @@ except ImportError:
 
 import ladrc
 
-VARIANTS = ["LADRC", "LP_MLADRC", "HP_MLADRC", "PID"]
+VARIANTS = ["LADRC", "LP_MLADRC", "HP_MLADRC", "PID", "CASCADED", "INDI"]
 
 
 def axis_dict(variant):
@@ -34,6 +34,8 @@ def axis_dict(variant):
         d.update(hp_freq_mode="ONLINE", hp_fit_phase=1)
     if variant == "PID":
         d.update(pid_kp=0.2)
+    if variant == "INDI":
+        d.update(indi_rate_kp_per_s=25.0)
     return d
 
 
@@ -52,7 +54,7 @@ def main():
     def bits(x):
         return np.asarray(x, dtype=lib.dtype).view(utype)
 
-    axis_rows = {v: [] for v in range(4)}
+    axis_rows = {v: [] for v in range(len(VARIANTS)) if VARIANTS[v] != "CASCADED"}  # not built here
     att_rows = []
     for line in lines[1:]:
         w = line.split()

@@ -230,6 +230,7 @@ typedef struct {
     int met;                  /**< 1 when the chosen setting meets the targets */
     double wc_rad_s, wo_rad_s;/**< LADRC family */
     double kp, ki, kd, d_filter_tau_s; /**< PID */
+    double indi_att_kp_per_s, indi_rate_kp_per_s, indi_filter_rad_s; /**< INDI */
     double peak_dist_rad;     /**< objective: peak |d -> error| of the chosen setting */
     ladrc_margins_result_t margins; /**< of the chosen setting */
 } ladrc_margins_tuning_t;
@@ -242,7 +243,10 @@ typedef struct {
  * >= gm_min_db (geometric scan by 1.5 from 0.5 rad/s to 0.95 / dt, then
  * bisection to 1 %);
  * PID: kp = J w^2, kd = 2 J w, ki = kp w / m, m in {3, 5, 10}, derivative
- * filter 1 / (10 w) (none if below dt); the largest such w for each m.
+ * filter 1 / (10 w) (none if below dt); the largest such w for each m;
+ * INDI: k_att = k_rate = w (the loop (s + w)^2 of LADRC's rule), filter
+ * w_f = r w, r in {3, 5, 8} (at most 0.9 pi / dt), the largest such w for
+ * each r; INDI needs use_rate (else LADRC_MARGINS_ERR_CONTROLLER).
  * The adaptive variants' estimator settings are kept; their wc and wo are
  * searched on the plain LADRC loop (estimator off), then lowered (by 1.5,
  * then bisection to 1 %) until the whole variant, as

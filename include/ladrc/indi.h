@@ -1,0 +1,156 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/**
+ * @file indi.h
+ * @brief Incremental nonlinear dynamic inversion (INDI) on one attitude axis:
+ *        the baseline that, like LP-MLADRC, works on the measured angular
+ *        acceleration. Used through axis.h (LADRC_VARIANT_INDI).
+ *
+ * Structure (Smeur, Chu and de Croon, "Adaptive Incremental Nonlinear Dynamic
+ * Inversion for Attitude Control of Micro Air Vehicles", JGCD 2016; the
+ * attitude INDI of Paparazzi): the axis obeys omega' = G u + d with G = b0
+ * (rad/s^2 per N m) and an unknown d. Measuring omega' and knowing the torque
+ * that produced it, the increment that turns the present acceleration into
+ * the wanted one nu is (nu - omega') / G, added to that torque:
+ *
+ *     u_k = u_f,k + J (nu_k - omegadot_f,k),        J = 1 / b0
+ *
+ * where omegadot_f and u_f are the measured acceleration and the torque that
+ * produced it, both through the SAME low-pass filter F (below): then
+ * omegadot_f - b0 u_f = F d exactly, and u_k = J (nu_k - (F d)_k), the
+ * dynamic inversion with the disturbance estimated as F d. With G exact the
+ * loop sees omega' = nu + (1 - z^-1 F) d: a constant d is rejected
+ * completely (F(1) = 1), with no integrator to wind up.
+ *
+ * Outer loops (the P-on-attitude, P-on-rate cascade of PX4 and ArduPilot,
+ * with the reference's derivatives fed forward): r, r', r'' from the axis's
+ * shaper, theta and omega measured,
+ *
+ *     omega_ref  = k_att (r - theta) + r'                 (error mod 2 pi on a wrapped axis)
+ *     nu         = k_rate (omega_ref - omega) + omega_ref'
+ *     omega_ref' = k_att (r' - omega) + r''
+ *
+ * so that with omega' = nu the error obeys e'' + (k_att + k_rate) e' +
+ * k_att k_rate e = 0: poles at -k_att and -k_rate (gains in 1/s).
+ *
+ * Acceleration and torque (tick k, h = dt_s). The measured rate is
+ * differenced, omegadot_k = (omega_k - omega_k-1) / h, and the torque that
+ * acted over that same step is the axis's acting torque ubar_k
+ * (ladrc_axis_acting_Nm: the applied torque of tick k-1, or, with the
+ * actuator model, the applied torque delayed by delay_ticks and lagged by
+ * motor_tau_s, averaged over the step). For the rigid body with the torque
+ * held over the step, omegadot_k = b0 ubar_k + (mean d over the step)
+ * holds exactly, so the pair is synchronised before filtering, and stays so
+ * after it because both go through the same filter, one formula
+ * (ladrc_indi_lowpass_step):
+ *
+ *     F(z) = (alpha / (1 - (1 - alpha) z^-1))^2,   alpha = 1 - exp(-w_f h)
+ *
+ * two cascaded first-order stages s += alpha (x - s): the critically damped
+ * low-pass w_f^2 / (s + w_f)^2, each stage discretised exactly (step
+ * invariant) so the poles sit at exp(-w_f h) for any w_f h (Tustin would warp
+ * them near Nyquist). Critically damped rather than Butterworth: no overshoot,
+ * so a torque step does not return as a filtered overshoot in u_f; the blend
+ * form keeps F(1) = 1 to the last bit, which the rejection of a constant d
+ * rests on. The filter's lag does not enter the loop from nu (it cancels
+ * between u_f and omegadot_f); it only sets how fast d is followed, and how
+ * much gyro noise reaches the torque: white gyro noise of std sigma per
+ * sample leaves omegadot_f with a std of about sigma sqrt(h w_f^3) / 2
+ * (10 sigma at h = 1 ms, w_f = 75 rad/s), times J in the command.
+ *
+ * Without a measured rate INDI has no acceleration: a tick without one (or
+ * with a rate outside its plausible range) holds the previous command and
+ * raises LADRC_FAULT_RATE. The angle is not differentiated twice instead: at
+ * 1 kHz an angle noise of 5e-4 rad (the paper's noisy case) becomes 1.4
+ * rad/s of rate noise and 1000 rad/s^2 of acceleration noise before the
+ * filter. The filters wait over such a gap; the next tick with a rate feeds
+ * them one step with the mean acceleration over the gap,
+ * (omega_k - omega_last) / (n h), and the mean acting torque over the same
+ * n steps, which still satisfy the identity above, so they stay
+ * synchronised. After a reset the first rate only seeds omega_last.
+ *
+ * Saturation: u_f is the filtered torque that ACTED (what set_applied
+ * reported), not the command, so a saturated actuator leaves nothing to wind
+ * up: the next increment starts from what the actuator delivered.
+ */
+#ifndef LADRC_INDI_H
+#define LADRC_INDI_H
+
+#include "ladrc/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Largest w_f dt_s: the filter's corner at the Nyquist frequency. */
+#define LADRC_INDI_FILTER_WH_MAX LADRC_PI
+
+typedef struct {
+    ladrc_real_t dt_s;             /**< fixed step (s) */
+    ladrc_real_t b0;               /**< control effectiveness G (rad/s^2 per N m), |b0| in [1e-3, 1e7] */
+    ladrc_real_t att_kp_per_s;     /**< k_att (1/s), > 0, k_att dt_s < 1 */
+    ladrc_real_t rate_kp_per_s;    /**< k_rate (1/s), > 0, k_rate dt_s < 1 */
+    ladrc_real_t filter_rad_s;     /**< w_f (rad/s), > 0, w_f dt_s <= pi */
+} ladrc_indi_config_t;
+
+/** Two first-order stages of the filter F (see above). */
+typedef struct {
+    ladrc_real_t s1, s2;
+} ladrc_indi_lowpass_t;
+
+/** INDI state; owned by the axis. */
+typedef struct {
+    ladrc_real_t inv_dt;           /**< 1 / h */
+    ladrc_real_t j;                /**< J = 1 / b0 (N m per rad/s^2) */
+    ladrc_real_t b0;
+    ladrc_real_t k_att, k_rate;    /**< 1/s */
+    ladrc_real_t alpha;            /**< 1 - exp(-w_f h) */
+    ladrc_indi_lowpass_t accel;    /**< F of the differenced rate: omegadot_f (rad/s^2) */
+    ladrc_indi_lowpass_t torque;   /**< F of the acting torque: u_f (N m) */
+    ladrc_real_t rate_last_rad_s;  /**< rate of the last tick that had one */
+    ladrc_real_t gap_torque_Nm;    /**< sum of the acting torques since then */
+    ladrc_real_t angle_rad;        /**< measured angle of the last tick with a rate */
+    uint32_t gap_ticks;            /**< steps since then */
+    uint8_t has_rate_last;         /**< 0 after a reset until a first rate */
+} ladrc_indi_t;
+
+/** Filter step (both filters, one formula): returns the new output. */
+static inline ladrc_real_t ladrc_indi_lowpass_step(ladrc_indi_lowpass_t *f, ladrc_real_t alpha, ladrc_real_t x)
+{
+    f->s1 += alpha * (x - f->s1);
+    f->s2 += alpha * (f->s1 - f->s2);
+    return f->s2;
+}
+
+/** Validates (LADRC_ERR_DT_S, _B0, _INDI_ATT_KP, _INDI_RATE_KP, _INDI_FILTER,
+ *  in that order; LADRC_ERR_NULL) and resets. */
+ladrc_status_t ladrc_indi_init(ladrc_indi_t *indi, const ladrc_indi_config_t *cfg);
+
+/** At rest: filters at 0, no previous rate, no gap. */
+void ladrc_indi_reset(ladrc_indi_t *indi);
+
+/**
+ * The measurement half of a tick: acting_Nm is the torque that acted over the
+ * step just ended (ladrc_axis_acting_Nm). With a rate (has_rate = 1) the
+ * filters take the step (or the gap's mean) and 1 is returned; without one
+ * the step joins the gap and 0 is returned (hold the command). The first rate
+ * after a reset only seeds: 1, filters unchanged.
+ */
+int ladrc_indi_measure(ladrc_indi_t *indi, ladrc_real_t acting_Nm, ladrc_real_t rate_rad_s, int has_rate);
+
+/** The command u = u_f + J (nu - omegadot_f) for the attitude error
+ *  (r - theta, already wrapped), the shaped reference's r' and r'' and the
+ *  measured rate (N m, unclamped; may be non-finite for absurd inputs). */
+ladrc_real_t ladrc_indi_command(const ladrc_indi_t *indi, ladrc_real_t error_rad, ladrc_real_t ref_rate_rad_s,
+                                ladrc_real_t ref_accel_rad_s2, ladrc_real_t rate_rad_s);
+
+/** The disturbance INDI acts on, omegadot_f - b0 u_f = (F d) (rad/s^2). */
+static inline ladrc_real_t ladrc_indi_disturbance(const ladrc_indi_t *indi)
+{
+    return indi->accel.s2 - indi->b0 * indi->torque.s2;
+}
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LADRC_INDI_H */

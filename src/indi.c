@@ -1,0 +1,102 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Incremental nonlinear dynamic inversion on one axis (see indi.h). */
+#include "ladrc/indi.h"
+
+#include <stddef.h>
+
+/* |b0| for an inertia between 1e-7 and 1000 kg m^2, as on every axis (axis.c). */
+#define INDI_B0_MIN LADRC_R(1e-3)
+#define INDI_B0_MAX LADRC_R(1e7)
+/* k dt below 1 for both gains: then (k_att + k_rate) dt < 2, the Jury bound
+ * of the sampled loop (z - 1)^2 + (h C + h^2 K / 2)(z - 1) + h^2 K with
+ * C = k_att + k_rate, K = k_att k_rate (the double integrator held over each
+ * step under this feedback); the same bound as LADRC's wc dt < 1. */
+#define INDI_K_DT_LIMIT LADRC_R(1.0)
+
+/* A gain in 1/s: finite, > 0 and below 1 / dt_s. */
+static int gain_ok(ladrc_real_t k, ladrc_real_t dt_s)
+{
+    return ladrc_is_positive(k) && k * dt_s < INDI_K_DT_LIMIT;
+}
+
+ladrc_status_t ladrc_indi_init(ladrc_indi_t *indi, const ladrc_indi_config_t *cfg)
+{
+    if (indi == NULL || cfg == NULL) {
+        return LADRC_ERR_NULL;
+    }
+    if (!ladrc_dt_is_valid(cfg->dt_s)) {
+        return LADRC_ERR_DT_S;
+    }
+    if (!(ladrc_fabs(cfg->b0) >= INDI_B0_MIN && ladrc_fabs(cfg->b0) <= INDI_B0_MAX)) {
+        return LADRC_ERR_B0;
+    }
+    if (!gain_ok(cfg->att_kp_per_s, cfg->dt_s)) {
+        return LADRC_ERR_INDI_ATT_KP;
+    }
+    if (!gain_ok(cfg->rate_kp_per_s, cfg->dt_s)) {
+        return LADRC_ERR_INDI_RATE_KP;
+    }
+    if (!(ladrc_is_positive(cfg->filter_rad_s) && cfg->filter_rad_s * cfg->dt_s <= LADRC_INDI_FILTER_WH_MAX)) {
+        return LADRC_ERR_INDI_FILTER;
+    }
+    indi->inv_dt = LADRC_R(1.0) / cfg->dt_s;
+    indi->b0 = cfg->b0;
+    indi->j = LADRC_R(1.0) / cfg->b0;
+    indi->k_att = cfg->att_kp_per_s;
+    indi->k_rate = cfg->rate_kp_per_s;
+    indi->alpha = -ladrc_expm1(-cfg->filter_rad_s * cfg->dt_s);
+    ladrc_indi_reset(indi);
+    return LADRC_OK;
+}
+
+void ladrc_indi_reset(ladrc_indi_t *indi)
+{
+    LADRC_ASSERT(indi != NULL);
+    indi->accel.s1 = LADRC_R(0.0);
+    indi->accel.s2 = LADRC_R(0.0);
+    indi->torque.s1 = LADRC_R(0.0);
+    indi->torque.s2 = LADRC_R(0.0);
+    indi->rate_last_rad_s = LADRC_R(0.0);
+    indi->gap_torque_Nm = LADRC_R(0.0);
+    indi->angle_rad = LADRC_R(0.0);
+    indi->gap_ticks = 0u;
+    indi->has_rate_last = 0u;
+}
+
+int ladrc_indi_measure(ladrc_indi_t *indi, ladrc_real_t acting_Nm, ladrc_real_t rate_rad_s, int has_rate)
+{
+    /* The step just ended joins the interval since the last rate. */
+    const uint32_t n = (indi->gap_ticks < UINT32_MAX) ? indi->gap_ticks + 1u : UINT32_MAX;
+    const ladrc_real_t torque_sum = indi->gap_torque_Nm + acting_Nm;
+    if (!has_rate) {
+        indi->gap_ticks = n;
+        indi->gap_torque_Nm = torque_sum;
+        return 0;
+    }
+    if (indi->has_rate_last) {
+        ladrc_real_t accel = (rate_rad_s - indi->rate_last_rad_s) * indi->inv_dt;
+        ladrc_real_t torque = torque_sum;
+        if (n > 1u) {
+            /* Means over the n steps of a gap: they obey the same identity. */
+            const ladrc_real_t inv_n = LADRC_R(1.0) / (ladrc_real_t)n;
+            accel *= inv_n;
+            torque *= inv_n;
+        }
+        (void)ladrc_indi_lowpass_step(&indi->accel, indi->alpha, accel);
+        (void)ladrc_indi_lowpass_step(&indi->torque, indi->alpha, torque);
+    }
+    indi->rate_last_rad_s = rate_rad_s;
+    indi->gap_ticks = 0u;
+    indi->gap_torque_Nm = LADRC_R(0.0);
+    indi->has_rate_last = 1u;
+    return 1;
+}
+
+ladrc_real_t ladrc_indi_command(const ladrc_indi_t *indi, ladrc_real_t error_rad, ladrc_real_t ref_rate_rad_s,
+                                ladrc_real_t ref_accel_rad_s2, ladrc_real_t rate_rad_s)
+{
+    const ladrc_real_t rate_ref = indi->k_att * error_rad + ref_rate_rad_s;
+    const ladrc_real_t rate_ref_dot = indi->k_att * (ref_rate_rad_s - rate_rad_s) + ref_accel_rad_s2;
+    const ladrc_real_t nu = indi->k_rate * (rate_ref - rate_rad_s) + rate_ref_dot;
+    return indi->torque.s2 + indi->j * (nu - indi->accel.s2);
+}
