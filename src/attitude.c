@@ -72,8 +72,8 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
             }
             return status;
         }
-        if (cfg->axis[i].variant == LADRC_VARIANT_PID) {
-            att->observers = 0u;
+        if (!ladrc_variant_has_observer(cfg->axis[i].variant)) {
+            att->observers = 0u; /* set_applied must reach its integrator */
         }
         /* (J of the next axis - J of the one after) / J, roll -> pitch -> yaw -> roll */
         const unsigned next = (i == LADRC_YAW) ? 0u : i + 1u;
@@ -108,7 +108,7 @@ static ladrc_real_t feed(const ladrc_attitude_t *att, unsigned i, ladrc_real_t r
 
 /* Rate z2 and acceleration b0 * acting torque + z3 + d_hat of one axis, read
  * straight from it (attitude owns its axes; the sum as ladrc_axis_get_accel
- * forms it). A PID axis has no observer: 0 and 0. */
+ * forms it). A PID or CASCADED axis has no observer: 0 and 0. */
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
@@ -116,18 +116,18 @@ static inline void observed(const ladrc_axis_t *ax, ladrc_real_t *rate, ladrc_re
 {
     *rate = LADRC_R(0.0);
     *accel = LADRC_R(0.0);
-    if (ax->variant != LADRC_VARIANT_PID) {
+    if (ladrc_variant_has_observer(ax->variant)) {
         *rate = ax->leso.z2;
         *accel = ax->b0 * ladrc_axis_acting_Nm(ax) + ax->leso.z3 + ax->d_hat_rad_s2;
     }
 }
 
-/* Feeds h to axis i; a PID axis gets none, and a non-finite h is fed as 0
+/* Feeds h to axis i; a PID or CASCADED axis gets none, and a non-finite h is fed as 0
  * (as ladrc_axis_set_disturbance_rate does). */
 static inline void put_feed(ladrc_attitude_t *att, unsigned i, ladrc_real_t h)
 {
     ladrc_axis_t *ax = &att->axis[i];
-    if (ax->variant == LADRC_VARIANT_PID) {
+    if (!ladrc_variant_has_observer(ax->variant)) {
         h = LADRC_R(0.0);
     }
     att->feed_rad_s3[i] = h;

@@ -18,6 +18,18 @@
 #define AXIS_DEFAULT_PID_KP LADRC_R(20.0)
 #define AXIS_DEFAULT_PID_KI LADRC_R(20.0)
 #define AXIS_DEFAULT_PID_KD LADRC_R(0.05)
+/* CASCADED (axis.h): the rate loop crosses over at the paper's observer
+ * bandwidth wo (where LADRC's disturbance rejection acts), the attitude
+ * gain a quarter of that (the P parts then put a critically damped double
+ * pole at wr / 2); the integral corner a fifth below wr, the derivative a
+ * quarter of the P torque in quadrature at wr, filtered at 8 wr.
+ * 220 deg/s: PX4's default maximum roll and pitch rate (MC_ROLLRATE_MAX). */
+#define AXIS_DEFAULT_CAS_RATE_BW_RAD_S AXIS_DEFAULT_WO_RAD_S
+#define AXIS_DEFAULT_CAS_ATT_PER_BW LADRC_R(0.25)
+#define AXIS_DEFAULT_CAS_I_CORNER LADRC_R(5.0)
+#define AXIS_DEFAULT_CAS_D_QUADRATURE LADRC_R(4.0)
+#define AXIS_DEFAULT_CAS_D_FILTER LADRC_R(8.0)
+#define AXIS_DEFAULT_CAS_RATE_MAX_RAD_S LADRC_R(3.8397243543875251) /* 220 deg/s */
 #define AXIS_DEFAULT_LP_LAMBDA0_PER_S LADRC_R(100.0)
 #define AXIS_DEFAULT_LP_K0_PER_S LADRC_R(300.0)
 /* HP: the search range covers 0.5..30 rad/s with margin. The fit forgets at
@@ -124,6 +136,15 @@ void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant
     cfg->motor_tau_s = LADRC_R(0.0);
     cfg->delay_ticks = 0u;
     cfg->wrap_angle = 0u;
+    const ladrc_real_t wr = AXIS_DEFAULT_CAS_RATE_BW_RAD_S;
+    cfg->cas_att_kp = AXIS_DEFAULT_CAS_ATT_PER_BW * wr;
+    cfg->cas_rate_max_rad_s = AXIS_DEFAULT_CAS_RATE_MAX_RAD_S;
+    cfg->cas_rate_kp = inertia_kg_m2 * wr;
+    cfg->cas_rate_ki = cfg->cas_rate_kp * wr / AXIS_DEFAULT_CAS_I_CORNER;
+    cfg->cas_rate_kd = cfg->cas_rate_kp / (AXIS_DEFAULT_CAS_D_QUADRATURE * wr);
+    cfg->cas_d_filter_tau_s = LADRC_R(1.0) / (AXIS_DEFAULT_CAS_D_FILTER * wr);
+    cfg->cas_i_limit_Nm = unlimited;
+    cfg->cas_rate_filter_tau_s = cfg->cas_d_filter_tau_s;
 }
 
 static ladrc_status_t init_shaper(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
@@ -289,6 +310,30 @@ static ladrc_status_t init_pid(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
     return ladrc_pid_init(&axis->part.pid, &pid_cfg);
 }
 
+static ladrc_status_t init_cascaded(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
+{
+    const ladrc_cascaded_config_t cas_cfg = {cfg->dt_s,
+                                             cfg->cas_att_kp,
+                                             cfg->cas_rate_max_rad_s,
+                                             cfg->cas_rate_kp,
+                                             cfg->cas_rate_ki,
+                                             cfg->cas_rate_kd,
+                                             cfg->cas_d_filter_tau_s,
+                                             cfg->cas_rate_filter_tau_s,
+                                             cfg->cas_i_limit_Nm,
+                                             cfg->rate_limit_rad_s,
+                                             command_min(cfg),
+                                             command_max(cfg),
+                                             cfg->wrap_angle};
+    axis->model = 0u; /* no observer to tell (axis.h) */
+    ladrc_status_t status = ladrc_cascaded_init(&axis->part.cas, &cas_cfg);
+    if (status == LADRC_OK) {
+        status = init_shaper(axis, cfg);
+    }
+    axis->shaper = cfg->shaper;
+    return status;
+}
+
 ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
 {
     if (axis == NULL || cfg == NULL) {
@@ -318,6 +363,9 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
         break;
     case LADRC_VARIANT_PID:
         status = init_pid(axis, cfg);
+        break;
+    case LADRC_VARIANT_CASCADED:
+        status = init_cascaded(axis, cfg);
         break;
     default:
         status = LADRC_ERR_VARIANT;
@@ -359,7 +407,11 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
     if (axis->variant == LADRC_VARIANT_PID) {
         ladrc_pid_reset(&axis->part.pid, angle);
     } else {
-        restart_estimates(axis, angle);
+        if (axis->variant == LADRC_VARIANT_CASCADED) {
+            ladrc_cascaded_reset(&axis->part.cas, angle);
+        } else {
+            restart_estimates(axis, angle);
+        }
         if (axis->shaper == LADRC_SHAPER_TD) {
             ladrc_td_reset(&axis->shaping.td, angle);
         } else if (axis->shaper == LADRC_SHAPER_LEVANT) {
@@ -417,6 +469,34 @@ static ladrc_real_t estimate_disturbance(ladrc_axis_t *axis, ladrc_real_t rate_r
     return LADRC_R(0.0);
 }
 
+/* The shaped reference and the shaper's state moved by turn (a whole turn). */
+static void shift_reference(ladrc_axis_t *axis, ladrc_real_t turn)
+{
+    axis->ref.r += turn;
+    if (axis->shaper == LADRC_SHAPER_TD) {
+        axis->shaping.td.x1 += turn;
+    } else if (axis->shaper == LADRC_SHAPER_LEVANT) {
+        axis->shaping.levant.r_last += turn; /* z0 = r_last + w moves with it */
+    }
+}
+
+/* The shaper's tick on the raw reference, into axis->ref; its faults. The
+ * shapers write straight into the axis: no copy on the stack. */
+static ladrc_fault_t shape_reference(ladrc_axis_t *axis, ladrc_real_t ref_rad)
+{
+    ladrc_ref_t *ref = &axis->ref;
+    if (axis->shaper == LADRC_SHAPER_TD) {
+        return ladrc_td_step(&axis->shaping.td, ref_rad, ref);
+    }
+    if (axis->shaper == LADRC_SHAPER_LEVANT) {
+        return ladrc_levant_step(&axis->shaping.levant, ref_rad, ref);
+    }
+    ref->r = ref_rad;
+    ref->dr = LADRC_R(0.0);
+    ref->ddr = LADRC_R(0.0);
+    return LADRC_FAULT_NONE;
+}
+
 /* A wrapped axis: z1 and r both beyond +pi (or -pi) move one turn back,
  * with the shaper's state. Both lie within 4 pi of 0 (pi past the bound at
  * most, plus the |r - z1| < 2 pi the wrapped law allows), so each shift by
@@ -436,12 +516,7 @@ static void recentre(ladrc_axis_t *axis)
         return;
     }
     axis->leso.z1 = z1 + turn;
-    axis->ref.r = r + turn;
-    if (axis->shaper == LADRC_SHAPER_TD) {
-        axis->shaping.td.x1 += turn;
-    } else if (axis->shaper == LADRC_SHAPER_LEVANT) {
-        axis->shaping.levant.r_last += turn; /* z0 = r_last + w moves with it */
-    }
+    shift_reference(axis, turn);
 }
 
 /* ADRC tick on finite ref and angle; returns the state fault, if any. */
@@ -459,16 +534,7 @@ static ladrc_fault_t step_adrc(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_r
     const ladrc_real_t acting_Nm = axis->model ? advance_actuator(axis) : axis->applied_Nm;
     ladrc_fault_t faults = ladrc_leso_step(&axis->leso, angle_rad, acting_Nm,
                                            axis->d_hat_rad_s2, axis->f_rate_rad_s3);
-    /* The shapers write straight into the axis: no copy on the stack. */
-    if (axis->shaper == LADRC_SHAPER_TD) {
-        faults |= ladrc_td_step(&axis->shaping.td, ref_rad, ref);
-    } else if (axis->shaper == LADRC_SHAPER_LEVANT) {
-        faults |= ladrc_levant_step(&axis->shaping.levant, ref_rad, ref);
-    } else {
-        ref->r = ref_rad;
-        ref->dr = LADRC_R(0.0);
-        ref->ddr = LADRC_R(0.0);
-    }
+    faults |= shape_reference(axis, ref_rad);
     const ladrc_real_t d_hat = estimate_disturbance(axis, rate_rad_s, acting_Nm);
     ladrc_real_t error_rad = ref->r - leso->z1;
     if (axis->wrap) {
@@ -485,6 +551,31 @@ static ladrc_fault_t step_adrc(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_r
     }
     axis->d_hat_rad_s2 = d_hat;
     axis->output_Nm = ladrc_clamp(u, axis->u_min_Nm, axis->u_max_Nm);
+    return faults;
+}
+
+/* CASCADED tick on finite ref and angle; returns the state fault, if any.
+ * A wrapped axis unwraps the raw reference near r for the shaper, and moves
+ * r back by a turn once it lies beyond +-pi (exact: r is within 3 pi, the
+ * shift is Sterbenz-exact); the error and the angle difference are wrapped
+ * by the cascaded module itself. */
+static ladrc_fault_t step_cascaded(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
+                                   const ladrc_real_t *rate_rad_s)
+{
+    if (axis->wrap) {
+        ref_rad = ladrc_unwrap_near(ref_rad, axis->ref.r);
+    }
+    ladrc_fault_t faults = shape_reference(axis, ref_rad);
+    if (axis->wrap && !ladrc_in_half_turn(axis->ref.r)) {
+        shift_reference(axis, (axis->ref.r > LADRC_R(0.0)) ? -LADRC_TWO_PI : LADRC_TWO_PI);
+    }
+    ladrc_cascaded_t *cas = &axis->part.cas;
+    if (ladrc_cascaded_step(cas, &axis->ref, angle_rad, rate_rad_s) != LADRC_FAULT_NONE) {
+        /* The command is held; the loops restart from the measurement. */
+        ladrc_cascaded_reset(cas, angle_rad);
+        return (ladrc_fault_t)(faults | LADRC_FAULT_STATE);
+    }
+    axis->output_Nm = cas->output_Nm;
     return faults;
 }
 
@@ -505,6 +596,8 @@ static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_re
         axis->output_Nm = ladrc_pid_step(&axis->part.pid, ref_rad, angle_rad, has_rate ? &rate_rad_s : NULL);
         faults |= ladrc_pid_get_faults(&axis->part.pid);
         axis->ref.r = ref_rad;
+    } else if (axis->variant == LADRC_VARIANT_CASCADED) {
+        faults |= step_cascaded(axis, ref_rad, angle_rad, has_rate ? &rate_rad_s : NULL);
     } else {
         faults |= step_adrc(axis, ref_rad, angle_rad, has_rate ? rate_rad_s : (ladrc_real_t)NAN);
     }
@@ -540,6 +633,8 @@ void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
     axis->applied_Nm = torque_Nm;
     if (axis->variant == LADRC_VARIANT_PID) {
         ladrc_pid_set_applied(&axis->part.pid, torque_Nm);
+    } else if (axis->variant == LADRC_VARIANT_CASCADED) {
+        ladrc_cascaded_set_applied(&axis->part.cas, torque_Nm);
     }
 }
 
@@ -557,7 +652,7 @@ void ladrc_axis_set_known_disturbance(ladrc_axis_t *axis, ladrc_real_t f_known_r
 
 ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis)
 {
-    if (axis->variant == LADRC_VARIANT_PID) {
+    if (!ladrc_variant_has_observer(axis->variant)) {
         return LADRC_R(0.0);
     }
     return axis->b0 * ladrc_axis_acting_Nm(axis) + axis->leso.z3 + axis->d_hat_rad_s2;
@@ -578,6 +673,10 @@ void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad,
     if (axis->variant == LADRC_VARIANT_PID) {
         *angle_rad = axis->part.pid.prev_meas_rad;
         *rate_rad_s = axis->part.pid.d_filtered_rad_s;
+        *disturbance_rad_s2 = LADRC_R(0.0);
+    } else if (axis->variant == LADRC_VARIANT_CASCADED) {
+        *angle_rad = axis->part.cas.prev_angle_rad;
+        *rate_rad_s = axis->part.cas.rate_rad_s;
         *disturbance_rad_s2 = LADRC_R(0.0);
     } else {
         *angle_rad = axis->leso.z1;

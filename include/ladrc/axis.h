@@ -2,8 +2,9 @@
 /**
  * @file axis.h
  * @brief One attitude axis behind one config and one state: LADRC (reference
- *        shaping + LESO + control law) or the PID baseline. The command of
- *        every variant is a torque in N m.
+ *        shaping + LESO + control law), the PID baseline or the cascaded
+ *        attitude P / rate PID of the common flight stacks (cascaded.h).
+ *        The command of every variant is a torque in N m.
  *
  * Sign convention: positive torque accelerates the angle positively; angles
  * in rad (roll = phi about body X, pitch = theta about Y, yaw = psi about Z).
@@ -47,8 +48,8 @@
  * like: z estimates the state of d ticks ago and the law acts on it (no
  * prediction across the delay). ladrc_axis_get_accel gives b0 ubar of the
  * step the next tick's observer will take. tau = 0 and d = 0 bypass the
- * model: the arithmetic is today's, bit for bit. The PID variant has no
- * observer and ignores the model.
+ * model: the arithmetic is today's, bit for bit. The PID and CASCADED
+ * variants have no observer and ignore the model.
  *
  * Wrapped angles (wrap_angle = 1, e.g. yaw): the measured angle lives on a
  * circle of 2 pi. Each tick the measurement is moved by whole turns to
@@ -60,7 +61,15 @@
  * the shaper's state, are shifted by one turn (exactly, their difference
  * unchanged), so a yaw turning for hours keeps full float resolution. Each
  * of these steps returns its input bit for bit while no wrap is needed.
- * PID wraps its error and its measured difference (pid.h).
+ * PID wraps its error and its measured difference (pid.h); CASCADED
+ * unwraps the raw reference for its shaper as LADRC does, wraps its error
+ * and its angle difference (cascaded.h) and moves r (with the shaper's
+ * state) back by a turn once it lies beyond +-pi.
+ *
+ * CASCADED tick (cascaded.h): the shaper gives (r, r') from the raw
+ * reference as for LADRC (TD by default), then the attitude P loop and the
+ * rate PID give the torque. With ladrc_axis_step (no rate) the rate is a
+ * filtered difference of the measured angle (cas_rate_filter_tau_s).
  *
  * Faults: a reference or angle that is not finite or lies beyond
  * angle_limit_rad leaves every state untouched, holds the previous command
@@ -76,6 +85,7 @@
 #ifndef LADRC_AXIS_H
 #define LADRC_AXIS_H
 
+#include "ladrc/cascaded.h"
 #include "ladrc/estimator.h"
 #include "ladrc/leso.h"
 #include "ladrc/levant.h"
@@ -97,8 +107,18 @@ typedef enum {
     LADRC_VARIANT_LP_MLADRC = 1,/**< LADRC + LP estimator (needs the measured rate) */
     LADRC_VARIANT_HP_MLADRC = 2,/**< LADRC + HP estimator (angle only) */
     LADRC_VARIANT_PID = 3,      /**< PID baseline (pid.h) */
-    LADRC_VARIANT_COUNT
+    LADRC_VARIANT_CASCADED = 4, /**< attitude P -> rate PID, as PX4 / ArduPilot / Betaflight (cascaded.h) */
+    /* LADRC_VARIANT_INDI = 5: reserved for incremental nonlinear dynamic inversion */
+    LADRC_VARIANT_COUNT = 6
 } ladrc_variant_t;
+
+/** 1 for the variants with an extended state observer (LADRC, LP-MLADRC,
+ *  HP-MLADRC): the actuator model, the coupling feed and the observer
+ *  getters apply to them only. */
+static inline int ladrc_variant_has_observer(ladrc_variant_t v)
+{
+    return (v == LADRC_VARIANT_LADRC || v == LADRC_VARIANT_LP_MLADRC || v == LADRC_VARIANT_HP_MLADRC) ? 1 : 0;
+}
 
 typedef enum {
     LADRC_SHAPER_TD = 0,     /**< Han's tracking differentiator gives r, r', r'' */
@@ -109,7 +129,8 @@ typedef enum {
 /**
  * Axis configuration; can live in flash. Only the fields the variant uses
  * are read and validated: LADRC reads the common fields, wc_rad_s .. td_h0_s;
- * PID reads the common fields and pid_*.
+ * PID reads the common fields and pid_*; CASCADED the common fields, the
+ * shaper's (shaper, td_* or levant_*) and cas_*.
  */
 typedef struct {
     ladrc_variant_t variant;
@@ -159,6 +180,16 @@ typedef struct {
     ladrc_real_t motor_tau_s;      /**< first-order lag of the torque (s), 0..LADRC_MOTOR_TAU_MAX_S, 0 = none */
     uint8_t delay_ticks;           /**< transport delay (whole ticks), 0..LADRC_MAX_DELAY_TICKS */
     uint8_t wrap_angle;            /**< 1: the angle lives on a circle of 2 pi (yaw); 0: a line */
+    /* CASCADED (cascaded.h) */
+    ladrc_real_t cas_att_kp;         /**< attitude P gain (1/s), > 0, cas_att_kp * dt_s < 1 */
+    ladrc_real_t cas_rate_max_rad_s; /**< rate setpoint bound (rad/s), > 0, <= rate_limit_rad_s */
+    ladrc_real_t cas_rate_kp;        /**< rate P gain (N m s/rad), >= 0 */
+    ladrc_real_t cas_rate_ki;        /**< rate I gain (N m/rad), >= 0 */
+    ladrc_real_t cas_rate_kd;        /**< rate D gain on the measured rate (N m s^2/rad), >= 0 */
+    ladrc_real_t cas_d_filter_tau_s; /**< D low-pass time constant (s), >= 0, 0 = none */
+    ladrc_real_t cas_i_limit_Nm;     /**< |integral| bound (N m), INFINITY = none */
+    ladrc_real_t cas_rate_filter_tau_s; /**< low pass of the angle's difference when no rate is
+                                        given (s), >= 0 */
 } ladrc_axis_config_t;
 
 /** Actuator model state of an axis (see above). */
@@ -185,6 +216,7 @@ typedef struct {
     } shaping;                    /**< by shaper */
     union {
         ladrc_pid_t pid;
+        ladrc_cascaded_t cas;
         ladrc_lp_estimator_t lp;
         struct {
             ladrc_hp_estimator_t est;
@@ -209,6 +241,17 @@ typedef struct {
  * b0 = 1 / inertia_kg_m2, ZOH LESO, TD shaping (R = 20 rad/s^2, h0 = dt_s);
  * PID kp = 20, ki = 20, kd = 0.05, no derivative filter; no torque or
  * integral limits (ideal actuators, as in the paper: set real ones for flight).
+ * CASCADED, by loop shaping on the paper's bandwidths: the rate loop
+ * crosses over at wr = wo = 75 rad/s (cas_rate_kp = J wr: kp / (J s) has
+ * unit gain at wr), the bandwidth over which LADRC's observer rejects
+ * disturbances; cas_att_kp = wr / 4 = 18.75 /s (the usual separation of a
+ * cascade: the P parts alone give s^2 + wr s + wr att_kp = (s + wr / 2)^2,
+ * critically damped); cas_rate_ki = kp wr / 5 (integral corner a fifth
+ * below the crossover, 11 deg of phase there); cas_rate_kd = kp / (4 wr)
+ * (a quarter of the P torque in quadrature at wr: 14 deg of lead against
+ * lags) through a low pass at 8 wr (cas_d_filter_tau_s = 1 / (8 wr), also
+ * cas_rate_filter_tau_s); rate setpoint bound 220 deg/s (PX4's default
+ * MC_ROLLRATE_MAX); no integral limit. TD shaping as LADRC.
  * LP and HP shape the reference with Levant (implicit, L = 1000 rad/s^4).
  * LP: lambda0 = 100 /s, k0 = 300 /s (paper). HP: up to two tones found
  * online in [0.3, 40] rad/s (first guesses 3 and 8 rad/s), the fit forgetting
@@ -230,8 +273,8 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad);
 /** One tick with angle only. @return torque command (N m) */
 ladrc_real_t ladrc_axis_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad);
 
-/** One tick with a measured rate too: PID uses it for its derivative and
- *  LP-MLADRC for its disturbance sample (without a rate LP holds its
+/** One tick with a measured rate too: PID uses it for its derivative,
+ *  CASCADED for its rate loop and LP-MLADRC for its disturbance sample (without a rate LP holds its
  *  estimate); LADRC and HP-MLADRC ignore it. @return torque command (N m) */
 ladrc_real_t ladrc_axis_step_with_rate(ladrc_axis_t *axis, ladrc_real_t ref_rad,
                                        ladrc_real_t angle_rad, ladrc_real_t rate_rad_s);
@@ -268,7 +311,7 @@ static inline ladrc_real_t ladrc_axis_acting_Nm(const ladrc_axis_t *axis)
 }
 
 /** Angular acceleration the model expects over the observer's next step
- *  (rad/s^2): b0 * acting torque + z3 + d_hat. PID: 0. */
+ *  (rad/s^2): b0 * acting torque + z3 + d_hat. PID, CASCADED: 0. */
 ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis);
 
 /** Fault flags of the latest tick (and of set_applied since). */
@@ -281,7 +324,8 @@ uint32_t ladrc_axis_get_consecutive_faults(const ladrc_axis_t *axis);
 void ladrc_axis_get_reference(const ladrc_axis_t *axis, ladrc_ref_t *ref);
 
 /** Observer estimates: angle (rad), rate (rad/s), total disturbance z3 + d_hat
- *  (rad/s^2). PID has no observer: last measured angle, its filtered rate, and 0. */
+ *  (rad/s^2). PID has no observer: last measured angle, its filtered rate, and 0;
+ *  CASCADED: last measured angle, the rate its rate loop used, and 0. */
 void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad,
                              ladrc_real_t *rate_rad_s, ladrc_real_t *disturbance_rad_s2);
 

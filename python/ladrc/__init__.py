@@ -35,7 +35,7 @@ FAULT_APPLIED = 4
 FAULT_STATE = 8
 
 ENUMS = {
-    "variant": {"LADRC": 0, "LP_MLADRC": 1, "HP_MLADRC": 2, "PID": 3},
+    "variant": {"LADRC": 0, "LP_MLADRC": 1, "HP_MLADRC": 2, "PID": 3, "CASCADED": 4},
     "shaper": {"TD": 0, "NONE": 1, "LEVANT": 2},
     "leso_method": {"ZOH": 0, "EULER": 1},
     "levant_method": {"IMPLICIT": 0, "HD": 1, "EULER": 2},
@@ -124,7 +124,10 @@ class _Library:
                         ("hp_freq_min_rad_s", r), ("hp_freq_max_rad_s", r), ("hp_lambda0_per_s", r),
                         ("hp_freq_lambda0_per_s", r), ("hp_freq_filter_rad_s", r),
                         ("hp_fit_decimation", u16), ("hp_fit_phase", u16),
-                        ("motor_tau_s", r), ("delay_ticks", u8), ("wrap_angle", u8)]
+                        ("motor_tau_s", r), ("delay_ticks", u8), ("wrap_angle", u8),
+                        ("cas_att_kp", r), ("cas_rate_max_rad_s", r), ("cas_rate_kp", r),
+                        ("cas_rate_ki", r), ("cas_rate_kd", r), ("cas_d_filter_tau_s", r),
+                        ("cas_i_limit_Nm", r), ("cas_rate_filter_tau_s", r)]
 
         class AttitudeConfig(ctypes.Structure):
             _fields_ = [("axis", AxisConfig * 3), ("inertia_kg_m2", r * 3), ("drag_Nms", r),
@@ -290,7 +293,7 @@ class Axis:
         self._lib.axis_reset(self._state, angle_rad)
 
     def step(self, ref_rad, angle_rad, rate_rad_s=None):
-        """One tick: the torque command (N m). rate_rad_s (gyro) for LP-MLADRC and PID."""
+        """One tick: the torque command (N m). rate_rad_s (gyro) for LP-MLADRC, PID and CASCADED."""
         if rate_rad_s is None:
             return self._lib.axis_step(self._state, ref_rad, angle_rad)
         return self._lib.axis_step_with_rate(self._state, ref_rad, angle_rad, rate_rad_s)

@@ -46,6 +46,11 @@ static void axis_overrides(ladrc_axis_config_t *cfg)
     if (cfg->variant == LADRC_VARIANT_PID) {
         cfg->pid_kp = LADRC_R(0.2);
     }
+    if (cfg->variant == LADRC_VARIANT_CASCADED) {
+        cfg->cas_att_kp = LADRC_R(6.0); /* the cas_ block in the mirror */
+        cfg->cas_rate_max_rad_s = LADRC_R(2.0);
+        cfg->cas_i_limit_Nm = LADRC_R(0.01);
+    }
 }
 
 static int trace_axis(FILE *f, ladrc_variant_t variant)
@@ -157,7 +162,7 @@ int main(int argc, char **argv)
         return 2;
     }
     fprintf(f, "real %u\n", (unsigned)sizeof(ladrc_real_t));
-    for (v = 0; v < (int)LADRC_VARIANT_COUNT; ++v) {
+    for (v = 0; v <= (int)LADRC_VARIANT_CASCADED; ++v) { /* the implemented variants */
         bad |= trace_axis(f, (ladrc_variant_t)v);
     }
     bad |= trace_attitude(f);

@@ -22,7 +22,7 @@ except ImportError:
 
 import ladrc
 
-VARIANTS = ["LADRC", "LP_MLADRC", "HP_MLADRC", "PID"]
+VARIANTS = ["LADRC", "LP_MLADRC", "HP_MLADRC", "PID", "CASCADED"]
 
 
 def axis_dict(variant):
@@ -34,6 +34,8 @@ def axis_dict(variant):
         d.update(hp_freq_mode="ONLINE", hp_fit_phase=1)
     if variant == "PID":
         d.update(pid_kp=0.2)
+    if variant == "CASCADED":
+        d.update(cas_att_kp=6.0, cas_rate_max_rad_s=2.0, cas_i_limit_Nm=0.01)
     return d
 
 
