@@ -50,7 +50,7 @@ static void usage(FILE *out)
     fputs("usage: ladrc_sil SCENARIO... [--jobs N] [--controllers LIST] [--out DIR] [--no-csv] [--quiet]\n"
           "  SCENARIO          a scenario file (format: docs/scenario-format.md)\n"
           "  --jobs N          worker threads (default: the number of cores)\n"
-          "  --controllers L   comma-separated subset of HP-MLADRC,LP-MLADRC,LADRC,PID\n"
+          "  --controllers L   comma-separated subset of HP-MLADRC,LP-MLADRC,LADRC,PID,CASCADED\n"
           "                    (default: each scenario's own list)\n"
           "  --out DIR         write every scenario's output under DIR/<scenario name>\n"
           "                    (default: each scenario's output_dir)\n"
@@ -132,7 +132,7 @@ static int parse_controllers(const char *list, sim_controller_id_t *ids, int *n)
         }
         if (found < 0 || *n >= SIM_MAX_CONTROLLERS) {
             fprintf(stderr, "ladrc_sil: --controllers: unknown controller '%s' (expected HP-MLADRC, LP-MLADRC, "
-                            "LADRC or PID)\n",
+                            "LADRC, PID or CASCADED)\n",
                     tok);
             return -1;
         }
@@ -152,7 +152,8 @@ static int parse_controllers(const char *list, sim_controller_id_t *ids, int *n)
  * start is a short one and the workers finish together. */
 static double job_cost(const job_t *job)
 {
-    static const double CONTROLLER_NS[SIM_CTRL_COUNT] = {1000.0, 450.0, 400.0, 200.0}; /* HP LP LADRC PID */
+    static const double CONTROLLER_NS[SIM_CTRL_COUNT] = {1000.0, 450.0, 400.0, 200.0,
+                                                         250.0}; /* HP LP LADRC PID CASCADED */
     const double csv_ns = job->csv_path[0] != '\0' ? 1200.0 : 0.0;
     const double ticks = (double)sim_run_ticks(job->sc);
     if (job->controller_index < 0) {

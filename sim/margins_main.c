@@ -31,7 +31,7 @@ static void usage(FILE *out)
     fputs("usage: ladrc_margins SCENARIO [--controllers LIST] [--axis roll|pitch|yaw|all]\n"
           "                     [--inertia-factor F] [--csv DIR] [--tune]\n"
           "  SCENARIO           an attitude scenario file (docs/scenario-format.md)\n"
-          "  --controllers L    comma-separated subset of HP-MLADRC,LP-MLADRC,LADRC,PID\n"
+          "  --controllers L    comma-separated subset of HP-MLADRC,LP-MLADRC,LADRC,PID,CASCADED\n"
           "  --axis A           axis to analyse (default: all)\n"
           "  --inertia-factor F true inertia = F times the scenario's (default 1)\n"
           "  --csv DIR          write DIR/<controller>_<axis>.csv frequency responses\n"
@@ -227,6 +227,10 @@ int main(int argc, char **argv)
                 if (acfg.axis[i].variant == LADRC_VARIANT_PID) {
                     printf("  tuned: kp %.4g ki %.4g kd %.4g d_filter %.4g s", tuning.kp, tuning.ki, tuning.kd,
                            tuning.d_filter_tau_s);
+                } else if (acfg.axis[i].variant == LADRC_VARIANT_CASCADED) {
+                    printf("  tuned: att_kp %.4g /s rate kp %.4g ki %.4g kd %.4g d_filter %.4g s",
+                           (double)tuned.cas_att_kp, (double)tuned.cas_rate_kp, (double)tuned.cas_rate_ki,
+                           (double)tuned.cas_rate_kd, (double)tuned.cas_d_filter_tau_s);
                 } else {
                     printf("  tuned: wc %.4g rad/s wo %.4g rad/s", tuning.wc_rad_s, tuning.wo_rad_s);
                 }

@@ -40,7 +40,8 @@
 #define DEFAULT_SETTLE_BAND_DEG 0.5
 #define DEFAULT_DIVERGE_LIMIT_DEG 90.0
 
-static const char *const CONTROLLER_NAMES[SIM_CTRL_COUNT] = {"HP-MLADRC", "LP-MLADRC", "LADRC", "PID"};
+static const char *const CONTROLLER_NAMES[SIM_CTRL_COUNT] = {"HP-MLADRC", "LP-MLADRC", "LADRC", "PID",
+                                                                  "CASCADED"};
 
 const char *sim_controller_name(sim_controller_id_t id)
 {
@@ -225,13 +226,27 @@ static const key_def_t KEYS[] = {
     {SEC_CONTROLLER, "levant_lipschitz_rad_s4", V_REAL, OV(levant_lipschitz_rad_s4), 0, R_POSITIVE, 0, 0, NULL,
      FOR_BOTH, 0, CTRL_BIT(SIM_CTRL_HP_MLADRC) | CTRL_BIT(SIM_CTRL_LP_MLADRC), NULL},
     {SEC_CONTROLLER, "td_accel_rad_s2", V_REAL, OV(td_accel_rad_s2), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0,
-     CTRL_BIT(SIM_CTRL_LADRC), NULL},
+     CTRL_BIT(SIM_CTRL_LADRC) | CTRL_BIT(SIM_CTRL_CASCADED), NULL},
     {SEC_CONTROLLER, "pid_kp", V_REAL, OV(pid_kp), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0, CTRL_BIT(SIM_CTRL_PID),
      NULL},
     {SEC_CONTROLLER, "pid_ki", V_REAL, OV(pid_ki), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0, CTRL_BIT(SIM_CTRL_PID),
      NULL},
     {SEC_CONTROLLER, "pid_kd", V_REAL, OV(pid_kd), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0, CTRL_BIT(SIM_CTRL_PID),
      NULL},
+    {SEC_CONTROLLER, "cas_att_kp", V_REAL, OV(cas_att_kp), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0,
+     CTRL_BIT(SIM_CTRL_CASCADED), NULL},
+    {SEC_CONTROLLER, "cas_rate_max_deg_s", V_REAL, OV(cas_rate_max_deg_s), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0,
+     CTRL_BIT(SIM_CTRL_CASCADED), NULL},
+    {SEC_CONTROLLER, "cas_rate_kp", V_REAL, OV(cas_rate_kp), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0,
+     CTRL_BIT(SIM_CTRL_CASCADED), NULL},
+    {SEC_CONTROLLER, "cas_rate_ki", V_REAL, OV(cas_rate_ki), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0,
+     CTRL_BIT(SIM_CTRL_CASCADED), NULL},
+    {SEC_CONTROLLER, "cas_rate_kd", V_REAL, OV(cas_rate_kd), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0,
+     CTRL_BIT(SIM_CTRL_CASCADED), NULL},
+    {SEC_CONTROLLER, "cas_d_filter_tau_s", V_REAL, OV(cas_d_filter_tau_s), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH,
+     0, CTRL_BIT(SIM_CTRL_CASCADED), NULL},
+    {SEC_CONTROLLER, "cas_i_limit_Nm", V_REAL, OV(cas_i_limit_Nm), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0,
+     CTRL_BIT(SIM_CTRL_CASCADED), NULL},
     {SEC_CONTROLLER, "coupling_feed", V_CHOICE, OV(coupling_feed), 0, R_ANY, 0, 0, YES_NO, FOR_BOTH, 0,
      LADRC_FAMILY, NULL},
     {SEC_CONTROLLER, "model_motor_tau_s", V_REAL, OV(model_motor_tau_s), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0,
@@ -239,7 +254,7 @@ static const key_def_t KEYS[] = {
     {SEC_CONTROLLER, "model_delay_ticks", V_INT, OV(model_delay_ticks), 0, R_DELAY, 0, 0, NULL, FOR_BOTH, 0,
      LADRC_FAMILY, NULL},
     {SEC_CONTROLLER, "wrap_yaw", V_CHOICE, OV(wrap_yaw), 0, R_ANY, 0, 0, YES_NO, FOR_BOTH, 0,
-     LADRC_FAMILY | CTRL_BIT(SIM_CTRL_PID), NULL},
+     LADRC_FAMILY | CTRL_BIT(SIM_CTRL_PID) | CTRL_BIT(SIM_CTRL_CASCADED), NULL},
 };
 
 #define N_KEYS ((int)(sizeof KEYS / sizeof KEYS[0]))
@@ -510,7 +525,7 @@ static int controller_id(const char *name, size_t len)
 
 static int fail_unknown_controller(parser_t *p, const char *tok, size_t len)
 {
-    return fail(p, tok, "unknown controller '%.*s' (expected HP-MLADRC, LP-MLADRC, LADRC or PID)",
+    return fail(p, tok, "unknown controller '%.*s' (expected HP-MLADRC, LP-MLADRC, LADRC, PID or CASCADED)",
                 SHOWN(len), tok);
 }
 
@@ -804,8 +819,8 @@ static void set_defaults(sim_scenario_t *sc)
     sc->control_dt_s = DEFAULT_CONTROL_DT_S;
     sc->plant_substeps = DEFAULT_PLANT_SUBSTEPS;
     sc->seed = DEFAULT_SEED;
-    sc->n_controllers = SIM_CTRL_COUNT;
-    for (int i = 0; i < SIM_CTRL_COUNT; ++i) {
+    sc->n_controllers = SIM_DEFAULT_CONTROLLERS;
+    for (int i = 0; i < SIM_DEFAULT_CONTROLLERS; ++i) {
         sc->controllers[i] = (sim_controller_id_t)i;
     }
 
@@ -841,6 +856,8 @@ static void set_defaults(sim_scenario_t *sc)
         o->model_motor_tau_s = NAN;
         o->model_delay_ticks = o->wrap_yaw = -1;
         o->pid_kp = o->pid_ki = o->pid_kd = NAN;
+        o->cas_att_kp = o->cas_rate_max_deg_s = o->cas_rate_kp = o->cas_rate_ki = o->cas_rate_kd = NAN;
+        o->cas_d_filter_tau_s = o->cas_i_limit_Nm = NAN;
     }
 
     sc->settle_band_deg = DEFAULT_SETTLE_BAND_DEG;
@@ -1065,6 +1082,13 @@ static const key_ref_t *keys_of_status(ladrc_status_t st, int known_freqs)
     static const key_ref_t kp[] = {{CTRL_SEC, "pid_kp"}, END_KEYS};
     static const key_ref_t ki[] = {{CTRL_SEC, "pid_ki"}, END_KEYS};
     static const key_ref_t kd[] = {{CTRL_SEC, "pid_kd"}, END_KEYS};
+    static const key_ref_t cas_att[] = {{CTRL_SEC, "cas_att_kp"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
+    static const key_ref_t cas_max[] = {{CTRL_SEC, "cas_rate_max_deg_s"}, END_KEYS};
+    static const key_ref_t cas_kp[] = {{CTRL_SEC, "cas_rate_kp"}, END_KEYS};
+    static const key_ref_t cas_ki[] = {{CTRL_SEC, "cas_rate_ki"}, END_KEYS};
+    static const key_ref_t cas_kd[] = {{CTRL_SEC, "cas_rate_kd"}, END_KEYS};
+    static const key_ref_t cas_tau[] = {{CTRL_SEC, "cas_d_filter_tau_s"}, END_KEYS};
+    static const key_ref_t cas_i[] = {{CTRL_SEC, "cas_i_limit_Nm"}, END_KEYS};
     static const key_ref_t freqs[] = {
         {CTRL_SEC, "hp_freq_rad_s"}, {CTRL_SEC, "hp_freq2_rad_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
     static const key_ref_t tones[] = {
@@ -1093,6 +1117,14 @@ static const key_ref_t *keys_of_status(ladrc_status_t st, int known_freqs)
     case LADRC_ERR_PID_KP: return kp;
     case LADRC_ERR_PID_KI: return ki;
     case LADRC_ERR_PID_KD: return kd;
+    case LADRC_ERR_CAS_ATT_KP: return cas_att;
+    case LADRC_ERR_CAS_RATE_MAX: return cas_max;
+    case LADRC_ERR_CAS_RATE_KP: return cas_kp;
+    case LADRC_ERR_CAS_RATE_KI: return cas_ki;
+    case LADRC_ERR_CAS_RATE_KD: return cas_kd;
+    case LADRC_ERR_CAS_D_TAU_S:
+    case LADRC_ERR_CAS_RATE_TAU_S: return cas_tau;
+    case LADRC_ERR_CAS_I_LIMIT_NM: return cas_i;
     case LADRC_ERR_HP_FREQ_RAD_S: return freqs;
     /* the fastest tone is a known frequency, or else the search range's top */
     case LADRC_ERR_HP_FIT_DECIMATION: return known_freqs ? freqs : dt;

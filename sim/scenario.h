@@ -54,8 +54,14 @@ typedef enum {
     SIM_CTRL_LP_MLADRC,
     SIM_CTRL_LADRC,
     SIM_CTRL_PID,
+    SIM_CTRL_CASCADED,
+    /* SIM_CTRL_INDI: the INDI baseline's slot, next */
     SIM_CTRL_COUNT
 } sim_controller_id_t;
+
+/* The controllers a scenario flies when it names none: the paper's four
+ * (a scenario lists the baselines added since to fly them). */
+#define SIM_DEFAULT_CONTROLLERS 4
 
 /* Optional per-controller overrides; NaN (or -1 for enums) = library default. */
 typedef struct {
@@ -68,6 +74,8 @@ typedef struct {
     double levant_lipschitz_rad_s4;
     double td_accel_rad_s2;
     double pid_kp, pid_ki, pid_kd;
+    double cas_att_kp, cas_rate_max_deg_s, cas_rate_kp, cas_rate_ki, cas_rate_kd, cas_d_filter_tau_s,
+        cas_i_limit_Nm;       /* CASCADED; cas_rate_max in deg/s as in the file */
     int coupling_feed;        /* -1, 0 or 1 */
     double model_motor_tau_s; /* NaN: [rotors] motor_tau_s; 0: no lag modelled (LADRC family) */
     int model_delay_ticks;    /* -1: [sensors] delay_ticks (LADRC family) */
@@ -160,7 +168,7 @@ int sim_scenario_parse_buffer(sim_scenario_t *sc, const char *data, size_t len, 
  * error the parser gives when it is listed in the file) or n is out of range. */
 int sim_scenario_set_controllers(sim_scenario_t *sc, const sim_controller_id_t *ids, int n, sim_parse_error_t *err);
 
-/* "HP-MLADRC", "LP-MLADRC", "LADRC", "PID"; "?" for anything else */
+/* "HP-MLADRC", "LP-MLADRC", "LADRC", "PID", "CASCADED"; "?" for anything else */
 const char *sim_controller_name(sim_controller_id_t id);
 
 #endif

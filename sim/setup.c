@@ -13,6 +13,7 @@ static ladrc_variant_t variant_of(sim_controller_id_t id)
     case SIM_CTRL_HP_MLADRC: return LADRC_VARIANT_HP_MLADRC;
     case SIM_CTRL_LP_MLADRC: return LADRC_VARIANT_LP_MLADRC;
     case SIM_CTRL_LADRC: return LADRC_VARIANT_LADRC;
+    case SIM_CTRL_CASCADED: return LADRC_VARIANT_CASCADED;
     default: return LADRC_VARIANT_PID;
     }
 }
@@ -36,6 +37,13 @@ static void apply_overrides(ladrc_axis_config_t *a, const sim_overrides_t *o)
     if (!isnan(o->pid_kp)) a->pid_kp = (ladrc_real_t)o->pid_kp;
     if (!isnan(o->pid_ki)) a->pid_ki = (ladrc_real_t)o->pid_ki;
     if (!isnan(o->pid_kd)) a->pid_kd = (ladrc_real_t)o->pid_kd;
+    if (!isnan(o->cas_att_kp)) a->cas_att_kp = (ladrc_real_t)o->cas_att_kp;
+    if (!isnan(o->cas_rate_max_deg_s)) a->cas_rate_max_rad_s = (ladrc_real_t)(o->cas_rate_max_deg_s * (3.14159265358979323846 / 180.0));
+    if (!isnan(o->cas_rate_kp)) a->cas_rate_kp = (ladrc_real_t)o->cas_rate_kp;
+    if (!isnan(o->cas_rate_ki)) a->cas_rate_ki = (ladrc_real_t)o->cas_rate_ki;
+    if (!isnan(o->cas_rate_kd)) a->cas_rate_kd = (ladrc_real_t)o->cas_rate_kd;
+    if (!isnan(o->cas_d_filter_tau_s)) a->cas_d_filter_tau_s = (ladrc_real_t)o->cas_d_filter_tau_s;
+    if (!isnan(o->cas_i_limit_Nm)) a->cas_i_limit_Nm = (ladrc_real_t)o->cas_i_limit_Nm;
     if (!isnan(o->model_motor_tau_s)) a->motor_tau_s = (ladrc_real_t)o->model_motor_tau_s;
     if (o->model_delay_ticks >= 0) a->delay_ticks = (uint8_t)o->model_delay_ticks;
 }

@@ -134,7 +134,7 @@ static void check_accepted(void)
     }
     /* last: it changes the list */
     static const sim_controller_id_t every[SIM_CTRL_COUNT] = {SIM_CTRL_PID, SIM_CTRL_LADRC, SIM_CTRL_LP_MLADRC,
-                                                              SIM_CTRL_HP_MLADRC};
+                                                              SIM_CTRL_HP_MLADRC, SIM_CTRL_CASCADED};
     sim_parse_error_t err;
     const int rc = sim_scenario_set_controllers(&sc, every, SIM_CTRL_COUNT, &err);
     FUZZ_CHECK((rc == 0) == all_start, "set_controllers %d while every controller starts: %d (%s)", rc, all_start,
