@@ -230,7 +230,11 @@ typedef struct {
  * LADRC family: wo = r wc, r in {3, 5, 8}; for each r the largest
  * wc whose loop is stable with PM >= pm_min_deg and GM >= gm_min_db;
  * PID: kp = J w^2, kd = 2 J w, ki = kp w / m, m in {3, 5, 10}, derivative
- * filter 1 / (10 w) (none if below dt); the largest such w for each m.
+ * filter 1 / (10 w) (none if below dt); the largest such w for each m;
+ * CASCADED: rate-loop crossover w (cas_rate_kp = J w, ki = kp w / 5,
+ * kd = kp / (4 w) through a low pass 1 / (8 w), none if below dt, the
+ * default's rule) and cas_att_kp = w / n, n in {3, 4, 6}; the largest such
+ * w for each n.
  * Of these candidates the one with the smallest peak |disturbance -> error|
  * wins. The adaptive variants' estimator settings are kept; their wc and wo
  * are tuned on the plain LADRC loop (estimator off), then the margins of the
