@@ -22,7 +22,7 @@ rc2=$?
 check runs_succeed $(( rc1 + rc2 ))
 cmp -s "$work/j1.txt" "$work/j2.txt"; check tables_identical_for_1_and_2_jobs $?
 diff -r "$work/j1" "$work/j2" > /dev/null; check outputs_identical_for_1_and_2_jobs $?
-[ "$(ls "$work/j1/paper" | wc -l)" -eq 5 ]; check writes_four_series_and_metrics $?
+[ "$(ls "$work/j1/paper" | wc -l)" -eq 6 ]; check writes_five_series_and_metrics $?
 
 # --controllers flies only the listed controllers, in the list's order, with
 # the results each has in the full run, series included.

@@ -271,7 +271,11 @@ static void test_every_override_key_lands_in_its_controller(void)
              "[controller LADRC]\n"
              "td_accel_rad_s2 = 25\nwc_rad_s = 10\n"
              "[controller PID]\n"
-             "pid_kp = 20\npid_ki = 20\npid_kd = 0.05\n");
+             "pid_kp = 20\npid_ki = 20\npid_kd = 0.05\n"
+             "[controller CASCADED]\n"
+             "cas_att_kp = 7\ncas_rate_max_deg_s = 300\ncas_rate_kp = 0.2\ncas_rate_ki = 1.5\n"
+             "cas_rate_kd = 0.003\ncas_d_filter_tau_s = 0.004\ncas_i_limit_Nm = 0.1\ntd_accel_rad_s2 = 30\n"
+             "wrap_yaw = no\n");
     const sim_overrides_t *hp = &sc.overrides[SIM_CTRL_HP_MLADRC];
     assert_close(15.0, hp->wc_rad_s, "hp wc");
     assert_close(75.0, hp->wo_rad_s, "hp wo");
@@ -293,6 +297,21 @@ static void test_every_override_key_lands_in_its_controller(void)
     assert_close(25.0, ladrc->td_accel_rad_s2, "ladrc R");
     assert_close(10.0, ladrc->wc_rad_s, "ladrc wc");
     TEST_ASSERT_TRUE(isnan(ladrc->wo_rad_s));
+
+    const sim_overrides_t *cas = &sc.overrides[SIM_CTRL_CASCADED];
+    assert_close(7.0, cas->cas_att_kp, "cas att_kp");
+    assert_close(300.0, cas->cas_rate_max_deg_s, "cas rate max");
+    assert_close(0.2, cas->cas_rate_kp, "cas kp");
+    assert_close(1.5, cas->cas_rate_ki, "cas ki");
+    assert_close(0.003, cas->cas_rate_kd, "cas kd");
+    assert_close(0.004, cas->cas_d_filter_tau_s, "cas tau");
+    assert_close(0.1, cas->cas_i_limit_Nm, "cas i limit");
+    assert_close(30.0, cas->td_accel_rad_s2, "cas R");
+    TEST_ASSERT_EQUAL_INT(0, cas->wrap_yaw);
+    ladrc_attitude_config_t acfg;
+    sim_setup_attitude(&sc, SIM_CTRL_CASCADED, &acfg);
+    TEST_ASSERT_FLOAT_WITHIN(1e-6, 300.0 * DEG, (double)acfg.axis[1].cas_rate_max_rad_s);
+    TEST_ASSERT_FLOAT_WITHIN(1e-7, 0.2, (double)acfg.axis[2].cas_rate_kp);
 
     const sim_overrides_t *pid = &sc.overrides[SIM_CTRL_PID];
     assert_close(20.0, pid->pid_kp, "kp");
@@ -468,7 +487,8 @@ static void check_paper_case(const char *name)
     assert_close(30.0, sc.duration_s, "duration_s");
     assert_close(0.001, sc.control_dt_s, "dt");
     TEST_ASSERT_EQUAL_INT(10, sc.plant_substeps);
-    TEST_ASSERT_EQUAL_INT(4, sc.n_controllers);
+    TEST_ASSERT_EQUAL_INT(5, sc.n_controllers); /* the paper's four and the CASCADED baseline */
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_CASCADED, sc.controllers[4]);
     TEST_ASSERT_EQUAL_INT(1, sc.rotors_ideal);
     assert_close(0.8, sc.mass_kg, "m");
     assert_close(1.089e-2, sc.inertia_kg_m2[2], "Jz");
@@ -576,7 +596,7 @@ static void test_structure_errors(void)
         {"[ ]\n", 1, 3, "expected a section name"},
         {"[run extra]\n", 1, 6, "unexpected 'extra' in the section header"},
         {"[controller]\n", 1, 12, "expected a controller name after 'controller'"},
-        {"[controller PDI]\n", 1, 13, "unknown controller 'PDI' (expected HP-MLADRC, LP-MLADRC, LADRC or PID)"},
+        {"[controller PDI]\n", 1, 13, "unknown controller 'PDI' (expected HP-MLADRC, LP-MLADRC, LADRC, PID or CASCADED)"},
         {"[controller PID PID]\n", 1, 17, "unexpected 'PID' in the section header"},
         {"[run]\nduration_s = 1\n\n[run]\n", 4, 1, "section [run] already given on line 1"},
         {"[run]\nduration_s = 1\n[controller PID]\n[controller PID]\n", 4, 1,
@@ -629,9 +649,9 @@ static void test_value_errors(void)
         {"[run]\nseed = 18446744073709551616\n", 2, 8, "seed out of range (at most 18446744073709551615)"},
         {"[run]\nkind = attitud\n", 2, 8, "expected attitude or differentiator, got 'attitud'"},
         {"[run]\ncontrollers = LADRC PDI\n", 2, 21,
-         "unknown controller 'PDI' (expected HP-MLADRC, LP-MLADRC, LADRC or PID)"},
+         "unknown controller 'PDI' (expected HP-MLADRC, LP-MLADRC, LADRC, PID or CASCADED)"},
         {"[run]\ncontrollers = ladrc\n", 2, 15,
-         "unknown controller 'ladrc' (expected HP-MLADRC, LP-MLADRC, LADRC or PID)"},
+         "unknown controller 'ladrc' (expected HP-MLADRC, LP-MLADRC, LADRC, PID or CASCADED)"},
         {"[run]\ncontrollers = LADRC PID LADRC\n", 2, 25, "controller 'LADRC' listed twice"},
         {"[vehicle]\ninertia_kg_m2 = 1 2\n", 2, 20, "expected 3 numbers"},
         {"[vehicle]\ninertia_kg_m2 = 1 2 3 4\n", 2, 23, "expected 3 numbers"},
@@ -857,6 +877,11 @@ static void test_values_the_library_refuses_are_errors_at_their_key(void)
          LADRC_ERR_DELAY_TICKS},
         {"[run]\nduration_s = 1\n[controller LP-MLADRC]\nmodel_motor_tau_s = 1.5\n", 4, 21, "LP-MLADRC",
          LADRC_ERR_MOTOR_TAU_S},
+        /* CASCADED's gains: at their key */
+        {"[run]\nduration_s = 1\ncontrollers = CASCADED\n[controller CASCADED]\ncas_att_kp = 2000\n", 5, 14,
+         "CASCADED", LADRC_ERR_CAS_ATT_KP},
+        {"[run]\nduration_s = 1\ncontrollers = LADRC CASCADED\n[controller CASCADED]\ncas_rate_max_deg_s = 6000\n", 5,
+         22, "CASCADED", LADRC_ERR_CAS_RATE_MAX},
         /* combinations */
         {"[run]\nduration_s = 1\n[controller LADRC]\nleso_method = euler\nwo_rad_s = 3000\n", 5, 12, "LADRC",
          LADRC_ERR_LESO_EULER_UNSTABLE},

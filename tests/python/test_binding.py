@@ -54,7 +54,7 @@ def main():
     def bits(x):
         return np.asarray(x, dtype=lib.dtype).view(utype)
 
-    axis_rows = {v: [] for v in range(4)}
+    axis_rows = {v: [] for v in range(len(VARIANTS))}
     att_rows = []
     for line in lines[1:]:
         w = line.split()
