@@ -4,7 +4,8 @@
 import csv
 import os
 
-CONTROLLERS = ["HP-MLADRC", "LP-MLADRC", "LADRC", "PID"]
+# The paper's four, then the baselines of today's flight stacks (not in the paper).
+CONTROLLERS = ["HP-MLADRC", "LP-MLADRC", "LADRC", "PID", "CASCADED"]
 AXES = ["roll", "pitch", "yaw"]
 
 # The words metrics.csv's value column holds in place of a number (README, "The simulator").
