@@ -592,14 +592,14 @@ static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_re
     }
     if (!(ladrc_within(ref_rad, axis->angle_limit_rad) && ladrc_within(angle_rad, axis->angle_limit_rad))) {
         faults |= LADRC_FAULT_INPUT;
+    } else if (ladrc_variant_has_observer(axis->variant)) {
+        faults |= step_adrc(axis, ref_rad, angle_rad, has_rate ? rate_rad_s : (ladrc_real_t)NAN);
     } else if (axis->variant == LADRC_VARIANT_PID) {
         axis->output_Nm = ladrc_pid_step(&axis->part.pid, ref_rad, angle_rad, has_rate ? &rate_rad_s : NULL);
         faults |= ladrc_pid_get_faults(&axis->part.pid);
         axis->ref.r = ref_rad;
-    } else if (axis->variant == LADRC_VARIANT_CASCADED) {
-        faults |= step_cascaded(axis, ref_rad, angle_rad, has_rate ? &rate_rad_s : NULL);
     } else {
-        faults |= step_adrc(axis, ref_rad, angle_rad, has_rate ? rate_rad_s : (ladrc_real_t)NAN);
+        faults |= step_cascaded(axis, ref_rad, angle_rad, has_rate ? &rate_rad_s : NULL);
     }
     axis->applied_Nm = axis->output_Nm;
     axis->faults = faults;

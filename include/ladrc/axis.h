@@ -113,11 +113,12 @@ typedef enum {
 } ladrc_variant_t;
 
 /** 1 for the variants with an extended state observer (LADRC, LP-MLADRC,
- *  HP-MLADRC): the actuator model, the coupling feed and the observer
- *  getters apply to them only. */
+ *  HP-MLADRC, numbered 0..2): the actuator model, the coupling feed and the
+ *  observer getters apply to them only. One comparison: it sits on every
+ *  tick's path. */
 static inline int ladrc_variant_has_observer(ladrc_variant_t v)
 {
-    return (v == LADRC_VARIANT_LADRC || v == LADRC_VARIANT_LP_MLADRC || v == LADRC_VARIANT_HP_MLADRC) ? 1 : 0;
+    return ((unsigned)v <= (unsigned)LADRC_VARIANT_HP_MLADRC) ? 1 : 0;
 }
 
 typedef enum {
