@@ -114,11 +114,11 @@ typedef enum {
 
 /** 1 for the variants with an extended state observer (LADRC, LP-MLADRC,
  *  HP-MLADRC, numbered 0..2): the actuator model, the coupling feed and the
- *  observer getters apply to them only. One comparison: it sits on every
- *  tick's path. */
+ *  observer getters apply to them only. One comparison (it sits on every
+ *  tick's path), for a variant that init accepted. */
 static inline int ladrc_variant_has_observer(ladrc_variant_t v)
 {
-    return ((unsigned)v <= (unsigned)LADRC_VARIANT_HP_MLADRC) ? 1 : 0;
+    return (v <= LADRC_VARIANT_HP_MLADRC) ? 1 : 0; /* v >= 0: a variant init accepted */
 }
 
 typedef enum {
