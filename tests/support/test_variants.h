@@ -17,7 +17,8 @@ static inline const char *test_variant_name(ladrc_variant_t v)
 {
     static const char *const names[LADRC_VARIANT_COUNT] = {"LADRC", "LP-MLADRC", "HP-MLADRC", "PID", "CASCADED",
                                                           "?"};
-    return ((int)v >= 0 && (int)v < (int)LADRC_VARIANT_COUNT) ? names[v] : "?";
+    const unsigned i = (unsigned)v; /* enums may be short and unsigned (-fshort-enums) */
+    return (i < (unsigned)LADRC_VARIANT_COUNT) ? names[i] : "?";
 }
 
 #endif
