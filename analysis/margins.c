@@ -933,6 +933,7 @@ static void set_gains(tuner_t *t, double w, int shape, double j_model)
 {
     static const double ratios[] = {3.0, 5.0, 8.0};
     static const double integral[] = {3.0, 5.0, 10.0};
+    static const double separation[] = {3.0, 4.0, 6.0};
     ladrc_axis_config_t *a = tuner_axis(t);
     if (a->variant == LADRC_VARIANT_INDI) {
         /* The LADRC rule with the acceleration filter in the observer's
@@ -941,6 +942,17 @@ static void set_gains(tuner_t *t, double w, int shape, double j_model)
         a->indi_att_kp_per_s = (ladrc_real_t)w;
         a->indi_rate_kp_per_s = (ladrc_real_t)w;
         a->indi_filter_rad_s = (ladrc_real_t)fmin(ratios[shape] * w, wf_max);
+    } else if (a->variant == LADRC_VARIANT_CASCADED) {
+        /* w: the rate loop's crossover; the default's rule (axis.h) with
+         * the attitude gain w / n, n the cascade's separation */
+        const double kp = j_model * w;
+        const double tf = 1.0 / (8.0 * w);
+        a->cas_rate_kp = (ladrc_real_t)kp;
+        a->cas_rate_ki = (ladrc_real_t)(kp * w / 5.0);
+        a->cas_rate_kd = (ladrc_real_t)(kp / (4.0 * w));
+        a->cas_att_kp = (ladrc_real_t)(w / separation[shape]);
+        a->cas_d_filter_tau_s = (ladrc_real_t)(tf >= (double)a->dt_s ? tf : 0.0);
+        a->cas_rate_filter_tau_s = a->cas_d_filter_tau_s;
     } else if (a->variant == LADRC_VARIANT_PID) {
         a->pid_kp = (ladrc_real_t)(j_model * w * w);
         a->pid_kd = (ladrc_real_t)(2.0 * j_model * w);

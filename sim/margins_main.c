@@ -236,6 +236,10 @@ int main(int argc, char **argv)
                 } else if (acfg.axis[i].variant == LADRC_VARIANT_PID) {
                     printf("  tuned: kp %.4g ki %.4g kd %.4g d_filter %.4g s", tuning.kp, tuning.ki, tuning.kd,
                            tuning.d_filter_tau_s);
+                } else if (acfg.axis[i].variant == LADRC_VARIANT_CASCADED) {
+                    printf("  tuned: att_kp %.4g /s rate kp %.4g ki %.4g kd %.4g d_filter %.4g s",
+                           (double)tuned.cas_att_kp, (double)tuned.cas_rate_kp, (double)tuned.cas_rate_ki,
+                           (double)tuned.cas_rate_kd, (double)tuned.cas_d_filter_tau_s);
                 } else {
                     printf("  tuned: wc %.4g rad/s wo %.4g rad/s", tuning.wc_rad_s, tuning.wo_rad_s);
                 }

@@ -172,6 +172,22 @@ void sim_report_tuning(FILE *out, const sim_scenario_t *sc)
     }
 }
 
+/* The gains a CASCADED run flies, per axis (defaults and overrides). */
+static void cascaded_gains(FILE *out, const sim_scenario_t *sc)
+{
+    ladrc_attitude_config_t cfg;
+    sim_setup_attitude(sc, SIM_CTRL_CASCADED, &cfg);
+    fprintf(out, "CASCADED gains: att_kp 1/s, rate max deg/s, rate kp N m s/rad, ki N m/rad, kd N m s^2/rad, "
+                 "D filter s, i_limit N m\n");
+    for (int i = 0; i < 3; ++i) {
+        const ladrc_axis_config_t *a = &cfg.axis[i];
+        fprintf(out, "  %-5s att_kp %.4g  rate_max %.4g  kp %.4g  ki %.4g  kd %.4g  tau_d %.4g  i_limit %.4g\n",
+                AXES[i], (double)a->cas_att_kp, (double)a->cas_rate_max_rad_s * (180.0 / 3.14159265358979323846),
+                (double)a->cas_rate_kp, (double)a->cas_rate_ki, (double)a->cas_rate_kd, (double)a->cas_d_filter_tau_s,
+                (double)a->cas_i_limit_Nm);
+    }
+}
+
 void sim_report_tables(FILE *out, const sim_scenario_result_t *r)
 {
     const sim_scenario_t *sc = r->sc;
@@ -196,6 +212,11 @@ void sim_report_tables(FILE *out, const sim_scenario_result_t *r)
         fprintf(out, " 1/s, w_f");
         for (int i = 0; i < 3; ++i) fprintf(out, "%s%.4g", i ? " / " : " ", (double)cfg.axis[i].indi_filter_rad_s);
         fprintf(out, " rad/s\n");
+    }
+    for (int c = 0; c < sc->n_controllers; ++c) {
+        if (sc->controllers[c] == SIM_CTRL_CASCADED) {
+            cascaded_gains(out, sc);
+        }
     }
     for (int c = 0; c < sc->n_controllers; ++c) {
         const sim_metrics_t *m = &r->attitude[c];

@@ -235,7 +235,7 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
     /* A wrapping controller is told yaw as an attitude estimator gives it,
      * in (-pi, pi]; the plant's own yaw is continuous (not wrapped). */
     const int wrap_yaw = sim_setup_wraps_yaw(sc, ctrl);
-    m->has_estimate = ctrl != SIM_CTRL_PID;
+    m->has_estimate = ctrl != SIM_CTRL_PID && ctrl != SIM_CTRL_CASCADED;
     m->finite = 1;
     m->diverged_axis = -1;
     m->diverged_at_s = m->diverged_error_deg = NAN;

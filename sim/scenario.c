@@ -228,7 +228,7 @@ static const key_def_t KEYS[] = {
     {SEC_CONTROLLER, "levant_lipschitz_rad_s4", V_REAL, OV(levant_lipschitz_rad_s4), 0, R_POSITIVE, 0, 0, NULL,
      FOR_BOTH, 0, CTRL_BIT(SIM_CTRL_HP_MLADRC) | CTRL_BIT(SIM_CTRL_LP_MLADRC), NULL},
     {SEC_CONTROLLER, "td_accel_rad_s2", V_REAL, OV(td_accel_rad_s2), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0,
-     CTRL_BIT(SIM_CTRL_LADRC) | CTRL_BIT(SIM_CTRL_INDI), NULL},
+     CTRL_BIT(SIM_CTRL_LADRC) | CTRL_BIT(SIM_CTRL_CASCADED) | CTRL_BIT(SIM_CTRL_INDI), NULL},
     {SEC_CONTROLLER, "pid_kp", V_REAL, OV(pid_kp), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0, CTRL_BIT(SIM_CTRL_PID),
      NULL},
     {SEC_CONTROLLER, "pid_ki", V_REAL, OV(pid_ki), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0, CTRL_BIT(SIM_CTRL_PID),
@@ -241,6 +241,20 @@ static const key_def_t KEYS[] = {
      CTRL_BIT(SIM_CTRL_INDI), NULL},
     {SEC_CONTROLLER, "indi_filter_rad_s", V_REAL, OV(indi_filter_rad_s), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0,
      CTRL_BIT(SIM_CTRL_INDI), NULL},
+    {SEC_CONTROLLER, "cas_att_kp", V_REAL, OV(cas_att_kp), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0,
+     CTRL_BIT(SIM_CTRL_CASCADED), NULL},
+    {SEC_CONTROLLER, "cas_rate_max_deg_s", V_REAL, OV(cas_rate_max_deg_s), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0,
+     CTRL_BIT(SIM_CTRL_CASCADED), NULL},
+    {SEC_CONTROLLER, "cas_rate_kp", V_REAL, OV(cas_rate_kp), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0,
+     CTRL_BIT(SIM_CTRL_CASCADED), NULL},
+    {SEC_CONTROLLER, "cas_rate_ki", V_REAL, OV(cas_rate_ki), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0,
+     CTRL_BIT(SIM_CTRL_CASCADED), NULL},
+    {SEC_CONTROLLER, "cas_rate_kd", V_REAL, OV(cas_rate_kd), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0,
+     CTRL_BIT(SIM_CTRL_CASCADED), NULL},
+    {SEC_CONTROLLER, "cas_d_filter_tau_s", V_REAL, OV(cas_d_filter_tau_s), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH,
+     0, CTRL_BIT(SIM_CTRL_CASCADED), NULL},
+    {SEC_CONTROLLER, "cas_i_limit_Nm", V_REAL, OV(cas_i_limit_Nm), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0,
+     CTRL_BIT(SIM_CTRL_CASCADED), NULL},
     {SEC_CONTROLLER, "coupling_feed", V_CHOICE, OV(coupling_feed), 0, R_ANY, 0, 0, YES_NO, FOR_BOTH, 0,
      LADRC_FAMILY, NULL},
     {SEC_CONTROLLER, "model_motor_tau_s", V_REAL, OV(model_motor_tau_s), 0, R_NONNEGATIVE, 0, 0, NULL, FOR_BOTH, 0,
@@ -248,7 +262,7 @@ static const key_def_t KEYS[] = {
     {SEC_CONTROLLER, "model_delay_ticks", V_INT, OV(model_delay_ticks), 0, R_DELAY, 0, 0, NULL, FOR_BOTH, 0,
      LADRC_FAMILY | CTRL_BIT(SIM_CTRL_INDI), NULL},
     {SEC_CONTROLLER, "wrap_yaw", V_CHOICE, OV(wrap_yaw), 0, R_ANY, 0, 0, YES_NO, FOR_BOTH, 0,
-     LADRC_FAMILY | CTRL_BIT(SIM_CTRL_PID) | CTRL_BIT(SIM_CTRL_INDI), NULL},
+     LADRC_FAMILY | CTRL_BIT(SIM_CTRL_PID) | CTRL_BIT(SIM_CTRL_CASCADED) | CTRL_BIT(SIM_CTRL_INDI), NULL},
     {SEC_CONTROLLER, "tune", V_CHOICE, OV(tune), 0, R_ANY, 0, 0, TUNE_MODES, FOR_BOTH, 0,
      LADRC_FAMILY | CTRL_BIT(SIM_CTRL_PID), NULL},
     {SEC_CONTROLLER, "tune_phase_margin_deg", V_REAL, OV(tune_pm_deg), 0, R_PHASE_MARGIN, 0, 0, NULL, FOR_BOTH, 0,
@@ -861,6 +875,8 @@ static void set_defaults(sim_scenario_t *sc)
         o->tune = -1;
         o->tune_pm_deg = o->tune_gm_db = NAN;
         o->indi_att_kp_per_s = o->indi_rate_kp_per_s = o->indi_filter_rad_s = NAN;
+        o->cas_att_kp = o->cas_rate_max_deg_s = o->cas_rate_kp = o->cas_rate_ki = o->cas_rate_kd = NAN;
+        o->cas_d_filter_tau_s = o->cas_i_limit_Nm = NAN;
     }
 
     sc->settle_band_deg = DEFAULT_SETTLE_BAND_DEG;
@@ -1118,6 +1134,13 @@ static const key_ref_t *keys_of_status(ladrc_status_t st, int known_freqs)
     static const key_ref_t indi_att[] = {{CTRL_SEC, "indi_att_kp_per_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
     static const key_ref_t indi_rate[] = {{CTRL_SEC, "indi_rate_kp_per_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
     static const key_ref_t indi_filter[] = {{CTRL_SEC, "indi_filter_rad_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
+    static const key_ref_t cas_att[] = {{CTRL_SEC, "cas_att_kp"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
+    static const key_ref_t cas_max[] = {{CTRL_SEC, "cas_rate_max_deg_s"}, END_KEYS};
+    static const key_ref_t cas_kp[] = {{CTRL_SEC, "cas_rate_kp"}, END_KEYS};
+    static const key_ref_t cas_ki[] = {{CTRL_SEC, "cas_rate_ki"}, END_KEYS};
+    static const key_ref_t cas_kd[] = {{CTRL_SEC, "cas_rate_kd"}, END_KEYS};
+    static const key_ref_t cas_tau[] = {{CTRL_SEC, "cas_d_filter_tau_s"}, END_KEYS};
+    static const key_ref_t cas_i[] = {{CTRL_SEC, "cas_i_limit_Nm"}, END_KEYS};
     static const key_ref_t freqs[] = {
         {CTRL_SEC, "hp_freq_rad_s"}, {CTRL_SEC, "hp_freq2_rad_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
     static const key_ref_t tones[] = {
@@ -1149,6 +1172,14 @@ static const key_ref_t *keys_of_status(ladrc_status_t st, int known_freqs)
     case LADRC_ERR_INDI_ATT_KP: return indi_att;
     case LADRC_ERR_INDI_RATE_KP: return indi_rate;
     case LADRC_ERR_INDI_FILTER: return indi_filter;
+    case LADRC_ERR_CAS_ATT_KP: return cas_att;
+    case LADRC_ERR_CAS_RATE_MAX: return cas_max;
+    case LADRC_ERR_CAS_RATE_KP: return cas_kp;
+    case LADRC_ERR_CAS_RATE_KI: return cas_ki;
+    case LADRC_ERR_CAS_RATE_KD: return cas_kd;
+    case LADRC_ERR_CAS_D_TAU_S:
+    case LADRC_ERR_CAS_RATE_TAU_S: return cas_tau;
+    case LADRC_ERR_CAS_I_LIMIT_NM: return cas_i;
     case LADRC_ERR_HP_FREQ_RAD_S: return freqs;
     /* the fastest tone is a known frequency, or else the search range's top */
     case LADRC_ERR_HP_FIT_DECIMATION: return known_freqs ? freqs : dt;

@@ -54,7 +54,7 @@ typedef enum {
     SIM_CTRL_LP_MLADRC,
     SIM_CTRL_LADRC,
     SIM_CTRL_PID,
-    SIM_CTRL_CASCADED = 4, /* placeholder here: its library variant is built on its own branch */
+    SIM_CTRL_CASCADED = 4,
     SIM_CTRL_INDI = 5,
     SIM_CTRL_COUNT = 6
 } sim_controller_id_t;
@@ -67,7 +67,8 @@ typedef enum { SIM_TUNE_NONE = 0, SIM_TUNE_MARGINS = 1 } sim_tune_t;
 #define SIM_TUNE_GM_DB_DEFAULT 6.0
 
 /* The controllers a scenario flies unless it names them: the first four
- * (the paper's), so that the outputs of files without a list stay as they were. */
+ * (the paper's), so that the outputs of files without a list stay as they
+ * were (a scenario lists the baselines to fly them). */
 #define SIM_CTRL_DEFAULT_COUNT 4
 
 /* Optional per-controller overrides; NaN (or -1 for enums) = library default. */
@@ -82,6 +83,8 @@ typedef struct {
     double td_accel_rad_s2;
     double pid_kp, pid_ki, pid_kd;
     double indi_att_kp_per_s, indi_rate_kp_per_s, indi_filter_rad_s;
+    double cas_att_kp, cas_rate_max_deg_s, cas_rate_kp, cas_rate_ki, cas_rate_kd, cas_d_filter_tau_s,
+        cas_i_limit_Nm;       /* CASCADED; cas_rate_max in deg/s as in the file */
     int coupling_feed;        /* -1, 0 or 1 */
     double model_motor_tau_s; /* NaN: [rotors] motor_tau_s; 0: no lag modelled (LADRC family) */
     int model_delay_ticks;    /* -1: [sensors] delay_ticks (LADRC family) */

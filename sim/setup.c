@@ -41,6 +41,13 @@ static void apply_overrides(ladrc_axis_config_t *a, const sim_overrides_t *o)
     if (!isnan(o->indi_att_kp_per_s)) a->indi_att_kp_per_s = (ladrc_real_t)o->indi_att_kp_per_s;
     if (!isnan(o->indi_rate_kp_per_s)) a->indi_rate_kp_per_s = (ladrc_real_t)o->indi_rate_kp_per_s;
     if (!isnan(o->indi_filter_rad_s)) a->indi_filter_rad_s = (ladrc_real_t)o->indi_filter_rad_s;
+    if (!isnan(o->cas_att_kp)) a->cas_att_kp = (ladrc_real_t)o->cas_att_kp;
+    if (!isnan(o->cas_rate_max_deg_s)) a->cas_rate_max_rad_s = (ladrc_real_t)(o->cas_rate_max_deg_s * (3.14159265358979323846 / 180.0));
+    if (!isnan(o->cas_rate_kp)) a->cas_rate_kp = (ladrc_real_t)o->cas_rate_kp;
+    if (!isnan(o->cas_rate_ki)) a->cas_rate_ki = (ladrc_real_t)o->cas_rate_ki;
+    if (!isnan(o->cas_rate_kd)) a->cas_rate_kd = (ladrc_real_t)o->cas_rate_kd;
+    if (!isnan(o->cas_d_filter_tau_s)) a->cas_d_filter_tau_s = (ladrc_real_t)o->cas_d_filter_tau_s;
+    if (!isnan(o->cas_i_limit_Nm)) a->cas_i_limit_Nm = (ladrc_real_t)o->cas_i_limit_Nm;
     if (!isnan(o->model_motor_tau_s)) a->motor_tau_s = (ladrc_real_t)o->model_motor_tau_s;
     if (o->model_delay_ticks >= 0) a->delay_ticks = (uint8_t)o->model_delay_ticks;
 }

@@ -72,8 +72,8 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
             }
             return status;
         }
-        if (cfg->axis[i].variant == LADRC_VARIANT_PID) {
-            att->observers = 0u;
+        if ((cfg->axis[i].variant == LADRC_VARIANT_PID) || (cfg->axis[i].variant == LADRC_VARIANT_CASCADED)) {
+            att->observers = 0u; /* set_applied must reach its integrator */
         }
         /* (J of the next axis - J of the one after) / J, roll -> pitch -> yaw -> roll */
         const unsigned next = (i == LADRC_YAW) ? 0u : i + 1u;
@@ -108,8 +108,8 @@ static ladrc_real_t feed(const ladrc_attitude_t *att, unsigned i, ladrc_real_t r
 
 /* Rate z2 and acceleration b0 * acting torque + z3 + d_hat of one axis, read
  * straight from it (attitude owns its axes; the sum as ladrc_axis_get_accel
- * forms it). A PID or INDI axis has no observer: 0 and 0 (INDI measures the
- * coupling in its acceleration and needs no feed). */
+ * forms it). A PID, CASCADED or INDI axis has no observer: 0 and 0 (INDI
+ * measures the coupling in its acceleration and needs no feed). */
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
@@ -123,8 +123,8 @@ static inline void observed(const ladrc_axis_t *ax, ladrc_real_t *rate, ladrc_re
     }
 }
 
-/* Feeds h to axis i; a PID or INDI axis gets none, and a non-finite h is fed
- * as 0 (as ladrc_axis_set_disturbance_rate does). */
+/* Feeds h to axis i; a PID, CASCADED or INDI axis gets none, and a non-finite
+ * h is fed as 0 (as ladrc_axis_set_disturbance_rate does). */
 static inline void put_feed(ladrc_attitude_t *att, unsigned i, ladrc_real_t h)
 {
     ladrc_axis_t *ax = &att->axis[i];

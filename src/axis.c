@@ -23,6 +23,18 @@
 #define AXIS_DEFAULT_PID_KP LADRC_R(20.0)
 #define AXIS_DEFAULT_PID_KI LADRC_R(20.0)
 #define AXIS_DEFAULT_PID_KD LADRC_R(0.05)
+/* CASCADED (axis.h): the rate loop crosses over at the paper's observer
+ * bandwidth wo (where LADRC's disturbance rejection acts), the attitude
+ * gain a quarter of that (the P parts then put a critically damped double
+ * pole at wr / 2); the integral corner a fifth below wr, the derivative a
+ * quarter of the P torque in quadrature at wr, filtered at 8 wr.
+ * 220 deg/s: PX4's default maximum roll and pitch rate (MC_ROLLRATE_MAX). */
+#define AXIS_DEFAULT_CAS_RATE_BW_RAD_S AXIS_DEFAULT_WO_RAD_S
+#define AXIS_DEFAULT_CAS_ATT_PER_BW LADRC_R(0.25)
+#define AXIS_DEFAULT_CAS_I_CORNER LADRC_R(5.0)
+#define AXIS_DEFAULT_CAS_D_QUADRATURE LADRC_R(4.0)
+#define AXIS_DEFAULT_CAS_D_FILTER LADRC_R(8.0)
+#define AXIS_DEFAULT_CAS_RATE_MAX_RAD_S LADRC_R(3.8397243543875251) /* 220 deg/s */
 #define AXIS_DEFAULT_LP_LAMBDA0_PER_S LADRC_R(100.0)
 #define AXIS_DEFAULT_LP_K0_PER_S LADRC_R(300.0)
 /* HP: the search range covers 0.5..30 rad/s with margin. The fit forgets at
@@ -132,6 +144,15 @@ void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant
     cfg->indi_att_kp_per_s = AXIS_DEFAULT_INDI_ATT_KP_PER_S;
     cfg->indi_rate_kp_per_s = AXIS_DEFAULT_INDI_RATE_KP_PER_S;
     cfg->indi_filter_rad_s = AXIS_DEFAULT_INDI_FILTER_RAD_S;
+    const ladrc_real_t wr = AXIS_DEFAULT_CAS_RATE_BW_RAD_S;
+    cfg->cas_att_kp = AXIS_DEFAULT_CAS_ATT_PER_BW * wr;
+    cfg->cas_rate_max_rad_s = AXIS_DEFAULT_CAS_RATE_MAX_RAD_S;
+    cfg->cas_rate_kp = inertia_kg_m2 * wr;
+    cfg->cas_rate_ki = cfg->cas_rate_kp * wr / AXIS_DEFAULT_CAS_I_CORNER;
+    cfg->cas_rate_kd = cfg->cas_rate_kp / (AXIS_DEFAULT_CAS_D_QUADRATURE * wr);
+    cfg->cas_d_filter_tau_s = LADRC_R(1.0) / (AXIS_DEFAULT_CAS_D_FILTER * wr);
+    cfg->cas_i_limit_Nm = unlimited;
+    cfg->cas_rate_filter_tau_s = cfg->cas_d_filter_tau_s;
 }
 
 static ladrc_status_t init_shaper(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
@@ -321,6 +342,30 @@ static ladrc_status_t init_indi(ladrc_axis_t *axis, const ladrc_axis_config_t *c
     return status;
 }
 
+static ladrc_status_t init_cascaded(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
+{
+    const ladrc_cascaded_config_t cas_cfg = {cfg->dt_s,
+                                             cfg->cas_att_kp,
+                                             cfg->cas_rate_max_rad_s,
+                                             cfg->cas_rate_kp,
+                                             cfg->cas_rate_ki,
+                                             cfg->cas_rate_kd,
+                                             cfg->cas_d_filter_tau_s,
+                                             cfg->cas_rate_filter_tau_s,
+                                             cfg->cas_i_limit_Nm,
+                                             cfg->rate_limit_rad_s,
+                                             command_min(cfg),
+                                             command_max(cfg),
+                                             cfg->wrap_angle};
+    axis->model = 0u; /* no observer to tell (axis.h) */
+    ladrc_status_t status = ladrc_cascaded_init(&axis->part.cas, &cas_cfg);
+    if (status == LADRC_OK) {
+        status = init_shaper(axis, cfg);
+    }
+    axis->shaper = cfg->shaper;
+    return status;
+}
+
 ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
 {
     if (axis == NULL || cfg == NULL) {
@@ -353,6 +398,9 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
         break;
     case LADRC_VARIANT_INDI:
         status = init_indi(axis, cfg);
+        break;
+    case LADRC_VARIANT_CASCADED:
+        status = init_cascaded(axis, cfg);
         break;
     default:
         status = LADRC_ERR_VARIANT;
@@ -397,6 +445,8 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
         if (axis->variant == LADRC_VARIANT_INDI) {
             ladrc_indi_reset(&axis->part.indi);
             axis->part.indi.angle_rad = angle;
+        } else if (axis->variant == LADRC_VARIANT_CASCADED) {
+            ladrc_cascaded_reset(&axis->part.cas, angle);
         } else {
             restart_estimates(axis, angle);
         }
@@ -602,6 +652,31 @@ static ladrc_fault_t step_indi(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_r
     return faults;
 }
 
+/* CASCADED tick on finite ref and angle; returns the state fault, if any.
+ * A wrapped axis unwraps the raw reference near r for the shaper, and moves
+ * r back by a turn once it lies beyond +-pi (exact: r is within 3 pi, the
+ * shift is Sterbenz-exact); the error and the angle difference are wrapped
+ * by the cascaded module itself. */
+static ladrc_fault_t step_cascaded(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
+                                   const ladrc_real_t *rate_rad_s)
+{
+    if (axis->wrap) {
+        ref_rad = ladrc_unwrap_near(ref_rad, axis->ref.r);
+    }
+    ladrc_fault_t faults = shape_reference(axis, ref_rad);
+    if (axis->wrap && !ladrc_in_half_turn(axis->ref.r)) {
+        shift_reference(axis, (axis->ref.r > LADRC_R(0.0)) ? -LADRC_TWO_PI : LADRC_TWO_PI);
+    }
+    ladrc_cascaded_t *cas = &axis->part.cas;
+    if (ladrc_cascaded_step(cas, &axis->ref, angle_rad, rate_rad_s) != LADRC_FAULT_NONE) {
+        /* The command is held; the loops restart from the measurement. */
+        ladrc_cascaded_reset(cas, angle_rad);
+        return (ladrc_fault_t)(faults | LADRC_FAULT_STATE);
+    }
+    axis->output_Nm = cas->output_Nm;
+    return faults;
+}
+
 /* rate_rad_s is read only when has_rate; the rate goes by value so the
  * deepest path (HP) keeps no copy of it on the stack. */
 static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
@@ -615,14 +690,16 @@ static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_re
     }
     if (!(ladrc_within(ref_rad, axis->angle_limit_rad) && ladrc_within(angle_rad, axis->angle_limit_rad))) {
         faults |= LADRC_FAULT_INPUT;
+    } else if (ladrc_variant_has_observer(axis->variant)) {
+        faults |= step_adrc(axis, ref_rad, angle_rad, has_rate ? rate_rad_s : (ladrc_real_t)NAN);
     } else if (axis->variant == LADRC_VARIANT_PID) {
         axis->output_Nm = ladrc_pid_step(&axis->part.pid, ref_rad, angle_rad, has_rate ? &rate_rad_s : NULL);
         faults |= ladrc_pid_get_faults(&axis->part.pid);
         axis->ref.r = ref_rad;
-    } else if (ladrc_variant_has_observer(axis->variant)) {
-        faults |= step_adrc(axis, ref_rad, angle_rad, has_rate ? rate_rad_s : (ladrc_real_t)NAN);
-    } else {
+    } else if (axis->variant == LADRC_VARIANT_INDI) {
         faults |= step_indi(axis, ref_rad, angle_rad, rate_rad_s, has_rate);
+    } else {
+        faults |= step_cascaded(axis, ref_rad, angle_rad, has_rate ? &rate_rad_s : NULL);
     }
     axis->applied_Nm = axis->output_Nm;
     axis->faults = faults;
@@ -656,6 +733,8 @@ void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
     axis->applied_Nm = torque_Nm;
     if (axis->variant == LADRC_VARIANT_PID) {
         ladrc_pid_set_applied(&axis->part.pid, torque_Nm);
+    } else if (axis->variant == LADRC_VARIANT_CASCADED) {
+        ladrc_cascaded_set_applied(&axis->part.cas, torque_Nm);
     }
 }
 
@@ -673,11 +752,11 @@ void ladrc_axis_set_known_disturbance(ladrc_axis_t *axis, ladrc_real_t f_known_r
 
 ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis)
 {
-    if (axis->variant == LADRC_VARIANT_PID) {
-        return LADRC_R(0.0);
-    }
     if (axis->variant == LADRC_VARIANT_INDI) {
         return axis->b0 * ladrc_axis_acting_Nm(axis) + ladrc_indi_disturbance(&axis->part.indi);
+    }
+    if (!ladrc_variant_has_observer(axis->variant)) {
+        return LADRC_R(0.0);
     }
     return axis->b0 * ladrc_axis_acting_Nm(axis) + axis->leso.z3 + axis->d_hat_rad_s2;
 }
@@ -702,6 +781,10 @@ void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad,
         *angle_rad = axis->part.indi.angle_rad;
         *rate_rad_s = axis->part.indi.rate_last_rad_s;
         *disturbance_rad_s2 = ladrc_indi_disturbance(&axis->part.indi);
+    } else if (axis->variant == LADRC_VARIANT_CASCADED) {
+        *angle_rad = axis->part.cas.prev_angle_rad;
+        *rate_rad_s = axis->part.cas.rate_rad_s;
+        *disturbance_rad_s2 = LADRC_R(0.0);
     } else {
         *angle_rad = axis->leso.z1;
         *rate_rad_s = axis->leso.z2;

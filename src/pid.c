@@ -101,14 +101,6 @@ void ladrc_pid_reset(ladrc_pid_t *pid, ladrc_real_t meas_rad)
     }
 }
 
-/* Integrating would push the command further into the saturation that the
- * last applied torque hit. */
-static int integrator_frozen(const ladrc_pid_t *pid, ladrc_real_t error_rad)
-{
-    return (error_rad > LADRC_R(0.0) && pid->applied_Nm < pid->unclamped_Nm) ||
-           (error_rad < LADRC_R(0.0) && pid->applied_Nm > pid->unclamped_Nm);
-}
-
 ladrc_real_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t meas_rad,
                             const ladrc_real_t *rate_rad_s)
 {
@@ -150,10 +142,10 @@ ladrc_real_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t
         error_rad = ladrc_wrap_pi(error_rad);
     }
     /* Written as a blend so that alpha = 1 (tau = 0) gives d = m exactly. */
-    d_rad_s = pid->d_keep * pid->d_filtered_rad_s + pid->d_alpha * d_in_rad_s;
+    d_rad_s = ladrc_lowpass_blend(pid->d_keep, pid->d_alpha, pid->d_filtered_rad_s, d_in_rad_s);
 
     integral_Nm = pid->integral_Nm;
-    if (!integrator_frozen(pid, error_rad)) {
+    if (!ladrc_integrator_frozen(error_rad, pid->applied_Nm, pid->unclamped_Nm)) {
         integral_Nm =
             ladrc_clamp(integral_Nm + pid->ki_dt * error_rad, -pid->i_limit_Nm, pid->i_limit_Nm);
     }

@@ -73,7 +73,15 @@
     X(LADRC_ERR_WRAP_ANGLE, "wrap_angle must be 0 or 1") \
     X(LADRC_ERR_INDI_ATT_KP, "indi_att_kp_per_s must be finite, > 0 and below 1 / dt_s") \
     X(LADRC_ERR_INDI_RATE_KP, "indi_rate_kp_per_s must be finite, > 0 and below 1 / dt_s") \
-    X(LADRC_ERR_INDI_FILTER, "indi_filter_rad_s must be finite, > 0 and at most pi / dt_s")
+    X(LADRC_ERR_INDI_FILTER, "indi_filter_rad_s must be finite, > 0 and at most pi / dt_s") \
+    X(LADRC_ERR_CAS_ATT_KP, "cas_att_kp must be finite, > 0 and below 1 / dt_s") \
+    X(LADRC_ERR_CAS_RATE_MAX, "cas_rate_max_rad_s must be finite, > 0 and at most rate_limit_rad_s") \
+    X(LADRC_ERR_CAS_RATE_KP, "cas_rate_kp must be finite, >= 0 and its term finite for rates within +-2 rate_limit_rad_s") \
+    X(LADRC_ERR_CAS_RATE_KI, "cas_rate_ki must be finite, >= 0 and its step finite for rates within +-2 rate_limit_rad_s") \
+    X(LADRC_ERR_CAS_RATE_KD, "cas_rate_kd must be finite, >= 0 and its term finite for rate steps of 2 rate_limit_rad_s") \
+    X(LADRC_ERR_CAS_D_TAU_S, "cas_d_filter_tau_s must be finite and >= 0") \
+    X(LADRC_ERR_CAS_RATE_TAU_S, "cas_rate_filter_tau_s must be finite and >= 0") \
+    X(LADRC_ERR_CAS_I_LIMIT_NM, "cas_i_limit_Nm must be >= 0 and not NaN")
 
 #ifdef LADRC_STATUS_NAMES_ONLY
 #define STATUS_TEXT(code, explanation) #code

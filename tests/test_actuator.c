@@ -6,6 +6,7 @@
 #include "unity.h"
 #include "ladrc/attitude.h"
 #include "ladrc/axis.h"
+#include "test_variants.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -166,8 +167,8 @@ static void fly(ladrc_axis_t *axis, lag_plant_t *p, double ref, int n, double *u
 
 static void test_wrap_on_a_run_that_needs_no_wrap_changes_no_bit(void)
 {
-    for (int v = 0; v < (int)LADRC_VARIANT_COUNT; ++v) {
-        if (v == (int)LADRC_VARIANT_CASCADED) continue; /* not built on this branch */
+    for (int vi = 0; vi < TEST_N_VARIANTS; ++vi) {
+        const int v = (int)TEST_VARIANTS[vi];
         /* given: the same axis with and without wrap_angle, away from +-pi */
         ladrc_axis_config_t c0 = config((ladrc_variant_t)v, 0.0, 0, 0), c1 = config((ladrc_variant_t)v, 0.0, 0, 1);
         ladrc_axis_t a0, a1;
@@ -242,8 +243,8 @@ static void test_model_fields_are_validated_and_ignored_by_pid(void)
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&axis, &cfg));
     cfg.delay_ticks = LADRC_MAX_DELAY_TICKS + 1u;
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_DELAY_TICKS, ladrc_axis_init(&axis, &cfg));
-    for (int v = 0; v < (int)LADRC_VARIANT_COUNT; ++v) {
-        if (v == (int)LADRC_VARIANT_CASCADED) continue; /* not built on this branch */
+    for (int vi = 0; vi < TEST_N_VARIANTS; ++vi) {
+        const int v = (int)TEST_VARIANTS[vi];
         cfg = config((ladrc_variant_t)v, 0.0, 0, 2);
         TEST_ASSERT_EQUAL_INT(LADRC_ERR_WRAP_ANGLE, ladrc_axis_init(&axis, &cfg));
     }
@@ -399,8 +400,8 @@ static double wrap_d(double x) { return x - 2.0 * PI_D * ceil((x - PI_D) / (2.0 
 static void test_holding_near_pi_gives_the_torque_of_the_same_attitude_reported_wrapped(void)
 {
     const double hold = 3.135, reported = -3.148, same = reported + 2.0 * PI_D;
-    for (int v = 0; v < (int)LADRC_VARIANT_COUNT; ++v) {
-        if (v == (int)LADRC_VARIANT_CASCADED) continue; /* not built on this branch */
+    for (int vi = 0; vi < TEST_N_VARIANTS; ++vi) {
+        const int v = (int)TEST_VARIANTS[vi];
         /* given: axes held at 3.135 rad, told the attitude as 3.1352 or as -3.148 rad */
         ladrc_axis_config_t cw = config((ladrc_variant_t)v, 0.0, 0, 1), cn = config((ladrc_variant_t)v, 0.0, 0, 0);
         ladrc_axis_t a, b, plain;
@@ -453,8 +454,8 @@ static double fly_turning(ladrc_variant_t v, int wrapped, double y0, double slop
 static void test_crossing_pi_both_ways_tracks_as_the_unwrapped_twin(void)
 {
     static double e_wrap[4000], e_twin[4000];
-    for (int v = 0; v < (int)LADRC_VARIANT_COUNT; ++v) {
-        if (v == (int)LADRC_VARIANT_CASCADED) continue; /* not built on this branch */
+    for (int vi = 0; vi < TEST_N_VARIANTS; ++vi) {
+        const int v = (int)TEST_VARIANTS[vi];
         for (int dir = -1; dir <= 1; dir += 2) {
             /* given: angle and reference crossing +pi -> -pi (dir 1) or back */
             const double y0 = dir * (PI_D - 0.3);
@@ -478,8 +479,8 @@ static void test_a_yaw_turning_for_many_turns_tracks_as_on_its_first(void)
 {
     enum { N = 400000 }; /* 400 s at 3 rad/s: 191 turns, 1200 rad */
     static double err[N];
-    for (int v = 0; v < (int)LADRC_VARIANT_COUNT; ++v) {
-        if (v == (int)LADRC_VARIANT_CASCADED) continue; /* not built on this branch */
+    for (int vi = 0; vi < TEST_N_VARIANTS; ++vi) {
+        const int v = (int)TEST_VARIANTS[vi];
         /* when */
         const double bound = fly_turning((ladrc_variant_t)v, 1, 0.0, 3.0, N, err);
         /* then */

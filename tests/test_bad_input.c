@@ -22,6 +22,7 @@
 #include "test_hostile.h"
 #include "test_plant.h"
 #include "test_rigid_body.h"
+#include "test_variants.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -53,8 +54,6 @@ static const double inertia[3] = {5.445e-3, 5.445e-3, 1.089e-2};
 typedef enum { ENTRY_STEP, ENTRY_STEP_RATE, ENTRY_APPLIED, ENTRY_ATTITUDE, ENTRY_COUNT } entry_t;
 static const char *const entry_name[ENTRY_COUNT] = {"axis step", "axis step_with_rate", "axis set_applied",
                                                     "attitude step + set_applied"};
-static const char *const variant_name[LADRC_VARIANT_COUNT] = {"LADRC", "LP-MLADRC", "HP-MLADRC",
-                                                              "PID",   "CASCADED",  "INDI"};
 
 typedef struct {
     long vectors;      /* calls with a drawn input */
@@ -94,6 +93,7 @@ static void setup_axis_config(ladrc_axis_config_t *cfg, ladrc_variant_t v, int a
     cfg->u_max_Nm = (ladrc_real_t)U_LIMIT_NM;
     cfg->applied_limit_Nm = (ladrc_real_t)U_LIMIT_NM;
     cfg->pid_i_limit_Nm = (ladrc_real_t)U_LIMIT_NM; /* as flown: no integral beyond the actuator */
+    cfg->cas_i_limit_Nm = (ladrc_real_t)U_LIMIT_NM;
     /* The paper's PID gains ring (damping kd / (2 sqrt(kp J)) = 0.08): kicked
      * by a burst into the actuator's limits they keep a bang-bang cycle of
      * +-0.5 rad for over 4 s (3 bursts in 25,000 of the long form). Flown,
@@ -311,7 +311,7 @@ static void report_and_check(ladrc_variant_t v, entry_t e, tally_t t)
 {
     printf("bad input: %-9s %-28s %ld calls, %ld with a bad value, %ld bursts, worst error after a calm "
            "%.2e rad, %ld not recovered, %ld violations\n",
-           variant_name[v], entry_name[e], t.vectors, t.hostile, t.bursts, t.worst_recovery_rad, t.not_recovered,
+           test_variant_name(v), entry_name[e], t.vectors, t.hostile, t.bursts, t.worst_recovery_rad, t.not_recovered,
            t.violations);
     TEST_ASSERT_EQUAL_INT(0, (int)t.violations);
     TEST_ASSERT_EQUAL_INT(0, (int)t.not_recovered);
@@ -338,6 +338,7 @@ static void test_lp_mladrc_keeps_every_promise_under_hostile_input(void) { campa
 static void test_hp_mladrc_keeps_every_promise_under_hostile_input(void) { campaign(LADRC_VARIANT_HP_MLADRC); }
 static void test_pid_keeps_every_promise_under_hostile_input(void) { campaign(LADRC_VARIANT_PID); }
 static void test_indi_keeps_every_promise_under_hostile_input(void) { campaign(LADRC_VARIANT_INDI); }
+static void test_cascaded_keeps_every_promise_under_hostile_input(void) { campaign(LADRC_VARIANT_CASCADED); }
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -350,5 +351,6 @@ int main(void)
     RUN_TEST(test_hp_mladrc_keeps_every_promise_under_hostile_input);
     RUN_TEST(test_pid_keeps_every_promise_under_hostile_input);
     RUN_TEST(test_indi_keeps_every_promise_under_hostile_input);
+    RUN_TEST(test_cascaded_keeps_every_promise_under_hostile_input);
     return UNITY_END();
 }

@@ -81,7 +81,7 @@ static void violation(tally_t *t, const char *init, const char *what, long tick)
 static double amplitude(const ladrc_axis_config_t *c)
 {
     const double authority_Nm = fmin(fmin(-(double)c->u_min_Nm, (double)c->u_max_Nm), (double)c->applied_limit_Nm);
-    const double accel = (c->variant == LADRC_VARIANT_PID) ? INFINITY : authority_Nm * fabs((double)c->b0);
+    const double accel = !ladrc_variant_has_observer(c->variant) ? INFINITY : authority_Nm * fabs((double)c->b0);
     return fmin(fmin(0.3, 0.5 * (double)c->angle_limit_rad), fmin(0.25 * (double)c->rate_limit_rad_s, accel / 40.0));
 }
 
@@ -98,7 +98,9 @@ static void draw_axis(test_rng_t *rng, ladrc_axis_config_t *c, ladrc_variant_t v
                                    &c->hp_freq_rad_s[LADRC_HP_MAX_TONES - 1], &c->hp_freq_min_rad_s,
                                    &c->hp_freq_max_rad_s, &c->hp_lambda0_per_s, &c->hp_freq_lambda0_per_s,
                                    &c->hp_freq_filter_rad_s, &c->indi_att_kp_per_s, &c->indi_rate_kp_per_s,
-                                   &c->indi_filter_rad_s};
+                                   &c->indi_filter_rad_s, &c->cas_att_kp, &c->cas_rate_max_rad_s,
+                                   &c->cas_rate_kp, &c->cas_rate_ki, &c->cas_rate_kd, &c->cas_d_filter_tau_s,
+                                   &c->cas_i_limit_Nm, &c->cas_rate_filter_tau_s};
     const size_t n = sizeof reals / sizeof reals[0];
     /* a few fields off their defaults per config, so that some pass */
     const unsigned changes = 1u + test_rng_below(rng, 4u);
@@ -122,12 +124,13 @@ static void draw_axis(test_rng_t *rng, ladrc_axis_config_t *c, ladrc_variant_t v
 /* One accepted axis config on nominal inputs inside its ranges: an ADRC
  * variant flies a plant its model matches exactly (y'' = b0 u, a slow
  * reference a sin(2 t)); PID, which knows no plant, follows the motion open
- * loop (its output cannot feed back into a model it does not have). */
+ * loop (its output cannot feed back into a model it does not have), and so
+ * does CASCADED (its gains, drawn apart, need not close a stable loop). */
 static void run_axis(tally_t *t, const char *name, ladrc_axis_t *axis, const ladrc_axis_config_t *c, long n)
 {
     const double a = amplitude(c);
     const double dt = (double)c->dt_s;
-    const int closed = c->variant != LADRC_VARIANT_PID;
+    const int closed = ladrc_variant_has_observer(c->variant);
     test_double_integrator_t plant;
     test_plant_init(&plant, (double)c->b0, NULL, NULL);
     for (long k = 0; k < n; ++k) {
@@ -178,6 +181,7 @@ static void test_axis_lp_configs(void) { axis_campaign(LADRC_VARIANT_LP_MLADRC, 
 static void test_axis_hp_configs(void) { axis_campaign(LADRC_VARIANT_HP_MLADRC, "axis HP-MLADRC"); }
 static void test_axis_pid_configs(void) { axis_campaign(LADRC_VARIANT_PID, "axis PID"); }
 static void test_axis_indi_configs(void) { axis_campaign(LADRC_VARIANT_INDI, "axis INDI"); }
+static void test_axis_cascaded_configs(void) { axis_campaign(LADRC_VARIANT_CASCADED, "axis CASCADED"); }
 
 static void run_attitude(tally_t *t, ladrc_attitude_t *att, const ladrc_attitude_config_t *c, long n)
 {
@@ -217,10 +221,7 @@ static void test_attitude_configs(void)
         for (int i = 0; i < 3; ++i) {
             j[i] = (test_rng_uniform(&rng) < 0.3) ? (ladrc_real_t)5.445e-3 : field(&rng, 5.445e-3);
         }
-        ladrc_variant_t v = (ladrc_variant_t)test_rng_below(&rng, (unsigned)LADRC_VARIANT_COUNT);
-        if (v == LADRC_VARIANT_CASCADED) {
-            v = LADRC_VARIANT_INDI; /* not built on this branch */
-        }
+        const ladrc_variant_t v = (ladrc_variant_t)test_rng_below(&rng, (unsigned)LADRC_VARIANT_COUNT);
         const ladrc_real_t dt = (test_rng_uniform(&rng) < 0.5) ? LADRC_R(0.001) : field(&rng, 0.001);
         ladrc_attitude_config_default(&c, v, dt, j, field(&rng, 0.09));
         c.coupling_feed = (uint8_t)small_int(&rng, 1, 1);
@@ -243,6 +244,7 @@ int main(void)
     RUN_TEST(test_axis_hp_configs);
     RUN_TEST(test_axis_pid_configs);
     RUN_TEST(test_axis_indi_configs);
+    RUN_TEST(test_axis_cascaded_configs);
     RUN_TEST(test_attitude_configs);
     return UNITY_END();
 }

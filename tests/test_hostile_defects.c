@@ -119,6 +119,13 @@ static void test_indi_recovers_from_one_glitched_angle_torque_or_reference(void)
     check_recovers(LADRC_VARIANT_INDI, GLITCH_REFERENCE, (ladrc_real_t)1e10);
 }
 
+static void test_absurd_samples_never_reach_the_cascaded_loops(void)
+{
+    check_recovers(LADRC_VARIANT_CASCADED, GLITCH_ANGLE, (ladrc_real_t)1e30);
+    check_recovers(LADRC_VARIANT_CASCADED, GLITCH_APPLIED, (ladrc_real_t)1e30);
+    check_recovers(LADRC_VARIANT_CASCADED, GLITCH_REFERENCE, (ladrc_real_t)1e10);
+}
+
 static void test_the_ranges_are_inclusive_and_apply_to_every_input(void)
 {
     ladrc_axis_config_t cfg;
@@ -243,6 +250,7 @@ int main(void)
     RUN_TEST(test_an_absurd_reference_tick_never_reaches_the_levant_shaper);
     RUN_TEST(test_an_absurd_finite_angle_never_reaches_the_observer);
     RUN_TEST(test_indi_recovers_from_one_glitched_angle_torque_or_reference);
+    RUN_TEST(test_absurd_samples_never_reach_the_cascaded_loops);
     RUN_TEST(test_the_ranges_are_inclusive_and_apply_to_every_input);
     RUN_TEST(test_hp_refuses_a_sample_beyond_its_range_and_keeps_its_estimate);
     RUN_TEST(test_axis_init_refuses_what_it_cannot_discretise);

@@ -82,6 +82,7 @@ static void test_axis_lp_holds_on_non_finite_input(void) { check_axis_variant(LA
 static void test_axis_hp_holds_on_non_finite_input(void) { check_axis_variant(LADRC_VARIANT_HP_MLADRC); }
 static void test_axis_pid_holds_on_non_finite_input(void) { check_axis_variant(LADRC_VARIANT_PID); }
 static void test_axis_indi_holds_on_non_finite_input(void) { check_axis_variant(LADRC_VARIANT_INDI); }
+static void test_axis_cascaded_holds_on_non_finite_input(void) { check_axis_variant(LADRC_VARIANT_CASCADED); }
 
 static void test_attitude_and_mixer_hold_on_non_finite_input(void)
 {
@@ -149,6 +150,7 @@ int main(void)
     RUN_TEST(test_axis_hp_holds_on_non_finite_input);
     RUN_TEST(test_axis_pid_holds_on_non_finite_input);
     RUN_TEST(test_axis_indi_holds_on_non_finite_input);
+    RUN_TEST(test_axis_cascaded_holds_on_non_finite_input);
     RUN_TEST(test_attitude_and_mixer_hold_on_non_finite_input);
     return UNITY_END();
 }

@@ -73,6 +73,14 @@ static const char *const status_names[LADRC_STATUS_COUNT] = {
     "LADRC_ERR_INDI_ATT_KP",
     "LADRC_ERR_INDI_RATE_KP",
     "LADRC_ERR_INDI_FILTER",
+    "LADRC_ERR_CAS_ATT_KP",
+    "LADRC_ERR_CAS_RATE_MAX",
+    "LADRC_ERR_CAS_RATE_KP",
+    "LADRC_ERR_CAS_RATE_KI",
+    "LADRC_ERR_CAS_RATE_KD",
+    "LADRC_ERR_CAS_D_TAU_S",
+    "LADRC_ERR_CAS_RATE_TAU_S",
+    "LADRC_ERR_CAS_I_LIMIT_NM",
 };
 
 /* 1 if text is name alone (names-only build) or name ": " and an explanation. */

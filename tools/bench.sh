@@ -10,7 +10,7 @@
 #                                  bench stage of tools/run_tests.sh); exits 1
 #                                  naming every figure above its limit
 #
-#  - cases (tools/bench/bench_case.h): PID, LADRC, LP-MLADRC and HP-MLADRC on
+#  - cases (tools/bench/bench_case.h): PID, LADRC, LP-MLADRC, HP-MLADRC and CASCADED on
 #    the recorded closed loop of HP-MLADRC under the paper's one-tone
 #    disturbance, and HP-MLADRC-2tones on a two-tone disturbance;
 #  - instructions per tick on the Cortex-M4F: build/bench-m4f (the cortex-m4f
@@ -117,7 +117,7 @@ declare -A measured=(
   [flash.linked_hp]=$linked_hp
   [sizeof.ladrc_attitude_t]=$(size_of ladrc_attitude_t)
 )
-CASES=(PID LADRC LP-MLADRC HP-MLADRC HP-MLADRC-2tones HP-MLADRC-act INDI)
+CASES=(PID LADRC LP-MLADRC HP-MLADRC HP-MLADRC-2tones HP-MLADRC-act CASCADED INDI)
 for v in "${CASES[@]}"; do
   measured[insn.axis.$v]=$(insn "$v" 1)
   measured[insn.3axes.$v]=$(insn "$v" 2)
@@ -264,7 +264,7 @@ done
 row "3-axis state, sizeof(ladrc_attitude_t), B" "$att_size" "<= 512" "$(mark "$att_size" "<=" 512)"
 row "mixer state, sizeof(ladrc_mixer_t), B" "$mix_size" "" ""
 for t in ladrc_attitude_config_t ladrc_axis_t ladrc_axis_config_t ladrc_mixer_config_t \
-         ladrc_pid_t ladrc_leso_t ladrc_td_t ladrc_levant_t ladrc_lp_estimator_t \
+         ladrc_pid_t ladrc_cascaded_t ladrc_leso_t ladrc_td_t ladrc_levant_t ladrc_lp_estimator_t \
          ladrc_hp_estimator_t ladrc_rls_t ladrc_indi_t; do
   row "sizeof($t), B" "$(size_of "$t")" "" ""
 done

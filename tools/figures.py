@@ -30,6 +30,8 @@ COLOURS = {"HP-MLADRC": "#1f77b4", "LP-MLADRC": "#2ca02c", "LADRC": "#d62728", "
 # Wider lines lie underneath, so that a curve lying on another stays visible.
 WIDTHS = {"HP-MLADRC": 1.0, "LP-MLADRC": 1.3, "LADRC": 2.0, "PID": 1.6, "CASCADED": 1.4, "INDI": 1.2}
 ZORDER = {"HP-MLADRC": 4, "LP-MLADRC": 3, "LADRC": 1, "PID": 2, "CASCADED": 2.5, "INDI": 3.5}
+# Legend names: the baseline of today's flight stacks says what it is.
+NAMES = {"CASCADED": "CASCADED (attitude P → rate PID)"}
 AXIS_SYMBOLS = {"roll": "roll φ", "pitch": "pitch θ", "yaw": "yaw ψ"}
 ONSETS_S = [2.0, 6.0, 12.0, 25.0]   # where the paper's Table 2 disturbance changes
 ZOOM_S = (-0.3, 1.2)                # zoom window around each onset
@@ -69,11 +71,11 @@ def note_divergence(metrics):
     for c in CONTROLLERS:
         text = divergence_text(metrics or {}, c)
         if text:
-            LABELS[c] = "%s (%s)" % (c, text)
+            LABELS[c] = "%s (%s)" % (NAMES.get(c, c), text)
 
 
 def style(c, scale=1.0):
-    return {"color": COLOURS[c], "lw": WIDTHS[c] * scale, "zorder": ZORDER[c], "label": LABELS.get(c, c)}
+    return {"color": COLOURS[c], "lw": WIDTHS[c] * scale, "zorder": ZORDER[c], "label": LABELS.get(c, NAMES.get(c, c))}
 
 
 def clip_ylim(ax, values, what):

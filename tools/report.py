@@ -93,7 +93,7 @@ def rel(ours, paper):
 
 
 def absdiff(ours, paper, digits=4):
-    if not is_number(ours) or math.isnan(ours):
+    if not is_number(ours) or math.isnan(ours) or paper is None:
         return "—"
     d = ours - paper
     return ("+" if d >= 0 else "") + num(d, digits)
@@ -193,7 +193,7 @@ def section_t6(rep, m, headings, scen):
     rep.add("## Table 6: disturbance estimate error", "")
     rep.heading_of(headings, scen, "6")
     rep.add("The paper gives one set of values without naming the controller; each of our estimating "
-            "controllers is set beside it. PID has no disturbance estimate.", "")
+            "controllers is set beside it. PID and CASCADED have no disturbance estimate.", "")
     present = [c for c in CONTROLLERS if (c, "6", "dist_error_rms", "roll") in m]
     rows = []
     for axis in AXES:

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Margins-based tuning (ladrc_margins_tune): on the paper's airframe (roll
  * and yaw inertia) and a heavier quad, with motor lags of 0, 20 and 40 ms
- * and 0 to 2 ticks of delay, the LADRC and PID settings it returns meet
+ * and 0 to 2 ticks of delay, the LADRC, PID and CASCADED settings it returns meet
  * PM >= 45 deg and GM >= 6 dB when analysed again, and impossible targets
  * are refused loudly with the best margins reported. */
 #include "unity.h"
@@ -45,10 +45,13 @@ static void tune_case(ladrc_variant_t variant, const airframe_t *a)
     const ladrc_margins_controller_t again = {NULL, 0, &tuned, use_rate};
     TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_analyse(&ws, &again, &req, &res));
     printf("%s J %g lag %g delay %d: wc %.1f wo %.1f kp %.3g ki %.3g kd %.3g k_att %.1f k_rate %.1f w_f %.1f"
-           " -> PM %.1f GM %.1f\n",
-           variant == LADRC_VARIANT_PID ? "PID" : (variant == LADRC_VARIANT_INDI ? "INDI" : "LADRC"), a->j, a->tau,
-           a->delay, tuning.wc_rad_s, tuning.wo_rad_s, tuning.kp, tuning.ki, tuning.kd, tuning.indi_att_kp_per_s,
-           tuning.indi_rate_kp_per_s, tuning.indi_filter_rad_s, res.pm_deg, res.gm_db);
+           " att_kp %.3g rate kp %.3g -> PM %.1f GM %.1f peak |d->e| %.3g\n",
+           variant == LADRC_VARIANT_PID
+               ? "PID"
+               : (variant == LADRC_VARIANT_INDI ? "INDI" : (variant == LADRC_VARIANT_CASCADED ? "CASCADED" : "LADRC")),
+           a->j, a->tau, a->delay, tuning.wc_rad_s, tuning.wo_rad_s, tuning.kp, tuning.ki, tuning.kd,
+           tuning.indi_att_kp_per_s, tuning.indi_rate_kp_per_s, tuning.indi_filter_rad_s, (double)tuned.cas_att_kp,
+           (double)tuned.cas_rate_kp, res.pm_deg, res.gm_db, res.dist_peak_rad);
     TEST_ASSERT_TRUE(res.stable);
     TEST_ASSERT_TRUE(res.pm_deg >= 45.0);
     TEST_ASSERT_TRUE(res.gm_db >= 6.0);
@@ -81,6 +84,11 @@ static void test_indi_without_its_rate_is_refused(void)
     const ladrc_margins_targets_t targets = {45.0, 6.0};
     TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_ERR_CONTROLLER, ladrc_margins_analyse(&ws, &ctl, &req, &res));
     TEST_ASSERT_NOT_EQUAL(LADRC_MARGINS_OK, ladrc_margins_tune(&ws, &ctl, &req, &targets, &tuned, &tuning));
+}
+
+static void test_cascaded_tuning_meets_its_targets(void)
+{
+    for (unsigned i = 0; i < sizeof CASES / sizeof CASES[0]; ++i) tune_case(LADRC_VARIANT_CASCADED, &CASES[i]);
 }
 
 static void test_lag_lowers_the_tuned_bandwidth(void)
@@ -116,6 +124,7 @@ int main(void)
     RUN_TEST(test_pid_tuning_meets_its_targets);
     RUN_TEST(test_indi_tuning_meets_its_targets);
     RUN_TEST(test_indi_without_its_rate_is_refused);
+    RUN_TEST(test_cascaded_tuning_meets_its_targets);
     RUN_TEST(test_lag_lowers_the_tuned_bandwidth);
     RUN_TEST(test_impossible_targets_are_refused_with_the_best_margins);
     return UNITY_END();

@@ -16,7 +16,7 @@
  * d_hat (ladrc_axis_get_accel: the applied torque through the axis's
  * actuator model, motor_tau_s and delay_ticks, when it has one), computed at the start of each tick from the
  * previous tick's estimates. The feed only applies to LADRC-family axes; a
- * PID axis contributes zero acceleration and receives no feed.
+ * PID or CASCADED axis contributes zero acceleration and receives no feed.
  *
  * One tick: ladrc_attitude_step -> mixer -> ladrc_attitude_set_applied with
  * the torques actually achieved (so saturation never winds an observer up).
@@ -51,7 +51,7 @@ typedef struct {
     ladrc_real_t drag_per_s[LADRC_AXES];    /**< kt / J per axis (1/s) */
     ladrc_real_t feed_rad_s3[LADRC_AXES];   /**< h fed at the latest tick */
     uint8_t coupling_feed;
-    uint8_t observers;                      /**< 1 when no axis is PID (no axis needs set_applied beyond applied_Nm) */
+    uint8_t observers;                      /**< 1 when no axis is PID or CASCADED (no axis needs set_applied beyond applied_Nm) */
     ladrc_axis_t axis[LADRC_AXES];
 } ladrc_attitude_t;
 

@@ -2,8 +2,10 @@
 /**
  * @file axis.h
  * @brief One attitude axis behind one config and one state: LADRC (reference
- *        shaping + LESO + control law), the PID baseline or the INDI baseline
- *        (indi.h). The command of every variant is a torque in N m.
+ *        shaping + LESO + control law), the PID baseline, the cascaded
+ *        attitude P / rate PID of the common flight stacks (cascaded.h) or
+ *        the INDI baseline (indi.h). The command of every variant is a
+ *        torque in N m.
  *
  * Sign convention: positive torque accelerates the angle positively; angles
  * in rad (roll = phi about body X, pitch = theta about Y, yaw = psi about Z).
@@ -47,9 +49,10 @@
  * like: z estimates the state of d ticks ago and the law acts on it (no
  * prediction across the delay). ladrc_axis_get_accel gives b0 ubar of the
  * step the next tick's observer will take. tau = 0 and d = 0 bypass the
- * model: the arithmetic is today's, bit for bit. The PID variant has no
- * observer and ignores the model. INDI pairs the same acting torque with the
- * acceleration measured over the same step (indi.h): it reads the model too.
+ * model: the arithmetic is today's, bit for bit. The PID and CASCADED
+ * variants have no observer and ignore the model. INDI pairs the same
+ * acting torque with the acceleration measured over the same step (indi.h):
+ * it reads the model too.
  *
  * Wrapped angles (wrap_angle = 1, e.g. yaw): the measured angle lives on a
  * circle of 2 pi. Each tick the measurement is moved by whole turns to
@@ -61,9 +64,17 @@
  * the shaper's state, are shifted by one turn (exactly, their difference
  * unchanged), so a yaw turning for hours keeps full float resolution. Each
  * of these steps returns its input bit for bit while no wrap is needed.
- * PID wraps its error and its measured difference (pid.h); INDI moves the
- * raw reference to within pi of r, wraps r - theta and shifts r and the
+ * PID wraps its error and its measured difference (pid.h); CASCADED
+ * unwraps the raw reference for its shaper as LADRC does, wraps its error
+ * and its angle difference (cascaded.h) and moves r (with the shaper's
+ * state) back by a turn once it lies beyond +-pi; INDI moves the raw
+ * reference to within pi of r, wraps r - theta and shifts r and the
  * shaper's state by a turn once r is beyond +-pi.
+ *
+ * CASCADED tick (cascaded.h): the shaper gives (r, r') from the raw
+ * reference as for LADRC (TD by default), then the attitude P loop and the
+ * rate PID give the torque. With ladrc_axis_step (no rate) the rate is a
+ * filtered difference of the measured angle (cas_rate_filter_tau_s).
  *
  * Faults: a reference or angle that is not finite or lies beyond
  * angle_limit_rad leaves every state untouched, holds the previous command
@@ -79,6 +90,7 @@
 #ifndef LADRC_AXIS_H
 #define LADRC_AXIS_H
 
+#include "ladrc/cascaded.h"
 #include "ladrc/estimator.h"
 #include "ladrc/indi.h"
 #include "ladrc/leso.h"
@@ -98,11 +110,20 @@ typedef enum {
     LADRC_VARIANT_LP_MLADRC = 1,/**< LADRC + LP estimator (needs the measured rate) */
     LADRC_VARIANT_HP_MLADRC = 2,/**< LADRC + HP estimator (angle only) */
     LADRC_VARIANT_PID = 3,      /**< PID baseline (pid.h) */
-    LADRC_VARIANT_CASCADED = 4, /**< cascaded P / PID baseline: a placeholder here, built on
-                                     its own branch (ladrc_axis_init refuses it) */
+    LADRC_VARIANT_CASCADED = 4, /**< attitude P -> rate PID, as PX4 / ArduPilot / Betaflight (cascaded.h) */
     LADRC_VARIANT_INDI = 5,     /**< INDI baseline (indi.h; needs the measured rate) */
     LADRC_VARIANT_COUNT = 6
 } ladrc_variant_t;
+
+/** 1 for the variants with an extended state observer (LADRC, LP-MLADRC,
+ *  HP-MLADRC, numbered 0..2): the LESO, the coupling feed and the observer
+ *  getters' LESO readings apply to them only (INDI reads the actuator model
+ *  but has no LESO). One comparison (it sits on every
+ *  tick's path), for a variant that init accepted. */
+static inline int ladrc_variant_has_observer(ladrc_variant_t v)
+{
+    return (v <= LADRC_VARIANT_HP_MLADRC) ? 1 : 0; /* v >= 0: a variant init accepted */
+}
 
 typedef enum {
     LADRC_SHAPER_TD = 0,     /**< Han's tracking differentiator gives r, r', r'' */
@@ -113,8 +134,9 @@ typedef enum {
 /**
  * Axis configuration; can live in flash. Only the fields the variant uses
  * are read and validated: LADRC reads the common fields, wc_rad_s .. td_h0_s;
- * PID reads the common fields and pid_*; INDI the common fields, b0, the
- * shaper's fields, the actuator model and indi_*.
+ * PID reads the common fields and pid_*; CASCADED the common fields, the
+ * shaper's (shaper, td_* or levant_*) and cas_*; INDI the common fields, b0,
+ * the shaper's fields, the actuator model and indi_*.
  */
 typedef struct {
     ladrc_variant_t variant;
@@ -168,6 +190,16 @@ typedef struct {
     ladrc_real_t indi_att_kp_per_s;  /**< k_att (1/s): attitude error -> rate setpoint */
     ladrc_real_t indi_rate_kp_per_s; /**< k_rate (1/s): rate error -> acceleration */
     ladrc_real_t indi_filter_rad_s;  /**< w_f (rad/s): the acceleration and torque filter */
+    /* CASCADED (cascaded.h) */
+    ladrc_real_t cas_att_kp;         /**< attitude P gain (1/s), > 0, cas_att_kp * dt_s < 1 */
+    ladrc_real_t cas_rate_max_rad_s; /**< rate setpoint bound (rad/s), > 0, <= rate_limit_rad_s */
+    ladrc_real_t cas_rate_kp;        /**< rate P gain (N m s/rad), >= 0 */
+    ladrc_real_t cas_rate_ki;        /**< rate I gain (N m/rad), >= 0 */
+    ladrc_real_t cas_rate_kd;        /**< rate D gain on the measured rate (N m s^2/rad), >= 0 */
+    ladrc_real_t cas_d_filter_tau_s; /**< D low-pass time constant (s), >= 0, 0 = none */
+    ladrc_real_t cas_i_limit_Nm;     /**< |integral| bound (N m), INFINITY = none */
+    ladrc_real_t cas_rate_filter_tau_s; /**< low pass of the angle's difference when no rate is
+                                        given (s), >= 0 */
 } ladrc_axis_config_t;
 
 /** Actuator model state of an axis (see above). */
@@ -194,6 +226,7 @@ typedef struct {
     } shaping;                    /**< by shaper */
     union {
         ladrc_pid_t pid;
+        ladrc_cascaded_t cas;
         ladrc_lp_estimator_t lp;
         struct {
             ladrc_hp_estimator_t est;
@@ -219,6 +252,17 @@ typedef struct {
  * b0 = 1 / inertia_kg_m2, ZOH LESO, TD shaping (R = 20 rad/s^2, h0 = dt_s);
  * PID kp = 20, ki = 20, kd = 0.05, no derivative filter; no torque or
  * integral limits (ideal actuators, as in the paper: set real ones for flight).
+ * CASCADED, by loop shaping on the paper's bandwidths: the rate loop
+ * crosses over at wr = wo = 75 rad/s (cas_rate_kp = J wr: kp / (J s) has
+ * unit gain at wr), the bandwidth over which LADRC's observer rejects
+ * disturbances; cas_att_kp = wr / 4 = 18.75 /s (the usual separation of a
+ * cascade: the P parts alone give s^2 + wr s + wr att_kp = (s + wr / 2)^2,
+ * critically damped); cas_rate_ki = kp wr / 5 (integral corner a fifth
+ * below the crossover, 11 deg of phase there); cas_rate_kd = kp / (4 wr)
+ * (a quarter of the P torque in quadrature at wr: 14 deg of lead against
+ * lags) through a low pass at 8 wr (cas_d_filter_tau_s = 1 / (8 wr), also
+ * cas_rate_filter_tau_s); rate setpoint bound 220 deg/s (PX4's default
+ * MC_ROLLRATE_MAX); no integral limit. TD shaping as LADRC.
  * LP and HP shape the reference with Levant (implicit, L = 1000 rad/s^4).
  * LP: lambda0 = 100 /s, k0 = 300 /s (paper). HP: up to two tones found
  * online in [0.3, 40] rad/s (first guesses 3 and 8 rad/s), the fit forgetting
@@ -246,10 +290,10 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad);
 ladrc_real_t ladrc_axis_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad);
 
 /** One tick with a measured rate too: PID uses it for its derivative,
- *  LP-MLADRC for its disturbance sample (without a rate LP holds its
- *  estimate) and INDI for its rate loop and acceleration (without a rate
- *  INDI holds its command and raises LADRC_FAULT_RATE, in ladrc_axis_step
- *  too); LADRC and HP-MLADRC ignore it. @return torque command (N m) */
+ *  CASCADED for its rate loop, LP-MLADRC for its disturbance sample (without
+ *  a rate LP holds its estimate) and INDI for its rate loop and acceleration
+ *  (without a rate INDI holds its command and raises LADRC_FAULT_RATE, in
+ *  ladrc_axis_step too); LADRC and HP-MLADRC ignore it. @return torque command (N m) */
 ladrc_real_t ladrc_axis_step_with_rate(ladrc_axis_t *axis, ladrc_real_t ref_rad,
                                        ladrc_real_t angle_rad, ladrc_real_t rate_rad_s);
 
@@ -272,14 +316,6 @@ void ladrc_axis_set_disturbance_rate(ladrc_axis_t *axis, ladrc_real_t rate_rad_s
  */
 void ladrc_axis_set_known_disturbance(ladrc_axis_t *axis, ladrc_real_t f_known_rad_s2);
 
-/** 1 for the variants with a LESO (the LADRC family): the ones whose
- *  observer state, coupling feed and disturbance estimate axis.leso holds. */
-static inline int ladrc_variant_has_observer(ladrc_variant_t variant)
-{
-    /* LADRC, LP-MLADRC and HP-MLADRC are 0, 1 and 2: one comparison */
-    return ((unsigned)variant <= (unsigned)LADRC_VARIANT_HP_MLADRC) ? 1 : 0;
-}
-
 /** Torque (N m) the next tick's observer step takes as acting: the applied
  *  torque without a model, else its delayed and lagged mean (see above). */
 static inline ladrc_real_t ladrc_axis_acting_Nm(const ladrc_axis_t *axis)
@@ -293,8 +329,8 @@ static inline ladrc_real_t ladrc_axis_acting_Nm(const ladrc_axis_t *axis)
 }
 
 /** Angular acceleration the model expects over the observer's next step
- *  (rad/s^2): b0 * acting torque + z3 + d_hat. PID: 0. INDI: b0 * acting
- *  torque + its filtered disturbance. */
+ *  (rad/s^2): b0 * acting torque + z3 + d_hat. PID, CASCADED: 0. INDI: b0 *
+ *  acting torque + its filtered disturbance. */
 ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis);
 
 /** Fault flags of the latest tick (and of set_applied since). */
@@ -307,7 +343,8 @@ uint32_t ladrc_axis_get_consecutive_faults(const ladrc_axis_t *axis);
 void ladrc_axis_get_reference(const ladrc_axis_t *axis, ladrc_ref_t *ref);
 
 /** Observer estimates: angle (rad), rate (rad/s), total disturbance z3 + d_hat
- *  (rad/s^2). PID has no observer: last measured angle, its filtered rate, and 0.
+ *  (rad/s^2). PID has no observer: last measured angle, its filtered rate, and 0;
+ *  CASCADED: last measured angle, the rate its rate loop used, and 0;
  *  INDI: last angle and rate measured with a rate, and omegadot_f - b0 u_f. */
 void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad,
                              ladrc_real_t *rate_rad_s, ladrc_real_t *disturbance_rad_s2);

@@ -69,6 +69,25 @@ typedef struct {
     ladrc_fault_t faults;          /**< flags of the latest step */
 } ladrc_pid_t;
 
+/** First-order low pass, backward Euler, written as a blend so that
+ *  alpha = h / (tau + h) = 1 (tau = 0) gives the input exactly:
+ *  y_k = keep y_k-1 + alpha x_k, keep = 1 - alpha. Shared by PID's and the
+ *  cascaded controller's derivative filters. */
+static inline ladrc_real_t ladrc_lowpass_blend(ladrc_real_t keep, ladrc_real_t alpha, ladrc_real_t prev,
+                                               ladrc_real_t in)
+{
+    return keep * prev + alpha * in;
+}
+
+/** Conditional integration: 1 when integrating error would push the command
+ *  further into the saturation the last applied torque hit (applied below
+ *  the unclamped command and error > 0, or above it and error < 0). */
+static inline int ladrc_integrator_frozen(ladrc_real_t error, ladrc_real_t applied_Nm, ladrc_real_t unclamped_Nm)
+{
+    return (error > LADRC_R(0.0) && applied_Nm < unclamped_Nm) ||
+           (error < LADRC_R(0.0) && applied_Nm > unclamped_Nm);
+}
+
 /** Validates every field (LADRC_ERR_DT_S, _PID_KP, _PID_KI, _PID_KD, _PID_D_TAU_S,
  *  _PID_I_LIMIT_NM, _U_LIMITS, _WRAP_ANGLE, checked in that order; LADRC_ERR_NULL) and resets.
  *  i_limit_Nm may be +INFINITY and u_min_Nm / u_max_Nm -INFINITY / +INFINITY (no

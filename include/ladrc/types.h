@@ -84,6 +84,7 @@ typedef float ladrc_real_t;
 #define ladrc_attitude_init LADRC_ABI_NAME_(ladrc_attitude_init)
 #define ladrc_axis_config_default LADRC_ABI_NAME_(ladrc_axis_config_default)
 #define ladrc_axis_init LADRC_ABI_NAME_(ladrc_axis_init)
+#define ladrc_cascaded_init LADRC_ABI_NAME_(ladrc_cascaded_init)
 #define ladrc_hp_init LADRC_ABI_NAME_(ladrc_hp_init)
 #define ladrc_indi_init LADRC_ABI_NAME_(ladrc_indi_init)
 #define ladrc_leso_init LADRC_ABI_NAME_(ladrc_leso_init)
@@ -167,6 +168,14 @@ typedef enum {
     LADRC_ERR_INDI_ATT_KP,        /**< indi_att_kp_per_s not finite, not > 0, or times dt_s >= 1 */
     LADRC_ERR_INDI_RATE_KP,       /**< indi_rate_kp_per_s not finite, not > 0, or times dt_s >= 1 */
     LADRC_ERR_INDI_FILTER,        /**< indi_filter_rad_s not finite, not > 0, or times dt_s > pi */
+    LADRC_ERR_CAS_ATT_KP,         /**< cas_att_kp not finite, not > 0, or cas_att_kp * dt_s >= 1 */
+    LADRC_ERR_CAS_RATE_MAX,       /**< cas_rate_max_rad_s not finite and > 0, or above rate_limit_rad_s */
+    LADRC_ERR_CAS_RATE_KP,        /**< cas_rate_kp not finite, < 0, or its term beyond the real type for rates within +-2 rate_limit_rad_s */
+    LADRC_ERR_CAS_RATE_KI,        /**< cas_rate_ki not finite, < 0, or its step beyond the real type (as kp) */
+    LADRC_ERR_CAS_RATE_KD,        /**< cas_rate_kd not finite, < 0, or its term beyond the real type for rate steps of 2 rate_limit_rad_s */
+    LADRC_ERR_CAS_D_TAU_S,        /**< cas_d_filter_tau_s not finite or < 0 */
+    LADRC_ERR_CAS_RATE_TAU_S,     /**< cas_rate_filter_tau_s not finite or < 0 */
+    LADRC_ERR_CAS_I_LIMIT_NM,     /**< cas_i_limit_Nm NaN or < 0 (INFINITY = no clamp) */
     LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
 } ladrc_status_t;
 

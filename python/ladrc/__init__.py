@@ -125,7 +125,10 @@ class _Library:
                         ("hp_freq_lambda0_per_s", r), ("hp_freq_filter_rad_s", r),
                         ("hp_fit_decimation", u16), ("hp_fit_phase", u16),
                         ("motor_tau_s", r), ("delay_ticks", u8), ("wrap_angle", u8),
-                        ("indi_att_kp_per_s", r), ("indi_rate_kp_per_s", r), ("indi_filter_rad_s", r)]
+                        ("indi_att_kp_per_s", r), ("indi_rate_kp_per_s", r), ("indi_filter_rad_s", r),
+                        ("cas_att_kp", r), ("cas_rate_max_rad_s", r), ("cas_rate_kp", r),
+                        ("cas_rate_ki", r), ("cas_rate_kd", r), ("cas_d_filter_tau_s", r),
+                        ("cas_i_limit_Nm", r), ("cas_rate_filter_tau_s", r)]
 
         class AttitudeConfig(ctypes.Structure):
             _fields_ = [("axis", AxisConfig * 3), ("inertia_kg_m2", r * 3), ("drag_Nms", r),
@@ -291,7 +294,7 @@ class Axis:
         self._lib.axis_reset(self._state, angle_rad)
 
     def step(self, ref_rad, angle_rad, rate_rad_s=None):
-        """One tick: the torque command (N m). rate_rad_s (gyro) for LP-MLADRC, PID and INDI."""
+        """One tick: the torque command (N m). rate_rad_s (gyro) for LP-MLADRC, PID, CASCADED and INDI."""
         if rate_rad_s is None:
             return self._lib.axis_step(self._state, ref_rad, angle_rad)
         return self._lib.axis_step_with_rate(self._state, ref_rad, angle_rad, rate_rad_s)

@@ -2,8 +2,7 @@
 /* INDI in the simulator: it flies every shipped attitude scenario without
  * diverging, and its loop as configured there, analysed on each scenario's
  * own airframe (its lag, delay and inertias; roll, pitch and yaw), keeps
- * PM >= 45 deg and GM >= 6 dB. Also the --controllers path and a controller
- * placeholder of this branch (CASCADED) refused loudly. */
+ * PM >= 45 deg and GM >= 6 dB. */
 #include "unity.h"
 #include "ladrc/margins.h"
 #include "runner.h"
@@ -76,17 +75,9 @@ static void test_indi_flies_every_shipped_scenario_with_its_margins(void)
     TEST_ASSERT_TRUE(n >= 7); /* the shipped scenarios were found */
 }
 
-static void test_the_placeholder_controller_is_refused_loudly(void)
-{
-    sim_parse_error_t err;
-    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_parse(&sc, "[run]\nduration_s = 1\ncontrollers = CASCADED\n", "c.ini", &err));
-    TEST_ASSERT_NOT_NULL(strstr(err.message, "CASCADED does not start"));
-}
-
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_indi_flies_every_shipped_scenario_with_its_margins);
-    RUN_TEST(test_the_placeholder_controller_is_refused_loudly);
     return UNITY_END();
 }

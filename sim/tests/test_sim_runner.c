@@ -42,7 +42,6 @@ static void fly_paper(void)
     paper.error_window_s[0] = 12.0; /* the paper's high-frequency window */
     paper.error_window_s[1] = 25.0;
     for (int c = 0; c < SIM_CTRL_COUNT; ++c) {
-        if (c == SIM_CTRL_CASCADED) continue; /* not built on this branch */
         char err[256];
         TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_run_attitude(&paper, (sim_controller_id_t)c, NULL, NULL, &results[c],
                                                           err, sizeof err),

@@ -272,7 +272,11 @@ static void test_every_override_key_lands_in_its_controller(void)
              "[controller LADRC]\n"
              "td_accel_rad_s2 = 25\nwc_rad_s = 10\n"
              "[controller PID]\n"
-             "pid_kp = 20\npid_ki = 20\npid_kd = 0.05\n");
+             "pid_kp = 20\npid_ki = 20\npid_kd = 0.05\n"
+             "[controller CASCADED]\n"
+             "cas_att_kp = 7\ncas_rate_max_deg_s = 300\ncas_rate_kp = 0.2\ncas_rate_ki = 1.5\n"
+             "cas_rate_kd = 0.003\ncas_d_filter_tau_s = 0.004\ncas_i_limit_Nm = 0.1\ntd_accel_rad_s2 = 30\n"
+             "wrap_yaw = no\n");
     const sim_overrides_t *hp = &sc.overrides[SIM_CTRL_HP_MLADRC];
     assert_close(15.0, hp->wc_rad_s, "hp wc");
     assert_close(75.0, hp->wo_rad_s, "hp wo");
@@ -294,6 +298,21 @@ static void test_every_override_key_lands_in_its_controller(void)
     assert_close(25.0, ladrc->td_accel_rad_s2, "ladrc R");
     assert_close(10.0, ladrc->wc_rad_s, "ladrc wc");
     TEST_ASSERT_TRUE(isnan(ladrc->wo_rad_s));
+
+    const sim_overrides_t *cas = &sc.overrides[SIM_CTRL_CASCADED];
+    assert_close(7.0, cas->cas_att_kp, "cas att_kp");
+    assert_close(300.0, cas->cas_rate_max_deg_s, "cas rate max");
+    assert_close(0.2, cas->cas_rate_kp, "cas kp");
+    assert_close(1.5, cas->cas_rate_ki, "cas ki");
+    assert_close(0.003, cas->cas_rate_kd, "cas kd");
+    assert_close(0.004, cas->cas_d_filter_tau_s, "cas tau");
+    assert_close(0.1, cas->cas_i_limit_Nm, "cas i limit");
+    assert_close(30.0, cas->td_accel_rad_s2, "cas R");
+    TEST_ASSERT_EQUAL_INT(0, cas->wrap_yaw);
+    ladrc_attitude_config_t acfg;
+    sim_setup_attitude(&sc, SIM_CTRL_CASCADED, &acfg);
+    TEST_ASSERT_FLOAT_WITHIN(1e-6, 300.0 * DEG, (double)acfg.axis[1].cas_rate_max_rad_s);
+    TEST_ASSERT_FLOAT_WITHIN(1e-7, 0.2, (double)acfg.axis[2].cas_rate_kp);
 
     const sim_overrides_t *pid = &sc.overrides[SIM_CTRL_PID];
     assert_close(20.0, pid->pid_kp, "kp");
@@ -521,8 +540,9 @@ static void check_paper_case(const char *name)
     assert_close(30.0, sc.duration_s, "duration_s");
     assert_close(0.001, sc.control_dt_s, "dt");
     TEST_ASSERT_EQUAL_INT(10, sc.plant_substeps);
-    TEST_ASSERT_EQUAL_INT(5, sc.n_controllers); /* the paper's four, then INDI */
-    TEST_ASSERT_EQUAL_INT(SIM_CTRL_INDI, sc.controllers[4]);
+    TEST_ASSERT_EQUAL_INT(6, sc.n_controllers); /* the paper's four, then CASCADED and INDI */
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_CASCADED, sc.controllers[4]);
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_INDI, sc.controllers[5]);
     TEST_ASSERT_EQUAL_INT(1, sc.rotors_ideal);
     assert_close(0.8, sc.mass_kg, "m");
     assert_close(1.089e-2, sc.inertia_kg_m2[2], "Jz");
@@ -940,6 +960,11 @@ static void test_values_the_library_refuses_are_errors_at_their_key(void)
          LADRC_ERR_INDI_ATT_KP},
         {"[run]\nduration_s = 1\ncontrollers = INDI\n[controller INDI]\nindi_filter_rad_s = 4000\n", 5, 21, "INDI",
          LADRC_ERR_INDI_FILTER},
+        /* CASCADED's gains: at their key */
+        {"[run]\nduration_s = 1\ncontrollers = CASCADED\n[controller CASCADED]\ncas_att_kp = 2000\n", 5, 14,
+         "CASCADED", LADRC_ERR_CAS_ATT_KP},
+        {"[run]\nduration_s = 1\ncontrollers = LADRC CASCADED\n[controller CASCADED]\ncas_rate_max_deg_s = 6000\n", 5,
+         22, "CASCADED", LADRC_ERR_CAS_RATE_MAX},
         /* combinations */
         {"[run]\nduration_s = 1\n[controller LADRC]\nleso_method = euler\nwo_rad_s = 3000\n", 5, 12, "LADRC",
          LADRC_ERR_LESO_EULER_UNSTABLE},

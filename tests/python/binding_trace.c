@@ -49,6 +49,11 @@ static void axis_overrides(ladrc_axis_config_t *cfg)
     if (cfg->variant == LADRC_VARIANT_INDI) {
         cfg->indi_rate_kp_per_s = LADRC_R(25.0);
     }
+    if (cfg->variant == LADRC_VARIANT_CASCADED) {
+        cfg->cas_att_kp = LADRC_R(6.0); /* the cas_ block in the mirror */
+        cfg->cas_rate_max_rad_s = LADRC_R(2.0);
+        cfg->cas_i_limit_Nm = LADRC_R(0.01);
+    }
 }
 
 static int trace_axis(FILE *f, ladrc_variant_t variant)
@@ -161,9 +166,6 @@ int main(int argc, char **argv)
     }
     fprintf(f, "real %u\n", (unsigned)sizeof(ladrc_real_t));
     for (v = 0; v < (int)LADRC_VARIANT_COUNT; ++v) {
-        if (v == (int)LADRC_VARIANT_CASCADED) {
-            continue; /* not built on this branch */
-        }
         bad |= trace_axis(f, (ladrc_variant_t)v);
     }
     bad |= trace_attitude(f);

@@ -36,6 +36,8 @@ def axis_dict(variant):
         d.update(pid_kp=0.2)
     if variant == "INDI":
         d.update(indi_rate_kp_per_s=25.0)
+    if variant == "CASCADED":
+        d.update(cas_att_kp=6.0, cas_rate_max_rad_s=2.0, cas_i_limit_Nm=0.01)
     return d
 
 
@@ -54,7 +56,7 @@ def main():
     def bits(x):
         return np.asarray(x, dtype=lib.dtype).view(utype)
 
-    axis_rows = {v: [] for v in range(len(VARIANTS)) if VARIANTS[v] != "CASCADED"}  # not built here
+    axis_rows = {v: [] for v in range(len(VARIANTS))}
     att_rows = []
     for line in lines[1:]:
         w = line.split()

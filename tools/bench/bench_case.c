@@ -15,12 +15,12 @@ bench_engagement_t bench_engaged_attitude[BENCH_DISTURBANCES];
 bench_engagement_t bench_engaged_axis[BENCH_DISTURBANCES];
 
 const char *const bench_case_name[BENCH_CASES] = {"PID", "LADRC", "LP-MLADRC", "HP-MLADRC",
-                                                  "HP-MLADRC-2tones", "HP-MLADRC-act", "INDI"};
+                                                  "HP-MLADRC-2tones", "HP-MLADRC-act", "CASCADED", "INDI"};
 const ladrc_variant_t bench_case_variant[BENCH_CASES] = {
-    LADRC_VARIANT_PID, LADRC_VARIANT_LADRC, LADRC_VARIANT_LP_MLADRC, LADRC_VARIANT_HP_MLADRC,
-    LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_INDI};
-const int bench_case_inputs[BENCH_CASES] = {BENCH_ONE_TONE, BENCH_ONE_TONE, BENCH_ONE_TONE,
-                                            BENCH_ONE_TONE, BENCH_TWO_TONES, BENCH_ONE_TONE, BENCH_ONE_TONE};
+    LADRC_VARIANT_PID,       LADRC_VARIANT_LADRC,     LADRC_VARIANT_LP_MLADRC, LADRC_VARIANT_HP_MLADRC,
+    LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_CASCADED,  LADRC_VARIANT_INDI};
+const int bench_case_inputs[BENCH_CASES] = {BENCH_ONE_TONE,  BENCH_ONE_TONE, BENCH_ONE_TONE, BENCH_ONE_TONE,
+                                            BENCH_TWO_TONES, BENCH_ONE_TONE, BENCH_ONE_TONE, BENCH_ONE_TONE};
 
 /* The actuator model of the case's axes (none but for HP-MLADRC-act). */
 static void set_actuator(ladrc_axis_config_t *cfg, int bench_case)

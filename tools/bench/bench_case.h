@@ -63,7 +63,7 @@ extern bench_engagement_t bench_engaged_axis[BENCH_DISTURBANCES];
 
 /* The cases: PID, LADRC, LP-MLADRC and HP-MLADRC on the one-tone inputs,
  * HP-MLADRC-2tones: HP-MLADRC on the two-tone inputs. */
-#define BENCH_CASES 7
+#define BENCH_CASES 8
 #define BENCH_CASE_HP 3
 #define BENCH_CASE_HP2 4
 /* HP-MLADRC-act: the one-tone HP case with the actuator model on every axis
@@ -71,8 +71,10 @@ extern bench_engagement_t bench_engaged_axis[BENCH_DISTURBANCES];
 #define BENCH_CASE_HP_ACT 5
 #define BENCH_ACT_MOTOR_TAU_S 0.03f
 #define BENCH_ACT_DELAY_TICKS 2u
+/* CASCADED: the attitude P / rate PID baseline on the one-tone inputs. */
+#define BENCH_CASE_CASCADED 6
 /* INDI: its default config on the one-tone inputs (with their measured rates). */
-#define BENCH_CASE_INDI 6
+#define BENCH_CASE_INDI 7
 extern const char *const bench_case_name[BENCH_CASES];
 extern const ladrc_variant_t bench_case_variant[BENCH_CASES];
 extern const int bench_case_inputs[BENCH_CASES]; /* BENCH_ONE_TONE or BENCH_TWO_TONES */

@@ -488,6 +488,7 @@ int main(void)
     SIZE_LINE(ladrc_mixer_output_t);
     SIZE_LINE(ladrc_pid_t);
     SIZE_LINE(ladrc_pid_config_t);
+    SIZE_LINE(ladrc_cascaded_t);
     SIZE_LINE(ladrc_indi_t);
     SIZE_LINE(ladrc_leso_t);
     SIZE_LINE(ladrc_leso_config_t);

@@ -244,6 +244,10 @@ typedef struct {
  * bisection to 1 %);
  * PID: kp = J w^2, kd = 2 J w, ki = kp w / m, m in {3, 5, 10}, derivative
  * filter 1 / (10 w) (none if below dt); the largest such w for each m;
+ * CASCADED: rate-loop crossover w (cas_rate_kp = J w, ki = kp w / 5,
+ * kd = kp / (4 w) through a low pass 1 / (8 w), none if below dt, the
+ * default's rule) and cas_att_kp = w / n, n in {3, 4, 6}; the largest such
+ * w for each n;
  * INDI: k_att = k_rate = w (the loop (s + w)^2 of LADRC's rule), filter
  * w_f = r w, r in {3, 5, 8} (at most 0.9 pi / dt), the largest such w for
  * each r; INDI needs use_rate (else LADRC_MARGINS_ERR_CONTROLLER).

@@ -1,0 +1,116 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* The CASCADED baseline on every shipped attitude scenario: with its
+ * defaults it flies each one without diverging, and the margins-based
+ * tuning (ladrc_margins_tune) finds for each scenario's airframe and axis
+ * gains with PM >= 45 deg and GM >= 6 dB whose loop, flown closed on the
+ * exact sampled plant (ladrc_margins_simulate), decays. */
+#include "unity.h"
+#include "ladrc/margins.h"
+#include "runner.h"
+#include "scenario.h"
+#include "setup.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#ifndef SIM_SCENARIO_DIR
+#error "SIM_SCENARIO_DIR must name the scenarios folder"
+#endif
+
+/* The shipped attitude scenarios (table3_differentiator.ini is not one). */
+static const char *const SCENARIOS[] = {"paper", "paper_noisy", "paper_known", "paper_noisy_known",
+                                        "steps", "tone_sweep"};
+#define N_SCENARIOS ((int)(sizeof SCENARIOS / sizeof SCENARIOS[0]))
+/* The tuning's targets (margins.h). */
+#define PM_MIN_DEG 45.0
+#define GM_MIN_DB 6.0
+/* The decay check: 4 s after a pulse (margins.h); a stable loop's last
+ * quarter is below the quarter before. */
+#define SIMULATE_TICKS 4000L
+
+static sim_scenario_t sc;
+static ladrc_margins_workspace_t ws;
+static ladrc_margins_tuning_t tuning;
+
+void setUp(void) {}
+void tearDown(void) {}
+
+static void load(const char *name)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s.ini", SIM_SCENARIO_DIR, name);
+    sim_parse_error_t err;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_scenario_load(&sc, path, &err), err.message);
+    int listed = 0;
+    for (int c = 0; c < sc.n_controllers; ++c) listed |= sc.controllers[c] == SIM_CTRL_CASCADED;
+    TEST_ASSERT_TRUE_MESSAGE(listed, "a shipped scenario lists CASCADED");
+}
+
+static void test_defaults_fly_every_shipped_scenario(void)
+{
+    for (int s = 0; s < N_SCENARIOS; ++s) {
+        load(SCENARIOS[s]);
+        static sim_metrics_t m;
+        char err[256];
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_run_attitude(&sc, SIM_CTRL_CASCADED, NULL, NULL, &m, err, sizeof err),
+                                      err);
+        printf("%-18s CASCADED: RMS error %.4f / %.4f / %.4f deg, band %.4f / %.4f / %.4f deg\n", SCENARIOS[s],
+               sim_stat_rms(&m.error_deg[0]), sim_stat_rms(&m.error_deg[1]), sim_stat_rms(&m.error_deg[2]),
+               m.band_deg[0], m.band_deg[1], m.band_deg[2]);
+        TEST_ASSERT_FALSE(m.diverged);
+        TEST_ASSERT_TRUE(m.finite);
+    }
+}
+
+static void test_tuned_gains_meet_the_margins_on_every_shipped_airframe(void)
+{
+    /* The airframes differ by the motor lag, the delay, the rate and the
+     * axis inertia: each distinct one is tuned once. */
+    double done[N_SCENARIOS * 3][4];
+    int n_done = 0;
+    for (int s = 0; s < N_SCENARIOS; ++s) {
+        load(SCENARIOS[s]);
+        ladrc_attitude_config_t acfg;
+        sim_setup_attitude(&sc, SIM_CTRL_CASCADED, &acfg);
+        for (int i = 0; i < 3; ++i) {
+            const double j = sc.inertia_kg_m2[i] * sc.inertia_scale[i];
+            const double key[4] = {j, sc.motor_tau_s, (double)sc.delay_ticks, (double)sc.use_rate};
+            int seen = 0;
+            for (int d = 0; d < n_done; ++d) seen |= memcmp(done[d], key, sizeof key) == 0;
+            if (seen) continue;
+            memcpy(done[n_done++], key, sizeof key);
+            const ladrc_margins_plant_t plant = {sc.control_dt_s, j, sc.inertia_kg_m2[i] / j, sc.rot_drag_Nm_s,
+                                                 sc.motor_tau_s, sc.delay_ticks};
+            ladrc_margins_request_t req;
+            ladrc_margins_request_default(&req, &plant);
+            const ladrc_margins_controller_t ctl = {&acfg, i, NULL, sc.use_rate};
+            const ladrc_margins_targets_t targets = {PM_MIN_DEG, GM_MIN_DB};
+            ladrc_axis_config_t tuned;
+            TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_tune(&ws, &ctl, &req, &targets, &tuned, &tuning));
+            /* analysed again and flown, independently of the search */
+            const ladrc_margins_controller_t again = {NULL, 0, &tuned, sc.use_rate};
+            static ladrc_margins_result_t res;
+            TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_analyse(&ws, &again, &req, &res));
+            double growth = INFINITY;
+            TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_simulate(&ws, &again, &plant, SIMULATE_TICKS, &growth));
+            printf("%-18s axis %d: J %.4g lag %.3g s delay %d: att_kp %.4g rate kp %.4g ki %.4g kd %.4g -> PM %.1f "
+                   "GM %.1f dB, peak |d->e| %.3g, growth %.3g\n",
+                   SCENARIOS[s], i, j, sc.motor_tau_s, sc.delay_ticks, (double)tuned.cas_att_kp,
+                   (double)tuned.cas_rate_kp, (double)tuned.cas_rate_ki, (double)tuned.cas_rate_kd, res.pm_deg,
+                   res.gm_db, res.dist_peak_rad, growth);
+            TEST_ASSERT_TRUE(res.stable);
+            TEST_ASSERT_TRUE(res.pm_deg >= PM_MIN_DEG);
+            TEST_ASSERT_TRUE(res.gm_db >= GM_MIN_DB);
+            TEST_ASSERT_TRUE(growth < 1.0);
+        }
+    }
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_defaults_fly_every_shipped_scenario);
+    RUN_TEST(test_tuned_gains_meet_the_margins_on_every_shipped_airframe);
+    return UNITY_END();
+}
