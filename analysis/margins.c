@@ -1197,6 +1197,11 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
     out->indi_att_kp_per_s = (double)a->indi_att_kp_per_s;
     out->indi_rate_kp_per_s = (double)a->indi_rate_kp_per_s;
     out->indi_filter_rad_s = (double)a->indi_filter_rad_s;
+    out->cas_att_kp = (double)a->cas_att_kp;
+    out->cas_rate_kp = (double)a->cas_rate_kp;
+    out->cas_rate_ki = (double)a->cas_rate_ki;
+    out->cas_rate_kd = (double)a->cas_rate_kd;
+    out->cas_d_filter_tau_s = (double)a->cas_d_filter_tau_s;
     *tuned = *a;
     if (fin != LADRC_MARGINS_OK) return fin;
     return out->met ? LADRC_MARGINS_OK : LADRC_MARGINS_ERR_TARGETS_NOT_MET;

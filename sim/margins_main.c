@@ -230,19 +230,9 @@ int main(int argc, char **argv)
                 ladrc_axis_config_t tuned;
                 st = ladrc_margins_tune(&ws, &ctl, &req, &targets, &tuned, &tuning);
                 const ladrc_margins_result_t *m = &tuning.margins;
-                if (acfg.axis[i].variant == LADRC_VARIANT_INDI) {
-                    printf("  tuned: k_att %.4g /s k_rate %.4g /s w_f %.4g rad/s", tuning.indi_att_kp_per_s,
-                           tuning.indi_rate_kp_per_s, tuning.indi_filter_rad_s);
-                } else if (acfg.axis[i].variant == LADRC_VARIANT_PID) {
-                    printf("  tuned: kp %.4g ki %.4g kd %.4g d_filter %.4g s", tuning.kp, tuning.ki, tuning.kd,
-                           tuning.d_filter_tau_s);
-                } else if (acfg.axis[i].variant == LADRC_VARIANT_CASCADED) {
-                    printf("  tuned: att_kp %.4g /s rate kp %.4g ki %.4g kd %.4g d_filter %.4g s",
-                           (double)tuned.cas_att_kp, (double)tuned.cas_rate_kp, (double)tuned.cas_rate_ki,
-                           (double)tuned.cas_rate_kd, (double)tuned.cas_d_filter_tau_s);
-                } else {
-                    printf("  tuned: wc %.4g rad/s wo %.4g rad/s", tuning.wc_rad_s, tuning.wo_rad_s);
-                }
+                char gains[256];
+                (void)sim_setup_format_gains(&tuned, gains, sizeof gains);
+                printf("  tuned: %s", gains);
                 printf(" -> GM %.1f dB PM %.1f deg crossover %.1f rad/s Ms %.2f peak |d->e| %.3g rad per rad/s^2%s\n",
                        m->gm_db, m->pm_deg, m->wc_rad_s, m->ms, tuning.peak_dist_rad,
                        st == LADRC_MARGINS_OK ? "" : "  TARGETS NOT MET");

@@ -157,13 +157,9 @@ void sim_report_tuning(FILE *out, const sim_scenario_t *sc)
             continue;
         }
         for (int i = 0; i < 3; ++i) {
-            fprintf(out, "tuned %s %s: ", sim_controller_name(id), AXES[i]);
-            if (id == SIM_CTRL_PID) {
-                fprintf(out, "kp %.5g ki %.5g kd %.5g d_filter %.4g s", t->kp[i], t->ki[i], t->kd[i],
-                        t->d_filter_tau_s[i]);
-            } else {
-                fprintf(out, "wc %.5g rad/s wo %.5g rad/s", t->wc_rad_s[i], t->wo_rad_s[i]);
-            }
+            char gains[256];
+            (void)sim_setup_format_gains(&t->gains[i], gains, sizeof gains);
+            fprintf(out, "tuned %s %s: %s", sim_controller_name(id), AXES[i], gains);
             fprintf(out, " -> PM %.1f deg (>= %g), GM %.1f dB / %.1f dB (>= %g), crossover %.1f rad/s, Ms %.2f%s%s\n",
                     t->pm_deg[i], t->pm_target_deg, t->gm_db[i], t->gm_low_db[i], t->gm_target_db,
                     t->crossover_rad_s[i], t->ms[i], t->idle[i] ? " (estimator idle)" : "",
@@ -303,14 +299,10 @@ int sim_report_metrics_csv(FILE *out, const sim_scenario_result_t *r, int header
         }
         const sim_tuning_t *t = &sc->tuning[sc->controllers[c]];
         for (int i = 0; t->tuned && i < 3; ++i) {
-            if (sc->controllers[c] == SIM_CTRL_PID) {
-                row(out, sc, name, "tune", "pid_kp", AXES[i], t->kp[i]);
-                row(out, sc, name, "tune", "pid_ki", AXES[i], t->ki[i]);
-                row(out, sc, name, "tune", "pid_kd", AXES[i], t->kd[i]);
-                row(out, sc, name, "tune", "pid_d_filter_tau_s", AXES[i], t->d_filter_tau_s[i]);
-            } else {
-                row(out, sc, name, "tune", "wc_rad_s", AXES[i], t->wc_rad_s[i]);
-                row(out, sc, name, "tune", "wo_rad_s", AXES[i], t->wo_rad_s[i]);
+            int n_gains;
+            const sim_gain_field_t *g = sim_setup_gain_fields(t->gains[i].variant, &n_gains);
+            for (int k = 0; k < n_gains; ++k) {
+                row(out, sc, name, "tune", g[k].key, AXES[i], sim_setup_gain(&t->gains[i], &g[k]));
             }
             row(out, sc, name, "tune", "pm_deg", AXES[i], t->pm_deg[i]);
             row(out, sc, name, "tune", "gm_db", AXES[i], t->gm_db[i]);

@@ -128,6 +128,7 @@ static const choice_t HP_FREQ_MODES[] = {
 
 #define CTRL_BIT(id) (1u << (id))
 #define LADRC_FAMILY (CTRL_BIT(SIM_CTRL_HP_MLADRC) | CTRL_BIT(SIM_CTRL_LP_MLADRC) | CTRL_BIT(SIM_CTRL_LADRC))
+#define ALL_CONTROLLERS ((1u << SIM_CTRL_COUNT) - 1u)
 
 typedef struct {
     int section;           /* SEC_*; SEC_CONTROLLER for every [controller NAME] */
@@ -264,11 +265,11 @@ static const key_def_t KEYS[] = {
     {SEC_CONTROLLER, "wrap_yaw", V_CHOICE, OV(wrap_yaw), 0, R_ANY, 0, 0, YES_NO, FOR_BOTH, 0,
      LADRC_FAMILY | CTRL_BIT(SIM_CTRL_PID) | CTRL_BIT(SIM_CTRL_CASCADED) | CTRL_BIT(SIM_CTRL_INDI), NULL},
     {SEC_CONTROLLER, "tune", V_CHOICE, OV(tune), 0, R_ANY, 0, 0, TUNE_MODES, FOR_BOTH, 0,
-     LADRC_FAMILY | CTRL_BIT(SIM_CTRL_PID), NULL},
+     ALL_CONTROLLERS, NULL},
     {SEC_CONTROLLER, "tune_phase_margin_deg", V_REAL, OV(tune_pm_deg), 0, R_PHASE_MARGIN, 0, 0, NULL, FOR_BOTH, 0,
-     LADRC_FAMILY | CTRL_BIT(SIM_CTRL_PID), NULL},
+     ALL_CONTROLLERS, NULL},
     {SEC_CONTROLLER, "tune_gain_margin_db", V_REAL, OV(tune_gm_db), 0, R_POSITIVE, 0, 0, NULL, FOR_BOTH, 0,
-     LADRC_FAMILY | CTRL_BIT(SIM_CTRL_PID), NULL},
+     ALL_CONTROLLERS, NULL},
 };
 
 #define N_KEYS ((int)(sizeof KEYS / sizeof KEYS[0]))
@@ -1074,13 +1075,18 @@ static void check_differentiator(parser_t *p)
  * error at that gain; targets without tune = margins are an error too. */
 static void check_tuning(parser_t *p)
 {
-    static const char *const gains[] = {"wc_rad_s", "wo_rad_s", "pid_kp", "pid_ki", "pid_kd"};
+    /* the keys of the gains tune = margins chooses (setup.h, sim_setup_gain_fields) */
+    static const char *const gains[] = {"wc_rad_s",          "wo_rad_s",           "pid_kp",
+                                        "pid_ki",            "pid_kd",             "cas_att_kp",
+                                        "cas_rate_kp",       "cas_rate_ki",        "cas_rate_kd",
+                                        "cas_d_filter_tau_s", "indi_att_kp_per_s", "indi_rate_kp_per_s",
+                                        "indi_filter_rad_s"};
     static const char *const targets[] = {"tune_phase_margin_deg", "tune_gain_margin_db"};
     for (int id = 0; id < SIM_CTRL_COUNT; ++id) {
         const int sec = SEC_CONTROLLER + id;
         const loc_t *tune = seen_key(p, sec, "tune");
         if (p->sc->overrides[id].tune == SIM_TUNE_MARGINS) {
-            for (int g = 0; g < 5; ++g) {
+            for (int g = 0; g < (int)(sizeof gains / sizeof gains[0]); ++g) {
                 const loc_t *at = seen_key(p, sec, gains[g]);
                 if (at->line != 0) {
                     check_fail(p, at->line, at->key_col,

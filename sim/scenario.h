@@ -13,6 +13,7 @@
 #include <stdint.h>
 
 #include "expr.h"
+#include "ladrc/axis.h"
 
 #define SIM_MAX_PIECES 8
 #define SIM_MAX_CONTROLLERS 8
@@ -100,8 +101,8 @@ typedef struct {
 typedef struct {
     int tuned;                    /* 1: these gains replace the defaults (sim_setup_attitude) */
     double pm_target_deg, gm_target_db;
-    double wc_rad_s[3], wo_rad_s[3];                      /* LADRC family */
-    double kp[3], ki[3], kd[3], d_filter_tau_s[3];         /* PID */
+    ladrc_axis_config_t gains[3]; /* the tuned config of each axis: its variant's gain fields
+                                     (sim_setup_gain_fields) are the tuned gains */
     double pm_deg[3], gm_db[3], gm_low_db[3], crossover_rad_s[3], ms[3];
     int idle[3];                  /* HP-MLADRC margins of its idle estimator (margins.h) */
     int shared[3];                /* 1: this axis took another's result (same airframe and controller) */

@@ -3,6 +3,8 @@
 #include "setup.h"
 
 #include <math.h>
+#include <stddef.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "ladrc/axis.h"
@@ -52,17 +54,62 @@ static void apply_overrides(ladrc_axis_config_t *a, const sim_overrides_t *o)
     if (o->model_delay_ticks >= 0) a->delay_ticks = (uint8_t)o->model_delay_ticks;
 }
 
+#define GAIN(key, label, unit) {#key, label, unit, offsetof(ladrc_axis_config_t, key)}
+static const sim_gain_field_t LADRC_GAINS[] = {GAIN(wc_rad_s, "wc", "rad/s"), GAIN(wo_rad_s, "wo", "rad/s")};
+static const sim_gain_field_t PID_GAINS[] = {GAIN(pid_kp, "kp", ""), GAIN(pid_ki, "ki", ""), GAIN(pid_kd, "kd", ""),
+                                             GAIN(pid_d_filter_tau_s, "d_filter", "s")};
+static const sim_gain_field_t CASCADED_GAINS[] = {
+    GAIN(cas_att_kp, "att_kp", "1/s"),        GAIN(cas_rate_kp, "rate kp", ""),
+    GAIN(cas_rate_ki, "ki", ""),              GAIN(cas_rate_kd, "kd", ""),
+    GAIN(cas_d_filter_tau_s, "d_filter", "s"), GAIN(cas_rate_filter_tau_s, "rate_filter", "s")};
+static const sim_gain_field_t INDI_GAINS[] = {GAIN(indi_att_kp_per_s, "k_att", "1/s"),
+                                              GAIN(indi_rate_kp_per_s, "k_rate", "1/s"),
+                                              GAIN(indi_filter_rad_s, "w_f", "rad/s")};
+#undef GAIN
+#define N_OF(a) ((int)(sizeof(a) / sizeof((a)[0])))
+
+const sim_gain_field_t *sim_setup_gain_fields(ladrc_variant_t v, int *n)
+{
+    switch (v) {
+    case LADRC_VARIANT_PID: *n = N_OF(PID_GAINS); return PID_GAINS;
+    case LADRC_VARIANT_CASCADED: *n = N_OF(CASCADED_GAINS); return CASCADED_GAINS;
+    case LADRC_VARIANT_INDI: *n = N_OF(INDI_GAINS); return INDI_GAINS;
+    default: *n = N_OF(LADRC_GAINS); return LADRC_GAINS;
+    }
+}
+
+static ladrc_real_t *gain_at(ladrc_axis_config_t *a, const sim_gain_field_t *f)
+{
+    return (ladrc_real_t *)(void *)((char *)a + f->offset);
+}
+
+double sim_setup_gain(const ladrc_axis_config_t *a, const sim_gain_field_t *f)
+{
+    return (double)*(const ladrc_real_t *)(const void *)((const char *)a + f->offset);
+}
+
 void sim_setup_tuned_gains(const sim_tuning_t *t, int axis, ladrc_axis_config_t *a)
 {
-    if (a->variant == LADRC_VARIANT_PID) {
-        a->pid_kp = (ladrc_real_t)t->kp[axis];
-        a->pid_ki = (ladrc_real_t)t->ki[axis];
-        a->pid_kd = (ladrc_real_t)t->kd[axis];
-        a->pid_d_filter_tau_s = (ladrc_real_t)t->d_filter_tau_s[axis];
-    } else {
-        a->wc_rad_s = (ladrc_real_t)t->wc_rad_s[axis];
-        a->wo_rad_s = (ladrc_real_t)t->wo_rad_s[axis];
+    int n;
+    const sim_gain_field_t *f = sim_setup_gain_fields(a->variant, &n);
+    for (int k = 0; k < n; ++k) {
+        *gain_at(a, &f[k]) = (ladrc_real_t)sim_setup_gain(&t->gains[axis], &f[k]);
     }
+}
+
+int sim_setup_format_gains(const ladrc_axis_config_t *a, char *buf, size_t size)
+{
+    int n, used = 0;
+    const sim_gain_field_t *f = sim_setup_gain_fields(a->variant, &n);
+    if (size > 0) buf[0] = '\0';
+    for (int k = 0; k < n; ++k) {
+        const size_t at = (size_t)used < size ? (size_t)used : size;
+        const int w = snprintf(buf + at, size - at, "%s%s %.5g%s%s", k ? " " : "", f[k].label,
+                               sim_setup_gain(a, &f[k]), f[k].unit[0] ? " " : "", f[k].unit);
+        if (w < 0) return w;
+        used += w;
+    }
+    return used;
 }
 
 int sim_setup_wraps_yaw(const sim_scenario_t *sc, sim_controller_id_t id)

@@ -19,9 +19,28 @@
  * tune = margins chose (sc->tuning[id], once sim_tune_controller has run). */
 void sim_setup_attitude(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_config_t *cfg);
 
-/* The gains tuning t chose for axis (0 roll, 1 pitch, 2 yaw) into a: wc and
- * wo, or PID's kp, ki, kd and derivative filter. */
+/* One gain that tune = margins chooses: its metrics.csv key (the config
+ * field's name), its short label and unit on stdout, and the field. */
+typedef struct {
+    const char *key;
+    const char *label;
+    const char *unit;
+    size_t offset; /* of the ladrc_real_t field in ladrc_axis_config_t */
+} sim_gain_field_t;
+
+/* The gain fields tune = margins chooses for variant v (wc, wo for the LADRC
+ * family; PID's, CASCADED's or INDI's own); *n gets their number. */
+const sim_gain_field_t *sim_setup_gain_fields(ladrc_variant_t v, int *n);
+
+/* The value of gain field f in a. */
+double sim_setup_gain(const ladrc_axis_config_t *a, const sim_gain_field_t *f);
+
+/* The gains tuning t chose for axis (0 roll, 1 pitch, 2 yaw) into a (the
+ * fields sim_setup_gain_fields lists for a's variant). */
 void sim_setup_tuned_gains(const sim_tuning_t *t, int axis, ladrc_axis_config_t *a);
+
+/* "label value unit ..." of a's tuned gains into buf (snprintf's result). */
+int sim_setup_format_gains(const ladrc_axis_config_t *a, char *buf, size_t size);
 
 /* 1 when controller id's yaw wraps at +-180 deg ([controller NAME] wrap_yaw,
  * default yes): its sensor then reports yaw in (-180, 180] deg and its yaw

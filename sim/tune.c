@@ -44,14 +44,10 @@ static void tune_error(const sim_scenario_t *sc, sim_controller_id_t id, sim_par
     snprintf(err->message, sizeof err->message, "%s", message);
 }
 
-static void keep(sim_tuning_t *t, int i, const ladrc_margins_tuning_t *r, int idle)
+static void keep(sim_tuning_t *t, int i, const ladrc_axis_config_t *tuned, const ladrc_margins_tuning_t *r,
+                 int idle)
 {
-    t->wc_rad_s[i] = r->wc_rad_s;
-    t->wo_rad_s[i] = r->wo_rad_s;
-    t->kp[i] = r->kp;
-    t->ki[i] = r->ki;
-    t->kd[i] = r->kd;
-    t->d_filter_tau_s[i] = r->d_filter_tau_s;
+    t->gains[i] = *tuned;
     t->pm_deg[i] = r->margins.pm_deg;
     t->gm_db[i] = r->margins.gm_db;
     t->gm_low_db[i] = r->margins.gm_low_db;
@@ -62,12 +58,7 @@ static void keep(sim_tuning_t *t, int i, const ladrc_margins_tuning_t *r, int id
 
 static void copy_axis(sim_tuning_t *t, int to, int from)
 {
-    t->wc_rad_s[to] = t->wc_rad_s[from];
-    t->wo_rad_s[to] = t->wo_rad_s[from];
-    t->kp[to] = t->kp[from];
-    t->ki[to] = t->ki[from];
-    t->kd[to] = t->kd[from];
-    t->d_filter_tau_s[to] = t->d_filter_tau_s[from];
+    t->gains[to] = t->gains[from];
     t->pm_deg[to] = t->pm_deg[from];
     t->gm_db[to] = t->gm_db[from];
     t->gm_low_db[to] = t->gm_low_db[from];
@@ -137,7 +128,7 @@ int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margin
             const ladrc_margins_controller_t chk = {&again, i, NULL, sc->use_rate};
             (void)ladrc_margins_analyse_reported(ws, &chk, &req, &ws->scratch, &idle);
         }
-        keep(t, i, &result, idle);
+        keep(t, i, &tuned, &result, idle);
         char msg[256];
         if (st == LADRC_MARGINS_ERR_TARGETS_NOT_MET) {
             const ladrc_margins_result_t *m = &result.margins;

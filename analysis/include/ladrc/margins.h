@@ -231,6 +231,7 @@ typedef struct {
     double wc_rad_s, wo_rad_s;/**< LADRC family */
     double kp, ki, kd, d_filter_tau_s; /**< PID */
     double indi_att_kp_per_s, indi_rate_kp_per_s, indi_filter_rad_s; /**< INDI */
+    double cas_att_kp, cas_rate_kp, cas_rate_ki, cas_rate_kd, cas_d_filter_tau_s; /**< CASCADED */
     double peak_dist_rad;     /**< objective: peak |d -> error| of the chosen setting */
     ladrc_margins_result_t margins; /**< of the chosen setting */
 } ladrc_margins_tuning_t;
