@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # Flies the paper's scenarios (tools/paper.sh) and draws the figures and the report:
-# docs/figures/*.png and docs/report.md.
+# docs/figures/*.png and docs/report.md, and the README's incumbents and
+# real-airframes tables (between their <!-- ...:begin/end --> markers).
 #
 # Usage: tools/figures.sh [OUT_DIR]
 #   OUT_DIR  where the simulator's CSV output goes (default: build/paper-out)
@@ -22,11 +23,11 @@ fi
 
 out=${1:-build/paper-out}
 rm -rf "$out/paper" "$out/paper_noisy" "$out/paper_known" "$out/paper_noisy_known" "$out/table3_differentiator" \
-  "$out"/real_paper_lag* "$out"/real_heavy_lag*
+  "$out/tone_sweep" "$out"/real_paper_lag* "$out"/real_heavy_lag*
 mkdir -p "$out"
 echo "== flying the paper's scenarios into $out"
 tools/paper.sh --out "$out" --quiet | tee "$out/tables.txt"
 echo "== figures and report"
 rm -f docs/figures/*.png
 "$py" tools/figures.py "$out" docs/figures
-"$py" tools/report.py "$out" docs/report.md
+"$py" tools/report.py "$out" docs/report.md --readme README.md

@@ -263,6 +263,16 @@ def health(rep, m, scen):
                                      "no run diverged and no controller fault."), "")
 
 
+# metrics.csv's tune table: the margins of the tuned loop; every other quantity is a gain.
+TUNE_MARGINS = ("pm_deg", "gm_db", "gm_low_db", "crossover_rad_s", "ms")
+
+
+def tuned_gains(m, c, axis):
+    """"name value ..." of controller c's tuned gains on axis, as metrics.csv names them."""
+    return " ".join("%s %s" % (q, num(v, 3)) for (cc, t, q, a), v in m.items()
+                    if cc == c and t == "tune" and a == axis and q not in TUNE_MARGINS)
+
+
 REAL_SCENARIOS = ["real_paper_lag20", "real_paper_lag30", "real_paper_lag40",
                   "real_heavy_lag20", "real_heavy_lag30", "real_heavy_lag40"]
 
@@ -286,21 +296,101 @@ def section_real(rep, out_dir, headings):
                 continue
             gains = []
             for axis in ("roll", "yaw"):
-                if c == "PID":
-                    g = "kp %s kd %s" % (num(m.get((c, "tune", "pid_kp", axis)), 3),
-                                         num(m.get((c, "tune", "pid_kd", axis)), 3))
-                else:
-                    g = "wc %s wo %s" % (num(m.get((c, "tune", "wc_rad_s", axis)), 3),
-                                         num(m.get((c, "tune", "wo_rad_s", axis)), 3))
-                gains.append("%s: %s, PM %s GM %s" % (axis, g, num(m.get((c, "tune", "pm_deg", axis)), 3),
+                gains.append("%s: %s, PM %s GM %s" % (axis, tuned_gains(m, c, axis),
+                                                      num(m.get((c, "tune", "pm_deg", axis)), 3),
                                                       num(m.get((c, "tune", "gm_db", axis)), 3)))
             div = divergence_text(m, c)
             rows.append(["`%s`" % name, c, "<br>".join(gains),
                          " / ".join(num(m.get((c, "4", "error_rms_deg", a))) for a in AXES),
                          " / ".join(num(m.get((c, "5", "steady_band_deg", a))) for a in AXES),
                          div if div else "no"])
-    rep.table(["scenario", "controller", "tuned gains (rad/s; N m/rad, N m s/rad), margins (deg, dB)",
+    rep.table(["scenario", "controller", "tuned gains (metrics.csv names, SI units), margins (deg, dB)",
                "RMS roll / pitch / yaw (deg)", "band roll / pitch / yaw (deg)", "diverged"], rows)
+
+
+# The README's answer to "against what people fly today": HP-MLADRC and LP-MLADRC against the
+# better of the two incumbent baselines on each figure and axis.
+INCUMBENTS = ("CASCADED", "INDI")
+CHALLENGERS = ("HP-MLADRC", "LP-MLADRC")
+INCUMBENT_SCENARIOS = (("paper", "`paper.ini`"), ("paper_noisy", "`paper_noisy.ini`"),
+                       ("tone_sweep", "`tone_sweep.ini`"), ("real_paper_lag30", "`real_paper_lag30.ini`"))
+FIGURES = (("4", "error_rms_deg", "RMS"), ("5", "steady_band_deg", "band"))
+
+
+def ratio_text(r):
+    return "—" if r is None else ("%.2f" % r if r >= 0.1 else "%.2g" % r)
+
+
+def incumbents_block(out_dir):
+    """Markdown lines: per scenario and axis, the best incumbent's RMS and band (and which), and
+    HP-MLADRC's and LP-MLADRC's divided by them; then the figures where the ratio exceeds 1."""
+    rows, losses, n_figures = [], [], 0
+    for name, label in INCUMBENT_SCENARIOS:
+        m = load_metrics(os.path.join(out_dir, name))
+        if m is None:
+            return None
+        for axis in AXES:
+            row, best = [label, axis], {}
+            for t, q, fig in FIGURES:
+                have = [(m.get((c, t, q, axis)), c) for c in INCUMBENTS]
+                have = [(v, c) for v, c in have if is_number(v) and not math.isnan(v) and divergence(m, c) is None]
+                best[fig] = min(have) if have else (None, None)
+                row.append("%s (%s)" % (num(best[fig][0], 3), best[fig][1]) if have else "—")
+            for c in CHALLENGERS:
+                for t, q, fig in FIGURES:
+                    v, (b, who) = m.get((c, t, q, axis)), best[fig]
+                    r = v / b if is_number(v) and b and divergence(m, c) is None else None
+                    row.append(ratio_text(r))
+                    n_figures += 1
+                    if r is None or r > 1.0:
+                        losses.append("%s %s %s %s: %s of %s's" % (c, fig, label, axis,
+                                                                  "%.2f×" % r if r is not None else "no figure",
+                                                                  who))
+            rows.append(row)
+    rep = Report()
+    rep.table(["scenario", "axis", "best incumbent RMS (deg)", "best incumbent band (deg)",
+               "HP-MLADRC RMS ratio", "HP-MLADRC band ratio", "LP-MLADRC RMS ratio", "LP-MLADRC band ratio"], rows)
+    rep.add("Ratios above 1 (the LADRC family worse than the best incumbent): %d of %d%s" %
+            (len(losses), n_figures, (": " + "; ".join(losses) + ".") if losses else "."))
+    return rep.lines
+
+
+def real_block(out_dir):
+    """Markdown lines: the real airframes' RMS error and steady band per controller (all tuned)."""
+    rep = Report()
+    for prefix, title in (("real_paper_lag", "Paper airframe"), ("real_heavy_lag", "Heavy airframe (1.96 kg)")):
+        rows = []
+        for lag in ("20", "30", "40"):
+            m = load_metrics(os.path.join(out_dir, prefix + lag))
+            if m is None:
+                return None
+            for c in CONTROLLERS:
+                if m.get((c, "-", "finite", "-")) is None:
+                    continue
+                div = divergence_text(m, c)
+                rows.append(["%s ms" % lag, c, " / ".join(num(m.get((c, "4", "error_rms_deg", a)), 2) for a in AXES),
+                             " / ".join(num(m.get((c, "5", "steady_band_deg", a)), 2) for a in AXES)
+                             + (" (%s)" % div if div else "")])
+        rep.add("%s: RMS error and steady band, roll / pitch / yaw (deg), every controller tuned" % title, "")
+        rep.table(["lag", "controller", "RMS", "band"], rows)
+    return rep.lines
+
+
+def rewrite_readme(path, blocks):
+    """Replaces the text between <!-- NAME:begin --> and <!-- NAME:end --> for each block."""
+    with open(path) as f:
+        text = f.read()
+    for name, lines in blocks.items():
+        begin, end = "<!-- %s:begin -->" % name, "<!-- %s:end -->" % name
+        i, j = text.find(begin), text.find(end)
+        if i < 0 or j < i:
+            print("report.py: %s has no %s ... %s block" % (path, begin, end), file=sys.stderr)
+            return 1
+        text = text[:i + len(begin)] + "\n" + "\n".join(lines).rstrip() + "\n" + text[j:]
+    with open(path, "w") as f:
+        f.write(text)
+    print("report.py: rewrote", ", ".join(blocks), "in", path)
+    return 0
 
 
 def main(argv):
@@ -312,6 +402,7 @@ def main(argv):
     p.add_argument("--known", default="paper_known")
     p.add_argument("--noisy-known", default="paper_noisy_known")
     p.add_argument("--diff", default="table3_differentiator")
+    p.add_argument("--readme", help="README whose incumbents and real-airframes blocks to rewrite")
     a = p.parse_args(argv)
     headings = table_headings(os.path.join(a.out_dir, "tables.txt"))
     rep = Report()
@@ -370,9 +461,26 @@ def main(argv):
 
     section_real(rep, a.out_dir, headings)
 
+    incumbents, real = incumbents_block(a.out_dir), real_block(a.out_dir)
+    if incumbents is None:
+        rep.add("*No incumbents table: it needs the outputs of %s (`tools/figures.sh` flies them).*"
+                % ", ".join(n for n, _ in INCUMBENT_SCENARIOS), "")
+    else:
+        rep.add("## Against the incumbents: HP-MLADRC and LP-MLADRC over the best of CASCADED and INDI", "",
+                "RMS: Table 4's over each scenario's error window; band: Table 5's steady band. A ratio "
+                "below 1: the LADRC-family controller is better than the better incumbent on that figure.", "")
+        rep.add(*incumbents)
+        rep.add("")
+
     for name in missing:
         rep.add("*No output of scenario `%s` was found; its tables are missing.*" % name, "")
         print("report.py: no metrics of scenario '%s' in %s" % (name, a.out_dir), file=sys.stderr)
+    if a.readme and (incumbents is None or real is None):
+        print("report.py: %s not rewritten: the incumbents or real-airframe outputs are missing" % a.readme,
+              file=sys.stderr)
+        missing.append("the README's blocks")
+    elif a.readme and rewrite_readme(a.readme, {"incumbents": incumbents, "real-airframes": real}) != 0:
+        missing.append("the README's blocks")
     os.makedirs(os.path.dirname(os.path.abspath(a.report_md)), exist_ok=True)
     with open(a.report_md, "w") as f:
         f.write("\n".join(rep.lines).rstrip() + "\n")
