@@ -10,7 +10,7 @@
 #                                  bench stage of tools/run_tests.sh); exits 1
 #                                  naming every figure above its limit
 #
-#  - cases (tools/bench/bench_case.h): PID, LADRC, LP-MLADRC, HP-MLADRC and CASCADED on
+#  - cases (tools/bench/bench_case.h): PID, LADRC, LP-MLADRC, HP-MLADRC, CASCADED and INDI on
 #    the recorded closed loop of HP-MLADRC under the paper's one-tone
 #    disturbance, and HP-MLADRC-2tones on a two-tone disturbance;
 #  - instructions per tick on the Cortex-M4F: build/bench-m4f (the cortex-m4f

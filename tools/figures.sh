@@ -28,6 +28,6 @@ mkdir -p "$out"
 echo "== flying the paper's scenarios into $out"
 tools/paper.sh --out "$out" --quiet | tee "$out/tables.txt"
 echo "== figures and report"
-rm -f docs/figures/*.png
+rm -f docs/figures/fig*.png  # the figures drawn below (margins_*.png come from tools/margins_plot.py)
 "$py" tools/figures.py "$out" docs/figures
 "$py" tools/report.py "$out" docs/report.md --readme README.md

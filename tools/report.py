@@ -343,16 +343,25 @@ def incumbents_block(out_dir):
                     row.append(ratio_text(r))
                     n_figures += 1
                     if r is None or r > 1.0:
-                        losses.append("%s %s %s %s: %s of %s's" % (c, fig, label, axis,
-                                                                  "%.2f×" % r if r is not None else "no figure",
-                                                                  who))
+                        losses.append((c, "%s %s %s %s" % (label, axis, fig, "%.2f" % r if r is not None else
+                                                           "(no figure)")))
             rows.append(row)
     rep = Report()
     rep.table(["scenario", "axis", "best incumbent RMS (deg)", "best incumbent band (deg)",
                "HP-MLADRC RMS ratio", "HP-MLADRC band ratio", "LP-MLADRC RMS ratio", "LP-MLADRC band ratio"], rows)
-    rep.add("Ratios above 1 (the LADRC family worse than the best incumbent): %d of %d%s" %
-            (len(losses), n_figures, (": " + "; ".join(losses) + ".") if losses else "."))
+    rep.add("Ratios above 1 (the LADRC-family controller worse than the better incumbent), of %d figures each:"
+            % (n_figures // len(CHALLENGERS)), "")
+    for c in CHALLENGERS:
+        mine = [text for who, text in losses if who == c]
+        rep.add("- %s: %d%s" % (c, len(mine), (": " + "; ".join(mine) + ".") if mine else "."))
     return rep.lines
+
+
+def deg(v):
+    """A figure in deg for the README's tables: two decimals, three below 0.1."""
+    if not is_number(v) or math.isnan(v):
+        return num(v)
+    return "%.2f" % v if abs(v) >= 0.1 else "%.3f" % v
 
 
 def real_block(out_dir):
@@ -368,8 +377,8 @@ def real_block(out_dir):
                 if m.get((c, "-", "finite", "-")) is None:
                     continue
                 div = divergence_text(m, c)
-                rows.append(["%s ms" % lag, c, " / ".join(num(m.get((c, "4", "error_rms_deg", a)), 2) for a in AXES),
-                             " / ".join(num(m.get((c, "5", "steady_band_deg", a)), 2) for a in AXES)
+                rows.append(["%s ms" % lag, c, " / ".join(deg(m.get((c, "4", "error_rms_deg", a))) for a in AXES),
+                             " / ".join(deg(m.get((c, "5", "steady_band_deg", a))) for a in AXES)
                              + (" (%s)" % div if div else "")])
         rep.add("%s: RMS error and steady band, roll / pitch / yaw (deg), every controller tuned" % title, "")
         rep.table(["lag", "controller", "RMS", "band"], rows)

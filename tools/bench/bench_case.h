@@ -61,7 +61,7 @@ extern bench_inputs_t bench_in[BENCH_DISTURBANCES];
 extern bench_engagement_t bench_engaged_attitude[BENCH_DISTURBANCES];
 extern bench_engagement_t bench_engaged_axis[BENCH_DISTURBANCES];
 
-/* The cases: PID, LADRC, LP-MLADRC and HP-MLADRC on the one-tone inputs,
+/* The cases: PID, LADRC, LP-MLADRC, HP-MLADRC, CASCADED and INDI on the one-tone inputs,
  * HP-MLADRC-2tones: HP-MLADRC on the two-tone inputs. */
 #define BENCH_CASES 8
 #define BENCH_CASE_HP 3
