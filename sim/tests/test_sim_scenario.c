@@ -327,8 +327,11 @@ static void test_tune_keys_land_in_their_controller_with_their_defaults(void)
     parse_ok("[run]\nduration_s = 1\n"
              "[controller LADRC]\ntune = margins\ntune_phase_margin_deg = 50\ntune_gain_margin_db = 8\n"
              "[controller PID]\ntune = margins\n"
-             "[controller LP-MLADRC]\ntune = none\n");
+             "[controller LP-MLADRC]\ntune = none\n"
+             "[controller CASCADED]\ntune = margins\n[controller INDI]\ntune = margins\n");
     const sim_overrides_t *o = sc.overrides;
+    TEST_ASSERT_EQUAL_INT(SIM_TUNE_MARGINS, o[SIM_CTRL_CASCADED].tune);
+    TEST_ASSERT_EQUAL_INT(SIM_TUNE_MARGINS, o[SIM_CTRL_INDI].tune);
     TEST_ASSERT_EQUAL_INT(SIM_TUNE_MARGINS, o[SIM_CTRL_LADRC].tune);
     assert_close(50.0, o[SIM_CTRL_LADRC].tune_pm_deg, "pm target");
     assert_close(8.0, o[SIM_CTRL_LADRC].tune_gm_db, "gm target");
@@ -358,6 +361,12 @@ static void test_tune_errors_name_the_key(void)
          "'wo_rad_s' conflicts with tune = margins (line 5), which chooses the gains: give one of them"},
         {"[run]\nduration_s = 1\n[controller PID]\ntune = margins\npid_kd = 0.1\n", 5, 1,
          "'pid_kd' conflicts with tune = margins (line 4), which chooses the gains: give one of them"},
+        /* the baselines' tuned gains too; their other keys stay free (cas_rate_max_deg_s) */
+        {"[run]\nduration_s = 1\n[controller CASCADED]\ntune = margins\ncas_rate_max_deg_s = 200\n"
+         "cas_rate_kd = 0.01\n",
+         6, 1, "'cas_rate_kd' conflicts with tune = margins (line 4), which chooses the gains: give one of them"},
+        {"[run]\nduration_s = 1\n[controller INDI]\nindi_filter_rad_s = 60\ntune = margins\n", 4, 1,
+         "'indi_filter_rad_s' conflicts with tune = margins (line 5), which chooses the gains: give one of them"},
         {"[run]\nduration_s = 1\n[controller LADRC]\ntune_phase_margin_deg = 50\n", 4, 1,
          "'tune_phase_margin_deg' applies only with tune = margins"},
         {"[run]\nduration_s = 1\n[controller PID]\ntune = none\ntune_gain_margin_db = 6\n", 5, 1,
