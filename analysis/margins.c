@@ -1096,6 +1096,25 @@ static double search_down(tuner_t *t, int shape, double j_model, double w_top, d
     return NAN;
 }
 
+/* The gains of every variant as the tuning reports them (its result struct). */
+static void report_gains(const ladrc_axis_config_t *a, ladrc_margins_tuning_t *out)
+{
+    out->wc_rad_s = (double)a->wc_rad_s;
+    out->wo_rad_s = (double)a->wo_rad_s;
+    out->kp = (double)a->pid_kp;
+    out->ki = (double)a->pid_ki;
+    out->kd = (double)a->pid_kd;
+    out->d_filter_tau_s = (double)a->pid_d_filter_tau_s;
+    out->indi_att_kp_per_s = (double)a->indi_att_kp_per_s;
+    out->indi_rate_kp_per_s = (double)a->indi_rate_kp_per_s;
+    out->indi_filter_rad_s = (double)a->indi_filter_rad_s;
+    out->cas_att_kp = (double)a->cas_att_kp;
+    out->cas_rate_kp = (double)a->cas_rate_kp;
+    out->cas_rate_ki = (double)a->cas_rate_ki;
+    out->cas_rate_kd = (double)a->cas_rate_kd;
+    out->cas_d_filter_tau_s = (double)a->cas_d_filter_tau_s;
+}
+
 ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
                                           const ladrc_margins_request_t *req, const ladrc_margins_targets_t *targets,
                                           ladrc_axis_config_t *tuned, ladrc_margins_tuning_t *out)
@@ -1169,12 +1188,7 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
             *a = *ctl_axis_config(ctl);
             (void)ladrc_margins_analyse_reported(ws, &t.ctl, req, &out->margins, NULL);
             out->met = 0;
-            out->wc_rad_s = (double)a->wc_rad_s;
-            out->wo_rad_s = (double)a->wo_rad_s;
-            out->kp = (double)a->pid_kp;
-            out->ki = (double)a->pid_ki;
-            out->kd = (double)a->pid_kd;
-            out->d_filter_tau_s = (double)a->pid_d_filter_tau_s;
+            report_gains(a, out);
             out->peak_dist_rad = out->margins.dist_peak_rad;
             *tuned = *a;
             return LADRC_MARGINS_ERR_TARGETS_NOT_MET;
@@ -1188,20 +1202,7 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
     const ladrc_margins_status_t fin = ladrc_margins_analyse_reported(ws, &t.ctl, req, &out->margins, NULL);
     out->met = found && fin == LADRC_MARGINS_OK && meets(&out->margins, targets);
     out->peak_dist_rad = out->margins.dist_peak_rad;
-    out->wc_rad_s = (double)a->wc_rad_s;
-    out->wo_rad_s = (double)a->wo_rad_s;
-    out->kp = (double)a->pid_kp;
-    out->ki = (double)a->pid_ki;
-    out->kd = (double)a->pid_kd;
-    out->d_filter_tau_s = (double)a->pid_d_filter_tau_s;
-    out->indi_att_kp_per_s = (double)a->indi_att_kp_per_s;
-    out->indi_rate_kp_per_s = (double)a->indi_rate_kp_per_s;
-    out->indi_filter_rad_s = (double)a->indi_filter_rad_s;
-    out->cas_att_kp = (double)a->cas_att_kp;
-    out->cas_rate_kp = (double)a->cas_rate_kp;
-    out->cas_rate_ki = (double)a->cas_rate_ki;
-    out->cas_rate_kd = (double)a->cas_rate_kd;
-    out->cas_d_filter_tau_s = (double)a->cas_d_filter_tau_s;
+    report_gains(a, out);
     *tuned = *a;
     if (fin != LADRC_MARGINS_OK) return fin;
     return out->met ? LADRC_MARGINS_OK : LADRC_MARGINS_ERR_TARGETS_NOT_MET;

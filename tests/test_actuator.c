@@ -4,6 +4,7 @@
  * against their closed forms, closed loops on a small plant with a lagging
  * motor and a late sensor, and angles that wrap at +-pi for every variant. */
 #include "unity.h"
+#include "test_plant.h"
 #include "ladrc/attitude.h"
 #include "ladrc/axis.h"
 #include "test_variants.h"
@@ -81,16 +82,10 @@ static double plant_measure(lag_plant_t *p)
 static void plant_step(lag_plant_t *p, double u)
 {
     const double s = DT_S;
-    double dy = 0.5 * s * s * u, dw = s * u, m1 = u;
-    if (p->tau > 0.0) {
-        const double e = exp(-s / p->tau), c = p->m - u, tau = p->tau;
-        dy += c * tau * (s - tau * (1.0 - e));
-        dw += c * tau * (1.0 - e);
-        m1 = u + c * e;
-    }
+    double dy, dw;
+    test_lag_step(s, p->tau, u, &p->m, &dy, &dw);
     p->y += p->w * s + p->b * dy + 0.5 * p->d * s * s;
     p->w += p->b * dw + p->d * s;
-    p->m = m1;
 }
 
 static ladrc_axis_config_t config(ladrc_variant_t v, double tau, int delay, int wrap)

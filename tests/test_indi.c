@@ -3,6 +3,7 @@
  * simulated here, exactly sampled (torque and disturbance held over each
  * tick), in double precision. */
 #include "unity.h"
+#include "test_plant.h"
 #include "ladrc/axis.h"
 #include "ladrc/indi.h"
 
@@ -55,16 +56,10 @@ static void plant_step(plant_t *p, double u, double d)
         p->hist_y[i] = p->hist_y[i - 1];
         p->hist_w[i] = p->hist_w[i - 1];
     }
-    double dy = 0.5 * h * h * u, dw = h * u, m1 = u;
-    if (p->tau > 0.0) {
-        const double e = exp(-h / p->tau), c = p->m - u, tau = p->tau;
-        dy += c * tau * (h - tau * (1.0 - e));
-        dw += c * tau * (1.0 - e);
-        m1 = u + c * e;
-    }
+    double dy, dw;
+    test_lag_step(h, p->tau, u, &p->m, &dy, &dw);
     p->y += p->w * h + b * dy + 0.5 * d * h * h;
     p->w += b * dw + d * h;
-    p->m = m1;
     p->hist_y[0] = p->y;
     p->hist_w[0] = p->w;
     p->n++;

@@ -46,3 +46,17 @@ double test_sine_disturbance(double t_s, const void *ctx)
     const test_sine_t *s = (const test_sine_t *)ctx;
     return s->bias + s->amp * sin(s->w_rad_s * t_s + s->phase_rad);
 }
+
+void test_lag_step(double h_s, double tau_s, double u, double *m, double *dy, double *dw)
+{
+    *dy = 0.5 * h_s * h_s * u;
+    *dw = h_s * u;
+    if (tau_s > 0.0) {
+        const double e = exp(-h_s / tau_s), c = *m - u;
+        *dy += c * tau_s * (h_s - tau_s * (1.0 - e));
+        *dw += c * tau_s * (1.0 - e);
+        *m = u + c * e;
+    } else {
+        *m = u;
+    }
+}

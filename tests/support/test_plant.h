@@ -32,4 +32,12 @@ typedef struct {
 
 double test_sine_disturbance(double t_s, const void *ctx);
 
+/* One step h (s) of a unit torque through a first-order motor lag tau (s,
+ * 0 = none), exactly for u held over the step: the acting torque m (in: at
+ * the step's start; out: at its end) and the increments of the velocity,
+ * dw = integral of m, and of the angle, dy = double integral, per unit of
+ * 1/J. y'' = m / J + d then steps as y += w h + dy / J + d h^2 / 2,
+ * w += dw / J + d h. */
+void test_lag_step(double h_s, double tau_s, double u, double *m, double *dy, double *dw);
+
 #endif
