@@ -15,17 +15,20 @@ bench_engagement_t bench_engaged_attitude[BENCH_DISTURBANCES];
 bench_engagement_t bench_engaged_axis[BENCH_DISTURBANCES];
 
 const char *const bench_case_name[BENCH_CASES] = {"PID", "LADRC", "LP-MLADRC", "HP-MLADRC",
-                                                  "HP-MLADRC-2tones", "HP-MLADRC-act", "CASCADED", "INDI"};
+                                                  "HP-MLADRC-2tones", "HP-MLADRC-act", "CASCADED", "INDI",
+                                                  "LADRC-act"};
 const ladrc_variant_t bench_case_variant[BENCH_CASES] = {
     LADRC_VARIANT_PID,       LADRC_VARIANT_LADRC,     LADRC_VARIANT_LP_MLADRC, LADRC_VARIANT_HP_MLADRC,
-    LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_CASCADED,  LADRC_VARIANT_INDI};
+    LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_CASCADED,  LADRC_VARIANT_INDI,
+    LADRC_VARIANT_LADRC};
 const int bench_case_inputs[BENCH_CASES] = {BENCH_ONE_TONE,  BENCH_ONE_TONE, BENCH_ONE_TONE, BENCH_ONE_TONE,
-                                            BENCH_TWO_TONES, BENCH_ONE_TONE, BENCH_ONE_TONE, BENCH_ONE_TONE};
+                                            BENCH_TWO_TONES, BENCH_ONE_TONE, BENCH_ONE_TONE, BENCH_ONE_TONE,
+                                            BENCH_ONE_TONE};
 
-/* The actuator model of the case's axes (none but for HP-MLADRC-act). */
+/* The actuator model of the case's axes (none but for the -act cases). */
 static void set_actuator(ladrc_axis_config_t *cfg, int bench_case)
 {
-    if (bench_case == BENCH_CASE_HP_ACT) {
+    if (bench_case == BENCH_CASE_HP_ACT || bench_case == BENCH_CASE_LADRC_ACT) {
         cfg->motor_tau_s = BENCH_ACT_MOTOR_TAU_S;
         cfg->delay_ticks = BENCH_ACT_DELAY_TICKS;
     }
