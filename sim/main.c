@@ -53,6 +53,33 @@ static double now_s(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* The command line's settings: --set items and --seed, in their order. */
+#define MAX_SETTINGS 64
+typedef struct {
+    const char *text[MAX_SETTINGS];
+    const char *shown[MAX_SETTINGS]; /* the argument as given */
+    int shift[MAX_SETTINGS];         /* columns of text before the argument ("run.seed=") */
+    char label[MAX_SETTINGS][24];    /* "--set 2", "--seed" */
+    char seed_text[40];            /* "run.seed=N" of --seed */
+    int n;
+} settings_t;
+
+/* Prints an error of a scenario or of a setting, as file:line:column or
+ * "--set K (TEXT):column". */
+static void print_error(const sim_parse_error_t *e, const settings_t *set, const char *fallback_path)
+{
+    const int k = e->first_set_line > 0 && e->line >= e->first_set_line ? e->line - e->first_set_line : -1;
+    if (k >= 0 && k < set->n) {
+        const int col = e->column - set->shift[k];
+        fprintf(stderr, "ladrc_sil: %s '%s':%d: %s (with %s)\n", set->label[k], set->shown[k], col > 0 ? col : 1,
+                e->message, e->path);
+    } else if (e->line > 0) {
+        fprintf(stderr, "%s:%d:%d: %s\n", e->path, e->line, e->column, e->message);
+    } else {
+        fprintf(stderr, "%s: %s\n", e->path[0] != '\0' ? e->path : fallback_path, e->message);
+    }
+}
+
 /* tune = margins of one controller of one scenario, run before the flights. */
 typedef struct {
     sim_scenario_t *sc;
@@ -92,7 +119,7 @@ static void *tune_worker(void *arg)
 
 /* Tunes every listed controller with tune = margins, n_threads at a time.
  * Returns 0, or -1 after printing the first failure (in task order). */
-static int tune_all(sim_scenario_t *scenarios, int n_sc, int n_threads, int quiet)
+static int tune_all(sim_scenario_t *scenarios, int n_sc, int n_threads, int quiet, const settings_t *set)
 {
     static tune_task_t tasks[MAX_SCENARIOS * SIM_MAX_CONTROLLERS];
     int n = 0;
@@ -127,12 +154,7 @@ static int tune_all(sim_scenario_t *scenarios, int n_sc, int n_threads, int quie
     }
     for (int i = 0; i < n; ++i) {
         if (tasks[i].failed) {
-            const sim_parse_error_t *e = &tasks[i].err;
-            if (e->line > 0) {
-                fprintf(stderr, "%s:%d:%d: %s\n", e->path, e->line, e->column, e->message);
-            } else {
-                fprintf(stderr, "%s: %s\n", tasks[i].sc->path, e->message);
-            }
+            print_error(&tasks[i].err, set, tasks[i].sc->path);
             return -1;
         }
     }
@@ -145,11 +167,15 @@ static int tune_all(sim_scenario_t *scenarios, int n_sc, int n_threads, int quie
 
 static void usage(FILE *out)
 {
-    fputs("usage: ladrc_sil SCENARIO... [--jobs N] [--controllers LIST] [--out DIR] [--no-csv] [--quiet]\n"
+    fputs("usage: ladrc_sil SCENARIO... [--jobs N] [--controllers LIST] [--set SECTION.KEY=VALUE]... [--seed N]\n"
+          "                 [--out DIR] [--no-csv] [--quiet]\n"
           "  SCENARIO          a scenario file (format: docs/scenario-format.md)\n"
           "  --jobs N          worker threads (default: the number of cores)\n"
-          "  --controllers L   comma-separated subset of HP-MLADRC,LP-MLADRC,LADRC,PID,CASCADED,INDI\n"
-          "                    (default: each scenario's own list)\n"
+          "  --controllers L   subset of HP-MLADRC LP-MLADRC LADRC PID CASCADED INDI, names separated\n"
+          "                    by commas, spaces or both (default: each scenario's own list)\n"
+          "  --set S.K=V       KEY = VALUE in [SECTION] of every scenario, replacing the file's value\n"
+          "                    (a controller's section: controller:NAME.KEY=V); repeatable\n"
+          "  --seed N          [run] seed = N in every scenario\n"
           "  --out DIR         write every scenario's output under DIR/<scenario name>\n"
           "                    (default: each scenario's output_dir)\n"
           "  --no-csv          no time series, only metrics.csv and the tables\n"
@@ -213,31 +239,55 @@ static void *worker(void *arg)
 
 static int parse_controllers(const char *list, sim_controller_id_t *ids, int *n)
 {
-    char buf[256];
-    snprintf(buf, sizeof buf, "%s", list);
-    *n = 0;
-    for (char *tok = strtok(buf, ","); tok != NULL; tok = strtok(NULL, ",")) {
-        int found = -1;
-        for (int c = 0; c < SIM_CTRL_COUNT; ++c) {
-            if (strcmp(tok, sim_controller_name((sim_controller_id_t)c)) == 0) {
-                found = c;
-            }
+    char msg[160];
+    size_t at = 0;
+    if (sim_controller_list_parse(list, ids, n, &at, msg, sizeof msg) != 0) {
+        fprintf(stderr, "ladrc_sil: --controllers '%s': %s\n", list, msg);
+        return -1;
+    }
+    return 0;
+}
+
+/* out/x, out//x/ and ./out/x name the same directory: compared in this form. */
+static void normal_dir(const char *dir, char *out, size_t n)
+{
+    size_t o = 0;
+    for (const char *s = dir; *s != '\0' && o + 1 < n;) {
+        if ((s == dir || s[-1] == '/') && s[0] == '.' && (s[1] == '/' || s[1] == '\0')) {
+            s += s[1] == '/' ? 2 : 1; /* a "./" component */
+            continue;
         }
-        if (found < 0 || *n >= SIM_MAX_CONTROLLERS) {
-            fprintf(stderr, "ladrc_sil: --controllers: unknown controller '%s' (expected HP-MLADRC, LP-MLADRC, "
-                            "LADRC, PID, CASCADED or INDI)\n",
-                    tok);
-            return -1;
+        if (*s == '/' && o > 0 && out[o - 1] == '/') {
+            ++s;
+            continue;
         }
-        for (int i = 0; i < *n; ++i) {
-            if ((int)ids[i] == found) {
-                fprintf(stderr, "ladrc_sil: --controllers: '%s' listed twice\n", tok);
+        out[o++] = *s++;
+    }
+    while (o > 1 && out[o - 1] == '/') {
+        --o;
+    }
+    out[o] = '\0';
+}
+
+/* Two scenarios writing the same directory would overwrite each other's
+ * files: refused before anything is written. Returns 0, or -1 after
+ * printing the first pair. */
+static int check_collisions(const sim_scenario_t *scenarios, int n)
+{
+    static char norm[MAX_SCENARIOS][SIM_PATH_LEN];
+    for (int i = 0; i < n; ++i) {
+        normal_dir(scenarios[i].output_dir, norm[i], sizeof norm[i]);
+        for (int j = 0; j < i; ++j) {
+            if (strcmp(norm[i], norm[j]) == 0) {
+                fprintf(stderr,
+                        "ladrc_sil: %s and %s would both write '%s' (give one its own [run] output_dir, "
+                        "or run them apart)\n",
+                        scenarios[j].path, scenarios[i].path, scenarios[i].output_dir);
                 return -1;
             }
         }
-        ids[(*n)++] = (sim_controller_id_t)found;
     }
-    return *n > 0 ? 0 : -1;
+    return 0;
 }
 
 /* Rough cost of a job in ns of one core (measured on the paper scenario),
@@ -319,6 +369,7 @@ int main(int argc, char **argv)
     sim_controller_id_t override_ids[SIM_MAX_CONTROLLERS];
     const char *paths[MAX_SCENARIOS];
     int n_paths = 0;
+    static settings_t set;
 
     for (int a = 1; a < argc; ++a) {
         const char *arg = argv[a];
@@ -335,6 +386,33 @@ int main(int argc, char **argv)
         } else if (strcmp(arg, "--controllers") == 0 && a + 1 < argc) {
             if (parse_controllers(argv[++a], override_ids, &n_override) != 0) {
                 return EXIT_BAD_INPUT;
+            }
+        } else if ((strcmp(arg, "--set") == 0 || strcmp(arg, "--seed") == 0) && a + 1 < argc) {
+            if (set.n >= MAX_SETTINGS) {
+                fprintf(stderr, "ladrc_sil: at most %d --set and --seed per call\n", MAX_SETTINGS);
+                return EXIT_BAD_INPUT;
+            }
+            if (strcmp(arg, "--set") == 0) {
+                int count = 1;
+                for (int i = 0; i < set.n; ++i) {
+                    count += strncmp(set.label[i], "--set", 5) == 0;
+                }
+                snprintf(set.label[set.n], sizeof set.label[0], "--set %d", count);
+                set.text[set.n] = set.shown[set.n] = argv[++a];
+                set.shift[set.n++] = 0;
+            } else if (set.seed_text[0] != '\0') {
+                fprintf(stderr, "ladrc_sil: --seed given twice\n");
+                return EXIT_BAD_INPUT;
+            } else {
+                if (snprintf(set.seed_text, sizeof set.seed_text, "run.seed=%s", argv[++a]) >=
+                    (int)sizeof set.seed_text) {
+                    fprintf(stderr, "ladrc_sil: --seed '%s': seed out of range\n", argv[a]);
+                    return EXIT_BAD_INPUT;
+                }
+                snprintf(set.label[set.n], sizeof set.label[0], "--seed");
+                set.text[set.n] = set.seed_text;
+                set.shown[set.n] = argv[a];
+                set.shift[set.n++] = (int)strlen("run.seed=");
             }
         } else if (strcmp(arg, "--out") == 0 && a + 1 < argc) {
             out_root = argv[++a];
@@ -361,13 +439,9 @@ int main(int argc, char **argv)
     for (int i = 0; i < n_paths; ++i) {
         sim_parse_error_t perr;
         sim_scenario_t *sc = &scenarios[n_sc++];
-        if (sim_scenario_load(sc, paths[i], &perr) != 0 ||
+        if (sim_scenario_load_with(sc, paths[i], set.text, set.n, &perr) != 0 ||
             (n_override > 0 && sim_scenario_set_controllers(sc, override_ids, n_override, &perr) != 0)) {
-            if (perr.line > 0) {
-                fprintf(stderr, "%s:%d:%d: %s\n", perr.path, perr.line, perr.column, perr.message);
-            } else {
-                fprintf(stderr, "%s: %s\n", perr.path, perr.message); /* could not be read */
-            }
+            print_error(&perr, &set, paths[i]);
             return EXIT_BAD_INPUT;
         }
         if (out_root != NULL) {
@@ -380,9 +454,13 @@ int main(int argc, char **argv)
         }
     }
 
+    if (check_collisions(scenarios, n_sc) != 0) {
+        return EXIT_BAD_INPUT;
+    }
+
     /* tune = margins, before anything is written: a target that cannot be
      * met is an error of the file. */
-    if (tune_all(scenarios, n_sc, (int)jobs_wanted, quiet) != 0) {
+    if (tune_all(scenarios, n_sc, (int)jobs_wanted, quiet, &set) != 0) {
         return EXIT_BAD_INPUT;
     }
 

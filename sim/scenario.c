@@ -292,6 +292,7 @@ typedef struct {
     loc_t seen[SEC_COUNT][N_KEYS];
     int piece_line[N_KEYS][SIM_MAX_PIECES];
     int checked;                          /* a consistency error is in err */
+    int first_set_line;                   /* > 0: reading the command line's settings from this line */
 } parser_t;
 
 static int column(const parser_t *p, const char *at) { return (int)(at - p->line_start) + 1; }
@@ -546,25 +547,69 @@ static int fail_unknown_controller(parser_t *p, const char *tok, size_t len)
                 SHOWN(len), tok);
 }
 
+static int is_list_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
+
+int sim_controller_list_parse(const char *text, sim_controller_id_t ids[SIM_MAX_CONTROLLERS], int *n,
+                              size_t *err_at, char *msg, size_t msg_len)
+{
+    const char *s = text;
+    int after_comma = 0;
+    *n = 0;
+    for (;;) {
+        while (is_list_space(*s)) {
+            ++s;
+        }
+        if (*s == '\0' || *s == ',') {
+            if (*n > 0 && !after_comma && *s == '\0') {
+                return 0;
+            }
+            *err_at = (size_t)(s - text);
+            snprintf(msg, msg_len, "expected a controller name%s", *s == ',' ? " before ','" : "");
+            return -1;
+        }
+        const char *tok = s;
+        while (*s != '\0' && *s != ',' && !is_list_space(*s)) {
+            ++s;
+        }
+        const size_t len = (size_t)(s - tok);
+        const int id = controller_id(tok, len);
+        *err_at = (size_t)(tok - text);
+        if (id < 0) {
+            snprintf(msg, msg_len,
+                     "unknown controller '%.*s' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, CASCADED or INDI)",
+                     SHOWN(len), tok);
+            return -1;
+        }
+        for (int i = 0; i < *n; ++i) {
+            if ((int)ids[i] == id) {
+                snprintf(msg, msg_len, "controller '%s' listed twice", CONTROLLER_NAMES[id]);
+                return -1;
+            }
+        }
+        /* distinct names fit: SIM_MAX_CONTROLLERS >= SIM_CTRL_COUNT */
+        ids[(*n)++] = (sim_controller_id_t)id;
+        while (is_list_space(*s)) {
+            ++s;
+        }
+        after_comma = *s == ',';
+        if (after_comma) {
+            ++s;
+        }
+    }
+}
+
 static int parse_controllers(parser_t *p, char *value)
 {
     sim_scenario_t *sc = p->sc;
-    char *s = value;
-    size_t len;
-    sc->n_controllers = 0;
-    for (char *tok = next_token(&s, &len); len > 0; tok = next_token(&s, &len)) {
-        const int id = controller_id(tok, len);
-        if (id < 0) {
-            return fail_unknown_controller(p, tok, len);
-        }
-        for (int i = 0; i < sc->n_controllers; ++i) {
-            if ((int)sc->controllers[i] == id) {
-                return fail(p, tok, "controller '%s' listed twice", CONTROLLER_NAMES[id]);
-            }
-        }
-        /* four distinct names fit: SIM_MAX_CONTROLLERS >= SIM_CTRL_COUNT */
-        sc->controllers[sc->n_controllers++] = (sim_controller_id_t)id;
+    char msg[160];
+    size_t at = 0;
+    sim_controller_id_t ids[SIM_MAX_CONTROLLERS];
+    int n = 0;
+    if (sim_controller_list_parse(value, ids, &n, &at, msg, sizeof msg) != 0) {
+        return fail(p, value + at, "%s", msg);
     }
+    memcpy(sc->controllers, ids, sizeof ids);
+    sc->n_controllers = n;
     return 0;
 }
 
@@ -642,6 +687,10 @@ static int parse_signal(parser_t *p, int key, sim_signal_t *sig, char *value, in
     }
     for (int i = 0; i < sig->n_pieces; ++i) {
         if (from < sig->to_s[i] && sig->from_s[i] < to) {
+            if (p->first_set_line > 0) {
+                return fail(p, value, "window (%g, %g] overlaps another setting of '%s' on the command line", from,
+                            to, KEYS[key].name);
+            }
             return fail(p, value, "window (%g, %g] overlaps the one given on line %d", from, to,
                         p->piece_line[key][i]);
         }
@@ -759,6 +808,65 @@ static int parse_section(parser_t *p, char *s)
     return 0;
 }
 
+static int parse_key_line(parser_t *p, char *s);
+static int is_key_char(char c);
+
+/* One command-line setting SECTION.KEY=VALUE as a line of SECTION. */
+static int parse_setting(parser_t *p, char *s)
+{
+    p->line_start = s;
+    char *eq = strchr(s, '=');
+    char *dot = strchr(s, '.');
+    if (eq == NULL || dot == NULL || dot > eq) {
+        return fail(p, s, "expected SECTION.KEY=VALUE, got '%.*s'", SHOWN(strlen(s)), s);
+    }
+    char *name = skip_space(s);
+    size_t len = 0;
+    while (name + len < dot && is_key_char(name[len])) {
+        ++len;
+    }
+    int sec = -1;
+    for (int i = 0; i <= SEC_CONTROLLER; ++i) {
+        if (strlen(SECTION_NAMES[i]) == len && strncmp(SECTION_NAMES[i], name, len) == 0) {
+            sec = i;
+        }
+    }
+    char *rest = name + len;
+    if (sec < 0 || (sec != SEC_CONTROLLER && skip_space(rest) != dot)) {
+        return fail(p, name, "unknown section '%.*s'", SHOWN((size_t)(dot - name)), name);
+    }
+    if (sec == SEC_CONTROLLER) {
+        if (*rest == ':') {
+            ++rest;
+        }
+        char *ctrl = skip_space(rest);
+        char *end = ctrl;
+        while (end < dot && !is_space(*end)) {
+            ++end;
+        }
+        if (end == ctrl) {
+            return fail(p, ctrl, "expected a controller name after 'controller' ('controller:NAME.KEY=VALUE')");
+        }
+        const int id = controller_id(ctrl, (size_t)(end - ctrl));
+        if (id < 0) {
+            return fail_unknown_controller(p, ctrl, (size_t)(end - ctrl));
+        }
+        if (skip_space(end) != dot) {
+            return fail(p, skip_space(end), "expected '.' after the controller's name");
+        }
+        sec += id;
+    }
+    if (p->section_line[sec] == 0) {
+        p->section_line[sec] = p->line;
+    }
+    p->section = sec;
+    char *key = skip_space(dot + 1);
+    if (key == eq) {
+        return fail(p, key, "expected a key after '.'");
+    }
+    return parse_key_line(p, key);
+}
+
 static int find_key(int table, const char *name)
 {
     for (int i = 0; i < N_KEYS; ++i) {
@@ -808,12 +916,33 @@ static int parse_key_line(parser_t *p, char *s)
         return fail(p, key, "'%s' does not apply to %s", key, CONTROLLER_NAMES[sec - SEC_CONTROLLER]);
     }
     loc_t *seen = &p->seen[sec][k];
+    char *base = (table == SEC_CONTROLLER) ? (char *)&p->sc->overrides[sec - SEC_CONTROLLER] : (char *)p->sc;
+    if (p->first_set_line > 0 && seen->line != 0 && seen->line < p->first_set_line) {
+        /* a command-line setting replaces the file's value, every piece of a signal */
+        memset(seen, 0, sizeof *seen);
+        if (KEYS[k].type == V_SIGNAL) {
+            ((sim_signal_t *)(void *)(base + KEYS[k].offset))->n_pieces = 0;
+        }
+    }
+    if (p->first_set_line > 0 && KEYS[k].twin != NULL) {
+        loc_t *twin = &p->seen[sec][find_key(table, KEYS[k].twin)];
+        if (twin->line != 0 && twin->line < p->first_set_line) {
+            memset(twin, 0, sizeof *twin); /* the same field: replaced as well */
+        }
+    }
     if (seen->line != 0 && KEYS[k].type != V_SIGNAL) {
+        if (p->first_set_line > 0) {
+            return fail(p, key, "duplicate key '%s' (set twice on the command line)", key);
+        }
         return fail(p, key, "duplicate key '%s' (first given on line %d)", key, seen->line);
     }
     if (KEYS[k].twin != NULL) {
         const loc_t *twin = &p->seen[sec][find_key(table, KEYS[k].twin)];
         if (twin->line != 0) {
+            if (p->first_set_line > 0) {
+                return fail(p, key, "'%s' and '%s' set the same value (both on the command line)", key,
+                            KEYS[k].twin);
+            }
             return fail(p, key, "'%s' and '%s' (line %d) set the same value", key, KEYS[k].twin, twin->line);
         }
     }
@@ -822,7 +951,6 @@ static int parse_key_line(parser_t *p, char *s)
         seen->key_col = key_col;
         seen->value_col = column(p, value);
     }
-    char *base = (table == SEC_CONTROLLER) ? (char *)&p->sc->overrides[sec - SEC_CONTROLLER] : (char *)p->sc;
     return set_value(p, k, base, value, key_col);
 }
 
@@ -1424,6 +1552,34 @@ static void position_of(const char *data, size_t at, int *line, int *column)
 int sim_scenario_parse_buffer(sim_scenario_t *sc, const char *data, size_t len, const char *path,
                               sim_parse_error_t *err)
 {
+    return sim_scenario_parse_buffer_with(sc, data, len, path, NULL, 0, err);
+}
+
+/* The command line's settings, after the file's lines. */
+static int parse_settings(parser_t *p, const char *const *sets, int n_sets)
+{
+    p->first_set_line = p->line + 1;
+    p->sc->first_set_line = p->first_set_line;
+    for (int i = 0; i < n_sets; ++i) {
+        p->line = p->first_set_line + i;
+        const size_t n = strlen(sets[i]);
+        char *copy = malloc(n + 1);
+        if (copy == NULL) {
+            return fail_at(p, p->line, 1, "out of memory");
+        }
+        memcpy(copy, sets[i], n + 1);
+        const int rc = parse_setting(p, copy);
+        free(copy);
+        if (rc != 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+int sim_scenario_parse_buffer_with(sim_scenario_t *sc, const char *data, size_t len, const char *path,
+                                   const char *const *sets, int n_sets, sim_parse_error_t *err)
+{
     sim_parse_error_t ignored;
     if (err == NULL) {
         err = &ignored;
@@ -1462,6 +1618,9 @@ int sim_scenario_parse_buffer(sim_scenario_t *sc, const char *data, size_t len, 
     p->section = -1;
 
     int rc = parse_lines(p, copy);
+    if (rc == 0 && n_sets > 0) {
+        rc = parse_settings(p, sets, n_sets);
+    }
     if (rc == 0) {
         check_kind(p);
         check_run(p);
@@ -1483,6 +1642,10 @@ int sim_scenario_parse_buffer(sim_scenario_t *sc, const char *data, size_t len, 
     }
     if (rc == 0) {
         finish(p);
+    }
+    err->first_set_line = p->first_set_line;
+    for (int id = 0; id < SIM_CTRL_COUNT; ++id) {
+        sc->controller_error[id].first_set_line = p->first_set_line;
     }
     free(copy);
     free(p);
@@ -1531,6 +1694,12 @@ int sim_scenario_set_controllers(sim_scenario_t *sc, const sim_controller_id_t *
 
 int sim_scenario_load(sim_scenario_t *sc, const char *path, sim_parse_error_t *err)
 {
+    return sim_scenario_load_with(sc, path, NULL, 0, err);
+}
+
+int sim_scenario_load_with(sim_scenario_t *sc, const char *path, const char *const *sets, int n_sets,
+                           sim_parse_error_t *err)
+{
     sim_parse_error_t ignored;
     if (err == NULL) {
         err = &ignored;
@@ -1566,7 +1735,7 @@ int sim_scenario_load(sim_scenario_t *sc, const char *path, sim_parse_error_t *e
         free(text);
         return -1;
     }
-    const int rc = sim_scenario_parse_buffer(sc, text, len, path, err);
+    const int rc = sim_scenario_parse_buffer_with(sc, text, len, path, sets, n_sets, err);
     free(text);
     return rc;
 }

@@ -116,6 +116,8 @@ typedef struct {
     int line;
     int column;
     char message[256];
+    int first_set_line;  /* > 0: lines from this one on are the command line's --set items
+                            (line first_set_line + k is item k, column is into its text) */
 } sim_parse_error_t;
 
 typedef struct {
@@ -180,6 +182,9 @@ typedef struct {
      * errors of the tuning, and what the tuning chose (zero until it runs). */
     int tune_line[SIM_CTRL_COUNT], tune_column[SIM_CTRL_COUNT];
     sim_tuning_t tuning[SIM_CTRL_COUNT];
+
+    /* > 0: lines from this one on are --set items (sim_parse_error_t) */
+    int first_set_line;
 } sim_scenario_t;
 
 /* Fills sc with the defaults of every key, then reads the file. Returns 0, or
@@ -193,6 +198,26 @@ int sim_scenario_parse(sim_scenario_t *sc, const char *text, const char *path, s
  * them is an error at its place): what sim_scenario_load does with the file. */
 int sim_scenario_parse_buffer(sim_scenario_t *sc, const char *data, size_t len, const char *path,
                               sim_parse_error_t *err);
+
+/* The same, then the command line's settings sets[0..n_sets-1], each
+ * "SECTION.KEY=VALUE" (SECTION: a section's name, or "controller NAME" or
+ * "controller:NAME"), read as a line KEY = VALUE of that section after the
+ * file: same parsing, same errors. A setting replaces the file's value of
+ * its key (every piece of a signal key; further settings of that signal add
+ * pieces); a key set twice on the command line is a duplicate. Errors in a
+ * setting have line first_set_line + its index and a column into its text. */
+int sim_scenario_load_with(sim_scenario_t *sc, const char *path, const char *const *sets, int n_sets,
+                           sim_parse_error_t *err);
+int sim_scenario_parse_buffer_with(sim_scenario_t *sc, const char *data, size_t len, const char *path,
+                                   const char *const *sets, int n_sets, sim_parse_error_t *err);
+
+/* A list of controller names, the one rule of the file's `controllers` and
+ * of --controllers: names separated by commas, whitespace or both (an empty
+ * name, as in "A,,B" or a trailing comma, is an error). Returns 0 with
+ * ids[0..*n-1], or -1 with the message in msg and the offset of the
+ * offending text in *err_at. */
+int sim_controller_list_parse(const char *text, sim_controller_id_t ids[SIM_MAX_CONTROLLERS], int *n,
+                              size_t *err_at, char *msg, size_t msg_len);
 
 /* Replaces an attitude scenario's controllers with ids[0..n-1] (the command
  * line's --controllers; 1 <= n <= SIM_MAX_CONTROLLERS). Returns 0, or -1 with

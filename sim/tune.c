@@ -41,6 +41,7 @@ static void tune_error(const sim_scenario_t *sc, sim_controller_id_t id, sim_par
     snprintf(err->path, sizeof err->path, "%s", sc->path);
     err->line = sc->tune_line[id];
     err->column = sc->tune_column[id];
+    err->first_set_line = sc->first_set_line;
     snprintf(err->message, sizeof err->message, "%s", message);
 }
 

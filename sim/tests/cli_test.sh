@@ -10,7 +10,9 @@ scenarios=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 failures=0
+checks=0
 check() { # name, condition exit code
+    checks=$((checks + 1))
     if [ "$2" -eq 0 ]; then echo "cli_test.sh:$1:PASS"; else echo "cli_test.sh:$1:FAIL"; failures=$((failures + 1)); fi
 }
 
@@ -123,5 +125,51 @@ check non_finite_state_diverges $?
 check healthy_run_exits_0 $?
 refused diverge_limit_zero_exits_2 2:21: '[metrics]\ndiverge_limit_deg = 0\n'
 
-echo "$(( 28 - failures )) passed, $failures failed"
+# --set and --seed: the value replaces the file's; the same results as a file
+# that says it; a bad setting is named as such, exit 2, nothing written.
+printf '[run]\nduration_s = 0.5\nseed = 3\ncontrollers = LADRC PID\n[reference]\nroll = 4\n[sensors]\nangle_noise_std_deg = 0.1\n' \
+    > "$work/base.ini"
+mkdir -p "$work/edited"
+printf '[run]\nduration_s = 0.5\nseed = 11\ncontrollers = LADRC PID\n[reference]\nroll = 0 .. 0.2 : 2\n[sensors]\nangle_noise_std_deg = 0.1\n[controller LADRC]\nwc_rad_s = 20\n' \
+    > "$work/edited/base.ini"
+"$sil" "$work/base.ini" --seed 11 --set "controller:LADRC.wc_rad_s=20" --set "reference.roll=0..0.2: 2" \
+    --out "$work/set_cli" --quiet > "$work/set_cli.txt" 2>&1
+rc=$?
+"$sil" "$work/edited/base.ini" --out "$work/set_file" --quiet > "$work/set_file.txt" 2>&1
+[ $rc -eq 0 ] && [ $? -eq 0 ] && diff -r "$work/set_cli" "$work/set_file" > /dev/null
+check set_and_seed_equal_the_edited_file $?
+"$sil" "$work/base.ini" --out "$work/set_plain" --quiet > /dev/null 2>&1
+! cmp -s "$work/set_plain/base/LADRC.csv" "$work/set_cli/base/LADRC.csv"; check set_changes_the_run $?
+"$sil" "$work/base.ini" --set "run.seed=11" --set "controller LADRC.wrap_yaw=maybe" --out "$work/set_bad" \
+    --quiet > /dev/null 2> "$work/set_bad.err"
+[ $? -eq 2 ] && [ ! -e "$work/set_bad" ] &&
+  grep -q "^ladrc_sil: --set 2 'controller LADRC.wrap_yaw=maybe':27: expected yes or no, got 'maybe'" "$work/set_bad.err"
+check bad_set_named_exits_2_writes_nothing $?
+"$sil" "$work/base.ini" --seed 1x --out "$work/seed_bad" --quiet > /dev/null 2> "$work/seed_bad.err"
+[ $? -eq 2 ] && [ ! -e "$work/seed_bad" ] && grep -q "^ladrc_sil: --seed '1x':1: expected an unsigned integer" "$work/seed_bad.err"
+check bad_seed_named_exits_2 $?
+
+# --controllers takes the file's list rule: commas, spaces or both.
+"$sil" "$work/base.ini" --controllers "PID LADRC" --out "$work/list_sp" --quiet > /dev/null 2>&1 &&
+  "$sil" "$work/base.ini" --controllers "PID, LADRC" --out "$work/list_cm" --quiet > /dev/null 2>&1 &&
+  diff -r "$work/list_sp" "$work/list_cm" > /dev/null &&
+  [ "$(cut -d, -f2 "$work/list_sp/base/metrics.csv" | sed 1d | uniq | tr '\n' ' ')" = "PID LADRC " ]
+check controllers_list_spaces_or_commas $?
+
+# Two scenarios writing the same directory: refused, both named, nothing written.
+mkdir -p "$work/a" "$work/b"
+cp "$work/base.ini" "$work/a/x.ini"; cp "$work/base.ini" "$work/b/x.ini"
+sil_abs=$(cd "$(dirname "$sil")" && pwd)/$(basename "$sil")
+(cd "$work" && "$sil_abs" a/x.ini b/x.ini --quiet > /dev/null 2> "$work/collide.err")
+rc=$?
+[ $rc -eq 2 ] && [ ! -e "$work/out" ] && grep -q "a/x.ini and b/x.ini would both write 'out/x'" "$work/collide.err"
+check output_collision_refused_before_writing $?
+"$sil" "$work/a/x.ini" "$work/b/x.ini" --out "$work/collide_out" --quiet > /dev/null 2>&1
+[ $? -eq 2 ] && [ ! -e "$work/collide_out" ]; check output_collision_under_out_refused $?
+printf '[run]\nduration_s = 0.2\noutput_dir = %s/same/\n' "$work" > "$work/p.ini"
+printf '[run]\nduration_s = 0.2\noutput_dir = %s//same\n' "$work" > "$work/q.ini"
+"$sil" "$work/p.ini" "$work/q.ini" --quiet > /dev/null 2>&1
+[ $? -eq 2 ] && [ ! -e "$work/same" ]; check output_collision_same_dir_spelled_apart $?
+
+echo "$(( checks - failures )) passed, $failures failed"
 [ "$failures" -eq 0 ]
