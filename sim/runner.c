@@ -124,9 +124,14 @@ static void line_end(csv_line_t *l, FILE *f)
 static const char ATTITUDE_CSV_HEADER[] =
     "t_s,ref_roll_deg,ref_pitch_deg,ref_yaw_deg,angle_roll_deg,angle_pitch_deg,angle_yaw_deg,"
     "error_roll_deg,error_pitch_deg,error_yaw_deg,torque_cmd_roll_Nm,torque_cmd_pitch_Nm,torque_cmd_yaw_Nm,"
-    "torque_roll_Nm,torque_pitch_Nm,torque_yaw_Nm,w2_1,w2_2,w2_3,w2_4,"
+    "torque_roll_Nm,torque_pitch_Nm,torque_yaw_Nm,w2_1_rad2_s2,w2_2_rad2_s2,w2_3_rad2_s2,w2_4_rad2_s2,"
     "dist_roll_rad_s2,dist_pitch_rad_s2,dist_yaw_rad_s2,f_roll_rad_s2,f_pitch_rad_s2,f_yaw_rad_s2,"
-    "f_est_roll_rad_s2,f_est_pitch_rad_s2,f_est_yaw_rad_s2\n";
+    "f_est_roll_rad_s2,f_est_pitch_rad_s2,f_est_yaw_rad_s2,"
+    "meas_angle_roll_deg,meas_angle_pitch_deg,meas_angle_yaw_deg,"
+    "meas_rate_roll_deg_s,meas_rate_pitch_deg_s,meas_rate_yaw_deg_s,"
+    "est_angle_roll_deg,est_angle_pitch_deg,est_angle_yaw_deg,"
+    "est_rate_roll_deg_s,est_rate_pitch_deg_s,est_rate_yaw_deg_s,"
+    "sat_roll_flag,sat_pitch_flag,sat_yaw_flag,sat_thrust_flag\n";
 
 /* An angle into (-pi, pi], and itself bit for bit when it is there already. */
 static double wrap_pi(double x)
@@ -272,7 +277,7 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
 
         /* The truth at this tick: the disturbance the observer should see is
          * the plant's acceleration minus what the applied torque explains. */
-        double w2_cmd[4], applied[3], dist[3], accel[3], f_true[3], f_est[3], err_rad[3];
+        double w2_cmd[4], applied[3], dist[3], accel[3], f_true[3], f_est[3], err_rad[3], z1[3], z2[3];
         for (int r = 0; r < 4; ++r) {
             w2_cmd[r] = out.w2_rad2_s2[r];
         }
@@ -288,6 +293,8 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
             ladrc_real_t a_est, r_est, d_est;
             ladrc_axis_get_estimate(&att.axis[i], &a_est, &r_est, &d_est);
             f_est[i] = d_est;
+            z1[i] = a_est;
+            z2[i] = r_est;
             err_rad[i] = tracking_error_rad(ref_rad[i], plant.angle_rad[i], i == 2 && wrap_yaw);
             const double e_deg = err_rad[i] * RAD2DEG;
             if (in_window(sc->error_window_s, t)) {
@@ -319,6 +326,13 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
             for (int i = 0; i < 3; ++i) line_g(&line, dist[i], 6);
             for (int i = 0; i < 3; ++i) line_g(&line, f_true[i], 6);
             for (int i = 0; i < 3; ++i) line_g(&line, m->has_estimate ? f_est[i] : NAN, 6);
+            for (int i = 0; i < 3; ++i) line_g(&line, meas_angle[i] * RAD2DEG, 6);
+            for (int i = 0; i < 3; ++i) line_g(&line, meas_rate[i] * RAD2DEG, 6);
+            for (int i = 0; i < 3; ++i) line_g(&line, z1[i] * RAD2DEG, 6);
+            for (int i = 0; i < 3; ++i) line_g(&line, z2[i] * RAD2DEG, 6);
+            static const unsigned SAT_BITS[4] = {LADRC_MIXER_SAT_ROLL, LADRC_MIXER_SAT_PITCH, LADRC_MIXER_SAT_YAW,
+                                                 LADRC_MIXER_SAT_THRUST};
+            for (int b = 0; b < 4; ++b) line_g(&line, (out.saturated & SAT_BITS[b]) != 0u ? 1.0 : 0.0, 6);
             line_end(&line, csv);
         }
         sim_plant_step(&plant, w2_cmd, dt, sc->plant_substeps, disturbance, &cache);

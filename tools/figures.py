@@ -308,8 +308,8 @@ def fig_rotors(runs, fig_dir):
     for k, ax in enumerate(axes.flat):
         for c, r in runs.items():
             s = stride(r["t_s"].size)
-            ax.plot(r["t_s"][::s], r["w2_%d" % (k + 1)][::s] / 1e3, **style(c))
-        clip_ylim(ax, [r["w2_%d" % (k + 1)] / 1e3 for r in runs.values()], "spikes")
+            ax.plot(r["t_s"][::s], r["w2_%d_rad2_s2" % (k + 1)][::s] / 1e3, **style(c))
+        clip_ylim(ax, [r["w2_%d_rad2_s2" % (k + 1)] / 1e3 for r in runs.values()], "spikes")
         ax.axhline(0, color="k", lw=0.6)
         mark_onsets(ax, t_end)
         ax.set_title("rotor %d" % (k + 1), fontsize=10)

@@ -171,5 +171,23 @@ printf '[run]\nduration_s = 0.2\noutput_dir = %s//same\n' "$work" > "$work/q.ini
 "$sil" "$work/p.ini" "$work/q.ini" --quiet > /dev/null 2>&1
 [ $? -eq 2 ] && [ ! -e "$work/same" ]; check output_collision_same_dir_spelled_apart $?
 
+# The time series: a unit on every column (docs/csv-format.md), as many
+# fields per row as names; the measured angle is the noisy one, the true one
+# is not; the saturation flags are 0 or 1 and some are raised on limited rotors.
+printf '[run]\nduration_s = 0.5\ncontrollers = LADRC PID\n[rotors]\nideal = no\nw2_max_rad2_s2 = 90000\n[reference]\nroll = 0.1 .. : 30\n[sensors]\nangle_noise_std_deg = 0.05\n' \
+    > "$work/sat.ini"
+"$sil" "$work/sat.ini" --out "$work/sat_out" --quiet > /dev/null 2>&1
+check csv_run_succeeds $?
+head -n 1 "$work/sat_out/sat/LADRC.csv" | tr , '\n' |
+  grep -Ev '(_s|_deg|_Nm|_rad_s2|_rad2_s2|_deg_s|_flag)$' | grep -q . && bad=1 || bad=0
+check csv_every_column_has_a_unit $bad
+awk -F, 'NR == 1 { n = NF } NF != n { bad = 1 } END { exit bad || n != 45 }' "$work/sat_out/sat/PID.csv"
+check csv_rows_as_wide_as_the_header $?
+awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+    { if ($c["meas_angle_pitch_deg"] != 0) noisy = 1; if ($c["angle_pitch_deg"] != $c["meas_angle_pitch_deg"]) apart = 1
+      for (f in c) if (f ~ /_flag$/) { if ($c[f] != 0 && $c[f] != 1) bad = 1; if ($c[f] == 1) raised = 1 } }
+    END { exit !(noisy && apart && raised && !bad) }' "$work/sat_out/sat/LADRC.csv"
+check csv_measured_angle_noisy_and_flags_raised $?
+
 echo "$(( checks - failures )) passed, $failures failed"
 [ "$failures" -eq 0 ]
