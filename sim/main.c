@@ -290,6 +290,32 @@ static int check_collisions(const sim_scenario_t *scenarios, int n)
     return 0;
 }
 
+/* One row per piece of each signal the scenario gives: its kind, axis and
+ * window (from_s, to_s] ("-inf", "inf" when unbounded), so that a reader of
+ * the outputs knows where the references and disturbances change. */
+static int write_signals_csv(FILE *f, const sim_scenario_t *sc)
+{
+    static const char *const AXIS[3] = {"roll", "pitch", "yaw"};
+    fputs("signal,axis,piece,from_s,to_s\n", f);
+    const struct {
+        const char *what;
+        const sim_signal_t *sig;
+        const char *axis;
+    } rows[] = {{"reference", &sc->reference[0], AXIS[0]},   {"reference", &sc->reference[1], AXIS[1]},
+                {"reference", &sc->reference[2], AXIS[2]},   {"disturbance", &sc->disturbance[0], AXIS[0]},
+                {"disturbance", &sc->disturbance[1], AXIS[1]}, {"disturbance", &sc->disturbance[2], AXIS[2]},
+                {"signal", &sc->diff_signal, "-"}};
+    const int first = sc->kind == SIM_KIND_DIFFERENTIATOR ? 6 : 0;
+    const int last = sc->kind == SIM_KIND_DIFFERENTIATOR ? 7 : 6;
+    for (int r = first; r < last; ++r) {
+        for (int k = 0; k < rows[r].sig->n_pieces; ++k) {
+            fprintf(f, "%s,%s,%d,%.17g,%.17g\n", rows[r].what, rows[r].axis, k + 1, rows[r].sig->from_s[k],
+                    rows[r].sig->to_s[k]);
+        }
+    }
+    return ferror(f) ? -1 : 0;
+}
+
 /* Rough cost of a job in ns of one core (measured on the paper scenario),
  * for the order only: the longest runs go first, so that the last one to
  * start is a short one and the workers finish together. */
@@ -535,6 +561,12 @@ int main(int argc, char **argv)
         snprintf(path, sizeof path, "%s/metrics.csv", sc->output_dir);
         FILE *f = fopen(path, "w");
         if (f == NULL || sim_report_metrics_csv(f, &res, 1) != 0 || fclose(f) != 0) {
+            fprintf(stderr, "ladrc_sil: %s: cannot write\n", path);
+            status = EXIT_RUN_FAILED;
+        }
+        snprintf(path, sizeof path, "%s/signals.csv", sc->output_dir);
+        f = fopen(path, "w");
+        if (f == NULL || write_signals_csv(f, sc) != 0 || fclose(f) != 0) {
             fprintf(stderr, "ladrc_sil: %s: cannot write\n", path);
             status = EXIT_RUN_FAILED;
         }

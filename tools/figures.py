@@ -3,6 +3,11 @@
 """Draws the paper's figures (Dong et al., Actuators 2025, 14(10), 504: Figs. 5-12), and Fig. 13
 (HP-MLADRC with its frequency known and online), from the output of ladrc_sil.
 
+The same figures of any other scenario given with --paper, --noisy, --known or --diff are titled
+with its name and mark its own disturbance windows (from its signals.csv), not the paper's: the
+paper's titles and Table 2 onsets belong to the shipped scenarios paper, paper_noisy, paper_known
+and table3_differentiator alone.
+
 Usage: figures.py OUT_DIR FIG_DIR [--paper NAME] [--noisy NAME] [--known NAME] [--diff NAME]
 
 OUT_DIR holds one directory per scenario, as written by `ladrc_sil --out OUT_DIR`:
@@ -34,6 +39,7 @@ ZORDER = {"HP-MLADRC": 4, "LP-MLADRC": 3, "LADRC": 1, "PID": 2, "CASCADED": 2.5,
 NAMES = {"CASCADED": "CASCADED (attitude P → rate PID)"}
 AXIS_SYMBOLS = {"roll": "roll φ", "pitch": "pitch θ", "yaw": "yaw ψ"}
 ONSETS_S = [2.0, 6.0, 12.0, 25.0]   # where the paper's Table 2 disturbance changes
+PAPER_SCENARIOS = ("paper", "paper_noisy", "paper_known", "table3_differentiator")
 ZOOM_S = (-0.3, 1.2)                # zoom window around each onset
 SIZE_IN = (10, 6)
 DPI = 110
@@ -60,6 +66,37 @@ def load_runs(scen_dir):
     return runs
 
 
+
+
+class Scenario:
+    """What the figures of one scenario say: its name in titles and where its disturbance changes.
+    The paper's scenarios keep the paper's figure titles and Table 2 onsets; any other takes the
+    finite ends of its [disturbance] windows from its signals.csv (none if that file is absent)."""
+
+    def __init__(self, out_dir, name):
+        self.name = name
+        self.paper = name in PAPER_SCENARIOS
+        self.onsets = list(ONSETS_S) if self.paper else disturbance_changes(os.path.join(out_dir, name))
+
+    def title(self, fig, paper_text, text):
+        """The paper's "Fig. N: ..." title for the paper's scenarios, else `text` and the scenario's name."""
+        return "Fig. %s: %s" % (fig, paper_text) if self.paper else "%s, scenario %s" % (text, self.name)
+
+
+def disturbance_changes(scen_dir):
+    """Sorted finite, positive ends of the scenario's [disturbance] windows, from signals.csv."""
+    path = os.path.join(scen_dir, "signals.csv")
+    if not os.path.exists(path):
+        return []
+    ends = set()
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            if row["signal"] == "disturbance":
+                for key in ("from_s", "to_s"):
+                    v = float(row[key])
+                    if math.isfinite(v) and v > 0.0:
+                        ends.add(v)
+    return sorted(ends)
 
 
 # Legend labels: a controller's name, with where its run diverged (its series ends there).
@@ -97,8 +134,8 @@ def stride(n):
     return max(1, n // MAX_POINTS)
 
 
-def mark_onsets(ax, t_end):
-    for t0 in ONSETS_S:
+def mark_onsets(ax, t_end, onsets):
+    for t0 in onsets:
         if t0 < t_end:
             ax.axvline(t0, color="0.5", lw=0.8, ls=":")
 
@@ -110,18 +147,21 @@ def save(fig, fig_dir, name):
     print("figures.py: wrote", path)
 
 
-def fig_differentiator(d, metrics, fig_dir):
+def fig_differentiator(d, metrics, fig_dir, sc):
     """Fig. 5: TD and Levant derivatives of the noisy sine against the exact derivative."""
     t = d["t_s"]
     fig, (top, bottom) = plt.subplots(2, 1, figsize=SIZE_IN)
     rms = {k: metrics.get((k, "3", "derivative_error_rms", "-"), math.nan) for k in ("TD", "Levant")}
     lines = [("dr_true", "exact derivative", "k", 1.6),
-             ("dr_td", "TD (Table 3 RMS error %.3f)" % rms["TD"], "#ff7f0e", 0.9),
-             ("dr_levant", "Levant (Table 3 RMS error %.3f)" % rms["Levant"], "#1f77b4", 0.9)]
+             ("dr_td", "TD (RMS error %.3f)" % rms["TD"], "#ff7f0e", 0.9),
+             ("dr_levant", "Levant (RMS error %.3f)" % rms["Levant"], "#1f77b4", 0.9)]
+    if sc.paper:
+        lines = [(k, label.replace("(RMS", "(Table 3 RMS"), colour, lw) for k, label, colour, lw in lines]
     s = stride(t.size)
     for key, label, colour, lw in lines:
         top.plot(t[::s], d[key][::s], color=colour, lw=lw, label=label)
-    top.set_title("Fig. 5: derivative of the noisy signal, TD vs Levant")
+    top.set_title(sc.title(5, "derivative of the noisy signal, TD vs Levant",
+                           "Derivative of the noisy signal, TD vs Levant"))
     top.set_ylabel("dr/dt (1/s)")
     top.legend(loc="upper right", ncol=3)
     # Zoom: one second in the middle of the run, every sample.
@@ -137,7 +177,7 @@ def fig_differentiator(d, metrics, fig_dir):
     save(fig, fig_dir, "fig05_td_levant.png")
 
 
-def plot_per_axis(runs, key_fmt, title, ylabel, fig_dir, name, with_ref, zoom_end_s=0.0):
+def plot_per_axis(runs, key_fmt, title, ylabel, fig_dir, name, with_ref, sc, zoom_end_s=0.0):
     """Three panels (roll, pitch, yaw) over the whole run, all controllers; with zoom_end_s > 0,
     a second column shows the last zoom_end_s seconds, every sample."""
     cols = 2 if zoom_end_s > 0 else 1
@@ -160,23 +200,24 @@ def plot_per_axis(runs, key_fmt, title, ylabel, fig_dir, name, with_ref, zoom_en
                     m = (t >= zoom[0]) & (t <= zoom[1])
                     ax.plot(t[m], y[m], **style(c, 0.7))
             if j == 0:
-                mark_onsets(ax, t_end)
+                mark_onsets(ax, t_end, sc.onsets)
                 ax.set_ylabel("%s (%s)" % (AXIS_SYMBOLS[axis], ylabel))
     axes[0][0].set_title(title)
     if cols == 2:
         axes[0][1].set_title("zoom: last %g s, every sample" % (zoom[1] - zoom[0]), fontsize=10)
         axes[-1][1].set_xlabel("time (s)")
     axes[0][0].legend(loc="upper right", ncol=5 if cols == 1 else 3, fontsize=8)
-    axes[-1][0].set_xlabel("time (s)   (dotted lines: disturbance changes at %s s)"
-                           % ", ".join("%g" % x for x in ONSETS_S))
+    shown = [x for x in sc.onsets if x < t_end]
+    axes[-1][0].set_xlabel("time (s)   (dotted lines: disturbance changes at %s s)" % ", ".join("%g" % x for x in shown)
+                           if shown else "time (s)   (no disturbance window starts or ends in the run)")
     fig.tight_layout()
     save(fig, fig_dir, name)
 
 
-def plot_onsets(runs, key_fmt, title, ylabel, fig_dir, name, with_ref):
+def plot_onsets(runs, key_fmt, title, ylabel, fig_dir, name, with_ref, sc):
     """Grid of zooms: rows are axes, columns the disturbance onsets; every sample."""
     t_end = max(r["t_s"][-1] for r in runs.values())
-    onsets = [t0 for t0 in ONSETS_S if t0 < t_end]
+    onsets = [t0 for t0 in sc.onsets if t0 < t_end][:6]
     if not onsets:
         return
     fig, axes = plt.subplots(3, len(onsets), figsize=SIZE_IN, squeeze=False)
@@ -265,7 +306,7 @@ def fig_radar(metrics, fig_dir, name, title):
     save(fig, fig_dir, name)
 
 
-def fig_disturbance(runs, fig_dir):
+def fig_disturbance(runs, fig_dir, sc):
     """Fig. 9: the true total disturbance f and the controllers' estimates, and the estimate error."""
     est = {c: r for c, r in runs.items() if not np.all(np.isnan(r["f_est_roll_rad_s2"]))}
     if not est:
@@ -287,7 +328,7 @@ def fig_disturbance(runs, fig_dir):
             right.plot(t, errors[-1][::s], **style(c, 0.7))
         clip_ylim(right, errors, "spikes at the steps")
         for ax in (left, right):
-            mark_onsets(ax, t_end)
+            mark_onsets(ax, t_end, sc.onsets)
         left.set_ylabel("%s (rad/s²)" % AXIS_SYMBOLS[axis])
     axes[0][0].set_title("total disturbance f and estimate z3 + d̂")
     axes[0][1].set_title("estimate error z3 + d̂ − f")
@@ -295,13 +336,14 @@ def fig_disturbance(runs, fig_dir):
     fig.legend(handles, labels, loc="upper center", ncol=4, bbox_to_anchor=(0.5, 0.955), fontsize=9)
     axes[2][0].set_xlabel("time (s)")
     axes[2][1].set_xlabel("time (s)")
-    fig.suptitle("Fig. 9: total disturbance f (external + coupling + drag) and its estimate; each "
-                 "error against the f of its own run")
+    fig.suptitle(sc.title(9, "total disturbance f (external + coupling + drag) and its estimate; each "
+                          "error against the f of its own run",
+                          "Total disturbance f (external + coupling + drag) and its estimate"))
     fig.tight_layout(rect=(0, 0, 1, 0.93))
     save(fig, fig_dir, "fig09_disturbance.png")
 
 
-def fig_rotors(runs, fig_dir):
+def fig_rotors(runs, fig_dir, sc):
     """Fig. 12: rotor speed squared (as in Table 7; the paper's ideal rotors can go below 0)."""
     fig, axes = plt.subplots(2, 2, figsize=SIZE_IN, sharex=True)
     t_end = max(r["t_s"][-1] for r in runs.values())
@@ -311,20 +353,23 @@ def fig_rotors(runs, fig_dir):
             ax.plot(r["t_s"][::s], r["w2_%d_rad2_s2" % (k + 1)][::s] / 1e3, **style(c))
         clip_ylim(ax, [r["w2_%d_rad2_s2" % (k + 1)] / 1e3 for r in runs.values()], "spikes")
         ax.axhline(0, color="k", lw=0.6)
-        mark_onsets(ax, t_end)
+        mark_onsets(ax, t_end, sc.onsets)
         ax.set_title("rotor %d" % (k + 1), fontsize=10)
         ax.set_ylabel("ω² (10³ rad²/s²)")
         if k >= 2:
             ax.set_xlabel("time (s)")
     axes[0][0].legend(loc="upper left", fontsize=8)
-    fig.suptitle("Fig. 12: rotor speed squared ω² (Table 7's quantity; the paper's ideal rotors allow ω² < 0)")
+    fig.suptitle(sc.title(12, "rotor speed squared ω² (Table 7's quantity; the paper's ideal rotors allow ω² < 0)",
+                          "Rotor speed squared ω²"))
     fig.tight_layout()
     save(fig, fig_dir, "fig12_rotors.png")
 
 
-def fig_hp_modes(online, known, fig_dir):
+def fig_hp_modes(online, known, fig_dir, sc, sc_known):
     """Fig. 13 (ours): |tracking error| on a log scale around the frequency jump at 12 s and the steady
-    window, HP-MLADRC with the frequency estimated online and given (known), LP-MLADRC and LADRC."""
+    window, HP-MLADRC with the frequency estimated online and given (known), LP-MLADRC and LADRC.
+    Another scenario: over its whole run, with its own disturbance changes marked."""
+    paper = sc.paper and sc_known.paper
     fig, axes = plt.subplots(3, 1, figsize=(SIZE_IN[0], 8), sharex=True)
     lines = [("HP-MLADRC", online, "HP-MLADRC, online frequency", COLOURS["HP-MLADRC"], "-"),
              ("HP-MLADRC", known, "HP-MLADRC, known frequency", "#17becf", "--"),
@@ -335,18 +380,27 @@ def fig_hp_modes(online, known, fig_dir):
             if c not in runs:
                 continue
             t = runs[c]["t_s"]
-            keep = (t > 10.0) & (t <= 27.0)
+            keep = (t > 10.0) & (t <= 27.0) if paper else (t >= 0.0)
             err = np.abs(runs[c]["error_%s_deg" % axis][keep])
             ax.semilogy(t[keep], np.maximum(err, 1e-6), color=colour, ls=dash, lw=1.0, label=label)
-        ax.axhline(0.0073, color="0.4", lw=0.8, ls=":")
-        ax.axvspan(20.0, 25.0, color="0.9", zorder=0)
+        if paper:
+            ax.axhline(0.0073, color="0.4", lw=0.8, ls=":")
+            ax.axvspan(20.0, 25.0, color="0.9", zorder=0)
+        else:
+            t_end = max(r["t_s"][-1] for r in online.values())
+            mark_onsets(ax, t_end, sc.onsets)
         ax.set_ylim(1e-5, 20.0)
         ax.set_ylabel("|error| %s (deg)" % AXIS_SYMBOLS[axis])
-    axes[0].text(20.1, 0.0073 * 1.3, "paper's band 0.0073 deg", fontsize=7, color="0.3")
-    axes[0].text(20.1, 5.0, "steady window (20, 25] s", fontsize=7, color="0.3")
     axes[0].legend(loc="lower left", fontsize=8, ncol=2)
-    axes[-1].set_xlabel("time (s): the tone jumps from π/4 to 3 rad/s at 12 s and stops at 25 s")
-    fig.suptitle("Fig. 13 (ours): HP-MLADRC with the frequency known and estimated online, paper case")
+    if paper:
+        axes[0].text(20.1, 0.0073 * 1.3, "paper's band 0.0073 deg", fontsize=7, color="0.3")
+        axes[0].text(20.1, 5.0, "steady window (20, 25] s", fontsize=7, color="0.3")
+        axes[-1].set_xlabel("time (s): the tone jumps from π/4 to 3 rad/s at 12 s and stops at 25 s")
+        fig.suptitle("Fig. 13 (ours): HP-MLADRC with the frequency known and estimated online, paper case")
+    else:
+        axes[-1].set_xlabel("time (s)   (dotted lines: disturbance changes)")
+        fig.suptitle("HP-MLADRC with the frequency estimated online (scenario %s) and known (scenario %s)"
+                     % (sc.name, sc_known.name))
     fig.tight_layout()
     save(fig, fig_dir, "fig13_hp_modes.png")
 
@@ -368,41 +422,49 @@ def main(argv):
     diff_dir = os.path.join(a.out_dir, a.diff)
     if os.path.exists(os.path.join(diff_dir, "differentiator.csv")):
         fig_differentiator(load_csv(os.path.join(diff_dir, "differentiator.csv")), load_metrics(diff_dir) or {},
-                           a.fig_dir)
+                           a.fig_dir, Scenario(a.out_dir, a.diff))
     else:
         missing.append(a.diff)
 
     paper_dir = os.path.join(a.out_dir, a.paper)
+    sc = Scenario(a.out_dir, a.paper)
+    case = "paper case" if sc.paper else "scenario " + sc.name
     runs = load_runs(paper_dir)
     note_divergence(load_metrics(paper_dir))
     if runs:
-        plot_per_axis(runs, "angle_%s_deg", "Fig. 6: attitude tracking, paper case", "deg", a.fig_dir,
-                      "fig06_tracking.png", True)
-        plot_onsets(runs, "angle_%s_deg", "Fig. 6 (zoom): attitude at the disturbance onsets, paper case",
-                    "deg", a.fig_dir, "fig06_tracking_onsets.png", True)
-        plot_per_axis(runs, "error_%s_deg", "Fig. 7: tracking error (reference − angle), paper case", "deg",
-                      a.fig_dir, "fig07_errors.png", False)
-        plot_onsets(runs, "error_%s_deg", "Fig. 7 (zoom): tracking error at the disturbance onsets, paper case",
-                    "deg", a.fig_dir, "fig07_errors_onsets.png", False)
+        plot_per_axis(runs, "angle_%s_deg", sc.title(6, "attitude tracking, paper case", "Attitude tracking"), "deg",
+                      a.fig_dir, "fig06_tracking.png", True, sc)
+        plot_onsets(runs, "angle_%s_deg", "%s: attitude at the disturbance onsets, %s"
+                    % ("Fig. 6 (zoom)" if sc.paper else "Zoom", case), "deg", a.fig_dir, "fig06_tracking_onsets.png",
+                    True, sc)
+        plot_per_axis(runs, "error_%s_deg", sc.title(7, "tracking error (reference − angle), paper case",
+                                                     "Tracking error (reference − angle)"), "deg",
+                      a.fig_dir, "fig07_errors.png", False, sc)
+        plot_onsets(runs, "error_%s_deg", "%s: tracking error at the disturbance onsets, %s"
+                    % ("Fig. 7 (zoom)" if sc.paper else "Zoom", case), "deg", a.fig_dir, "fig07_errors_onsets.png",
+                    False, sc)
         fig_radar(load_metrics(paper_dir) or {}, a.fig_dir, "fig08_radar.png",
-                  "Fig. 8: Table 5 scores, paper case (larger = better)")
-        fig_disturbance(runs, a.fig_dir)
-        fig_rotors(runs, a.fig_dir)
+                  sc.title(8, "Table 5 scores, paper case (larger = better)",
+                           "Table 5 scores (larger = better)"))
+        fig_disturbance(runs, a.fig_dir, sc)
+        fig_rotors(runs, a.fig_dir, sc)
         known = load_runs(os.path.join(a.out_dir, a.known))
         if known:
-            fig_hp_modes(runs, known, a.fig_dir)
+            fig_hp_modes(runs, known, a.fig_dir, sc, Scenario(a.out_dir, a.known))
         else:
             missing.append(a.known)
     else:
         missing.append(a.paper)
 
     noisy = load_runs(os.path.join(a.out_dir, a.noisy))
+    sc_noisy = Scenario(a.out_dir, a.noisy)
     note_divergence(load_metrics(os.path.join(a.out_dir, a.noisy)))
     if noisy:
-        plot_per_axis(noisy, "angle_%s_deg", "Fig. 10: attitude tracking with angle noise", "deg", a.fig_dir,
-                      "fig10_noisy_tracking.png", True)
-        plot_per_axis(noisy, "error_%s_deg", "Fig. 11: tracking error with angle noise", "deg", a.fig_dir,
-                      "fig11_noisy_errors.png", False, zoom_end_s=3.0)
+        plot_per_axis(noisy, "angle_%s_deg", sc_noisy.title(10, "attitude tracking with angle noise",
+                                                            "Attitude tracking"), "deg", a.fig_dir,
+                      "fig10_noisy_tracking.png", True, sc_noisy)
+        plot_per_axis(noisy, "error_%s_deg", sc_noisy.title(11, "tracking error with angle noise", "Tracking error"),
+                      "deg", a.fig_dir, "fig11_noisy_errors.png", False, sc_noisy, zoom_end_s=3.0)
     else:
         missing.append(a.noisy)
 

@@ -85,5 +85,31 @@ grep -q "^| PID | roll | 0.0466 / diverged (—) | 1.4897 / diverged (—) |" "$
   grep -q "^Run health (short_div): .*PID: DIVERGED at [0-9.]* s on [a-z]* (|error| 9[0-9.]* deg)" "$work/report_div.md"
 check report_says_diverged $?
 
+# Any scenario other than the paper's: titles name it and the marks are its own
+# disturbance windows (its signals.csv); the paper's keep the paper's.
+printf '[run]\nduration_s = 2\ncontrollers = LADRC PID\n[reference]\nroll = 5\n[disturbance]\nroll = 0.5 .. 1.25 : 3\n' \
+  > "$work/gusty.ini"
+"$sil" "$work/gusty.ini" --out "$work/out" --quiet > /dev/null
+check simulator_writes_signals_csv $?
+PYTHONPATH="$src/tools" "$py" - "$work/out" <<'PY'
+import sys
+import figures
+out = sys.argv[1]
+g = figures.Scenario(out, "gusty")
+s = figures.Scenario(out, "short_paper")
+p = figures.Scenario(out, "paper")  # the paper's: no output needed, the paper's onsets
+assert g.onsets == [0.5, 1.25], g.onsets
+assert s.onsets == [2.0, 6.0, 12.0, 25.0], s.onsets
+assert p.onsets == figures.ONSETS_S and p.paper and not g.paper
+assert g.title(6, "attitude tracking, paper case", "Attitude tracking") == "Attitude tracking, scenario gusty"
+assert p.title(6, "attitude tracking, paper case", "x") == "Fig. 6: attitude tracking, paper case"
+PY
+check figures_title_and_mark_the_scenario $?
+"$py" "$src/tools/figures.py" "$work/out" "$work/fig_gusty" --paper gusty --noisy gusty --known gusty \
+  --diff short_differentiator > /dev/null
+[[ $? -eq 0 && -f $work/fig_gusty/fig06_tracking.png && -f $work/fig_gusty/fig06_tracking_onsets.png &&
+   -f $work/fig_gusty/fig12_rotors.png ]]
+check figures_py_draws_any_scenario $?
+
 echo "$failures failed"
 [[ $failures -eq 0 ]]

@@ -24,8 +24,8 @@ rc2=$?
 check runs_succeed $(( rc1 + rc2 ))
 cmp -s "$work/j1.txt" "$work/j2.txt"; check tables_identical_for_1_and_2_jobs $?
 diff -r "$work/j1" "$work/j2" > /dev/null; check outputs_identical_for_1_and_2_jobs $?
-# the paper's four, CASCADED and INDI: six series and metrics.csv
-[ "$(ls "$work/j1/paper" | wc -l)" -eq 7 ]; check writes_a_series_per_controller_and_metrics $?
+# the paper's four, CASCADED and INDI: six series, metrics.csv and signals.csv
+[ "$(ls "$work/j1/paper" | wc -l)" -eq 8 ] && grep -q "^disturbance,yaw,3,12,25$" "$work/j1/paper/signals.csv"; check writes_a_series_per_controller_and_metrics $?
 
 # --controllers flies only the listed controllers, in the list's order, with
 # the results each has in the full run, series included.
