@@ -195,7 +195,12 @@ duration=$(awk -F= '/^\[/ { s = $0 } s == "[run]" && $1 ~ /^duration_s/ { gsub(/
 controllers=$(awk -F= '/^\[/ { s = $0 } s == "[run]" && $1 ~ /^controllers/ { sub(/#.*/, "", $2); print $2 }' "$SCENARIO")
 runs=$(echo $controllers | wc -w)
 simulated=$(awk -v d="$duration" -v n="$runs" 'BEGIN { print d * n }')
-BATCH=("$SCENARIO" "$SCENARIO" "$SCENARIO" "$SCENARIO")
+# four copies under their own names: ladrc_sil refuses scenarios that would write the same directory
+BATCH=()
+for i in 1 2 3 4; do
+  cp "$SCENARIO" "$tmp/batch$i.ini"
+  BATCH+=("$tmp/batch$i.ini")
+done
 wall() { # best (least disturbed) wall seconds of 5 runs of ladrc_sil with the given options
   local t i
   for i in 1 2 3 4 5; do
@@ -216,8 +221,8 @@ w_nocsv2=$(wall --no-csv --jobs 2)
 w_csv1=$(wall --jobs 1 --out "$tmp/csv")
 w_csv2=$(wall --jobs 2 --out "$tmp/csv")
 SCENARIOS=("${BATCH[@]}")
-w_batch1=$(wall --no-csv --jobs 1)
-w_batch2=$(wall --no-csv --jobs 2)
+w_batch1=$(wall --no-csv --jobs 1 --out "$tmp/batch")
+w_batch2=$(wall --no-csv --jobs 2 --out "$tmp/batch")
 
 # --- table -------------------------------------------------------------------
 mark() { awk -v x="$1" -v op="$2" -v lim="$3" 'BEGIN { ok = op == "<=" ? x <= lim : op == "<" ? x < lim : x >= lim; print ok ? "meets" : "over" }'; }
