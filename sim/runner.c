@@ -53,32 +53,74 @@ static int configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_att
     return 0;
 }
 
-/* The plant asks for d(t) at t, t + h/2 and t + h of every substep, and
- * the next substep starts at t + h again. Remembering the last two times
- * saves one evaluation in three, with the same values bit for bit. */
+/* The disturbances of the three axes at t_s; the axes often share sin(w t). */
+static void disturbances_at(const sim_scenario_t *sc, double t_s, double d_out[3])
+{
+    sim_expr_memo_t memo;
+    sim_expr_memo_clear(&memo);
+    for (int i = 0; i < 3; ++i) {
+        d_out[i] = sim_signal_eval_memo(&sc->disturbance[i], t_s, &memo);
+    }
+}
+
+/* The disturbances of one plant step, worked out in one batch before it:
+ * the plant lists its stage times (sim_plant_stage_times), each distinct
+ * time is evaluated once (t + h of a substep is often the next one's t, and
+ * the last of a step the next step's first), and the plant's calls, in the
+ * listed order, read the table. The same values bit for bit as evaluating
+ * at every call. */
+#define STAGES_MAX (3 * SIM_PLANT_SUBSTEPS_MAX)
 typedef struct {
     const sim_scenario_t *sc;
-    double t_s[2];
-    double value[2][3];
-    int next;
-} disturbance_cache_t;
+    int n;                        /* stage times of the step */
+    int next;                     /* the one the plant asks for next */
+    double t_s[STAGES_MAX];
+    int slot[STAGES_MAX];         /* its row of value */
+    double value[STAGES_MAX][3];  /* by distinct time, in order */
+    double last_t_s;              /* the last distinct time (NaN: none) */
+    int last;                     /* and its row */
+} disturbance_batch_t;
+
+static void disturbance_batch_init(disturbance_batch_t *b, const sim_scenario_t *sc)
+{
+    b->sc = sc;
+    b->n = b->next = b->last = 0;
+    b->last_t_s = NAN; /* never equal: empty */
+}
+
+static void disturbance_batch_fill(disturbance_batch_t *b, const sim_plant_t *p, double dt_s, int substeps)
+{
+    /* more than the parser lets through: no table, every call evaluates */
+    b->n = substeps <= SIM_PLANT_SUBSTEPS_MAX ? sim_plant_stage_times(p, dt_s, substeps, b->t_s) : 0;
+    b->next = 0;
+    int rows = 0;
+    if (b->n > 0 && b->t_s[0] == b->last_t_s) { /* carried over from the step before */
+        for (int i = 0; i < 3; ++i) {
+            b->value[0][i] = b->value[b->last][i];
+        }
+        rows = 1;
+    }
+    for (int k = 0; k < b->n; ++k) {
+        if (rows == 0 || b->t_s[k] != b->last_t_s) {
+            disturbances_at(b->sc, b->t_s[k], b->value[rows]);
+            b->last_t_s = b->t_s[k];
+            ++rows;
+        }
+        b->slot[k] = rows - 1;
+    }
+    b->last = rows - 1;
+}
 
 static void disturbance(double t_s, void *ctx, double d_out[3])
 {
-    disturbance_cache_t *c = (disturbance_cache_t *)ctx;
-    int slot = c->t_s[0] == t_s ? 0 : (c->t_s[1] == t_s ? 1 : -1);
-    if (slot < 0) {
-        slot = c->next;
-        c->next = 1 - slot;
-        c->t_s[slot] = t_s;
-        sim_expr_memo_t memo; /* the axes often share sin(w t) */
-        sim_expr_memo_clear(&memo);
+    disturbance_batch_t *b = (disturbance_batch_t *)ctx;
+    if (b->next < b->n && b->t_s[b->next] == t_s) {
+        const double *v = b->value[b->slot[b->next++]];
         for (int i = 0; i < 3; ++i) {
-            c->value[slot][i] = sim_signal_eval_memo(&c->sc->disturbance[i], t_s, &memo);
+            d_out[i] = v[i];
         }
-    }
-    for (int i = 0; i < 3; ++i) {
-        d_out[i] = c->value[slot][i];
+    } else { /* not the listed time: evaluated as asked */
+        disturbances_at(b->sc, t_s, d_out);
     }
 }
 
@@ -220,10 +262,8 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
     if (csv_path != NULL && csv == NULL) {
         return -1;
     }
-    disturbance_cache_t cache;
-    memset(&cache, 0, sizeof cache);
-    cache.sc = sc;
-    cache.t_s[0] = cache.t_s[1] = NAN; /* never equal: empty */
+    disturbance_batch_t batch;
+    disturbance_batch_init(&batch, sc);
     csv_line_t line;
     line.len = 0;
     const double start = wall_now_s();
@@ -321,7 +361,8 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
             for (int i = 0; i < 3; ++i) line_g(&line, m->has_estimate ? f_est[i] : NAN, 6);
             line_end(&line, csv);
         }
-        sim_plant_step(&plant, w2_cmd, dt, sc->plant_substeps, disturbance, &cache);
+        disturbance_batch_fill(&batch, &plant, dt, sc->plant_substeps);
+        sim_plant_step(&plant, w2_cmd, dt, sc->plant_substeps, disturbance, &batch);
         if (progress != NULL && progress->ticks_done != NULL && (k & 1023) == 1023) {
             *progress->ticks_done += 1024;
         }
