@@ -2,7 +2,8 @@
 /*
  * ladrc_sil: runs scenario files against the ladrc library on a simulated
  * quadrotor and prints the paper's comparison tables. Independent runs are
- * spread over worker threads; results do not depend on their number.
+ * spread over worker threads, a scenario's runs in lockstep groups that share
+ * the disturbances (runner.h); results depend on neither.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
