@@ -2,7 +2,8 @@
 /*
  * ladrc_sil: runs scenario files against the ladrc library on a simulated
  * quadrotor and prints the paper's comparison tables. Independent runs are
- * spread over worker threads; results do not depend on their number.
+ * spread over worker threads, a scenario's runs in lockstep groups that share
+ * the disturbances (runner.h); results depend on neither.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
@@ -28,6 +29,7 @@ enum { EXIT_RUN_FAILED = 1, EXIT_BAD_INPUT = 2, EXIT_DIVERGED = 3 };
 typedef struct {
     const sim_scenario_t *sc;
     int controller_index;          /* into sc->controllers; -1 for a differentiator run */
+    int group_size;                /* runs flown in lockstep from this job on; 0: in an earlier job's group */
     char csv_path[SIM_PATH_LEN + 64];
     sim_metrics_t *attitude;       /* where the result goes */
     sim_diff_metrics_t *diff;
@@ -38,9 +40,10 @@ typedef struct {
 
 typedef struct {
     job_t *jobs;
-    const int *order;              /* jobs in the order they are handed out */
+    const int *order;              /* groups (their first jobs) in the order they are handed out */
+    int n_groups;
     int n_jobs;
-    int next;                      /* next job to take, under lock */
+    int next;                      /* next group to take, under lock */
     int done;
     pthread_mutex_t lock;
     pthread_cond_t finished;       /* signalled as each job ends */
@@ -216,22 +219,32 @@ static void *worker(void *arg)
     pool_t *pool = (pool_t *)arg;
     for (;;) {
         pthread_mutex_lock(&pool->lock);
-        const int i = pool->next < pool->n_jobs ? pool->next++ : -1;
+        const int i = pool->next < pool->n_groups ? pool->next++ : -1;
         pthread_mutex_unlock(&pool->lock);
         if (i < 0) {
             return NULL;
         }
         job_t *job = &pool->jobs[pool->order[i]];
         const sim_progress_t progress = {&job->ticks_done};
-        const char *csv = job->csv_path[0] != '\0' ? job->csv_path : NULL;
-        const int rc = (job->controller_index < 0)
-                           ? sim_run_differentiator(job->sc, csv, &progress, job->diff, job->error,
-                                                    sizeof job->error)
-                           : sim_run_attitude(job->sc, job->sc->controllers[job->controller_index], csv,
-                                              &progress, job->attitude, job->error, sizeof job->error);
-        job->failed = rc != 0;
+        if (job->controller_index < 0) {
+            const char *csv = job->csv_path[0] != '\0' ? job->csv_path : NULL;
+            job->failed = sim_run_differentiator(job->sc, csv, &progress, job->diff, job->error, sizeof job->error) != 0;
+        } else {
+            sim_run_spec_t runs[SIM_MAX_CONTROLLERS];
+            for (int g = 0; g < job->group_size; ++g) {
+                job_t *j = job + g;
+                const sim_run_spec_t spec = {j->sc->controllers[j->controller_index],
+                                             j->csv_path[0] != '\0' ? j->csv_path : NULL,
+                                             j->attitude, j->error, sizeof j->error, 0};
+                runs[g] = spec;
+            }
+            sim_run_attitude_group(job->sc, runs, job->group_size, &progress);
+            for (int g = 0; g < job->group_size; ++g) {
+                job[g].failed = runs[g].rc != 0;
+            }
+        }
         pthread_mutex_lock(&pool->lock);
-        pool->done++;
+        pool->done += job->group_size;
         pthread_cond_signal(&pool->finished);
         pthread_mutex_unlock(&pool->lock);
     }
@@ -333,18 +346,35 @@ static double job_cost(const job_t *job)
                     CONTROLLER_NS[id] + csv_ns);
 }
 
-/* Job indices by decreasing cost; equal costs keep their order. */
-static void order_longest_first(const job_t *jobs, int n, int *order)
+/* Rough cost of a group: its runs' costs less the disturbances they share
+ * (one run's worth, about 60 % of a run, paid once). */
+static double group_cost(const job_t *jobs, int first)
 {
+    double c = 0.0;
+    for (int g = 0; g < jobs[first].group_size; ++g) {
+        c += job_cost(&jobs[first + g]) * (g == 0 ? 1.0 : 0.4);
+    }
+    return c;
+}
+
+/* The groups' first jobs by decreasing cost; equal costs keep their order.
+ * Returns the number of groups. */
+static int order_longest_first(const job_t *jobs, int n, int *order)
+{
+    int n_groups = 0;
     for (int i = 0; i < n; ++i) {
-        const double c = job_cost(&jobs[i]);
-        int k = i;
-        while (k > 0 && job_cost(&jobs[order[k - 1]]) < c) {
+        if (jobs[i].group_size == 0) {
+            continue;
+        }
+        const double c = group_cost(jobs, i);
+        int k = n_groups++;
+        while (k > 0 && group_cost(jobs, order[k - 1]) < c) {
             order[k] = order[k - 1];
             --k;
         }
         order[k] = i;
     }
+    return n_groups;
 }
 
 /* Waits for every job, printing progress on stderr for runs longer than a
@@ -496,6 +526,12 @@ int main(int argc, char **argv)
     static job_t jobs[MAX_SCENARIOS * SIM_MAX_CONTROLLERS];
     int n_jobs = 0;
     double total_ticks = 0.0;
+    /* A scenario's runs fly in lockstep groups (they share the disturbances):
+     * as few groups as keep every worker busy, at least one per scenario. */
+    int n_scenarios_flown = 0;
+    for (int s = 0; s < n_sc; ++s) {
+        n_scenarios_flown += scenarios[s].kind == SIM_KIND_ATTITUDE;
+    }
     for (int s = 0; s < n_sc; ++s) {
         const sim_scenario_t *sc = &scenarios[s];
         if (make_dirs(sc->output_dir) != 0) {
@@ -518,12 +554,22 @@ int main(int argc, char **argv)
             }
             total_ticks += (double)sim_run_ticks(sc);
         }
+        if (sc->kind == SIM_KIND_DIFFERENTIATOR) {
+            jobs[n_jobs - 1].group_size = 1;
+        } else if (n > 0) {
+            const int groups_wanted = (int)((jobs_wanted + n_scenarios_flown - 1) / n_scenarios_flown);
+            const int n_groups_sc = groups_wanted < n ? groups_wanted : n;
+            const int size = (n + n_groups_sc - 1) / n_groups_sc;
+            for (int c = 0; c < n; c += size) {
+                jobs[n_jobs - n + c].group_size = n - c < size ? n - c : size;
+            }
+        }
     }
 
     static int order[MAX_SCENARIOS * SIM_MAX_CONTROLLERS];
-    order_longest_first(jobs, n_jobs, order);
-    pool_t pool = {jobs, order, n_jobs, 0, 0, PTHREAD_MUTEX_INITIALIZER, PTHREAD_COND_INITIALIZER};
-    const int n_threads = (int)(jobs_wanted < n_jobs ? jobs_wanted : n_jobs);
+    const int n_groups = order_longest_first(jobs, n_jobs, order);
+    pool_t pool = {jobs, order, n_groups, n_jobs, 0, 0, PTHREAD_MUTEX_INITIALIZER, PTHREAD_COND_INITIALIZER};
+    const int n_threads = (int)(jobs_wanted < n_groups ? jobs_wanted : n_groups);
     pthread_t threads[256];
     const double start = now_s();
     for (int t = 0; t < n_threads; ++t) {

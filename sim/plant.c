@@ -110,19 +110,32 @@ static void disturbance_at(sim_disturbance_fn dist, void *ctx, double t, double 
     }
 }
 
-/* One classical RK4 step of length h from time t; the rotor states only take
+/* The RK4 step length of a plant step: dt_s over substeps (at least 1). */
+static int substep_count(int substeps) { return substeps < 1 ? 1 : substeps; }
+
+/* Stage time `stage` (0: t, 1: t + h/2, 2: t + h) of substep s of a step
+ * from t0 with RK4 steps of length h: stage times from t0 each substep, no
+ * drift from summing h. The one formula of the stage times the plant asks
+ * the disturbance at, and of the list sim_plant_stage_times gives. */
+static double stage_time(double t0, double h, int s, int stage)
+{
+    const double t = t0 + s * h;
+    return stage == 0 ? t : (stage == 1 ? t + 0.5 * h : t + h);
+}
+
+/* One classical RK4 step of length h from time t0 + s h; the rotor states only take
  * part with a lag (without one their derivative is 0 and they stay put). */
 static void rk4_substep(const sim_vehicle_t *v, int lag, const double cmd[4], const double cmd_torque[3],
-                        double t, double h, sim_disturbance_fn dist, void *ctx, double x[N_STATE])
+                        double t0, int s, double h, sim_disturbance_fn dist, void *ctx, double x[N_STATE])
 {
     const int n = lag ? N_STATE : N_ROTOR;
     double k1[N_STATE], k2[N_STATE], k3[N_STATE], k4[N_STATE], y[N_STATE], d[3];
-    disturbance_at(dist, ctx, t, d);
+    disturbance_at(dist, ctx, stage_time(t0, h, s, 0), d);
     derivative(v, lag, cmd, cmd_torque, x, d, k1);
     for (int i = 0; i < n; ++i) {
         y[i] = x[i] + 0.5 * h * k1[i];
     }
-    disturbance_at(dist, ctx, t + 0.5 * h, d); /* the same for k2 and k3 */
+    disturbance_at(dist, ctx, stage_time(t0, h, s, 1), d); /* the same for k2 and k3 */
     derivative(v, lag, cmd, cmd_torque, y, d, k2);
     for (int i = 0; i < n; ++i) {
         y[i] = x[i] + 0.5 * h * k2[i];
@@ -131,7 +144,7 @@ static void rk4_substep(const sim_vehicle_t *v, int lag, const double cmd[4], co
     for (int i = 0; i < n; ++i) {
         y[i] = x[i] + h * k3[i];
     }
-    disturbance_at(dist, ctx, t + h, d);
+    disturbance_at(dist, ctx, stage_time(t0, h, s, 2), d);
     derivative(v, lag, cmd, cmd_torque, y, d, k4);
     for (int i = 0; i < n; ++i) {
         x[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
@@ -144,7 +157,7 @@ void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int sub
     if (!(dt_s > 0.0)) {
         return;
     }
-    const int n = substeps < 1 ? 1 : substeps;
+    const int n = substep_count(substeps);
     const double h = dt_s / n;
     const double t0 = p->t_s;
     const int lag = p->v.motor_tau_s > 0.0;
@@ -159,12 +172,10 @@ void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int sub
         x[N_RATE + i] = p->rate_rad_s[i];
     }
     for (int s = 0; s < n; ++s) {
-        /* stage times from t0 each substep: no drift from summing h */
-        const double t = t0 + s * h;
         if (lag) {
-            rk4_substep(&p->v, 1, cmd, cmd_torque, t, h, dist, ctx, x);
+            rk4_substep(&p->v, 1, cmd, cmd_torque, t0, s, h, dist, ctx, x);
         } else {
-            rk4_substep(&p->v, 0, cmd, cmd_torque, t, h, dist, ctx, x);
+            rk4_substep(&p->v, 0, cmd, cmd_torque, t0, s, h, dist, ctx, x);
         }
     }
     for (int i = 0; i < 3; ++i) {
@@ -175,4 +186,20 @@ void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int sub
         p->w2_rad2_s2[i] = p->v.motor_tau_s > 0.0 ? x[N_ROTOR + i] : cmd[i];
     }
     p->t_s = t0 + dt_s;
+}
+
+int sim_plant_stage_times(const sim_plant_t *p, double dt_s, int substeps, double *times_out)
+{
+    if (!(dt_s > 0.0)) {
+        return 0;
+    }
+    const int n = substep_count(substeps);
+    const double h = dt_s / n;
+    int k = 0;
+    for (int s = 0; s < n; ++s) {
+        for (int stage = 0; stage < 3; ++stage) {
+            times_out[k++] = stage_time(p->t_s, h, s, stage);
+        }
+    }
+    return k;
 }

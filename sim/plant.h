@@ -78,6 +78,13 @@ void sim_plant_forces(const sim_vehicle_t *v, const double w2[4], double *thrust
 void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int substeps,
                     sim_disturbance_fn dist, void *ctx);
 
+/* The times sim_plant_step(p, ., dt_s, substeps, dist, .) will call dist at,
+ * in that order, bit for bit: t, t + h/2 and t + h of every substep, 3 per
+ * substep (substeps below 1 count as 1), written to times_out; returns their
+ * number (0 when dt_s is not > 0). Lets a caller work out a step's
+ * disturbances beforehand, in one batch. */
+int sim_plant_stage_times(const sim_plant_t *p, double dt_s, int substeps, double *times_out);
+
 /* The angular accelerations (rad/s^2) of eq. 2 at p's current rates for the
  * given torques and disturbance accelerations (dist may be NULL: zero). */
 void sim_plant_accel(const sim_plant_t *p, const double torque_Nm[3], const double dist[3],

@@ -53,32 +53,80 @@ static int configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_att
     return 0;
 }
 
-/* The plant asks for d(t) at t, t + h/2 and t + h of every substep, and
- * the next substep starts at t + h again. Remembering the last two times
- * saves one evaluation in three, with the same values bit for bit. */
+/* The disturbances of the three axes at t_s; the axes often share sin(w t). */
+static void disturbances_at(const sim_scenario_t *sc, double t_s, double d_out[3])
+{
+    sim_expr_memo_t memo;
+    sim_expr_memo_clear(&memo);
+    for (int i = 0; i < 3; ++i) {
+        d_out[i] = sim_signal_eval_memo(&sc->disturbance[i], t_s, &memo);
+    }
+}
+
+/* The disturbances of one plant step, worked out in one batch before it:
+ * the plant lists its stage times (sim_plant_stage_times), each distinct
+ * time is evaluated once (t + h of a substep is often the next one's t, and
+ * the last of a step the next step's first), and the plant's calls, in the
+ * listed order, read the table. The same values bit for bit as evaluating
+ * at every call. */
+#define STAGES_MAX (3 * SIM_PLANT_SUBSTEPS_MAX)
 typedef struct {
     const sim_scenario_t *sc;
-    double t_s[2];
-    double value[2][3];
+    int n;                        /* stage times of the step */
+    double t_s[STAGES_MAX];
+    int slot[STAGES_MAX];         /* its row of value */
+    double value[STAGES_MAX][3];  /* by distinct time, in order */
+    double last_t_s;              /* the last distinct time (NaN: none) */
+    int last;                     /* and its row */
+} disturbance_batch_t;
+
+static void disturbance_batch_init(disturbance_batch_t *b, const sim_scenario_t *sc)
+{
+    b->sc = sc;
+    b->n = b->last = 0;
+    b->last_t_s = NAN; /* never equal: empty */
+}
+
+static void disturbance_batch_fill(disturbance_batch_t *b, const sim_plant_t *p, double dt_s, int substeps)
+{
+    /* more than the parser lets through: no table, every call evaluates */
+    b->n = substeps <= SIM_PLANT_SUBSTEPS_MAX ? sim_plant_stage_times(p, dt_s, substeps, b->t_s) : 0;
+    int rows = 0;
+    if (b->n > 0 && b->t_s[0] == b->last_t_s) { /* carried over from the step before */
+        for (int i = 0; i < 3; ++i) {
+            b->value[0][i] = b->value[b->last][i];
+        }
+        rows = 1;
+    }
+    for (int k = 0; k < b->n; ++k) {
+        if (rows == 0 || b->t_s[k] != b->last_t_s) {
+            disturbances_at(b->sc, b->t_s[k], b->value[rows]);
+            b->last_t_s = b->t_s[k];
+            ++rows;
+        }
+        b->slot[k] = rows - 1;
+    }
+    b->last = rows - 1;
+}
+
+/* One plant's reading of a batch: the stage time it asks for next. Runs in
+ * lockstep share the batch (their plants' times are the same bits). */
+typedef struct {
+    const disturbance_batch_t *b;
     int next;
-} disturbance_cache_t;
+} batch_reader_t;
 
 static void disturbance(double t_s, void *ctx, double d_out[3])
 {
-    disturbance_cache_t *c = (disturbance_cache_t *)ctx;
-    int slot = c->t_s[0] == t_s ? 0 : (c->t_s[1] == t_s ? 1 : -1);
-    if (slot < 0) {
-        slot = c->next;
-        c->next = 1 - slot;
-        c->t_s[slot] = t_s;
-        sim_expr_memo_t memo; /* the axes often share sin(w t) */
-        sim_expr_memo_clear(&memo);
+    batch_reader_t *r = (batch_reader_t *)ctx;
+    const disturbance_batch_t *b = r->b;
+    if (r->next < b->n && b->t_s[r->next] == t_s) {
+        const double *v = b->value[b->slot[r->next++]];
         for (int i = 0; i < 3; ++i) {
-            c->value[slot][i] = sim_signal_eval_memo(&c->sc->disturbance[i], t_s, &memo);
+            d_out[i] = v[i];
         }
-    }
-    for (int i = 0; i < 3; ++i) {
-        d_out[i] = c->value[slot][i];
+    } else { /* not the listed time: evaluated as asked */
+        disturbances_at(b->sc, t_s, d_out);
     }
 }
 
@@ -199,13 +247,30 @@ static void widen(const ladrc_real_t x[3], double out[3])
     }
 }
 
-int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const char *csv_path,
-                     const sim_progress_t *progress, sim_metrics_t *m, char *err, size_t err_len)
-{
+/* One run of a lockstep group: what it keeps from tick to tick. */
+typedef struct {
+    sim_run_spec_t *spec;
     ladrc_attitude_t att;
     ladrc_mixer_t mixer;
+    sim_plant_t plant;
+    sim_sensor_t sensor;
+    FILE *csv;
+    csv_line_t line;
+    double last_out_s[3];
+    int out_at_last[3]; /* outside the band at the settle window's latest sample so far */
+    int wrap_yaw;
+    int flying;         /* 1 until it diverges */
+} attitude_run_t;
+
+/* Sets a run up; 0, or -1 with the message in its spec (then it does not fly). */
+static int run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t *spec)
+{
+    sim_metrics_t *m = spec->metrics;
+    r->spec = spec;
+    r->flying = 0;
+    r->csv = NULL;
     memset(m, 0, sizeof *m);
-    if (configure(sc, ctrl, &att, &mixer, err, err_len) != 0) {
+    if (configure(sc, spec->ctrl, &r->att, &r->mixer, spec->err, spec->err_len) != 0) {
         return -1;
     }
     const sim_vehicle_t vehicle = {sc->mass_kg,         {sc->inertia_kg_m2[0], sc->inertia_kg_m2[1], sc->inertia_kg_m2[2]},
@@ -214,130 +279,196 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
                                    sc->g_m_s2,          sc->rotors_ideal,
                                    sc->w2_min_rad2_s2,  sc->w2_max_rad2_s2,
                                    sc->motor_tau_s};
-    sim_plant_t plant;
-    sim_plant_init(&plant, &vehicle);
-    sim_sensor_t sensor;
-    if (sim_sensor_init(&sensor, sc->angle_noise_std_rad, sc->rate_noise_std_rad_s, sc->delay_ticks, sc->seed) != 0) {
-        snprintf(err, err_len, "%s: bad sensor settings", sc->path);
+    sim_plant_init(&r->plant, &vehicle);
+    if (sim_sensor_init(&r->sensor, sc->angle_noise_std_rad, sc->rate_noise_std_rad_s, sc->delay_ticks, sc->seed) !=
+        0) {
+        snprintf(spec->err, spec->err_len, "%s: bad sensor settings", sc->path);
         return -1;
     }
-    FILE *csv = open_csv(csv_path, ATTITUDE_CSV_HEADER, err, err_len);
-    if (csv_path != NULL && csv == NULL) {
+    r->csv = open_csv(spec->csv_path, ATTITUDE_CSV_HEADER, spec->err, spec->err_len);
+    if (spec->csv_path != NULL && r->csv == NULL) {
         return -1;
     }
-    disturbance_cache_t cache;
-    memset(&cache, 0, sizeof cache);
-    cache.sc = sc;
-    cache.t_s[0] = cache.t_s[1] = NAN; /* never equal: empty */
-    csv_line_t line;
-    line.len = 0;
-    const double start = wall_now_s();
-    const long n = sim_run_ticks(sc);
-    const double dt = sc->control_dt_s;
-    double last_out_s[3] = {sc->settle_after_s, sc->settle_after_s, sc->settle_after_s};
-    int out_at_last[3] = {0, 0, 0}; /* outside the band at the settle window's latest sample so far */
-    const double band_rad = sc->settle_band_deg / RAD2DEG;
+    r->line.len = 0;
+    for (int i = 0; i < 3; ++i) {
+        r->last_out_s[i] = sc->settle_after_s;
+        r->out_at_last[i] = 0;
+        m->settle_s[i] = SIM_NOT_SETTLED;
+    }
     /* A wrapping controller is told yaw as an attitude estimator gives it,
      * in (-pi, pi]; the plant's own yaw is continuous (not wrapped). */
-    const int wrap_yaw = sim_setup_wraps_yaw(sc, ctrl);
-    m->has_estimate = ctrl != SIM_CTRL_PID && ctrl != SIM_CTRL_CASCADED;
+    r->wrap_yaw = sim_setup_wraps_yaw(sc, spec->ctrl);
+    m->has_estimate = spec->ctrl != SIM_CTRL_PID && spec->ctrl != SIM_CTRL_CASCADED;
     m->finite = 1;
     m->diverged_axis = -1;
     m->diverged_at_s = m->diverged_error_deg = NAN;
-    for (int i = 0; i < 3; ++i) {
-        m->settle_s[i] = SIM_NOT_SETTLED;
+    r->flying = 1;
+    return 0;
+}
+
+/* The controller's part of tick k at t: measure, check, control, record.
+ * ref and dist are the references and disturbances at t. Returns 0 when the
+ * run diverged (nothing of this instant or later is recorded), else 1. */
+static int run_control(const sim_scenario_t *sc, attitude_run_t *r, double t, const ladrc_real_t ref[3],
+                       const double ref_rad[3], const double dist[3], double w2_cmd[4])
+{
+    sim_metrics_t *m = r->spec->metrics;
+    const double dt = sc->control_dt_s;
+    const sim_plant_t *plant = &r->plant;
+    const int wrap_yaw = r->wrap_yaw;
+    double meas_angle[3], meas_rate[3];
+    sim_sensor_measure(&r->sensor, plant->angle_rad, plant->rate_rad_s, meas_angle, meas_rate);
+    if (wrap_yaw) {
+        meas_angle[2] = wrap_pi(meas_angle[2]);
     }
-    long k = 0;
-    for (; k < n; ++k) {
-        const double t = (double)k * dt;
-        double meas_angle[3], meas_rate[3];
-        sim_sensor_measure(&sensor, plant.angle_rad, plant.rate_rad_s, meas_angle, meas_rate);
-        if (wrap_yaw) {
-            meas_angle[2] = wrap_pi(meas_angle[2]);
+    if (diverged(sc, plant, ref_rad, wrap_yaw, t, m)) {
+        return 0;
+    }
+    ladrc_real_t angle[3], rate[3], torque[3];
+    for (int i = 0; i < 3; ++i) {
+        angle[i] = (ladrc_real_t)meas_angle[i];
+        rate[i] = (ladrc_real_t)meas_rate[i];
+    }
+    if (ladrc_attitude_step(&r->att, ref, angle, sc->use_rate ? rate : NULL, torque) != LADRC_FAULT_NONE) {
+        m->faults++;
+    }
+    ladrc_mixer_output_t out;
+    ladrc_mixer_step(&r->mixer, ladrc_mixer_thrust_from_tilt(&r->mixer, angle[0], angle[1]), torque, &out);
+    ladrc_attitude_set_applied(&r->att, out.torque_Nm);
+
+    /* The truth at this tick: the disturbance the observer should see is
+     * the plant's acceleration minus what the applied torque explains. */
+    double applied[3], accel[3], f_true[3], f_est[3], err_rad[3], z1[3], z2[3];
+    for (int q = 0; q < 4; ++q) {
+        w2_cmd[q] = out.w2_rad2_s2[q];
+    }
+    for (int i = 0; i < 3; ++i) {
+        applied[i] = out.torque_Nm[i];
+    }
+    double thrust_actual, torque_actual[3];
+    sim_plant_forces(&plant->v, plant->w2_rad2_s2, &thrust_actual, torque_actual);
+    sim_plant_accel(plant, torque_actual, dist, accel);
+    const double band_rad = sc->settle_band_deg / RAD2DEG;
+    for (int i = 0; i < 3; ++i) {
+        f_true[i] = accel[i] - applied[i] / (sc->inertia_kg_m2[i] * sc->inertia_scale[i]);
+        ladrc_real_t a_est, r_est, d_est;
+        ladrc_axis_get_estimate(&r->att.axis[i], &a_est, &r_est, &d_est);
+        f_est[i] = d_est;
+        z1[i] = a_est;
+        z2[i] = r_est;
+        err_rad[i] = tracking_error_rad(ref_rad[i], plant->angle_rad[i], i == 2 && wrap_yaw);
+        const double e_deg = err_rad[i] * RAD2DEG;
+        if (in_window(sc->error_window_s, t)) {
+            sim_stat_add(&m->error_deg[i], e_deg);
+            if (fabs(e_deg) > m->max_error_deg[i]) m->max_error_deg[i] = fabs(e_deg);
+            if (m->has_estimate) sim_stat_add(&m->dist_error[i], f_est[i] - f_true[i]);
         }
-        ladrc_real_t ref[3], angle[3], rate[3], torque[3];
+        if (in_window(sc->steady_window_s, t) && fabs(e_deg) > m->band_deg[i]) {
+            m->band_deg[i] = fabs(e_deg);
+        }
+        if (t >= sc->settle_after_s && t <= sc->settle_until_s) {
+            r->out_at_last[i] = fabs(err_rad[i]) > band_rad;
+            if (r->out_at_last[i]) {
+                r->last_out_s[i] = t + dt;
+            }
+        }
+    }
+    for (int q = 0; q < 4; ++q) {
+        sim_stat_add(&m->rotor_w2[q], plant->w2_rad2_s2[q]);
+    }
+    if (r->csv != NULL) { /* the text of %.4f, %.6g and %.7g (numfmt.h) */
+        csv_line_t *line = &r->line;
+        line_f4(line, t);
+        for (int i = 0; i < 3; ++i) line_g(line, (double)ref[i] * RAD2DEG, 6);
+        for (int i = 0; i < 3; ++i) line_g(line, plant->angle_rad[i] * RAD2DEG, 6);
+        for (int i = 0; i < 3; ++i) line_g(line, err_rad[i] * RAD2DEG, 6);
+        for (int i = 0; i < 3; ++i) line_g(line, (double)torque[i], 6);
+        for (int i = 0; i < 3; ++i) line_g(line, applied[i], 6);
+        for (int q = 0; q < 4; ++q) line_g(line, plant->w2_rad2_s2[q], 7);
+        for (int i = 0; i < 3; ++i) line_g(line, dist[i], 6);
+        for (int i = 0; i < 3; ++i) line_g(line, f_true[i], 6);
+        for (int i = 0; i < 3; ++i) line_g(line, m->has_estimate ? f_est[i] : NAN, 6);
+        for (int i = 0; i < 3; ++i) line_g(line, meas_angle[i] * RAD2DEG, 6);
+        for (int i = 0; i < 3; ++i) line_g(line, meas_rate[i] * RAD2DEG, 6);
+        for (int i = 0; i < 3; ++i) line_g(line, z1[i] * RAD2DEG, 6);
+        for (int i = 0; i < 3; ++i) line_g(line, z2[i] * RAD2DEG, 6);
+        static const unsigned SAT_BITS[4] = {LADRC_MIXER_SAT_ROLL, LADRC_MIXER_SAT_PITCH, LADRC_MIXER_SAT_YAW,
+                                             LADRC_MIXER_SAT_THRUST};
+        for (int b = 0; b < 4; ++b) line_g(line, (out.saturated & SAT_BITS[b]) != 0u ? 1.0 : 0.0, 6);
+        line_end(line, r->csv);
+    }
+    return 1;
+}
+
+/* Settling times and the time series' end; 0, or -1 with the message. */
+static int run_close(const sim_scenario_t *sc, attitude_run_t *r)
+{
+    sim_metrics_t *m = r->spec->metrics;
+    for (int i = 0; i < 3; ++i) {
+        m->settle_s[i] = r->out_at_last[i] ? SIM_NOT_SETTLED : r->last_out_s[i] - sc->settle_after_s;
+    }
+    if (r->csv != NULL && fclose(r->csv) != 0) {
+        snprintf(r->spec->err, r->spec->err_len, "%s: write failed", r->spec->csv_path);
+        return -1;
+    }
+    return 0;
+}
+
+void sim_run_attitude_group(const sim_scenario_t *sc, sim_run_spec_t *runs, int n_runs,
+                            const sim_progress_t *progress)
+{
+    attitude_run_t group[SIM_MAX_CONTROLLERS];
+    int n_flying = 0;
+    for (int g = 0; g < n_runs && g < SIM_MAX_CONTROLLERS; ++g) {
+        runs[g].rc = run_open(sc, &group[g], &runs[g]);
+        n_flying += runs[g].rc == 0;
+    }
+    for (int g = SIM_MAX_CONTROLLERS; g < n_runs; ++g) {
+        snprintf(runs[g].err, runs[g].err_len, "%s: more than %d runs in one group", sc->path, SIM_MAX_CONTROLLERS);
+        runs[g].rc = -1;
+    }
+    const int n_group = n_runs < SIM_MAX_CONTROLLERS ? n_runs : SIM_MAX_CONTROLLERS;
+    disturbance_batch_t batch;
+    disturbance_batch_init(&batch, sc);
+    const double start = wall_now_s();
+    const long n = sim_run_ticks(sc);
+    const double dt = sc->control_dt_s;
+    long k = 0;
+    for (; k < n && n_flying > 0; ++k) {
+        const double t = (double)k * dt;
+        ladrc_real_t ref[3];
+        double ref_rad[3], dist[3];
         sim_expr_memo_t memo; /* shared by the references, then the disturbances at t */
         sim_expr_memo_clear(&memo);
         references(sc, t, &memo, ref);
-        double ref_rad[3];
         widen(ref, ref_rad);
-        if (diverged(sc, &plant, ref_rad, wrap_yaw, t, m)) {
-            break; /* nothing of this instant or later is recorded */
-        }
         for (int i = 0; i < 3; ++i) {
-            angle[i] = (ladrc_real_t)meas_angle[i];
-            rate[i] = (ladrc_real_t)meas_rate[i];
-        }
-        if (ladrc_attitude_step(&att, ref, angle, sc->use_rate ? rate : NULL, torque) != LADRC_FAULT_NONE) {
-            m->faults++;
-        }
-        ladrc_mixer_output_t out;
-        ladrc_mixer_step(&mixer, ladrc_mixer_thrust_from_tilt(&mixer, angle[0], angle[1]), torque, &out);
-        ladrc_attitude_set_applied(&att, out.torque_Nm);
-
-        /* The truth at this tick: the disturbance the observer should see is
-         * the plant's acceleration minus what the applied torque explains. */
-        double w2_cmd[4], applied[3], dist[3], accel[3], f_true[3], f_est[3], err_rad[3], z1[3], z2[3];
-        for (int r = 0; r < 4; ++r) {
-            w2_cmd[r] = out.w2_rad2_s2[r];
-        }
-        for (int i = 0; i < 3; ++i) {
-            applied[i] = out.torque_Nm[i];
             dist[i] = sim_signal_eval_memo(&sc->disturbance[i], t, &memo);
         }
-        double thrust_actual, torque_actual[3];
-        sim_plant_forces(&plant.v, plant.w2_rad2_s2, &thrust_actual, torque_actual);
-        sim_plant_accel(&plant, torque_actual, dist, accel);
-        for (int i = 0; i < 3; ++i) {
-            f_true[i] = accel[i] - applied[i] / (sc->inertia_kg_m2[i] * sc->inertia_scale[i]);
-            ladrc_real_t a_est, r_est, d_est;
-            ladrc_axis_get_estimate(&att.axis[i], &a_est, &r_est, &d_est);
-            f_est[i] = d_est;
-            z1[i] = a_est;
-            z2[i] = r_est;
-            err_rad[i] = tracking_error_rad(ref_rad[i], plant.angle_rad[i], i == 2 && wrap_yaw);
-            const double e_deg = err_rad[i] * RAD2DEG;
-            if (in_window(sc->error_window_s, t)) {
-                sim_stat_add(&m->error_deg[i], e_deg);
-                if (fabs(e_deg) > m->max_error_deg[i]) m->max_error_deg[i] = fabs(e_deg);
-                if (m->has_estimate) sim_stat_add(&m->dist_error[i], f_est[i] - f_true[i]);
+        double w2_cmd[SIM_MAX_CONTROLLERS][4];
+        const sim_plant_t *lead = NULL; /* the plants' times are the same bits */
+        for (int g = 0; g < n_group; ++g) {
+            attitude_run_t *r = &group[g];
+            if (r->flying && !run_control(sc, r, t, ref, ref_rad, dist, w2_cmd[g])) {
+                r->flying = 0; /* diverged: it stops here */
+                --n_flying;
             }
-            if (in_window(sc->steady_window_s, t) && fabs(e_deg) > m->band_deg[i]) {
-                m->band_deg[i] = fabs(e_deg);
-            }
-            if (t >= sc->settle_after_s && t <= sc->settle_until_s) {
-                out_at_last[i] = fabs(err_rad[i]) > band_rad;
-                if (out_at_last[i]) {
-                    last_out_s[i] = t + dt;
-                }
+            if (r->flying && lead == NULL) {
+                lead = &r->plant;
             }
         }
-        for (int r = 0; r < 4; ++r) {
-            sim_stat_add(&m->rotor_w2[r], plant.w2_rad2_s2[r]);
+        if (lead == NULL) {
+            break;
         }
-        if (csv != NULL) { /* the text of %.4f, %.6g and %.7g (numfmt.h) */
-            line_f4(&line, t);
-            for (int i = 0; i < 3; ++i) line_g(&line, (double)ref[i] * RAD2DEG, 6);
-            for (int i = 0; i < 3; ++i) line_g(&line, plant.angle_rad[i] * RAD2DEG, 6);
-            for (int i = 0; i < 3; ++i) line_g(&line, err_rad[i] * RAD2DEG, 6);
-            for (int i = 0; i < 3; ++i) line_g(&line, (double)torque[i], 6);
-            for (int i = 0; i < 3; ++i) line_g(&line, applied[i], 6);
-            for (int r = 0; r < 4; ++r) line_g(&line, plant.w2_rad2_s2[r], 7);
-            for (int i = 0; i < 3; ++i) line_g(&line, dist[i], 6);
-            for (int i = 0; i < 3; ++i) line_g(&line, f_true[i], 6);
-            for (int i = 0; i < 3; ++i) line_g(&line, m->has_estimate ? f_est[i] : NAN, 6);
-            for (int i = 0; i < 3; ++i) line_g(&line, meas_angle[i] * RAD2DEG, 6);
-            for (int i = 0; i < 3; ++i) line_g(&line, meas_rate[i] * RAD2DEG, 6);
-            for (int i = 0; i < 3; ++i) line_g(&line, z1[i] * RAD2DEG, 6);
-            for (int i = 0; i < 3; ++i) line_g(&line, z2[i] * RAD2DEG, 6);
-            static const unsigned SAT_BITS[4] = {LADRC_MIXER_SAT_ROLL, LADRC_MIXER_SAT_PITCH, LADRC_MIXER_SAT_YAW,
-                                                 LADRC_MIXER_SAT_THRUST};
-            for (int b = 0; b < 4; ++b) line_g(&line, (out.saturated & SAT_BITS[b]) != 0u ? 1.0 : 0.0, 6);
-            line_end(&line, csv);
+        disturbance_batch_fill(&batch, lead, dt, sc->plant_substeps);
+        for (int g = 0; g < n_group; ++g) {
+            if (group[g].flying) {
+                batch_reader_t reader = {&batch, 0};
+                sim_plant_step(&group[g].plant, w2_cmd[g], dt, sc->plant_substeps, disturbance, &reader);
+            }
         }
-        sim_plant_step(&plant, w2_cmd, dt, sc->plant_substeps, disturbance, &cache);
         if (progress != NULL && progress->ticks_done != NULL && (k & 1023) == 1023) {
-            *progress->ticks_done += 1024;
+            *progress->ticks_done += 1024L * n_flying;
         }
     }
     if (k == n) { /* the state the last step left, at t = duration */
@@ -348,17 +479,27 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
         double ref_rad[3];
         references(sc, t, &memo, ref);
         widen(ref, ref_rad);
-        (void)diverged(sc, &plant, ref_rad, wrap_yaw, t, m);
+        for (int g = 0; g < n_group; ++g) {
+            if (group[g].flying) {
+                (void)diverged(sc, &group[g].plant, ref_rad, group[g].wrap_yaw, t, runs[g].metrics);
+            }
+        }
     }
-    for (int i = 0; i < 3; ++i) {
-        m->settle_s[i] = out_at_last[i] ? SIM_NOT_SETTLED : last_out_s[i] - sc->settle_after_s;
+    const double wall = wall_now_s() - start;
+    for (int g = 0; g < n_group; ++g) {
+        if (runs[g].rc == 0) {
+            runs[g].metrics->wall_s = wall;
+            runs[g].rc = run_close(sc, &group[g]);
+        }
     }
-    m->wall_s = wall_now_s() - start;
-    if (csv != NULL && fclose(csv) != 0) {
-        snprintf(err, err_len, "%s: write failed", csv_path);
-        return -1;
-    }
-    return 0;
+}
+
+int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const char *csv_path,
+                     const sim_progress_t *progress, sim_metrics_t *m, char *err, size_t err_len)
+{
+    sim_run_spec_t spec = {ctrl, csv_path, m, err, err_len, 0};
+    sim_run_attitude_group(sc, &spec, 1, progress);
+    return spec.rc;
 }
 
 int sim_run_differentiator(const sim_scenario_t *sc, const char *csv_path, const sim_progress_t *progress,

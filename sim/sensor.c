@@ -57,9 +57,14 @@ void sim_sensor_measure(sim_sensor_t *s, const double angle_rad[3], const double
     /* the slot after the newest is the oldest: written delay_ticks calls ago */
     const int oldest = (s->head + 1) % len;
     s->head = oldest;
-    double noise[6];
-    for (int i = 0; i < 6; ++i) {
-        noise[i] = sim_rng_gauss(&s->rng);
+    /* Without any noise nothing is drawn: the generator feeds this sensor
+     * alone, so no other stream shifts. With noise on one quantity all six
+     * are drawn, as the header promises. */
+    double noise[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    if (s->angle_std_rad > 0.0 || s->rate_std_rad_s > 0.0) {
+        for (int i = 0; i < 6; ++i) {
+            noise[i] = sim_rng_gauss(&s->rng);
+        }
     }
     for (int i = 0; i < 3; ++i) {
         angle_out[i] = with_noise(s->angle_hist[oldest][i], s->angle_std_rad, noise[i]);

@@ -7,7 +7,8 @@
  * Each call draws six normal deviates, angles 0..2 then rates 0..2, whatever
  * the standard deviations: the noise of one quantity for a given seed does
  * not change when the other's is switched on or off. A standard deviation of
- * 0 passes the (delayed) truth exactly.
+ * 0 passes the (delayed) truth exactly. When both are 0 nothing is drawn
+ * (the generator is the sensor's own: no other output changes).
  *
  * Delay: call k returns the truth of call k - delay_ticks; the first
  * delay_ticks calls return the truth of the first call (the sensor starts as

@@ -51,14 +51,15 @@ out=${FUZZ_OUT:-build/fuzz}
 obj=$out/obj
 mkdir -p "$obj"
 
-# The library and the simulator core (not its command line), instrumented
+# The library, the analysis library and the simulator core (not its command
+# lines), instrumented
 # for coverage and the sanitizers; each target links them with libFuzzer.
 CFLAGS=(-std=c99 -g -O1 -fno-omit-frame-pointer -fsanitize=fuzzer-no-link,address,undefined
-        -fno-sanitize-recover=all -Wall -Wextra -Wpedantic -Werror -Iinclude -Isim -Itests/fuzz)
+        -fno-sanitize-recover=all -Wall -Wextra -Wpedantic -Werror -Iinclude -Ianalysis/include -Isim -Itests/fuzz)
 sources=()
 objects=()
-for source in src/*.c sim/*.c tests/fuzz/fuzz_common.c; do
-  [[ $source == sim/main.c ]] && continue
+for source in src/*.c analysis/*.c sim/*.c tests/fuzz/fuzz_common.c; do
+  [[ $source == sim/main.c || $source == sim/margins_main.c ]] && continue
   sources+=("$source")
   objects+=("$obj/$(echo "${source%.c}" | tr / _).o")
 done

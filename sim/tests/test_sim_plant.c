@@ -407,6 +407,28 @@ static void test_disturbance_is_evaluated_at_the_rk4_stage_times(void)
     ASSERT_CLOSE(1e-15, 0.02, p.t_s);
 }
 
+static void test_the_listed_stage_times_are_those_asked_bit_for_bit(void)
+{
+    const sim_vehicle_t v = vehicle_no_drag();
+    sim_plant_t p;
+    sim_plant_init(&p, &v);
+    const double cmd[4] = {p.w2_rad2_s2[0], p.w2_rad2_s2[1], p.w2_rad2_s2[2], p.w2_rad2_s2[3]};
+    call_log_t log = {0};
+    double listed[64];
+    for (int k = 0; k < 7; ++k) { /* from times that are not round: 0.0013 s steps */
+        log.n_calls = 0;
+        const int n = sim_plant_stage_times(&p, 1.3e-3, 7, listed);
+        sim_plant_step(&p, cmd, 1.3e-3, 7, logging_ramp, &log);
+        TEST_ASSERT_EQUAL_INT(3 * 7, n);
+        TEST_ASSERT_EQUAL_INT(n, log.n_calls);
+        for (int i = 0; i < n; ++i) {
+            TEST_ASSERT_TRUE(listed[i] == log.t[i]);
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(0, sim_plant_stage_times(&p, 0.0, 7, listed));
+    TEST_ASSERT_EQUAL_INT(3, sim_plant_stage_times(&p, 1e-3, 0, listed)); /* substeps below 1 count as 1 */
+}
+
 static void test_a_ramp_disturbance_gives_the_exact_cubic(void)
 {
     /* phi'' = t from rest: phi = t^3 / 6, phi' = t^2 / 2. RK4 with d at the
@@ -595,5 +617,6 @@ int main(void)
     RUN_TEST(test_limits_clamp_the_command_when_not_ideal);
     RUN_TEST(test_rk4_substeps_converge_at_fourth_order);
     RUN_TEST(test_no_time_step_does_nothing_and_substeps_below_one_count_as_one);
+    RUN_TEST(test_the_listed_stage_times_are_those_asked_bit_for_bit);
     return UNITY_END();
 }

@@ -122,6 +122,47 @@ static void test_a_non_finite_state_diverges_at_the_first_instant_it_is_seen(voi
     TEST_ASSERT_EQUAL_INT(1501, (int)m.rotor_w2[0].n); /* the instants 0 .. 1.5 s */
 }
 
+/* Every field of two runs' metrics but the wall time (bit for bit). */
+static int same_metrics(sim_metrics_t a, sim_metrics_t b)
+{
+    a.wall_s = b.wall_s = 0.0;
+    return memcmp(&a, &b, sizeof a) == 0;
+}
+
+static void test_a_lockstep_group_gives_each_run_bit_for_bit(void)
+{
+    /* a 55 ms motor lag none of them models: PID diverges at once (0.36 s),
+     * LADRC slowly (11.7 s), HP-MLADRC flies on alone; the group shares the
+     * references and disturbances of every tick all the same */
+    static sim_scenario_t sc;
+    sim_parse_error_t perr;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0,
+                                  sim_scenario_parse(&sc,
+                                                     "[run]\nduration_s = 15\ncontrollers = LADRC PID HP-MLADRC\n"
+                                                     "[reference]\nroll = 5 + 10*sin(2*t)\n[disturbance]\n"
+                                                     "pitch = 1 .. 15 : 20*sin(3*t)\n[rotors]\nmotor_tau_s = 0.055\n"
+                                                     "[controller LADRC]\nmodel_motor_tau_s = 0\n",
+                                                     "group.ini", &perr),
+                                  perr.message);
+    static sim_metrics_t alone[3], grouped[3];
+    char err[3][256];
+    sim_run_spec_t runs[3];
+    for (int g = 0; g < 3; ++g) {
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_run_attitude(&sc, sc.controllers[g], NULL, NULL, &alone[g], err[g],
+                                                          sizeof err[g]),
+                                      err[g]);
+        const sim_run_spec_t spec = {sc.controllers[g], NULL, &grouped[g], err[g], sizeof err[g], -1};
+        runs[g] = spec;
+    }
+    /* the group really loses runs midway and keeps one to the end */
+    TEST_ASSERT_TRUE(alone[0].diverged && alone[1].diverged && !alone[2].diverged);
+    sim_run_attitude_group(&sc, runs, 3, NULL);
+    for (int g = 0; g < 3; ++g) {
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, runs[g].rc, err[g]);
+        TEST_ASSERT_TRUE_MESSAGE(same_metrics(alone[g], grouped[g]), sim_controller_name(sc.controllers[g]));
+    }
+}
+
 static void test_the_limit_is_the_scenarios(void)
 {
     /* a 10 deg step: within the default 90 deg, beyond a 5 deg limit at t = 0 */
@@ -255,5 +296,6 @@ int main(void)
     RUN_TEST(test_levant_differentiates_the_noisy_sine_better_than_the_td);
     RUN_TEST(test_a_differentiator_scenario_without_its_optional_keys_runs);
     RUN_TEST(test_a_run_refuses_a_scenario_changed_after_parsing);
+    RUN_TEST(test_a_lockstep_group_gives_each_run_bit_for_bit);
     return UNITY_END();
 }
