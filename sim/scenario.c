@@ -43,6 +43,8 @@
 static const char *const CONTROLLER_NAMES[SIM_CTRL_COUNT] = {"HP-MLADRC", "LP-MLADRC", "LADRC",
                                                               "PID",       "CASCADED",  "INDI"};
 
+int sim_controller_needs_rate(sim_controller_id_t id) { return id == SIM_CTRL_INDI; }
+
 const char *sim_controller_name(sim_controller_id_t id)
 {
     return ((int)id >= 0 && id < SIM_CTRL_COUNT) ? CONTROLLER_NAMES[id] : "?";
@@ -1389,8 +1391,7 @@ static void check_controllers(parser_t *p)
         for (int i = 0; i < sc->n_controllers; ++i) {
             listed |= (int)sc->controllers[i] == id;
         }
-        if (st == LADRC_OK && id == SIM_CTRL_INDI && !sc->use_rate) {
-            /* INDI holds its command without a rate (indi.h): it cannot fly */
+        if (st == LADRC_OK && sim_controller_needs_rate((sim_controller_id_t)id) && !sc->use_rate) {
             static const key_ref_t use_rate[] = {{SEC_SENSORS, "use_rate"}, END_KEYS};
             const loc_t at = locate(p, use_rate, -1);
             if (listed) {

@@ -228,4 +228,8 @@ int sim_scenario_set_controllers(sim_scenario_t *sc, const sim_controller_id_t *
 /* "HP-MLADRC", "LP-MLADRC", "LADRC", "PID", "CASCADED", "INDI"; "?" for anything else */
 const char *sim_controller_name(sim_controller_id_t id);
 
+/* 1 for a controller that cannot fly without the measured rate ([sensors]
+ * use_rate = yes): INDI holds its command without one (indi.h). */
+int sim_controller_needs_rate(sim_controller_id_t id);
+
 #endif

@@ -59,7 +59,8 @@ static int starts(sim_controller_id_t id)
     ladrc_attitude_config_t cfg;
     ladrc_attitude_t att;
     sim_setup_attitude(&sc, id, &cfg);
-    return ladrc_attitude_init(&att, &cfg, NULL) == LADRC_OK;
+    /* what the library refuses, and what the simulator does (scenario.h) */
+    return ladrc_attitude_init(&att, &cfg, NULL) == LADRC_OK && !(sim_controller_needs_rate(id) && !sc.use_rate);
 }
 
 static void evaluate(const sim_signal_t *sig, const double *times, int n)
