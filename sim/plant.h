@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
- * The quadrotor attitude plant of the paper (PAPER.md section 1, eq. 1-3),
+ * The quadrotor attitude plant of the paper (docs/method.md section 1, eq. 1-3),
  * in double precision, for the software-in-the-loop simulator.
  *
  * Plus frame, rotor i at speed w_i; the state holds w_i^2 (rad^2/s^2):
@@ -14,7 +14,7 @@
  * Index 0, 1, 2 = roll phi about body X, pitch theta about Y, yaw psi about
  * Z. As in the paper the Euler-angle rates are the body rates (no kinematic
  * transformation) and the angles are not wrapped. d(t) is an angular
- * acceleration in rad/s^2 (PAPER.md section 1, [choice]). The altitude is not
+ * acceleration in rad/s^2 (docs/method.md section 1, [choice]). The altitude is not
  * simulated: the thrust holds it by construction (eq. 4).
  *
  * Rotors: the command w2_cmd is held over a step (zero-order hold). With

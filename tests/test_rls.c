@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 
-/* The paper's estimator settings (PAPER.md section 5) at 1 kHz, 3 parameters:
+/* The paper's estimator settings (docs/method.md section 5) at 1 kHz, 3 parameters:
  * p_initial = k0 / 3, so P starts on the bound. */
 #define DT_S 1e-3
 #define LAMBDA0_PER_S 100.0

@@ -2,7 +2,7 @@
 /**
  * @file attitude.h
  * @brief Three axes (roll, pitch, yaw) ticked together, with the paper's
- *        decoupling-free coupling feed (PAPER.md section 4).
+ *        decoupling-free coupling feed (docs/method.md section 4).
  *
  * The cross-axis coupling of the rigid body stays in each axis's total
  * disturbance f, but its rate of change h = f' is partly known from the other

@@ -10,7 +10,7 @@
  * Sign convention: positive torque accelerates the angle positively; angles
  * in rad (roll = phi about body X, pitch = theta about Y, yaw = psi about Z).
  *
- * LADRC tick k, measured angle y_k, raw reference ref_k (PAPER.md eq. 9-14):
+ * LADRC tick k, measured angle y_k, raw reference ref_k (docs/method.md eq. 9-14):
  *
  *     LESO   z   <- step(y_k, applied torque of tick k-1, d_hat_k-1, h_k-1)  (leso.h)
  *     shaper (r, r', r'') <- TD(ref_k) | Levant(ref_k) | (ref_k, 0, 0)

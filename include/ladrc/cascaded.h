@@ -45,7 +45,7 @@
  * rather than a difference of the raw reference: the TD's r' is the exact
  * derivative of the r the P loop tracks (so a ramp is followed without the
  * P loop's lag), it is bounded by the shaper's acceleration limit and
- * noise-free (a filtered difference of a stepped reference would spike);
+ * free of noise (a filtered difference of a stepped reference would spike);
  * it also gives every variant of the library the same shaped reference.
  * With shaper NONE r' = 0 and the attitude loop is a plain P.
  *

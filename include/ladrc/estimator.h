@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file estimator.h
- * @brief Adaptive disturbance estimators of the modified LADRC (PAPER.md
+ * @brief Adaptive disturbance estimators of the modified LADRC (docs/method.md
  *        section 5), both on top of the bounded-gain RLS of rls.h. Their
  *        estimate d_hat (rad/s^2) enters the LESO as a known acceleration and
  *        the control law as u = (u0 - z3 - d_hat) / b0, so the LESO's z3 only

@@ -4,7 +4,7 @@
  * @brief Third-order linear extended state observer (LESO) for one axis
  *        y'' = f + b0 u: estimates z1 ~ y, z2 ~ y', z3 ~ f (total disturbance).
  *
- * Continuous model (PAPER.md eq. 9-10), bandwidth wo, all poles at -wo:
+ * Continuous model (docs/method.md eq. 9-10), bandwidth wo, all poles at -wo:
  *
  *     z1' = z2 + 3 wo (y - z1)
  *     z2' = z3 + 3 wo^2 (y - z1) + a          a = b0 u + known acceleration

@@ -5,7 +5,7 @@
  *        of the modified LADRC. Estimates r, r', r'' and r''' of a raw
  *        reference (states z0..z3, the paper's c1..c4).
  *
- * Continuous form (PAPER.md section 3), with e = z0 - r and
+ * Continuous form (docs/method.md section 3), with e = z0 - r and
  * [e]^a = |e|^a sign(e):
  *
  *     z0' = z1 - k3 [e]^(3/4)        z2' = z3 - k1 [e]^(1/4)

@@ -5,7 +5,7 @@
  *        squared out, with rotor limits applied by priority and the thrust and
  *        torques actually achieved reported back.
  *
- * Rotors 1..4 are array indices 0..3 (PAPER.md section 1): rotors 1 and 3 lie
+ * Rotors 1..4 are array indices 0..3 (docs/method.md section 1): rotors 1 and 3 lie
  * on the body X arm and make pitch, 2 and 4 on the Y arm and make roll; 2 and 4
  * spin against 1 and 3, so their drag makes yaw. Roll = phi about body X,
  * pitch = theta about Y, yaw = psi about Z; a positive torque accelerates its

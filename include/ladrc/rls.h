@@ -5,7 +5,7 @@
  *        bounded-gain forgetting, for the adaptive disturbance estimators.
  *
  * Model y_k = phi_k^T theta + noise, n = n_params <= LADRC_RLS_MAX_PARAMS.
- * Continuous law (PAPER.md section 5, Slotine and Li 8.7), e = phi^T theta - y:
+ * Continuous law (docs/method.md section 5, Slotine and Li 8.7), e = phi^T theta - y:
  *
  *     theta' = -P phi e
  *     P'     = lambda P - P phi phi^T P,      lambda = lambda0 (1 - ||P|| / k0)

@@ -38,7 +38,7 @@ static double hover_w2(const sim_vehicle_t *v)
     return v->mass_kg * v->g_m_s2 / (4.0 * v->thrust_coeff_N_s2);
 }
 
-/* PAPER.md eq. 33, with a = U_L/kL, p = tau_x/(l kL), q = tau_y/(l kL),
+/* docs/method.md eq. 33, with a = U_L/kL, p = tau_x/(l kL), q = tau_y/(l kL),
  * r = tau_z/b. */
 static void inverse_allocation(const sim_vehicle_t *v, double thrust_N, const double torque_Nm[3],
                                double w2[4])

@@ -20,7 +20,7 @@
 static const double PAPER_W2_MEAN[4] = {100035.0, 39612.0, 75442.0, 55776.0};
 static const double PAPER_W2_STD[4] = {51297.0, 118466.0, 119115.0, 49497.0};
 /* The issue's bars: the paper's run length and timing are not given exactly
- * (PAPER.md section 6: a hand computation lands within 11% / 23%). */
+ * (docs/method.md section 6: a hand computation lands within 11% / 23%). */
 #define W2_STD_REL_TOL 0.15
 #define W2_MEAN_REL_TOL 0.25
 

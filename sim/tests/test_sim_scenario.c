@@ -526,7 +526,7 @@ static void load_ok(const char *file)
     TEST_ASSERT_EQUAL_INT_MESSAGE(0, rc, message);
 }
 
-/* The paper's Table 2 disturbance of one axis, as PAPER.md states it. */
+/* The paper's Table 2 disturbance of one axis, as docs/method.md states it. */
 static double table2(int axis, double t)
 {
     const double sign = (axis == 1) ? 1.0 : -1.0; /* pitch has +120 */

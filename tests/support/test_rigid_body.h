@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* The paper's attitude dynamics (PAPER.md eq. 2) for closed-loop tests, in
+/* The paper's attitude dynamics (docs/method.md eq. 2) for closed-loop tests, in
  * double precision:
  *   phi''   = (tau_x + (Jy - Jz) theta' psi' - kt phi'  ) / Jx + d_phi
  *   theta'' = (tau_y + (Jz - Jx) phi'   psi' - kt theta') / Jy + d_theta
