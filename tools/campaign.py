@@ -1,0 +1,553 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
+"""Merges and draws the runs of a campaign flown by `ladrc_sil --campaign` (docs/campaigns.md).
+
+Usage: campaign.py merge OUT
+       campaign.py plot OUT [--x NAME] [--y NAME] [--axis roll|pitch|yaw] [--name TEXT]
+
+merge reads OUT/plan.csv and every OUT/runs/<run>/metrics.csv and writes OUT/campaign.csv:
+one row per run, in run order: `run`, the varied values as in plan.csv, then for each
+controller (in metrics.csv order) and axis (roll, pitch, yaw) the columns
+<CTRL>.<axis>.rms_deg (Table 4 error_rms_deg), .band_deg (Table 5 steady_band_deg),
+.max_deg (Table 5 max_error_deg), .settling_s (Table 5 settling_s, or not_settled) and
+.diverged (yes/no). A statistic of a diverged run reads `diverged`. Values are copied as
+metrics.csv wrote them, so the table is the same bytes however the runs were sharded.
+Runs of the plan without metrics.csv: an error naming them, exit 1, no table written.
+
+plot reads OUT/campaign.csv and draws into OUT/figures/:
+  map_<axis>_<x>_<y>.png   one panel per controller: the median RMS error of the axis over
+                           the runs of each cell of (x, y), log colour scale; cells where any
+                           run diverged are marked, the boundary where half of a cell's runs
+                           diverged is drawn as a contour
+  rms_<axis>.png           the RMS error of every run per controller (box plots, log scale);
+                           diverged runs have no RMS: they are counted in the labels
+--x and --y default to the first two varied names. A varied name with few values (a [grid]
+key) gives one cell per value; one with many (a [draw] key) is cut into bins. An axis is
+logarithmic when its values are positive, span more than a decade and lie closer to log- than
+to linearly-uniform (a log_uniform draw, a geometric grid).
+
+Exit status: 0 done, 1 error (missing OUT, plan.csv, runs, campaign.csv, unknown --x/--y),
+nothing written on error. merge needs the Python standard library only; plot needs
+matplotlib and numpy.
+"""
+import argparse
+import csv
+import io
+import math
+import os
+import re
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from sim_output import AXES, DIVERGED, NOT_SETTLED  # noqa: E402
+
+# campaign.csv's statistics: (column suffix, metrics.csv table, quantity)
+STATS = [("rms_deg", "4", "error_rms_deg"),
+         ("band_deg", "5", "steady_band_deg"),
+         ("max_deg", "5", "max_error_deg"),
+         ("settling_s", "5", "settling_s")]
+RUN_DIR_DIGITS = 5           # runs/<r zero-padded to at least 5 digits>
+MISSING_NAMED = 20           # how many missing runs an error names
+
+
+class CampaignError(Exception):
+    """A problem with OUT's contents: reported on stderr, exit status 1."""
+
+
+def run_dir_name(r):
+    return "%0*d" % (RUN_DIR_DIGITS, r)
+
+
+def read_plan(out):
+    """(header, rows) of OUT/plan.csv; rows are lists of text, run numbers 1..R in order."""
+    if not os.path.isdir(out):
+        raise CampaignError("no campaign output directory %s" % out)
+    path = os.path.join(out, "plan.csv")
+    if not os.path.isfile(path):
+        raise CampaignError("%s: no plan.csv (not the output directory of `ladrc_sil --campaign`)" % out)
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    if not rows or not rows[0] or rows[0][0] != "run":
+        raise CampaignError("%s: the header does not start with 'run'" % path)
+    header, body = rows[0], rows[1:]
+    for i, row in enumerate(body, start=1):
+        if len(row) != len(header):
+            raise CampaignError("%s:%d: %d fields, the header has %d" % (path, i + 1, len(row), len(header)))
+        if row[0] != str(i):
+            raise CampaignError("%s:%d: run '%s', expected %d (runs 1..R in order)" % (path, i + 1, row[0], i))
+    if not body:
+        raise CampaignError("%s: no runs" % path)
+    return header, body
+
+
+def read_run_metrics(path, scenario):
+    """(controllers in file order, {(controller, table, quantity, axis): text}) of a run's
+    metrics.csv, values as written."""
+    controllers, values = [], {}
+    with open(path, newline="") as f:
+        reader = csv.reader(f)
+        header = next(reader, None)
+        if header != ["scenario", "controller", "table", "quantity", "axis", "value"]:
+            raise CampaignError("%s: not a metrics.csv (header %s)" % (path, header))
+        for n, row in enumerate(reader, start=2):
+            if len(row) != 6:
+                raise CampaignError("%s:%d: %d fields, expected 6" % (path, n, len(row)))
+            if row[0] != scenario:
+                raise CampaignError("%s:%d: scenario '%s', expected the run's directory name '%s'"
+                                    % (path, n, row[0], scenario))
+            if row[2] in ("4", "5", "-") and row[1] not in controllers:
+                controllers.append(row[1])
+            values[(row[1], row[2], row[3], row[4])] = row[5]
+    return controllers, values
+
+
+def run_columns(path, controllers, values):
+    """A run's statistics, in campaign.csv's column order."""
+    cells = []
+    for ctrl in controllers:
+        flag = values.get((ctrl, "-", "diverged", "-"))
+        if flag not in ("0", "1"):
+            raise CampaignError("%s: no diverged flag (0 or 1) for %s" % (path, ctrl))
+        for axis in AXES:
+            for _, table, quantity in STATS:
+                v = values.get((ctrl, table, quantity, axis))
+                if v is None:
+                    raise CampaignError("%s: no %s of %s on %s" % (path, quantity, ctrl, axis))
+                cells.append(v)
+            cells.append("yes" if flag == "1" else "no")
+    return cells
+
+
+def merge_table(out):
+    """campaign.csv's text for OUT (raises CampaignError)."""
+    header, plan = read_plan(out)
+    runs_dir = os.path.join(out, "runs")
+    present = set(os.listdir(runs_dir)) if os.path.isdir(runs_dir) else set()
+    missing = [int(row[0]) for row in plan
+               if not os.path.isfile(os.path.join(runs_dir, run_dir_name(int(row[0])), "metrics.csv"))]
+    if missing:
+        named = ", ".join(str(r) for r in missing[:MISSING_NAMED])
+        more = " and %d more" % (len(missing) - MISSING_NAMED) if len(missing) > MISSING_NAMED else ""
+        raise CampaignError("%s: %d of %d runs have no metrics.csv in %s: run %s%s"
+                            % (out, len(missing), len(plan), runs_dir, named, more))
+    planned = {run_dir_name(int(row[0])) for row in plan}
+    extra = sorted(d for d in present if re.fullmatch(r"[0-9]+", d) and d not in planned)
+    if extra:
+        raise CampaignError("%s: runs not in plan.csv: %s%s" % (runs_dir, ", ".join(extra[:MISSING_NAMED]),
+                            " and %d more" % (len(extra) - MISSING_NAMED) if len(extra) > MISSING_NAMED else ""))
+
+    first = None
+    lines = []
+    for row in plan:
+        name = run_dir_name(int(row[0]))
+        path = os.path.join(runs_dir, name, "metrics.csv")
+        controllers, values = read_run_metrics(path, name)
+        if not controllers:
+            raise CampaignError("%s: no attitude controller in it" % path)
+        if first is None:
+            first = controllers
+        elif controllers != first:
+            raise CampaignError("%s: controllers %s, run 1 flew %s" % (path, " ".join(controllers), " ".join(first)))
+        lines.append(row + run_columns(path, controllers, values))
+
+    columns = list(header)
+    for ctrl in first:
+        for axis in AXES:
+            columns += ["%s.%s.%s" % (ctrl, axis, suffix) for suffix, _, _ in STATS]
+            columns.append("%s.%s.diverged" % (ctrl, axis))
+    text = io.StringIO()
+    for line in [columns] + lines:
+        for cell in line:
+            if any(c in cell for c in ',"\r\n'):
+                raise CampaignError("%s: value %r cannot be written to a CSV cell as it is" % (out, cell))
+        text.write(",".join(line) + "\n")
+    return text.getvalue()
+
+
+def write_atomically(path, data, mode="w"):
+    tmp = "%s.tmp.%d" % (path, os.getpid())
+    try:
+        with open(tmp, mode) as f:
+            f.write(data)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+def cmd_merge(args):
+    text = merge_table(args.out)
+    path = os.path.join(args.out, "campaign.csv")
+    write_atomically(path, text)
+    n = text.count("\n") - 1
+    print("campaign.py: %s: %d runs merged" % (path, n))
+    return 0
+
+
+# ---------------------------------------------------------------------------------------------
+# plot
+
+UNITS = [("_rad_s2", "rad/s²"), ("_rad_s", "rad/s"), ("_deg_s", "deg/s"), ("_m_s2", "m/s²"),
+         ("_m_s", "m/s"), ("_kg_m2", "kg·m²"), ("_Nm_s2", "N·m·s²"), ("_Nm_s", "N·m·s"),
+         ("_N_s2", "N·s²"), ("_Nm", "N·m"), ("_deg", "deg"), ("_rad", "rad"), ("_hz", "Hz"),
+         ("_Hz", "Hz"), ("_kg", "kg"), ("_ms", "ms"), ("_s", "s"), ("_m", "m"), ("_N", "N"), ("_V", "V")]
+MAX_CELLS = 12        # a varied name with more distinct values than this is cut into bins
+BINS = 10             # bins of such a name
+DIVERGED_BOUNDARY = 0.5
+
+
+def label_of(name):
+    """An axis label: the varied name and its unit, from the name's suffix."""
+    for suffix, unit in UNITS:
+        if name.endswith(suffix):
+            return "%s (%s)" % (name, unit)
+    return name
+
+
+def read_campaign(out):
+    path = os.path.join(out, "campaign.csv")
+    if not os.path.isdir(out):
+        raise CampaignError("no campaign output directory %s" % out)
+    if not os.path.isfile(path):
+        raise CampaignError("%s: no campaign.csv (run `campaign.py merge %s` first)" % (out, out))
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    if len(rows) < 2:
+        raise CampaignError("%s: no runs" % path)
+    header = rows[0]
+    varied = []
+    for name in header[1:]:
+        if re.search(r"\.(roll|pitch|yaw)\.(rms_deg|band_deg|max_deg|settling_s|diverged)$", name):
+            break
+        varied.append(name)
+    controllers = []
+    for name in header[1 + len(varied):]:
+        ctrl = name.rsplit(".", 2)[0]
+        if ctrl not in controllers:
+            controllers.append(ctrl)
+    cols = {name: [row[i] for row in rows[1:]] for i, name in enumerate(header)}
+    return varied, controllers, cols
+
+
+def as_numbers(texts):
+    """The values as floats, or None if any is not a number."""
+    try:
+        vals = [float(t) for t in texts]
+    except ValueError:
+        return None
+    return vals if all(math.isfinite(v) for v in vals) else None
+
+
+def wants_log(values):
+    """Positive, more than a decade, and the median nearer the geometric than the arithmetic
+    middle of the range (so a log-uniform draw or a geometric grid, not a uniform draw)."""
+    lo, hi = min(values), max(values)
+    if lo <= 0 or hi / lo <= 10:
+        return False
+    med = sorted(values)[len(values) // 2]
+    return abs(math.log(med) - 0.5 * math.log(lo * hi)) < abs(math.log(med) - math.log(0.5 * (lo + hi)))
+
+
+class Axis:
+    """How the runs' values of one varied name fall into cells: .index[run] (the cell of each
+    run), .edges (cell boundaries, in the plot's coordinates), .centres, .ticks and .ticklabels
+    (None: matplotlib's), .log, .label."""
+
+    def __init__(self, name, texts):
+        import numpy as np
+        self.name, self.label = name, label_of(name)
+        nums = as_numbers(texts)
+        self.log = False
+        self.ticks = self.ticklabels = None
+        if nums is None:                                    # words: one cell each, in file order
+            distinct = list(dict.fromkeys(texts))
+            self.index = [distinct.index(t) for t in texts]
+            self.edges = np.arange(len(distinct) + 1) - 0.5
+            self.centres = np.arange(len(distinct), dtype=float)
+            self.ticks, self.ticklabels = list(range(len(distinct))), distinct
+            return
+        self.log = wants_log(nums)
+        fwd = np.log10 if self.log else (lambda x: np.asarray(x, dtype=float))
+        inv = (lambda x: 10.0 ** np.asarray(x)) if self.log else np.asarray
+        values = sorted(set(nums))
+        if len(values) <= MAX_CELLS:                        # a grid: one cell per value
+            t = fwd(values)
+            if len(values) == 1:
+                e = np.array([t[0] - 0.5, t[0] + 0.5])
+            else:
+                mids = 0.5 * (t[1:] + t[:-1])
+                e = np.concatenate([[2 * t[0] - mids[0]], mids, [2 * t[-1] - mids[-1]]])
+            self.index = [values.index(v) for v in nums]
+            self.centres = inv(t)
+            self.ticks, self.ticklabels = list(values), ["%g" % v for v in values]
+        else:                                               # draws: bins over the range
+            e = np.linspace(fwd(values[0]), fwd(values[-1]), BINS + 1)
+            self.index = [min(int(np.searchsorted(e, fwd(v), side="right")) - 1, BINS - 1) for v in nums]
+            self.centres = inv(0.5 * (e[1:] + e[:-1]))
+        self.edges = inv(e)
+
+    @property
+    def cells(self):
+        return len(self.edges) - 1
+
+    def apply(self, ax, which):
+        """Scale, limits, ticks and label of the plot axis `which` ("x" or "y")."""
+        getattr(ax, "set_%sscale" % which)("log" if self.log else "linear")
+        getattr(ax, "set_%slim" % which)(self.edges[0], self.edges[-1])
+        axis = ax.xaxis if which == "x" else ax.yaxis
+        if self.ticks is not None:
+            axis.set_ticks(self.ticks)
+            axis.set_ticklabels(self.ticklabels, rotation=45 if which == "x" and len(self.ticks) > 6 else 0)
+            axis.set_ticks([], minor=True)
+        elif self.log:
+            log_ticks(axis)
+        axis.set_label_text(self.label)
+
+
+def plot_maps(out, name, varied, controllers, cols, axis, xname, yname, figdir):
+    import matplotlib.pyplot as plt
+    import numpy as np
+    from matplotlib.colors import ListedColormap, LogNorm
+    from matplotlib.lines import Line2D
+
+    n_runs = len(cols["run"])
+    ax_x = Axis(xname, cols[xname])
+    ax_y = Axis(yname, cols[yname]) if yname else None
+    ny = ax_y.cells if ax_y else 1
+    yidx = ax_y.index if ax_y else [0] * n_runs
+
+    grids = {}
+    for ctrl in controllers:
+        rms = cols["%s.%s.rms_deg" % (ctrl, axis)]
+        div = cols["%s.%s.diverged" % (ctrl, axis)]
+        cell_rms = [[[] for _ in range(ax_x.cells)] for _ in range(ny)]
+        n = np.zeros((ny, ax_x.cells))
+        nd = np.zeros((ny, ax_x.cells))
+        for r in range(n_runs):
+            i, j = yidx[r], ax_x.index[r]
+            n[i, j] += 1
+            if div[r] == "yes":
+                nd[i, j] += 1
+            else:
+                cell_rms[i][j].append(float(rms[r]))
+        med = np.full((ny, ax_x.cells), np.nan)
+        for i in range(ny):
+            for j in range(ax_x.cells):
+                if cell_rms[i][j]:
+                    med[i, j] = np.median(cell_rms[i][j])
+        frac = np.where(n > 0, nd / np.maximum(n, 1), np.nan)
+        grids[ctrl] = (med, n, nd, frac)
+
+    finite = np.concatenate([g[0][np.isfinite(g[0]) & (g[0] > 0)] for g in grids.values()])
+    lo, hi = (float(finite.min()), float(finite.max())) if finite.size else (0.1, 1.0)
+    if hi <= lo * 1.01:
+        lo, hi = lo / 1.5, hi * 1.5
+    norm = LogNorm(vmin=lo, vmax=hi)
+    cmap = plt.get_cmap("viridis").copy()
+    cmap.set_bad((1, 1, 1, 0))          # cells without a median: drawn below, or left blank
+    all_div_colour = "#bdbdbd"
+
+    nc = len(controllers)
+    ncols = 1 if nc == 1 else 2 if nc <= 4 else 3
+    nrows = (nc + ncols - 1) // ncols
+    width, height = 5.0 * ncols + 1.6, 3.9 * nrows + 1.7
+    fig, axes = plt.subplots(nrows, ncols, figsize=(width, height), squeeze=False, sharex=True, sharey=True)
+    left, right, bottom, top = 0.9 / width, 1 - 1.5 / width, 1.1 / height, 1 - 0.95 / height
+    fig.subplots_adjust(left=left, right=right, bottom=bottom, top=top, wspace=0.08, hspace=0.28)
+    yedges = ax_y.edges if ax_y else np.array([0.0, 1.0])
+    xc = ax_x.centres
+    yc = ax_y.centres if ax_y else np.array([0.5])
+    mesh = None
+    any_empty = False
+    for k, ctrl in enumerate(controllers):
+        ax = axes[k // ncols][k % ncols]
+        med, n, nd, frac = grids[ctrl]
+        ax.grid(False)
+        all_div = np.where((n > 0) & (nd == n), 1.0, np.nan)
+        any_empty = any_empty or bool((n == 0).any())
+        ax.pcolormesh(ax_x.edges, yedges, np.ma.masked_invalid(all_div), cmap=ListedColormap([all_div_colour]),
+                      edgecolors="white", linewidth=0.4)
+        mesh = ax.pcolormesh(ax_x.edges, yedges, np.ma.masked_invalid(med), cmap=cmap, norm=norm,
+                             edgecolors="white", linewidth=0.4)
+        jj, ii = np.nonzero(nd.T > 0)
+        if len(ii):
+            ax.scatter(xc[jj], yc[ii], marker="x", s=30, c="red", linewidths=1.5, zorder=3)
+        if ax_y and len(xc) >= 2 and len(yc) >= 2 and np.nanmin(frac) < DIVERGED_BOUNDARY < np.nanmax(frac):
+            ax.contour(xc, yc, np.ma.masked_invalid(frac), levels=[DIVERGED_BOUNDARY],
+                       colors="red", linewidths=2.2, zorder=4)
+        ax.set_title("%s: %d of %d runs diverged" % (ctrl, int(nd.sum()), n_runs), fontsize=10)
+        ax_x.apply(ax, "x")
+        if ax_y:
+            ax_y.apply(ax, "y")
+        else:
+            ax.set_yticks([])
+        if not ax_y:
+            ax.set_ylim(0, 1)
+        ax.grid(False)
+        if k + ncols < nc:          # the panel below labels the x axis
+            ax.set_xlabel("")
+        else:
+            ax.tick_params(labelbottom=True)
+        if k % ncols:
+            ax.set_ylabel("")
+    for k in range(nc, nrows * ncols):
+        axes[k // ncols][k % ncols].set_visible(False)
+    cax = fig.add_axes([right + 0.25 / width, bottom, 0.22 / width, top - bottom])
+    cax.grid(False)
+    bar = fig.colorbar(mesh, cax=cax)
+    bar.set_label("median %s RMS tracking error (deg), log scale" % axis)
+    log_ticks(bar.ax.yaxis)
+    handles = [Line2D([], [], color="red", marker="x", linestyle="none", label="a run of the cell diverged"),
+               Line2D([], [], color="red", linewidth=2.2, label="boundary: half of the runs diverged"),
+               Line2D([], [], color=all_div_colour, marker="s", markersize=11, linestyle="none",
+                      label="every run diverged (no RMS)")]
+    if any_empty:
+        handles.append(Line2D([], [], color="black", marker="s", markerfacecolor="white", markersize=11,
+                              linestyle="none", markeredgewidth=0.5, label="no run in the cell"))
+    fig.legend(handles=handles, loc="lower center", ncol=len(handles), frameon=False, fontsize=9)
+    counts = grids[controllers[0]][1]
+    counts = counts[counts > 0]
+    per_cell = ("%d runs per cell" % counts.min() if counts.min() == counts.max()
+                else "%d to %d runs per cell" % (counts.min(), counts.max()))
+    fig.suptitle("Campaign %s: median %s RMS tracking error (deg) over %s%s\n%d runs, %s"
+                 % (name, axis, xname, " and " + yname if yname else "", n_runs, per_cell))
+    path = os.path.join(figdir, "map_%s_%s%s.png" % (axis, safe(xname), "_" + safe(yname) if yname else ""))
+    save(fig, path)
+    return path
+
+
+def log_ticks(axis):
+    """Plain-number ticks at 1, 2, 5 per decade on a log axis (3 decades and more: 1 only)."""
+    from matplotlib.ticker import LogLocator, NullFormatter, StrMethodFormatter
+    lo, hi = sorted(axis.get_view_interval())
+    wide = lo > 0 and hi / lo > 1000
+    axis.set_major_locator(LogLocator(subs=(1.0,) if wide else (1.0, 2.0, 5.0)))
+    axis.set_major_formatter(StrMethodFormatter("{x:g}"))
+    axis.set_minor_formatter(NullFormatter())
+
+
+def save(fig, path):
+    """Writes the figure through a temporary file, so that a PNG is whole or absent."""
+    import matplotlib.pyplot as plt
+    tmp = "%s.tmp.%d.png" % (path[:-4], os.getpid())
+    try:
+        fig.savefig(tmp, dpi=110)
+        os.replace(tmp, path)
+    finally:
+        plt.close(fig)
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+def box_data(controllers, cols, axis):
+    """(RMS values of the runs that did not diverge, label) per controller; the label counts
+    the runs drawn and the diverged ones left out."""
+    n_runs = len(cols["run"])
+    data, labels = [], []
+    for ctrl in controllers:
+        rms = cols["%s.%s.rms_deg" % (ctrl, axis)]
+        div = cols["%s.%s.diverged" % (ctrl, axis)]
+        vals = [float(v) for v, d in zip(rms, div) if d != "yes"]
+        n_div = n_runs - len(vals)
+        data.append(vals)
+        labels.append("%s\n%d runs\n%s" % (ctrl, len(vals), "%d diverged, left out" % n_div if n_div
+                                             else "none diverged"))
+    return data, labels
+
+
+def plot_boxes(out, name, controllers, cols, axis, figdir):
+    import matplotlib.pyplot as plt
+    n_runs = len(cols["run"])
+    data, labels = box_data(controllers, cols, axis)
+    zeros = [sum(1 for v in d if v <= 0) for d in data]
+    labels = [lab + ("\n%d at 0, off the log scale" % z if z else "") for lab, z in zip(labels, zeros)]
+    fig, ax = plt.subplots(figsize=(max(6.5, 1.7 * len(controllers) + 2.5), 5.5))
+    positions = list(range(1, len(controllers) + 1))
+    drawn = [(p, [v for v in d if v > 0]) for p, d in zip(positions, data)]
+    drawn = [(p, d) for p, d in drawn if d]
+    if drawn:
+        ax.boxplot([d for _, d in drawn], positions=[p for p, _ in drawn], widths=0.6, whis=(5, 95),
+                   medianprops={"color": "#d62728", "linewidth": 1.8},
+                   flierprops={"marker": ".", "markersize": 3, "alpha": 0.5})
+    for p, d in zip(positions, data):
+        if not d:
+            ax.text(p, 0.5, "every run\ndiverged", transform=ax.get_xaxis_transform(), ha="center",
+                    va="center", color="red")
+    ax.set_xticks(positions)
+    ax.set_xticklabels(labels, fontsize=9)
+    ax.set_xlim(0.4, len(controllers) + 0.6)
+    ax.set_yscale("log")
+    log_ticks(ax.yaxis)
+    ax.set_ylabel("%s RMS tracking error (deg), log scale" % axis)
+    ax.set_title("Campaign %s: %s RMS tracking error per run (deg), %d runs\n"
+                 "box: quartiles, line: median, whiskers: 5th and 95th percentiles, dots: beyond"
+                 % (name, axis, n_runs), fontsize=11)
+    ax.grid(True, which="major", axis="y", alpha=0.3)
+    ax.grid(False, axis="x")
+    fig.tight_layout()
+    path = os.path.join(figdir, "rms_%s.png" % axis)
+    save(fig, path)
+    return path
+
+
+def safe(name):
+    return re.sub(r"[^A-Za-z0-9_.-]", "_", name)
+
+
+def cmd_plot(args):
+    varied, controllers, cols = read_campaign(args.out)
+    if not controllers:
+        raise CampaignError("%s/campaign.csv: no controller columns" % args.out)
+    for opt, value in (("--x", args.x), ("--y", args.y)):
+        if value is not None and value not in varied:
+            raise CampaignError("%s %s: not a varied name of the campaign (%s)"
+                                % (opt, value, ", ".join(varied) if varied else "it varies nothing"))
+    xname = args.x or (varied[0] if varied else None)
+    yname = args.y or next((v for v in varied if v != xname), None)
+    if xname is not None and xname == yname:
+        raise CampaignError("--x and --y name the same varied name %s" % xname)
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        import numpy  # noqa: F401
+    except ImportError as e:
+        raise CampaignError("plot needs matplotlib and numpy (apt-get install python3-matplotlib "
+                            "python3-numpy): %s" % e)
+    plt.rcParams.update({"font.size": 10, "axes.grid": True, "grid.alpha": 0.3})
+    name = args.name or os.path.basename(os.path.normpath(os.path.abspath(args.out)))
+    figdir = os.path.join(args.out, "figures")
+    os.makedirs(figdir, exist_ok=True)
+    written = []
+    if xname is not None:
+        written.append(plot_maps(args.out, name, varied, controllers, cols, args.axis, xname, yname, figdir))
+    else:
+        print("campaign.py: the campaign varies nothing: no robustness map", file=sys.stderr)
+    written.append(plot_boxes(args.out, name, controllers, cols, args.axis, figdir))
+    for p in written:
+        print("campaign.py: wrote %s" % p)
+    return 0
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="campaign.py", description=__doc__.split("\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="command", required=True)
+    m = sub.add_parser("merge", help="OUT/campaign.csv from OUT/plan.csv and OUT/runs/*/metrics.csv")
+    m.add_argument("out", metavar="OUT")
+    p = sub.add_parser("plot", help="robustness maps and RMS box plots into OUT/figures/")
+    p.add_argument("out", metavar="OUT")
+    p.add_argument("--x", metavar="NAME", help="varied name on the x axis (default: the first)")
+    p.add_argument("--y", metavar="NAME", help="varied name on the y axis (default: the second)")
+    p.add_argument("--axis", choices=AXES, default="roll", help="attitude axis of the RMS error (default roll)")
+    p.add_argument("--name", help="campaign name in the titles (default: OUT's directory name)")
+    args = parser.parse_args(argv)
+    try:
+        return cmd_merge(args) if args.command == "merge" else cmd_plot(args)
+    except CampaignError as e:
+        print("campaign.py: error: %s" % e, file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
