@@ -1,0 +1,521 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Flying a batch of scenarios on worker threads (see fly.h). */
+#define _POSIX_C_SOURCE 200809L
+#include "fly.h"
+
+#include <errno.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "progress.h"
+#include "report.h"
+#include "runner.h"
+#include "tune.h"
+
+#define MAX_JOBS (SIM_FLY_MAX_SCENARIOS * SIM_MAX_CONTROLLERS)
+#define MAX_THREADS 256
+
+typedef struct {
+    const sim_scenario_t *sc;
+    int scenario_index;            /* into the batch */
+    int controller_index;          /* into sc->controllers; -1 for a differentiator run */
+    int group_size;                /* runs flown in lockstep from this job on; 0: in an earlier job's group */
+    char csv_path[SIM_PATH_LEN + 64];
+    sim_metrics_t *attitude;       /* where the result goes */
+    sim_diff_metrics_t *diff;
+    volatile long ticks_done;      /* progress hint, written by the worker only */
+    char error[SIM_PATH_LEN + 160];
+    int failed;
+} job_t;
+
+typedef struct {
+    job_t *jobs;
+    const int *order;              /* groups (their first jobs) in the order they are handed out */
+    int n_groups;
+    int n_jobs;
+    int next;                      /* next group to take, under lock */
+    int done;
+    int runs_left[SIM_FLY_MAX_SCENARIOS]; /* of each scenario, under lock */
+    int scenarios_done;
+    pthread_mutex_t lock;
+    pthread_cond_t finished;       /* signalled as each job ends */
+} pool_t;
+
+double sim_fly_now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+double sim_fly_total_ticks(const sim_scenario_t *scenarios, int n_sc)
+{
+    double total = 0.0;
+    for (int s = 0; s < n_sc; ++s) {
+        const int n = scenarios[s].kind == SIM_KIND_DIFFERENTIATOR ? 1 : scenarios[s].n_controllers;
+        total += (double)n * (double)sim_run_ticks(&scenarios[s]);
+    }
+    return total;
+}
+
+/* tune = margins of one controller of one scenario, run before the flights. */
+typedef struct {
+    sim_scenario_t *sc;
+    int scenario_index;
+    sim_controller_id_t id;
+    sim_parse_error_t err;
+    int failed;
+} tune_task_t;
+
+typedef struct {
+    tune_task_t *tasks;
+    int n, next;
+    pthread_mutex_t lock;
+} tune_pool_t;
+
+static void *tune_worker(void *arg)
+{
+    tune_pool_t *pool = (tune_pool_t *)arg;
+    ladrc_margins_workspace_t *ws = malloc(sizeof *ws);
+    for (;;) {
+        pthread_mutex_lock(&pool->lock);
+        const int i = pool->next < pool->n ? pool->next++ : -1;
+        pthread_mutex_unlock(&pool->lock);
+        if (i < 0) {
+            break;
+        }
+        tune_task_t *t = &pool->tasks[i];
+        if (ws == NULL) {
+            snprintf(t->err.message, sizeof t->err.message, "tune = margins: out of memory");
+            t->failed = 1;
+            continue;
+        }
+        t->failed = sim_tune_controller(t->sc, t->id, ws, &t->err) != 0;
+    }
+    free(ws);
+    return NULL;
+}
+
+int sim_fly_tune(sim_scenario_t *scenarios, int n_sc, int n_threads, int quiet, sim_parse_error_t *err,
+                 int *failed)
+{
+    static tune_task_t tasks[MAX_JOBS];
+    int n = 0;
+    for (int s = 0; s < n_sc && s < SIM_FLY_MAX_SCENARIOS; ++s) {
+        for (int c = 0; c < scenarios[s].n_controllers && scenarios[s].kind == SIM_KIND_ATTITUDE; ++c) {
+            if (sim_tune_wanted(&scenarios[s], scenarios[s].controllers[c])) {
+                memset(&tasks[n], 0, sizeof tasks[n]);
+                tasks[n].sc = &scenarios[s];
+                tasks[n].scenario_index = s;
+                tasks[n].id = scenarios[s].controllers[c];
+                ++n;
+            }
+        }
+    }
+    if (n == 0) {
+        return 0;
+    }
+    const double start = sim_fly_now_s();
+    tune_pool_t pool = {tasks, n, 0, PTHREAD_MUTEX_INITIALIZER};
+    pthread_t threads[MAX_THREADS];
+    int started = 0;
+    for (int t = 0; t < n_threads && t < n && t < MAX_THREADS; ++t) {
+        if (pthread_create(&threads[t], NULL, tune_worker, &pool) != 0) {
+            break;
+        }
+        ++started;
+    }
+    if (started == 0) {
+        tune_worker(&pool);
+    }
+    for (int t = 0; t < started; ++t) {
+        pthread_join(threads[t], NULL);
+    }
+    for (int i = 0; i < n; ++i) {
+        if (tasks[i].failed) {
+            *err = tasks[i].err;
+            *failed = tasks[i].scenario_index;
+            return -1;
+        }
+    }
+    if (!quiet) {
+        fprintf(stderr, "ladrc_sil: tuned %d controllers (tune = margins) in %.2f s with %d jobs\n", n,
+                sim_fly_now_s() - start, started > 0 ? started : 1);
+    }
+    return 0;
+}
+
+int sim_fly_make_dirs(const char *path)
+{
+    char buf[SIM_PATH_LEN + 64];
+    if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf) {
+        errno = ENAMETOOLONG;
+        return -1;
+    }
+    for (char *p = buf + 1; *p != '\0'; ++p) {
+        if (*p == '/') {
+            *p = '\0';
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST) {
+                return -1;
+            }
+            *p = '/';
+        }
+    }
+    return (mkdir(buf, 0777) != 0 && errno != EEXIST) ? -1 : 0;
+}
+
+static void *worker(void *arg)
+{
+    pool_t *pool = (pool_t *)arg;
+    for (;;) {
+        pthread_mutex_lock(&pool->lock);
+        const int i = pool->next < pool->n_groups ? pool->next++ : -1;
+        pthread_mutex_unlock(&pool->lock);
+        if (i < 0) {
+            return NULL;
+        }
+        job_t *job = &pool->jobs[pool->order[i]];
+        const sim_progress_t progress = {&job->ticks_done};
+        if (job->controller_index < 0) {
+            const char *csv = job->csv_path[0] != '\0' ? job->csv_path : NULL;
+            job->failed = sim_run_differentiator(job->sc, csv, &progress, job->diff, job->error, sizeof job->error) != 0;
+        } else {
+            sim_run_spec_t runs[SIM_MAX_CONTROLLERS];
+            for (int g = 0; g < job->group_size; ++g) {
+                job_t *j = job + g;
+                const sim_run_spec_t spec = {j->sc->controllers[j->controller_index],
+                                             j->csv_path[0] != '\0' ? j->csv_path : NULL,
+                                             j->attitude, j->error, sizeof j->error, 0};
+                runs[g] = spec;
+            }
+            sim_run_attitude_group(job->sc, runs, job->group_size, &progress);
+            for (int g = 0; g < job->group_size; ++g) {
+                job[g].failed = runs[g].rc != 0;
+            }
+        }
+        pthread_mutex_lock(&pool->lock);
+        pool->done += job->group_size;
+        if ((pool->runs_left[job->scenario_index] -= job->group_size) == 0) {
+            ++pool->scenarios_done;
+        }
+        pthread_cond_signal(&pool->finished);
+        pthread_mutex_unlock(&pool->lock);
+    }
+}
+
+/* out/x, out//x/ and ./out/x name the same directory: compared in this form. */
+static void normal_dir(const char *dir, char *out, size_t n)
+{
+    size_t o = 0;
+    for (const char *s = dir; *s != '\0' && o + 1 < n;) {
+        if ((s == dir || s[-1] == '/') && s[0] == '.' && (s[1] == '/' || s[1] == '\0')) {
+            s += s[1] == '/' ? 2 : 1; /* a "./" component */
+            continue;
+        }
+        if (*s == '/' && o > 0 && out[o - 1] == '/') {
+            ++s;
+            continue;
+        }
+        out[o++] = *s++;
+    }
+    while (o > 1 && out[o - 1] == '/') {
+        --o;
+    }
+    out[o] = '\0';
+}
+
+int sim_fly_check_collisions(const sim_scenario_t *scenarios, int n)
+{
+    static char norm[SIM_FLY_MAX_SCENARIOS][SIM_PATH_LEN];
+    for (int i = 0; i < n && i < SIM_FLY_MAX_SCENARIOS; ++i) {
+        normal_dir(scenarios[i].output_dir, norm[i], sizeof norm[i]);
+        for (int j = 0; j < i; ++j) {
+            if (strcmp(norm[i], norm[j]) == 0) {
+                fprintf(stderr,
+                        "ladrc_sil: %s and %s would both write '%s' (give one its own [run] output_dir, "
+                        "or run them apart)\n",
+                        scenarios[j].path, scenarios[i].path, scenarios[i].output_dir);
+                return -1;
+            }
+        }
+    }
+    return 0;
+}
+
+/* One row per piece of each signal the scenario gives: its kind, axis and
+ * window (from_s, to_s] ("-inf", "inf" when unbounded), so that a reader of
+ * the outputs knows where the references and disturbances change. */
+static int write_signals_csv(FILE *f, const sim_scenario_t *sc)
+{
+    static const char *const AXIS[3] = {"roll", "pitch", "yaw"};
+    fputs("signal,axis,piece,from_s,to_s\n", f);
+    const struct {
+        const char *what;
+        const sim_signal_t *sig;
+        const char *axis;
+    } rows[] = {{"reference", &sc->reference[0], AXIS[0]},   {"reference", &sc->reference[1], AXIS[1]},
+                {"reference", &sc->reference[2], AXIS[2]},   {"disturbance", &sc->disturbance[0], AXIS[0]},
+                {"disturbance", &sc->disturbance[1], AXIS[1]}, {"disturbance", &sc->disturbance[2], AXIS[2]},
+                {"signal", &sc->diff_signal, "-"}};
+    const int first = sc->kind == SIM_KIND_DIFFERENTIATOR ? 6 : 0;
+    const int last = sc->kind == SIM_KIND_DIFFERENTIATOR ? 7 : 6;
+    for (int r = first; r < last; ++r) {
+        for (int k = 0; k < rows[r].sig->n_pieces; ++k) {
+            fprintf(f, "%s,%s,%d,%.17g,%.17g\n", rows[r].what, rows[r].axis, k + 1, rows[r].sig->from_s[k],
+                    rows[r].sig->to_s[k]);
+        }
+    }
+    return ferror(f) ? -1 : 0;
+}
+
+/* Rough cost of a job in ns of one core (measured on the paper scenario),
+ * for the order only: the longest runs go first, so that the last one to
+ * start is a short one and the workers finish together. */
+static double job_cost(const job_t *job)
+{
+    static const double CONTROLLER_NS[SIM_CTRL_COUNT] = {1000.0, 450.0, 400.0, 200.0, 200.0, 250.0};
+    /* HP LP LADRC PID CASCADED INDI */
+    const double csv_ns = job->csv_path[0] != '\0' ? 1200.0 : 0.0;
+    const double ticks = (double)sim_run_ticks(job->sc);
+    if (job->controller_index < 0) {
+        return ticks * (300.0 + csv_ns);
+    }
+    const sim_controller_id_t id = job->sc->controllers[job->controller_index];
+    return ticks * (100.0 * job->sc->plant_substeps * (job->sc->motor_tau_s > 0.0 ? 2.0 : 1.0) +
+                    CONTROLLER_NS[id] + csv_ns);
+}
+
+/* Rough cost of a group: its runs' costs less the disturbances they share
+ * (one run's worth, about 60 % of a run, paid once). */
+static double group_cost(const job_t *jobs, int first)
+{
+    double c = 0.0;
+    for (int g = 0; g < jobs[first].group_size; ++g) {
+        c += job_cost(&jobs[first + g]) * (g == 0 ? 1.0 : 0.4);
+    }
+    return c;
+}
+
+/* The groups' first jobs by decreasing cost; equal costs keep their order.
+ * Returns the number of groups. */
+static int order_longest_first(const job_t *jobs, int n, int *order)
+{
+    int n_groups = 0;
+    for (int i = 0; i < n; ++i) {
+        if (jobs[i].group_size == 0) {
+            continue;
+        }
+        const double c = group_cost(jobs, i);
+        int k = n_groups++;
+        while (k > 0 && group_cost(jobs, order[k - 1]) < c) {
+            order[k] = order[k - 1];
+            --k;
+        }
+        order[k] = i;
+    }
+    return n_groups;
+}
+
+/* Waits for every job. Without a callback, prints progress on stderr for
+ * batches longer than a second: the share of control periods done, the runs
+ * done, the time so far and the time left at the pace so far. Woken by each
+ * finished job, so the wall time is not rounded up to a polling period. */
+static void wait_with_progress(pool_t *pool, double total_ticks, const sim_fly_options_t *opt)
+{
+    const double start = sim_fly_now_s();
+    double last_print = start;
+    const int tty = isatty(fileno(stderr));
+    pthread_mutex_lock(&pool->lock);
+    while (pool->done < pool->n_jobs) {
+        struct timespec until;
+        clock_gettime(CLOCK_REALTIME, &until);
+        until.tv_nsec += 100000000L;
+        if (until.tv_nsec >= 1000000000L) {
+            until.tv_sec += 1;
+            until.tv_nsec -= 1000000000L;
+        }
+        pthread_cond_timedwait(&pool->finished, &pool->lock, &until);
+        const int done = pool->done;
+        double ticks = 0.0;
+        for (int i = 0; i < pool->n_jobs; ++i) {
+            ticks += (double)pool->jobs[i].ticks_done;
+        }
+        if (opt->progress != NULL) {
+            opt->progress(opt->progress_ctx, ticks, pool->scenarios_done);
+            continue;
+        }
+        const double t = sim_fly_now_s();
+        if (done < pool->n_jobs && !opt->quiet && t - start > 1.0 && t - last_print >= (tty ? 0.5 : 2.0)) {
+            char text[128];
+            sim_progress_text(text, sizeof text, ticks / total_ticks, done, pool->n_jobs, t - start);
+            fprintf(stderr, "%sladrc_sil: %s%s", tty ? "\r" : "", text, tty ? "\033[K" : "\n");
+            last_print = t;
+        }
+    }
+    pthread_mutex_unlock(&pool->lock);
+    if (opt->progress == NULL && !opt->quiet && tty && sim_fly_now_s() - start > 1.0) {
+        fputc('\n', stderr);
+    }
+}
+
+/* The batch's results live here until the next batch. */
+static sim_metrics_t attitude[SIM_FLY_MAX_SCENARIOS][SIM_MAX_CONTROLLERS];
+static sim_diff_metrics_t diff[SIM_FLY_MAX_SCENARIOS];
+static job_t jobs[MAX_JOBS];
+static int order[MAX_JOBS];
+
+/* Writes what a scenario's runs give: the tables (when wanted),
+ * metrics.csv and signals.csv; counts its diverged runs. */
+static void write_outputs(const sim_scenario_t *sc, int s, const sim_fly_options_t *opt, sim_fly_result_t *res)
+{
+    const sim_scenario_result_t out = {sc, sc->kind == SIM_KIND_DIFFERENTIATOR ? NULL : attitude[s],
+                                       sc->kind == SIM_KIND_DIFFERENTIATOR ? &diff[s] : NULL};
+    if (opt->print_tables) {
+        sim_report_tables(stdout, &out);
+    }
+    char path[SIM_PATH_LEN + 32];
+    snprintf(path, sizeof path, "%s/metrics.csv", sc->output_dir);
+    FILE *f = fopen(path, "w");
+    if (f == NULL || sim_report_metrics_csv(f, &out, 1) != 0 || fclose(f) != 0) {
+        fprintf(stderr, "ladrc_sil: %s: cannot write\n", path);
+        ++res->writes_failed;
+    }
+    snprintf(path, sizeof path, "%s/signals.csv", sc->output_dir);
+    f = fopen(path, "w");
+    if (f == NULL || write_signals_csv(f, sc) != 0 || fclose(f) != 0) {
+        fprintf(stderr, "ladrc_sil: %s: cannot write\n", path);
+        ++res->writes_failed;
+    }
+    int diverged = 0;
+    for (int c = 0; sc->kind == SIM_KIND_ATTITUDE && c < sc->n_controllers; ++c) {
+        if (attitude[s][c].diverged) {
+            ++diverged;
+            if (opt->report_divergence) {
+                char why[160];
+                sim_report_divergence_text(why, sizeof why, sc, &attitude[s][c]);
+                fprintf(stderr, "ladrc_sil: %s (%s): controller %s %s\n", sc->name, sc->path,
+                        sim_controller_name(sc->controllers[c]), why);
+            }
+        }
+    }
+    res->runs_diverged += diverged;
+    res->scenarios_diverged += diverged > 0;
+    res->simulated_s += sc->duration_s * (sc->kind == SIM_KIND_DIFFERENTIATOR ? 1 : sc->n_controllers);
+}
+
+int sim_fly_batch(const sim_scenario_t *scenarios, int n_sc, const sim_fly_options_t *opt, sim_fly_result_t *res)
+{
+    memset(res, 0, sizeof *res);
+    if (n_sc < 1 || n_sc > SIM_FLY_MAX_SCENARIOS) {
+        fprintf(stderr, "ladrc_sil: a batch holds 1 to %d scenarios, not %d\n", SIM_FLY_MAX_SCENARIOS, n_sc);
+        ++res->runs_failed;
+        return -1;
+    }
+    /* One job per controller of each attitude scenario, one per differentiator. */
+    int n_jobs = 0;
+    double total_ticks = 0.0;
+    /* A scenario's runs fly in lockstep groups (they share the disturbances):
+     * as few groups as keep every worker busy, at least one per scenario. */
+    int n_scenarios_flown = 0;
+    for (int s = 0; s < n_sc; ++s) {
+        n_scenarios_flown += scenarios[s].kind == SIM_KIND_ATTITUDE;
+    }
+    pool_t pool;
+    memset(&pool, 0, sizeof pool);
+    for (int s = 0; s < n_sc; ++s) {
+        const sim_scenario_t *sc = &scenarios[s];
+        if (sim_fly_make_dirs(sc->output_dir) != 0) {
+            fprintf(stderr, "ladrc_sil: %s: cannot create output directory '%s': %s\n", sc->path, sc->output_dir,
+                    strerror(errno));
+            ++res->writes_failed;
+            return -1;
+        }
+        const int n = sc->kind == SIM_KIND_DIFFERENTIATOR ? 1 : sc->n_controllers;
+        pool.runs_left[s] = n;
+        pool.scenarios_done += n == 0;
+        for (int c = 0; c < n; ++c) {
+            job_t *job = &jobs[n_jobs++];
+            memset(job, 0, sizeof *job);
+            job->sc = sc;
+            job->scenario_index = s;
+            job->controller_index = sc->kind == SIM_KIND_DIFFERENTIATOR ? -1 : c;
+            job->attitude = &attitude[s][c];
+            job->diff = &diff[s];
+            if (opt->want_csv) {
+                snprintf(job->csv_path, sizeof job->csv_path, "%s/%s.csv", sc->output_dir,
+                         job->controller_index < 0 ? "differentiator"
+                                                   : sim_controller_name(sc->controllers[c]));
+            }
+            total_ticks += (double)sim_run_ticks(sc);
+        }
+        if (sc->kind == SIM_KIND_DIFFERENTIATOR) {
+            jobs[n_jobs - 1].group_size = 1;
+        } else if (n > 0) {
+            const int groups_wanted = (opt->jobs + n_scenarios_flown - 1) / n_scenarios_flown;
+            const int n_groups_sc = groups_wanted < n ? groups_wanted : n;
+            const int size = (n + n_groups_sc - 1) / n_groups_sc;
+            for (int c = 0; c < n; c += size) {
+                jobs[n_jobs - n + c].group_size = n - c < size ? n - c : size;
+            }
+        }
+    }
+
+    const int n_groups = order_longest_first(jobs, n_jobs, order);
+    pool.jobs = jobs;
+    pool.order = order;
+    pool.n_groups = n_groups;
+    pool.n_jobs = n_jobs;
+    pthread_mutex_init(&pool.lock, NULL);
+    pthread_cond_init(&pool.finished, NULL);
+    const int wanted = opt->jobs < MAX_THREADS ? opt->jobs : MAX_THREADS;
+    const int n_threads = wanted < n_groups ? wanted : n_groups;
+    pthread_t threads[MAX_THREADS];
+    const double start = sim_fly_now_s();
+    int started = 0;
+    for (int t = 0; t < n_threads; ++t) {
+        if (pthread_create(&threads[t], NULL, worker, &pool) != 0) {
+            break;
+        }
+        ++started;
+    }
+    if (started < n_threads) {
+        fprintf(stderr, "ladrc_sil: cannot start a worker thread\n");
+        pthread_mutex_lock(&pool.lock);
+        pool.next = pool.n_groups; /* nothing more is handed out */
+        pthread_mutex_unlock(&pool.lock);
+        for (int t = 0; t < started; ++t) {
+            pthread_join(threads[t], NULL);
+        }
+        ++res->runs_failed;
+        return -1;
+    }
+    wait_with_progress(&pool, total_ticks, opt);
+    for (int t = 0; t < started; ++t) {
+        pthread_join(threads[t], NULL);
+    }
+    pthread_mutex_destroy(&pool.lock);
+    pthread_cond_destroy(&pool.finished);
+    res->wall_s = sim_fly_now_s() - start;
+    res->threads = started;
+    res->runs = n_jobs;
+
+    int scenario_failed[SIM_FLY_MAX_SCENARIOS] = {0};
+    for (int j = 0; j < n_jobs; ++j) {
+        if (jobs[j].failed) {
+            fprintf(stderr, "ladrc_sil: %s\n", jobs[j].error);
+            scenario_failed[jobs[j].scenario_index] = 1;
+            ++res->runs_failed;
+        }
+    }
+    for (int s = 0; s < n_sc; ++s) {
+        if (!scenario_failed[s]) { /* no tables from a run that did not happen */
+            write_outputs(&scenarios[s], s, opt, res);
+        }
+    }
+    return res->runs_failed > 0 || res->writes_failed > 0 ? -1 : 0;
+}

@@ -1,0 +1,73 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * Flying a batch of loaded scenarios on worker threads, the part of
+ * ladrc_sil shared by its scenario mode (main.c) and its campaign mode
+ * (campaign_main.c): tune = margins first, then one job per controller of
+ * each attitude scenario (one per differentiator scenario), a scenario's
+ * runs in lockstep groups that share the disturbances (runner.h), the
+ * longest groups first; then each scenario's metrics.csv and signals.csv.
+ * Results depend neither on the number of threads nor on the batch.
+ */
+#ifndef LADRC_SIM_FLY_H
+#define LADRC_SIM_FLY_H
+
+#include "scenario.h"
+
+/* Scenarios in one batch: the static arrays of a batch hold this many. */
+#define SIM_FLY_MAX_SCENARIOS 32
+
+/* Called about every 0.1 s while a batch flies, from the thread that called
+ * sim_fly_batch: control periods done so far in the batch (a hint), and the
+ * scenarios of the batch whose every run has ended. */
+typedef void (*sim_fly_progress_fn)(void *ctx, double ticks_done, int scenarios_done);
+
+typedef struct {
+    int jobs;                 /* worker threads wanted, >= 1 */
+    int want_csv;             /* time series <out>/<CONTROLLER>.csv */
+    int quiet;                /* no progress line (the callback is still called) */
+    int print_tables;         /* the comparison tables on stdout */
+    int report_divergence;    /* one stderr line per diverged run */
+    sim_fly_progress_fn progress; /* NULL: the scenario mode's progress line on stderr */
+    void *progress_ctx;
+} sim_fly_options_t;
+
+typedef struct {
+    int runs;                 /* jobs flown: controllers of attitude scenarios, differentiators */
+    int runs_failed;          /* runs that could not run (their message printed on stderr) */
+    int writes_failed;        /* metrics.csv or signals.csv not written (printed on stderr) */
+    int runs_diverged;        /* attitude runs that diverged */
+    int scenarios_diverged;   /* scenarios with at least one */
+    double simulated_s;       /* simulated time of the runs that flew */
+    double wall_s;            /* wall time of the flights */
+    int threads;              /* worker threads started */
+} sim_fly_result_t;
+
+/* Monotonic clock, seconds. */
+double sim_fly_now_s(void);
+
+/* Ticks of every run of the scenarios (control periods x controllers), for
+ * the progress of several batches. */
+double sim_fly_total_ticks(const sim_scenario_t *scenarios, int n_sc);
+
+/* Tunes every listed controller with tune = margins, n_threads at a time.
+ * Returns 0, or -1 with the first failure (in task order) in *err and the
+ * failing scenario's index in *failed (nothing printed). A line of the time
+ * it took on stderr unless quiet. */
+int sim_fly_tune(sim_scenario_t *scenarios, int n_sc, int n_threads, int quiet, sim_parse_error_t *err,
+                 int *failed);
+
+/* Refuses two scenarios writing the same output_dir: returns 0, or -1 after
+ * printing the first pair on stderr. */
+int sim_fly_check_collisions(const sim_scenario_t *scenarios, int n_sc);
+
+/* mkdir -p: 0, or -1 with errno set. */
+int sim_fly_make_dirs(const char *path);
+
+/* Flies scenarios[0..n_sc-1] (at most SIM_FLY_MAX_SCENARIOS, tuned already)
+ * and writes each one's output_dir: the directory, the time series when
+ * wanted, metrics.csv and signals.csv. Fills *res; returns 0 when every run
+ * flew and every file was written, else -1 (each failure printed on stderr;
+ * the outputs of the scenarios whose runs all flew are still written). */
+int sim_fly_batch(const sim_scenario_t *scenarios, int n_sc, const sim_fly_options_t *opt, sim_fly_result_t *res);
+
+#endif
