@@ -78,15 +78,17 @@ failed=()
 for ((k = 1; k <= shards; k++)); do
   f=$logs/slurm-${job}_$k.out
   line=$(grep -a "^campaign.sbatch: shard $k/$shards exit status " "$f" 2>/dev/null | tail -n 1 || true)
-  if [[ $line != *" exit status 0" ]]; then
-    failed+=("$k (${line:+status ${line##* }}${line:-no status in $f})")
+  if [[ -z $line ]]; then
+    failed+=("$k (no status in $f)")
+  elif [[ ${line##* } != 0 ]]; then
+    failed+=("$k (exit status ${line##* })")
   fi
 done
 if [[ ${#failed[@]} -gt 0 ]]; then
   echo "campaign_slurm.sh: error: job $job: ${#failed[@]} of $shards tasks failed: ${failed[*]}" >&2
   if command -v scontrol >/dev/null 2>&1; then
     scontrol -o show job "$job" 2>/dev/null |
-      sed -n 's/.*ArrayTaskId=\([^ ]*\).*JobState=\([^ ]*\).*ExitCode=\([^ ]*\).*/  task \1: \2, exit code \3/p' >&2 || true
+      sed -n 's/.*ArrayTaskId=\([^ ]*\).*JobState=\([^ ]*\).*ExitCode=\([^ ]*\).*/  task \1: \2, exit code \3/p' | sort -n -k2 >&2 || true
   fi
   exit 1
 fi
