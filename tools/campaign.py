@@ -377,7 +377,10 @@ def plot_maps(out, name, varied, controllers, cols, axis, xname, yname, figdir):
         if len(ii):
             ax.scatter(xc[jj], yc[ii], marker="x", s=30, c="red", linewidths=1.5, zorder=3)
         if ax_y and len(xc) >= 2 and len(yc) >= 2 and np.nanmin(frac) < DIVERGED_BOUNDARY < np.nanmax(frac):
-            ax.contour(xc, yc, np.ma.masked_invalid(frac), levels=[DIVERGED_BOUNDARY],
+            # The outer cells' values repeated at the panel's edges: the line runs to the border.
+            fx = np.concatenate([[ax_x.edges[0]], xc, [ax_x.edges[-1]]])
+            fy = np.concatenate([[yedges[0]], yc, [yedges[-1]]])
+            ax.contour(fx, fy, np.ma.masked_invalid(np.pad(frac, 1, mode="edge")), levels=[DIVERGED_BOUNDARY],
                        colors="red", linewidths=2.2, zorder=4)
         ax.set_title("%s: %d of %d runs diverged" % (ctrl, int(nd.sum()), n_runs), fontsize=10)
         ax_x.apply(ax, "x")

@@ -32,6 +32,10 @@
 #                linked into a small program; no-heap check of each archive
 #   fuzz         tools/fuzz.sh: the libFuzzer targets of the scenario parser
 #                and the expression compiler (clang, ASan + UBSan), 60 s each
+#   campaigns    a campaign flown three ways (tools/campaign_engines.sh): one
+#                process, GNU parallel with 4 shards, a Slurm array of 4 tasks
+#                on a local single-node cluster; the merged tables must be
+#                byte-identical; then tools/campaign.py plot draws its figures
 #
 # Missing tools are installed with apt-get (as root, or through sudo).
 set -euo pipefail
@@ -39,7 +43,7 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 STAGES=(host-debug host-double coverage asan-ubsan cortex-m4f no-heap cppcheck bench
-        host-release asserts fast-math consumers cxx cross fuzz)
+        host-release asserts fast-math consumers cxx cross fuzz campaigns)
 
 # What each stage needs: "stage check package". A check is a command name,
 # "py:<module>" for a Python module, "newlib" for the Arm C library, or
@@ -85,11 +89,18 @@ REQUIREMENTS=(
   "cross picolibc-rv32 picolibc-riscv64-unknown-elf"
   "fuzz clang clang"
   "fuzz libfuzzer libclang-rt-14-dev"
+  "campaigns parallel parallel"
+  "campaigns slurmctld slurm-wlm"
+  "campaigns slurmd slurm-wlm"
+  "campaigns sbatch slurm-wlm"
+  "campaigns munged munge"
+  "campaigns py:matplotlib python3-matplotlib"
+  "campaigns py:numpy python3-numpy"
 )
 
 JOBS=2
 
-usage() { sed -n '3,36s/^# \{0,1\}//p' "$0"; }
+usage() { sed -n '3,41s/^# \{0,1\}//p' "$0"; }
 
 have() {
   case $1 in
@@ -225,6 +236,47 @@ stage_cross() {
 
 # libFuzzer targets, CI form (tools/fuzz.sh --long for the long one).
 stage_fuzz() { tools/fuzz.sh; }
+
+# The campaign of the CI, flown three ways; its time is measured in docs/campaigns.md.
+CI_CAMPAIGN=campaigns/robustness.ini
+
+# A PNG (signature and IHDR) of at least 800 x 500 pixels and MIN_BYTES bytes.
+check_png() { # file min_bytes
+  local hdr width height size
+  [[ -f $1 ]] || { echo "error: $1 was not drawn" >&2; return 1; }
+  read -r -a hdr < <(od -An -tu1 -N24 "$1" | tr -s ' \n' ' ')
+  width=$(( (hdr[16] << 24) | (hdr[17] << 16) | (hdr[18] << 8) | hdr[19] ))
+  height=$(( (hdr[20] << 24) | (hdr[21] << 16) | (hdr[22] << 8) | hdr[23] ))
+  size=$(wc -c < "$1")
+  echo "-- $1: ${width}x${height}, $size bytes"
+  if [[ ${hdr[1]} -ne 80 || ${hdr[2]} -ne 78 || ${hdr[3]} -ne 71 || $width -lt 800 || $height -lt 500 ||
+        $size -lt $2 ]]; then
+    echo "error: $1 is not a PNG of at least 800x500 pixels and $2 bytes" >&2
+    return 1
+  fi
+}
+
+stage_campaigns() {
+  local out=build/campaigns dir py=python3
+  [[ -x /usr/bin/python3 ]] && py=/usr/bin/python3
+  [[ -f build/host-release/CMakeCache.txt ]] || cmake --preset host-release
+  cmake --build --preset host-release --target ladrc_sil
+  # The cluster is stopped however the stage ends.
+  trap 'tools/slurm/local_cluster.sh stop' EXIT
+  tools/slurm/local_cluster.sh start
+  eval "$(tools/slurm/local_cluster.sh env)"
+  tools/campaign_engines.sh --out "$out" "$CI_CAMPAIGN" 4 "$JOBS"
+  dir=$("$py" tools/campaign.py outdir "$CI_CAMPAIGN" --out "$out/one")
+  rm -rf "$dir/figures"
+  "$py" tools/campaign.py plot "$dir"
+  # A map with its panels and colour bar, a box plot: well above an empty canvas (~5 kB).
+  local f n=0
+  for f in "$dir"/figures/map_roll_*.png "$dir/figures/rms_roll.png"; do
+    check_png "$f" 30000
+    n=$((n + 1))
+  done
+  [[ $n -eq 2 ]] || { echo "error: expected a map and a box plot in $dir/figures, found $n files" >&2; return 1; }
+}
 
 case ${1:-} in
   -h | --help) usage; exit 0 ;;
