@@ -68,21 +68,20 @@ double sim_campaign_draw(const sim_campaign_t *c, const sim_campaign_key_t *key,
 
 int sim_campaign_format_value(char *buf, double x)
 {
+    /* the shortest of the texts %.Pg, P = 1..17, that read back (the
+     * smallest P among equals): 100 is "100" rather than %.1g's "1e+02" */
     char tmp[SIM_NUMFMT_MAX];
-    int len = 0;
+    int best = -1;
     for (int p = 1; p <= 17; ++p) {
         /* sim_fmt_g is printf's %.Pg up to 15 digits; 16 and 17 from printf */
-        len = p <= 15 ? sim_fmt_g(tmp, x, p) : snprintf(tmp, sizeof tmp, "%.*g", p, x);
-        if (strtod(tmp, NULL) == x) {
-            break;
+        const int len = p <= 15 ? sim_fmt_g(tmp, x, p) : snprintf(tmp, sizeof tmp, "%.*g", p, x);
+        if ((best < 0 || len < best) && len < SIM_CAMPAIGN_VALUE_LEN && strtod(tmp, NULL) == x) {
+            memcpy(buf, tmp, (size_t)len + 1u);
+            best = len;
         }
     }
-    if (len >= SIM_CAMPAIGN_VALUE_LEN) {
-        len = SIM_CAMPAIGN_VALUE_LEN - 1; /* not reached: %.17g of a finite double is at most 24 chars */
-    }
-    memcpy(buf, tmp, (size_t)len);
-    buf[len] = '\0';
-    return len;
+    /* %.17g of a finite double always reads back, in at most 24 chars */
+    return best;
 }
 
 void sim_campaign_run_name(char *buf, size_t n, long r) { snprintf(buf, n, "%05ld", r); }

@@ -125,8 +125,10 @@ double sim_campaign_uniform(uint64_t seed, long r, int k, int i);
 /* Run r's value of the draw key (its draw_index k). */
 double sim_campaign_draw(const sim_campaign_t *c, const sim_campaign_key_t *key, long r);
 
-/* x as the shortest decimal text ("%.Pg", P = 1..17) that reads back to x
- * with strtod; buf holds SIM_CAMPAIGN_VALUE_LEN chars. Returns its length. */
+/* x (finite) as the shortest decimal text that reads back to x with
+ * strtod: the shortest of printf's "%.Pg", P = 1..17, that does ("100", not
+ * "1e+02"; "0.1"; "1e-05"). buf holds SIM_CAMPAIGN_VALUE_LEN chars.
+ * Returns its length. */
 int sim_campaign_format_value(char *buf, double x);
 
 /* Parses "K/N" (1 <= K <= N, N <= SIM_CAMPAIGN_MAX_RUNS). Returns 0, or -1

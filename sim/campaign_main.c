@@ -174,11 +174,14 @@ int sim_campaign_main(int argc, char **argv)
     int list = 0, want_csv = 0, quiet = 0;
     char msg[256];
     for (int a = 1; a < argc; ++a) {
-        const char *arg = argv[a];
-        if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
+        if (strcmp(argv[a], "--help") == 0 || strcmp(argv[a], "-h") == 0) {
             usage(stdout);
             return 0;
-        } else if (strcmp(arg, "--campaign") == 0 && a + 1 < argc) {
+        }
+    }
+    for (int a = 1; a < argc; ++a) {
+        const char *arg = argv[a];
+        if (strcmp(arg, "--campaign") == 0 && a + 1 < argc) {
             if (path != NULL) {
                 fprintf(stderr, "ladrc_sil: --campaign given twice (one campaign per call)\n");
                 return EXIT_BAD_INPUT;

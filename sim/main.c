@@ -52,7 +52,7 @@ static void usage(FILE *out)
     fputs("usage: ladrc_sil SCENARIO... [--jobs N] [--controllers LIST] [--set SECTION.KEY=VALUE]... [--seed N]\n"
           "                 [--out DIR] [--no-csv] [--quiet]\n"
           "       ladrc_sil --campaign FILE [--list] [--shard K/N] [--jobs N] [--out DIR] [--csv] [--quiet]\n"
-          "                 (ladrc_sil --campaign FILE --help; docs/campaign-format.md)\n"
+          "                 (its options: ladrc_sil --campaign --help; docs/campaign-format.md)\n"
           "  SCENARIO          a scenario file (format: docs/scenario-format.md)\n"
           "  --jobs N          worker threads (default: the number of cores)\n"
           "  --controllers L   subset of HP-MLADRC LP-MLADRC LADRC PID CASCADED INDI, names separated\n"
