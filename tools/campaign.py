@@ -4,6 +4,7 @@
 
 Usage: campaign.py merge OUT
        campaign.py plot OUT [--x NAME] [--y NAME] [--axis roll|pitch|yaw] [--name TEXT]
+                            [--label NAME=TEXT]...
        campaign.py outdir CAMPAIGN [--out DIR]
 
 merge reads OUT/plan.csv and every OUT/runs/<run>/metrics.csv and writes OUT/campaign.csv:
@@ -22,7 +23,8 @@ plot reads OUT/campaign.csv and draws into OUT/figures/:
                            diverged is drawn as a contour
   rms_<axis>.png           the RMS error of every run per controller (box plots, log scale);
                            diverged runs have no RMS: they are counted in the labels
---x and --y default to the first two varied names. A varied name with few values (a [grid]
+--x and --y default to the first two varied names; an axis is labelled with the varied name
+and the unit its suffix names (_s, _deg, _rad_s, ...), or with --label NAME=TEXT. A varied name with few values (a [grid]
 key) gives one cell per value; one with many (a [draw] key) is cut into bins. An axis is
 logarithmic when its values are positive, span more than a decade and lie closer to log- than
 to linearly-uniform (a log_uniform draw, a geometric grid).
@@ -308,7 +310,7 @@ class Axis:
         axis.set_label_text(self.label)
 
 
-def plot_maps(out, name, varied, controllers, cols, axis, xname, yname, figdir):
+def plot_maps(out, name, varied, controllers, cols, axis, xname, yname, figdir, labels):
     import matplotlib.pyplot as plt
     import numpy as np
     from matplotlib.colors import ListedColormap, LogNorm
@@ -317,6 +319,9 @@ def plot_maps(out, name, varied, controllers, cols, axis, xname, yname, figdir):
     n_runs = len(cols["run"])
     ax_x = Axis(xname, cols[xname])
     ax_y = Axis(yname, cols[yname]) if yname else None
+    for a in (ax_x, ax_y):
+        if a is not None and a.name in labels:
+            a.label = labels[a.name]
     ny = ax_y.cells if ax_y else 1
     yidx = ax_y.index if ax_y else [0] * n_runs
 
@@ -509,6 +514,13 @@ def cmd_plot(args):
         if value is not None and value not in varied:
             raise CampaignError("%s %s: not a varied name of the campaign (%s)"
                                 % (opt, value, ", ".join(varied) if varied else "it varies nothing"))
+    labels = {}
+    for spec in args.label:
+        key, sep, text = spec.partition("=")
+        if not sep or key not in varied or not text:
+            raise CampaignError("--label %s: expected NAME=TEXT with NAME a varied name (%s)"
+                                % (spec, ", ".join(varied) if varied else "it varies nothing"))
+        labels[key] = text
     xname = args.x or (varied[0] if varied else None)
     yname = args.y or next((v for v in varied if v != xname), None)
     if xname is not None and xname == yname:
@@ -527,7 +539,8 @@ def cmd_plot(args):
     os.makedirs(figdir, exist_ok=True)
     written = []
     if xname is not None:
-        written.append(plot_maps(args.out, name, varied, controllers, cols, args.axis, xname, yname, figdir))
+        written.append(plot_maps(args.out, name, varied, controllers, cols, args.axis, xname, yname, figdir,
+                                 labels))
     else:
         print("campaign.py: the campaign varies nothing: no robustness map", file=sys.stderr)
     written.append(plot_boxes(args.out, name, controllers, cols, args.axis, figdir))
@@ -578,6 +591,9 @@ def main(argv=None):
     p.add_argument("--y", metavar="NAME", help="varied name on the y axis (default: the second)")
     p.add_argument("--axis", choices=AXES, default="roll", help="attitude axis of the RMS error (default roll)")
     p.add_argument("--name", help="campaign name in the titles (default: OUT's directory name)")
+    p.add_argument("--label", action="append", default=[], metavar="NAME=TEXT",
+                   help="axis label of a varied name, e.g. 'w=tone frequency w (rad/s)' (default: the "
+                        "name, with the unit its suffix gives)")
     o = sub.add_parser("outdir", help="print the output directory of `ladrc_sil --campaign CAMPAIGN [--out DIR]`")
     o.add_argument("campaign", metavar="CAMPAIGN")
     o.add_argument("--out", dest="out_root", metavar="DIR")

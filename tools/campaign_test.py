@@ -267,8 +267,9 @@ def test_plot(work):
         check("plot_draws_" + fig, size is not None and size[0] >= MIN_PNG_PIXELS[0] and
               size[1] >= MIN_PNG_PIXELS[1] and nbytes > MIN_PNG_BYTES)
     # The other axis, x and y swapped.
-    rc, _, se = run(["plot", out, "--x", "tone", "--y", "rotors.motor_tau_s", "--axis", "pitch"])
-    check("plot_swapped_axes", rc == 0 and os.path.exists(os.path.join(out, "figures", "map_pitch_tone_rotors.motor_tau_s.png")), se)
+    rc, _, se = run(["plot", out, "--x", "tone", "--y", "rotors.motor_tau_s", "--axis", "pitch",
+                     "--label", "tone=tone frequency (rad/s)"])
+    check("plot_swapped_axes_with_label", rc == 0 and os.path.exists(os.path.join(out, "figures", "map_pitch_tone_rotors.motor_tau_s.png")), se)
 
     # The log axis: the log-uniform tone is, the linear grid of lags is not.
     cols = campaign.read_campaign(out)[2]
@@ -289,6 +290,8 @@ def test_plot(work):
     shutil.rmtree(os.path.join(out, "figures"))
     rc, _, se = run(["plot", out, "--x", "nonesuch"])
     check("unknown_x_exit_1", rc == 1 and "--x nonesuch: not a varied name" in se and "rotors.motor_tau_s, tone" in se, se)
+    rc, _, se = run(["plot", out, "--label", "nonesuch=x"])
+    check("unknown_label_exit_1", rc == 1 and "--label nonesuch=x" in se, se)
     check("unknown_x_nothing_written", not os.path.exists(os.path.join(out, "figures")))
 
     # A controller that diverged in every run, and a one-name campaign: still drawn.

@@ -102,8 +102,9 @@ start() {
   done
   [[ $(id -u) -eq 0 ]] || die "run as root (the cluster runs its daemons and jobs as root)"
   mkdir -p "$state"/{munge,ctld,spool,run,log}
-  # munged refuses a key or socket dir that others may write.
-  chmod 700 "$state/munge"
+  # munged refuses a socket dir that not everyone may enter ("Socket is inaccessible"),
+  # and a key, log or socket dir that others may write.
+  chmod 755 "$state/munge"
 
   if [[ ! -s $state/munge/munge.key ]]; then
     mungekey --create --keyfile="$state/munge/munge.key"
@@ -113,8 +114,7 @@ start() {
   if pid_alive "$state/run/munged.pid"; then
     echo "munged already running (pid $(cat "$state/run/munged.pid"))"
   else
-    # --force: munged refuses to run as root without it.
-    munged --force --socket="$munge_socket" --key-file="$state/munge/munge.key" \
+    munged --socket="$munge_socket" --key-file="$state/munge/munge.key" \
       --pid-file="$state/run/munged.pid" --log-file="$state/log/munged.log" \
       --seed-file="$state/munge/munged.seed" ||
       die "munged did not start (see $state/log/munged.log)"
@@ -159,6 +159,19 @@ start() {
 }
 
 stop() {
+  local i
+  # Jobs still running would outlive slurmd (their slurmstepd and tasks): cancel them and
+  # wait until the controller has none left (up to 30 s) before stopping the daemons.
+  if pid_alive "$state/run/slurmctld.pid" && [[ -n $(SLURM_CONF=$conf squeue -h -o %i 2>/dev/null) ]]; then
+    echo "cancelling the cluster's jobs: $(SLURM_CONF=$conf squeue -h -o %i | tr '\n' ' ')"
+    SLURM_CONF=$conf scancel --full --user="$(id -un)" 2>/dev/null || true
+    for ((i = 0; i < 300; i++)); do
+      [[ -z $(SLURM_CONF=$conf squeue -h -o %i 2>/dev/null) ]] && break
+      sleep 0.1
+    done
+    [[ -z $(SLURM_CONF=$conf squeue -h -o %i 2>/dev/null) ]] ||
+      echo "local_cluster.sh: jobs still listed after 30 s: $(SLURM_CONF=$conf squeue -h -o '%i %T' | tr '\n' ' ')" >&2
+  fi
   stop_pid slurmd "$state/run/slurmd.pid"
   stop_pid slurmctld "$state/run/slurmctld.pid"
   stop_pid munged "$state/run/munged.pid"
