@@ -93,12 +93,13 @@ static char *plan_text(const sim_campaign_t *c, size_t *len)
     return text;
 }
 
-/* 1: path holds exactly text; 0: it does not exist; -1: it holds something else. */
+/* 1: path holds exactly text; 0: it does not exist; -1: it holds something
+ * else; -3: it cannot be read (errno set). */
 static int same_file(const char *path, const char *text, size_t len)
 {
     FILE *f = fopen(path, "rb");
     if (f == NULL) {
-        return errno == ENOENT ? 0 : -1;
+        return errno == ENOENT ? 0 : -3;
     }
     int same = 1;
     size_t at = 0;
@@ -282,6 +283,12 @@ int sim_campaign_main(int argc, char **argv)
     const int same = plan != NULL ? same_file(plan_path, plan, plan_len) : -2;
     if (same == -2) {
         fprintf(stderr, "ladrc_sil: %s: cannot make the plan (out of memory)\n", path);
+        sim_campaign_free(&c);
+        return EXIT_RUN_FAILED;
+    }
+    if (same == -3) {
+        fprintf(stderr, "ladrc_sil: %s: cannot read: %s\n", plan_path, strerror(errno));
+        free(plan);
         sim_campaign_free(&c);
         return EXIT_RUN_FAILED;
     }
