@@ -23,10 +23,11 @@ enum { EXIT_RUN_FAILED = 1, EXIT_BAD_INPUT = 2 };
 
 static void usage(FILE *out)
 {
-    fputs("usage: ladrc_sil --campaign FILE [--list] [--shard K/N] [--jobs N] [--out DIR] [--csv] [--quiet]\n"
+    fputs("usage: ladrc_sil --campaign FILE [--list | --print-out] [--shard K/N] [--jobs N] [--out DIR] [--csv] [--quiet]\n"
           "  --campaign FILE   a campaign file (format: docs/campaign-format.md): a base scenario's\n"
           "                    runs with keys varied on a grid and drawn at random\n"
           "  --list            print the plan (CSV: run, then each varied value) and write nothing\n"
+          "  --print-out       print the output directory OUT and write nothing\n"
           "  --shard K/N       only the runs r with (r - 1) %% N = K - 1\n"
           "  --jobs N          worker threads (default: the number of cores)\n"
           "  --out DIR         write under DIR/<campaign name> (default: the campaign's output_dir)\n"
@@ -172,7 +173,7 @@ int sim_campaign_main(int argc, char **argv)
     const char *path = NULL, *out_root = NULL;
     long jobs = sysconf(_SC_NPROCESSORS_ONLN);
     long shard_k = 1, shard_n = 1;
-    int list = 0, want_csv = 0, quiet = 0;
+    int list = 0, print_out = 0, want_csv = 0, quiet = 0;
     char msg[256];
     for (int a = 1; a < argc; ++a) {
         if (strcmp(argv[a], "--help") == 0 || strcmp(argv[a], "-h") == 0) {
@@ -190,6 +191,8 @@ int sim_campaign_main(int argc, char **argv)
             path = argv[++a];
         } else if (strcmp(arg, "--list") == 0) {
             list = 1;
+        } else if (strcmp(arg, "--print-out") == 0) {
+            print_out = 1;
         } else if (strcmp(arg, "--shard") == 0 && a + 1 < argc) {
             if (sim_campaign_parse_shard(argv[++a], &shard_k, &shard_n, msg, sizeof msg) != 0) {
                 fprintf(stderr, "ladrc_sil: --shard %s\n", msg);
@@ -247,6 +250,11 @@ int sim_campaign_main(int argc, char **argv)
         fprintf(stderr, "ladrc_sil: %s: output directory path too long\n", path);
         sim_campaign_free(&c);
         return EXIT_BAD_INPUT;
+    }
+    if (print_out) {
+        const int bad = puts(out_dir) < 0 || fflush(stdout) != 0;
+        sim_campaign_free(&c);
+        return bad ? EXIT_RUN_FAILED : 0;
     }
 
     /* Every run of the shard, expanded and parsed before anything is written. */

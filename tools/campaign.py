@@ -5,7 +5,6 @@
 Usage: campaign.py merge OUT
        campaign.py plot OUT [--x NAME] [--y NAME] [--axis roll|pitch|yaw] [--name TEXT]
                             [--label NAME=TEXT]...
-       campaign.py outdir CAMPAIGN [--out DIR]
 
 merge reads OUT/plan.csv and every OUT/runs/<run>/metrics.csv and writes OUT/campaign.csv:
 one row per run, in run order: `run`, the varied values as in plan.csv, then for each
@@ -28,9 +27,6 @@ and the unit its suffix names (_s, _deg, _rad_s, ...), or with --label NAME=TEXT
 key) gives one cell per value; one with many (a [draw] key) is cut into bins. An axis is
 logarithmic when its values are positive, span more than a decade and lie closer to log- than
 to linearly-uniform (a log_uniform draw, a geometric grid).
-
-outdir prints the directory `ladrc_sil --campaign CAMPAIGN [--out DIR]` writes to (OUT), for
-the scripts that fly a campaign in shards and then merge it.
 
 Exit status: 0 done, 1 error (missing OUT, plan.csv, runs, campaign.csv, unknown --x/--y),
 nothing written on error. merge needs the Python standard library only; plot needs
@@ -549,36 +545,6 @@ def cmd_plot(args):
     return 0
 
 
-def campaign_out_dir(path, out_root=None):
-    """The directory `ladrc_sil --campaign PATH [--out OUT_ROOT]` writes: OUT_ROOT/<name> with
-    --out, else [campaign] output_dir, else out/<name>; <name> is [campaign] name or the file's
-    name without its extension. Read with the campaign format's lexical rules (# comments,
-    [section], key = value); the simulator checks everything else."""
-    try:
-        with open(path) as f:
-            lines = f.read().splitlines()
-    except OSError as e:
-        raise CampaignError("%s: %s" % (path, e.strerror))
-    section, keys = None, {}
-    for line in lines:
-        line = line.split("#", 1)[0].strip()
-        if line.startswith("[") and line.endswith("]"):
-            section = line[1:-1].strip()
-        elif section == "campaign" and "=" in line:
-            key, value = (t.strip() for t in line.split("=", 1))
-            keys[key] = value
-    base = os.path.basename(path)
-    name = keys.get("name") or (base[:base.rindex(".")] if "." in base[1:] else base)
-    if out_root is not None:
-        return os.path.join(out_root, name)
-    return keys.get("output_dir") or os.path.join("out", name)
-
-
-def cmd_outdir(args):
-    print(campaign_out_dir(args.campaign, args.out_root))
-    return 0
-
-
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="campaign.py", description=__doc__.split("\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -594,12 +560,9 @@ def main(argv=None):
     p.add_argument("--label", action="append", default=[], metavar="NAME=TEXT",
                    help="axis label of a varied name, e.g. 'w=tone frequency w (rad/s)' (default: the "
                         "name, with the unit its suffix gives)")
-    o = sub.add_parser("outdir", help="print the output directory of `ladrc_sil --campaign CAMPAIGN [--out DIR]`")
-    o.add_argument("campaign", metavar="CAMPAIGN")
-    o.add_argument("--out", dest="out_root", metavar="DIR")
     args = parser.parse_args(argv)
     try:
-        return {"merge": cmd_merge, "plot": cmd_plot, "outdir": cmd_outdir}[args.command](args)
+        return {"merge": cmd_merge, "plot": cmd_plot}[args.command](args)
     except CampaignError as e:
         print("campaign.py: error: %s" % e, file=sys.stderr)
         return 1

@@ -52,7 +52,7 @@ if ! command -v sinfo >/dev/null 2>&1 || ! sinfo -h >/dev/null 2>&1; then
   eval "$("$root/tools/slurm/local_cluster.sh" env)"
 fi
 
-out_of() { "$py" "$root/tools/campaign.py" outdir "$campaign" --out "$base/$1"; }
+out_of() { "$sil" --campaign "$campaign" --out "$base/$1" --print-out; }
 for way in one parallel slurm; do
   rm -rf "$(out_of $way)"
 done

@@ -39,7 +39,7 @@ sil=${LADRC_SIL:-$root/build/host-release/sim/ladrc_sil}
   "cmake --build --preset host-release --target ladrc_sil, or set LADRC_SIL)" >&2; exit 2; }
 command -v parallel >/dev/null 2>&1 || { echo "campaign_parallel.sh: error: GNU parallel not found" \
   "(apt-get install parallel)" >&2; exit 2; }
-out=$("$py" "$root/tools/campaign.py" outdir "$campaign" "${out_args[@]}")
+out=$("$sil" --campaign "$campaign" "${out_args[@]}" --print-out) || exit 2
 
 # Bad input, and an OUT holding another campaign, fail here, once, rather than in every shard.
 plan=$("$sil" --campaign "$campaign" --list "${out_args[@]}") || exit 2

@@ -57,7 +57,7 @@ done
 sinfo -h >/dev/null 2>&1 || die 2 "no Slurm cluster answers (sinfo failed; for the local one:" \
   "tools/slurm/local_cluster.sh start, then eval \"\$(tools/slurm/local_cluster.sh env)\")"
 
-out=$("$py" "$root/tools/campaign.py" outdir "$campaign" "${out_args[@]}")
+out=$("$sil" --campaign "$campaign" "${out_args[@]}" --print-out) || exit 2
 # Bad input, and an OUT holding another campaign, fail here rather than in every task.
 plan=$("$sil" --campaign "$campaign" --list "${out_args[@]}") || exit 2
 if [[ -f $out/plan.csv ]] && ! cmp -s "$out/plan.csv" <(printf '%s\n' "$plan"); then

@@ -269,7 +269,7 @@ stage_campaigns() {
   tools/slurm/local_cluster.sh start
   eval "$(tools/slurm/local_cluster.sh env)"
   tools/campaign_engines.sh --out "$out" "$CI_CAMPAIGN" 4 "$JOBS"
-  dir=$("$py" tools/campaign.py outdir "$CI_CAMPAIGN" --out "$out/one")
+  dir=$(build/host-release/sim/ladrc_sil --campaign "$CI_CAMPAIGN" --out "$out/one" --print-out)
   rm -rf "$dir/figures"
   "$py" tools/campaign.py plot "$dir"
   # A map with its panels and colour bar, a box plot: well above an empty canvas (~5 kB).

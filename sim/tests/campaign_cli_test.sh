@@ -51,6 +51,11 @@ done
 [ "$("$sil" --campaign "$work/small.ini" --list --shard 2/3 | cut -d, -f1 | tr '\n' ' ')" = "run 2 " ]
 check shard_2_of_3_lists_run_2 $?
 
+# --print-out: the directory the runs go to (--out DIR/<name>, else output_dir), nothing written.
+[ "$(cd "$work" && "$sil" --campaign small.ini --print-out)" = "out/small" ] &&
+  [ "$("$sil" --campaign "$work/small.ini" --out "$work/o" --print-out)" = "$work/o/small" ] && [ ! -e "$work/out" ]
+check print_out_names_the_output_dir $?
+
 # Two shards into one directory: plan.csv identical to --list, every run there.
 "$sil" --campaign "$work/small.ini" --shard 1/2 --jobs 2 --out "$work/o" --quiet
 rc1=$?
