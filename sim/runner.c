@@ -21,6 +21,9 @@
 
 #define RAD2DEG (180.0 / 3.14159265358979323846)
 
+/* A group's plants step side by side (sim_plant_step_group). */
+typedef char plant_group_fits_t[SIM_MAX_CONTROLLERS <= SIM_PLANT_GROUP_MAX ? 1 : -1];
+
 long sim_run_ticks(const sim_scenario_t *sc) { return (long)floor(sc->duration_s / sc->control_dt_s + 0.5); }
 
 static double wall_now_s(void)
@@ -461,12 +464,18 @@ void sim_run_attitude_group(const sim_scenario_t *sc, sim_run_spec_t *runs, int 
             break;
         }
         disturbance_batch_fill(&batch, lead, dt, sc->plant_substeps);
+        sim_plant_t *plants[SIM_MAX_CONTROLLERS];
+        double cmds[SIM_MAX_CONTROLLERS][4];
+        int n_plants = 0;
         for (int g = 0; g < n_group; ++g) {
             if (group[g].flying) {
-                batch_reader_t reader = {&batch, 0};
-                sim_plant_step(&group[g].plant, w2_cmd[g], dt, sc->plant_substeps, disturbance, &reader);
+                plants[n_plants] = &group[g].plant;
+                memcpy(cmds[n_plants++], w2_cmd[g], sizeof cmds[0]);
             }
         }
+        batch_reader_t reader = {&batch, 0}; /* the group's plants step side by side, one reading */
+        sim_plant_step_group(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps, disturbance,
+                             &reader);
         if (progress != NULL && progress->ticks_done != NULL && (k & 1023) == 1023) {
             *progress->ticks_done += 1024L * n_flying;
         }
