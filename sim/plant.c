@@ -5,6 +5,13 @@
 #include <stddef.h>
 #include <string.h>
 
+/* The lane kernels below are inlined with their widths as constants. */
+#if defined(__GNUC__)
+#define SIM_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define SIM_ALWAYS_INLINE inline
+#endif
+
 /* RK4 state: angles, rates, rotor w^2 (the last four only move with a lag). */
 enum { N_ANGLE = 0, N_RATE = 3, N_ROTOR = 6, N_STATE = 10 };
 
@@ -100,7 +107,7 @@ typedef double lanes_t[SIM_PLANT_GROUP_MAX];
  * at the stage time (the same for all lanes). Without lag the torque is the
  * command's, worked out once per step; with it, the rotors' w^2 are state
  * and the torque follows them. */
-static inline void derivative(const sim_vehicle_t *v, int lag, int n, lanes_t cmd[4],
+static SIM_ALWAYS_INLINE void derivative(const sim_vehicle_t *v, int lag, int n, lanes_t cmd[4],
                               lanes_t cmd_torque[3], lanes_t x[N_STATE], const double d[3],
                               lanes_t dx[N_STATE])
 {
@@ -151,7 +158,7 @@ static double stage_time(double t0, double h, int s, int stage)
 }
 
 /* y = x + a k for the first m state rows of every lane (an RK4 stage's point). */
-static inline void stage_point(int m, int n, lanes_t x[N_STATE], double a, lanes_t k[N_STATE],
+static SIM_ALWAYS_INLINE void stage_point(int m, int n, lanes_t x[N_STATE], double a, lanes_t k[N_STATE],
                                lanes_t y[N_STATE])
 {
     for (int i = 0; i < m; ++i) {
@@ -164,7 +171,7 @@ static inline void stage_point(int m, int n, lanes_t x[N_STATE], double a, lanes
 /* One classical RK4 step of length h from time t0 + s h for every lane; the
  * rotor states only take part with a lag (without one their derivative is 0
  * and they stay put). */
-static inline void rk4_substep(const sim_vehicle_t *v, int lag, int n, lanes_t cmd[4],
+static SIM_ALWAYS_INLINE void rk4_substep(const sim_vehicle_t *v, int lag, int n, lanes_t cmd[4],
                                lanes_t cmd_torque[3], double t0, int s, double h, sim_disturbance_fn dist,
                                void *ctx, lanes_t x[N_STATE])
 {
@@ -186,6 +193,17 @@ static inline void rk4_substep(const sim_vehicle_t *v, int lag, int n, lanes_t c
         for (int l = 0; l < n; ++l) {
             x[i][l] += h6 * (k1[i][l] + 2.0 * k2[i][l] + 2.0 * k3[i][l] + k4[i][l]);
         }
+    }
+}
+
+/* The substeps of a step for lanes [0, w); lag and w are constants where it
+ * is called. */
+static SIM_ALWAYS_INLINE void integrate(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4],
+                                        lanes_t cmd_torque[3], int n_sub, double t0, double h,
+                                        sim_disturbance_fn dist, void *ctx, lanes_t x[N_STATE])
+{
+    for (int s = 0; s < n_sub; ++s) {
+        rk4_substep(v, lag, w, cmd, cmd_torque, t0, s, h, dist, ctx, x);
     }
 }
 
@@ -215,13 +233,37 @@ static void step_lanes(sim_plant_t *const plants[], const double (*w2_cmd)[4], i
             x[N_RATE + i][l] = p->rate_rad_s[i];
         }
     }
-    for (int s = 0; s < n_sub; ++s) {
-        if (lag) {
-            rk4_substep(v, 1, n, cmd, cmd_torque, t0, s, h, dist, ctx, x);
-        } else {
-            rk4_substep(v, 0, n, cmd, cmd_torque, t0, s, h, dist, ctx, x);
+    /* The loops over the lanes run over a width known at compile time (the
+     * next of 1, 2, 4, 6, 8), so that they unroll; lanes beyond n repeat
+     * lane 0, their results unused. */
+    const int w = n <= 2 ? n : (n <= 4 ? 4 : (n <= 6 ? 6 : SIM_PLANT_GROUP_MAX));
+    for (int l = n; l < w; ++l) {
+        for (int i = 0; i < 4; ++i) {
+            cmd[i][l] = cmd[i][0];
+        }
+        for (int i = 0; i < 3; ++i) {
+            cmd_torque[i][l] = cmd_torque[i][0];
+        }
+        for (int i = 0; i < N_STATE; ++i) {
+            x[i][l] = x[i][0];
         }
     }
+#define LANES_CASE(W)                                                   \
+    case W:                                                             \
+        if (lag) {                                                      \
+            integrate(v, 1, W, cmd, cmd_torque, n_sub, t0, h, dist, ctx, x); \
+        } else {                                                        \
+            integrate(v, 0, W, cmd, cmd_torque, n_sub, t0, h, dist, ctx, x); \
+        }                                                               \
+        break;
+    switch (w) {
+        LANES_CASE(1)
+        LANES_CASE(2)
+        LANES_CASE(4)
+        LANES_CASE(6)
+        default: LANES_CASE(SIM_PLANT_GROUP_MAX)
+    }
+#undef LANES_CASE
     for (int l = 0; l < n; ++l) {
         sim_plant_t *p = plants[l];
         for (int i = 0; i < 3; ++i) {
