@@ -90,24 +90,131 @@ static void disturbance_batch_init(disturbance_batch_t *b, const sim_scenario_t 
     b->last_t_s = NAN; /* never equal: empty */
 }
 
+/* Metric windows hold (from, to], as signal windows do. */
+static int in_window(const double w[2], double t) { return t > w[0] && t <= w[1]; }
+
+/* The piece of sig whose window (from, to] holds t first, -1 when none does:
+ * the rule of sim_signal_eval (scenario.h). */
+static int signal_piece(const sim_signal_t *sig, double t)
+{
+    for (int i = 0; i < sig->n_pieces; ++i) {
+        const double window[2] = {sig->from_s[i], sig->to_s[i]};
+        if (in_window(window, t)) {
+            return i;
+        }
+    }
+    return -1;
+}
+
+/* The piece holding every instant of [lo, hi] when that is one piece's
+ * alone (no earlier piece's window reaches into the range); -2 when the
+ * instants may take different pieces, -1 when none holds any of them. */
+static int signal_piece_of_range(const sim_signal_t *sig, double lo, double hi)
+{
+    if (!(lo <= hi)) {
+        return -2; /* NaN: instant by instant */
+    }
+    for (int i = 0; i < sig->n_pieces; ++i) {
+        const double from = sig->from_s[i], to = sig->to_s[i];
+        if (from < lo && hi <= to) {
+            return i; /* holds them all, and no earlier one holds any */
+        }
+        if (from < hi && lo <= to) {
+            return -2; /* holds some of them */
+        }
+    }
+    return -1;
+}
+
+/* sim_signal_eval(sig, t[k]) for k < n <= SIM_EXPR_BATCH_MAX into out, bit
+ * for bit, t within [lo, hi]: a piece's instants are evaluated together
+ * (sim_expr_eval_batch), 0 where no piece holds the instant. */
+static void signal_eval_batch(const sim_signal_t *sig, const double *t, int n, double lo, double hi, double *out,
+                              sim_expr_batch_memo_t *memo)
+{
+    const int whole = signal_piece_of_range(sig, lo, hi);
+    if (whole >= -1) { /* the usual case: one piece, or none, for all */
+        if (whole < 0) {
+            for (int k = 0; k < n; ++k) {
+                out[k] = 0.0;
+            }
+            return;
+        }
+        sim_expr_eval_batch(&sig->expr[whole], t, n, out, memo);
+        for (int k = 0; k < n; ++k) {
+            out[k] = sig->scale * out[k];
+        }
+        return;
+    }
+    int piece[SIM_EXPR_BATCH_MAX];
+    for (int k = 0; k < n; ++k) {
+        piece[k] = signal_piece(sig, t[k]);
+        out[k] = 0.0;
+    }
+    for (int i = 0; i < sig->n_pieces; ++i) {
+        double value[SIM_EXPR_BATCH_MAX], tt[SIM_EXPR_BATCH_MAX];
+        int at[SIM_EXPR_BATCH_MAX], m = 0;
+        for (int k = 0; k < n; ++k) {
+            if (piece[k] == i) {
+                tt[m] = t[k];
+                at[m++] = k;
+            }
+        }
+        if (m > 0) {
+            sim_expr_eval_batch(&sig->expr[i], tt, m, value, memo);
+            for (int j = 0; j < m; ++j) {
+                out[at[j]] = sig->scale * value[j];
+            }
+        }
+    }
+}
+
 static void disturbance_batch_fill(disturbance_batch_t *b, const sim_plant_t *p, double dt_s, int substeps)
 {
     /* more than the parser lets through: no table, every call evaluates */
     b->n = substeps <= SIM_PLANT_SUBSTEPS_MAX ? sim_plant_stage_times(p, dt_s, substeps, b->t_s) : 0;
-    int rows = 0;
+    int rows = 0, carried = 0;
+    double distinct[STAGES_MAX];
     if (b->n > 0 && b->t_s[0] == b->last_t_s) { /* carried over from the step before */
         for (int i = 0; i < 3; ++i) {
             b->value[0][i] = b->value[b->last][i];
         }
-        rows = 1;
+        distinct[0] = b->t_s[0];
+        rows = carried = 1;
     }
     for (int k = 0; k < b->n; ++k) {
-        if (rows == 0 || b->t_s[k] != b->last_t_s) {
-            disturbances_at(b->sc, b->t_s[k], b->value[rows]);
-            b->last_t_s = b->t_s[k];
-            ++rows;
+        if (rows == 0 || b->t_s[k] != distinct[rows - 1]) {
+            distinct[rows++] = b->t_s[k];
         }
         b->slot[k] = rows - 1;
+    }
+    /* the new rows, SIM_EXPR_BATCH_MAX instants at a time, the three axes
+     * sharing their function results */
+    for (int r = carried; r < rows; r += SIM_EXPR_BATCH_MAX) {
+        const int m = rows - r < SIM_EXPR_BATCH_MAX ? rows - r : SIM_EXPR_BATCH_MAX;
+        double lo = distinct[r], hi = distinct[r];
+        int nan_seen = 0;
+        for (int j = 0; j < m; ++j) {
+            const double x = distinct[r + j];
+            lo = x < lo ? x : lo;
+            hi = x > hi ? x : hi;
+            nan_seen |= isnan(x);
+        }
+        if (nan_seen) {
+            lo = hi = NAN; /* instant by instant */
+        }
+        sim_expr_batch_memo_t memo;
+        sim_expr_batch_memo_clear(&memo);
+        for (int i = 0; i < 3; ++i) {
+            double d[SIM_EXPR_BATCH_MAX];
+            signal_eval_batch(&b->sc->disturbance[i], &distinct[r], m, lo, hi, d, &memo);
+            for (int j = 0; j < m; ++j) {
+                b->value[r + j][i] = d[j];
+            }
+        }
+    }
+    if (rows > 0) {
+        b->last_t_s = distinct[rows - 1];
     }
     b->last = rows - 1;
 }
@@ -197,9 +304,6 @@ static double tracking_error_rad(double ref_rad, double angle_rad, int wrapped)
     const double e = ref_rad - angle_rad;
     return wrapped ? wrap_pi(e) : e;
 }
-
-/* Metric windows hold (from, to], as signal windows do. */
-static int in_window(const double w[2], double t) { return t > w[0] && t <= w[1]; }
 
 /* Divergence at t (runner.h): the plant's state non-finite, or the tracking
  * error ref - angle beyond the scenario's limit on an axis. Records the first
