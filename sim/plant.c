@@ -207,6 +207,52 @@ static SIM_ALWAYS_INLINE void integrate(const sim_vehicle_t *v, int lag, int w, 
     }
 }
 
+/* integrate() for w lanes (1, 2, 4, 6 or SIM_PLANT_GROUP_MAX), each width
+ * and lag its own code. */
+static SIM_ALWAYS_INLINE void integrate_width(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4],
+                                              lanes_t cmd_torque[3], int n_sub, double t0, double h,
+                                              sim_disturbance_fn dist, void *ctx, lanes_t x[N_STATE])
+{
+#define LANES_CASE(W)                                                        \
+    case W:                                                                  \
+        if (lag) {                                                           \
+            integrate(v, 1, W, cmd, cmd_torque, n_sub, t0, h, dist, ctx, x); \
+        } else {                                                             \
+            integrate(v, 0, W, cmd, cmd_torque, n_sub, t0, h, dist, ctx, x); \
+        }                                                                    \
+        break;
+    switch (w) {
+        LANES_CASE(1)
+        LANES_CASE(2)
+        LANES_CASE(4)
+        LANES_CASE(6)
+        default: LANES_CASE(SIM_PLANT_GROUP_MAX)
+    }
+#undef LANES_CASE
+}
+
+static void integrate_portable(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4], lanes_t cmd_torque[3],
+                               int n_sub, double t0, double h, sim_disturbance_fn dist, void *ctx,
+                               lanes_t x[N_STATE])
+{
+    integrate_width(v, lag, w, cmd, cmd_torque, n_sub, t0, h, dist, ctx, x);
+}
+
+/* On x86-64 the build targets SSE2 (two lanes per instruction); where the
+ * CPU has AVX the same code compiled for it runs four. The operations are
+ * IEEE additions, multiplications and divisions either way, lane by lane,
+ * in the same order, and AVX brings no fused multiply-add (that is FMA, not
+ * enabled here, and contraction is off under -std=c99): the same bits. */
+#if defined(__GNUC__) && defined(__x86_64__)
+#define SIM_PLANT_AVX 1
+__attribute__((target("avx"))) static void integrate_avx(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4],
+                                                         lanes_t cmd_torque[3], int n_sub, double t0, double h,
+                                                         sim_disturbance_fn dist, void *ctx, lanes_t x[N_STATE])
+{
+    integrate_width(v, lag, w, cmd, cmd_torque, n_sub, t0, h, dist, ctx, x);
+}
+#endif
+
 /* Steps plants[0..n) (n <= SIM_PLANT_GROUP_MAX), all at p0's time with its
  * vehicle, in lockstep: one dist call per stage time for all. */
 static void step_lanes(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s, int substeps,
@@ -248,22 +294,14 @@ static void step_lanes(sim_plant_t *const plants[], const double (*w2_cmd)[4], i
             x[i][l] = x[i][0];
         }
     }
-#define LANES_CASE(W)                                                   \
-    case W:                                                             \
-        if (lag) {                                                      \
-            integrate(v, 1, W, cmd, cmd_torque, n_sub, t0, h, dist, ctx, x); \
-        } else {                                                        \
-            integrate(v, 0, W, cmd, cmd_torque, n_sub, t0, h, dist, ctx, x); \
-        }                                                               \
-        break;
-    switch (w) {
-        LANES_CASE(1)
-        LANES_CASE(2)
-        LANES_CASE(4)
-        LANES_CASE(6)
-        default: LANES_CASE(SIM_PLANT_GROUP_MAX)
+#ifdef SIM_PLANT_AVX
+    if (__builtin_cpu_supports("avx")) {
+        integrate_avx(v, lag, w, cmd, cmd_torque, n_sub, t0, h, dist, ctx, x);
+    } else
+#endif
+    {
+        integrate_portable(v, lag, w, cmd, cmd_torque, n_sub, t0, h, dist, ctx, x);
     }
-#undef LANES_CASE
     for (int l = 0; l < n; ++l) {
         sim_plant_t *p = plants[l];
         for (int i = 0; i < 3; ++i) {
