@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "ladrc/attitude.h"
 #include "ladrc/levant.h"
@@ -248,6 +249,10 @@ static FILE *open_csv(const char *path, const char *header, char *err, size_t er
     if (path == NULL) {
         return NULL;
     }
+    /* A new file rather than the old one truncated: a file system may flush
+     * a truncated file's new data when it is closed (ext4's auto_da_alloc),
+     * and a rerun would wait for that. */
+    (void)unlink(path); /* not remove(): never a directory */
     FILE *f = fopen(path, "w");
     if (f == NULL) {
         snprintf(err, err_len, "%s: cannot write: %s", path, strerror(errno));
