@@ -170,6 +170,21 @@ static void signal_eval_batch(const sim_signal_t *sig, const double *t, int n, d
     }
 }
 
+/* The least and greatest of t[0..n), n >= 1; both NaN when one is NaN
+ * (signal_eval_batch then goes instant by instant). */
+static void batch_range(const double *t, int n, double *lo, double *hi)
+{
+    double a = t[0], b = t[0];
+    int nan_seen = 0;
+    for (int j = 0; j < n; ++j) {
+        a = t[j] < a ? t[j] : a;
+        b = t[j] > b ? t[j] : b;
+        nan_seen |= isnan(t[j]);
+    }
+    *lo = nan_seen ? NAN : a;
+    *hi = nan_seen ? NAN : b;
+}
+
 static void disturbance_batch_fill(disturbance_batch_t *b, const sim_plant_t *p, double dt_s, int substeps)
 {
     /* more than the parser lets through: no table, every call evaluates */
@@ -193,17 +208,8 @@ static void disturbance_batch_fill(disturbance_batch_t *b, const sim_plant_t *p,
      * sharing their function results */
     for (int r = carried; r < rows; r += SIM_EXPR_BATCH_MAX) {
         const int m = rows - r < SIM_EXPR_BATCH_MAX ? rows - r : SIM_EXPR_BATCH_MAX;
-        double lo = distinct[r], hi = distinct[r];
-        int nan_seen = 0;
-        for (int j = 0; j < m; ++j) {
-            const double x = distinct[r + j];
-            lo = x < lo ? x : lo;
-            hi = x > hi ? x : hi;
-            nan_seen |= isnan(x);
-        }
-        if (nan_seen) {
-            lo = hi = NAN; /* instant by instant */
-        }
+        double lo, hi;
+        batch_range(&distinct[r], m, &lo, &hi);
         sim_expr_batch_memo_t memo;
         sim_expr_batch_memo_clear(&memo);
         for (int i = 0; i < 3; ++i) {
@@ -218,6 +224,37 @@ static void disturbance_batch_fill(disturbance_batch_t *b, const sim_plant_t *p,
         b->last_t_s = distinct[rows - 1];
     }
     b->last = rows - 1;
+}
+
+/* The control instants t = k dt of SIM_EXPR_BATCH_MAX ticks from `first`,
+ * with the references and disturbances there, worked out together: each
+ * signal's program interpreted once for all of them, the function results
+ * shared by the six signals (sim_signal_eval's values, bit for bit). */
+typedef struct {
+    long first;                           /* the tick of row 0 */
+    int n;                                /* rows */
+    double t_s[SIM_EXPR_BATCH_MAX];
+    double ref[3][SIM_EXPR_BATCH_MAX];    /* rad, as the signal gives it */
+    double dist[3][SIM_EXPR_BATCH_MAX];
+} instants_t;
+
+static void instants_fill(instants_t *b, const sim_scenario_t *sc, long first, long n_ticks)
+{
+    b->first = first;
+    b->n = n_ticks - first < SIM_EXPR_BATCH_MAX ? (int)(n_ticks - first) : SIM_EXPR_BATCH_MAX;
+    for (int j = 0; j < b->n; ++j) {
+        b->t_s[j] = (double)(first + j) * sc->control_dt_s;
+    }
+    double lo, hi;
+    batch_range(b->t_s, b->n, &lo, &hi);
+    sim_expr_batch_memo_t memo;
+    sim_expr_batch_memo_clear(&memo);
+    for (int i = 0; i < 3; ++i) {
+        signal_eval_batch(&sc->reference[i], b->t_s, b->n, lo, hi, b->ref[i], &memo);
+    }
+    for (int i = 0; i < 3; ++i) {
+        signal_eval_batch(&sc->disturbance[i], b->t_s, b->n, lo, hi, b->dist[i], &memo);
+    }
 }
 
 /* One plant's reading of a batch: the stage time it asks for next. Runs in
@@ -546,17 +583,21 @@ void sim_run_attitude_group(const sim_scenario_t *sc, sim_run_spec_t *runs, int 
     const long n = sim_run_ticks(sc);
     const double dt = sc->control_dt_s;
     long k = 0;
+    instants_t at;
+    at.first = at.n = 0;
     for (; k < n && n_flying > 0; ++k) {
-        const double t = (double)k * dt;
-        ladrc_real_t ref[3];
-        double ref_rad[3], dist[3];
-        sim_expr_memo_t memo; /* shared by the references, then the disturbances at t */
-        sim_expr_memo_clear(&memo);
-        references(sc, t, &memo, ref);
-        widen(ref, ref_rad);
-        for (int i = 0; i < 3; ++i) {
-            dist[i] = sim_signal_eval_memo(&sc->disturbance[i], t, &memo);
+        if (k - at.first >= at.n) {
+            instants_fill(&at, sc, k, n);
         }
+        const int j = (int)(k - at.first);
+        const double t = at.t_s[j];
+        ladrc_real_t ref[3]; /* as the controllers get them */
+        double ref_rad[3], dist[3];
+        for (int i = 0; i < 3; ++i) {
+            ref[i] = (ladrc_real_t)at.ref[i][j];
+            dist[i] = at.dist[i][j];
+        }
+        widen(ref, ref_rad);
         double w2_cmd[SIM_MAX_CONTROLLERS][4];
         const sim_plant_t *lead = NULL; /* the plants' times are the same bits */
         for (int g = 0; g < n_group; ++g) {
