@@ -234,7 +234,7 @@ typedef struct {
     long first;                           /* the tick of row 0 */
     int n;                                /* rows */
     double t_s[SIM_EXPR_BATCH_MAX];
-    double ref[3][SIM_EXPR_BATCH_MAX];    /* rad, as the signal gives it */
+    ladrc_real_t ref[3][SIM_EXPR_BATCH_MAX]; /* rad, as the controllers get them */
     double dist[3][SIM_EXPR_BATCH_MAX];
 } instants_t;
 
@@ -250,7 +250,11 @@ static void instants_fill(instants_t *b, const sim_scenario_t *sc, long first, l
     sim_expr_batch_memo_t memo;
     sim_expr_batch_memo_clear(&memo);
     for (int i = 0; i < 3; ++i) {
-        signal_eval_batch(&sc->reference[i], b->t_s, b->n, lo, hi, b->ref[i], &memo);
+        double ref[SIM_EXPR_BATCH_MAX];
+        signal_eval_batch(&sc->reference[i], b->t_s, b->n, lo, hi, ref, &memo);
+        for (int j = 0; j < b->n; ++j) {
+            b->ref[i][j] = (ladrc_real_t)ref[j];
+        }
     }
     for (int i = 0; i < 3; ++i) {
         signal_eval_batch(&sc->disturbance[i], b->t_s, b->n, lo, hi, b->dist[i], &memo);
@@ -591,10 +595,14 @@ void sim_run_attitude_group(const sim_scenario_t *sc, sim_run_spec_t *runs, int 
         }
         const int j = (int)(k - at.first);
         const double t = at.t_s[j];
-        ladrc_real_t ref[3]; /* as the controllers get them */
+        /* the references rounded to ladrc_real_t where they are worked
+         * out, in instants_fill: GCC 12 turns a float rounding and the
+         * widening back, side by side in one loop and vectorized, into no
+         * rounding at all */
+        ladrc_real_t ref[3];
         double ref_rad[3], dist[3];
         for (int i = 0; i < 3; ++i) {
-            ref[i] = (ladrc_real_t)at.ref[i][j];
+            ref[i] = at.ref[i][j];
             dist[i] = at.dist[i][j];
         }
         widen(ref, ref_rad);

@@ -200,6 +200,26 @@ static void test_six_runs_in_lockstep_with_pieces_changing_within_a_step_give_ea
     }
 }
 
+static void test_the_error_is_taken_from_the_reference_the_controller_gets(void)
+{
+    /* a 10 deg roll step at 0.5 s on a vehicle at rest: at the first
+     * instant after it the angle is still exactly 0, so the largest error
+     * is the reference itself, as the controller gets it (ladrc_real_t) and
+     * not the double the signal gives */
+    const sim_metrics_t m = fly_text("[run]\nduration_s = 2\ncontrollers = LADRC\n[reference]\nroll = 0.5 .. : 10\n",
+                                     SIM_CTRL_LADRC);
+    const double rad2deg = 180.0 / 3.14159265358979323846;
+    const double given_rad = 10.0 * (3.14159265358979323846 / 180.0); /* the parser's deg -> rad */
+    const double want_deg = (double)(ladrc_real_t)given_rad * rad2deg;
+    char message[120];
+    snprintf(message, sizeof message, "largest roll error %.17g deg, the controller's reference %.17g deg",
+             m.max_error_deg[0], want_deg);
+    TEST_ASSERT_TRUE_MESSAGE(m.max_error_deg[0] == want_deg, message);
+#ifndef LADRC_REAL_DOUBLE
+    TEST_ASSERT_TRUE(want_deg != given_rad * rad2deg); /* in float the two differ: the check can fail */
+#endif
+}
+
 static void test_the_limit_is_the_scenarios(void)
 {
     /* a 10 deg step: within the default 90 deg, beyond a 5 deg limit at t = 0 */
@@ -334,6 +354,7 @@ int main(void)
     RUN_TEST(test_a_differentiator_scenario_without_its_optional_keys_runs);
     RUN_TEST(test_a_run_refuses_a_scenario_changed_after_parsing);
     RUN_TEST(test_a_lockstep_group_gives_each_run_bit_for_bit);
+    RUN_TEST(test_the_error_is_taken_from_the_reference_the_controller_gets);
     RUN_TEST(test_six_runs_in_lockstep_with_pieces_changing_within_a_step_give_each_run_bit_for_bit);
     return UNITY_END();
 }
