@@ -135,10 +135,26 @@ static SIM_ALWAYS_INLINE void derivative(const sim_vehicle_t *v, int lag, int n,
     }
 }
 
-static void disturbance_at(sim_disturbance_fn dist, void *ctx, double t, double d[3])
+/* Where a step's disturbances come from: a table by stage (3 per substep,
+ * in the order sim_plant_stage_times lists their times), else a call at the
+ * stage time, else none. */
+typedef struct {
+    const double (*table)[3];
+    sim_disturbance_fn dist;
+    void *ctx;
+} source_t;
+
+/* The disturbance at stage `stage` (0: t, 1: t + h/2, 2: t + h) of substep
+ * s, whose time is t. */
+static SIM_ALWAYS_INLINE void disturbance_at(const source_t *src, int s, int stage, double t, double d[3])
 {
-    if (dist != NULL) {
-        dist(t, ctx, d);
+    if (src->table != NULL) {
+        const double *row = src->table[3 * s + stage];
+        d[0] = row[0];
+        d[1] = row[1];
+        d[2] = row[2];
+    } else if (src->dist != NULL) {
+        src->dist(t, src->ctx, d);
     } else {
         d[0] = d[1] = d[2] = 0.0;
     }
@@ -172,21 +188,21 @@ static SIM_ALWAYS_INLINE void stage_point(int m, int n, lanes_t x[N_STATE], doub
  * rotor states only take part with a lag (without one their derivative is 0
  * and they stay put). */
 static SIM_ALWAYS_INLINE void rk4_substep(const sim_vehicle_t *v, int lag, int n, lanes_t cmd[4],
-                               lanes_t cmd_torque[3], double t0, int s, double h, sim_disturbance_fn dist,
-                               void *ctx, lanes_t x[N_STATE])
+                               lanes_t cmd_torque[3], double t0, int s, double h, const source_t *src,
+                               lanes_t x[N_STATE])
 {
     const int m = lag ? N_STATE : N_ROTOR;
     lanes_t k1[N_STATE], k2[N_STATE], k3[N_STATE], k4[N_STATE], y[N_STATE];
     double d[3];
-    disturbance_at(dist, ctx, stage_time(t0, h, s, 0), d);
+    disturbance_at(src, s, 0, stage_time(t0, h, s, 0), d);
     derivative(v, lag, n, cmd, cmd_torque, x, d, k1);
     stage_point(m, n, x, 0.5 * h, k1, y);
-    disturbance_at(dist, ctx, stage_time(t0, h, s, 1), d); /* the same for k2 and k3 */
+    disturbance_at(src, s, 1, stage_time(t0, h, s, 1), d); /* the same for k2 and k3 */
     derivative(v, lag, n, cmd, cmd_torque, y, d, k2);
     stage_point(m, n, x, 0.5 * h, k2, y);
     derivative(v, lag, n, cmd, cmd_torque, y, d, k3);
     stage_point(m, n, x, h, k3, y);
-    disturbance_at(dist, ctx, stage_time(t0, h, s, 2), d);
+    disturbance_at(src, s, 2, stage_time(t0, h, s, 2), d);
     derivative(v, lag, n, cmd, cmd_torque, y, d, k4);
     const double h6 = h / 6.0;
     for (int i = 0; i < m; ++i) {
@@ -200,10 +216,10 @@ static SIM_ALWAYS_INLINE void rk4_substep(const sim_vehicle_t *v, int lag, int n
  * is called. */
 static SIM_ALWAYS_INLINE void integrate(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4],
                                         lanes_t cmd_torque[3], int n_sub, double t0, double h,
-                                        sim_disturbance_fn dist, void *ctx, lanes_t x[N_STATE])
+                                        const source_t *src, lanes_t x[N_STATE])
 {
     for (int s = 0; s < n_sub; ++s) {
-        rk4_substep(v, lag, w, cmd, cmd_torque, t0, s, h, dist, ctx, x);
+        rk4_substep(v, lag, w, cmd, cmd_torque, t0, s, h, src, x);
     }
 }
 
@@ -211,14 +227,14 @@ static SIM_ALWAYS_INLINE void integrate(const sim_vehicle_t *v, int lag, int w, 
  * and lag its own code. */
 static SIM_ALWAYS_INLINE void integrate_width(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4],
                                               lanes_t cmd_torque[3], int n_sub, double t0, double h,
-                                              sim_disturbance_fn dist, void *ctx, lanes_t x[N_STATE])
+                                              const source_t *src, lanes_t x[N_STATE])
 {
 #define LANES_CASE(W)                                                        \
     case W:                                                                  \
         if (lag) {                                                           \
-            integrate(v, 1, W, cmd, cmd_torque, n_sub, t0, h, dist, ctx, x); \
+            integrate(v, 1, W, cmd, cmd_torque, n_sub, t0, h, src, x);      \
         } else {                                                             \
-            integrate(v, 0, W, cmd, cmd_torque, n_sub, t0, h, dist, ctx, x); \
+            integrate(v, 0, W, cmd, cmd_torque, n_sub, t0, h, src, x);      \
         }                                                                    \
         break;
     switch (w) {
@@ -232,10 +248,9 @@ static SIM_ALWAYS_INLINE void integrate_width(const sim_vehicle_t *v, int lag, i
 }
 
 static void integrate_portable(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4], lanes_t cmd_torque[3],
-                               int n_sub, double t0, double h, sim_disturbance_fn dist, void *ctx,
-                               lanes_t x[N_STATE])
+                               int n_sub, double t0, double h, const source_t *src, lanes_t x[N_STATE])
 {
-    integrate_width(v, lag, w, cmd, cmd_torque, n_sub, t0, h, dist, ctx, x);
+    integrate_width(v, lag, w, cmd, cmd_torque, n_sub, t0, h, src, x);
 }
 
 /* On x86-64 the build targets SSE2 (two lanes per instruction); where the
@@ -247,16 +262,16 @@ static void integrate_portable(const sim_vehicle_t *v, int lag, int w, lanes_t c
 #define SIM_PLANT_AVX 1
 __attribute__((target("avx"))) static void integrate_avx(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4],
                                                          lanes_t cmd_torque[3], int n_sub, double t0, double h,
-                                                         sim_disturbance_fn dist, void *ctx, lanes_t x[N_STATE])
+                                                         const source_t *src, lanes_t x[N_STATE])
 {
-    integrate_width(v, lag, w, cmd, cmd_torque, n_sub, t0, h, dist, ctx, x);
+    integrate_width(v, lag, w, cmd, cmd_torque, n_sub, t0, h, src, x);
 }
 #endif
 
 /* Steps plants[0..n) (n <= SIM_PLANT_GROUP_MAX), all at p0's time with its
  * vehicle, in lockstep: one dist call per stage time for all. */
 static void step_lanes(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s, int substeps,
-                       sim_disturbance_fn dist, void *ctx)
+                       const source_t *src)
 {
     const sim_vehicle_t *v = &plants[0]->v;
     const int n_sub = substep_count(substeps);
@@ -296,11 +311,11 @@ static void step_lanes(sim_plant_t *const plants[], const double (*w2_cmd)[4], i
     }
 #ifdef SIM_PLANT_AVX
     if (__builtin_cpu_supports("avx")) {
-        integrate_avx(v, lag, w, cmd, cmd_torque, n_sub, t0, h, dist, ctx, x);
+        integrate_avx(v, lag, w, cmd, cmd_torque, n_sub, t0, h, src, x);
     } else
 #endif
     {
-        integrate_portable(v, lag, w, cmd, cmd_torque, n_sub, t0, h, dist, ctx, x);
+        integrate_portable(v, lag, w, cmd, cmd_torque, n_sub, t0, h, src, x);
     }
     for (int l = 0; l < n; ++l) {
         sim_plant_t *p = plants[l];
@@ -339,21 +354,28 @@ void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int sub
     }
     sim_plant_t *const one[1] = {p};
     const double cmd[1][4] = {{w2_cmd[0], w2_cmd[1], w2_cmd[2], w2_cmd[3]}};
-    step_lanes(one, cmd, 1, dt_s, substeps, dist, ctx);
+    const source_t src = {NULL, dist, ctx};
+    step_lanes(one, cmd, 1, dt_s, substeps, &src);
 }
 
-void sim_plant_step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s,
-                          int substeps, sim_disturbance_fn dist, void *ctx)
+/* The group step of both public forms: plants at plants[0]'s time with its
+ * vehicle side by side, then those with another vehicle alone, each with
+ * src; those at another time alone with `other` when it is given (not
+ * stepped otherwise). Returns the number stepped. */
+static int step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s, int substeps,
+                      const source_t *src, const source_t *other)
 {
     if (!(dt_s > 0.0) || n < 1) {
-        return;
+        return 0;
     }
     const sim_plant_t *lead = plants[0];
-    sim_plant_t *lanes[SIM_PLANT_GROUP_MAX];
+    const double t_lead = lead->t_s; /* the lead's time before the step */
+    sim_plant_t *lanes[SIM_PLANT_GROUP_MAX] = {NULL};
     double cmd[SIM_PLANT_GROUP_MAX][4];
     int n_lanes = 0;
     for (int g = 0; g < n; ++g) {
-        if (n_lanes < SIM_PLANT_GROUP_MAX && same_bits(plants[g]->t_s, lead->t_s) && same_vehicle(&plants[g]->v, &lead->v)) {
+        if (g == 0 || (n_lanes < SIM_PLANT_GROUP_MAX && same_bits(plants[g]->t_s, t_lead) &&
+                       same_vehicle(&plants[g]->v, &lead->v))) {
             lanes[n_lanes] = plants[g];
             for (int i = 0; i < 4; ++i) {
                 cmd[n_lanes][i] = w2_cmd[g][i];
@@ -361,14 +383,35 @@ void sim_plant_step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4]
             ++n_lanes;
         }
     }
-    step_lanes(lanes, (const double(*)[4])cmd, n_lanes, dt_s, substeps, dist, ctx);
+    step_lanes(lanes, (const double(*)[4])cmd, n_lanes, dt_s, substeps, src);
+    int stepped = n_lanes;
     for (int g = 0, l = 0; g < n; ++g) { /* the others, each alone, after the group */
         if (l < n_lanes && plants[g] == lanes[l]) {
             ++l;
-        } else {
-            sim_plant_step(plants[g], w2_cmd[g], dt_s, substeps, dist, ctx);
+            continue;
+        }
+        const source_t *own = same_bits(plants[g]->t_s, t_lead) ? src : other;
+        if (own != NULL) {
+            sim_plant_t *const one[1] = {plants[g]};
+            step_lanes(one, &w2_cmd[g], 1, dt_s, substeps, own);
+            ++stepped;
         }
     }
+    return stepped;
+}
+
+void sim_plant_step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s,
+                          int substeps, sim_disturbance_fn dist, void *ctx)
+{
+    const source_t src = {NULL, dist, ctx};
+    (void)step_group(plants, w2_cmd, n, dt_s, substeps, &src, &src);
+}
+
+int sim_plant_step_group_table(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s,
+                               int substeps, const double (*d_stage)[3])
+{
+    const source_t src = {d_stage, NULL, NULL};
+    return step_group(plants, w2_cmd, n, dt_s, substeps, &src, NULL);
 }
 
 int sim_plant_stage_times(const sim_plant_t *p, double dt_s, int substeps, double *times_out)

@@ -92,6 +92,15 @@ void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int sub
 void sim_plant_step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s,
                           int substeps, sim_disturbance_fn dist, void *ctx);
 
+/* The same with the disturbances given instead of asked for: d_stage[k]
+ * holds the disturbance at the k-th time sim_plant_stage_times(plants[0],
+ * dt_s, substeps, .) lists (3 per substep; the middle one serves two RK4
+ * stages), and the plants step as if dist had returned those values at
+ * those times. Plants at another time than plants[0] (bit for bit) are not
+ * stepped. Returns the number of plants stepped. */
+int sim_plant_step_group_table(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s,
+                               int substeps, const double (*d_stage)[3]);
+
 /* The times sim_plant_step(p, ., dt_s, substeps, dist, .) will call dist at,
  * in that order, bit for bit: t, t + h/2 and t + h of every substep, 3 per
  * substep (substeps below 1 count as 1), written to times_out; returns their

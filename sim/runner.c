@@ -80,6 +80,7 @@ typedef struct {
     double t_s[STAGES_MAX];
     int slot[STAGES_MAX];         /* its row of value */
     double value[STAGES_MAX][3];  /* by distinct time, in order */
+    double stage[STAGES_MAX][3];  /* by stage time: value[slot[k]] */
     double last_t_s;              /* the last distinct time (NaN: none) */
     int last;                     /* and its row */
 } disturbance_batch_t;
@@ -218,6 +219,11 @@ static void disturbance_batch_fill(disturbance_batch_t *b, const sim_plant_t *p,
             for (int j = 0; j < m; ++j) {
                 b->value[r + j][i] = d[j];
             }
+        }
+    }
+    for (int k = 0; k < b->n; ++k) {
+        for (int i = 0; i < 3; ++i) {
+            b->stage[k][i] = b->value[b->slot[k]][i];
         }
     }
     if (rows > 0) {
@@ -631,9 +637,22 @@ void sim_run_attitude_group(const sim_scenario_t *sc, sim_run_spec_t *runs, int 
                 memcpy(cmds[n_plants++], w2_cmd[g], sizeof cmds[0]);
             }
         }
-        batch_reader_t reader = {&batch, 0}; /* the group's plants step side by side, one reading */
-        sim_plant_step_group(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps, disturbance,
-                             &reader);
+        /* the group's plants step side by side, the step's disturbances
+         * read from the batch; they are all at the lead's time (they have
+         * flown every step together), but should one not be, every plant
+         * asks for its own */
+        int same_time = 1;
+        for (int g = 1; g < n_plants; ++g) {
+            same_time = same_time && memcmp(&plants[g]->t_s, &lead->t_s, sizeof lead->t_s) == 0;
+        }
+        if (batch.n > 0 && same_time) {
+            (void)sim_plant_step_group_table(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps,
+                                             (const double(*)[3])batch.stage);
+        } else {
+            batch_reader_t reader = {&batch, 0};
+            sim_plant_step_group(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps, disturbance,
+                                 &reader);
+        }
         if (progress != NULL && progress->ticks_done != NULL && (k & 1023) == 1023) {
             *progress->ticks_done += 1024L * n_flying;
         }

@@ -795,6 +795,52 @@ static void test_a_group_asks_the_disturbance_once_per_stage_and_steps_misfits_a
     TEST_ASSERT_TRUE(signbit(p[3].w2_rad2_s2[0]) && !signbit(p[0].w2_rad2_s2[0]));
 }
 
+static void test_a_table_of_stage_disturbances_steps_as_the_calls_do(void)
+{
+    /* the disturbances of a step given by stage (sim_plant_stage_times'
+     * order) against the same values asked for by call; a plant at another
+     * time is left alone and not counted */
+    sim_vehicle_t v;
+    sim_vehicle_paper(&v);
+    v.motor_tau_s = 0.015;
+    sim_plant_t a[4], b[4];
+    sim_plant_t *lanes_a[4], *lanes_b[4];
+    for (int g = 0; g < 4; ++g) {
+        sim_plant_init(&a[g], &v);
+        a[g].rate_rad_s[g % 3] = 0.3 * (g + 1);
+        b[g] = a[g];
+        lanes_a[g] = &a[g];
+        lanes_b[g] = &b[g];
+    }
+    for (int k = 0; k < 50; ++k) {
+        double cmd[4][4], times[3 * 7], table[3 * 7][3];
+        for (int g = 0; g < 4; ++g) {
+            varied_command(&v, g, k, cmd[g]);
+        }
+        const int n = sim_plant_stage_times(&a[0], 1e-3, 7, times);
+        TEST_ASSERT_EQUAL_INT(21, n);
+        for (int j = 0; j < n; ++j) {
+            sine_disturbance(times[j], NULL, table[j]);
+        }
+        sim_plant_step_group(lanes_a, (const double(*)[4])cmd, 4, 1e-3, 7, sine_disturbance, NULL);
+        TEST_ASSERT_EQUAL_INT(4, sim_plant_step_group_table(lanes_b, (const double(*)[4])cmd, 4, 1e-3, 7,
+                                                           (const double(*)[3])table));
+        for (int g = 0; g < 4; ++g) {
+            TEST_ASSERT_TRUE(same_plant(&a[g], &b[g]));
+        }
+    }
+    b[2].t_s += 1e-3; /* another time: not stepped */
+    const sim_plant_t before = b[2];
+    double cmd[4][4], table[3][3] = {{0.0}};
+    for (int g = 0; g < 4; ++g) {
+        varied_command(&v, g, 0, cmd[g]);
+    }
+    TEST_ASSERT_EQUAL_INT(3, sim_plant_step_group_table(lanes_b, (const double(*)[4])cmd, 4, 1e-3, 1,
+                                                       (const double(*)[3])table));
+    TEST_ASSERT_TRUE(same_plant(&before, &b[2]));
+    TEST_ASSERT_FALSE(same_plant(&a[0], &b[0]));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -815,5 +861,6 @@ int main(void)
     RUN_TEST(test_the_listed_stage_times_are_those_asked_bit_for_bit);
     RUN_TEST(test_plants_stepped_side_by_side_are_each_the_plant_alone_bit_for_bit);
     RUN_TEST(test_a_group_asks_the_disturbance_once_per_stage_and_steps_misfits_alone);
+    RUN_TEST(test_a_table_of_stage_disturbances_steps_as_the_calls_do);
     return UNITY_END();
 }
