@@ -2,6 +2,8 @@
 /* Three axes with the decoupling-free coupling feed (see attitude.h). */
 #include "ladrc/attitude.h"
 
+#include "axis_internal.h"
+
 /* Relative rounding allowed on the inertia triangle (a few float ulps). */
 #define ATTITUDE_TRIANGLE_SLACK LADRC_R(1.00001)
 /* Largest drag / J * dt_s. */
@@ -106,20 +108,17 @@ static ladrc_real_t feed(const ladrc_attitude_t *att, unsigned i, ladrc_real_t r
     return att->coupling[i] * (accel_a * rate_b + rate_a * accel_b) - att->drag_per_s[i] * accel_i;
 }
 
-/* Rate z2 and acceleration b0 * acting torque + z3 + d_hat of one axis, read
- * straight from it (attitude owns its axes; the sum as ladrc_axis_get_accel
- * forms it). A PID, CASCADED or INDI axis has no observer: 0 and 0 (INDI
- * measures the coupling in its acceleration and needs no feed). */
-#if defined(__GNUC__)
-__attribute__((always_inline))
-#endif
-static inline void observed(const ladrc_axis_t *ax, ladrc_real_t *rate, ladrc_real_t *accel)
+/* Rate z2 and acceleration of one axis (axis_observer_accel, the formula
+ * of ladrc_axis_get_accel). A PID, CASCADED or INDI axis has no observer:
+ * 0 and 0 (INDI measures the coupling in its acceleration and needs no
+ * feed). */
+static AXIS_ALWAYS_INLINE void observed(const ladrc_axis_t *ax, ladrc_real_t *rate, ladrc_real_t *accel)
 {
     *rate = LADRC_R(0.0);
     *accel = LADRC_R(0.0);
     if (ladrc_variant_has_observer(ax->variant)) {
         *rate = ax->leso.z2;
-        *accel = ax->b0 * ladrc_axis_acting_Nm(ax) + ax->leso.z3 + ax->d_hat_rad_s2;
+        *accel = axis_observer_accel(ax);
     }
 }
 
@@ -132,7 +131,7 @@ static inline void put_feed(ladrc_attitude_t *att, unsigned i, ladrc_real_t h)
         h = LADRC_R(0.0);
     }
     att->feed_rad_s3[i] = h;
-    ax->f_rate_rad_s3 = ladrc_is_finite(h) ? h : LADRC_R(0.0);
+    axis_put_disturbance_rate(ax, h);
 }
 
 /* The known part of axis i's f from the rates (same order as feed): the

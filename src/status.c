@@ -81,7 +81,9 @@
     X(LADRC_ERR_CAS_RATE_KD, "cas_rate_kd must be finite, >= 0 and its term finite for rate steps of 2 rate_limit_rad_s") \
     X(LADRC_ERR_CAS_D_TAU_S, "cas_d_filter_tau_s must be finite and >= 0") \
     X(LADRC_ERR_CAS_RATE_TAU_S, "cas_rate_filter_tau_s must be finite and >= 0") \
-    X(LADRC_ERR_CAS_I_LIMIT_NM, "cas_i_limit_Nm must be >= 0 and not NaN")
+    X(LADRC_ERR_CAS_I_LIMIT_NM, "cas_i_limit_Nm must be >= 0 and not NaN") \
+    X(LADRC_ERR_VARIANT_NOT_BUILT, "variant is left out of this build of the library (LADRC_VARIANTS)") \
+    X(LADRC_ERR_SHAPER_NOT_BUILT, "shaper is left out of this build of the library (LADRC_SHAPERS)")
 
 #ifdef LADRC_STATUS_NAMES_ONLY
 #define STATUS_TEXT(code, explanation) #code

@@ -105,6 +105,42 @@ extern "C" {
 
 /* LADRC_MAX_DELAY_TICKS and LADRC_MOTOR_TAU_MAX_S: types.h (the HP estimator advances over them too). */
 
+/*
+ * Variants and shapers built (1) or left out (0). The CMake list options
+ * LADRC_VARIANTS (default: all six) and LADRC_SHAPERS (default: TD;LEVANT)
+ * define those left out as 0 for the library and everything that links it,
+ * so that e.g. an HP-MLADRC firmware carries no PID, CASCADED, INDI, LP or
+ * TD code and its axis state no space for them; init refuses a variant or
+ * shaper left out with LADRC_ERR_VARIANT_NOT_BUILT / _SHAPER_NOT_BUILT.
+ * Without CMake everything is built unless defined 0 here; a library and
+ * the code using it must see the same definitions (the state's layout
+ * depends on them).
+ */
+#ifndef LADRC_WITH_LADRC
+#define LADRC_WITH_LADRC 1
+#endif
+#ifndef LADRC_WITH_LP_MLADRC
+#define LADRC_WITH_LP_MLADRC 1
+#endif
+#ifndef LADRC_WITH_HP_MLADRC
+#define LADRC_WITH_HP_MLADRC 1
+#endif
+#ifndef LADRC_WITH_PID
+#define LADRC_WITH_PID 1
+#endif
+#ifndef LADRC_WITH_CASCADED
+#define LADRC_WITH_CASCADED 1
+#endif
+#ifndef LADRC_WITH_INDI
+#define LADRC_WITH_INDI 1
+#endif
+#ifndef LADRC_WITH_TD
+#define LADRC_WITH_TD 1
+#endif
+#ifndef LADRC_WITH_LEVANT
+#define LADRC_WITH_LEVANT 1
+#endif
+
 typedef enum {
     LADRC_VARIANT_LADRC = 0,    /**< traditional LADRC: TD + LESO + control law */
     LADRC_VARIANT_LP_MLADRC = 1,/**< LADRC + LP estimator (needs the measured rate) */
@@ -220,20 +256,38 @@ typedef struct {
     ladrc_real_t angle_limit_rad, rate_limit_rad_s, applied_limit_Nm; /**< plausible ranges */
     ladrc_real_t kp, kd, b0;      /**< wc^2, 2 wc, b0 */
     ladrc_leso_t leso;            /**< the LADRC family (not PID, not INDI) */
+#if LADRC_WITH_TD || LADRC_WITH_LEVANT
     union {
+#if LADRC_WITH_TD
         ladrc_td_t td;
+#endif
+#if LADRC_WITH_LEVANT
         ladrc_levant_t levant;
+#endif
     } shaping;                    /**< by shaper */
+#endif
+#if LADRC_WITH_PID || LADRC_WITH_CASCADED || LADRC_WITH_LP_MLADRC || LADRC_WITH_HP_MLADRC || LADRC_WITH_INDI
     union {
+#if LADRC_WITH_PID
         ladrc_pid_t pid;
+#endif
+#if LADRC_WITH_CASCADED
         ladrc_cascaded_t cas;
+#endif
+#if LADRC_WITH_LP_MLADRC
         ladrc_lp_estimator_t lp;
+#endif
+#if LADRC_WITH_HP_MLADRC
         struct {
             ladrc_hp_estimator_t est;
             ladrc_leso_twin_t shadow; /**< the LESO's view of a still plant: z3 caused by d_hat alone */
         } hp;
+#endif
+#if LADRC_WITH_INDI
         ladrc_indi_t indi;
+#endif
     } part;                       /**< by variant */
+#endif
     ladrc_ref_t ref;              /**< shaped reference of the latest tick */
     ladrc_real_t d_hat_rad_s2;    /**< estimator output applied over the current step */
     ladrc_real_t f_rate_rad_s3;   /**< known rate of change of f for the next LESO step */

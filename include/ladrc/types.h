@@ -176,6 +176,8 @@ typedef enum {
     LADRC_ERR_CAS_D_TAU_S,        /**< cas_d_filter_tau_s not finite or < 0 */
     LADRC_ERR_CAS_RATE_TAU_S,     /**< cas_rate_filter_tau_s not finite or < 0 */
     LADRC_ERR_CAS_I_LIMIT_NM,     /**< cas_i_limit_Nm NaN or < 0 (INFINITY = no clamp) */
+    LADRC_ERR_VARIANT_NOT_BUILT,  /**< axis variant left out of this build (LADRC_VARIANTS, axis.h) */
+    LADRC_ERR_SHAPER_NOT_BUILT,   /**< axis shaper left out of this build (LADRC_SHAPERS, axis.h) */
     LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
 } ladrc_status_t;
 
