@@ -190,8 +190,7 @@ static void check_rotors(parser_t *p)
         const loc_t *ideal = checks_seen(p, SEC_ROTORS, "ideal");
         check_fail(p, ideal->line, ideal->value_col, "ideal = no needs w2_max_rad2_s2");
     } else if (!(sc->w2_max_rad2_s2 > sc->w2_min_rad2_s2)) {
-        check_fail(p, max->line, max->value_col, "w2_max_rad2_s2 must be > w2_min_rad2_s2 (%g)",
-                   sc->w2_min_rad2_s2);
+        check_fail(p, max->line, max->value_col, "w2_max_rad2_s2 must be > w2_min_rad2_s2 (%g)", sc->w2_min_rad2_s2);
     }
 }
 
@@ -209,11 +208,10 @@ static void check_differentiator(parser_t *p)
 static void check_tuning(parser_t *p)
 {
     /* the keys of the gains tune = margins chooses (setup.h, sim_setup_gain_fields) */
-    static const char *const gains[] = {"wc_rad_s",          "wo_rad_s",           "pid_kp",
-                                        "pid_ki",            "pid_kd",             "cas_att_kp",
-                                        "cas_rate_kp",       "cas_rate_ki",        "cas_rate_kd",
-                                        "cas_d_filter_tau_s", "indi_att_kp_per_s", "indi_rate_kp_per_s",
-                                        "indi_filter_rad_s"};
+    static const char *const gains[] = {
+        "wc_rad_s",          "wo_rad_s",           "pid_kp",           "pid_ki",      "pid_kd",
+        "cas_att_kp",        "cas_rate_kp",        "cas_rate_ki",      "cas_rate_kd", "cas_d_filter_tau_s",
+        "indi_att_kp_per_s", "indi_rate_kp_per_s", "indi_filter_rad_s"};
     static const char *const targets[] = {"tune_phase_margin_deg", "tune_gain_margin_db"};
     for (int id = 0; id < SIM_CTRL_COUNT; ++id) {
         const int sec = SEC_CONTROLLER + id;
@@ -247,12 +245,14 @@ static void check_tuning(parser_t *p)
  * the refused value, and not a failed run. */
 
 typedef struct {
-    int sec;          /* SEC_*; -1: the controller's own [controller NAME] */
+    int sec; /* SEC_*; -1: the controller's own [controller NAME] */
     const char *name;
 } key_ref_t;
 
 #define CTRL_SEC (-1)
+/* clang-format off */
 #define END_KEYS {0, NULL}
+/* clang-format on */
 
 /* The keys behind a refused value, most likely first (the first one the
  * file gives is reported). */
@@ -296,44 +296,78 @@ static const key_ref_t *keys_of_status(ladrc_status_t st, int known_freqs)
     static const key_ref_t delay[] = {{CTRL_SEC, "model_delay_ticks"}, {SEC_SENSORS, "delay_ticks"}, END_KEYS};
     switch (st) {
     case LADRC_ERR_INERTIA_KG_M2:
-    case LADRC_ERR_B0: return inertia;
-    case LADRC_ERR_DRAG_NMS: return drag;
-    case LADRC_ERR_WC_RAD_S: return wc;
+    case LADRC_ERR_B0:
+        return inertia;
+    case LADRC_ERR_DRAG_NMS:
+        return drag;
+    case LADRC_ERR_WC_RAD_S:
+        return wc;
     case LADRC_ERR_WO_RAD_S:
-    case LADRC_ERR_HP_SAMPLE_LAG: return wo;
-    case LADRC_ERR_LESO_EULER_UNSTABLE: return euler;
-    case LADRC_ERR_TD_ACCEL_RAD_S2: return td_accel;
+    case LADRC_ERR_HP_SAMPLE_LAG:
+        return wo;
+    case LADRC_ERR_LESO_EULER_UNSTABLE:
+        return euler;
+    case LADRC_ERR_TD_ACCEL_RAD_S2:
+        return td_accel;
     case LADRC_ERR_LEVANT_LIPSCHITZ:
-    case LADRC_ERR_LEVANT_RANGE: return levant;
-    case LADRC_ERR_PID_KP: return kp;
-    case LADRC_ERR_PID_KI: return ki;
-    case LADRC_ERR_PID_KD: return kd;
-    case LADRC_ERR_INDI_ATT_KP: return indi_att;
-    case LADRC_ERR_INDI_RATE_KP: return indi_rate;
-    case LADRC_ERR_INDI_FILTER: return indi_filter;
-    case LADRC_ERR_CAS_ATT_KP: return cas_att;
-    case LADRC_ERR_CAS_RATE_MAX: return cas_max;
-    case LADRC_ERR_CAS_RATE_KP: return cas_kp;
-    case LADRC_ERR_CAS_RATE_KI: return cas_ki;
-    case LADRC_ERR_CAS_RATE_KD: return cas_kd;
+    case LADRC_ERR_LEVANT_RANGE:
+        return levant;
+    case LADRC_ERR_PID_KP:
+        return kp;
+    case LADRC_ERR_PID_KI:
+        return ki;
+    case LADRC_ERR_PID_KD:
+        return kd;
+    case LADRC_ERR_INDI_ATT_KP:
+        return indi_att;
+    case LADRC_ERR_INDI_RATE_KP:
+        return indi_rate;
+    case LADRC_ERR_INDI_FILTER:
+        return indi_filter;
+    case LADRC_ERR_CAS_ATT_KP:
+        return cas_att;
+    case LADRC_ERR_CAS_RATE_MAX:
+        return cas_max;
+    case LADRC_ERR_CAS_RATE_KP:
+        return cas_kp;
+    case LADRC_ERR_CAS_RATE_KI:
+        return cas_ki;
+    case LADRC_ERR_CAS_RATE_KD:
+        return cas_kd;
     case LADRC_ERR_CAS_D_TAU_S:
-    case LADRC_ERR_CAS_RATE_TAU_S: return cas_tau;
-    case LADRC_ERR_CAS_I_LIMIT_NM: return cas_i;
-    case LADRC_ERR_HP_FREQ_RAD_S: return freqs;
+    case LADRC_ERR_CAS_RATE_TAU_S:
+        return cas_tau;
+    case LADRC_ERR_CAS_I_LIMIT_NM:
+        return cas_i;
+    case LADRC_ERR_HP_FREQ_RAD_S:
+        return freqs;
     /* the fastest tone is a known frequency, or else the search range's top */
-    case LADRC_ERR_HP_FIT_DECIMATION: return known_freqs ? freqs : dt;
-    case LADRC_ERR_HP_N_TONES: return tones;
-    case LADRC_ERR_MIXER_KL_N_S2: return mixer_kl;
-    case LADRC_ERR_MIXER_ARM_M: return mixer_arm;
-    case LADRC_ERR_MIXER_B_NM_S2: return mixer_b;
-    case LADRC_ERR_MIXER_MASS_KG: return mixer_mass;
-    case LADRC_ERR_MIXER_G_M_S2: return mixer_g;
-    case LADRC_ERR_MIXER_W2_MIN: return w2_min;
-    case LADRC_ERR_MIXER_W2_MAX: return w2_max;
-    case LADRC_ERR_MIXER_TILT_MAX_RAD: return tilt;
-    case LADRC_ERR_MOTOR_TAU_S: return motor_tau;
-    case LADRC_ERR_DELAY_TICKS: return delay;
-    default: return dt; /* the rest depend on the period alone (and library constants) */
+    case LADRC_ERR_HP_FIT_DECIMATION:
+        return known_freqs ? freqs : dt;
+    case LADRC_ERR_HP_N_TONES:
+        return tones;
+    case LADRC_ERR_MIXER_KL_N_S2:
+        return mixer_kl;
+    case LADRC_ERR_MIXER_ARM_M:
+        return mixer_arm;
+    case LADRC_ERR_MIXER_B_NM_S2:
+        return mixer_b;
+    case LADRC_ERR_MIXER_MASS_KG:
+        return mixer_mass;
+    case LADRC_ERR_MIXER_G_M_S2:
+        return mixer_g;
+    case LADRC_ERR_MIXER_W2_MIN:
+        return w2_min;
+    case LADRC_ERR_MIXER_W2_MAX:
+        return w2_max;
+    case LADRC_ERR_MIXER_TILT_MAX_RAD:
+        return tilt;
+    case LADRC_ERR_MOTOR_TAU_S:
+        return motor_tau;
+    case LADRC_ERR_DELAY_TICKS:
+        return delay;
+    default:
+        return dt; /* the rest depend on the period alone (and library constants) */
     }
 }
 
@@ -345,10 +379,14 @@ static const key_ref_t *keys_of_differentiator_status(ladrc_status_t st)
     static const key_ref_t td_h0[] = {{SEC_DIFFERENTIATOR, "td_h0_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
     switch (st) {
     case LADRC_ERR_LEVANT_LIPSCHITZ:
-    case LADRC_ERR_LEVANT_RANGE: return levant;
-    case LADRC_ERR_TD_ACCEL_RAD_S2: return td_accel;
-    case LADRC_ERR_TD_H0_S: return td_h0;
-    default: return keys_of_status(st, 0);
+    case LADRC_ERR_LEVANT_RANGE:
+        return levant;
+    case LADRC_ERR_TD_ACCEL_RAD_S2:
+        return td_accel;
+    case LADRC_ERR_TD_H0_S:
+        return td_h0;
+    default:
+        return keys_of_status(st, 0);
     }
 }
 

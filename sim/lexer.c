@@ -16,7 +16,10 @@
 
 /* ---- errors ------------------------------------------------------------------ */
 
-int parser_column(const parser_t *p, const char *at) { return (int)(at - p->line_start) + 1; }
+int parser_column(const parser_t *p, const char *at)
+{
+    return (int)(at - p->line_start) + 1;
+}
 
 void parser_vset_error(sim_parse_error_t *err, int line, int col, const char *format, va_list ap)
 {
@@ -36,7 +39,10 @@ int parser_fail_at(parser_t *p, int line, int col, const char *format, ...)
 
 /* ---- tokens and values ------------------------------------------------------- */
 
-int lex_is_space(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+int lex_is_space(char c)
+{
+    return c == ' ' || c == '\t' || c == '\r';
+}
 
 char *lex_skip_space(char *s)
 {
@@ -204,14 +210,18 @@ static int parse_choice(parser_t *p, const choice_t *choices, char *value, int *
 
 int lex_fail_unknown_controller(parser_t *p, const char *tok, size_t len)
 {
-    return parser_fail(p, tok, "unknown controller '%.*s' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, CASCADED or INDI)",
-                SHOWN(len), tok);
+    return parser_fail(p, tok,
+                       "unknown controller '%.*s' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, CASCADED or INDI)",
+                       SHOWN(len), tok);
 }
 
-static int is_list_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
+static int is_list_space(char c)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n';
+}
 
-int sim_controller_list_parse(const char *text, sim_controller_id_t ids[SIM_MAX_CONTROLLERS], int *n,
-                              size_t *err_at, char *msg, size_t msg_len)
+int sim_controller_list_parse(const char *text, sim_controller_id_t ids[SIM_MAX_CONTROLLERS], int *n, size_t *err_at,
+                              char *msg, size_t msg_len)
 {
     const char *s = text;
     int after_comma = 0;
@@ -344,16 +354,17 @@ static int parse_signal(parser_t *p, int key, sim_signal_t *sig, char *value, in
         }
     }
     if (sig->n_pieces >= SIM_MAX_PIECES) {
-        return parser_fail_at(p, p->line, key_col, "more than %d pieces for '%s'", SIM_MAX_PIECES, SCHEMA_KEYS[key].name);
+        return parser_fail_at(p, p->line, key_col, "more than %d pieces for '%s'", SIM_MAX_PIECES,
+                              SCHEMA_KEYS[key].name);
     }
     for (int i = 0; i < sig->n_pieces; ++i) {
         if (from < sig->to_s[i] && sig->from_s[i] < to) {
             if (p->first_set_line > 0) {
-                return parser_fail(p, value, "window (%g, %g] overlaps another setting of '%s' on the command line", from,
-                            to, SCHEMA_KEYS[key].name);
+                return parser_fail(p, value, "window (%g, %g] overlaps another setting of '%s' on the command line",
+                                   from, to, SCHEMA_KEYS[key].name);
             }
             return parser_fail(p, value, "window (%g, %g] overlaps the one given on line %d", from, to,
-                        p->piece_line[key][i]);
+                               p->piece_line[key][i]);
         }
     }
     sim_expr_error_t e;

@@ -21,7 +21,7 @@
 
 /* Where a key was given. */
 typedef struct {
-    int line;      /* 0: not given */
+    int line; /* 0: not given */
     int key_col;
     int value_col;
 } loc_t;
@@ -31,12 +31,12 @@ typedef struct {
     sim_parse_error_t *err;
     int line;
     const char *line_start;
-    int section;                          /* SEC_* slot, -1 before the first header */
+    int section; /* SEC_* slot, -1 before the first header */
     int section_line[SEC_COUNT];
     loc_t seen[SEC_COUNT][SCHEMA_MAX_KEYS];
     int piece_line[SCHEMA_MAX_KEYS][SIM_MAX_PIECES];
-    int checked;                          /* a consistency error is in err */
-    int first_set_line;                   /* > 0: reading the command line's settings from this line */
+    int checked;        /* a consistency error is in err */
+    int first_set_line; /* > 0: reading the command line's settings from this line */
 } parser_t;
 
 /* ---- lexer.c ---------------------------------------------------------------- */

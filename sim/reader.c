@@ -76,9 +76,10 @@ static int parse_key_line(parser_t *p, char *s)
         if (twin->line != 0) {
             if (p->first_set_line > 0) {
                 return parser_fail(p, key, "'%s' and '%s' set the same value (both on the command line)", key,
-                            SCHEMA_KEYS[k].twin);
+                                   SCHEMA_KEYS[k].twin);
             }
-            return parser_fail(p, key, "'%s' and '%s' (line %d) set the same value", key, SCHEMA_KEYS[k].twin, twin->line);
+            return parser_fail(p, key, "'%s' and '%s' (line %d) set the same value", key, SCHEMA_KEYS[k].twin,
+                               twin->line);
         }
     }
     if (seen->line == 0) {
@@ -128,7 +129,7 @@ static int parse_section(parser_t *p, char *s)
     if (p->section_line[sec] != 0) {
         char title[48];
         return parser_fail(p, s, "section %s already given on line %d", schema_section_title(sec, title, sizeof title),
-                    p->section_line[sec]);
+                           p->section_line[sec]);
     }
     p->section_line[sec] = p->line;
     p->section = sec;

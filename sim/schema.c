@@ -26,9 +26,12 @@
 /* ---- controllers ------------------------------------------------------------ */
 
 static const char *const CONTROLLER_NAMES[SIM_CTRL_COUNT] = {"HP-MLADRC", "LP-MLADRC", "LADRC",
-                                                              "PID",       "CASCADED",  "INDI"};
+                                                             "PID",       "CASCADED",  "INDI"};
 
-int sim_controller_needs_rate(sim_controller_id_t id) { return id == SIM_CTRL_INDI; }
+int sim_controller_needs_rate(sim_controller_id_t id)
+{
+    return id == SIM_CTRL_INDI;
+}
 
 const char *sim_controller_name(sim_controller_id_t id)
 {
@@ -48,12 +51,12 @@ int schema_controller_id(const char *name, size_t len)
 /* ---- sections ----------------------------------------------------------------- */
 
 static const char *const SECTION_NAMES[SEC_CONTROLLER + 1] = {
-    "run", "vehicle", "rotors", "sensors", "mismatch", "reference", "disturbance", "metrics",
-    "differentiator", "controller"};
+    "run",       "vehicle",     "rotors",  "sensors",        "mismatch",
+    "reference", "disturbance", "metrics", "differentiator", "controller"};
 
-static const int SECTION_KIND[SEC_CONTROLLER + 1] = {
-    FOR_BOTH, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE,
-    FOR_ATTITUDE, FOR_ATTITUDE, FOR_DIFFERENTIATOR, FOR_ATTITUDE};
+static const int SECTION_KIND[SEC_CONTROLLER + 1] = {FOR_BOTH,           FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE,
+                                                     FOR_ATTITUDE,       FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE,
+                                                     FOR_DIFFERENTIATOR, FOR_ATTITUDE};
 
 int schema_find_section(const char *name, size_t len)
 {
@@ -75,7 +78,10 @@ const char *schema_section_title(int sec, char *buf, size_t n)
     return buf;
 }
 
-int schema_section_kind(int sec) { return SECTION_KIND[SCHEMA_TABLE(sec)]; }
+int schema_section_kind(int sec)
+{
+    return SECTION_KIND[SCHEMA_TABLE(sec)];
+}
 
 int schema_key_kind(int sec, const key_def_t *def)
 {
@@ -89,8 +95,7 @@ static const choice_t KINDS[] = {
     {"attitude", SIM_KIND_ATTITUDE}, {"differentiator", SIM_KIND_DIFFERENTIATOR}, {NULL, 0}};
 static const choice_t LESO_METHODS[] = {{"zoh", LADRC_LESO_ZOH}, {"euler", LADRC_LESO_EULER}, {NULL, 0}};
 static const choice_t TUNE_MODES[] = {{"none", SIM_TUNE_NONE}, {"margins", SIM_TUNE_MARGINS}, {NULL, 0}};
-static const choice_t HP_FREQ_MODES[] = {
-    {"known", LADRC_HP_FREQ_KNOWN}, {"online", LADRC_HP_FREQ_ONLINE}, {NULL, 0}};
+static const choice_t HP_FREQ_MODES[] = {{"known", LADRC_HP_FREQ_KNOWN}, {"online", LADRC_HP_FREQ_ONLINE}, {NULL, 0}};
 
 #define CTRL_BIT(id) (1u << (id))
 #define C_HP CTRL_BIT(SIM_CTRL_HP_MLADRC)
@@ -135,14 +140,14 @@ const key_def_t SCHEMA_KEYS[] = {
     {KEY(SEC_ROTORS, "motor_tau_s", V_REAL, SC(motor_tau_s)), .range = R_NONNEGATIVE},
     {KEY(SEC_ROTORS, "tilt_max_deg", V_REAL, SC(tilt_max_rad)), .range = R_TILT, .scale = DEG_TO_RAD},
 
-    {KEY(SEC_SENSORS, "angle_noise_std_deg", V_REAL, SC(angle_noise_std_rad)),
-     .range = R_NONNEGATIVE, .scale = DEG_TO_RAD, .twin = "angle_noise_var_deg2"},
-    {KEY(SEC_SENSORS, "angle_noise_var_deg2", V_REAL, SC(angle_noise_std_rad)),
-     .range = R_NONNEGATIVE, .scale = DEG_TO_RAD, .variance = 1, .twin = "angle_noise_std_deg"},
-    {KEY(SEC_SENSORS, "rate_noise_std_deg_s", V_REAL, SC(rate_noise_std_rad_s)),
-     .range = R_NONNEGATIVE, .scale = DEG_TO_RAD, .twin = "rate_noise_var_deg2_s2"},
-    {KEY(SEC_SENSORS, "rate_noise_var_deg2_s2", V_REAL, SC(rate_noise_std_rad_s)),
-     .range = R_NONNEGATIVE, .scale = DEG_TO_RAD, .variance = 1, .twin = "rate_noise_std_deg_s"},
+    {KEY(SEC_SENSORS, "angle_noise_std_deg", V_REAL, SC(angle_noise_std_rad)), .range = R_NONNEGATIVE,
+     .scale = DEG_TO_RAD, .twin = "angle_noise_var_deg2"},
+    {KEY(SEC_SENSORS, "angle_noise_var_deg2", V_REAL, SC(angle_noise_std_rad)), .range = R_NONNEGATIVE,
+     .scale = DEG_TO_RAD, .variance = 1, .twin = "angle_noise_std_deg"},
+    {KEY(SEC_SENSORS, "rate_noise_std_deg_s", V_REAL, SC(rate_noise_std_rad_s)), .range = R_NONNEGATIVE,
+     .scale = DEG_TO_RAD, .twin = "rate_noise_var_deg2_s2"},
+    {KEY(SEC_SENSORS, "rate_noise_var_deg2_s2", V_REAL, SC(rate_noise_std_rad_s)), .range = R_NONNEGATIVE,
+     .scale = DEG_TO_RAD, .variance = 1, .twin = "rate_noise_std_deg_s"},
     {KEY(SEC_SENSORS, "delay_ticks", V_INT, SC(delay_ticks)), .range = R_DELAY},
     {KEY(SEC_SENSORS, "use_rate", V_CHOICE, SC(use_rate)), .choices = YES_NO},
 
@@ -218,7 +223,10 @@ int schema_find_key(int table, const char *name)
     return -1;
 }
 
-int schema_applies_to(const key_def_t *def, int id) { return (def->controllers & CTRL_BIT(id)) != 0; }
+int schema_applies_to(const key_def_t *def, int id)
+{
+    return (def->controllers & CTRL_BIT(id)) != 0;
+}
 
 /* ---- per-key checks ----------------------------------------------------------- */
 
@@ -258,7 +266,7 @@ int schema_check_range(const key_def_t *def, double v, char *msg, size_t msg_len
         return (v >= SIM_CONTROL_DT_MIN_S && v <= SIM_CONTROL_DT_MAX_S)
                    ? 0
                    : refuse(msg, msg_len, "%s must be between %g and %g", def->name, SIM_CONTROL_DT_MIN_S,
-                          SIM_CONTROL_DT_MAX_S);
+                            SIM_CONTROL_DT_MAX_S);
     case R_SUBSTEPS:
         return (v >= 1.0 && v <= SIM_PLANT_SUBSTEPS_MAX)
                    ? 0

@@ -74,19 +74,19 @@ typedef struct {
 } choice_t;
 
 typedef struct {
-    int section;           /* SEC_*; SEC_CONTROLLER for every [controller NAME] */
+    int section; /* SEC_*; SEC_CONTROLLER for every [controller NAME] */
     const char *name;
     value_type_t type;
-    size_t offset;         /* in sim_scenario_t, or in sim_overrides_t for [controller] */
-    size_t offset2;        /* V_WINDOW: where TO goes */
+    size_t offset;  /* in sim_scenario_t, or in sim_overrides_t for [controller] */
+    size_t offset2; /* V_WINDOW: where TO goes */
     range_t range;
-    double scale;          /* file unit -> stored unit (1 when 0) */
-    int variance;          /* stores sqrt(value) * scale */
+    double scale; /* file unit -> stored unit (1 when 0) */
+    int variance; /* stores sqrt(value) * scale */
     const choice_t *choices;
-    int kind;              /* FOR_*; FOR_BOTH: the section's */
-    int required;          /* in a scenario of the key's kind */
-    unsigned controllers;  /* [controller]: the controllers it applies to */
-    const char *twin;      /* another key that sets the same field */
+    int kind;             /* FOR_*; FOR_BOTH: the section's */
+    int required;         /* in a scenario of the key's kind */
+    unsigned controllers; /* [controller]: the controllers it applies to */
+    const char *twin;     /* another key that sets the same field */
 } key_def_t;
 
 /* The key table; key indices are positions in it. SCHEMA_MAX_KEYS bounds

@@ -14,4 +14,7 @@ double sim_signal_eval_memo(const sim_signal_t *sig, double t_s, sim_expr_memo_t
     return 0.0;
 }
 
-double sim_signal_eval(const sim_signal_t *sig, double t_s) { return sim_signal_eval_memo(sig, t_s, NULL); }
+double sim_signal_eval(const sim_signal_t *sig, double t_s)
+{
+    return sim_signal_eval_memo(sig, t_s, NULL);
+}

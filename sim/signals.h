@@ -19,7 +19,7 @@ typedef struct {
     double from_s[SIM_MAX_PIECES];
     double to_s[SIM_MAX_PIECES];
     sim_expr_t expr[SIM_MAX_PIECES];
-    double scale;      /* applied to the expression's value: deg -> rad for references */
+    double scale; /* applied to the expression's value: deg -> rad for references */
     int n_pieces;
 } sim_signal_t;
 

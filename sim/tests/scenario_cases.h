@@ -33,8 +33,13 @@
 static sim_scenario_t sc;
 static sim_parse_error_t err;
 
-void setUp(void) { memset(&err, 0, sizeof err); }
-void tearDown(void) {}
+void setUp(void)
+{
+    memset(&err, 0, sizeof err);
+}
+void tearDown(void)
+{
+}
 
 static inline void assert_close(double expected, double actual, const char *what)
 {

@@ -14,7 +14,8 @@ static void test_structure_errors(void)
         {"[ ]\n", 1, 3, "expected a section name"},
         {"[run extra]\n", 1, 6, "unexpected 'extra' in the section header"},
         {"[controller]\n", 1, 12, "expected a controller name after 'controller'"},
-        {"[controller PDI]\n", 1, 13, "unknown controller 'PDI' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, CASCADED or INDI)"},
+        {"[controller PDI]\n", 1, 13,
+         "unknown controller 'PDI' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, CASCADED or INDI)"},
         {"[controller PID PID]\n", 1, 17, "unexpected 'PID' in the section header"},
         {"[run]\nduration_s = 1\n\n[run]\n", 4, 1, "section [run] already given on line 1"},
         {"[run]\nduration_s = 1\n[controller PID]\n[controller PID]\n", 4, 1,
@@ -129,7 +130,8 @@ static void test_signal_errors_point_into_the_expression(void)
         {"[disturbance]\nroll = 2 3 .. 4 : 1\n", 2, 8, "expected a number, got '2 3'"},
         {"[disturbance]\nroll = 2 : 1\n", 2, 8, "expected 'FROM .. TO' before ':'"},
         {"[disturbance]\nroll = 2 .. 6 1\n", 2, 10, "expected ':' between the window and the expression"},
-        {"[disturbance]\nroll = 2 .. 6 : 1\nroll = 5 .. 8 : 2\n", 3, 8, "window (5, 8] overlaps the one given on line 2"},
+        {"[disturbance]\nroll = 2 .. 6 : 1\nroll = 5 .. 8 : 2\n", 3, 8,
+         "window (5, 8] overlaps the one given on line 2"},
         {"[disturbance]\nroll = 1\nroll = 5 .. 8 : 2\n", 3, 8, "window (5, 8] overlaps the one given on line 2"},
         {"[disturbance]\nroll = 5 .. 8 : 2\nroll = 1\n", 3, 8, "window (-inf, inf] overlaps the one given on line 2"},
         {"[disturbance]\nroll = .. 6 : 2\nroll = 5 .. : 1\n", 3, 8, "window (5, inf] overlaps the one given on line 2"},
@@ -146,8 +148,7 @@ static void test_errors_checked_after_the_whole_file(void)
         {"", 1, 1, "missing required key 'duration_s' in [run]"},
         {"[vehicle]\nmass_kg = 1\n", 1, 1, "missing required key 'duration_s' in [run]"},
         {"[vehicle]\nmass_kg = 1\n[run]\nseed = 3\n", 3, 1, "missing required key 'duration_s' in [run]"},
-        {"[run]\nkind = differentiator\nduration_s = 1\n", 1, 1,
-         "missing required key 'signal' in [differentiator]"},
+        {"[run]\nkind = differentiator\nduration_s = 1\n", 1, 1, "missing required key 'signal' in [differentiator]"},
         {"[run]\nkind = differentiator\nduration_s = 1\n[differentiator]\nsignal = t\n", 4, 1,
          "missing required key 'derivative' in [differentiator]"},
         {"[vehicle]\nmass_kg = 1\n[run]\nkind = differentiator\nduration_s = 1\n[differentiator]\n"
@@ -164,7 +165,8 @@ static void test_errors_checked_after_the_whole_file(void)
         {"[run]\nplant_substeps = 2\nkind = differentiator\nduration_s = 1\n[differentiator]\nsignal = t\n"
          "derivative = 1\n",
          2, 1, "'plant_substeps' does not apply to kind = differentiator"},
-        {"[run]\nduration_s = 0.01\ncontrol_dt_s = 0.02\n", 3, 16, "control_dt_s (0.02) must not exceed duration_s (0.01)"},
+        {"[run]\nduration_s = 0.01\ncontrol_dt_s = 0.02\n", 3, 16,
+         "control_dt_s (0.02) must not exceed duration_s (0.01)"},
         {"[run]\nduration_s = 0.0005\n", 2, 14, "control_dt_s (0.001) must not exceed duration_s (0.0005)"},
         {"[metrics]\nerror_window_s = 0 31\n[run]\nduration_s = 30\n", 2, 18,
          "error_window_s ends after the run (duration_s = 30)"},
@@ -240,7 +242,7 @@ static void test_runs_at_the_limits_are_accepted(void)
     TEST_ASSERT_EQUAL_INT(4, sc.n_controllers);
     /* at 10 Hz PID only: LADRC's default wc = 15 rad/s needs wc dt < 1 */
     parse_ok("[run]\nduration_s = 1\ncontrol_dt_s = 0.1\nplant_substeps = 2\ncontrollers = PID\n");
-    parse_ok("[run]\nduration_s = 1\ncontrol_dt_s = 0.005\n"); /* every controller at 200 Hz */
+    parse_ok("[run]\nduration_s = 1\ncontrol_dt_s = 0.005\n");         /* every controller at 200 Hz */
     parse_ok("[run]\nduration_s = 1\n[rotors]\nmotor_tau_s = 1e-4\n"); /* plant step = the lag */
     parse_ok("[run]\nkind = differentiator\nduration_s = 1\ncontrol_dt_s = 0.1\n[differentiator]\nsignal = t\n"
              "derivative = 1\n");
@@ -291,8 +293,7 @@ static void test_values_the_library_refuses_are_errors_at_their_key(void)
         /* actuator models the library does not take: at the key that sets them */
         {"[run]\nduration_s = 1\n[rotors]\nmotor_tau_s = 2\n", 4, 15, "HP-MLADRC", LADRC_ERR_MOTOR_TAU_S},
         {"[run]\nduration_s = 1\n[sensors]\ndelay_ticks = 9\n", 4, 15, "HP-MLADRC", LADRC_ERR_DELAY_TICKS},
-        {"[run]\nduration_s = 1\n[controller LADRC]\nmodel_delay_ticks = 12\n", 4, 21, "LADRC",
-         LADRC_ERR_DELAY_TICKS},
+        {"[run]\nduration_s = 1\n[controller LADRC]\nmodel_delay_ticks = 12\n", 4, 21, "LADRC", LADRC_ERR_DELAY_TICKS},
         {"[run]\nduration_s = 1\n[controller LP-MLADRC]\nmodel_motor_tau_s = 1.5\n", 4, 21, "LP-MLADRC",
          LADRC_ERR_MOTOR_TAU_S},
         /* INDI's gains beyond the sampled loop's bound, its filter beyond Nyquist */
@@ -303,8 +304,8 @@ static void test_values_the_library_refuses_are_errors_at_their_key(void)
         {"[run]\nduration_s = 1\ncontrollers = INDI\n[controller INDI]\nindi_filter_rad_s = 4000\n", 5, 21, "INDI",
          LADRC_ERR_INDI_FILTER},
         /* CASCADED's gains: at their key */
-        {"[run]\nduration_s = 1\ncontrollers = CASCADED\n[controller CASCADED]\ncas_att_kp = 2000\n", 5, 14,
-         "CASCADED", LADRC_ERR_CAS_ATT_KP},
+        {"[run]\nduration_s = 1\ncontrollers = CASCADED\n[controller CASCADED]\ncas_att_kp = 2000\n", 5, 14, "CASCADED",
+         LADRC_ERR_CAS_ATT_KP},
         {"[run]\nduration_s = 1\ncontrollers = LADRC CASCADED\n[controller CASCADED]\ncas_rate_max_deg_s = 6000\n", 5,
          22, "CASCADED", LADRC_ERR_CAS_RATE_MAX},
         /* combinations */

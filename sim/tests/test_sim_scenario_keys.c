@@ -277,7 +277,8 @@ static void test_tune_keys_land_in_their_controller_with_their_defaults(void)
     TEST_ASSERT_EQUAL_INT(8, sc.tune_line[SIM_CTRL_PID]);
     TEST_ASSERT_EQUAL_INT(0, sc.tune_line[SIM_CTRL_HP_MLADRC]);
     /* parsing tunes nothing: the gains stay the library's until sim_tune_controller runs */
-    for (int id = 0; id < SIM_CTRL_COUNT; ++id) TEST_ASSERT_EQUAL_INT(0, sc.tuning[id].tuned);
+    for (int id = 0; id < SIM_CTRL_COUNT; ++id)
+        TEST_ASSERT_EQUAL_INT(0, sc.tuning[id].tuned);
     assert_close(45.0, SIM_TUNE_PM_DEG_DEFAULT, "default PM target");
     assert_close(6.0, SIM_TUNE_GM_DB_DEFAULT, "default GM target");
 }
@@ -285,8 +286,7 @@ static void test_tune_keys_land_in_their_controller_with_their_defaults(void)
 static void test_tune_errors_name_the_key(void)
 {
     static const bad_case_t cases[] = {
-        {"[run]\nduration_s = 1\n[controller LADRC]\ntune = auto\n", 4, 8,
-         "expected none or margins, got 'auto'"},
+        {"[run]\nduration_s = 1\n[controller LADRC]\ntune = auto\n", 4, 8, "expected none or margins, got 'auto'"},
         {"[run]\nduration_s = 1\n[controller LADRC]\ntune = margins\nwc_rad_s = 20\n", 5, 1,
          "'wc_rad_s' conflicts with tune = margins (line 4), which chooses the gains: give one of them"},
         {"[run]\nduration_s = 1\n[controller HP-MLADRC]\nwo_rad_s = 50\ntune = margins\n", 4, 1,
@@ -422,11 +422,13 @@ static void test_indi_keys_land_and_indi_needs_the_rate(void)
     }
     TEST_ASSERT_EQUAL_INT(2, sc.n_controllers);
     /* an INDI key on another controller is an error */
-    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_parse(&sc, "[run]\nduration_s = 1\n[controller LADRC]\nindi_filter_rad_s = 9\n",
-                                                 "bad.ini", &err));
+    TEST_ASSERT_EQUAL_INT(
+        -1,
+        sim_scenario_parse(&sc, "[run]\nduration_s = 1\n[controller LADRC]\nindi_filter_rad_s = 9\n", "bad.ini", &err));
     /* without the measured rate INDI cannot fly: refused where it is listed ... */
-    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_parse(&sc, "[run]\nduration_s = 1\ncontrollers = INDI\n[sensors]\nuse_rate = no\n",
-                                                 "bad.ini", &err));
+    TEST_ASSERT_EQUAL_INT(
+        -1, sim_scenario_parse(&sc, "[run]\nduration_s = 1\ncontrollers = INDI\n[sensors]\nuse_rate = no\n", "bad.ini",
+                               &err));
     TEST_ASSERT_EQUAL_STRING("INDI needs the measured rate ([sensors] use_rate = yes)", err.message);
     TEST_ASSERT_EQUAL_INT(5, err.line);
     /* ... and kept for --controllers where it is not */

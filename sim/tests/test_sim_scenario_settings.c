@@ -14,9 +14,13 @@ static void test_settings_replace_the_files_values(void)
 {
     const char *text = "[run]\nduration_s = 2\nseed = 5\n[reference]\nroll = 0 .. 1 : 3\nroll = 1 .. : 4\n"
                        "[sensors]\nangle_noise_var_deg2 = 4\n[controller LADRC]\nwc_rad_s = 10\n";
-    const char *sets[] = {"run.seed=9", "controller:LADRC.wc_rad_s=20", "controller PID.pid_kp = 2",
-                          "reference.roll=.. 0.5: 7", "reference.roll=0.5 ..: 8",
-                          "sensors.angle_noise_std_deg=1", "metrics.settle_band_deg=2"};
+    const char *sets[] = {"run.seed=9",
+                          "controller:LADRC.wc_rad_s=20",
+                          "controller PID.pid_kp = 2",
+                          "reference.roll=.. 0.5: 7",
+                          "reference.roll=0.5 ..: 8",
+                          "sensors.angle_noise_std_deg=1",
+                          "metrics.settle_band_deg=2"};
     TEST_ASSERT_EQUAL_INT_MESSAGE(0, parse_with(text, sets, 7), err.message);
     TEST_ASSERT_TRUE(sc.seed == 9u);
     assert_close(20.0, sc.overrides[SIM_CTRL_LADRC].wc_rad_s, "LADRC wc");
@@ -47,8 +51,9 @@ static void test_setting_errors_name_the_setting_and_column(void)
         {"runs.seed=3", 1, "unknown section 'runs'"},
         {"run.sed=3", 5, "unknown key 'sed' in [run]"},
         {"controller:LADRC.pid_kp=1", 18, "'pid_kp' does not apply to LADRC"},
-        {"controller:XY.wc_rad_s=1", 12, "unknown controller 'XY' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, "
-                                         "CASCADED or INDI)"},
+        {"controller:XY.wc_rad_s=1", 12,
+         "unknown controller 'XY' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, "
+         "CASCADED or INDI)"},
         {"controller.wc_rad_s=1", 11, "expected a controller name after 'controller' ('controller:NAME.KEY=VALUE')"},
         {"controller:LADRC.wc_rad_s=-1", 27, "wc_rad_s must be > 0"},
         {"run.duration_s=", 16, "missing value for 'duration_s'"},
@@ -104,8 +109,9 @@ static void test_controller_lists_take_commas_spaces_or_both(void)
         {",LADRC", 0, "expected a controller name before ','"},
         {"LADRC,,PID", 6, "expected a controller name before ','"},
         {"LADRC PID,LADRC", 10, "controller 'LADRC' listed twice"},
-        {"LADRC;PID", 0, "unknown controller 'LADRC;PID' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, CASCADED or "
-                         "INDI)"},
+        {"LADRC;PID", 0,
+         "unknown controller 'LADRC;PID' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, CASCADED or "
+         "INDI)"},
         {"", 0, "expected a controller name"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {

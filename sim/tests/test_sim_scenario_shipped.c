@@ -114,8 +114,12 @@ static void test_shipped_steps_scenario(void)
 
 static void test_shipped_steps_and_real_scenarios_tune_every_controller(void)
 {
-    static const char *const files[] = {"steps.ini",           "real_paper_lag20.ini", "real_paper_lag30.ini",
-                                        "real_paper_lag40.ini", "real_heavy_lag20.ini", "real_heavy_lag30.ini",
+    static const char *const files[] = {"steps.ini",
+                                        "real_paper_lag20.ini",
+                                        "real_paper_lag30.ini",
+                                        "real_paper_lag40.ini",
+                                        "real_heavy_lag20.ini",
+                                        "real_heavy_lag30.ini",
                                         "real_heavy_lag40.ini"};
     for (unsigned f = 0; f < sizeof files / sizeof files[0]; ++f) {
         load_ok(files[f]);
@@ -123,7 +127,8 @@ static void test_shipped_steps_and_real_scenarios_tune_every_controller(void)
         for (int id = 0; id < SIM_CTRL_COUNT; ++id) {
             TEST_ASSERT_EQUAL_INT_MESSAGE(SIM_TUNE_MARGINS, sc.overrides[id].tune, files[f]);
         }
-        if (f == 0) continue;
+        if (f == 0)
+            continue;
         TEST_ASSERT_EQUAL_INT_MESSAGE(0, sc.rotors_ideal, files[f]);
         TEST_ASSERT_TRUE_MESSAGE(sc.motor_tau_s >= 0.02 && sc.motor_tau_s <= 0.04, files[f]);
         TEST_ASSERT_TRUE_MESSAGE(sc.delay_ticks >= 1 && sc.delay_ticks <= 2, files[f]);
