@@ -74,6 +74,32 @@ double sim_expr_eval(const sim_expr_t *expr, double t_s);
 /* The same with the function results kept in / taken from memo (NULL: none). */
 double sim_expr_eval_memo(const sim_expr_t *expr, double t_s, sim_expr_memo_t *memo);
 
+/* Several instants at once: out[k] = sim_expr_eval_memo(expr, t_s[k], .)
+ * bit for bit (NaN results aside, as above), for k < n <= SIM_EXPR_BATCH_MAX
+ * (more are not evaluated); each instruction runs over all n values, so a
+ * program is interpreted once per batch rather than once per instant. */
+#define SIM_EXPR_BATCH_MAX 32
+
+/* Results of the costly functions on a whole batch of arguments, shared by
+ * several expressions evaluated on the same instants (the disturbances of
+ * three axes): a hit needs the same function on the same arguments, bit
+ * for bit, and returns exactly what the calls would. */
+typedef struct {
+    double arg[SIM_EXPR_MEMO_SIZE][SIM_EXPR_BATCH_MAX];
+    double result[SIM_EXPR_MEMO_SIZE][SIM_EXPR_BATCH_MAX];
+    unsigned char fn[SIM_EXPR_MEMO_SIZE];
+    int len[SIM_EXPR_MEMO_SIZE];
+    int n;      /* entries filled */
+    int next;   /* entry replaced next once full */
+} sim_expr_batch_memo_t;
+
+/* Empties a batch memo. */
+void sim_expr_batch_memo_clear(sim_expr_batch_memo_t *memo);
+
+/* memo may be NULL: none. */
+void sim_expr_eval_batch(const sim_expr_t *expr, const double *t_s, int n, double *out,
+                         sim_expr_batch_memo_t *memo);
+
 /* The same value from the postfix program as written, without folding or
  * memo: the reference the evaluated form is tested against. */
 double sim_expr_eval_postfix(const sim_expr_t *expr, double t_s);

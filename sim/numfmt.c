@@ -39,7 +39,7 @@ static int round_clear(double m, double *r)
     if (fabs(frac - 0.5) < TIE_MARGIN) {
         return 0;
     }
-    *r = frac > 0.5 ? fl + 1.0 : fl;
+    *r = fl + (double)(frac > 0.5); /* no branch: the digit after is anything */
     return 1;
 }
 
@@ -79,9 +79,10 @@ static int count_digits(uint64_t v)
     return n;
 }
 
-int sim_fmt_g(char *buf, double x, int precision)
+/* "%.<p>g" for any p (1 .. 15 through the scaled integer, others and the
+ * cases it cannot decide through snprintf). */
+static int fmt_g_general(char *buf, double x, int p)
 {
-    const int p = precision < 1 ? 1 : precision;
     if (p > 15 || isinf(x)) {
         return slow_g(buf, x, p);
     }
@@ -172,6 +173,109 @@ int sim_fmt_g(char *buf, double x, int precision)
     }
     *o = '\0';
     return (int)(o - buf);
+}
+
+/* Precisions up to this many digits take the short path: the digits of one
+ * 32-bit integer, written 8 at a time. */
+#define SHORT_DIGITS 8
+
+/* The 8 decimal digits of v < 10^8, zero-padded, into d[0..8). */
+static void write8(uint32_t v, char *d)
+{
+    const uint32_t hi = v / 10000u, lo = v - 10000u * hi;
+    const uint32_t h1 = hi / 100u, h2 = hi - 100u * h1, l1 = lo / 100u, l2 = lo - 100u * l1;
+    memcpy(d, &PAIRS[2u * h1], 2);
+    memcpy(d + 2, &PAIRS[2u * h2], 2);
+    memcpy(d + 4, &PAIRS[2u * l1], 2);
+    memcpy(d + 6, &PAIRS[2u * l2], 2);
+}
+
+/* "%.<p>g" for p <= SHORT_DIGITS of the values the time series mostly hold:
+ * from 1e-300 to 1e300 in magnitude. The same scaling, tie margin and rounding
+ * as fmt_g_general, with fewer branches: fixed-size copies (the buffer has
+ * room for SIM_NUMFMT_MAX chars, beyond what is written). Returns -1 for
+ * everything else, and for whatever fmt_g_general would hand to snprintf. */
+static int fmt_g_short(char *buf, double x, int p)
+{
+    const double ax = fabs(x);
+    if (!(ax >= 1e-300 && ax <= 1e300)) {
+        return -1; /* zero, NaN, infinite, tiny or huge: fmt_g_general's */
+    }
+    uint64_t bits;
+    memcpy(&bits, &ax, sizeof bits);
+    const int be = (int)(bits >> 52) - 1022; /* ax in [2^(be-1), 2^be) */
+    /* floor((be - 1) log10(2)): the decimal exponent, or one below it */
+    const int q = (be - 1) * 78913;
+    int e = q >= 0 ? q / (1 << 18) : -((-q + (1 << 18) - 1) / (1 << 18));
+    double m;
+    if (!scale10(ax, p - 1 - e, &m)) {
+        return -1;
+    }
+    const double low = POW10[p - 1] - 0.5, high = POW10[p] - 0.5;
+    if (m >= high - TIE_MARGIN) { /* one too low, or rounds up to the next power */
+        ++e;
+        if (fabs(m - high) < TIE_MARGIN || !scale10(ax, p - 1 - e, &m)) {
+            return -1;
+        }
+    }
+    double r;
+    if (!(m > low + TIE_MARGIN && m < high - TIE_MARGIN) || !round_clear(m, &r)) {
+        return -1;
+    }
+    char d[2 * SHORT_DIGITS];
+    memset(d + SHORT_DIGITS, '0', SHORT_DIGITS); /* read by the fixed-size copies, never written out */
+    write8((uint32_t)r, d);
+    const char *digits = d + SHORT_DIGITS - p; /* 10^(p-1) <= r < 10^p: p digits */
+    int nd = p;
+    while (nd > 1 && digits[nd - 1] == '0') {
+        --nd; /* %g drops trailing zeros */
+    }
+    char *o = buf;
+    *o = '-';
+    o += x < 0.0;
+    if (e < -4 || e >= p) { /* d.ddde+XX */
+        *o = digits[0];
+        o += 1;
+        if (nd > 1) {
+            *o = '.';
+            memcpy(o + 1, digits + 1, SHORT_DIGITS);
+            o += nd;
+        }
+        o[0] = 'e';
+        o[1] = e < 0 ? '-' : '+';
+        o += 2;
+        const unsigned ae = (unsigned)(e < 0 ? -e : e); /* below 310 */
+        *o = (char)('0' + ae / 100u);
+        o += ae >= 100u;
+        memcpy(o, &PAIRS[2u * (ae % 100u)], 2);
+        o += 2;
+    } else if (e >= 0) { /* e + 1 integer digits, then the fraction if any */
+        memcpy(o, digits, SHORT_DIGITS);
+        o += e + 1;
+        if (nd > e + 1) {
+            *o = '.';
+            memcpy(o + 1, digits + e + 1, SHORT_DIGITS);
+            o += nd - e;
+        }
+    } else { /* "0." and -e - 1 zeros before the digits */
+        memcpy(o, "0.000000", SHORT_DIGITS);
+        o += 1 - e;
+        memcpy(o, digits, SHORT_DIGITS);
+        o += nd;
+    }
+    *o = '\0';
+    return (int)(o - buf);
+}
+
+int sim_fmt_g(char *buf, double x, int precision)
+{
+    const int p = precision < 1 ? 1 : precision;
+    if (x == 0.0) { /* the zeros of a time series: many */
+        strcpy(buf, signbit(x) ? "-0" : "0");
+        return signbit(x) ? 2 : 1;
+    }
+    const int n = p <= SHORT_DIGITS ? fmt_g_short(buf, x, p) : -1;
+    return n >= 0 ? n : fmt_g_general(buf, x, p);
 }
 
 int sim_fmt_f4(char *buf, double x)

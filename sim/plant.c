@@ -3,6 +3,14 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <string.h>
+
+/* The lane kernels below are inlined with their widths as constants. */
+#if defined(__GNUC__)
+#define SIM_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define SIM_ALWAYS_INLINE inline
+#endif
 
 /* RK4 state: angles, rates, rotor w^2 (the last four only move with a lag). */
 enum { N_ANGLE = 0, N_RATE = 3, N_ROTOR = 6, N_STATE = 10 };
@@ -63,14 +71,23 @@ void sim_plant_forces(const sim_vehicle_t *v, const double w2[4], double *thrust
     torque_Nm[2] = v->yaw_coeff_Nm_s2 * (-w2[0] + w2[1] - w2[2] + w2[3]);
 }
 
-static void body_accel(const sim_vehicle_t *v, const double rate[3], const double torque[3],
-                       const double dist[3], double accel[3])
+/* Angular acceleration of one axis (eq. 2): own torque, the gyroscopic term
+ * jd * ra * rb of the other two rates, drag on the own rate, then the
+ * disturbance. The one formula of the plant's dynamics. */
+static inline double axis_accel(double torque, double jd, double ra, double rb, double kt, double rate,
+                                double j, double dist)
+{
+    return (torque + jd * ra * rb - kt * rate) / j + dist;
+}
+
+static inline void body_accel(const sim_vehicle_t *v, const double rate[3], const double torque[3],
+                              const double dist[3], double accel[3])
 {
     const double *j = v->inertia_kg_m2;
     const double kt = v->rot_drag_Nm_s;
-    accel[0] = (torque[0] + (j[1] - j[2]) * rate[1] * rate[2] - kt * rate[0]) / j[0] + dist[0];
-    accel[1] = (torque[1] + (j[2] - j[0]) * rate[0] * rate[2] - kt * rate[1]) / j[1] + dist[1];
-    accel[2] = (torque[2] + (j[0] - j[1]) * rate[1] * rate[0] - kt * rate[2]) / j[2] + dist[2];
+    accel[0] = axis_accel(torque[0], j[1] - j[2], rate[1], rate[2], kt, rate[0], j[0], dist[0]);
+    accel[1] = axis_accel(torque[1], j[2] - j[0], rate[0], rate[2], kt, rate[1], j[1], dist[1]);
+    accel[2] = axis_accel(torque[2], j[0] - j[1], rate[1], rate[0], kt, rate[2], j[2], dist[2]);
 }
 
 void sim_plant_accel(const sim_plant_t *p, const double torque_Nm[3], const double dist[3],
@@ -80,31 +97,64 @@ void sim_plant_accel(const sim_plant_t *p, const double torque_Nm[3], const doub
     body_accel(&p->v, p->rate_rad_s, torque_Nm, dist != NULL ? dist : none, accel_out);
 }
 
-/* dx/dt for the held (clamped) command and the disturbance d at the stage
- * time. Without lag the torque is the command's, worked out once per step;
- * with it, the rotors' w^2 are state and the torque follows them. */
-static void derivative(const sim_vehicle_t *v, int lag, const double cmd[4], const double cmd_torque[3],
-                       const double x[N_STATE], const double d[3], double dx[N_STATE])
+/* The plants of a group side by side: each state variable a row, one plant
+ * per column (lane), so that every step of the RK4 loops over the plants
+ * innermost and the CPU works on their independent chains at once. Each
+ * lane's arithmetic is that of a plant stepped alone, in the same order. */
+typedef double lanes_t[SIM_PLANT_GROUP_MAX];
+
+/* dx/dt of every lane for the held (clamped) command and the disturbance d
+ * at the stage time (the same for all lanes). Without lag the torque is the
+ * command's, worked out once per step; with it, the rotors' w^2 are state
+ * and the torque follows them. */
+static SIM_ALWAYS_INLINE void derivative(const sim_vehicle_t *v, int lag, int n, lanes_t cmd[4],
+                              lanes_t cmd_torque[3], lanes_t x[N_STATE], const double d[3],
+                              lanes_t dx[N_STATE])
 {
-    double lag_torque[3];
-    const double *torque = cmd_torque;
-    if (lag) {
-        sim_plant_forces(v, &x[N_ROTOR], NULL, lag_torque);
-        torque = lag_torque;
-        for (int i = 0; i < 4; ++i) {
-            dx[N_ROTOR + i] = (cmd[i] - x[N_ROTOR + i]) / v->motor_tau_s;
+    for (int l = 0; l < n; ++l) {
+        double torque[3], rate[3], accel[3];
+        if (lag) {
+            const double w2[4] = {x[N_ROTOR][l], x[N_ROTOR + 1][l], x[N_ROTOR + 2][l], x[N_ROTOR + 3][l]};
+            sim_plant_forces(v, w2, NULL, torque);
+            for (int i = 0; i < 4; ++i) {
+                dx[N_ROTOR + i][l] = (cmd[i][l] - x[N_ROTOR + i][l]) / v->motor_tau_s;
+            }
+        } else {
+            for (int i = 0; i < 3; ++i) {
+                torque[i] = cmd_torque[i][l];
+            }
+        }
+        for (int i = 0; i < 3; ++i) {
+            rate[i] = x[N_RATE + i][l];
+            dx[N_ANGLE + i][l] = rate[i];
+        }
+        body_accel(v, rate, torque, d, accel);
+        for (int i = 0; i < 3; ++i) {
+            dx[N_RATE + i][l] = accel[i];
         }
     }
-    for (int i = 0; i < 3; ++i) {
-        dx[N_ANGLE + i] = x[N_RATE + i];
-    }
-    body_accel(v, &x[N_RATE], torque, d, &dx[N_RATE]);
 }
 
-static void disturbance_at(sim_disturbance_fn dist, void *ctx, double t, double d[3])
+/* Where a step's disturbances come from: a table by stage (3 per substep,
+ * in the order sim_plant_stage_times lists their times), else a call at the
+ * stage time, else none. */
+typedef struct {
+    const double (*table)[3];
+    sim_disturbance_fn dist;
+    void *ctx;
+} source_t;
+
+/* The disturbance at stage `stage` (0: t, 1: t + h/2, 2: t + h) of substep
+ * s, whose time is t. */
+static SIM_ALWAYS_INLINE void disturbance_at(const source_t *src, int s, int stage, double t, double d[3])
 {
-    if (dist != NULL) {
-        dist(t, ctx, d);
+    if (src->table != NULL) {
+        const double *row = src->table[3 * s + stage];
+        d[0] = row[0];
+        d[1] = row[1];
+        d[2] = row[2];
+    } else if (src->dist != NULL) {
+        src->dist(t, src->ctx, d);
     } else {
         d[0] = d[1] = d[2] = 0.0;
     }
@@ -123,32 +173,177 @@ static double stage_time(double t0, double h, int s, int stage)
     return stage == 0 ? t : (stage == 1 ? t + 0.5 * h : t + h);
 }
 
-/* One classical RK4 step of length h from time t0 + s h; the rotor states only take
- * part with a lag (without one their derivative is 0 and they stay put). */
-static void rk4_substep(const sim_vehicle_t *v, int lag, const double cmd[4], const double cmd_torque[3],
-                        double t0, int s, double h, sim_disturbance_fn dist, void *ctx, double x[N_STATE])
+/* y = x + a k for the first m state rows of every lane (an RK4 stage's point). */
+static SIM_ALWAYS_INLINE void stage_point(int m, int n, lanes_t x[N_STATE], double a, lanes_t k[N_STATE],
+                               lanes_t y[N_STATE])
 {
-    const int n = lag ? N_STATE : N_ROTOR;
-    double k1[N_STATE], k2[N_STATE], k3[N_STATE], k4[N_STATE], y[N_STATE], d[3];
-    disturbance_at(dist, ctx, stage_time(t0, h, s, 0), d);
-    derivative(v, lag, cmd, cmd_torque, x, d, k1);
-    for (int i = 0; i < n; ++i) {
-        y[i] = x[i] + 0.5 * h * k1[i];
+    for (int i = 0; i < m; ++i) {
+        for (int l = 0; l < n; ++l) {
+            y[i][l] = x[i][l] + a * k[i][l];
+        }
     }
-    disturbance_at(dist, ctx, stage_time(t0, h, s, 1), d); /* the same for k2 and k3 */
-    derivative(v, lag, cmd, cmd_torque, y, d, k2);
-    for (int i = 0; i < n; ++i) {
-        y[i] = x[i] + 0.5 * h * k2[i];
+}
+
+/* One classical RK4 step of length h from time t0 + s h for every lane; the
+ * rotor states only take part with a lag (without one their derivative is 0
+ * and they stay put). */
+static SIM_ALWAYS_INLINE void rk4_substep(const sim_vehicle_t *v, int lag, int n, lanes_t cmd[4],
+                               lanes_t cmd_torque[3], double t0, int s, double h, const source_t *src,
+                               lanes_t x[N_STATE])
+{
+    const int m = lag ? N_STATE : N_ROTOR;
+    lanes_t k1[N_STATE], k2[N_STATE], k3[N_STATE], k4[N_STATE], y[N_STATE];
+    double d[3];
+    disturbance_at(src, s, 0, stage_time(t0, h, s, 0), d);
+    derivative(v, lag, n, cmd, cmd_torque, x, d, k1);
+    stage_point(m, n, x, 0.5 * h, k1, y);
+    disturbance_at(src, s, 1, stage_time(t0, h, s, 1), d); /* the same for k2 and k3 */
+    derivative(v, lag, n, cmd, cmd_torque, y, d, k2);
+    stage_point(m, n, x, 0.5 * h, k2, y);
+    derivative(v, lag, n, cmd, cmd_torque, y, d, k3);
+    stage_point(m, n, x, h, k3, y);
+    disturbance_at(src, s, 2, stage_time(t0, h, s, 2), d);
+    derivative(v, lag, n, cmd, cmd_torque, y, d, k4);
+    const double h6 = h / 6.0;
+    for (int i = 0; i < m; ++i) {
+        for (int l = 0; l < n; ++l) {
+            x[i][l] += h6 * (k1[i][l] + 2.0 * k2[i][l] + 2.0 * k3[i][l] + k4[i][l]);
+        }
     }
-    derivative(v, lag, cmd, cmd_torque, y, d, k3);
-    for (int i = 0; i < n; ++i) {
-        y[i] = x[i] + h * k3[i];
+}
+
+/* The substeps of a step for lanes [0, w); lag and w are constants where it
+ * is called. */
+static SIM_ALWAYS_INLINE void integrate(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4],
+                                        lanes_t cmd_torque[3], int n_sub, double t0, double h,
+                                        const source_t *src, lanes_t x[N_STATE])
+{
+    for (int s = 0; s < n_sub; ++s) {
+        rk4_substep(v, lag, w, cmd, cmd_torque, t0, s, h, src, x);
     }
-    disturbance_at(dist, ctx, stage_time(t0, h, s, 2), d);
-    derivative(v, lag, cmd, cmd_torque, y, d, k4);
-    for (int i = 0; i < n; ++i) {
-        x[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+}
+
+/* integrate() for w lanes (1, 2, 4, 6 or SIM_PLANT_GROUP_MAX), each width
+ * and lag its own code. */
+static SIM_ALWAYS_INLINE void integrate_width(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4],
+                                              lanes_t cmd_torque[3], int n_sub, double t0, double h,
+                                              const source_t *src, lanes_t x[N_STATE])
+{
+#define LANES_CASE(W)                                                        \
+    case W:                                                                  \
+        if (lag) {                                                           \
+            integrate(v, 1, W, cmd, cmd_torque, n_sub, t0, h, src, x);      \
+        } else {                                                             \
+            integrate(v, 0, W, cmd, cmd_torque, n_sub, t0, h, src, x);      \
+        }                                                                    \
+        break;
+    switch (w) {
+        LANES_CASE(1)
+        LANES_CASE(2)
+        LANES_CASE(4)
+        LANES_CASE(6)
+        default: LANES_CASE(SIM_PLANT_GROUP_MAX)
     }
+#undef LANES_CASE
+}
+
+static void integrate_portable(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4], lanes_t cmd_torque[3],
+                               int n_sub, double t0, double h, const source_t *src, lanes_t x[N_STATE])
+{
+    integrate_width(v, lag, w, cmd, cmd_torque, n_sub, t0, h, src, x);
+}
+
+/* On x86-64 the build targets SSE2 (two lanes per instruction); where the
+ * CPU has AVX the same code compiled for it runs four. The operations are
+ * IEEE additions, multiplications and divisions either way, lane by lane,
+ * in the same order, and AVX brings no fused multiply-add (that is FMA, not
+ * enabled here, and contraction is off under -std=c99): the same bits. */
+#if defined(__GNUC__) && defined(__x86_64__)
+#define SIM_PLANT_AVX 1
+__attribute__((target("avx"))) static void integrate_avx(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4],
+                                                         lanes_t cmd_torque[3], int n_sub, double t0, double h,
+                                                         const source_t *src, lanes_t x[N_STATE])
+{
+    integrate_width(v, lag, w, cmd, cmd_torque, n_sub, t0, h, src, x);
+}
+#endif
+
+/* Steps plants[0..n) (n <= SIM_PLANT_GROUP_MAX), all at p0's time with its
+ * vehicle, in lockstep: one dist call per stage time for all. */
+static void step_lanes(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s, int substeps,
+                       const source_t *src)
+{
+    const sim_vehicle_t *v = &plants[0]->v;
+    const int n_sub = substep_count(substeps);
+    const double h = dt_s / n_sub;
+    const double t0 = plants[0]->t_s;
+    const int lag = v->motor_tau_s > 0.0;
+    lanes_t cmd[4], cmd_torque[3], x[N_STATE];
+    for (int l = 0; l < n; ++l) {
+        const sim_plant_t *p = plants[l];
+        double c[4], torque[3];
+        for (int i = 0; i < 4; ++i) {
+            c[i] = clamp_rotor(v, w2_cmd[l][i]);
+            cmd[i][l] = c[i];
+            x[N_ROTOR + i][l] = p->w2_rad2_s2[i];
+        }
+        sim_plant_forces(v, c, NULL, torque);
+        for (int i = 0; i < 3; ++i) {
+            cmd_torque[i][l] = torque[i];
+            x[N_ANGLE + i][l] = p->angle_rad[i];
+            x[N_RATE + i][l] = p->rate_rad_s[i];
+        }
+    }
+    /* The loops over the lanes run over a width known at compile time (the
+     * next of 1, 2, 4, 6, 8), so that they unroll; lanes beyond n repeat
+     * lane 0, their results unused. */
+    const int w = n <= 2 ? n : (n <= 4 ? 4 : (n <= 6 ? 6 : SIM_PLANT_GROUP_MAX));
+    for (int l = n; l < w; ++l) {
+        for (int i = 0; i < 4; ++i) {
+            cmd[i][l] = cmd[i][0];
+        }
+        for (int i = 0; i < 3; ++i) {
+            cmd_torque[i][l] = cmd_torque[i][0];
+        }
+        for (int i = 0; i < N_STATE; ++i) {
+            x[i][l] = x[i][0];
+        }
+    }
+#ifdef SIM_PLANT_AVX
+    if (__builtin_cpu_supports("avx")) {
+        integrate_avx(v, lag, w, cmd, cmd_torque, n_sub, t0, h, src, x);
+    } else
+#endif
+    {
+        integrate_portable(v, lag, w, cmd, cmd_torque, n_sub, t0, h, src, x);
+    }
+    for (int l = 0; l < n; ++l) {
+        sim_plant_t *p = plants[l];
+        for (int i = 0; i < 3; ++i) {
+            p->angle_rad[i] = x[N_ANGLE + i][l];
+            p->rate_rad_s[i] = x[N_RATE + i][l];
+        }
+        for (int i = 0; i < 4; ++i) {
+            p->w2_rad2_s2[i] = lag ? x[N_ROTOR + i][l] : cmd[i][l];
+        }
+        p->t_s = t0 + dt_s;
+    }
+}
+
+/* The same bits (==, but -0 and 0 told apart: clamping returns the limit itself). */
+static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+
+/* Vehicles that give the same arithmetic: plants that can share a group's
+ * constants. */
+static int same_vehicle(const sim_vehicle_t *a, const sim_vehicle_t *b)
+{
+    return same_bits(a->mass_kg, b->mass_kg) && same_bits(a->inertia_kg_m2[0], b->inertia_kg_m2[0]) &&
+           same_bits(a->inertia_kg_m2[1], b->inertia_kg_m2[1]) && same_bits(a->inertia_kg_m2[2], b->inertia_kg_m2[2]) &&
+           same_bits(a->arm_m, b->arm_m) && same_bits(a->thrust_coeff_N_s2, b->thrust_coeff_N_s2) &&
+           same_bits(a->yaw_coeff_Nm_s2, b->yaw_coeff_Nm_s2) && same_bits(a->rot_drag_Nm_s, b->rot_drag_Nm_s) &&
+           same_bits(a->g_m_s2, b->g_m_s2) && a->rotors_ideal == b->rotors_ideal &&
+           same_bits(a->w2_min_rad2_s2, b->w2_min_rad2_s2) && same_bits(a->w2_max_rad2_s2, b->w2_max_rad2_s2) &&
+           same_bits(a->motor_tau_s, b->motor_tau_s);
 }
 
 void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int substeps,
@@ -157,35 +352,66 @@ void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int sub
     if (!(dt_s > 0.0)) {
         return;
     }
-    const int n = substep_count(substeps);
-    const double h = dt_s / n;
-    const double t0 = p->t_s;
-    const int lag = p->v.motor_tau_s > 0.0;
-    double cmd[4], cmd_torque[3], x[N_STATE];
-    for (int i = 0; i < 4; ++i) {
-        cmd[i] = clamp_rotor(&p->v, w2_cmd[i]);
-        x[N_ROTOR + i] = p->w2_rad2_s2[i];
+    sim_plant_t *const one[1] = {p};
+    const double cmd[1][4] = {{w2_cmd[0], w2_cmd[1], w2_cmd[2], w2_cmd[3]}};
+    const source_t src = {NULL, dist, ctx};
+    step_lanes(one, cmd, 1, dt_s, substeps, &src);
+}
+
+/* The group step of both public forms: plants at plants[0]'s time with its
+ * vehicle side by side, then those with another vehicle alone, each with
+ * src; those at another time alone with `other` when it is given (not
+ * stepped otherwise). Returns the number stepped. */
+static int step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s, int substeps,
+                      const source_t *src, const source_t *other)
+{
+    if (!(dt_s > 0.0) || n < 1) {
+        return 0;
     }
-    sim_plant_forces(&p->v, cmd, NULL, cmd_torque);
-    for (int i = 0; i < 3; ++i) {
-        x[N_ANGLE + i] = p->angle_rad[i];
-        x[N_RATE + i] = p->rate_rad_s[i];
-    }
-    for (int s = 0; s < n; ++s) {
-        if (lag) {
-            rk4_substep(&p->v, 1, cmd, cmd_torque, t0, s, h, dist, ctx, x);
-        } else {
-            rk4_substep(&p->v, 0, cmd, cmd_torque, t0, s, h, dist, ctx, x);
+    const sim_plant_t *lead = plants[0];
+    const double t_lead = lead->t_s; /* the lead's time before the step */
+    sim_plant_t *lanes[SIM_PLANT_GROUP_MAX] = {NULL};
+    double cmd[SIM_PLANT_GROUP_MAX][4];
+    int n_lanes = 0;
+    for (int g = 0; g < n; ++g) {
+        if (g == 0 || (n_lanes < SIM_PLANT_GROUP_MAX && same_bits(plants[g]->t_s, t_lead) &&
+                       same_vehicle(&plants[g]->v, &lead->v))) {
+            lanes[n_lanes] = plants[g];
+            for (int i = 0; i < 4; ++i) {
+                cmd[n_lanes][i] = w2_cmd[g][i];
+            }
+            ++n_lanes;
         }
     }
-    for (int i = 0; i < 3; ++i) {
-        p->angle_rad[i] = x[N_ANGLE + i];
-        p->rate_rad_s[i] = x[N_RATE + i];
+    step_lanes(lanes, (const double(*)[4])cmd, n_lanes, dt_s, substeps, src);
+    int stepped = n_lanes;
+    for (int g = 0, l = 0; g < n; ++g) { /* the others, each alone, after the group */
+        if (l < n_lanes && plants[g] == lanes[l]) {
+            ++l;
+            continue;
+        }
+        const source_t *own = same_bits(plants[g]->t_s, t_lead) ? src : other;
+        if (own != NULL) {
+            sim_plant_t *const one[1] = {plants[g]};
+            step_lanes(one, &w2_cmd[g], 1, dt_s, substeps, own);
+            ++stepped;
+        }
     }
-    for (int i = 0; i < 4; ++i) {
-        p->w2_rad2_s2[i] = p->v.motor_tau_s > 0.0 ? x[N_ROTOR + i] : cmd[i];
-    }
-    p->t_s = t0 + dt_s;
+    return stepped;
+}
+
+void sim_plant_step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s,
+                          int substeps, sim_disturbance_fn dist, void *ctx)
+{
+    const source_t src = {NULL, dist, ctx};
+    (void)step_group(plants, w2_cmd, n, dt_s, substeps, &src, &src);
+}
+
+int sim_plant_step_group_table(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s,
+                               int substeps, const double (*d_stage)[3])
+{
+    const source_t src = {d_stage, NULL, NULL};
+    return step_group(plants, w2_cmd, n, dt_s, substeps, &src, NULL);
 }
 
 int sim_plant_stage_times(const sim_plant_t *p, double dt_s, int substeps, double *times_out)

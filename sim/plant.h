@@ -78,6 +78,29 @@ void sim_plant_forces(const sim_vehicle_t *v, const double w2[4], double *thrust
 void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int substeps,
                     sim_disturbance_fn dist, void *ctx);
 
+/* Plants sim_plant_step_group steps side by side. */
+#define SIM_PLANT_GROUP_MAX 8
+
+/* Steps plants[0..n), plant g with w2_cmd[g], each to exactly the state
+ * sim_plant_step(plants[g], w2_cmd[g], dt_s, substeps, dist, ctx) leaves,
+ * bit for bit, but the first SIM_PLANT_GROUP_MAX of them that are at
+ * plants[0]'s time with its vehicle (every field equal) side by side: their
+ * RK4 stages interleaved, independent chains the CPU overlaps, and one dist
+ * call per stage time for all of them (the calls sim_plant_step makes for
+ * one plant). Any other plant is then stepped alone, with its own calls.
+ * Distinct plants only; does nothing when dt_s is not > 0. */
+void sim_plant_step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s,
+                          int substeps, sim_disturbance_fn dist, void *ctx);
+
+/* The same with the disturbances given instead of asked for: d_stage[k]
+ * holds the disturbance at the k-th time sim_plant_stage_times(plants[0],
+ * dt_s, substeps, .) lists (3 per substep; the middle one serves two RK4
+ * stages), and the plants step as if dist had returned those values at
+ * those times. Plants at another time than plants[0] (bit for bit) are not
+ * stepped. Returns the number of plants stepped. */
+int sim_plant_step_group_table(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s,
+                               int substeps, const double (*d_stage)[3]);
+
 /* The times sim_plant_step(p, ., dt_s, substeps, dist, .) will call dist at,
  * in that order, bit for bit: t, t + h/2 and t + h of every substep, 3 per
  * substep (substeps below 1 count as 1), written to times_out; returns their

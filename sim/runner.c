@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "ladrc/attitude.h"
 #include "ladrc/levant.h"
@@ -20,6 +21,9 @@
 #include "setup.h"
 
 #define RAD2DEG (180.0 / 3.14159265358979323846)
+
+/* A group's plants step side by side (sim_plant_step_group). */
+typedef char plant_group_fits_t[SIM_MAX_CONTROLLERS <= SIM_PLANT_GROUP_MAX ? 1 : -1];
 
 long sim_run_ticks(const sim_scenario_t *sc) { return (long)floor(sc->duration_s / sc->control_dt_s + 0.5); }
 
@@ -76,6 +80,7 @@ typedef struct {
     double t_s[STAGES_MAX];
     int slot[STAGES_MAX];         /* its row of value */
     double value[STAGES_MAX][3];  /* by distinct time, in order */
+    double stage[STAGES_MAX][3];  /* by stage time: value[slot[k]] */
     double last_t_s;              /* the last distinct time (NaN: none) */
     int last;                     /* and its row */
 } disturbance_batch_t;
@@ -87,26 +92,179 @@ static void disturbance_batch_init(disturbance_batch_t *b, const sim_scenario_t 
     b->last_t_s = NAN; /* never equal: empty */
 }
 
+/* Metric windows hold (from, to], as signal windows do. */
+static int in_window(const double w[2], double t) { return t > w[0] && t <= w[1]; }
+
+/* The piece of sig whose window (from, to] holds t first, -1 when none does:
+ * the rule of sim_signal_eval (scenario.h). */
+static int signal_piece(const sim_signal_t *sig, double t)
+{
+    for (int i = 0; i < sig->n_pieces; ++i) {
+        const double window[2] = {sig->from_s[i], sig->to_s[i]};
+        if (in_window(window, t)) {
+            return i;
+        }
+    }
+    return -1;
+}
+
+/* The piece holding every instant of [lo, hi] when that is one piece's
+ * alone (no earlier piece's window reaches into the range); -2 when the
+ * instants may take different pieces, -1 when none holds any of them. */
+static int signal_piece_of_range(const sim_signal_t *sig, double lo, double hi)
+{
+    if (!(lo <= hi)) {
+        return -2; /* NaN: instant by instant */
+    }
+    for (int i = 0; i < sig->n_pieces; ++i) {
+        const double from = sig->from_s[i], to = sig->to_s[i];
+        if (from < lo && hi <= to) {
+            return i; /* holds them all, and no earlier one holds any */
+        }
+        if (from < hi && lo <= to) {
+            return -2; /* holds some of them */
+        }
+    }
+    return -1;
+}
+
+/* sim_signal_eval(sig, t[k]) for k < n <= SIM_EXPR_BATCH_MAX into out, bit
+ * for bit, t within [lo, hi]: a piece's instants are evaluated together
+ * (sim_expr_eval_batch), 0 where no piece holds the instant. */
+static void signal_eval_batch(const sim_signal_t *sig, const double *t, int n, double lo, double hi, double *out,
+                              sim_expr_batch_memo_t *memo)
+{
+    const int whole = signal_piece_of_range(sig, lo, hi);
+    if (whole >= -1) { /* the usual case: one piece, or none, for all */
+        if (whole < 0) {
+            for (int k = 0; k < n; ++k) {
+                out[k] = 0.0;
+            }
+            return;
+        }
+        sim_expr_eval_batch(&sig->expr[whole], t, n, out, memo);
+        for (int k = 0; k < n; ++k) {
+            out[k] = sig->scale * out[k];
+        }
+        return;
+    }
+    int piece[SIM_EXPR_BATCH_MAX];
+    for (int k = 0; k < n; ++k) {
+        piece[k] = signal_piece(sig, t[k]);
+        out[k] = 0.0;
+    }
+    for (int i = 0; i < sig->n_pieces; ++i) {
+        double value[SIM_EXPR_BATCH_MAX], tt[SIM_EXPR_BATCH_MAX];
+        int at[SIM_EXPR_BATCH_MAX], m = 0;
+        for (int k = 0; k < n; ++k) {
+            if (piece[k] == i) {
+                tt[m] = t[k];
+                at[m++] = k;
+            }
+        }
+        if (m > 0) {
+            sim_expr_eval_batch(&sig->expr[i], tt, m, value, memo);
+            for (int j = 0; j < m; ++j) {
+                out[at[j]] = sig->scale * value[j];
+            }
+        }
+    }
+}
+
+/* The least and greatest of t[0..n), n >= 1; both NaN when one is NaN
+ * (signal_eval_batch then goes instant by instant). */
+static void batch_range(const double *t, int n, double *lo, double *hi)
+{
+    double a = t[0], b = t[0];
+    int nan_seen = 0;
+    for (int j = 0; j < n; ++j) {
+        a = t[j] < a ? t[j] : a;
+        b = t[j] > b ? t[j] : b;
+        nan_seen |= isnan(t[j]);
+    }
+    *lo = nan_seen ? NAN : a;
+    *hi = nan_seen ? NAN : b;
+}
+
 static void disturbance_batch_fill(disturbance_batch_t *b, const sim_plant_t *p, double dt_s, int substeps)
 {
     /* more than the parser lets through: no table, every call evaluates */
     b->n = substeps <= SIM_PLANT_SUBSTEPS_MAX ? sim_plant_stage_times(p, dt_s, substeps, b->t_s) : 0;
-    int rows = 0;
+    int rows = 0, carried = 0;
+    double distinct[STAGES_MAX];
     if (b->n > 0 && b->t_s[0] == b->last_t_s) { /* carried over from the step before */
         for (int i = 0; i < 3; ++i) {
             b->value[0][i] = b->value[b->last][i];
         }
-        rows = 1;
+        distinct[0] = b->t_s[0];
+        rows = carried = 1;
     }
     for (int k = 0; k < b->n; ++k) {
-        if (rows == 0 || b->t_s[k] != b->last_t_s) {
-            disturbances_at(b->sc, b->t_s[k], b->value[rows]);
-            b->last_t_s = b->t_s[k];
-            ++rows;
+        if (rows == 0 || b->t_s[k] != distinct[rows - 1]) {
+            distinct[rows++] = b->t_s[k];
         }
         b->slot[k] = rows - 1;
     }
+    /* the new rows, SIM_EXPR_BATCH_MAX instants at a time, the three axes
+     * sharing their function results */
+    for (int r = carried; r < rows; r += SIM_EXPR_BATCH_MAX) {
+        const int m = rows - r < SIM_EXPR_BATCH_MAX ? rows - r : SIM_EXPR_BATCH_MAX;
+        double lo, hi;
+        batch_range(&distinct[r], m, &lo, &hi);
+        sim_expr_batch_memo_t memo;
+        sim_expr_batch_memo_clear(&memo);
+        for (int i = 0; i < 3; ++i) {
+            double d[SIM_EXPR_BATCH_MAX];
+            signal_eval_batch(&b->sc->disturbance[i], &distinct[r], m, lo, hi, d, &memo);
+            for (int j = 0; j < m; ++j) {
+                b->value[r + j][i] = d[j];
+            }
+        }
+    }
+    for (int k = 0; k < b->n; ++k) {
+        for (int i = 0; i < 3; ++i) {
+            b->stage[k][i] = b->value[b->slot[k]][i];
+        }
+    }
+    if (rows > 0) {
+        b->last_t_s = distinct[rows - 1];
+    }
     b->last = rows - 1;
+}
+
+/* The control instants t = k dt of SIM_EXPR_BATCH_MAX ticks from `first`,
+ * with the references and disturbances there, worked out together: each
+ * signal's program interpreted once for all of them, the function results
+ * shared by the six signals (sim_signal_eval's values, bit for bit). */
+typedef struct {
+    long first;                           /* the tick of row 0 */
+    int n;                                /* rows */
+    double t_s[SIM_EXPR_BATCH_MAX];
+    ladrc_real_t ref[3][SIM_EXPR_BATCH_MAX]; /* rad, as the controllers get them */
+    double dist[3][SIM_EXPR_BATCH_MAX];
+} instants_t;
+
+static void instants_fill(instants_t *b, const sim_scenario_t *sc, long first, long n_ticks)
+{
+    b->first = first;
+    b->n = n_ticks - first < SIM_EXPR_BATCH_MAX ? (int)(n_ticks - first) : SIM_EXPR_BATCH_MAX;
+    for (int j = 0; j < b->n; ++j) {
+        b->t_s[j] = (double)(first + j) * sc->control_dt_s;
+    }
+    double lo, hi;
+    batch_range(b->t_s, b->n, &lo, &hi);
+    sim_expr_batch_memo_t memo;
+    sim_expr_batch_memo_clear(&memo);
+    for (int i = 0; i < 3; ++i) {
+        double ref[SIM_EXPR_BATCH_MAX];
+        signal_eval_batch(&sc->reference[i], b->t_s, b->n, lo, hi, ref, &memo);
+        for (int j = 0; j < b->n; ++j) {
+            b->ref[i][j] = (ladrc_real_t)ref[j];
+        }
+    }
+    for (int i = 0; i < 3; ++i) {
+        signal_eval_batch(&sc->disturbance[i], b->t_s, b->n, lo, hi, b->dist[i], &memo);
+    }
 }
 
 /* One plant's reading of a batch: the stage time it asks for next. Runs in
@@ -138,6 +296,10 @@ static FILE *open_csv(const char *path, const char *header, char *err, size_t er
     if (path == NULL) {
         return NULL;
     }
+    /* A new file rather than the old one truncated: a file system may flush
+     * a truncated file's new data when it is closed (ext4's auto_da_alloc),
+     * and a rerun would wait for that. */
+    (void)unlink(path); /* not remove(): never a directory */
     FILE *f = fopen(path, "w");
     if (f == NULL) {
         snprintf(err, err_len, "%s: cannot write: %s", path, strerror(errno));
@@ -194,9 +356,6 @@ static double tracking_error_rad(double ref_rad, double angle_rad, int wrapped)
     const double e = ref_rad - angle_rad;
     return wrapped ? wrap_pi(e) : e;
 }
-
-/* Metric windows hold (from, to], as signal windows do. */
-static int in_window(const double w[2], double t) { return t > w[0] && t <= w[1]; }
 
 /* Divergence at t (runner.h): the plant's state non-finite, or the tracking
  * error ref - angle beyond the scenario's limit on an axis. Records the first
@@ -434,17 +593,25 @@ void sim_run_attitude_group(const sim_scenario_t *sc, sim_run_spec_t *runs, int 
     const long n = sim_run_ticks(sc);
     const double dt = sc->control_dt_s;
     long k = 0;
+    instants_t at;
+    at.first = at.n = 0;
     for (; k < n && n_flying > 0; ++k) {
-        const double t = (double)k * dt;
+        if (k - at.first >= at.n) {
+            instants_fill(&at, sc, k, n);
+        }
+        const int j = (int)(k - at.first);
+        const double t = at.t_s[j];
+        /* the references rounded to ladrc_real_t where they are worked
+         * out, in instants_fill: GCC 12 turns a float rounding and the
+         * widening back, side by side in one loop and vectorized, into no
+         * rounding at all */
         ladrc_real_t ref[3];
         double ref_rad[3], dist[3];
-        sim_expr_memo_t memo; /* shared by the references, then the disturbances at t */
-        sim_expr_memo_clear(&memo);
-        references(sc, t, &memo, ref);
-        widen(ref, ref_rad);
         for (int i = 0; i < 3; ++i) {
-            dist[i] = sim_signal_eval_memo(&sc->disturbance[i], t, &memo);
+            ref[i] = at.ref[i][j];
+            dist[i] = at.dist[i][j];
         }
+        widen(ref, ref_rad);
         double w2_cmd[SIM_MAX_CONTROLLERS][4];
         const sim_plant_t *lead = NULL; /* the plants' times are the same bits */
         for (int g = 0; g < n_group; ++g) {
@@ -461,11 +628,30 @@ void sim_run_attitude_group(const sim_scenario_t *sc, sim_run_spec_t *runs, int 
             break;
         }
         disturbance_batch_fill(&batch, lead, dt, sc->plant_substeps);
+        sim_plant_t *plants[SIM_MAX_CONTROLLERS];
+        double cmds[SIM_MAX_CONTROLLERS][4];
+        int n_plants = 0;
         for (int g = 0; g < n_group; ++g) {
             if (group[g].flying) {
-                batch_reader_t reader = {&batch, 0};
-                sim_plant_step(&group[g].plant, w2_cmd[g], dt, sc->plant_substeps, disturbance, &reader);
+                plants[n_plants] = &group[g].plant;
+                memcpy(cmds[n_plants++], w2_cmd[g], sizeof cmds[0]);
             }
+        }
+        /* the group's plants step side by side, the step's disturbances
+         * read from the batch; they are all at the lead's time (they have
+         * flown every step together), but should one not be, every plant
+         * asks for its own */
+        int same_time = 1;
+        for (int g = 1; g < n_plants; ++g) {
+            same_time = same_time && memcmp(&plants[g]->t_s, &lead->t_s, sizeof lead->t_s) == 0;
+        }
+        if (batch.n > 0 && same_time) {
+            (void)sim_plant_step_group_table(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps,
+                                             (const double(*)[3])batch.stage);
+        } else {
+            batch_reader_t reader = {&batch, 0};
+            sim_plant_step_group(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps, disturbance,
+                                 &reader);
         }
         if (progress != NULL && progress->ticks_done != NULL && (k & 1023) == 1023) {
             *progress->ticks_done += 1024L * n_flying;

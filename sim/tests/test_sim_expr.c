@@ -372,6 +372,69 @@ static void test_a_memo_returns_the_bits_of_the_call_it_replaces(void)
     TEST_ASSERT_TRUE(same_bits(-0.0, sim_expr_eval_memo(&s, -0.0, &memo)));
 }
 
+/* Same bits, or both NaN: the evaluated forms may give NaN another sign or
+ * payload (expr.h). */
+static int same_value(double a, double b) { return same_bits(a, b) || (isnan(a) && isnan(b)); }
+
+static void test_a_batch_gives_each_instants_bits(void)
+{
+    /* every corpus expression on batches of 1, 5, 12 and the most instants,
+     * with and without a memo shared by all of them (the disturbances of
+     * three axes share theirs); signed zeros and a jump of the instants
+     * included */
+    double t[SIM_EXPR_BATCH_MAX];
+    for (int k = 0; k < SIM_EXPR_BATCH_MAX; ++k) {
+        t[k] = k == 0 ? -0.0 : (k == 1 ? 0.0 : (k < 20 ? 1.9999 + 1e-4 * k : -4.25 + 0.37 * k));
+    }
+    static const int sizes[] = {1, 5, 12, SIM_EXPR_BATCH_MAX};
+    int checked = 0;
+    for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; ++s) {
+        const int n = sizes[s];
+        sim_expr_batch_memo_t memo;
+        sim_expr_batch_memo_clear(&memo);
+        for (size_t e = 0; e < sizeof FOLDING_CORPUS / sizeof FOLDING_CORPUS[0]; ++e) {
+            sim_expr_t x;
+            TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_expr_compile(&x, FOLDING_CORPUS[e], NULL), FOLDING_CORPUS[e]);
+            double plain[SIM_EXPR_BATCH_MAX], shared[SIM_EXPR_BATCH_MAX];
+            sim_expr_eval_batch(&x, t, n, plain, NULL);
+            sim_expr_eval_batch(&x, t, n, shared, &memo);
+            for (int k = 0; k < n; ++k) {
+                char message[200];
+                const double want = sim_expr_eval(&x, t[k]);
+                snprintf(message, sizeof message, "'%s' at t = %g of %d: one at a time %.17g, batch %.17g / %.17g",
+                         FOLDING_CORPUS[e], t[k], n, want, plain[k], shared[k]);
+                TEST_ASSERT_TRUE_MESSAGE(same_value(want, plain[k]) && same_value(want, shared[k]), message);
+                ++checked;
+            }
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(50 * (int)(sizeof FOLDING_CORPUS / sizeof FOLDING_CORPUS[0]), checked);
+}
+
+static void test_a_batch_memo_hits_only_on_the_same_arguments(void)
+{
+    sim_expr_t a, b;
+    TEST_ASSERT_EQUAL_INT(0, sim_expr_compile(&a, "20 - 120*sin(3*t)", NULL));
+    TEST_ASSERT_EQUAL_INT(0, sim_expr_compile(&b, "20 + 120*sin(3*t)", NULL));
+    const double t[3] = {0.0, 0.5, 1.0}, t_neg_zero[3] = {-0.0, 0.5, 1.0};
+    sim_expr_batch_memo_t memo;
+    sim_expr_batch_memo_clear(&memo);
+    double out[3];
+    sim_expr_eval_batch(&a, t, 3, out, &memo);
+    TEST_ASSERT_EQUAL_INT(1, memo.n);
+    sim_expr_eval_batch(&b, t, 3, out, &memo); /* a hit: sin of the same three arguments */
+    TEST_ASSERT_EQUAL_INT(1, memo.n);
+    TEST_ASSERT_TRUE(same_bits(sim_expr_eval(&b, 0.5), out[1]));
+    sim_expr_eval_batch(&b, t, 2, out, &memo); /* fewer arguments: a new entry */
+    TEST_ASSERT_EQUAL_INT(2, memo.n);
+    sim_expr_t s;
+    TEST_ASSERT_EQUAL_INT(0, sim_expr_compile(&s, "sin(t)", NULL));
+    sim_expr_eval_batch(&s, t, 3, out, &memo);
+    TEST_ASSERT_TRUE(same_bits(0.0, out[0]));
+    sim_expr_eval_batch(&s, t_neg_zero, 3, out, &memo); /* -0 is another argument: sin(-0) = -0 */
+    TEST_ASSERT_TRUE(same_bits(-0.0, out[0]));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -391,5 +454,7 @@ int main(void)
     RUN_TEST(test_the_folded_program_gives_the_postfix_programs_bits);
     RUN_TEST(test_constant_parts_are_folded_to_one_operand);
     RUN_TEST(test_a_memo_returns_the_bits_of_the_call_it_replaces);
+    RUN_TEST(test_a_batch_gives_each_instants_bits);
+    RUN_TEST(test_a_batch_memo_hits_only_on_the_same_arguments);
     return UNITY_END();
 }

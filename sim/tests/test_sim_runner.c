@@ -163,6 +163,63 @@ static void test_a_lockstep_group_gives_each_run_bit_for_bit(void)
     }
 }
 
+static void test_six_runs_in_lockstep_with_pieces_changing_within_a_step_give_each_run_bit_for_bit(void)
+{
+    /* every controller in one group (six plants side by side), seven plant
+     * substeps, and disturbance pieces that begin and end between two
+     * control instants: a plant step's instants then take two pieces, or a
+     * piece and none, and are evaluated piece by piece */
+    static sim_scenario_t sc;
+    sim_parse_error_t perr;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0,
+                                  sim_scenario_parse(&sc,
+                                                     "[run]\nduration_s = 3\nplant_substeps = 7\n"
+                                                     "controllers = HP-MLADRC LP-MLADRC LADRC PID CASCADED INDI\n"
+                                                     "[reference]\nroll = 5*sin(2*t)\npitch = 3\n[disturbance]\n"
+                                                     "roll = 0.50037 .. 1.00011 : 30*sin(5*t)\n"
+                                                     "roll = 1.00011 .. 2.5 : 10 - 40*cos(3*t)\n"
+                                                     "pitch = 0.3 .. 2.00049 : 20*sin(5*t)\nyaw = 1.2 .. 3 : -15\n",
+                                                     "six.ini", &perr),
+                                  perr.message);
+    TEST_ASSERT_EQUAL_INT(6, sc.n_controllers);
+    static sim_metrics_t alone[6], grouped[6];
+    char err[6][256];
+    sim_run_spec_t runs[6];
+    for (int g = 0; g < 6; ++g) {
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_run_attitude(&sc, sc.controllers[g], NULL, NULL, &alone[g], err[g],
+                                                          sizeof err[g]),
+                                      err[g]);
+        const sim_run_spec_t spec = {sc.controllers[g], NULL, &grouped[g], err[g], sizeof err[g], -1};
+        runs[g] = spec;
+    }
+    sim_run_attitude_group(&sc, runs, 6, NULL);
+    for (int g = 0; g < 6; ++g) {
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, runs[g].rc, err[g]);
+        TEST_ASSERT_FALSE(alone[g].diverged);
+        TEST_ASSERT_TRUE_MESSAGE(same_metrics(alone[g], grouped[g]), sim_controller_name(sc.controllers[g]));
+    }
+}
+
+static void test_the_error_is_taken_from_the_reference_the_controller_gets(void)
+{
+    /* a 10 deg roll step at 0.5 s on a vehicle at rest: at the first
+     * instant after it the angle is still exactly 0, so the largest error
+     * is the reference itself, as the controller gets it (ladrc_real_t) and
+     * not the double the signal gives */
+    const sim_metrics_t m = fly_text("[run]\nduration_s = 2\ncontrollers = LADRC\n[reference]\nroll = 0.5 .. : 10\n",
+                                     SIM_CTRL_LADRC);
+    const double rad2deg = 180.0 / 3.14159265358979323846;
+    const double given_rad = 10.0 * (3.14159265358979323846 / 180.0); /* the parser's deg -> rad */
+    const double want_deg = (double)(ladrc_real_t)given_rad * rad2deg;
+    char message[120];
+    snprintf(message, sizeof message, "largest roll error %.17g deg, the controller's reference %.17g deg",
+             m.max_error_deg[0], want_deg);
+    TEST_ASSERT_TRUE_MESSAGE(m.max_error_deg[0] == want_deg, message);
+#ifndef LADRC_REAL_DOUBLE
+    TEST_ASSERT_TRUE(want_deg != given_rad * rad2deg); /* in float the two differ: the check can fail */
+#endif
+}
+
 static void test_the_limit_is_the_scenarios(void)
 {
     /* a 10 deg step: within the default 90 deg, beyond a 5 deg limit at t = 0 */
@@ -297,5 +354,7 @@ int main(void)
     RUN_TEST(test_a_differentiator_scenario_without_its_optional_keys_runs);
     RUN_TEST(test_a_run_refuses_a_scenario_changed_after_parsing);
     RUN_TEST(test_a_lockstep_group_gives_each_run_bit_for_bit);
+    RUN_TEST(test_the_error_is_taken_from_the_reference_the_controller_gets);
+    RUN_TEST(test_six_runs_in_lockstep_with_pieces_changing_within_a_step_give_each_run_bit_for_bit);
     return UNITY_END();
 }
