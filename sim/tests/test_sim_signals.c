@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Signals (signals.h): pieces over (from, to] windows as a scenario gives
- * them, the first piece that holds t, the scale. */
+ * them, the first piece that holds t, the scale; a batch of instants. */
 #include "unity.h"
 #include "scenario_cases.h"
 
@@ -45,10 +45,40 @@ static void test_signal_eval_takes_the_first_piece_that_holds_t_and_scales_it(vo
     assert_close(0.0, sim_signal_eval(&sig, 0.5), "no pieces");
 }
 
+/* A batch gives each instant sim_signal_eval's value bit for bit: all in
+ * one piece, across piece ends and gaps, in none, with a NaN instant. */
+static void test_signal_batch_is_each_instant_bit_for_bit(void)
+{
+    parse_ok("[run]\nduration_s = 30\n[disturbance]\n"
+             "roll = 2 .. 6 : 8 + sin(3*t)\n"
+             "roll = 6 .. 12 : 20 - 120*sin(0.25*t)\n"
+             "roll = 25 .. : 1\n");
+    const sim_signal_t *d = &sc.disturbance[0];
+    static const double starts[] = {2.5, 5.9, 11.99, 13.0, 24.99, 100.0, -1.0};
+    for (size_t s = 0; s < sizeof starts / sizeof starts[0]; ++s) {
+        double t[SIM_EXPR_BATCH_MAX], out[SIM_EXPR_BATCH_MAX], lo, hi;
+        for (int k = 0; k < SIM_EXPR_BATCH_MAX; ++k) {
+            t[k] = starts[s] + 0.001 * k;
+        }
+        if (s == 0) {
+            t[7] = NAN; /* the range is NaN: instant by instant */
+        }
+        sim_signal_batch_range(t, SIM_EXPR_BATCH_MAX, &lo, &hi);
+        sim_signal_eval_batch(d, t, SIM_EXPR_BATCH_MAX, lo, hi, out, NULL);
+        for (int k = 0; k < SIM_EXPR_BATCH_MAX; ++k) {
+            const double want = sim_signal_eval(d, t[k]);
+            char what[80];
+            snprintf(what, sizeof what, "batch from %g, instant %d", starts[s], k);
+            TEST_ASSERT_TRUE_MESSAGE(memcmp(&want, &out[k], sizeof want) == 0, what);
+        }
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_signal_windows_hold_from_exclusive_to_inclusive);
     RUN_TEST(test_signal_eval_takes_the_first_piece_that_holds_t_and_scales_it);
+    RUN_TEST(test_signal_batch_is_each_instant_bit_for_bit);
     return UNITY_END();
 }
