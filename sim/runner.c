@@ -95,97 +95,6 @@ static void disturbance_batch_init(disturbance_batch_t *b, const sim_scenario_t 
 /* Metric windows hold (from, to], as signal windows do. */
 static int in_window(const double w[2], double t) { return t > w[0] && t <= w[1]; }
 
-/* The piece of sig whose window (from, to] holds t first, -1 when none does:
- * the rule of sim_signal_eval (scenario.h). */
-static int signal_piece(const sim_signal_t *sig, double t)
-{
-    for (int i = 0; i < sig->n_pieces; ++i) {
-        const double window[2] = {sig->from_s[i], sig->to_s[i]};
-        if (in_window(window, t)) {
-            return i;
-        }
-    }
-    return -1;
-}
-
-/* The piece holding every instant of [lo, hi] when that is one piece's
- * alone (no earlier piece's window reaches into the range); -2 when the
- * instants may take different pieces, -1 when none holds any of them. */
-static int signal_piece_of_range(const sim_signal_t *sig, double lo, double hi)
-{
-    if (!(lo <= hi)) {
-        return -2; /* NaN: instant by instant */
-    }
-    for (int i = 0; i < sig->n_pieces; ++i) {
-        const double from = sig->from_s[i], to = sig->to_s[i];
-        if (from < lo && hi <= to) {
-            return i; /* holds them all, and no earlier one holds any */
-        }
-        if (from < hi && lo <= to) {
-            return -2; /* holds some of them */
-        }
-    }
-    return -1;
-}
-
-/* sim_signal_eval(sig, t[k]) for k < n <= SIM_EXPR_BATCH_MAX into out, bit
- * for bit, t within [lo, hi]: a piece's instants are evaluated together
- * (sim_expr_eval_batch), 0 where no piece holds the instant. */
-static void signal_eval_batch(const sim_signal_t *sig, const double *t, int n, double lo, double hi, double *out,
-                              sim_expr_batch_memo_t *memo)
-{
-    const int whole = signal_piece_of_range(sig, lo, hi);
-    if (whole >= -1) { /* the usual case: one piece, or none, for all */
-        if (whole < 0) {
-            for (int k = 0; k < n; ++k) {
-                out[k] = 0.0;
-            }
-            return;
-        }
-        sim_expr_eval_batch(&sig->expr[whole], t, n, out, memo);
-        for (int k = 0; k < n; ++k) {
-            out[k] = sig->scale * out[k];
-        }
-        return;
-    }
-    int piece[SIM_EXPR_BATCH_MAX];
-    for (int k = 0; k < n; ++k) {
-        piece[k] = signal_piece(sig, t[k]);
-        out[k] = 0.0;
-    }
-    for (int i = 0; i < sig->n_pieces; ++i) {
-        double value[SIM_EXPR_BATCH_MAX], tt[SIM_EXPR_BATCH_MAX];
-        int at[SIM_EXPR_BATCH_MAX], m = 0;
-        for (int k = 0; k < n; ++k) {
-            if (piece[k] == i) {
-                tt[m] = t[k];
-                at[m++] = k;
-            }
-        }
-        if (m > 0) {
-            sim_expr_eval_batch(&sig->expr[i], tt, m, value, memo);
-            for (int j = 0; j < m; ++j) {
-                out[at[j]] = sig->scale * value[j];
-            }
-        }
-    }
-}
-
-/* The least and greatest of t[0..n), n >= 1; both NaN when one is NaN
- * (signal_eval_batch then goes instant by instant). */
-static void batch_range(const double *t, int n, double *lo, double *hi)
-{
-    double a = t[0], b = t[0];
-    int nan_seen = 0;
-    for (int j = 0; j < n; ++j) {
-        a = t[j] < a ? t[j] : a;
-        b = t[j] > b ? t[j] : b;
-        nan_seen |= isnan(t[j]);
-    }
-    *lo = nan_seen ? NAN : a;
-    *hi = nan_seen ? NAN : b;
-}
-
 static void disturbance_batch_fill(disturbance_batch_t *b, const sim_plant_t *p, double dt_s, int substeps)
 {
     /* more than the parser lets through: no table, every call evaluates */
@@ -210,12 +119,12 @@ static void disturbance_batch_fill(disturbance_batch_t *b, const sim_plant_t *p,
     for (int r = carried; r < rows; r += SIM_EXPR_BATCH_MAX) {
         const int m = rows - r < SIM_EXPR_BATCH_MAX ? rows - r : SIM_EXPR_BATCH_MAX;
         double lo, hi;
-        batch_range(&distinct[r], m, &lo, &hi);
+        sim_signal_batch_range(&distinct[r], m, &lo, &hi);
         sim_expr_batch_memo_t memo;
         sim_expr_batch_memo_clear(&memo);
         for (int i = 0; i < 3; ++i) {
             double d[SIM_EXPR_BATCH_MAX];
-            signal_eval_batch(&b->sc->disturbance[i], &distinct[r], m, lo, hi, d, &memo);
+            sim_signal_eval_batch(&b->sc->disturbance[i], &distinct[r], m, lo, hi, d, &memo);
             for (int j = 0; j < m; ++j) {
                 b->value[r + j][i] = d[j];
             }
@@ -252,18 +161,18 @@ static void instants_fill(instants_t *b, const sim_scenario_t *sc, long first, l
         b->t_s[j] = (double)(first + j) * sc->control_dt_s;
     }
     double lo, hi;
-    batch_range(b->t_s, b->n, &lo, &hi);
+    sim_signal_batch_range(b->t_s, b->n, &lo, &hi);
     sim_expr_batch_memo_t memo;
     sim_expr_batch_memo_clear(&memo);
     for (int i = 0; i < 3; ++i) {
         double ref[SIM_EXPR_BATCH_MAX];
-        signal_eval_batch(&sc->reference[i], b->t_s, b->n, lo, hi, ref, &memo);
+        sim_signal_eval_batch(&sc->reference[i], b->t_s, b->n, lo, hi, ref, &memo);
         for (int j = 0; j < b->n; ++j) {
             b->ref[i][j] = (ladrc_real_t)ref[j];
         }
     }
     for (int i = 0; i < 3; ++i) {
-        signal_eval_batch(&sc->disturbance[i], b->t_s, b->n, lo, hi, b->dist[i], &memo);
+        sim_signal_eval_batch(&sc->disturbance[i], b->t_s, b->n, lo, hi, b->dist[i], &memo);
     }
 }
 
@@ -465,96 +374,141 @@ static int run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t 
     return 0;
 }
 
-/* The controller's part of tick k at t: measure, check, control, record.
- * ref and dist are the references and disturbances at t. Returns 0 when the
- * run diverged (nothing of this instant or later is recorded), else 1. */
-static int run_control(const sim_scenario_t *sc, attitude_run_t *r, double t, const ladrc_real_t ref[3],
-                       const double ref_rad[3], const double dist[3], double w2_cmd[4])
-{
-    sim_metrics_t *m = r->spec->metrics;
-    const double dt = sc->control_dt_s;
-    const sim_plant_t *plant = &r->plant;
-    const int wrap_yaw = r->wrap_yaw;
+/* What one control tick of a run saw and did, for its metrics and time series. */
+typedef struct {
+    double t;                     /* s */
+    const ladrc_real_t *ref;      /* rad, as the controller got them */
+    const double *ref_rad, *dist; /* the same widened; disturbances, rad/s^2 */
     double meas_angle[3], meas_rate[3];
-    sim_sensor_measure(&r->sensor, plant->angle_rad, plant->rate_rad_s, meas_angle, meas_rate);
-    if (wrap_yaw) {
-        meas_angle[2] = wrap_pi(meas_angle[2]);
+    ladrc_real_t torque[3]; /* commanded, N m */
+    ladrc_mixer_output_t out;
+    /* the truth at this tick: the disturbance the observer should see is
+     * the plant's acceleration minus what the applied torque explains */
+    double applied[3], f_true[3], f_est[3], err_rad[3], z1[3], z2[3];
+} tick_t;
+
+/* Measure, check, control and mix at tk->t; 0 when the run diverged (nothing
+ * of this instant or later is recorded), else 1 with the rotors' command. */
+static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, double w2_cmd[4])
+{
+    const sim_plant_t *plant = &r->plant;
+    sim_sensor_measure(&r->sensor, plant->angle_rad, plant->rate_rad_s, tk->meas_angle, tk->meas_rate);
+    if (r->wrap_yaw) {
+        tk->meas_angle[2] = wrap_pi(tk->meas_angle[2]);
     }
-    if (diverged(sc, plant, ref_rad, wrap_yaw, t, m)) {
+    if (diverged(sc, plant, tk->ref_rad, r->wrap_yaw, tk->t, r->spec->metrics)) {
         return 0;
     }
-    ladrc_real_t angle[3], rate[3], torque[3];
+    ladrc_real_t angle[3], rate[3];
     for (int i = 0; i < 3; ++i) {
-        angle[i] = (ladrc_real_t)meas_angle[i];
-        rate[i] = (ladrc_real_t)meas_rate[i];
+        angle[i] = (ladrc_real_t)tk->meas_angle[i];
+        rate[i] = (ladrc_real_t)tk->meas_rate[i];
     }
-    if (ladrc_attitude_step(&r->att, ref, angle, sc->use_rate ? rate : NULL, torque) != LADRC_FAULT_NONE) {
-        m->faults++;
+    if (ladrc_attitude_step(&r->att, tk->ref, angle, sc->use_rate ? rate : NULL, tk->torque) != LADRC_FAULT_NONE) {
+        r->spec->metrics->faults++;
     }
-    ladrc_mixer_output_t out;
-    ladrc_mixer_step(&r->mixer, ladrc_mixer_thrust_from_tilt(&r->mixer, angle[0], angle[1]), torque, &out);
-    ladrc_attitude_set_applied(&r->att, out.torque_Nm);
-
-    /* The truth at this tick: the disturbance the observer should see is
-     * the plant's acceleration minus what the applied torque explains. */
-    double applied[3], accel[3], f_true[3], f_est[3], err_rad[3], z1[3], z2[3];
+    ladrc_mixer_step(&r->mixer, ladrc_mixer_thrust_from_tilt(&r->mixer, angle[0], angle[1]), tk->torque, &tk->out);
+    ladrc_attitude_set_applied(&r->att, tk->out.torque_Nm);
     for (int q = 0; q < 4; ++q) {
-        w2_cmd[q] = out.w2_rad2_s2[q];
+        w2_cmd[q] = tk->out.w2_rad2_s2[q];
     }
+    return 1;
+}
+
+/* The truth of the tick and the controller's estimates (tick_t). */
+static void run_truth(const sim_scenario_t *sc, const attitude_run_t *r, tick_t *tk)
+{
+    const sim_plant_t *plant = &r->plant;
+    double accel[3], thrust_actual, torque_actual[3];
     for (int i = 0; i < 3; ++i) {
-        applied[i] = out.torque_Nm[i];
+        tk->applied[i] = tk->out.torque_Nm[i];
     }
-    double thrust_actual, torque_actual[3];
     sim_plant_forces(&plant->v, plant->w2_rad2_s2, &thrust_actual, torque_actual);
-    sim_plant_accel(plant, torque_actual, dist, accel);
-    const double band_rad = sc->settle_band_deg / RAD2DEG;
+    sim_plant_accel(plant, torque_actual, tk->dist, accel);
     for (int i = 0; i < 3; ++i) {
-        f_true[i] = accel[i] - applied[i] / (sc->inertia_kg_m2[i] * sc->inertia_scale[i]);
+        tk->f_true[i] = accel[i] - tk->applied[i] / (sc->inertia_kg_m2[i] * sc->inertia_scale[i]);
         ladrc_real_t a_est, r_est, d_est;
         ladrc_axis_get_estimate(&r->att.axis[i], &a_est, &r_est, &d_est);
-        f_est[i] = d_est;
-        z1[i] = a_est;
-        z2[i] = r_est;
-        err_rad[i] = tracking_error_rad(ref_rad[i], plant->angle_rad[i], i == 2 && wrap_yaw);
-        const double e_deg = err_rad[i] * RAD2DEG;
+        tk->f_est[i] = d_est;
+        tk->z1[i] = a_est;
+        tk->z2[i] = r_est;
+        tk->err_rad[i] = tracking_error_rad(tk->ref_rad[i], plant->angle_rad[i], i == 2 && r->wrap_yaw);
+    }
+}
+
+/* The tick into the run's statistics (metrics.h) and settling. */
+static void run_metrics(const sim_scenario_t *sc, attitude_run_t *r, const tick_t *tk)
+{
+    sim_metrics_t *m = r->spec->metrics;
+    const double t = tk->t;
+    const double band_rad = sc->settle_band_deg / RAD2DEG;
+    for (int i = 0; i < 3; ++i) {
+        const double e_deg = tk->err_rad[i] * RAD2DEG;
         if (in_window(sc->error_window_s, t)) {
             sim_stat_add(&m->error_deg[i], e_deg);
             if (fabs(e_deg) > m->max_error_deg[i]) m->max_error_deg[i] = fabs(e_deg);
-            if (m->has_estimate) sim_stat_add(&m->dist_error[i], f_est[i] - f_true[i]);
+            if (m->has_estimate) sim_stat_add(&m->dist_error[i], tk->f_est[i] - tk->f_true[i]);
         }
         if (in_window(sc->steady_window_s, t) && fabs(e_deg) > m->band_deg[i]) {
             m->band_deg[i] = fabs(e_deg);
         }
         if (t >= sc->settle_after_s && t <= sc->settle_until_s) {
-            r->out_at_last[i] = fabs(err_rad[i]) > band_rad;
+            r->out_at_last[i] = fabs(tk->err_rad[i]) > band_rad;
             if (r->out_at_last[i]) {
-                r->last_out_s[i] = t + dt;
+                r->last_out_s[i] = t + sc->control_dt_s;
             }
         }
     }
     for (int q = 0; q < 4; ++q) {
-        sim_stat_add(&m->rotor_w2[q], plant->w2_rad2_s2[q]);
+        sim_stat_add(&m->rotor_w2[q], r->plant.w2_rad2_s2[q]);
     }
-    if (r->csv != NULL) { /* the text of %.4f, %.6g and %.7g (numfmt.h) */
-        csv_line_t *line = &r->line;
-        line_f4(line, t);
-        for (int i = 0; i < 3; ++i) line_g(line, (double)ref[i] * RAD2DEG, 6);
-        for (int i = 0; i < 3; ++i) line_g(line, plant->angle_rad[i] * RAD2DEG, 6);
-        for (int i = 0; i < 3; ++i) line_g(line, err_rad[i] * RAD2DEG, 6);
-        for (int i = 0; i < 3; ++i) line_g(line, (double)torque[i], 6);
-        for (int i = 0; i < 3; ++i) line_g(line, applied[i], 6);
-        for (int q = 0; q < 4; ++q) line_g(line, plant->w2_rad2_s2[q], 7);
-        for (int i = 0; i < 3; ++i) line_g(line, dist[i], 6);
-        for (int i = 0; i < 3; ++i) line_g(line, f_true[i], 6);
-        for (int i = 0; i < 3; ++i) line_g(line, m->has_estimate ? f_est[i] : NAN, 6);
-        for (int i = 0; i < 3; ++i) line_g(line, meas_angle[i] * RAD2DEG, 6);
-        for (int i = 0; i < 3; ++i) line_g(line, meas_rate[i] * RAD2DEG, 6);
-        for (int i = 0; i < 3; ++i) line_g(line, z1[i] * RAD2DEG, 6);
-        for (int i = 0; i < 3; ++i) line_g(line, z2[i] * RAD2DEG, 6);
-        static const unsigned SAT_BITS[4] = {LADRC_MIXER_SAT_ROLL, LADRC_MIXER_SAT_PITCH, LADRC_MIXER_SAT_YAW,
-                                             LADRC_MIXER_SAT_THRUST};
-        for (int b = 0; b < 4; ++b) line_g(line, (out.saturated & SAT_BITS[b]) != 0u ? 1.0 : 0.0, 6);
-        line_end(line, r->csv);
+}
+
+/* The tick's line of the time series (ATTITUDE_CSV_HEADER): the text of
+ * %.4f, %.6g and %.7g (numfmt.h). */
+static void run_csv_line(attitude_run_t *r, const tick_t *tk)
+{
+    const sim_plant_t *plant = &r->plant;
+    const int has_estimate = r->spec->metrics->has_estimate;
+    csv_line_t *line = &r->line;
+    line_f4(line, tk->t);
+    for (int i = 0; i < 3; ++i) line_g(line, (double)tk->ref[i] * RAD2DEG, 6);
+    for (int i = 0; i < 3; ++i) line_g(line, plant->angle_rad[i] * RAD2DEG, 6);
+    for (int i = 0; i < 3; ++i) line_g(line, tk->err_rad[i] * RAD2DEG, 6);
+    for (int i = 0; i < 3; ++i) line_g(line, (double)tk->torque[i], 6);
+    for (int i = 0; i < 3; ++i) line_g(line, tk->applied[i], 6);
+    for (int q = 0; q < 4; ++q) line_g(line, plant->w2_rad2_s2[q], 7);
+    for (int i = 0; i < 3; ++i) line_g(line, tk->dist[i], 6);
+    for (int i = 0; i < 3; ++i) line_g(line, tk->f_true[i], 6);
+    for (int i = 0; i < 3; ++i) line_g(line, has_estimate ? tk->f_est[i] : NAN, 6);
+    for (int i = 0; i < 3; ++i) line_g(line, tk->meas_angle[i] * RAD2DEG, 6);
+    for (int i = 0; i < 3; ++i) line_g(line, tk->meas_rate[i] * RAD2DEG, 6);
+    for (int i = 0; i < 3; ++i) line_g(line, tk->z1[i] * RAD2DEG, 6);
+    for (int i = 0; i < 3; ++i) line_g(line, tk->z2[i] * RAD2DEG, 6);
+    static const unsigned SAT_BITS[4] = {LADRC_MIXER_SAT_ROLL, LADRC_MIXER_SAT_PITCH, LADRC_MIXER_SAT_YAW,
+                                         LADRC_MIXER_SAT_THRUST};
+    for (int b = 0; b < 4; ++b) line_g(line, (tk->out.saturated & SAT_BITS[b]) != 0u ? 1.0 : 0.0, 6);
+    line_end(line, r->csv);
+}
+
+/* The controller's part of a tick at t: measure, check, control, record.
+ * ref and dist are the references and disturbances at t. Returns 0 when the
+ * run diverged (nothing of this instant or later is recorded), else 1. */
+static int run_tick(const sim_scenario_t *sc, attitude_run_t *r, double t, const ladrc_real_t ref[3],
+                    const double ref_rad[3], const double dist[3], double w2_cmd[4])
+{
+    tick_t tk;
+    tk.t = t;
+    tk.ref = ref;
+    tk.ref_rad = ref_rad;
+    tk.dist = dist;
+    if (!run_control(sc, r, &tk, w2_cmd)) {
+        return 0;
+    }
+    run_truth(sc, r, &tk);
+    run_metrics(sc, r, &tk);
+    if (r->csv != NULL) {
+        run_csv_line(r, &tk);
     }
     return 1;
 }
@@ -573,111 +527,155 @@ static int run_close(const sim_scenario_t *sc, attitude_run_t *r)
     return 0;
 }
 
+/* A lockstep group of runs on one scenario (sim_run_attitude_group). */
+typedef struct {
+    const sim_scenario_t *sc;
+    sim_run_spec_t *runs;
+    attitude_run_t run[SIM_MAX_CONTROLLERS];
+    int n;        /* runs in the group */
+    int n_flying; /* of them, flying */
+    instants_t at;             /* the control instants' references and disturbances */
+    disturbance_batch_t batch; /* the disturbances of a plant step */
+} group_t;
+
+/* Opens every run (those beyond SIM_MAX_CONTROLLERS fail). */
+static void group_open(group_t *g, const sim_scenario_t *sc, sim_run_spec_t *runs, int n_runs)
+{
+    g->sc = sc;
+    g->runs = runs;
+    g->n_flying = 0;
+    for (int k = 0; k < n_runs && k < SIM_MAX_CONTROLLERS; ++k) {
+        runs[k].rc = run_open(sc, &g->run[k], &runs[k]);
+        g->n_flying += runs[k].rc == 0;
+    }
+    for (int k = SIM_MAX_CONTROLLERS; k < n_runs; ++k) {
+        snprintf(runs[k].err, runs[k].err_len, "%s: more than %d runs in one group", sc->path, SIM_MAX_CONTROLLERS);
+        runs[k].rc = -1;
+    }
+    g->n = n_runs < SIM_MAX_CONTROLLERS ? n_runs : SIM_MAX_CONTROLLERS;
+    disturbance_batch_init(&g->batch, sc);
+    g->at.first = g->at.n = 0;
+}
+
+/* Every flying run's controller at tick k of n_ticks, its rotors' command
+ * into w2_cmd; returns the first run still flying (its plant leads the
+ * step), NULL when none is. */
+static const sim_plant_t *group_control(group_t *g, long k, long n_ticks, double w2_cmd[][4])
+{
+    if (k - g->at.first >= g->at.n) {
+        instants_fill(&g->at, g->sc, k, n_ticks);
+    }
+    const int j = (int)(k - g->at.first);
+    const double t = g->at.t_s[j];
+    /* the references rounded to ladrc_real_t where they are worked out, in
+     * instants_fill: GCC 12 turns a float rounding and the widening back,
+     * side by side in one loop and vectorized, into no rounding at all */
+    ladrc_real_t ref[3];
+    double ref_rad[3], dist[3];
+    for (int i = 0; i < 3; ++i) {
+        ref[i] = g->at.ref[i][j];
+        dist[i] = g->at.dist[i][j];
+    }
+    widen(ref, ref_rad);
+    const sim_plant_t *lead = NULL; /* the plants' times are the same bits */
+    for (int q = 0; q < g->n; ++q) {
+        attitude_run_t *r = &g->run[q];
+        if (r->flying && !run_tick(g->sc, r, t, ref, ref_rad, dist, w2_cmd[q])) {
+            r->flying = 0; /* diverged: it stops here */
+            --g->n_flying;
+        }
+        if (r->flying && lead == NULL) {
+            lead = &r->plant;
+        }
+    }
+    return lead;
+}
+
+/* The flying runs' plants through one control period, side by side, the
+ * step's disturbances read from one batch: they are all at the lead's time
+ * (they have flown every step together), but should one not be, every
+ * plant asks for its own. */
+static void group_step_plants(group_t *g, const sim_plant_t *lead, const double w2_cmd[][4])
+{
+    const sim_scenario_t *sc = g->sc;
+    const double dt = sc->control_dt_s;
+    disturbance_batch_fill(&g->batch, lead, dt, sc->plant_substeps);
+    sim_plant_t *plants[SIM_MAX_CONTROLLERS];
+    double cmds[SIM_MAX_CONTROLLERS][4];
+    int n_plants = 0;
+    for (int q = 0; q < g->n; ++q) {
+        if (g->run[q].flying) {
+            plants[n_plants] = &g->run[q].plant;
+            memcpy(cmds[n_plants++], w2_cmd[q], sizeof cmds[0]);
+        }
+    }
+    int same_time = 1;
+    for (int q = 1; q < n_plants; ++q) {
+        same_time = same_time && memcmp(&plants[q]->t_s, &lead->t_s, sizeof lead->t_s) == 0;
+    }
+    if (g->batch.n > 0 && same_time) {
+        (void)sim_plant_step_group_table(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps,
+                                         (const double(*)[3])g->batch.stage);
+    } else {
+        batch_reader_t reader = {&g->batch, 0};
+        sim_plant_step_group(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps, disturbance,
+                             &reader);
+    }
+}
+
+/* The state the last step left, at t = duration (n_ticks periods), checked
+ * for divergence like every tick's. */
+static void group_check_end(group_t *g, long n_ticks)
+{
+    const sim_scenario_t *sc = g->sc;
+    const double t = (double)n_ticks * sc->control_dt_s;
+    sim_expr_memo_t memo;
+    sim_expr_memo_clear(&memo);
+    ladrc_real_t ref[3];
+    double ref_rad[3];
+    references(sc, t, &memo, ref);
+    widen(ref, ref_rad);
+    for (int q = 0; q < g->n; ++q) {
+        if (g->run[q].flying) {
+            (void)diverged(sc, &g->run[q].plant, ref_rad, g->run[q].wrap_yaw, t, g->runs[q].metrics);
+        }
+    }
+}
+
+/* Closes every run that started; each gets the group's wall time. */
+static void group_close(group_t *g, double wall_s)
+{
+    for (int q = 0; q < g->n; ++q) {
+        if (g->runs[q].rc == 0) {
+            g->runs[q].metrics->wall_s = wall_s;
+            g->runs[q].rc = run_close(g->sc, &g->run[q]);
+        }
+    }
+}
+
 void sim_run_attitude_group(const sim_scenario_t *sc, sim_run_spec_t *runs, int n_runs,
                             const sim_progress_t *progress)
 {
-    attitude_run_t group[SIM_MAX_CONTROLLERS];
-    int n_flying = 0;
-    for (int g = 0; g < n_runs && g < SIM_MAX_CONTROLLERS; ++g) {
-        runs[g].rc = run_open(sc, &group[g], &runs[g]);
-        n_flying += runs[g].rc == 0;
-    }
-    for (int g = SIM_MAX_CONTROLLERS; g < n_runs; ++g) {
-        snprintf(runs[g].err, runs[g].err_len, "%s: more than %d runs in one group", sc->path, SIM_MAX_CONTROLLERS);
-        runs[g].rc = -1;
-    }
-    const int n_group = n_runs < SIM_MAX_CONTROLLERS ? n_runs : SIM_MAX_CONTROLLERS;
-    disturbance_batch_t batch;
-    disturbance_batch_init(&batch, sc);
+    group_t g;
+    group_open(&g, sc, runs, n_runs);
     const double start = wall_now_s();
     const long n = sim_run_ticks(sc);
-    const double dt = sc->control_dt_s;
     long k = 0;
-    instants_t at;
-    at.first = at.n = 0;
-    for (; k < n && n_flying > 0; ++k) {
-        if (k - at.first >= at.n) {
-            instants_fill(&at, sc, k, n);
-        }
-        const int j = (int)(k - at.first);
-        const double t = at.t_s[j];
-        /* the references rounded to ladrc_real_t where they are worked
-         * out, in instants_fill: GCC 12 turns a float rounding and the
-         * widening back, side by side in one loop and vectorized, into no
-         * rounding at all */
-        ladrc_real_t ref[3];
-        double ref_rad[3], dist[3];
-        for (int i = 0; i < 3; ++i) {
-            ref[i] = at.ref[i][j];
-            dist[i] = at.dist[i][j];
-        }
-        widen(ref, ref_rad);
+    for (; k < n && g.n_flying > 0; ++k) {
         double w2_cmd[SIM_MAX_CONTROLLERS][4];
-        const sim_plant_t *lead = NULL; /* the plants' times are the same bits */
-        for (int g = 0; g < n_group; ++g) {
-            attitude_run_t *r = &group[g];
-            if (r->flying && !run_control(sc, r, t, ref, ref_rad, dist, w2_cmd[g])) {
-                r->flying = 0; /* diverged: it stops here */
-                --n_flying;
-            }
-            if (r->flying && lead == NULL) {
-                lead = &r->plant;
-            }
-        }
+        const sim_plant_t *lead = group_control(&g, k, n, w2_cmd);
         if (lead == NULL) {
             break;
         }
-        disturbance_batch_fill(&batch, lead, dt, sc->plant_substeps);
-        sim_plant_t *plants[SIM_MAX_CONTROLLERS];
-        double cmds[SIM_MAX_CONTROLLERS][4];
-        int n_plants = 0;
-        for (int g = 0; g < n_group; ++g) {
-            if (group[g].flying) {
-                plants[n_plants] = &group[g].plant;
-                memcpy(cmds[n_plants++], w2_cmd[g], sizeof cmds[0]);
-            }
-        }
-        /* the group's plants step side by side, the step's disturbances
-         * read from the batch; they are all at the lead's time (they have
-         * flown every step together), but should one not be, every plant
-         * asks for its own */
-        int same_time = 1;
-        for (int g = 1; g < n_plants; ++g) {
-            same_time = same_time && memcmp(&plants[g]->t_s, &lead->t_s, sizeof lead->t_s) == 0;
-        }
-        if (batch.n > 0 && same_time) {
-            (void)sim_plant_step_group_table(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps,
-                                             (const double(*)[3])batch.stage);
-        } else {
-            batch_reader_t reader = {&batch, 0};
-            sim_plant_step_group(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps, disturbance,
-                                 &reader);
-        }
+        group_step_plants(&g, lead, (const double(*)[4])w2_cmd);
         if (progress != NULL && progress->ticks_done != NULL && (k & 1023) == 1023) {
-            *progress->ticks_done += 1024L * n_flying;
+            *progress->ticks_done += 1024L * g.n_flying;
         }
     }
-    if (k == n) { /* the state the last step left, at t = duration */
-        const double t = (double)n * dt;
-        sim_expr_memo_t memo;
-        sim_expr_memo_clear(&memo);
-        ladrc_real_t ref[3];
-        double ref_rad[3];
-        references(sc, t, &memo, ref);
-        widen(ref, ref_rad);
-        for (int g = 0; g < n_group; ++g) {
-            if (group[g].flying) {
-                (void)diverged(sc, &group[g].plant, ref_rad, group[g].wrap_yaw, t, runs[g].metrics);
-            }
-        }
+    if (k == n) {
+        group_check_end(&g, n);
     }
-    const double wall = wall_now_s() - start;
-    for (int g = 0; g < n_group; ++g) {
-        if (runs[g].rc == 0) {
-            runs[g].metrics->wall_s = wall;
-            runs[g].rc = run_close(sc, &group[g]);
-        }
-    }
+    group_close(&g, wall_now_s() - start);
 }
 
 int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const char *csv_path,

@@ -12,10 +12,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "expr.h"
 #include "ladrc/axis.h"
+#include "signals.h"
 
-#define SIM_MAX_PIECES 8
 #define SIM_MAX_CONTROLLERS 8
 #define SIM_NAME_LEN 64
 #define SIM_PATH_LEN 512
@@ -30,23 +29,6 @@
 #define SIM_RUN_PLANT_STEPS_MAX 1e9      /* plant RK4 steps per run */
 /* and the plant step control_dt_s / plant_substeps at most the plant's
  * shortest time constant: motor_tau_s (when > 0) and each J / kt (when kt > 0) */
-
-/* A signal defined piecewise over windows (from_s, to_s]; 0 outside them.
- * A piece with from_s = -inf, to_s = +inf covers all t. */
-typedef struct {
-    double from_s[SIM_MAX_PIECES];
-    double to_s[SIM_MAX_PIECES];
-    sim_expr_t expr[SIM_MAX_PIECES];
-    double scale;      /* applied to the expression's value: deg -> rad for references */
-    int n_pieces;
-} sim_signal_t;
-
-/* Value of the first piece whose window holds t, times scale; 0 if none. */
-double sim_signal_eval(const sim_signal_t *sig, double t_s);
-
-/* The same, sharing function results with other signals at the same t
- * through memo (NULL: none); bit for bit the value of sim_signal_eval. */
-double sim_signal_eval_memo(const sim_signal_t *sig, double t_s, sim_expr_memo_t *memo);
 
 typedef enum { SIM_KIND_ATTITUDE = 0, SIM_KIND_DIFFERENTIATOR = 1 } sim_kind_t;
 

@@ -1,0 +1,535 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * The scenario's checks once every line is read (parser.h): the keys
+ * against the kind, the run's size and limits, rotors, differentiator and
+ * tuning keys against each other; then what the library accepts. Each
+ * error is at the key responsible; the earliest in the file is kept.
+ */
+#include "parser.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "setup.h"
+
+/* A consistency error: kept if it is the earliest in the file so far. */
+static void PRINTF_LIKE(4, 5) check_fail(parser_t *p, int line, int col, const char *format, ...)
+{
+    if (p->checked && (line > p->err->line || (line == p->err->line && col >= p->err->column))) {
+        return;
+    }
+    p->checked = 1;
+    va_list ap;
+    va_start(ap, format);
+    parser_vset_error(p->err, line, col, format, ap);
+    va_end(ap);
+}
+
+const loc_t *checks_seen(const parser_t *p, int sec, const char *name)
+{
+    const int k = schema_find_key(SCHEMA_TABLE(sec), name);
+    return &p->seen[sec][k];
+}
+
+static void check_kind(parser_t *p)
+{
+    const int kind = p->sc->kind == SIM_KIND_DIFFERENTIATOR ? FOR_DIFFERENTIATOR : FOR_ATTITUDE;
+    const char *kind_name = kind == FOR_DIFFERENTIATOR ? "differentiator" : "attitude";
+    char title[48];
+    for (int sec = 0; sec < SEC_COUNT; ++sec) {
+        const int sec_kind = schema_section_kind(sec);
+        if (p->section_line[sec] != 0 && sec_kind != FOR_BOTH && sec_kind != kind) {
+            check_fail(p, p->section_line[sec], 1, "%s does not apply to kind = %s",
+                       schema_section_title(sec, title, sizeof title), kind_name);
+        }
+        for (int k = 0; k < SCHEMA_N_KEYS; ++k) {
+            const loc_t *at = &p->seen[sec][k];
+            const int key_kind = schema_key_kind(sec, &SCHEMA_KEYS[k]);
+            /* a key of a section that does not apply is reported with its section */
+            if (at->line != 0 && SCHEMA_KEYS[k].kind != FOR_BOTH && SCHEMA_KEYS[k].kind != kind) {
+                check_fail(p, at->line, at->key_col, "'%s' does not apply to kind = %s", SCHEMA_KEYS[k].name,
+                           kind_name);
+            }
+            if (SCHEMA_KEYS[k].required && SCHEMA_KEYS[k].section == sec && at->line == 0 &&
+                (key_kind == FOR_BOTH || key_kind == kind)) {
+                const int line = p->section_line[sec] != 0 ? p->section_line[sec] : 1;
+                check_fail(p, line, 1, "missing required key '%s' in %s", SCHEMA_KEYS[k].name,
+                           schema_section_title(sec, title, sizeof title));
+            }
+        }
+    }
+}
+
+/* The first of the keys of a section that the file gives, or NULL. */
+static const loc_t *first_given(const parser_t *p, int sec, const char *const *names, int n)
+{
+    for (int i = 0; i < n; ++i) {
+        const loc_t *at = checks_seen(p, sec, names[i]);
+        if (at->line != 0) {
+            return at;
+        }
+    }
+    return NULL;
+}
+
+/* Where a limit on the run's steps is reported: the first key given of
+ * plant_substeps (when it takes part), control_dt_s, duration_s. */
+static const loc_t *steps_key(const parser_t *p, int with_substeps)
+{
+    static const char *const keys[] = {"plant_substeps", "control_dt_s", "duration_s"};
+    return with_substeps ? first_given(p, SEC_RUN, keys, 3) : first_given(p, SEC_RUN, keys + 1, 2);
+}
+
+/* The run's size (control periods and plant steps) and the plant step
+ * against the plant's time constants; limits in scenario.h. */
+static void check_run_size(parser_t *p)
+{
+    const sim_scenario_t *sc = p->sc;
+    const double ticks = floor(sc->duration_s / sc->control_dt_s + 0.5); /* sim_run_ticks */
+    if (ticks > (double)SIM_RUN_TICKS_MAX) {
+        const loc_t *at = steps_key(p, 0);
+        check_fail(p, at->line, at->value_col,
+                   "the run takes %g control periods (duration_s / control_dt_s), more than %g", ticks,
+                   (double)SIM_RUN_TICKS_MAX);
+        return;
+    }
+    if (sc->kind != SIM_KIND_ATTITUDE) {
+        return;
+    }
+    const double steps = ticks * sc->plant_substeps;
+    if (steps > SIM_RUN_PLANT_STEPS_MAX) {
+        const loc_t *at = steps_key(p, 1);
+        check_fail(p, at->line, at->value_col,
+                   "the run takes %g plant steps (duration_s / control_dt_s x plant_substeps), more than %g", steps,
+                   SIM_RUN_PLANT_STEPS_MAX);
+        return;
+    }
+    /* RK4 is stable on a decay up to 2.8 time constants per step and loses
+     * its accuracy well before: the plant's truth resolves its fastest part. */
+    const double h = sc->control_dt_s / sc->plant_substeps;
+    double tau = INFINITY;
+    const char *what = NULL;
+    const loc_t *cause = NULL; /* the key that sets the time constant */
+    if (sc->motor_tau_s > 0.0) {
+        tau = sc->motor_tau_s;
+        what = "motor_tau_s";
+        cause = checks_seen(p, SEC_ROTORS, "motor_tau_s");
+    }
+    for (int i = 0; i < 3; ++i) {
+        if (sc->rot_drag_Nm_s > 0.0 && sc->inertia_kg_m2[i] / sc->rot_drag_Nm_s < tau) {
+            tau = sc->inertia_kg_m2[i] / sc->rot_drag_Nm_s;
+            what = "the drag time constant J / rot_drag_Nm_s";
+            static const char *const vehicle[] = {"inertia_kg_m2", "rot_drag_Nm_s"};
+            cause = first_given(p, SEC_VEHICLE, vehicle, 2);
+        }
+    }
+    if (h > tau) {
+        static const char *const run[] = {"plant_substeps", "control_dt_s"};
+        const loc_t *at = first_given(p, SEC_RUN, run, 2);
+        if (at == NULL) {
+            at = cause != NULL ? cause : checks_seen(p, SEC_RUN, "duration_s");
+        }
+        const double needed = ceil(sc->control_dt_s / tau);
+        char fix[64];
+        if (needed <= SIM_PLANT_SUBSTEPS_MAX) {
+            snprintf(fix, sizeof fix, "plant_substeps must be at least %.0f", needed);
+        } else {
+            snprintf(fix, sizeof fix, "more than %d plant_substeps would be needed", SIM_PLANT_SUBSTEPS_MAX);
+        }
+        check_fail(p, at->line, at->value_col,
+                   "the plant step control_dt_s / plant_substeps (%g s) is longer than %s (%g s): %s", h, what, tau,
+                   fix);
+    }
+}
+
+static void check_run(parser_t *p)
+{
+    const sim_scenario_t *sc = p->sc;
+    if (isnan(sc->duration_s)) {
+        return; /* missing, reported by check_kind */
+    }
+    if (!(sc->control_dt_s <= sc->duration_s)) {
+        const loc_t *dt = checks_seen(p, SEC_RUN, "control_dt_s");
+        const loc_t *at = dt->line != 0 ? dt : checks_seen(p, SEC_RUN, "duration_s");
+        if (at->line != 0) {
+            check_fail(p, at->line, at->value_col, "control_dt_s (%g) must not exceed duration_s (%g)",
+                       sc->control_dt_s, sc->duration_s);
+        }
+    }
+    check_run_size(p);
+    /* [metrics] windows, and the error window of [differentiator] */
+    static const int sections[] = {SEC_METRICS, SEC_METRICS, SEC_METRICS, SEC_DIFFERENTIATOR};
+    static const char *const windows[] = {"error_window_s", "steady_window_s", "settle_window_s", "error_window_s"};
+    const double ends[] = {sc->error_window_s[1], sc->steady_window_s[1], sc->settle_until_s, sc->error_window_s[1]};
+    for (int i = 0; i < 4; ++i) {
+        const loc_t *at = checks_seen(p, sections[i], windows[i]);
+        if (at->line != 0 && ends[i] > sc->duration_s) {
+            check_fail(p, at->line, at->value_col, "%s ends after the run (duration_s = %g)", windows[i],
+                       sc->duration_s);
+        }
+    }
+}
+
+static void check_rotors(parser_t *p)
+{
+    const sim_scenario_t *sc = p->sc;
+    const loc_t *min = checks_seen(p, SEC_ROTORS, "w2_min_rad2_s2");
+    const loc_t *max = checks_seen(p, SEC_ROTORS, "w2_max_rad2_s2");
+    if (sc->rotors_ideal) {
+        const loc_t *limit[2] = {min, max};
+        const char *name[2] = {"w2_min_rad2_s2", "w2_max_rad2_s2"};
+        for (int i = 0; i < 2; ++i) {
+            if (limit[i]->line != 0) {
+                check_fail(p, limit[i]->line, limit[i]->key_col, "'%s' does not apply with ideal = yes", name[i]);
+            }
+        }
+        return;
+    }
+    if (max->line == 0) {
+        const loc_t *ideal = checks_seen(p, SEC_ROTORS, "ideal");
+        check_fail(p, ideal->line, ideal->value_col, "ideal = no needs w2_max_rad2_s2");
+    } else if (!(sc->w2_max_rad2_s2 > sc->w2_min_rad2_s2)) {
+        check_fail(p, max->line, max->value_col, "w2_max_rad2_s2 must be > w2_min_rad2_s2 (%g)", sc->w2_min_rad2_s2);
+    }
+}
+
+static void check_differentiator(parser_t *p)
+{
+    const sim_scenario_t *sc = p->sc;
+    const loc_t *h0 = checks_seen(p, SEC_DIFFERENTIATOR, "td_h0_s");
+    if (h0->line != 0 && sc->diff_td_h0_s < sc->control_dt_s) {
+        check_fail(p, h0->line, h0->value_col, "td_h0_s must be >= control_dt_s (%g)", sc->control_dt_s);
+    }
+}
+
+/* tune = margins chooses the gains: a gain the file gives as well is an
+ * error at that gain; targets without tune = margins are an error too. */
+static void check_tuning(parser_t *p)
+{
+    /* the keys of the gains tune = margins chooses (setup.h, sim_setup_gain_fields) */
+    static const char *const gains[] = {
+        "wc_rad_s",          "wo_rad_s",           "pid_kp",           "pid_ki",      "pid_kd",
+        "cas_att_kp",        "cas_rate_kp",        "cas_rate_ki",      "cas_rate_kd", "cas_d_filter_tau_s",
+        "indi_att_kp_per_s", "indi_rate_kp_per_s", "indi_filter_rad_s"};
+    static const char *const targets[] = {"tune_phase_margin_deg", "tune_gain_margin_db"};
+    for (int id = 0; id < SIM_CTRL_COUNT; ++id) {
+        const int sec = SEC_CONTROLLER + id;
+        const loc_t *tune = checks_seen(p, sec, "tune");
+        if (p->sc->overrides[id].tune == SIM_TUNE_MARGINS) {
+            for (int g = 0; g < (int)(sizeof gains / sizeof gains[0]); ++g) {
+                const loc_t *at = checks_seen(p, sec, gains[g]);
+                if (at->line != 0) {
+                    check_fail(p, at->line, at->key_col,
+                               "'%s' conflicts with tune = margins (line %d), which chooses the gains: "
+                               "give one of them",
+                               gains[g], tune->line);
+                }
+            }
+        } else {
+            for (int g = 0; g < 2; ++g) {
+                const loc_t *at = checks_seen(p, sec, targets[g]);
+                if (at->line != 0) {
+                    check_fail(p, at->line, at->key_col, "'%s' applies only with tune = margins", targets[g]);
+                }
+            }
+        }
+    }
+}
+
+/* ---- what the library accepts ------------------------------------------------
+ *
+ * The controllers, the mixer and the differentiators are initialised once
+ * here with the configurations the runner gives them (setup.h), so that a
+ * scenario the library refuses is an error of the file, at the key that sets
+ * the refused value, and not a failed run. */
+
+typedef struct {
+    int sec; /* SEC_*; -1: the controller's own [controller NAME] */
+    const char *name;
+} key_ref_t;
+
+#define CTRL_SEC (-1)
+/* clang-format off */
+#define END_KEYS {0, NULL}
+/* clang-format on */
+
+/* The keys behind a refused value, most likely first (the first one the
+ * file gives is reported). */
+static const key_ref_t *keys_of_status(ladrc_status_t st, int known_freqs)
+{
+    static const key_ref_t dt[] = {{SEC_RUN, "control_dt_s"}, END_KEYS};
+    static const key_ref_t inertia[] = {{SEC_VEHICLE, "inertia_kg_m2"}, {SEC_MISMATCH, "inertia_scale"}, END_KEYS};
+    static const key_ref_t drag[] = {{SEC_VEHICLE, "rot_drag_Nm_s"}, {SEC_MISMATCH, "rot_drag_scale"}, END_KEYS};
+    static const key_ref_t wc[] = {{CTRL_SEC, "wc_rad_s"}, END_KEYS};
+    static const key_ref_t wo[] = {{CTRL_SEC, "wo_rad_s"}, END_KEYS};
+    static const key_ref_t euler[] = {
+        {CTRL_SEC, "wo_rad_s"}, {SEC_RUN, "control_dt_s"}, {CTRL_SEC, "leso_method"}, END_KEYS};
+    static const key_ref_t td_accel[] = {{CTRL_SEC, "td_accel_rad_s2"}, END_KEYS};
+    static const key_ref_t levant[] = {{CTRL_SEC, "levant_lipschitz_rad_s4"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
+    static const key_ref_t kp[] = {{CTRL_SEC, "pid_kp"}, END_KEYS};
+    static const key_ref_t ki[] = {{CTRL_SEC, "pid_ki"}, END_KEYS};
+    static const key_ref_t kd[] = {{CTRL_SEC, "pid_kd"}, END_KEYS};
+    static const key_ref_t indi_att[] = {{CTRL_SEC, "indi_att_kp_per_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
+    static const key_ref_t indi_rate[] = {{CTRL_SEC, "indi_rate_kp_per_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
+    static const key_ref_t indi_filter[] = {{CTRL_SEC, "indi_filter_rad_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
+    static const key_ref_t cas_att[] = {{CTRL_SEC, "cas_att_kp"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
+    static const key_ref_t cas_max[] = {{CTRL_SEC, "cas_rate_max_deg_s"}, END_KEYS};
+    static const key_ref_t cas_kp[] = {{CTRL_SEC, "cas_rate_kp"}, END_KEYS};
+    static const key_ref_t cas_ki[] = {{CTRL_SEC, "cas_rate_ki"}, END_KEYS};
+    static const key_ref_t cas_kd[] = {{CTRL_SEC, "cas_rate_kd"}, END_KEYS};
+    static const key_ref_t cas_tau[] = {{CTRL_SEC, "cas_d_filter_tau_s"}, END_KEYS};
+    static const key_ref_t cas_i[] = {{CTRL_SEC, "cas_i_limit_Nm"}, END_KEYS};
+    static const key_ref_t freqs[] = {
+        {CTRL_SEC, "hp_freq_rad_s"}, {CTRL_SEC, "hp_freq2_rad_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
+    static const key_ref_t tones[] = {
+        {CTRL_SEC, "hp_tones"}, {CTRL_SEC, "hp_freq2_rad_s"}, {CTRL_SEC, "hp_freq_mode"}, END_KEYS};
+    static const key_ref_t mixer_kl[] = {{SEC_VEHICLE, "thrust_coeff_N_s2"}, END_KEYS};
+    static const key_ref_t mixer_arm[] = {{SEC_VEHICLE, "arm_m"}, END_KEYS};
+    static const key_ref_t mixer_b[] = {{SEC_VEHICLE, "yaw_coeff_Nm_s2"}, END_KEYS};
+    static const key_ref_t mixer_mass[] = {{SEC_VEHICLE, "mass_kg"}, END_KEYS};
+    static const key_ref_t mixer_g[] = {{SEC_VEHICLE, "g_m_s2"}, END_KEYS};
+    static const key_ref_t w2_min[] = {{SEC_ROTORS, "w2_min_rad2_s2"}, END_KEYS};
+    static const key_ref_t w2_max[] = {{SEC_ROTORS, "w2_max_rad2_s2"}, {SEC_ROTORS, "w2_min_rad2_s2"}, END_KEYS};
+    static const key_ref_t tilt[] = {{SEC_ROTORS, "tilt_max_deg"}, END_KEYS};
+    static const key_ref_t motor_tau[] = {{CTRL_SEC, "model_motor_tau_s"}, {SEC_ROTORS, "motor_tau_s"}, END_KEYS};
+    static const key_ref_t delay[] = {{CTRL_SEC, "model_delay_ticks"}, {SEC_SENSORS, "delay_ticks"}, END_KEYS};
+    switch (st) {
+    case LADRC_ERR_INERTIA_KG_M2:
+    case LADRC_ERR_B0:
+        return inertia;
+    case LADRC_ERR_DRAG_NMS:
+        return drag;
+    case LADRC_ERR_WC_RAD_S:
+        return wc;
+    case LADRC_ERR_WO_RAD_S:
+    case LADRC_ERR_HP_SAMPLE_LAG:
+        return wo;
+    case LADRC_ERR_LESO_EULER_UNSTABLE:
+        return euler;
+    case LADRC_ERR_TD_ACCEL_RAD_S2:
+        return td_accel;
+    case LADRC_ERR_LEVANT_LIPSCHITZ:
+    case LADRC_ERR_LEVANT_RANGE:
+        return levant;
+    case LADRC_ERR_PID_KP:
+        return kp;
+    case LADRC_ERR_PID_KI:
+        return ki;
+    case LADRC_ERR_PID_KD:
+        return kd;
+    case LADRC_ERR_INDI_ATT_KP:
+        return indi_att;
+    case LADRC_ERR_INDI_RATE_KP:
+        return indi_rate;
+    case LADRC_ERR_INDI_FILTER:
+        return indi_filter;
+    case LADRC_ERR_CAS_ATT_KP:
+        return cas_att;
+    case LADRC_ERR_CAS_RATE_MAX:
+        return cas_max;
+    case LADRC_ERR_CAS_RATE_KP:
+        return cas_kp;
+    case LADRC_ERR_CAS_RATE_KI:
+        return cas_ki;
+    case LADRC_ERR_CAS_RATE_KD:
+        return cas_kd;
+    case LADRC_ERR_CAS_D_TAU_S:
+    case LADRC_ERR_CAS_RATE_TAU_S:
+        return cas_tau;
+    case LADRC_ERR_CAS_I_LIMIT_NM:
+        return cas_i;
+    case LADRC_ERR_HP_FREQ_RAD_S:
+        return freqs;
+    /* the fastest tone is a known frequency, or else the search range's top */
+    case LADRC_ERR_HP_FIT_DECIMATION:
+        return known_freqs ? freqs : dt;
+    case LADRC_ERR_HP_N_TONES:
+        return tones;
+    case LADRC_ERR_MIXER_KL_N_S2:
+        return mixer_kl;
+    case LADRC_ERR_MIXER_ARM_M:
+        return mixer_arm;
+    case LADRC_ERR_MIXER_B_NM_S2:
+        return mixer_b;
+    case LADRC_ERR_MIXER_MASS_KG:
+        return mixer_mass;
+    case LADRC_ERR_MIXER_G_M_S2:
+        return mixer_g;
+    case LADRC_ERR_MIXER_W2_MIN:
+        return w2_min;
+    case LADRC_ERR_MIXER_W2_MAX:
+        return w2_max;
+    case LADRC_ERR_MIXER_TILT_MAX_RAD:
+        return tilt;
+    case LADRC_ERR_MOTOR_TAU_S:
+        return motor_tau;
+    case LADRC_ERR_DELAY_TICKS:
+        return delay;
+    default:
+        return dt; /* the rest depend on the period alone (and library constants) */
+    }
+}
+
+static const key_ref_t *keys_of_differentiator_status(ladrc_status_t st)
+{
+    static const key_ref_t levant[] = {
+        {SEC_DIFFERENTIATOR, "levant_lipschitz_rad_s4"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
+    static const key_ref_t td_accel[] = {{SEC_DIFFERENTIATOR, "td_accel_rad_s2"}, END_KEYS};
+    static const key_ref_t td_h0[] = {{SEC_DIFFERENTIATOR, "td_h0_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
+    switch (st) {
+    case LADRC_ERR_LEVANT_LIPSCHITZ:
+    case LADRC_ERR_LEVANT_RANGE:
+        return levant;
+    case LADRC_ERR_TD_ACCEL_RAD_S2:
+        return td_accel;
+    case LADRC_ERR_TD_H0_S:
+        return td_h0;
+    default:
+        return keys_of_status(st, 0);
+    }
+}
+
+/* The first key of keys the file gives (errors point at its value); else
+ * the controller's section header (ctrl_sec >= 0), else line 1. */
+static loc_t locate(const parser_t *p, const key_ref_t *keys, int ctrl_sec)
+{
+    for (const key_ref_t *k = keys; k->name != NULL; ++k) {
+        const int sec = k->sec == CTRL_SEC ? ctrl_sec : k->sec;
+        if (sec < 0) {
+            continue;
+        }
+        const loc_t *at = checks_seen(p, sec, k->name);
+        if (at->line != 0) {
+            return *at;
+        }
+    }
+    const loc_t header = {ctrl_sec >= 0 && p->section_line[ctrl_sec] != 0 ? p->section_line[ctrl_sec] : 1, 1, 1};
+    return header;
+}
+
+static void PRINTF_LIKE(4, 5) set_error(sim_parse_error_t *err, const char *path, loc_t at, const char *format, ...)
+{
+    memset(err, 0, sizeof *err);
+    snprintf(err->path, sizeof err->path, "%s", path);
+    va_list ap;
+    va_start(ap, format);
+    parser_vset_error(err, at.line, at.value_col, format, ap);
+    va_end(ap);
+}
+
+/* Each controller on the scenario: an error for a listed one, kept in
+ * controller_error for the others (sim_scenario_set_controllers). */
+static void check_controllers(parser_t *p)
+{
+    sim_scenario_t *sc = p->sc;
+    for (int id = 0; id < SIM_CTRL_COUNT; ++id) {
+        ladrc_attitude_config_t cfg;
+        ladrc_attitude_t att;
+        sim_setup_attitude(sc, (sim_controller_id_t)id, &cfg);
+        const ladrc_status_t st = ladrc_attitude_init(&att, &cfg, NULL);
+        int listed = 0;
+        for (int i = 0; i < sc->n_controllers; ++i) {
+            listed |= (int)sc->controllers[i] == id;
+        }
+        if (st == LADRC_OK && sim_controller_needs_rate((sim_controller_id_t)id) && !sc->use_rate) {
+            static const key_ref_t use_rate[] = {{SEC_SENSORS, "use_rate"}, END_KEYS};
+            const loc_t at = locate(p, use_rate, -1);
+            if (listed) {
+                check_fail(p, at.line, at.value_col, "INDI needs the measured rate ([sensors] use_rate = yes)");
+            } else {
+                set_error(&sc->controller_error[id], sc->path, at,
+                          "INDI needs the measured rate ([sensors] use_rate = yes)");
+            }
+            continue;
+        }
+        if (st == LADRC_OK) {
+            continue;
+        }
+        const int known = cfg.axis[0].hp_freq_mode == LADRC_HP_FREQ_KNOWN;
+        const char *name = sim_controller_name((sim_controller_id_t)id);
+        const loc_t at = locate(p, keys_of_status(st, known), SEC_CONTROLLER + id);
+        if (listed) {
+            check_fail(p, at.line, at.value_col, "%s does not start: %s", name, ladrc_status_str(st));
+        } else {
+            set_error(&sc->controller_error[id], sc->path, at, "%s does not start: %s", name, ladrc_status_str(st));
+        }
+    }
+    ladrc_mixer_config_t mix;
+    ladrc_mixer_t mixer;
+    sim_setup_mixer(sc, &mix);
+    const ladrc_status_t st = ladrc_mixer_init(&mixer, &mix);
+    if (st != LADRC_OK) {
+        const loc_t at = locate(p, keys_of_status(st, 0), -1);
+        check_fail(p, at.line, at.value_col, "the mixer does not start: %s", ladrc_status_str(st));
+    }
+}
+
+static void check_differentiators(parser_t *p)
+{
+    ladrc_levant_config_t lcfg;
+    ladrc_td_config_t tcfg;
+    ladrc_levant_t lev;
+    ladrc_td_t td;
+    sim_setup_differentiators(p->sc, &lcfg, &tcfg);
+    ladrc_status_t st = ladrc_levant_init(&lev, &lcfg);
+    const char *which = "Levant's differentiator";
+    if (st == LADRC_OK) {
+        st = ladrc_td_init(&td, &tcfg);
+        which = "the tracking differentiator";
+    }
+    if (st != LADRC_OK) {
+        const loc_t at = locate(p, keys_of_differentiator_status(st), -1);
+        check_fail(p, at.line, at.value_col, "%s does not start: %s", which, ladrc_status_str(st));
+    }
+}
+
+void checks_finish(parser_t *p)
+{
+    sim_scenario_t *sc = p->sc;
+    if (checks_seen(p, SEC_METRICS, "error_window_s")->line == 0 &&
+        checks_seen(p, SEC_DIFFERENTIATOR, "error_window_s")->line == 0) {
+        sc->error_window_s[0] = 0.0;
+        sc->error_window_s[1] = sc->duration_s;
+    }
+    if (checks_seen(p, SEC_METRICS, "steady_window_s")->line == 0) {
+        sc->steady_window_s[0] = 0.0;
+        sc->steady_window_s[1] = sc->duration_s;
+    }
+    if (checks_seen(p, SEC_METRICS, "settle_window_s")->line == 0) {
+        sc->settle_after_s = 0.0;
+        sc->settle_until_s = sc->duration_s;
+    }
+    if (sc->kind == SIM_KIND_DIFFERENTIATOR) {
+        sc->n_controllers = 0; /* it runs the two differentiators, no controller */
+    }
+    if (sc->output_dir[0] == '\0') {
+        snprintf(sc->output_dir, sizeof sc->output_dir, "out/%s", sc->name);
+    }
+    for (int id = 0; id < SIM_CTRL_COUNT; ++id) {
+        const loc_t *tune = checks_seen(p, SEC_CONTROLLER + id, "tune");
+        sc->tune_line[id] = tune->line;
+        sc->tune_column[id] = tune->value_col;
+    }
+}
+
+void checks_run(parser_t *p)
+{
+    const sim_scenario_t *sc = p->sc;
+    check_kind(p);
+    check_run(p);
+    if (sc->kind == SIM_KIND_ATTITUDE) {
+        check_rotors(p);
+        check_tuning(p);
+    } else {
+        check_differentiator(p);
+    }
+    /* the library's own checks, once the file is consistent */
+    if (!p->checked) {
+        if (sc->kind == SIM_KIND_ATTITUDE) {
+            check_controllers(p);
+        } else {
+            check_differentiators(p);
+        }
+    }
+}

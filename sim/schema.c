@@ -1,0 +1,340 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * The scenario schema (schema.h): sections, the key table, the per-key
+ * checks and the defaults. docs/scenario-format.md documents every key.
+ */
+#include "schema.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "ladrc/estimator.h"
+#include "ladrc/leso.h"
+#include "plant.h"
+#include "sensor.h"
+
+/* Defaults that are not the paper vehicle's (documented in docs/scenario-format.md). */
+#define DEFAULT_CONTROL_DT_S 0.001
+#define DEFAULT_PLANT_SUBSTEPS 10
+#define DEFAULT_SEED 1u
+#define DEFAULT_TILT_MAX_DEG 40.0
+#define DEFAULT_SETTLE_BAND_DEG 0.5
+#define DEFAULT_DIVERGE_LIMIT_DEG 90.0
+
+/* ---- controllers ------------------------------------------------------------ */
+
+static const char *const CONTROLLER_NAMES[SIM_CTRL_COUNT] = {"HP-MLADRC", "LP-MLADRC", "LADRC",
+                                                             "PID",       "CASCADED",  "INDI"};
+
+int sim_controller_needs_rate(sim_controller_id_t id)
+{
+    return id == SIM_CTRL_INDI;
+}
+
+const char *sim_controller_name(sim_controller_id_t id)
+{
+    return ((int)id >= 0 && id < SIM_CTRL_COUNT) ? CONTROLLER_NAMES[id] : "?";
+}
+
+int schema_controller_id(const char *name, size_t len)
+{
+    for (int i = 0; i < SIM_CTRL_COUNT; ++i) {
+        if (strlen(CONTROLLER_NAMES[i]) == len && strncmp(CONTROLLER_NAMES[i], name, len) == 0) {
+            return i;
+        }
+    }
+    return -1;
+}
+
+/* ---- sections ----------------------------------------------------------------- */
+
+static const char *const SECTION_NAMES[SEC_CONTROLLER + 1] = {
+    "run",       "vehicle",     "rotors",  "sensors",        "mismatch",
+    "reference", "disturbance", "metrics", "differentiator", "controller"};
+
+static const int SECTION_KIND[SEC_CONTROLLER + 1] = {FOR_BOTH,           FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE,
+                                                     FOR_ATTITUDE,       FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE,
+                                                     FOR_DIFFERENTIATOR, FOR_ATTITUDE};
+
+int schema_find_section(const char *name, size_t len)
+{
+    for (int i = 0; i <= SEC_CONTROLLER; ++i) {
+        if (strlen(SECTION_NAMES[i]) == len && strncmp(SECTION_NAMES[i], name, len) == 0) {
+            return i;
+        }
+    }
+    return -1;
+}
+
+const char *schema_section_title(int sec, char *buf, size_t n)
+{
+    if (sec >= SEC_CONTROLLER) {
+        snprintf(buf, n, "[controller %s]", CONTROLLER_NAMES[sec - SEC_CONTROLLER]);
+    } else {
+        snprintf(buf, n, "[%s]", SECTION_NAMES[sec]);
+    }
+    return buf;
+}
+
+int schema_section_kind(int sec)
+{
+    return SECTION_KIND[SCHEMA_TABLE(sec)];
+}
+
+int schema_key_kind(int sec, const key_def_t *def)
+{
+    return def->kind != FOR_BOTH ? def->kind : schema_section_kind(sec);
+}
+
+/* ---- keys --------------------------------------------------------------------- */
+
+static const choice_t YES_NO[] = {{"yes", 1}, {"no", 0}, {NULL, 0}};
+static const choice_t KINDS[] = {
+    {"attitude", SIM_KIND_ATTITUDE}, {"differentiator", SIM_KIND_DIFFERENTIATOR}, {NULL, 0}};
+static const choice_t LESO_METHODS[] = {{"zoh", LADRC_LESO_ZOH}, {"euler", LADRC_LESO_EULER}, {NULL, 0}};
+static const choice_t TUNE_MODES[] = {{"none", SIM_TUNE_NONE}, {"margins", SIM_TUNE_MARGINS}, {NULL, 0}};
+static const choice_t HP_FREQ_MODES[] = {{"known", LADRC_HP_FREQ_KNOWN}, {"online", LADRC_HP_FREQ_ONLINE}, {NULL, 0}};
+
+#define CTRL_BIT(id) (1u << (id))
+#define C_HP CTRL_BIT(SIM_CTRL_HP_MLADRC)
+#define C_LP CTRL_BIT(SIM_CTRL_LP_MLADRC)
+#define C_LADRC CTRL_BIT(SIM_CTRL_LADRC)
+#define C_PID CTRL_BIT(SIM_CTRL_PID)
+#define C_CAS CTRL_BIT(SIM_CTRL_CASCADED)
+#define C_INDI CTRL_BIT(SIM_CTRL_INDI)
+#define LADRC_FAMILY (C_HP | C_LP | C_LADRC)
+#define ALL_CONTROLLERS ((1u << SIM_CTRL_COUNT) - 1u)
+
+#define SC(field) offsetof(sim_scenario_t, field)
+#define OV(field) offsetof(sim_overrides_t, field)
+
+/* A row names its section, key, type and field; the other members are
+ * given by name where they differ from their zero: no range (R_ANY), unit
+ * factor 1, the section's kind, optional, no twin. */
+#define KEY(sec, key, typ, field) .section = (sec), .name = (key), .type = (typ), .offset = (field)
+/* A [controller NAME] key: its field in sim_overrides_t and the controllers it applies to. */
+#define CTRL_KEY(key, typ, field, ctrls) KEY(SEC_CONTROLLER, key, typ, OV(field)), .controllers = (ctrls)
+
+const key_def_t SCHEMA_KEYS[] = {
+    {KEY(SEC_RUN, "kind", V_KIND, SC(kind)), .choices = KINDS},
+    {KEY(SEC_RUN, "duration_s", V_REAL, SC(duration_s)), .range = R_DURATION, .required = 1},
+    {KEY(SEC_RUN, "control_dt_s", V_REAL, SC(control_dt_s)), .range = R_CONTROL_DT},
+    {KEY(SEC_RUN, "plant_substeps", V_INT, SC(plant_substeps)), .range = R_SUBSTEPS, .kind = FOR_ATTITUDE},
+    {KEY(SEC_RUN, "seed", V_SEED, SC(seed))},
+    {KEY(SEC_RUN, "output_dir", V_TEXT, SC(output_dir))},
+    {KEY(SEC_RUN, "controllers", V_CONTROLLERS, SC(controllers)), .kind = FOR_ATTITUDE},
+
+    {KEY(SEC_VEHICLE, "mass_kg", V_REAL, SC(mass_kg)), .range = R_POSITIVE},
+    {KEY(SEC_VEHICLE, "inertia_kg_m2", V_VEC3, SC(inertia_kg_m2)), .range = R_POSITIVE},
+    {KEY(SEC_VEHICLE, "arm_m", V_REAL, SC(arm_m)), .range = R_POSITIVE},
+    {KEY(SEC_VEHICLE, "thrust_coeff_N_s2", V_REAL, SC(thrust_coeff_N_s2)), .range = R_POSITIVE},
+    {KEY(SEC_VEHICLE, "yaw_coeff_Nm_s2", V_REAL, SC(yaw_coeff_Nm_s2)), .range = R_POSITIVE},
+    {KEY(SEC_VEHICLE, "rot_drag_Nm_s", V_REAL, SC(rot_drag_Nm_s)), .range = R_NONNEGATIVE},
+    {KEY(SEC_VEHICLE, "g_m_s2", V_REAL, SC(g_m_s2)), .range = R_POSITIVE},
+
+    {KEY(SEC_ROTORS, "ideal", V_CHOICE, SC(rotors_ideal)), .choices = YES_NO},
+    {KEY(SEC_ROTORS, "w2_min_rad2_s2", V_REAL, SC(w2_min_rad2_s2)), .range = R_NONNEGATIVE},
+    {KEY(SEC_ROTORS, "w2_max_rad2_s2", V_REAL, SC(w2_max_rad2_s2)), .range = R_POSITIVE},
+    {KEY(SEC_ROTORS, "motor_tau_s", V_REAL, SC(motor_tau_s)), .range = R_NONNEGATIVE},
+    {KEY(SEC_ROTORS, "tilt_max_deg", V_REAL, SC(tilt_max_rad)), .range = R_TILT, .scale = DEG_TO_RAD},
+
+    {KEY(SEC_SENSORS, "angle_noise_std_deg", V_REAL, SC(angle_noise_std_rad)), .range = R_NONNEGATIVE,
+     .scale = DEG_TO_RAD, .twin = "angle_noise_var_deg2"},
+    {KEY(SEC_SENSORS, "angle_noise_var_deg2", V_REAL, SC(angle_noise_std_rad)), .range = R_NONNEGATIVE,
+     .scale = DEG_TO_RAD, .variance = 1, .twin = "angle_noise_std_deg"},
+    {KEY(SEC_SENSORS, "rate_noise_std_deg_s", V_REAL, SC(rate_noise_std_rad_s)), .range = R_NONNEGATIVE,
+     .scale = DEG_TO_RAD, .twin = "rate_noise_var_deg2_s2"},
+    {KEY(SEC_SENSORS, "rate_noise_var_deg2_s2", V_REAL, SC(rate_noise_std_rad_s)), .range = R_NONNEGATIVE,
+     .scale = DEG_TO_RAD, .variance = 1, .twin = "rate_noise_std_deg_s"},
+    {KEY(SEC_SENSORS, "delay_ticks", V_INT, SC(delay_ticks)), .range = R_DELAY},
+    {KEY(SEC_SENSORS, "use_rate", V_CHOICE, SC(use_rate)), .choices = YES_NO},
+
+    {KEY(SEC_MISMATCH, "inertia_scale", V_VEC3, SC(inertia_scale)), .range = R_POSITIVE},
+    {KEY(SEC_MISMATCH, "rot_drag_scale", V_REAL, SC(rot_drag_scale)), .range = R_NONNEGATIVE},
+
+    {KEY(SEC_REFERENCE, "roll", V_SIGNAL, SC(reference[0]))},
+    {KEY(SEC_REFERENCE, "pitch", V_SIGNAL, SC(reference[1]))},
+    {KEY(SEC_REFERENCE, "yaw", V_SIGNAL, SC(reference[2]))},
+
+    {KEY(SEC_DISTURBANCE, "roll", V_SIGNAL, SC(disturbance[0]))},
+    {KEY(SEC_DISTURBANCE, "pitch", V_SIGNAL, SC(disturbance[1]))},
+    {KEY(SEC_DISTURBANCE, "yaw", V_SIGNAL, SC(disturbance[2]))},
+
+    {KEY(SEC_METRICS, "error_window_s", V_WINDOW, SC(error_window_s[0])), .offset2 = SC(error_window_s[1])},
+    {KEY(SEC_METRICS, "steady_window_s", V_WINDOW, SC(steady_window_s[0])), .offset2 = SC(steady_window_s[1])},
+    {KEY(SEC_METRICS, "settle_band_deg", V_REAL, SC(settle_band_deg)), .range = R_POSITIVE},
+    {KEY(SEC_METRICS, "settle_window_s", V_WINDOW, SC(settle_after_s)), .offset2 = SC(settle_until_s)},
+    {KEY(SEC_METRICS, "diverge_limit_deg", V_REAL, SC(diverge_limit_deg)), .range = R_POSITIVE},
+
+    {KEY(SEC_DIFFERENTIATOR, "signal", V_SIGNAL, SC(diff_signal)), .required = 1},
+    {KEY(SEC_DIFFERENTIATOR, "derivative", V_SIGNAL, SC(diff_derivative)), .required = 1},
+    {KEY(SEC_DIFFERENTIATOR, "noise_var", V_REAL, SC(diff_noise_var)), .range = R_NONNEGATIVE},
+    {KEY(SEC_DIFFERENTIATOR, "levant_lipschitz_rad_s4", V_REAL, SC(diff_levant_lipschitz)), .range = R_POSITIVE},
+    {KEY(SEC_DIFFERENTIATOR, "td_accel_rad_s2", V_REAL, SC(diff_td_accel)), .range = R_POSITIVE},
+    {KEY(SEC_DIFFERENTIATOR, "td_h0_s", V_REAL, SC(diff_td_h0_s)), .range = R_POSITIVE},
+    {KEY(SEC_DIFFERENTIATOR, "error_window_s", V_WINDOW, SC(error_window_s[0])), .offset2 = SC(error_window_s[1])},
+
+    {CTRL_KEY("wc_rad_s", V_REAL, wc_rad_s, LADRC_FAMILY), .range = R_POSITIVE},
+    {CTRL_KEY("wo_rad_s", V_REAL, wo_rad_s, LADRC_FAMILY), .range = R_POSITIVE},
+    {CTRL_KEY("leso_method", V_CHOICE, leso_method, LADRC_FAMILY), .choices = LESO_METHODS},
+    {CTRL_KEY("hp_freq_mode", V_CHOICE, hp_freq_mode, C_HP), .choices = HP_FREQ_MODES},
+    {CTRL_KEY("hp_freq_rad_s", V_REAL, hp_freq_rad_s, C_HP), .range = R_POSITIVE},
+    {CTRL_KEY("hp_freq2_rad_s", V_REAL, hp_freq2_rad_s, C_HP), .range = R_POSITIVE},
+    {CTRL_KEY("hp_tones", V_INT, hp_tones, C_HP), .range = R_HP_TONES},
+    {CTRL_KEY("levant_lipschitz_rad_s4", V_REAL, levant_lipschitz_rad_s4, C_HP | C_LP), .range = R_POSITIVE},
+    {CTRL_KEY("td_accel_rad_s2", V_REAL, td_accel_rad_s2, C_LADRC | C_CAS | C_INDI), .range = R_POSITIVE},
+    {CTRL_KEY("pid_kp", V_REAL, pid_kp, C_PID), .range = R_NONNEGATIVE},
+    {CTRL_KEY("pid_ki", V_REAL, pid_ki, C_PID), .range = R_NONNEGATIVE},
+    {CTRL_KEY("pid_kd", V_REAL, pid_kd, C_PID), .range = R_NONNEGATIVE},
+    {CTRL_KEY("indi_att_kp_per_s", V_REAL, indi_att_kp_per_s, C_INDI), .range = R_POSITIVE},
+    {CTRL_KEY("indi_rate_kp_per_s", V_REAL, indi_rate_kp_per_s, C_INDI), .range = R_POSITIVE},
+    {CTRL_KEY("indi_filter_rad_s", V_REAL, indi_filter_rad_s, C_INDI), .range = R_POSITIVE},
+    {CTRL_KEY("cas_att_kp", V_REAL, cas_att_kp, C_CAS), .range = R_POSITIVE},
+    {CTRL_KEY("cas_rate_max_deg_s", V_REAL, cas_rate_max_deg_s, C_CAS), .range = R_POSITIVE},
+    {CTRL_KEY("cas_rate_kp", V_REAL, cas_rate_kp, C_CAS), .range = R_NONNEGATIVE},
+    {CTRL_KEY("cas_rate_ki", V_REAL, cas_rate_ki, C_CAS), .range = R_NONNEGATIVE},
+    {CTRL_KEY("cas_rate_kd", V_REAL, cas_rate_kd, C_CAS), .range = R_NONNEGATIVE},
+    {CTRL_KEY("cas_d_filter_tau_s", V_REAL, cas_d_filter_tau_s, C_CAS), .range = R_NONNEGATIVE},
+    {CTRL_KEY("cas_i_limit_Nm", V_REAL, cas_i_limit_Nm, C_CAS), .range = R_NONNEGATIVE},
+    {CTRL_KEY("coupling_feed", V_CHOICE, coupling_feed, LADRC_FAMILY), .choices = YES_NO},
+    {CTRL_KEY("model_motor_tau_s", V_REAL, model_motor_tau_s, LADRC_FAMILY | C_INDI), .range = R_NONNEGATIVE},
+    {CTRL_KEY("model_delay_ticks", V_INT, model_delay_ticks, LADRC_FAMILY | C_INDI), .range = R_DELAY},
+    {CTRL_KEY("wrap_yaw", V_CHOICE, wrap_yaw, LADRC_FAMILY | C_PID | C_CAS | C_INDI), .choices = YES_NO},
+    {CTRL_KEY("tune", V_CHOICE, tune, ALL_CONTROLLERS), .choices = TUNE_MODES},
+    {CTRL_KEY("tune_phase_margin_deg", V_REAL, tune_pm_deg, ALL_CONTROLLERS), .range = R_PHASE_MARGIN},
+    {CTRL_KEY("tune_gain_margin_db", V_REAL, tune_gm_db, ALL_CONTROLLERS), .range = R_POSITIVE},
+};
+
+#define N_KEYS ((int)(sizeof SCHEMA_KEYS / sizeof SCHEMA_KEYS[0]))
+const int SCHEMA_N_KEYS = N_KEYS;
+
+/* The reader's arrays hold SCHEMA_MAX_KEYS keys. */
+typedef char schema_keys_fit[(N_KEYS <= SCHEMA_MAX_KEYS) ? 1 : -1];
+
+int schema_find_key(int table, const char *name)
+{
+    for (int i = 0; i < N_KEYS; ++i) {
+        if (SCHEMA_KEYS[i].section == table && strcmp(SCHEMA_KEYS[i].name, name) == 0) {
+            return i;
+        }
+    }
+    return -1;
+}
+
+int schema_applies_to(const key_def_t *def, int id)
+{
+    return (def->controllers & CTRL_BIT(id)) != 0;
+}
+
+/* ---- per-key checks ----------------------------------------------------------- */
+
+static int PRINTF_LIKE(3, 4) refuse(char *msg, size_t msg_len, const char *format, ...)
+{
+    va_list ap;
+    va_start(ap, format);
+    vsnprintf(msg, msg_len, format, ap);
+    va_end(ap);
+    return -1;
+}
+
+int schema_check_range(const key_def_t *def, double v, char *msg, size_t msg_len)
+{
+    switch (def->range) {
+    case R_POSITIVE:
+        return v > 0.0 ? 0 : refuse(msg, msg_len, "%s must be > 0", def->name);
+    case R_NONNEGATIVE:
+        return v >= 0.0 ? 0 : refuse(msg, msg_len, "%s must be >= 0", def->name);
+    case R_TILT:
+        return (v > 0.0 && v < 90.0) ? 0 : refuse(msg, msg_len, "%s must be > 0 and < 90", def->name);
+    case R_DELAY:
+        return (v >= 0.0 && v <= SIM_SENSOR_MAX_DELAY)
+                   ? 0
+                   : refuse(msg, msg_len, "%s must be between 0 and %d", def->name, SIM_SENSOR_MAX_DELAY);
+    case R_HP_TONES:
+        return (v >= 1.0 && v <= LADRC_HP_MAX_TONES)
+                   ? 0
+                   : refuse(msg, msg_len, "%s must be between 1 and %d", def->name, LADRC_HP_MAX_TONES);
+    case R_PHASE_MARGIN:
+        return (v > 0.0 && v < 90.0) ? 0 : refuse(msg, msg_len, "%s must be > 0 and < 90", def->name);
+    case R_DURATION:
+        return (v > 0.0 && v <= SIM_DURATION_MAX_S)
+                   ? 0
+                   : refuse(msg, msg_len, "%s must be > 0 and at most %g", def->name, SIM_DURATION_MAX_S);
+    case R_CONTROL_DT:
+        return (v >= SIM_CONTROL_DT_MIN_S && v <= SIM_CONTROL_DT_MAX_S)
+                   ? 0
+                   : refuse(msg, msg_len, "%s must be between %g and %g", def->name, SIM_CONTROL_DT_MIN_S,
+                            SIM_CONTROL_DT_MAX_S);
+    case R_SUBSTEPS:
+        return (v >= 1.0 && v <= SIM_PLANT_SUBSTEPS_MAX)
+                   ? 0
+                   : refuse(msg, msg_len, "%s must be between 1 and %d", def->name, SIM_PLANT_SUBSTEPS_MAX);
+    default:
+        return 0;
+    }
+}
+
+/* ---- defaults ------------------------------------------------------------------ */
+
+void schema_set_defaults(sim_scenario_t *sc)
+{
+    memset(sc, 0, sizeof *sc);
+    sc->kind = SIM_KIND_ATTITUDE;
+    sc->duration_s = NAN; /* required */
+    sc->control_dt_s = DEFAULT_CONTROL_DT_S;
+    sc->plant_substeps = DEFAULT_PLANT_SUBSTEPS;
+    sc->seed = DEFAULT_SEED;
+    sc->n_controllers = SIM_CTRL_DEFAULT_COUNT;
+    for (int i = 0; i < SIM_CTRL_DEFAULT_COUNT; ++i) {
+        sc->controllers[i] = (sim_controller_id_t)i;
+    }
+
+    sim_vehicle_t v;
+    sim_vehicle_paper(&v);
+    sc->mass_kg = v.mass_kg;
+    memcpy(sc->inertia_kg_m2, v.inertia_kg_m2, sizeof sc->inertia_kg_m2);
+    sc->arm_m = v.arm_m;
+    sc->thrust_coeff_N_s2 = v.thrust_coeff_N_s2;
+    sc->yaw_coeff_Nm_s2 = v.yaw_coeff_Nm_s2;
+    sc->rot_drag_Nm_s = v.rot_drag_Nm_s;
+    sc->g_m_s2 = v.g_m_s2;
+    sc->rotors_ideal = v.rotors_ideal;
+    sc->w2_min_rad2_s2 = v.w2_min_rad2_s2;
+    sc->w2_max_rad2_s2 = v.w2_max_rad2_s2;
+    sc->motor_tau_s = v.motor_tau_s;
+    sc->tilt_max_rad = DEFAULT_TILT_MAX_DEG * DEG_TO_RAD;
+
+    sc->use_rate = 1;
+    for (int i = 0; i < 3; ++i) {
+        sc->inertia_scale[i] = 1.0;
+        sc->reference[i].scale = DEG_TO_RAD;
+        sc->disturbance[i].scale = 1.0;
+    }
+    sc->rot_drag_scale = 1.0;
+
+    for (int i = 0; i < SIM_CTRL_COUNT; ++i) {
+        sim_overrides_t *o = &sc->overrides[i];
+        o->wc_rad_s = o->wo_rad_s = NAN;
+        o->leso_method = o->hp_freq_mode = o->coupling_feed = -1;
+        o->hp_freq_rad_s = o->hp_freq2_rad_s = o->levant_lipschitz_rad_s4 = o->td_accel_rad_s2 = NAN;
+        o->hp_tones = -1;
+        o->model_motor_tau_s = NAN;
+        o->model_delay_ticks = o->wrap_yaw = -1;
+        o->pid_kp = o->pid_ki = o->pid_kd = NAN;
+        o->tune = -1;
+        o->tune_pm_deg = o->tune_gm_db = NAN;
+        o->indi_att_kp_per_s = o->indi_rate_kp_per_s = o->indi_filter_rad_s = NAN;
+        o->cas_att_kp = o->cas_rate_max_deg_s = o->cas_rate_kp = o->cas_rate_ki = o->cas_rate_kd = NAN;
+        o->cas_d_filter_tau_s = o->cas_i_limit_Nm = NAN;
+    }
+
+    sc->settle_band_deg = DEFAULT_SETTLE_BAND_DEG;
+    sc->diverge_limit_deg = DEFAULT_DIVERGE_LIMIT_DEG;
+    /* the metric windows default to the whole run, set once duration_s is known */
+
+    sc->diff_signal.scale = 1.0;
+    sc->diff_derivative.scale = 1.0;
+    sc->diff_levant_lipschitz = sc->diff_td_accel = sc->diff_td_h0_s = NAN;
+}
