@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "expr.h"
+#include "ini.h"
 #include "numfmt.h"
 #include "rng.h"
 
@@ -134,24 +135,6 @@ static int PRINTF_LIKE(4, 5) fail_at(parser_t *p, int line, int col, const char 
 
 #define SHOWN(len) ((len) > 40 ? 40 : (int)(len))
 
-static int is_space(char c) { return c == ' ' || c == '\t' || c == '\r'; }
-
-static char *skip_space(char *s)
-{
-    while (is_space(*s)) {
-        ++s;
-    }
-    return s;
-}
-
-static void trim_end(char *s)
-{
-    size_t n = strlen(s);
-    while (n > 0 && is_space(s[n - 1])) {
-        s[--n] = '\0';
-    }
-}
-
 static int is_alpha(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
 static int is_alnum(char c) { return is_alpha(c) || (c >= '0' && c <= '9'); }
 /* characters of a varied name: a variable's, and a scenario key's
@@ -215,7 +198,7 @@ static int parse_call(parser_t *p, char *s, char **name, size_t *name_len, char 
         ++s;
     }
     *name_len = (size_t)(s - *name);
-    char *open = skip_space(s);
+    char *open = ini_skip_space(s);
     if (*name_len == 0 || *open != '(') {
         return -2; /* not a call */
     }
@@ -223,8 +206,8 @@ static int parse_call(parser_t *p, char *s, char **name, size_t *name_len, char 
     if (close == NULL) {
         return fail(p, open + strlen(open), "expected ')'");
     }
-    if (*skip_space(close + 1) != '\0') {
-        return fail(p, skip_space(close + 1), "trailing characters after ')'");
+    if (*ini_skip_space(close + 1) != '\0') {
+        return fail(p, ini_skip_space(close + 1), "trailing characters after ')'");
     }
     *close = '\0';
     int n = 0;
@@ -234,8 +217,8 @@ static int parse_call(parser_t *p, char *s, char **name, size_t *name_len, char 
         if (comma != NULL) {
             *comma = '\0';
         }
-        arg = skip_space(arg);
-        trim_end(arg);
+        arg = ini_skip_space(arg);
+        ini_trim_end(arg);
         if (n == max_args) {
             return fail(p, arg, "too many arguments to %.*s()", SHOWN(*name_len), *name);
         }
@@ -305,7 +288,7 @@ static int parse_grid_values(parser_t *p, sim_campaign_key_t *key, char *value)
         count = 0;
         int after_comma = 1; /* at the start: a leading comma is an empty value */
         for (;;) {
-            s = skip_space(s);
+            s = ini_skip_space(s);
             if (*s == '\0') {
                 if (after_comma && count > 0) {
                     return fail(p, s, "empty value after ','");
@@ -321,7 +304,7 @@ static int parse_grid_values(parser_t *p, sim_campaign_key_t *key, char *value)
                 continue;
             }
             char *end = s;
-            while (*end != '\0' && *end != ',' && !is_space(*end)) {
+            while (*end != '\0' && *end != ',' && !ini_is_space(*end)) {
                 ++end;
             }
             double v = 0.0;
@@ -538,13 +521,13 @@ static int parse_section(parser_t *p, char *s)
     if (close == NULL) {
         return fail(p, s + strlen(s), "expected ']'");
     }
-    char *after = skip_space(close + 1);
+    char *after = ini_skip_space(close + 1);
     if (*after != '\0') {
         return fail(p, after, "trailing characters after ']'");
     }
     *close = '\0';
-    char *name = skip_space(s + 1);
-    trim_end(name);
+    char *name = ini_skip_space(s + 1);
+    ini_trim_end(name);
     int sec = 0;
     while (sec < SEC_COUNT && strcmp(SECTION_NAMES[sec], name) != 0) {
         ++sec;
@@ -568,8 +551,8 @@ static int parse_key_line(parser_t *p, char *s)
         return fail(p, s + strlen(s), "expected KEY = VALUE");
     }
     *eq = '\0';
-    trim_end(s);
-    char *value = skip_space(eq + 1);
+    ini_trim_end(s);
+    char *value = ini_skip_space(eq + 1);
     if (*s == '\0') {
         return fail(p, s, "expected a key before '='");
     }
@@ -589,36 +572,16 @@ static int parse_key_line(parser_t *p, char *s)
     }
 }
 
+static int parse_line(void *ctx, const char *line_start, char *s)
+{
+    parser_t *p = (parser_t *)ctx;
+    p->line_start = line_start;
+    return (*s == '[') ? parse_section(p, s) : parse_key_line(p, s);
+}
+
 static int parse_lines(parser_t *p, char *text)
 {
-    if (strncmp(text, "\xEF\xBB\xBF", 3) == 0) {
-        text += 3; /* UTF-8 byte order mark */
-    }
-    char *next = text;
-    while (next != NULL) {
-        char *line = next;
-        char *nl = strchr(line, '\n');
-        next = NULL;
-        if (nl != NULL) {
-            *nl = '\0';
-            next = nl + 1;
-        }
-        ++p->line;
-        p->line_start = line;
-        char *hash = strchr(line, '#');
-        if (hash != NULL) {
-            *hash = '\0';
-        }
-        trim_end(line);
-        char *s = skip_space(line);
-        if (*s == '\0') {
-            continue;
-        }
-        if ((*s == '[' ? parse_section(p, s) : parse_key_line(p, s)) != 0) {
-            return -1;
-        }
-    }
-    return 0;
+    return ini_lines(text, &p->line, parse_line, p);
 }
 
 /* The key with every blank removed, for comparing [set] keys with varied ones. */
@@ -626,7 +589,7 @@ static void squeeze(const char *s, char *out, size_t n)
 {
     size_t o = 0;
     for (; *s != '\0' && o + 1 < n; ++s) {
-        if (!is_space(*s)) {
+        if (!ini_is_space(*s)) {
             out[o++] = *s;
         }
     }

@@ -39,32 +39,11 @@ int parser_fail_at(parser_t *p, int line, int col, const char *format, ...)
 
 /* ---- tokens and values ------------------------------------------------------- */
 
-int lex_is_space(char c)
-{
-    return c == ' ' || c == '\t' || c == '\r';
-}
-
-char *lex_skip_space(char *s)
-{
-    while (lex_is_space(*s)) {
-        ++s;
-    }
-    return s;
-}
-
-void lex_trim_end(char *s)
-{
-    size_t n = strlen(s);
-    while (n > 0 && lex_is_space(s[n - 1])) {
-        s[--n] = '\0';
-    }
-}
-
 char *lex_next_token(char **s, size_t *len)
 {
-    char *start = lex_skip_space(*s);
+    char *start = ini_skip_space(*s);
     char *end = start;
-    while (*end != '\0' && !lex_is_space(*end)) {
+    while (*end != '\0' && !ini_is_space(*end)) {
         ++end;
     }
     *len = (size_t)(end - start);
@@ -315,8 +294,8 @@ static int parse_window(parser_t *p, const key_def_t *def, char *value, double *
 /* One end of a piece's window: empty is unbounded. */
 static int parse_bound(parser_t *p, char *text, double unbounded, double *out)
 {
-    char *tok = lex_skip_space(text);
-    lex_trim_end(tok);
+    char *tok = ini_skip_space(text);
+    ini_trim_end(tok);
     if (*tok == '\0') {
         *out = unbounded;
         return 0;
@@ -343,7 +322,7 @@ static int parse_signal(parser_t *p, int key, sim_signal_t *sig, char *value, in
         if (!(from < to)) {
             return parser_fail(p, value, "window start must be before its end");
         }
-        text = lex_skip_space(colon + 1);
+        text = ini_skip_space(colon + 1);
         if (*text == '\0') {
             return parser_fail(p, text, "expected an expression after ':'");
         }

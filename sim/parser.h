@@ -16,6 +16,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 
+#include "ini.h"
 #include "scenario.h"
 #include "schema.h"
 
@@ -56,9 +57,6 @@ int PRINTF_LIKE(4, 5) parser_fail_at(parser_t *p, int line, int col, const char 
 /* Tokens are shown in messages up to this many characters. */
 #define SHOWN(len) ((len) > 40 ? 40 : (int)(len))
 
-int lex_is_space(char c);
-char *lex_skip_space(char *s);
-void lex_trim_end(char *s);
 
 /* Next whitespace-separated token at or after *s: its start and length
  * (0 at the end of the value); *s moves past it. */

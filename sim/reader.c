@@ -26,12 +26,12 @@ static int parse_key_line(parser_t *p, char *s)
     if (key_len == 0) {
         return parser_fail(p, key, "expected a key or a [section]");
     }
-    char *eq = lex_skip_space(s);
+    char *eq = ini_skip_space(s);
     if (*eq != '=') {
         return parser_fail(p, eq, "expected '=' after '%.*s'", SHOWN(key_len), key);
     }
     key[key_len] = '\0'; /* may overwrite '=': eq still points past the key */
-    char *value = lex_skip_space(eq + 1);
+    char *value = ini_skip_space(eq + 1);
     const int key_col = parser_column(p, key);
     if (p->section < 0) {
         return parser_fail(p, key, "key '%s' before any [section]", key);
@@ -96,7 +96,7 @@ static int parse_section(parser_t *p, char *s)
     if (close == NULL) {
         return parser_fail(p, s + strlen(s), "expected ']'");
     }
-    char *after = lex_skip_space(close + 1);
+    char *after = ini_skip_space(close + 1);
     if (*after != '\0') {
         return parser_fail(p, after, "trailing characters after ']'");
     }
@@ -145,23 +145,23 @@ static int parse_setting(parser_t *p, char *s)
     if (eq == NULL || dot == NULL || dot > eq) {
         return parser_fail(p, s, "expected SECTION.KEY=VALUE, got '%.*s'", SHOWN(strlen(s)), s);
     }
-    char *name = lex_skip_space(s);
+    char *name = ini_skip_space(s);
     size_t len = 0;
     while (name + len < dot && is_key_char(name[len])) {
         ++len;
     }
     int sec = schema_find_section(name, len);
     char *rest = name + len;
-    if (sec < 0 || (sec != SEC_CONTROLLER && lex_skip_space(rest) != dot)) {
+    if (sec < 0 || (sec != SEC_CONTROLLER && ini_skip_space(rest) != dot)) {
         return parser_fail(p, name, "unknown section '%.*s'", SHOWN((size_t)(dot - name)), name);
     }
     if (sec == SEC_CONTROLLER) {
         if (*rest == ':') {
             ++rest;
         }
-        char *ctrl = lex_skip_space(rest);
+        char *ctrl = ini_skip_space(rest);
         char *end = ctrl;
-        while (end < dot && !lex_is_space(*end)) {
+        while (end < dot && !ini_is_space(*end)) {
             ++end;
         }
         if (end == ctrl) {
@@ -171,8 +171,8 @@ static int parse_setting(parser_t *p, char *s)
         if (id < 0) {
             return lex_fail_unknown_controller(p, ctrl, (size_t)(end - ctrl));
         }
-        if (lex_skip_space(end) != dot) {
-            return parser_fail(p, lex_skip_space(end), "expected '.' after the controller's name");
+        if (ini_skip_space(end) != dot) {
+            return parser_fail(p, ini_skip_space(end), "expected '.' after the controller's name");
         }
         sec += id;
     }
@@ -180,44 +180,23 @@ static int parse_setting(parser_t *p, char *s)
         p->section_line[sec] = p->line;
     }
     p->section = sec;
-    char *key = lex_skip_space(dot + 1);
+    char *key = ini_skip_space(dot + 1);
     if (key == eq) {
         return parser_fail(p, key, "expected a key after '.'");
     }
     return parse_key_line(p, key);
 }
 
+static int read_line(void *ctx, const char *line_start, char *s)
+{
+    parser_t *p = (parser_t *)ctx;
+    p->line_start = line_start;
+    return (*s == '[') ? parse_section(p, s) : parse_key_line(p, s);
+}
+
 int reader_lines(parser_t *p, char *text)
 {
-    if (strncmp(text, "\xEF\xBB\xBF", 3) == 0) {
-        text += 3; /* UTF-8 byte order mark */
-    }
-    char *next = text;
-    while (next != NULL) {
-        char *line = next;
-        char *nl = strchr(line, '\n');
-        next = NULL;
-        if (nl != NULL) {
-            *nl = '\0';
-            next = nl + 1;
-        }
-        ++p->line;
-        p->line_start = line;
-        char *hash = strchr(line, '#');
-        if (hash != NULL) {
-            *hash = '\0';
-        }
-        lex_trim_end(line);
-        char *s = lex_skip_space(line);
-        if (*s == '\0') {
-            continue;
-        }
-        const int rc = (*s == '[') ? parse_section(p, s) : parse_key_line(p, s);
-        if (rc != 0) {
-            return -1;
-        }
-    }
-    return 0;
+    return ini_lines(text, &p->line, read_line, p);
 }
 
 int reader_settings(parser_t *p, const char *const *sets, int n_sets)
