@@ -531,6 +531,17 @@ static int same_bits(double a, double b)
     return x == y;
 }
 
+/* The memo's next slot: a free one while there is one, else the oldest. */
+static int memo_slot(int *n, int *next)
+{
+    if (*n < SIM_EXPR_MEMO_SIZE) {
+        return (*n)++;
+    }
+    const int slot = *next;
+    *next = (slot + 1) % SIM_EXPR_MEMO_SIZE;
+    return slot;
+}
+
 /* apply_unary through the memo for the functions worth remembering */
 static double unary_memo(unsigned char op, double x, sim_expr_memo_t *memo)
 {
@@ -543,13 +554,7 @@ static double unary_memo(unsigned char op, double x, sim_expr_memo_t *memo)
         }
     }
     const double y = apply_unary(op, x);
-    int slot = memo->n;
-    if (slot < SIM_EXPR_MEMO_SIZE) {
-        memo->n++;
-    } else {
-        slot = memo->next;
-        memo->next = (slot + 1) % SIM_EXPR_MEMO_SIZE;
-    }
+    const int slot = memo_slot(&memo->n, &memo->next);
     memo->fn[slot] = op;
     memo->arg[slot] = x;
     memo->result[slot] = y;
@@ -618,13 +623,7 @@ static void unary_batch(unsigned char op, double *x, int n, sim_expr_batch_memo_
     }
     int slot = 0;
     if (remember) {
-        slot = memo->n;
-        if (slot < SIM_EXPR_MEMO_SIZE) {
-            memo->n++;
-        } else {
-            slot = memo->next;
-            memo->next = (slot + 1) % SIM_EXPR_MEMO_SIZE;
-        }
+        slot = memo_slot(&memo->n, &memo->next);
         memo->fn[slot] = op;
         memo->len[slot] = n;
         memcpy(memo->arg[slot], x, (size_t)n * sizeof x[0]);
