@@ -46,19 +46,30 @@ typedef double complex cplx;
 const char *ladrc_margins_status_str(ladrc_margins_status_t status)
 {
     switch (status) {
-    case LADRC_MARGINS_OK: return "LADRC_MARGINS_OK: success";
-    case LADRC_MARGINS_ERR_NULL: return "LADRC_MARGINS_ERR_NULL: a required pointer is NULL";
-    case LADRC_MARGINS_ERR_DT_S: return "LADRC_MARGINS_ERR_DT_S: plant dt_s not > 0 or not the controller's";
-    case LADRC_MARGINS_ERR_INERTIA: return "LADRC_MARGINS_ERR_INERTIA: inertia or inertia factor not finite and > 0";
-    case LADRC_MARGINS_ERR_DRAG: return "LADRC_MARGINS_ERR_DRAG: drag_Nm_s not finite and >= 0";
-    case LADRC_MARGINS_ERR_MOTOR_TAU: return "LADRC_MARGINS_ERR_MOTOR_TAU: motor_tau_s not finite and >= 0";
-    case LADRC_MARGINS_ERR_DELAY: return "LADRC_MARGINS_ERR_DELAY: delay_ticks outside 0..64";
-    case LADRC_MARGINS_ERR_CONTROLLER: return "LADRC_MARGINS_ERR_CONTROLLER: the controller config is refused";
-    case LADRC_MARGINS_ERR_REQUEST: return "LADRC_MARGINS_ERR_REQUEST: invalid tone, response length or grid";
+    case LADRC_MARGINS_OK:
+        return "LADRC_MARGINS_OK: success";
+    case LADRC_MARGINS_ERR_NULL:
+        return "LADRC_MARGINS_ERR_NULL: a required pointer is NULL";
+    case LADRC_MARGINS_ERR_DT_S:
+        return "LADRC_MARGINS_ERR_DT_S: plant dt_s not > 0 or not the controller's";
+    case LADRC_MARGINS_ERR_INERTIA:
+        return "LADRC_MARGINS_ERR_INERTIA: inertia or inertia factor not finite and > 0";
+    case LADRC_MARGINS_ERR_DRAG:
+        return "LADRC_MARGINS_ERR_DRAG: drag_Nm_s not finite and >= 0";
+    case LADRC_MARGINS_ERR_MOTOR_TAU:
+        return "LADRC_MARGINS_ERR_MOTOR_TAU: motor_tau_s not finite and >= 0";
+    case LADRC_MARGINS_ERR_DELAY:
+        return "LADRC_MARGINS_ERR_DELAY: delay_ticks outside 0..64";
+    case LADRC_MARGINS_ERR_CONTROLLER:
+        return "LADRC_MARGINS_ERR_CONTROLLER: the controller config is refused";
+    case LADRC_MARGINS_ERR_REQUEST:
+        return "LADRC_MARGINS_ERR_REQUEST: invalid tone, response length or grid";
     case LADRC_MARGINS_ERR_NOT_SETTLED:
         return "LADRC_MARGINS_ERR_NOT_SETTLED: the controller's response did not settle within response_s";
-    case LADRC_MARGINS_ERR_NOT_MEASURED: return "LADRC_MARGINS_ERR_NOT_MEASURED: no controller measured";
-    case LADRC_MARGINS_ERR_TARGETS_NOT_MET: return "LADRC_MARGINS_ERR_TARGETS_NOT_MET: no setting meets the targets";
+    case LADRC_MARGINS_ERR_NOT_MEASURED:
+        return "LADRC_MARGINS_ERR_NOT_MEASURED: no controller measured";
+    case LADRC_MARGINS_ERR_TARGETS_NOT_MET:
+        return "LADRC_MARGINS_ERR_TARGETS_NOT_MET: no setting meets the targets";
     }
     return "LADRC_MARGINS_ERR_?: unknown status";
 }
@@ -68,22 +79,27 @@ const char *ladrc_margins_status_str(ladrc_margins_status_t status)
 #define NX_MAX 3 /* angle, rate, lagged torque */
 
 typedef struct {
-    int n;               /* 2 without lag, 3 with */
-    int delay;           /* ticks */
-    double j_kg_m2;      /* true inertia */
+    int n;                                          /* 2 without lag, 3 with */
+    int delay;                                      /* ticks */
+    double j_kg_m2;                                 /* true inertia */
     double a[NX_MAX][NX_MAX], b[NX_MAX], e[NX_MAX]; /* x+ = A x + B u + E d */
 } dplant_t;
 
 static ladrc_margins_status_t check_plant(const ladrc_margins_plant_t *p)
 {
-    if (p == NULL) return LADRC_MARGINS_ERR_NULL;
-    if (!(isfinite(p->dt_s) && p->dt_s > 0.0)) return LADRC_MARGINS_ERR_DT_S;
+    if (p == NULL)
+        return LADRC_MARGINS_ERR_NULL;
+    if (!(isfinite(p->dt_s) && p->dt_s > 0.0))
+        return LADRC_MARGINS_ERR_DT_S;
     if (!(isfinite(p->inertia_kg_m2) && p->inertia_kg_m2 > 0.0 && isfinite(p->inertia_factor) &&
           p->inertia_factor > 0.0))
         return LADRC_MARGINS_ERR_INERTIA;
-    if (!(isfinite(p->drag_Nm_s) && p->drag_Nm_s >= 0.0)) return LADRC_MARGINS_ERR_DRAG;
-    if (!(isfinite(p->motor_tau_s) && p->motor_tau_s >= 0.0)) return LADRC_MARGINS_ERR_MOTOR_TAU;
-    if (p->delay_ticks < 0 || p->delay_ticks > LADRC_MARGINS_MAX_DELAY) return LADRC_MARGINS_ERR_DELAY;
+    if (!(isfinite(p->drag_Nm_s) && p->drag_Nm_s >= 0.0))
+        return LADRC_MARGINS_ERR_DRAG;
+    if (!(isfinite(p->motor_tau_s) && p->motor_tau_s >= 0.0))
+        return LADRC_MARGINS_ERR_MOTOR_TAU;
+    if (p->delay_ticks < 0 || p->delay_ticks > LADRC_MARGINS_MAX_DELAY)
+        return LADRC_MARGINS_ERR_DELAY;
     return LADRC_MARGINS_OK;
 }
 
@@ -94,7 +110,8 @@ static void mat_mul(int n, double x[NM][NM], double y[NM][NM], double out[NM][NM
     for (int i = 0; i < n; ++i) {
         for (int j = 0; j < n; ++j) {
             double s = 0.0;
-            for (int k = 0; k < n; ++k) s += x[i][k] * y[k][j];
+            for (int k = 0; k < n; ++k)
+                s += x[i][k] * y[k][j];
             out[i][j] = s;
         }
     }
@@ -107,8 +124,10 @@ static void mat_exp(int n, double m[NM][NM], double out[NM][NM])
     double norm = 0.0;
     for (int j = 0; j < n; ++j) {
         double col = 0.0;
-        for (int i = 0; i < n; ++i) col += fabs(m[i][j]);
-        if (col > norm) norm = col;
+        for (int i = 0; i < n; ++i)
+            col += fabs(m[i][j]);
+        if (col > norm)
+            norm = col;
     }
     int squarings = 0;
     double scale = 1.0;
@@ -159,7 +178,8 @@ static void discretise(const ladrc_margins_plant_t *p, dplant_t *dp)
         m[1][n] = 1.0 / j;
     }
     for (int r = 0; r < n + 2; ++r) {
-        for (int c = 0; c < n + 2; ++c) m[r][c] *= p->dt_s;
+        for (int c = 0; c < n + 2; ++c)
+            m[r][c] *= p->dt_s;
     }
     double ex[NM][NM];
     mat_exp(n + 2, m, ex);
@@ -168,7 +188,8 @@ static void discretise(const ladrc_margins_plant_t *p, dplant_t *dp)
     dp->delay = p->delay_ticks;
     dp->j_kg_m2 = j;
     for (int r = 0; r < n; ++r) {
-        for (int c = 0; c < n; ++c) dp->a[r][c] = ex[r][c];
+        for (int c = 0; c < n; ++c)
+            dp->a[r][c] = ex[r][c];
         dp->b[r] = ex[r][n];
         dp->e[r] = ex[r][n + 1];
     }
@@ -181,14 +202,16 @@ static void plant_solve(const dplant_t *dp, cplx z, cplx gu[NX_MAX], cplx gd[NX_
     const int n = dp->n;
     cplx m[NX_MAX][NX_MAX + 2];
     for (int r = 0; r < n; ++r) {
-        for (int c = 0; c < n; ++c) m[r][c] = ((r == c) ? z : 0.0) - dp->a[r][c];
+        for (int c = 0; c < n; ++c)
+            m[r][c] = ((r == c) ? z : 0.0) - dp->a[r][c];
         m[r][n] = dp->b[r];
         m[r][n + 1] = dp->e[r];
     }
     for (int c = 0; c < n; ++c) {
         int piv = c;
         for (int r = c + 1; r < n; ++r) {
-            if (cabs(m[r][c]) > cabs(m[piv][c])) piv = r;
+            if (cabs(m[r][c]) > cabs(m[piv][c]))
+                piv = r;
         }
         if (piv != c) {
             for (int k = 0; k < n + 2; ++k) {
@@ -199,7 +222,8 @@ static void plant_solve(const dplant_t *dp, cplx z, cplx gu[NX_MAX], cplx gd[NX_
         }
         for (int r = c + 1; r < n; ++r) {
             const cplx f = m[r][c] / m[c][c];
-            for (int k = c; k < n + 2; ++k) m[r][k] -= f * m[c][k];
+            for (int k = c; k < n + 2; ++k)
+                m[r][k] -= f * m[c][k];
         }
     }
     for (int r = n - 1; r >= 0; --r) {
@@ -216,14 +240,16 @@ static void plant_solve(const dplant_t *dp, cplx z, cplx gu[NX_MAX], cplx gd[NX_
 static cplx cpow_int(cplx z, int k)
 {
     cplx r = 1.0;
-    for (int i = 0; i < k; ++i) r *= z;
+    for (int i = 0; i < k; ++i)
+        r *= z;
     return r;
 }
 
 ladrc_margins_status_t ladrc_margins_plant_freq(const ladrc_margins_plant_t *plant, double w_rad_s, double out[4])
 {
     const ladrc_margins_status_t st = check_plant(plant);
-    if (st != LADRC_MARGINS_OK || out == NULL) return st != LADRC_MARGINS_OK ? st : LADRC_MARGINS_ERR_NULL;
+    if (st != LADRC_MARGINS_OK || out == NULL)
+        return st != LADRC_MARGINS_OK ? st : LADRC_MARGINS_ERR_NULL;
     dplant_t dp;
     discretise(plant, &dp);
     const cplx z = cexp(I * w_rad_s * plant->dt_s);
@@ -252,14 +278,15 @@ static const ladrc_axis_config_t *ctl_axis_config(const ladrc_margins_controller
 static ladrc_margins_status_t ctl_init(const ladrc_margins_controller_t *ctl, ctl_state_t *s)
 {
     /* INDI holds its command without a rate: no loop to analyse. */
-    const ladrc_axis_config_t *own = (ctl->attitude != NULL)
-                                         ? ((ctl->axis_index >= 0 && ctl->axis_index < LADRC_AXES)
-                                                ? &ctl->attitude->axis[ctl->axis_index]
-                                                : NULL)
-                                         : ctl->axis;
-    if (own != NULL && own->variant == LADRC_VARIANT_INDI && !ctl->use_rate) return LADRC_MARGINS_ERR_CONTROLLER;
+    const ladrc_axis_config_t *own =
+        (ctl->attitude != NULL)
+            ? ((ctl->axis_index >= 0 && ctl->axis_index < LADRC_AXES) ? &ctl->attitude->axis[ctl->axis_index] : NULL)
+            : ctl->axis;
+    if (own != NULL && own->variant == LADRC_VARIANT_INDI && !ctl->use_rate)
+        return LADRC_MARGINS_ERR_CONTROLLER;
     if (ctl->attitude != NULL) {
-        if (ctl->axis_index < 0 || ctl->axis_index >= LADRC_AXES) return LADRC_MARGINS_ERR_CONTROLLER;
+        if (ctl->axis_index < 0 || ctl->axis_index >= LADRC_AXES)
+            return LADRC_MARGINS_ERR_CONTROLLER;
         return ladrc_attitude_init(&s->attitude, ctl->attitude, NULL) == LADRC_OK ? LADRC_MARGINS_OK
                                                                                   : LADRC_MARGINS_ERR_CONTROLLER;
     }
@@ -317,7 +344,8 @@ static void psim_step(psim_t *ps, const dplant_t *dp, double u, double d)
     double nx[NX_MAX];
     for (int r = 0; r < dp->n; ++r) {
         double s = dp->b[r] * u + dp->e[r] * d;
-        for (int c = 0; c < dp->n; ++c) s += dp->a[r][c] * ps->x[c];
+        for (int c = 0; c < dp->n; ++c)
+            s += dp->a[r][c] * ps->x[c];
         nx[r] = s;
     }
     memcpy(ps->x, nx, sizeof nx);
@@ -331,7 +359,8 @@ static int is_adaptive(const ladrc_axis_config_t *a)
 void ladrc_margins_request_default(ladrc_margins_request_t *req, const ladrc_margins_plant_t *plant)
 {
     memset(req, 0, sizeof *req);
-    if (plant != NULL) req->plant = *plant;
+    if (plant != NULL)
+        req->plant = *plant;
     req->response_s = 4.0;
     req->tone_rad_s = 0.0;
     req->tone_rad_s2 = 20.0;
@@ -344,7 +373,8 @@ void ladrc_margins_request_default(ladrc_margins_request_t *req, const ladrc_mar
 static ladrc_margins_status_t check_request(const ladrc_margins_request_t *req)
 {
     const ladrc_margins_status_t st = check_plant(&req->plant);
-    if (st != LADRC_MARGINS_OK) return st;
+    if (st != LADRC_MARGINS_OK)
+        return st;
     const double taps = req->response_s / req->plant.dt_s;
     if (!(isfinite(req->response_s) && taps >= 16.0 && taps <= (double)N_FFT) || !(req->tone_rad_s >= 0.0) ||
         !isfinite(req->tone_rad_s) || !(req->tone_rad_s2 >= 0.0) || !isfinite(req->tone_rad_s2) ||
@@ -365,7 +395,8 @@ static int run_closed(const ladrc_margins_controller_t *ctl, ctl_state_t *s, psi
         psim_measure(ps, dp, &y, &r);
         const double u = ctl_step(ctl, s, y, r);
         psim_step(ps, dp, u, tone_a * sin(tone_w * dt * (double)k));
-        if (!(fabs(ps->x[0]) < DIVERGED_RAD)) return 0;
+        if (!(fabs(ps->x[0]) < DIVERGED_RAD))
+            return 0;
     }
     return 1;
 }
@@ -375,7 +406,8 @@ static void fft(double *re, double *im, int n)
 {
     for (int i = 1, j = 0; i < n; ++i) {
         int bit = n >> 1;
-        for (; j & bit; bit >>= 1) j ^= bit;
+        for (; j & bit; bit >>= 1)
+            j ^= bit;
         j ^= bit;
         if (i < j) {
             double t = re[i];
@@ -414,25 +446,31 @@ static cplx ctl_at(const ladrc_margins_workspace_t *ws, int p, cplx z)
 {
     const cplx zi = 1.0 / z;
     cplx acc = 0.0;
-    for (int k = ws->n_taps - 1; k >= 0; --k) acc = acc * zi + (ws->h[p][k] - ws->tail[p] - ws->ramp[p] * (double)k);
+    for (int k = ws->n_taps - 1; k >= 0; --k)
+        acc = acc * zi + (ws->h[p][k] - ws->tail[p] - ws->ramp[p] * (double)k);
     return acc + tail_at(ws, p, zi);
 }
 
 ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
                                              const ladrc_margins_request_t *req)
 {
-    if (ws == NULL || ctl == NULL || req == NULL) return LADRC_MARGINS_ERR_NULL;
+    if (ws == NULL || ctl == NULL || req == NULL)
+        return LADRC_MARGINS_ERR_NULL;
     ws->measured = 0;
     ladrc_margins_status_t st = check_request(req);
-    if (st != LADRC_MARGINS_OK) return st;
-    if ((ctl->attitude == NULL) == (ctl->axis == NULL)) return LADRC_MARGINS_ERR_CONTROLLER;
+    if (st != LADRC_MARGINS_OK)
+        return st;
+    if ((ctl->attitude == NULL) == (ctl->axis == NULL))
+        return LADRC_MARGINS_ERR_CONTROLLER;
     if (ctl->attitude != NULL && (ctl->axis_index < 0 || ctl->axis_index >= LADRC_AXES))
         return LADRC_MARGINS_ERR_CONTROLLER;
     const ladrc_axis_config_t *acfg = ctl_axis_config(ctl);
-    if (fabs((double)acfg->dt_s - req->plant.dt_s) > 1e-6 * req->plant.dt_s) return LADRC_MARGINS_ERR_DT_S;
+    if (fabs((double)acfg->dt_s - req->plant.dt_s) > 1e-6 * req->plant.dt_s)
+        return LADRC_MARGINS_ERR_DT_S;
     ctl_state_t *s = (ctl_state_t *)(void *)ws->copy;
     st = ctl_init(ctl, &s[0]);
-    if (st != LADRC_MARGINS_OK) return st;
+    if (st != LADRC_MARGINS_OK)
+        return st;
 
     const double dt = req->plant.dt_s;
     const int n = (int)(req->response_s / dt + 0.5);
@@ -446,7 +484,8 @@ ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, cons
         starts = req->n_starts;
         if (tone_w > 0.0 && tone_a > 0.0) {
             spacing = (long)(2.0 * PI / tone_w / dt / starts + 0.5);
-            if (spacing < 1) spacing = 1;
+            if (spacing < 1)
+                spacing = 1;
         }
     }
     dplant_t dp;
@@ -467,7 +506,8 @@ ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, cons
         (void)ctl_init(ctl, &s[0]);
         psim_reset(&ps);
         ws->linearised_nominal = 1;
-        if (!run_closed(ctl, &s[0], &ps, &dp, tone_w, tone_a, dt, 0, n_conv)) return LADRC_MARGINS_ERR_NOT_SETTLED;
+        if (!run_closed(ctl, &s[0], &ps, &dp, tone_w, tone_a, dt, 0, n_conv))
+            return LADRC_MARGINS_ERR_NOT_SETTLED;
     }
     s[3] = s[0];
     const psim_t ps_saved = ps;
@@ -477,7 +517,8 @@ ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, cons
         s[0] = s[3];
         ps = ps_saved;
         long k = n_conv;
-        if (!run_closed(ctl, &s[0], &ps, &dp, tone_w, tone_a, dt, k, spacing * st_i)) return LADRC_MARGINS_ERR_NOT_SETTLED;
+        if (!run_closed(ctl, &s[0], &ps, &dp, tone_w, tone_a, dt, k, spacing * st_i))
+            return LADRC_MARGINS_ERR_NOT_SETTLED;
         k += spacing * st_i;
         s[1] = s[0];
         s[2] = s[0];
@@ -511,18 +552,23 @@ ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, cons
         }
         const double c1 = (m * skh - sk * sh) / (m * skk - sk * sk);
         const double c0 = (sh - c1 * sk) / m;
-        for (int i = 0; i < n; ++i) peak = fmax(peak, fabs(ws->h[p][i]));
+        for (int i = 0; i < n; ++i)
+            peak = fmax(peak, fabs(ws->h[p][i]));
         double dev = 0.0;
-        for (int i = tail_from; i < n; ++i) dev = fmax(dev, fabs(ws->h[p][i] - c0 - c1 * (double)i));
+        for (int i = tail_from; i < n; ++i)
+            dev = fmax(dev, fabs(ws->h[p][i] - c0 - c1 * (double)i));
         ws->tail[p] = c0;
         ws->ramp[p] = c1;
-        if (peak > 0.0) residue = fmax(residue, dev / peak);
-        if (!(peak < INFINITY)) residue = INFINITY;
+        if (peak > 0.0)
+            residue = fmax(residue, dev / peak);
+        if (!(peak < INFINITY))
+            residue = INFINITY;
     }
     ws->tail_residue = residue;
     ws->n_taps = n;
     ws->dt_s = dt;
-    if (!(residue <= TAIL_SETTLED)) return LADRC_MARGINS_ERR_NOT_SETTLED;
+    if (!(residue <= TAIL_SETTLED))
+        return LADRC_MARGINS_ERR_NOT_SETTLED;
     /* C on the uniform grid w_m = 2 pi m / N_FFT (rad per tick) by one FFT
      * of h - c per response (zero beyond n, N_FFT >= n: no aliasing). */
     for (int p = 0; p < 2; ++p) {
@@ -542,11 +588,12 @@ ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, cons
     return LADRC_MARGINS_OK;
 }
 
-ladrc_margins_status_t ladrc_margins_controller_freq(const ladrc_margins_workspace_t *ws, double w_rad_s,
-                                                     double out[4])
+ladrc_margins_status_t ladrc_margins_controller_freq(const ladrc_margins_workspace_t *ws, double w_rad_s, double out[4])
 {
-    if (ws == NULL || out == NULL) return LADRC_MARGINS_ERR_NULL;
-    if (!ws->measured) return LADRC_MARGINS_ERR_NOT_MEASURED;
+    if (ws == NULL || out == NULL)
+        return LADRC_MARGINS_ERR_NULL;
+    if (!ws->measured)
+        return LADRC_MARGINS_ERR_NOT_MEASURED;
     const cplx z = cexp(I * w_rad_s * ws->dt_s);
     const cplx ca = ctl_at(ws, 0, z);
     const cplx cr = ws->has_rate ? ctl_at(ws, 1, z) : 0.0;
@@ -593,7 +640,8 @@ static cplx loop_at(const loop_t *lp, cplx z)
 static cplx loop_bin(const loop_t *lp, int m)
 {
     const cplx z = cexp(I * 2.0 * PI * m / N_FFT);
-    if (lp->fn != NULL) return loop_at(lp, z);
+    if (lp->fn != NULL)
+        return loop_at(lp, z);
     const cplx ca = lp->ws->grid_re[0][m] + I * lp->ws->grid_im[0][m];
     const cplx cr = lp->ws->has_rate ? lp->ws->grid_re[1][m] + I * lp->ws->grid_im[1][m] : 0.0;
     return loop_with(lp, z, ca, cr);
@@ -603,12 +651,17 @@ static cplx loop_bin(const loop_t *lp, int m)
  * [0, 1] the quarter circle z = 1 + eps e^{j t pi/2} (outside the unit
  * circle, so the poles at z = 1 count as enclosed), [1, 2] the unit circle
  * from w = eps to the first FFT bin (log-spaced), [2, 3] on to w = pi. */
-static double bin1(void) { return 2.0 * PI / N_FFT; }
+static double bin1(void)
+{
+    return 2.0 * PI / N_FFT;
+}
 
 static cplx contour_z(double t)
 {
-    if (t <= 1.0) return 1.0 + INDENT_EPS * cexp(I * t * PI / 2.0);
-    if (t <= 2.0) return cexp(I * INDENT_EPS * pow(bin1() / INDENT_EPS, t - 1.0));
+    if (t <= 1.0)
+        return 1.0 + INDENT_EPS * cexp(I * t * PI / 2.0);
+    if (t <= 2.0)
+        return cexp(I * INDENT_EPS * pow(bin1() / INDENT_EPS, t - 1.0));
     return cexp(I * (bin1() + (PI - bin1()) * (t - 2.0)));
 }
 
@@ -617,7 +670,8 @@ static cplx contour_z(double t)
 static double phase_change(const loop_t *lp, double t0, cplx f0, double t1, cplx f1, int depth)
 {
     const double d = carg(f1 / f0);
-    if (fabs(d) <= MAX_PHASE_STEP || depth >= MAX_REFINE_DEPTH) return d;
+    if (fabs(d) <= MAX_PHASE_STEP || depth >= MAX_REFINE_DEPTH)
+        return d;
     const double tm = 0.5 * (t0 + t1);
     const cplx fm = 1.0 + loop_at(lp, contour_z(tm));
     return phase_change(lp, t0, f0, tm, fm, depth + 1) + phase_change(lp, tm, fm, t1, f1, depth + 1);
@@ -630,8 +684,8 @@ static int nyquist(const loop_t *lp)
     double t_prev = 0.0;
     cplx f_prev = 1.0 + loop_at(lp, contour_z(0.0));
     for (int i = 1; i <= INDENT_POINTS + LOW_POINTS; ++i) {
-        const double t = (i <= INDENT_POINTS) ? (double)i / INDENT_POINTS
-                                              : 1.0 + (double)(i - INDENT_POINTS) / LOW_POINTS;
+        const double t =
+            (i <= INDENT_POINTS) ? (double)i / INDENT_POINTS : 1.0 + (double)(i - INDENT_POINTS) / LOW_POINTS;
         const cplx f = 1.0 + loop_at(lp, contour_z(t));
         total += phase_change(lp, t_prev, f_prev, t, f, 0);
         t_prev = t;
@@ -650,7 +704,10 @@ static int nyquist(const loop_t *lp)
 }
 
 /* L at w (rad per tick) on the unit circle. */
-static cplx loop_w(const loop_t *lp, double w) { return loop_at(lp, cexp(I * w)); }
+static cplx loop_w(const loop_t *lp, double w)
+{
+    return loop_at(lp, cexp(I * w));
+}
 
 /* Bisection on w in [a, b] for g(w) = 0 with a sign change; kind 0: |L| - 1,
  * kind 1: Im L. */
@@ -745,11 +802,15 @@ void ladrc_margins_of_loop(ladrc_margins_loop_fn fn, void *ctx, double dt_s, lad
 static ladrc_margins_status_t make_loop(const ladrc_margins_workspace_t *ws, const ladrc_margins_plant_t *plant,
                                         loop_t *lp)
 {
-    if (ws == NULL || plant == NULL) return LADRC_MARGINS_ERR_NULL;
-    if (!ws->measured) return LADRC_MARGINS_ERR_NOT_MEASURED;
+    if (ws == NULL || plant == NULL)
+        return LADRC_MARGINS_ERR_NULL;
+    if (!ws->measured)
+        return LADRC_MARGINS_ERR_NOT_MEASURED;
     const ladrc_margins_status_t st = check_plant(plant);
-    if (st != LADRC_MARGINS_OK) return st;
-    if (fabs(plant->dt_s - ws->dt_s) > 1e-9 * ws->dt_s) return LADRC_MARGINS_ERR_DT_S;
+    if (st != LADRC_MARGINS_OK)
+        return st;
+    if (fabs(plant->dt_s - ws->dt_s) > 1e-9 * ws->dt_s)
+        return LADRC_MARGINS_ERR_DT_S;
     memset(lp, 0, sizeof *lp);
     lp->ws = ws;
     discretise(plant, &lp->dp);
@@ -759,11 +820,14 @@ static ladrc_margins_status_t make_loop(const ladrc_margins_workspace_t *ws, con
 ladrc_margins_status_t ladrc_margins_loop(ladrc_margins_workspace_t *ws, const ladrc_margins_request_t *req,
                                           ladrc_margins_result_t *res)
 {
-    if (req == NULL || res == NULL) return LADRC_MARGINS_ERR_NULL;
+    if (req == NULL || res == NULL)
+        return LADRC_MARGINS_ERR_NULL;
     loop_t lp;
     ladrc_margins_status_t st = make_loop(ws, &req->plant, &lp);
-    if (st != LADRC_MARGINS_OK) return st;
-    if (check_request(req) != LADRC_MARGINS_OK) return LADRC_MARGINS_ERR_REQUEST;
+    if (st != LADRC_MARGINS_OK)
+        return st;
+    if (check_request(req) != LADRC_MARGINS_OK)
+        return LADRC_MARGINS_ERR_REQUEST;
     memset(res, 0, sizeof *res);
     const double dt = req->plant.dt_s;
     margins(&lp, dt, res);
@@ -812,18 +876,22 @@ ladrc_margins_status_t ladrc_margins_analyse(ladrc_margins_workspace_t *ws, cons
 int ladrc_margins_is_stable(ladrc_margins_workspace_t *ws, const ladrc_margins_plant_t *plant)
 {
     loop_t lp;
-    if (make_loop(ws, plant, &lp) != LADRC_MARGINS_OK) return 0;
+    if (make_loop(ws, plant, &lp) != LADRC_MARGINS_OK)
+        return 0;
     return nyquist(&lp) == 0;
 }
 
 ladrc_margins_status_t ladrc_margins_max_motor_tau(ladrc_margins_workspace_t *ws, const ladrc_margins_plant_t *plant,
                                                    double tau_max_s, double *tau_s)
 {
-    if (tau_s == NULL) return LADRC_MARGINS_ERR_NULL;
+    if (tau_s == NULL)
+        return LADRC_MARGINS_ERR_NULL;
     loop_t lp;
     const ladrc_margins_status_t st = make_loop(ws, plant, &lp);
-    if (st != LADRC_MARGINS_OK) return st;
-    if (!(tau_max_s > 0.0 && isfinite(tau_max_s))) return LADRC_MARGINS_ERR_MOTOR_TAU;
+    if (st != LADRC_MARGINS_OK)
+        return st;
+    if (!(tau_max_s > 0.0 && isfinite(tau_max_s)))
+        return LADRC_MARGINS_ERR_MOTOR_TAU;
     ladrc_margins_plant_t p = *plant;
     p.motor_tau_s = 0.0;
     if (!ladrc_margins_is_stable(ws, &p)) {
@@ -834,7 +902,8 @@ ladrc_margins_status_t ladrc_margins_max_motor_tau(ladrc_margins_workspace_t *ws
     double lo = 0.0, hi = 0.1 * plant->dt_s;
     for (;;) {
         p.motor_tau_s = hi;
-        if (!ladrc_margins_is_stable(ws, &p)) break;
+        if (!ladrc_margins_is_stable(ws, &p))
+            break;
         lo = hi;
         if (hi >= tau_max_s) {
             *tau_s = tau_max_s;
@@ -857,15 +926,18 @@ ladrc_margins_status_t ladrc_margins_max_motor_tau(ladrc_margins_workspace_t *ws
 ladrc_margins_status_t ladrc_margins_max_delay(ladrc_margins_workspace_t *ws, const ladrc_margins_plant_t *plant,
                                                int *ticks)
 {
-    if (ticks == NULL) return LADRC_MARGINS_ERR_NULL;
+    if (ticks == NULL)
+        return LADRC_MARGINS_ERR_NULL;
     loop_t lp;
     const ladrc_margins_status_t st = make_loop(ws, plant, &lp);
-    if (st != LADRC_MARGINS_OK) return st;
+    if (st != LADRC_MARGINS_OK)
+        return st;
     ladrc_margins_plant_t p = *plant;
     *ticks = -1;
     for (int d = 0; d <= LADRC_MARGINS_MAX_DELAY; ++d) {
         p.delay_ticks = d;
-        if (!ladrc_margins_is_stable(ws, &p)) return LADRC_MARGINS_OK;
+        if (!ladrc_margins_is_stable(ws, &p))
+            return LADRC_MARGINS_OK;
         *ticks = d;
     }
     return LADRC_MARGINS_OK;
@@ -874,13 +946,17 @@ ladrc_margins_status_t ladrc_margins_max_delay(ladrc_margins_workspace_t *ws, co
 ladrc_margins_status_t ladrc_margins_simulate(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
                                               const ladrc_margins_plant_t *plant, long n_ticks, double *growth)
 {
-    if (ws == NULL || ctl == NULL || plant == NULL || growth == NULL) return LADRC_MARGINS_ERR_NULL;
+    if (ws == NULL || ctl == NULL || plant == NULL || growth == NULL)
+        return LADRC_MARGINS_ERR_NULL;
     ladrc_margins_status_t st = check_plant(plant);
-    if (st != LADRC_MARGINS_OK) return st;
-    if ((ctl->attitude == NULL) == (ctl->axis == NULL) || n_ticks < 64) return LADRC_MARGINS_ERR_REQUEST;
+    if (st != LADRC_MARGINS_OK)
+        return st;
+    if ((ctl->attitude == NULL) == (ctl->axis == NULL) || n_ticks < 64)
+        return LADRC_MARGINS_ERR_REQUEST;
     ctl_state_t *s = (ctl_state_t *)(void *)ws->copy;
     st = ctl_init(ctl, &s[0]);
-    if (st != LADRC_MARGINS_OK) return st;
+    if (st != LADRC_MARGINS_OK)
+        return st;
     dplant_t dp;
     discretise(plant, &dp);
     psim_t ps;
@@ -901,8 +977,10 @@ ladrc_margins_status_t ladrc_margins_simulate(ladrc_margins_workspace_t *ws, con
             break;
         }
         peak = fmax(peak, a);
-        if (k >= n_ticks / 2 && k < n_ticks - n_ticks / 4) third = fmax(third, a);
-        if (k >= n_ticks - n_ticks / 4) last = fmax(last, a);
+        if (k >= n_ticks / 2 && k < n_ticks - n_ticks / 4)
+            third = fmax(third, a);
+        if (k >= n_ticks - n_ticks / 4)
+            last = fmax(last, a);
     }
     /* Consecutive quarters: in the end the slowest mode dominates, growing
      * (> 1) or decaying (< 1); a response decayed to the float controller's
@@ -965,7 +1043,10 @@ static void set_gains(tuner_t *t, double w, int shape, double j_model)
     }
 }
 
-static int n_shapes(void) { return 3; }
+static int n_shapes(void)
+{
+    return 3;
+}
 
 /* 1 when a result meets the targets: stable, PM and both gain margins. */
 static int meets(const ladrc_margins_result_t *res, const ladrc_margins_targets_t *tg)
@@ -976,10 +1057,11 @@ static int meets(const ladrc_margins_result_t *res, const ladrc_margins_targets_
 
 ladrc_margins_status_t ladrc_margins_analyse_reported(ladrc_margins_workspace_t *ws,
                                                       const ladrc_margins_controller_t *ctl,
-                                                      const ladrc_margins_request_t *req,
-                                                      ladrc_margins_result_t *res, int *idle)
+                                                      const ladrc_margins_request_t *req, ladrc_margins_result_t *res,
+                                                      int *idle)
 {
-    if (idle != NULL) *idle = 0;
+    if (idle != NULL)
+        *idle = 0;
     ladrc_margins_status_t st = ladrc_margins_analyse(ws, ctl, req, res);
     if (st == LADRC_MARGINS_ERR_NOT_SETTLED && ctl != NULL && req != NULL &&
         (ctl->attitude != NULL || ctl->axis != NULL) &&
@@ -988,7 +1070,8 @@ ladrc_margins_status_t ladrc_margins_analyse_reported(ladrc_margins_workspace_t 
         ladrc_margins_request_t quiet = *req;
         quiet.tone_rad_s2 = 0.0;
         st = ladrc_margins_analyse(ws, ctl, &quiet, res);
-        if (idle != NULL) *idle = st == LADRC_MARGINS_OK;
+        if (idle != NULL)
+            *idle = st == LADRC_MARGINS_OK;
     }
     return st;
 }
@@ -1058,12 +1141,16 @@ static double search_up(tuner_t *t, int shape, double j_model, double w_lo, doub
             }
         }
     }
-    if (isnan(ok_w) || isnan(bad_w)) return ok_w;
+    if (isnan(ok_w) || isnan(bad_w))
+        return ok_w;
     double lo = ok_w, hi = bad_w;
     while (hi - lo > 0.01 * lo) {
         const double m = sqrt(lo * hi);
         set_gains(t, m, shape, j_model);
-        if (evaluate(t, res, whole)) lo = m; else hi = m;
+        if (evaluate(t, res, whole))
+            lo = m;
+        else
+            hi = m;
     }
     return lo;
 }
@@ -1081,12 +1168,16 @@ static double search_down(tuner_t *t, int shape, double j_model, double w_top, d
     for (double w = w_top; w >= w_lo; w /= 1.1) {
         set_gains(t, w, shape, j_model);
         if (evaluate(t, res, 1)) {
-            if (isnan(bad_w)) return w;
+            if (isnan(bad_w))
+                return w;
             double lo = w, hi = bad_w;
             while (hi - lo > 0.01 * lo) {
                 const double m = sqrt(lo * hi);
                 set_gains(t, m, shape, j_model);
-                if (evaluate(t, res, 1)) lo = m; else hi = m;
+                if (evaluate(t, res, 1))
+                    lo = m;
+                else
+                    hi = m;
             }
             return lo;
         }
@@ -1121,12 +1212,15 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
 {
     if (ws == NULL || ctl == NULL || req == NULL || targets == NULL || tuned == NULL || out == NULL)
         return LADRC_MARGINS_ERR_NULL;
-    if ((ctl->attitude == NULL) == (ctl->axis == NULL)) return LADRC_MARGINS_ERR_CONTROLLER;
+    if ((ctl->attitude == NULL) == (ctl->axis == NULL))
+        return LADRC_MARGINS_ERR_CONTROLLER;
     if (ctl->attitude != NULL && (ctl->axis_index < 0 || ctl->axis_index >= LADRC_AXES))
         return LADRC_MARGINS_ERR_CONTROLLER;
     const ladrc_margins_status_t st = check_request(req);
-    if (st != LADRC_MARGINS_OK) return st;
-    if (!(isfinite(targets->pm_min_deg) && isfinite(targets->gm_min_db))) return LADRC_MARGINS_ERR_REQUEST;
+    if (st != LADRC_MARGINS_OK)
+        return st;
+    if (!(isfinite(targets->pm_min_deg) && isfinite(targets->gm_min_db)))
+        return LADRC_MARGINS_ERR_REQUEST;
     tuner_t t;
     memset(&t, 0, sizeof t);
     t.ws = ws;
@@ -1143,7 +1237,8 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
     ladrc_axis_config_t *a = tuner_axis(&t);
     const ladrc_variant_t variant = a->variant;
     /* The adaptive variants are tuned on their LADRC core. */
-    if (is_adaptive(a)) a->variant = LADRC_VARIANT_LADRC;
+    if (is_adaptive(a))
+        a->variant = LADRC_VARIANT_LADRC;
     const double dt = req->plant.dt_s;
     const double j_model = req->plant.inertia_kg_m2;
     /* w from 0.5 rad/s up to the sampled loop's limit (wc dt < 1 for LADRC;
@@ -1158,21 +1253,24 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
     int best_shape = -1;
     for (int shape = 0; shape < n_shapes(); ++shape) {
         double ok_w = search_up(&t, shape, j_model, w_lo, w_hi, 0, &fb_core);
-        if (isnan(ok_w)) continue;
+        if (isnan(ok_w))
+            continue;
         if (adaptive) {
             /* The whole variant at the core's bandwidth, and lower until it
              * meets the targets too: its estimator adds phase lag. */
             a->variant = variant;
             ok_w = search_down(&t, shape, j_model, ok_w, w_lo, &fb_whole);
             a->variant = LADRC_VARIANT_LADRC;
-            if (isnan(ok_w)) continue;
+            if (isnan(ok_w))
+                continue;
         }
         a->variant = variant;
         set_gains(&t, ok_w, shape, j_model);
         ladrc_margins_result_t *res = &ws->scratch;
         const ladrc_margins_status_t st_c = ladrc_margins_analyse_reported(ws, &t.ctl, req, res, NULL);
         a->variant = adaptive ? LADRC_VARIANT_LADRC : variant;
-        if (st_c != LADRC_MARGINS_OK) continue;
+        if (st_c != LADRC_MARGINS_OK)
+            continue;
         if (best_shape < 0 || res->dist_peak_rad < out->peak_dist_rad) {
             best_w = ok_w;
             best_shape = shape;
@@ -1204,6 +1302,7 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
     out->peak_dist_rad = out->margins.dist_peak_rad;
     report_gains(a, out);
     *tuned = *a;
-    if (fin != LADRC_MARGINS_OK) return fin;
+    if (fin != LADRC_MARGINS_OK)
+        return fin;
     return out->met ? LADRC_MARGINS_OK : LADRC_MARGINS_ERR_TARGETS_NOT_MET;
 }

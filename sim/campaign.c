@@ -28,7 +28,10 @@
 /* ---- counter-based draws ---------------------------------------------------- */
 
 /* The first SplitMix64 output from counter x: a bijective 64-bit mix. */
-static uint64_t mix64(uint64_t x) { return sim_rng_splitmix64(&x); }
+static uint64_t mix64(uint64_t x)
+{
+    return sim_rng_splitmix64(&x);
+}
 
 uint64_t sim_campaign_stream(uint64_t seed, long r, int k, int i)
 {
@@ -47,7 +50,10 @@ double sim_campaign_uniform(uint64_t seed, long r, int k, int i)
     return ((double)(sim_campaign_stream(seed, r, k, i) >> 11) + 0.5) * 0x1.0p-53;
 }
 
-static double clamp(double v, double lo, double hi) { return v < lo ? lo : (v > hi ? hi : v); }
+static double clamp(double v, double lo, double hi)
+{
+    return v < lo ? lo : (v > hi ? hi : v);
+}
 
 double sim_campaign_draw(const sim_campaign_t *c, const sim_campaign_key_t *key, long r)
 {
@@ -85,7 +91,10 @@ int sim_campaign_format_value(char *buf, double x)
     return best;
 }
 
-void sim_campaign_run_name(char *buf, size_t n, long r) { snprintf(buf, n, "%05ld", r); }
+void sim_campaign_run_name(char *buf, size_t n, long r)
+{
+    snprintf(buf, n, "%05ld", r);
+}
 
 /* ---- the parser ------------------------------------------------------------- */
 
@@ -109,7 +118,10 @@ typedef struct {
     int n_grid, n_draw;
 } parser_t;
 
-static int column(const parser_t *p, const char *at) { return (int)(at - p->line_start) + 1; }
+static int column(const parser_t *p, const char *at)
+{
+    return (int)(at - p->line_start) + 1;
+}
 
 static int PRINTF_LIKE(3, 4) fail(parser_t *p, const char *at, const char *format, ...)
 {
@@ -135,13 +147,25 @@ static int PRINTF_LIKE(4, 5) fail_at(parser_t *p, int line, int col, const char 
 
 #define SHOWN(len) ((len) > 40 ? 40 : (int)(len))
 
-static int is_alpha(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
-static int is_alnum(char c) { return is_alpha(c) || (c >= '0' && c <= '9'); }
+static int is_alpha(char c)
+{
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+}
+static int is_alnum(char c)
+{
+    return is_alpha(c) || (c >= '0' && c <= '9');
+}
 /* characters of a varied name: a variable's, and a scenario key's
  * (SECTION.KEY, controller:NAME.KEY) */
-static int is_name_char(char c) { return is_alnum(c) || c == '.' || c == ':' || c == '-'; }
+static int is_name_char(char c)
+{
+    return is_alnum(c) || c == '.' || c == ':' || c == '-';
+}
 /* characters of a campaign's name */
-static int is_campaign_name_char(char c) { return is_alnum(c) || c == '.' || c == '-'; }
+static int is_campaign_name_char(char c)
+{
+    return is_alnum(c) || c == '.' || c == '-';
+}
 
 /* A signed decimal number at s: its length (0 if none) and value. */
 static size_t scan_signed(const char *s, double *v)
@@ -240,7 +264,10 @@ static int expect_args(parser_t *p, char *name, size_t len, int n, int wanted, c
 }
 
 /* A number filling an argument's text. */
-static int parse_arg(parser_t *p, char *arg, double *v) { return parse_number(p, arg, strlen(arg), v); }
+static int parse_arg(parser_t *p, char *arg, double *v)
+{
+    return parse_number(p, arg, strlen(arg), v);
+}
 
 /* range(FROM, TO, COUNT), or a list: numbers separated by commas, spaces or both. */
 static int parse_grid_values(parser_t *p, sim_campaign_key_t *key, char *value)
@@ -406,8 +433,10 @@ static int parse_varied(parser_t *p, char *key, size_t key_len, char *value)
     }
     for (size_t i = 0; i < key_len; ++i) {
         if (!is_name_char(key[i])) {
-            return fail(p, key + i, "unexpected '%c' in a name (a variable: letters, digits, '_'; a scenario key: "
-                                    "SECTION.KEY)", key[i]);
+            return fail(p, key + i,
+                        "unexpected '%c' in a name (a variable: letters, digits, '_'; a scenario key: "
+                        "SECTION.KEY)",
+                        key[i]);
         }
     }
     if (key_len >= SIM_CAMPAIGN_KEY_LEN) {
@@ -418,7 +447,8 @@ static int parse_varied(parser_t *p, char *key, size_t key_len, char *value)
     memcpy(k.name, key, key_len);
     k.name[key_len] = '\0';
     k.is_variable = memchr(key, '.', key_len) == NULL;
-    if (k.is_variable && (!is_alpha(key[0]) || memchr(key, ':', key_len) != NULL || memchr(key, '-', key_len) != NULL)) {
+    if (k.is_variable &&
+        (!is_alpha(key[0]) || memchr(key, ':', key_len) != NULL || memchr(key, '-', key_len) != NULL)) {
         return fail(p, key, "a variable's name is a letter or '_' then letters, digits or '_', got '%s'", k.name);
     }
     if (!k.is_variable && (key[0] == '.' || key[key_len - 1] == '.')) {
@@ -618,13 +648,14 @@ static int check_variables(parser_t *p)
             const size_t len = (size_t)(close - v - 1);
             int found = -1;
             for (int k = 0; k < c->n_keys; ++k) {
-                if (c->keys[k].is_variable && strlen(c->keys[k].name) == len && strncmp(c->keys[k].name, v + 1, len) == 0) {
+                if (c->keys[k].is_variable && strlen(c->keys[k].name) == len &&
+                    strncmp(c->keys[k].name, v + 1, len) == 0) {
                     found = k;
                 }
             }
             if (found < 0) {
-                return fail_at(p, s->line, col, "unknown variable '{%.*s}' (define it in [grid] or [draw])",
-                               SHOWN(len), v + 1);
+                return fail_at(p, s->line, col, "unknown variable '{%.*s}' (define it in [grid] or [draw])", SHOWN(len),
+                               v + 1);
             }
             used[found] = 1;
             v = close;
@@ -637,8 +668,8 @@ static int check_variables(parser_t *p)
         for (int k = 0; k < c->n_keys; ++k) {
             if (!c->keys[k].is_variable && strcmp(a, c->keys[k].name) == 0) {
                 return fail_at(p, s->line, s->value_column - (int)(s->value - s->key),
-                               "'%s' is varied in [%s] (line %d): set it there or here, not both",
-                               a, c->keys[k].is_draw ? "draw" : "grid", c->keys[k].line);
+                               "'%s' is varied in [%s] (line %d): set it there or here, not both", a,
+                               c->keys[k].is_draw ? "draw" : "grid", c->keys[k].line);
             }
         }
     }
@@ -717,8 +748,10 @@ static int finish(parser_t *p)
         name_from_path(c->name, sizeof c->name, c->path);
         for (const char *s = c->name; *s != '\0'; ++s) {
             if (!is_campaign_name_char(*s)) {
-                return fail_at(p, 0, 0, "the file's name '%s' is no campaign name (letters, digits, '_', '.', '-'): "
-                               "give [campaign] name", c->name);
+                return fail_at(p, 0, 0,
+                               "the file's name '%s' is no campaign name (letters, digits, '_', '.', '-'): "
+                               "give [campaign] name",
+                               c->name);
             }
         }
         if (c->name[0] == '\0') {
@@ -862,7 +895,10 @@ static void put(text_t *t, const char *s, size_t len)
     t->buf[t->n] = '\0';
 }
 
-static void puts_(text_t *t, const char *s) { put(t, s, strlen(s)); }
+static void puts_(text_t *t, const char *s)
+{
+    put(t, s, strlen(s));
+}
 
 int sim_campaign_expand(const sim_campaign_t *c, long r, sim_campaign_run_t *out, char *msg, size_t msg_len)
 {

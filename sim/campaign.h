@@ -33,39 +33,39 @@ typedef enum { SIM_DRAW_UNIFORM = 0, SIM_DRAW_NORMAL, SIM_DRAW_LOG_UNIFORM } sim
 /* A varied name: a variable ({name} in [set]) or a scenario key SECTION.KEY. */
 typedef struct {
     char name[SIM_CAMPAIGN_KEY_LEN];
-    int is_variable;              /* no '.' in the name */
-    int is_draw;                  /* 0: [grid] */
-    int line, column;             /* of the name in the campaign file */
-    double *values;               /* [grid]: n_values values, owned */
+    int is_variable;  /* no '.' in the name */
+    int is_draw;      /* 0: [grid] */
+    int line, column; /* of the name in the campaign file */
+    double *values;   /* [grid]: n_values values, owned */
     long n_values;
-    sim_draw_kind_t dist;         /* [draw] */
-    double a, b;                  /* uniform, log_uniform: bounds; normal: mean, std */
-    int draw_index;               /* [draw]: k, its position there from 1 */
+    sim_draw_kind_t dist; /* [draw] */
+    double a, b;          /* uniform, log_uniform: bounds; normal: mean, std */
+    int draw_index;       /* [draw]: k, its position there from 1 */
 } sim_campaign_key_t;
 
 /* A [set] line KEY = VALUE, as the setting "KEY=VALUE". */
 typedef struct {
-    const char *key;              /* into the campaign's text */
+    const char *key; /* into the campaign's text */
     const char *value;
     int line, value_column;
 } sim_campaign_set_t;
 
 typedef struct {
-    char path[SIM_PATH_LEN];      /* the campaign file */
+    char path[SIM_PATH_LEN]; /* the campaign file */
     char name[SIM_NAME_LEN];
     char base_path[SIM_PATH_LEN]; /* the base scenario, relative to the current directory */
     uint64_t seed;
     long samples;
     char output_dir[SIM_PATH_LEN];
-    int n_keys;                   /* [grid] keys, then [draw] keys, each in file order */
+    int n_keys; /* [grid] keys, then [draw] keys, each in file order */
     int n_grid;
     sim_campaign_key_t keys[SIM_CAMPAIGN_MAX_VARIED];
     int n_sets;
     sim_campaign_set_t sets[SIM_CAMPAIGN_MAX_SETS];
-    int sets_seed;                /* run.seed is in [set] or varied: no derived seed */
+    int sets_seed; /* run.seed is in [set] or varied: no derived seed */
     long n_runs;
-    char *text;                   /* the file, cut up; owned */
-    char *base_text;              /* the base scenario's bytes; owned */
+    char *text;      /* the file, cut up; owned */
+    char *base_text; /* the base scenario's bytes; owned */
     size_t base_len;
 } sim_campaign_t;
 
@@ -86,12 +86,12 @@ void sim_campaign_free(sim_campaign_t *c);
  * sim_scenario_parse_buffer_with. */
 typedef struct {
     long run;
-    double values[SIM_CAMPAIGN_MAX_VARIED];               /* in key order */
+    double values[SIM_CAMPAIGN_MAX_VARIED];                     /* in key order */
     char text[SIM_CAMPAIGN_MAX_VARIED][SIM_CAMPAIGN_VALUE_LEN]; /* shortest round-trip text */
     const char *settings[SIM_CAMPAIGN_MAX_SETS + SIM_CAMPAIGN_MAX_VARIED + 1];
     int setting_line[SIM_CAMPAIGN_MAX_SETS + SIM_CAMPAIGN_MAX_VARIED + 1]; /* campaign line; 0: run.seed */
     int n_settings;
-    uint64_t run_seed;            /* the derived run.seed (applied unless sets_seed) */
+    uint64_t run_seed; /* the derived run.seed (applied unless sets_seed) */
     char buf[SIM_CAMPAIGN_RUN_TEXT];
 } sim_campaign_run_t;
 

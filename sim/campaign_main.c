@@ -23,7 +23,8 @@ enum { EXIT_RUN_FAILED = 1, EXIT_BAD_INPUT = 2 };
 
 static void usage(FILE *out)
 {
-    fputs("usage: ladrc_sil --campaign FILE [--list | --print-out] [--shard K/N] [--jobs N] [--out DIR] [--csv] [--quiet]\n"
+    fputs("usage: ladrc_sil --campaign FILE [--list | --print-out] [--shard K/N] [--jobs N] [--out DIR] [--csv] "
+          "[--quiet]\n"
           "  --campaign FILE   a campaign file (format: docs/campaign-format.md): a base scenario's\n"
           "                    runs with keys varied on a grid and drawn at random\n"
           "  --list            print the plan (CSV: run, then each varied value) and write nothing\n"
@@ -162,8 +163,7 @@ static void on_progress(void *ctx, double ticks, int scenarios_done)
         snprintf(left, sizeof left, ", about %s left", text);
     }
     fprintf(stderr, "%sladrc_sil: campaign %s: %ld of %ld runs done (%.0f%%), %s%s%s", p->tty ? "\r" : "", p->name,
-            p->runs_before + scenarios_done, p->runs_total, 100.0 * fraction, so_far, left,
-            p->tty ? "\033[K" : "\n");
+            p->runs_before + scenarios_done, p->runs_total, 100.0 * fraction, so_far, left, p->tty ? "\033[K" : "\n");
     p->last_print = t;
     p->printed = 1;
 }
@@ -224,8 +224,10 @@ int sim_campaign_main(int argc, char **argv)
             usage(stderr);
             return EXIT_BAD_INPUT;
         } else {
-            fprintf(stderr, "ladrc_sil: '%s': a scenario file cannot be combined with --campaign (the campaign "
-                            "names its base)\n", arg);
+            fprintf(stderr,
+                    "ladrc_sil: '%s': a scenario file cannot be combined with --campaign (the campaign "
+                    "names its base)\n",
+                    arg);
             return EXIT_BAD_INPUT;
         }
     }
@@ -322,8 +324,8 @@ int sim_campaign_main(int argc, char **argv)
     /* The runs, in batches. */
     static sim_scenario_t batch[SIM_FLY_MAX_SCENARIOS];
     static long batch_run[SIM_FLY_MAX_SCENARIOS];
-    progress_t progress = {c.name, sim_fly_now_s(), 0.0, total_ticks, 0.0, 0, runs_total,
-                           isatty(fileno(stderr)), quiet, 0};
+    progress_t progress = {c.name, sim_fly_now_s(), 0.0, total_ticks, 0.0, 0, runs_total, isatty(fileno(stderr)), quiet,
+                           0};
     const sim_fly_options_t opt = {(int)jobs, want_csv, quiet, 0, 0, on_progress, &progress};
     int status = 0;
     long flights = 0, failed_flights = 0, diverged_flights = 0, diverged_runs = 0;

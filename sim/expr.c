@@ -53,10 +53,10 @@ typedef struct {
 } function_t;
 
 static const function_t FUNCTIONS[] = {
-    {"sin", OP_SIN, 1},     {"cos", OP_COS, 1},     {"tan", OP_TAN, 1},   {"asin", OP_ASIN, 1},
-    {"acos", OP_ACOS, 1},   {"atan", OP_ATAN, 1},   {"exp", OP_EXP, 1},   {"log", OP_LOG, 1},
-    {"sqrt", OP_SQRT, 1},   {"abs", OP_ABS, 1},     {"floor", OP_FLOOR, 1}, {"ceil", OP_CEIL, 1},
-    {"step", OP_STEP, 1},   {"sign", OP_SIGN, 1},   {"min", OP_MIN, 2},   {"max", OP_MAX, 2},
+    {"sin", OP_SIN, 1},   {"cos", OP_COS, 1},   {"tan", OP_TAN, 1},     {"asin", OP_ASIN, 1},
+    {"acos", OP_ACOS, 1}, {"atan", OP_ATAN, 1}, {"exp", OP_EXP, 1},     {"log", OP_LOG, 1},
+    {"sqrt", OP_SQRT, 1}, {"abs", OP_ABS, 1},   {"floor", OP_FLOOR, 1}, {"ceil", OP_CEIL, 1},
+    {"step", OP_STEP, 1}, {"sign", OP_SIGN, 1}, {"min", OP_MIN, 2},     {"max", OP_MAX, 2},
 };
 
 /* Parentheses, unary signs and powers nest the parser's recursion. */
@@ -69,14 +69,23 @@ typedef struct {
     const char *p;
     sim_expr_t *out;
     sim_expr_error_t *err;
-    int depth;    /* values on the evaluation stack after the emitted ops */
+    int depth; /* values on the evaluation stack after the emitted ops */
     int nesting;
     int failed;
 } parser_t;
 
-static int is_digit(char c) { return c >= '0' && c <= '9'; }
-static int is_name_start(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
-static int is_name_char(char c) { return is_name_start(c) || is_digit(c); }
+static int is_digit(char c)
+{
+    return c >= '0' && c <= '9';
+}
+static int is_name_start(char c)
+{
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+}
+static int is_name_char(char c)
+{
+    return is_name_start(c) || is_digit(c);
+}
 
 size_t sim_expr_scan_number(const char *s, double *value)
 {
@@ -120,7 +129,10 @@ size_t sim_expr_scan_number(const char *s, double *value)
     return n;
 }
 
-static int column_of(const parser_t *ps, const char *at) { return (int)(at - ps->text) + 1; }
+static int column_of(const parser_t *ps, const char *at)
+{
+    return (int)(at - ps->text) + 1;
+}
 
 static void fail(parser_t *ps, const char *at, const char *message)
 {
@@ -357,44 +369,72 @@ int sim_expr_compile(sim_expr_t *expr, const char *text, sim_expr_error_t *err)
     return 0;
 }
 
-static double nan_or(double x, double value) { return isnan(x) ? x : value; }
+static double nan_or(double x, double value)
+{
+    return isnan(x) ? x : value;
+}
 
 /* a op b for the binary operators, a the left operand; NaN wins in min/max */
 static double apply_binary(unsigned char op, double a, double b)
 {
     switch (op) {
-    case OP_ADD: return a + b;
-    case OP_SUB: return a - b;
-    case OP_MUL: return a * b;
-    case OP_DIV: return a / b;
-    case OP_POW: return pow(a, b);
-    case OP_MIN: return isnan(b) ? b : ((!isnan(a) && b < a) ? b : a);
-    default: return isnan(b) ? b : ((!isnan(a) && b > a) ? b : a); /* OP_MAX */
+    case OP_ADD:
+        return a + b;
+    case OP_SUB:
+        return a - b;
+    case OP_MUL:
+        return a * b;
+    case OP_DIV:
+        return a / b;
+    case OP_POW:
+        return pow(a, b);
+    case OP_MIN:
+        return isnan(b) ? b : ((!isnan(a) && b < a) ? b : a);
+    default:
+        return isnan(b) ? b : ((!isnan(a) && b > a) ? b : a); /* OP_MAX */
     }
 }
 
 static double apply_unary(unsigned char op, double x)
 {
     switch (op) {
-    case OP_NEG: return -x;
-    case OP_SIN: return sin(x);
-    case OP_COS: return cos(x);
-    case OP_TAN: return tan(x);
-    case OP_ASIN: return asin(x);
-    case OP_ACOS: return acos(x);
-    case OP_ATAN: return atan(x);
-    case OP_EXP: return exp(x);
-    case OP_LOG: return log(x);
-    case OP_SQRT: return sqrt(x);
-    case OP_ABS: return fabs(x);
-    case OP_FLOOR: return floor(x);
-    case OP_CEIL: return ceil(x);
-    case OP_STEP: return nan_or(x, x >= 0.0 ? 1.0 : 0.0);
-    default: return nan_or(x, x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0)); /* OP_SIGN */
+    case OP_NEG:
+        return -x;
+    case OP_SIN:
+        return sin(x);
+    case OP_COS:
+        return cos(x);
+    case OP_TAN:
+        return tan(x);
+    case OP_ASIN:
+        return asin(x);
+    case OP_ACOS:
+        return acos(x);
+    case OP_ATAN:
+        return atan(x);
+    case OP_EXP:
+        return exp(x);
+    case OP_LOG:
+        return log(x);
+    case OP_SQRT:
+        return sqrt(x);
+    case OP_ABS:
+        return fabs(x);
+    case OP_FLOOR:
+        return floor(x);
+    case OP_CEIL:
+        return ceil(x);
+    case OP_STEP:
+        return nan_or(x, x >= 0.0 ? 1.0 : 0.0);
+    default:
+        return nan_or(x, x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0)); /* OP_SIGN */
     }
 }
 
-static int is_binary(unsigned char op) { return (op >= OP_ADD && op <= OP_POW) || op == OP_MIN || op == OP_MAX; }
+static int is_binary(unsigned char op)
+{
+    return (op >= OP_ADD && op <= OP_POW) || op == OP_MIN || op == OP_MAX;
+}
 
 double sim_expr_eval_postfix(const sim_expr_t *expr, double t_s)
 {
@@ -439,9 +479,9 @@ static int binary_index(unsigned char op)
 }
 
 typedef struct {
-    unsigned char op;      /* OP_CONST (folded or written), OP_T, or an operator */
-    int left, right;       /* children, -1 when absent; a unary has left only */
-    double value;          /* OP_CONST */
+    unsigned char op; /* OP_CONST (folded or written), OP_T, or an operator */
+    int left, right;  /* children, -1 when absent; a unary has left only */
+    double value;     /* OP_CONST */
 } node_t;
 
 typedef struct {
@@ -449,7 +489,10 @@ typedef struct {
     sim_expr_t *out;
 } builder_t;
 
-static int is_leaf(const node_t *n) { return n->op == OP_CONST || n->op == OP_T; }
+static int is_leaf(const node_t *n)
+{
+    return n->op == OP_CONST || n->op == OP_T;
+}
 
 static void put(builder_t *b, unsigned char code, double operand)
 {
@@ -561,12 +604,23 @@ static double unary_memo(unsigned char op, double x, sim_expr_memo_t *memo)
     return y;
 }
 
-#define BINARY_CASES(op)                                                                                          \
-    case X_BINARY + (op) * N_MODES + MODE_C: acc = BIN_##op(acc, expr->operand[i]); break;                         \
-    case X_BINARY + (op) * N_MODES + MODE_T: acc = BIN_##op(acc, t_s); break;                                      \
-    case X_BINARY + (op) * N_MODES + MODE_S: --sp; acc = BIN_##op(stack[sp], acc); break;                         \
-    case X_BINARY + (op) * N_MODES + MODE_RC: acc = BIN_##op(expr->operand[i], acc); break;                        \
-    case X_BINARY + (op) * N_MODES + MODE_RT: acc = BIN_##op(t_s, acc); break;
+#define BINARY_CASES(op)                                                                                               \
+    case X_BINARY + (op)*N_MODES + MODE_C:                                                                             \
+        acc = BIN_##op(acc, expr->operand[i]);                                                                         \
+        break;                                                                                                         \
+    case X_BINARY + (op)*N_MODES + MODE_T:                                                                             \
+        acc = BIN_##op(acc, t_s);                                                                                      \
+        break;                                                                                                         \
+    case X_BINARY + (op)*N_MODES + MODE_S:                                                                             \
+        --sp;                                                                                                          \
+        acc = BIN_##op(stack[sp], acc);                                                                                \
+        break;                                                                                                         \
+    case X_BINARY + (op)*N_MODES + MODE_RC:                                                                            \
+        acc = BIN_##op(expr->operand[i], acc);                                                                         \
+        break;                                                                                                         \
+    case X_BINARY + (op)*N_MODES + MODE_RT:                                                                            \
+        acc = BIN_##op(t_s, acc);                                                                                      \
+        break;
 #define BIN_0(a, b) ((a) + (b))
 #define BIN_1(a, b) ((a) - (b))
 #define BIN_2(a, b) ((a) * (b))
@@ -583,23 +637,34 @@ double sim_expr_eval_memo(const sim_expr_t *expr, double t_s, sim_expr_memo_t *m
     for (int i = 0; i < expr->n_code; ++i) {
         const unsigned char c = expr->code[i];
         switch (c) {
-        case X_LOADC: acc = expr->operand[i]; break;
-        case X_LOADT: acc = t_s; break;
-        case X_PUSH: stack[sp++] = acc; break;
-        BINARY_CASES(0)
-        BINARY_CASES(1)
-        BINARY_CASES(2)
-        BINARY_CASES(3)
-        BINARY_CASES(4)
-        BINARY_CASES(5)
-        BINARY_CASES(6)
-        default: acc = unary_memo((unsigned char)(c - X_UNARY + OP_NEG), acc, memo); break;
+        case X_LOADC:
+            acc = expr->operand[i];
+            break;
+        case X_LOADT:
+            acc = t_s;
+            break;
+        case X_PUSH:
+            stack[sp++] = acc;
+            break;
+            BINARY_CASES(0)
+            BINARY_CASES(1)
+            BINARY_CASES(2)
+            BINARY_CASES(3)
+            BINARY_CASES(4)
+            BINARY_CASES(5)
+            BINARY_CASES(6)
+        default:
+            acc = unary_memo((unsigned char)(c - X_UNARY + OP_NEG), acc, memo);
+            break;
         }
     }
     return acc;
 }
 
-double sim_expr_eval(const sim_expr_t *expr, double t_s) { return sim_expr_eval_memo(expr, t_s, NULL); }
+double sim_expr_eval(const sim_expr_t *expr, double t_s)
+{
+    return sim_expr_eval_memo(expr, t_s, NULL);
+}
 
 void sim_expr_batch_memo_clear(sim_expr_batch_memo_t *memo)
 {
@@ -650,28 +715,32 @@ static void unary_batch(unsigned char op, double *x, int n, sim_expr_batch_memo_
     }
 }
 
-#define BATCH_BINARY_CASES(op)                                                                                    \
-    case X_BINARY + (op) * N_MODES + MODE_C: {                                                                    \
-        const double operand = expr->operand[i];                                                                  \
-        for (int k = 0; k < n; ++k) acc[k] = BIN_##op(acc[k], operand);                                           \
-    } break;                                                                                                      \
-    case X_BINARY + (op) * N_MODES + MODE_T:                                                                      \
-        for (int k = 0; k < n; ++k) acc[k] = BIN_##op(acc[k], t_s[k]);                                           \
-        break;                                                                                                    \
-    case X_BINARY + (op) * N_MODES + MODE_S:                                                                      \
-        --sp;                                                                                                     \
-        for (int k = 0; k < n; ++k) acc[k] = BIN_##op(stack[sp][k], acc[k]);                                     \
-        break;                                                                                                    \
-    case X_BINARY + (op) * N_MODES + MODE_RC: {                                                                   \
-        const double operand = expr->operand[i];                                                                  \
-        for (int k = 0; k < n; ++k) acc[k] = BIN_##op(operand, acc[k]);                                           \
-    } break;                                                                                                      \
-    case X_BINARY + (op) * N_MODES + MODE_RT:                                                                     \
-        for (int k = 0; k < n; ++k) acc[k] = BIN_##op(t_s[k], acc[k]);                                           \
+#define BATCH_BINARY_CASES(op)                                                                                         \
+    case X_BINARY + (op)*N_MODES + MODE_C: {                                                                           \
+        const double operand = expr->operand[i];                                                                       \
+        for (int k = 0; k < n; ++k)                                                                                    \
+            acc[k] = BIN_##op(acc[k], operand);                                                                        \
+    } break;                                                                                                           \
+    case X_BINARY + (op)*N_MODES + MODE_T:                                                                             \
+        for (int k = 0; k < n; ++k)                                                                                    \
+            acc[k] = BIN_##op(acc[k], t_s[k]);                                                                         \
+        break;                                                                                                         \
+    case X_BINARY + (op)*N_MODES + MODE_S:                                                                             \
+        --sp;                                                                                                          \
+        for (int k = 0; k < n; ++k)                                                                                    \
+            acc[k] = BIN_##op(stack[sp][k], acc[k]);                                                                   \
+        break;                                                                                                         \
+    case X_BINARY + (op)*N_MODES + MODE_RC: {                                                                          \
+        const double operand = expr->operand[i];                                                                       \
+        for (int k = 0; k < n; ++k)                                                                                    \
+            acc[k] = BIN_##op(operand, acc[k]);                                                                        \
+    } break;                                                                                                           \
+    case X_BINARY + (op)*N_MODES + MODE_RT:                                                                            \
+        for (int k = 0; k < n; ++k)                                                                                    \
+            acc[k] = BIN_##op(t_s[k], acc[k]);                                                                         \
         break;
 
-void sim_expr_eval_batch(const sim_expr_t *expr, const double *t_s, int n, double *out,
-                         sim_expr_batch_memo_t *memo)
+void sim_expr_eval_batch(const sim_expr_t *expr, const double *t_s, int n, double *out, sim_expr_batch_memo_t *memo)
 {
     double stack[SIM_EXPR_MAX_STACK][SIM_EXPR_BATCH_MAX];
     double acc[SIM_EXPR_BATCH_MAX];
@@ -684,18 +753,25 @@ void sim_expr_eval_batch(const sim_expr_t *expr, const double *t_s, int n, doubl
         const unsigned char c = expr->code[i];
         switch (c) {
         case X_LOADC:
-            for (int k = 0; k < n; ++k) acc[k] = expr->operand[i];
+            for (int k = 0; k < n; ++k)
+                acc[k] = expr->operand[i];
             break;
-        case X_LOADT: memcpy(acc, t_s, (size_t)n * sizeof acc[0]); break;
-        case X_PUSH: memcpy(stack[sp++], acc, (size_t)n * sizeof acc[0]); break;
-        BATCH_BINARY_CASES(0)
-        BATCH_BINARY_CASES(1)
-        BATCH_BINARY_CASES(2)
-        BATCH_BINARY_CASES(3)
-        BATCH_BINARY_CASES(4)
-        BATCH_BINARY_CASES(5)
-        BATCH_BINARY_CASES(6)
-        default: unary_batch((unsigned char)(c - X_UNARY + OP_NEG), acc, n, memo); break;
+        case X_LOADT:
+            memcpy(acc, t_s, (size_t)n * sizeof acc[0]);
+            break;
+        case X_PUSH:
+            memcpy(stack[sp++], acc, (size_t)n * sizeof acc[0]);
+            break;
+            BATCH_BINARY_CASES(0)
+            BATCH_BINARY_CASES(1)
+            BATCH_BINARY_CASES(2)
+            BATCH_BINARY_CASES(3)
+            BATCH_BINARY_CASES(4)
+            BATCH_BINARY_CASES(5)
+            BATCH_BINARY_CASES(6)
+        default:
+            unary_batch((unsigned char)(c - X_UNARY + OP_NEG), acc, n, memo);
+            break;
         }
     }
     memcpy(out, acc, (size_t)n * sizeof acc[0]);

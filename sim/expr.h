@@ -31,8 +31,8 @@
 #define SIM_EXPR_MAX_STACK 32
 
 typedef struct {
-    unsigned char op[SIM_EXPR_MAX_OPS];  /* opcode per instruction */
-    double value[SIM_EXPR_MAX_OPS];      /* operand of push-constant instructions */
+    unsigned char op[SIM_EXPR_MAX_OPS]; /* opcode per instruction */
+    double value[SIM_EXPR_MAX_OPS];     /* operand of push-constant instructions */
     int n_ops;
     /* the evaluated form: accumulator code; one instruction per postfix one
      * at most, plus a push per binary operation (at most half of them) */
@@ -50,8 +50,8 @@ typedef struct {
     double arg[SIM_EXPR_MEMO_SIZE];
     double result[SIM_EXPR_MEMO_SIZE];
     unsigned char fn[SIM_EXPR_MEMO_SIZE];
-    int n;      /* entries filled */
-    int next;   /* entry replaced next once full */
+    int n;    /* entries filled */
+    int next; /* entry replaced next once full */
 } sim_expr_memo_t;
 
 /* Empties a memo. */
@@ -89,16 +89,15 @@ typedef struct {
     double result[SIM_EXPR_MEMO_SIZE][SIM_EXPR_BATCH_MAX];
     unsigned char fn[SIM_EXPR_MEMO_SIZE];
     int len[SIM_EXPR_MEMO_SIZE];
-    int n;      /* entries filled */
-    int next;   /* entry replaced next once full */
+    int n;    /* entries filled */
+    int next; /* entry replaced next once full */
 } sim_expr_batch_memo_t;
 
 /* Empties a batch memo. */
 void sim_expr_batch_memo_clear(sim_expr_batch_memo_t *memo);
 
 /* memo may be NULL: none. */
-void sim_expr_eval_batch(const sim_expr_t *expr, const double *t_s, int n, double *out,
-                         sim_expr_batch_memo_t *memo);
+void sim_expr_eval_batch(const sim_expr_t *expr, const double *t_s, int n, double *out, sim_expr_batch_memo_t *memo);
 
 /* The same value from the postfix program as written, without folding or
  * memo: the reference the evaluated form is tested against. */

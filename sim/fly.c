@@ -22,28 +22,28 @@
 
 typedef struct {
     const sim_scenario_t *sc;
-    int scenario_index;            /* into the batch */
-    int controller_index;          /* into sc->controllers; -1 for a differentiator run */
-    int group_size;                /* runs flown in lockstep from this job on; 0: in an earlier job's group */
+    int scenario_index;   /* into the batch */
+    int controller_index; /* into sc->controllers; -1 for a differentiator run */
+    int group_size;       /* runs flown in lockstep from this job on; 0: in an earlier job's group */
     char csv_path[SIM_PATH_LEN + 64];
-    sim_metrics_t *attitude;       /* where the result goes */
+    sim_metrics_t *attitude; /* where the result goes */
     sim_diff_metrics_t *diff;
-    volatile long ticks_done;      /* progress hint, written by the worker only */
+    volatile long ticks_done; /* progress hint, written by the worker only */
     char error[SIM_PATH_LEN + 160];
     int failed;
 } job_t;
 
 typedef struct {
     job_t *jobs;
-    const int *order;              /* groups (their first jobs) in the order they are handed out */
+    const int *order; /* groups (their first jobs) in the order they are handed out */
     int n_groups;
     int n_jobs;
-    int next;                      /* next group to take, under lock */
+    int next; /* next group to take, under lock */
     int done;
     int runs_left[SIM_FLY_MAX_SCENARIOS]; /* of each scenario, under lock */
     int scenarios_done;
     pthread_mutex_t lock;
-    pthread_cond_t finished;       /* signalled as each job ends */
+    pthread_cond_t finished; /* signalled as each job ends */
 } pool_t;
 
 double sim_fly_now_s(void)
@@ -101,8 +101,7 @@ static void *tune_worker(void *arg)
     return NULL;
 }
 
-int sim_fly_tune(sim_scenario_t *scenarios, int n_sc, int n_threads, int quiet, sim_parse_error_t *err,
-                 int *failed)
+int sim_fly_tune(sim_scenario_t *scenarios, int n_sc, int n_threads, int quiet, sim_parse_error_t *err, int *failed)
 {
     static tune_task_t tasks[MAX_JOBS];
     int n = 0;
@@ -183,14 +182,18 @@ static void *worker(void *arg)
         const sim_progress_t progress = {&job->ticks_done};
         if (job->controller_index < 0) {
             const char *csv = job->csv_path[0] != '\0' ? job->csv_path : NULL;
-            job->failed = sim_run_differentiator(job->sc, csv, &progress, job->diff, job->error, sizeof job->error) != 0;
+            job->failed =
+                sim_run_differentiator(job->sc, csv, &progress, job->diff, job->error, sizeof job->error) != 0;
         } else {
             sim_run_spec_t runs[SIM_MAX_CONTROLLERS];
             for (int g = 0; g < job->group_size; ++g) {
                 job_t *j = job + g;
                 const sim_run_spec_t spec = {j->sc->controllers[j->controller_index],
                                              j->csv_path[0] != '\0' ? j->csv_path : NULL,
-                                             j->attitude, j->error, sizeof j->error, 0};
+                                             j->attitude,
+                                             j->error,
+                                             sizeof j->error,
+                                             0};
                 runs[g] = spec;
             }
             sim_run_attitude_group(job->sc, runs, job->group_size, &progress);
@@ -258,9 +261,12 @@ static int write_signals_csv(FILE *f, const sim_scenario_t *sc)
         const char *what;
         const sim_signal_t *sig;
         const char *axis;
-    } rows[] = {{"reference", &sc->reference[0], AXIS[0]},   {"reference", &sc->reference[1], AXIS[1]},
-                {"reference", &sc->reference[2], AXIS[2]},   {"disturbance", &sc->disturbance[0], AXIS[0]},
-                {"disturbance", &sc->disturbance[1], AXIS[1]}, {"disturbance", &sc->disturbance[2], AXIS[2]},
+    } rows[] = {{"reference", &sc->reference[0], AXIS[0]},
+                {"reference", &sc->reference[1], AXIS[1]},
+                {"reference", &sc->reference[2], AXIS[2]},
+                {"disturbance", &sc->disturbance[0], AXIS[0]},
+                {"disturbance", &sc->disturbance[1], AXIS[1]},
+                {"disturbance", &sc->disturbance[2], AXIS[2]},
                 {"signal", &sc->diff_signal, "-"}};
     const int first = sc->kind == SIM_KIND_DIFFERENTIATOR ? 6 : 0;
     const int last = sc->kind == SIM_KIND_DIFFERENTIATOR ? 7 : 6;
@@ -286,8 +292,8 @@ static double job_cost(const job_t *job)
         return ticks * (300.0 + csv_ns);
     }
     const sim_controller_id_t id = job->sc->controllers[job->controller_index];
-    return ticks * (100.0 * job->sc->plant_substeps * (job->sc->motor_tau_s > 0.0 ? 2.0 : 1.0) +
-                    CONTROLLER_NS[id] + csv_ns);
+    return ticks *
+           (100.0 * job->sc->plant_substeps * (job->sc->motor_tau_s > 0.0 ? 2.0 : 1.0) + CONTROLLER_NS[id] + csv_ns);
 }
 
 /* Rough cost of a group: its runs' costs less the disturbances they share
@@ -448,8 +454,7 @@ int sim_fly_batch(const sim_scenario_t *scenarios, int n_sc, const sim_fly_optio
             job->diff = &diff[s];
             if (opt->want_csv) {
                 snprintf(job->csv_path, sizeof job->csv_path, "%s/%s.csv", sc->output_dir,
-                         job->controller_index < 0 ? "differentiator"
-                                                   : sim_controller_name(sc->controllers[c]));
+                         job->controller_index < 0 ? "differentiator" : sim_controller_name(sc->controllers[c]));
             }
             total_ticks += (double)sim_run_ticks(sc);
         }

@@ -22,24 +22,24 @@
 typedef void (*sim_fly_progress_fn)(void *ctx, double ticks_done, int scenarios_done);
 
 typedef struct {
-    int jobs;                 /* worker threads wanted, >= 1 */
-    int want_csv;             /* time series <out>/<CONTROLLER>.csv */
-    int quiet;                /* no progress line (the callback is still called) */
-    int print_tables;         /* the comparison tables on stdout */
-    int report_divergence;    /* one stderr line per diverged run */
+    int jobs;                     /* worker threads wanted, >= 1 */
+    int want_csv;                 /* time series <out>/<CONTROLLER>.csv */
+    int quiet;                    /* no progress line (the callback is still called) */
+    int print_tables;             /* the comparison tables on stdout */
+    int report_divergence;        /* one stderr line per diverged run */
     sim_fly_progress_fn progress; /* NULL: the scenario mode's progress line on stderr */
     void *progress_ctx;
 } sim_fly_options_t;
 
 typedef struct {
-    int runs;                 /* jobs flown: controllers of attitude scenarios, differentiators */
-    int runs_failed;          /* runs that could not run (their message printed on stderr) */
-    int writes_failed;        /* metrics.csv or signals.csv not written (printed on stderr) */
-    int runs_diverged;        /* attitude runs that diverged */
-    int scenarios_diverged;   /* scenarios with at least one */
-    double simulated_s;       /* simulated time of the runs that flew */
-    double wall_s;            /* wall time of the flights */
-    int threads;              /* worker threads started */
+    int runs;               /* jobs flown: controllers of attitude scenarios, differentiators */
+    int runs_failed;        /* runs that could not run (their message printed on stderr) */
+    int writes_failed;      /* metrics.csv or signals.csv not written (printed on stderr) */
+    int runs_diverged;      /* attitude runs that diverged */
+    int scenarios_diverged; /* scenarios with at least one */
+    double simulated_s;     /* simulated time of the runs that flew */
+    double wall_s;          /* wall time of the flights */
+    int threads;            /* worker threads started */
 } sim_fly_result_t;
 
 /* Monotonic clock, seconds. */
@@ -53,8 +53,7 @@ double sim_fly_total_ticks(const sim_scenario_t *scenarios, int n_sc);
  * Returns 0, or -1 with the first failure (in task order) in *err and the
  * failing scenario's index in *failed (nothing printed). A line of the time
  * it took on stderr unless quiet. */
-int sim_fly_tune(sim_scenario_t *scenarios, int n_sc, int n_threads, int quiet, sim_parse_error_t *err,
-                 int *failed);
+int sim_fly_tune(sim_scenario_t *scenarios, int n_sc, int n_threads, int quiet, sim_parse_error_t *err, int *failed);
 
 /* Refuses two scenarios writing the same output_dir: returns 0, or -1 after
  * printing the first pair on stderr. */

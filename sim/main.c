@@ -27,7 +27,7 @@ typedef struct {
     const char *shown[MAX_SETTINGS]; /* the argument as given */
     int shift[MAX_SETTINGS];         /* columns of text before the argument ("run.seed=") */
     char label[MAX_SETTINGS][24];    /* "--set 2", "--seed" */
-    char seed_text[40];            /* "run.seed=N" of --seed */
+    char seed_text[40];              /* "run.seed=N" of --seed */
     int n;
 } settings_t;
 
@@ -74,7 +74,6 @@ static void usage(FILE *out)
           "completed but a run diverged (1 wins over 3).\n",
           out);
 }
-
 
 static int parse_controllers(const char *list, sim_controller_id_t *ids, int *n)
 {

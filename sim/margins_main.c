@@ -49,12 +49,14 @@ static void usage(FILE *out)
 static int parse_controllers(const char *list, sim_controller_id_t *ids, int *n)
 {
     char buf[256];
-    if (snprintf(buf, sizeof buf, "%s", list) >= (int)sizeof buf) return -1;
+    if (snprintf(buf, sizeof buf, "%s", list) >= (int)sizeof buf)
+        return -1;
     *n = 0;
     for (char *tok = strtok(buf, ","); tok != NULL; tok = strtok(NULL, ",")) {
         int found = -1;
         for (int c = 0; c < SIM_CTRL_COUNT; ++c) {
-            if (strcmp(tok, sim_controller_name((sim_controller_id_t)c)) == 0) found = c;
+            if (strcmp(tok, sim_controller_name((sim_controller_id_t)c)) == 0)
+                found = c;
         }
         if (found < 0 || *n >= SIM_MAX_CONTROLLERS) {
             fprintf(stderr, "ladrc_margins: --controllers: unknown controller '%s'\n", tok);
@@ -79,8 +81,8 @@ static int write_csv(const char *dir, const char *ctrl, int axis, const ladrc_ma
     fprintf(f, "w_rad_s,L_re,L_im,L_mag_db,L_phase_deg,S_mag_db,dist_err_rad_per_rad_s2\n");
     for (int i = 0; i < r->n_out; ++i) {
         const double mag = hypot(r->l_re[i], r->l_im[i]);
-        fprintf(f, "%.9g,%.9g,%.9g,%.6g,%.6g,%.6g,%.6g\n", r->w_rad_s[i], r->l_re[i], r->l_im[i],
-                20.0 * log10(mag), atan2(r->l_im[i], r->l_re[i]) * 180.0 / 3.14159265358979323846,
+        fprintf(f, "%.9g,%.9g,%.9g,%.6g,%.6g,%.6g,%.6g\n", r->w_rad_s[i], r->l_re[i], r->l_im[i], 20.0 * log10(mag),
+                atan2(r->l_im[i], r->l_re[i]) * 180.0 / 3.14159265358979323846,
                 20.0 * log10(hypot(r->s_re[i], r->s_im[i])), hypot(r->de_re[i], r->de_im[i]));
     }
     if (fclose(f) != 0) {
@@ -112,14 +114,17 @@ int main(int argc, char **argv)
             usage(stdout);
             return 0;
         } else if (strcmp(arg, "--controllers") == 0 && a + 1 < argc) {
-            if (parse_controllers(argv[++a], ids, &n_override) != 0) return 2;
+            if (parse_controllers(argv[++a], ids, &n_override) != 0)
+                return 2;
         } else if (strcmp(arg, "--axis") == 0 && a + 1 < argc) {
             const char *v = argv[++a];
             int found = -2;
             for (int i = 0; i < 3; ++i) {
-                if (strcmp(v, AXIS_NAMES[i]) == 0) found = i;
+                if (strcmp(v, AXIS_NAMES[i]) == 0)
+                    found = i;
             }
-            if (strcmp(v, "all") == 0) found = -1;
+            if (strcmp(v, "all") == 0)
+                found = -1;
             if (found == -2) {
                 fprintf(stderr, "ladrc_margins: --axis: expected roll, pitch, yaw or all, got '%s'\n", v);
                 return 2;
@@ -186,8 +191,9 @@ int main(int argc, char **argv)
         sim_setup_attitude(&sc, id, &acfg);
         for (int i = axis_from; i <= axis_to; ++i) {
             const double j_model = sc.inertia_kg_m2[i] * sc.inertia_scale[i];
-            const ladrc_margins_plant_t plant = {sc.control_dt_s, j_model, sc.inertia_kg_m2[i] * inertia_factor / j_model,
-                                                 sc.rot_drag_Nm_s, sc.motor_tau_s, sc.delay_ticks};
+            const ladrc_margins_plant_t plant = {
+                sc.control_dt_s,  j_model,        sc.inertia_kg_m2[i] * inertia_factor / j_model,
+                sc.rot_drag_Nm_s, sc.motor_tau_s, sc.delay_ticks};
             ladrc_margins_request_t req;
             ladrc_margins_request_default(&req, &plant);
             const ladrc_margins_controller_t ctl = {&acfg, i, NULL, sc.use_rate};
@@ -223,8 +229,10 @@ int main(int argc, char **argv)
             }
             printf("%-10s %-5s %9s %10s %8s %10s %14s %7.2f %6s %12s %7d t%s\n", sim_controller_name(id), AXIS_NAMES[i],
                    gm, gm_at, pm, wc, dm, res.ms, res.stable ? "yes" : "NO", lag, delay_max, note);
-            if (!res.stable) status = 1;
-            if (csv_dir != NULL && write_csv(csv_dir, sim_controller_name(id), i, &res) != 0) status = 1;
+            if (!res.stable)
+                status = 1;
+            if (csv_dir != NULL && write_csv(csv_dir, sim_controller_name(id), i, &res) != 0)
+                status = 1;
             if (tune) {
                 const ladrc_margins_targets_t targets = {45.0, 6.0};
                 ladrc_axis_config_t tuned;
@@ -236,7 +244,8 @@ int main(int argc, char **argv)
                 printf(" -> GM %.1f dB PM %.1f deg crossover %.1f rad/s Ms %.2f peak |d->e| %.3g rad per rad/s^2%s\n",
                        m->gm_db, m->pm_deg, m->wc_rad_s, m->ms, tuning.peak_dist_rad,
                        st == LADRC_MARGINS_OK ? "" : "  TARGETS NOT MET");
-                if (st != LADRC_MARGINS_OK) status = 1;
+                if (st != LADRC_MARGINS_OK)
+                    status = 1;
             }
         }
     }

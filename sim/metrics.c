@@ -14,7 +14,10 @@ void sim_stat_add(sim_stat_t *s, double x)
     }
 }
 
-double sim_stat_std(const sim_stat_t *s) { return s->n > 0 ? sqrt(s->m2 / (double)s->n) : 0.0; }
+double sim_stat_std(const sim_stat_t *s)
+{
+    return s->n > 0 ? sqrt(s->m2 / (double)s->n) : 0.0;
+}
 
 double sim_stat_rms(const sim_stat_t *s)
 {

@@ -12,7 +12,7 @@ typedef struct {
 } sim_stat_t;
 
 void sim_stat_add(sim_stat_t *s, double x);
-double sim_stat_std(const sim_stat_t *s);  /* population standard deviation */
+double sim_stat_std(const sim_stat_t *s); /* population standard deviation */
 double sim_stat_rms(const sim_stat_t *s);
 
 /* settle_s of an axis whose error is outside the band at the settle window's last sample */
@@ -21,23 +21,23 @@ double sim_stat_rms(const sim_stat_t *s);
 /* One attitude run's results. Angles in deg, disturbances in rad/s^2,
  * rotor speeds squared in rad^2/s^2. */
 typedef struct {
-    sim_stat_t error_deg[3];      /* Table 4: reference - angle over the error window */
-    double max_error_deg[3];      /* Table 5: over the error window */
-    double settle_s[3];           /* Table 5: from settle_after_s until |error| stays in the band;
+    sim_stat_t error_deg[3];  /* Table 4: reference - angle over the error window */
+    double max_error_deg[3];  /* Table 5: over the error window */
+    double settle_s[3];       /* Table 5: from settle_after_s until |error| stays in the band;
                                    * SIM_NOT_SETTLED: still outside it at the window's last sample */
-    double band_deg[3];           /* Table 5: max |error| over the steady window */
-    sim_stat_t dist_error[3];     /* Table 6: total-disturbance estimate - truth over the error window */
-    sim_stat_t rotor_w2[4];       /* Table 7: over the whole run */
-    int has_estimate;             /* 0 for PID: no disturbance estimate */
-    int finite;                   /* 0 if the plant's state turned non-finite */
+    double band_deg[3];       /* Table 5: max |error| over the steady window */
+    sim_stat_t dist_error[3]; /* Table 6: total-disturbance estimate - truth over the error window */
+    sim_stat_t rotor_w2[4];   /* Table 7: over the whole run */
+    int has_estimate;         /* 0 for PID: no disturbance estimate */
+    int finite;               /* 0 if the plant's state turned non-finite */
     /* Divergence (runner.h): the run stopped at diverged_at_s, and none of the
      * statistics above is a result of the run (the tables print "diverged"). */
-    int diverged;                 /* 1: |error| beyond diverge_limit_deg or a non-finite state */
-    double diverged_at_s;         /* the instant it was seen */
-    int diverged_axis;            /* 0..2; -1: a rotor's w^2 turned non-finite */
-    double diverged_error_deg;    /* |error| on that axis then; NaN when non-finite */
-    long faults;                  /* controller ticks with a fault flag */
-    double wall_s;                /* wall time of the run (of its lockstep group, runner.h) */
+    int diverged;              /* 1: |error| beyond diverge_limit_deg or a non-finite state */
+    double diverged_at_s;      /* the instant it was seen */
+    int diverged_axis;         /* 0..2; -1: a rotor's w^2 turned non-finite */
+    double diverged_error_deg; /* |error| on that axis then; NaN when non-finite */
+    long faults;               /* controller ticks with a fault flag */
+    double wall_s;             /* wall time of the run (of its lockstep group, runner.h) */
 } sim_metrics_t;
 
 /* Table 3: derivative-error statistics of the two reference shapers. */

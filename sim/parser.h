@@ -57,7 +57,6 @@ int PRINTF_LIKE(4, 5) parser_fail_at(parser_t *p, int line, int col, const char 
 /* Tokens are shown in messages up to this many characters. */
 #define SHOWN(len) ((len) > 40 ? 40 : (int)(len))
 
-
 /* Next whitespace-separated token at or after *s: its start and length
  * (0 at the end of the value); *s moves past it. */
 char *lex_next_token(char **s, size_t *len);

@@ -43,7 +43,7 @@ static double clamp_rotor(const sim_vehicle_t *v, double w2)
     if (w2 > v->w2_max_rad2_s2) {
         return v->w2_max_rad2_s2;
     }
-    return w2;  /* NaN stays NaN: a bad command shows in the state */
+    return w2; /* NaN stays NaN: a bad command shows in the state */
 }
 
 void sim_plant_init(sim_plant_t *p, const sim_vehicle_t *v)
@@ -74,8 +74,8 @@ void sim_plant_forces(const sim_vehicle_t *v, const double w2[4], double *thrust
 /* Angular acceleration of one axis (eq. 2): own torque, the gyroscopic term
  * jd * ra * rb of the other two rates, drag on the own rate, then the
  * disturbance. The one formula of the plant's dynamics. */
-static inline double axis_accel(double torque, double jd, double ra, double rb, double kt, double rate,
-                                double j, double dist)
+static inline double axis_accel(double torque, double jd, double ra, double rb, double kt, double rate, double j,
+                                double dist)
 {
     return (torque + jd * ra * rb - kt * rate) / j + dist;
 }
@@ -90,8 +90,7 @@ static inline void body_accel(const sim_vehicle_t *v, const double rate[3], cons
     accel[2] = axis_accel(torque[2], j[0] - j[1], rate[1], rate[0], kt, rate[2], j[2], dist[2]);
 }
 
-void sim_plant_accel(const sim_plant_t *p, const double torque_Nm[3], const double dist[3],
-                     double accel_out[3])
+void sim_plant_accel(const sim_plant_t *p, const double torque_Nm[3], const double dist[3], double accel_out[3])
 {
     static const double none[3] = {0.0, 0.0, 0.0};
     body_accel(&p->v, p->rate_rad_s, torque_Nm, dist != NULL ? dist : none, accel_out);
@@ -107,9 +106,8 @@ typedef double lanes_t[SIM_PLANT_GROUP_MAX];
  * at the stage time (the same for all lanes). Without lag the torque is the
  * command's, worked out once per step; with it, the rotors' w^2 are state
  * and the torque follows them. */
-static SIM_ALWAYS_INLINE void derivative(const sim_vehicle_t *v, int lag, int n, lanes_t cmd[4],
-                              lanes_t cmd_torque[3], lanes_t x[N_STATE], const double d[3],
-                              lanes_t dx[N_STATE])
+static SIM_ALWAYS_INLINE void derivative(const sim_vehicle_t *v, int lag, int n, lanes_t cmd[4], lanes_t cmd_torque[3],
+                                         lanes_t x[N_STATE], const double d[3], lanes_t dx[N_STATE])
 {
     for (int l = 0; l < n; ++l) {
         double torque[3], rate[3], accel[3];
@@ -161,7 +159,10 @@ static SIM_ALWAYS_INLINE void disturbance_at(const source_t *src, int s, int sta
 }
 
 /* The RK4 step length of a plant step: dt_s over substeps (at least 1). */
-static int substep_count(int substeps) { return substeps < 1 ? 1 : substeps; }
+static int substep_count(int substeps)
+{
+    return substeps < 1 ? 1 : substeps;
+}
 
 /* Stage time `stage` (0: t, 1: t + h/2, 2: t + h) of substep s of a step
  * from t0 with RK4 steps of length h: stage times from t0 each substep, no
@@ -175,7 +176,7 @@ static double stage_time(double t0, double h, int s, int stage)
 
 /* y = x + a k for the first m state rows of every lane (an RK4 stage's point). */
 static SIM_ALWAYS_INLINE void stage_point(int m, int n, lanes_t x[N_STATE], double a, lanes_t k[N_STATE],
-                               lanes_t y[N_STATE])
+                                          lanes_t y[N_STATE])
 {
     for (int i = 0; i < m; ++i) {
         for (int l = 0; l < n; ++l) {
@@ -187,9 +188,8 @@ static SIM_ALWAYS_INLINE void stage_point(int m, int n, lanes_t x[N_STATE], doub
 /* One classical RK4 step of length h from time t0 + s h for every lane; the
  * rotor states only take part with a lag (without one their derivative is 0
  * and they stay put). */
-static SIM_ALWAYS_INLINE void rk4_substep(const sim_vehicle_t *v, int lag, int n, lanes_t cmd[4],
-                               lanes_t cmd_torque[3], double t0, int s, double h, const source_t *src,
-                               lanes_t x[N_STATE])
+static SIM_ALWAYS_INLINE void rk4_substep(const sim_vehicle_t *v, int lag, int n, lanes_t cmd[4], lanes_t cmd_torque[3],
+                                          double t0, int s, double h, const source_t *src, lanes_t x[N_STATE])
 {
     const int m = lag ? N_STATE : N_ROTOR;
     lanes_t k1[N_STATE], k2[N_STATE], k3[N_STATE], k4[N_STATE], y[N_STATE];
@@ -214,9 +214,8 @@ static SIM_ALWAYS_INLINE void rk4_substep(const sim_vehicle_t *v, int lag, int n
 
 /* The substeps of a step for lanes [0, w); lag and w are constants where it
  * is called. */
-static SIM_ALWAYS_INLINE void integrate(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4],
-                                        lanes_t cmd_torque[3], int n_sub, double t0, double h,
-                                        const source_t *src, lanes_t x[N_STATE])
+static SIM_ALWAYS_INLINE void integrate(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4], lanes_t cmd_torque[3],
+                                        int n_sub, double t0, double h, const source_t *src, lanes_t x[N_STATE])
 {
     for (int s = 0; s < n_sub; ++s) {
         rk4_substep(v, lag, w, cmd, cmd_torque, t0, s, h, src, x);
@@ -229,26 +228,27 @@ static SIM_ALWAYS_INLINE void integrate_width(const sim_vehicle_t *v, int lag, i
                                               lanes_t cmd_torque[3], int n_sub, double t0, double h,
                                               const source_t *src, lanes_t x[N_STATE])
 {
-#define LANES_CASE(W)                                                        \
-    case W:                                                                  \
-        if (lag) {                                                           \
-            integrate(v, 1, W, cmd, cmd_torque, n_sub, t0, h, src, x);      \
-        } else {                                                             \
-            integrate(v, 0, W, cmd, cmd_torque, n_sub, t0, h, src, x);      \
-        }                                                                    \
+#define LANES_CASE(W)                                                                                                  \
+    case W:                                                                                                            \
+        if (lag) {                                                                                                     \
+            integrate(v, 1, W, cmd, cmd_torque, n_sub, t0, h, src, x);                                                 \
+        } else {                                                                                                       \
+            integrate(v, 0, W, cmd, cmd_torque, n_sub, t0, h, src, x);                                                 \
+        }                                                                                                              \
         break;
     switch (w) {
         LANES_CASE(1)
         LANES_CASE(2)
         LANES_CASE(4)
         LANES_CASE(6)
-        default: LANES_CASE(SIM_PLANT_GROUP_MAX)
+    default:
+        LANES_CASE(SIM_PLANT_GROUP_MAX)
     }
 #undef LANES_CASE
 }
 
-static void integrate_portable(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4], lanes_t cmd_torque[3],
-                               int n_sub, double t0, double h, const source_t *src, lanes_t x[N_STATE])
+static void integrate_portable(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4], lanes_t cmd_torque[3], int n_sub,
+                               double t0, double h, const source_t *src, lanes_t x[N_STATE])
 {
     integrate_width(v, lag, w, cmd, cmd_torque, n_sub, t0, h, src, x);
 }
@@ -331,7 +331,10 @@ static void step_lanes(sim_plant_t *const plants[], const double (*w2_cmd)[4], i
 }
 
 /* The same bits (==, but -0 and 0 told apart: clamping returns the limit itself). */
-static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+static int same_bits(double a, double b)
+{
+    return memcmp(&a, &b, sizeof a) == 0;
+}
 
 /* Vehicles that give the same arithmetic: plants that can share a group's
  * constants. */
@@ -346,8 +349,8 @@ static int same_vehicle(const sim_vehicle_t *a, const sim_vehicle_t *b)
            same_bits(a->motor_tau_s, b->motor_tau_s);
 }
 
-void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int substeps,
-                    sim_disturbance_fn dist, void *ctx)
+void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int substeps, sim_disturbance_fn dist,
+                    void *ctx)
 {
     if (!(dt_s > 0.0)) {
         return;
@@ -400,15 +403,15 @@ static int step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4], in
     return stepped;
 }
 
-void sim_plant_step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s,
-                          int substeps, sim_disturbance_fn dist, void *ctx)
+void sim_plant_step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s, int substeps,
+                          sim_disturbance_fn dist, void *ctx)
 {
     const source_t src = {NULL, dist, ctx};
     (void)step_group(plants, w2_cmd, n, dt_s, substeps, &src, &src);
 }
 
-int sim_plant_step_group_table(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s,
-                               int substeps, const double (*d_stage)[3])
+int sim_plant_step_group_table(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s, int substeps,
+                               const double (*d_stage)[3])
 {
     const source_t src = {d_stage, NULL, NULL};
     return step_group(plants, w2_cmd, n, dt_s, substeps, &src, NULL);

@@ -32,15 +32,15 @@
 
 typedef struct {
     double mass_kg;
-    double inertia_kg_m2[3];        /* Jx, Jy, Jz */
-    double arm_m;                   /* l */
-    double thrust_coeff_N_s2;       /* kL */
-    double yaw_coeff_Nm_s2;         /* b */
-    double rot_drag_Nm_s;           /* kt */
+    double inertia_kg_m2[3];  /* Jx, Jy, Jz */
+    double arm_m;             /* l */
+    double thrust_coeff_N_s2; /* kL */
+    double yaw_coeff_Nm_s2;   /* b */
+    double rot_drag_Nm_s;     /* kt */
     double g_m_s2;
-    int rotors_ideal;               /* 1: w^2 as commanded, any sign (paper) */
+    int rotors_ideal;                      /* 1: w^2 as commanded, any sign (paper) */
     double w2_min_rad2_s2, w2_max_rad2_s2; /* limits when not ideal */
-    double motor_tau_s;             /* first-order lag of w^2 towards the command, 0 = none */
+    double motor_tau_s;                    /* first-order lag of w^2 towards the command, 0 = none */
 } sim_vehicle_t;
 
 /* Disturbance angular accelerations (rad/s^2) of axes 0..2 at time t_s,
@@ -52,7 +52,7 @@ typedef struct {
     double t_s;
     double angle_rad[3];
     double rate_rad_s[3];
-    double w2_rad2_s2[4];           /* what the rotors give now (after limits and lag) */
+    double w2_rad2_s2[4]; /* what the rotors give now (after limits and lag) */
 } sim_plant_t;
 
 /* The paper's vehicle (Table 1): m = 0.8 kg, J = (5.445e-3, 5.445e-3,
@@ -75,8 +75,8 @@ void sim_plant_forces(const sim_vehicle_t *v, const double w2[4], double *thrust
  * (values below 1 count as 1); dist (may be NULL: no disturbance) is called
  * at the stage times t, t + h/2 and t + h of every substep, in that order
  * (the two middle stages share one call). Does nothing when dt_s is not > 0. */
-void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int substeps,
-                    sim_disturbance_fn dist, void *ctx);
+void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int substeps, sim_disturbance_fn dist,
+                    void *ctx);
 
 /* Plants sim_plant_step_group steps side by side. */
 #define SIM_PLANT_GROUP_MAX 8
@@ -89,8 +89,8 @@ void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int sub
  * call per stage time for all of them (the calls sim_plant_step makes for
  * one plant). Any other plant is then stepped alone, with its own calls.
  * Distinct plants only; does nothing when dt_s is not > 0. */
-void sim_plant_step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s,
-                          int substeps, sim_disturbance_fn dist, void *ctx);
+void sim_plant_step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s, int substeps,
+                          sim_disturbance_fn dist, void *ctx);
 
 /* The same with the disturbances given instead of asked for: d_stage[k]
  * holds the disturbance at the k-th time sim_plant_stage_times(plants[0],
@@ -98,8 +98,8 @@ void sim_plant_step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4]
  * stages), and the plants step as if dist had returned those values at
  * those times. Plants at another time than plants[0] (bit for bit) are not
  * stepped. Returns the number of plants stepped. */
-int sim_plant_step_group_table(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s,
-                               int substeps, const double (*d_stage)[3]);
+int sim_plant_step_group_table(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s, int substeps,
+                               const double (*d_stage)[3]);
 
 /* The times sim_plant_step(p, ., dt_s, substeps, dist, .) will call dist at,
  * in that order, bit for bit: t, t + h/2 and t + h of every substep, 3 per
@@ -110,7 +110,6 @@ int sim_plant_stage_times(const sim_plant_t *p, double dt_s, int substeps, doubl
 
 /* The angular accelerations (rad/s^2) of eq. 2 at p's current rates for the
  * given torques and disturbance accelerations (dist may be NULL: zero). */
-void sim_plant_accel(const sim_plant_t *p, const double torque_Nm[3], const double dist[3],
-                     double accel_out[3]);
+void sim_plant_accel(const sim_plant_t *p, const double torque_Nm[3], const double dist[3], double accel_out[3]);
 
 #endif

@@ -65,8 +65,8 @@ static void table5(FILE *out, const sim_scenario_result_t *r)
             "\nTable 5. Max error (deg) over (%g, %g] s / settling time (s): from %g s until |error| stays "
             "within %g deg up to %g s (" SIM_TEXT_NOT_SETTLED ": outside it at %g s) / steady band (+-deg) over "
             "(%g, %g] s\n",
-            sc->error_window_s[0], sc->error_window_s[1], sc->settle_after_s, sc->settle_band_deg,
-            sc->settle_until_s, sc->settle_until_s, sc->steady_window_s[0], sc->steady_window_s[1]);
+            sc->error_window_s[0], sc->error_window_s[1], sc->settle_after_s, sc->settle_band_deg, sc->settle_until_s,
+            sc->settle_until_s, sc->steady_window_s[0], sc->steady_window_s[1]);
     column_titles(out, sc, "axis", 33);
     for (int i = 0; i < 3; ++i) {
         fprintf(out, "%-6s", AXES[i]);
@@ -91,8 +91,9 @@ static void table5(FILE *out, const sim_scenario_result_t *r)
 static void table6(FILE *out, const sim_scenario_result_t *r)
 {
     const sim_scenario_t *sc = r->sc;
-    fprintf(out, "\nTable 6. Disturbance estimate error (z3 + d_hat - true total disturbance), rad/s^2: "
-                 "mean / std / RMS over (%g, %g] s\n",
+    fprintf(out,
+            "\nTable 6. Disturbance estimate error (z3 + d_hat - true total disturbance), rad/s^2: "
+            "mean / std / RMS over (%g, %g] s\n",
             sc->error_window_s[0], sc->error_window_s[1]);
     column_titles(out, sc, "axis", 28);
     for (int i = 0; i < 3; ++i) {
@@ -137,14 +138,14 @@ static void table7(FILE *out, const sim_scenario_result_t *r)
 static void table3(FILE *out, const sim_scenario_result_t *r)
 {
     const sim_scenario_t *sc = r->sc;
-    fprintf(out, "\nTable 3. Derivative of the noisy signal (noise variance %g), error over (%g, %g] s: "
-                 "mean / std / RMS\n",
+    fprintf(out,
+            "\nTable 3. Derivative of the noisy signal (noise variance %g), error over (%g, %g] s: "
+            "mean / std / RMS\n",
             sc->diff_noise_var, sc->error_window_s[0], sc->error_window_s[1]);
     const sim_stat_t *s[2] = {&r->diff->td_error, &r->diff->levant_error};
     const char *names[2] = {"TD", "Levant"};
     for (int k = 0; k < 2; ++k) {
-        fprintf(out, "%-8s %10.5f / %10.5f / %10.5f\n", names[k], s[k]->mean, sim_stat_std(s[k]),
-                sim_stat_rms(s[k]));
+        fprintf(out, "%-8s %10.5f / %10.5f / %10.5f\n", names[k], s[k]->mean, sim_stat_std(s[k]), sim_stat_rms(s[k]));
     }
 }
 
@@ -202,11 +203,14 @@ void sim_report_tables(FILE *out, const sim_scenario_result_t *r)
         ladrc_attitude_config_t cfg;
         sim_setup_attitude(sc, sc->controllers[c], &cfg);
         fprintf(out, "%s gains (roll / pitch / yaw): k_att", sim_controller_name(sc->controllers[c]));
-        for (int i = 0; i < 3; ++i) fprintf(out, "%s%.4g", i ? " / " : " ", (double)cfg.axis[i].indi_att_kp_per_s);
+        for (int i = 0; i < 3; ++i)
+            fprintf(out, "%s%.4g", i ? " / " : " ", (double)cfg.axis[i].indi_att_kp_per_s);
         fprintf(out, " 1/s, k_rate");
-        for (int i = 0; i < 3; ++i) fprintf(out, "%s%.4g", i ? " / " : " ", (double)cfg.axis[i].indi_rate_kp_per_s);
+        for (int i = 0; i < 3; ++i)
+            fprintf(out, "%s%.4g", i ? " / " : " ", (double)cfg.axis[i].indi_rate_kp_per_s);
         fprintf(out, " 1/s, w_f");
-        for (int i = 0; i < 3; ++i) fprintf(out, "%s%.4g", i ? " / " : " ", (double)cfg.axis[i].indi_filter_rad_s);
+        for (int i = 0; i < 3; ++i)
+            fprintf(out, "%s%.4g", i ? " / " : " ", (double)cfg.axis[i].indi_filter_rad_s);
         fprintf(out, " rad/s\n");
     }
     for (int c = 0; c < sc->n_controllers; ++c) {
@@ -229,8 +233,8 @@ void sim_report_tables(FILE *out, const sim_scenario_result_t *r)
     table7(out, r);
 }
 
-static void row_text(FILE *out, const sim_scenario_t *sc, const char *ctrl, const char *table,
-                     const char *quantity, const char *axis, const char *value)
+static void row_text(FILE *out, const sim_scenario_t *sc, const char *ctrl, const char *table, const char *quantity,
+                     const char *axis, const char *value)
 {
     fprintf(out, "%s,%s,%s,%s,%s,%s\n", sc->name, ctrl, table, quantity, axis, value);
 }
@@ -244,8 +248,8 @@ static void row(FILE *out, const sim_scenario_t *sc, const char *ctrl, const cha
 }
 
 /* A statistic of an attitude run: its value, or "diverged" when the run diverged. */
-static void stat_row(FILE *out, const sim_scenario_t *sc, const sim_metrics_t *m, const char *ctrl,
-                     const char *table, const char *quantity, const char *axis, double value)
+static void stat_row(FILE *out, const sim_scenario_t *sc, const sim_metrics_t *m, const char *ctrl, const char *table,
+                     const char *quantity, const char *axis, double value)
 {
     if (m->diverged) {
         row_text(out, sc, ctrl, table, quantity, axis, SIM_TOKEN_DIVERGED);

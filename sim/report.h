@@ -16,19 +16,19 @@
  * (attitude), or the differentiator metrics. */
 typedef struct {
     const sim_scenario_t *sc;
-    const sim_metrics_t *attitude;      /* sc->n_controllers entries, or NULL */
-    const sim_diff_metrics_t *diff;     /* or NULL */
+    const sim_metrics_t *attitude;  /* sc->n_controllers entries, or NULL */
+    const sim_diff_metrics_t *diff; /* or NULL */
 } sim_scenario_result_t;
 
 /* What the tables print in place of a number. */
-#define SIM_TEXT_DIVERGED "diverged"          /* every statistic of a run that diverged */
-#define SIM_TEXT_NOT_SETTLED "not settled"    /* a settling time when the error ends outside the band */
+#define SIM_TEXT_DIVERGED "diverged"       /* every statistic of a run that diverged */
+#define SIM_TEXT_NOT_SETTLED "not settled" /* a settling time when the error ends outside the band */
 
 /* The tokens of metrics.csv's value column in place of a number (README,
  * "The simulator"; tools/sim_output.py reads them). */
-#define SIM_TOKEN_DIVERGED "diverged"         /* every statistic of a run that diverged */
-#define SIM_TOKEN_NOT_SETTLED "not_settled"   /* settling_s when the error ends outside the band */
-#define SIM_TOKEN_NONE "-"                    /* diverged_at_s, diverged_error_deg of a healthy run */
+#define SIM_TOKEN_DIVERGED "diverged"       /* every statistic of a run that diverged */
+#define SIM_TOKEN_NOT_SETTLED "not_settled" /* settling_s when the error ends outside the band */
+#define SIM_TOKEN_NONE "-"                  /* diverged_at_s, diverged_error_deg of a healthy run */
 
 void sim_report_tables(FILE *out, const sim_scenario_result_t *res);
 

@@ -13,9 +13,9 @@
 #include <stdint.h>
 
 typedef struct {
-    uint64_t s[4];      /* xoshiro256** state, never all zero after seeding */
-    double spare;       /* second normal deviate of the last polar pair */
-    int has_spare;      /* 1 when spare is the next sim_rng_gauss value */
+    uint64_t s[4]; /* xoshiro256** state, never all zero after seeding */
+    double spare;  /* second normal deviate of the last polar pair */
+    int has_spare; /* 1 when spare is the next sim_rng_gauss value */
 } sim_rng_t;
 
 /* One SplitMix64 step: advances *x by the golden-ratio increment and returns

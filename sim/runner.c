@@ -25,7 +25,10 @@
 /* A group's plants step side by side (sim_plant_step_group). */
 typedef char plant_group_fits_t[SIM_MAX_CONTROLLERS <= SIM_PLANT_GROUP_MAX ? 1 : -1];
 
-long sim_run_ticks(const sim_scenario_t *sc) { return (long)floor(sc->duration_s / sc->control_dt_s + 0.5); }
+long sim_run_ticks(const sim_scenario_t *sc)
+{
+    return (long)floor(sc->duration_s / sc->control_dt_s + 0.5);
+}
 
 static double wall_now_s(void)
 {
@@ -35,8 +38,8 @@ static double wall_now_s(void)
 }
 
 /* The controller and mixer of the run, configured as the parser checked them. */
-static int configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_t *att,
-                     ladrc_mixer_t *mixer, char *err, size_t err_len)
+static int configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_t *att, ladrc_mixer_t *mixer,
+                     char *err, size_t err_len)
 {
     ladrc_attitude_config_t cfg;
     sim_setup_attitude(sc, id, &cfg);
@@ -76,13 +79,13 @@ static void disturbances_at(const sim_scenario_t *sc, double t_s, double d_out[3
 #define STAGES_MAX (3 * SIM_PLANT_SUBSTEPS_MAX)
 typedef struct {
     const sim_scenario_t *sc;
-    int n;                        /* stage times of the step */
+    int n; /* stage times of the step */
     double t_s[STAGES_MAX];
-    int slot[STAGES_MAX];         /* its row of value */
-    double value[STAGES_MAX][3];  /* by distinct time, in order */
-    double stage[STAGES_MAX][3];  /* by stage time: value[slot[k]] */
-    double last_t_s;              /* the last distinct time (NaN: none) */
-    int last;                     /* and its row */
+    int slot[STAGES_MAX];        /* its row of value */
+    double value[STAGES_MAX][3]; /* by distinct time, in order */
+    double stage[STAGES_MAX][3]; /* by stage time: value[slot[k]] */
+    double last_t_s;             /* the last distinct time (NaN: none) */
+    int last;                    /* and its row */
 } disturbance_batch_t;
 
 static void disturbance_batch_init(disturbance_batch_t *b, const sim_scenario_t *sc)
@@ -93,7 +96,10 @@ static void disturbance_batch_init(disturbance_batch_t *b, const sim_scenario_t 
 }
 
 /* Metric windows hold (from, to], as signal windows do. */
-static int in_window(const double w[2], double t) { return t > w[0] && t <= w[1]; }
+static int in_window(const double w[2], double t)
+{
+    return t > w[0] && t <= w[1];
+}
 
 static void disturbance_batch_fill(disturbance_batch_t *b, const sim_plant_t *p, double dt_s, int substeps)
 {
@@ -146,8 +152,8 @@ static void disturbance_batch_fill(disturbance_batch_t *b, const sim_plant_t *p,
  * signal's program interpreted once for all of them, the function results
  * shared by the six signals (sim_signal_eval's values, bit for bit). */
 typedef struct {
-    long first;                           /* the tick of row 0 */
-    int n;                                /* rows */
+    long first; /* the tick of row 0 */
+    int n;      /* rows */
     double t_s[SIM_EXPR_BATCH_MAX];
     ladrc_real_t ref[3][SIM_EXPR_BATCH_MAX]; /* rad, as the controllers get them */
     double dist[3][SIM_EXPR_BATCH_MAX];
@@ -225,7 +231,10 @@ typedef struct {
     int len;
 } csv_line_t;
 
-static void line_f4(csv_line_t *l, double x) { l->len += sim_fmt_f4(l->text + l->len, x); }
+static void line_f4(csv_line_t *l, double x)
+{
+    l->len += sim_fmt_f4(l->text + l->len, x);
+}
 
 static void line_g(csv_line_t *l, double x, int precision)
 {
@@ -269,8 +278,8 @@ static double tracking_error_rad(double ref_rad, double angle_rad, int wrapped)
 /* Divergence at t (runner.h): the plant's state non-finite, or the tracking
  * error ref - angle beyond the scenario's limit on an axis. Records the first
  * cause found in m and returns 1; 0 while the run is healthy. */
-static int diverged(const sim_scenario_t *sc, const sim_plant_t *p, const double ref_rad[3], int wrap_yaw,
-                    double t_s, sim_metrics_t *m)
+static int diverged(const sim_scenario_t *sc, const sim_plant_t *p, const double ref_rad[3], int wrap_yaw, double t_s,
+                    sim_metrics_t *m)
 {
     int axis = -2;
     double error_deg = NAN;
@@ -327,7 +336,7 @@ typedef struct {
     double last_out_s[3];
     int out_at_last[3]; /* outside the band at the settle window's latest sample so far */
     int wrap_yaw;
-    int flying;         /* 1 until it diverges */
+    int flying; /* 1 until it diverges */
 } attitude_run_t;
 
 /* Sets a run up; 0, or -1 with the message in its spec (then it does not fly). */
@@ -341,12 +350,13 @@ static int run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t 
     if (configure(sc, spec->ctrl, &r->att, &r->mixer, spec->err, spec->err_len) != 0) {
         return -1;
     }
-    const sim_vehicle_t vehicle = {sc->mass_kg,         {sc->inertia_kg_m2[0], sc->inertia_kg_m2[1], sc->inertia_kg_m2[2]},
-                                   sc->arm_m,           sc->thrust_coeff_N_s2,
-                                   sc->yaw_coeff_Nm_s2, sc->rot_drag_Nm_s,
-                                   sc->g_m_s2,          sc->rotors_ideal,
-                                   sc->w2_min_rad2_s2,  sc->w2_max_rad2_s2,
-                                   sc->motor_tau_s};
+    const sim_vehicle_t vehicle = {
+        sc->mass_kg,         {sc->inertia_kg_m2[0], sc->inertia_kg_m2[1], sc->inertia_kg_m2[2]},
+        sc->arm_m,           sc->thrust_coeff_N_s2,
+        sc->yaw_coeff_Nm_s2, sc->rot_drag_Nm_s,
+        sc->g_m_s2,          sc->rotors_ideal,
+        sc->w2_min_rad2_s2,  sc->w2_max_rad2_s2,
+        sc->motor_tau_s};
     sim_plant_init(&r->plant, &vehicle);
     if (sim_sensor_init(&r->sensor, sc->angle_noise_std_rad, sc->rate_noise_std_rad_s, sc->delay_ticks, sc->seed) !=
         0) {
@@ -446,8 +456,10 @@ static void run_metrics(const sim_scenario_t *sc, attitude_run_t *r, const tick_
         const double e_deg = tk->err_rad[i] * RAD2DEG;
         if (in_window(sc->error_window_s, t)) {
             sim_stat_add(&m->error_deg[i], e_deg);
-            if (fabs(e_deg) > m->max_error_deg[i]) m->max_error_deg[i] = fabs(e_deg);
-            if (m->has_estimate) sim_stat_add(&m->dist_error[i], tk->f_est[i] - tk->f_true[i]);
+            if (fabs(e_deg) > m->max_error_deg[i])
+                m->max_error_deg[i] = fabs(e_deg);
+            if (m->has_estimate)
+                sim_stat_add(&m->dist_error[i], tk->f_est[i] - tk->f_true[i]);
         }
         if (in_window(sc->steady_window_s, t) && fabs(e_deg) > m->band_deg[i]) {
             m->band_deg[i] = fabs(e_deg);
@@ -472,22 +484,36 @@ static void run_csv_line(attitude_run_t *r, const tick_t *tk)
     const int has_estimate = r->spec->metrics->has_estimate;
     csv_line_t *line = &r->line;
     line_f4(line, tk->t);
-    for (int i = 0; i < 3; ++i) line_g(line, (double)tk->ref[i] * RAD2DEG, 6);
-    for (int i = 0; i < 3; ++i) line_g(line, plant->angle_rad[i] * RAD2DEG, 6);
-    for (int i = 0; i < 3; ++i) line_g(line, tk->err_rad[i] * RAD2DEG, 6);
-    for (int i = 0; i < 3; ++i) line_g(line, (double)tk->torque[i], 6);
-    for (int i = 0; i < 3; ++i) line_g(line, tk->applied[i], 6);
-    for (int q = 0; q < 4; ++q) line_g(line, plant->w2_rad2_s2[q], 7);
-    for (int i = 0; i < 3; ++i) line_g(line, tk->dist[i], 6);
-    for (int i = 0; i < 3; ++i) line_g(line, tk->f_true[i], 6);
-    for (int i = 0; i < 3; ++i) line_g(line, has_estimate ? tk->f_est[i] : NAN, 6);
-    for (int i = 0; i < 3; ++i) line_g(line, tk->meas_angle[i] * RAD2DEG, 6);
-    for (int i = 0; i < 3; ++i) line_g(line, tk->meas_rate[i] * RAD2DEG, 6);
-    for (int i = 0; i < 3; ++i) line_g(line, tk->z1[i] * RAD2DEG, 6);
-    for (int i = 0; i < 3; ++i) line_g(line, tk->z2[i] * RAD2DEG, 6);
+    for (int i = 0; i < 3; ++i)
+        line_g(line, (double)tk->ref[i] * RAD2DEG, 6);
+    for (int i = 0; i < 3; ++i)
+        line_g(line, plant->angle_rad[i] * RAD2DEG, 6);
+    for (int i = 0; i < 3; ++i)
+        line_g(line, tk->err_rad[i] * RAD2DEG, 6);
+    for (int i = 0; i < 3; ++i)
+        line_g(line, (double)tk->torque[i], 6);
+    for (int i = 0; i < 3; ++i)
+        line_g(line, tk->applied[i], 6);
+    for (int q = 0; q < 4; ++q)
+        line_g(line, plant->w2_rad2_s2[q], 7);
+    for (int i = 0; i < 3; ++i)
+        line_g(line, tk->dist[i], 6);
+    for (int i = 0; i < 3; ++i)
+        line_g(line, tk->f_true[i], 6);
+    for (int i = 0; i < 3; ++i)
+        line_g(line, has_estimate ? tk->f_est[i] : NAN, 6);
+    for (int i = 0; i < 3; ++i)
+        line_g(line, tk->meas_angle[i] * RAD2DEG, 6);
+    for (int i = 0; i < 3; ++i)
+        line_g(line, tk->meas_rate[i] * RAD2DEG, 6);
+    for (int i = 0; i < 3; ++i)
+        line_g(line, tk->z1[i] * RAD2DEG, 6);
+    for (int i = 0; i < 3; ++i)
+        line_g(line, tk->z2[i] * RAD2DEG, 6);
     static const unsigned SAT_BITS[4] = {LADRC_MIXER_SAT_ROLL, LADRC_MIXER_SAT_PITCH, LADRC_MIXER_SAT_YAW,
                                          LADRC_MIXER_SAT_THRUST};
-    for (int b = 0; b < 4; ++b) line_g(line, (tk->out.saturated & SAT_BITS[b]) != 0u ? 1.0 : 0.0, 6);
+    for (int b = 0; b < 4; ++b)
+        line_g(line, (tk->out.saturated & SAT_BITS[b]) != 0u ? 1.0 : 0.0, 6);
     line_end(line, r->csv);
 }
 
@@ -532,8 +558,8 @@ typedef struct {
     const sim_scenario_t *sc;
     sim_run_spec_t *runs;
     attitude_run_t run[SIM_MAX_CONTROLLERS];
-    int n;        /* runs in the group */
-    int n_flying; /* of them, flying */
+    int n;                     /* runs in the group */
+    int n_flying;              /* of them, flying */
     instants_t at;             /* the control instants' references and disturbances */
     disturbance_batch_t batch; /* the disturbances of a plant step */
 } group_t;
@@ -618,8 +644,7 @@ static void group_step_plants(group_t *g, const sim_plant_t *lead, const double 
                                          (const double(*)[3])g->batch.stage);
     } else {
         batch_reader_t reader = {&g->batch, 0};
-        sim_plant_step_group(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps, disturbance,
-                             &reader);
+        sim_plant_step_group(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps, disturbance, &reader);
     }
 }
 
@@ -653,8 +678,7 @@ static void group_close(group_t *g, double wall_s)
     }
 }
 
-void sim_run_attitude_group(const sim_scenario_t *sc, sim_run_spec_t *runs, int n_runs,
-                            const sim_progress_t *progress)
+void sim_run_attitude_group(const sim_scenario_t *sc, sim_run_spec_t *runs, int n_runs, const sim_progress_t *progress)
 {
     group_t g;
     group_open(&g, sc, runs, n_runs);

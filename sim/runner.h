@@ -33,11 +33,11 @@ int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const c
 /* One run of a group: what to fly and where its results go. */
 typedef struct {
     sim_controller_id_t ctrl;
-    const char *csv_path;     /* NULL: no time series */
+    const char *csv_path; /* NULL: no time series */
     sim_metrics_t *metrics;
-    char *err;                /* the message when rc is -1 */
+    char *err; /* the message when rc is -1 */
     size_t err_len;
-    int rc;                   /* set by the group: as sim_run_attitude returns */
+    int rc; /* set by the group: as sim_run_attitude returns */
 } sim_run_spec_t;
 
 /* Several controllers on one attitude scenario, stepped in lockstep: each
@@ -47,8 +47,7 @@ typedef struct {
  * return; a run that diverges stops alone, one that cannot start does not
  * fly. progress counts the ticks of every run; each run's wall_s is the
  * group's. At most SIM_MAX_CONTROLLERS runs: those beyond fail (rc -1). */
-void sim_run_attitude_group(const sim_scenario_t *sc, sim_run_spec_t *runs, int n_runs,
-                            const sim_progress_t *progress);
+void sim_run_attitude_group(const sim_scenario_t *sc, sim_run_spec_t *runs, int n_runs, const sim_progress_t *progress);
 
 /* Runs Levant and the TD on the differentiator scenario's noisy signal. */
 int sim_run_differentiator(const sim_scenario_t *sc, const char *csv_path, const sim_progress_t *progress,

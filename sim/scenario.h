@@ -21,12 +21,12 @@
 
 /* Limits of a run (docs/scenario-format.md, "Limits"): the parser refuses
  * a scenario outside them, at the key responsible. */
-#define SIM_CONTROL_DT_MIN_S 1e-5        /* control period: 100 kHz ... */
-#define SIM_CONTROL_DT_MAX_S 0.1         /* ... to 10 Hz */
-#define SIM_PLANT_SUBSTEPS_MAX 1000      /* plant RK4 steps per control period */
-#define SIM_DURATION_MAX_S 1e5           /* run length: 27.8 h */
-#define SIM_RUN_TICKS_MAX 100000000L     /* control periods per run: 1e8 */
-#define SIM_RUN_PLANT_STEPS_MAX 1e9      /* plant RK4 steps per run */
+#define SIM_CONTROL_DT_MIN_S 1e-5    /* control period: 100 kHz ... */
+#define SIM_CONTROL_DT_MAX_S 0.1     /* ... to 10 Hz */
+#define SIM_PLANT_SUBSTEPS_MAX 1000  /* plant RK4 steps per control period */
+#define SIM_DURATION_MAX_S 1e5       /* run length: 27.8 h */
+#define SIM_RUN_TICKS_MAX 100000000L /* control periods per run: 1e8 */
+#define SIM_RUN_PLANT_STEPS_MAX 1e9  /* plant RK4 steps per run */
 /* and the plant step control_dt_s / plant_substeps at most the plant's
  * shortest time constant: motor_tau_s (when > 0) and each J / kt (when kt > 0) */
 
@@ -57,11 +57,11 @@ typedef enum { SIM_TUNE_NONE = 0, SIM_TUNE_MARGINS = 1 } sim_tune_t;
 /* Optional per-controller overrides; NaN (or -1 for enums) = library default. */
 typedef struct {
     double wc_rad_s, wo_rad_s;
-    int leso_method;          /* -1, or ladrc_leso_method_t */
-    int hp_freq_mode;         /* -1, or ladrc_hp_freq_mode_t */
-    double hp_freq_rad_s;     /* known frequency or first guess of the first tone */
-    double hp_freq2_rad_s;    /* the same for the second tone */
-    int hp_tones;             /* -1, or the number of tones (1..LADRC_HP_MAX_TONES) */
+    int leso_method;       /* -1, or ladrc_leso_method_t */
+    int hp_freq_mode;      /* -1, or ladrc_hp_freq_mode_t */
+    double hp_freq_rad_s;  /* known frequency or first guess of the first tone */
+    double hp_freq2_rad_s; /* the same for the second tone */
+    int hp_tones;          /* -1, or the number of tones (1..LADRC_HP_MAX_TONES) */
     double levant_lipschitz_rad_s4;
     double td_accel_rad_s2;
     double pid_kp, pid_ki, pid_kd;
@@ -81,14 +81,14 @@ typedef struct {
  * (roll, pitch, yaw), and the margins ladrc_analysis computes for them on
  * the scenario's airframe as the controller models it. */
 typedef struct {
-    int tuned;                    /* 1: these gains replace the defaults (sim_setup_attitude) */
+    int tuned; /* 1: these gains replace the defaults (sim_setup_attitude) */
     double pm_target_deg, gm_target_db;
     ladrc_axis_config_t gains[3]; /* the tuned config of each axis: its variant's gain fields
                                      (sim_setup_gain_fields) are the tuned gains */
     double pm_deg[3], gm_db[3], gm_low_db[3], crossover_rad_s[3], ms[3];
-    int idle[3];                  /* HP-MLADRC margins of its idle estimator (margins.h) */
-    int shared[3];                /* 1: this axis took another's result (same airframe and controller) */
-    double wall_s;                /* time the tuning took */
+    int idle[3];   /* HP-MLADRC margins of its idle estimator (margins.h) */
+    int shared[3]; /* 1: this axis took another's result (same airframe and controller) */
+    double wall_s; /* time the tuning took */
 } sim_tuning_t;
 
 /* Where a parse failed, as file:line:column: message (line and column are
@@ -98,37 +98,36 @@ typedef struct {
     int line;
     int column;
     char message[256];
-    int first_set_line;  /* > 0: lines from this one on are the command line's --set items
+    int first_set_line; /* > 0: lines from this one on are the command line's --set items
                             (line first_set_line + k is item k, column is into its text) */
 } sim_parse_error_t;
 
 typedef struct {
-    char name[SIM_NAME_LEN];      /* from the file name without extension */
+    char name[SIM_NAME_LEN]; /* from the file name without extension */
     char path[SIM_PATH_LEN];
-    sim_kind_t kind;              /* [run] kind = attitude | differentiator */
+    sim_kind_t kind; /* [run] kind = attitude | differentiator */
 
     /* [run] */
     double duration_s;
     double control_dt_s;
-    int plant_substeps;           /* plant RK4 steps per control step, >= 1 */
+    int plant_substeps; /* plant RK4 steps per control step, >= 1 */
     uint64_t seed;
-    char output_dir[SIM_PATH_LEN];/* relative paths are relative to the current directory */
+    char output_dir[SIM_PATH_LEN]; /* relative paths are relative to the current directory */
     int n_controllers;
     sim_controller_id_t controllers[SIM_MAX_CONTROLLERS];
 
     /* [vehicle] (the plant) */
-    double mass_kg, inertia_kg_m2[3], arm_m, thrust_coeff_N_s2, yaw_coeff_Nm_s2,
-        rot_drag_Nm_s, g_m_s2;
+    double mass_kg, inertia_kg_m2[3], arm_m, thrust_coeff_N_s2, yaw_coeff_Nm_s2, rot_drag_Nm_s, g_m_s2;
 
     /* [rotors] */
-    int rotors_ideal;             /* 1: no limits (paper); 0: limited */
+    int rotors_ideal; /* 1: no limits (paper); 0: limited */
     double w2_min_rad2_s2, w2_max_rad2_s2, motor_tau_s, tilt_max_rad;
 
     /* [sensors] */
-    double angle_noise_std_rad;   /* file gives angle_noise_var_deg2 or angle_noise_std_deg */
+    double angle_noise_std_rad; /* file gives angle_noise_var_deg2 or angle_noise_std_deg */
     double rate_noise_std_rad_s;
     int delay_ticks;
-    int use_rate;                 /* controllers get the measured rate */
+    int use_rate; /* controllers get the measured rate */
 
     /* [mismatch]: what the controllers assume, as factors of the plant's values */
     double inertia_scale[3], rot_drag_scale;
@@ -142,17 +141,17 @@ typedef struct {
     sim_overrides_t overrides[SIM_CTRL_COUNT];
 
     /* [metrics] */
-    double error_window_s[2];     /* Table 4 statistics over this window */
-    double steady_window_s[2];    /* Table 5 steady band over this window */
-    double settle_band_deg;       /* Table 5 settling: |error| stays within this ... */
-    double settle_after_s;        /* ... measured from this instant ... */
-    double settle_until_s;        /* ... up to this one ([metrics] settle_window_s) */
-    double diverge_limit_deg;     /* a run diverges when |error| on an axis exceeds this */
+    double error_window_s[2];  /* Table 4 statistics over this window */
+    double steady_window_s[2]; /* Table 5 steady band over this window */
+    double settle_band_deg;    /* Table 5 settling: |error| stays within this ... */
+    double settle_after_s;     /* ... measured from this instant ... */
+    double settle_until_s;     /* ... up to this one ([metrics] settle_window_s) */
+    double diverge_limit_deg;  /* a run diverges when |error| on an axis exceeds this */
 
     /* [differentiator] (kind = differentiator): signal r(t) with noise, and
      * its exact derivative for the error */
     sim_signal_t diff_signal, diff_derivative;
-    double diff_noise_var;        /* variance of the noise added per sample */
+    double diff_noise_var;                                     /* variance of the noise added per sample */
     double diff_levant_lipschitz, diff_td_accel, diff_td_h0_s; /* NaN: the library's default */
 
     /* Why a controller that is not in `controllers` could not fly this
@@ -198,8 +197,8 @@ int sim_scenario_parse_buffer_with(sim_scenario_t *sc, const char *data, size_t 
  * name, as in "A,,B" or a trailing comma, is an error). Returns 0 with
  * ids[0..*n-1], or -1 with the message in msg and the offset of the
  * offending text in *err_at. */
-int sim_controller_list_parse(const char *text, sim_controller_id_t ids[SIM_MAX_CONTROLLERS], int *n,
-                              size_t *err_at, char *msg, size_t msg_len);
+int sim_controller_list_parse(const char *text, sim_controller_id_t ids[SIM_MAX_CONTROLLERS], int *n, size_t *err_at,
+                              char *msg, size_t msg_len);
 
 /* Replaces an attitude scenario's controllers with ids[0..n-1] (the command
  * line's --controllers; 1 <= n <= SIM_MAX_CONTROLLERS). Returns 0, or -1 with

@@ -15,8 +15,7 @@ static double with_noise(double truth, double std, double unit_noise)
     return std > 0.0 ? truth + std * unit_noise : truth;
 }
 
-int sim_sensor_init(sim_sensor_t *s, double angle_std_rad, double rate_std_rad_s, int delay_ticks,
-                    uint64_t seed)
+int sim_sensor_init(sim_sensor_t *s, double angle_std_rad, double rate_std_rad_s, int delay_ticks, uint64_t seed)
 {
     if (s == NULL || !valid_std(angle_std_rad) || !valid_std(rate_std_rad_s) || delay_ticks < 0 ||
         delay_ticks > SIM_SENSOR_MAX_DELAY) {
@@ -37,8 +36,8 @@ int sim_sensor_init(sim_sensor_t *s, double angle_std_rad, double rate_std_rad_s
     return 0;
 }
 
-void sim_sensor_measure(sim_sensor_t *s, const double angle_rad[3], const double rate_rad_s[3],
-                        double angle_out[3], double rate_out[3])
+void sim_sensor_measure(sim_sensor_t *s, const double angle_rad[3], const double rate_rad_s[3], double angle_out[3],
+                        double rate_out[3])
 {
     const int len = s->delay_ticks + 1;
     if (!s->primed) {

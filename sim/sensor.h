@@ -30,17 +30,16 @@ typedef struct {
     /* ring of the last delay_ticks + 1 true values */
     double angle_hist[SIM_SENSOR_MAX_DELAY + 1][3];
     double rate_hist[SIM_SENSOR_MAX_DELAY + 1][3];
-    int head;                         /* slot the next call writes */
-    int primed;                       /* 0 until the first call filled the ring */
+    int head;   /* slot the next call writes */
+    int primed; /* 0 until the first call filled the ring */
 } sim_sensor_t;
 
 /* Returns 0, or -1 (s untouched) when s is NULL, a standard deviation is
  * negative or not finite, or delay_ticks is outside [0, SIM_SENSOR_MAX_DELAY]. */
-int sim_sensor_init(sim_sensor_t *s, double angle_std_rad, double rate_std_rad_s, int delay_ticks,
-                    uint64_t seed);
+int sim_sensor_init(sim_sensor_t *s, double angle_std_rad, double rate_std_rad_s, int delay_ticks, uint64_t seed);
 
 /* One sample per control tick; angle_out and rate_out get the measurement. */
-void sim_sensor_measure(sim_sensor_t *s, const double angle_rad[3], const double rate_rad_s[3],
-                        double angle_out[3], double rate_out[3]);
+void sim_sensor_measure(sim_sensor_t *s, const double angle_rad[3], const double rate_rad_s[3], double angle_out[3],
+                        double rate_out[3]);
 
 #endif

@@ -12,56 +12,92 @@
 static ladrc_variant_t variant_of(sim_controller_id_t id)
 {
     switch (id) {
-    case SIM_CTRL_HP_MLADRC: return LADRC_VARIANT_HP_MLADRC;
-    case SIM_CTRL_LP_MLADRC: return LADRC_VARIANT_LP_MLADRC;
-    case SIM_CTRL_LADRC: return LADRC_VARIANT_LADRC;
-    case SIM_CTRL_CASCADED: return LADRC_VARIANT_CASCADED;
-    case SIM_CTRL_INDI: return LADRC_VARIANT_INDI;
-    default: return LADRC_VARIANT_PID;
+    case SIM_CTRL_HP_MLADRC:
+        return LADRC_VARIANT_HP_MLADRC;
+    case SIM_CTRL_LP_MLADRC:
+        return LADRC_VARIANT_LP_MLADRC;
+    case SIM_CTRL_LADRC:
+        return LADRC_VARIANT_LADRC;
+    case SIM_CTRL_CASCADED:
+        return LADRC_VARIANT_CASCADED;
+    case SIM_CTRL_INDI:
+        return LADRC_VARIANT_INDI;
+    default:
+        return LADRC_VARIANT_PID;
     }
 }
 
 /* The scenario's overrides on top of the library defaults, for one axis. */
 static void apply_overrides(ladrc_axis_config_t *a, const sim_overrides_t *o)
 {
-    if (!isnan(o->wc_rad_s)) a->wc_rad_s = (ladrc_real_t)o->wc_rad_s;
-    if (!isnan(o->wo_rad_s)) a->wo_rad_s = (ladrc_real_t)o->wo_rad_s;
-    if (o->leso_method >= 0) a->leso_method = (ladrc_leso_method_t)o->leso_method;
-    if (o->hp_freq_mode >= 0) a->hp_freq_mode = (ladrc_hp_freq_mode_t)o->hp_freq_mode;
-    if (!isnan(o->hp_freq_rad_s)) a->hp_freq_rad_s[0] = (ladrc_real_t)o->hp_freq_rad_s;
+    if (!isnan(o->wc_rad_s))
+        a->wc_rad_s = (ladrc_real_t)o->wc_rad_s;
+    if (!isnan(o->wo_rad_s))
+        a->wo_rad_s = (ladrc_real_t)o->wo_rad_s;
+    if (o->leso_method >= 0)
+        a->leso_method = (ladrc_leso_method_t)o->leso_method;
+    if (o->hp_freq_mode >= 0)
+        a->hp_freq_mode = (ladrc_hp_freq_mode_t)o->hp_freq_mode;
+    if (!isnan(o->hp_freq_rad_s))
+        a->hp_freq_rad_s[0] = (ladrc_real_t)o->hp_freq_rad_s;
 #if LADRC_HP_MAX_TONES > 1
-    if (!isnan(o->hp_freq2_rad_s)) a->hp_freq_rad_s[1] = (ladrc_real_t)o->hp_freq2_rad_s;
+    if (!isnan(o->hp_freq2_rad_s))
+        a->hp_freq_rad_s[1] = (ladrc_real_t)o->hp_freq2_rad_s;
 #endif
     /* Known frequencies: as many tones as frequencies given, unless said. */
-    if (a->hp_freq_mode == LADRC_HP_FREQ_KNOWN) a->hp_n_tones = isnan(o->hp_freq2_rad_s) ? 1u : 2u;
-    if (o->hp_tones > 0) a->hp_n_tones = (uint8_t)o->hp_tones;
-    if (!isnan(o->levant_lipschitz_rad_s4)) a->levant_lipschitz_rad_s4 = (ladrc_real_t)o->levant_lipschitz_rad_s4;
-    if (!isnan(o->td_accel_rad_s2)) a->td_accel_rad_s2 = (ladrc_real_t)o->td_accel_rad_s2;
-    if (!isnan(o->pid_kp)) a->pid_kp = (ladrc_real_t)o->pid_kp;
-    if (!isnan(o->pid_ki)) a->pid_ki = (ladrc_real_t)o->pid_ki;
-    if (!isnan(o->pid_kd)) a->pid_kd = (ladrc_real_t)o->pid_kd;
-    if (!isnan(o->indi_att_kp_per_s)) a->indi_att_kp_per_s = (ladrc_real_t)o->indi_att_kp_per_s;
-    if (!isnan(o->indi_rate_kp_per_s)) a->indi_rate_kp_per_s = (ladrc_real_t)o->indi_rate_kp_per_s;
-    if (!isnan(o->indi_filter_rad_s)) a->indi_filter_rad_s = (ladrc_real_t)o->indi_filter_rad_s;
-    if (!isnan(o->cas_att_kp)) a->cas_att_kp = (ladrc_real_t)o->cas_att_kp;
-    if (!isnan(o->cas_rate_max_deg_s)) a->cas_rate_max_rad_s = (ladrc_real_t)(o->cas_rate_max_deg_s * (3.14159265358979323846 / 180.0));
-    if (!isnan(o->cas_rate_kp)) a->cas_rate_kp = (ladrc_real_t)o->cas_rate_kp;
-    if (!isnan(o->cas_rate_ki)) a->cas_rate_ki = (ladrc_real_t)o->cas_rate_ki;
-    if (!isnan(o->cas_rate_kd)) a->cas_rate_kd = (ladrc_real_t)o->cas_rate_kd;
-    if (!isnan(o->cas_d_filter_tau_s)) a->cas_d_filter_tau_s = (ladrc_real_t)o->cas_d_filter_tau_s;
-    if (!isnan(o->cas_i_limit_Nm)) a->cas_i_limit_Nm = (ladrc_real_t)o->cas_i_limit_Nm;
-    if (!isnan(o->model_motor_tau_s)) a->motor_tau_s = (ladrc_real_t)o->model_motor_tau_s;
-    if (o->model_delay_ticks >= 0) a->delay_ticks = (uint8_t)o->model_delay_ticks;
+    if (a->hp_freq_mode == LADRC_HP_FREQ_KNOWN)
+        a->hp_n_tones = isnan(o->hp_freq2_rad_s) ? 1u : 2u;
+    if (o->hp_tones > 0)
+        a->hp_n_tones = (uint8_t)o->hp_tones;
+    if (!isnan(o->levant_lipschitz_rad_s4))
+        a->levant_lipschitz_rad_s4 = (ladrc_real_t)o->levant_lipschitz_rad_s4;
+    if (!isnan(o->td_accel_rad_s2))
+        a->td_accel_rad_s2 = (ladrc_real_t)o->td_accel_rad_s2;
+    if (!isnan(o->pid_kp))
+        a->pid_kp = (ladrc_real_t)o->pid_kp;
+    if (!isnan(o->pid_ki))
+        a->pid_ki = (ladrc_real_t)o->pid_ki;
+    if (!isnan(o->pid_kd))
+        a->pid_kd = (ladrc_real_t)o->pid_kd;
+    if (!isnan(o->indi_att_kp_per_s))
+        a->indi_att_kp_per_s = (ladrc_real_t)o->indi_att_kp_per_s;
+    if (!isnan(o->indi_rate_kp_per_s))
+        a->indi_rate_kp_per_s = (ladrc_real_t)o->indi_rate_kp_per_s;
+    if (!isnan(o->indi_filter_rad_s))
+        a->indi_filter_rad_s = (ladrc_real_t)o->indi_filter_rad_s;
+    if (!isnan(o->cas_att_kp))
+        a->cas_att_kp = (ladrc_real_t)o->cas_att_kp;
+    if (!isnan(o->cas_rate_max_deg_s))
+        a->cas_rate_max_rad_s = (ladrc_real_t)(o->cas_rate_max_deg_s * (3.14159265358979323846 / 180.0));
+    if (!isnan(o->cas_rate_kp))
+        a->cas_rate_kp = (ladrc_real_t)o->cas_rate_kp;
+    if (!isnan(o->cas_rate_ki))
+        a->cas_rate_ki = (ladrc_real_t)o->cas_rate_ki;
+    if (!isnan(o->cas_rate_kd))
+        a->cas_rate_kd = (ladrc_real_t)o->cas_rate_kd;
+    if (!isnan(o->cas_d_filter_tau_s))
+        a->cas_d_filter_tau_s = (ladrc_real_t)o->cas_d_filter_tau_s;
+    if (!isnan(o->cas_i_limit_Nm))
+        a->cas_i_limit_Nm = (ladrc_real_t)o->cas_i_limit_Nm;
+    if (!isnan(o->model_motor_tau_s))
+        a->motor_tau_s = (ladrc_real_t)o->model_motor_tau_s;
+    if (o->model_delay_ticks >= 0)
+        a->delay_ticks = (uint8_t)o->model_delay_ticks;
 }
 
-#define GAIN(key, label, unit) {#key, label, unit, offsetof(ladrc_axis_config_t, key)}
+#define GAIN(key, label, unit)                                                                                         \
+    {                                                                                                                  \
+#key, label, unit, offsetof(ladrc_axis_config_t, key)                                                          \
+    }
 static const sim_gain_field_t LADRC_GAINS[] = {GAIN(wc_rad_s, "wc", "rad/s"), GAIN(wo_rad_s, "wo", "rad/s")};
 static const sim_gain_field_t PID_GAINS[] = {GAIN(pid_kp, "kp", ""), GAIN(pid_ki, "ki", ""), GAIN(pid_kd, "kd", ""),
                                              GAIN(pid_d_filter_tau_s, "d_filter", "s")};
-static const sim_gain_field_t CASCADED_GAINS[] = {
-    GAIN(cas_att_kp, "att_kp", "1/s"),        GAIN(cas_rate_kp, "rate kp", ""),
-    GAIN(cas_rate_ki, "ki", ""),              GAIN(cas_rate_kd, "kd", ""),
-    GAIN(cas_d_filter_tau_s, "d_filter", "s"), GAIN(cas_rate_filter_tau_s, "rate_filter", "s")};
+static const sim_gain_field_t CASCADED_GAINS[] = {GAIN(cas_att_kp, "att_kp", "1/s"),
+                                                  GAIN(cas_rate_kp, "rate kp", ""),
+                                                  GAIN(cas_rate_ki, "ki", ""),
+                                                  GAIN(cas_rate_kd, "kd", ""),
+                                                  GAIN(cas_d_filter_tau_s, "d_filter", "s"),
+                                                  GAIN(cas_rate_filter_tau_s, "rate_filter", "s")};
 static const sim_gain_field_t INDI_GAINS[] = {GAIN(indi_att_kp_per_s, "k_att", "1/s"),
                                               GAIN(indi_rate_kp_per_s, "k_rate", "1/s"),
                                               GAIN(indi_filter_rad_s, "w_f", "rad/s")};
@@ -71,10 +107,18 @@ static const sim_gain_field_t INDI_GAINS[] = {GAIN(indi_att_kp_per_s, "k_att", "
 const sim_gain_field_t *sim_setup_gain_fields(ladrc_variant_t v, int *n)
 {
     switch (v) {
-    case LADRC_VARIANT_PID: *n = N_OF(PID_GAINS); return PID_GAINS;
-    case LADRC_VARIANT_CASCADED: *n = N_OF(CASCADED_GAINS); return CASCADED_GAINS;
-    case LADRC_VARIANT_INDI: *n = N_OF(INDI_GAINS); return INDI_GAINS;
-    default: *n = N_OF(LADRC_GAINS); return LADRC_GAINS;
+    case LADRC_VARIANT_PID:
+        *n = N_OF(PID_GAINS);
+        return PID_GAINS;
+    case LADRC_VARIANT_CASCADED:
+        *n = N_OF(CASCADED_GAINS);
+        return CASCADED_GAINS;
+    case LADRC_VARIANT_INDI:
+        *n = N_OF(INDI_GAINS);
+        return INDI_GAINS;
+    default:
+        *n = N_OF(LADRC_GAINS);
+        return LADRC_GAINS;
     }
 }
 
@@ -101,12 +145,14 @@ int sim_setup_format_gains(const ladrc_axis_config_t *a, char *buf, size_t size)
 {
     int n, used = 0;
     const sim_gain_field_t *f = sim_setup_gain_fields(a->variant, &n);
-    if (size > 0) buf[0] = '\0';
+    if (size > 0)
+        buf[0] = '\0';
     for (int k = 0; k < n; ++k) {
         const size_t at = (size_t)used < size ? (size_t)used : size;
-        const int w = snprintf(buf + at, size - at, "%s%s %.5g%s%s", k ? " " : "", f[k].label,
-                               sim_setup_gain(a, &f[k]), f[k].unit[0] ? " " : "", f[k].unit);
-        if (w < 0) return w;
+        const int w = snprintf(buf + at, size - at, "%s%s %.5g%s%s", k ? " " : "", f[k].label, sim_setup_gain(a, &f[k]),
+                               f[k].unit[0] ? " " : "", f[k].unit);
+        if (w < 0)
+            return w;
         used += w;
     }
     return used;
@@ -167,8 +213,8 @@ void sim_setup_differentiators(const sim_scenario_t *sc, ladrc_levant_config_t *
     lev->dt_s = dt;
     lev->method = LADRC_LEVANT_IMPLICIT;
     lev->gains = LADRC_LEVANT_GAINS_LIPSCHITZ;
-    lev->lipschitz_rad_s4 = isnan(sc->diff_levant_lipschitz) ? axis.levant_lipschitz_rad_s4
-                                                             : (ladrc_real_t)sc->diff_levant_lipschitz;
+    lev->lipschitz_rad_s4 =
+        isnan(sc->diff_levant_lipschitz) ? axis.levant_lipschitz_rad_s4 : (ladrc_real_t)sc->diff_levant_lipschitz;
     td->dt_s = dt;
     td->accel_rad_s2 = isnan(sc->diff_td_accel) ? axis.td_accel_rad_s2 : (ladrc_real_t)sc->diff_td_accel;
     td->h0_s = isnan(sc->diff_td_h0_s) ? axis.td_h0_s : (ladrc_real_t)sc->diff_td_h0_s;

@@ -45,8 +45,7 @@ static void tune_error(const sim_scenario_t *sc, sim_controller_id_t id, sim_par
     snprintf(err->message, sizeof err->message, "%s", message);
 }
 
-static void keep(sim_tuning_t *t, int i, const ladrc_axis_config_t *tuned, const ladrc_margins_tuning_t *r,
-                 int idle)
+static void keep(sim_tuning_t *t, int i, const ladrc_axis_config_t *tuned, const ladrc_margins_tuning_t *r, int idle)
 {
     t->gains[i] = *tuned;
     t->pm_deg[i] = r->margins.pm_deg;
@@ -156,8 +155,8 @@ int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margin
     const ladrc_status_t st = ladrc_attitude_init(&att, &acfg, NULL);
     if (st != LADRC_OK) {
         char msg[256];
-        snprintf(msg, sizeof msg, "tune = margins: %s does not start with the tuned gains: %s",
-                 sim_controller_name(id), ladrc_status_str(st));
+        snprintf(msg, sizeof msg, "tune = margins: %s does not start with the tuned gains: %s", sim_controller_name(id),
+                 ladrc_status_str(st));
         t->tuned = 0;
         tune_error(sc, id, err, msg);
         return -1;

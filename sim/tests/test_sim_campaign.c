@@ -34,8 +34,14 @@ static sim_campaign_error_t err;
 static sim_campaign_run_t run;
 static sim_scenario_t sc; /* large: kept off the stack */
 
-void setUp(void) { memset(&err, 0, sizeof err); }
-void tearDown(void) { sim_campaign_free(&c); }
+void setUp(void)
+{
+    memset(&err, 0, sizeof err);
+}
+void tearDown(void)
+{
+    sim_campaign_free(&c);
+}
 
 static void parse_ok(const char *text)
 {
@@ -55,7 +61,7 @@ static void test_grid_runs_in_row_major_order_first_key_slowest_with_samples_inn
 {
     parse_ok("[campaign]\n" BASE "samples = 2\n"
              "[grid]\n"
-             "a = 1, 2 3\n"              /* commas, spaces or both */
+             "a = 1, 2 3\n" /* commas, spaces or both */
              "rotors.motor_tau_s = range(0, 0.01, 2)\n"
              "[set]\n"
              "run.duration_s = {a}\n");
@@ -304,8 +310,15 @@ static void test_values_are_the_shortest_text_that_reads_back(void)
     static const struct {
         double x;
         const char *text;
-    } CASES[] = {{0.0, "0"},   {0.1, "0.1"},  {0.04, "0.04"},   {-2.5, "-2.5"},         {100.0, "100"},
-                 {1e-5, "1e-05"}, {1e21, "1e+21"}, {1.0 / 3.0, "0.3333333333333333"}, {0.1 + 0.2, "0.30000000000000004"}};
+    } CASES[] = {{0.0, "0"},
+                 {0.1, "0.1"},
+                 {0.04, "0.04"},
+                 {-2.5, "-2.5"},
+                 {100.0, "100"},
+                 {1e-5, "1e-05"},
+                 {1e21, "1e+21"},
+                 {1.0 / 3.0, "0.3333333333333333"},
+                 {0.1 + 0.2, "0.30000000000000004"}};
     for (size_t i = 0; i < sizeof CASES / sizeof CASES[0]; ++i) {
         sim_campaign_format_value(buf, CASES[i].x);
         TEST_ASSERT_EQUAL_STRING(CASES[i].text, buf);
@@ -314,8 +327,8 @@ static void test_values_are_the_shortest_text_that_reads_back(void)
      * shortest such text of printf */
     uint64_t state = 12345;
     for (int i = 0; i < 20000; ++i) {
-        const double x = ldexp((double)(sim_campaign_stream(state, i, 1, 1) >> 11), (i % 200) - 100 - 53) *
-                         (i % 2 ? -1.0 : 1.0);
+        const double x =
+            ldexp((double)(sim_campaign_stream(state, i, 1, 1) >> 11), (i % 200) - 100 - 53) * (i % 2 ? -1.0 : 1.0);
         const int len = sim_campaign_format_value(buf, x);
         TEST_ASSERT_TRUE(strtod(buf, NULL) == x);
         TEST_ASSERT_TRUE(len < SIM_CAMPAIGN_VALUE_LEN);
@@ -336,8 +349,8 @@ static void test_shard_is_k_of_n(void)
     TEST_ASSERT_EQUAL_INT(3, (int)k);
     TEST_ASSERT_EQUAL_INT(4, (int)n);
     TEST_ASSERT_EQUAL_INT(0, sim_campaign_parse_shard("1/1", &k, &n, msg, sizeof msg));
-    static const char *const BAD[] = {"0/4", "5/4", "a/b", "1/0", "2", "", "/4", "1/", "1/2/3", "-1/4", "1/ 4",
-                                      "99999999999999999999/1"};
+    static const char *const BAD[] = {"0/4", "5/4", "a/b",   "1/0",  "2",    "",
+                                      "/4",  "1/",  "1/2/3", "-1/4", "1/ 4", "99999999999999999999/1"};
     for (size_t i = 0; i < sizeof BAD / sizeof BAD[0]; ++i) {
         TEST_ASSERT_EQUAL_INT_MESSAGE(-1, sim_campaign_parse_shard(BAD[i], &k, &n, msg, sizeof msg), BAD[i]);
         TEST_ASSERT_TRUE(strlen(msg) > 0);

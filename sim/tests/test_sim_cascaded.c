@@ -25,8 +25,12 @@ static sim_scenario_t sc;
 static ladrc_margins_workspace_t ws;
 static ladrc_margins_tuning_t tuning;
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static void load(const char *name)
 {
@@ -35,7 +39,8 @@ static void load(const char *name)
     sim_parse_error_t err;
     TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_scenario_load(&sc, path, &err), err.message);
     int listed = 0;
-    for (int c = 0; c < sc.n_controllers; ++c) listed |= sc.controllers[c] == SIM_CTRL_CASCADED;
+    for (int c = 0; c < sc.n_controllers; ++c)
+        listed |= sc.controllers[c] == SIM_CTRL_CASCADED;
     TEST_ASSERT_TRUE_MESSAGE(listed, "a shipped scenario lists CASCADED");
 }
 
@@ -59,11 +64,13 @@ static void test_tuned_gains_meet_the_margins_on_every_shipped_airframe(void)
             const double j = sc.inertia_kg_m2[i] * sc.inertia_scale[i];
             const double key[4] = {j, sc.motor_tau_s, (double)sc.delay_ticks, (double)sc.use_rate};
             int seen = 0;
-            for (int d = 0; d < n_done; ++d) seen |= memcmp(done[d], key, sizeof key) == 0;
-            if (seen) continue;
+            for (int d = 0; d < n_done; ++d)
+                seen |= memcmp(done[d], key, sizeof key) == 0;
+            if (seen)
+                continue;
             memcpy(done[n_done++], key, sizeof key);
-            const ladrc_margins_plant_t plant = {sc.control_dt_s, j, sc.inertia_kg_m2[i] / j, sc.rot_drag_Nm_s,
-                                                 sc.motor_tau_s, sc.delay_ticks};
+            const ladrc_margins_plant_t plant = {
+                sc.control_dt_s, j, sc.inertia_kg_m2[i] / j, sc.rot_drag_Nm_s, sc.motor_tau_s, sc.delay_ticks};
             ladrc_margins_request_t req;
             ladrc_margins_request_default(&req, &plant);
             const ladrc_margins_controller_t ctl = {&acfg, i, NULL, sc.use_rate};
@@ -75,7 +82,8 @@ static void test_tuned_gains_meet_the_margins_on_every_shipped_airframe(void)
             static ladrc_margins_result_t res;
             TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_analyse(&ws, &again, &req, &res));
             double growth = INFINITY;
-            TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_simulate(&ws, &again, &plant, SIMULATE_TICKS, &growth));
+            TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK,
+                                  ladrc_margins_simulate(&ws, &again, &plant, SIMULATE_TICKS, &growth));
             printf("%-18s axis %d: J %.4g lag %.3g s delay %d: att_kp %.4g rate kp %.4g ki %.4g kd %.4g -> PM %.1f "
                    "GM %.1f dB, peak |d->e| %.3g, growth %.3g\n",
                    SCENARIOS[s], i, j, sc.motor_tau_s, sc.delay_ticks, (double)tuned.cas_att_kp,

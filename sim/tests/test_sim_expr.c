@@ -17,8 +17,12 @@
 
 static const double PI = 3.14159265358979323846;
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static void assert_close(double expected, double actual, const char *what)
 {
@@ -98,10 +102,10 @@ static void test_precedence_follows_the_usual_math_convention(void)
     assert_value("1 + 6/3", 0.0, 3.0);
     assert_value("2*3^2", 0.0, 18.0);
     assert_value("2^2*3", 0.0, 12.0);
-    assert_value("-2^2", 0.0, -4.0);       /* minus applies to the power */
+    assert_value("-2^2", 0.0, -4.0); /* minus applies to the power */
     assert_value("(-2)^2", 0.0, 4.0);
-    assert_value("2^-1", 0.0, 0.5);        /* a signed exponent */
-    assert_value("2^-1^2", 0.0, 0.5);      /* 2^(-(1^2)) */
+    assert_value("2^-1", 0.0, 0.5);   /* a signed exponent */
+    assert_value("2^-1^2", 0.0, 0.5); /* 2^(-(1^2)) */
     assert_value("2*-3", 0.0, -6.0);
     assert_value("--2", 0.0, 2.0);
     assert_value("+3 - -3", 0.0, 6.0);
@@ -113,7 +117,7 @@ static void test_associativity_left_except_power(void)
 {
     assert_value("10 - 4 - 3", 0.0, 3.0);
     assert_value("8/4/2", 0.0, 1.0);
-    assert_value("2^3^2", 0.0, 512.0);     /* 2^(3^2) */
+    assert_value("2^3^2", 0.0, 512.0); /* 2^(3^2) */
     assert_value("(2^3)^2", 0.0, 64.0);
     assert_value("1 - 2 + 3", 0.0, 2.0);
     assert_value("12/2*3", 0.0, 18.0);
@@ -300,18 +304,55 @@ static void test_program_and_stack_limits_are_errors_at_the_token_that_overflows
     assert_error(text, 65, "expression too deeply nested");
 }
 
-static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+static int same_bits(double a, double b)
+{
+    return memcmp(&a, &b, sizeof a) == 0;
+}
 
 /* Expressions covering every operator in every operand position (constant,
  * t, subexpression, on either side), foldable parts and NaN/inf results. */
 static const char *const FOLDING_CORPUS[] = {
-    "20 - 120*sin(3*t)", "20 + 120*sin(0.25*pi*t)", "5 + 15*cos(pi*t/2)", "10*cos(pi*t/2)", "8", "-t",
-    "2^t", "t^2", "t^t", "2^3^2", "-2^2", "(1 + 2) * t", "t * (1 + 2)", "t / (2*pi)", "(2*pi) / t",
-    "min(t, 1)", "min(1, t)", "max(t, 0.5)", "max(0.5, t)", "min(sin(t), cos(t))", "max(sin(t), 0/0)",
-    "min(0/0, t)", "sin(t)*sin(t) + cos(t)*cos(t)", "(t + 1) - (t - 1)", "(t+1)/(t-1)", "(t*2)^(t/3)",
-    "tan(t) + asin(t/40) + acos(t/40) + atan(t)", "exp(-t) * log(t + 1) + sqrt(t)", "abs(t - 3) + floor(t) + ceil(t)",
-    "step(t - 2) + sign(t - 5) + step(0/0)", "1/t", "log(t)", "0/0", "sin(1) + t", "t + sin(1)",
-    "-(t - 3)", "+t", "1 - (2 - (3 - (4 - t)))", "((t))", "max(min(t, 1), -1)", "2 - t - 3",
+    "20 - 120*sin(3*t)",
+    "20 + 120*sin(0.25*pi*t)",
+    "5 + 15*cos(pi*t/2)",
+    "10*cos(pi*t/2)",
+    "8",
+    "-t",
+    "2^t",
+    "t^2",
+    "t^t",
+    "2^3^2",
+    "-2^2",
+    "(1 + 2) * t",
+    "t * (1 + 2)",
+    "t / (2*pi)",
+    "(2*pi) / t",
+    "min(t, 1)",
+    "min(1, t)",
+    "max(t, 0.5)",
+    "max(0.5, t)",
+    "min(sin(t), cos(t))",
+    "max(sin(t), 0/0)",
+    "min(0/0, t)",
+    "sin(t)*sin(t) + cos(t)*cos(t)",
+    "(t + 1) - (t - 1)",
+    "(t+1)/(t-1)",
+    "(t*2)^(t/3)",
+    "tan(t) + asin(t/40) + acos(t/40) + atan(t)",
+    "exp(-t) * log(t + 1) + sqrt(t)",
+    "abs(t - 3) + floor(t) + ceil(t)",
+    "step(t - 2) + sign(t - 5) + step(0/0)",
+    "1/t",
+    "log(t)",
+    "0/0",
+    "sin(1) + t",
+    "t + sin(1)",
+    "-(t - 3)",
+    "+t",
+    "1 - (2 - (3 - (4 - t)))",
+    "((t))",
+    "max(min(t, 1), -1)",
+    "2 - t - 3",
 };
 
 static void test_the_folded_program_gives_the_postfix_programs_bits(void)
@@ -374,7 +415,10 @@ static void test_a_memo_returns_the_bits_of_the_call_it_replaces(void)
 
 /* Same bits, or both NaN: the evaluated forms may give NaN another sign or
  * payload (expr.h). */
-static int same_value(double a, double b) { return same_bits(a, b) || (isnan(a) && isnan(b)); }
+static int same_value(double a, double b)
+{
+    return same_bits(a, b) || (isnan(a) && isnan(b));
+}
 
 static void test_a_batch_gives_each_instants_bits(void)
 {

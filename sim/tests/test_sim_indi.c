@@ -9,8 +9,12 @@
 static ladrc_margins_workspace_t ws;
 static sim_scenario_t sc;
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static void test_indi_flies_every_shipped_scenario_with_its_margins(void)
 {

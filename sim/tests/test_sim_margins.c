@@ -32,8 +32,12 @@
 static ladrc_margins_workspace_t ws;
 static sim_scenario_t sc;
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static void load(const char *controller, double inertia, double tau_s, int delay)
 {
@@ -56,7 +60,8 @@ static void load(const char *controller, double inertia, double tau_s, int delay
              RUN_S - 1.0, LIMIT_DEG, RUN_S);
     sim_parse_error_t err;
     const int rc = sim_scenario_parse(&sc, text, "boundary.ini", &err);
-    if (rc != 0) printf("%s:%d: %s\n", err.path, err.line, err.message);
+    if (rc != 0)
+        printf("%s:%d: %s\n", err.path, err.line, err.message);
     TEST_ASSERT_EQUAL_INT(0, rc);
 }
 
@@ -67,7 +72,8 @@ static int sim_stable(const char *controller, double inertia, double tau_s, int 
     char err[256];
     TEST_ASSERT_EQUAL_INT(0, sim_run_attitude(&sc, sc.controllers[0], NULL, NULL, &m, err, sizeof err));
     /* settle_s is 0 when the error never left the +-LIMIT_DEG band */
-    if (!m.finite || m.settle_s[0] != 0.0) return 0;
+    if (!m.finite || m.settle_s[0] != 0.0)
+        return 0;
     return !(m.max_error_deg[0] > m.band_deg[0] && m.max_error_deg[0] > NOISE_DEG);
 }
 
@@ -103,7 +109,10 @@ static void check(const char *controller, double inertia)
     TEST_ASSERT_FALSE_MESSAGE(sim_stable(controller, inertia, hi, 0), "unstable at 1.5 x the predicted lag");
     for (int i = 0; i < SIM_BISECTIONS; ++i) {
         const double mid = 0.5 * (lo + hi);
-        if (sim_stable(controller, inertia, mid, 0)) lo = mid; else hi = mid;
+        if (sim_stable(controller, inertia, mid, 0))
+            lo = mid;
+        else
+            hi = mid;
     }
     const double tau_sim = 0.5 * (lo + hi);
     printf("%s J %g: largest stable lag predicted %.2f ms, simulated %.2f ms\n", controller, inertia, tau_pred * 1e3,
@@ -113,9 +122,11 @@ static void check(const char *controller, double inertia)
      * the predicted one, within 10 % (rounded to whole ticks: at least 1). */
     int d_sim = delay_pred;
     if (sim_stable(controller, inertia, 0.0, d_sim)) {
-        while (d_sim < LADRC_MARGINS_MAX_DELAY && sim_stable(controller, inertia, 0.0, d_sim + 1)) ++d_sim;
+        while (d_sim < LADRC_MARGINS_MAX_DELAY && sim_stable(controller, inertia, 0.0, d_sim + 1))
+            ++d_sim;
     } else {
-        while (d_sim >= 0 && !sim_stable(controller, inertia, 0.0, d_sim)) --d_sim;
+        while (d_sim >= 0 && !sim_stable(controller, inertia, 0.0, d_sim))
+            --d_sim;
     }
     printf("%s J %g: largest stable delay predicted %d ticks, simulated %d ticks\n", controller, inertia, delay_pred,
            d_sim);
@@ -123,10 +134,22 @@ static void check(const char *controller, double inertia)
     TEST_ASSERT_TRUE(fabs((double)(d_sim - delay_pred)) <= tol);
 }
 
-static void test_boundary_ladrc_paper_airframe(void) { check("LADRC", 5.445e-3); }
-static void test_boundary_lp_mladrc_paper_airframe(void) { check("LP-MLADRC", 5.445e-3); }
-static void test_boundary_pid_paper_airframe(void) { check("PID", 5.445e-3); }
-static void test_boundary_ladrc_heavy_airframe(void) { check("LADRC", 0.025); }
+static void test_boundary_ladrc_paper_airframe(void)
+{
+    check("LADRC", 5.445e-3);
+}
+static void test_boundary_lp_mladrc_paper_airframe(void)
+{
+    check("LP-MLADRC", 5.445e-3);
+}
+static void test_boundary_pid_paper_airframe(void)
+{
+    check("PID", 5.445e-3);
+}
+static void test_boundary_ladrc_heavy_airframe(void)
+{
+    check("LADRC", 0.025);
+}
 
 int main(void)
 {

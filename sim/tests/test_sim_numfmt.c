@@ -9,8 +9,12 @@
 #include <stdio.h>
 #include <string.h>
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static int mismatches;
 
@@ -62,10 +66,23 @@ static void test_g_matches_printf_on_values_of_every_magnitude(void)
 static void test_g_matches_printf_at_ties_and_exponent_changes(void)
 {
     mismatches = 0;
-    static const double edges[] = {0.5, 1.5, 2.5, 0.125, 0.0625, 1234565.0, 123456.5, 1.234565, 9999995.0,
-                                   999999.5, 9.999995, 0.9999995, 99999.95, 1e-4, 9.9999995e-5, 1e-5, 1e15, 1e16,
-                                   1e21, 1e22, 1e23, 1e-22, 1e-23, 1e300, 4.9e-324, 1.7976931348623157e308,
-                                   100000.0, 1000000.0, 10000000.0, 123456.0, 0.1, 0.3, 2.0 / 3.0};
+    static const double edges[] = {0.5,          1.5,
+                                   2.5,          0.125,
+                                   0.0625,       1234565.0,
+                                   123456.5,     1.234565,
+                                   9999995.0,    999999.5,
+                                   9.999995,     0.9999995,
+                                   99999.95,     1e-4,
+                                   9.9999995e-5, 1e-5,
+                                   1e15,         1e16,
+                                   1e21,         1e22,
+                                   1e23,         1e-22,
+                                   1e-23,        1e300,
+                                   4.9e-324,     1.7976931348623157e308,
+                                   100000.0,     1000000.0,
+                                   10000000.0,   123456.0,
+                                   0.1,          0.3,
+                                   2.0 / 3.0};
     for (size_t i = 0; i < sizeof edges / sizeof edges[0]; ++i) {
         for (int p = 1; p <= 15; ++p) {
             check_g(edges[i], p);
@@ -98,7 +115,7 @@ static void test_f4_matches_printf_on_tick_times_and_random_values(void)
 {
     mismatches = 0;
     for (long k = 0; k <= 200000; ++k) {
-        check_f4((double)k * 0.001);  /* the runner's t = k dt */
+        check_f4((double)k * 0.001); /* the runner's t = k dt */
         check_f4((double)k * 1e-4);
         check_f4((double)k * 0.00005); /* ties of the 4th decimal */
         check_f4(-(double)k * 0.00005);

@@ -10,8 +10,12 @@
 #include <stdio.h>
 #include <string.h>
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 /* |actual - expected| <= tol, compared in double (Unity's float asserts
  * would round both to float). */
@@ -20,8 +24,7 @@ static void assert_close(double tol, double expected, double actual, int line)
 {
     char msg[160];
     const double diff = fabs(actual - expected);
-    snprintf(msg, sizeof msg, "expected %.17g, was %.17g (|diff| %.3g > %.3g)", expected, actual, diff,
-             tol);
+    snprintf(msg, sizeof msg, "expected %.17g, was %.17g (|diff| %.3g > %.3g)", expected, actual, diff, tol);
     UNITY_TEST_ASSERT(diff <= tol, line, msg);
 }
 
@@ -41,8 +44,7 @@ static double hover_w2(const sim_vehicle_t *v)
 
 /* docs/method.md eq. 33, with a = U_L/kL, p = tau_x/(l kL), q = tau_y/(l kL),
  * r = tau_z/b. */
-static void inverse_allocation(const sim_vehicle_t *v, double thrust_N, const double torque_Nm[3],
-                               double w2[4])
+static void inverse_allocation(const sim_vehicle_t *v, double thrust_N, const double torque_Nm[3], double w2[4])
 {
     const double a = thrust_N / v->thrust_coeff_N_s2;
     const double p = torque_Nm[0] / (v->arm_m * v->thrust_coeff_N_s2);
@@ -109,7 +111,7 @@ static void test_hover_rotors_give_weight_and_no_torque_and_keep_the_vehicle_at_
     sim_vehicle_paper(&v);
     sim_plant_t p;
     sim_plant_init(&p, &v);
-    const double w0 = 0.8 * 9.81 / (4.0 * 2.98e-5);  /* 65839.0 rad^2/s^2 */
+    const double w0 = 0.8 * 9.81 / (4.0 * 2.98e-5); /* 65839.0 rad^2/s^2 */
     double thrust, torque[3];
     for (int i = 0; i < 4; ++i) {
         ASSERT_CLOSE(1e-9, w0, p.w2_rad2_s2[i]);
@@ -147,7 +149,7 @@ static void test_constant_torque_from_rest_gives_a_parabola_on_that_axis_only(vo
      * margin while an O(h^k) integration error would be >= 1e-3 */
     const sim_vehicle_t v = vehicle_no_drag();
     for (int axis = 0; axis < 3; ++axis) {
-        const double tau = axis == 2 ? 0.01 : 0.02;  /* N m */
+        const double tau = axis == 2 ? 0.01 : 0.02; /* N m */
         double cmd[4];
         torque_command(&v, axis, tau, cmd);
         sim_plant_t p;
@@ -183,20 +185,20 @@ static double rk4_decay(double z, int n)
 
 static double rk4_decay_bound(double z, int n)
 {
-    return 1.2 * n * pow(fabs(z), 5) / 120.0;  /* 20% for the z^6 terms */
+    return 1.2 * n * pow(fabs(z), 5) / 120.0; /* 20% for the z^6 terms */
 }
 
 static void test_drag_decays_each_rate_as_exp_minus_kt_over_j_t(void)
 {
     sim_vehicle_t v;
-    sim_vehicle_paper(&v);  /* kt = 0.09 N m s */
+    sim_vehicle_paper(&v); /* kt = 0.09 N m s */
     for (int axis = 0; axis < 3; ++axis) {
         sim_plant_t p;
         sim_plant_init(&p, &v);
-        const double w0 = 10.0;  /* rad/s on one axis: no coupling */
+        const double w0 = 10.0; /* rad/s on one axis: no coupling */
         p.rate_rad_s[axis] = w0;
         const double cmd[4] = {p.w2_rad2_s2[0], p.w2_rad2_s2[1], p.w2_rad2_s2[2], p.w2_rad2_s2[3]};
-        const double lambda = v.rot_drag_Nm_s / v.inertia_kg_m2[axis];  /* 16.5 or 8.3 1/s */
+        const double lambda = v.rot_drag_Nm_s / v.inertia_kg_m2[axis]; /* 16.5 or 8.3 1/s */
         const double h = 1e-3;
         const int n = 500;
         for (int k = 0; k < n; ++k) {
@@ -248,9 +250,9 @@ static void test_coupling_terms_have_the_signs_of_eq_2(void)
     const double torque[3] = {0.05, -0.04, 0.2};
     const double dist[3] = {7.0, -8.0, 9.0};
     sim_plant_accel(&p, torque, dist, acc);
-    ASSERT_CLOSE(1e-12, -12.0 + (0.05 - 0.1) / 0.01 + 7.0, acc[0]);   /* -10 */
-    ASSERT_CLOSE(1e-12, 4.5 + (-0.04 - 0.2) / 0.02 - 8.0, acc[1]);    /* -15.5 */
-    ASSERT_CLOSE(1e-12, -0.5 + (0.2 - 0.3) / 0.04 + 9.0, acc[2]);     /* 6 */
+    ASSERT_CLOSE(1e-12, -12.0 + (0.05 - 0.1) / 0.01 + 7.0, acc[0]); /* -10 */
+    ASSERT_CLOSE(1e-12, 4.5 + (-0.04 - 0.2) / 0.02 - 8.0, acc[1]);  /* -15.5 */
+    ASSERT_CLOSE(1e-12, -0.5 + (0.2 - 0.3) / 0.04 + 9.0, acc[2]);   /* 6 */
     /* a NULL disturbance is zero */
     double acc_nodist[3];
     sim_plant_accel(&p, torque, NULL, acc_nodist);
@@ -322,7 +324,7 @@ static double momentum_squared(const sim_plant_t *p)
 static double free_motion_energy_error(double h, double *momentum_error, double *max_rate_change)
 {
     sim_vehicle_t v = vehicle_no_drag();
-    v.inertia_kg_m2[1] = 7e-3;  /* Jx < Jy < Jz: all three couplings act */
+    v.inertia_kg_m2[1] = 7e-3; /* Jx < Jy < Jz: all three couplings act */
     sim_plant_t p;
     sim_plant_init(&p, &v);
     const double w0[3] = {3.0, -2.0, 1.0};
@@ -381,7 +383,7 @@ static void logging_ramp(double t_s, void *ctx, double d_out[3])
         log->t[log->n_calls] = t_s;
     }
     ++log->n_calls;
-    d_out[0] = t_s;  /* d_phi(t) = t rad/s^2 */
+    d_out[0] = t_s; /* d_phi(t) = t rad/s^2 */
     d_out[1] = 0.0;
     d_out[2] = 0.0;
 }
@@ -457,10 +459,10 @@ static void test_motor_lag_follows_exp_minus_t_over_tau_and_drives_the_attitude(
     sim_plant_t p;
     sim_plant_init(&p, &v);
     const double w0 = hover_w2(&v);
-    const double dw = 2e4;  /* roll: rotor 2 up, rotor 4 down */
+    const double dw = 2e4; /* roll: rotor 2 up, rotor 4 down */
     const double cmd[4] = {w0, w0 + dw, w0, w0 - dw};
     const double h = 1e-3, tau = v.motor_tau_s;
-    const double z = -h / tau;  /* -0.05 */
+    const double z = -h / tau; /* -0.05 */
     /* roll acceleration once the rotors have settled */
     const double alpha = v.arm_m * v.thrust_coeff_N_s2 * 2.0 * dw / v.inertia_kg_m2[0];
     for (int k = 1; k <= 200; ++k) {
@@ -606,8 +608,8 @@ static void test_no_time_step_does_nothing_and_substeps_below_one_count_as_one(v
 /* The plant's step written out plainly, one plant, one operation at a time
  * in the order of plant.h's equations: the reference the interleaved lanes
  * (SSE2 or AVX) must give bit for bit. */
-static void reference_accel(const sim_vehicle_t *v, const double rate[3], const double torque[3],
-                            const double d[3], double accel[3])
+static void reference_accel(const sim_vehicle_t *v, const double rate[3], const double torque[3], const double d[3],
+                            double accel[3])
 {
     const double *j = v->inertia_kg_m2;
     const double kt = v->rot_drag_Nm_s;
@@ -671,15 +673,19 @@ static void reference_step(sim_plant_t *p, const double w2_cmd[4], double dt, in
         double k1[10], k2[10], k3[10], k4[10], y[10], d[3];
         dist(t, NULL, d);
         reference_derivative(v, lag, cmd, cmd_torque, x, d, k1);
-        for (int i = 0; i < n; ++i) y[i] = x[i] + 0.5 * h * k1[i];
+        for (int i = 0; i < n; ++i)
+            y[i] = x[i] + 0.5 * h * k1[i];
         dist(t + 0.5 * h, NULL, d);
         reference_derivative(v, lag, cmd, cmd_torque, y, d, k2);
-        for (int i = 0; i < n; ++i) y[i] = x[i] + 0.5 * h * k2[i];
+        for (int i = 0; i < n; ++i)
+            y[i] = x[i] + 0.5 * h * k2[i];
         reference_derivative(v, lag, cmd, cmd_torque, y, d, k3);
-        for (int i = 0; i < n; ++i) y[i] = x[i] + h * k3[i];
+        for (int i = 0; i < n; ++i)
+            y[i] = x[i] + h * k3[i];
         dist(t + h, NULL, d);
         reference_derivative(v, lag, cmd, cmd_torque, y, d, k4);
-        for (int i = 0; i < n; ++i) x[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+        for (int i = 0; i < n; ++i)
+            x[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
     }
     for (int i = 0; i < 3; ++i) {
         p->angle_rad[i] = x[i];
@@ -695,7 +701,8 @@ static int same_plant(const sim_plant_t *a, const sim_plant_t *b)
 {
     return memcmp(a->angle_rad, b->angle_rad, sizeof a->angle_rad) == 0 &&
            memcmp(a->rate_rad_s, b->rate_rad_s, sizeof a->rate_rad_s) == 0 &&
-           memcmp(a->w2_rad2_s2, b->w2_rad2_s2, sizeof a->w2_rad2_s2) == 0 && memcmp(&a->t_s, &b->t_s, sizeof a->t_s) == 0;
+           memcmp(a->w2_rad2_s2, b->w2_rad2_s2, sizeof a->w2_rad2_s2) == 0 &&
+           memcmp(&a->t_s, &b->t_s, sizeof a->t_s) == 0;
 }
 
 /* Plant g's command at step k: different for every plant and step. */
@@ -823,8 +830,8 @@ static void test_a_table_of_stage_disturbances_steps_as_the_calls_do(void)
             sine_disturbance(times[j], NULL, table[j]);
         }
         sim_plant_step_group(lanes_a, (const double(*)[4])cmd, 4, 1e-3, 7, sine_disturbance, NULL);
-        TEST_ASSERT_EQUAL_INT(4, sim_plant_step_group_table(lanes_b, (const double(*)[4])cmd, 4, 1e-3, 7,
-                                                           (const double(*)[3])table));
+        TEST_ASSERT_EQUAL_INT(
+            4, sim_plant_step_group_table(lanes_b, (const double(*)[4])cmd, 4, 1e-3, 7, (const double(*)[3])table));
         for (int g = 0; g < 4; ++g) {
             TEST_ASSERT_TRUE(same_plant(&a[g], &b[g]));
         }
@@ -835,8 +842,8 @@ static void test_a_table_of_stage_disturbances_steps_as_the_calls_do(void)
     for (int g = 0; g < 4; ++g) {
         varied_command(&v, g, 0, cmd[g]);
     }
-    TEST_ASSERT_EQUAL_INT(3, sim_plant_step_group_table(lanes_b, (const double(*)[4])cmd, 4, 1e-3, 1,
-                                                       (const double(*)[3])table));
+    TEST_ASSERT_EQUAL_INT(
+        3, sim_plant_step_group_table(lanes_b, (const double(*)[4])cmd, 4, 1e-3, 1, (const double(*)[3])table));
     TEST_ASSERT_TRUE(same_plant(&before, &b[2]));
     TEST_ASSERT_FALSE(same_plant(&a[0], &b[0]));
 }

@@ -38,8 +38,12 @@ static sim_scenario_t sc;
 
 static const char *const AXES[3] = {"roll", "pitch", "yaw"};
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 /* The paper scenario (paper.ini) on a lagging, late airframe, every
  * controller tuned, the error window on the steady tone. */
@@ -61,7 +65,8 @@ static void load(double motor_tau_s, int delay_ticks)
              motor_tau_s, delay_ticks);
     sim_parse_error_t err;
     const int rc = sim_scenario_parse(&sc, text, "real.ini", &err);
-    if (rc != 0) printf("%s:%d:%d: %s\n", err.path, err.line, err.column, err.message);
+    if (rc != 0)
+        printf("%s:%d:%d: %s\n", err.path, err.line, err.column, err.message);
     TEST_ASSERT_EQUAL_INT(0, rc);
 }
 
@@ -70,7 +75,8 @@ static void tune_all(void)
     for (int c = 0; c < sc.n_controllers; ++c) {
         sim_parse_error_t err;
         const int rc = sim_tune_controller(&sc, sc.controllers[c], &ws, &err);
-        if (rc != 0) printf("%s:%d:%d: %s\n", err.path, err.line, err.column, err.message);
+        if (rc != 0)
+            printf("%s:%d:%d: %s\n", err.path, err.line, err.column, err.message);
         TEST_ASSERT_EQUAL_INT(0, rc);
         TEST_ASSERT_EQUAL_INT(1, sc.tuning[sc.controllers[c]].tuned);
     }
@@ -89,7 +95,8 @@ static void fly(double rms_deg[SIM_CTRL_COUNT][3])
                sim_stat_rms(&m.error_deg[2]), (long)m.faults);
         TEST_ASSERT_FALSE_MESSAGE(m.diverged, sim_controller_name(id));
         TEST_ASSERT_TRUE(m.finite);
-        for (int i = 0; i < 3; ++i) rms_deg[id][i] = sim_stat_rms(&m.error_deg[i]);
+        for (int i = 0; i < 3; ++i)
+            rms_deg[id][i] = sim_stat_rms(&m.error_deg[i]);
     }
 }
 

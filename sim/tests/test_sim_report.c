@@ -15,10 +15,9 @@ static sim_metrics_t m[2]; /* PID diverged, LADRC healthy but never settled on r
 void setUp(void)
 {
     sim_parse_error_t perr;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(0,
-                                  sim_scenario_parse(&sc, "[run]\nduration_s = 2\ncontrollers = PID LADRC\n",
-                                                     "report.ini", &perr),
-                                  perr.message);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(
+        0, sim_scenario_parse(&sc, "[run]\nduration_s = 2\ncontrollers = PID LADRC\n", "report.ini", &perr),
+        perr.message);
     memset(m, 0, sizeof m);
     for (int c = 0; c < 2; ++c) { /* numbers that must not show where the run diverged */
         m[c].finite = 1;
@@ -43,7 +42,9 @@ void setUp(void)
     m[0].diverged_error_deg = 91.5;
     m[1].settle_s[0] = SIM_NOT_SETTLED;
 }
-void tearDown(void) {}
+void tearDown(void)
+{
+}
 
 /* The text a writer produces, through a temporary file (C99). */
 static void capture(int csv, char *buf, size_t len)

@@ -14,8 +14,12 @@
 #define N_SAMPLES 100000
 #define SIGMAS 5.0
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static void test_splitmix64_gives_the_published_outputs_from_zero(void)
 {
@@ -40,11 +44,16 @@ static void test_seeding_fills_the_state_with_four_splitmix_outputs(void)
 static void test_xoshiro256starstar_gives_the_published_outputs_from_state_1_2_3_4(void)
 {
     /* the reference vector of the algorithm's authors for s = {1, 2, 3, 4} */
-    static const uint64_t expected[10] = {
-        UINT64_C(11520), UINT64_C(0), UINT64_C(1509978240), UINT64_C(1215971899390074240),
-        UINT64_C(1216172134540287360), UINT64_C(607988272756665600),
-        UINT64_C(16172922978634559625), UINT64_C(8476171486693032832),
-        UINT64_C(10595114339597558777), UINT64_C(2904607092377533576)};
+    static const uint64_t expected[10] = {UINT64_C(11520),
+                                          UINT64_C(0),
+                                          UINT64_C(1509978240),
+                                          UINT64_C(1215971899390074240),
+                                          UINT64_C(1216172134540287360),
+                                          UINT64_C(607988272756665600),
+                                          UINT64_C(16172922978634559625),
+                                          UINT64_C(8476171486693032832),
+                                          UINT64_C(10595114339597558777),
+                                          UINT64_C(2904607092377533576)};
     sim_rng_t r = {{1, 2, 3, 4}, 0.0, 0};
     for (int i = 0; i < 10; ++i) {
         TEST_ASSERT_TRUE(sim_rng_next(&r) == expected[i]);
@@ -66,7 +75,7 @@ static void test_same_seed_gives_the_same_sequence(void)
     sim_rng_seed(&c, 12345);
     const double first = sim_rng_gauss(&c);
     (void)sim_rng_gauss(&c);
-    (void)sim_rng_gauss(&c);  /* leaves a spare */
+    (void)sim_rng_gauss(&c); /* leaves a spare */
     sim_rng_seed(&c, 12345);
     TEST_ASSERT_TRUE(sim_rng_gauss(&c) == first);
 }
@@ -134,7 +143,7 @@ static void test_gauss_has_the_mean_variance_kurtosis_and_tails_of_a_standard_no
             sum3 += g * g * g;
             sum4 += g * g * g * g;
             beyond_2 += fabs(g) > 2.0;
-            lag_sum += g * prev;  /* pairs share one polar draw: check they are uncorrelated */
+            lag_sum += g * prev; /* pairs share one polar draw: check they are uncorrelated */
             prev = g;
         }
         const double n = N_SAMPLES;

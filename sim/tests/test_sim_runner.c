@@ -28,8 +28,12 @@ static sim_scenario_t paper;
 static sim_metrics_t results[SIM_CTRL_COUNT];
 static int loaded;
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 /* Flies the paper's scenario once for all tests (the runs are the expensive part). */
 static void fly_paper(void)
@@ -43,9 +47,8 @@ static void fly_paper(void)
     paper.error_window_s[1] = 25.0;
     for (int c = 0; c < SIM_CTRL_COUNT; ++c) {
         char err[256];
-        TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_run_attitude(&paper, (sim_controller_id_t)c, NULL, NULL, &results[c],
-                                                          err, sizeof err),
-                                      err);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(
+            0, sim_run_attitude(&paper, (sim_controller_id_t)c, NULL, NULL, &results[c], err, sizeof err), err);
     }
     loaded = 1;
 }
@@ -54,7 +57,8 @@ static void test_every_controller_stays_finite_on_the_paper_case(void)
 {
     fly_paper();
     for (int c = 0; c < SIM_CTRL_COUNT; ++c) {
-        if (c == SIM_CTRL_CASCADED) continue;
+        if (c == SIM_CTRL_CASCADED)
+            continue;
         TEST_ASSERT_TRUE_MESSAGE(results[c].finite, sim_controller_name((sim_controller_id_t)c));
         TEST_ASSERT_FALSE_MESSAGE(results[c].diverged, sim_controller_name((sim_controller_id_t)c));
     }
@@ -118,7 +122,7 @@ static void test_a_non_finite_state_diverges_at_the_first_instant_it_is_seen(voi
     TEST_ASSERT_FLOAT_WITHIN(0.1 * DT_S, 1.501, m.diverged_at_s); /* a tenth of a tick: the clock's rounding */
     TEST_ASSERT_EQUAL_INT(0, m.diverged_axis);
     TEST_ASSERT_TRUE(isnan(m.diverged_error_deg));
-    TEST_ASSERT_EQUAL_INT(0, (int)m.faults); /* the controller got only finite samples */
+    TEST_ASSERT_EQUAL_INT(0, (int)m.faults);           /* the controller got only finite samples */
     TEST_ASSERT_EQUAL_INT(1501, (int)m.rotor_w2[0].n); /* the instants 0 .. 1.5 s */
 }
 
@@ -148,9 +152,8 @@ static void test_a_lockstep_group_gives_each_run_bit_for_bit(void)
     char err[3][256];
     sim_run_spec_t runs[3];
     for (int g = 0; g < 3; ++g) {
-        TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_run_attitude(&sc, sc.controllers[g], NULL, NULL, &alone[g], err[g],
-                                                          sizeof err[g]),
-                                      err[g]);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(
+            0, sim_run_attitude(&sc, sc.controllers[g], NULL, NULL, &alone[g], err[g], sizeof err[g]), err[g]);
         const sim_run_spec_t spec = {sc.controllers[g], NULL, &grouped[g], err[g], sizeof err[g], -1};
         runs[g] = spec;
     }
@@ -186,9 +189,8 @@ static void test_six_runs_in_lockstep_with_pieces_changing_within_a_step_give_ea
     char err[6][256];
     sim_run_spec_t runs[6];
     for (int g = 0; g < 6; ++g) {
-        TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_run_attitude(&sc, sc.controllers[g], NULL, NULL, &alone[g], err[g],
-                                                          sizeof err[g]),
-                                      err[g]);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(
+            0, sim_run_attitude(&sc, sc.controllers[g], NULL, NULL, &alone[g], err[g], sizeof err[g]), err[g]);
         const sim_run_spec_t spec = {sc.controllers[g], NULL, &grouped[g], err[g], sizeof err[g], -1};
         runs[g] = spec;
     }
@@ -206,8 +208,8 @@ static void test_the_error_is_taken_from_the_reference_the_controller_gets(void)
      * instant after it the angle is still exactly 0, so the largest error
      * is the reference itself, as the controller gets it (ladrc_real_t) and
      * not the double the signal gives */
-    const sim_metrics_t m = fly_text("[run]\nduration_s = 2\ncontrollers = LADRC\n[reference]\nroll = 0.5 .. : 10\n",
-                                     SIM_CTRL_LADRC);
+    const sim_metrics_t m =
+        fly_text("[run]\nduration_s = 2\ncontrollers = LADRC\n[reference]\nroll = 0.5 .. : 10\n", SIM_CTRL_LADRC);
     const double rad2deg = 180.0 / 3.14159265358979323846;
     const double given_rad = 10.0 * (3.14159265358979323846 / 180.0); /* the parser's deg -> rad */
     const double want_deg = (double)(ladrc_real_t)given_rad * rad2deg;
@@ -248,8 +250,8 @@ static void test_a_limit_cycle_never_settles_and_a_step_response_does(void)
     TEST_ASSERT_FALSE(cycle.diverged);
     /* roll cycles; pitch and yaw hold 0 (in double exactly: settled at 0) */
     TEST_ASSERT_EQUAL_FLOAT((float)SIM_NOT_SETTLED, (float)cycle.settle_s[0]);
-    const sim_metrics_t step = fly_text("[run]\nduration_s = 2\ncontrollers = LADRC\n[reference]\nroll = 10\n",
-                                        SIM_CTRL_LADRC);
+    const sim_metrics_t step =
+        fly_text("[run]\nduration_s = 2\ncontrollers = LADRC\n[reference]\nroll = 10\n", SIM_CTRL_LADRC);
     /* LADRC's default bandwidths settle a 10 deg step into 0.5 deg in 0.156 s
      * (measured); 0.05 to 1 s says it settled, and when */
     TEST_ASSERT_TRUE(step.settle_s[0] > 0.05 && step.settle_s[0] < 1.0);
@@ -282,8 +284,7 @@ static void test_modified_variants_beat_plain_ladrc_from_12_to_25_s(void)
         const double hp = sim_stat_rms(&results[SIM_CTRL_HP_MLADRC].error_deg[i]);
         const double lp = sim_stat_rms(&results[SIM_CTRL_LP_MLADRC].error_deg[i]);
         char msg[128];
-        snprintf(msg, sizeof msg, "axis %d error RMS over 12-25 s: HP %.4f, LP %.4f, LADRC %.4f deg", i, hp, lp,
-                 ladrc);
+        snprintf(msg, sizeof msg, "axis %d error RMS over 12-25 s: HP %.4f, LP %.4f, LADRC %.4f deg", i, hp, lp, ladrc);
         TEST_MESSAGE(msg);
         TEST_ASSERT_LESS_THAN_FLOAT_MESSAGE((float)ladrc, (float)hp, msg);
         TEST_ASSERT_LESS_THAN_FLOAT_MESSAGE((float)ladrc, (float)lp, msg);
@@ -331,8 +332,7 @@ static void test_a_run_refuses_a_scenario_changed_after_parsing(void)
 {
     static sim_scenario_t sc;
     sim_parse_error_t perr;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_scenario_parse(&sc, "[run]\nduration_s = 1\n", "x.ini", &perr),
-                                  perr.message);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_scenario_parse(&sc, "[run]\nduration_s = 1\n", "x.ini", &perr), perr.message);
     sc.control_dt_s = -1e-3;
     sim_metrics_t m;
     char err[256] = "";

@@ -12,8 +12,12 @@
 #define N_SAMPLES 100000
 #define SIGMAS 5.0
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static void test_bad_arguments_are_rejected(void)
 {
@@ -45,7 +49,7 @@ static void test_without_noise_or_delay_the_truth_passes_exactly(void)
         double angle[3], rate[3], am[3], rm[3];
         truth_at(k, angle, rate);
         if (k == 5) {
-            angle[0] = -0.0;  /* bit for bit, sign of zero included */
+            angle[0] = -0.0; /* bit for bit, sign of zero included */
         }
         sim_sensor_measure(&s, angle, rate, am, rm);
         for (int i = 0; i < 3; ++i) {
@@ -76,7 +80,7 @@ static void test_delay_returns_the_truth_of_n_calls_ago_and_repeats_the_first_at
 
 static void test_noise_has_the_configured_std_and_is_white_and_zero_mean(void)
 {
-    const double angle_std = sqrt(0.001) * 3.14159265358979323846 / 180.0;  /* the paper's 0.001 deg^2 */
+    const double angle_std = sqrt(0.001) * 3.14159265358979323846 / 180.0; /* the paper's 0.001 deg^2 */
     const double rate_std = 0.05;
     sim_sensor_t s;
     TEST_ASSERT_EQUAL_INT(0, sim_sensor_init(&s, angle_std, rate_std, 2, 2024));
@@ -118,7 +122,7 @@ static void test_same_seed_same_noise_and_one_quantity_does_not_shift_the_other(
     sim_sensor_t a, b, c;
     TEST_ASSERT_EQUAL_INT(0, sim_sensor_init(&a, 1e-3, 1e-2, 0, 99));
     TEST_ASSERT_EQUAL_INT(0, sim_sensor_init(&b, 1e-3, 1e-2, 0, 99));
-    TEST_ASSERT_EQUAL_INT(0, sim_sensor_init(&c, 1e-3, 0.0, 0, 99));  /* rate noise off */
+    TEST_ASSERT_EQUAL_INT(0, sim_sensor_init(&c, 1e-3, 0.0, 0, 99)); /* rate noise off */
     for (int k = 0; k < 1000; ++k) {
         double angle[3], rate[3], aa[3], ar[3], ba[3], br[3], ca[3], cr[3];
         truth_at(k, angle, rate);

@@ -46,18 +46,18 @@ extern "C" {
 
 typedef enum {
     LADRC_MARGINS_OK = 0,
-    LADRC_MARGINS_ERR_NULL,            /**< a required pointer is NULL */
-    LADRC_MARGINS_ERR_DT_S,            /**< plant dt_s not > 0 or not the controller's */
-    LADRC_MARGINS_ERR_INERTIA,         /**< inertia_kg_m2 or inertia_factor not finite and > 0 */
-    LADRC_MARGINS_ERR_DRAG,            /**< drag_Nm_s not finite and >= 0 */
-    LADRC_MARGINS_ERR_MOTOR_TAU,       /**< motor_tau_s not finite and >= 0 */
-    LADRC_MARGINS_ERR_DELAY,           /**< delay_ticks outside 0..LADRC_MARGINS_MAX_DELAY */
-    LADRC_MARGINS_ERR_CONTROLLER,      /**< the controller config is refused by its init */
-    LADRC_MARGINS_ERR_REQUEST,         /**< a request field (tone, response length, grid) is invalid */
-    LADRC_MARGINS_ERR_NOT_SETTLED,     /**< the controller's response did not settle to a constant
+    LADRC_MARGINS_ERR_NULL,           /**< a required pointer is NULL */
+    LADRC_MARGINS_ERR_DT_S,           /**< plant dt_s not > 0 or not the controller's */
+    LADRC_MARGINS_ERR_INERTIA,        /**< inertia_kg_m2 or inertia_factor not finite and > 0 */
+    LADRC_MARGINS_ERR_DRAG,           /**< drag_Nm_s not finite and >= 0 */
+    LADRC_MARGINS_ERR_MOTOR_TAU,      /**< motor_tau_s not finite and >= 0 */
+    LADRC_MARGINS_ERR_DELAY,          /**< delay_ticks outside 0..LADRC_MARGINS_MAX_DELAY */
+    LADRC_MARGINS_ERR_CONTROLLER,     /**< the controller config is refused by its init */
+    LADRC_MARGINS_ERR_REQUEST,        /**< a request field (tone, response length, grid) is invalid */
+    LADRC_MARGINS_ERR_NOT_SETTLED,    /**< the controller's response did not settle to a constant
                                             within response_s (an unstable or undamped controller) */
-    LADRC_MARGINS_ERR_NOT_MEASURED,    /**< the workspace holds no measured controller */
-    LADRC_MARGINS_ERR_TARGETS_NOT_MET  /**< tuning: no setting meets the targets (best one reported) */
+    LADRC_MARGINS_ERR_NOT_MEASURED,   /**< the workspace holds no measured controller */
+    LADRC_MARGINS_ERR_TARGETS_NOT_MET /**< tuning: no setting meets the targets (best one reported) */
 } ladrc_margins_status_t;
 
 /** "LADRC_MARGINS_ERR_...: explanation"; never NULL. */
@@ -65,12 +65,12 @@ const char *ladrc_margins_status_str(ladrc_margins_status_t status);
 
 /** The airframe as it really is. */
 typedef struct {
-    double dt_s;             /**< control period (s), the controller's dt_s */
-    double inertia_kg_m2;    /**< modelled axis inertia J (kg m^2) */
-    double inertia_factor;   /**< true J / modelled J (1: exact) */
-    double drag_Nm_s;        /**< rotational drag kt (N m s), >= 0 */
-    double motor_tau_s;      /**< first-order lag of the torque (s), 0 = none */
-    int delay_ticks;         /**< measurement delay (ticks), 0..LADRC_MARGINS_MAX_DELAY */
+    double dt_s;           /**< control period (s), the controller's dt_s */
+    double inertia_kg_m2;  /**< modelled axis inertia J (kg m^2) */
+    double inertia_factor; /**< true J / modelled J (1: exact) */
+    double drag_Nm_s;      /**< rotational drag kt (N m s), >= 0 */
+    double motor_tau_s;    /**< first-order lag of the torque (s), 0 = none */
+    int delay_ticks;       /**< measurement delay (ticks), 0..LADRC_MARGINS_MAX_DELAY */
 } ladrc_margins_plant_t;
 
 /** The controller analysed: one axis of an attitude controller (what the
@@ -86,42 +86,42 @@ typedef struct {
 /** How to measure. ladrc_margins_request_default fills every field. */
 typedef struct {
     ladrc_margins_plant_t plant;
-    double response_s;       /**< length of the impulse responses (s); default 4 */
-    double tone_rad_s;       /**< adaptive variants: disturbance tone they converge on;
+    double response_s;    /**< length of the impulse responses (s); default 4 */
+    double tone_rad_s;    /**< adaptive variants: disturbance tone they converge on;
                                   0: the axis's hp_freq_rad_s[0] (default) */
-    double tone_rad_s2;      /**< its amplitude (rad/s^2); default 20 */
-    double converge_s;       /**< adaptive variants: closed-loop run before the
+    double tone_rad_s2;   /**< its amplitude (rad/s^2); default 20 */
+    double converge_s;    /**< adaptive variants: closed-loop run before the
                                   linearisation (s); default 10 */
-    int n_starts;            /**< adaptive variants: start instants averaged over a
+    int n_starts;         /**< adaptive variants: start instants averaged over a
                                   tone period; default 4 */
-    double out_min_rad_s;    /**< output grid: lowest frequency (rad/s); default 0.1 */
-    int n_out;               /**< output grid points, 2..LADRC_MARGINS_MAX_OUT; default 200 */
+    double out_min_rad_s; /**< output grid: lowest frequency (rad/s); default 0.1 */
+    int n_out;            /**< output grid points, 2..LADRC_MARGINS_MAX_OUT; default 200 */
 } ladrc_margins_request_t;
 
 /** Margins and verdict of one loop. Margins that do not exist are +INFINITY
  *  (no phase crossover: gain margin; no gain crossover: phase margin, delay
  *  margin), their frequencies NaN. */
 typedef struct {
-    int stable;              /**< 1: every closed-loop pole inside the unit circle (Nyquist) */
-    int encirclements;       /**< closed-loop poles outside the unit circle (Nyquist count) */
-    double gm_db;            /**< gain margin (dB): smallest over phase crossovers with |L| < 1 */
-    double gm_rad_s;         /**< its frequency */
-    double gm_low_db;        /**< lower gain margin (dB, <= 0): gain reduction the loop
+    int stable;             /**< 1: every closed-loop pole inside the unit circle (Nyquist) */
+    int encirclements;      /**< closed-loop poles outside the unit circle (Nyquist count) */
+    double gm_db;           /**< gain margin (dB): smallest over phase crossovers with |L| < 1 */
+    double gm_rad_s;        /**< its frequency */
+    double gm_low_db;       /**< lower gain margin (dB, <= 0): gain reduction the loop
                                   tolerates (phase crossovers with |L| > 1); -INFINITY if none */
-    double pm_deg;           /**< phase margin (deg): smallest over gain crossovers */
-    double wc_rad_s;         /**< its crossover frequency */
-    double dm_s;             /**< delay margin (s): smallest PM / w over gain crossovers; 0 if
+    double pm_deg;          /**< phase margin (deg): smallest over gain crossovers */
+    double wc_rad_s;        /**< its crossover frequency */
+    double dm_s;            /**< delay margin (s): smallest PM / w over gain crossovers; 0 if
                                   a crossover has PM <= 0 */
-    double dm_ticks;         /**< the same in control periods */
-    double ms;               /**< peak sensitivity max |1 / (1 + L)| */
-    double ms_db;            /**< the same in dB */
-    double dist_peak_rad;    /**< peak |angle error / acceleration disturbance| (rad per rad/s^2) */
-    double dist_peak_rad_s;  /**< its frequency */
-    double tail_residue;     /**< largest |h_k - c| / max |h_k| over the last eighth of the
+    double dm_ticks;        /**< the same in control periods */
+    double ms;              /**< peak sensitivity max |1 / (1 + L)| */
+    double ms_db;           /**< the same in dB */
+    double dist_peak_rad;   /**< peak |angle error / acceleration disturbance| (rad per rad/s^2) */
+    double dist_peak_rad_s; /**< its frequency */
+    double tail_residue;    /**< largest |h_k - c| / max |h_k| over the last eighth of the
                                   responses (how well they settled) */
-    int linearised_nominal;  /**< adaptive: the run on the requested plant diverged, so the
+    int linearised_nominal; /**< adaptive: the run on the requested plant diverged, so the
                                   controller was linearised on the plant without lag and delay */
-    int n_out;               /**< output grid */
+    int n_out;              /**< output grid */
     double w_rad_s[LADRC_MARGINS_MAX_OUT];
     double l_re[LADRC_MARGINS_MAX_OUT], l_im[LADRC_MARGINS_MAX_OUT];   /**< L(e^jwT) */
     double s_re[LADRC_MARGINS_MAX_OUT], s_im[LADRC_MARGINS_MAX_OUT];   /**< 1 / (1 + L) */
@@ -136,19 +136,19 @@ typedef struct {
     int has_rate;
     double dt_s;
     int n_taps;
-    double tail[2];                          /**< c0 of the angle and rate responses' tails */
-    double ramp[2];                          /**< c1: h_k -> c0 + c1 k */
+    double tail[2]; /**< c0 of the angle and rate responses' tails */
+    double ramp[2]; /**< c1: h_k -> c0 + c1 k */
     double tail_residue;
     int linearised_nominal;
-    double h[2][LADRC_MARGINS_MAX_TAPS];     /**< angle (N m/rad), rate (N m s/rad) */
+    double h[2][LADRC_MARGINS_MAX_TAPS];               /**< angle (N m/rad), rate (N m s/rad) */
     double grid_re[2][LADRC_MARGINS_MAX_TAPS / 2 + 1]; /**< C on w_m = 2 pi m / MAX_TAPS */
     double grid_im[2][LADRC_MARGINS_MAX_TAPS / 2 + 1];
     double fft_re[LADRC_MARGINS_MAX_TAPS], fft_im[LADRC_MARGINS_MAX_TAPS];
     union {
         ladrc_axis_t axis;
         ladrc_attitude_t attitude;
-    } copy[4];                                /**< base, angle-, rate-perturbed, saved */
-    ladrc_margins_result_t scratch;           /**< the tuning's candidates */
+    } copy[4];                      /**< base, angle-, rate-perturbed, saved */
+    ladrc_margins_result_t scratch; /**< the tuning's candidates */
 } ladrc_margins_workspace_t;
 
 /** Defaults for the given plant (see the fields). */
@@ -175,8 +175,8 @@ ladrc_margins_status_t ladrc_margins_analyse(ladrc_margins_workspace_t *ws, cons
  *  NULL) is set to 1. */
 ladrc_margins_status_t ladrc_margins_analyse_reported(ladrc_margins_workspace_t *ws,
                                                       const ladrc_margins_controller_t *ctl,
-                                                      const ladrc_margins_request_t *req,
-                                                      ladrc_margins_result_t *res, int *idle);
+                                                      const ladrc_margins_request_t *req, ladrc_margins_result_t *res,
+                                                      int *idle);
 
 /** Nyquist verdict only (fast): 1 stable, 0 not. */
 int ladrc_margins_is_stable(ladrc_margins_workspace_t *ws, const ladrc_margins_plant_t *plant);
@@ -222,17 +222,17 @@ ladrc_margins_status_t ladrc_margins_simulate(ladrc_margins_workspace_t *ws, con
 
 /** Targets and search of the margins-based tuning. */
 typedef struct {
-    double pm_min_deg;       /**< default 45 */
-    double gm_min_db;        /**< default 6 */
+    double pm_min_deg; /**< default 45 */
+    double gm_min_db;  /**< default 6 */
 } ladrc_margins_targets_t;
 
 typedef struct {
-    int met;                  /**< 1 when the chosen setting meets the targets */
-    double wc_rad_s, wo_rad_s;/**< LADRC family */
-    double kp, ki, kd, d_filter_tau_s; /**< PID */
+    int met;                                                         /**< 1 when the chosen setting meets the targets */
+    double wc_rad_s, wo_rad_s;                                       /**< LADRC family */
+    double kp, ki, kd, d_filter_tau_s;                               /**< PID */
     double indi_att_kp_per_s, indi_rate_kp_per_s, indi_filter_rad_s; /**< INDI */
     double cas_att_kp, cas_rate_kp, cas_rate_ki, cas_rate_kd, cas_d_filter_tau_s; /**< CASCADED */
-    double peak_dist_rad;     /**< objective: peak |d -> error| of the chosen setting */
+    double peak_dist_rad;           /**< objective: peak |d -> error| of the chosen setting */
     ladrc_margins_result_t margins; /**< of the chosen setting */
 } ladrc_margins_tuning_t;
 
