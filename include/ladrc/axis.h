@@ -105,41 +105,7 @@ extern "C" {
 
 /* LADRC_MAX_DELAY_TICKS and LADRC_MOTOR_TAU_MAX_S: types.h (the HP estimator advances over them too). */
 
-/*
- * Variants and shapers built (1) or left out (0). The CMake list options
- * LADRC_VARIANTS (default: all six) and LADRC_SHAPERS (default: TD;LEVANT)
- * define those left out as 0 for the library and everything that links it,
- * so that e.g. an HP-MLADRC firmware carries no PID, CASCADED, INDI, LP or
- * TD code and its axis state no space for them; init refuses a variant or
- * shaper left out with LADRC_ERR_VARIANT_NOT_BUILT / _SHAPER_NOT_BUILT.
- * Without CMake everything is built unless defined 0 here; a library and
- * the code using it must see the same definitions (the state's layout
- * depends on them).
- */
-#ifndef LADRC_WITH_LADRC
-#define LADRC_WITH_LADRC 1
-#endif
-#ifndef LADRC_WITH_LP_MLADRC
-#define LADRC_WITH_LP_MLADRC 1
-#endif
-#ifndef LADRC_WITH_HP_MLADRC
-#define LADRC_WITH_HP_MLADRC 1
-#endif
-#ifndef LADRC_WITH_PID
-#define LADRC_WITH_PID 1
-#endif
-#ifndef LADRC_WITH_CASCADED
-#define LADRC_WITH_CASCADED 1
-#endif
-#ifndef LADRC_WITH_INDI
-#define LADRC_WITH_INDI 1
-#endif
-#ifndef LADRC_WITH_TD
-#define LADRC_WITH_TD 1
-#endif
-#ifndef LADRC_WITH_LEVANT
-#define LADRC_WITH_LEVANT 1
-#endif
+/* LADRC_WITH_<NAME>, the variants and shapers built: types.h (the ABI guard reads them). */
 
 typedef enum {
     LADRC_VARIANT_LADRC = 0,    /**< traditional LADRC: TD + LESO + control law */

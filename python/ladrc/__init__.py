@@ -46,6 +46,9 @@ ENUMS = {
 # Functions whose symbol carries the real type (ladrc/types.h, ABI guard).
 _ABI_NAMED = {"ladrc_attitude_config_default", "ladrc_attitude_init", "ladrc_axis_config_default",
               "ladrc_axis_init", "ladrc_mixer_init"}
+# Those that carry the variant and shaper set as well (ladrc/types.h, ABI guard).
+_ABI_SET_NAMED = {"ladrc_attitude_config_default", "ladrc_attitude_init", "ladrc_axis_config_default",
+                  "ladrc_axis_init"}
 
 
 class LadrcError(Exception):
@@ -97,6 +100,10 @@ class _Library:
         else:
             raise LadrcLayoutError(f"{path}: sizeof(ladrc_real_t) = {size}")
         self._suffix = suffix
+        fn = self.dll.ladrc_abi_set
+        fn.restype = ctypes.c_char_p
+        fn.argtypes = []
+        self._set_suffix = suffix + fn().decode()
         fn = self.dll.ladrc_hp_max_tones
         fn.restype = ctypes.c_size_t
         fn.argtypes = []
@@ -165,7 +172,11 @@ class _Library:
         return fn()
 
     def fn(self, name, restype, *argtypes):
-        f = getattr(self.dll, name + self._suffix if name in _ABI_NAMED else name)
+        if name in _ABI_SET_NAMED:
+            name += self._set_suffix
+        elif name in _ABI_NAMED:
+            name += self._suffix
+        f = getattr(self.dll, name)
         f.restype = restype
         f.argtypes = list(argtypes)
         return f
