@@ -263,8 +263,8 @@ typedef struct {
     ladrc_actuator_t act;         /**< actuator model (used when model is 1) */
     uint8_t model;                /**< 1: motor_tau_s > 0 or delay_ticks > 0 (LADRC family, INDI) */
     uint8_t wrap;                 /**< wrap_angle */
-    uint32_t consecutive_faults;  /**< ticks in a row with LADRC_FAULT_INPUT or _STATE */
     ladrc_fault_t faults;         /**< flags of the latest tick */
+    uint32_t consecutive_faults;  /**< ticks in a row with LADRC_FAULT_INPUT or _STATE */
 } ladrc_axis_t;
 
 /**
