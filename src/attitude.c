@@ -16,8 +16,6 @@ void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t
     LADRC_ASSERT(cfg != NULL);
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
         ladrc_axis_config_default(&cfg->axis[i], variant, dt_s, inertia_kg_m2[i]);
-        /* HP axes fit on different ticks, so one tick carries at most one fit. */
-        cfg->axis[i].hp_fit_phase = (uint16_t)(i % cfg->axis[i].hp_fit_decimation);
         cfg->inertia_kg_m2[i] = inertia_kg_m2[i];
     }
     cfg->axis[LADRC_YAW].wrap_angle = 1u; /* yaw lives on a circle, roll and pitch do not */
@@ -74,6 +72,12 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
             }
             return status;
         }
+#if LADRC_WITH_HP_MLADRC
+        if (cfg->axis[i].variant == LADRC_VARIANT_HP_MLADRC) {
+            /* HP axes fit on different ticks, so one tick carries at most one fit. */
+            axis_hp_stagger(&att->axis[i], i);
+        }
+#endif
         if ((cfg->axis[i].variant == LADRC_VARIANT_PID) || (cfg->axis[i].variant == LADRC_VARIANT_CASCADED)) {
             att->observers = 0u; /* set_applied must reach its integrator */
         }
@@ -191,16 +195,16 @@ void ladrc_attitude_set_applied(ladrc_attitude_t *att, const ladrc_real_t torque
     const ladrc_real_t t1 = torque_Nm[1];
     const ladrc_real_t t2 = torque_Nm[2];
     ladrc_axis_t *ax = att->axis;
-    if (att->observers && ladrc_within(t0, ax[0].applied_limit_Nm) && ladrc_within(t1, ax[1].applied_limit_Nm) &&
-        ladrc_within(t2, ax[2].applied_limit_Nm)) {
-        /* The common case straight into the axes (all they do with a finite
-         * torque when they have no PID to tell). */
-        ax[0].applied_Nm = t0;
-        ax[1].applied_Nm = t1;
-        ax[2].applied_Nm = t2;
+    if (att->observers && axis_applied_plausible(&ax[0], t0) && axis_applied_plausible(&ax[1], t1) &&
+        axis_applied_plausible(&ax[2], t2)) {
+        /* No axis has an integrator to tell and every torque is plausible:
+         * all that ladrc_axis_set_applied would do. */
+        axis_put_applied(&ax[0], t0);
+        axis_put_applied(&ax[1], t1);
+        axis_put_applied(&ax[2], t2);
     } else {
         for (unsigned i = 0; i < LADRC_AXES; ++i) {
-            ladrc_axis_set_applied(&att->axis[i], torque_Nm[i]);
+            ladrc_axis_set_applied(&ax[i], torque_Nm[i]);
         }
     }
 }

@@ -59,6 +59,12 @@ void axis_pid_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm);
 AXIS_VARIANT_FUNCTIONS(cascaded)
 void axis_cascaded_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm);
 #endif
+#if LADRC_WITH_HP_MLADRC
+/** Moves an initialised HP-MLADRC axis's fit to tick phase (modulo the
+ *  block) of each fit block: the attitude layer gives axis i phase i, so
+ *  that one tick carries at most one fit. */
+void axis_hp_stagger(ladrc_axis_t *axis, unsigned phase);
+#endif
 #if LADRC_WITH_INDI
 AXIS_VARIANT_FUNCTIONS(indi)
 ladrc_real_t axis_indi_accel(const ladrc_axis_t *axis);
@@ -168,6 +174,20 @@ static inline ladrc_real_t axis_advance_actuator(ladrc_axis_t *axis)
     }
     act->lag_Nm += act->alpha * (v - act->lag_Nm);
     return mean;
+}
+
+/** ladrc_axis_set_applied's test of a torque: plausible when finite and
+ *  within +-applied_limit_Nm. */
+static inline int axis_applied_plausible(const ladrc_axis_t *axis, ladrc_real_t torque_Nm)
+{
+    return ladrc_within(torque_Nm, axis->applied_limit_Nm);
+}
+
+/** All of ladrc_axis_set_applied for a plausible torque on a variant with no
+ *  integrator to tell (not PID, not CASCADED): the attitude layer's path. */
+static inline void axis_put_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
+{
+    axis->applied_Nm = torque_Nm;
 }
 
 /** The command's bounds (axis.c): u_min_Nm..u_max_Nm inside

@@ -319,7 +319,7 @@ static void desaturate(const ladrc_mixer_t *mx, ladrc_real_t w2[4])
 /* 1 when every w^2 lies within [w2_min, w2_max]: nothing to limit. NaN fails
  * every comparison, and in ideal mode the bounds are -+REAL_MAX/4, so this is
  * also the step's finiteness test of the allocation. */
-static int in_range(const ladrc_mixer_t *mx, const ladrc_real_t w2[4])
+ALWAYS_INLINE static inline int in_range(const ladrc_mixer_t *mx, const ladrc_real_t w2[4])
 {
     const ladrc_real_t lo = mx->w2_min_rad2_s2;
     const ladrc_real_t hi = mx->w2_max_rad2_s2;
@@ -492,11 +492,8 @@ ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N,
         const ladrc_real_t f[4] = {thrust_N, torque_Nm[0], torque_Nm[1], torque_Nm[2]};
         ladrc_real_t w2[4];
         allocate(mx, thrust_N, &f[1], w2);
-        const ladrc_real_t lo = mx->w2_min_rad2_s2;
-        const ladrc_real_t hi = mx->w2_max_rad2_s2;
-        /* As in_range(): false for NaN, so also the finiteness test. */
-        if ((w2[0] >= lo && w2[0] <= hi) && (w2[1] >= lo && w2[1] <= hi) && (w2[2] >= lo && w2[2] <= hi) &&
-            (w2[3] >= lo && w2[3] <= hi)) {
+        /* in_range() is false for NaN, so also the finiteness test. */
+        if (in_range(mx, w2)) {
             /* The common case: nothing to limit. */
             commit(mx, w2, f, &mx->out);
             faults = LADRC_FAULT_NONE;

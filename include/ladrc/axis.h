@@ -182,8 +182,9 @@ typedef struct {
     ladrc_real_t hp_lambda0_per_s; /**< fastest forgetting of the fit (1/s) */
     ladrc_real_t hp_freq_lambda0_per_s; /**< ONLINE forgetting of the frequency fits (1/s) */
     ladrc_real_t hp_freq_filter_rad_s;  /**< ONLINE derivative filter bandwidth (rad/s) */
-    uint16_t hp_fit_decimation;    /**< ticks per sample of the fit */
-    uint16_t hp_fit_phase;         /**< tick of each such block that fits, < hp_fit_decimation */
+    uint16_t hp_fit_decimation;    /**< ticks per sample of the fit (an axis alone fits on the
+                                        first tick of each block; the attitude layer staggers its
+                                        axes over the block) */
     /* Actuator model (LADRC family; see above), default 0 and 0: none */
     ladrc_real_t motor_tau_s;      /**< first-order lag of the torque (s), 0..LADRC_MOTOR_TAU_MAX_S, 0 = none */
     uint8_t delay_ticks;           /**< transport delay (whole ticks), 0..LADRC_MAX_DELAY_TICKS */
