@@ -115,8 +115,9 @@ static ladrc_real_t feed(const ladrc_attitude_t *att, unsigned i, ladrc_real_t r
 /* Rate z2 and acceleration of one axis (axis_observer_accel, the formula
  * of ladrc_axis_get_accel). A PID, CASCADED or INDI axis has no observer:
  * 0 and 0 (INDI measures the coupling in its acceleration and needs no
- * feed). */
-static AXIS_ALWAYS_INLINE void observed(const ladrc_axis_t *ax, ladrc_real_t *rate, ladrc_real_t *accel)
+ * feed). Forced inline: 28 instructions of the 3-axis HP-MLADRC tick
+ * (2,805.5 with it, 2,833.5 without). */
+static LADRC_FORCE_INLINE void observed(const ladrc_axis_t *ax, ladrc_real_t *rate, ladrc_real_t *accel)
 {
     *rate = LADRC_R(0.0);
     *accel = LADRC_R(0.0);
@@ -149,10 +150,7 @@ static ladrc_real_t known_part(const ladrc_attitude_t *att, unsigned i, ladrc_re
 /* Sets h and the known part of f on each axis from the other axes' rate and
  * acceleration estimates. Kept out of line so that its locals are not on the
  * stack of the axis steps. */
-#if defined(__GNUC__)
-__attribute__((noinline))
-#endif
-static void update_feed(ladrc_attitude_t *att)
+LADRC_NOINLINE static void update_feed(ladrc_attitude_t *att)
 {
     ladrc_real_t w0, w1, w2, a0, a1, a2;
     observed(&att->axis[0], &w0, &a0);

@@ -10,18 +10,9 @@
 #ifndef LADRC_AXIS_INTERNAL_H
 #define LADRC_AXIS_INTERNAL_H
 
+#include "compiler.h"
 #include "ladrc/axis.h"
 
-/* Forces inlining where a measured instruction count says the compiler's
- * choice costs (GCC and Clang; elsewhere a plain inline). Used once: the
- * coupling feed's read of an axis (attitude.c, observed), 28 instructions
- * of the 3-axis HP-MLADRC tick on the Cortex-M4F (-Os: 2,805.5 with it,
- * 2,833.5 without; tools/bench.sh). */
-#if defined(__GNUC__)
-#define AXIS_ALWAYS_INLINE __attribute__((always_inline)) inline
-#else
-#define AXIS_ALWAYS_INLINE inline
-#endif
 
 /* Each variant file defines the functions below for its variant; axis.c
  * dispatches to them with one switch per operation, direct calls (which the
