@@ -467,7 +467,7 @@ ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N,
 
     LADRC_ASSERT(mx != NULL && torque_Nm != NULL);
     if (mx == NULL) {
-        return LADRC_FAULT_NONE;
+        return LADRC_FAULT_STATE; /* no state: as td and levant report it */
     }
     if (torque_Nm != NULL) {
         /* The request: thrust, roll, pitch, yaw. Scalars and local arrays of
