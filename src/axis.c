@@ -125,7 +125,6 @@ void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant
     cfg->hp_freq_lambda0_per_s = AXIS_DEFAULT_HP_FREQ_LAMBDA0_PER_S;
     cfg->hp_freq_filter_rad_s = AXIS_DEFAULT_HP_FREQ_FILTER_RAD_S;
     cfg->hp_fit_decimation = ticks_in(AXIS_DEFAULT_HP_FIT_SAMPLE_S, dt_s);
-    cfg->hp_fit_phase = 0u;
     cfg->motor_tau_s = LADRC_R(0.0);
     cfg->delay_ticks = 0u;
     cfg->wrap_angle = 0u;
@@ -407,12 +406,12 @@ ladrc_real_t ladrc_axis_step_with_rate(ladrc_axis_t *axis, ladrc_real_t ref_rad,
 void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
 {
     LADRC_ASSERT(axis != NULL);
-    if (!ladrc_within(torque_Nm, axis->applied_limit_Nm)) {
+    if (!axis_applied_plausible(axis, torque_Nm)) {
         axis->faults |= LADRC_FAULT_APPLIED;
         axis->applied_Nm = axis->output_Nm;
         return;
     }
-    axis->applied_Nm = torque_Nm;
+    axis_put_applied(axis, torque_Nm);
     switch (axis->variant) {
         CASE_PID(axis_pid_set_applied(axis, torque_Nm))
         CASE_CASCADED(axis_cascaded_set_applied(axis, torque_Nm))

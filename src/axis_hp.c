@@ -16,7 +16,7 @@ ladrc_status_t axis_hp_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
         .freq_filter_rad_s = cfg->hp_freq_filter_rad_s,
         .sample_lag_wo_rad_s = cfg->wo_rad_s, /* the sample comes through this axis's LESO */
         .fit_decimation = cfg->hp_fit_decimation,
-        .fit_phase = cfg->hp_fit_phase,
+        .fit_phase = 0u, /* the first tick of each block; axis_hp_stagger moves it */
         /* the command's tones are advanced over the modelled actuator */
         .act_tau_s = cfg->motor_tau_s,
         .act_delay_ticks = cfg->delay_ticks};
@@ -26,6 +26,12 @@ ladrc_status_t axis_hp_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
     /* The shadow runs with the LESO's gains (initialised just before). */
     ladrc_leso_twin_reset(&axis->part.hp.shadow, LADRC_R(0.0));
     return ladrc_hp_init(&axis->part.hp.est, &hp);
+}
+
+void axis_hp_stagger(ladrc_axis_t *axis, unsigned phase)
+{
+    ladrc_hp_estimator_t *est = &axis->part.hp.est;
+    est->fit_phase = (uint16_t)(phase % est->fit_decimation); /* fit_decimation >= 1 (init) */
 }
 
 void axis_hp_restart(ladrc_axis_t *axis)

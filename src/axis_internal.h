@@ -10,18 +10,9 @@
 #ifndef LADRC_AXIS_INTERNAL_H
 #define LADRC_AXIS_INTERNAL_H
 
+#include "compiler.h"
 #include "ladrc/axis.h"
 
-/* Forces inlining where a measured instruction count says the compiler's
- * choice costs (GCC and Clang; elsewhere a plain inline). Used once: the
- * coupling feed's read of an axis (attitude.c, observed), 28 instructions
- * of the 3-axis HP-MLADRC tick on the Cortex-M4F (-Os: 2,805.5 with it,
- * 2,833.5 without; tools/bench.sh). */
-#if defined(__GNUC__)
-#define AXIS_ALWAYS_INLINE __attribute__((always_inline)) inline
-#else
-#define AXIS_ALWAYS_INLINE inline
-#endif
 
 /* Each variant file defines the functions below for its variant; axis.c
  * dispatches to them with one switch per operation, direct calls (which the
@@ -58,6 +49,12 @@ void axis_pid_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm);
 #if LADRC_WITH_CASCADED
 AXIS_VARIANT_FUNCTIONS(cascaded)
 void axis_cascaded_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm);
+#endif
+#if LADRC_WITH_HP_MLADRC
+/** Moves an initialised HP-MLADRC axis's fit to tick phase (modulo the
+ *  block) of each fit block: the attitude layer gives axis i phase i, so
+ *  that one tick carries at most one fit. */
+void axis_hp_stagger(ladrc_axis_t *axis, unsigned phase);
 #endif
 #if LADRC_WITH_INDI
 AXIS_VARIANT_FUNCTIONS(indi)
@@ -168,6 +165,20 @@ static inline ladrc_real_t axis_advance_actuator(ladrc_axis_t *axis)
     }
     act->lag_Nm += act->alpha * (v - act->lag_Nm);
     return mean;
+}
+
+/** ladrc_axis_set_applied's test of a torque: plausible when finite and
+ *  within +-applied_limit_Nm. */
+static inline int axis_applied_plausible(const ladrc_axis_t *axis, ladrc_real_t torque_Nm)
+{
+    return ladrc_within(torque_Nm, axis->applied_limit_Nm);
+}
+
+/** All of ladrc_axis_set_applied for a plausible torque on a variant with no
+ *  integrator to tell (not PID, not CASCADED): the attitude layer's path. */
+static inline void axis_put_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
+{
+    axis->applied_Nm = torque_Nm;
 }
 
 /** The command's bounds (axis.c): u_min_Nm..u_max_Nm inside

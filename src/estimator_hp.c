@@ -4,6 +4,8 @@
  * checks the frequencies themselves (see estimator.h). */
 #include "ladrc/estimator.h"
 
+#include "compiler.h"
+
 #define HP_PI LADRC_R(3.14159265358979)
 /* Largest sample the fit takes (rad/s^2): a hundred times the largest
  * angular acceleration a multirotor reaches, so squares and fifth
@@ -90,13 +92,9 @@ enum { SPEC_11 = 0, SPEC_31, SPEC_33, SPEC_51, SPEC_53, SPEC_55, SPEC_COUNT };
 #error "the online frequency fit resolves one or two tones: LADRC_HP_MAX_TONES must be 1 or 2"
 #endif
 
-/* Kept out of line so that the rarely taken paths' locals are not on the
- * stack of the path through the RLS update, the deepest of a tick. */
-#if defined(__GNUC__)
-#define HP_OUT_OF_LINE __attribute__((noinline))
-#else
-#define HP_OUT_OF_LINE
-#endif
+/* The rarely taken paths below (LADRC_NOINLINE) are kept out of line so
+ * that their locals are not on the stack of the path through the RLS
+ * update, the deepest of a tick. */
 
 static unsigned theta_a(unsigned k) { return 1u + 2u * k; }
 
@@ -310,10 +308,7 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
 /* The fitted phasor (a - j b) of a tone turned and scaled by (re + j im),
  * real part at the tone's current phase psi. Inlined into both readers: a
  * call per tone and tick would cost more than the product. */
-#if defined(__GNUC__)
-__attribute__((always_inline))
-#endif
-static inline ladrc_real_t tone_turned(const ladrc_hp_tone_t *tone, ladrc_real_t a, ladrc_real_t b, ladrc_real_t re,
+static LADRC_FORCE_INLINE ladrc_real_t tone_turned(const ladrc_hp_tone_t *tone, ladrc_real_t a, ladrc_real_t b, ladrc_real_t re,
                                 ladrc_real_t im)
 {
     const ladrc_real_t x = a * re + b * im;
@@ -442,7 +437,7 @@ static unsigned nearest_tone(const ladrc_hp_estimator_t *est, ladrc_real_t w)
  * values (and, unless locked, takes the frequency found for it); a new one
  * starts at its frequency with zero amplitude. Called from ladrc_hp_step,
  * beside the RLS update, to keep the stack of a tick shallow. */
-HP_OUT_OF_LINE static void restart_tones(ladrc_hp_estimator_t *est, unsigned n)
+LADRC_NOINLINE static void restart_tones(ladrc_hp_estimator_t *est, unsigned n)
 {
     const ladrc_real_t *w = est->found_rad_s;
     ladrc_real_t theta[LADRC_RLS_MAX_PARAMS];
@@ -612,7 +607,7 @@ static unsigned clean_tones(const ladrc_hp_estimator_t *est, ladrc_real_t w[LADR
  * frequencies found), 0 if none: a clean model with another number of
  * tones (after TONE_HOLD_S without such a change), or a tone not locked
  * that jumped. */
-HP_OUT_OF_LINE static unsigned update_frequencies(ladrc_hp_estimator_t *est, ladrc_real_t sample)
+LADRC_NOINLINE static unsigned update_frequencies(ladrc_hp_estimator_t *est, ladrc_real_t sample)
 {
     update_spectrum(est, sample);
     /* The model is judged every SPEC_DECIDE-th fit sample: its averages
@@ -661,7 +656,7 @@ HP_OUT_OF_LINE static unsigned update_frequencies(ladrc_hp_estimator_t *est, lad
 
 /* After the RLS took a fit sample: per tone its slip and lock, the gate and
  * the fit's memory (the ONLINE frequencies follow). */
-HP_OUT_OF_LINE static void after_fit(ladrc_hp_estimator_t *est, ladrc_real_t sample, int changing)
+LADRC_NOINLINE static void after_fit(ladrc_hp_estimator_t *est, ladrc_real_t sample, int changing)
 {
     const ladrc_real_t *theta = ladrc_rls_get_theta(&est->fit);
     const ladrc_real_t t = est->fit_period_s;

@@ -6,6 +6,8 @@
  */
 #include "ladrc/mixer.h"
 
+#include "compiler.h"
+
 #include <float.h>
 #include <stddef.h>
 
@@ -34,13 +36,6 @@
 /* Just below pi/2 in both builds (float rounds pi/2 itself upwards). */
 #define HALF_PI_BELOW LADRC_R(1.5707963)
 
-/* Inlined even at -Os: on the step's common path a call costs as much as the work. */
-#if defined(__GNUC__)
-#define ALWAYS_INLINE __attribute__((always_inline))
-#else
-#define ALWAYS_INLINE
-#endif
-
 /* 1 if the four values are all finite (one comparison, types.h). */
 static int all_finite(const ladrc_real_t v[4])
 {
@@ -48,20 +43,14 @@ static int all_finite(const ladrc_real_t v[4])
 }
 
 /* Out of line (min4, max4): only the limits need them, four times. */
-#if defined(__GNUC__)
-__attribute__((noinline))
-#endif
-static ladrc_real_t min4(const ladrc_real_t v[4])
+LADRC_NOINLINE static ladrc_real_t min4(const ladrc_real_t v[4])
 {
     const ladrc_real_t a = (v[0] < v[1]) ? v[0] : v[1];
     const ladrc_real_t b = (v[2] < v[3]) ? v[2] : v[3];
     return (a < b) ? a : b;
 }
 
-#if defined(__GNUC__)
-__attribute__((noinline))
-#endif
-static ladrc_real_t max4(const ladrc_real_t v[4])
+LADRC_NOINLINE static ladrc_real_t max4(const ladrc_real_t v[4])
 {
     const ladrc_real_t a = (v[0] > v[1]) ? v[0] : v[1];
     const ladrc_real_t b = (v[2] > v[3]) ? v[2] : v[3];
@@ -213,7 +202,7 @@ ladrc_real_t ladrc_mixer_thrust_from_tilt(const ladrc_mixer_t *mx, ladrc_real_t 
 
 /* Allocation without argument checks (see ladrc_mixer_allocate); inlined so
  * that the step's common case keeps its w^2 in registers. */
-ALWAYS_INLINE static inline void allocate(const ladrc_mixer_t *mx, ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
+static LADRC_FORCE_INLINE void allocate(const ladrc_mixer_t *mx, ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
                      ladrc_real_t w2[4])
 {
     const ladrc_real_t a4 = thrust_N * mx->a4_per_N;
@@ -237,7 +226,7 @@ void ladrc_mixer_allocate(const ladrc_mixer_t *mx, ladrc_real_t thrust_N,
 
 /* The forward model (mixer.h), the one place it is written; no argument checks:
  * f = {thrust (N), roll, pitch, yaw torque (N m)} of the w^2 in w. */
-ALWAYS_INLINE static inline void forward(const ladrc_mixer_t *mx, const ladrc_real_t w[4], ladrc_real_t f[4])
+static LADRC_FORCE_INLINE void forward(const ladrc_mixer_t *mx, const ladrc_real_t w[4], ladrc_real_t f[4])
 {
     f[0] = mx->kL_N_s2 * ((w[0] + w[2]) + (w[1] + w[3]));
     f[1] = mx->lkL_Nm_s2 * (w[1] - w[3]);
@@ -319,7 +308,7 @@ static void desaturate(const ladrc_mixer_t *mx, ladrc_real_t w2[4])
 /* 1 when every w^2 lies within [w2_min, w2_max]: nothing to limit. NaN fails
  * every comparison, and in ideal mode the bounds are -+REAL_MAX/4, so this is
  * also the step's finiteness test of the allocation. */
-static int in_range(const ladrc_mixer_t *mx, const ladrc_real_t w2[4])
+static LADRC_FORCE_INLINE int in_range(const ladrc_mixer_t *mx, const ladrc_real_t w2[4])
 {
     const ladrc_real_t lo = mx->w2_min_rad2_s2;
     const ladrc_real_t hi = mx->w2_max_rad2_s2;
@@ -350,7 +339,7 @@ static void limit_request(const ladrc_mixer_t *mx, const ladrc_real_t f[4], ladr
 }
 
 /* Writes rotor i of a good mix: w^2 and w = sqrt(max(w^2, 0)). */
-ALWAYS_INLINE static inline void put_rotor(ladrc_mixer_output_t *out, int i, ladrc_real_t w2)
+static LADRC_FORCE_INLINE void put_rotor(ladrc_mixer_output_t *out, int i, ladrc_real_t w2)
 {
     out->w2_rad2_s2[i] = w2;
     out->w_rad_s[i] = (w2 > LADRC_R(0.0)) ? ladrc_sqrt(w2) : LADRC_R(0.0);
@@ -358,7 +347,7 @@ ALWAYS_INLINE static inline void put_rotor(ladrc_mixer_output_t *out, int i, lad
 
 /* One axis of the report: the request where the rotors give it within tol, with
  * no bit; the rotors' value (got) and the axis' bit otherwise. */
-ALWAYS_INLINE static inline uint8_t report(ladrc_real_t got, ladrc_real_t requested, ladrc_real_t tol,
+static LADRC_FORCE_INLINE uint8_t report(ladrc_real_t got, ladrc_real_t requested, ladrc_real_t tol,
                                            uint8_t bit, ladrc_real_t *achieved)
 {
     if (ladrc_fabs(got - requested) <= tol) {
@@ -374,7 +363,7 @@ ALWAYS_INLINE static inline uint8_t report(ladrc_real_t got, ladrc_real_t reques
  * where the two agree within the report tolerance (mixer.h); a saturation bit for
  * every axis where they do not. In range, w^2 and the coefficients are bounded
  * (init), so the forward model and the tolerance are finite. */
-ALWAYS_INLINE static inline void commit(const ladrc_mixer_t *mx, const ladrc_real_t w2[4],
+static LADRC_FORCE_INLINE void commit(const ladrc_mixer_t *mx, const ladrc_real_t w2[4],
                                         const ladrc_real_t f[4], ladrc_mixer_output_t *out)
 {
     /* Everything read from mx before out (which may be mx->out) is written. */
@@ -400,10 +389,7 @@ ALWAYS_INLINE static inline void commit(const ladrc_mixer_t *mx, const ladrc_rea
 }
 
 /* commit() out of line, for the paths that limit (flash: one more copy only). */
-#if defined(__GNUC__)
-__attribute__((noinline))
-#endif
-static void commit_cold(const ladrc_mixer_t *mx, const ladrc_real_t w2[4], const ladrc_real_t f[4],
+LADRC_NOINLINE static void commit_cold(const ladrc_mixer_t *mx, const ladrc_real_t w2[4], const ladrc_real_t f[4],
                         ladrc_mixer_output_t *out)
 {
     commit(mx, w2, f, out);
@@ -415,10 +401,7 @@ static void commit_cold(const ladrc_mixer_t *mx, const ladrc_real_t w2[4], const
  * mode (an allocation beyond -+REAL_MAX/4: nothing to cut back to); otherwise the
  * limited request is allocated, desaturated and written to out. Out of line: the
  * step's common case (in range) does not come here. */
-#if defined(__GNUC__)
-__attribute__((noinline))
-#endif
-static ladrc_fault_t mix(const ladrc_mixer_t *mx, const ladrc_real_t f[4], ladrc_mixer_output_t *out)
+LADRC_NOINLINE static ladrc_fault_t mix(const ladrc_mixer_t *mx, const ladrc_real_t f[4], ladrc_mixer_output_t *out)
 {
     ladrc_real_t lim[4];
     ladrc_real_t w2[4];
@@ -484,7 +467,7 @@ ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N,
 
     LADRC_ASSERT(mx != NULL && torque_Nm != NULL);
     if (mx == NULL) {
-        return LADRC_FAULT_NONE;
+        return LADRC_FAULT_STATE; /* no state: as td and levant report it */
     }
     if (torque_Nm != NULL) {
         /* The request: thrust, roll, pitch, yaw. Scalars and local arrays of
@@ -492,11 +475,8 @@ ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N,
         const ladrc_real_t f[4] = {thrust_N, torque_Nm[0], torque_Nm[1], torque_Nm[2]};
         ladrc_real_t w2[4];
         allocate(mx, thrust_N, &f[1], w2);
-        const ladrc_real_t lo = mx->w2_min_rad2_s2;
-        const ladrc_real_t hi = mx->w2_max_rad2_s2;
-        /* As in_range(): false for NaN, so also the finiteness test. */
-        if ((w2[0] >= lo && w2[0] <= hi) && (w2[1] >= lo && w2[1] <= hi) && (w2[2] >= lo && w2[2] <= hi) &&
-            (w2[3] >= lo && w2[3] <= hi)) {
+        /* in_range() is false for NaN, so also the finiteness test. */
+        if (in_range(mx, w2)) {
             /* The common case: nothing to limit. */
             commit(mx, w2, f, &mx->out);
             faults = LADRC_FAULT_NONE;

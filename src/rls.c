@@ -2,6 +2,8 @@
 /* Bounded-gain RLS on the factors P = U D U^T (see rls.h). */
 #include "ladrc/rls.h"
 
+#include "compiler.h"
+
 
 /* Forgetting stops when tr(P) is within this fraction of k0. It is far above
  * the rounding of the trace (about n eps = 5e-7 in float), so without
@@ -17,10 +19,7 @@ static unsigned u_index(unsigned i, unsigned j) { return (j * (j - 1u)) / 2u + i
 
 /* tr(U D U^T) = sum_j D_j (1 + sum_{i<j} U_ij^2). Inline: the update, the
  * deepest function of a tick, calls it. */
-#if defined(__GNUC__)
-__attribute__((always_inline))
-#endif
-static inline ladrc_real_t trace_of(const ladrc_real_t *u, const ladrc_real_t *d, unsigned n)
+static LADRC_FORCE_INLINE ladrc_real_t trace_of(const ladrc_real_t *u, const ladrc_real_t *d, unsigned n)
 {
     ladrc_real_t tr = LADRC_R(0.0);
     for (unsigned j = 0u; j < n; ++j) {
@@ -46,10 +45,7 @@ static ladrc_real_t initial_trace(ladrc_real_t p_initial, unsigned n)
 
 /* P = p_initial I; unused entries zero so that states compare bitwise.
  * Inline: called from the update, the deepest function of a tick. */
-#if defined(__GNUC__)
-__attribute__((always_inline))
-#endif
-static inline void restart_p(ladrc_rls_t *rls)
+static LADRC_FORCE_INLINE void restart_p(ladrc_rls_t *rls)
 {
     for (unsigned k = 0u; k < LADRC_RLS_U_SIZE; ++k) {
         rls->u[k] = LADRC_R(0.0);
@@ -131,10 +127,7 @@ ladrc_status_t ladrc_rls_restart(ladrc_rls_t *rls, uint8_t n_params, const ladrc
 
 /* The update for n parameters, inlined into ladrc_rls_update: where n is a
  * constant the compiler lays the loops out flat (one formula, written once). */
-#if defined(__GNUC__)
-__attribute__((always_inline))
-#endif
-static inline ladrc_fault_t update_n(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_real_t y, const unsigned n)
+static LADRC_FORCE_INLINE ladrc_fault_t update_n(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_real_t y, const unsigned n)
 {
     int finite = ladrc_is_finite(y);
     for (unsigned i = 0u; i < n; ++i) {

@@ -17,3 +17,7 @@ size_t ladrc_sizeof_mixer_config_t(void) { return sizeof(ladrc_mixer_config_t); 
 size_t ladrc_sizeof_mixer_output_t(void) { return sizeof(ladrc_mixer_output_t); }
 size_t ladrc_sizeof_ref_t(void) { return sizeof(ladrc_ref_t); }
 size_t ladrc_hp_max_tones(void) { return LADRC_HP_MAX_TONES; }
+
+#define SIZES_STRING_(x) #x
+#define SIZES_STRING(x) SIZES_STRING_(x)
+const char *ladrc_abi_set(void) { return SIZES_STRING(LADRC_ABI_SET_); }

@@ -423,10 +423,16 @@ static void test_default_axes_fit_their_hp_models_on_different_ticks(void)
     ladrc_attitude_config_default(&cfg, LADRC_VARIANT_HP_MLADRC, (ladrc_real_t)DT_S, inertia, drag_Nms);
     for (unsigned a = 0; a < LADRC_AXES; ++a) {
         TEST_ASSERT_EQUAL_INT(4, cfg.axis[a].hp_fit_decimation); /* 4 ms at 1 kHz */
-        TEST_ASSERT_EQUAL_INT((int)a, cfg.axis[a].hp_fit_phase);
     }
     ladrc_attitude_t att;
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_attitude_init(&att, &cfg, NULL));
+    for (unsigned a = 0; a < LADRC_AXES; ++a) {
+        TEST_ASSERT_EQUAL_INT((int)a, att.axis[a].part.hp.est.fit_phase);
+    }
+    /* An axis alone fits on the first tick of each block. */
+    ladrc_axis_t alone;
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&alone, &cfg.axis[2]));
+    TEST_ASSERT_EQUAL_INT(0, alone.part.hp.est.fit_phase);
 }
 
 int main(void)

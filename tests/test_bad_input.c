@@ -254,7 +254,6 @@ static tally_t run_attitude(ladrc_variant_t v, long n)
     ladrc_attitude_config_default(&cfg, v, (ladrc_real_t)DT_S, j, (ladrc_real_t)body.drag_Nms);
     for (int i = 0; i < 3; ++i) {
         setup_axis_config(&cfg.axis[i], v, i);
-        cfg.axis[i].hp_fit_phase = (uint16_t)(i % cfg.axis[i].hp_fit_decimation);
     }
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_attitude_init(&att, &cfg, NULL));
     ladrc_axis_t before[3];

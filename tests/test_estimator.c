@@ -44,7 +44,7 @@ static ladrc_hp_config_t hp_config(ladrc_hp_freq_mode_t mode, double freq)
                              .freq_filter_rad_s = axis.hp_freq_filter_rad_s,
                              .sample_lag_wo_rad_s = 0.0f,
                              .fit_decimation = axis.hp_fit_decimation,
-                             .fit_phase = axis.hp_fit_phase};
+                             .fit_phase = 0u};
     for (unsigned k = 0; k < LADRC_HP_MAX_TONES; ++k) {
         cfg.freq_rad_s[k] = axis.hp_freq_rad_s[k];
     }

@@ -34,10 +34,25 @@ static void test_the_real_size_matches_the_build(void)
 #endif
 }
 
+static void test_the_abi_set_names_every_variant_and_shaper_of_the_build(void)
+{
+    char expected[] = "_v000000_s00";
+    const int with[] = {LADRC_WITH_LADRC, LADRC_WITH_LP_MLADRC, LADRC_WITH_HP_MLADRC, LADRC_WITH_PID,
+                        LADRC_WITH_CASCADED, LADRC_WITH_INDI};
+    size_t i;
+    for (i = 0u; i < sizeof with / sizeof with[0]; ++i) {
+        expected[2u + i] = (char)('0' + with[i]);
+    }
+    expected[10] = (char)('0' + LADRC_WITH_TD);
+    expected[11] = (char)('0' + LADRC_WITH_LEVANT);
+    TEST_ASSERT_EQUAL_STRING(expected, ladrc_abi_set());
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_every_reported_size_is_the_sizeof_of_its_type);
     RUN_TEST(test_the_real_size_matches_the_build);
+    RUN_TEST(test_the_abi_set_names_every_variant_and_shaper_of_the_build);
     return UNITY_END();
 }

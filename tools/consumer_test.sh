@@ -10,7 +10,9 @@
 #               (when it is a git checkout) and with FETCHCONTENT_SOURCE_DIR_LADRC
 #   make        include/ and src/ copied into a plain Makefile project (-lm)
 #   abi         a library built with LADRC_REAL_DOUBLE and an application built
-#               without it (and the reverse) must fail to link; matching ones link
+#               without it (and the reverse) must fail to link; matching ones link;
+#               likewise an HP-MLADRC + Levant library and an application built
+#               for every variant (and the reverse)
 # Usage: tools/consumer_test.sh [WORKDIR]   (default build/consumer)
 set -euo pipefail
 
@@ -117,5 +119,22 @@ if abi_link "$work/prefix" "-DLADRC_REAL_DOUBLE"; then
 fi
 grep -q "ladrc_attitude_init_double" "$work/abi.log"
 log "abi: mismatches fail to link naming the real type, matching builds link and run"
+
+log "abi: variant set of the library against the application's"
+install_ladrc hp "$work/prefix-hp" "-DLADRC_VARIANTS=HP_MLADRC" "-DLADRC_SHAPERS=LEVANT"
+hp_flags="-DLADRC_WITH_LADRC=0 -DLADRC_WITH_LP_MLADRC=0 -DLADRC_WITH_PID=0 -DLADRC_WITH_CASCADED=0"
+hp_flags+=" -DLADRC_WITH_INDI=0 -DLADRC_WITH_TD=0"
+abi_link "$work/prefix-hp" "$hp_flags"
+if abi_link "$work/prefix-hp" ""; then
+  echo "error: an all-variants application linked against an HP-MLADRC-only library" >&2
+  exit 1
+fi
+grep -q "ladrc_attitude_init_float_v111111_s11" "$work/abi.log"
+if abi_link "$work/prefix" "$hp_flags"; then
+  echo "error: an HP-MLADRC-only application linked against an all-variants library" >&2
+  exit 1
+fi
+grep -q "ladrc_attitude_init_float_v001000_s01" "$work/abi.log"
+log "abi: variant-set mismatches fail to link naming the set, a matching build links"
 
 echo "consumer tests: all passed"

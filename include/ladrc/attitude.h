@@ -58,8 +58,7 @@ typedef struct {
 /**
  * Fills cfg with ladrc_axis_config_default for each axis (inertia from
  * inertia_kg_m2), the given drag and the feed on, wrap_angle on for yaw
- * (off for roll and pitch); axis i fits its HP model on
- * phase i of the fit blocks (hp_fit_phase), spreading that work over ticks.
+ * (off for roll and pitch).
  */
 void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t variant,
                                    ladrc_real_t dt_s, const ladrc_real_t inertia_kg_m2[LADRC_AXES],

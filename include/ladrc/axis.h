@@ -105,41 +105,7 @@ extern "C" {
 
 /* LADRC_MAX_DELAY_TICKS and LADRC_MOTOR_TAU_MAX_S: types.h (the HP estimator advances over them too). */
 
-/*
- * Variants and shapers built (1) or left out (0). The CMake list options
- * LADRC_VARIANTS (default: all six) and LADRC_SHAPERS (default: TD;LEVANT)
- * define those left out as 0 for the library and everything that links it,
- * so that e.g. an HP-MLADRC firmware carries no PID, CASCADED, INDI, LP or
- * TD code and its axis state no space for them; init refuses a variant or
- * shaper left out with LADRC_ERR_VARIANT_NOT_BUILT / _SHAPER_NOT_BUILT.
- * Without CMake everything is built unless defined 0 here; a library and
- * the code using it must see the same definitions (the state's layout
- * depends on them).
- */
-#ifndef LADRC_WITH_LADRC
-#define LADRC_WITH_LADRC 1
-#endif
-#ifndef LADRC_WITH_LP_MLADRC
-#define LADRC_WITH_LP_MLADRC 1
-#endif
-#ifndef LADRC_WITH_HP_MLADRC
-#define LADRC_WITH_HP_MLADRC 1
-#endif
-#ifndef LADRC_WITH_PID
-#define LADRC_WITH_PID 1
-#endif
-#ifndef LADRC_WITH_CASCADED
-#define LADRC_WITH_CASCADED 1
-#endif
-#ifndef LADRC_WITH_INDI
-#define LADRC_WITH_INDI 1
-#endif
-#ifndef LADRC_WITH_TD
-#define LADRC_WITH_TD 1
-#endif
-#ifndef LADRC_WITH_LEVANT
-#define LADRC_WITH_LEVANT 1
-#endif
+/* LADRC_WITH_<NAME>, the variants and shapers built: types.h (the ABI guard reads them). */
 
 typedef enum {
     LADRC_VARIANT_LADRC = 0,    /**< traditional LADRC: TD + LESO + control law */
@@ -216,8 +182,9 @@ typedef struct {
     ladrc_real_t hp_lambda0_per_s; /**< fastest forgetting of the fit (1/s) */
     ladrc_real_t hp_freq_lambda0_per_s; /**< ONLINE forgetting of the frequency fits (1/s) */
     ladrc_real_t hp_freq_filter_rad_s;  /**< ONLINE derivative filter bandwidth (rad/s) */
-    uint16_t hp_fit_decimation;    /**< ticks per sample of the fit */
-    uint16_t hp_fit_phase;         /**< tick of each such block that fits, < hp_fit_decimation */
+    uint16_t hp_fit_decimation;    /**< ticks per sample of the fit (an axis alone fits on the
+                                        first tick of each block; the attitude layer staggers its
+                                        axes over the block) */
     /* Actuator model (LADRC family; see above), default 0 and 0: none */
     ladrc_real_t motor_tau_s;      /**< first-order lag of the torque (s), 0..LADRC_MOTOR_TAU_MAX_S, 0 = none */
     uint8_t delay_ticks;           /**< transport delay (whole ticks), 0..LADRC_MAX_DELAY_TICKS */
@@ -297,8 +264,8 @@ typedef struct {
     ladrc_actuator_t act;         /**< actuator model (used when model is 1) */
     uint8_t model;                /**< 1: motor_tau_s > 0 or delay_ticks > 0 (LADRC family, INDI) */
     uint8_t wrap;                 /**< wrap_angle */
-    uint32_t consecutive_faults;  /**< ticks in a row with LADRC_FAULT_INPUT or _STATE */
     ladrc_fault_t faults;         /**< flags of the latest tick */
+    uint32_t consecutive_faults;  /**< ticks in a row with LADRC_FAULT_INPUT or _STATE */
 } ladrc_axis_t;
 
 /**

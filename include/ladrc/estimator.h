@@ -228,8 +228,8 @@ typedef struct {
     uint16_t engaged;                /**< fit samples in a row with the weight at 1 */
     uint16_t spec_restart_left;      /**< ONLINE: fit samples until the frequency fit's averages restart */
     uint16_t spec_count;             /**< ONLINE: fit samples in the frequency fit's averages since their start */
-    uint8_t spec_decide;             /**< ONLINE: fit samples since the frequency fit's model was last judged */
     uint16_t hold;                   /**< ONLINE: fit samples since the last tone started or stopped */
+    uint8_t spec_decide;             /**< ONLINE: fit samples since the frequency fit's model was last judged */
     uint8_t n_tones, n_active;
     uint8_t online;
     uint8_t clean;                   /**< ONLINE: the frequency fit sees as many clean tones as are active */

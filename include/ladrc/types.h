@@ -67,23 +67,75 @@ typedef float ladrc_real_t;
 #endif
 
 /*
+ * Variants and shapers built (1) or left out (0). The CMake list options
+ * LADRC_VARIANTS (default: all six) and LADRC_SHAPERS (default: TD;LEVANT)
+ * define those left out as 0 for the library and everything that links it,
+ * so that e.g. an HP-MLADRC firmware carries no PID, CASCADED, INDI, LP or
+ * TD code and its axis state no space for them; init refuses a variant or
+ * shaper left out with LADRC_ERR_VARIANT_NOT_BUILT / _SHAPER_NOT_BUILT.
+ * Without CMake everything is built unless defined 0 (or 1, nothing else)
+ * before this header; a library and the code using it must see the same
+ * definitions (the state's layout depends on them: the ABI guard below).
+ */
+#ifndef LADRC_WITH_LADRC
+#define LADRC_WITH_LADRC 1
+#endif
+#ifndef LADRC_WITH_LP_MLADRC
+#define LADRC_WITH_LP_MLADRC 1
+#endif
+#ifndef LADRC_WITH_HP_MLADRC
+#define LADRC_WITH_HP_MLADRC 1
+#endif
+#ifndef LADRC_WITH_PID
+#define LADRC_WITH_PID 1
+#endif
+#ifndef LADRC_WITH_CASCADED
+#define LADRC_WITH_CASCADED 1
+#endif
+#ifndef LADRC_WITH_INDI
+#define LADRC_WITH_INDI 1
+#endif
+#ifndef LADRC_WITH_TD
+#define LADRC_WITH_TD 1
+#endif
+#ifndef LADRC_WITH_LEVANT
+#define LADRC_WITH_LEVANT 1
+#endif
+
+/*
  * ABI guard. The functions every user of a module calls (the inits, the
  * config defaults and the tuning helpers) carry the real type in their
- * symbol names: ladrc_axis_init is ladrc_axis_init_float, or
- * ladrc_axis_init_double with LADRC_REAL_DOUBLE. A library built with one
- * real type and an application built with the other fail to link
- * ("undefined reference to ladrc_axis_init_double") instead of passing
- * floats where doubles are read. Call the functions by their plain names.
+ * symbol names: ladrc_pid_init is ladrc_pid_init_float, or
+ * ladrc_pid_init_double with LADRC_REAL_DOUBLE. Those of the axis and the
+ * attitude controller, whose states' layout depends on the variants built,
+ * carry the variant and shaper set as well: _v then LADRC_WITH_ of LADRC,
+ * LP_MLADRC, HP_MLADRC, PID, CASCADED, INDI, then _s then those of TD,
+ * LEVANT (ladrc_axis_init_float_v111111_s11 for everything built,
+ * ladrc_axis_init_float_v001000_s01 for HP-MLADRC + Levant). A library and
+ * an application built with another real type or variant set fail to link
+ * ("undefined reference to ladrc_axis_init_float_v111111_s11") instead of
+ * reading misplaced fields. Call the functions by their plain names.
  */
+#define LADRC_ABI_CAT_(a, b) a##b
+#define LADRC_ABI_CAT(a, b) LADRC_ABI_CAT_(a, b)
 #ifdef LADRC_REAL_DOUBLE
-#define LADRC_ABI_NAME_(name) name##_double
+#define LADRC_ABI_REAL_ _double
 #else
-#define LADRC_ABI_NAME_(name) name##_float
+#define LADRC_ABI_REAL_ _float
 #endif
-#define ladrc_attitude_config_default LADRC_ABI_NAME_(ladrc_attitude_config_default)
-#define ladrc_attitude_init LADRC_ABI_NAME_(ladrc_attitude_init)
-#define ladrc_axis_config_default LADRC_ABI_NAME_(ladrc_axis_config_default)
-#define ladrc_axis_init LADRC_ABI_NAME_(ladrc_axis_init)
+#define LADRC_ABI_SET_PASTE_(a, b, c, d, e, f, g, h) _v##a##b##c##d##e##f##_s##g##h
+#define LADRC_ABI_SET_EXPAND_(a, b, c, d, e, f, g, h) LADRC_ABI_SET_PASTE_(a, b, c, d, e, f, g, h)
+/** The variant and shaper set as a symbol-name suffix, e.g. _v111111_s11. */
+#define LADRC_ABI_SET_ \
+    LADRC_ABI_SET_EXPAND_(LADRC_WITH_LADRC, LADRC_WITH_LP_MLADRC, LADRC_WITH_HP_MLADRC, \
+                          LADRC_WITH_PID, LADRC_WITH_CASCADED, LADRC_WITH_INDI, LADRC_WITH_TD, \
+                          LADRC_WITH_LEVANT)
+#define LADRC_ABI_NAME_(name) LADRC_ABI_CAT(name, LADRC_ABI_REAL_)
+#define LADRC_ABI_SET_NAME_(name) LADRC_ABI_CAT(LADRC_ABI_NAME_(name), LADRC_ABI_SET_)
+#define ladrc_attitude_config_default LADRC_ABI_SET_NAME_(ladrc_attitude_config_default)
+#define ladrc_attitude_init LADRC_ABI_SET_NAME_(ladrc_attitude_init)
+#define ladrc_axis_config_default LADRC_ABI_SET_NAME_(ladrc_axis_config_default)
+#define ladrc_axis_init LADRC_ABI_SET_NAME_(ladrc_axis_init)
 #define ladrc_cascaded_init LADRC_ABI_NAME_(ladrc_cascaded_init)
 #define ladrc_hp_init LADRC_ABI_NAME_(ladrc_hp_init)
 #define ladrc_indi_init LADRC_ABI_NAME_(ladrc_indi_init)

@@ -46,6 +46,9 @@ ENUMS = {
 # Functions whose symbol carries the real type (ladrc/types.h, ABI guard).
 _ABI_NAMED = {"ladrc_attitude_config_default", "ladrc_attitude_init", "ladrc_axis_config_default",
               "ladrc_axis_init", "ladrc_mixer_init"}
+# Those that carry the variant and shaper set as well (ladrc/types.h, ABI guard).
+_ABI_SET_NAMED = {"ladrc_attitude_config_default", "ladrc_attitude_init", "ladrc_axis_config_default",
+                  "ladrc_axis_init"}
 
 
 class LadrcError(Exception):
@@ -97,6 +100,10 @@ class _Library:
         else:
             raise LadrcLayoutError(f"{path}: sizeof(ladrc_real_t) = {size}")
         self._suffix = suffix
+        fn = self.dll.ladrc_abi_set
+        fn.restype = ctypes.c_char_p
+        fn.argtypes = []
+        self._set_suffix = suffix + fn().decode()
         fn = self.dll.ladrc_hp_max_tones
         fn.restype = ctypes.c_size_t
         fn.argtypes = []
@@ -123,7 +130,7 @@ class _Library:
                         ("hp_freq_mode", i), ("hp_n_tones", u8), ("hp_freq_rad_s", r * tones),
                         ("hp_freq_min_rad_s", r), ("hp_freq_max_rad_s", r), ("hp_lambda0_per_s", r),
                         ("hp_freq_lambda0_per_s", r), ("hp_freq_filter_rad_s", r),
-                        ("hp_fit_decimation", u16), ("hp_fit_phase", u16),
+                        ("hp_fit_decimation", u16),
                         ("motor_tau_s", r), ("delay_ticks", u8), ("wrap_angle", u8),
                         ("indi_att_kp_per_s", r), ("indi_rate_kp_per_s", r), ("indi_filter_rad_s", r),
                         ("cas_att_kp", r), ("cas_rate_max_rad_s", r), ("cas_rate_kp", r),
@@ -165,7 +172,11 @@ class _Library:
         return fn()
 
     def fn(self, name, restype, *argtypes):
-        f = getattr(self.dll, name + self._suffix if name in _ABI_NAMED else name)
+        if name in _ABI_SET_NAMED:
+            name += self._set_suffix
+        elif name in _ABI_NAMED:
+            name += self._suffix
+        f = getattr(self.dll, name)
         f.restype = restype
         f.argtypes = list(argtypes)
         return f

@@ -41,7 +41,6 @@ static void axis_overrides(ladrc_axis_config_t *cfg)
     cfg->wrap_angle = 1u;
     if (cfg->variant == LADRC_VARIANT_HP_MLADRC) {
         cfg->hp_freq_mode = LADRC_HP_FREQ_ONLINE;
-        cfg->hp_fit_phase = 1u;
     }
     if (cfg->variant == LADRC_VARIANT_PID) {
         cfg->pid_kp = LADRC_R(0.2);

@@ -31,7 +31,7 @@ def axis_dict(variant):
          "wc_rad_s": 18.0, "u_min_Nm": -0.05, "u_max_Nm": 0.05,
          "motor_tau_s": 0.02, "delay_ticks": 2, "wrap_angle": 1}
     if variant == "HP_MLADRC":
-        d.update(hp_freq_mode="ONLINE", hp_fit_phase=1)
+        d.update(hp_freq_mode="ONLINE")
     if variant == "PID":
         d.update(pid_kp=0.2)
     if variant == "INDI":

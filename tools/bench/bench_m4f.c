@@ -279,7 +279,7 @@ static ladrc_hp_config_t hp_config(const ladrc_axis_config_t *c)
                             .freq_filter_rad_s = c->hp_freq_filter_rad_s,
                             .sample_lag_wo_rad_s = c->wo_rad_s,
                             .fit_decimation = c->hp_fit_decimation,
-                            .fit_phase = c->hp_fit_phase};
+                            .fit_phase = 0u}; /* as an axis alone (axis_hp.c) */
     for (unsigned k = 0u; k < LADRC_HP_MAX_TONES; ++k) {
         hp.freq_rad_s[k] = c->hp_freq_rad_s[k];
     }
