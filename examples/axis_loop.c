@@ -18,9 +18,9 @@
 #define DEG (3.14159265358979 / 180.0)
 
 typedef struct {
-    double settling_s;     /* last time |error| > 2% of the step, after the step */
-    double peak_dist_deg;  /* largest |error| after the disturbance starts */
-    double final_err_deg;  /* |error| at the end */
+    double settling_s;    /* last time |error| > 2% of the step, after the step */
+    double peak_dist_deg; /* largest |error| after the disturbance starts */
+    double final_err_deg; /* |error| at the end */
 } result_t;
 
 static int run(ladrc_variant_t variant, result_t *res)
@@ -69,20 +69,17 @@ static int run(ladrc_variant_t variant, result_t *res)
 
 int main(void)
 {
-    const ladrc_variant_t variants[] = {LADRC_VARIANT_LADRC, LADRC_VARIANT_LP_MLADRC,
-                                        LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_PID};
+    const ladrc_variant_t variants[] = {LADRC_VARIANT_LADRC, LADRC_VARIANT_LP_MLADRC, LADRC_VARIANT_HP_MLADRC,
+                                        LADRC_VARIANT_PID};
     const char *const names[] = {"LADRC", "LP-MLADRC", "HP-MLADRC", "PID"};
-    printf("10 deg step at 0.5 s, 8 rad/s^2 disturbance from 1.5 s, |torque| <= %.2f N m\n",
-           (double)TORQUE_LIMIT_NM);
-    printf("%-10s %16s %30s %18s\n", "", "settling 2% (s)", "peak error, disturbance (deg)",
-           "final error (deg)");
+    printf("10 deg step at 0.5 s, 8 rad/s^2 disturbance from 1.5 s, |torque| <= %.2f N m\n", (double)TORQUE_LIMIT_NM);
+    printf("%-10s %16s %30s %18s\n", "", "settling 2% (s)", "peak error, disturbance (deg)", "final error (deg)");
     for (unsigned i = 0; i < 4; ++i) {
         result_t res;
         if (run(variants[i], &res) != 0) {
             return 1;
         }
-        printf("%-10s %16.3f %30.3f %18.5f\n", names[i], res.settling_s, res.peak_dist_deg,
-               res.final_err_deg);
+        printf("%-10s %16.3f %30.3f %18.5f\n", names[i], res.settling_s, res.peak_dist_deg, res.final_err_deg);
     }
     return 0;
 }

@@ -9,9 +9,8 @@
 /* Largest drag / J * dt_s. */
 #define ATTITUDE_DRAG_DT_MAX LADRC_R(2.0)
 
-void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t variant,
-                                   ladrc_real_t dt_s, const ladrc_real_t inertia_kg_m2[LADRC_AXES],
-                                   ladrc_real_t drag_Nms)
+void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t variant, ladrc_real_t dt_s,
+                                   const ladrc_real_t inertia_kg_m2[LADRC_AXES], ladrc_real_t drag_Nms)
 {
     LADRC_ASSERT(cfg != NULL);
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
@@ -23,8 +22,7 @@ void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t
     cfg->coupling_feed = 1u;
 }
 
-ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_config_t *cfg,
-                                   int *failed_axis)
+ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_config_t *cfg, int *failed_axis)
 {
     if (failed_axis != NULL) {
         *failed_axis = -1;
@@ -105,9 +103,8 @@ void ladrc_attitude_reset(ladrc_attitude_t *att, const ladrc_real_t angle_rad[LA
 
 /* h of one axis from the other two axes' rates and accelerations (a, b in
  * roll -> pitch -> yaw -> roll order after the axis). */
-static ladrc_real_t feed(const ladrc_attitude_t *att, unsigned i, ladrc_real_t rate_a,
-                         ladrc_real_t accel_a, ladrc_real_t rate_b, ladrc_real_t accel_b,
-                         ladrc_real_t accel_i)
+static ladrc_real_t feed(const ladrc_attitude_t *att, unsigned i, ladrc_real_t rate_a, ladrc_real_t accel_a,
+                         ladrc_real_t rate_b, ladrc_real_t accel_b, ladrc_real_t accel_i)
 {
     return att->coupling[i] * (accel_a * rate_b + rate_a * accel_b) - att->drag_per_s[i] * accel_i;
 }
@@ -141,8 +138,8 @@ static inline void put_feed(ladrc_attitude_t *att, unsigned i, ladrc_real_t h)
 
 /* The known part of axis i's f from the rates (same order as feed): the
  * coupling product and the drag, whose derivative feed() gives. */
-static ladrc_real_t known_part(const ladrc_attitude_t *att, unsigned i, ladrc_real_t rate_a,
-                               ladrc_real_t rate_b, ladrc_real_t rate_i)
+static ladrc_real_t known_part(const ladrc_attitude_t *att, unsigned i, ladrc_real_t rate_a, ladrc_real_t rate_b,
+                               ladrc_real_t rate_i)
 {
     return att->coupling[i] * rate_a * rate_b - att->drag_per_s[i] * rate_i;
 }
@@ -165,8 +162,8 @@ LADRC_NOINLINE static void update_feed(ladrc_attitude_t *att)
 }
 
 ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
-                                  const ladrc_real_t angle_rad[LADRC_AXES],
-                                  const ladrc_real_t *rate_rad_s, ladrc_real_t torque_Nm[LADRC_AXES])
+                                  const ladrc_real_t angle_rad[LADRC_AXES], const ladrc_real_t *rate_rad_s,
+                                  ladrc_real_t torque_Nm[LADRC_AXES])
 {
     LADRC_ASSERT(att != NULL);
     ladrc_axis_t *ax = att->axis;

@@ -81,8 +81,8 @@ static uint16_t ticks_in(ladrc_real_t period_s, ladrc_real_t dt_s)
     return (ticks >= LADRC_R(1.0) && ticks < LADRC_R(65535.0)) ? (uint16_t)(ticks + LADRC_R(0.5)) : 1u;
 }
 
-void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant,
-                               ladrc_real_t dt_s, ladrc_real_t inertia_kg_m2)
+void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant, ladrc_real_t dt_s,
+                               ladrc_real_t inertia_kg_m2)
 {
     LADRC_ASSERT(cfg != NULL);
     const ladrc_real_t unlimited = (ladrc_real_t)INFINITY;
@@ -113,11 +113,10 @@ void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant
     cfg->lp_lambda0_per_s = AXIS_DEFAULT_LP_LAMBDA0_PER_S;
     cfg->lp_k0_per_s = AXIS_DEFAULT_LP_K0_PER_S;
     cfg->hp_freq_mode = LADRC_HP_FREQ_ONLINE;
-    cfg->hp_n_tones = (uint8_t)(AXIS_DEFAULT_HP_N_TONES < LADRC_HP_MAX_TONES ? AXIS_DEFAULT_HP_N_TONES
-                                                                            : LADRC_HP_MAX_TONES);
+    cfg->hp_n_tones =
+        (uint8_t)(AXIS_DEFAULT_HP_N_TONES < LADRC_HP_MAX_TONES ? AXIS_DEFAULT_HP_N_TONES : LADRC_HP_MAX_TONES);
     for (unsigned k = 0u; k < LADRC_HP_MAX_TONES; ++k) {
-        cfg->hp_freq_rad_s[k] = (k == 0u) ? AXIS_DEFAULT_HP_FREQ_RAD_S
-                                          : AXIS_DEFAULT_HP_FREQ2_RAD_S * (ladrc_real_t)k;
+        cfg->hp_freq_rad_s[k] = (k == 0u) ? AXIS_DEFAULT_HP_FREQ_RAD_S : AXIS_DEFAULT_HP_FREQ2_RAD_S * (ladrc_real_t)k;
     }
     cfg->hp_freq_min_rad_s = AXIS_DEFAULT_HP_FREQ_MIN_RAD_S;
     cfg->hp_freq_max_rad_s = AXIS_DEFAULT_HP_FREQ_MAX_RAD_S;
@@ -144,43 +143,43 @@ void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant
 
 /* 1 for each variant built (LADRC_VARIANTS, axis.h). */
 static const uint8_t variant_built[LADRC_VARIANT_COUNT] = {
-    [LADRC_VARIANT_LADRC] = LADRC_WITH_LADRC,       [LADRC_VARIANT_LP_MLADRC] = LADRC_WITH_LP_MLADRC,
+    [LADRC_VARIANT_LADRC] = LADRC_WITH_LADRC,         [LADRC_VARIANT_LP_MLADRC] = LADRC_WITH_LP_MLADRC,
     [LADRC_VARIANT_HP_MLADRC] = LADRC_WITH_HP_MLADRC, [LADRC_VARIANT_PID] = LADRC_WITH_PID,
-    [LADRC_VARIANT_CASCADED] = LADRC_WITH_CASCADED, [LADRC_VARIANT_INDI] = LADRC_WITH_INDI};
+    [LADRC_VARIANT_CASCADED] = LADRC_WITH_CASCADED,   [LADRC_VARIANT_INDI] = LADRC_WITH_INDI};
 
 /* The dispatch to the variant files (axis_internal.h): one switch per
  * operation, a case per variant built, for an axis whose variant init
  * accepted (a variant left out never gets that far). */
 #if LADRC_WITH_ADRC_FAMILY
-#define CASE_ADRC(call)                                                                            \
-    case LADRC_VARIANT_LADRC:                                                                      \
-    case LADRC_VARIANT_LP_MLADRC:                                                                  \
-    case LADRC_VARIANT_HP_MLADRC:                                                                  \
-        call;                                                                                      \
+#define CASE_ADRC(call)                                                                                                \
+    case LADRC_VARIANT_LADRC:                                                                                          \
+    case LADRC_VARIANT_LP_MLADRC:                                                                                      \
+    case LADRC_VARIANT_HP_MLADRC:                                                                                      \
+        call;                                                                                                          \
         break;
 #else
 #define CASE_ADRC(call)
 #endif
 #if LADRC_WITH_PID
-#define CASE_PID(call)                                                                             \
-    case LADRC_VARIANT_PID:                                                                        \
-        call;                                                                                      \
+#define CASE_PID(call)                                                                                                 \
+    case LADRC_VARIANT_PID:                                                                                            \
+        call;                                                                                                          \
         break;
 #else
 #define CASE_PID(call)
 #endif
 #if LADRC_WITH_CASCADED
-#define CASE_CASCADED(call)                                                                        \
-    case LADRC_VARIANT_CASCADED:                                                                   \
-        call;                                                                                      \
+#define CASE_CASCADED(call)                                                                                            \
+    case LADRC_VARIANT_CASCADED:                                                                                       \
+        call;                                                                                                          \
         break;
 #else
 #define CASE_CASCADED(call)
 #endif
 #if LADRC_WITH_INDI
-#define CASE_INDI(call)                                                                            \
-    case LADRC_VARIANT_INDI:                                                                       \
-        call;                                                                                      \
+#define CASE_INDI(call)                                                                                                \
+    case LADRC_VARIANT_INDI:                                                                                           \
+        call;                                                                                                          \
         break;
 #else
 #define CASE_INDI(call)
@@ -260,8 +259,8 @@ ladrc_status_t axis_actuator_init(ladrc_axis_t *axis, const ladrc_axis_config_t 
         const ladrc_real_t x = cfg->dt_s / tau;
         act->alpha = -ladrc_expm1(-x);
         if (x < AXIS_MEAN_GAIN_SERIES_MAX) {
-            act->mean_gain = x * (LADRC_R(0.5) - x * (LADRC_R(1.0) / LADRC_R(6.0) -
-                                                      x * (LADRC_R(1.0) / LADRC_R(24.0))));
+            act->mean_gain =
+                x * (LADRC_R(0.5) - x * (LADRC_R(1.0) / LADRC_R(6.0) - x * (LADRC_R(1.0) / LADRC_R(24.0))));
         } else {
             act->mean_gain = LADRC_R(1.0) - act->alpha / x;
         }
@@ -361,8 +360,8 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
 
 /* rate_rad_s is read only when has_rate; the rate goes by value so the
  * deepest path (HP) keeps no copy of it on the stack. */
-static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
-                              ladrc_real_t rate_rad_s, int has_rate)
+static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad, ladrc_real_t rate_rad_s,
+                              int has_rate)
 {
     LADRC_ASSERT(axis != NULL);
     ladrc_fault_t faults = LADRC_FAULT_NONE;
@@ -397,8 +396,8 @@ ladrc_real_t ladrc_axis_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_rea
     return step_axis(axis, ref_rad, angle_rad, LADRC_R(0.0), 0);
 }
 
-ladrc_real_t ladrc_axis_step_with_rate(ladrc_axis_t *axis, ladrc_real_t ref_rad,
-                                       ladrc_real_t angle_rad, ladrc_real_t rate_rad_s)
+ladrc_real_t ladrc_axis_step_with_rate(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
+                                       ladrc_real_t rate_rad_s)
 {
     return step_axis(axis, ref_rad, angle_rad, rate_rad_s, 1);
 }
@@ -444,17 +443,23 @@ ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis)
     return accel;
 }
 
-ladrc_fault_t ladrc_axis_get_faults(const ladrc_axis_t *axis) { return axis->faults; }
+ladrc_fault_t ladrc_axis_get_faults(const ladrc_axis_t *axis)
+{
+    return axis->faults;
+}
 
 uint32_t ladrc_axis_get_consecutive_faults(const ladrc_axis_t *axis)
 {
     return axis->consecutive_faults;
 }
 
-void ladrc_axis_get_reference(const ladrc_axis_t *axis, ladrc_ref_t *ref) { *ref = axis->ref; }
+void ladrc_axis_get_reference(const ladrc_axis_t *axis, ladrc_ref_t *ref)
+{
+    *ref = axis->ref;
+}
 
-void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad,
-                             ladrc_real_t *rate_rad_s, ladrc_real_t *disturbance_rad_s2)
+void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad, ladrc_real_t *rate_rad_s,
+                             ladrc_real_t *disturbance_rad_s2)
 {
     switch (axis->variant) {
         CASE_ADRC(axis_adrc_estimate(axis, angle_rad, rate_rad_s, disturbance_rad_s2))

@@ -168,8 +168,8 @@ static void recentre(ladrc_axis_t *axis)
 /* The tick on finite ref and angle; returns the state fault, if any. The
  * estimators' own faults (e.g. a missing rate) only hold their estimate, so
  * they are not reported as axis faults beyond LADRC_FAULT_RATE. */
-ladrc_fault_t axis_adrc_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
-                             ladrc_real_t rate_rad_s, int has_rate)
+ladrc_fault_t axis_adrc_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad, ladrc_real_t rate_rad_s,
+                             int has_rate)
 {
     const ladrc_leso_t *leso = &axis->leso;
     ladrc_ref_t *ref = &axis->ref;
@@ -180,8 +180,7 @@ ladrc_fault_t axis_adrc_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_rea
     }
     /* The LESO must see what really acted: the acting torque and the estimate. */
     const ladrc_real_t acting_Nm = axis_advance_actuator(axis);
-    ladrc_fault_t faults = ladrc_leso_step(&axis->leso, angle_rad, acting_Nm,
-                                           axis->d_hat_rad_s2, axis->f_rate_rad_s3);
+    ladrc_fault_t faults = ladrc_leso_step(&axis->leso, angle_rad, acting_Nm, axis->d_hat_rad_s2, axis->f_rate_rad_s3);
     faults |= axis_shape_reference(axis, ref_rad);
     /* A tick without a rate gives the estimator NaN: a gap. */
     const ladrc_real_t d_hat = estimator_sample(axis, has_rate ? rate_rad_s : (ladrc_real_t)NAN, acting_Nm);
@@ -206,7 +205,10 @@ ladrc_fault_t axis_adrc_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_rea
     return faults;
 }
 
-ladrc_real_t axis_adrc_accel(const ladrc_axis_t *axis) { return axis_observer_accel(axis); }
+ladrc_real_t axis_adrc_accel(const ladrc_axis_t *axis)
+{
+    return axis_observer_accel(axis);
+}
 
 void axis_adrc_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad, ladrc_real_t *rate_rad_s,
                         ladrc_real_t *disturbance_rad_s2)

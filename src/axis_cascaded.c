@@ -37,7 +37,7 @@ void axis_cascaded_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
  * shift is Sterbenz-exact); the error and the angle difference are wrapped
  * by the cascaded module itself. */
 ladrc_fault_t axis_cascaded_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
-                                  ladrc_real_t rate_rad_s, int has_rate)
+                                 ladrc_real_t rate_rad_s, int has_rate)
 {
     if (axis->wrap) {
         ref_rad = ladrc_unwrap_near(ref_rad, axis->ref.r);

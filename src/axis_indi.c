@@ -35,8 +35,8 @@ void axis_indi_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
 /* The tick on finite ref and angle (indi.h); without a rate the command is
  * held and LADRC_FAULT_RATE raised, while the reference, the actuator model
  * and the filters' gap move on with time. Returns the tick's faults. */
-ladrc_fault_t axis_indi_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
-                              ladrc_real_t rate_rad_s, int has_rate)
+ladrc_fault_t axis_indi_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad, ladrc_real_t rate_rad_s,
+                             int has_rate)
 {
     ladrc_indi_t *indi = &axis->part.indi;
     ladrc_ref_t *ref = &axis->ref;

@@ -13,7 +13,6 @@
 #include "compiler.h"
 #include "ladrc/axis.h"
 
-
 /* Each variant file defines the functions below for its variant; axis.c
  * dispatches to them with one switch per operation, direct calls (which the
  * tick's static stack analysis, tools/bench/stack.py, follows):
@@ -30,12 +29,12 @@
  * calls its estimator (axis_lp.c, axis_hp.c) through the axis_<est>_* hooks. */
 #define LADRC_WITH_ADRC_FAMILY (LADRC_WITH_LADRC || LADRC_WITH_LP_MLADRC || LADRC_WITH_HP_MLADRC)
 
-#define AXIS_VARIANT_FUNCTIONS(v)                                                                      \
-    ladrc_status_t axis_##v##_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg);                \
-    void axis_##v##_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad);                                 \
-    ladrc_fault_t axis_##v##_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,    \
-                                  ladrc_real_t rate_rad_s, int has_rate);                              \
-    void axis_##v##_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad, ladrc_real_t *rate_rad_s, \
+#define AXIS_VARIANT_FUNCTIONS(v)                                                                                      \
+    ladrc_status_t axis_##v##_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg);                                \
+    void axis_##v##_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad);                                                 \
+    ladrc_fault_t axis_##v##_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,                    \
+                                  ladrc_real_t rate_rad_s, int has_rate);                                              \
+    void axis_##v##_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad, ladrc_real_t *rate_rad_s,              \
                              ladrc_real_t *disturbance_rad_s2);
 
 #if LADRC_WITH_ADRC_FAMILY
@@ -68,9 +67,9 @@ ladrc_real_t axis_indi_accel(const ladrc_axis_t *axis);
  * and, inline in src/axis_lp.h and src/axis_hp.h (the tick's deepest path
  * keeps no frame of its own for it),
  *   sample   this tick's d_hat from the rate (NaN: none) and the acting torque */
-#define AXIS_ESTIMATOR_FUNCTIONS(e)                                                                    \
-    ladrc_status_t axis_##e##_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg);                \
-    void axis_##e##_restart(ladrc_axis_t *axis);                                                       \
+#define AXIS_ESTIMATOR_FUNCTIONS(e)                                                                                    \
+    ladrc_status_t axis_##e##_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg);                                \
+    void axis_##e##_restart(ladrc_axis_t *axis);                                                                       \
     ladrc_real_t axis_##e##_command(ladrc_axis_t *axis);
 
 #if LADRC_WITH_LP_MLADRC

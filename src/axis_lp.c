@@ -12,6 +12,12 @@ ladrc_status_t axis_lp_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
     return ladrc_lp_init(&axis->part.lp, &lp);
 }
 
-void axis_lp_restart(ladrc_axis_t *axis) { ladrc_lp_reset(&axis->part.lp); }
+void axis_lp_restart(ladrc_axis_t *axis)
+{
+    ladrc_lp_reset(&axis->part.lp);
+}
 
-ladrc_real_t axis_lp_command(ladrc_axis_t *axis) { return ladrc_lp_step_lead(&axis->part.lp); }
+ladrc_real_t axis_lp_command(ladrc_axis_t *axis)
+{
+    return ladrc_lp_step_lead(&axis->part.lp);
+}

@@ -17,10 +17,13 @@ ladrc_status_t axis_pid_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
     return ladrc_pid_init(&axis->part.pid, &pid_cfg);
 }
 
-void axis_pid_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad) { ladrc_pid_reset(&axis->part.pid, angle_rad); }
+void axis_pid_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
+{
+    ladrc_pid_reset(&axis->part.pid, angle_rad);
+}
 
-ladrc_fault_t axis_pid_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
-                             ladrc_real_t rate_rad_s, int has_rate)
+ladrc_fault_t axis_pid_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad, ladrc_real_t rate_rad_s,
+                            int has_rate)
 {
     axis->output_Nm = ladrc_pid_step(&axis->part.pid, ref_rad, angle_rad, has_rate ? &rate_rad_s : NULL);
     axis->ref.r = ref_rad;

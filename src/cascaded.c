@@ -13,7 +13,10 @@
  * unit circle and does not ring. */
 #define CAS_ATT_KP_DT_LIMIT LADRC_R(1.0)
 
-static int is_non_negative(ladrc_real_t x) { return ladrc_is_finite(x) && x >= LADRC_R(0.0); }
+static int is_non_negative(ladrc_real_t x)
+{
+    return ladrc_is_finite(x) && x >= LADRC_R(0.0);
+}
 
 /* gain * size within CAS_TERM_MAX (gain >= 0 finite, size > 0 finite). */
 static int term_fits(ladrc_real_t gain, ladrc_real_t size)

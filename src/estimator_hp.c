@@ -96,9 +96,15 @@ enum { SPEC_11 = 0, SPEC_31, SPEC_33, SPEC_51, SPEC_53, SPEC_55, SPEC_COUNT };
  * that their locals are not on the stack of the path through the RLS
  * update, the deepest of a tick. */
 
-static unsigned theta_a(unsigned k) { return 1u + 2u * k; }
+static unsigned theta_a(unsigned k)
+{
+    return 1u + 2u * k;
+}
 
-static ladrc_real_t min_real(ladrc_real_t a, ladrc_real_t b) { return (b < a) ? b : a; }
+static ladrc_real_t min_real(ladrc_real_t a, ladrc_real_t b)
+{
+    return (b < a) ? b : a;
+}
 
 /* cos and sin of a small angle x by their series to x^8 and x^9: exact to
  * float rounding for the per-tick turns of the defaults (|x| <= 0.04 at
@@ -108,12 +114,14 @@ static ladrc_real_t min_real(ladrc_real_t a, ladrc_real_t b) { return (b < a) ? 
 static void small_rotation(ladrc_real_t x, ladrc_real_t *c, ladrc_real_t *s)
 {
     const ladrc_real_t x2 = x * x;
-    *c = LADRC_R(1.0) - x2 / LADRC_R(2.0) *
-                            (LADRC_R(1.0) - x2 / LADRC_R(12.0) *
-                                                (LADRC_R(1.0) - x2 / LADRC_R(30.0) * (LADRC_R(1.0) - x2 / LADRC_R(56.0))));
-    *s = x * (LADRC_R(1.0) - x2 / LADRC_R(6.0) *
-                                 (LADRC_R(1.0) - x2 / LADRC_R(20.0) *
-                                                     (LADRC_R(1.0) - x2 / LADRC_R(42.0) * (LADRC_R(1.0) - x2 / LADRC_R(72.0)))));
+    *c = LADRC_R(1.0) -
+         x2 / LADRC_R(2.0) *
+             (LADRC_R(1.0) -
+              x2 / LADRC_R(12.0) * (LADRC_R(1.0) - x2 / LADRC_R(30.0) * (LADRC_R(1.0) - x2 / LADRC_R(56.0))));
+    *s = x * (LADRC_R(1.0) -
+              x2 / LADRC_R(6.0) *
+                  (LADRC_R(1.0) -
+                   x2 / LADRC_R(20.0) * (LADRC_R(1.0) - x2 / LADRC_R(42.0) * (LADRC_R(1.0) - x2 / LADRC_R(72.0)))));
 }
 
 /* A tone's frequency and what follows from it. */
@@ -204,13 +212,13 @@ static ladrc_status_t check_config(const ladrc_hp_config_t *cfg)
         (lag_wo > LADRC_R(0.0) && !(fastest_rad_s <= HP_LEAD_RATIO_MAX * lag_wo))) {
         return LADRC_ERR_HP_SAMPLE_LAG;
     }
-    if (online && !(ladrc_is_positive(cfg->freq_lambda0_per_s) &&
-                    cfg->freq_lambda0_per_s * fit_period_s <= LADRC_R(1.0))) {
+    if (online &&
+        !(ladrc_is_positive(cfg->freq_lambda0_per_s) && cfg->freq_lambda0_per_s * fit_period_s <= LADRC_R(1.0))) {
         return LADRC_ERR_HP_FREQ_LAMBDA0;
     }
     /* The derivative filter is integrated once per fit sample. */
-    if (online && !(ladrc_is_positive(cfg->freq_filter_rad_s) &&
-                    cfg->freq_filter_rad_s * fit_period_s < LADRC_R(0.2))) {
+    if (online &&
+        !(ladrc_is_positive(cfg->freq_filter_rad_s) && cfg->freq_filter_rad_s * fit_period_s < LADRC_R(0.2))) {
         return LADRC_ERR_HP_FREQ_FILTER;
     }
     return LADRC_OK;
@@ -237,8 +245,7 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
     const ladrc_real_t fit_period_s = (ladrc_real_t)cfg->fit_decimation * cfg->dt_s;
     /* The largest fit, checked once: every later start_fit is smaller or equal. */
     const ladrc_rls_config_t fit = {(uint8_t)(1u + 2u * cfg->n_tones), fit_period_s, cfg->lambda0_per_s,
-                                    HP_P_BOUND_PER_SAMPLE / fit_period_s,
-                                    HP_P_INITIAL_PER_SAMPLE / fit_period_s};
+                                    HP_P_BOUND_PER_SAMPLE / fit_period_s, HP_P_INITIAL_PER_SAMPLE / fit_period_s};
     status = ladrc_rls_init(&est->fit, &fit);
     if (status != LADRC_OK) {
         return status;
@@ -308,8 +315,8 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
 /* The fitted phasor (a - j b) of a tone turned and scaled by (re + j im),
  * real part at the tone's current phase psi. Inlined into both readers: a
  * call per tone and tick would cost more than the product. */
-static LADRC_FORCE_INLINE ladrc_real_t tone_turned(const ladrc_hp_tone_t *tone, ladrc_real_t a, ladrc_real_t b, ladrc_real_t re,
-                                ladrc_real_t im)
+static LADRC_FORCE_INLINE ladrc_real_t tone_turned(const ladrc_hp_tone_t *tone, ladrc_real_t a, ladrc_real_t b,
+                                                   ladrc_real_t re, ladrc_real_t im)
 {
     const ladrc_real_t x = a * re + b * im;
     const ladrc_real_t y = a * im - b * re;
@@ -335,8 +342,7 @@ static ladrc_real_t tone_value(const ladrc_hp_estimator_t *est, unsigned k, int 
  * a rate (1/s), averaged into its drift; returns |slip| + DRIFT_WEIGHT
  * |drift|, how far the phasor is from standing still (a tone that decays or
  * grows, e.g. the tail of a transient, does not stand still either). */
-static ladrc_real_t update_slip(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone, ladrc_real_t a,
-                                ladrc_real_t b)
+static ladrc_real_t update_slip(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone, ladrc_real_t a, ladrc_real_t b)
 {
     /* (a - j b) conj(prev_a - j prev_b) = |prev|^2 P / P_prev: its angle is
      * the turn, its real part over |prev|^2 the change of size plus 1. */
@@ -411,8 +417,8 @@ static void track_slip(ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone)
 {
     if (tone->locked) {
         const ladrc_real_t gain = TRACK_FRACTION * est->fit_rate_per_s * est->fit_period_s;
-        set_tone_freq(est, tone, ladrc_clamp(tone->w_rad_s + gain * tone->slip_rad_s, est->freq_min_rad_s,
-                                             est->freq_max_rad_s));
+        set_tone_freq(est, tone,
+                      ladrc_clamp(tone->w_rad_s + gain * tone->slip_rad_s, est->freq_min_rad_s, est->freq_max_rad_s));
     }
 }
 
@@ -704,8 +710,8 @@ LADRC_NOINLINE static void after_fit(ladrc_hp_estimator_t *est, ladrc_real_t sam
     est->weight += ladrc_clamp(target - est->weight, -max_move, max_move);
     /* Engaged for a while (the fit has converged), the fit keeps a longer
      * memory: less noise in the compensation; a change restarts it anyway. */
-    est->engaged = (est->weight >= LADRC_R(1.0)) ? (uint16_t)(est->engaged < UINT16_MAX ? est->engaged + 1u : est->engaged)
-                                                 : 0u;
+    est->engaged =
+        (est->weight >= LADRC_R(1.0)) ? (uint16_t)(est->engaged < UINT16_MAX ? est->engaged + 1u : est->engaged) : 0u;
     if ((ladrc_real_t)est->engaged * t >= ENGAGED_SETTLE_S) {
         rate *= ENGAGED_RATE_FRACTION;
     }
@@ -773,7 +779,10 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
     return est->faults;
 }
 
-ladrc_real_t ladrc_hp_get_estimate(const ladrc_hp_estimator_t *est) { return est->estimate; }
+ladrc_real_t ladrc_hp_get_estimate(const ladrc_hp_estimator_t *est)
+{
+    return est->estimate;
+}
 
 ladrc_real_t ladrc_hp_get_command(const ladrc_hp_estimator_t *est)
 {
@@ -791,9 +800,15 @@ ladrc_real_t ladrc_hp_get_command(const ladrc_hp_estimator_t *est)
     return est->weight * command;
 }
 
-ladrc_real_t ladrc_hp_get_handover(const ladrc_hp_estimator_t *est) { return est->handover; }
+ladrc_real_t ladrc_hp_get_handover(const ladrc_hp_estimator_t *est)
+{
+    return est->handover;
+}
 
-unsigned ladrc_hp_get_active_tones(const ladrc_hp_estimator_t *est) { return est->n_active; }
+unsigned ladrc_hp_get_active_tones(const ladrc_hp_estimator_t *est)
+{
+    return est->n_active;
+}
 
 ladrc_real_t ladrc_hp_get_freq(const ladrc_hp_estimator_t *est, unsigned k)
 {
@@ -816,8 +831,17 @@ int ladrc_hp_tone_locked(const ladrc_hp_estimator_t *est, unsigned k)
     return (k < est->n_active) ? (int)est->tone[k].locked : 0;
 }
 
-ladrc_real_t ladrc_hp_get_weight(const ladrc_hp_estimator_t *est) { return est->weight; }
+ladrc_real_t ladrc_hp_get_weight(const ladrc_hp_estimator_t *est)
+{
+    return est->weight;
+}
 
-ladrc_real_t ladrc_hp_get_bias(const ladrc_hp_estimator_t *est) { return ladrc_rls_get_theta(&est->fit)[0]; }
+ladrc_real_t ladrc_hp_get_bias(const ladrc_hp_estimator_t *est)
+{
+    return ladrc_rls_get_theta(&est->fit)[0];
+}
 
-const ladrc_rls_t *ladrc_hp_get_fit(const ladrc_hp_estimator_t *est) { return &est->fit; }
+const ladrc_rls_t *ladrc_hp_get_fit(const ladrc_hp_estimator_t *est)
+{
+    return &est->fit;
+}

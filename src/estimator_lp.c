@@ -18,8 +18,7 @@ ladrc_status_t ladrc_lp_init(ladrc_lp_estimator_t *est, const ladrc_lp_config_t 
         return LADRC_ERR_EST_K0;
     }
     /* Starting at the bound gives the fastest first estimate. */
-    const ladrc_rls_config_t rls_cfg = {1u, cfg->dt_s, cfg->lambda0_per_s, cfg->k0_per_s,
-                                        cfg->k0_per_s};
+    const ladrc_rls_config_t rls_cfg = {1u, cfg->dt_s, cfg->lambda0_per_s, cfg->k0_per_s, cfg->k0_per_s};
     const ladrc_status_t status = ladrc_rls_init(&est->rls, &rls_cfg);
     if (status != LADRC_OK) {
         return status;
@@ -50,8 +49,7 @@ void ladrc_lp_reset(ladrc_lp_estimator_t *est)
     est->faults = LADRC_FAULT_NONE;
 }
 
-ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s,
-                            ladrc_real_t accel_known)
+ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s, ladrc_real_t accel_known)
 {
     LADRC_ASSERT(est != NULL);
     if (!(ladrc_is_finite(rate_rad_s) && ladrc_is_finite(accel_known))) {

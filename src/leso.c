@@ -62,9 +62,8 @@ void ladrc_leso_reset(ladrc_leso_t *obs, ladrc_real_t y0)
  * through +, - and * only (b0 != 0, h > 0), where an infinity or a NaN never
  * turns finite again: the arguments are checked only when the result is bad,
  * to tell an input fault from a state fault. */
-static ladrc_fault_t advance(const ladrc_leso_t *obs, ladrc_real_t *z1_io, ladrc_real_t *z2_io,
-                             ladrc_real_t *z3_io, ladrc_real_t y, ladrc_real_t u,
-                             ladrc_real_t accel_known, ladrc_real_t f_rate_known)
+static ladrc_fault_t advance(const ladrc_leso_t *obs, ladrc_real_t *z1_io, ladrc_real_t *z2_io, ladrc_real_t *z3_io,
+                             ladrc_real_t y, ladrc_real_t u, ladrc_real_t accel_known, ladrc_real_t f_rate_known)
 {
     const ladrc_real_t h = obs->h_s;
     const ladrc_real_t a = obs->b0 * u + accel_known;
@@ -100,16 +99,16 @@ static ladrc_fault_t advance(const ladrc_leso_t *obs, ladrc_real_t *z1_io, ladrc
     return LADRC_FAULT_NONE;
 }
 
-ladrc_fault_t ladrc_leso_step(ladrc_leso_t *obs, ladrc_real_t y, ladrc_real_t u,
-                              ladrc_real_t accel_known, ladrc_real_t f_rate_known)
+ladrc_fault_t ladrc_leso_step(ladrc_leso_t *obs, ladrc_real_t y, ladrc_real_t u, ladrc_real_t accel_known,
+                              ladrc_real_t f_rate_known)
 {
     LADRC_ASSERT(obs != NULL);
     obs->faults = advance(obs, &obs->z1, &obs->z2, &obs->z3, y, u, accel_known, f_rate_known);
     return obs->faults;
 }
 
-ladrc_fault_t ladrc_leso_step_twin(const ladrc_leso_t *obs, ladrc_leso_twin_t *twin, ladrc_real_t y,
-                                   ladrc_real_t u, ladrc_real_t accel_known, ladrc_real_t f_rate_known)
+ladrc_fault_t ladrc_leso_step_twin(const ladrc_leso_t *obs, ladrc_leso_twin_t *twin, ladrc_real_t y, ladrc_real_t u,
+                                   ladrc_real_t accel_known, ladrc_real_t f_rate_known)
 {
     LADRC_ASSERT(obs != NULL && twin != NULL);
     return advance(obs, &twin->z1, &twin->z2, &twin->z3, y, u, accel_known, f_rate_known);

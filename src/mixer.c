@@ -81,14 +81,11 @@ ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *c
     {
         /* The physical fields and their bounds (mixer.h), in the order of their
          * status codes (LADRC_ERR_MIXER_KL_N_S2 .. _G_M_S2): one check in a loop. */
-        static const ladrc_real_t lo[5] = {LADRC_MIXER_KL_MIN_N_S2, LADRC_MIXER_ARM_MIN_M,
-                                           LADRC_MIXER_B_MIN_NM_S2, LADRC_MIXER_MASS_MIN_KG,
-                                           LADRC_MIXER_G_MIN_M_S2};
-        static const ladrc_real_t hi[5] = {LADRC_MIXER_KL_MAX_N_S2, LADRC_MIXER_ARM_MAX_M,
-                                           LADRC_MIXER_B_MAX_NM_S2, LADRC_MIXER_MASS_MAX_KG,
-                                           LADRC_MIXER_G_MAX_M_S2};
-        const ladrc_real_t value[5] = {cfg->kL_N_s2, cfg->arm_m, cfg->b_Nm_s2, cfg->mass_kg,
-                                       cfg->g_m_s2};
+        static const ladrc_real_t lo[5] = {LADRC_MIXER_KL_MIN_N_S2, LADRC_MIXER_ARM_MIN_M, LADRC_MIXER_B_MIN_NM_S2,
+                                           LADRC_MIXER_MASS_MIN_KG, LADRC_MIXER_G_MIN_M_S2};
+        static const ladrc_real_t hi[5] = {LADRC_MIXER_KL_MAX_N_S2, LADRC_MIXER_ARM_MAX_M, LADRC_MIXER_B_MAX_NM_S2,
+                                           LADRC_MIXER_MASS_MAX_KG, LADRC_MIXER_G_MAX_M_S2};
+        const ladrc_real_t value[5] = {cfg->kL_N_s2, cfg->arm_m, cfg->b_Nm_s2, cfg->mass_kg, cfg->g_m_s2};
         int i;
         for (i = 0; i < 5; ++i) {
             if (!within(value[i], lo[i], hi[i])) {
@@ -104,8 +101,7 @@ ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *c
         if (!within(cfg->w2_min_rad2_s2, LADRC_R(0.0), REAL_MAX)) {
             return LADRC_ERR_MIXER_W2_MIN;
         }
-        if (!within(cfg->w2_max_rad2_s2, LADRC_MIXER_W2_MAX_MIN_RAD2_S2,
-                    LADRC_MIXER_W2_MAX_MAX_RAD2_S2) ||
+        if (!within(cfg->w2_max_rad2_s2, LADRC_MIXER_W2_MAX_MIN_RAD2_S2, LADRC_MIXER_W2_MAX_MAX_RAD2_S2) ||
             !(cfg->w2_max_rad2_s2 > cfg->w2_min_rad2_s2)) {
             return LADRC_ERR_MIXER_W2_MAX;
         }
@@ -149,15 +145,14 @@ ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *c
         /* Every derived constant finite and > 0 (thrust_lo_N lies in [0, thrust_hi_N]),
          * each with the status of the last field it depends on. The bounds make these
          * hold; they are checked so that widening a bound cannot let an Inf through. */
-        const ladrc_real_t derived[10] = {mx->a4_per_N,    mx->lkL_Nm_s2,   mx->p2_per_Nm,
-                                          mx->r4_per_Nm,   mx->weight_N,    mx->cos_tilt_min,
-                                          mx->thrust_max_N, mx->rp_limit_Nm, mx->yaw_limit_Nm,
-                                          mx->thrust_hi_N};
-        static const uint8_t status[10] = {
-            LADRC_ERR_MIXER_KL_N_S2, LADRC_ERR_MIXER_ARM_M,   LADRC_ERR_MIXER_ARM_M,
-            LADRC_ERR_MIXER_B_NM_S2, LADRC_ERR_MIXER_G_M_S2,  LADRC_ERR_MIXER_TILT_MAX_RAD,
-            LADRC_ERR_MIXER_TILT_MAX_RAD, LADRC_ERR_MIXER_W2_MAX, LADRC_ERR_MIXER_W2_MAX,
-            LADRC_ERR_MIXER_W2_MAX};
+        const ladrc_real_t derived[10] = {mx->a4_per_N,     mx->lkL_Nm_s2,    mx->p2_per_Nm,    mx->r4_per_Nm,
+                                          mx->weight_N,     mx->cos_tilt_min, mx->thrust_max_N, mx->rp_limit_Nm,
+                                          mx->yaw_limit_Nm, mx->thrust_hi_N};
+        static const uint8_t status[10] = {LADRC_ERR_MIXER_KL_N_S2,      LADRC_ERR_MIXER_ARM_M,
+                                           LADRC_ERR_MIXER_ARM_M,        LADRC_ERR_MIXER_B_NM_S2,
+                                           LADRC_ERR_MIXER_G_M_S2,       LADRC_ERR_MIXER_TILT_MAX_RAD,
+                                           LADRC_ERR_MIXER_TILT_MAX_RAD, LADRC_ERR_MIXER_W2_MAX,
+                                           LADRC_ERR_MIXER_W2_MAX,       LADRC_ERR_MIXER_W2_MAX};
         const int n = (cfg->mode == LADRC_MIXER_IDEAL) ? 7 : 10; /* ideal: no rotor limits */
         int i;
         for (i = 0; i < n; ++i) {
@@ -171,8 +166,7 @@ ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *c
     return LADRC_OK;
 }
 
-ladrc_real_t ladrc_mixer_thrust_from_tilt(const ladrc_mixer_t *mx, ladrc_real_t roll_rad,
-                                          ladrc_real_t pitch_rad)
+ladrc_real_t ladrc_mixer_thrust_from_tilt(const ladrc_mixer_t *mx, ladrc_real_t roll_rad, ladrc_real_t pitch_rad)
 {
     ladrc_real_t c;
 
@@ -203,7 +197,7 @@ ladrc_real_t ladrc_mixer_thrust_from_tilt(const ladrc_mixer_t *mx, ladrc_real_t 
 /* Allocation without argument checks (see ladrc_mixer_allocate); inlined so
  * that the step's common case keeps its w^2 in registers. */
 static LADRC_FORCE_INLINE void allocate(const ladrc_mixer_t *mx, ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
-                     ladrc_real_t w2[4])
+                                        ladrc_real_t w2[4])
 {
     const ladrc_real_t a4 = thrust_N * mx->a4_per_N;
     const ladrc_real_t p2 = torque_Nm[0] * mx->p2_per_Nm;
@@ -215,8 +209,8 @@ static LADRC_FORCE_INLINE void allocate(const ladrc_mixer_t *mx, ladrc_real_t th
     w2[3] = a4 - p2 + r4;
 }
 
-void ladrc_mixer_allocate(const ladrc_mixer_t *mx, ladrc_real_t thrust_N,
-                          const ladrc_real_t torque_Nm[3], ladrc_real_t w2_rad2_s2[4])
+void ladrc_mixer_allocate(const ladrc_mixer_t *mx, ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
+                          ladrc_real_t w2_rad2_s2[4])
 {
     LADRC_ASSERT(mx != NULL && torque_Nm != NULL && w2_rad2_s2 != NULL);
     if (mx != NULL && torque_Nm != NULL && w2_rad2_s2 != NULL) {
@@ -234,8 +228,8 @@ static LADRC_FORCE_INLINE void forward(const ladrc_mixer_t *mx, const ladrc_real
     f[3] = mx->b_Nm_s2 * ((w[1] + w[3]) - (w[0] + w[2]));
 }
 
-void ladrc_mixer_forward(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[4],
-                         ladrc_real_t *thrust_N, ladrc_real_t torque_Nm[3])
+void ladrc_mixer_forward(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[4], ladrc_real_t *thrust_N,
+                         ladrc_real_t torque_Nm[3])
 {
     ladrc_real_t f[4];
 
@@ -312,8 +306,8 @@ static LADRC_FORCE_INLINE int in_range(const ladrc_mixer_t *mx, const ladrc_real
 {
     const ladrc_real_t lo = mx->w2_min_rad2_s2;
     const ladrc_real_t hi = mx->w2_max_rad2_s2;
-    return (w2[0] >= lo && w2[0] <= hi) && (w2[1] >= lo && w2[1] <= hi) &&
-           (w2[2] >= lo && w2[2] <= hi) && (w2[3] >= lo && w2[3] <= hi);
+    return (w2[0] >= lo && w2[0] <= hi) && (w2[1] >= lo && w2[1] <= hi) && (w2[2] >= lo && w2[2] <= hi) &&
+           (w2[3] >= lo && w2[3] <= hi);
 }
 
 /* The request f = {thrust, roll, pitch, yaw} (finite) limited to what the rotors
@@ -347,8 +341,8 @@ static LADRC_FORCE_INLINE void put_rotor(ladrc_mixer_output_t *out, int i, ladrc
 
 /* One axis of the report: the request where the rotors give it within tol, with
  * no bit; the rotors' value (got) and the axis' bit otherwise. */
-static LADRC_FORCE_INLINE uint8_t report(ladrc_real_t got, ladrc_real_t requested, ladrc_real_t tol,
-                                           uint8_t bit, ladrc_real_t *achieved)
+static LADRC_FORCE_INLINE uint8_t report(ladrc_real_t got, ladrc_real_t requested, ladrc_real_t tol, uint8_t bit,
+                                         ladrc_real_t *achieved)
 {
     if (ladrc_fabs(got - requested) <= tol) {
         *achieved = requested;
@@ -363,12 +357,12 @@ static LADRC_FORCE_INLINE uint8_t report(ladrc_real_t got, ladrc_real_t requeste
  * where the two agree within the report tolerance (mixer.h); a saturation bit for
  * every axis where they do not. In range, w^2 and the coefficients are bounded
  * (init), so the forward model and the tolerance are finite. */
-static LADRC_FORCE_INLINE void commit(const ladrc_mixer_t *mx, const ladrc_real_t w2[4],
-                                        const ladrc_real_t f[4], ladrc_mixer_output_t *out)
+static LADRC_FORCE_INLINE void commit(const ladrc_mixer_t *mx, const ladrc_real_t w2[4], const ladrc_real_t f[4],
+                                      ladrc_mixer_output_t *out)
 {
     /* Everything read from mx before out (which may be mx->out) is written. */
-    const ladrc_real_t scale = REPORT_TOL_REL * ((ladrc_fabs(w2[0]) + ladrc_fabs(w2[2])) +
-                                                 (ladrc_fabs(w2[1]) + ladrc_fabs(w2[3])));
+    const ladrc_real_t scale =
+        REPORT_TOL_REL * ((ladrc_fabs(w2[0]) + ladrc_fabs(w2[2])) + (ladrc_fabs(w2[1]) + ladrc_fabs(w2[3])));
     const ladrc_real_t tol_kL = scale * mx->kL_N_s2 + REPORT_TOL_ABS;
     const ladrc_real_t tol_lkL = scale * mx->lkL_Nm_s2 + REPORT_TOL_ABS;
     const ladrc_real_t tol_b = scale * mx->b_Nm_s2 + REPORT_TOL_ABS;
@@ -390,7 +384,7 @@ static LADRC_FORCE_INLINE void commit(const ladrc_mixer_t *mx, const ladrc_real_
 
 /* commit() out of line, for the paths that limit (flash: one more copy only). */
 LADRC_NOINLINE static void commit_cold(const ladrc_mixer_t *mx, const ladrc_real_t w2[4], const ladrc_real_t f[4],
-                        ladrc_mixer_output_t *out)
+                                       ladrc_mixer_output_t *out)
 {
     commit(mx, w2, f, out);
 }
@@ -419,9 +413,8 @@ LADRC_NOINLINE static ladrc_fault_t mix(const ladrc_mixer_t *mx, const ladrc_rea
     return LADRC_FAULT_NONE;
 }
 
-void ladrc_mixer_saturate(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[4],
-                          ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
-                          ladrc_mixer_output_t *out)
+void ladrc_mixer_saturate(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[4], ladrc_real_t thrust_N,
+                          const ladrc_real_t torque_Nm[3], ladrc_mixer_output_t *out)
 {
     ladrc_real_t w2[4];
     ladrc_real_t f[4];
@@ -460,8 +453,8 @@ void ladrc_mixer_reset(ladrc_mixer_t *mx)
     mx->out.faults = LADRC_FAULT_NONE;
 }
 
-ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N,
-                               const ladrc_real_t torque_Nm[3], ladrc_mixer_output_t *out)
+ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
+                               ladrc_mixer_output_t *out)
 {
     ladrc_fault_t faults = LADRC_FAULT_INPUT;
 

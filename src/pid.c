@@ -146,8 +146,7 @@ ladrc_real_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t
 
     integral_Nm = pid->integral_Nm;
     if (!ladrc_integrator_frozen(error_rad, pid->applied_Nm, pid->unclamped_Nm)) {
-        integral_Nm =
-            ladrc_clamp(integral_Nm + pid->ki_dt * error_rad, -pid->i_limit_Nm, pid->i_limit_Nm);
+        integral_Nm = ladrc_clamp(integral_Nm + pid->ki_dt * error_rad, -pid->i_limit_Nm, pid->i_limit_Nm);
     }
     unclamped_Nm = pid->kp * error_rad + integral_Nm - pid->kd * d_rad_s;
 

@@ -4,7 +4,6 @@
 
 #include "compiler.h"
 
-
 /* Forgetting stops when tr(P) is within this fraction of k0. It is far above
  * the rounding of the trace (about n eps = 5e-7 in float), so without
  * excitation P lands on an exact fixed point, and far below anything the
@@ -15,7 +14,10 @@
 #define RLS_CLAMP_FRACTION LADRC_R(0.99995)
 
 /* U(i,j), i < j, stored by columns: column j holds rows 0..j-1. */
-static unsigned u_index(unsigned i, unsigned j) { return (j * (j - 1u)) / 2u + i; }
+static unsigned u_index(unsigned i, unsigned j)
+{
+    return (j * (j - 1u)) / 2u + i;
+}
 
 /* tr(U D U^T) = sum_j D_j (1 + sum_{i<j} U_ij^2). Inline: the update, the
  * deepest function of a tick, calls it. */
@@ -59,8 +61,7 @@ static LADRC_FORCE_INLINE void restart_p(ladrc_rls_t *rls)
 /* lambda0 h <= 1 keeps the trace map monotone, so the bound holds (rls.h). */
 static int lambda0_is_valid(ladrc_real_t lambda0_per_s, ladrc_real_t dt_s)
 {
-    return ladrc_is_finite(lambda0_per_s) && lambda0_per_s >= LADRC_R(0.0) &&
-           lambda0_per_s * dt_s <= LADRC_R(1.0);
+    return ladrc_is_finite(lambda0_per_s) && lambda0_per_s >= LADRC_R(0.0) && lambda0_per_s * dt_s <= LADRC_R(1.0);
 }
 
 ladrc_status_t ladrc_rls_init(ladrc_rls_t *rls, const ladrc_rls_config_t *cfg)
@@ -127,7 +128,8 @@ ladrc_status_t ladrc_rls_restart(ladrc_rls_t *rls, uint8_t n_params, const ladrc
 
 /* The update for n parameters, inlined into ladrc_rls_update: where n is a
  * constant the compiler lays the loops out flat (one formula, written once). */
-static LADRC_FORCE_INLINE ladrc_fault_t update_n(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_real_t y, const unsigned n)
+static LADRC_FORCE_INLINE ladrc_fault_t update_n(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_real_t y,
+                                                 const unsigned n)
 {
     int finite = ladrc_is_finite(y);
     for (unsigned i = 0u; i < n; ++i) {

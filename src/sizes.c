@@ -7,17 +7,50 @@
 #include "ladrc/mixer.h"
 #include "ladrc/td.h"
 
-size_t ladrc_sizeof_real(void) { return sizeof(ladrc_real_t); }
-size_t ladrc_sizeof_axis_t(void) { return sizeof(ladrc_axis_t); }
-size_t ladrc_sizeof_axis_config_t(void) { return sizeof(ladrc_axis_config_t); }
-size_t ladrc_sizeof_attitude_t(void) { return sizeof(ladrc_attitude_t); }
-size_t ladrc_sizeof_attitude_config_t(void) { return sizeof(ladrc_attitude_config_t); }
-size_t ladrc_sizeof_mixer_t(void) { return sizeof(ladrc_mixer_t); }
-size_t ladrc_sizeof_mixer_config_t(void) { return sizeof(ladrc_mixer_config_t); }
-size_t ladrc_sizeof_mixer_output_t(void) { return sizeof(ladrc_mixer_output_t); }
-size_t ladrc_sizeof_ref_t(void) { return sizeof(ladrc_ref_t); }
-size_t ladrc_hp_max_tones(void) { return LADRC_HP_MAX_TONES; }
+size_t ladrc_sizeof_real(void)
+{
+    return sizeof(ladrc_real_t);
+}
+size_t ladrc_sizeof_axis_t(void)
+{
+    return sizeof(ladrc_axis_t);
+}
+size_t ladrc_sizeof_axis_config_t(void)
+{
+    return sizeof(ladrc_axis_config_t);
+}
+size_t ladrc_sizeof_attitude_t(void)
+{
+    return sizeof(ladrc_attitude_t);
+}
+size_t ladrc_sizeof_attitude_config_t(void)
+{
+    return sizeof(ladrc_attitude_config_t);
+}
+size_t ladrc_sizeof_mixer_t(void)
+{
+    return sizeof(ladrc_mixer_t);
+}
+size_t ladrc_sizeof_mixer_config_t(void)
+{
+    return sizeof(ladrc_mixer_config_t);
+}
+size_t ladrc_sizeof_mixer_output_t(void)
+{
+    return sizeof(ladrc_mixer_output_t);
+}
+size_t ladrc_sizeof_ref_t(void)
+{
+    return sizeof(ladrc_ref_t);
+}
+size_t ladrc_hp_max_tones(void)
+{
+    return LADRC_HP_MAX_TONES;
+}
 
 #define SIZES_STRING_(x) #x
 #define SIZES_STRING(x) SIZES_STRING_(x)
-const char *ladrc_abi_set(void) { return SIZES_STRING(LADRC_ABI_SET_); }
+const char *ladrc_abi_set(void)
+{
+    return SIZES_STRING(LADRC_ABI_SET_);
+}

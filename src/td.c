@@ -10,8 +10,8 @@
 #include <stddef.h>
 
 /* fhan on validated accel > 0 and h0_s > 0, with d = accel h0 and d0 = h0 d. */
-static ladrc_real_t fhan(ladrc_real_t x1, ladrc_real_t x2, ladrc_real_t accel, ladrc_real_t h0_s,
-                         ladrc_real_t d, ladrc_real_t d0)
+static ladrc_real_t fhan(ladrc_real_t x1, ladrc_real_t x2, ladrc_real_t accel, ladrc_real_t h0_s, ladrc_real_t d,
+                         ladrc_real_t d0)
 {
     const ladrc_real_t y = x1 + h0_s * x2; /* position error predicted one h0 ahead */
     ladrc_real_t a;

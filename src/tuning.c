@@ -2,8 +2,7 @@
 /* Tuning helpers (see tuning.h). */
 #include "ladrc/tuning.h"
 
-ladrc_status_t ladrc_tune_wc_from_settling(ladrc_real_t settling_time_s, int plant_order,
-                                           ladrc_real_t *wc_rad_s)
+ladrc_status_t ladrc_tune_wc_from_settling(ladrc_real_t settling_time_s, int plant_order, ladrc_real_t *wc_rad_s)
 {
     if (wc_rad_s == NULL) {
         return LADRC_ERR_NULL;
@@ -19,8 +18,7 @@ ladrc_status_t ladrc_tune_wc_from_settling(ladrc_real_t settling_time_s, int pla
     return LADRC_OK;
 }
 
-ladrc_status_t ladrc_tune_wc_from_settling_exact(ladrc_real_t settling_time_s,
-                                                 ladrc_real_t *wc_rad_s)
+ladrc_status_t ladrc_tune_wc_from_settling_exact(ladrc_real_t settling_time_s, ladrc_real_t *wc_rad_s)
 {
     if (wc_rad_s == NULL) {
         return LADRC_ERR_NULL;
@@ -32,8 +30,7 @@ ladrc_status_t ladrc_tune_wc_from_settling_exact(ladrc_real_t settling_time_s,
     return LADRC_OK;
 }
 
-ladrc_status_t ladrc_tune_wo_from_wc(ladrc_real_t wc_rad_s, ladrc_real_t ratio,
-                                     ladrc_real_t *wo_rad_s)
+ladrc_status_t ladrc_tune_wo_from_wc(ladrc_real_t wc_rad_s, ladrc_real_t ratio, ladrc_real_t *wo_rad_s)
 {
     if (wo_rad_s == NULL) {
         return LADRC_ERR_NULL;

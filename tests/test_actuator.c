@@ -47,8 +47,12 @@
 /* z1 and r of a wrapped axis stay within pi past +-pi plus their distance (< 2 pi). */
 #define WRAPPED_STATE_BOUND_RAD (4.0 * PI_D)
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 /* y'' = b m + d, m' = (u - m) / tau (tau = 0: m = u), u held over the step,
  * integrated exactly; the sensor reports y of `delay` ticks before. */
@@ -154,8 +158,10 @@ static void fly(ladrc_axis_t *axis, lag_plant_t *p, double ref, int n, double *u
     for (int k = 0; k < n; ++k) {
         const double y = plant_measure(p);
         const double u = ladrc_axis_step_with_rate(axis, (ladrc_real_t)ref, (ladrc_real_t)y, (ladrc_real_t)p->w);
-        if (u_out) u_out[k] = u;
-        if (y_out) y_out[k] = p->y;
+        if (u_out)
+            u_out[k] = u;
+        if (y_out)
+            y_out[k] = p->y;
         plant_step(p, u);
     }
 }
@@ -247,8 +253,8 @@ static void test_model_fields_are_validated_and_ignored_by_pid(void)
 
 /* RMS of (ref - y) over the second half of a run of n ticks; -1 when the run
  * left 1 rad (diverged). */
-static double fly_rms(ladrc_variant_t v, double model_tau, int model_delay, double plant_tau,
-                      int plant_delay, double d, int n)
+static double fly_rms(ladrc_variant_t v, double model_tau, int model_delay, double plant_tau, int plant_delay, double d,
+                      int n)
 {
     ladrc_axis_config_t cfg = config(v, model_tau, model_delay, 0);
     ladrc_axis_t axis;
@@ -282,8 +288,8 @@ static void test_modelled_lag_and_delay_keep_the_loop_that_the_unmodelled_loses(
         const double modelled = fly_rms((ladrc_variant_t)v, MOTOR_TAU_S, DELAY_TICKS, MOTOR_TAU_S, DELAY_TICKS, 5.0, n);
         const double unmodelled = fly_rms((ladrc_variant_t)v, 0.0, 0, MOTOR_TAU_S, DELAY_TICKS, 5.0, n);
         const double ideal = fly_rms((ladrc_variant_t)v, 0.0, 0, 0.0, 0, 5.0, n);
-        printf("variant %d: rms ideal %.3e modelled %.3e unmodelled %.3e rad (-1: diverged)\n", v, ideal,
-               modelled, unmodelled);
+        printf("variant %d: rms ideal %.3e modelled %.3e unmodelled %.3e rad (-1: diverged)\n", v, ideal, modelled,
+               unmodelled);
         /* then: the modelled loop holds, the unmodelled one leaves 1 rad */
         TEST_ASSERT_TRUE(modelled >= 0.0 && modelled < MODELLED_RMS_MAX_RAD);
         TEST_ASSERT_TRUE(ideal >= 0.0 && ideal < MODELLED_RMS_MAX_RAD);
@@ -363,8 +369,8 @@ static void test_hp_advanced_over_the_lag_leaves_a_small_share_of_ladrcs_tone(vo
     const double ladrc = tone_residual(LADRC_VARIANT_LADRC, 0);
     const double hp = tone_residual(LADRC_VARIANT_HP_MLADRC, 0);
     const double hp_plain = tone_residual(LADRC_VARIANT_HP_MLADRC, 1);
-    printf("tone residual (rad): LADRC %.3e, HP %.3e (%.3f), HP without advance %.3e (%.3f)\n", ladrc, hp,
-           hp / ladrc, hp_plain, hp_plain / ladrc);
+    printf("tone residual (rad): LADRC %.3e, HP %.3e (%.3f), HP without advance %.3e (%.3f)\n", ladrc, hp, hp / ladrc,
+           hp_plain, hp_plain / ladrc);
     /* then */
     TEST_ASSERT_TRUE(ladrc > 0.0 && hp >= 0.0 && hp_plain > 0.0);
     TEST_ASSERT_TRUE(hp < HP_ADVANCED_MAX_SHARE * ladrc);
@@ -390,7 +396,10 @@ static void test_lp_led_over_the_lag_leaves_a_small_share_of_ladrcs_tone(void)
 
 /* ---- wrapped angles ------------------------------------------------------ */
 
-static double wrap_d(double x) { return x - 2.0 * PI_D * ceil((x - PI_D) / (2.0 * PI_D)); }
+static double wrap_d(double x)
+{
+    return x - 2.0 * PI_D * ceil((x - PI_D) / (2.0 * PI_D));
+}
 
 static void test_holding_near_pi_gives_the_torque_of_the_same_attitude_reported_wrapped(void)
 {
@@ -411,7 +420,8 @@ static void test_holding_near_pi_gives_the_torque_of_the_same_attitude_reported_
             /* when */
             const double ua = ladrc_axis_step_with_rate(&a, (ladrc_real_t)hold, (ladrc_real_t)same, LADRC_R(0.0));
             const double ub = ladrc_axis_step_with_rate(&b, (ladrc_real_t)hold, (ladrc_real_t)reported, LADRC_R(0.0));
-            const double un = ladrc_axis_step_with_rate(&plain, (ladrc_real_t)hold, (ladrc_real_t)reported, LADRC_R(0.0));
+            const double un =
+                ladrc_axis_step_with_rate(&plain, (ladrc_real_t)hold, (ladrc_real_t)reported, LADRC_R(0.0));
             worst = fmax(worst, fabs(ua - ub));
             plain_gap = fmax(plain_gap, fabs(ua - un));
         }
@@ -480,10 +490,12 @@ static void test_a_yaw_turning_for_many_turns_tracks_as_on_its_first(void)
         const double bound = fly_turning((ladrc_variant_t)v, 1, 0.0, 3.0, N, err);
         /* then */
         double early = 0.0, late = 0.0;
-        for (int k = 10000; k < 20000; ++k) early = fmax(early, fabs(err[k]));
-        for (int k = N - 10000; k < N; ++k) late = fmax(late, fabs(err[k]));
-        printf("variant %d: worst error %.3e rad at 10..20 s, %.3e rad at 390..400 s, |z1|, |r| <= %.3f\n", v,
-               early, late, bound);
+        for (int k = 10000; k < 20000; ++k)
+            early = fmax(early, fabs(err[k]));
+        for (int k = N - 10000; k < N; ++k)
+            late = fmax(late, fabs(err[k]));
+        printf("variant %d: worst error %.3e rad at 10..20 s, %.3e rad at 390..400 s, |z1|, |r| <= %.3f\n", v, early,
+               late, bound);
         TEST_ASSERT_TRUE(late <= TURNS_ERROR_GROWTH * early + TURNS_ERROR_SLACK_RAD);
         TEST_ASSERT_TRUE(bound <= WRAPPED_STATE_BOUND_RAD);
     }

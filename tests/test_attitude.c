@@ -25,8 +25,12 @@
 static const ladrc_real_t inertia[3] = {5.445e-3f, 5.445e-3f, 1.089e-2f};
 static const ladrc_real_t drag_Nms = 9e-2f;
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static void make(ladrc_attitude_t *att, ladrc_variant_t variant, uint8_t feed)
 {
@@ -198,16 +202,15 @@ static void paper_reference(double t, ladrc_real_t ref[3])
 }
 
 typedef struct {
-    double rms_f_error[3];  /* RMS of true total disturbance - estimate (rad/s^2) */
-    double max_error_deg;   /* largest tracking error after 1 s */
+    double rms_f_error[3]; /* RMS of true total disturbance - estimate (rad/s^2) */
+    double max_error_deg;  /* largest tracking error after 1 s */
     double final_error_deg;
     int saturated_ticks;
 } loop_result_t;
 
 /* Paper vehicle tracking the paper's references for n ticks, optionally
  * through a mixer; the observer gets what the mixer achieved. */
-static void run_paper_loop(ladrc_attitude_t *att, ladrc_mixer_t *mixer, int report_applied, int n,
-                           loop_result_t *res)
+static void run_paper_loop(ladrc_attitude_t *att, ladrc_mixer_t *mixer, int report_applied, int n, loop_result_t *res)
 {
     test_rigid_body_t body;
     test_rigid_body_init(&body);
@@ -288,15 +291,15 @@ static void test_feed_improves_the_disturbance_estimate_on_the_coupled_body(void
 
 static ladrc_mixer_config_t paper_mixer(ladrc_mixer_mode_t mode, double w2_min, double w2_max)
 {
-    const ladrc_mixer_config_t cfg = {2.98e-5f, 0.165f, 2e-6f, 0.8f, 9.81f, (ladrc_real_t)w2_min,
-                                      (ladrc_real_t)w2_max, 0.7853982f, mode};
+    const ladrc_mixer_config_t cfg = {
+        2.98e-5f, 0.165f, 2e-6f, 0.8f, 9.81f, (ladrc_real_t)w2_min, (ladrc_real_t)w2_max, 0.7853982f, mode};
     return cfg;
 }
 
 static void test_every_variant_tracks_the_paper_references_through_the_ideal_mixer(void)
 {
-    const ladrc_variant_t variants[] = {LADRC_VARIANT_LADRC, LADRC_VARIANT_LP_MLADRC,
-                                        LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_PID};
+    const ladrc_variant_t variants[] = {LADRC_VARIANT_LADRC, LADRC_VARIANT_LP_MLADRC, LADRC_VARIANT_HP_MLADRC,
+                                        LADRC_VARIANT_PID};
     double max_error[4];
     for (unsigned v = 0; v < 4; ++v) {
         ladrc_attitude_t att;
@@ -349,8 +352,7 @@ static void test_saturating_mixer_does_not_wind_up_the_observers(void)
     for (int i = 0; i < 3; ++i) {
         TEST_ASSERT_LESS_THAN_FLOAT_MESSAGE(1.0f, (float)fed.rms_f_error[i], msg);
     }
-    TEST_ASSERT_GREATER_THAN_FLOAT_MESSAGE((float)(3.0 * fed.rms_f_error[0]),
-                                           (float)ignored.rms_f_error[0], msg);
+    TEST_ASSERT_GREATER_THAN_FLOAT_MESSAGE((float)(3.0 * fed.rms_f_error[0]), (float)ignored.rms_f_error[0], msg);
 }
 
 static void test_invalid_vehicle_fields_and_axes_are_rejected_with_the_axis_named(void)

@@ -28,8 +28,12 @@
  * only (z3 noise ~1e-4 rad/s^2 over wc^2 = 225 gives 1e-6 rad); 1e-5 rad. */
 #define STEADY_ERROR_TOL_RAD 1e-5
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static ladrc_axis_config_t ladrc_config(ladrc_shaper_t shaper)
 {
@@ -47,8 +51,7 @@ typedef struct {
     int report_applied;
 } loop_t;
 
-static void run_loop(ladrc_axis_t *axis, const loop_t *loop, int n, double *y, double *z3,
-                     double *peak_u)
+static void run_loop(ladrc_axis_t *axis, const loop_t *loop, int n, double *y, double *z3, double *peak_u)
 {
     const test_sine_t none = {0.0, 0.0, 0.0, 0.0};
     test_double_integrator_t plant;
@@ -159,8 +162,7 @@ static void test_ladrc_sine_disturbance_error_matches_its_transfer_function(void
         const double expected = 120.0 * disturbance_gain(freqs[i]);
         const double measured = sine_error_amplitude(freqs[i]);
         char msg[96];
-        snprintf(msg, sizeof msg, "w %.0f rad/s: amplitude %.5f rad, predicted %.5f rad", freqs[i],
-                 measured, expected);
+        snprintf(msg, sizeof msg, "w %.0f rad/s: amplitude %.5f rad, predicted %.5f rad", freqs[i], measured, expected);
         TEST_MESSAGE(msg);
         TEST_ASSERT_FLOAT_WITHIN_MESSAGE(AMPLITUDE_REL_TOL * expected, expected, measured, msg);
     }
@@ -328,8 +330,7 @@ static void test_unused_fields_of_other_variants_are_not_checked(void)
 }
 
 /* Drives one variant on a fixed input sequence; bad ticks get `bad` inputs. */
-static void run_sequence(ladrc_variant_t variant, int n, float *out, int bad_from, int bad_to,
-                         float bad)
+static void run_sequence(ladrc_variant_t variant, int n, float *out, int bad_from, int bad_to, float bad)
 {
     ladrc_axis_t axis;
     ladrc_axis_config_t cfg;

@@ -56,10 +56,10 @@ static const char *const entry_name[ENTRY_COUNT] = {"axis step", "axis step_with
                                                     "attitude step + set_applied"};
 
 typedef struct {
-    long vectors;      /* calls with a drawn input */
-    long hostile;      /* of them, with a value outside the plausible range */
-    long violations;   /* promises broken */
-    long bursts;       /* bursts flown */
+    long vectors;    /* calls with a drawn input */
+    long hostile;    /* of them, with a value outside the plausible range */
+    long violations; /* promises broken */
+    long bursts;     /* bursts flown */
     long not_recovered;
     double worst_recovery_rad;
 } tally_t;
@@ -80,7 +80,10 @@ static void violation(tally_t *t, const char *what, long tick)
 }
 
 /* The reference the loop tracks and the disturbance it rejects. */
-static double reference_rad(double t_s) { return 0.2 * sin(0.5 * t_s); }
+static double reference_rad(double t_s)
+{
+    return 0.2 * sin(0.5 * t_s);
+}
 static const test_sine_t disturbance = {5.0, 30.0, 3.0, 0.0};
 
 /* As flown: real actuator bounds, which are also the applied torque's range;
@@ -113,8 +116,8 @@ static void snapshot(const ladrc_axis_t *axis, ladrc_axis_t *copy)
 }
 
 /* The promises of one axis tick (inputs already judged). */
-static void check_tick(tally_t *t, long tick, const ladrc_axis_t *before, const ladrc_axis_t *axis,
-                       ladrc_real_t out, int input_bad, int rate_given, int rate_bad)
+static void check_tick(tally_t *t, long tick, const ladrc_axis_t *before, const ladrc_axis_t *axis, ladrc_real_t out,
+                       int input_bad, int rate_given, int rate_bad)
 {
     const ladrc_fault_t f = ladrc_axis_get_faults(axis);
     if (!test_is_finite(out) || out < axis->u_min_Nm || out > axis->u_max_Nm) {
@@ -168,7 +171,10 @@ static ladrc_real_t draw(test_rng_t *rng, int in_burst, double truth, double sca
 
 /* Burst bookkeeping shared by the campaigns: 1 while in a burst; at the end
  * of each calm the recovery is judged on `error_rad`. */
-static int in_burst_at(long tick) { return (tick % (BURST_TICKS + CALM_TICKS)) < BURST_TICKS; }
+static int in_burst_at(long tick)
+{
+    return (tick % (BURST_TICKS + CALM_TICKS)) < BURST_TICKS;
+}
 
 static void judge_recovery(tally_t *t, long tick, double error_rad)
 {
@@ -219,8 +225,8 @@ static tally_t run_axis(ladrc_variant_t v, entry_t entry, long n)
         const int input_bad = !ladrc_within(ref, axis.angle_limit_rad) || !ladrc_within(angle, axis.angle_limit_rad);
         const int rate_bad = !ladrc_within(rate, axis.rate_limit_rad_s);
         snapshot(&axis, &before);
-        const ladrc_real_t u = rate_given ? ladrc_axis_step_with_rate(&axis, ref, angle, rate)
-                                          : ladrc_axis_step(&axis, ref, angle);
+        const ladrc_real_t u =
+            rate_given ? ladrc_axis_step_with_rate(&axis, ref, angle, rate) : ladrc_axis_step(&axis, ref, angle);
         check_tick(&t, k, &before, &axis, u, input_bad, rate_given, rate_bad);
         double u_plant = (double)u;
         if (entry == ENTRY_APPLIED && burst) {
@@ -332,15 +338,37 @@ static void campaign(ladrc_variant_t v)
     }
 }
 
-static void test_ladrc_keeps_every_promise_under_hostile_input(void) { campaign(LADRC_VARIANT_LADRC); }
-static void test_lp_mladrc_keeps_every_promise_under_hostile_input(void) { campaign(LADRC_VARIANT_LP_MLADRC); }
-static void test_hp_mladrc_keeps_every_promise_under_hostile_input(void) { campaign(LADRC_VARIANT_HP_MLADRC); }
-static void test_pid_keeps_every_promise_under_hostile_input(void) { campaign(LADRC_VARIANT_PID); }
-static void test_indi_keeps_every_promise_under_hostile_input(void) { campaign(LADRC_VARIANT_INDI); }
-static void test_cascaded_keeps_every_promise_under_hostile_input(void) { campaign(LADRC_VARIANT_CASCADED); }
+static void test_ladrc_keeps_every_promise_under_hostile_input(void)
+{
+    campaign(LADRC_VARIANT_LADRC);
+}
+static void test_lp_mladrc_keeps_every_promise_under_hostile_input(void)
+{
+    campaign(LADRC_VARIANT_LP_MLADRC);
+}
+static void test_hp_mladrc_keeps_every_promise_under_hostile_input(void)
+{
+    campaign(LADRC_VARIANT_HP_MLADRC);
+}
+static void test_pid_keeps_every_promise_under_hostile_input(void)
+{
+    campaign(LADRC_VARIANT_PID);
+}
+static void test_indi_keeps_every_promise_under_hostile_input(void)
+{
+    campaign(LADRC_VARIANT_INDI);
+}
+static void test_cascaded_keeps_every_promise_under_hostile_input(void)
+{
+    campaign(LADRC_VARIANT_CASCADED);
+}
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 int main(void)
 {

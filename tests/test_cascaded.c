@@ -34,8 +34,12 @@
 /* Hand-computed single steps: a few float roundings of 1e-2 N m values. */
 #define HAND_TOL_NM 1e-6
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static ladrc_axis_config_t paper_config(void)
 {
@@ -121,10 +125,10 @@ static void test_init_names_the_bad_field(void)
 static double fly_hold(ladrc_axis_t *axis, test_double_integrator_t *p, double ref_rad, int n, int with_rate)
 {
     for (int k = 0; k < n; ++k) {
-        const ladrc_real_t u =
-            with_rate ? ladrc_axis_step_with_rate(axis, (ladrc_real_t)ref_rad, (ladrc_real_t)p->y_rad,
-                                                  (ladrc_real_t)p->rate_rad_s)
-                      : ladrc_axis_step(axis, (ladrc_real_t)ref_rad, (ladrc_real_t)p->y_rad);
+        const ladrc_real_t u = with_rate
+                                   ? ladrc_axis_step_with_rate(axis, (ladrc_real_t)ref_rad, (ladrc_real_t)p->y_rad,
+                                                               (ladrc_real_t)p->rate_rad_s)
+                                   : ladrc_axis_step(axis, (ladrc_real_t)ref_rad, (ladrc_real_t)p->y_rad);
         TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_NONE, ladrc_axis_get_faults(axis));
         test_plant_step(p, (double)u, DT_S, 1);
     }
@@ -201,8 +205,8 @@ static void test_disturbance_response_matches_the_transfer_function(void)
         const double complex expected = error_per_disturbance(&cfg, w);
         /* then */
         const double rel = cabs(measured - expected) / cabs(expected);
-        printf("w %5.1f rad/s: |e/d| %.4e (expected %.4e), relative difference %.4f", w, cabs(measured),
-                    cabs(expected), rel);
+        printf("w %5.1f rad/s: |e/d| %.4e (expected %.4e), relative difference %.4f", w, cabs(measured), cabs(expected),
+               rel);
         fflush(stdout);
         TEST_ASSERT_TRUE(rel <= TF_REL_TOL);
     }
@@ -307,8 +311,8 @@ static void test_feed_forward_follows_a_ramp_without_lag(void)
         test_double_integrator_t p;
         test_plant_init(&p, 1.0 / J_KG_M2, NULL, NULL);
         for (int k = 0; k < 4000; ++k) {
-            const ladrc_real_t u = ladrc_axis_step_with_rate(&axis, (ladrc_real_t)(v * k * DT_S),
-                                                             (ladrc_real_t)p.y_rad, (ladrc_real_t)p.rate_rad_s);
+            const ladrc_real_t u = ladrc_axis_step_with_rate(&axis, (ladrc_real_t)(v * k * DT_S), (ladrc_real_t)p.y_rad,
+                                                             (ladrc_real_t)p.rate_rad_s);
             test_plant_step(&p, (double)u, DT_S, 1);
         }
         /* error against the shaped reference the loop tracks, at its tick */
@@ -338,8 +342,8 @@ static void test_wrapped_axis_holds_near_pi_across_the_seam(void)
     double worst = 0.0;
     for (int k = 0; k < 300; ++k) {
         const double uw = ladrc_axis_step_with_rate(&wrapped, LADRC_R(3.135), LADRC_R(-3.148), LADRC_R(0.0));
-        const double ut = ladrc_axis_step_with_rate(&twin, LADRC_R(3.135), (ladrc_real_t)(-3.148 + 2.0 * PI_D),
-                                                    LADRC_R(0.0));
+        const double ut =
+            ladrc_axis_step_with_rate(&twin, LADRC_R(3.135), (ladrc_real_t)(-3.148 + 2.0 * PI_D), LADRC_R(0.0));
         worst = fmax(worst, fabs(uw - ut));
     }
     /* then: the same torque, to the float rounding of the turn (1e-6 rad

@@ -43,8 +43,14 @@ static long from_env(const char *name, long fallback)
     return (n > 0L) ? n : fallback;
 }
 
-static long cases(void) { return from_env("LADRC_CONFIG_CASES", DEFAULT_CASES); }
-static long ticks(void) { return from_env("LADRC_CONFIG_TICKS", DEFAULT_TICKS); }
+static long cases(void)
+{
+    return from_env("LADRC_CONFIG_CASES", DEFAULT_CASES);
+}
+static long ticks(void)
+{
+    return from_env("LADRC_CONFIG_TICKS", DEFAULT_TICKS);
+}
 
 /* A field: its default a tenth of the time, within 1.5 decades of it half
  * the time, otherwise a hostile value. */
@@ -90,17 +96,42 @@ static void draw_axis(test_rng_t *rng, ladrc_axis_config_t *c, ladrc_variant_t v
     const double dt = (test_rng_uniform(rng) < 0.5) ? 0.001 : (double)field(rng, 0.001);
     const double j = (test_rng_uniform(rng) < 0.5) ? 5.445e-3 : (double)field(rng, 5.445e-3);
     ladrc_axis_config_default(c, v, (ladrc_real_t)dt, (ladrc_real_t)j);
-    ladrc_real_t *const reals[] = {&c->u_min_Nm, &c->u_max_Nm, &c->angle_limit_rad, &c->rate_limit_rad_s,
-                                   &c->applied_limit_Nm, &c->wc_rad_s, &c->wo_rad_s, &c->b0,
-                                   &c->td_accel_rad_s2, &c->td_h0_s, &c->levant_lipschitz_rad_s4, &c->pid_kp,
-                                   &c->pid_ki, &c->pid_kd, &c->pid_d_filter_tau_s, &c->pid_i_limit_Nm,
-                                   &c->lp_lambda0_per_s, &c->lp_k0_per_s, &c->hp_freq_rad_s[0],
-                                   &c->hp_freq_rad_s[LADRC_HP_MAX_TONES - 1], &c->hp_freq_min_rad_s,
-                                   &c->hp_freq_max_rad_s, &c->hp_lambda0_per_s, &c->hp_freq_lambda0_per_s,
-                                   &c->hp_freq_filter_rad_s, &c->indi_att_kp_per_s, &c->indi_rate_kp_per_s,
-                                   &c->indi_filter_rad_s, &c->cas_att_kp, &c->cas_rate_max_rad_s,
-                                   &c->cas_rate_kp, &c->cas_rate_ki, &c->cas_rate_kd, &c->cas_d_filter_tau_s,
-                                   &c->cas_i_limit_Nm, &c->cas_rate_filter_tau_s};
+    ladrc_real_t *const reals[] = {&c->u_min_Nm,
+                                   &c->u_max_Nm,
+                                   &c->angle_limit_rad,
+                                   &c->rate_limit_rad_s,
+                                   &c->applied_limit_Nm,
+                                   &c->wc_rad_s,
+                                   &c->wo_rad_s,
+                                   &c->b0,
+                                   &c->td_accel_rad_s2,
+                                   &c->td_h0_s,
+                                   &c->levant_lipschitz_rad_s4,
+                                   &c->pid_kp,
+                                   &c->pid_ki,
+                                   &c->pid_kd,
+                                   &c->pid_d_filter_tau_s,
+                                   &c->pid_i_limit_Nm,
+                                   &c->lp_lambda0_per_s,
+                                   &c->lp_k0_per_s,
+                                   &c->hp_freq_rad_s[0],
+                                   &c->hp_freq_rad_s[LADRC_HP_MAX_TONES - 1],
+                                   &c->hp_freq_min_rad_s,
+                                   &c->hp_freq_max_rad_s,
+                                   &c->hp_lambda0_per_s,
+                                   &c->hp_freq_lambda0_per_s,
+                                   &c->hp_freq_filter_rad_s,
+                                   &c->indi_att_kp_per_s,
+                                   &c->indi_rate_kp_per_s,
+                                   &c->indi_filter_rad_s,
+                                   &c->cas_att_kp,
+                                   &c->cas_rate_max_rad_s,
+                                   &c->cas_rate_kp,
+                                   &c->cas_rate_ki,
+                                   &c->cas_rate_kd,
+                                   &c->cas_d_filter_tau_s,
+                                   &c->cas_i_limit_Nm,
+                                   &c->cas_rate_filter_tau_s};
     const size_t n = sizeof reals / sizeof reals[0];
     /* a few fields off their defaults per config, so that some pass */
     const unsigned changes = 1u + test_rng_below(rng, 4u);
@@ -175,12 +206,30 @@ static void axis_campaign(ladrc_variant_t v, const char *name)
     report(name, t);
 }
 
-static void test_axis_ladrc_configs(void) { axis_campaign(LADRC_VARIANT_LADRC, "axis LADRC"); }
-static void test_axis_lp_configs(void) { axis_campaign(LADRC_VARIANT_LP_MLADRC, "axis LP-MLADRC"); }
-static void test_axis_hp_configs(void) { axis_campaign(LADRC_VARIANT_HP_MLADRC, "axis HP-MLADRC"); }
-static void test_axis_pid_configs(void) { axis_campaign(LADRC_VARIANT_PID, "axis PID"); }
-static void test_axis_indi_configs(void) { axis_campaign(LADRC_VARIANT_INDI, "axis INDI"); }
-static void test_axis_cascaded_configs(void) { axis_campaign(LADRC_VARIANT_CASCADED, "axis CASCADED"); }
+static void test_axis_ladrc_configs(void)
+{
+    axis_campaign(LADRC_VARIANT_LADRC, "axis LADRC");
+}
+static void test_axis_lp_configs(void)
+{
+    axis_campaign(LADRC_VARIANT_LP_MLADRC, "axis LP-MLADRC");
+}
+static void test_axis_hp_configs(void)
+{
+    axis_campaign(LADRC_VARIANT_HP_MLADRC, "axis HP-MLADRC");
+}
+static void test_axis_pid_configs(void)
+{
+    axis_campaign(LADRC_VARIANT_PID, "axis PID");
+}
+static void test_axis_indi_configs(void)
+{
+    axis_campaign(LADRC_VARIANT_INDI, "axis INDI");
+}
+static void test_axis_cascaded_configs(void)
+{
+    axis_campaign(LADRC_VARIANT_CASCADED, "axis CASCADED");
+}
 
 static void run_attitude(tally_t *t, ladrc_attitude_t *att, const ladrc_attitude_config_t *c, long n)
 {
@@ -232,8 +281,12 @@ static void test_attitude_configs(void)
     report("attitude", t);
 }
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 int main(void)
 {

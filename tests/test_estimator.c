@@ -26,8 +26,12 @@
 /* With noise, accuracy is judged after the start-up transient. */
 #define NOISY_SETTLE_S 5.0
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static ladrc_hp_config_t hp_config(ladrc_hp_freq_mode_t mode, double freq)
 {
@@ -89,8 +93,8 @@ static void test_hp_online_finds_frequency_and_amplitude_across_the_range(void)
         const double t = hp_convergence_time(20.0, 120.0, freqs[i], 10000, &est);
         const double allowed = fmax(CONVERGE_S, CONVERGE_PERIODS * 2.0 * PI / freqs[i]);
         char msg[96];
-        snprintf(msg, sizeof msg, "w %.3f rad/s: within 2%%/5%% from %.3f s, w_hat %.4f, A_hat %.2f",
-                 freqs[i], t, ladrc_hp_get_freq(&est, 0u), ladrc_hp_get_amplitude(&est, 0u));
+        snprintf(msg, sizeof msg, "w %.3f rad/s: within 2%%/5%% from %.3f s, w_hat %.4f, A_hat %.2f", freqs[i], t,
+                 ladrc_hp_get_freq(&est, 0u), ladrc_hp_get_amplitude(&est, 0u));
         TEST_MESSAGE(msg);
         TEST_ASSERT_TRUE_MESSAGE(t >= 0.0, msg);
         TEST_ASSERT_LESS_OR_EQUAL_FLOAT_MESSAGE((float)allowed, (float)t, msg);
@@ -252,8 +256,7 @@ static void test_hp_hands_over_what_the_weight_moves(void)
 /* HP online on 20 + 120 sin(3 t) plus seeded uniform white noise of the
  * given RMS; returns the worst frequency error after 5 s and the largest
  * |d_hat| over the run. */
-static void hp_with_noise(double noise_rms, double *worst_freq_err, double *max_estimate,
-                          ladrc_hp_estimator_t *est)
+static void hp_with_noise(double noise_rms, double *worst_freq_err, double *max_estimate, ladrc_hp_estimator_t *est)
 {
     const ladrc_hp_config_t cfg = hp_config(LADRC_HP_FREQ_ONLINE, 1.0);
     ladrc_hp_init(est, &cfg);
@@ -284,8 +287,8 @@ static void test_hp_online_stays_bounded_with_noise(void)
         hp_with_noise(levels[i], &worst, &peak, &est);
         char msg[128];
         snprintf(msg, sizeof msg,
-                 "noise %.0f RMS: largest |d_hat| %.1f, worst |w_hat - 3| after 5 s %.3f rad/s, weight %.2f",
-                 levels[i], peak, worst, ladrc_hp_get_weight(&est));
+                 "noise %.0f RMS: largest |d_hat| %.1f, worst |w_hat - 3| after 5 s %.3f rad/s, weight %.2f", levels[i],
+                 peak, worst, ladrc_hp_get_weight(&est));
         TEST_MESSAGE(msg);
         TEST_ASSERT_LESS_THAN_FLOAT_MESSAGE((float)(140.0 + 1.7320508 * levels[i]), (float)peak, msg);
     }
@@ -595,8 +598,8 @@ static void test_lp_lead_is_n_at_once_and_unity_at_dc(void)
     (void)ladrc_lp_step(&est, 0.0f, -30.0f);
     const double jump = ladrc_lp_get_estimate(&est) - before;
     const double lead_jump = ladrc_lp_step_lead(&est) - settled;
-    printf("d_hat moved %.4f, command %.4f (N = %.1f, tau' = %.3f s)\n", jump, lead_jump,
-           (double)LADRC_LP_LEAD_MAX, tau_eff);
+    printf("d_hat moved %.4f, command %.4f (N = %.1f, tau' = %.3f s)\n", jump, lead_jump, (double)LADRC_LP_LEAD_MAX,
+           tau_eff);
     TEST_ASSERT_TRUE(jump > 1.0);
     TEST_ASSERT_FLOAT_WITHIN(LEAD_SETTLED_TOL * 30.0 * LADRC_LP_LEAD_MAX, LADRC_LP_LEAD_MAX * jump, lead_jump);
     /* and: back to d_hat within float rounding after 20 tau' / N */

@@ -239,8 +239,12 @@ static void test_attitude_init_refuses_bodies_that_cannot_exist(void)
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_attitude_init(&att, &bad, NULL));
 }
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 int main(void)
 {

@@ -32,8 +32,12 @@
  * modes). */
 #define STOP_SETTLE_MAX_S 0.5
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static double reference(int axis, double t, double scale)
 {
@@ -64,8 +68,7 @@ typedef struct {
     double stop_max_deg;  /* largest |error| after the stop, worst axis */
 } paper_result_t;
 
-static paper_result_t fly(ladrc_variant_t variant, ladrc_hp_freq_mode_t mode, double noise_std_rad,
-                          double ref_scale)
+static paper_result_t fly(ladrc_variant_t variant, ladrc_hp_freq_mode_t mode, double noise_std_rad, double ref_scale)
 {
     static const ladrc_real_t inertia[3] = {5.445e-3f, 5.445e-3f, 1.089e-2f};
     ladrc_attitude_config_t cfg;

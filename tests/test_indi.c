@@ -33,10 +33,10 @@
 #define WINDUP_REL_TOL 1e-4
 
 typedef struct {
-    double y, w;    /* angle (rad), rate (rad/s) */
-    double tau;     /* motor lag (s), 0 = none */
-    double m;       /* acting torque of the lag (N m) */
-    int delay;      /* measurement delay (ticks) */
+    double y, w; /* angle (rad), rate (rad/s) */
+    double tau;  /* motor lag (s), 0 = none */
+    double m;    /* acting torque of the lag (N m) */
+    int delay;   /* measurement delay (ticks) */
     double hist_y[16], hist_w[16];
     int n;
 } plant_t;
@@ -65,8 +65,14 @@ static void plant_step(plant_t *p, double u, double d)
     p->n++;
 }
 
-static double meas_y(const plant_t *p) { return p->delay == 0 ? p->y : (p->n > p->delay ? p->hist_y[p->delay] : 0.0); }
-static double meas_w(const plant_t *p) { return p->delay == 0 ? p->w : (p->n > p->delay ? p->hist_w[p->delay] : 0.0); }
+static double meas_y(const plant_t *p)
+{
+    return p->delay == 0 ? p->y : (p->n > p->delay ? p->hist_y[p->delay] : 0.0);
+}
+static double meas_w(const plant_t *p)
+{
+    return p->delay == 0 ? p->w : (p->n > p->delay ? p->hist_w[p->delay] : 0.0);
+}
 
 static ladrc_axis_config_t config(void)
 {
@@ -81,8 +87,12 @@ static ladrc_real_t tick(ladrc_axis_t *axis, plant_t *p, double ref)
     return ladrc_axis_step_with_rate(axis, (ladrc_real_t)ref, (ladrc_real_t)meas_y(p), (ladrc_real_t)meas_w(p));
 }
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static void test_defaults_follow_the_stated_rule(void)
 {
@@ -143,9 +153,11 @@ static double fly_constant(plant_t *p, double d, double ref, int n, ladrc_axis_t
         const double u = (double)tick(&axis, p, ref);
         TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_NONE, ladrc_axis_get_faults(&axis));
         plant_step(p, u, d);
-        if (k >= n - 500) worst = fmax(worst, fabs(ref - p->y));
+        if (k >= n - 500)
+            worst = fmax(worst, fabs(ref - p->y));
     }
-    if (axis_out != NULL) *axis_out = axis;
+    if (axis_out != NULL)
+        *axis_out = axis;
     return worst;
 }
 
@@ -260,10 +272,11 @@ static void test_disturbance_response_matches_its_transfer_function(void)
             plant_step(&p, u, D * sin(w * t));
         }
         const double measured = 2.0 * hypot(s, c) / n / D;
-        const double predicted = predicted_gain(w, cfg.indi_att_kp_per_s, cfg.indi_rate_kp_per_s, cfg.indi_filter_rad_s);
+        const double predicted =
+            predicted_gain(w, cfg.indi_att_kp_per_s, cfg.indi_rate_kp_per_s, cfg.indi_filter_rad_s);
         const double cont = continuous_gain(w, cfg.indi_att_kp_per_s, cfg.indi_rate_kp_per_s, cfg.indi_filter_rad_s);
-        printf("|E/D| at %5.1f rad/s: measured %.5e, sampled TF %.5e, continuous %.5e rad per rad/s^2\n", w,
-               measured, predicted, cont);
+        printf("|E/D| at %5.1f rad/s: measured %.5e, sampled TF %.5e, continuous %.5e rad per rad/s^2\n", w, measured,
+               predicted, cont);
         /* then */
         TEST_ASSERT_FLOAT_WITHIN(TF_REL_TOL * predicted, predicted, measured);
     }
@@ -346,7 +359,8 @@ static void test_rate_gaps_keep_the_filters_synchronised(void)
         const double u = (k % 3 == 2) ? (double)ladrc_axis_step(&axis, LADRC_R(0.1), (ladrc_real_t)p.y)
                                       : (double)tick(&axis, &p, 0.1);
         plant_step(&p, u, 20.0);
-        if (k >= 5500) worst = fmax(worst, fabs(0.1 - p.y));
+        if (k >= 5500)
+            worst = fmax(worst, fabs(0.1 - p.y));
     }
     ladrc_real_t y, w, dist;
     ladrc_axis_get_estimate(&axis, &y, &w, &dist);

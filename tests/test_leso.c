@@ -28,8 +28,12 @@ static ladrc_leso_config_t config(ladrc_leso_method_t method)
     return cfg;
 }
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 /* Runs the observer on an exact double-integrator with constant disturbance
  * f and a varying ZOH input, storing the estimation errors e_k = x_k - z_k. */
@@ -69,8 +73,8 @@ static void test_zoh_error_decays_per_step_as_a_triple_pole_at_exp_minus_wo_h(vo
             scale = fmax(scale, fabs(err[k][c]));
         }
         for (int k = 0; k + 3 < 40; ++k) {
-            const double r = err[k + 3][c] - 3.0 * beta * err[k + 2][c] +
-                             3.0 * beta * beta * err[k + 1][c] - beta * beta * beta * err[k][c];
+            const double r = err[k + 3][c] - 3.0 * beta * err[k + 2][c] + 3.0 * beta * beta * err[k + 1][c] -
+                             beta * beta * beta * err[k][c];
             TEST_ASSERT_FLOAT_WITHIN(RECURRENCE_REL_TOL, 0.0, r / scale);
         }
     }
@@ -101,8 +105,7 @@ static void test_euler_homogeneous_error_has_a_triple_pole_at_one_minus_wo_h(voi
             scale = fmax(scale, fabs(z[k][c]));
         }
         for (int k = 0; k + 3 < N; ++k) {
-            const double r = z[k + 3][c] - 3.0 * p * z[k + 2][c] + 3.0 * p * p * z[k + 1][c] -
-                             p * p * p * z[k][c];
+            const double r = z[k + 3][c] - 3.0 * p * z[k + 2][c] + 3.0 * p * p * z[k + 1][c] - p * p * p * z[k][c];
             TEST_ASSERT_FLOAT_WITHIN(RECURRENCE_REL_TOL, 0.0, r / scale);
         }
     }
@@ -149,7 +152,10 @@ static void test_zoh_is_accepted_at_any_positive_bandwidth(void)
 }
 
 /* Ramp disturbance f = slope * t: a LESO told the slope has no lag. */
-static double ramp(double t_s, const void *ctx) { return *(const double *)ctx * t_s; }
+static double ramp(double t_s, const void *ctx)
+{
+    return *(const double *)ctx * t_s;
+}
 
 static double ramp_estimate_error(int tell_slope)
 {
@@ -161,8 +167,7 @@ static double ramp_estimate_error(int tell_slope)
     test_plant_init(&plant, B0, ramp, &slope);
     for (int k = 0; k < 1000; ++k) {
         test_plant_step(&plant, 0.0, DT_S, 4);
-        ladrc_leso_step(&obs, (ladrc_real_t)plant.y_rad, 0.0f, 0.0f,
-                        tell_slope ? (ladrc_real_t)slope : 0.0f);
+        ladrc_leso_step(&obs, (ladrc_real_t)plant.y_rad, 0.0f, 0.0f, tell_slope ? (ladrc_real_t)slope : 0.0f);
     }
     return slope * plant.t_s - obs.z3;
 }
@@ -330,8 +335,7 @@ static void test_a_twin_holds_its_estimate_on_bad_input_and_restarts_on_a_finite
     TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, twin.z1);
     ladrc_leso_step_twin(&obs, &twin, 0.2f, 1.0f, 0.0f, 0.0f);
     const ladrc_leso_twin_t before = twin;
-    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT,
-                           ladrc_leso_step_twin(&obs, &twin, 0.2f, (ladrc_real_t)NAN, 0.0f, 0.0f));
+    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_leso_step_twin(&obs, &twin, 0.2f, (ladrc_real_t)NAN, 0.0f, 0.0f));
     TEST_ASSERT_EQUAL_MEMORY(&before, &twin, sizeof twin);
     const ladrc_real_t huge = (ladrc_real_t)(sizeof(ladrc_real_t) == 4 ? 3e38 : 1.7e308);
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_leso_step_twin(&obs, &twin, huge, huge, huge, 0.0f));

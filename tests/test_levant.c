@@ -106,8 +106,12 @@
 #define CHATTER_JUDGE_FROM_S 3.0
 #define CHATTER_END_S 7.0
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 /* ------------------------------------------------------------ helpers */
 
@@ -122,8 +126,7 @@ static ladrc_levant_config_t lipschitz_config(ladrc_levant_method_t method, doub
     return cfg;
 }
 
-static ladrc_levant_config_t explicit_config(ladrc_levant_method_t method, double l1, double l2,
-                                             double l3, double l4)
+static ladrc_levant_config_t explicit_config(ladrc_levant_method_t method, double l1, double l2, double l3, double l4)
 {
     ladrc_levant_config_t cfg;
     memset(&cfg, 0, sizeof cfg);
@@ -172,10 +175,14 @@ static double rng_gauss(gauss_rng_t *g)
 static double cubic(double t, int order)
 {
     switch (order) {
-    case 0: return 0.1 + t * (0.3 + t * (-0.15 + t * 0.02));
-    case 1: return 0.3 + t * (-0.3 + t * 0.06);
-    case 2: return -0.3 + t * 0.12;
-    default: return 0.12;
+    case 0:
+        return 0.1 + t * (0.3 + t * (-0.15 + t * 0.02));
+    case 1:
+        return 0.3 + t * (-0.3 + t * 0.06);
+    case 2:
+        return -0.3 + t * 0.12;
+    default:
+        return 0.12;
     }
 }
 
@@ -186,10 +193,14 @@ static double roll_ref(double t, int order)
     const double w = 3.141592653589793 / 2.0;
     const double a = 15.0 * deg;
     switch (order) {
-    case 0: return 5.0 * deg + a * cos(w * t);
-    case 1: return -a * w * sin(w * t);
-    case 2: return -a * w * w * cos(w * t);
-    default: return a * w * w * w * sin(w * t);
+    case 0:
+        return 5.0 * deg + a * cos(w * t);
+    case 1:
+        return -a * w * sin(w * t);
+    case 2:
+        return -a * w * w * cos(w * t);
+    default:
+        return a * w * w * w * sin(w * t);
     }
 }
 
@@ -204,11 +215,13 @@ static void lipschitz_gains(double lip, double k[4])
     k[0] = 1.1 * lip;
 }
 
-static double spow(double e, double a) { return (e > 0.0) ? pow(e, a) : -pow(-e, a); }
+static double spow(double e, double a)
+{
+    return (e > 0.0) ? pow(e, a) : -pow(-e, a);
+}
 
 /* Puts a fresh implicit or explicit instance (L = 1000) in motion by hand. */
-static void start_moving(ladrc_levant_t *lev, ladrc_levant_method_t method, double r0, double v1,
-                         double v2, double v3)
+static void start_moving(ladrc_levant_t *lev, ladrc_levant_method_t method, double r0, double v1, double v2, double v3)
 {
     const ladrc_levant_config_t cfg = lipschitz_config(method, 1000.0);
     init_ok(lev, &cfg);
@@ -222,8 +235,7 @@ static void start_moving(ladrc_levant_t *lev, ladrc_levant_method_t method, doub
  * iterations started from a blend of the term bounds and stopped on the
  * step's size: from the smallest of the quartic, quadratic and linear bounds,
  * until a step no longer decreases (at most 16). */
-static ladrc_real_t reference_quartic_root(ladrc_real_t d, ladrc_real_t a3, ladrc_real_t a2,
-                                           ladrc_real_t a1)
+static ladrc_real_t reference_quartic_root(ladrc_real_t d, ladrc_real_t a3, ladrc_real_t a2, ladrc_real_t a1)
 {
     ladrc_real_t u = ladrc_sqrt(ladrc_sqrt(d));
     ladrc_real_t bound = ladrc_sqrt(d / a2);
@@ -264,8 +276,8 @@ static void test_implicit_step_solves_its_error_equation_and_updates_as_document
         const double q = r0 + h * v1 + h * h / 2.0 * v2 + h * h * h / 6.0 * v3 - (double)rk;
         const double e = (double)out.r - (double)rk;
         const double s = (e > 0.0) ? 1.0 : -1.0;
-        const double lhs = e + g3 * spow(e, 0.75) + h * g2 * spow(e, 0.5) + h * h * g1 * spow(e, 0.25) +
-                           h * h * h * g0 * s;
+        const double lhs =
+            e + g3 * spow(e, 0.75) + h * g2 * spow(e, 0.5) + h * h * g1 * spow(e, 0.25) + h * h * h * g0 * s;
         const double p1 = v1 + h * v2 + h * h / 2.0 * v3;
         const double p2 = v2 + h * v3;
         const double z1 = p1 - g2 * spow(e, 0.5) - h * g1 * spow(e, 0.25) - 11.0 / 6.0 * h * h * g0 * s;
@@ -323,8 +335,8 @@ static void test_implicit_root_agrees_with_the_earlier_solver_over_forty_decades
     }
     {
         char msg[120];
-        snprintf(msg, sizeof msg, "%d steps: largest relative difference in e %.3g (%.2f REAL_EPS)",
-                 steps, worst, worst / REAL_EPS);
+        snprintf(msg, sizeof msg, "%d steps: largest relative difference in e %.3g (%.2f REAL_EPS)", steps, worst,
+                 worst / REAL_EPS);
         TEST_MESSAGE(msg);
     }
 }
@@ -353,8 +365,8 @@ static void test_implicit_step_absorbs_a_small_error_with_the_set_valued_sign(vo
         /* and the sign term s = q / (h^3 g0), inside [-1, 1], moves the rest */
         TEST_ASSERT_FLOAT_WITHIN(tol, -g0 * s, ladrc_levant_get_dddr(&lev));
         TEST_ASSERT_FLOAT_WITHIN(2.0 * h * tol, -2.0 * h * g0 * s, out.ddr);
-        TEST_ASSERT_FLOAT_WITHIN(11.0 / 6.0 * h * h * tol + 2.0 * REAL_EPS * v1,
-                                 v1 - 11.0 / 6.0 * h * h * g0 * s, out.dr);
+        TEST_ASSERT_FLOAT_WITHIN(11.0 / 6.0 * h * h * tol + 2.0 * REAL_EPS * v1, v1 - 11.0 / 6.0 * h * h * g0 * s,
+                                 out.dr);
     }
 }
 
@@ -389,8 +401,7 @@ static void test_explicit_steps_follow_the_hd_and_euler_equations(void)
             TEST_ASSERT_FLOAT_WITHIN(HAND_REL_TOL * fabs(z0), z0, out.r);
             TEST_ASSERT_FLOAT_WITHIN(HAND_REL_TOL * (fabs(p1) + fabs(z1)), z1, out.dr);
             TEST_ASSERT_FLOAT_WITHIN(HAND_REL_TOL * (fabs(p2) + fabs(z2)), z2, out.ddr);
-            TEST_ASSERT_FLOAT_WITHIN(HAND_REL_TOL * (fabs(v3) + fabs(z3)), z3,
-                                     ladrc_levant_get_dddr(&lev));
+            TEST_ASSERT_FLOAT_WITHIN(HAND_REL_TOL * (fabs(v3) + fabs(z3)), z3, ladrc_levant_get_dddr(&lev));
         }
     }
 }
@@ -400,9 +411,8 @@ static void test_recursive_gains_convert_to_the_published_non_recursive_ones(voi
     /* given: the recursive gains of Levant's coefficients 1.1, 1.5, 2, 3 for L = 50 */
     const double lip = 50.0;
     const ladrc_levant_config_t by_bound = lipschitz_config(LADRC_LEVANT_IMPLICIT, lip);
-    const ladrc_levant_config_t by_gains =
-        explicit_config(LADRC_LEVANT_IMPLICIT, 3.0 * pow(lip, 0.25), 2.0 * pow(lip, 1.0 / 3.0),
-                        1.5 * pow(lip, 0.5), 1.1 * lip);
+    const ladrc_levant_config_t by_gains = explicit_config(LADRC_LEVANT_IMPLICIT, 3.0 * pow(lip, 0.25),
+                                                           2.0 * pow(lip, 1.0 / 3.0), 1.5 * pow(lip, 0.5), 1.1 * lip);
     ladrc_levant_t a;
     ladrc_levant_t b;
     /* when */
@@ -482,8 +492,9 @@ static void test_implicit_estimates_a_cubic_exactly_after_a_finite_transient(voi
     /* when: sampled at 1 kHz for 5 s */
     const double last_out_s = run_cubic(LADRC_LEVANT_IMPLICIT, worst);
     /* then: every estimate stays within its rounding tolerance after a finite transient */
-    snprintf(msg, sizeof msg, "implicit cubic: within tolerance from %.3f s; max errors r %.2e r' %.2e r'' %.2e r''' %.2e",
-             last_out_s, worst[0], worst[1], worst[2], worst[3]);
+    snprintf(msg, sizeof msg,
+             "implicit cubic: within tolerance from %.3f s; max errors r %.2e r' %.2e r'' %.2e r''' %.2e", last_out_s,
+             worst[0], worst[1], worst[2], worst[3]);
     TEST_MESSAGE(msg);
     TEST_ASSERT_LESS_THAN_FLOAT(CUBIC_SETTLED_S, last_out_s);
 }
@@ -498,9 +509,9 @@ static void test_explicit_forms_track_a_cubic_within_their_discretisation_error(
         char msg[160];
         const double last_out_s = run_cubic(methods[m], worst);
         /* then */
-        snprintf(msg, sizeof msg, "%s cubic: within tolerance from %.3f s; max errors r %.2e r' %.2e r'' %.2e r''' %.2e",
-                 (methods[m] == LADRC_LEVANT_HD) ? "HD" : "Euler", last_out_s, worst[0], worst[1], worst[2],
-                 worst[3]);
+        snprintf(msg, sizeof msg,
+                 "%s cubic: within tolerance from %.3f s; max errors r %.2e r' %.2e r'' %.2e r''' %.2e",
+                 (methods[m] == LADRC_LEVANT_HD) ? "HD" : "Euler", last_out_s, worst[0], worst[1], worst[2], worst[3]);
         TEST_MESSAGE(msg);
         TEST_ASSERT_LESS_THAN_FLOAT(CUBIC_SETTLED_S, last_out_s);
     }
@@ -593,8 +604,7 @@ static void test_derivative_of_a_noisy_sine_has_a_lower_rms_error_than_the_best_
 /* RMS of the steps of r'' on the paper's roll reference with the paper's gains. */
 static double r2_step_rms(ladrc_levant_method_t method, double *err_rms)
 {
-    const ladrc_levant_config_t cfg =
-        explicit_config(method, CHATTER_L123, CHATTER_L123, CHATTER_L123, CHATTER_L4);
+    const ladrc_levant_config_t cfg = explicit_config(method, CHATTER_L123, CHATTER_L123, CHATTER_L123, CHATTER_L4);
     ladrc_levant_t lev;
     double prev = 0.0;
     double sum = 0.0;
@@ -651,8 +661,8 @@ typedef struct {
  * bytes of "*lev = zero" are not defined, and optimised builds leave them). */
 static void assert_levant_zeroed(const ladrc_levant_t *lev, const char *msg)
 {
-    const ladrc_real_t fields[] = {lev->w, lev->r_last, lev->z1, lev->z2, lev->z3,
-                                   lev->h_s, lev->g3, lev->g2, lev->g1, lev->g0};
+    const ladrc_real_t fields[] = {lev->w,   lev->r_last, lev->z1, lev->z2, lev->z3,
+                                   lev->h_s, lev->g3,     lev->g2, lev->g1, lev->g0};
     const ladrc_real_t zeros[sizeof fields / sizeof fields[0]] = {0};
     TEST_ASSERT_EQUAL_MEMORY_MESSAGE(zeros, fields, sizeof fields, msg);
     TEST_ASSERT_EQUAL_UINT8_MESSAGE(0u, lev->method, msg);
@@ -780,8 +790,7 @@ static void test_rejected_instance_refuses_every_step_and_outputs_zero(void)
 
 static void test_reset_starts_at_rest_on_the_given_reference_and_stays_there(void)
 {
-    const ladrc_levant_method_t methods[] = {LADRC_LEVANT_IMPLICIT, LADRC_LEVANT_HD,
-                                             LADRC_LEVANT_EULER};
+    const ladrc_levant_method_t methods[] = {LADRC_LEVANT_IMPLICIT, LADRC_LEVANT_HD, LADRC_LEVANT_EULER};
     const ladrc_real_t r0 = LADRC_R(0.37);
     size_t m;
     for (m = 0; m < 3; ++m) {
@@ -843,8 +852,7 @@ static void test_reset_on_a_non_finite_reference_stops_where_it_is_and_raises_in
 
 static void test_non_finite_input_holds_the_state_and_recovers_as_if_skipped(void)
 {
-    const ladrc_levant_method_t methods[] = {LADRC_LEVANT_IMPLICIT, LADRC_LEVANT_HD,
-                                             LADRC_LEVANT_EULER};
+    const ladrc_levant_method_t methods[] = {LADRC_LEVANT_IMPLICIT, LADRC_LEVANT_HD, LADRC_LEVANT_EULER};
     const double bad[] = {(double)NAN, (double)INFINITY, (double)-INFINITY};
     size_t m;
     for (m = 0; m < 3; ++m) {
@@ -891,8 +899,7 @@ static void test_non_finite_input_holds_the_state_and_recovers_as_if_skipped(voi
 
 static void test_an_update_that_would_overflow_is_refused_with_a_state_fault(void)
 {
-    const ladrc_levant_method_t methods[] = {LADRC_LEVANT_IMPLICIT, LADRC_LEVANT_HD,
-                                             LADRC_LEVANT_EULER};
+    const ladrc_levant_method_t methods[] = {LADRC_LEVANT_IMPLICIT, LADRC_LEVANT_HD, LADRC_LEVANT_EULER};
     size_t m;
     for (m = 0; m < 3; ++m) {
         /* given: an instance at rest near the bottom of the range */
@@ -920,8 +927,8 @@ static void test_an_update_that_would_overflow_any_derivative_is_refused(void)
     /* Three white-box states, each pushing one derivative past the range in
      * one Euler step of h = 1 s while the estimate of r stays finite. */
     const ladrc_real_t big = REAL_MAX * LADRC_R(0.9);
-    const ladrc_real_t state[3][3] = {{big, big, LADRC_R(0.0)},  /* z1 + h z2 */
-                                      {LADRC_R(0.0), big, big},  /* z2 + h z3 */
+    const ladrc_real_t state[3][3] = {{big, big, LADRC_R(0.0)},            /* z1 + h z2 */
+                                      {LADRC_R(0.0), big, big},            /* z2 + h z3 */
                                       {LADRC_R(0.0), LADRC_R(0.0), -big}}; /* z3 - g0 */
     size_t c;
     for (c = 0; c < 3; ++c) {

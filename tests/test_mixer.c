@@ -89,8 +89,12 @@ static void init_mixer(ladrc_mixer_t *mx, ladrc_mixer_mode_t mode)
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_mixer_init(mx, &cfg));
 }
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 /* ------------------------------------------------------------ references */
 
@@ -133,23 +137,20 @@ static split_t split_double(double thrust_N, const ladrc_real_t torque_Nm[3])
  * rotors w2, against the double forward model. */
 static double report_tol(const ladrc_real_t w2[4], double coef)
 {
-    const double sum = fabs((double)w2[0]) + fabs((double)w2[1]) + fabs((double)w2[2]) +
-                       fabs((double)w2[3]);
+    const double sum = fabs((double)w2[0]) + fabs((double)w2[1]) + fabs((double)w2[2]) + fabs((double)w2[3]);
     return (REPORT_TOL_EPS + FORWARD_ROUNDING_EPS) * REAL_EPS * coef * sum +
            REPORT_TOL_SUBNORMALS * REAL_MIN * REAL_EPS;
 }
 
 /* |actual - expected| <= tol, compared in double: the Unity float asserts round to
  * float, coarser than the report tolerance of the double build. */
-#define ASSERT_REPORT_WITHIN(tol, expected, actual) \
-    assert_report_within((tol), (expected), (double)(actual), __LINE__)
+#define ASSERT_REPORT_WITHIN(tol, expected, actual) assert_report_within((tol), (expected), (double)(actual), __LINE__)
 
 static void assert_report_within(double tol, double expected, double actual, int line)
 {
     if (!(fabs(actual - expected) <= tol)) {
         char msg[160];
-        snprintf(msg, sizeof msg, "Expected %.17g Was %.17g (tolerance %.3g), line %d", expected, actual,
-                 tol, line);
+        snprintf(msg, sizeof msg, "Expected %.17g Was %.17g (tolerance %.3g), line %d", expected, actual, tol, line);
         TEST_FAIL_MESSAGE(msg);
     }
 }
@@ -233,16 +234,15 @@ static void test_mixer_allocation_followed_by_the_forward_model_gives_back_the_r
         ladrc_mixer_allocate(&mx, r.thrust_N, r.torque_Nm, w2);
         forward_double(w2, &thrust_N, torque_Nm);
         /* then */
-        TEST_ASSERT_FLOAT_WITHIN(THRUST_ABS_TOL_N + THRUST_REL_TOL * fabs(r.thrust_N), r.thrust_N,
-                                 thrust_N);
+        TEST_ASSERT_FLOAT_WITHIN(THRUST_ABS_TOL_N + THRUST_REL_TOL * fabs(r.thrust_N), r.thrust_N, thrust_N);
         worst[0] = fmax(worst[0], fabs(thrust_N - r.thrust_N));
         for (i = 0; i < 3; ++i) {
             TEST_ASSERT_FLOAT_WITHIN(TORQUE_TOL_NM, r.torque_Nm[i], torque_Nm[i]);
             worst[i + 1] = fmax(worst[i + 1], fabs(torque_Nm[i] - r.torque_Nm[i]));
         }
     }
-    snprintf(msg, sizeof msg, "round trip worst: thrust %.2e N, roll %.2e, pitch %.2e, yaw %.2e N m",
-             worst[0], worst[1], worst[2], worst[3]);
+    snprintf(msg, sizeof msg, "round trip worst: thrust %.2e N, roll %.2e, pitch %.2e, yaw %.2e N m", worst[0],
+             worst[1], worst[2], worst[3]);
     TEST_MESSAGE(msg);
 }
 
@@ -250,8 +250,7 @@ static void test_mixer_forward_model_matches_the_paper_equations(void)
 {
     /* given: distinct rotor speeds */
     ladrc_mixer_t mx;
-    const ladrc_real_t w2[4] = {LADRC_R(50000.0), LADRC_R(60000.0), LADRC_R(70000.0),
-                                LADRC_R(90000.0)};
+    const ladrc_real_t w2[4] = {LADRC_R(50000.0), LADRC_R(60000.0), LADRC_R(70000.0), LADRC_R(90000.0)};
     ladrc_real_t thrust_N;
     ladrc_real_t torque_Nm[3];
     init_mixer(&mx, LADRC_MIXER_SATURATE);
@@ -277,8 +276,7 @@ static void test_mixer_hover_of_the_paper_vehicle_gives_m_g_over_4_kL_on_every_r
         int i;
         init_mixer(&mx, modes[m]);
         /* when */
-        const ladrc_fault_t faults =
-            ladrc_mixer_step(&mx, (ladrc_real_t)(MASS_KG * G_M_S2), no_torque, &out);
+        const ladrc_fault_t faults = ladrc_mixer_step(&mx, (ladrc_real_t)(MASS_KG * G_M_S2), no_torque, &out);
         /* then: 65839 rad^2/s^2 (256.6 rad/s) each, nothing saturated */
         TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, faults);
         TEST_ASSERT_EQUAL_HEX8(0u, out.saturated);
@@ -317,11 +315,10 @@ static void test_mixer_thrust_from_tilt_is_m_g_over_cos_roll_cos_pitch(void)
     init_mixer(&mx, LADRC_MIXER_SATURATE);
     for (i = 0; i < sizeof angles / sizeof angles[0]; ++i) {
         /* when: tilts within the 45 deg limit (cos product >= 0.707) */
-        const ladrc_real_t t = ladrc_mixer_thrust_from_tilt(&mx, (ladrc_real_t)angles[i][0],
-                                                            (ladrc_real_t)angles[i][1]);
+        const ladrc_real_t t =
+            ladrc_mixer_thrust_from_tilt(&mx, (ladrc_real_t)angles[i][0], (ladrc_real_t)angles[i][1]);
         /* then */
-        TEST_ASSERT_FLOAT_WITHIN(TILT_THRUST_TOL_N,
-                                 MASS_KG * G_M_S2 / (cos(angles[i][0]) * cos(angles[i][1])), t);
+        TEST_ASSERT_FLOAT_WITHIN(TILT_THRUST_TOL_N, MASS_KG * G_M_S2 / (cos(angles[i][0]) * cos(angles[i][1])), t);
     }
 }
 
@@ -335,8 +332,8 @@ static void test_mixer_thrust_from_tilt_is_capped_at_the_tilt_limit(void)
     init_mixer(&mx, LADRC_MIXER_SATURATE);
     for (i = 0; i < sizeof angles / sizeof angles[0]; ++i) {
         /* when */
-        const ladrc_real_t t = ladrc_mixer_thrust_from_tilt(&mx, (ladrc_real_t)angles[i][0],
-                                                            (ladrc_real_t)angles[i][1]);
+        const ladrc_real_t t =
+            ladrc_mixer_thrust_from_tilt(&mx, (ladrc_real_t)angles[i][0], (ladrc_real_t)angles[i][1]);
         /* then: m g / cos(45 deg) = 11.10 N, never more */
         TEST_ASSERT_FLOAT_WITHIN(TILT_THRUST_TOL_N, capped, t);
     }
@@ -393,8 +390,7 @@ static void test_mixer_thrust_beyond_the_top_moves_down_and_roll_stays_exact(voi
     TEST_ASSERT_EQUAL_MEMORY(torque_Nm, out.torque_Nm, sizeof torque_Nm);
     TEST_ASSERT_EQUAL_HEX8(LADRC_MIXER_SAT_THRUST, out.saturated);
     TEST_ASSERT_FLOAT_WITHIN(W2_TOL, W2_MAX, out.w2_rad2_s2[1]);
-    TEST_ASSERT_FLOAT_WITHIN(SCENARIO_THRUST_TOL_N, 4.0 * KL_N_S2 * (W2_MAX - s.rp[1]),
-                             out.thrust_N);
+    TEST_ASSERT_FLOAT_WITHIN(SCENARIO_THRUST_TOL_N, 4.0 * KL_N_S2 * (W2_MAX - s.rp[1]), out.thrust_N);
 }
 
 static void test_mixer_thrust_below_the_bottom_moves_up_and_roll_stays_exact(void)
@@ -411,8 +407,7 @@ static void test_mixer_thrust_below_the_bottom_moves_up_and_roll_stays_exact(voi
     TEST_ASSERT_EQUAL_MEMORY(torque_Nm, out.torque_Nm, sizeof torque_Nm);
     TEST_ASSERT_EQUAL_HEX8(LADRC_MIXER_SAT_THRUST, out.saturated);
     TEST_ASSERT_FLOAT_WITHIN(W2_TOL, W2_MIN, out.w2_rad2_s2[3]);
-    TEST_ASSERT_FLOAT_WITHIN(SCENARIO_THRUST_TOL_N, 4.0 * KL_N_S2 * (W2_MIN + s.rp[1]),
-                             out.thrust_N);
+    TEST_ASSERT_FLOAT_WITHIN(SCENARIO_THRUST_TOL_N, 4.0 * KL_N_S2 * (W2_MIN + s.rp[1]), out.thrust_N);
 }
 
 static void test_mixer_gives_up_yaw_before_roll_and_pitch(void)
@@ -435,8 +430,8 @@ static void test_mixer_gives_up_yaw_before_roll_and_pitch(void)
     TEST_ASSERT_EQUAL_MEMORY(&torque_Nm[1], &out.torque_Nm[1], sizeof torque_Nm[1]);
     TEST_ASSERT_FLOAT_WITHIN(SCENARIO_TORQUE_TOL_NM, 4.0 * B_NM_S2 * yaw_kept, out.torque_Nm[2]);
     TEST_ASSERT_EQUAL_HEX8(LADRC_MIXER_SAT_YAW | LADRC_MIXER_SAT_THRUST, out.saturated);
-    snprintf(msg, sizeof msg, "yaw 1 N m asked, %.5f N m kept (expected %.5f); thrust %.3f N",
-             (double)out.torque_Nm[2], 4.0 * B_NM_S2 * yaw_kept, (double)out.thrust_N);
+    snprintf(msg, sizeof msg, "yaw 1 N m asked, %.5f N m kept (expected %.5f); thrust %.3f N", (double)out.torque_Nm[2],
+             4.0 * B_NM_S2 * yaw_kept, (double)out.thrust_N);
     TEST_MESSAGE(msg);
 }
 
@@ -475,8 +470,7 @@ static void test_mixer_does_not_flag_an_axis_with_no_request_when_the_other_is_s
     /* then: roll cut to range / (2 p/2) of itself, pitch and yaw exactly 0 */
     TEST_ASSERT_TRUE((out.saturated & LADRC_MIXER_SAT_ROLL) != 0u);
     TEST_ASSERT_TRUE((out.saturated & (LADRC_MIXER_SAT_PITCH | LADRC_MIXER_SAT_YAW)) == 0u);
-    TEST_ASSERT_FLOAT_WITHIN(SCENARIO_TORQUE_TOL_NM,
-                             (W2_MAX - W2_MIN) * ARM_M * KL_N_S2, out.torque_Nm[0]);
+    TEST_ASSERT_FLOAT_WITHIN(SCENARIO_TORQUE_TOL_NM, (W2_MAX - W2_MIN) * ARM_M * KL_N_S2, out.torque_Nm[0]);
     TEST_ASSERT_EQUAL_MEMORY(&torque_Nm[1], &out.torque_Nm[1], sizeof torque_Nm[1]);
     TEST_ASSERT_EQUAL_MEMORY(&torque_Nm[2], &out.torque_Nm[2], sizeof torque_Nm[2]);
 }
@@ -497,8 +491,7 @@ static void test_mixer_keeps_every_rotor_within_the_limits_for_random_requests(v
         ladrc_mixer_output_t out;
         int i;
         /* when */
-        TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE,
-                               ladrc_mixer_step(&mx, r.thrust_N, r.torque_Nm, &out));
+        TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, ladrc_mixer_step(&mx, r.thrust_N, r.torque_Nm, &out));
         /* then */
         for (i = 0; i < 4; ++i) {
             TEST_ASSERT_TRUE(out.w2_rad2_s2[i] >= (ladrc_real_t)W2_MIN);
@@ -513,8 +506,7 @@ static void test_mixer_keeps_every_rotor_within_the_limits_for_random_requests(v
 static void test_mixer_flags_an_axis_exactly_when_achieved_differs_from_requested(void)
 {
     /* given */
-    static const unsigned bits[3] = {LADRC_MIXER_SAT_ROLL, LADRC_MIXER_SAT_PITCH,
-                                     LADRC_MIXER_SAT_YAW};
+    static const unsigned bits[3] = {LADRC_MIXER_SAT_ROLL, LADRC_MIXER_SAT_PITCH, LADRC_MIXER_SAT_YAW};
     ladrc_mixer_t mx;
     int n;
     init_mixer(&mx, LADRC_MIXER_SATURATE);
@@ -526,11 +518,9 @@ static void test_mixer_flags_an_axis_exactly_when_achieved_differs_from_requeste
         /* when */
         (void)ladrc_mixer_step(&mx, r.thrust_N, r.torque_Nm, &out);
         /* then */
-        TEST_ASSERT_EQUAL_INT(!same_bits(r.thrust_N, out.thrust_N),
-                              (out.saturated & LADRC_MIXER_SAT_THRUST) != 0u);
+        TEST_ASSERT_EQUAL_INT(!same_bits(r.thrust_N, out.thrust_N), (out.saturated & LADRC_MIXER_SAT_THRUST) != 0u);
         for (i = 0; i < 3; ++i) {
-            TEST_ASSERT_EQUAL_INT(!same_bits(r.torque_Nm[i], out.torque_Nm[i]),
-                                  (out.saturated & bits[i]) != 0u);
+            TEST_ASSERT_EQUAL_INT(!same_bits(r.torque_Nm[i], out.torque_Nm[i]), (out.saturated & bits[i]) != 0u);
         }
     }
 }
@@ -554,8 +544,8 @@ static void test_mixer_achieved_values_are_the_forward_model_of_the_rotors(void)
         /* then: copied or computed, the report is what the rotors give */
         ASSERT_REPORT_WITHIN(report_tol(out.w2_rad2_s2, KL_N_S2), thrust_N, out.thrust_N);
         for (i = 0; i < 3; ++i) {
-            ASSERT_REPORT_WITHIN(report_tol(out.w2_rad2_s2, (i < 2) ? ARM_M * KL_N_S2 : B_NM_S2),
-                                 torque_Nm[i], out.torque_Nm[i]);
+            ASSERT_REPORT_WITHIN(report_tol(out.w2_rad2_s2, (i < 2) ? ARM_M * KL_N_S2 : B_NM_S2), torque_Nm[i],
+                                 out.torque_Nm[i]);
         }
     }
 }
@@ -587,25 +577,22 @@ static void test_mixer_priorities_hold_for_random_requests(void)
             ++counts[0];
         } else if (spread4(s.rp) > range * (1.0 + FIT_MARGIN)) {
             /* ... too much is scaled in the requested direction ... */
-            const double cross = (double)out.torque_Nm[0] * r.torque_Nm[1] -
-                                 (double)out.torque_Nm[1] * r.torque_Nm[0];
-            const double norm2 = (double)r.torque_Nm[0] * r.torque_Nm[0] +
-                                 (double)r.torque_Nm[1] * r.torque_Nm[1];
-            const double dot = (double)out.torque_Nm[0] * r.torque_Nm[0] +
-                               (double)out.torque_Nm[1] * r.torque_Nm[1];
+            const double cross = (double)out.torque_Nm[0] * r.torque_Nm[1] - (double)out.torque_Nm[1] * r.torque_Nm[0];
+            const double norm2 = (double)r.torque_Nm[0] * r.torque_Nm[0] + (double)r.torque_Nm[1] * r.torque_Nm[1];
+            const double dot = (double)out.torque_Nm[0] * r.torque_Nm[0] + (double)out.torque_Nm[1] * r.torque_Nm[1];
             TEST_ASSERT_FLOAT_WITHIN(RATIO_REL_TOL, 0.0, cross / norm2);
             TEST_ASSERT_TRUE(dot > 0.0 && dot < norm2);
             ++counts[1];
         }
         /* ... and yaw that fits beside them is never touched either */
         if (spread4(rp_yaw) < range * (1.0 - FIT_MARGIN)) {
-            TEST_ASSERT_EQUAL_HEX8(0u, out.saturated & (LADRC_MIXER_SAT_ROLL | LADRC_MIXER_SAT_PITCH |
-                                                        LADRC_MIXER_SAT_YAW));
+            TEST_ASSERT_EQUAL_HEX8(0u, out.saturated &
+                                           (LADRC_MIXER_SAT_ROLL | LADRC_MIXER_SAT_PITCH | LADRC_MIXER_SAT_YAW));
             ++counts[2];
         }
     }
-    snprintf(msg, sizeof msg, "roll/pitch fit %d, roll/pitch scaled %d, all torques fit %d of %d",
-             counts[0], counts[1], counts[2], N_RANDOM);
+    snprintf(msg, sizeof msg, "roll/pitch fit %d, roll/pitch scaled %d, all torques fit %d of %d", counts[0], counts[1],
+             counts[2], N_RANDOM);
     TEST_MESSAGE(msg);
     /* the draw must exercise every branch */
     TEST_ASSERT_TRUE(counts[0] > 100 && counts[1] > 100 && counts[2] > 100);
@@ -622,8 +609,8 @@ static void assert_report_is_the_forward_model(const ladrc_mixer_output_t *out)
     forward_double(out->w2_rad2_s2, &thrust_N, torque_Nm);
     ASSERT_REPORT_WITHIN(report_tol(out->w2_rad2_s2, KL_N_S2), thrust_N, out->thrust_N);
     for (i = 0; i < 3; ++i) {
-        ASSERT_REPORT_WITHIN(report_tol(out->w2_rad2_s2, (i < 2) ? ARM_M * KL_N_S2 : B_NM_S2),
-                             torque_Nm[i], out->torque_Nm[i]);
+        ASSERT_REPORT_WITHIN(report_tol(out->w2_rad2_s2, (i < 2) ? ARM_M * KL_N_S2 : B_NM_S2), torque_Nm[i],
+                             out->torque_Nm[i]);
     }
 }
 
@@ -643,8 +630,7 @@ static void test_mixer_huge_roll_beside_a_huge_thrust_reports_what_the_rotors_gi
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, f);
     assert_report_is_the_forward_model(&out);
     TEST_ASSERT_EQUAL_HEX8(LADRC_MIXER_SAT_ROLL | LADRC_MIXER_SAT_THRUST, out.saturated);
-    TEST_ASSERT_FLOAT_WITHIN(SCENARIO_TORQUE_TOL_NM, ARM_M * KL_N_S2 * (W2_MAX - W2_MIN),
-                             out.torque_Nm[0]);
+    TEST_ASSERT_FLOAT_WITHIN(SCENARIO_TORQUE_TOL_NM, ARM_M * KL_N_S2 * (W2_MAX - W2_MIN), out.torque_Nm[0]);
 }
 
 static void test_mixer_huge_yaw_does_not_take_the_place_of_roll_and_pitch(void)
@@ -718,8 +704,7 @@ static void test_mixer_ideal_mode_lets_w2_go_negative_and_reports_the_request_ex
     TEST_ASSERT_EQUAL_MEMORY(&thrust_N, &out.thrust_N, sizeof thrust_N);
     TEST_ASSERT_EQUAL_MEMORY(torque_Nm, out.torque_Nm, sizeof torque_Nm);
     forward_double(out.w2_rad2_s2, &fwd_thrust_N, fwd_torque_Nm);
-    TEST_ASSERT_FLOAT_WITHIN(THRUST_ABS_TOL_N + THRUST_REL_TOL * fabs(thrust_N), thrust_N,
-                             fwd_thrust_N);
+    TEST_ASSERT_FLOAT_WITHIN(THRUST_ABS_TOL_N + THRUST_REL_TOL * fabs(thrust_N), thrust_N, fwd_thrust_N);
     for (i = 0; i < 3; ++i) {
         TEST_ASSERT_FLOAT_WITHIN(TORQUE_TOL_NM, torque_Nm[i], fwd_torque_Nm[i]);
     }
@@ -748,10 +733,9 @@ static void test_mixer_non_finite_request_returns_the_previous_output_with_an_in
 {
     /* given: a mixer that mixed one good request, and its twin */
     const ladrc_real_t good[3] = {LADRC_R(0.05), LADRC_R(-0.02), LADRC_R(0.01)};
-    const ladrc_real_t bad_torques[3][3] = {
-        {(ladrc_real_t)NAN, LADRC_R(0.0), LADRC_R(0.0)},
-        {LADRC_R(0.0), (ladrc_real_t)INFINITY, LADRC_R(0.0)},
-        {LADRC_R(0.0), LADRC_R(0.0), (ladrc_real_t)-INFINITY}};
+    const ladrc_real_t bad_torques[3][3] = {{(ladrc_real_t)NAN, LADRC_R(0.0), LADRC_R(0.0)},
+                                            {LADRC_R(0.0), (ladrc_real_t)INFINITY, LADRC_R(0.0)},
+                                            {LADRC_R(0.0), LADRC_R(0.0), (ladrc_real_t)-INFINITY}};
     ladrc_mixer_t mx;
     ladrc_mixer_t twin;
     ladrc_mixer_output_t first;
@@ -764,9 +748,8 @@ static void test_mixer_non_finite_request_returns_the_previous_output_with_an_in
     (void)ladrc_mixer_step(&mx, LADRC_R(9.0), good, &first);
     for (i = 0; i < 4; ++i) {
         /* when: a NaN thrust, then each torque non-finite in turn */
-        const ladrc_fault_t f = (i == 0)
-                                    ? ladrc_mixer_step(&mx, (ladrc_real_t)NAN, good, &held)
-                                    : ladrc_mixer_step(&mx, LADRC_R(9.0), bad_torques[i - 1], &held);
+        const ladrc_fault_t f = (i == 0) ? ladrc_mixer_step(&mx, (ladrc_real_t)NAN, good, &held)
+                                         : ladrc_mixer_step(&mx, LADRC_R(9.0), bad_torques[i - 1], &held);
         /* then: input fault, the previous rotors and achieved values */
         TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, f);
         TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, held.faults);
@@ -917,16 +900,15 @@ static void test_mixer_init_accepts_each_field_at_its_bounds_and_rejects_just_be
     const bound_t bounds[] = {
         {offsetof(ladrc_mixer_config_t, kL_N_s2), LADRC_MIXER_KL_MIN_N_S2, LADRC_MIXER_KL_MAX_N_S2,
          LADRC_ERR_MIXER_KL_N_S2},
-        {offsetof(ladrc_mixer_config_t, arm_m), LADRC_MIXER_ARM_MIN_M, LADRC_MIXER_ARM_MAX_M,
-         LADRC_ERR_MIXER_ARM_M},
+        {offsetof(ladrc_mixer_config_t, arm_m), LADRC_MIXER_ARM_MIN_M, LADRC_MIXER_ARM_MAX_M, LADRC_ERR_MIXER_ARM_M},
         {offsetof(ladrc_mixer_config_t, b_Nm_s2), LADRC_MIXER_B_MIN_NM_S2, LADRC_MIXER_B_MAX_NM_S2,
          LADRC_ERR_MIXER_B_NM_S2},
         {offsetof(ladrc_mixer_config_t, mass_kg), LADRC_MIXER_MASS_MIN_KG, LADRC_MIXER_MASS_MAX_KG,
          LADRC_ERR_MIXER_MASS_KG},
         {offsetof(ladrc_mixer_config_t, g_m_s2), LADRC_MIXER_G_MIN_M_S2, LADRC_MIXER_G_MAX_M_S2,
          LADRC_ERR_MIXER_G_M_S2},
-        {offsetof(ladrc_mixer_config_t, w2_max_rad2_s2), LADRC_MIXER_W2_MAX_MIN_RAD2_S2,
-         LADRC_MIXER_W2_MAX_MAX_RAD2_S2, LADRC_ERR_MIXER_W2_MAX},
+        {offsetof(ladrc_mixer_config_t, w2_max_rad2_s2), LADRC_MIXER_W2_MAX_MIN_RAD2_S2, LADRC_MIXER_W2_MAX_MAX_RAD2_S2,
+         LADRC_ERR_MIXER_W2_MAX},
     };
     size_t i;
     for (i = 0; i < sizeof bounds / sizeof bounds[0]; ++i) {
@@ -943,8 +925,7 @@ static void test_mixer_init_accepts_each_field_at_its_bounds_and_rejects_just_be
             memcpy((char *)&cfg + bounds[i].offset, &values[k], sizeof values[k]);
             snprintf(msg, sizeof msg, "field %u, value %.9g", (unsigned)i, (double)values[k]);
             /* when / then */
-            TEST_ASSERT_EQUAL_INT_MESSAGE((k < 2) ? LADRC_OK : bounds[i].status, ladrc_mixer_init(&mx, &cfg),
-                                          msg);
+            TEST_ASSERT_EQUAL_INT_MESSAGE((k < 2) ? LADRC_OK : bounds[i].status, ladrc_mixer_init(&mx, &cfg), msg);
         }
     }
 }

@@ -87,8 +87,12 @@
  * allocation lies within a few eps of the exact one. */
 #define IDEAL_STATE_MARGIN (1.0 - 16.0 * REAL_EPS)
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 /* ------------------------------------------------------------------ sizes */
 
@@ -111,24 +115,47 @@ static double size_from_env(const char *name, double fallback)
  * modulo, as this campaign's recorded figures were drawn. */
 typedef test_rng_t rng_t;
 
-static uint64_t next_u64(rng_t *r) { return test_rng_next(r); }
+static uint64_t next_u64(rng_t *r)
+{
+    return test_rng_next(r);
+}
 
-static double next_unit(rng_t *r) { return test_rng_uniform(r); }
+static double next_unit(rng_t *r)
+{
+    return test_rng_uniform(r);
+}
 
-static double next_range(rng_t *r, double lo, double hi) { return lo + (hi - lo) * next_unit(r); }
+static double next_range(rng_t *r, double lo, double hi)
+{
+    return lo + (hi - lo) * next_unit(r);
+}
 
-static unsigned next_below(rng_t *r, unsigned n) { return (unsigned)(next_u64(r) % n); }
+static unsigned next_below(rng_t *r, unsigned n)
+{
+    return (unsigned)(next_u64(r) % n);
+}
 
 /* Log-uniform in [lo, hi], lo > 0. */
-static double next_log(rng_t *r, double lo, double hi) { return lo * pow(hi / lo, next_unit(r)); }
+static double next_log(rng_t *r, double lo, double hi)
+{
+    return lo * pow(hi / lo, next_unit(r));
+}
 
-static double next_sign(rng_t *r) { return (next_u64(r) & 1u) ? -1.0 : 1.0; }
+static double next_sign(rng_t *r)
+{
+    return (next_u64(r) & 1u) ? -1.0 : 1.0;
+}
 
 /* ---------------------------------------------------------- real values */
 
-
-static ladrc_real_t nan_value(rng_t *r) { return test_special_nan(next_below(r, TEST_NAN_KINDS)); }
-static ladrc_real_t inf_value(rng_t *r) { return test_special_value(1u + next_below(r, 2u)); }
+static ladrc_real_t nan_value(rng_t *r)
+{
+    return test_special_nan(next_below(r, TEST_NAN_KINDS));
+}
+static ladrc_real_t inf_value(rng_t *r)
+{
+    return test_special_value(1u + next_below(r, 2u));
+}
 
 /* A macro, not a function: the checks call it a dozen times per step. */
 #define is_finite_real(x) (isfinite(x) ? 1 : 0)
@@ -164,8 +191,8 @@ typedef struct {
     ladrc_mixer_config_t cfg;
 } vehicle_t;
 
-static vehicle_t vehicle(const char *name, double kL, double arm, double b, double mass, double w2_min,
-                         double w2_max, ladrc_mixer_mode_t mode)
+static vehicle_t vehicle(const char *name, double kL, double arm, double b, double mass, double w2_min, double w2_max,
+                         ladrc_mixer_mode_t mode)
 {
     vehicle_t v;
     v.name = name;
@@ -231,10 +258,18 @@ typedef struct {
     int printed;
 } violations_t;
 
-static const char *const violation_names[V_KINDS] = {
-    "fault flags", "not finite", "w2 out of range", "w not sqrt(w2)", "report != forward model",
-    "bit != (achieved != requested)", "bit without a cut", "priority", "direction", "held output",
-    "recovery", "init decision"};
+static const char *const violation_names[V_KINDS] = {"fault flags",
+                                                     "not finite",
+                                                     "w2 out of range",
+                                                     "w not sqrt(w2)",
+                                                     "report != forward model",
+                                                     "bit != (achieved != requested)",
+                                                     "bit without a cut",
+                                                     "priority",
+                                                     "direction",
+                                                     "held output",
+                                                     "recovery",
+                                                     "init decision"};
 
 /* What a violation is about: a step (request, output, flags) or a config. */
 typedef struct {
@@ -256,20 +291,18 @@ static void violate(violations_t *v, int kind, const context_t *x)
         int len = snprintf(msg, sizeof msg,
                            "violation (%s), %s: config kL %.9g arm %.9g b %.9g m %.9g g %.9g w2 [%.9g, %.9g] "
                            "tilt %.9g mode %d",
-                           violation_names[kind], x->where, (double)c->kL_N_s2, (double)c->arm_m,
-                           (double)c->b_Nm_s2, (double)c->mass_kg, (double)c->g_m_s2,
-                           (double)c->w2_min_rad2_s2, (double)c->w2_max_rad2_s2, (double)c->tilt_max_rad,
-                           (int)c->mode);
+                           violation_names[kind], x->where, (double)c->kL_N_s2, (double)c->arm_m, (double)c->b_Nm_s2,
+                           (double)c->mass_kg, (double)c->g_m_s2, (double)c->w2_min_rad2_s2, (double)c->w2_max_rad2_s2,
+                           (double)c->tilt_max_rad, (int)c->mode);
         if (x->f != NULL && len > 0 && (size_t)len < sizeof msg) {
             const ladrc_mixer_output_t *o = x->out;
             (void)snprintf(msg + len, sizeof msg - (size_t)len,
                            "; request %.9g %.9g %.9g %.9g; faults %u, saturated 0x%x, w2 %.9g %.9g %.9g %.9g, "
                            "achieved %.9g %.9g %.9g %.9g",
-                           (double)x->f[0], (double)x->f[1], (double)x->f[2], (double)x->f[3],
-                           (unsigned)x->faults, (unsigned)o->saturated, (double)o->w2_rad2_s2[0],
-                           (double)o->w2_rad2_s2[1], (double)o->w2_rad2_s2[2], (double)o->w2_rad2_s2[3],
-                           (double)o->thrust_N, (double)o->torque_Nm[0], (double)o->torque_Nm[1],
-                           (double)o->torque_Nm[2]);
+                           (double)x->f[0], (double)x->f[1], (double)x->f[2], (double)x->f[3], (unsigned)x->faults,
+                           (unsigned)o->saturated, (double)o->w2_rad2_s2[0], (double)o->w2_rad2_s2[1],
+                           (double)o->w2_rad2_s2[2], (double)o->w2_rad2_s2[3], (double)o->thrust_N,
+                           (double)o->torque_Nm[0], (double)o->torque_Nm[1], (double)o->torque_Nm[2]);
         }
         ++v->printed;
         TEST_MESSAGE(msg);
@@ -284,8 +317,7 @@ static void report_violations(const violations_t *v, const char *what)
     len = snprintf(msg, sizeof msg, "%s: %llu violations", what, v->count);
     for (k = 0; k < V_KINDS; ++k) {
         if (v->by_kind[k] != 0u && len > 0 && (size_t)len < sizeof msg) {
-            len += snprintf(msg + len, sizeof msg - (size_t)len, "; %s %llu", violation_names[k],
-                            v->by_kind[k]);
+            len += snprintf(msg + len, sizeof msg - (size_t)len, "; %s %llu", violation_names[k], v->by_kind[k]);
         }
     }
     TEST_MESSAGE(msg);
@@ -305,18 +337,16 @@ static int same_output(const ladrc_mixer_output_t *a, const ladrc_mixer_output_t
 /* Checks one step: request f = {thrust, roll, pitch, yaw}, the output before
  * (prev) and after (out), and the returned flags. Counts what it finds. */
 static void check_step(const char *where, const ladrc_mixer_config_t *c, const ladrc_real_t f[4],
-                       const ladrc_mixer_output_t *prev, const ladrc_mixer_output_t *out,
-                       ladrc_fault_t returned, violations_t *v)
+                       const ladrc_mixer_output_t *prev, const ladrc_mixer_output_t *out, ladrc_fault_t returned,
+                       violations_t *v)
 {
     static const uint8_t bit[4] = {LADRC_MIXER_SAT_THRUST, LADRC_MIXER_SAT_ROLL, LADRC_MIXER_SAT_PITCH,
                                    LADRC_MIXER_SAT_YAW};
     const int ideal = (c->mode == LADRC_MIXER_IDEAL);
     const double lo = ideal ? -0.25 * REAL_MAX : (double)c->w2_min_rad2_s2;
     const double hi = ideal ? 0.25 * REAL_MAX : (double)c->w2_max_rad2_s2;
-    const int finite_in = is_finite_real(f[0]) && is_finite_real(f[1]) && is_finite_real(f[2]) &&
-                          is_finite_real(f[3]);
-    const ladrc_real_t achieved[4] = {out->thrust_N, out->torque_Nm[0], out->torque_Nm[1],
-                                      out->torque_Nm[2]};
+    const int finite_in = is_finite_real(f[0]) && is_finite_real(f[1]) && is_finite_real(f[2]) && is_finite_real(f[3]);
+    const ladrc_real_t achieved[4] = {out->thrust_N, out->torque_Nm[0], out->torque_Nm[1], out->torque_Nm[2]};
     context_t x;
     double coef[4];
     long double fwd[4];
@@ -390,8 +420,7 @@ static void check_step(const char *where, const ladrc_mixer_config_t *c, const l
         const long double tol = (REPORT_TOL_EPS + FORWARD_ROUNDING_EPS) * REAL_EPS * coef[i] * sum +
                                 (REPORT_TOL_SUBNORMALS + FORWARD_ROUNDING_SUBNORMALS) * REAL_MIN * REAL_EPS;
         const long double cut_tol = (REPORT_TOL_EPS - FORWARD_ROUNDING_EPS) * REAL_EPS * coef[i] * sum +
-                                    (REPORT_TOL_SUBNORMALS - FORWARD_ROUNDING_SUBNORMALS) * REAL_MIN *
-                                        REAL_EPS;
+                                    (REPORT_TOL_SUBNORMALS - FORWARD_ROUNDING_SUBNORMALS) * REAL_MIN * REAL_EPS;
         const int flagged = (out->saturated & bit[i]) != 0u;
         const int differs = memcmp(&achieved[i], &f[i], sizeof f[i]) != 0;
         if (fabsl((long double)achieved[i] - fwd[i]) > tol) {
@@ -513,11 +542,12 @@ static void test_mixer_step_keeps_its_promises_under_hostile_requests(void)
 
     for (k = 0; k < n_vehicles; ++k) {
         const ladrc_mixer_config_t *c = &vehicles[k].cfg;
-        const double share = floor(n_vectors / (double)n_vehicles) + ((k == 0) ? fmod(n_vectors, (double)n_vehicles) : 0.0);
-        const double torque_scale = (c->mode == LADRC_MIXER_IDEAL)
-                                        ? 0.1 * (double)c->mass_kg * (double)c->g_m_s2 * (double)c->arm_m
-                                        : (double)c->arm_m * (double)c->kL_N_s2 *
-                                              ((double)c->w2_max_rad2_s2 - (double)c->w2_min_rad2_s2);
+        const double share =
+            floor(n_vectors / (double)n_vehicles) + ((k == 0) ? fmod(n_vectors, (double)n_vehicles) : 0.0);
+        const double torque_scale =
+            (c->mode == LADRC_MIXER_IDEAL)
+                ? 0.1 * (double)c->mass_kg * (double)c->g_m_s2 * (double)c->arm_m
+                : (double)c->arm_m * (double)c->kL_N_s2 * ((double)c->w2_max_rad2_s2 - (double)c->w2_min_rad2_s2);
         ladrc_mixer_t mx;
         ladrc_mixer_t fresh;
         ladrc_mixer_output_t prev;
@@ -571,8 +601,8 @@ static void test_mixer_step_keeps_its_promises_under_hostile_requests(void)
                 }
             }
             counts[0] += 1u;
-            counts[1] += (unsigned long long)!(is_finite_real(f[0]) && is_finite_real(f[1]) &&
-                                               is_finite_real(f[2]) && is_finite_real(f[3]));
+            counts[1] += (unsigned long long)!(is_finite_real(f[0]) && is_finite_real(f[1]) && is_finite_real(f[2]) &&
+                                               is_finite_real(f[3]));
             counts[3] += (unsigned long long)(faults == LADRC_FAULT_NONE && out.saturated != 0u);
             counts[4] += (unsigned long long)(faults != LADRC_FAULT_NONE);
             prev = out;
@@ -836,8 +866,8 @@ static void test_mixer_init_accepts_exactly_the_documented_configs_and_each_runs
     snprintf(msg, sizeof msg,
              "%llu configs tried, %llu accepted (%llu saturate, %llu ideal), %llu rejected; "
              "%llu nominal steps on the accepted (%.0f each), %llu of them saturated",
-             tried, accepted[0] + accepted[1], accepted[0], accepted[1], tried - accepted[0] - accepted[1],
-             steps, n_steps, saturated_steps);
+             tried, accepted[0] + accepted[1], accepted[0], accepted[1], tried - accepted[0] - accepted[1], steps,
+             n_steps, saturated_steps);
     TEST_MESSAGE(msg);
     report_violations(&v, "configs");
     TEST_ASSERT_TRUE_MESSAGE(v.count == 0u, "init or a step broke a promise of mixer.h (see the messages above)");

@@ -17,17 +17,32 @@
 #define N_TICKS 400
 #define BAD_AT 200
 
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
-void setUp(void) {}
-void tearDown(void) {}
-
-static int same_bits(ladrc_real_t a, ladrc_real_t b) { return memcmp(&a, &b, sizeof a) == 0; }
+static int same_bits(ladrc_real_t a, ladrc_real_t b)
+{
+    return memcmp(&a, &b, sizeof a) == 0;
+}
 
 /* A deterministic, non-trivial input sequence: reference steps and a
  * lagging angle. */
-static ladrc_real_t ref_at(int k) { return (k < 50) ? LADRC_R(0.0) : LADRC_R(0.17); }
-static ladrc_real_t angle_at(int k) { return LADRC_R(0.17) * (ladrc_real_t)k / (ladrc_real_t)(k + 150); }
-static ladrc_real_t rate_at(int k) { return LADRC_R(25.5) / (ladrc_real_t)((k + 150) * (k + 150)) * LADRC_R(1000.0); }
+static ladrc_real_t ref_at(int k)
+{
+    return (k < 50) ? LADRC_R(0.0) : LADRC_R(0.17);
+}
+static ladrc_real_t angle_at(int k)
+{
+    return LADRC_R(0.17) * (ladrc_real_t)k / (ladrc_real_t)(k + 150);
+}
+static ladrc_real_t rate_at(int k)
+{
+    return LADRC_R(25.5) / (ladrc_real_t)((k + 150) * (k + 150)) * LADRC_R(1000.0);
+}
 
 static void check_axis_variant(ladrc_variant_t variant)
 {
@@ -77,19 +92,37 @@ static void check_axis_variant(ladrc_variant_t variant)
     }
 }
 
-static void test_axis_ladrc_holds_on_non_finite_input(void) { check_axis_variant(LADRC_VARIANT_LADRC); }
-static void test_axis_lp_holds_on_non_finite_input(void) { check_axis_variant(LADRC_VARIANT_LP_MLADRC); }
-static void test_axis_hp_holds_on_non_finite_input(void) { check_axis_variant(LADRC_VARIANT_HP_MLADRC); }
-static void test_axis_pid_holds_on_non_finite_input(void) { check_axis_variant(LADRC_VARIANT_PID); }
-static void test_axis_indi_holds_on_non_finite_input(void) { check_axis_variant(LADRC_VARIANT_INDI); }
-static void test_axis_cascaded_holds_on_non_finite_input(void) { check_axis_variant(LADRC_VARIANT_CASCADED); }
+static void test_axis_ladrc_holds_on_non_finite_input(void)
+{
+    check_axis_variant(LADRC_VARIANT_LADRC);
+}
+static void test_axis_lp_holds_on_non_finite_input(void)
+{
+    check_axis_variant(LADRC_VARIANT_LP_MLADRC);
+}
+static void test_axis_hp_holds_on_non_finite_input(void)
+{
+    check_axis_variant(LADRC_VARIANT_HP_MLADRC);
+}
+static void test_axis_pid_holds_on_non_finite_input(void)
+{
+    check_axis_variant(LADRC_VARIANT_PID);
+}
+static void test_axis_indi_holds_on_non_finite_input(void)
+{
+    check_axis_variant(LADRC_VARIANT_INDI);
+}
+static void test_axis_cascaded_holds_on_non_finite_input(void)
+{
+    check_axis_variant(LADRC_VARIANT_CASCADED);
+}
 
 static void test_attitude_and_mixer_hold_on_non_finite_input(void)
 {
     static const ladrc_real_t inertia[3] = {LADRC_R(5.445e-3), LADRC_R(5.445e-3), LADRC_R(1.089e-2)};
-    static const ladrc_mixer_config_t mix = {LADRC_R(2.98e-5), LADRC_R(0.165), LADRC_R(2e-6), LADRC_R(0.8),
-                                             LADRC_R(9.81),    LADRC_R(1e4),   LADRC_R(2e5),  LADRC_R(0.7),
-                                             LADRC_MIXER_SATURATE};
+    static const ladrc_mixer_config_t mix = {LADRC_R(2.98e-5), LADRC_R(0.165), LADRC_R(2e-6),
+                                             LADRC_R(0.8),     LADRC_R(9.81),  LADRC_R(1e4),
+                                             LADRC_R(2e5),     LADRC_R(0.7),   LADRC_MIXER_SATURATE};
     ladrc_attitude_config_t cfg;
     ladrc_attitude_t att;
     ladrc_mixer_t mixer;
@@ -108,9 +141,9 @@ static void test_attitude_and_mixer_hold_on_non_finite_input(void)
         const ladrc_real_t angle[3] = {angle_at(k), -angle_at(k), LADRC_R(0.5) * angle_at(k)};
         const ladrc_fault_t f = ladrc_attitude_step(&att, ref, angle, NULL, torque);
         TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, f);
-        TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE,
-                               ladrc_mixer_step(&mixer, ladrc_mixer_thrust_from_tilt(&mixer, angle[0], angle[1]),
-                                                torque, &out));
+        TEST_ASSERT_EQUAL_HEX8(
+            LADRC_FAULT_NONE,
+            ladrc_mixer_step(&mixer, ladrc_mixer_thrust_from_tilt(&mixer, angle[0], angle[1]), torque, &out));
         ladrc_attitude_set_applied(&att, out.torque_Nm);
     }
     /* a NaN angle on one axis: input fault, torques held */

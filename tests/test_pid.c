@@ -31,8 +31,12 @@ static const double kd_paper = 0.05;
 static const double inertia_kg_m2 = 5.445e-3;
 static const double damping_Nms = 0.09;
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static ladrc_pid_config_t make_config(double kp, double ki, double kd)
 {
@@ -229,12 +233,9 @@ static void test_pid_output_is_clamped_to_its_limits(void)
     cfg.u_max_Nm = LADRC_R(0.3);
     init_pid(&pid, &cfg);
     /* when / then */
-    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.3,
-                             ladrc_pid_step(&pid, LADRC_R(1.0), LADRC_R(0.0), NULL));
-    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, -0.2,
-                             ladrc_pid_step(&pid, LADRC_R(-1.0), LADRC_R(0.0), NULL));
-    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.1,
-                             ladrc_pid_step(&pid, LADRC_R(0.005), LADRC_R(0.0), NULL));
+    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.3, ladrc_pid_step(&pid, LADRC_R(1.0), LADRC_R(0.0), NULL));
+    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, -0.2, ladrc_pid_step(&pid, LADRC_R(-1.0), LADRC_R(0.0), NULL));
+    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.1, ladrc_pid_step(&pid, LADRC_R(0.005), LADRC_R(0.0), NULL));
 }
 
 static void test_pid_held_output_after_reset_lies_within_the_limits(void)
@@ -285,8 +286,8 @@ typedef enum { LOOP_PID_CLAMPS, LOOP_MIXER_CLAMPS, LOOP_UNLIMITED, LOOP_NAIVE_PI
 /* The reference sits at +A for t_hold_s, then reverses to -A for t_after_s.
  * Returns the time after the reversal when |theta + A| entered 2 % of A for
  * good (t_after_s if it never did); records theta of each step if theta_out. */
-static double recovery_time_s(loop_kind_t kind, double limit_Nm, double amp_rad, double t_hold_s,
-                              double t_after_s, double *theta_out)
+static double recovery_time_s(loop_kind_t kind, double limit_Nm, double amp_rad, double t_hold_s, double t_after_s,
+                              double *theta_out)
 {
     const ladrc_real_t limit = (ladrc_real_t)limit_Nm;
     ladrc_pid_config_t cfg = make_config(kp_paper, ki_paper, kd_paper);
@@ -313,11 +314,9 @@ static double recovery_time_s(loop_kind_t kind, double limit_Nm, double amp_rad,
             const double e = ref - axis.theta_rad;
             naive_integral_Nm += ki_paper * dt_s * e;
             torque_Nm = kp_paper * e + naive_integral_Nm - kd_paper * axis.rate_rad_s;
-            torque_Nm = (torque_Nm > limit_Nm) ? limit_Nm
-                                               : ((torque_Nm < -limit_Nm) ? -limit_Nm : torque_Nm);
+            torque_Nm = (torque_Nm > limit_Nm) ? limit_Nm : ((torque_Nm < -limit_Nm) ? -limit_Nm : torque_Nm);
         } else {
-            const ladrc_real_t u =
-                ladrc_pid_step(&pid, (ladrc_real_t)ref, (ladrc_real_t)axis.theta_rad, &rate);
+            const ladrc_real_t u = ladrc_pid_step(&pid, (ladrc_real_t)ref, (ladrc_real_t)axis.theta_rad, &rate);
             if (kind == LOOP_MIXER_CLAMPS) {
                 const ladrc_real_t applied = ladrc_clamp(u, -limit, limit);
                 ladrc_pid_set_applied(&pid, applied);
@@ -351,12 +350,12 @@ static void test_pid_recovers_quickly_after_the_reference_reverses_under_saturat
 {
     /* given / when: the same reversal with the PID's own clamp, without any
      * limit, and with a textbook PID that has no anti-windup */
-    const double t_frozen = recovery_time_s(LOOP_PID_CLAMPS, RECOVERY_LIMIT_NM, RECOVERY_AMP_RAD,
-                                            RECOVERY_HOLD_S, RECOVERY_AFTER_S, NULL);
-    const double t_unlimited = recovery_time_s(LOOP_UNLIMITED, RECOVERY_LIMIT_NM, RECOVERY_AMP_RAD,
-                                               RECOVERY_HOLD_S, RECOVERY_AFTER_S, NULL);
-    const double t_naive = recovery_time_s(LOOP_NAIVE_PID, RECOVERY_LIMIT_NM, RECOVERY_AMP_RAD,
-                                           RECOVERY_HOLD_S, RECOVERY_AFTER_S, NULL);
+    const double t_frozen =
+        recovery_time_s(LOOP_PID_CLAMPS, RECOVERY_LIMIT_NM, RECOVERY_AMP_RAD, RECOVERY_HOLD_S, RECOVERY_AFTER_S, NULL);
+    const double t_unlimited =
+        recovery_time_s(LOOP_UNLIMITED, RECOVERY_LIMIT_NM, RECOVERY_AMP_RAD, RECOVERY_HOLD_S, RECOVERY_AFTER_S, NULL);
+    const double t_naive =
+        recovery_time_s(LOOP_NAIVE_PID, RECOVERY_LIMIT_NM, RECOVERY_AMP_RAD, RECOVERY_HOLD_S, RECOVERY_AFTER_S, NULL);
     /* The limited axis cannot go faster than its terminal rate limit / kt, so
      * travelling 2 A costs at least 2 A kt / limit = 0.3 s more than nothing;
      * allow that on top of the unlimited loop's own settling. */
@@ -374,11 +373,11 @@ static void test_pid_integrator_freezes_when_the_mixer_reports_saturation(void)
      * an unlimited PID that learns the applied torque from set_applied */
     static double theta_pid_clamps[4500];
     static double theta_mixer_clamps[4500];
-    (void)recovery_time_s(LOOP_PID_CLAMPS, RECOVERY_LIMIT_NM, RECOVERY_AMP_RAD, RECOVERY_HOLD_S,
-                          RECOVERY_AFTER_S, theta_pid_clamps);
+    (void)recovery_time_s(LOOP_PID_CLAMPS, RECOVERY_LIMIT_NM, RECOVERY_AMP_RAD, RECOVERY_HOLD_S, RECOVERY_AFTER_S,
+                          theta_pid_clamps);
     /* when */
-    (void)recovery_time_s(LOOP_MIXER_CLAMPS, RECOVERY_LIMIT_NM, RECOVERY_AMP_RAD, RECOVERY_HOLD_S,
-                          RECOVERY_AFTER_S, theta_mixer_clamps);
+    (void)recovery_time_s(LOOP_MIXER_CLAMPS, RECOVERY_LIMIT_NM, RECOVERY_AMP_RAD, RECOVERY_HOLD_S, RECOVERY_AFTER_S,
+                          theta_mixer_clamps);
     /* then: the freeze acted the same in both: identical trajectories, bit for bit */
     TEST_ASSERT_EQUAL_MEMORY(theta_pid_clamps, theta_mixer_clamps, sizeof theta_pid_clamps);
 }
@@ -443,8 +442,7 @@ static double steady_error_after_10_degree_step(double ki)
     axis_init(&axis, 0.1);
     for (k = 0; k < 10000; ++k) {
         const ladrc_real_t rate = (ladrc_real_t)axis.rate_rad_s;
-        axis_step(&axis, (double)ladrc_pid_step(&pid, (ladrc_real_t)ref_rad,
-                                                (ladrc_real_t)axis.theta_rad, &rate));
+        axis_step(&axis, (double)ladrc_pid_step(&pid, (ladrc_real_t)ref_rad, (ladrc_real_t)axis.theta_rad, &rate));
     }
     return ref_rad - axis.theta_rad;
 }
@@ -554,8 +552,7 @@ static void test_pid_init_accepts_zero_gains_and_infinite_limits(void)
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_pid_init(&pid, &cfg));
     cfg.i_limit_Nm = (ladrc_real_t)INFINITY;
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_pid_init(&pid, &cfg));
-    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.0,
-                             ladrc_pid_step(&pid, LADRC_R(1.0), LADRC_R(0.0), NULL));
+    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.0, ladrc_pid_step(&pid, LADRC_R(1.0), LADRC_R(0.0), NULL));
 }
 
 static void test_pid_rejected_by_init_outputs_zero(void)
@@ -577,8 +574,14 @@ static void test_pid_rejected_by_init_outputs_zero(void)
 
 /* ---------------------------------------------------------------- faults */
 
-static ladrc_real_t ref_at(int k) { return (ladrc_real_t)(0.3 * sin(0.01 * k)); }
-static ladrc_real_t meas_at(int k) { return (ladrc_real_t)(0.25 * sin(0.01 * k - 0.2)); }
+static ladrc_real_t ref_at(int k)
+{
+    return (ladrc_real_t)(0.3 * sin(0.01 * k));
+}
+static ladrc_real_t meas_at(int k)
+{
+    return (ladrc_real_t)(0.25 * sin(0.01 * k - 0.2));
+}
 
 static void test_pid_holds_on_non_finite_reference_or_measurement_and_recovers_as_if_skipped(void)
 {
@@ -612,8 +615,7 @@ static void test_pid_holds_on_non_finite_reference_or_measurement_and_recovers_a
                 TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_pid_get_faults(&faulty));
                 TEST_ASSERT_EQUAL_MEMORY(&before.output_Nm, &held, sizeof held);
                 TEST_ASSERT_EQUAL_MEMORY(&before.integral_Nm, &faulty.integral_Nm, sizeof held);
-                TEST_ASSERT_EQUAL_MEMORY(&before.d_filtered_rad_s, &faulty.d_filtered_rad_s,
-                                         sizeof held);
+                TEST_ASSERT_EQUAL_MEMORY(&before.d_filtered_rad_s, &faulty.d_filtered_rad_s, sizeof held);
                 TEST_ASSERT_EQUAL_MEMORY(&before.prev_meas_rad, &faulty.prev_meas_rad, sizeof held);
             }
         }
@@ -747,10 +749,8 @@ static void test_pid_reset_with_a_non_finite_measurement_waits_for_a_good_one(vo
     ladrc_pid_reset(&pid, (ladrc_real_t)NAN);
     /* then: input fault; the next measurement seeds the derivative without a kick */
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_pid_get_faults(&pid));
-    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.0,
-                             ladrc_pid_step(&pid, LADRC_R(0.0), LADRC_R(0.7), NULL));
-    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, -0.5,
-                             ladrc_pid_step(&pid, LADRC_R(0.0), LADRC_R(0.71), NULL));
+    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.0, ladrc_pid_step(&pid, LADRC_R(0.0), LADRC_R(0.7), NULL));
+    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, -0.5, ladrc_pid_step(&pid, LADRC_R(0.0), LADRC_R(0.71), NULL));
 }
 
 static void test_pid_functions_tolerate_a_null_instance(void)
@@ -760,8 +760,7 @@ static void test_pid_functions_tolerate_a_null_instance(void)
     }
     /* when / then: no crash, neutral results */
     const ladrc_real_t rate = LADRC_R(1.0);
-    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.0,
-                             ladrc_pid_step(NULL, LADRC_R(1.0), LADRC_R(0.0), &rate));
+    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.0, ladrc_pid_step(NULL, LADRC_R(1.0), LADRC_R(0.0), &rate));
     ladrc_pid_reset(NULL, LADRC_R(0.0));
     ladrc_pid_set_applied(NULL, LADRC_R(0.0));
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, ladrc_pid_get_faults(NULL));
@@ -781,8 +780,7 @@ static void loop_run(loop_t *loop, ladrc_real_t *u_out, int n)
     int i;
     for (i = 0; i < n; ++i, ++loop->k) {
         const double ref = ((loop->k / 300) % 2 != 0) ? 0.4 : -0.3;
-        const ladrc_real_t u =
-            ladrc_pid_step(&loop->pid, (ladrc_real_t)ref, (ladrc_real_t)loop->axis.theta_rad, NULL);
+        const ladrc_real_t u = ladrc_pid_step(&loop->pid, (ladrc_real_t)ref, (ladrc_real_t)loop->axis.theta_rad, NULL);
         const ladrc_real_t applied = ladrc_clamp(u, LADRC_R(-0.4), LADRC_R(0.4));
         ladrc_pid_set_applied(&loop->pid, applied);
         axis_step(&loop->axis, (double)applied);

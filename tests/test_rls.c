@@ -54,8 +54,12 @@
 #define LONG_RUN_STEPS 10000000L
 #endif
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 /* ------------------------------------------------------------ helpers */
 
@@ -112,7 +116,10 @@ static snapshot_t snapshot(const ladrc_rls_t *rls)
     return s;
 }
 
-static int same_state(const snapshot_t *a, const snapshot_t *b) { return memcmp(a, b, sizeof *a) == 0; }
+static int same_state(const snapshot_t *a, const snapshot_t *b)
+{
+    return memcmp(a, b, sizeof *a) == 0;
+}
 
 /* P = U D U^T rebuilt in double from the stored factors, exactly as stored. */
 static void p_from_factors(const ladrc_rls_t *rls, double p[MAXP][MAXP])
@@ -315,8 +322,7 @@ static void test_factored_update_matches_the_plain_update_computed_in_double(voi
                 worst_theta = fmax(worst_theta, dt);
                 TEST_ASSERT_FLOAT_WITHIN(REFERENCE_REL_TOL, 0.0, dt);
                 for (unsigned j = 0; j < n; ++j) {
-                    const double dp =
-                        fabs(ref.p[i][j] - (double)ladrc_rls_get_p(&rls, (uint8_t)i, (uint8_t)j)) / tr;
+                    const double dp = fabs(ref.p[i][j] - (double)ladrc_rls_get_p(&rls, (uint8_t)i, (uint8_t)j)) / tr;
                     worst_p = fmax(worst_p, dp);
                     TEST_ASSERT_FLOAT_WITHIN(REFERENCE_REL_TOL, 0.0, dp);
                 }

@@ -8,8 +8,12 @@
 #include "ladrc/sizes.h"
 #include "ladrc/td.h"
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static void test_every_reported_size_is_the_sizeof_of_its_type(void)
 {
@@ -37,8 +41,8 @@ static void test_the_real_size_matches_the_build(void)
 static void test_the_abi_set_names_every_variant_and_shaper_of_the_build(void)
 {
     char expected[] = "_v000000_s00";
-    const int with[] = {LADRC_WITH_LADRC, LADRC_WITH_LP_MLADRC, LADRC_WITH_HP_MLADRC, LADRC_WITH_PID,
-                        LADRC_WITH_CASCADED, LADRC_WITH_INDI};
+    const int with[] = {LADRC_WITH_LADRC, LADRC_WITH_LP_MLADRC, LADRC_WITH_HP_MLADRC,
+                        LADRC_WITH_PID,   LADRC_WITH_CASCADED,  LADRC_WITH_INDI};
     size_t i;
     for (i = 0u; i < sizeof with / sizeof with[0]; ++i) {
         expected[2u + i] = (char)('0' + with[i]);

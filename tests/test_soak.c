@@ -104,8 +104,12 @@ static const double lp_peak_ceiling_deg[LADRC_AXES] = {0.43, 0.38, 0.095};
  * drag and coupling of the references add under 10, the noise a few. */
 #define ESTIMATE_MAX_RAD_S2 300.0
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 /* ---------------------------------------------------------------- noise */
 
@@ -171,28 +175,28 @@ typedef struct {
     double seconds;
     long long ticks;
     long windows, settled;
-    int drift_n;                         /* windows in each mean of the drift test */
+    int drift_n; /* windows in each mean of the drift test */
     double first_rms[LADRC_AXES][DRIFT_WINDOWS], last_rms[LADRC_AXES][DRIFT_WINDOWS]; /* last: a ring */
     double first_peak[LADRC_AXES][DRIFT_WINDOWS], last_peak[LADRC_AXES][DRIFT_WINDOWS];
     double worst_rms[LADRC_AXES], worst_peak[LADRC_AXES];
     long worst_rms_window[LADRC_AXES], worst_peak_window[LADRC_AXES];
-    double slope_sums[LADRC_AXES][4];    /* settled RMS against its index x: n, sum x, sum RMS, sum x RMS */
-    double sum_xx[LADRC_AXES];           /* sum x^2 */
-    long long nonfinite_window;          /* index of the first window with a non-finite RMS, -1 */
-    long long fault_ticks;               /* ticks with any fault flag */
+    double slope_sums[LADRC_AXES][4]; /* settled RMS against its index x: n, sum x, sum RMS, sum x RMS */
+    double sum_xx[LADRC_AXES];        /* sum x^2 */
+    long long nonfinite_window;       /* index of the first window with a non-finite RMS, -1 */
+    long long fault_ticks;            /* ticks with any fault flag */
     long long first_fault_tick;
     unsigned first_fault_flags;
-    int first_fault_axis;                /* -1: the step's return value */
-    long long trace_violations;          /* ticks where tr(P) left (0, bound] or the fit faulted */
+    int first_fault_axis;       /* -1: the step's return value */
+    long long trace_violations; /* ticks where tr(P) left (0, bound] or the fit faulted */
     long long first_trace_violation_tick;
-    double max_trace_ratio;              /* max tr(P) / bound */
-    double max_settled_trace_ratio;      /* the same after SETTLE_S */
+    double max_trace_ratio;         /* max tr(P) / bound */
+    double max_settled_trace_ratio; /* the same after SETTLE_S */
     double trace_bound;
     long long disengaged_ticks[LADRC_AXES]; /* HP: ticks after SETTLE_S with weight < 1 */
     long long settled_ticks;
-    long long estimate_violations;       /* ticks with a non-finite or too large estimate */
-    double max_estimate;                 /* largest |d_hat| (rad/s^2) */
-    int diverged;                        /* the plant left +-90 deg or went non-finite */
+    long long estimate_violations; /* ticks with a non-finite or too large estimate */
+    double max_estimate;           /* largest |d_hat| (rad/s^2) */
+    int diverged;                  /* the plant left +-90 deg or went non-finite */
     double diverged_t;
 } soak_result_t;
 
@@ -431,8 +435,7 @@ static void check(const char *name, ladrc_variant_t variant, const double rms_ce
                     "first/last [deg]",
                     name, r.seconds / 3600.0, r.ticks, r.windows, WINDOW_S, r.settled, r.drift_n);
     for (int i = 0; i < LADRC_AXES; ++i) {
-        len += snprintf(msg + len, sizeof msg - (size_t)len, " %s %.5f/%.5f", axis_name[i], first_rms[i],
-                        last_rms[i]);
+        len += snprintf(msg + len, sizeof msg - (size_t)len, " %s %.5f/%.5f", axis_name[i], first_rms[i], last_rms[i]);
     }
     len += snprintf(msg + len, sizeof msg - (size_t)len, "; peak first/last");
     for (int i = 0; i < LADRC_AXES; ++i) {
@@ -448,8 +451,8 @@ static void check(const char *name, ladrc_variant_t variant, const double rms_ce
     }
     if (variant == LADRC_VARIANT_HP_MLADRC) {
         len += snprintf(msg + len, sizeof msg - (size_t)len,
-                        "; max tr(P)/bound %.4f, after %.0f s %.3g (bound %.4g); disengaged %.4f%%",
-                        r.max_trace_ratio, SETTLE_S, r.max_settled_trace_ratio, r.trace_bound, 100.0 * disengaged);
+                        "; max tr(P)/bound %.4f, after %.0f s %.3g (bound %.4g); disengaged %.4f%%", r.max_trace_ratio,
+                        SETTLE_S, r.max_settled_trace_ratio, r.trace_bound, 100.0 * disengaged);
     }
     (void)snprintf(msg + len, sizeof msg - (size_t)len, "; max |d_hat| %.1f rad/s^2; faults %lld", r.max_estimate,
                    r.fault_ticks);

@@ -40,8 +40,12 @@
 
 static const double dt_s = 1e-3;
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static ladrc_td_config_t make_config(double dt, double accel, double h0)
 {
@@ -73,9 +77,8 @@ static void test_fhan_never_exceeds_its_acceleration_bound(void)
      * from 0 to the largest finite value with both signs */
     const double accels[] = {1e-20, 0.1, 50.0, 1e4, 1e30};
     const double h0s[] = {1e-20, 1e-3, 0.05, 2.0};
-    const double mags[] = {0.0, 1e-30, 1e-6, 1e-3, 0.01,
-                           0.1, 0.5,   1.0,  3.0,  10.0,
-                           1e3, 1e6,   1e15, 1e30, (double)REAL_MAX};
+    const double mags[] = {0.0,  1e-30,           1e-6, 1e-3, 0.01, 0.1, 0.5, 1.0, 3.0, 10.0, 1e3, 1e6, 1e15,
+                           1e30, (double)REAL_MAX};
     const size_t n_mag = sizeof mags / sizeof mags[0];
     size_t ia, ih, i1, i2;
     int s1, s2;
@@ -90,8 +93,7 @@ static void test_fhan_never_exceeds_its_acceleration_bound(void)
                         for (s2 = -1; s2 <= 1; s2 += 2) {
                             /* when */
                             const ladrc_real_t u =
-                                ladrc_fhan((ladrc_real_t)(s1 * mags[i1]),
-                                           (ladrc_real_t)(s2 * mags[i2]), accel, h0);
+                                ladrc_fhan((ladrc_real_t)(s1 * mags[i1]), (ladrc_real_t)(s2 * mags[i2]), accel, h0);
                             /* then */
                             TEST_ASSERT_FLOAT_IS_DETERMINATE(u);
                             /* exact (no float cast): checks the double build too */
@@ -114,8 +116,8 @@ static void test_fhan_never_exceeds_its_bound_on_the_edge_of_its_linear_zone(voi
     for (i = 0; i < 3000; ++i) {
         const ladrc_real_t accel =
             (ladrc_real_t)ldexp(1.5 + 0.5 * lcg_uniform(&seed), (int)(20.0 * lcg_uniform(&seed)));
-        const ladrc_real_t h0 = (ladrc_real_t)ldexp(1.5 + 0.5 * lcg_uniform(&seed),
-                                                    -(int)(6.0 + 6.0 * lcg_uniform(&seed)));
+        const ladrc_real_t h0 =
+            (ladrc_real_t)ldexp(1.5 + 0.5 * lcg_uniform(&seed), -(int)(6.0 + 6.0 * lcg_uniform(&seed)));
         const ladrc_real_t x2 = (i % 2 != 0) ? accel * h0 : -(accel * h0);
         /* when */
         const ladrc_real_t u = ladrc_fhan(-h0 * x2, x2, accel, h0);
@@ -131,14 +133,11 @@ static void test_fhan_matches_hand_computation_in_each_zone(void)
     const ladrc_real_t h0 = LADRC_R(0.1);
 
     /* then: y = 0.05 (linear zone), a = 0.3 + 0.5 = 0.8, fhan = -10 * 0.8 / 1 */
-    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, -8.0,
-                             ladrc_fhan(LADRC_R(0.02), LADRC_R(0.3), accel, h0));
+    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, -8.0, ladrc_fhan(LADRC_R(0.02), LADRC_R(0.3), accel, h0));
     /* then: y = 0.5, a0 = sqrt(41), a = (sqrt(41) - 1) / 2 = 2.70 > d: full braking */
-    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, -10.0,
-                             ladrc_fhan(LADRC_R(0.5), LADRC_R(0.0), accel, h0));
+    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, -10.0, ladrc_fhan(LADRC_R(0.5), LADRC_R(0.0), accel, h0));
     /* then: mirrored error, mirrored answer */
-    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, 10.0,
-                             ladrc_fhan(LADRC_R(-0.5), LADRC_R(0.0), accel, h0));
+    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, 10.0, ladrc_fhan(LADRC_R(-0.5), LADRC_R(0.0), accel, h0));
     /* then: y = 0.25 - 0.1 = 0.15, beyond the linear zone: a0 = sqrt(13),
      * a = -1 + (sqrt(13) - 1) / 2 = 0.30 inside the boundary layer, fhan = -10 a */
     TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, -10.0 * (-1.0 + (sqrt(13.0) - 1.0) / 2.0),
@@ -154,10 +153,8 @@ static void test_fhan_matches_hand_computation_in_each_zone(void)
 static void test_fhan_saturates_towards_the_origin_for_an_infinite_error(void)
 {
     /* given / when: an error so large it is infinite */
-    const ladrc_real_t up =
-        ladrc_fhan((ladrc_real_t)INFINITY, LADRC_R(0.0), LADRC_R(5.0), LADRC_R(0.01));
-    const ladrc_real_t down =
-        ladrc_fhan(LADRC_R(0.0), (ladrc_real_t)-INFINITY, LADRC_R(5.0), LADRC_R(0.01));
+    const ladrc_real_t up = ladrc_fhan((ladrc_real_t)INFINITY, LADRC_R(0.0), LADRC_R(5.0), LADRC_R(0.01));
+    const ladrc_real_t down = ladrc_fhan(LADRC_R(0.0), (ladrc_real_t)-INFINITY, LADRC_R(5.0), LADRC_R(0.01));
 
     /* then: full acceleration back towards the origin */
     TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, -5.0, up);
@@ -170,20 +167,13 @@ static void test_fhan_returns_zero_when_its_result_is_undefined(void)
     const ladrc_real_t inf_r = (ladrc_real_t)INFINITY;
 
     /* when / then: NaN state, opposite infinities, or an invalid bound or filter factor */
-    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, 0.0,
-                             ladrc_fhan(nan_r, LADRC_R(1.0), LADRC_R(5.0), LADRC_R(0.01)));
-    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, 0.0,
-                             ladrc_fhan(LADRC_R(1.0), nan_r, LADRC_R(5.0), LADRC_R(0.01)));
-    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, 0.0,
-                             ladrc_fhan(inf_r, -inf_r, LADRC_R(5.0), LADRC_R(0.01)));
-    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, 0.0,
-                             ladrc_fhan(LADRC_R(1.0), LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.01)));
-    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, 0.0,
-                             ladrc_fhan(LADRC_R(1.0), LADRC_R(0.0), inf_r, LADRC_R(0.01)));
-    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, 0.0,
-                             ladrc_fhan(LADRC_R(1.0), LADRC_R(0.0), LADRC_R(5.0), -LADRC_R(0.01)));
-    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, 0.0,
-                             ladrc_fhan(LADRC_R(1.0), LADRC_R(0.0), LADRC_R(5.0), nan_r));
+    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, 0.0, ladrc_fhan(nan_r, LADRC_R(1.0), LADRC_R(5.0), LADRC_R(0.01)));
+    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, 0.0, ladrc_fhan(LADRC_R(1.0), nan_r, LADRC_R(5.0), LADRC_R(0.01)));
+    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, 0.0, ladrc_fhan(inf_r, -inf_r, LADRC_R(5.0), LADRC_R(0.01)));
+    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, 0.0, ladrc_fhan(LADRC_R(1.0), LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.01)));
+    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, 0.0, ladrc_fhan(LADRC_R(1.0), LADRC_R(0.0), inf_r, LADRC_R(0.01)));
+    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, 0.0, ladrc_fhan(LADRC_R(1.0), LADRC_R(0.0), LADRC_R(5.0), -LADRC_R(0.01)));
+    TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, 0.0, ladrc_fhan(LADRC_R(1.0), LADRC_R(0.0), LADRC_R(5.0), nan_r));
 }
 
 /* ------------------------------------------------------------ TD steps */
@@ -241,8 +231,8 @@ static void test_td_reaches_a_step_within_the_time_optimal_bound_when_h0_equals_
             t_settle_s = settle_time_s(&td, steps[is], t_opt_s, (int)(t_opt_s / dt_s) + 1000);
             /* then: it arrived and stayed within the bang-bang time plus the sampling margin */
             /* (half a sample of slack: both sides are sums of dt in double) */
-            TEST_ASSERT_LESS_OR_EQUAL_FLOAT(
-                (ceil(t_opt_s / dt_s) + SETTLE_MARGIN_STEPS_H0_EQ_DT + 0.5) * dt_s, t_settle_s);
+            TEST_ASSERT_LESS_OR_EQUAL_FLOAT((ceil(t_opt_s / dt_s) + SETTLE_MARGIN_STEPS_H0_EQ_DT + 0.5) * dt_s,
+                                            t_settle_s);
         }
     }
 }
@@ -263,8 +253,7 @@ static void test_td_reaches_a_step_within_the_time_optimal_bound_plus_its_filter
             /* when */
             t_settle_s = settle_time_s(&td, steps[is], t_opt_s, (int)(t_opt_s / dt_s) + 1000);
             /* then */
-            TEST_ASSERT_LESS_OR_EQUAL_FLOAT(t_opt_s + SETTLE_MARGIN_H0_MULTIPLES * h0_s,
-                                            t_settle_s);
+            TEST_ASSERT_LESS_OR_EQUAL_FLOAT(t_opt_s + SETTLE_MARGIN_H0_MULTIPLES * h0_s, t_settle_s);
         }
     }
 }
@@ -316,8 +305,8 @@ static void test_td_tracks_a_slow_sinusoid_with_a_lag_of_about_two_h0(void)
     const double amp_rad = 0.2;
     const double w_rad_s = 2.0;
     const double h0_s = 10.0 * dt_s;
-    const double g = h0_s * w_rad_s * sqrt(4.0 + h0_s * h0_s * w_rad_s * w_rad_s) /
-                     (1.0 + h0_s * h0_s * w_rad_s * w_rad_s);
+    const double g =
+        h0_s * w_rad_s * sqrt(4.0 + h0_s * h0_s * w_rad_s * w_rad_s) / (1.0 + h0_s * h0_s * w_rad_s * w_rad_s);
     const double pos_bound = amp_rad * g + dt_s * amp_rad * w_rad_s;
     const double rate_bound = amp_rad * w_rad_s * g + dt_s * amp_rad * w_rad_s * w_rad_s;
     double max_pos_err = 0.0;

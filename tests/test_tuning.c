@@ -8,8 +8,12 @@
 /* Results are one or two float operations from exact: 1e-6 relative. */
 #define REL_TOL 1e-6f
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static void test_paper_rule_gives_its_polynomial_over_the_settling_time(void)
 {

@@ -5,8 +5,12 @@
 
 #include <string.h>
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 /* The enum's names, in its order: what each text must start with. */
 static const char *const status_names[LADRC_STATUS_COUNT] = {
@@ -115,9 +119,8 @@ static void test_every_status_text_is_distinct(void)
     /* given: every pair of status codes; then: different texts */
     for (int a = 0; a < LADRC_STATUS_COUNT; ++a) {
         for (int b = a + 1; b < LADRC_STATUS_COUNT; ++b) {
-            TEST_ASSERT_TRUE_MESSAGE(strcmp(ladrc_status_str((ladrc_status_t)a),
-                                            ladrc_status_str((ladrc_status_t)b)) != 0,
-                                     status_names[a]);
+            TEST_ASSERT_TRUE_MESSAGE(
+                strcmp(ladrc_status_str((ladrc_status_t)a), ladrc_status_str((ladrc_status_t)b)) != 0, status_names[a]);
         }
     }
 }

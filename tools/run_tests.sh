@@ -13,7 +13,7 @@
 #   asan-ubsan   suite under AddressSanitizer + UndefinedBehaviorSanitizer
 #   cortex-m4f   cross build, suite under qemu (mps2-an386), library size
 #   no-heap      no heap/stdio use and no writable globals, host + cross archive
-#   cppcheck     static analysis of src/
+#   cppcheck     static analysis of src/; every C file in the .clang-format style
 #   bench        tools/bench.sh --check: instructions per tick on the Cortex-M4F,
 #                sizes and tick stack against tools/bench/limits.txt
 #   host-release the suite in Release (-O3), Python binding included, with the
@@ -61,6 +61,8 @@ REQUIREMENTS=(
   "no-heap arm-none-eabi-gcc gcc-arm-none-eabi"
   "no-heap newlib libnewlib-arm-none-eabi"
   "cppcheck cppcheck cppcheck"
+  "cppcheck clang-format clang-format"
+  "cppcheck git git"
   "bench arm-none-eabi-gcc gcc-arm-none-eabi"
   "bench newlib libnewlib-arm-none-eabi"
   "bench qemu-system-arm qemu-system-arm"
@@ -183,6 +185,9 @@ stage_cppcheck() {
     --inline-suppr --std=c99 --suppress=missingIncludeSystem -j "$JOBS" -q \
     -I include src
   echo "cppcheck: no findings"
+  # The house style (.clang-format) on every C source and header.
+  git ls-files -z '*.c' '*.h' | xargs -0 clang-format --dry-run -Werror
+  echo "clang-format: every C file in the house style"
 }
 
 # Deterministic figures only (no wall clock): instruction counts under qemu

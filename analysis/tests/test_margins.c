@@ -26,8 +26,12 @@
 static ladrc_margins_workspace_t ws;
 static ladrc_margins_result_t res;
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static ladrc_margins_plant_t paper_plant(double tau_s, int delay)
 {
@@ -87,8 +91,7 @@ static void test_measured_pid_matches_its_transfer_function(void)
         TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_controller_freq(&ws, w_test[i], out));
         const double complex zi = cexp(-I * w_test[i] * dt);
         /* pid.c: u = kp e + I - kd d, I += ki dt e, d = (1 - a) d + a (y - y-) / dt, e = -y */
-        const double complex c =
-            -kp - ki * dt / (1.0 - zi) - kd * alpha * (1.0 - zi) / dt / (1.0 - (1.0 - alpha) * zi);
+        const double complex c = -kp - ki * dt / (1.0 - zi) - kd * alpha * (1.0 - zi) / dt / (1.0 - (1.0 - alpha) * zi);
         TEST_ASSERT_TRUE(cabs(out[0] + I * out[1] - c) <= CTL_REL_TOL * cabs(c));
         TEST_ASSERT_TRUE(out[2] == 0.0); /* no rate given: no rate path */
     }
@@ -162,7 +165,9 @@ static void sweep(ladrc_variant_t variant, int use_rate, double wc, double kp_sc
             const int verdict = ladrc_margins_is_stable(&ws, &p);
             double growth = 0.0;
             TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_simulate(&ws, &ctl, &p, 30000, &growth));
-            if ((growth < 1.0) != verdict) printf("variant %d rate %d wc %g lag %g delay %d growth %g verdict %d\n", variant, use_rate, wc, lags[i], delays[j], growth, verdict);
+            if ((growth < 1.0) != verdict)
+                printf("variant %d rate %d wc %g lag %g delay %d growth %g verdict %d\n", variant, use_rate, wc,
+                       lags[i], delays[j], growth, verdict);
             TEST_ASSERT_EQUAL_INT_MESSAGE(growth < 1.0, verdict, "Nyquist verdict disagrees with the simulation");
             stable_seen += verdict;
             unstable_seen += !verdict;
@@ -172,11 +177,26 @@ static void sweep(ladrc_variant_t variant, int use_rate, double wc, double kp_sc
     TEST_ASSERT_TRUE(stable_seen > 0 && unstable_seen > 0);
 }
 
-static void test_verdict_agrees_with_simulation_ladrc(void) { sweep(LADRC_VARIANT_LADRC, 0, 15.0, 1.0); }
-static void test_verdict_agrees_with_simulation_ladrc_fast(void) { sweep(LADRC_VARIANT_LADRC, 0, 40.0, 1.0); }
-static void test_verdict_agrees_with_simulation_pid(void) { sweep(LADRC_VARIANT_PID, 0, 15.0, 0.3); }
-static void test_verdict_agrees_with_simulation_pid_rate(void) { sweep(LADRC_VARIANT_PID, 1, 15.0, 0.3); }
-static void test_verdict_agrees_with_simulation_lp(void) { sweep(LADRC_VARIANT_LP_MLADRC, 1, 15.0, 1.0); }
+static void test_verdict_agrees_with_simulation_ladrc(void)
+{
+    sweep(LADRC_VARIANT_LADRC, 0, 15.0, 1.0);
+}
+static void test_verdict_agrees_with_simulation_ladrc_fast(void)
+{
+    sweep(LADRC_VARIANT_LADRC, 0, 40.0, 1.0);
+}
+static void test_verdict_agrees_with_simulation_pid(void)
+{
+    sweep(LADRC_VARIANT_PID, 0, 15.0, 0.3);
+}
+static void test_verdict_agrees_with_simulation_pid_rate(void)
+{
+    sweep(LADRC_VARIANT_PID, 1, 15.0, 0.3);
+}
+static void test_verdict_agrees_with_simulation_lp(void)
+{
+    sweep(LADRC_VARIANT_LP_MLADRC, 1, 15.0, 1.0);
+}
 
 static void test_boundaries_bracket_the_verdict(void)
 {

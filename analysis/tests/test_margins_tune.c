@@ -14,8 +14,12 @@ static ladrc_margins_workspace_t ws;
 static ladrc_margins_tuning_t tuning;
 static ladrc_margins_result_t res;
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 typedef struct {
     double j, tau;
@@ -25,9 +29,8 @@ typedef struct {
 /* Paper roll (5.445e-3) and yaw (1.089e-2) with kt = 0.09; a 1.5-2 kg quad
  * (0.025 kg m^2); each with one of the lag / delay pairs. */
 static const airframe_t CASES[] = {
-    {5.445e-3, 0.0, 0},  {5.445e-3, 0.02, 1}, {5.445e-3, 0.04, 2},
-    {1.089e-2, 0.0, 1},  {1.089e-2, 0.02, 2}, {1.089e-2, 0.04, 0},
-    {0.025, 0.0, 2},     {0.025, 0.02, 0},    {0.025, 0.04, 1},
+    {5.445e-3, 0.0, 0},  {5.445e-3, 0.02, 1}, {5.445e-3, 0.04, 2}, {1.089e-2, 0.0, 1}, {1.089e-2, 0.02, 2},
+    {1.089e-2, 0.04, 0}, {0.025, 0.0, 2},     {0.025, 0.02, 0},    {0.025, 0.04, 1},
 };
 
 static void tune_case(ladrc_variant_t variant, const airframe_t *a)
@@ -59,18 +62,21 @@ static void tune_case(ladrc_variant_t variant, const airframe_t *a)
 
 static void test_ladrc_tuning_meets_its_targets(void)
 {
-    for (unsigned i = 0; i < sizeof CASES / sizeof CASES[0]; ++i) tune_case(LADRC_VARIANT_LADRC, &CASES[i]);
+    for (unsigned i = 0; i < sizeof CASES / sizeof CASES[0]; ++i)
+        tune_case(LADRC_VARIANT_LADRC, &CASES[i]);
 }
 
 static void test_pid_tuning_meets_its_targets(void)
 {
-    for (unsigned i = 0; i < sizeof CASES / sizeof CASES[0]; ++i) tune_case(LADRC_VARIANT_PID, &CASES[i]);
+    for (unsigned i = 0; i < sizeof CASES / sizeof CASES[0]; ++i)
+        tune_case(LADRC_VARIANT_PID, &CASES[i]);
 }
 
 static void test_indi_tuning_meets_its_targets(void)
 {
     /* one case per airframe (lag and delay unmodelled by the controller) */
-    for (unsigned i = 0; i < sizeof CASES / sizeof CASES[0]; i += 4) tune_case(LADRC_VARIANT_INDI, &CASES[i]);
+    for (unsigned i = 0; i < sizeof CASES / sizeof CASES[0]; i += 4)
+        tune_case(LADRC_VARIANT_INDI, &CASES[i]);
 }
 
 static void test_indi_without_its_rate_is_refused(void)
@@ -88,7 +94,8 @@ static void test_indi_without_its_rate_is_refused(void)
 
 static void test_cascaded_tuning_meets_its_targets(void)
 {
-    for (unsigned i = 0; i < sizeof CASES / sizeof CASES[0]; ++i) tune_case(LADRC_VARIANT_CASCADED, &CASES[i]);
+    for (unsigned i = 0; i < sizeof CASES / sizeof CASES[0]; ++i)
+        tune_case(LADRC_VARIANT_CASCADED, &CASES[i]);
 }
 
 static void test_lag_lowers_the_tuned_bandwidth(void)

@@ -33,8 +33,8 @@ static inline void semihost_exit(int code)
 {
     const uint32_t block[2] = {SEMIHOST_ADP_APPLICATION_EXIT, (uint32_t)code};
     (void)semihost_call(SEMIHOST_SYS_EXIT_EXTENDED, block);
-    (void)semihost_call(SEMIHOST_SYS_EXIT, (const void *)(uintptr_t)(code == 0
-        ? SEMIHOST_ADP_APPLICATION_EXIT : SEMIHOST_ADP_RUNTIME_ERROR));
+    (void)semihost_call(SEMIHOST_SYS_EXIT, (const void *)(uintptr_t)(code == 0 ? SEMIHOST_ADP_APPLICATION_EXIT
+                                                                               : SEMIHOST_ADP_RUNTIME_ERROR));
     for (;;) {
     }
 }

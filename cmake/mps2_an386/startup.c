@@ -36,17 +36,14 @@ struct vector_table {
 };
 
 /* Exceptions 1..15; no interrupt is ever enabled, so none are listed. */
-__attribute__((section(".vectors"), used))
-const struct vector_table ladrc_vector_table = {
+__attribute__((section(".vectors"), used)) const struct vector_table ladrc_vector_table = {
     __stack_top__,
     {
-        Reset_Handler, NMI_Handler, HardFault_Handler, MemManage_Handler,
-        BusFault_Handler, UsageFault_Handler, 0, 0, 0, 0,
-        Unexpected_Handler, /* SVCall */
-        Unexpected_Handler, /* DebugMonitor */
-        0,
-        Unexpected_Handler, /* PendSV */
-        Unexpected_Handler, /* SysTick */
+        Reset_Handler, NMI_Handler, HardFault_Handler, MemManage_Handler, BusFault_Handler, UsageFault_Handler, 0, 0, 0,
+        0, Unexpected_Handler, /* SVCall */
+        Unexpected_Handler,    /* DebugMonitor */
+        0, Unexpected_Handler, /* PendSV */
+        Unexpected_Handler,    /* SysTick */
     },
 };
 
@@ -74,8 +71,12 @@ void Reset_Handler(void)
 }
 
 /* newlib's init/fini helpers call these (crti.o is not linked). */
-void _init(void) {}
-void _fini(void) {}
+void _init(void)
+{
+}
+void _fini(void)
+{
+}
 
 /* A crashed test must fail, not hang: report and leave qemu. */
 static void fault_exit(const char *what)
@@ -86,9 +87,27 @@ static void fault_exit(const char *what)
     semihost_exit(FAULT_EXIT_CODE);
 }
 
-void NMI_Handler(void) { fault_exit("NMI"); }
-void HardFault_Handler(void) { fault_exit("HardFault"); }
-void MemManage_Handler(void) { fault_exit("MemManage fault"); }
-void BusFault_Handler(void) { fault_exit("BusFault"); }
-void UsageFault_Handler(void) { fault_exit("UsageFault"); }
-void Unexpected_Handler(void) { fault_exit("unexpected exception"); }
+void NMI_Handler(void)
+{
+    fault_exit("NMI");
+}
+void HardFault_Handler(void)
+{
+    fault_exit("HardFault");
+}
+void MemManage_Handler(void)
+{
+    fault_exit("MemManage fault");
+}
+void BusFault_Handler(void)
+{
+    fault_exit("BusFault");
+}
+void UsageFault_Handler(void)
+{
+    fault_exit("UsageFault");
+}
+void Unexpected_Handler(void)
+{
+    fault_exit("unexpected exception");
+}

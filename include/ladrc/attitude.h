@@ -47,11 +47,11 @@ typedef struct {
 
 typedef struct {
     /* The feed's constants first: short offsets from the struct's address. */
-    ladrc_real_t coupling[LADRC_AXES];      /**< (Jy-Jz)/Jx, (Jz-Jx)/Jy, (Jx-Jy)/Jz */
-    ladrc_real_t drag_per_s[LADRC_AXES];    /**< kt / J per axis (1/s) */
-    ladrc_real_t feed_rad_s3[LADRC_AXES];   /**< h fed at the latest tick */
+    ladrc_real_t coupling[LADRC_AXES];    /**< (Jy-Jz)/Jx, (Jz-Jx)/Jy, (Jx-Jy)/Jz */
+    ladrc_real_t drag_per_s[LADRC_AXES];  /**< kt / J per axis (1/s) */
+    ladrc_real_t feed_rad_s3[LADRC_AXES]; /**< h fed at the latest tick */
     uint8_t coupling_feed;
-    uint8_t observers;                      /**< 1 when no axis is PID or CASCADED (no axis needs set_applied beyond applied_Nm) */
+    uint8_t observers; /**< 1 when no axis is PID or CASCADED (no axis needs set_applied beyond applied_Nm) */
     ladrc_axis_t axis[LADRC_AXES];
 } ladrc_attitude_t;
 
@@ -60,9 +60,8 @@ typedef struct {
  * inertia_kg_m2), the given drag and the feed on, wrap_angle on for yaw
  * (off for roll and pitch).
  */
-void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t variant,
-                                   ladrc_real_t dt_s, const ladrc_real_t inertia_kg_m2[LADRC_AXES],
-                                   ladrc_real_t drag_Nms);
+void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t variant, ladrc_real_t dt_s,
+                                   const ladrc_real_t inertia_kg_m2[LADRC_AXES], ladrc_real_t drag_Nms);
 
 /**
  * Validates the vehicle fields (LADRC_ERR_INERTIA_KG_M2, LADRC_ERR_DRAG_NMS,
@@ -70,8 +69,7 @@ void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t
  * each axis in turn; failed_axis (may be NULL) receives the index of the axis
  * whose config was rejected, or -1.
  */
-ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_config_t *cfg,
-                                   int *failed_axis);
+ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_config_t *cfg, int *failed_axis);
 
 /** Restarts every axis at rest on the given angles (rad). */
 void ladrc_attitude_reset(ladrc_attitude_t *att, const ladrc_real_t angle_rad[LADRC_AXES]);
@@ -85,8 +83,8 @@ void ladrc_attitude_reset(ladrc_attitude_t *att, const ladrc_real_t angle_rad[LA
  * @return the union of the axes' fault flags
  */
 ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
-                                  const ladrc_real_t angle_rad[LADRC_AXES],
-                                  const ladrc_real_t *rate_rad_s, ladrc_real_t torque_Nm[LADRC_AXES]);
+                                  const ladrc_real_t angle_rad[LADRC_AXES], const ladrc_real_t *rate_rad_s,
+                                  ladrc_real_t torque_Nm[LADRC_AXES]);
 
 /** Reports the torques the mixer achieved (N m) to each axis. */
 void ladrc_attitude_set_applied(ladrc_attitude_t *att, const ladrc_real_t torque_Nm[LADRC_AXES]);

@@ -108,12 +108,12 @@ extern "C" {
 /* LADRC_WITH_<NAME>, the variants and shapers built: types.h (the ABI guard reads them). */
 
 typedef enum {
-    LADRC_VARIANT_LADRC = 0,    /**< traditional LADRC: TD + LESO + control law */
-    LADRC_VARIANT_LP_MLADRC = 1,/**< LADRC + LP estimator (needs the measured rate) */
-    LADRC_VARIANT_HP_MLADRC = 2,/**< LADRC + HP estimator (angle only) */
-    LADRC_VARIANT_PID = 3,      /**< PID baseline (pid.h) */
-    LADRC_VARIANT_CASCADED = 4, /**< attitude P -> rate PID, as PX4 / ArduPilot / Betaflight (cascaded.h) */
-    LADRC_VARIANT_INDI = 5,     /**< INDI baseline (indi.h; needs the measured rate) */
+    LADRC_VARIANT_LADRC = 0,     /**< traditional LADRC: TD + LESO + control law */
+    LADRC_VARIANT_LP_MLADRC = 1, /**< LADRC + LP estimator (needs the measured rate) */
+    LADRC_VARIANT_HP_MLADRC = 2, /**< LADRC + HP estimator (angle only) */
+    LADRC_VARIANT_PID = 3,       /**< PID baseline (pid.h) */
+    LADRC_VARIANT_CASCADED = 4,  /**< attitude P -> rate PID, as PX4 / ArduPilot / Betaflight (cascaded.h) */
+    LADRC_VARIANT_INDI = 5,      /**< INDI baseline (indi.h; needs the measured rate) */
     LADRC_VARIANT_COUNT = 6
 } ladrc_variant_t;
 
@@ -128,9 +128,9 @@ static inline int ladrc_variant_has_observer(ladrc_variant_t v)
 }
 
 typedef enum {
-    LADRC_SHAPER_TD = 0,     /**< Han's tracking differentiator gives r, r', r'' */
-    LADRC_SHAPER_NONE = 1,   /**< raw reference, r' = r'' = 0 */
-    LADRC_SHAPER_LEVANT = 2  /**< Levant's robust exact differentiator (levant.h) */
+    LADRC_SHAPER_TD = 0,    /**< Han's tracking differentiator gives r, r', r'' */
+    LADRC_SHAPER_NONE = 1,  /**< raw reference, r' = r'' = 0 */
+    LADRC_SHAPER_LEVANT = 2 /**< Levant's robust exact differentiator (levant.h) */
 } ladrc_shaper_t;
 
 /**
@@ -142,9 +142,9 @@ typedef enum {
  */
 typedef struct {
     ladrc_variant_t variant;
-    ladrc_real_t dt_s;            /**< fixed control step (s), > 0 */
-    ladrc_real_t u_min_Nm;        /**< torque command lower bound (N m), < 0, may be -INFINITY */
-    ladrc_real_t u_max_Nm;        /**< torque command upper bound (N m), > 0; the command also
+    ladrc_real_t dt_s;     /**< fixed control step (s), > 0 */
+    ladrc_real_t u_min_Nm; /**< torque command lower bound (N m), < 0, may be -INFINITY */
+    ladrc_real_t u_max_Nm; /**< torque command upper bound (N m), > 0; the command also
                                        stays within +-applied_limit_Nm */
     /* Plausible ranges (finite; angle and rate >= 1e-3, applied > 0): a sample
      * beyond is a bad input, held and flagged like a NaN. The defaults are far
@@ -153,54 +153,54 @@ typedef struct {
     ladrc_real_t rate_limit_rad_s; /**< |measured rate| (rad/s); default 100 */
     ladrc_real_t applied_limit_Nm; /**< |applied torque| (N m); default 1e4 rad/s^2 times the inertia */
     /* LADRC */
-    ladrc_real_t wc_rad_s;        /**< controller bandwidth (rad/s), > 0; closed loop (s + wc)^2 */
-    ladrc_real_t wo_rad_s;        /**< observer bandwidth (rad/s), > 0 */
-    ladrc_real_t b0;              /**< rad/s^2 per N m (1/J), |b0| in [1e-3, 1e7] (J from 1e-7 to
+    ladrc_real_t wc_rad_s; /**< controller bandwidth (rad/s), > 0; closed loop (s + wc)^2 */
+    ladrc_real_t wo_rad_s; /**< observer bandwidth (rad/s), > 0 */
+    ladrc_real_t b0;       /**< rad/s^2 per N m (1/J), |b0| in [1e-3, 1e7] (J from 1e-7 to
                                        1000 kg m^2) */
     ladrc_leso_method_t leso_method;
     ladrc_shaper_t shaper;
-    ladrc_real_t td_accel_rad_s2; /**< TD acceleration bound (rad/s^2), > 0 (shaper TD only) */
-    ladrc_real_t td_h0_s;         /**< TD filter factor (s), >= dt_s (shaper TD only) */
-    ladrc_levant_method_t levant_method; /**< shaper LEVANT only */
+    ladrc_real_t td_accel_rad_s2;         /**< TD acceleration bound (rad/s^2), > 0 (shaper TD only) */
+    ladrc_real_t td_h0_s;                 /**< TD filter factor (s), >= dt_s (shaper TD only) */
+    ladrc_levant_method_t levant_method;  /**< shaper LEVANT only */
     ladrc_real_t levant_lipschitz_rad_s4; /**< bound on |r''''| (rad/s^4), > 0 (shaper LEVANT only) */
     /* PID */
-    ladrc_real_t pid_kp;          /**< N m / rad */
-    ladrc_real_t pid_ki;          /**< N m / (rad s) */
-    ladrc_real_t pid_kd;          /**< N m s / rad */
+    ladrc_real_t pid_kp;             /**< N m / rad */
+    ladrc_real_t pid_ki;             /**< N m / (rad s) */
+    ladrc_real_t pid_kd;             /**< N m s / rad */
     ladrc_real_t pid_d_filter_tau_s; /**< derivative filter time constant (s), 0 = none */
-    ladrc_real_t pid_i_limit_Nm;  /**< |integral| bound (N m), INFINITY = none */
+    ladrc_real_t pid_i_limit_Nm;     /**< |integral| bound (N m), INFINITY = none */
     /* LP-MLADRC (estimator.h) */
     ladrc_real_t lp_lambda0_per_s; /**< maximum forgetting rate (1/s); paper 100 */
     ladrc_real_t lp_k0_per_s;      /**< gain bound (1/s); paper 300 */
     /* HP-MLADRC (estimator.h) */
     ladrc_hp_freq_mode_t hp_freq_mode;
-    uint8_t hp_n_tones;            /**< tones modelled, 1..LADRC_HP_MAX_TONES */
+    uint8_t hp_n_tones;                             /**< tones modelled, 1..LADRC_HP_MAX_TONES */
     ladrc_real_t hp_freq_rad_s[LADRC_HP_MAX_TONES]; /**< KNOWN: the disturbance frequencies;
                                         ONLINE: first guesses (rad/s) */
-    ladrc_real_t hp_freq_min_rad_s;/**< ONLINE search range */
+    ladrc_real_t hp_freq_min_rad_s;                 /**< ONLINE search range */
     ladrc_real_t hp_freq_max_rad_s;
-    ladrc_real_t hp_lambda0_per_s; /**< fastest forgetting of the fit (1/s) */
+    ladrc_real_t hp_lambda0_per_s;      /**< fastest forgetting of the fit (1/s) */
     ladrc_real_t hp_freq_lambda0_per_s; /**< ONLINE forgetting of the frequency fits (1/s) */
     ladrc_real_t hp_freq_filter_rad_s;  /**< ONLINE derivative filter bandwidth (rad/s) */
-    uint16_t hp_fit_decimation;    /**< ticks per sample of the fit (an axis alone fits on the
+    uint16_t hp_fit_decimation;         /**< ticks per sample of the fit (an axis alone fits on the
                                         first tick of each block; the attitude layer staggers its
                                         axes over the block) */
     /* Actuator model (LADRC family; see above), default 0 and 0: none */
-    ladrc_real_t motor_tau_s;      /**< first-order lag of the torque (s), 0..LADRC_MOTOR_TAU_MAX_S, 0 = none */
-    uint8_t delay_ticks;           /**< transport delay (whole ticks), 0..LADRC_MAX_DELAY_TICKS */
-    uint8_t wrap_angle;            /**< 1: the angle lives on a circle of 2 pi (yaw); 0: a line */
+    ladrc_real_t motor_tau_s; /**< first-order lag of the torque (s), 0..LADRC_MOTOR_TAU_MAX_S, 0 = none */
+    uint8_t delay_ticks;      /**< transport delay (whole ticks), 0..LADRC_MAX_DELAY_TICKS */
+    uint8_t wrap_angle;       /**< 1: the angle lives on a circle of 2 pi (yaw); 0: a line */
     /* INDI (indi.h); b0 is its control effectiveness, the shaper gives r, r', r'' */
     ladrc_real_t indi_att_kp_per_s;  /**< k_att (1/s): attitude error -> rate setpoint */
     ladrc_real_t indi_rate_kp_per_s; /**< k_rate (1/s): rate error -> acceleration */
     ladrc_real_t indi_filter_rad_s;  /**< w_f (rad/s): the acceleration and torque filter */
     /* CASCADED (cascaded.h) */
-    ladrc_real_t cas_att_kp;         /**< attitude P gain (1/s), > 0, cas_att_kp * dt_s < 1 */
-    ladrc_real_t cas_rate_max_rad_s; /**< rate setpoint bound (rad/s), > 0, <= rate_limit_rad_s */
-    ladrc_real_t cas_rate_kp;        /**< rate P gain (N m s/rad), >= 0 */
-    ladrc_real_t cas_rate_ki;        /**< rate I gain (N m/rad), >= 0 */
-    ladrc_real_t cas_rate_kd;        /**< rate D gain on the measured rate (N m s^2/rad), >= 0 */
-    ladrc_real_t cas_d_filter_tau_s; /**< D low-pass time constant (s), >= 0, 0 = none */
-    ladrc_real_t cas_i_limit_Nm;     /**< |integral| bound (N m), INFINITY = none */
+    ladrc_real_t cas_att_kp;            /**< attitude P gain (1/s), > 0, cas_att_kp * dt_s < 1 */
+    ladrc_real_t cas_rate_max_rad_s;    /**< rate setpoint bound (rad/s), > 0, <= rate_limit_rad_s */
+    ladrc_real_t cas_rate_kp;           /**< rate P gain (N m s/rad), >= 0 */
+    ladrc_real_t cas_rate_ki;           /**< rate I gain (N m/rad), >= 0 */
+    ladrc_real_t cas_rate_kd;           /**< rate D gain on the measured rate (N m s^2/rad), >= 0 */
+    ladrc_real_t cas_d_filter_tau_s;    /**< D low-pass time constant (s), >= 0, 0 = none */
+    ladrc_real_t cas_i_limit_Nm;        /**< |integral| bound (N m), INFINITY = none */
     ladrc_real_t cas_rate_filter_tau_s; /**< low pass of the angle's difference when no rate is
                                         given (s), >= 0 */
 } ladrc_axis_config_t;
@@ -208,11 +208,11 @@ typedef struct {
 /** Actuator model state of an axis (see above). */
 typedef struct {
     ladrc_real_t delayed_Nm[LADRC_MAX_DELAY_TICKS]; /**< applied torques of the last d ticks */
-    ladrc_real_t lag_Nm;          /**< m: acting torque at the start of the next observer step */
-    ladrc_real_t alpha;           /**< 1 - exp(-h / tau) */
-    ladrc_real_t mean_gain;       /**< g = 1 - alpha tau / h */
-    uint8_t delay_ticks;          /**< d */
-    uint8_t head;                 /**< slot of the oldest torque, a_k-1-d */
+    ladrc_real_t lag_Nm;                            /**< m: acting torque at the start of the next observer step */
+    ladrc_real_t alpha;                             /**< 1 - exp(-h / tau) */
+    ladrc_real_t mean_gain;                         /**< g = 1 - alpha tau / h */
+    uint8_t delay_ticks;                            /**< d */
+    uint8_t head;                                   /**< slot of the oldest torque, a_k-1-d */
 } ladrc_actuator_t;
 
 /** Axis state; owned by the caller, read through the getters. */
@@ -221,8 +221,8 @@ typedef struct {
     ladrc_shaper_t shaper;
     ladrc_real_t u_min_Nm, u_max_Nm;
     ladrc_real_t angle_limit_rad, rate_limit_rad_s, applied_limit_Nm; /**< plausible ranges */
-    ladrc_real_t kp, kd, b0;      /**< wc^2, 2 wc, b0 */
-    ladrc_leso_t leso;            /**< the LADRC family (not PID, not INDI) */
+    ladrc_real_t kp, kd, b0;                                          /**< wc^2, 2 wc, b0 */
+    ladrc_leso_t leso;                                                /**< the LADRC family (not PID, not INDI) */
 #if LADRC_WITH_TD || LADRC_WITH_LEVANT
     union {
 #if LADRC_WITH_TD
@@ -231,7 +231,7 @@ typedef struct {
 #if LADRC_WITH_LEVANT
         ladrc_levant_t levant;
 #endif
-    } shaping;                    /**< by shaper */
+    } shaping; /**< by shaper */
 #endif
 #if LADRC_WITH_PID || LADRC_WITH_CASCADED || LADRC_WITH_LP_MLADRC || LADRC_WITH_HP_MLADRC || LADRC_WITH_INDI
     union {
@@ -253,19 +253,19 @@ typedef struct {
 #if LADRC_WITH_INDI
         ladrc_indi_t indi;
 #endif
-    } part;                       /**< by variant */
+    } part; /**< by variant */
 #endif
-    ladrc_ref_t ref;              /**< shaped reference of the latest tick */
-    ladrc_real_t d_hat_rad_s2;    /**< estimator output applied over the current step */
-    ladrc_real_t f_rate_rad_s3;   /**< known rate of change of f for the next LESO step */
-    ladrc_real_t f_known_rad_s2;  /**< known part of f (HP: kept out of the estimator's sample) */
-    ladrc_real_t output_Nm;       /**< latest command */
-    ladrc_real_t applied_Nm;      /**< torque applied since the latest tick */
-    ladrc_actuator_t act;         /**< actuator model (used when model is 1) */
-    uint8_t model;                /**< 1: motor_tau_s > 0 or delay_ticks > 0 (LADRC family, INDI) */
-    uint8_t wrap;                 /**< wrap_angle */
-    ladrc_fault_t faults;         /**< flags of the latest tick */
-    uint32_t consecutive_faults;  /**< ticks in a row with LADRC_FAULT_INPUT or _STATE */
+    ladrc_ref_t ref;             /**< shaped reference of the latest tick */
+    ladrc_real_t d_hat_rad_s2;   /**< estimator output applied over the current step */
+    ladrc_real_t f_rate_rad_s3;  /**< known rate of change of f for the next LESO step */
+    ladrc_real_t f_known_rad_s2; /**< known part of f (HP: kept out of the estimator's sample) */
+    ladrc_real_t output_Nm;      /**< latest command */
+    ladrc_real_t applied_Nm;     /**< torque applied since the latest tick */
+    ladrc_actuator_t act;        /**< actuator model (used when model is 1) */
+    uint8_t model;               /**< 1: motor_tau_s > 0 or delay_ticks > 0 (LADRC family, INDI) */
+    uint8_t wrap;                /**< wrap_angle */
+    ladrc_fault_t faults;        /**< flags of the latest tick */
+    uint32_t consecutive_faults; /**< ticks in a row with LADRC_FAULT_INPUT or _STATE */
 } ladrc_axis_t;
 
 /**
@@ -297,8 +297,8 @@ typedef struct {
  * filter at the observer's bandwidth, w_f = wo = 75 rad/s (the observer's
  * noise budget; F d then follows d with the lag 2 / w_f = 27 ms).
  */
-void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant,
-                               ladrc_real_t dt_s, ladrc_real_t inertia_kg_m2);
+void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant, ladrc_real_t dt_s,
+                               ladrc_real_t inertia_kg_m2);
 
 /** Validates the fields the variant reads (status names the first bad one)
  *  and resets at angle 0. */
@@ -315,8 +315,8 @@ ladrc_real_t ladrc_axis_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_rea
  *  a rate LP holds its estimate) and INDI for its rate loop and acceleration
  *  (without a rate INDI holds its command and raises LADRC_FAULT_RATE, in
  *  ladrc_axis_step too); LADRC and HP-MLADRC ignore it. @return torque command (N m) */
-ladrc_real_t ladrc_axis_step_with_rate(ladrc_axis_t *axis, ladrc_real_t ref_rad,
-                                       ladrc_real_t angle_rad, ladrc_real_t rate_rad_s);
+ladrc_real_t ladrc_axis_step_with_rate(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
+                                       ladrc_real_t rate_rad_s);
 
 /** Reports the torque actually applied since the last tick (N m), e.g. after
  *  mixer saturation. Not finite or beyond applied_limit_Nm: ignored,
@@ -367,8 +367,8 @@ void ladrc_axis_get_reference(const ladrc_axis_t *axis, ladrc_ref_t *ref);
  *  (rad/s^2). PID has no observer: last measured angle, its filtered rate, and 0;
  *  CASCADED: last measured angle, the rate its rate loop used, and 0;
  *  INDI: last angle and rate measured with a rate, and omegadot_f - b0 u_f. */
-void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad,
-                             ladrc_real_t *rate_rad_s, ladrc_real_t *disturbance_rad_s2);
+void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad, ladrc_real_t *rate_rad_s,
+                             ladrc_real_t *disturbance_rad_s2);
 
 /** The HP estimator of an HP-MLADRC axis, read-only (valid while axis is),
  *  for diagnostics through the estimator.h getters (weight, tones, fit);

@@ -81,7 +81,7 @@ typedef struct {
     ladrc_real_t rate_limit_rad_s;  /**< plausible |rate| (rad/s), finite, > 0 */
     ladrc_real_t u_min_Nm;          /**< output bounds (N m), u_min < 0 < u_max, may be infinite */
     ladrc_real_t u_max_Nm;
-    uint8_t wrap_angle;             /**< 1: e and y_k - y_k-1 are taken modulo 2 pi */
+    uint8_t wrap_angle; /**< 1: e and y_k - y_k-1 are taken modulo 2 pi */
 } ladrc_cascaded_config_t;
 
 /** Cascaded state; owned by the caller. */
@@ -89,18 +89,18 @@ typedef struct {
     ladrc_real_t dt_s, inv_dt;
     ladrc_real_t att_kp_per_s, rate_max_rad_s;
     ladrc_real_t rate_kp, rate_ki_dt, rate_kd;
-    ladrc_real_t d_alpha, d_keep;   /**< derivative filter */
-    ladrc_real_t w_alpha, w_keep;   /**< rate-from-angle filter */
+    ladrc_real_t d_alpha, d_keep; /**< derivative filter */
+    ladrc_real_t w_alpha, w_keep; /**< rate-from-angle filter */
     ladrc_real_t i_limit_Nm, rate_limit_rad_s, u_min_Nm, u_max_Nm;
-    ladrc_real_t integral_Nm;       /**< I_k */
-    ladrc_real_t rate_rad_s;        /**< m_k: the rate the latest tick used */
-    ladrc_real_t accel_rad_s2;      /**< D_k: filtered derivative of the rate */
-    ladrc_real_t prev_angle_rad;    /**< y_k */
-    ladrc_real_t rate_sp_rad_s;     /**< w_sp,k */
-    ladrc_real_t unclamped_Nm;      /**< latest command before clamping */
-    ladrc_real_t output_Nm;         /**< latest command */
-    ladrc_real_t applied_Nm;        /**< torque applied since the latest tick */
-    uint8_t has_prev;               /**< 0 until a first tick ran */
+    ladrc_real_t integral_Nm;    /**< I_k */
+    ladrc_real_t rate_rad_s;     /**< m_k: the rate the latest tick used */
+    ladrc_real_t accel_rad_s2;   /**< D_k: filtered derivative of the rate */
+    ladrc_real_t prev_angle_rad; /**< y_k */
+    ladrc_real_t rate_sp_rad_s;  /**< w_sp,k */
+    ladrc_real_t unclamped_Nm;   /**< latest command before clamping */
+    ladrc_real_t output_Nm;      /**< latest command */
+    ladrc_real_t applied_Nm;     /**< torque applied since the latest tick */
+    uint8_t has_prev;            /**< 0 until a first tick ran */
     uint8_t wrap;
 } ladrc_cascaded_t;
 

@@ -119,12 +119,12 @@ typedef struct {
 #endif
 
 typedef struct {
-    ladrc_rls_t rls;            /**< one parameter: d_hat */
+    ladrc_rls_t rls; /**< one parameter: d_hat */
     ladrc_real_t dt_s;
     ladrc_real_t prev_rate_rad_s;
-    ladrc_real_t lead_x;        /**< the lead's low-pass state x (rad/s^2) */
-    ladrc_real_t lead_beta;     /**< beta = 1 - exp(-N h / tau') */
-    uint8_t lead;               /**< 1: act_tau_s > 0 or act_delay_ticks > 0 */
+    ladrc_real_t lead_x;    /**< the lead's low-pass state x (rad/s^2) */
+    ladrc_real_t lead_beta; /**< beta = 1 - exp(-N h / tau') */
+    uint8_t lead;           /**< 1: act_tau_s > 0 or act_delay_ticks > 0 */
     uint8_t has_prev_rate;
     ladrc_fault_t faults;
 } ladrc_lp_estimator_t;
@@ -144,8 +144,7 @@ void ladrc_lp_reset(ladrc_lp_estimator_t *est);
  * A non-finite argument holds the estimate and raises LADRC_FAULT_INPUT; the
  * next finite rate restarts the difference.
  */
-ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s,
-                            ladrc_real_t accel_known);
+ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s, ladrc_real_t accel_known);
 
 /** Current estimate d_hat (rad/s^2). */
 ladrc_real_t ladrc_lp_get_estimate(const ladrc_lp_estimator_t *est);
@@ -162,27 +161,27 @@ typedef enum {
 } ladrc_hp_freq_mode_t;
 
 typedef struct {
-    ladrc_real_t dt_s;               /**< fixed step h (s), > 0 */
+    ladrc_real_t dt_s; /**< fixed step h (s), > 0 */
     ladrc_hp_freq_mode_t freq_mode;
-    uint8_t n_tones;                 /**< tones modelled at most, 1..LADRC_HP_MAX_TONES */
+    uint8_t n_tones;                             /**< tones modelled at most, 1..LADRC_HP_MAX_TONES */
     ladrc_real_t freq_rad_s[LADRC_HP_MAX_TONES]; /**< KNOWN: the frequencies; ONLINE: the first
                                           guesses (rad/s), > 0; the first n_tones are read */
-    ladrc_real_t freq_min_rad_s;     /**< ONLINE search range (rad/s), 0 < min < max */
+    ladrc_real_t freq_min_rad_s;                 /**< ONLINE search range (rad/s), 0 < min < max */
     ladrc_real_t freq_max_rad_s;
-    ladrc_real_t lambda0_per_s;      /**< fastest forgetting of the fit (1/s), > 0, lambda0 T <= 1 */
-    ladrc_real_t freq_lambda0_per_s; /**< ONLINE: forgetting of the frequency averages (1/s) */
-    ladrc_real_t freq_filter_rad_s;  /**< ONLINE: bandwidth wf of the derivative filter (rad/s) */
-    ladrc_real_t sample_lag_wo_rad_s;/**< samples come through a LESO of this bandwidth, whose z3
+    ladrc_real_t lambda0_per_s;       /**< fastest forgetting of the fit (1/s), > 0, lambda0 T <= 1 */
+    ladrc_real_t freq_lambda0_per_s;  /**< ONLINE: forgetting of the frequency averages (1/s) */
+    ladrc_real_t freq_filter_rad_s;   /**< ONLINE: bandwidth wf of the derivative filter (rad/s) */
+    ladrc_real_t sample_lag_wo_rad_s; /**< samples come through a LESO of this bandwidth, whose z3
                                           lags f by wo^3 / (s + wo)^3: undone per tone; 0 = no lag;
                                           otherwise at least a tenth of the fastest tone */
-    uint16_t fit_decimation;         /**< ticks per fit sample (T = fit_decimation dt_s), >= 1;
+    uint16_t fit_decimation;          /**< ticks per fit sample (T = fit_decimation dt_s), >= 1;
                                           every tone turns less than pi/2 per fit sample */
-    uint16_t fit_phase;              /**< which tick of each block fits, < fit_decimation
+    uint16_t fit_phase;               /**< which tick of each block fits, < fit_decimation
                                           (give the axes of one controller different phases so a
                                           tick carries at most one fit) */
-    ladrc_real_t act_tau_s;          /**< the command acts through this first-order lag (s),
+    ladrc_real_t act_tau_s;           /**< the command acts through this first-order lag (s),
                                           0..LADRC_MOTOR_TAU_MAX_S (axis.h), 0 = none */
-    uint8_t act_delay_ticks;         /**< and this delay (ticks), 0..LADRC_MAX_DELAY_TICKS */
+    uint8_t act_delay_ticks;          /**< and this delay (ticks), 0..LADRC_MAX_DELAY_TICKS */
 } ladrc_hp_config_t;
 
 /** One tone. */
@@ -201,40 +200,40 @@ typedef struct {
 } ladrc_hp_tone_t;
 
 typedef struct {
-    ladrc_rls_t fit;                 /**< theta = (c, a_1, b_1, ..., a_n, b_n), n = n_active */
-    ladrc_real_t phi[LADRC_RLS_MAX_PARAMS]; /**< the fit's regressors at the latest fit sample */
+    ladrc_rls_t fit;                          /**< theta = (c, a_1, b_1, ..., a_n, b_n), n = n_active */
+    ladrc_real_t phi[LADRC_RLS_MAX_PARAMS];   /**< the fit's regressors at the latest fit sample */
     ladrc_hp_tone_t tone[LADRC_HP_MAX_TONES]; /**< the first n_active are in the fit */
     ladrc_real_t dt_s, fit_period_s;
     ladrc_real_t freq_min_rad_s, freq_max_rad_s;
-    ladrc_real_t lambda0_max;        /**< configured fastest forgetting of the fit */
-    ladrc_real_t fit_rate_per_s;     /**< forgetting rate of the fit outside changes */
+    ladrc_real_t lambda0_max;    /**< configured fastest forgetting of the fit */
+    ladrc_real_t fit_rate_per_s; /**< forgetting rate of the fit outside changes */
     ladrc_real_t freq_lambda0_per_s;
-    ladrc_real_t filter_rad_s;       /**< derivative filter bandwidth wf */
-    ladrc_real_t lag_wo_rad_s;       /**< bandwidth of the sample's lag, 0 = none */
-    ladrc_real_t sample_mean;        /**< the sample's mean, averaged */
-    ladrc_real_t sig_power;          /**< the sample's power around its mean, averaged */
-    ladrc_real_t spec_x[6];          /**< ONLINE derivative filter: x and its first five derivatives */
-    ladrc_real_t spec_x1_prev[2];    /**< ONLINE x1 one and two fit samples ago */
-    ladrc_real_t spec_x3_prev;       /**< ONLINE x3 one fit sample ago */
-    ladrc_real_t spec_avg[6];        /**< ONLINE averages of x1 x1, x3 x1, x3 x3, x5 x1, x5 x3, x5 x5 */
+    ladrc_real_t filter_rad_s;                    /**< derivative filter bandwidth wf */
+    ladrc_real_t lag_wo_rad_s;                    /**< bandwidth of the sample's lag, 0 = none */
+    ladrc_real_t sample_mean;                     /**< the sample's mean, averaged */
+    ladrc_real_t sig_power;                       /**< the sample's power around its mean, averaged */
+    ladrc_real_t spec_x[6];                       /**< ONLINE derivative filter: x and its first five derivatives */
+    ladrc_real_t spec_x1_prev[2];                 /**< ONLINE x1 one and two fit samples ago */
+    ladrc_real_t spec_x3_prev;                    /**< ONLINE x3 one fit sample ago */
+    ladrc_real_t spec_avg[6];                     /**< ONLINE averages of x1 x1, x3 x1, x3 x3, x5 x1, x5 x3, x5 x5 */
     ladrc_real_t found_rad_s[LADRC_HP_MAX_TONES]; /**< ONLINE frequencies of the latest clean model */
-    ladrc_real_t err_fast, err_slow; /**< short and long averages of the fit's prior error power */
-    ladrc_real_t weight;             /**< compensation weight in [0, 1] */
-    ladrc_real_t estimate;           /**< the applied d_hat (rad/s^2) */
-    ladrc_real_t act_tau_s;          /**< actuator lag the command is advanced over (s) */
-    ladrc_real_t handover;           /**< part of estimate's latest change due to the weight */
+    ladrc_real_t err_fast, err_slow;              /**< short and long averages of the fit's prior error power */
+    ladrc_real_t weight;                          /**< compensation weight in [0, 1] */
+    ladrc_real_t estimate;                        /**< the applied d_hat (rad/s^2) */
+    ladrc_real_t act_tau_s;                       /**< actuator lag the command is advanced over (s) */
+    ladrc_real_t handover;                        /**< part of estimate's latest change due to the weight */
     uint16_t fit_decimation, fit_count, fit_phase;
-    uint16_t change_left;            /**< fit samples left of a change's hold */
-    uint16_t engaged;                /**< fit samples in a row with the weight at 1 */
-    uint16_t spec_restart_left;      /**< ONLINE: fit samples until the frequency fit's averages restart */
-    uint16_t spec_count;             /**< ONLINE: fit samples in the frequency fit's averages since their start */
-    uint16_t hold;                   /**< ONLINE: fit samples since the last tone started or stopped */
-    uint8_t spec_decide;             /**< ONLINE: fit samples since the frequency fit's model was last judged */
+    uint16_t change_left;       /**< fit samples left of a change's hold */
+    uint16_t engaged;           /**< fit samples in a row with the weight at 1 */
+    uint16_t spec_restart_left; /**< ONLINE: fit samples until the frequency fit's averages restart */
+    uint16_t spec_count;        /**< ONLINE: fit samples in the frequency fit's averages since their start */
+    uint16_t hold;              /**< ONLINE: fit samples since the last tone started or stopped */
+    uint8_t spec_decide;        /**< ONLINE: fit samples since the frequency fit's model was last judged */
     uint8_t n_tones, n_active;
     uint8_t online;
-    uint8_t clean;                   /**< ONLINE: the frequency fit sees as many clean tones as are active */
-    uint8_t act_delay_ticks;         /**< actuator delay the command is advanced over (ticks) */
-    uint8_t advance;                 /**< 1: act_tau_s > 0 or act_delay_ticks > 0 */
+    uint8_t clean;           /**< ONLINE: the frequency fit sees as many clean tones as are active */
+    uint8_t act_delay_ticks; /**< actuator delay the command is advanced over (ticks) */
+    uint8_t advance;         /**< 1: act_tau_s > 0 or act_delay_ticks > 0 */
     ladrc_fault_t faults;
 } ladrc_hp_estimator_t;
 

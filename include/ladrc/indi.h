@@ -85,11 +85,11 @@ extern "C" {
 #define LADRC_INDI_FILTER_WH_MAX LADRC_PI
 
 typedef struct {
-    ladrc_real_t dt_s;             /**< fixed step (s) */
-    ladrc_real_t b0;               /**< control effectiveness G (rad/s^2 per N m), |b0| in [1e-3, 1e7] */
-    ladrc_real_t att_kp_per_s;     /**< k_att (1/s), > 0, k_att dt_s < 1 */
-    ladrc_real_t rate_kp_per_s;    /**< k_rate (1/s), > 0, k_rate dt_s < 1 */
-    ladrc_real_t filter_rad_s;     /**< w_f (rad/s), > 0, w_f dt_s <= pi */
+    ladrc_real_t dt_s;          /**< fixed step (s) */
+    ladrc_real_t b0;            /**< control effectiveness G (rad/s^2 per N m), |b0| in [1e-3, 1e7] */
+    ladrc_real_t att_kp_per_s;  /**< k_att (1/s), > 0, k_att dt_s < 1 */
+    ladrc_real_t rate_kp_per_s; /**< k_rate (1/s), > 0, k_rate dt_s < 1 */
+    ladrc_real_t filter_rad_s;  /**< w_f (rad/s), > 0, w_f dt_s <= pi */
 } ladrc_indi_config_t;
 
 /** Two first-order stages of the filter F (see above). */
@@ -99,18 +99,18 @@ typedef struct {
 
 /** INDI state; owned by the axis. */
 typedef struct {
-    ladrc_real_t inv_dt;           /**< 1 / h */
-    ladrc_real_t j;                /**< J = 1 / b0 (N m per rad/s^2) */
+    ladrc_real_t inv_dt; /**< 1 / h */
+    ladrc_real_t j;      /**< J = 1 / b0 (N m per rad/s^2) */
     ladrc_real_t b0;
-    ladrc_real_t k_att, k_rate;    /**< 1/s */
-    ladrc_real_t alpha;            /**< 1 - exp(-w_f h) */
-    ladrc_indi_lowpass_t accel;    /**< F of the differenced rate: omegadot_f (rad/s^2) */
-    ladrc_indi_lowpass_t torque;   /**< F of the acting torque: u_f (N m) */
-    ladrc_real_t rate_last_rad_s;  /**< rate of the last tick that had one */
-    ladrc_real_t gap_torque_Nm;    /**< sum of the acting torques since then */
-    ladrc_real_t angle_rad;        /**< measured angle of the last tick with a rate */
-    uint32_t gap_ticks;            /**< steps since then */
-    uint8_t has_rate_last;         /**< 0 after a reset until a first rate */
+    ladrc_real_t k_att, k_rate;   /**< 1/s */
+    ladrc_real_t alpha;           /**< 1 - exp(-w_f h) */
+    ladrc_indi_lowpass_t accel;   /**< F of the differenced rate: omegadot_f (rad/s^2) */
+    ladrc_indi_lowpass_t torque;  /**< F of the acting torque: u_f (N m) */
+    ladrc_real_t rate_last_rad_s; /**< rate of the last tick that had one */
+    ladrc_real_t gap_torque_Nm;   /**< sum of the acting torques since then */
+    ladrc_real_t angle_rad;       /**< measured angle of the last tick with a rate */
+    uint32_t gap_ticks;           /**< steps since then */
+    uint8_t has_rate_last;        /**< 0 after a reset until a first rate */
 } ladrc_indi_t;
 
 /** Filter step (both filters, one formula): returns the new output. */

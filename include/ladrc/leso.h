@@ -38,19 +38,19 @@ typedef enum {
 } ladrc_leso_method_t;
 
 typedef struct {
-    ladrc_real_t dt_s;            /**< fixed step h (s), > 0 */
-    ladrc_real_t wo_rad_s;        /**< observer bandwidth (rad/s), > 0 */
-    ladrc_real_t b0;              /**< input gain: rad/s^2 of y'' per unit of u, non-zero */
-    ladrc_leso_method_t method;   /**< discretisation */
+    ladrc_real_t dt_s;          /**< fixed step h (s), > 0 */
+    ladrc_real_t wo_rad_s;      /**< observer bandwidth (rad/s), > 0 */
+    ladrc_real_t b0;            /**< input gain: rad/s^2 of y'' per unit of u, non-zero */
+    ladrc_leso_method_t method; /**< discretisation */
 } ladrc_leso_config_t;
 
 /** Observer state; owned by the caller. Gains are per-sample, derived at init. */
 typedef struct {
-    ladrc_real_t z1;      /**< estimate of y (rad) */
-    ladrc_real_t z2;      /**< estimate of y' (rad/s) */
-    ladrc_real_t z3;      /**< estimate of the total disturbance f (rad/s^2) */
-    ladrc_real_t l1, l2, l3;            /**< correction gains per sample */
-    ladrc_real_t h_s, h2_2, h3_6;       /**< h, h^2/2, h^3/6 */
+    ladrc_real_t z1;              /**< estimate of y (rad) */
+    ladrc_real_t z2;              /**< estimate of y' (rad/s) */
+    ladrc_real_t z3;              /**< estimate of the total disturbance f (rad/s^2) */
+    ladrc_real_t l1, l2, l3;      /**< correction gains per sample */
+    ladrc_real_t h_s, h2_2, h3_6; /**< h, h^2/2, h^3/6 */
     ladrc_real_t b0;
     ladrc_leso_method_t method;
     ladrc_fault_t faults; /**< flags of the latest step */
@@ -72,8 +72,8 @@ void ladrc_leso_reset(ladrc_leso_t *obs, ladrc_real_t y0);
  * Any non-finite argument, or a non-finite result, leaves the estimate
  * unchanged and raises LADRC_FAULT_INPUT / LADRC_FAULT_STATE.
  */
-ladrc_fault_t ladrc_leso_step(ladrc_leso_t *obs, ladrc_real_t y, ladrc_real_t u,
-                              ladrc_real_t accel_known, ladrc_real_t f_rate_known);
+ladrc_fault_t ladrc_leso_step(ladrc_leso_t *obs, ladrc_real_t y, ladrc_real_t u, ladrc_real_t accel_known,
+                              ladrc_real_t f_rate_known);
 
 /**
  * Hands the part accel_rad_s2 of the disturbance estimate z3 over to a known
@@ -96,8 +96,8 @@ void ladrc_leso_twin_reset(ladrc_leso_twin_t *twin, ladrc_real_t y0);
 
 /** One tick of twin with obs's gains, the same equations and guards as
  *  ladrc_leso_step (returns its flags); obs is not changed. */
-ladrc_fault_t ladrc_leso_step_twin(const ladrc_leso_t *obs, ladrc_leso_twin_t *twin, ladrc_real_t y,
-                                   ladrc_real_t u, ladrc_real_t accel_known, ladrc_real_t f_rate_known);
+ladrc_fault_t ladrc_leso_step_twin(const ladrc_leso_t *obs, ladrc_leso_twin_t *twin, ladrc_real_t y, ladrc_real_t u,
+                                   ladrc_real_t accel_known, ladrc_real_t f_rate_known);
 
 #ifdef __cplusplus
 }

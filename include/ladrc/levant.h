@@ -84,28 +84,28 @@ typedef enum {
 } ladrc_levant_gains_t;
 
 typedef struct {
-    ladrc_real_t dt_s;                /**< fixed step h (s), > 0 */
-    ladrc_levant_method_t method;     /**< discretisation */
-    ladrc_levant_gains_t gains;       /**< which gain fields are read */
-    ladrc_real_t lipschitz_rad_s4;    /**< LIPSCHITZ: L >= |r''''| (rad/s^4), finite, > 0 */
-    ladrc_real_t l1;                  /**< EXPLICIT: L1 (rad^(1/4)/s), finite, > 0 */
-    ladrc_real_t l2;                  /**< EXPLICIT: L2 (rad^(1/3)/s), finite, > 0 */
-    ladrc_real_t l3;                  /**< EXPLICIT: L3 (rad^(1/2)/s), finite, > 0 */
-    ladrc_real_t l4;                  /**< EXPLICIT: L4 (rad/s^4), finite, > 0 */
+    ladrc_real_t dt_s;             /**< fixed step h (s), > 0 */
+    ladrc_levant_method_t method;  /**< discretisation */
+    ladrc_levant_gains_t gains;    /**< which gain fields are read */
+    ladrc_real_t lipschitz_rad_s4; /**< LIPSCHITZ: L >= |r''''| (rad/s^4), finite, > 0 */
+    ladrc_real_t l1;               /**< EXPLICIT: L1 (rad^(1/4)/s), finite, > 0 */
+    ladrc_real_t l2;               /**< EXPLICIT: L2 (rad^(1/3)/s), finite, > 0 */
+    ladrc_real_t l3;               /**< EXPLICIT: L3 (rad^(1/2)/s), finite, > 0 */
+    ladrc_real_t l4;               /**< EXPLICIT: L4 (rad/s^4), finite, > 0 */
 } ladrc_levant_config_t;
 
 /** Differentiator state; owned by the caller. Read it through the getters
  *  (faults may be read directly); never write it. */
 typedef struct {
-    ladrc_real_t w;        /**< z0 minus r_last (rad) */
-    ladrc_real_t r_last;   /**< last finite reference sample (rad) */
-    ladrc_real_t z1;       /**< estimate of r' (rad/s) */
-    ladrc_real_t z2;       /**< estimate of r'' (rad/s^2) */
-    ladrc_real_t z3;       /**< estimate of r''' (rad/s^3) */
-    ladrc_real_t h_s;      /**< step h (s) */
+    ladrc_real_t w;              /**< z0 minus r_last (rad) */
+    ladrc_real_t r_last;         /**< last finite reference sample (rad) */
+    ladrc_real_t z1;             /**< estimate of r' (rad/s) */
+    ladrc_real_t z2;             /**< estimate of r'' (rad/s^2) */
+    ladrc_real_t z3;             /**< estimate of r''' (rad/s^3) */
+    ladrc_real_t h_s;            /**< step h (s) */
     ladrc_real_t g3, g2, g1, g0; /**< per-sample gains h k3 .. h k0 */
-    uint8_t method;        /**< a ladrc_levant_method_t */
-    ladrc_fault_t faults;  /**< flags of the latest step */
+    uint8_t method;              /**< a ladrc_levant_method_t */
+    ladrc_fault_t faults;        /**< flags of the latest step */
 } ladrc_levant_t;
 
 /**

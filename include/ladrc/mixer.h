@@ -84,16 +84,16 @@ extern "C" {
 
 /** @name Bounds of the config fields that ladrc_mixer_init accepts (inclusive)
  *  @{ */
-#define LADRC_MIXER_KL_MIN_N_S2 LADRC_R(1e-10)   /**< kL_N_s2 lowest (N s^2) */
-#define LADRC_MIXER_KL_MAX_N_S2 LADRC_R(0.1)     /**< kL_N_s2 highest (N s^2) */
-#define LADRC_MIXER_ARM_MIN_M LADRC_R(1e-3)      /**< arm_m shortest (m) */
-#define LADRC_MIXER_ARM_MAX_M LADRC_R(10.0)      /**< arm_m longest (m) */
-#define LADRC_MIXER_B_MIN_NM_S2 LADRC_R(1e-13)   /**< b_Nm_s2 lowest (N m s^2) */
-#define LADRC_MIXER_B_MAX_NM_S2 LADRC_R(0.1)     /**< b_Nm_s2 highest (N m s^2) */
-#define LADRC_MIXER_MASS_MIN_KG LADRC_R(1e-3)    /**< mass_kg lowest (kg) */
-#define LADRC_MIXER_MASS_MAX_KG LADRC_R(1e3)     /**< mass_kg highest (kg) */
-#define LADRC_MIXER_G_MIN_M_S2 LADRC_R(0.1)      /**< g_m_s2 lowest (m/s^2) */
-#define LADRC_MIXER_G_MAX_M_S2 LADRC_R(100.0)    /**< g_m_s2 highest (m/s^2) */
+#define LADRC_MIXER_KL_MIN_N_S2 LADRC_R(1e-10) /**< kL_N_s2 lowest (N s^2) */
+#define LADRC_MIXER_KL_MAX_N_S2 LADRC_R(0.1)   /**< kL_N_s2 highest (N s^2) */
+#define LADRC_MIXER_ARM_MIN_M LADRC_R(1e-3)    /**< arm_m shortest (m) */
+#define LADRC_MIXER_ARM_MAX_M LADRC_R(10.0)    /**< arm_m longest (m) */
+#define LADRC_MIXER_B_MIN_NM_S2 LADRC_R(1e-13) /**< b_Nm_s2 lowest (N m s^2) */
+#define LADRC_MIXER_B_MAX_NM_S2 LADRC_R(0.1)   /**< b_Nm_s2 highest (N m s^2) */
+#define LADRC_MIXER_MASS_MIN_KG LADRC_R(1e-3)  /**< mass_kg lowest (kg) */
+#define LADRC_MIXER_MASS_MAX_KG LADRC_R(1e3)   /**< mass_kg highest (kg) */
+#define LADRC_MIXER_G_MIN_M_S2 LADRC_R(0.1)    /**< g_m_s2 lowest (m/s^2) */
+#define LADRC_MIXER_G_MAX_M_S2 LADRC_R(100.0)  /**< g_m_s2 highest (m/s^2) */
 /** w2_max_rad2_s2 lowest in saturate mode (rad^2/s^2; top speed 10 rad/s) */
 #define LADRC_MIXER_W2_MAX_MIN_RAD2_S2 LADRC_R(1e2)
 /** w2_max_rad2_s2 highest in saturate mode (rad^2/s^2; top speed 1e5 rad/s) */
@@ -138,19 +138,19 @@ typedef struct {
 
 /** Mixer state; owned by the caller. Constants derived at init, plus the last good output. */
 typedef struct {
-    ladrc_real_t kL_N_s2, lkL_Nm_s2, b_Nm_s2; /**< forward-model coefficients */
-    ladrc_real_t a4_per_N;      /**< 1 / (4 kL) */
-    ladrc_real_t p2_per_Nm;     /**< 1 / (2 l kL) */
-    ladrc_real_t r4_per_Nm;     /**< 1 / (4 b) */
-    ladrc_real_t weight_N;      /**< m g */
-    ladrc_real_t cos_tilt_min;  /**< cos(tilt_max_rad) */
-    ladrc_real_t thrust_max_N;  /**< m g / cos(tilt_max_rad): thrust_from_tilt's cap */
+    ladrc_real_t kL_N_s2, lkL_Nm_s2, b_Nm_s2;    /**< forward-model coefficients */
+    ladrc_real_t a4_per_N;                       /**< 1 / (4 kL) */
+    ladrc_real_t p2_per_Nm;                      /**< 1 / (2 l kL) */
+    ladrc_real_t r4_per_Nm;                      /**< 1 / (4 b) */
+    ladrc_real_t weight_N;                       /**< m g */
+    ladrc_real_t cos_tilt_min;                   /**< cos(tilt_max_rad) */
+    ladrc_real_t thrust_max_N;                   /**< m g / cos(tilt_max_rad): thrust_from_tilt's cap */
     ladrc_real_t w2_min_rad2_s2, w2_max_rad2_s2; /**< rotor limits; ideal mode: -+ (largest finite value)/4 */
-    ladrc_real_t rp_limit_Nm;   /**< l kL (w2_max - w2_min): most roll or pitch torque (0 if ideal) */
-    ladrc_real_t yaw_limit_Nm;  /**< 2 b (w2_max - w2_min): most yaw torque (0 if ideal) */
-    ladrc_real_t thrust_lo_N, thrust_hi_N; /**< 4 kL w2_min, 4 kL w2_max: thrust range (0 if ideal) */
+    ladrc_real_t rp_limit_Nm;                    /**< l kL (w2_max - w2_min): most roll or pitch torque (0 if ideal) */
+    ladrc_real_t yaw_limit_Nm;                   /**< 2 b (w2_max - w2_min): most yaw torque (0 if ideal) */
+    ladrc_real_t thrust_lo_N, thrust_hi_N;       /**< 4 kL w2_min, 4 kL w2_max: thrust range (0 if ideal) */
     ladrc_mixer_mode_t mode;
-    ladrc_mixer_output_t out;   /**< last good output */
+    ladrc_mixer_output_t out; /**< last good output */
 } ladrc_mixer_t;
 
 /** Validates every field against its bounds (LADRC_ERR_MIXER_KL_N_S2, _ARM_M, _B_NM_S2,
@@ -169,8 +169,7 @@ void ladrc_mixer_reset(ladrc_mixer_t *mx);
  * Thrust that holds altitude at the given attitude: m g / max(cos(roll) cos(pitch),
  * cos(tilt_max_rad)) in N. Non-finite angles give m g (level hover).
  */
-ladrc_real_t ladrc_mixer_thrust_from_tilt(const ladrc_mixer_t *mx, ladrc_real_t roll_rad,
-                                          ladrc_real_t pitch_rad);
+ladrc_real_t ladrc_mixer_thrust_from_tilt(const ladrc_mixer_t *mx, ladrc_real_t roll_rad, ladrc_real_t pitch_rad);
 
 /**
  * Step 1, pure: allocation (paper eq. 33), no limits.
@@ -178,8 +177,8 @@ ladrc_real_t ladrc_mixer_thrust_from_tilt(const ladrc_mixer_t *mx, ladrc_real_t 
  * @param torque_Nm  requested roll, pitch, yaw torque (N m)
  * @param w2_rad2_s2 out: rotor speeds squared, may be negative or beyond the limits
  */
-void ladrc_mixer_allocate(const ladrc_mixer_t *mx, ladrc_real_t thrust_N,
-                          const ladrc_real_t torque_Nm[3], ladrc_real_t w2_rad2_s2[4]);
+void ladrc_mixer_allocate(const ladrc_mixer_t *mx, ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
+                          ladrc_real_t w2_rad2_s2[4]);
 
 /**
  * Step 2, pure: rotor limits by priority (roll/pitch, then yaw, then thrust; see
@@ -192,13 +191,12 @@ void ladrc_mixer_allocate(const ladrc_mixer_t *mx, ladrc_real_t thrust_N,
  * @param thrust_N, torque_Nm the request that was allocated (reported back bit for
  *        bit on the axes whose rotors give it within rounding)
  */
-void ladrc_mixer_saturate(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[4],
-                          ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
-                          ladrc_mixer_output_t *out);
+void ladrc_mixer_saturate(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[4], ladrc_real_t thrust_N,
+                          const ladrc_real_t torque_Nm[3], ladrc_mixer_output_t *out);
 
 /** Forward model: thrust (N) and roll, pitch, yaw torque (N m) of the given w^2. */
-void ladrc_mixer_forward(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[4],
-                         ladrc_real_t *thrust_N, ladrc_real_t torque_Nm[3]);
+void ladrc_mixer_forward(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[4], ladrc_real_t *thrust_N,
+                         ladrc_real_t torque_Nm[3]);
 
 /**
  * One mix: allocate, then saturate; the result is held in the state and copied to
@@ -210,8 +208,8 @@ void ladrc_mixer_forward(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[
  * LADRC_ASSERT) returns LADRC_FAULT_STATE with asserts off.
  * @return the step's fault flags
  */
-ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N,
-                               const ladrc_real_t torque_Nm[3], ladrc_mixer_output_t *out);
+ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
+                               ladrc_mixer_output_t *out);
 
 /** Fault flags of the latest step. */
 ladrc_fault_t ladrc_mixer_get_faults(const ladrc_mixer_t *mx);

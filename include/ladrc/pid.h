@@ -54,9 +54,9 @@ typedef struct {
 typedef struct {
     ladrc_real_t dt_s;
     ladrc_real_t kp, kd;
-    ladrc_real_t ki_dt;            /**< ki h: integral gain per sample (N m / rad) */
-    ladrc_real_t d_alpha;          /**< h / (tau + h), derived at init */
-    ladrc_real_t d_keep;           /**< 1 - d_alpha */
+    ladrc_real_t ki_dt;   /**< ki h: integral gain per sample (N m / rad) */
+    ladrc_real_t d_alpha; /**< h / (tau + h), derived at init */
+    ladrc_real_t d_keep;  /**< 1 - d_alpha */
     ladrc_real_t i_limit_Nm, u_min_Nm, u_max_Nm;
     ladrc_real_t integral_Nm;      /**< integral term (N m) */
     ladrc_real_t d_filtered_rad_s; /**< filtered derivative of the measurement (rad/s) */
@@ -84,8 +84,7 @@ static inline ladrc_real_t ladrc_lowpass_blend(ladrc_real_t keep, ladrc_real_t a
  *  the unclamped command and error > 0, or above it and error < 0). */
 static inline int ladrc_integrator_frozen(ladrc_real_t error, ladrc_real_t applied_Nm, ladrc_real_t unclamped_Nm)
 {
-    return (error > LADRC_R(0.0) && applied_Nm < unclamped_Nm) ||
-           (error < LADRC_R(0.0) && applied_Nm > unclamped_Nm);
+    return (error > LADRC_R(0.0) && applied_Nm < unclamped_Nm) || (error < LADRC_R(0.0) && applied_Nm > unclamped_Nm);
 }
 
 /** Validates every field (LADRC_ERR_DT_S, _PID_KP, _PID_KI, _PID_KD, _PID_D_TAU_S,

@@ -72,11 +72,11 @@ extern "C" {
 #define LADRC_RLS_U_SIZE (LADRC_RLS_MAX_PARAMS * (LADRC_RLS_MAX_PARAMS - 1) / 2)
 
 typedef struct {
-    uint8_t n_params;            /**< 1..LADRC_RLS_MAX_PARAMS */
-    ladrc_real_t dt_s;           /**< fixed step h (s), > 0 */
-    ladrc_real_t lambda0_per_s;  /**< maximum forgetting rate (1/s), >= 0 (0 = no forgetting), lambda0 h <= 1 */
-    ladrc_real_t p_bound;        /**< k0: bound on tr(P) (1/(s phi^2)), > 0 */
-    ladrc_real_t p_initial;      /**< P after init/reset = p_initial I; > 0 and n_params p_initial <= p_bound */
+    uint8_t n_params;           /**< 1..LADRC_RLS_MAX_PARAMS */
+    ladrc_real_t dt_s;          /**< fixed step h (s), > 0 */
+    ladrc_real_t lambda0_per_s; /**< maximum forgetting rate (1/s), >= 0 (0 = no forgetting), lambda0 h <= 1 */
+    ladrc_real_t p_bound;       /**< k0: bound on tr(P) (1/(s phi^2)), > 0 */
+    ladrc_real_t p_initial;     /**< P after init/reset = p_initial I; > 0 and n_params p_initial <= p_bound */
 } ladrc_rls_config_t;
 
 /**
@@ -94,7 +94,7 @@ typedef struct {
     ladrc_real_t p_bound;
     ladrc_real_t p_initial;
     uint8_t n_params;
-    ladrc_fault_t faults;                     /**< flags of the latest update */
+    ladrc_fault_t faults; /**< flags of the latest update */
 } ladrc_rls_t;
 
 /**

@@ -32,9 +32,9 @@ typedef struct {
 } ladrc_ref_t;
 
 typedef struct {
-    ladrc_real_t dt_s;          /**< fixed step (s), > 0 */
-    ladrc_real_t accel_rad_s2;  /**< acceleration bound R of the shaped reference (rad/s^2), > 0 */
-    ladrc_real_t h0_s;          /**< fhan filter factor (s), >= dt_s */
+    ladrc_real_t dt_s;         /**< fixed step (s), > 0 */
+    ladrc_real_t accel_rad_s2; /**< acceleration bound R of the shaped reference (rad/s^2), > 0 */
+    ladrc_real_t h0_s;         /**< fhan filter factor (s), >= dt_s */
 } ladrc_td_config_t;
 
 /** TD state; owned by the caller. Read x1, x2, a and faults directly; never write them. */
@@ -42,12 +42,12 @@ typedef struct {
     ladrc_real_t dt_s;
     ladrc_real_t accel_rad_s2;
     ladrc_real_t h0_s;
-    ladrc_real_t d;            /**< accel h0: fhan's speed step (rad/s), derived at init */
-    ladrc_real_t d0;           /**< h0 d: fhan's linear-zone half-width (rad) */
-    ladrc_real_t x1;           /**< shaped reference (rad) */
-    ladrc_real_t x2;           /**< its rate (rad/s) */
-    ladrc_real_t a;            /**< last acceleration (rad/s^2) */
-    ladrc_fault_t faults;      /**< flags of the latest step */
+    ladrc_real_t d;       /**< accel h0: fhan's speed step (rad/s), derived at init */
+    ladrc_real_t d0;      /**< h0 d: fhan's linear-zone half-width (rad) */
+    ladrc_real_t x1;      /**< shaped reference (rad) */
+    ladrc_real_t x2;      /**< its rate (rad/s) */
+    ladrc_real_t a;       /**< last acceleration (rad/s^2) */
+    ladrc_fault_t faults; /**< flags of the latest step */
 } ladrc_td_t;
 
 /**

@@ -25,16 +25,13 @@ extern "C" {
  * N the plant order (1..3), T the 98% settling time (s). For N = 2 it gives
  * 4.99 / T, which settles about 17% later than T (see the exact helper).
  */
-ladrc_status_t ladrc_tune_wc_from_settling(ladrc_real_t settling_time_s, int plant_order,
-                                           ladrc_real_t *wc_rad_s);
+ladrc_status_t ladrc_tune_wc_from_settling(ladrc_real_t settling_time_s, int plant_order, ladrc_real_t *wc_rad_s);
 
 /** Exact for the second-order loop: wc = LADRC_SETTLING_2PCT_WC / T. */
-ladrc_status_t ladrc_tune_wc_from_settling_exact(ladrc_real_t settling_time_s,
-                                                 ladrc_real_t *wc_rad_s);
+ladrc_status_t ladrc_tune_wc_from_settling_exact(ladrc_real_t settling_time_s, ladrc_real_t *wc_rad_s);
 
 /** wo = ratio * wc; the paper uses ratio 5 (usual range 3..10). */
-ladrc_status_t ladrc_tune_wo_from_wc(ladrc_real_t wc_rad_s, ladrc_real_t ratio,
-                                     ladrc_real_t *wo_rad_s);
+ladrc_status_t ladrc_tune_wo_from_wc(ladrc_real_t wc_rad_s, ladrc_real_t ratio, ladrc_real_t *wo_rad_s);
 
 /** b0 = 1 / J in rad/s^2 per N m, for a torque command on an axis of inertia J. */
 ladrc_status_t ladrc_tune_b0_from_inertia(ladrc_real_t inertia_kg_m2, ladrc_real_t *b0);

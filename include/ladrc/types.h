@@ -126,12 +126,15 @@ typedef float ladrc_real_t;
 #define LADRC_ABI_SET_PASTE_(a, b, c, d, e, f, g, h) _v##a##b##c##d##e##f##_s##g##h
 #define LADRC_ABI_SET_EXPAND_(a, b, c, d, e, f, g, h) LADRC_ABI_SET_PASTE_(a, b, c, d, e, f, g, h)
 /** The variant and shaper set as a symbol-name suffix, e.g. _v111111_s11. */
-#define LADRC_ABI_SET_ \
-    LADRC_ABI_SET_EXPAND_(LADRC_WITH_LADRC, LADRC_WITH_LP_MLADRC, LADRC_WITH_HP_MLADRC, \
-                          LADRC_WITH_PID, LADRC_WITH_CASCADED, LADRC_WITH_INDI, LADRC_WITH_TD, \
-                          LADRC_WITH_LEVANT)
+#define LADRC_ABI_SET_                                                                                                 \
+    LADRC_ABI_SET_EXPAND_(LADRC_WITH_LADRC, LADRC_WITH_LP_MLADRC, LADRC_WITH_HP_MLADRC, LADRC_WITH_PID,                \
+                          LADRC_WITH_CASCADED, LADRC_WITH_INDI, LADRC_WITH_TD, LADRC_WITH_LEVANT)
 #define LADRC_ABI_NAME_(name) LADRC_ABI_CAT(name, LADRC_ABI_REAL_)
-#define LADRC_ABI_SET_NAME_(name) LADRC_ABI_CAT(LADRC_ABI_NAME_(name), LADRC_ABI_SET_)
+/* One paste of the three parts: a name passed through two nested pastes trips
+ * some preprocessors (cppcheck's) on the macro's own name. */
+#define LADRC_ABI_CAT3_(a, b, c) a##b##c
+#define LADRC_ABI_CAT3(a, b, c) LADRC_ABI_CAT3_(a, b, c)
+#define LADRC_ABI_SET_NAME_(name) LADRC_ABI_CAT3(name, LADRC_ABI_REAL_, LADRC_ABI_SET_)
 #define ladrc_attitude_config_default LADRC_ABI_SET_NAME_(ladrc_attitude_config_default)
 #define ladrc_attitude_init LADRC_ABI_SET_NAME_(ladrc_attitude_init)
 #define ladrc_axis_config_default LADRC_ABI_SET_NAME_(ladrc_axis_config_default)
@@ -157,39 +160,39 @@ typedef float ladrc_real_t;
  */
 typedef enum {
     LADRC_OK = 0,
-    LADRC_ERR_NULL,               /**< a pointer argument is NULL */
-    LADRC_ERR_DT_S,               /**< dt_s not finite or outside [LADRC_DT_MIN_S, LADRC_DT_MAX_S] (1e-6..1 s) */
-    LADRC_ERR_WO_RAD_S,           /**< wo_rad_s not finite or not > 0 */
-    LADRC_ERR_WC_RAD_S,           /**< wc_rad_s not finite, not > 0, or wc_rad_s * dt_s >= 1 (the sampled loop is unstable) */
-    LADRC_ERR_B0,                 /**< b0 not finite or zero; on an axis, |b0| outside [1e-3, 1e7] */
-    LADRC_ERR_LESO_METHOD,        /**< leso_method not a ladrc_leso_method_t */
-    LADRC_ERR_LESO_EULER_UNSTABLE,/**< Euler LESO with wo_rad_s * dt_s >= 2 (observer poles outside the unit circle); on an axis, wo dt above 0.88 / (1 + 3.6 wc dt) (the loop's) */
-    LADRC_ERR_SHAPER,             /**< shaper not a ladrc_shaper_t */
-    LADRC_ERR_TD_ACCEL_RAD_S2,    /**< td_accel_rad_s2 not finite or not > 0 */
-    LADRC_ERR_TD_H0_S,            /**< td_h0_s not finite or < dt_s */
-    LADRC_ERR_VARIANT,            /**< variant not a ladrc_variant_t */
-    LADRC_ERR_U_LIMITS,           /**< u_min_Nm / u_max_Nm NaN or u_min_Nm >= u_max_Nm (infinite = no limit); on an axis, not u_min_Nm < 0 < u_max_Nm */
-    LADRC_ERR_PID_KP,             /**< kp not finite or < 0 */
-    LADRC_ERR_PID_KI,             /**< ki not finite or < 0 */
-    LADRC_ERR_PID_KD,             /**< kd not finite or < 0 */
-    LADRC_ERR_PID_D_TAU_S,        /**< d_filter_tau_s not finite or < 0 */
-    LADRC_ERR_PID_I_LIMIT_NM,     /**< i_limit_Nm NaN or < 0 (INFINITY = no clamp) */
-    LADRC_ERR_SETTLING_TIME_S,    /**< settling_time_s not finite or not > 0 */
-    LADRC_ERR_PLANT_ORDER,        /**< plant order outside 1..3 */
-    LADRC_ERR_INERTIA_KG_M2,      /**< inertia not finite or not > 0 */
-    LADRC_ERR_WO_RATIO,           /**< observer-to-controller bandwidth ratio not finite or not > 0 */
-    LADRC_ERR_RLS_N_PARAMS,       /**< rls n_params outside 1..LADRC_RLS_MAX_PARAMS */
-    LADRC_ERR_RLS_LAMBDA0,        /**< rls lambda0_per_s not finite, < 0, or lambda0_per_s * dt_s > 1 */
-    LADRC_ERR_RLS_P_BOUND,        /**< rls p_bound not finite or not > 0 */
-    LADRC_ERR_RLS_P_INITIAL,      /**< rls p_initial not finite, not > 0, or n_params * p_initial > p_bound */
-    LADRC_ERR_MIXER_KL_N_S2,      /**< mixer kL_N_s2 (thrust coefficient) outside [1e-10, 0.1] N s^2 */
-    LADRC_ERR_MIXER_ARM_M,        /**< mixer arm_m (rotor arm length l) outside [1e-3, 10] m */
-    LADRC_ERR_MIXER_B_NM_S2,      /**< mixer b_Nm_s2 (drag coefficient) outside [1e-13, 0.1] N m s^2 */
-    LADRC_ERR_MIXER_MASS_KG,      /**< mixer mass_kg outside [1e-3, 1e3] kg */
-    LADRC_ERR_MIXER_G_M_S2,       /**< mixer g_m_s2 outside [0.1, 100] m/s^2 */
-    LADRC_ERR_MIXER_MODE,         /**< mixer mode not a ladrc_mixer_mode_t */
-    LADRC_ERR_MIXER_W2_MIN,       /**< mixer w2_min_rad2_s2 not finite, or < 0 outside ideal mode */
-    LADRC_ERR_MIXER_W2_MAX,       /**< mixer w2_max_rad2_s2 not > w2_min_rad2_s2 or, unless ideal, outside [1e2, 1e10] */
+    LADRC_ERR_NULL,        /**< a pointer argument is NULL */
+    LADRC_ERR_DT_S,        /**< dt_s not finite or outside [LADRC_DT_MIN_S, LADRC_DT_MAX_S] (1e-6..1 s) */
+    LADRC_ERR_WO_RAD_S,    /**< wo_rad_s not finite or not > 0 */
+    LADRC_ERR_WC_RAD_S,    /**< wc_rad_s not finite, not > 0, or wc_rad_s * dt_s >= 1 (the sampled loop is unstable) */
+    LADRC_ERR_B0,          /**< b0 not finite or zero; on an axis, |b0| outside [1e-3, 1e7] */
+    LADRC_ERR_LESO_METHOD, /**< leso_method not a ladrc_leso_method_t */
+    LADRC_ERR_LESO_EULER_UNSTABLE, /**< Euler LESO with wo_rad_s * dt_s >= 2 (observer poles outside the unit circle); on an axis, wo dt above 0.88 / (1 + 3.6 wc dt) (the loop's) */
+    LADRC_ERR_SHAPER,              /**< shaper not a ladrc_shaper_t */
+    LADRC_ERR_TD_ACCEL_RAD_S2,     /**< td_accel_rad_s2 not finite or not > 0 */
+    LADRC_ERR_TD_H0_S,             /**< td_h0_s not finite or < dt_s */
+    LADRC_ERR_VARIANT,             /**< variant not a ladrc_variant_t */
+    LADRC_ERR_U_LIMITS, /**< u_min_Nm / u_max_Nm NaN or u_min_Nm >= u_max_Nm (infinite = no limit); on an axis, not u_min_Nm < 0 < u_max_Nm */
+    LADRC_ERR_PID_KP,          /**< kp not finite or < 0 */
+    LADRC_ERR_PID_KI,          /**< ki not finite or < 0 */
+    LADRC_ERR_PID_KD,          /**< kd not finite or < 0 */
+    LADRC_ERR_PID_D_TAU_S,     /**< d_filter_tau_s not finite or < 0 */
+    LADRC_ERR_PID_I_LIMIT_NM,  /**< i_limit_Nm NaN or < 0 (INFINITY = no clamp) */
+    LADRC_ERR_SETTLING_TIME_S, /**< settling_time_s not finite or not > 0 */
+    LADRC_ERR_PLANT_ORDER,     /**< plant order outside 1..3 */
+    LADRC_ERR_INERTIA_KG_M2,   /**< inertia not finite or not > 0 */
+    LADRC_ERR_WO_RATIO,        /**< observer-to-controller bandwidth ratio not finite or not > 0 */
+    LADRC_ERR_RLS_N_PARAMS,    /**< rls n_params outside 1..LADRC_RLS_MAX_PARAMS */
+    LADRC_ERR_RLS_LAMBDA0,     /**< rls lambda0_per_s not finite, < 0, or lambda0_per_s * dt_s > 1 */
+    LADRC_ERR_RLS_P_BOUND,     /**< rls p_bound not finite or not > 0 */
+    LADRC_ERR_RLS_P_INITIAL,   /**< rls p_initial not finite, not > 0, or n_params * p_initial > p_bound */
+    LADRC_ERR_MIXER_KL_N_S2,   /**< mixer kL_N_s2 (thrust coefficient) outside [1e-10, 0.1] N s^2 */
+    LADRC_ERR_MIXER_ARM_M,     /**< mixer arm_m (rotor arm length l) outside [1e-3, 10] m */
+    LADRC_ERR_MIXER_B_NM_S2,   /**< mixer b_Nm_s2 (drag coefficient) outside [1e-13, 0.1] N m s^2 */
+    LADRC_ERR_MIXER_MASS_KG,   /**< mixer mass_kg outside [1e-3, 1e3] kg */
+    LADRC_ERR_MIXER_G_M_S2,    /**< mixer g_m_s2 outside [0.1, 100] m/s^2 */
+    LADRC_ERR_MIXER_MODE,      /**< mixer mode not a ladrc_mixer_mode_t */
+    LADRC_ERR_MIXER_W2_MIN,    /**< mixer w2_min_rad2_s2 not finite, or < 0 outside ideal mode */
+    LADRC_ERR_MIXER_W2_MAX,    /**< mixer w2_max_rad2_s2 not > w2_min_rad2_s2 or, unless ideal, outside [1e2, 1e10] */
     LADRC_ERR_MIXER_TILT_MAX_RAD, /**< mixer tilt_max_rad not in (0, pi/2) */
     LADRC_ERR_EST_LAMBDA0,        /**< estimator forgetting rate not finite or not > 0 */
     LADRC_ERR_EST_K0,             /**< estimator gain bound k0 not finite or not > 0 */
@@ -212,25 +215,25 @@ typedef enum {
                                        turns too far per fit sample */
     LADRC_ERR_HP_FREQ_LAMBDA0,    /**< hp freq_lambda0_per_s not finite, not > 0, or above 1 / T */
     LADRC_ERR_HP_FREQ_FILTER,     /**< hp freq_filter_rad_s not finite, not > 0, or too fast for the fit sample */
-    LADRC_ERR_INPUT_LIMITS,       /**< angle_limit_rad or rate_limit_rad_s not finite or below 1e-3, or applied_limit_Nm not finite or not > 0 */
-    LADRC_ERR_INERTIA_TRIANGLE,   /**< attitude inertias no rigid body has (each must be <= the sum of the other two) */
-    LADRC_ERR_MOTOR_TAU_S,        /**< axis motor_tau_s not finite, < 0, or above LADRC_MOTOR_TAU_MAX_S */
-    LADRC_ERR_DELAY_TICKS,        /**< axis delay_ticks above LADRC_MAX_DELAY_TICKS */
-    LADRC_ERR_WRAP_ANGLE,         /**< axis (or pid) wrap_angle not 0 or 1 */
-    LADRC_ERR_INDI_ATT_KP,        /**< indi_att_kp_per_s not finite, not > 0, or times dt_s >= 1 */
-    LADRC_ERR_INDI_RATE_KP,       /**< indi_rate_kp_per_s not finite, not > 0, or times dt_s >= 1 */
-    LADRC_ERR_INDI_FILTER,        /**< indi_filter_rad_s not finite, not > 0, or times dt_s > pi */
-    LADRC_ERR_CAS_ATT_KP,         /**< cas_att_kp not finite, not > 0, or cas_att_kp * dt_s >= 1 */
-    LADRC_ERR_CAS_RATE_MAX,       /**< cas_rate_max_rad_s not finite and > 0, or above rate_limit_rad_s */
-    LADRC_ERR_CAS_RATE_KP,        /**< cas_rate_kp not finite, < 0, or its term beyond the real type for rates within +-2 rate_limit_rad_s */
-    LADRC_ERR_CAS_RATE_KI,        /**< cas_rate_ki not finite, < 0, or its step beyond the real type (as kp) */
-    LADRC_ERR_CAS_RATE_KD,        /**< cas_rate_kd not finite, < 0, or its term beyond the real type for rate steps of 2 rate_limit_rad_s */
-    LADRC_ERR_CAS_D_TAU_S,        /**< cas_d_filter_tau_s not finite or < 0 */
-    LADRC_ERR_CAS_RATE_TAU_S,     /**< cas_rate_filter_tau_s not finite or < 0 */
-    LADRC_ERR_CAS_I_LIMIT_NM,     /**< cas_i_limit_Nm NaN or < 0 (INFINITY = no clamp) */
-    LADRC_ERR_VARIANT_NOT_BUILT,  /**< axis variant left out of this build (LADRC_VARIANTS, axis.h) */
-    LADRC_ERR_SHAPER_NOT_BUILT,   /**< axis shaper left out of this build (LADRC_SHAPERS, axis.h) */
-    LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
+    LADRC_ERR_INPUT_LIMITS, /**< angle_limit_rad or rate_limit_rad_s not finite or below 1e-3, or applied_limit_Nm not finite or not > 0 */
+    LADRC_ERR_INERTIA_TRIANGLE, /**< attitude inertias no rigid body has (each must be <= the sum of the other two) */
+    LADRC_ERR_MOTOR_TAU_S,      /**< axis motor_tau_s not finite, < 0, or above LADRC_MOTOR_TAU_MAX_S */
+    LADRC_ERR_DELAY_TICKS,      /**< axis delay_ticks above LADRC_MAX_DELAY_TICKS */
+    LADRC_ERR_WRAP_ANGLE,       /**< axis (or pid) wrap_angle not 0 or 1 */
+    LADRC_ERR_INDI_ATT_KP,      /**< indi_att_kp_per_s not finite, not > 0, or times dt_s >= 1 */
+    LADRC_ERR_INDI_RATE_KP,     /**< indi_rate_kp_per_s not finite, not > 0, or times dt_s >= 1 */
+    LADRC_ERR_INDI_FILTER,      /**< indi_filter_rad_s not finite, not > 0, or times dt_s > pi */
+    LADRC_ERR_CAS_ATT_KP,       /**< cas_att_kp not finite, not > 0, or cas_att_kp * dt_s >= 1 */
+    LADRC_ERR_CAS_RATE_MAX,     /**< cas_rate_max_rad_s not finite and > 0, or above rate_limit_rad_s */
+    LADRC_ERR_CAS_RATE_KP, /**< cas_rate_kp not finite, < 0, or its term beyond the real type for rates within +-2 rate_limit_rad_s */
+    LADRC_ERR_CAS_RATE_KI, /**< cas_rate_ki not finite, < 0, or its step beyond the real type (as kp) */
+    LADRC_ERR_CAS_RATE_KD, /**< cas_rate_kd not finite, < 0, or its term beyond the real type for rate steps of 2 rate_limit_rad_s */
+    LADRC_ERR_CAS_D_TAU_S,       /**< cas_d_filter_tau_s not finite or < 0 */
+    LADRC_ERR_CAS_RATE_TAU_S,    /**< cas_rate_filter_tau_s not finite or < 0 */
+    LADRC_ERR_CAS_I_LIMIT_NM,    /**< cas_i_limit_Nm NaN or < 0 (INFINITY = no clamp) */
+    LADRC_ERR_VARIANT_NOT_BUILT, /**< axis variant left out of this build (LADRC_VARIANTS, axis.h) */
+    LADRC_ERR_SHAPER_NOT_BUILT,  /**< axis shaper left out of this build (LADRC_SHAPERS, axis.h) */
+    LADRC_STATUS_COUNT           /**< number of status codes (not a status) */
 } ladrc_status_t;
 
 /** Short, stable text for a status code ("LADRC_ERR_DT_S: ..."); never NULL. */
@@ -242,10 +245,11 @@ const char *ladrc_status_str(ladrc_status_t status);
  */
 enum {
     LADRC_FAULT_NONE = 0u,
-    LADRC_FAULT_INPUT = 1u << 0,   /**< reference or measured angle not finite or beyond angle_limit_rad: state held */
-    LADRC_FAULT_RATE = 1u << 1,    /**< measured rate not finite or beyond rate_limit_rad_s: step ran without it */
-    LADRC_FAULT_APPLIED = 1u << 2, /**< applied command not finite or beyond applied_limit_Nm: own command used instead */
-    LADRC_FAULT_STATE = 1u << 3    /**< an update would have made the state non-finite: state held */
+    LADRC_FAULT_INPUT = 1u << 0, /**< reference or measured angle not finite or beyond angle_limit_rad: state held */
+    LADRC_FAULT_RATE = 1u << 1,  /**< measured rate not finite or beyond rate_limit_rad_s: step ran without it */
+    LADRC_FAULT_APPLIED =
+        1u << 2,                /**< applied command not finite or beyond applied_limit_Nm: own command used instead */
+    LADRC_FAULT_STATE = 1u << 3 /**< an update would have made the state non-finite: state held */
 };
 typedef uint8_t ladrc_fault_t;
 
@@ -282,7 +286,10 @@ static inline int ladrc_finite_bits_(ladrc_real_t x)
 #endif
 
 /** 1 if x is neither NaN nor infinite. */
-static inline int ladrc_is_finite(ladrc_real_t x) { return ladrc_finite_bits_(x); }
+static inline int ladrc_is_finite(ladrc_real_t x)
+{
+    return ladrc_finite_bits_(x);
+}
 
 static inline int ladrc_all_finite2(ladrc_real_t a, ladrc_real_t b)
 {
@@ -300,7 +307,10 @@ static inline int ladrc_all_finite4(ladrc_real_t a, ladrc_real_t b, ladrc_real_t
 }
 #else
 /** 1 if x is neither NaN nor infinite. */
-static inline int ladrc_is_finite(ladrc_real_t x) { return isfinite(x) ? 1 : 0; }
+static inline int ladrc_is_finite(ladrc_real_t x)
+{
+    return isfinite(x) ? 1 : 0;
+}
 
 /* 1 if every argument is finite, in one comparison: x * 0 is 0 for a finite
  * x and NaN for an infinity or a NaN, so the sum is 0 exactly when all are
@@ -317,9 +327,7 @@ static inline int ladrc_all_finite3(ladrc_real_t a, ladrc_real_t b, ladrc_real_t
 
 static inline int ladrc_all_finite4(ladrc_real_t a, ladrc_real_t b, ladrc_real_t c, ladrc_real_t d)
 {
-    return (a * LADRC_R(0.0) + b * LADRC_R(0.0) + c * LADRC_R(0.0) + d * LADRC_R(0.0) == LADRC_R(0.0))
-               ? 1
-               : 0;
+    return (a * LADRC_R(0.0) + b * LADRC_R(0.0) + c * LADRC_R(0.0) + d * LADRC_R(0.0) == LADRC_R(0.0)) ? 1 : 0;
 }
 #endif
 
@@ -391,14 +399,38 @@ static inline ladrc_real_t ladrc_sign(ladrc_real_t x)
 #endif
 #endif
 
-static inline ladrc_real_t ladrc_sqrt(ladrc_real_t x) { return LADRC_SQRT(x); }
-static inline ladrc_real_t ladrc_fabs(ladrc_real_t x) { return LADRC_FABS(x); }
-static inline ladrc_real_t ladrc_exp(ladrc_real_t x) { return LADRC_EXP(x); }
-static inline ladrc_real_t ladrc_expm1(ladrc_real_t x) { return LADRC_EXPM1(x); }
-static inline ladrc_real_t ladrc_cos(ladrc_real_t x) { return LADRC_COS(x); }
-static inline ladrc_real_t ladrc_sin(ladrc_real_t x) { return LADRC_SIN(x); }
-static inline ladrc_real_t ladrc_asin(ladrc_real_t x) { return LADRC_ASIN(x); }
-static inline ladrc_real_t ladrc_cbrt(ladrc_real_t x) { return LADRC_CBRT(x); }
+static inline ladrc_real_t ladrc_sqrt(ladrc_real_t x)
+{
+    return LADRC_SQRT(x);
+}
+static inline ladrc_real_t ladrc_fabs(ladrc_real_t x)
+{
+    return LADRC_FABS(x);
+}
+static inline ladrc_real_t ladrc_exp(ladrc_real_t x)
+{
+    return LADRC_EXP(x);
+}
+static inline ladrc_real_t ladrc_expm1(ladrc_real_t x)
+{
+    return LADRC_EXPM1(x);
+}
+static inline ladrc_real_t ladrc_cos(ladrc_real_t x)
+{
+    return LADRC_COS(x);
+}
+static inline ladrc_real_t ladrc_sin(ladrc_real_t x)
+{
+    return LADRC_SIN(x);
+}
+static inline ladrc_real_t ladrc_asin(ladrc_real_t x)
+{
+    return LADRC_ASIN(x);
+}
+static inline ladrc_real_t ladrc_cbrt(ladrc_real_t x)
+{
+    return LADRC_CBRT(x);
+}
 
 /** 1 if x is finite and strictly positive: the check most config fields need. */
 static inline int ladrc_is_positive(ladrc_real_t x)
@@ -452,7 +484,10 @@ static inline int ladrc_dt_is_valid(ladrc_real_t dt_s)
 ladrc_real_t ladrc_wrap_pi_far(ladrc_real_t x);
 
 /** 1 if x lies in (-pi, pi] (0 for NaN). */
-static inline int ladrc_in_half_turn(ladrc_real_t x) { return (x > -LADRC_PI && x <= LADRC_PI) ? 1 : 0; }
+static inline int ladrc_in_half_turn(ladrc_real_t x)
+{
+    return (x > -LADRC_PI && x <= LADRC_PI) ? 1 : 0;
+}
 
 /** An angle difference into (-pi, pi]: x itself, bit for bit, when it is
  *  already there (two comparisons on the common path), else x minus whole

@@ -38,7 +38,8 @@ static void check_shipped_scenario(sim_scenario_t *sc, ladrc_margins_workspace_t
     }
     if (sim_tune_wanted(sc, id)) {
         const int rc = sim_tune_controller(sc, id, ws, &perr);
-        if (rc != 0) printf("%s:%d:%d: %s\n", perr.path, perr.line, perr.column, perr.message);
+        if (rc != 0)
+            printf("%s:%d:%d: %s\n", perr.path, perr.line, perr.column, perr.message);
         TEST_ASSERT_EQUAL_INT_MESSAGE(0, rc, path);
     }
     static sim_metrics_t m;
@@ -55,9 +56,9 @@ static void check_shipped_scenario(sim_scenario_t *sc, ladrc_margins_workspace_t
         const ladrc_margins_controller_t ctl = {&acfg, i, NULL, sc->use_rate};
         static ladrc_margins_result_t res;
         TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_analyse(ws, &ctl, &req, &res));
-        printf("%-18s %s %s axis %d: RMS error %.4f deg, band %.4f deg; PM %.1f deg, GM %.1f dB, stable %d\n",
-               sc->name, sim_controller_name(id), sc->tuning[id].tuned ? "tuned" : "default", i,
-               sim_stat_rms(&m.error_deg[i]), m.band_deg[i], res.pm_deg, res.gm_db, res.stable);
+        printf("%-18s %s %s axis %d: RMS error %.4f deg, band %.4f deg; PM %.1f deg, GM %.1f dB, stable %d\n", sc->name,
+               sim_controller_name(id), sc->tuning[id].tuned ? "tuned" : "default", i, sim_stat_rms(&m.error_deg[i]),
+               m.band_deg[i], res.pm_deg, res.gm_db, res.stable);
         TEST_ASSERT_TRUE_MESSAGE(res.stable, path);
         TEST_ASSERT_TRUE_MESSAGE(res.pm_deg >= SHIPPED_PM_MIN_DEG, path);
         TEST_ASSERT_TRUE_MESSAGE(res.gm_db >= SHIPPED_GM_MIN_DB, path);

@@ -33,11 +33,14 @@
 #include "expr.h"
 
 /* Scenario times and the edges of double. */
-static const double TIMES[] = {0.0,  -0.0,    1e-3,   0.5,      1.0,      2.0,       3.0,       2.5,
-                               6.0,  12.5,    25.0,   30.0,     -4.25,    1e9,       1e300,     -1e300,
-                               1e-310, DBL_MAX, -DBL_MAX, INFINITY, -INFINITY, 3.14159265358979323846};
+static const double TIMES[] = {
+    0.0,  -0.0,  1e-3, 0.5,   1.0,    2.0,    3.0,     2.5,      6.0,      12.5,      25.0,
+    30.0, -4.25, 1e9,  1e300, -1e300, 1e-310, DBL_MAX, -DBL_MAX, INFINITY, -INFINITY, 3.14159265358979323846};
 
-static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+static int same_bits(double a, double b)
+{
+    return memcmp(&a, &b, sizeof a) == 0;
+}
 
 static int same_value(double a, double b)
 {
@@ -82,8 +85,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FUZZ_CHECK(e.n_code >= 1 && e.n_code <= (int)(sizeof e.code), "n_code %d", e.n_code);
 
     FUZZ_CHECK(sim_expr_compile(&again, text, NULL) == 0, "a second compile failed");
-    FUZZ_CHECK(again.n_ops == e.n_ops && again.n_code == e.n_code &&
-                   memcmp(again.op, e.op, (size_t)e.n_ops) == 0 &&
+    FUZZ_CHECK(again.n_ops == e.n_ops && again.n_code == e.n_code && memcmp(again.op, e.op, (size_t)e.n_ops) == 0 &&
                    memcmp(again.value, e.value, (size_t)e.n_ops * sizeof e.value[0]) == 0 &&
                    memcmp(again.code, e.code, (size_t)e.n_code) == 0 &&
                    memcmp(again.operand, e.operand, (size_t)e.n_code * sizeof e.operand[0]) == 0,
@@ -100,8 +102,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         const double memoized = sim_expr_eval_memo(&e, t, &memo);
         FUZZ_CHECK(same_value(folded, postfix), "'%s' at t = %.17g: folded %.17g, postfix %.17g", text, t, folded,
                    postfix);
-        FUZZ_CHECK(same_bits(folded, memoized), "'%s' at t = %.17g: plain %.17g, with the memo %.17g", text, t,
-                   folded, memoized);
+        FUZZ_CHECK(same_bits(folded, memoized), "'%s' at t = %.17g: plain %.17g, with the memo %.17g", text, t, folded,
+                   memoized);
         if (is_constant) {
             FUZZ_CHECK(same_value(constant, folded), "'%s' constant %.17g, at t = %.17g %.17g", text, constant, t,
                        folded);

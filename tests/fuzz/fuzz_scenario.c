@@ -99,8 +99,7 @@ static void check_accepted(void)
         evaluate(&sc.diff_derivative, times, n_times);
         return;
     }
-    FUZZ_CHECK(sc.plant_substeps >= 1 && sc.plant_substeps <= SIM_PLANT_SUBSTEPS_MAX, "substeps %d",
-               sc.plant_substeps);
+    FUZZ_CHECK(sc.plant_substeps >= 1 && sc.plant_substeps <= SIM_PLANT_SUBSTEPS_MAX, "substeps %d", sc.plant_substeps);
     FUZZ_CHECK((double)ticks * sc.plant_substeps <= SIM_RUN_PLANT_STEPS_MAX, "%ld x %d plant steps", ticks,
                sc.plant_substeps);
     const double h = sc.control_dt_s / sc.plant_substeps;
@@ -134,7 +133,7 @@ static void check_accepted(void)
         evaluate(&sc.disturbance[i], times, n_times);
     }
     /* last: it changes the list */
-    static const sim_controller_id_t every[] = {SIM_CTRL_PID,      SIM_CTRL_LADRC,    SIM_CTRL_LP_MLADRC,
+    static const sim_controller_id_t every[] = {SIM_CTRL_PID,       SIM_CTRL_LADRC,    SIM_CTRL_LP_MLADRC,
                                                 SIM_CTRL_HP_MLADRC, SIM_CTRL_CASCADED, SIM_CTRL_INDI};
     sim_parse_error_t err;
     const int rc = sim_scenario_set_controllers(&sc, every, (int)(sizeof every / sizeof every[0]), &err);

@@ -48,7 +48,10 @@ static int run_file(const char *path)
     return 0;
 }
 
-static int by_name(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+static int by_name(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
 
 /* The regular files of a directory, in name order; -1 on error, else the count run. */
 static int run_dir(const char *dir)
@@ -96,8 +99,8 @@ int main(int argc, char **argv)
     int total = 0;
     for (int i = 1; i < argc; ++i) {
         struct stat st;
-        const int n = (stat(argv[i], &st) == 0 && S_ISDIR(st.st_mode)) ? run_dir(argv[i])
-                                                                        : (run_file(argv[i]) == 0 ? 1 : -1);
+        const int n =
+            (stat(argv[i], &st) == 0 && S_ISDIR(st.st_mode)) ? run_dir(argv[i]) : (run_file(argv[i]) == 0 ? 1 : -1);
         if (n < 0) {
             return 1;
         }

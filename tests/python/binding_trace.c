@@ -72,7 +72,8 @@ static int trace_axis(FILE *f, ladrc_variant_t variant)
     for (k = 0; k < AXIS_TICKS; ++k) {
         const ladrc_real_t ref = (k >= 100) ? LADRC_R(0.2) : LADRC_R(0.0);
         /* 20 + 60 sin-like triangle disturbance (rad/s^2) from 1.5 s */
-        const ladrc_real_t dist = (k >= 1500) ? LADRC_R(20.0) + LADRC_R(0.06) * (ladrc_real_t)((k % 1000) - 500) : LADRC_R(0.0);
+        const ladrc_real_t dist =
+            (k >= 1500) ? LADRC_R(20.0) + LADRC_R(0.06) * (ladrc_real_t)((k % 1000) - 500) : LADRC_R(0.0);
         const ladrc_real_t u = ladrc_axis_step_with_rate(&axis, ref, angle, rate);
         ladrc_axis_set_applied(&axis, u);
         fprintf(f, "axis %d", (int)variant);
@@ -117,7 +118,8 @@ static int trace_attitude(FILE *f)
         return 1;
     }
     for (k = 0; k < ATT_TICKS; ++k) {
-        const ladrc_real_t ref[3] = {(k >= 100) ? LADRC_R(0.3) : LADRC_R(0.0), (k >= 600) ? LADRC_R(-0.1) : LADRC_R(0.0),
+        const ladrc_real_t ref[3] = {(k >= 100) ? LADRC_R(0.3) : LADRC_R(0.0),
+                                     (k >= 600) ? LADRC_R(-0.1) : LADRC_R(0.0),
                                      (k >= 1100) ? LADRC_R(0.5) : LADRC_R(0.0)};
         ladrc_real_t torque[3];
         const ladrc_fault_t faults = ladrc_attitude_step(&att, ref, angle, rate, torque);

@@ -23,23 +23,28 @@ uint64_t test_rng_next(test_rng_t *rng)
     return z ^ (z >> 31);
 }
 
-double test_rng_uniform(test_rng_t *rng) { return (double)(test_rng_next(rng) >> 11) * (1.0 / 9007199254740992.0); }
+double test_rng_uniform(test_rng_t *rng)
+{
+    return (double)(test_rng_next(rng) >> 11) * (1.0 / 9007199254740992.0);
+}
 
-unsigned test_rng_below(test_rng_t *rng, unsigned n) { return (unsigned)(test_rng_uniform(rng) * (double)n); }
+unsigned test_rng_below(test_rng_t *rng, unsigned n)
+{
+    return (unsigned)(test_rng_uniform(rng) * (double)n);
+}
 
 ladrc_real_t test_special_value(unsigned which)
 {
 #ifdef LADRC_REAL_DOUBLE
-    static const uint64_t bits[TEST_SPECIAL_VALUES] = {
-        UINT64_C(0x7ff8000000000000), UINT64_C(0x7ff0000000000000), UINT64_C(0xfff0000000000000),
-        UINT64_C(0xfff8000000000000), UINT64_C(0x7ff8000000012345), UINT64_C(0x7ff0000000000001),
-        UINT64_C(0xffffffffffffffff)};
+    static const uint64_t bits[TEST_SPECIAL_VALUES] = {UINT64_C(0x7ff8000000000000), UINT64_C(0x7ff0000000000000),
+                                                       UINT64_C(0xfff0000000000000), UINT64_C(0xfff8000000000000),
+                                                       UINT64_C(0x7ff8000000012345), UINT64_C(0x7ff0000000000001),
+                                                       UINT64_C(0xffffffffffffffff)};
     volatile uint64_t b = bits[which % TEST_SPECIAL_VALUES];
     uint64_t u = b;
 #else
-    static const uint32_t bits[TEST_SPECIAL_VALUES] = {UINT32_C(0x7fc00000), UINT32_C(0x7f800000),
-                                                       UINT32_C(0xff800000), UINT32_C(0xffc00000),
-                                                       UINT32_C(0x7fc12345), UINT32_C(0x7f800001),
+    static const uint32_t bits[TEST_SPECIAL_VALUES] = {UINT32_C(0x7fc00000), UINT32_C(0x7f800000), UINT32_C(0xff800000),
+                                                       UINT32_C(0xffc00000), UINT32_C(0x7fc12345), UINT32_C(0x7f800001),
                                                        UINT32_C(0xffffffff)};
     volatile uint32_t b = bits[which % TEST_SPECIAL_VALUES];
     uint32_t u = b;
@@ -55,7 +60,10 @@ ladrc_real_t test_special_nan(unsigned k)
     return test_special_value(nans[k % TEST_NAN_KINDS]);
 }
 
-static double random_sign(test_rng_t *rng) { return (test_rng_next(rng) & 1u) ? -1.0 : 1.0; }
+static double random_sign(test_rng_t *rng)
+{
+    return (test_rng_next(rng) & 1u) ? -1.0 : 1.0;
+}
 
 ladrc_real_t test_value_of_class(test_rng_t *rng, test_value_class_t cls, double scale)
 {

@@ -28,7 +28,7 @@ typedef enum {
     TEST_VALUE_DENORMAL,   /* +-a subnormal */
     TEST_VALUE_ZERO,       /* +-0 */
     TEST_VALUE_NAN,
-    TEST_VALUE_INF,        /* +-inf */
+    TEST_VALUE_INF, /* +-inf */
     TEST_VALUE_CLASSES
 } test_value_class_t;
 

@@ -12,7 +12,7 @@ typedef struct {
     double y_rad;
     double rate_rad_s;
     double t_s;
-    double b;                 /* rad/s^2 per unit of u */
+    double b; /* rad/s^2 per unit of u */
     test_disturbance_fn disturbance;
     const void *ctx;
 } test_double_integrator_t;

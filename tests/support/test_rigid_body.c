@@ -17,16 +17,13 @@ void test_rigid_body_accel(const test_rigid_body_t *b, const double rate[3], con
                            const double dist_rad_s2[3], double accel[3])
 {
     const double *j = b->inertia_kg_m2;
-    accel[0] = (torque_Nm[0] + (j[1] - j[2]) * rate[1] * rate[2] - b->drag_Nms * rate[0]) / j[0] +
-               dist_rad_s2[0];
-    accel[1] = (torque_Nm[1] + (j[2] - j[0]) * rate[0] * rate[2] - b->drag_Nms * rate[1]) / j[1] +
-               dist_rad_s2[1];
-    accel[2] = (torque_Nm[2] + (j[0] - j[1]) * rate[1] * rate[0] - b->drag_Nms * rate[2]) / j[2] +
-               dist_rad_s2[2];
+    accel[0] = (torque_Nm[0] + (j[1] - j[2]) * rate[1] * rate[2] - b->drag_Nms * rate[0]) / j[0] + dist_rad_s2[0];
+    accel[1] = (torque_Nm[1] + (j[2] - j[0]) * rate[0] * rate[2] - b->drag_Nms * rate[1]) / j[1] + dist_rad_s2[1];
+    accel[2] = (torque_Nm[2] + (j[0] - j[1]) * rate[1] * rate[0] - b->drag_Nms * rate[2]) / j[2] + dist_rad_s2[2];
 }
 
-void test_rigid_body_step(test_rigid_body_t *b, const double torque_Nm[3],
-                          const double dist_rad_s2[3], double dt_s, int substeps)
+void test_rigid_body_step(test_rigid_body_t *b, const double torque_Nm[3], const double dist_rad_s2[3], double dt_s,
+                          int substeps)
 {
     const double h = dt_s / substeps;
     for (int s = 0; s < substeps; ++s) {

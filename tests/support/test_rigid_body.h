@@ -22,7 +22,7 @@ void test_rigid_body_accel(const test_rigid_body_t *b, const double rate[3], con
                            const double dist_rad_s2[3], double accel[3]);
 
 /* One step of dt_s with torques and disturbances held, `substeps` RK4 steps. */
-void test_rigid_body_step(test_rigid_body_t *b, const double torque_Nm[3],
-                          const double dist_rad_s2[3], double dt_s, int substeps);
+void test_rigid_body_step(test_rigid_body_t *b, const double torque_Nm[3], const double dist_rad_s2[3], double dt_s,
+                          int substeps);
 
 #endif

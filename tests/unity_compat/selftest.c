@@ -12,8 +12,13 @@
 static int reached_after_abort;
 static int teardown_runs;
 
-void setUp(void) {}
-void tearDown(void) { teardown_runs++; }
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+    teardown_runs++;
+}
 
 static void fails_int(void)
 {
@@ -45,14 +50,14 @@ static void passes(void)
     const float floats[2] = {1.0f, -2.5f};
     TEST_ASSERT_EQUAL_FLOAT(1.0f, 1.000001f);
     TEST_ASSERT_FLOAT_WITHIN(0.1f, 1.0f, 1.05f);
-    TEST_ASSERT_LESS_THAN_FLOAT(1.0f, 0.5f);        /* actual < threshold */
-    TEST_ASSERT_GREATER_THAN(3, 4);                 /* actual > threshold */
+    TEST_ASSERT_LESS_THAN_FLOAT(1.0f, 0.5f); /* actual < threshold */
+    TEST_ASSERT_GREATER_THAN(3, 4);          /* actual > threshold */
     TEST_ASSERT_LESS_OR_EQUAL_FLOAT(1.0f, 1.0f);
     TEST_ASSERT_FLOAT_IS_NOT_DETERMINATE((float)INFINITY);
     TEST_ASSERT_EQUAL_INT_ARRAY(ints, ints, 3);
     TEST_ASSERT_EQUAL_FLOAT_ARRAY(floats, floats, 2);
     TEST_ASSERT_EQUAL_STRING("abc", "abc");
-    TEST_ASSERT_EQUAL_HEX8(0x1ff, 0xff);            /* compared as 8 bits */
+    TEST_ASSERT_EQUAL_HEX8(0x1ff, 0xff); /* compared as 8 bits */
     TEST_PASS();
     reached_after_abort = 1;
 }
@@ -70,9 +75,8 @@ int main(void)
     RUN_TEST(passes);
     failures = UNITY_END();
 
-    ok = failures == 3 && Unity.NumberOfTests == 5u && Unity.TestIgnores == 1u &&
-         teardown_runs == 5 && !reached_after_abort;
-    printf("unity_compat selftest: %s (the FAIL lines above are expected)\n",
-           ok ? "OK" : "BROKEN");
+    ok = failures == 3 && Unity.NumberOfTests == 5u && Unity.TestIgnores == 1u && teardown_runs == 5 &&
+         !reached_after_abort;
+    printf("unity_compat selftest: %s (the FAIL lines above are expected)\n", ok ? "OK" : "BROKEN");
     return ok ? 0 : 1;
 }

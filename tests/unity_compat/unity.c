@@ -222,8 +222,8 @@ void UnityMessage(const char *msg, UNITY_LINE_TYPE line)
 
 /* ---- integer assertions ----------------------------------------------- */
 
-void UnityAssertEqualNumber(UNITY_INT expected, UNITY_INT actual, const char *msg,
-                            UNITY_LINE_TYPE line, UNITY_DISPLAY_STYLE_T style)
+void UnityAssertEqualNumber(UNITY_INT expected, UNITY_INT actual, const char *msg, UNITY_LINE_TYPE line,
+                            UNITY_DISPLAY_STYLE_T style)
 {
     return_if_done();
     if (expected != actual) {
@@ -237,9 +237,8 @@ void UnityAssertEqualNumber(UNITY_INT expected, UNITY_INT actual, const char *ms
     }
 }
 
-void UnityAssertGreaterOrLessOrEqualNumber(UNITY_INT threshold, UNITY_INT actual,
-                                           UNITY_COMPARISON_T compare, const char *msg,
-                                           UNITY_LINE_TYPE line, UNITY_DISPLAY_STYLE_T style)
+void UnityAssertGreaterOrLessOrEqualNumber(UNITY_INT threshold, UNITY_INT actual, UNITY_COMPARISON_T compare,
+                                           const char *msg, UNITY_LINE_TYPE line, UNITY_DISPLAY_STYLE_T style)
 {
     int ok;
     if (style == UNITY_DISPLAY_STYLE_INT) {
@@ -289,8 +288,8 @@ static int arrays_to_compare(const void *expected, const void *actual, UNITY_UIN
     return 1;
 }
 
-void UnityAssertEqualIntArray(const void *expected, const void *actual, UNITY_UINT32 num,
-                              const char *msg, UNITY_LINE_TYPE line)
+void UnityAssertEqualIntArray(const void *expected, const void *actual, UNITY_UINT32 num, const char *msg,
+                              UNITY_LINE_TYPE line)
 {
     const int *e = expected;
     const int *a = actual;
@@ -315,8 +314,8 @@ void UnityAssertEqualIntArray(const void *expected, const void *actual, UNITY_UI
     }
 }
 
-void UnityAssertEqualMemory(const void *expected, const void *actual, UNITY_UINT32 len,
-                            const char *msg, UNITY_LINE_TYPE line)
+void UnityAssertEqualMemory(const void *expected, const void *actual, UNITY_UINT32 len, const char *msg,
+                            UNITY_LINE_TYPE line)
 {
     const unsigned char *e = expected;
     const unsigned char *a = actual;
@@ -352,11 +351,9 @@ static void print_quoted(const char *s)
     }
 }
 
-void UnityAssertEqualString(const char *expected, const char *actual, const char *msg,
-                            UNITY_LINE_TYPE line)
+void UnityAssertEqualString(const char *expected, const char *actual, const char *msg, UNITY_LINE_TYPE line)
 {
-    int same = (expected == NULL || actual == NULL) ? (expected == actual)
-                                                     : (strcmp(expected, actual) == 0);
+    int same = (expected == NULL || actual == NULL) ? (expected == actual) : (strcmp(expected, actual) == 0);
     return_if_done();
     if (!same) {
         fail_begin(line);
@@ -387,8 +384,8 @@ static int floats_within(UNITY_FLOAT delta, UNITY_FLOAT expected, UNITY_FLOAT ac
     return !(isnan(diff) || isinf(diff) || diff > delta);
 }
 
-void UnityAssertFloatsWithin(UNITY_FLOAT delta, UNITY_FLOAT expected, UNITY_FLOAT actual,
-                             const char *msg, UNITY_LINE_TYPE line)
+void UnityAssertFloatsWithin(UNITY_FLOAT delta, UNITY_FLOAT expected, UNITY_FLOAT actual, const char *msg,
+                             UNITY_LINE_TYPE line)
 {
     return_if_done();
     if (!floats_within(delta, expected, actual)) {
@@ -402,15 +399,13 @@ void UnityAssertFloatsWithin(UNITY_FLOAT delta, UNITY_FLOAT expected, UNITY_FLOA
     }
 }
 
-void UnityAssertGreaterOrLessFloat(UNITY_FLOAT threshold, UNITY_FLOAT actual,
-                                   UNITY_COMPARISON_T compare, const char *msg,
-                                   UNITY_LINE_TYPE line)
+void UnityAssertGreaterOrLessFloat(UNITY_FLOAT threshold, UNITY_FLOAT actual, UNITY_COMPARISON_T compare,
+                                   const char *msg, UNITY_LINE_TYPE line)
 {
     /* Written as "not success" so a NaN never passes. */
     int failed = ((compare & UNITY_SMALLER_THAN) && !(actual < threshold)) ||
                  ((compare & UNITY_GREATER_THAN) && !(actual > threshold));
-    if ((compare & UNITY_EQUAL_TO) &&
-        floats_within(threshold * UNITY_FLOAT_PRECISION, threshold, actual)) {
+    if ((compare & UNITY_EQUAL_TO) && floats_within(threshold * UNITY_FLOAT_PRECISION, threshold, actual)) {
         failed = 0;
     }
 
@@ -429,8 +424,7 @@ void UnityAssertGreaterOrLessFloat(UNITY_FLOAT threshold, UNITY_FLOAT actual,
     }
 }
 
-void UnityAssertFloatSpecial(UNITY_FLOAT actual, const char *msg, UNITY_LINE_TYPE line,
-                             UNITY_FLOAT_TRAIT_T trait)
+void UnityAssertFloatSpecial(UNITY_FLOAT actual, const char *msg, UNITY_LINE_TYPE line, UNITY_FLOAT_TRAIT_T trait)
 {
     int want = (trait == UNITY_FLOAT_IS_NAN || trait == UNITY_FLOAT_IS_DET);
     int is_nan_trait = (trait == UNITY_FLOAT_IS_NAN || trait == UNITY_FLOAT_IS_NOT_NAN);
@@ -451,8 +445,8 @@ void UnityAssertFloatSpecial(UNITY_FLOAT actual, const char *msg, UNITY_LINE_TYP
     }
 }
 
-void UnityAssertEqualFloatArray(const UNITY_FLOAT *expected, const UNITY_FLOAT *actual,
-                                UNITY_UINT32 num, const char *msg, UNITY_LINE_TYPE line)
+void UnityAssertEqualFloatArray(const UNITY_FLOAT *expected, const UNITY_FLOAT *actual, UNITY_UINT32 num,
+                                const char *msg, UNITY_LINE_TYPE line)
 {
     UNITY_UINT32 i;
 

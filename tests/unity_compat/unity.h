@@ -78,11 +78,7 @@ struct UNITY_STORAGE_T {
 };
 extern struct UNITY_STORAGE_T Unity;
 
-typedef enum {
-    UNITY_DISPLAY_STYLE_INT,
-    UNITY_DISPLAY_STYLE_UINT,
-    UNITY_DISPLAY_STYLE_HEX8
-} UNITY_DISPLAY_STYLE_T;
+typedef enum { UNITY_DISPLAY_STYLE_INT, UNITY_DISPLAY_STYLE_UINT, UNITY_DISPLAY_STYLE_HEX8 } UNITY_DISPLAY_STYLE_T;
 
 typedef enum {
     UNITY_GREATER_THAN = 1,
@@ -105,26 +101,22 @@ void UnityDefaultTestRun(UnityTestFunction func, const char *name, int line);
 UNITY_NORETURN void UnityFail(const char *msg, UNITY_LINE_TYPE line);
 UNITY_NORETURN void UnityIgnore(const char *msg, UNITY_LINE_TYPE line);
 void UnityMessage(const char *msg, UNITY_LINE_TYPE line);
-void UnityAssertEqualNumber(UNITY_INT expected, UNITY_INT actual, const char *msg,
-                            UNITY_LINE_TYPE line, UNITY_DISPLAY_STYLE_T style);
-void UnityAssertGreaterOrLessOrEqualNumber(UNITY_INT threshold, UNITY_INT actual,
-                                           UNITY_COMPARISON_T compare, const char *msg,
-                                           UNITY_LINE_TYPE line, UNITY_DISPLAY_STYLE_T style);
-void UnityAssertEqualIntArray(const void *expected, const void *actual, UNITY_UINT32 num,
-                              const char *msg, UNITY_LINE_TYPE line);
-void UnityAssertEqualMemory(const void *expected, const void *actual, UNITY_UINT32 len,
-                            const char *msg, UNITY_LINE_TYPE line);
-void UnityAssertEqualString(const char *expected, const char *actual, const char *msg,
+void UnityAssertEqualNumber(UNITY_INT expected, UNITY_INT actual, const char *msg, UNITY_LINE_TYPE line,
+                            UNITY_DISPLAY_STYLE_T style);
+void UnityAssertGreaterOrLessOrEqualNumber(UNITY_INT threshold, UNITY_INT actual, UNITY_COMPARISON_T compare,
+                                           const char *msg, UNITY_LINE_TYPE line, UNITY_DISPLAY_STYLE_T style);
+void UnityAssertEqualIntArray(const void *expected, const void *actual, UNITY_UINT32 num, const char *msg,
+                              UNITY_LINE_TYPE line);
+void UnityAssertEqualMemory(const void *expected, const void *actual, UNITY_UINT32 len, const char *msg,
                             UNITY_LINE_TYPE line);
-void UnityAssertFloatsWithin(UNITY_FLOAT delta, UNITY_FLOAT expected, UNITY_FLOAT actual,
-                             const char *msg, UNITY_LINE_TYPE line);
-void UnityAssertGreaterOrLessFloat(UNITY_FLOAT threshold, UNITY_FLOAT actual,
-                                   UNITY_COMPARISON_T compare, const char *msg,
-                                   UNITY_LINE_TYPE line);
-void UnityAssertFloatSpecial(UNITY_FLOAT actual, const char *msg, UNITY_LINE_TYPE line,
-                             UNITY_FLOAT_TRAIT_T trait);
-void UnityAssertEqualFloatArray(const UNITY_FLOAT *expected, const UNITY_FLOAT *actual,
-                                UNITY_UINT32 num, const char *msg, UNITY_LINE_TYPE line);
+void UnityAssertEqualString(const char *expected, const char *actual, const char *msg, UNITY_LINE_TYPE line);
+void UnityAssertFloatsWithin(UNITY_FLOAT delta, UNITY_FLOAT expected, UNITY_FLOAT actual, const char *msg,
+                             UNITY_LINE_TYPE line);
+void UnityAssertGreaterOrLessFloat(UNITY_FLOAT threshold, UNITY_FLOAT actual, UNITY_COMPARISON_T compare,
+                                   const char *msg, UNITY_LINE_TYPE line);
+void UnityAssertFloatSpecial(UNITY_FLOAT actual, const char *msg, UNITY_LINE_TYPE line, UNITY_FLOAT_TRAIT_T trait);
+void UnityAssertEqualFloatArray(const UNITY_FLOAT *expected, const UNITY_FLOAT *actual, UNITY_UINT32 num,
+                                const char *msg, UNITY_LINE_TYPE line);
 
 /* ---- running ---------------------------------------------------------- */
 #define UNITY_BEGIN() UnityBegin(__FILE__)
@@ -139,11 +131,20 @@ void UnityAssertEqualFloatArray(const UNITY_FLOAT *expected, const UNITY_FLOAT *
 #define TEST_IGNORE() UnityIgnore(NULL, __LINE__)
 #define TEST_MESSAGE(message) UnityMessage((message), __LINE__)
 #define TEST_PASS() TEST_ABORT()
-#define TEST_PASS_MESSAGE(message) do { UnityMessage((message), __LINE__); TEST_ABORT(); } while (0)
+#define TEST_PASS_MESSAGE(message)                                                                                     \
+    do {                                                                                                               \
+        UnityMessage((message), __LINE__);                                                                             \
+        TEST_ABORT();                                                                                                  \
+    } while (0)
 
 /* ---- booleans and pointers -------------------------------------------- */
-#define UNITY_TEST_ASSERT(condition, line, message) \
-    do { if (condition) { } else { UnityFail((message), (UNITY_LINE_TYPE)(line)); } } while (0)
+#define UNITY_TEST_ASSERT(condition, line, message)                                                                    \
+    do {                                                                                                               \
+        if (condition) {                                                                                               \
+        } else {                                                                                                       \
+            UnityFail((message), (UNITY_LINE_TYPE)(line));                                                             \
+        }                                                                                                              \
+    } while (0)
 
 #define TEST_ASSERT_MESSAGE(c, message) UNITY_TEST_ASSERT((c), __LINE__, (message))
 #define TEST_ASSERT(c) UNITY_TEST_ASSERT((c), __LINE__, " Expression Evaluated To FALSE")
@@ -157,21 +158,20 @@ void UnityAssertEqualFloatArray(const UNITY_FLOAT *expected, const UNITY_FLOAT *
 #define TEST_ASSERT_NOT_NULL(p) UNITY_TEST_ASSERT(((p) != NULL), __LINE__, " Expected Non-NULL")
 
 /* ---- integers --------------------------------------------------------- */
-#define UNITY_EQ(e, a, message, style) \
-    UnityAssertEqualNumber((e), (a), (message), (UNITY_LINE_TYPE)__LINE__, (style))
-#define UNITY_CMP(t, a, cmp, message) \
-    UnityAssertGreaterOrLessOrEqualNumber((UNITY_INT)(t), (UNITY_INT)(a), (cmp), (message), \
-                                          (UNITY_LINE_TYPE)__LINE__, UNITY_DISPLAY_STYLE_INT)
+#define UNITY_EQ(e, a, message, style) UnityAssertEqualNumber((e), (a), (message), (UNITY_LINE_TYPE)__LINE__, (style))
+#define UNITY_CMP(t, a, cmp, message)                                                                                  \
+    UnityAssertGreaterOrLessOrEqualNumber((UNITY_INT)(t), (UNITY_INT)(a), (cmp), (message), (UNITY_LINE_TYPE)__LINE__, \
+                                          UNITY_DISPLAY_STYLE_INT)
 
-#define TEST_ASSERT_EQUAL_INT_MESSAGE(e, a, message) \
+#define TEST_ASSERT_EQUAL_INT_MESSAGE(e, a, message)                                                                   \
     UNITY_EQ((UNITY_INT)(e), (UNITY_INT)(a), (message), UNITY_DISPLAY_STYLE_INT)
-#define TEST_ASSERT_EQUAL_UINT_MESSAGE(e, a, message) \
+#define TEST_ASSERT_EQUAL_UINT_MESSAGE(e, a, message)                                                                  \
     UNITY_EQ((UNITY_INT)(e), (UNITY_INT)(a), (message), UNITY_DISPLAY_STYLE_UINT)
-#define TEST_ASSERT_EQUAL_UINT8_MESSAGE(e, a, message) \
+#define TEST_ASSERT_EQUAL_UINT8_MESSAGE(e, a, message)                                                                 \
     UNITY_EQ((UNITY_INT)(uint8_t)(e), (UNITY_INT)(uint8_t)(a), (message), UNITY_DISPLAY_STYLE_UINT)
-#define TEST_ASSERT_EQUAL_UINT32_MESSAGE(e, a, message) \
+#define TEST_ASSERT_EQUAL_UINT32_MESSAGE(e, a, message)                                                                \
     UNITY_EQ((UNITY_INT)(uint32_t)(e), (UNITY_INT)(uint32_t)(a), (message), UNITY_DISPLAY_STYLE_UINT)
-#define TEST_ASSERT_EQUAL_HEX8_MESSAGE(e, a, message) \
+#define TEST_ASSERT_EQUAL_HEX8_MESSAGE(e, a, message)                                                                  \
     UNITY_EQ((UNITY_INT)(uint8_t)(e), (UNITY_INT)(uint8_t)(a), (message), UNITY_DISPLAY_STYLE_HEX8)
 #define TEST_ASSERT_EQUAL_MESSAGE(e, a, message) TEST_ASSERT_EQUAL_INT_MESSAGE((e), (a), (message))
 #define TEST_ASSERT_NOT_EQUAL_MESSAGE(e, a, message) UNITY_TEST_ASSERT(((e) != (a)), __LINE__, (message))
@@ -198,18 +198,18 @@ void UnityAssertEqualFloatArray(const UNITY_FLOAT *expected, const UNITY_FLOAT *
 #define TEST_ASSERT_LESS_OR_EQUAL(t, a) TEST_ASSERT_LESS_OR_EQUAL_MESSAGE((t), (a), NULL)
 
 /* ---- floats ----------------------------------------------------------- */
-#define TEST_ASSERT_FLOAT_WITHIN_MESSAGE(delta, e, a, message) \
+#define TEST_ASSERT_FLOAT_WITHIN_MESSAGE(delta, e, a, message)                                                         \
     UnityAssertFloatsWithin((UNITY_FLOAT)(delta), (UNITY_FLOAT)(e), (UNITY_FLOAT)(a), (message), __LINE__)
-#define TEST_ASSERT_EQUAL_FLOAT_MESSAGE(e, a, message) \
-    TEST_ASSERT_FLOAT_WITHIN_MESSAGE((UNITY_FLOAT)(e) * UNITY_FLOAT_PRECISION, (e), (a), (message))
-#define UNITY_FCMP(t, a, cmp, message) \
+#define TEST_ASSERT_EQUAL_FLOAT_MESSAGE(e, a, message)                                                                 \
+    TEST_ASSERT_FLOAT_WITHIN_MESSAGE((UNITY_FLOAT)(e)*UNITY_FLOAT_PRECISION, (e), (a), (message))
+#define UNITY_FCMP(t, a, cmp, message)                                                                                 \
     UnityAssertGreaterOrLessFloat((UNITY_FLOAT)(t), (UNITY_FLOAT)(a), (cmp), (message), __LINE__)
 #define TEST_ASSERT_LESS_THAN_FLOAT_MESSAGE(t, a, message) UNITY_FCMP((t), (a), UNITY_SMALLER_THAN, (message))
 #define TEST_ASSERT_GREATER_THAN_FLOAT_MESSAGE(t, a, message) UNITY_FCMP((t), (a), UNITY_GREATER_THAN, (message))
 #define TEST_ASSERT_LESS_OR_EQUAL_FLOAT_MESSAGE(t, a, message) UNITY_FCMP((t), (a), UNITY_SMALLER_OR_EQUAL, (message))
-#define TEST_ASSERT_GREATER_OR_EQUAL_FLOAT_MESSAGE(t, a, message) UNITY_FCMP((t), (a), UNITY_GREATER_OR_EQUAL, (message))
-#define UNITY_FTRAIT(a, trait, message) \
-    UnityAssertFloatSpecial((UNITY_FLOAT)(a), (message), __LINE__, (trait))
+#define TEST_ASSERT_GREATER_OR_EQUAL_FLOAT_MESSAGE(t, a, message)                                                      \
+    UNITY_FCMP((t), (a), UNITY_GREATER_OR_EQUAL, (message))
+#define UNITY_FTRAIT(a, trait, message) UnityAssertFloatSpecial((UNITY_FLOAT)(a), (message), __LINE__, (trait))
 #define TEST_ASSERT_FLOAT_IS_NAN_MESSAGE(a, message) UNITY_FTRAIT((a), UNITY_FLOAT_IS_NAN, (message))
 #define TEST_ASSERT_FLOAT_IS_NOT_NAN_MESSAGE(a, message) UNITY_FTRAIT((a), UNITY_FLOAT_IS_NOT_NAN, (message))
 #define TEST_ASSERT_FLOAT_IS_DETERMINATE_MESSAGE(a, message) UNITY_FTRAIT((a), UNITY_FLOAT_IS_DET, (message))
@@ -227,15 +227,15 @@ void UnityAssertEqualFloatArray(const UNITY_FLOAT *expected, const UNITY_FLOAT *
 #define TEST_ASSERT_FLOAT_IS_NOT_DETERMINATE(a) TEST_ASSERT_FLOAT_IS_NOT_DETERMINATE_MESSAGE((a), NULL)
 
 /* ---- memory, strings, arrays ------------------------------------------ */
-#define TEST_ASSERT_EQUAL_MEMORY_MESSAGE(e, a, len, message) \
+#define TEST_ASSERT_EQUAL_MEMORY_MESSAGE(e, a, len, message)                                                           \
     UnityAssertEqualMemory((const void *)(e), (const void *)(a), (UNITY_UINT32)(len), (message), __LINE__)
-#define TEST_ASSERT_EQUAL_STRING_MESSAGE(e, a, message) \
+#define TEST_ASSERT_EQUAL_STRING_MESSAGE(e, a, message)                                                                \
     UnityAssertEqualString((const char *)(e), (const char *)(a), (message), __LINE__)
-#define TEST_ASSERT_EQUAL_INT_ARRAY_MESSAGE(e, a, n, message) \
+#define TEST_ASSERT_EQUAL_INT_ARRAY_MESSAGE(e, a, n, message)                                                          \
     UnityAssertEqualIntArray((const void *)(e), (const void *)(a), (UNITY_UINT32)(n), (message), __LINE__)
-#define TEST_ASSERT_EQUAL_FLOAT_ARRAY_MESSAGE(e, a, n, message) \
-    UnityAssertEqualFloatArray((const UNITY_FLOAT *)(e), (const UNITY_FLOAT *)(a), (UNITY_UINT32)(n), \
-                               (message), __LINE__)
+#define TEST_ASSERT_EQUAL_FLOAT_ARRAY_MESSAGE(e, a, n, message)                                                        \
+    UnityAssertEqualFloatArray((const UNITY_FLOAT *)(e), (const UNITY_FLOAT *)(a), (UNITY_UINT32)(n), (message),       \
+                               __LINE__)
 
 #define TEST_ASSERT_EQUAL_MEMORY(e, a, len) TEST_ASSERT_EQUAL_MEMORY_MESSAGE((e), (a), (len), NULL)
 #define TEST_ASSERT_EQUAL_STRING(e, a) TEST_ASSERT_EQUAL_STRING_MESSAGE((e), (a), NULL)

@@ -9,7 +9,7 @@
 #include <math.h>
 
 #define DT_S 1e-3
-#define J_KG_M2 5.445e-3 /* paper vehicle, roll axis */
+#define J_KG_M2 5.445e-3             /* paper vehicle, roll axis */
 #define STEP_RAD 0.17453292519943295 /* 10 deg */
 #define FLIGHT_S 3.0
 /* The default HP-MLADRC axis (wc = 15 rad/s, Levant shaping) settles a
@@ -19,13 +19,17 @@
  * fails any loop that does not close (the error would stay 0.17 rad). */
 #define SETTLED_ERROR_TOL_RAD 1e-4
 
-#if LADRC_WITH_PID || LADRC_WITH_CASCADED || LADRC_WITH_INDI || LADRC_WITH_LADRC || LADRC_WITH_LP_MLADRC || \
+#if LADRC_WITH_PID || LADRC_WITH_CASCADED || LADRC_WITH_INDI || LADRC_WITH_LADRC || LADRC_WITH_LP_MLADRC ||            \
     LADRC_WITH_TD || !LADRC_WITH_HP_MLADRC || !LADRC_WITH_LEVANT
 #error "this test is built against the HP-MLADRC + Levant library only"
 #endif
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
 
 static void test_the_variants_left_out_are_refused_by_name(void)
 {

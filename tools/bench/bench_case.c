@@ -6,24 +6,23 @@
 
 #define PI_F 3.14159265f
 #define DEG 0.0174532925f
-#define DRAG_NMS 0.09f      /* rotational drag of the vehicle and of the controller's model */
-#define PLANT_SUBSTEPS 10   /* plant steps per control tick */
+#define DRAG_NMS 0.09f    /* rotational drag of the vehicle and of the controller's model */
+#define PLANT_SUBSTEPS 10 /* plant steps per control tick */
 
 ladrc_real_t bench_ref[BENCH_SAMPLES][LADRC_AXES];
 bench_inputs_t bench_in[BENCH_DISTURBANCES];
 bench_engagement_t bench_engaged_attitude[BENCH_DISTURBANCES];
 bench_engagement_t bench_engaged_axis[BENCH_DISTURBANCES];
 
-const char *const bench_case_name[BENCH_CASES] = {"PID", "LADRC", "LP-MLADRC", "HP-MLADRC",
-                                                  "HP-MLADRC-2tones", "HP-MLADRC-act", "CASCADED", "INDI",
-                                                  "LADRC-act"};
+const char *const bench_case_name[BENCH_CASES] = {
+    "PID", "LADRC", "LP-MLADRC", "HP-MLADRC", "HP-MLADRC-2tones", "HP-MLADRC-act", "CASCADED", "INDI", "LADRC-act"};
 const ladrc_variant_t bench_case_variant[BENCH_CASES] = {
-    LADRC_VARIANT_PID,       LADRC_VARIANT_LADRC,     LADRC_VARIANT_LP_MLADRC, LADRC_VARIANT_HP_MLADRC,
-    LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_CASCADED,  LADRC_VARIANT_INDI,
-    LADRC_VARIANT_LADRC};
-const int bench_case_inputs[BENCH_CASES] = {BENCH_ONE_TONE,  BENCH_ONE_TONE, BENCH_ONE_TONE, BENCH_ONE_TONE,
-                                            BENCH_TWO_TONES, BENCH_ONE_TONE, BENCH_ONE_TONE, BENCH_ONE_TONE,
-                                            BENCH_ONE_TONE};
+    LADRC_VARIANT_PID,       LADRC_VARIANT_LADRC,     LADRC_VARIANT_LP_MLADRC,
+    LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_HP_MLADRC,
+    LADRC_VARIANT_CASCADED,  LADRC_VARIANT_INDI,      LADRC_VARIANT_LADRC};
+const int bench_case_inputs[BENCH_CASES] = {BENCH_ONE_TONE, BENCH_ONE_TONE,  BENCH_ONE_TONE,
+                                            BENCH_ONE_TONE, BENCH_TWO_TONES, BENCH_ONE_TONE,
+                                            BENCH_ONE_TONE, BENCH_ONE_TONE,  BENCH_ONE_TONE};
 
 /* The actuator model of the case's axes (none but for the -act cases). */
 static void set_actuator(ladrc_axis_config_t *cfg, int bench_case)
@@ -36,10 +35,15 @@ static void set_actuator(ladrc_axis_config_t *cfg, int bench_case)
 const ladrc_real_t bench_inertia[LADRC_AXES] = {5.445e-3f, 5.445e-3f, 1.089e-2f};
 
 /* Saturating mixer with rotor limits, as flown (the paper's is ideal). */
-const ladrc_mixer_config_t bench_mixer_cfg = {
-    .kL_N_s2 = 2.98e-5f, .arm_m = 0.165f, .b_Nm_s2 = 2e-6f, .mass_kg = 0.8f, .g_m_s2 = 9.81f,
-    .w2_min_rad2_s2 = 1e4f, .w2_max_rad2_s2 = 2e5f, .tilt_max_rad = 0.7f,
-    .mode = LADRC_MIXER_SATURATE};
+const ladrc_mixer_config_t bench_mixer_cfg = {.kL_N_s2 = 2.98e-5f,
+                                              .arm_m = 0.165f,
+                                              .b_Nm_s2 = 2e-6f,
+                                              .mass_kg = 0.8f,
+                                              .g_m_s2 = 9.81f,
+                                              .w2_min_rad2_s2 = 1e4f,
+                                              .w2_max_rad2_s2 = 2e5f,
+                                              .tilt_max_rad = 0.7f,
+                                              .mode = LADRC_MIXER_SATURATE};
 
 ladrc_real_t bench_disturbance(int which, int axis, ladrc_real_t t_s)
 {

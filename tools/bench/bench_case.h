@@ -34,7 +34,8 @@
 #define BENCH_T0_S 12.0f
 
 /* Disturbances of the recorded closed loops (rad/s^2, t in s): */
-#define BENCH_ONE_TONE 0  /* the paper's (Table 2, from 12 s): roll 20 - 120 sin(3 t), pitch 20 + 120 sin(3 t),
+#define BENCH_ONE_TONE                                                                                                 \
+    0                     /* the paper's (Table 2, from 12 s): roll 20 - 120 sin(3 t), pitch 20 + 120 sin(3 t),
                              yaw a quarter of roll's (within the rotor limits) */
 #define BENCH_TWO_TONES 1 /* the same plus 30 sin(8 t) (yaw: a quarter) */
 #define BENCH_DISTURBANCES 2
@@ -50,10 +51,10 @@ typedef struct {
 /* How the HP-MLADRC estimators of a recorded closed loop behaved over the
  * measured ticks (all three axes, or the one axis). */
 typedef struct {
-    float weight_min;         /* smallest compensation weight */
+    float weight_min;              /* smallest compensation weight */
     unsigned tones_min, tones_max; /* active tones */
-    int engaged_from;         /* first tick from which every weight stays 1 to the end */
-    int saturated;            /* 3 axes: measured ticks on which the mixer cut something back */
+    int engaged_from;              /* first tick from which every weight stays 1 to the end */
+    int saturated;                 /* 3 axes: measured ticks on which the mixer cut something back */
 } bench_engagement_t;
 
 extern ladrc_real_t bench_ref[BENCH_SAMPLES][LADRC_AXES]; /* rad */
@@ -80,7 +81,7 @@ extern bench_engagement_t bench_engaged_axis[BENCH_DISTURBANCES];
 #define BENCH_CASE_LADRC_ACT 8
 extern const char *const bench_case_name[BENCH_CASES];
 extern const ladrc_variant_t bench_case_variant[BENCH_CASES];
-extern const int bench_case_inputs[BENCH_CASES]; /* BENCH_ONE_TONE or BENCH_TWO_TONES */
+extern const int bench_case_inputs[BENCH_CASES];     /* BENCH_ONE_TONE or BENCH_TWO_TONES */
 extern const ladrc_real_t bench_inertia[LADRC_AXES]; /* kg m^2 */
 extern const ladrc_mixer_config_t bench_mixer_cfg;
 
@@ -108,14 +109,13 @@ static inline ladrc_real_t bench_axis_tick(ladrc_axis_t *axis, const bench_input
 
 /* 3 axes + mixer: attitude step, thrust from the tilt, mix, the achieved
  * torques back to the observers. */
-static inline ladrc_real_t bench_attitude_tick(ladrc_attitude_t *att, ladrc_mixer_t *mixer,
-                                               const bench_inputs_t *in, int i)
+static inline ladrc_real_t bench_attitude_tick(ladrc_attitude_t *att, ladrc_mixer_t *mixer, const bench_inputs_t *in,
+                                               int i)
 {
     ladrc_real_t torque[LADRC_AXES];
     ladrc_mixer_output_t out;
     (void)ladrc_attitude_step(att, bench_ref[i], in->ang[i], in->rate[i], torque);
-    (void)ladrc_mixer_step(mixer, ladrc_mixer_thrust_from_tilt(mixer, in->ang[i][0], in->ang[i][1]),
-                           torque, &out);
+    (void)ladrc_mixer_step(mixer, ladrc_mixer_thrust_from_tilt(mixer, in->ang[i][0], in->ang[i][1]), torque, &out);
     ladrc_attitude_set_applied(att, out.torque_Nm);
     return out.w_rad_s[0];
 }

@@ -67,7 +67,10 @@ static void run_block(kind_t kind, int from, int n)
 
 /* The measured ticks; the name callgrind's --toggle-collect selects. */
 BENCH_NOINLINE void bench_collect(kind_t kind);
-BENCH_NOINLINE void bench_collect(kind_t kind) { run_block(kind, BENCH_WARMUP, BENCH_TICKS); }
+BENCH_NOINLINE void bench_collect(kind_t kind)
+{
+    run_block(kind, BENCH_WARMUP, BENCH_TICKS);
+}
 
 static int setup(kind_t kind, int variant)
 {

@@ -46,10 +46,16 @@ static void timer_start(void)
     SYST_CSR = 5u; /* enable, processor clock, no interrupt */
 }
 
-static inline uint32_t timer_now(void) { return SYST_CVR; }
+static inline uint32_t timer_now(void)
+{
+    return SYST_CVR;
+}
 
 /* The counter counts down; blocks are far shorter than one wrap. */
-static inline uint32_t timer_since(uint32_t start) { return (start - SYST_CVR) & SYST_MASK; }
+static inline uint32_t timer_since(uint32_t start)
+{
+    return (start - SYST_CVR) & SYST_MASK;
+}
 
 /* 2 * n + 2 instructions from the first subs to the final bne falling through:
  * measured between two timer reads, so the fixed cost of the reads cancels
@@ -63,9 +69,9 @@ static uint32_t timed_spin(uint32_t n)
 
 /* What a block runs. */
 typedef enum {
-    RUN_AXIS,        /* one axis of the current case */
-    RUN_ATTITUDE,    /* 3 axes + mixer of the current case */
-    RUN_LONE_AXES,   /* the three HP-MLADRC axes of the 3-axis case side by side, no attitude, no mixer */
+    RUN_AXIS,      /* one axis of the current case */
+    RUN_ATTITUDE,  /* 3 axes + mixer of the current case */
+    RUN_LONE_AXES, /* the three HP-MLADRC axes of the 3-axis case side by side, no attitude, no mixer */
     RUN_LESO,
     RUN_TWIN,
     RUN_TD,
@@ -118,13 +124,13 @@ static ladrc_real_t y3_in[BENCH_SAMPLES], y5_in[BENCH_SAMPLES];
 
 /* Ticks the block from the first sample (warm-up) or after it; "empty" runs
  * the same loop and loads with the call left out. */
-#define BLOCK(call, empty)                                                                         \
-    for (int i = from; i < from + n; ++i) {                                                        \
-        if (timed) {                                                                               \
-            call;                                                                                  \
-        } else {                                                                                   \
-            sink = (empty);                                                                        \
-        }                                                                                          \
+#define BLOCK(call, empty)                                                                                             \
+    for (int i = from; i < from + n; ++i) {                                                                            \
+        if (timed) {                                                                                                   \
+            call;                                                                                                      \
+        } else {                                                                                                       \
+            sink = (empty);                                                                                            \
+        }                                                                                                              \
     }
 
 static ladrc_real_t lone_tick(int i)
@@ -143,8 +149,7 @@ static ladrc_real_t lone_empty(int i)
 {
     ladrc_real_t s = 0.0f;
     for (int a = 0; a < LADRC_AXES; ++a) {
-        s += frate_in[i][a] + known_in[i][a] + bench_ref[i][a] + in->ang[i][a] + in->rate[i][a] +
-             applied_in[i][a];
+        s += frate_in[i][a] + known_in[i][a] + bench_ref[i][a] + in->ang[i][a] + in->rate[i][a] + applied_in[i][a];
     }
     return s;
 }
@@ -169,8 +174,7 @@ static uint32_t run(run_t what, int warm, int timed)
               in->ang[i][0] + applied_in[i][0] + dhat_in[i] + frate_in[i][0]);
         break;
     case RUN_TWIN:
-        BLOCK((void)ladrc_leso_step_twin(&mod.leso, &mod.twin, 0.0f, 0.0f, dhat_in[i] - known_in[i][0],
-                                         frate_in[i][0]),
+        BLOCK((void)ladrc_leso_step_twin(&mod.leso, &mod.twin, 0.0f, 0.0f, dhat_in[i] - known_in[i][0], frate_in[i][0]),
               dhat_in[i] - known_in[i][0] + frate_in[i][0]);
         break;
     case RUN_TD: {
@@ -208,8 +212,7 @@ static uint32_t run(run_t what, int warm, int timed)
               in->ang[i][0] + in->ang[i][1]);
         break;
     case RUN_MIXER:
-        BLOCK((void)ladrc_mixer_step(&mod.mixer, thrust_in[i], torque_in[i], &mod.out),
-              thrust_in[i] + torque_in[i][0]);
+        BLOCK((void)ladrc_mixer_step(&mod.mixer, thrust_in[i], torque_in[i], &mod.out), thrust_in[i] + torque_in[i][0]);
         break;
     }
     return timer_since(t0);
@@ -309,8 +312,8 @@ static int setup_modules(void)
     }
     const ladrc_leso_config_t leso = {hp->dt_s, hp->wo_rad_s, hp->b0, hp->leso_method};
     const ladrc_td_config_t td = {ladrc.dt_s, ladrc.td_accel_rad_s2, ladrc.td_h0_s};
-    const ladrc_levant_config_t lev = {hp->dt_s, hp->levant_method, LADRC_LEVANT_GAINS_LIPSCHITZ,
-                                       hp->levant_lipschitz_rad_s4, 0.0f, 0.0f, 0.0f, 0.0f};
+    const ladrc_levant_config_t lev = {
+        hp->dt_s, hp->levant_method, LADRC_LEVANT_GAINS_LIPSCHITZ, hp->levant_lipschitz_rad_s4, 0.0f, 0.0f, 0.0f, 0.0f};
     const ladrc_lp_config_t lp = {hp->dt_s, hp->lp_lambda0_per_s, hp->lp_k0_per_s, hp->motor_tau_s, hp->delay_ticks};
     const ladrc_hp_config_t hpc = hp_config(hp);
     /* The HP fit as the estimator runs it engaged: P bound 1e4 and initial P
@@ -318,9 +321,8 @@ static int setup_modules(void)
     const float t3 = (float)hp->hp_fit_decimation * hp->dt_s;
     const ladrc_rls_config_t rls3 = {3u, t3, mod.fit_rate_per_s, 1e4f / t3, 1e3f / t3};
     const ladrc_rls_config_t rls5 = {5u, t3, mod.fit_rate2_per_s, 1e4f / t3, 1e3f / t3};
-    const ladrc_pid_config_t pidc = {pid.dt_s, pid.pid_kp, pid.pid_ki, pid.pid_kd,
-                                     pid.pid_d_filter_tau_s, pid.pid_i_limit_Nm, pid.u_min_Nm,
-                                     pid.u_max_Nm, 0u};
+    const ladrc_pid_config_t pidc = {pid.dt_s,           pid.pid_kp,   pid.pid_ki,   pid.pid_kd, pid.pid_d_filter_tau_s,
+                                     pid.pid_i_limit_Nm, pid.u_min_Nm, pid.u_max_Nm, 0u};
     if (ladrc_leso_init(&mod.leso, &leso) != LADRC_OK || ladrc_td_init(&mod.td, &td) != LADRC_OK ||
         ladrc_levant_init(&mod.levant, &lev) != LADRC_OK || ladrc_lp_init(&mod.lp, &lp) != LADRC_OK ||
         ladrc_hp_init(&mod.hp, &hpc) != LADRC_OK || ladrc_hp_init(&mod.hp2, &hpc) != LADRC_OK ||
@@ -445,9 +447,9 @@ int main(void)
         const uint32_t ax100 = measure(RUN_AXIS, ipc, &ax, &ax0);
         const uint32_t at100 = measure(RUN_ATTITUDE, ipc, &at, &at0);
         printf("BENCH insn %s %lu.%02lu %lu.%02lu counts %lu %lu %lu %lu\n", bench_case_name[v],
-               (unsigned long)(ax100 / 100u), (unsigned long)(ax100 % 100u),
-               (unsigned long)(at100 / 100u), (unsigned long)(at100 % 100u),
-               (unsigned long)ax, (unsigned long)ax0, (unsigned long)at, (unsigned long)at0);
+               (unsigned long)(ax100 / 100u), (unsigned long)(ax100 % 100u), (unsigned long)(at100 / 100u),
+               (unsigned long)(at100 % 100u), (unsigned long)ax, (unsigned long)ax0, (unsigned long)at,
+               (unsigned long)at0);
         if (bench_setup_attitude(&att, &mixer, v) != 0) {
             return 1;
         }

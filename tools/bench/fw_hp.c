@@ -39,8 +39,7 @@ int main(void)
             rate[a] = gyro_rad_s[a];
         }
         (void)ladrc_attitude_step(&att, ref_rad, angle, rate, torque_Nm);
-        (void)ladrc_mixer_step(&mixer, ladrc_mixer_thrust_from_tilt(&mixer, angle[0], angle[1]),
-                               torque_Nm, &out);
+        (void)ladrc_mixer_step(&mixer, ladrc_mixer_thrust_from_tilt(&mixer, angle[0], angle[1]), torque_Nm, &out);
         ladrc_attitude_set_applied(&att, out.torque_Nm);
         for (int r = 0; r < 4; ++r) {
             rotor_cmd_rad_s[r] = out.w_rad_s[r];
