@@ -16,8 +16,8 @@ set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 usage() { sed -n '3,15s/^# \{0,1\}//p' "$0"; }
-py=python3
-[[ -x /usr/bin/python3 ]] && py=/usr/bin/python3
+# shellcheck source=tools/campaign_common.sh
+. "$root/tools/campaign_common.sh"
 
 out_args=()
 if [[ ${1:-} == --out ]]; then
@@ -34,20 +34,10 @@ jobs=${3:-$cores}
 for v in "$shards" "$jobs"; do
   [[ $v =~ ^[1-9][0-9]*$ ]] || { echo "campaign_parallel.sh: error: '$v' is not a whole number >= 1" >&2; exit 2; }
 done
-sil=${LADRC_SIL:-$root/build/host-release/sim/ladrc_sil}
-[[ -x $sil ]] || { echo "campaign_parallel.sh: error: no simulator $sil (cmake --preset host-release &&" \
-  "cmake --build --preset host-release --target ladrc_sil, or set LADRC_SIL)" >&2; exit 2; }
 command -v parallel >/dev/null 2>&1 || { echo "campaign_parallel.sh: error: GNU parallel not found" \
   "(apt-get install parallel)" >&2; exit 2; }
-out=$("$sil" --campaign "$campaign" "${out_args[@]}" --print-out) || exit 2
-
 # Bad input, and an OUT holding another campaign, fail here, once, rather than in every shard.
-plan=$("$sil" --campaign "$campaign" --list "${out_args[@]}") || exit 2
-if [[ -f $out/plan.csv ]] && ! cmp -s "$out/plan.csv" <(printf '%s\n' "$plan"); then
-  echo "campaign_parallel.sh: error: $out holds another campaign's runs (its plan.csv is not the plan of" \
-    "$campaign)" >&2
-  exit 2
-fi
+campaign_setup campaign_parallel.sh "$campaign" "${out_args[@]}"
 
 echo "campaign_parallel.sh: $campaign: $shards shards, $jobs at a time, into $out" >&2
 # --will-cite: the citation notice is acknowledged (docs/campaigns.md), not printed.

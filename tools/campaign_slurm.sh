@@ -22,8 +22,8 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 usage() { sed -n '3,19s/^# \{0,1\}//p' "$0"; }
 die() { echo "campaign_slurm.sh: error: $2" >&2; exit "$1"; }
-py=python3
-[[ -x /usr/bin/python3 ]] && py=/usr/bin/python3
+# shellcheck source=tools/campaign_common.sh
+. "$root/tools/campaign_common.sh"
 
 out_args=()
 if [[ ${1:-} == --out ]]; then
@@ -47,22 +47,14 @@ if [[ $# -gt 0 ]]; then
   sbatch_opts=("$@")
 fi
 
-sil=${LADRC_SIL:-$root/build/host-release/sim/ladrc_sil}
-[[ -x $sil ]] || die 2 "no simulator $sil (cmake --preset host-release && cmake --build --preset" \
-  "host-release --target ladrc_sil, or set LADRC_SIL)"
-sil=$(cd "$(dirname "$sil")" && pwd)/$(basename "$sil")
 for tool in sbatch sinfo; do
   command -v $tool >/dev/null 2>&1 || die 2 "$tool not found (a Slurm client: apt-get install slurm-client)"
 done
 sinfo -h >/dev/null 2>&1 || die 2 "no Slurm cluster answers (sinfo failed; for the local one:" \
   "tools/slurm/local_cluster.sh start, then eval \"\$(tools/slurm/local_cluster.sh env)\")"
 
-out=$("$sil" --campaign "$campaign" "${out_args[@]}" --print-out) || exit 2
 # Bad input, and an OUT holding another campaign, fail here rather than in every task.
-plan=$("$sil" --campaign "$campaign" --list "${out_args[@]}") || exit 2
-if [[ -f $out/plan.csv ]] && ! cmp -s "$out/plan.csv" <(printf '%s\n' "$plan"); then
-  die 2 "$out holds another campaign's runs (its plan.csv is not the plan of $campaign)"
-fi
+campaign_setup campaign_slurm.sh "$campaign" "${out_args[@]}"
 
 logs=$out/slurm
 mkdir -p "$logs"   # Slurm does not create the directory of --output
