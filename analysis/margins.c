@@ -308,11 +308,10 @@ static double ctl_step(const ladrc_margins_controller_t *ctl, ctl_state_t *s, do
         (void)ladrc_attitude_step(&s->attitude, ref, angle, ctl->use_rate ? rate : NULL, torque);
         return (double)torque[ctl->axis_index];
     }
-    if (ctl->use_rate) {
-        return (double)ladrc_axis_step_with_rate(&s->axis, LADRC_R(0.0), (ladrc_real_t)angle_rad,
-                                                 (ladrc_real_t)rate_rad_s);
-    }
-    return (double)ladrc_axis_step(&s->axis, LADRC_R(0.0), (ladrc_real_t)angle_rad);
+    const ladrc_real_t rate = (ladrc_real_t)rate_rad_s;
+    ladrc_real_t torque_Nm;
+    (void)ladrc_axis_step(&s->axis, LADRC_R(0.0), (ladrc_real_t)angle_rad, ctl->use_rate ? &rate : NULL, &torque_Nm);
+    return (double)torque_Nm;
 }
 
 /* The discrete plant in the time domain with its measurement delay line. */

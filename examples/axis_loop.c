@@ -45,8 +45,9 @@ static int run(ladrc_variant_t variant, result_t *res)
         const double ref = (t >= 0.5) ? step : 0.0;
         const double dist = (t >= 1.5) ? 8.0 : 0.0;
         /* the tick: measure, step the controller, drive the motors */
-        const ladrc_real_t cmd =
-            ladrc_axis_step_with_rate(&axis, (ladrc_real_t)ref, (ladrc_real_t)angle, (ladrc_real_t)rate);
+        const ladrc_real_t rate_meas = (ladrc_real_t)rate;
+        ladrc_real_t cmd;
+        (void)ladrc_axis_step(&axis, (ladrc_real_t)ref, (ladrc_real_t)angle, &rate_meas, &cmd); /* flags: get_faults */
         const ladrc_real_t applied = ladrc_clamp(cmd, -TORQUE_LIMIT_NM, TORQUE_LIMIT_NM);
         ladrc_axis_set_applied(&axis, applied); /* what the motors really gave */
         /* the airframe over one tick (semi-implicit Euler, 10 substeps) */

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Three axes with the decoupling-free coupling feed (see attitude.h). */
 #include "ladrc/attitude.h"
+#include "require.h"
 
 #include "axis_internal.h"
 
@@ -12,7 +13,7 @@
 void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t variant, ladrc_real_t dt_s,
                                    const ladrc_real_t inertia_kg_m2[LADRC_AXES], ladrc_real_t drag_Nms)
 {
-    LADRC_ASSERT(cfg != NULL);
+    LADRC_REQUIRE_VOID(cfg != NULL && inertia_kg_m2 != NULL);
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
         ladrc_axis_config_default(&cfg->axis[i], variant, dt_s, inertia_kg_m2[i]);
         cfg->inertia_kg_m2[i] = inertia_kg_m2[i];
@@ -92,7 +93,7 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
 
 void ladrc_attitude_reset(ladrc_attitude_t *att, const ladrc_real_t angle_rad[LADRC_AXES])
 {
-    LADRC_ASSERT(att != NULL);
+    LADRC_REQUIRE_VOID(att != NULL && angle_rad != NULL);
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
         ladrc_axis_reset(&att->axis[i], angle_rad[i]);
         att->feed_rad_s3[i] = LADRC_R(0.0);
@@ -165,27 +166,21 @@ ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_
                                   const ladrc_real_t angle_rad[LADRC_AXES], const ladrc_real_t *rate_rad_s,
                                   ladrc_real_t torque_Nm[LADRC_AXES])
 {
-    LADRC_ASSERT(att != NULL);
-    ladrc_axis_t *ax = att->axis;
+    LADRC_REQUIRE(att != NULL && ref_rad != NULL && angle_rad != NULL && torque_Nm != NULL, LADRC_FAULT_STATE);
     if (att->coupling_feed) {
         update_feed(att);
     }
-    /* Three calls written out: no loop counter, one test of the rate. */
-    if (rate_rad_s != NULL) {
-        torque_Nm[0] = ladrc_axis_step_with_rate(&ax[0], ref_rad[0], angle_rad[0], rate_rad_s[0]);
-        torque_Nm[1] = ladrc_axis_step_with_rate(&ax[1], ref_rad[1], angle_rad[1], rate_rad_s[1]);
-        torque_Nm[2] = ladrc_axis_step_with_rate(&ax[2], ref_rad[2], angle_rad[2], rate_rad_s[2]);
-    } else {
-        torque_Nm[0] = ladrc_axis_step(&ax[0], ref_rad[0], angle_rad[0]);
-        torque_Nm[1] = ladrc_axis_step(&ax[1], ref_rad[1], angle_rad[1]);
-        torque_Nm[2] = ladrc_axis_step(&ax[2], ref_rad[2], angle_rad[2]);
+    ladrc_fault_t faults = LADRC_FAULT_NONE;
+    for (unsigned i = 0u; i < LADRC_AXES; ++i) {
+        faults |= ladrc_axis_step(&att->axis[i], ref_rad[i], angle_rad[i], (rate_rad_s != NULL) ? &rate_rad_s[i] : NULL,
+                                  &torque_Nm[i]);
     }
-    return (ladrc_fault_t)(ax[0].faults | ax[1].faults | ax[2].faults);
+    return faults;
 }
 
 void ladrc_attitude_set_applied(ladrc_attitude_t *att, const ladrc_real_t torque_Nm[LADRC_AXES])
 {
-    LADRC_ASSERT(att != NULL);
+    LADRC_REQUIRE_VOID(att != NULL && torque_Nm != NULL);
     const ladrc_real_t t0 = torque_Nm[0];
     const ladrc_real_t t1 = torque_Nm[1];
     const ladrc_real_t t2 = torque_Nm[2];

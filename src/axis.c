@@ -3,6 +3,7 @@
  * checks every variant shares, the shaper and the actuator model, and the
  * dispatch to the variant files (axis_internal.h). */
 #include "axis_internal.h"
+#include "require.h"
 
 /* Paper settings (Section 5) used by ladrc_axis_config_default. */
 #define AXIS_DEFAULT_WC_RAD_S LADRC_R(15.0)
@@ -84,7 +85,7 @@ static uint16_t ticks_in(ladrc_real_t period_s, ladrc_real_t dt_s)
 void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant, ladrc_real_t dt_s,
                                ladrc_real_t inertia_kg_m2)
 {
-    LADRC_ASSERT(cfg != NULL);
+    LADRC_REQUIRE_VOID(cfg != NULL);
     const ladrc_real_t unlimited = (ladrc_real_t)INFINITY;
     cfg->variant = variant;
     cfg->dt_s = dt_s;
@@ -333,7 +334,7 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
 
 void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
 {
-    LADRC_ASSERT(axis != NULL);
+    LADRC_REQUIRE_VOID(axis != NULL);
     const ladrc_real_t angle = ladrc_within(angle_rad, axis->angle_limit_rad) ? angle_rad : LADRC_R(0.0);
     switch (axis->variant) {
         CASE_ADRC(axis_adrc_reset(axis, angle))
@@ -391,20 +392,18 @@ static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_re
     return axis->output_Nm;
 }
 
-ladrc_real_t ladrc_axis_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad)
+ladrc_fault_t ladrc_axis_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
+                              const ladrc_real_t *rate_rad_s, ladrc_real_t *torque_Nm)
 {
-    return step_axis(axis, ref_rad, angle_rad, LADRC_R(0.0), 0);
-}
-
-ladrc_real_t ladrc_axis_step_with_rate(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
-                                       ladrc_real_t rate_rad_s)
-{
-    return step_axis(axis, ref_rad, angle_rad, rate_rad_s, 1);
+    LADRC_REQUIRE(axis != NULL && torque_Nm != NULL, LADRC_FAULT_STATE);
+    const int has_rate = (rate_rad_s != NULL);
+    *torque_Nm = step_axis(axis, ref_rad, angle_rad, has_rate ? *rate_rad_s : LADRC_R(0.0), has_rate);
+    return axis->faults;
 }
 
 void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
 {
-    LADRC_ASSERT(axis != NULL);
+    LADRC_REQUIRE_VOID(axis != NULL);
     if (!axis_applied_plausible(axis, torque_Nm)) {
         axis->faults |= LADRC_FAULT_APPLIED;
         axis->applied_Nm = axis->output_Nm;
@@ -421,18 +420,19 @@ void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
 
 void ladrc_axis_set_disturbance_rate(ladrc_axis_t *axis, ladrc_real_t rate_rad_s3)
 {
-    LADRC_ASSERT(axis != NULL);
+    LADRC_REQUIRE_VOID(axis != NULL);
     axis_put_disturbance_rate(axis, rate_rad_s3);
 }
 
 void ladrc_axis_set_known_disturbance(ladrc_axis_t *axis, ladrc_real_t f_known_rad_s2)
 {
-    LADRC_ASSERT(axis != NULL);
+    LADRC_REQUIRE_VOID(axis != NULL);
     axis->f_known_rad_s2 = ladrc_is_finite(f_known_rad_s2) ? f_known_rad_s2 : LADRC_R(0.0);
 }
 
 ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis)
 {
+    LADRC_REQUIRE(axis != NULL, LADRC_R(0.0));
     ladrc_real_t accel = LADRC_R(0.0); /* PID, CASCADED: no model */
     switch (axis->variant) {
         CASE_ADRC(accel = axis_adrc_accel(axis))
@@ -443,24 +443,34 @@ ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis)
     return accel;
 }
 
+ladrc_real_t ladrc_axis_get_acting_Nm(const ladrc_axis_t *axis)
+{
+    LADRC_REQUIRE(axis != NULL, LADRC_R(0.0));
+    return axis_acting_Nm(axis);
+}
+
 ladrc_fault_t ladrc_axis_get_faults(const ladrc_axis_t *axis)
 {
+    LADRC_REQUIRE(axis != NULL, LADRC_FAULT_STATE);
     return axis->faults;
 }
 
 uint32_t ladrc_axis_get_consecutive_faults(const ladrc_axis_t *axis)
 {
+    LADRC_REQUIRE(axis != NULL, 0u);
     return axis->consecutive_faults;
 }
 
 void ladrc_axis_get_reference(const ladrc_axis_t *axis, ladrc_ref_t *ref)
 {
+    LADRC_REQUIRE_VOID(axis != NULL && ref != NULL);
     *ref = axis->ref;
 }
 
 void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad, ladrc_real_t *rate_rad_s,
                              ladrc_real_t *disturbance_rad_s2)
 {
+    LADRC_REQUIRE_VOID(axis != NULL && angle_rad != NULL && rate_rad_s != NULL && disturbance_rad_s2 != NULL);
     switch (axis->variant) {
         CASE_ADRC(axis_adrc_estimate(axis, angle_rad, rate_rad_s, disturbance_rad_s2))
         CASE_PID(axis_pid_estimate(axis, angle_rad, rate_rad_s, disturbance_rad_s2))
@@ -473,6 +483,7 @@ void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad, 
 
 const ladrc_hp_estimator_t *ladrc_axis_get_hp(const ladrc_axis_t *axis)
 {
+    LADRC_REQUIRE(axis != NULL, NULL);
 #if LADRC_WITH_HP_MLADRC
     if (axis->variant == LADRC_VARIANT_HP_MLADRC) {
         return &axis->part.hp.est;
@@ -484,6 +495,7 @@ const ladrc_hp_estimator_t *ladrc_axis_get_hp(const ladrc_axis_t *axis)
 
 const ladrc_lp_estimator_t *ladrc_axis_get_lp(const ladrc_axis_t *axis)
 {
+    LADRC_REQUIRE(axis != NULL, NULL);
 #if LADRC_WITH_LP_MLADRC
     if (axis->variant == LADRC_VARIANT_LP_MLADRC) {
         return &axis->part.lp;

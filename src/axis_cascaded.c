@@ -47,12 +47,14 @@ ladrc_fault_t axis_cascaded_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc
         axis_shift_reference(axis, (axis->ref.r > LADRC_R(0.0)) ? -LADRC_TWO_PI : LADRC_TWO_PI);
     }
     ladrc_cascaded_t *cas = &axis->part.cas;
-    if (ladrc_cascaded_step(cas, &axis->ref, angle_rad, has_rate ? &rate_rad_s : NULL) != LADRC_FAULT_NONE) {
-        /* The command is held; the loops restart from the measurement. */
+    ladrc_real_t torque_Nm;
+    if (ladrc_cascaded_step(cas, &axis->ref, angle_rad, has_rate ? &rate_rad_s : NULL, &torque_Nm) !=
+        LADRC_FAULT_NONE) {
+        /* The axis holds its command; the loops restart from the measurement. */
         ladrc_cascaded_reset(cas, angle_rad);
         return (ladrc_fault_t)(faults | LADRC_FAULT_STATE);
     }
-    axis->output_Nm = cas->output_Nm;
+    axis->output_Nm = torque_Nm;
     return faults;
 }
 

@@ -45,7 +45,7 @@ ladrc_fault_t axis_indi_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_rea
     }
     const ladrc_real_t acting_Nm = axis_advance_actuator(axis);
     ladrc_fault_t faults = axis_shape_reference(axis, ref_rad);
-    if (!ladrc_indi_measure(indi, acting_Nm, rate_rad_s, has_rate)) {
+    if (!ladrc_indi_measure(indi, acting_Nm, has_rate ? &rate_rad_s : NULL)) {
         return (ladrc_fault_t)(faults | LADRC_FAULT_RATE);
     }
     indi->angle_rad = angle_rad;
@@ -73,7 +73,7 @@ ladrc_fault_t axis_indi_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_rea
 /* b0 * acting torque + the filtered disturbance omegadot_f - b0 u_f. */
 ladrc_real_t axis_indi_accel(const ladrc_axis_t *axis)
 {
-    return axis->b0 * ladrc_axis_acting_Nm(axis) + ladrc_indi_disturbance(&axis->part.indi);
+    return axis->b0 * axis_acting_Nm(axis) + ladrc_indi_get_disturbance(&axis->part.indi);
 }
 
 /* The last angle and rate measured with a rate, and omegadot_f - b0 u_f. */
@@ -82,5 +82,5 @@ void axis_indi_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad, ladrc
 {
     *angle_rad = axis->part.indi.angle_rad;
     *rate_rad_s = axis->part.indi.rate_last_rad_s;
-    *disturbance_rad_s2 = ladrc_indi_disturbance(&axis->part.indi);
+    *disturbance_rad_s2 = ladrc_indi_get_disturbance(&axis->part.indi);
 }

@@ -79,11 +79,23 @@ AXIS_ESTIMATOR_FUNCTIONS(lp)
 AXIS_ESTIMATOR_FUNCTIONS(hp)
 #endif
 
+/** Torque (N m) the next tick's observer step takes as acting: the applied
+ *  torque without a model, else its delayed and lagged mean (axis.h). */
+static inline ladrc_real_t axis_acting_Nm(const ladrc_axis_t *axis)
+{
+    if (!axis->model) {
+        return axis->applied_Nm;
+    }
+    const ladrc_actuator_t *act = &axis->act;
+    const ladrc_real_t v = (act->delay_ticks != 0u) ? act->delayed_Nm[act->head] : axis->applied_Nm;
+    return act->lag_Nm + act->mean_gain * (v - act->lag_Nm);
+}
+
 /** Angular acceleration a LADRC-family axis expects over its observer's
  *  next step (rad/s^2): b0 * acting torque + z3 + d_hat (axis.h). */
 static inline ladrc_real_t axis_observer_accel(const ladrc_axis_t *axis)
 {
-    return axis->b0 * ladrc_axis_acting_Nm(axis) + axis->leso.z3 + axis->d_hat_rad_s2;
+    return axis->b0 * axis_acting_Nm(axis) + axis->leso.z3 + axis->d_hat_rad_s2;
 }
 
 /** The fed rate of change of f as ladrc_axis_set_disturbance_rate takes it:
@@ -153,7 +165,7 @@ static inline ladrc_real_t axis_advance_actuator(ladrc_axis_t *axis)
     if (!axis->model) {
         return axis->applied_Nm;
     }
-    const ladrc_real_t mean = ladrc_axis_acting_Nm(axis);
+    const ladrc_real_t mean = axis_acting_Nm(axis);
     ladrc_actuator_t *act = &axis->act;
     ladrc_real_t v = axis->applied_Nm;
     if (act->delay_ticks != 0u) {

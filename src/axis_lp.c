@@ -19,5 +19,7 @@ void axis_lp_restart(ladrc_axis_t *axis)
 
 ladrc_real_t axis_lp_command(ladrc_axis_t *axis)
 {
-    return ladrc_lp_step_lead(&axis->part.lp);
+    ladrc_real_t command_rad_s2;
+    (void)ladrc_lp_step_lead(&axis->part.lp, &command_rad_s2);
+    return command_rad_s2;
 }

@@ -25,9 +25,8 @@ void axis_pid_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
 ladrc_fault_t axis_pid_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad, ladrc_real_t rate_rad_s,
                             int has_rate)
 {
-    axis->output_Nm = ladrc_pid_step(&axis->part.pid, ref_rad, angle_rad, has_rate ? &rate_rad_s : NULL);
     axis->ref.r = ref_rad;
-    return ladrc_pid_get_faults(&axis->part.pid);
+    return ladrc_pid_step(&axis->part.pid, ref_rad, angle_rad, has_rate ? &rate_rad_s : NULL, &axis->output_Nm);
 }
 
 void axis_pid_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)

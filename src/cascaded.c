@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Cascaded attitude P / rate PID controller (see cascaded.h). */
 #include "ladrc/cascaded.h"
+#include "require.h"
 
 #include <stddef.h>
 
@@ -89,7 +90,7 @@ ladrc_status_t ladrc_cascaded_init(ladrc_cascaded_t *c, const ladrc_cascaded_con
 
 void ladrc_cascaded_reset(ladrc_cascaded_t *c, ladrc_real_t angle_rad)
 {
-    LADRC_ASSERT(c != NULL);
+    LADRC_REQUIRE_VOID(c != NULL);
     c->integral_Nm = LADRC_R(0.0);
     c->rate_rad_s = LADRC_R(0.0);
     c->accel_rad_s2 = LADRC_R(0.0);
@@ -119,9 +120,9 @@ static ladrc_real_t rate_of_tick(const ladrc_cascaded_t *c, ladrc_real_t angle_r
 }
 
 ladrc_fault_t ladrc_cascaded_step(ladrc_cascaded_t *c, const ladrc_ref_t *ref, ladrc_real_t angle_rad,
-                                  const ladrc_real_t *rate_rad_s)
+                                  const ladrc_real_t *rate_rad_s, ladrc_real_t *torque_Nm)
 {
-    LADRC_ASSERT(c != NULL && ref != NULL);
+    LADRC_REQUIRE(c != NULL && ref != NULL && torque_Nm != NULL, LADRC_FAULT_STATE);
     ladrc_real_t error_rad = ref->r - angle_rad;
     if (c->wrap) {
         error_rad = ladrc_wrap_pi(error_rad);
@@ -138,6 +139,7 @@ ladrc_fault_t ladrc_cascaded_step(ladrc_cascaded_t *c, const ladrc_ref_t *ref, l
     }
     const ladrc_real_t unclamped = c->rate_kp * rate_error + integral - c->rate_kd * accel;
     if (!ladrc_all_finite4(m, accel, integral, unclamped)) {
+        *torque_Nm = c->output_Nm;
         return LADRC_FAULT_STATE;
     }
     c->rate_rad_s = m;
@@ -149,5 +151,12 @@ ladrc_fault_t ladrc_cascaded_step(ladrc_cascaded_t *c, const ladrc_ref_t *ref, l
     c->output_Nm = ladrc_clamp(unclamped, c->u_min_Nm, c->u_max_Nm);
     c->applied_Nm = c->output_Nm;
     c->has_prev = 1u;
+    *torque_Nm = c->output_Nm;
     return LADRC_FAULT_NONE;
+}
+
+void ladrc_cascaded_set_applied(ladrc_cascaded_t *c, ladrc_real_t applied_Nm)
+{
+    LADRC_REQUIRE_VOID(c != NULL);
+    c->applied_Nm = applied_Nm;
 }

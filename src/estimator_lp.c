@@ -2,6 +2,7 @@
 /* LP disturbance estimator: measured acceleration minus known input, tracked
  * by a one-parameter bounded-gain RLS (see estimator.h). */
 #include "ladrc/estimator.h"
+#include "require.h"
 
 ladrc_status_t ladrc_lp_init(ladrc_lp_estimator_t *est, const ladrc_lp_config_t *cfg)
 {
@@ -41,7 +42,7 @@ ladrc_status_t ladrc_lp_init(ladrc_lp_estimator_t *est, const ladrc_lp_config_t 
 
 void ladrc_lp_reset(ladrc_lp_estimator_t *est)
 {
-    LADRC_ASSERT(est != NULL);
+    LADRC_REQUIRE_VOID(est != NULL);
     ladrc_rls_reset(&est->rls, NULL);
     est->prev_rate_rad_s = LADRC_R(0.0);
     est->has_prev_rate = 0u;
@@ -51,7 +52,7 @@ void ladrc_lp_reset(ladrc_lp_estimator_t *est)
 
 ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s, ladrc_real_t accel_known)
 {
-    LADRC_ASSERT(est != NULL);
+    LADRC_REQUIRE(est != NULL, LADRC_FAULT_STATE);
     if (!(ladrc_is_finite(rate_rad_s) && ladrc_is_finite(accel_known))) {
         est->has_prev_rate = 0u; /* a difference across the gap would be wrong */
         est->faults = LADRC_FAULT_INPUT;
@@ -70,18 +71,21 @@ ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s, 
 
 ladrc_real_t ladrc_lp_get_estimate(const ladrc_lp_estimator_t *est)
 {
+    LADRC_REQUIRE(est != NULL, LADRC_R(0.0));
     return ladrc_rls_get_theta(&est->rls)[0];
 }
 
-ladrc_real_t ladrc_lp_step_lead(ladrc_lp_estimator_t *est)
+ladrc_fault_t ladrc_lp_step_lead(ladrc_lp_estimator_t *est, ladrc_real_t *command_rad_s2)
 {
-    LADRC_ASSERT(est != NULL);
+    LADRC_REQUIRE(est != NULL && command_rad_s2 != NULL, LADRC_FAULT_STATE);
     const ladrc_real_t d_hat = ladrc_rls_get_theta(&est->rls)[0];
     if (!est->lead) {
-        return d_hat;
+        *command_rad_s2 = d_hat;
+        return LADRC_FAULT_NONE;
     }
     /* the bounded lead over the actuator (estimator.h) */
     const ladrc_real_t fast = d_hat - est->lead_x;
     est->lead_x += est->lead_beta * fast;
-    return d_hat + (LADRC_LP_LEAD_MAX - LADRC_R(1.0)) * fast;
+    *command_rad_s2 = d_hat + (LADRC_LP_LEAD_MAX - LADRC_R(1.0)) * fast;
+    return LADRC_FAULT_NONE;
 }

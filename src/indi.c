@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Incremental nonlinear dynamic inversion on one axis (see indi.h). */
 #include "ladrc/indi.h"
+#include "require.h"
 
 #include <stddef.h>
 
@@ -51,7 +52,7 @@ ladrc_status_t ladrc_indi_init(ladrc_indi_t *indi, const ladrc_indi_config_t *cf
 
 void ladrc_indi_reset(ladrc_indi_t *indi)
 {
-    LADRC_ASSERT(indi != NULL);
+    LADRC_REQUIRE_VOID(indi != NULL);
     indi->accel.s1 = LADRC_R(0.0);
     indi->accel.s2 = LADRC_R(0.0);
     indi->torque.s1 = LADRC_R(0.0);
@@ -63,18 +64,26 @@ void ladrc_indi_reset(ladrc_indi_t *indi)
     indi->has_rate_last = 0u;
 }
 
-int ladrc_indi_measure(ladrc_indi_t *indi, ladrc_real_t acting_Nm, ladrc_real_t rate_rad_s, int has_rate)
+/* Filter step (both filters, one formula). */
+static void lowpass_step(ladrc_indi_lowpass_t *f, ladrc_real_t alpha, ladrc_real_t x)
 {
+    f->s1 += alpha * (x - f->s1);
+    f->s2 += alpha * (f->s1 - f->s2);
+}
+
+int ladrc_indi_measure(ladrc_indi_t *indi, ladrc_real_t acting_Nm, const ladrc_real_t *rate_rad_s)
+{
+    LADRC_REQUIRE(indi != NULL, 0);
     /* The step just ended joins the interval since the last rate. */
     const uint32_t n = (indi->gap_ticks < UINT32_MAX) ? indi->gap_ticks + 1u : UINT32_MAX;
     const ladrc_real_t torque_sum = indi->gap_torque_Nm + acting_Nm;
-    if (!has_rate) {
+    if (rate_rad_s == NULL) {
         indi->gap_ticks = n;
         indi->gap_torque_Nm = torque_sum;
         return 0;
     }
     if (indi->has_rate_last) {
-        ladrc_real_t accel = (rate_rad_s - indi->rate_last_rad_s) * indi->inv_dt;
+        ladrc_real_t accel = (*rate_rad_s - indi->rate_last_rad_s) * indi->inv_dt;
         ladrc_real_t torque = torque_sum;
         if (n > 1u) {
             /* Means over the n steps of a gap: they obey the same identity. */
@@ -82,10 +91,10 @@ int ladrc_indi_measure(ladrc_indi_t *indi, ladrc_real_t acting_Nm, ladrc_real_t 
             accel *= inv_n;
             torque *= inv_n;
         }
-        (void)ladrc_indi_lowpass_step(&indi->accel, indi->alpha, accel);
-        (void)ladrc_indi_lowpass_step(&indi->torque, indi->alpha, torque);
+        lowpass_step(&indi->accel, indi->alpha, accel);
+        lowpass_step(&indi->torque, indi->alpha, torque);
     }
-    indi->rate_last_rad_s = rate_rad_s;
+    indi->rate_last_rad_s = *rate_rad_s;
     indi->gap_ticks = 0u;
     indi->gap_torque_Nm = LADRC_R(0.0);
     indi->has_rate_last = 1u;
@@ -95,8 +104,15 @@ int ladrc_indi_measure(ladrc_indi_t *indi, ladrc_real_t acting_Nm, ladrc_real_t 
 ladrc_real_t ladrc_indi_command(const ladrc_indi_t *indi, ladrc_real_t error_rad, ladrc_real_t ref_rate_rad_s,
                                 ladrc_real_t ref_accel_rad_s2, ladrc_real_t rate_rad_s)
 {
+    LADRC_REQUIRE(indi != NULL, LADRC_R(0.0));
     const ladrc_real_t rate_ref = indi->k_att * error_rad + ref_rate_rad_s;
     const ladrc_real_t rate_ref_dot = indi->k_att * (ref_rate_rad_s - rate_rad_s) + ref_accel_rad_s2;
     const ladrc_real_t nu = indi->k_rate * (rate_ref - rate_rad_s) + rate_ref_dot;
     return indi->torque.s2 + indi->j * (nu - indi->accel.s2);
+}
+
+ladrc_real_t ladrc_indi_get_disturbance(const ladrc_indi_t *indi)
+{
+    LADRC_REQUIRE(indi != NULL, LADRC_R(0.0));
+    return indi->accel.s2 - indi->b0 * indi->torque.s2;
 }

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Third-order LESO: ZOH current observer and explicit Euler (see leso.h). */
 #include "ladrc/leso.h"
+#include "require.h"
 
 /* Euler's error poles sit at 1 - wo h: inside the unit circle only below 2. */
 #define LESO_EULER_WOH_LIMIT LADRC_R(2.0)
@@ -50,7 +51,7 @@ ladrc_status_t ladrc_leso_init(ladrc_leso_t *obs, const ladrc_leso_config_t *cfg
 
 void ladrc_leso_reset(ladrc_leso_t *obs, ladrc_real_t y0)
 {
-    LADRC_ASSERT(obs != NULL);
+    LADRC_REQUIRE_VOID(obs != NULL);
     obs->z1 = ladrc_is_finite(y0) ? y0 : LADRC_R(0.0);
     obs->z2 = LADRC_R(0.0);
     obs->z3 = LADRC_R(0.0);
@@ -102,7 +103,7 @@ static ladrc_fault_t advance(const ladrc_leso_t *obs, ladrc_real_t *z1_io, ladrc
 ladrc_fault_t ladrc_leso_step(ladrc_leso_t *obs, ladrc_real_t y, ladrc_real_t u, ladrc_real_t accel_known,
                               ladrc_real_t f_rate_known)
 {
-    LADRC_ASSERT(obs != NULL);
+    LADRC_REQUIRE(obs != NULL, LADRC_FAULT_STATE);
     obs->faults = advance(obs, &obs->z1, &obs->z2, &obs->z3, y, u, accel_known, f_rate_known);
     return obs->faults;
 }
@@ -110,7 +111,7 @@ ladrc_fault_t ladrc_leso_step(ladrc_leso_t *obs, ladrc_real_t y, ladrc_real_t u,
 ladrc_fault_t ladrc_leso_step_twin(const ladrc_leso_t *obs, ladrc_leso_twin_t *twin, ladrc_real_t y, ladrc_real_t u,
                                    ladrc_real_t accel_known, ladrc_real_t f_rate_known)
 {
-    LADRC_ASSERT(obs != NULL && twin != NULL);
+    LADRC_REQUIRE(obs != NULL && twin != NULL, LADRC_FAULT_STATE);
     return advance(obs, &twin->z1, &twin->z2, &twin->z3, y, u, accel_known, f_rate_known);
 }
 
@@ -125,19 +126,19 @@ static void hand_over(ladrc_real_t *z3, ladrc_real_t accel_rad_s2)
 
 void ladrc_leso_hand_over(ladrc_leso_t *obs, ladrc_real_t accel_rad_s2)
 {
-    LADRC_ASSERT(obs != NULL);
+    LADRC_REQUIRE_VOID(obs != NULL);
     hand_over(&obs->z3, accel_rad_s2);
 }
 
 void ladrc_leso_twin_hand_over(ladrc_leso_twin_t *twin, ladrc_real_t accel_rad_s2)
 {
-    LADRC_ASSERT(twin != NULL);
+    LADRC_REQUIRE_VOID(twin != NULL);
     hand_over(&twin->z3, accel_rad_s2);
 }
 
 void ladrc_leso_twin_reset(ladrc_leso_twin_t *twin, ladrc_real_t y0)
 {
-    LADRC_ASSERT(twin != NULL);
+    LADRC_REQUIRE_VOID(twin != NULL);
     twin->z1 = ladrc_is_finite(y0) ? y0 : LADRC_R(0.0);
     twin->z2 = LADRC_R(0.0);
     twin->z3 = LADRC_R(0.0);

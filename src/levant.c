@@ -5,6 +5,7 @@
  *        with an implicit, an HD and an explicit Euler discretisation.
  */
 #include "ladrc/levant.h"
+#include "require.h"
 
 #include <stddef.h>
 
@@ -137,10 +138,7 @@ ladrc_status_t ladrc_levant_init(ladrc_levant_t *lev, const ladrc_levant_config_
 
 void ladrc_levant_reset(ladrc_levant_t *lev, ladrc_real_t r_rad)
 {
-    LADRC_ASSERT(lev != NULL);
-    if (lev == NULL) {
-        return;
-    }
+    LADRC_REQUIRE_VOID(lev != NULL);
     lev->faults = LADRC_FAULT_NONE;
     if (ladrc_is_finite(r_rad)) {
         lev->r_last = r_rad;
@@ -157,10 +155,7 @@ void ladrc_levant_reset(ladrc_levant_t *lev, ladrc_real_t r_rad)
 
 void ladrc_levant_get_ref(const ladrc_levant_t *lev, ladrc_ref_t *out)
 {
-    LADRC_ASSERT(lev != NULL && out != NULL);
-    if (lev == NULL || out == NULL) {
-        return;
-    }
+    LADRC_REQUIRE_VOID(lev != NULL && out != NULL);
     out->r = lev->r_last + lev->w;
     out->dr = lev->z1;
     out->ddr = lev->z2;
@@ -168,8 +163,8 @@ void ladrc_levant_get_ref(const ladrc_levant_t *lev, ladrc_ref_t *out)
 
 ladrc_real_t ladrc_levant_get_dddr(const ladrc_levant_t *lev)
 {
-    LADRC_ASSERT(lev != NULL);
-    return (lev != NULL) ? lev->z3 : LADRC_R(0.0);
+    LADRC_REQUIRE(lev != NULL, LADRC_R(0.0));
+    return lev->z3;
 }
 
 /* Keeps the state and writes the held estimate: an input fault when the
@@ -200,10 +195,7 @@ ladrc_fault_t ladrc_levant_step(ladrc_levant_t *lev, ladrc_real_t r_rad, ladrc_r
     ladrc_real_t z3;
     ladrc_real_t r_est;
 
-    LADRC_ASSERT(lev != NULL);
-    if (lev == NULL) {
-        return LADRC_FAULT_STATE;
-    }
+    LADRC_REQUIRE(lev != NULL, LADRC_FAULT_STATE);
     /* h is 0 in an instance never initialised, or rejected: its update is
      * computed (finite work, whatever it gives) and refused below. */
     h = lev->h_s;

@@ -5,6 +5,7 @@
  *        forward model that reports what was achieved.
  */
 #include "ladrc/mixer.h"
+#include "require.h"
 
 #include "compiler.h"
 
@@ -170,10 +171,7 @@ ladrc_real_t ladrc_mixer_thrust_from_tilt(const ladrc_mixer_t *mx, ladrc_real_t 
 {
     ladrc_real_t c;
 
-    LADRC_ASSERT(mx != NULL);
-    if (mx == NULL) {
-        return LADRC_R(0.0);
-    }
+    LADRC_REQUIRE(mx != NULL, LADRC_R(0.0));
     c = ladrc_cos(roll_rad) * ladrc_cos(pitch_rad);
 #if LADRC_FINITE_BY_BITS
     /* -ffast-math may turn the comparison below into its reverse, which a NaN
@@ -212,10 +210,8 @@ static LADRC_FORCE_INLINE void allocate(const ladrc_mixer_t *mx, ladrc_real_t th
 void ladrc_mixer_allocate(const ladrc_mixer_t *mx, ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
                           ladrc_real_t w2_rad2_s2[4])
 {
-    LADRC_ASSERT(mx != NULL && torque_Nm != NULL && w2_rad2_s2 != NULL);
-    if (mx != NULL && torque_Nm != NULL && w2_rad2_s2 != NULL) {
-        allocate(mx, thrust_N, torque_Nm, w2_rad2_s2);
-    }
+    LADRC_REQUIRE_VOID(mx != NULL && torque_Nm != NULL && w2_rad2_s2 != NULL);
+    allocate(mx, thrust_N, torque_Nm, w2_rad2_s2);
 }
 
 /* The forward model (mixer.h), the one place it is written; no argument checks:
@@ -233,10 +229,7 @@ void ladrc_mixer_forward(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[
 {
     ladrc_real_t f[4];
 
-    LADRC_ASSERT(mx != NULL && w2_rad2_s2 != NULL && thrust_N != NULL && torque_Nm != NULL);
-    if (mx == NULL || w2_rad2_s2 == NULL || thrust_N == NULL || torque_Nm == NULL) {
-        return;
-    }
+    LADRC_REQUIRE_VOID(mx != NULL && w2_rad2_s2 != NULL && thrust_N != NULL && torque_Nm != NULL);
     forward(mx, w2_rad2_s2, f);
     *thrust_N = f[0];
     torque_Nm[0] = f[1];
@@ -420,10 +413,7 @@ void ladrc_mixer_saturate(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2
     ladrc_real_t f[4];
     int i;
 
-    LADRC_ASSERT(mx != NULL && w2_rad2_s2 != NULL && torque_Nm != NULL && out != NULL);
-    if (mx == NULL || w2_rad2_s2 == NULL || torque_Nm == NULL || out == NULL) {
-        return;
-    }
+    LADRC_REQUIRE_VOID(mx != NULL && w2_rad2_s2 != NULL && torque_Nm != NULL && out != NULL);
     f[0] = thrust_N;
     f[1] = torque_Nm[0];
     f[2] = torque_Nm[1];
@@ -445,10 +435,7 @@ void ladrc_mixer_reset(ladrc_mixer_t *mx)
 {
     static const ladrc_real_t no_torque[3] = {LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0)};
 
-    LADRC_ASSERT(mx != NULL);
-    if (mx == NULL) {
-        return;
-    }
+    LADRC_REQUIRE_VOID(mx != NULL);
     (void)ladrc_mixer_step(mx, mx->weight_N, no_torque, NULL);
     mx->out.faults = LADRC_FAULT_NONE;
 }
@@ -458,10 +445,7 @@ ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N, const l
 {
     ladrc_fault_t faults = LADRC_FAULT_INPUT;
 
-    LADRC_ASSERT(mx != NULL && torque_Nm != NULL);
-    if (mx == NULL) {
-        return LADRC_FAULT_STATE; /* no state: as td and levant report it */
-    }
+    LADRC_REQUIRE(mx != NULL, LADRC_FAULT_STATE);
     if (torque_Nm != NULL) {
         /* The request: thrust, roll, pitch, yaw. Scalars and local arrays of
          * constant index, so that the common case below stays in registers. */
@@ -486,6 +470,6 @@ ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N, const l
 
 ladrc_fault_t ladrc_mixer_get_faults(const ladrc_mixer_t *mx)
 {
-    LADRC_ASSERT(mx != NULL);
-    return (mx != NULL) ? mx->out.faults : (ladrc_fault_t)LADRC_FAULT_NONE;
+    LADRC_REQUIRE(mx != NULL, LADRC_FAULT_STATE);
+    return mx->out.faults;
 }

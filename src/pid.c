@@ -5,6 +5,7 @@
  *        filter, integrator clamp and conditional integration (freeze).
  */
 #include "ladrc/pid.h"
+#include "require.h"
 
 #include <stddef.h>
 
@@ -85,10 +86,7 @@ ladrc_status_t ladrc_pid_init(ladrc_pid_t *pid, const ladrc_pid_config_t *cfg)
 
 void ladrc_pid_reset(ladrc_pid_t *pid, ladrc_real_t meas_rad)
 {
-    LADRC_ASSERT(pid != NULL);
-    if (pid == NULL) {
-        return;
-    }
+    LADRC_REQUIRE_VOID(pid != NULL);
     clear_dynamic_state(pid);
     if (ladrc_is_finite(meas_rad)) {
         pid->prev_meas_rad = meas_rad;
@@ -101,8 +99,8 @@ void ladrc_pid_reset(ladrc_pid_t *pid, ladrc_real_t meas_rad)
     }
 }
 
-ladrc_real_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t meas_rad,
-                            const ladrc_real_t *rate_rad_s)
+/* One tick on pid's state: sets output_Nm and faults. */
+static void update(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t meas_rad, const ladrc_real_t *rate_rad_s)
 {
     ladrc_fault_t faults = LADRC_FAULT_NONE;
     ladrc_real_t error_rad;
@@ -111,10 +109,6 @@ ladrc_real_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t
     ladrc_real_t integral_Nm;
     ladrc_real_t unclamped_Nm;
 
-    LADRC_ASSERT(pid != NULL);
-    if (pid == NULL) {
-        return LADRC_R(0.0);
-    }
     if (!ladrc_is_finite(ref_rad) || !ladrc_is_finite(meas_rad)) {
         faults = LADRC_FAULT_INPUT;
     }
@@ -134,7 +128,7 @@ ladrc_real_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t
     }
     if ((faults & LADRC_FAULT_INPUT) != 0u) {
         pid->faults = faults;
-        return pid->output_Nm;
+        return;
     }
 
     error_rad = ref_rad - meas_rad;
@@ -153,7 +147,7 @@ ladrc_real_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t
     /* Huge finite inputs can overflow; keep the last good state and output. */
     if (!ladrc_all_finite3(d_rad_s, integral_Nm, unclamped_Nm)) {
         pid->faults = (ladrc_fault_t)(faults | LADRC_FAULT_STATE);
-        return pid->output_Nm;
+        return;
     }
 
     pid->d_filtered_rad_s = d_rad_s;
@@ -164,15 +158,20 @@ ladrc_real_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t
     pid->output_Nm = ladrc_clamp(unclamped_Nm, pid->u_min_Nm, pid->u_max_Nm);
     pid->applied_Nm = pid->output_Nm;
     pid->faults = faults;
-    return pid->output_Nm;
+}
+
+ladrc_fault_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t meas_rad,
+                             const ladrc_real_t *rate_rad_s, ladrc_real_t *torque_Nm)
+{
+    LADRC_REQUIRE(pid != NULL && torque_Nm != NULL, LADRC_FAULT_STATE);
+    update(pid, ref_rad, meas_rad, rate_rad_s);
+    *torque_Nm = pid->output_Nm;
+    return pid->faults;
 }
 
 void ladrc_pid_set_applied(ladrc_pid_t *pid, ladrc_real_t applied_Nm)
 {
-    LADRC_ASSERT(pid != NULL);
-    if (pid == NULL) {
-        return;
-    }
+    LADRC_REQUIRE_VOID(pid != NULL);
     if (ladrc_is_finite(applied_Nm)) {
         pid->applied_Nm = applied_Nm;
     } else {
@@ -184,6 +183,6 @@ void ladrc_pid_set_applied(ladrc_pid_t *pid, ladrc_real_t applied_Nm)
 
 ladrc_fault_t ladrc_pid_get_faults(const ladrc_pid_t *pid)
 {
-    LADRC_ASSERT(pid != NULL);
-    return (pid != NULL) ? pid->faults : (ladrc_fault_t)LADRC_FAULT_NONE;
+    LADRC_REQUIRE(pid != NULL, LADRC_FAULT_STATE);
+    return pid->faults;
 }

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Bounded-gain RLS on the factors P = U D U^T (see rls.h). */
 #include "ladrc/rls.h"
+#include "require.h"
 
 #include "compiler.h"
 
@@ -99,7 +100,7 @@ ladrc_status_t ladrc_rls_init(ladrc_rls_t *rls, const ladrc_rls_config_t *cfg)
 
 void ladrc_rls_reset(ladrc_rls_t *rls, const ladrc_real_t *theta0)
 {
-    LADRC_ASSERT(rls != NULL);
+    LADRC_REQUIRE_VOID(rls != NULL);
     for (unsigned i = 0u; i < LADRC_RLS_MAX_PARAMS; ++i) {
         ladrc_real_t v = LADRC_R(0.0);
         if (theta0 != NULL && i < rls->n_params && ladrc_is_finite(theta0[i])) {
@@ -114,7 +115,9 @@ void ladrc_rls_reset(ladrc_rls_t *rls, const ladrc_real_t *theta0)
 
 ladrc_status_t ladrc_rls_restart(ladrc_rls_t *rls, uint8_t n_params, const ladrc_real_t *theta0)
 {
-    LADRC_ASSERT(rls != NULL);
+    if (rls == NULL) {
+        return LADRC_ERR_NULL;
+    }
     if (n_params < 1u || n_params > LADRC_RLS_MAX_PARAMS) {
         return LADRC_ERR_RLS_N_PARAMS;
     }
@@ -226,7 +229,7 @@ static LADRC_FORCE_INLINE ladrc_fault_t update_n(ladrc_rls_t *rls, const ladrc_r
 
 ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_real_t y)
 {
-    LADRC_ASSERT(rls != NULL && phi != NULL);
+    LADRC_REQUIRE(rls != NULL && phi != NULL, LADRC_FAULT_STATE);
     /* The counts the estimators use most laid out flat (LP: 1; HP, one
      * tone: 3); the others through the loops. */
     switch (rls->n_params) {
@@ -241,7 +244,7 @@ ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_
 
 ladrc_real_t ladrc_rls_predict(const ladrc_rls_t *rls, const ladrc_real_t *phi)
 {
-    LADRC_ASSERT(rls != NULL && phi != NULL);
+    LADRC_REQUIRE(rls != NULL && phi != NULL, LADRC_R(0.0));
     ladrc_real_t y = LADRC_R(0.0);
     for (unsigned i = 0u; i < rls->n_params; ++i) {
         y += phi[i] * rls->theta[i];
@@ -251,25 +254,25 @@ ladrc_real_t ladrc_rls_predict(const ladrc_rls_t *rls, const ladrc_real_t *phi)
 
 const ladrc_real_t *ladrc_rls_get_theta(const ladrc_rls_t *rls)
 {
-    LADRC_ASSERT(rls != NULL);
+    LADRC_REQUIRE(rls != NULL, NULL);
     return rls->theta;
 }
 
 ladrc_real_t ladrc_rls_get_p_norm(const ladrc_rls_t *rls)
 {
-    LADRC_ASSERT(rls != NULL);
+    LADRC_REQUIRE(rls != NULL, LADRC_R(0.0));
     return rls->trace;
 }
 
 ladrc_real_t ladrc_rls_get_p_bound(const ladrc_rls_t *rls)
 {
-    LADRC_ASSERT(rls != NULL);
+    LADRC_REQUIRE(rls != NULL, LADRC_R(0.0));
     return rls->p_bound;
 }
 
 ladrc_real_t ladrc_rls_get_p(const ladrc_rls_t *rls, uint8_t row, uint8_t col)
 {
-    LADRC_ASSERT(rls != NULL);
+    LADRC_REQUIRE(rls != NULL, LADRC_R(0.0));
     const unsigned n = rls->n_params;
     if (row >= n || col >= n) {
         return LADRC_R(0.0);
@@ -288,19 +291,21 @@ ladrc_real_t ladrc_rls_get_p(const ladrc_rls_t *rls, uint8_t row, uint8_t col)
 
 ladrc_real_t ladrc_rls_get_lambda(const ladrc_rls_t *rls)
 {
-    LADRC_ASSERT(rls != NULL);
+    LADRC_REQUIRE(rls != NULL, LADRC_R(0.0));
     return rls->lambda_per_s;
 }
 
 ladrc_fault_t ladrc_rls_get_faults(const ladrc_rls_t *rls)
 {
-    LADRC_ASSERT(rls != NULL);
+    LADRC_REQUIRE(rls != NULL, LADRC_FAULT_STATE);
     return rls->faults;
 }
 
 ladrc_status_t ladrc_rls_set_lambda0(ladrc_rls_t *rls, ladrc_real_t lambda0_per_s)
 {
-    LADRC_ASSERT(rls != NULL);
+    if (rls == NULL) {
+        return LADRC_ERR_NULL;
+    }
     if (!lambda0_is_valid(lambda0_per_s, rls->dt_s)) {
         return LADRC_ERR_RLS_LAMBDA0;
     }

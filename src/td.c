@@ -6,6 +6,7 @@
  *        Rejection Control".
  */
 #include "ladrc/td.h"
+#include "require.h"
 
 #include <stddef.h>
 
@@ -90,10 +91,7 @@ ladrc_status_t ladrc_td_init(ladrc_td_t *td, const ladrc_td_config_t *cfg)
 
 void ladrc_td_reset(ladrc_td_t *td, ladrc_real_t r_rad)
 {
-    LADRC_ASSERT(td != NULL);
-    if (td == NULL) {
-        return;
-    }
+    LADRC_REQUIRE_VOID(td != NULL);
     td->faults = LADRC_FAULT_NONE;
     if (ladrc_is_finite(r_rad)) {
         td->x1 = r_rad;
@@ -111,10 +109,7 @@ ladrc_fault_t ladrc_td_step(ladrc_td_t *td, ladrc_real_t r_rad, ladrc_ref_t *out
     ladrc_real_t x1_next;
     ladrc_real_t x2_next;
 
-    LADRC_ASSERT(td != NULL);
-    if (td == NULL) {
-        return LADRC_FAULT_STATE;
-    }
+    LADRC_REQUIRE(td != NULL, LADRC_FAULT_STATE);
     if (!ladrc_is_finite(r_rad)) {
         td->faults = LADRC_FAULT_INPUT;
         write_held(td, out);

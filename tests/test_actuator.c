@@ -5,6 +5,7 @@
  * motor and a late sensor, and angles that wrap at +-pi for every variant. */
 #include "unity.h"
 #include "test_plant.h"
+#include "test_axis_command.h"
 #include "ladrc/attitude.h"
 #include "ladrc/axis.h"
 #include "test_variants.h"
@@ -133,7 +134,7 @@ static void test_zero_model_is_bit_for_bit_the_plain_observer_and_law(void)
             const ladrc_real_t y = (ladrc_real_t)p.y, rate = (ladrc_real_t)p.w;
             const ladrc_real_t ref = (ladrc_real_t)(0.2 * sin(2.0 * k * DT_S));
             /* when */
-            const ladrc_real_t u = ladrc_axis_step_with_rate(&axis, ref, y, rate);
+            const ladrc_real_t u = axis_command_with_rate(&axis, ref, y, rate);
             (void)ladrc_leso_step(&leso, y, applied, d_hat, LADRC_R(0.0));
             if (lp) {
                 (void)ladrc_lp_step(&est, rate, cfg.b0 * applied);
@@ -157,7 +158,7 @@ static void fly(ladrc_axis_t *axis, lag_plant_t *p, double ref, int n, double *u
 {
     for (int k = 0; k < n; ++k) {
         const double y = plant_measure(p);
-        const double u = ladrc_axis_step_with_rate(axis, (ladrc_real_t)ref, (ladrc_real_t)y, (ladrc_real_t)p->w);
+        const double u = axis_command_with_rate(axis, (ladrc_real_t)ref, (ladrc_real_t)y, (ladrc_real_t)p->w);
         if (u_out)
             u_out[k] = u;
         if (y_out)
@@ -196,11 +197,11 @@ static void test_delay_feeds_the_observer_the_torque_of_d_ticks_before(void)
     ladrc_axis_t axis;
     init_axis(&axis, &cfg);
     for (int k = 0; k < 20; ++k) {
-        (void)ladrc_axis_step(&axis, LADRC_R(0.0), LADRC_R(0.0));
+        (void)axis_command(&axis, LADRC_R(0.0), LADRC_R(0.0));
         ladrc_axis_set_applied(&axis, (ladrc_real_t)(0.001 * (k + 1)));
         /* then: the next observer step takes a_k-3 (0 before the start) */
         const double expect = (k >= 3) ? 0.001 * (k - 2) : 0.0;
-        TEST_ASSERT_FLOAT_WITHIN(1e-9, expect, (double)ladrc_axis_acting_Nm(&axis));
+        TEST_ASSERT_FLOAT_WITHIN(1e-9, expect, (double)ladrc_axis_get_acting_Nm(&axis));
         const double accel = cfg.b0 * expect + axis.leso.z3 + axis.d_hat_rad_s2;
         TEST_ASSERT_FLOAT_WITHIN(ACCEL_REL_TOL * fmax(1.0, fabs(accel)), accel, (double)ladrc_axis_get_accel(&axis));
     }
@@ -214,7 +215,7 @@ static void test_lag_follows_the_exact_first_order_response_and_its_mean(void)
     init_axis(&axis, &cfg);
     const double T = 0.01, a = DT_S / MOTOR_TAU_S;
     for (int k = 0; k < 200; ++k) {
-        (void)ladrc_axis_step(&axis, LADRC_R(0.0), LADRC_R(0.0));
+        (void)axis_command(&axis, LADRC_R(0.0), LADRC_R(0.0));
         ladrc_axis_set_applied(&axis, (ladrc_real_t)T);
         /* then: after this tick the lag has seen the step for n = k - 1 steps
          * (one of delay), and the next step's mean is the exact integral */
@@ -226,7 +227,7 @@ static void test_lag_follows_the_exact_first_order_response_and_its_mean(void)
         const double lag = T * (1.0 - exp(-n * a));
         const double mean = T - (T - lag) * (1.0 - exp(-a)) / a;
         TEST_ASSERT_FLOAT_WITHIN(MODEL_REL_TOL * T, lag, (double)axis.act.lag_Nm);
-        TEST_ASSERT_FLOAT_WITHIN(MODEL_REL_TOL * T, mean, (double)ladrc_axis_acting_Nm(&axis));
+        TEST_ASSERT_FLOAT_WITHIN(MODEL_REL_TOL * T, mean, (double)ladrc_axis_get_acting_Nm(&axis));
     }
 }
 
@@ -267,7 +268,7 @@ static double fly_rms(ladrc_variant_t v, double model_tau, int model_delay, doub
         p.d = d * sin(3.0 * t);
         const double ref = 0.1 * cos(PI_D * t / 2.0);
         const double y = plant_measure(&p);
-        const double u = ladrc_axis_step_with_rate(&axis, (ladrc_real_t)ref, (ladrc_real_t)y, (ladrc_real_t)p.w);
+        const double u = axis_command_with_rate(&axis, (ladrc_real_t)ref, (ladrc_real_t)y, (ladrc_real_t)p.w);
         plant_step(&p, u);
         if (!(fabs(p.y) < 1.0)) {
             return -1.0;
@@ -347,7 +348,7 @@ static double tone_residual(ladrc_variant_t v, int ablate)
     for (int k = 0; k < n; ++k) {
         const double t = k * DT_S;
         const double y = plant_measure(&p);
-        const double u = ladrc_axis_step_with_rate(&axis, 0.0f, (ladrc_real_t)y, (ladrc_real_t)p.w);
+        const double u = axis_command_with_rate(&axis, 0.0f, (ladrc_real_t)y, (ladrc_real_t)p.w);
         p.d = 20.0 + TONE_RAD_S2 * sin(TONE_W_RAD_S * t);
         plant_step(&p, u);
         if (!(fabs(p.y) < 1.0)) {
@@ -418,10 +419,9 @@ static void test_holding_near_pi_gives_the_torque_of_the_same_attitude_reported_
         double worst = 0.0, plain_gap = 0.0;
         for (int k = 0; k < 300; ++k) {
             /* when */
-            const double ua = ladrc_axis_step_with_rate(&a, (ladrc_real_t)hold, (ladrc_real_t)same, LADRC_R(0.0));
-            const double ub = ladrc_axis_step_with_rate(&b, (ladrc_real_t)hold, (ladrc_real_t)reported, LADRC_R(0.0));
-            const double un =
-                ladrc_axis_step_with_rate(&plain, (ladrc_real_t)hold, (ladrc_real_t)reported, LADRC_R(0.0));
+            const double ua = axis_command_with_rate(&a, (ladrc_real_t)hold, (ladrc_real_t)same, LADRC_R(0.0));
+            const double ub = axis_command_with_rate(&b, (ladrc_real_t)hold, (ladrc_real_t)reported, LADRC_R(0.0));
+            const double un = axis_command_with_rate(&plain, (ladrc_real_t)hold, (ladrc_real_t)reported, LADRC_R(0.0));
             worst = fmax(worst, fabs(ua - ub));
             plain_gap = fmax(plain_gap, fabs(ua - un));
         }
@@ -446,7 +446,7 @@ static double fly_turning(ladrc_variant_t v, int wrapped, double y0, double slop
     for (int k = 0; k < n; ++k) {
         const double ref = y0 + slope * k * DT_S;
         const double y = wrapped ? wrap_d(p.y) : p.y, r = wrapped ? wrap_d(ref) : ref;
-        const double u = ladrc_axis_step_with_rate(&axis, (ladrc_real_t)r, (ladrc_real_t)y, (ladrc_real_t)p.w);
+        const double u = axis_command_with_rate(&axis, (ladrc_real_t)r, (ladrc_real_t)y, (ladrc_real_t)p.w);
         err[k] = wrap_d(ref - p.y);
         ladrc_real_t z1, z2, f;
         ladrc_axis_get_estimate(&axis, &z1, &z2, &f);

@@ -3,6 +3,7 @@
  * disturbance rejection against the analytic transfer function, saturation
  * handling, validation, faults and determinism. */
 #include "unity.h"
+#include "test_axis_command.h"
 #include "ladrc/axis.h"
 #include "test_plant.h"
 
@@ -57,7 +58,7 @@ static void run_loop(ladrc_axis_t *axis, const loop_t *loop, int n, double *y, d
     test_double_integrator_t plant;
     test_plant_init(&plant, 1.0 / J_KG_M2, test_sine_disturbance, loop->d ? loop->d : &none);
     for (int k = 0; k < n; ++k) {
-        double u = ladrc_axis_step(axis, (ladrc_real_t)loop->ref_rad, (ladrc_real_t)plant.y_rad);
+        double u = axis_command(axis, (ladrc_real_t)loop->ref_rad, (ladrc_real_t)plant.y_rad);
         if (loop->torque_limit_Nm > 0.0) {
             u = fmax(-loop->torque_limit_Nm, fmin(loop->torque_limit_Nm, u));
             if (loop->report_applied) {
@@ -228,7 +229,7 @@ static void test_output_stays_within_the_configured_torque_limits(void)
     cfg.u_max_Nm = 0.03f;
     ladrc_axis_init(&axis, &cfg);
     for (int k = 0; k < 100; ++k) {
-        const float u = (float)ladrc_axis_step(&axis, (ladrc_real_t)(k < 50 ? 1.0 : -1.0), 0.0f);
+        const float u = (float)axis_command(&axis, (ladrc_real_t)(k < 50 ? 1.0 : -1.0), 0.0f);
         TEST_ASSERT_TRUE(u >= -0.01f && u <= 0.03f);
     }
 }
@@ -341,12 +342,12 @@ static void run_sequence(ladrc_variant_t variant, int n, float *out, int bad_fro
         const ladrc_real_t y = (ladrc_real_t)(0.19 * sin(0.01 * k - 0.1));
         for (uint32_t rep = 1; k >= bad_from && k < bad_to && rep <= 3; ++rep) {
             const ladrc_real_t held = axis.output_Nm;
-            const ladrc_real_t u = ladrc_axis_step(&axis, (rep & 1) ? bad : ref, (rep & 1) ? y : bad);
+            const ladrc_real_t u = axis_command(&axis, (rep & 1) ? bad : ref, (rep & 1) ? y : bad);
             TEST_ASSERT_EQUAL_MEMORY(&held, &u, sizeof u);
             TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_axis_get_faults(&axis));
             TEST_ASSERT_EQUAL_UINT32(rep, ladrc_axis_get_consecutive_faults(&axis));
         }
-        out[k] = (float)ladrc_axis_step(&axis, ref, y);
+        out[k] = (float)axis_command(&axis, ref, y);
         TEST_ASSERT_EQUAL_UINT32(0u, ladrc_axis_get_consecutive_faults(&axis));
     }
 }
@@ -376,8 +377,8 @@ static void test_non_finite_rate_raises_a_flag_and_the_tick_runs_without_it(void
     const ladrc_axis_config_t cfg = ladrc_config(LADRC_SHAPER_TD);
     ladrc_axis_init(&a, &cfg);
     ladrc_axis_init(&b, &cfg);
-    const float ua = (float)ladrc_axis_step(&a, 0.1f, 0.0f);
-    const float ub = (float)ladrc_axis_step_with_rate(&b, 0.1f, 0.0f, (ladrc_real_t)NAN);
+    const float ua = (float)axis_command(&a, 0.1f, 0.0f);
+    const float ub = (float)axis_command_with_rate(&b, 0.1f, 0.0f, (ladrc_real_t)NAN);
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_RATE, ladrc_axis_get_faults(&b));
     TEST_ASSERT_EQUAL_MEMORY(&ua, &ub, sizeof ua);
     TEST_ASSERT_EQUAL_UINT32(0u, ladrc_axis_get_consecutive_faults(&b));
@@ -388,7 +389,7 @@ static void test_non_finite_applied_torque_is_ignored_and_flagged(void)
     ladrc_axis_t axis;
     const ladrc_axis_config_t cfg = ladrc_config(LADRC_SHAPER_TD);
     ladrc_axis_init(&axis, &cfg);
-    const ladrc_real_t u = ladrc_axis_step(&axis, 0.1f, 0.0f);
+    const ladrc_real_t u = axis_command(&axis, 0.1f, 0.0f);
     ladrc_axis_set_applied(&axis, (ladrc_real_t)NAN);
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_APPLIED, ladrc_axis_get_faults(&axis));
     TEST_ASSERT_EQUAL_MEMORY(&u, &axis.applied_Nm, sizeof u);
@@ -399,7 +400,7 @@ static void run_outputs(ladrc_axis_t *axis, int from, int to, float *out)
     for (int k = from; k < to; ++k) {
         const ladrc_real_t ref = (ladrc_real_t)(k < 300 ? 0.0 : 0.3);
         const ladrc_real_t y = (ladrc_real_t)(0.25 * (1.0 - exp(-0.004 * k)));
-        out[k] = (float)ladrc_axis_step_with_rate(axis, ref, y, (ladrc_real_t)(0.001 * exp(-0.004 * k)));
+        out[k] = (float)axis_command_with_rate(axis, ref, y, (ladrc_real_t)(0.001 * exp(-0.004 * k)));
     }
 }
 
@@ -438,9 +439,9 @@ static void test_lp_treats_a_tick_without_rate_as_a_gap(void)
     ladrc_axis_config_t cfg;
     ladrc_axis_config_default(&cfg, LADRC_VARIANT_LP_MLADRC, (ladrc_real_t)DT_S, (ladrc_real_t)J_KG_M2);
     ladrc_axis_init(&axis, &cfg);
-    ladrc_axis_step_with_rate(&axis, 0.0f, 0.0f, 0.0f);
-    ladrc_axis_step(&axis, 0.0f, 0.0f);
-    ladrc_axis_step_with_rate(&axis, 0.0f, 0.0f, 1.0f);
+    axis_command_with_rate(&axis, 0.0f, 0.0f, 0.0f);
+    axis_command(&axis, 0.0f, 0.0f);
+    axis_command_with_rate(&axis, 0.0f, 0.0f, 1.0f);
     /* then no 1 / (2 dt) = 500 rad/s^2 sample reached the estimate */
     TEST_ASSERT_FLOAT_WITHIN(1e-3f, 0.0f, axis.d_hat_rad_s2);
 }
@@ -458,7 +459,7 @@ static double hp_bias_with_known_part(double known_rad_s2)
     test_plant_init(&plant, 1.0 / J_KG_M2, test_sine_disturbance, &d);
     for (int k = 0; k < 3000; ++k) {
         ladrc_axis_set_known_disturbance(&axis, (ladrc_real_t)known_rad_s2);
-        const double u = ladrc_axis_step(&axis, 0.0f, (ladrc_real_t)plant.y_rad);
+        const double u = axis_command(&axis, 0.0f, (ladrc_real_t)plant.y_rad);
         test_plant_step(&plant, u, DT_S, 1);
     }
     return ladrc_hp_get_bias(&axis.part.hp.est);
@@ -496,7 +497,7 @@ static void test_estimates_report_the_observer_or_the_pid_measurement(void)
 
     ladrc_axis_config_default(&cfg, LADRC_VARIANT_PID, (ladrc_real_t)DT_S, (ladrc_real_t)J_KG_M2);
     ladrc_axis_init(&axis, &cfg);
-    ladrc_axis_step(&axis, 0.0f, 0.1f);
+    axis_command(&axis, 0.0f, 0.1f);
     ladrc_axis_get_estimate(&axis, &angle, &rate, &dist);
     TEST_ASSERT_FLOAT_WITHIN(1e-7f, 0.1f, angle);
     TEST_ASSERT_FLOAT_WITHIN(1e-7f, 0.0f, dist);
@@ -522,7 +523,7 @@ static void test_estimators_are_reachable_only_on_their_variant(void)
     ladrc_axis_t axis;
     ladrc_axis_init(&axis, &cfg);
     for (int k = 0; k < 100; ++k) {
-        ladrc_axis_step_with_rate(&axis, 0.0f, 0.0f, (ladrc_real_t)(0.01 * k));
+        axis_command_with_rate(&axis, 0.0f, 0.0f, (ladrc_real_t)(0.01 * k));
     }
     TEST_ASSERT_TRUE(ladrc_lp_get_estimate(ladrc_axis_get_lp(&axis)) != 0.0f);
     TEST_ASSERT_FLOAT_WITHIN(0.0f, axis.d_hat_rad_s2, ladrc_lp_get_estimate(ladrc_axis_get_lp(&axis)));

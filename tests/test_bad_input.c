@@ -17,6 +17,7 @@
  * LADRC_BAD_INPUT_VECTORS sets the calls per variant and entry point
  * (default 10^6; the long form runs 10^8). */
 #include "unity.h"
+#include "test_axis_command.h"
 #include "ladrc/attitude.h"
 #include "ladrc/axis.h"
 #include "test_hostile.h"
@@ -226,7 +227,7 @@ static tally_t run_axis(ladrc_variant_t v, entry_t entry, long n)
         const int rate_bad = !ladrc_within(rate, axis.rate_limit_rad_s);
         snapshot(&axis, &before);
         const ladrc_real_t u =
-            rate_given ? ladrc_axis_step_with_rate(&axis, ref, angle, rate) : ladrc_axis_step(&axis, ref, angle);
+            rate_given ? axis_command_with_rate(&axis, ref, angle, rate) : axis_command(&axis, ref, angle);
         check_tick(&t, k, &before, &axis, u, input_bad, rate_given, rate_bad);
         double u_plant = (double)u;
         if (entry == ENTRY_APPLIED && burst) {

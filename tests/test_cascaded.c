@@ -6,6 +6,7 @@
  * the rate from the angle without a gyro, feed-forward on a ramp, and runs
  * that are bit for bit the same however they are split. */
 #include "unity.h"
+#include "test_axis_command.h"
 #include "ladrc/axis.h"
 #include "test_plant.h"
 
@@ -125,10 +126,9 @@ static void test_init_names_the_bad_field(void)
 static double fly_hold(ladrc_axis_t *axis, test_double_integrator_t *p, double ref_rad, int n, int with_rate)
 {
     for (int k = 0; k < n; ++k) {
-        const ladrc_real_t u = with_rate
-                                   ? ladrc_axis_step_with_rate(axis, (ladrc_real_t)ref_rad, (ladrc_real_t)p->y_rad,
-                                                               (ladrc_real_t)p->rate_rad_s)
-                                   : ladrc_axis_step(axis, (ladrc_real_t)ref_rad, (ladrc_real_t)p->y_rad);
+        const ladrc_real_t u = with_rate ? axis_command_with_rate(axis, (ladrc_real_t)ref_rad, (ladrc_real_t)p->y_rad,
+                                                                  (ladrc_real_t)p->rate_rad_s)
+                                         : axis_command(axis, (ladrc_real_t)ref_rad, (ladrc_real_t)p->y_rad);
         TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_NONE, ladrc_axis_get_faults(axis));
         test_plant_step(p, (double)u, DT_S, 1);
     }
@@ -225,7 +225,7 @@ static void test_rate_setpoint_is_bounded(void)
     ladrc_axis_t axis;
     init_axis(&axis, &cfg);
     /* when */
-    const double u = (double)ladrc_axis_step_with_rate(&axis, LADRC_R(1.0), LADRC_R(0.0), LADRC_R(0.0));
+    const double u = (double)axis_command_with_rate(&axis, LADRC_R(1.0), LADRC_R(0.0), LADRC_R(0.0));
     /* then: the torque of the bounded setpoint */
     TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, (double)cfg.cas_rate_kp * (double)cfg.cas_rate_max_rad_s, u);
     TEST_ASSERT_FLOAT_WITHIN(1e-6, (double)cfg.cas_rate_max_rad_s, axis.part.cas.rate_sp_rad_s);
@@ -246,10 +246,10 @@ static void test_integrator_does_not_wind_up_in_saturation(void)
     init_axis(&a, &cfg);
     /* when */
     for (int k = 0; k < 1000; ++k) {
-        (void)ladrc_axis_step_with_rate(&a, LADRC_R(0.5), LADRC_R(0.0), LADRC_R(0.0));
-        (void)ladrc_axis_step_with_rate(&b, LADRC_R(0.5), LADRC_R(0.0), LADRC_R(0.0));
+        (void)axis_command_with_rate(&a, LADRC_R(0.5), LADRC_R(0.0), LADRC_R(0.0));
+        (void)axis_command_with_rate(&b, LADRC_R(0.5), LADRC_R(0.0), LADRC_R(0.0));
         ladrc_axis_set_applied(&b, LADRC_R(0.05));
-        (void)ladrc_axis_step_with_rate(&c, LADRC_R(0.5), LADRC_R(0.0), LADRC_R(0.0));
+        (void)axis_command_with_rate(&c, LADRC_R(0.5), LADRC_R(0.0), LADRC_R(0.0));
     }
     /* then: the rate error is the bounded setpoint w; the free integrator
      * took ki w 1 s, the limited ones only their first tick, ki h w, before
@@ -259,7 +259,7 @@ static void test_integrator_does_not_wind_up_in_saturation(void)
     TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, ki * DT_S * w, a.part.cas.integral_Nm);
     TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, ki * DT_S * w, b.part.cas.integral_Nm);
     /* and a reversed error unwinds at once */
-    (void)ladrc_axis_step_with_rate(&a, LADRC_R(-0.5), LADRC_R(0.0), LADRC_R(0.0));
+    (void)axis_command_with_rate(&a, LADRC_R(-0.5), LADRC_R(0.0), LADRC_R(0.0));
     TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.0, a.part.cas.integral_Nm);
 }
 
@@ -271,7 +271,7 @@ static void test_integral_limit_bounds_the_integrator(void)
     ladrc_axis_t axis;
     init_axis(&axis, &cfg);
     for (int k = 0; k < 1000; ++k) {
-        (void)ladrc_axis_step_with_rate(&axis, LADRC_R(0.5), LADRC_R(0.0), LADRC_R(0.0));
+        (void)axis_command_with_rate(&axis, LADRC_R(0.5), LADRC_R(0.0), LADRC_R(0.0));
     }
     TEST_ASSERT_EQUAL_FLOAT(0.01f, (float)axis.part.cas.integral_Nm);
 }
@@ -286,7 +286,7 @@ static void test_rate_without_a_gyro_is_the_filtered_angle_difference(void)
     init_axis(&axis, &cfg);
     /* when: 100 ticks (60 filter time constants) */
     for (int k = 0; k < 100; ++k) {
-        (void)ladrc_axis_step(&axis, LADRC_R(0.0), (ladrc_real_t)(2.0 * k * DT_S));
+        (void)axis_command(&axis, LADRC_R(0.0), (ladrc_real_t)(2.0 * k * DT_S));
     }
     ladrc_real_t angle, rate, dist;
     ladrc_axis_get_estimate(&axis, &angle, &rate, &dist);
@@ -311,8 +311,8 @@ static void test_feed_forward_follows_a_ramp_without_lag(void)
         test_double_integrator_t p;
         test_plant_init(&p, 1.0 / J_KG_M2, NULL, NULL);
         for (int k = 0; k < 4000; ++k) {
-            const ladrc_real_t u = ladrc_axis_step_with_rate(&axis, (ladrc_real_t)(v * k * DT_S), (ladrc_real_t)p.y_rad,
-                                                             (ladrc_real_t)p.rate_rad_s);
+            const ladrc_real_t u = axis_command_with_rate(&axis, (ladrc_real_t)(v * k * DT_S), (ladrc_real_t)p.y_rad,
+                                                          (ladrc_real_t)p.rate_rad_s);
             test_plant_step(&p, (double)u, DT_S, 1);
         }
         /* error against the shaped reference the loop tracks, at its tick */
@@ -341,9 +341,9 @@ static void test_wrapped_axis_holds_near_pi_across_the_seam(void)
     /* when */
     double worst = 0.0;
     for (int k = 0; k < 300; ++k) {
-        const double uw = ladrc_axis_step_with_rate(&wrapped, LADRC_R(3.135), LADRC_R(-3.148), LADRC_R(0.0));
+        const double uw = axis_command_with_rate(&wrapped, LADRC_R(3.135), LADRC_R(-3.148), LADRC_R(0.0));
         const double ut =
-            ladrc_axis_step_with_rate(&twin, LADRC_R(3.135), (ladrc_real_t)(-3.148 + 2.0 * PI_D), LADRC_R(0.0));
+            axis_command_with_rate(&twin, LADRC_R(3.135), (ladrc_real_t)(-3.148 + 2.0 * PI_D), LADRC_R(0.0));
         worst = fmax(worst, fabs(uw - ut));
     }
     /* then: the same torque, to the float rounding of the turn (1e-6 rad
@@ -361,8 +361,7 @@ static void fly_record(ladrc_axis_t *axis, test_double_integrator_t *p, int n, l
     for (int k = 0; k < n; ++k) {
         const double t = p->t_s;
         const ladrc_real_t ref = (ladrc_real_t)(0.2 * cos(0.5 * PI_D * t));
-        const ladrc_real_t u =
-            ladrc_axis_step_with_rate(axis, ref, (ladrc_real_t)p->y_rad, (ladrc_real_t)p->rate_rad_s);
+        const ladrc_real_t u = axis_command_with_rate(axis, ref, (ladrc_real_t)p->y_rad, (ladrc_real_t)p->rate_rad_s);
         ladrc_axis_set_applied(axis, ladrc_clamp(u, LADRC_R(-0.2), LADRC_R(0.2))); /* a mixer that saturates */
         u_out[k] = u;
         test_plant_step(p, (double)ladrc_clamp(u, LADRC_R(-0.2), LADRC_R(0.2)), DT_S, 1);
@@ -416,15 +415,15 @@ static void test_non_finite_inputs_are_held_and_flagged(void)
     const ladrc_axis_config_t cfg = paper_config();
     ladrc_axis_t axis;
     init_axis(&axis, &cfg);
-    const ladrc_real_t u0 = ladrc_axis_step_with_rate(&axis, LADRC_R(0.1), LADRC_R(0.0), LADRC_R(0.0));
+    const ladrc_real_t u0 = axis_command_with_rate(&axis, LADRC_R(0.1), LADRC_R(0.0), LADRC_R(0.0));
     ladrc_cascaded_t before;
     memcpy(&before, &axis.part.cas, sizeof before);
     /* a NaN angle: held, flagged, the loops untouched */
-    TEST_ASSERT_TRUE(ladrc_axis_step_with_rate(&axis, LADRC_R(0.1), (ladrc_real_t)NAN, LADRC_R(0.0)) == u0);
+    TEST_ASSERT_TRUE(axis_command_with_rate(&axis, LADRC_R(0.1), (ladrc_real_t)NAN, LADRC_R(0.0)) == u0);
     TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_INPUT, ladrc_axis_get_faults(&axis));
     TEST_ASSERT_EQUAL_MEMORY(&before, &axis.part.cas, sizeof before);
     /* an infinite rate: the tick runs on the angle's difference */
-    (void)ladrc_axis_step_with_rate(&axis, LADRC_R(0.1), LADRC_R(0.001), (ladrc_real_t)INFINITY);
+    (void)axis_command_with_rate(&axis, LADRC_R(0.1), LADRC_R(0.001), (ladrc_real_t)INFINITY);
     TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_RATE, ladrc_axis_get_faults(&axis));
     TEST_ASSERT_TRUE(isfinite((double)axis.part.cas.rate_rad_s));
     /* a NaN applied torque: the own command stands */
@@ -453,7 +452,7 @@ static void test_an_overflowing_update_restarts_the_loops(void)
     ladrc_real_t held = LADRC_R(0.0);
     int tick = -1;
     for (int k = 0; k < 8 && tick < 0; ++k) {
-        const ladrc_real_t u = ladrc_axis_step_with_rate(&axis, LADRC_R(10.0), LADRC_R(0.0), rate);
+        const ladrc_real_t u = axis_command_with_rate(&axis, LADRC_R(10.0), LADRC_R(0.0), rate);
         if ((ladrc_axis_get_faults(&axis) & LADRC_FAULT_STATE) != 0u) {
             tick = k;
             /* then: the command of the tick before is held, the loops restart */
@@ -463,7 +462,7 @@ static void test_an_overflowing_update_restarts_the_loops(void)
         held = u;
     }
     TEST_ASSERT_TRUE(tick >= 4); /* five steps of 0.18 still fit */
-    (void)ladrc_axis_step_with_rate(&axis, LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0));
+    (void)axis_command_with_rate(&axis, LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0));
     TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_NONE, ladrc_axis_get_faults(&axis));
 }
 

@@ -10,6 +10,7 @@
  * findings that shaped the inits, all but one showed within 30 ticks, the
  * other at tick 582; the long form runs 10^4). */
 #include "unity.h"
+#include "test_axis_command.h"
 #include "ladrc/attitude.h"
 #include "ladrc/axis.h"
 #include "ladrc/estimator.h"
@@ -168,7 +169,7 @@ static void run_axis(tally_t *t, const char *name, ladrc_axis_t *axis, const lad
         const ladrc_real_t ref = (ladrc_real_t)(a * sin(2.0 * time_s));
         const ladrc_real_t angle = (ladrc_real_t)(closed ? plant.y_rad : a * sin(2.0 * time_s - 0.1));
         const ladrc_real_t rate = (ladrc_real_t)(closed ? plant.rate_rad_s : 2.0 * a * cos(2.0 * time_s - 0.1));
-        const ladrc_real_t u = ladrc_axis_step_with_rate(axis, ref, angle, rate);
+        const ladrc_real_t u = axis_command_with_rate(axis, ref, angle, rate);
         if (!test_is_finite(u)) {
             violation(t, name, "command not finite", k);
             return;

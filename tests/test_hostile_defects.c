@@ -4,6 +4,7 @@
  * taken at face value, and no init may accept a config whose derived
  * constants overflow or that no rigid body has. */
 #include "unity.h"
+#include "test_axis_command.h"
 #include "ladrc/attitude.h"
 #include "ladrc/axis.h"
 #include "ladrc/estimator.h"
@@ -57,7 +58,7 @@ static double fly(ladrc_variant_t variant, glitch_t glitch, ladrc_real_t value, 
         if (k == glitch_tick && glitch == GLITCH_REFERENCE) {
             ref = value;
         }
-        const ladrc_real_t u = ladrc_axis_step_with_rate(&axis, ref, angle, (ladrc_real_t)plant.rate_rad_s);
+        const ladrc_real_t u = axis_command_with_rate(&axis, ref, angle, (ladrc_real_t)plant.rate_rad_s);
         if (k == glitch_tick && glitch != GLITCH_APPLIED) {
             ladrc_real_t after[3];
             ladrc_axis_get_estimate(&axis, &after[0], &after[1], &after[2]);
@@ -135,13 +136,13 @@ static void test_the_ranges_are_inclusive_and_apply_to_every_input(void)
     cfg.rate_limit_rad_s = LADRC_R(3.0);
     cfg.applied_limit_Nm = LADRC_R(0.5);
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&axis, &cfg));
-    (void)ladrc_axis_step_with_rate(&axis, LADRC_R(2.0), LADRC_R(-2.0), LADRC_R(3.0));
+    (void)axis_command_with_rate(&axis, LADRC_R(2.0), LADRC_R(-2.0), LADRC_R(3.0));
     TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_NONE, ladrc_axis_get_faults(&axis));
-    (void)ladrc_axis_step(&axis, LADRC_R(2.001), LADRC_R(0.0));
+    (void)axis_command(&axis, LADRC_R(2.001), LADRC_R(0.0));
     TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_INPUT, ladrc_axis_get_faults(&axis));
-    (void)ladrc_axis_step(&axis, LADRC_R(0.0), LADRC_R(-2.001));
+    (void)axis_command(&axis, LADRC_R(0.0), LADRC_R(-2.001));
     TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_INPUT, ladrc_axis_get_faults(&axis));
-    (void)ladrc_axis_step_with_rate(&axis, LADRC_R(0.0), LADRC_R(0.0), LADRC_R(-3.001));
+    (void)axis_command_with_rate(&axis, LADRC_R(0.0), LADRC_R(0.0), LADRC_R(-3.001));
     TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_RATE, ladrc_axis_get_faults(&axis));
     ladrc_axis_set_applied(&axis, LADRC_R(0.5));
     TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_RATE, ladrc_axis_get_faults(&axis));

@@ -4,6 +4,7 @@
  * tick), in double precision. */
 #include "unity.h"
 #include "test_plant.h"
+#include "test_axis_command.h"
 #include "ladrc/axis.h"
 #include "ladrc/indi.h"
 
@@ -84,7 +85,7 @@ static ladrc_axis_config_t config(void)
 
 static ladrc_real_t tick(ladrc_axis_t *axis, plant_t *p, double ref)
 {
-    return ladrc_axis_step_with_rate(axis, (ladrc_real_t)ref, (ladrc_real_t)meas_y(p), (ladrc_real_t)meas_w(p));
+    return axis_command_with_rate(axis, (ladrc_real_t)ref, (ladrc_real_t)meas_y(p), (ladrc_real_t)meas_w(p));
 }
 
 void setUp(void)
@@ -336,11 +337,11 @@ static void test_without_a_rate_the_command_is_held_and_flagged(void)
     TEST_ASSERT_TRUE(u != LADRC_R(0.0));
     for (int k = 0; k < 5; ++k) {
         /* when: angle-only ticks and NaN or out-of-range rates */
-        const ladrc_real_t held = ladrc_axis_step(&axis, LADRC_R(0.05), (ladrc_real_t)p.y);
+        const ladrc_real_t held = axis_command(&axis, LADRC_R(0.05), (ladrc_real_t)p.y);
         TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_RATE, ladrc_axis_get_faults(&axis));
         TEST_ASSERT_EQUAL_FLOAT(u, held);
-        const ladrc_real_t bad = ladrc_axis_step_with_rate(&axis, LADRC_R(0.05), (ladrc_real_t)p.y,
-                                                           (k & 1) ? (ladrc_real_t)NAN : LADRC_R(1e3));
+        const ladrc_real_t bad =
+            axis_command_with_rate(&axis, LADRC_R(0.05), (ladrc_real_t)p.y, (k & 1) ? (ladrc_real_t)NAN : LADRC_R(1e3));
         TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_RATE, ladrc_axis_get_faults(&axis));
         TEST_ASSERT_EQUAL_FLOAT(u, bad);
     }
@@ -356,8 +357,8 @@ static void test_rate_gaps_keep_the_filters_synchronised(void)
     plant_init(&p, 0.0, 0);
     double worst = 0.0;
     for (int k = 0; k < 6000; ++k) {
-        const double u = (k % 3 == 2) ? (double)ladrc_axis_step(&axis, LADRC_R(0.1), (ladrc_real_t)p.y)
-                                      : (double)tick(&axis, &p, 0.1);
+        const double u =
+            (k % 3 == 2) ? (double)axis_command(&axis, LADRC_R(0.1), (ladrc_real_t)p.y) : (double)tick(&axis, &p, 0.1);
         plant_step(&p, u, 20.0);
         if (k >= 5500)
             worst = fmax(worst, fabs(0.1 - p.y));
@@ -423,13 +424,13 @@ static void test_a_non_finite_result_restarts_at_rest(void)
     cfg.indi_rate_kp_per_s = LADRC_R(900.0);
     ladrc_axis_t axis;
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&axis, &cfg));
-    const ladrc_real_t u0 = ladrc_axis_step_with_rate(&axis, LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0));
-    const ladrc_real_t u1 = ladrc_axis_step_with_rate(&axis, LADRC_R(0.0), LADRC_R(0.0), LADRC_REAL_MAX);
+    const ladrc_real_t u0 = axis_command_with_rate(&axis, LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0));
+    const ladrc_real_t u1 = axis_command_with_rate(&axis, LADRC_R(0.0), LADRC_R(0.0), LADRC_REAL_MAX);
     TEST_ASSERT_TRUE((ladrc_axis_get_faults(&axis) & LADRC_FAULT_STATE) != 0u);
     TEST_ASSERT_EQUAL_FLOAT(u0, u1);
     TEST_ASSERT_EQUAL_INT(0, axis.part.indi.has_rate_last);
     /* the next good ticks fly on */
-    const ladrc_real_t u2 = ladrc_axis_step_with_rate(&axis, LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0));
+    const ladrc_real_t u2 = axis_command_with_rate(&axis, LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0));
     TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_NONE, ladrc_axis_get_faults(&axis));
     TEST_ASSERT_TRUE(isfinite((double)u2));
 }

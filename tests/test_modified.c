@@ -5,6 +5,7 @@
  * angle noise, and a tone that jumps or stops. Each run starts the
  * disturbance at 2 s on a level reference. */
 #include "unity.h"
+#include "test_axis_command.h"
 #include "ladrc/axis.h"
 #include "test_plant.h"
 
@@ -120,7 +121,7 @@ static result_t fly(const run_t *r, double settle_band_rad)
         const double noise = r->noise_std_rad > 0.0 ? r->noise_std_rad * gaussian(&seed) : 0.0;
         /* LP needs the rate; LADRC and HP ignore it */
         const double u =
-            ladrc_axis_step_with_rate(&axis, 0.0f, (ladrc_real_t)(plant.y_rad + noise), (ladrc_real_t)plant.rate_rad_s);
+            axis_command_with_rate(&axis, 0.0f, (ladrc_real_t)(plant.y_rad + noise), (ladrc_real_t)plant.rate_rad_s);
         test_plant_step(&plant, u, DT_S, 1);
         const double t = (double)(k + 1) * DT_S;
         const double e = fabs(plant.y_rad);

@@ -5,6 +5,7 @@
  * the fast-math stage of tools/run_tests.sh, where the library and this file
  * are compiled with -ffast-math: the guards must hold there too. */
 #include "unity.h"
+#include "test_axis_command.h"
 #include "ladrc/attitude.h"
 #include "ladrc/axis.h"
 #include "ladrc/mixer.h"
@@ -58,16 +59,16 @@ static void check_axis_variant(ladrc_variant_t variant)
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&clean, &cfg));
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&hit, &cfg));
     for (k = 0; k < N_TICKS; ++k) {
-        const ladrc_real_t u_clean = ladrc_axis_step_with_rate(&clean, ref_at(k), angle_at(k), rate_at(k));
+        const ladrc_real_t u_clean = axis_command_with_rate(&clean, ref_at(k), angle_at(k), rate_at(k));
         ladrc_real_t u_hit;
         if (k == BAD_AT - 1) {
             /* the last good tick, then four bad ones in between */
-            u_hit = ladrc_axis_step_with_rate(&hit, ref_at(k), angle_at(k), rate_at(k));
+            u_hit = axis_command_with_rate(&hit, ref_at(k), angle_at(k), rate_at(k));
             TEST_ASSERT_TRUE(same_bits(u_clean, u_hit));
             for (b = 0; b < 4; ++b) {
                 const ladrc_real_t r = kinds[b][0] >= 0 ? test_special_value(kinds[b][0]) : ref_at(k + 1);
                 const ladrc_real_t y = kinds[b][1] >= 0 ? test_special_value(kinds[b][1]) : angle_at(k + 1);
-                held = ladrc_axis_step_with_rate(&hit, r, y, rate_at(k + 1));
+                held = axis_command_with_rate(&hit, r, y, rate_at(k + 1));
                 TEST_ASSERT_TRUE_MESSAGE(ladrc_axis_get_faults(&hit) & LADRC_FAULT_INPUT, "no input fault");
                 TEST_ASSERT_TRUE_MESSAGE(test_is_finite(held), "command not finite");
                 TEST_ASSERT_TRUE_MESSAGE(same_bits(held, u_hit), "command not held");
@@ -80,7 +81,7 @@ static void check_axis_variant(ladrc_variant_t variant)
             ladrc_axis_set_applied(&hit, u_hit);
             continue;
         }
-        u_hit = ladrc_axis_step_with_rate(&hit, ref_at(k), angle_at(k), rate_at(k));
+        u_hit = axis_command_with_rate(&hit, ref_at(k), angle_at(k), rate_at(k));
         /* then: every tick equals the run without the bad ticks, bit for bit */
         TEST_ASSERT_TRUE_MESSAGE(test_is_finite(u_hit), "command not finite");
         TEST_ASSERT_TRUE_MESSAGE(same_bits(u_clean, u_hit), "run differs from the clean run");

@@ -53,6 +53,17 @@ static ladrc_pid_config_t make_config(double kp, double ki, double kd)
     return cfg;
 }
 
+/* One tick's torque command (N m); the step's returned flags are the
+ * tick's flags, as ladrc_pid_get_faults reports them. */
+static ladrc_real_t pid_command(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t meas_rad,
+                                const ladrc_real_t *rate_rad_s)
+{
+    ladrc_real_t torque_Nm = LADRC_R(0.0);
+    const ladrc_fault_t faults = ladrc_pid_step(pid, ref_rad, meas_rad, rate_rad_s, &torque_Nm);
+    TEST_ASSERT_EQUAL_HEX8(ladrc_pid_get_faults(pid), faults);
+    return torque_Nm;
+}
+
 static void init_pid(ladrc_pid_t *pid, const ladrc_pid_config_t *cfg)
 {
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_pid_init(pid, cfg));
@@ -95,7 +106,7 @@ static void test_pid_proportional_term_is_kp_times_error(void)
     ladrc_pid_t pid;
     init_pid(&pid, &cfg);
     /* when */
-    const ladrc_real_t u = ladrc_pid_step(&pid, LADRC_R(0.3), LADRC_R(0.1), NULL);
+    const ladrc_real_t u = pid_command(&pid, LADRC_R(0.3), LADRC_R(0.1), NULL);
     /* then: 20 * (0.3 - 0.1) */
     TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 4.0, u);
 }
@@ -110,9 +121,9 @@ static void test_pid_integral_term_adds_ki_dt_error_every_step(void)
     int k;
     init_pid(&pid, &cfg);
     /* when: 100 steps */
-    u_first = ladrc_pid_step(&pid, LADRC_R(0.2), LADRC_R(0.0), NULL);
+    u_first = pid_command(&pid, LADRC_R(0.2), LADRC_R(0.0), NULL);
     for (k = 1; k < 100; ++k) {
-        u = ladrc_pid_step(&pid, LADRC_R(0.2), LADRC_R(0.0), NULL);
+        u = pid_command(&pid, LADRC_R(0.2), LADRC_R(0.0), NULL);
     }
     /* then: the first step already integrates its error; 100 steps give 100 ki dt e */
     TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 20.0 * 1e-3 * 0.2, u_first);
@@ -129,8 +140,8 @@ static void test_pid_derivative_term_is_minus_kd_times_the_measurement_differenc
     init_pid(&pid, &cfg);
     ladrc_pid_reset(&pid, LADRC_R(0.0));
     /* when: the measurement ramps by 0.01 rad per step (10 rad/s) */
-    u1 = ladrc_pid_step(&pid, LADRC_R(0.0), LADRC_R(0.01), NULL);
-    u2 = ladrc_pid_step(&pid, LADRC_R(0.0), LADRC_R(0.02), NULL);
+    u1 = pid_command(&pid, LADRC_R(0.0), LADRC_R(0.01), NULL);
+    u2 = pid_command(&pid, LADRC_R(0.0), LADRC_R(0.02), NULL);
     /* then: -kd * 10 rad/s on each step */
     TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, -0.5, u1);
     TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, -0.5, u2);
@@ -148,8 +159,8 @@ static void test_pid_derivative_uses_the_measured_rate_when_given(void)
     ladrc_pid_reset(&with_rate, LADRC_R(0.1));
     ladrc_pid_reset(&without_rate, LADRC_R(0.1));
     /* when */
-    const ladrc_real_t u_rate = ladrc_pid_step(&with_rate, LADRC_R(0.0), LADRC_R(0.1), &rate);
-    const ladrc_real_t u_diff = ladrc_pid_step(&without_rate, LADRC_R(0.0), LADRC_R(0.1), NULL);
+    const ladrc_real_t u_rate = pid_command(&with_rate, LADRC_R(0.0), LADRC_R(0.1), &rate);
+    const ladrc_real_t u_diff = pid_command(&without_rate, LADRC_R(0.0), LADRC_R(0.1), NULL);
     /* then: the gyro counts; the still measurement alone gives no derivative */
     TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, -0.1, u_rate);
     TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.0, u_diff);
@@ -162,7 +173,7 @@ static void test_pid_first_step_after_init_has_no_derivative(void)
     ladrc_pid_t pid;
     init_pid(&pid, &cfg);
     /* when: the first measurement is far from 0 */
-    const ladrc_real_t u = ladrc_pid_step(&pid, LADRC_R(0.0), LADRC_R(1.0), NULL);
+    const ladrc_real_t u = pid_command(&pid, LADRC_R(0.0), LADRC_R(1.0), NULL);
     /* then: no spurious kick from differencing against nothing */
     TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.0, u);
 }
@@ -175,9 +186,9 @@ static void test_pid_reference_step_gives_no_derivative_kick(void)
     const double step_rad = 0.1745;
     init_pid(&pid, &cfg);
     ladrc_pid_reset(&pid, LADRC_R(0.0));
-    (void)ladrc_pid_step(&pid, LADRC_R(0.0), LADRC_R(0.0), NULL);
+    (void)pid_command(&pid, LADRC_R(0.0), LADRC_R(0.0), NULL);
     /* when: the reference steps, the measurement has not moved */
-    const ladrc_real_t u = ladrc_pid_step(&pid, (ladrc_real_t)step_rad, LADRC_R(0.0), NULL);
+    const ladrc_real_t u = pid_command(&pid, (ladrc_real_t)step_rad, LADRC_R(0.0), NULL);
     /* then: P and one step of I only (a derivative on the error would add 8.7 N m) */
     TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, kp_paper * step_rad + ki_paper * dt_s * step_rad, u);
 }
@@ -195,7 +206,7 @@ static void test_pid_derivative_filter_step_response_matches_the_first_order_for
     init_pid(&pid, &cfg);
     for (k = 1; k <= 200; ++k) {
         /* when: the measured rate steps to 1 rad/s */
-        const ladrc_real_t u = ladrc_pid_step(&pid, LADRC_R(0.0), LADRC_R(0.0), &rate);
+        const ladrc_real_t u = pid_command(&pid, LADRC_R(0.0), LADRC_R(0.0), &rate);
         /* then: d_k = 1 - (1 - alpha)^k */
         TEST_ASSERT_FLOAT_WITHIN(FILTER_TOL_NM, -(1.0 - pow(1.0 - alpha, k)), u);
     }
@@ -214,12 +225,12 @@ static void test_pid_integrator_is_clamped_to_i_limit(void)
     init_pid(&pid, &cfg);
     /* when: positive error, then negative */
     for (k = 0; k < 1000; ++k) {
-        u = ladrc_pid_step(&pid, LADRC_R(1.0), LADRC_R(0.0), NULL);
+        u = pid_command(&pid, LADRC_R(1.0), LADRC_R(0.0), NULL);
     }
     /* then */
     TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.5, u);
     for (k = 0; k < 1000; ++k) {
-        u = ladrc_pid_step(&pid, LADRC_R(-1.0), LADRC_R(0.0), NULL);
+        u = pid_command(&pid, LADRC_R(-1.0), LADRC_R(0.0), NULL);
     }
     TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, -0.5, u);
 }
@@ -233,9 +244,9 @@ static void test_pid_output_is_clamped_to_its_limits(void)
     cfg.u_max_Nm = LADRC_R(0.3);
     init_pid(&pid, &cfg);
     /* when / then */
-    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.3, ladrc_pid_step(&pid, LADRC_R(1.0), LADRC_R(0.0), NULL));
-    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, -0.2, ladrc_pid_step(&pid, LADRC_R(-1.0), LADRC_R(0.0), NULL));
-    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.1, ladrc_pid_step(&pid, LADRC_R(0.005), LADRC_R(0.0), NULL));
+    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.3, pid_command(&pid, LADRC_R(1.0), LADRC_R(0.0), NULL));
+    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, -0.2, pid_command(&pid, LADRC_R(-1.0), LADRC_R(0.0), NULL));
+    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.1, pid_command(&pid, LADRC_R(0.005), LADRC_R(0.0), NULL));
 }
 
 static void test_pid_held_output_after_reset_lies_within_the_limits(void)
@@ -247,7 +258,7 @@ static void test_pid_held_output_after_reset_lies_within_the_limits(void)
     cfg.u_max_Nm = LADRC_R(0.3);
     init_pid(&pid, &cfg);
     /* when: the very first sample is bad, so the output is the held one */
-    const ladrc_real_t u = ladrc_pid_step(&pid, (ladrc_real_t)NAN, LADRC_R(0.0), NULL);
+    const ladrc_real_t u = pid_command(&pid, (ladrc_real_t)NAN, LADRC_R(0.0), NULL);
     /* then */
     TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.1, u);
 }
@@ -270,8 +281,8 @@ static void test_pid_integrator_does_not_wind_up_while_output_saturates(void)
 
     /* when */
     for (k = 0; k < 1000; ++k) {
-        (void)ladrc_pid_step(&saturated, ref, LADRC_R(0.0), NULL);
-        (void)ladrc_pid_step(&free_running, ref, LADRC_R(0.0), NULL);
+        (void)pid_command(&saturated, ref, LADRC_R(0.0), NULL);
+        (void)pid_command(&free_running, ref, LADRC_R(0.0), NULL);
     }
 
     /* then: the unlimited one integrated ki * 1 s * 0.5 rad = 10 N m; the saturated
@@ -316,7 +327,7 @@ static double recovery_time_s(loop_kind_t kind, double limit_Nm, double amp_rad,
             torque_Nm = kp_paper * e + naive_integral_Nm - kd_paper * axis.rate_rad_s;
             torque_Nm = (torque_Nm > limit_Nm) ? limit_Nm : ((torque_Nm < -limit_Nm) ? -limit_Nm : torque_Nm);
         } else {
-            const ladrc_real_t u = ladrc_pid_step(&pid, (ladrc_real_t)ref, (ladrc_real_t)axis.theta_rad, &rate);
+            const ladrc_real_t u = pid_command(&pid, (ladrc_real_t)ref, (ladrc_real_t)axis.theta_rad, &rate);
             if (kind == LOOP_MIXER_CLAMPS) {
                 const ladrc_real_t applied = ladrc_clamp(u, -limit, limit);
                 ladrc_pid_set_applied(&pid, applied);
@@ -392,7 +403,7 @@ static void test_pid_integrator_freezes_on_a_stalled_axis_when_the_mixer_saturat
     init_pid(&pid, &cfg);
     /* when: 1 s of 0.5 rad error */
     for (k = 0; k < 1000; ++k) {
-        const ladrc_real_t u = ladrc_pid_step(&pid, LADRC_R(0.5), LADRC_R(0.0), NULL);
+        const ladrc_real_t u = pid_command(&pid, LADRC_R(0.5), LADRC_R(0.0), NULL);
         ladrc_pid_set_applied(&pid, ladrc_clamp(u, LADRC_R(-0.5), LADRC_R(0.5)));
     }
     /* then: only the first step integrated (ki dt e = 0.01 N m) */
@@ -407,9 +418,9 @@ static double integral_after(double error_rad, double applied_Nm)
     init_pid(&pid, &cfg);
     ladrc_pid_reset(&pid, LADRC_R(0.0));
     /* the first step commands 20 * e + I_1 */
-    (void)ladrc_pid_step(&pid, (ladrc_real_t)error_rad, LADRC_R(0.0), NULL);
+    (void)pid_command(&pid, (ladrc_real_t)error_rad, LADRC_R(0.0), NULL);
     ladrc_pid_set_applied(&pid, (ladrc_real_t)applied_Nm);
-    (void)ladrc_pid_step(&pid, (ladrc_real_t)error_rad, LADRC_R(0.0), NULL);
+    (void)pid_command(&pid, (ladrc_real_t)error_rad, LADRC_R(0.0), NULL);
     return (double)pid.integral_Nm;
 }
 
@@ -442,7 +453,7 @@ static double steady_error_after_10_degree_step(double ki)
     axis_init(&axis, 0.1);
     for (k = 0; k < 10000; ++k) {
         const ladrc_real_t rate = (ladrc_real_t)axis.rate_rad_s;
-        axis_step(&axis, (double)ladrc_pid_step(&pid, (ladrc_real_t)ref_rad, (ladrc_real_t)axis.theta_rad, &rate));
+        axis_step(&axis, (double)pid_command(&pid, (ladrc_real_t)ref_rad, (ladrc_real_t)axis.theta_rad, &rate));
     }
     return ref_rad - axis.theta_rad;
 }
@@ -552,7 +563,7 @@ static void test_pid_init_accepts_zero_gains_and_infinite_limits(void)
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_pid_init(&pid, &cfg));
     cfg.i_limit_Nm = (ladrc_real_t)INFINITY;
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_pid_init(&pid, &cfg));
-    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.0, ladrc_pid_step(&pid, LADRC_R(1.0), LADRC_R(0.0), NULL));
+    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.0, pid_command(&pid, LADRC_R(1.0), LADRC_R(0.0), NULL));
 }
 
 static void test_pid_rejected_by_init_outputs_zero(void)
@@ -566,7 +577,7 @@ static void test_pid_rejected_by_init_outputs_zero(void)
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_U_LIMITS, ladrc_pid_init(&pid, &cfg));
     /* when: it is stepped anyway */
     for (k = 0; k < 10; ++k) {
-        u = ladrc_pid_step(&pid, LADRC_R(1.0), (ladrc_real_t)(0.01 * k), NULL);
+        u = pid_command(&pid, LADRC_R(1.0), (ladrc_real_t)(0.01 * k), NULL);
     }
     /* then */
     TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.0, u);
@@ -604,13 +615,13 @@ static void test_pid_holds_on_non_finite_reference_or_measurement_and_recovers_a
     init_pid(&faulty, &cfg);
 
     for (k = 0; k < 300; ++k) {
-        u_clean[k] = ladrc_pid_step(&clean, ref_at(k), meas_at(k), NULL);
+        u_clean[k] = pid_command(&clean, ref_at(k), meas_at(k), NULL);
         if (k % 60 == 30) {
             size_t i;
             for (i = 0; i < sizeof bad_ref / sizeof bad_ref[0]; ++i) {
                 /* when: a bad sample */
                 const ladrc_pid_t before = faulty;
-                const ladrc_real_t held = ladrc_pid_step(&faulty, bad_ref[i], bad_meas[i], NULL);
+                const ladrc_real_t held = pid_command(&faulty, bad_ref[i], bad_meas[i], NULL);
                 /* then: input fault, previous output, state untouched */
                 TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_pid_get_faults(&faulty));
                 TEST_ASSERT_EQUAL_MEMORY(&before.output_Nm, &held, sizeof held);
@@ -619,7 +630,7 @@ static void test_pid_holds_on_non_finite_reference_or_measurement_and_recovers_a
                 TEST_ASSERT_EQUAL_MEMORY(&before.prev_meas_rad, &faulty.prev_meas_rad, sizeof held);
             }
         }
-        u_faulty[k] = ladrc_pid_step(&faulty, ref_at(k), meas_at(k), NULL);
+        u_faulty[k] = pid_command(&faulty, ref_at(k), meas_at(k), NULL);
         TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, ladrc_pid_get_faults(&faulty));
     }
 
@@ -639,8 +650,8 @@ static void test_pid_falls_back_to_the_finite_difference_on_a_non_finite_rate(vo
     init_pid(&no_rate, &cfg);
     for (k = 0; k < 100; ++k) {
         /* when */
-        const ladrc_real_t u_told = ladrc_pid_step(&told, ref_at(k), meas_at(k), &bad_rate[k % 2]);
-        const ladrc_real_t u_no_rate = ladrc_pid_step(&no_rate, ref_at(k), meas_at(k), NULL);
+        const ladrc_real_t u_told = pid_command(&told, ref_at(k), meas_at(k), &bad_rate[k % 2]);
+        const ladrc_real_t u_no_rate = pid_command(&no_rate, ref_at(k), meas_at(k), NULL);
         /* then: same command, rate fault raised */
         TEST_ASSERT_EQUAL_MEMORY(&u_no_rate, &u_told, sizeof u_told);
         TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_RATE, ladrc_pid_get_faults(&told));
@@ -656,7 +667,7 @@ static void test_pid_reports_both_faults_when_input_and_rate_are_bad(void)
     ladrc_pid_t pid;
     init_pid(&pid, &cfg);
     /* when */
-    (void)ladrc_pid_step(&pid, LADRC_R(0.0), (ladrc_real_t)NAN, &bad_rate);
+    (void)pid_command(&pid, LADRC_R(0.0), (ladrc_real_t)NAN, &bad_rate);
     /* then */
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT | LADRC_FAULT_RATE, ladrc_pid_get_faults(&pid));
 }
@@ -674,8 +685,8 @@ static void test_pid_ignores_a_non_finite_applied_torque(void)
     init_pid(&told, &cfg);
     init_pid(&untold, &cfg);
     for (k = 0; k < 100; ++k) {
-        const ladrc_real_t u_told = ladrc_pid_step(&told, ref_at(k), meas_at(k), NULL);
-        const ladrc_real_t u_untold = ladrc_pid_step(&untold, ref_at(k), meas_at(k), NULL);
+        const ladrc_real_t u_told = pid_command(&told, ref_at(k), meas_at(k), NULL);
+        const ladrc_real_t u_untold = pid_command(&untold, ref_at(k), meas_at(k), NULL);
         TEST_ASSERT_EQUAL_MEMORY(&u_untold, &u_told, sizeof u_told);
         /* when: a bad report, even after a good one (the mixer answering twice) */
         if (k % 3 == 0) {
@@ -699,11 +710,11 @@ static void test_pid_holds_its_state_when_an_update_would_overflow(void)
     init_pid(&pid, &cfg);
     init_pid(&twin, &cfg);
     for (k = 0; k < 10; ++k) {
-        (void)ladrc_pid_step(&pid, ref_at(k), meas_at(k), NULL);
-        (void)ladrc_pid_step(&twin, ref_at(k), meas_at(k), NULL);
+        (void)pid_command(&pid, ref_at(k), meas_at(k), NULL);
+        (void)pid_command(&twin, ref_at(k), meas_at(k), NULL);
     }
     /* when: finite inputs whose difference overflows */
-    held = ladrc_pid_step(&pid, REAL_MAX, -REAL_MAX, NULL);
+    held = pid_command(&pid, REAL_MAX, -REAL_MAX, NULL);
     /* then: state fault, previous output held, state finite */
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_pid_get_faults(&pid));
     TEST_ASSERT_EQUAL_MEMORY(&twin.output_Nm, &held, sizeof held);
@@ -711,8 +722,8 @@ static void test_pid_holds_its_state_when_an_update_would_overflow(void)
     TEST_ASSERT_FLOAT_IS_DETERMINATE(pid.d_filtered_rad_s);
     /* and when sane inputs return, it continues as if the sample was skipped */
     for (k = 10; k < 20; ++k) {
-        const ladrc_real_t u = ladrc_pid_step(&pid, ref_at(k), meas_at(k), NULL);
-        const ladrc_real_t u_twin = ladrc_pid_step(&twin, ref_at(k), meas_at(k), NULL);
+        const ladrc_real_t u = pid_command(&pid, ref_at(k), meas_at(k), NULL);
+        const ladrc_real_t u_twin = pid_command(&twin, ref_at(k), meas_at(k), NULL);
         TEST_ASSERT_EQUAL_MEMORY(&u_twin, &u, sizeof u);
     }
 }
@@ -731,7 +742,7 @@ static void test_pid_holds_its_state_when_the_error_overflows_without_a_measurem
         init_pid(&pid, &cfg);
         ladrc_pid_reset(&pid, -far);
         /* when: the reference is at +0.6 max: the derivative is 0, the error overflows */
-        held = ladrc_pid_step(&pid, far, -far, NULL);
+        held = pid_command(&pid, far, -far, NULL);
         /* then: state fault, held output and integral */
         TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_pid_get_faults(&pid));
         TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.0, held);
@@ -749,8 +760,8 @@ static void test_pid_reset_with_a_non_finite_measurement_waits_for_a_good_one(vo
     ladrc_pid_reset(&pid, (ladrc_real_t)NAN);
     /* then: input fault; the next measurement seeds the derivative without a kick */
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_pid_get_faults(&pid));
-    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.0, ladrc_pid_step(&pid, LADRC_R(0.0), LADRC_R(0.7), NULL));
-    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, -0.5, ladrc_pid_step(&pid, LADRC_R(0.0), LADRC_R(0.71), NULL));
+    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.0, pid_command(&pid, LADRC_R(0.0), LADRC_R(0.7), NULL));
+    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, -0.5, pid_command(&pid, LADRC_R(0.0), LADRC_R(0.71), NULL));
 }
 
 static void test_pid_functions_tolerate_a_null_instance(void)
@@ -760,10 +771,12 @@ static void test_pid_functions_tolerate_a_null_instance(void)
     }
     /* when / then: no crash, neutral results */
     const ladrc_real_t rate = LADRC_R(1.0);
-    TEST_ASSERT_FLOAT_WITHIN(HAND_TOL_NM, 0.0, ladrc_pid_step(NULL, LADRC_R(1.0), LADRC_R(0.0), &rate));
+    ladrc_real_t torque_Nm = LADRC_R(1.0);
+    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_pid_step(NULL, LADRC_R(1.0), LADRC_R(0.0), &rate, &torque_Nm));
+    TEST_ASSERT_FLOAT_WITHIN(0.0, 1.0, torque_Nm); /* not written */
     ladrc_pid_reset(NULL, LADRC_R(0.0));
     ladrc_pid_set_applied(NULL, LADRC_R(0.0));
-    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, ladrc_pid_get_faults(NULL));
+    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_pid_get_faults(NULL));
 }
 
 /* ----------------------------------------------------------- determinism */
@@ -780,7 +793,7 @@ static void loop_run(loop_t *loop, ladrc_real_t *u_out, int n)
     int i;
     for (i = 0; i < n; ++i, ++loop->k) {
         const double ref = ((loop->k / 300) % 2 != 0) ? 0.4 : -0.3;
-        const ladrc_real_t u = ladrc_pid_step(&loop->pid, (ladrc_real_t)ref, (ladrc_real_t)loop->axis.theta_rad, NULL);
+        const ladrc_real_t u = pid_command(&loop->pid, (ladrc_real_t)ref, (ladrc_real_t)loop->axis.theta_rad, NULL);
         const ladrc_real_t applied = ladrc_clamp(u, LADRC_R(-0.4), LADRC_R(0.4));
         ladrc_pid_set_applied(&loop->pid, applied);
         axis_step(&loop->axis, (double)applied);

@@ -73,7 +73,7 @@
  *
  * CASCADED tick (cascaded.h): the shaper gives (r, r') from the raw
  * reference as for LADRC (TD by default), then the attitude P loop and the
- * rate PID give the torque. With ladrc_axis_step (no rate) the rate is a
+ * rate PID give the torque. Without a measured rate (NULL) the rate is a
  * filtered difference of the measured angle (cas_rate_filter_tau_s).
  *
  * Faults: a reference or angle that is not finite or lies beyond
@@ -307,16 +307,19 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
 /** Restarts at rest on angle_rad (reference shaper and observer start there). */
 void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad);
 
-/** One tick with angle only. @return torque command (N m) */
-ladrc_real_t ladrc_axis_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad);
-
-/** One tick with a measured rate too: PID uses it for its derivative,
- *  CASCADED for its rate loop, LP-MLADRC for its disturbance sample (without
- *  a rate LP holds its estimate) and INDI for its rate loop and acceleration
- *  (without a rate INDI holds its command and raises LADRC_FAULT_RATE, in
- *  ladrc_axis_step too); LADRC and HP-MLADRC ignore it. @return torque command (N m) */
-ladrc_real_t ladrc_axis_step_with_rate(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
-                                       ladrc_real_t rate_rad_s);
+/**
+ * One tick.
+ * @param rate_rad_s  the measured rate (rad/s), or NULL without one: PID uses
+ *                    it for its derivative, CASCADED for its rate loop,
+ *                    LP-MLADRC for its disturbance sample (without a rate LP
+ *                    holds its estimate) and INDI for its rate loop and
+ *                    acceleration (without a rate INDI holds its command and
+ *                    raises LADRC_FAULT_RATE); LADRC and HP-MLADRC ignore it
+ * @param torque_Nm   out: the torque command (N m)
+ * @return the tick's fault flags (also ladrc_axis_get_faults)
+ */
+ladrc_fault_t ladrc_axis_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
+                              const ladrc_real_t *rate_rad_s, ladrc_real_t *torque_Nm);
 
 /** Reports the torque actually applied since the last tick (N m), e.g. after
  *  mixer saturation. Not finite or beyond applied_limit_Nm: ignored,
@@ -339,15 +342,7 @@ void ladrc_axis_set_known_disturbance(ladrc_axis_t *axis, ladrc_real_t f_known_r
 
 /** Torque (N m) the next tick's observer step takes as acting: the applied
  *  torque without a model, else its delayed and lagged mean (see above). */
-static inline ladrc_real_t ladrc_axis_acting_Nm(const ladrc_axis_t *axis)
-{
-    if (!axis->model) {
-        return axis->applied_Nm;
-    }
-    const ladrc_actuator_t *act = &axis->act;
-    const ladrc_real_t v = (act->delay_ticks != 0u) ? act->delayed_Nm[act->head] : axis->applied_Nm;
-    return act->lag_Nm + act->mean_gain * (v - act->lag_Nm);
-}
+ladrc_real_t ladrc_axis_get_acting_Nm(const ladrc_axis_t *axis);
 
 /** Angular acceleration the model expects over the observer's next step
  *  (rad/s^2): b0 * acting torque + z3 + d_hat. PID, CASCADED: 0. INDI: b0 *

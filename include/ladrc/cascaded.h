@@ -117,19 +117,16 @@ void ladrc_cascaded_reset(ladrc_cascaded_t *c, ladrc_real_t angle_rad);
 
 /**
  * One tick on finite inputs (the axis checks them): shaped reference ref,
- * measured angle, measured rate (NULL: from the angle). Returns 0, or
- * LADRC_FAULT_STATE when the update would leave the real type: the state
- * and the command are then left as they were (the axis restarts it).
- * The command is c->output_Nm.
+ * measured angle, measured rate (NULL: from the angle); torque_Nm receives
+ * the command (N m). Returns 0, or LADRC_FAULT_STATE when the update would
+ * leave the real type: the state and the command are then left as they
+ * were (the axis restarts it).
  */
 ladrc_fault_t ladrc_cascaded_step(ladrc_cascaded_t *c, const ladrc_ref_t *ref, ladrc_real_t angle_rad,
-                                  const ladrc_real_t *rate_rad_s);
+                                  const ladrc_real_t *rate_rad_s, ladrc_real_t *torque_Nm);
 
 /** Torque actually applied since the latest tick (finite: the caller checks). */
-static inline void ladrc_cascaded_set_applied(ladrc_cascaded_t *c, ladrc_real_t applied_Nm)
-{
-    c->applied_Nm = applied_Nm;
-}
+void ladrc_cascaded_set_applied(ladrc_cascaded_t *c, ladrc_real_t applied_Nm);
 
 #ifdef __cplusplus
 }

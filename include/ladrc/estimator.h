@@ -150,10 +150,11 @@ ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s, 
 ladrc_real_t ladrc_lp_get_estimate(const ladrc_lp_estimator_t *est);
 
 /** One tick of the command's lead over the actuator (see above) on the
- *  current d_hat; call once per tick after ladrc_lp_step. Returns the
- *  compensation the command should carry (rad/s^2): d_hat itself without an
- *  actuator (then nothing is computed). */
-ladrc_real_t ladrc_lp_step_lead(ladrc_lp_estimator_t *est);
+ *  current d_hat; call once per tick after ladrc_lp_step. command_rad_s2
+ *  receives the compensation the command should carry (rad/s^2): d_hat
+ *  itself without an actuator (then nothing is computed). Returns 0 (no
+ *  input to fault on). */
+ladrc_fault_t ladrc_lp_step_lead(ladrc_lp_estimator_t *est, ladrc_real_t *command_rad_s2);
 
 typedef enum {
     LADRC_HP_FREQ_KNOWN = 0, /**< the disturbance frequencies are given (paper) */

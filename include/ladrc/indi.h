@@ -35,13 +35,13 @@
  * Acceleration and torque (tick k, h = dt_s). The measured rate is
  * differenced, omegadot_k = (omega_k - omega_k-1) / h, and the torque that
  * acted over that same step is the axis's acting torque ubar_k
- * (ladrc_axis_acting_Nm: the applied torque of tick k-1, or, with the
+ * (ladrc_axis_get_acting_Nm: the applied torque of tick k-1, or, with the
  * actuator model, the applied torque delayed by delay_ticks and lagged by
  * motor_tau_s, averaged over the step). For the rigid body with the torque
  * held over the step, omegadot_k = b0 ubar_k + (mean d over the step)
  * holds exactly, so the pair is synchronised before filtering, and stays so
  * after it because both go through the same filter, one formula
- * (ladrc_indi_lowpass_step):
+ * (one filter step, twice):
  *
  *     F(z) = (alpha / (1 - (1 - alpha) z^-1))^2,   alpha = 1 - exp(-w_f h)
  *
@@ -113,14 +113,6 @@ typedef struct {
     uint8_t has_rate_last;        /**< 0 after a reset until a first rate */
 } ladrc_indi_t;
 
-/** Filter step (both filters, one formula): returns the new output. */
-static inline ladrc_real_t ladrc_indi_lowpass_step(ladrc_indi_lowpass_t *f, ladrc_real_t alpha, ladrc_real_t x)
-{
-    f->s1 += alpha * (x - f->s1);
-    f->s2 += alpha * (f->s1 - f->s2);
-    return f->s2;
-}
-
 /** Validates (LADRC_ERR_DT_S, _B0, _INDI_ATT_KP, _INDI_RATE_KP, _INDI_FILTER,
  *  in that order; LADRC_ERR_NULL) and resets. */
 ladrc_status_t ladrc_indi_init(ladrc_indi_t *indi, const ladrc_indi_config_t *cfg);
@@ -130,12 +122,12 @@ void ladrc_indi_reset(ladrc_indi_t *indi);
 
 /**
  * The measurement half of a tick: acting_Nm is the torque that acted over the
- * step just ended (ladrc_axis_acting_Nm). With a rate (has_rate = 1) the
- * filters take the step (or the gap's mean) and 1 is returned; without one
- * the step joins the gap and 0 is returned (hold the command). The first rate
- * after a reset only seeds: 1, filters unchanged.
+ * step just ended (ladrc_axis_get_acting_Nm). With a rate (rate_rad_s not NULL)
+ * the filters take the step (or the gap's mean) and 1 is returned; without
+ * one the step joins the gap and 0 is returned (hold the command). The first
+ * rate after a reset only seeds: 1, filters unchanged.
  */
-int ladrc_indi_measure(ladrc_indi_t *indi, ladrc_real_t acting_Nm, ladrc_real_t rate_rad_s, int has_rate);
+int ladrc_indi_measure(ladrc_indi_t *indi, ladrc_real_t acting_Nm, const ladrc_real_t *rate_rad_s);
 
 /** The command u = u_f + J (nu - omegadot_f) for the attitude error
  *  (r - theta, already wrapped), the shaped reference's r' and r'' and the
@@ -144,10 +136,7 @@ ladrc_real_t ladrc_indi_command(const ladrc_indi_t *indi, ladrc_real_t error_rad
                                 ladrc_real_t ref_accel_rad_s2, ladrc_real_t rate_rad_s);
 
 /** The disturbance INDI acts on, omegadot_f - b0 u_f = (F d) (rad/s^2). */
-static inline ladrc_real_t ladrc_indi_disturbance(const ladrc_indi_t *indi)
-{
-    return indi->accel.s2 - indi->b0 * indi->torque.s2;
-}
+ladrc_real_t ladrc_indi_get_disturbance(const ladrc_indi_t *indi);
 
 #ifdef __cplusplus
 }

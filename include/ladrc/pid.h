@@ -99,16 +99,17 @@ ladrc_status_t ladrc_pid_init(ladrc_pid_t *pid, const ladrc_pid_config_t *cfg);
 void ladrc_pid_reset(ladrc_pid_t *pid, ladrc_real_t meas_rad);
 
 /**
- * One tick. rate_rad_s may be NULL (no rate sensor: differentiate meas_rad).
- * Non-finite ref/meas: state held, last output returned, LADRC_FAULT_INPUT;
+ * One tick. rate_rad_s may be NULL (no rate sensor: differentiate meas_rad);
+ * torque_Nm receives the command (N m), within [u_min_Nm, u_max_Nm].
+ * Non-finite ref/meas: state held, last command given, LADRC_FAULT_INPUT;
  * the next good step continues as if the bad samples had been skipped.
  * Non-finite *rate_rad_s: the finite difference is used, LADRC_FAULT_RATE.
  * An update that would overflow the state (huge finite inputs): state held,
- * last output returned, LADRC_FAULT_STATE.
- * @return torque command (N m), within [u_min_Nm, u_max_Nm]
+ * last command given, LADRC_FAULT_STATE.
+ * @return the tick's fault flags (also ladrc_pid_get_faults)
  */
-ladrc_real_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t meas_rad,
-                            const ladrc_real_t *rate_rad_s);
+ladrc_fault_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t meas_rad,
+                             const ladrc_real_t *rate_rad_s, ladrc_real_t *torque_Nm);
 
 /** Reports the torque actually applied after the last step (N m). A non-finite
  *  value is ignored (the clamped output counts) and adds LADRC_FAULT_APPLIED to the

@@ -190,8 +190,7 @@ class _Library:
                                            ctypes.POINTER(self.AxisConfig), i, r, r)
         self.axis_init = self.fn("ladrc_axis_init", i, vp, ctypes.POINTER(self.AxisConfig))
         self.axis_reset = self.fn("ladrc_axis_reset", None, vp, r)
-        self.axis_step = self.fn("ladrc_axis_step", r, vp, r, r)
-        self.axis_step_with_rate = self.fn("ladrc_axis_step_with_rate", r, vp, r, r, r)
+        self.axis_step = self.fn("ladrc_axis_step", u8, vp, r, r, rp, rp)
         self.axis_set_applied = self.fn("ladrc_axis_set_applied", None, vp, r)
         self.axis_get_faults = self.fn("ladrc_axis_get_faults", u8, vp)
         self.axis_get_consecutive_faults = self.fn("ladrc_axis_get_consecutive_faults", ctypes.c_uint32, vp)
@@ -306,9 +305,11 @@ class Axis:
 
     def step(self, ref_rad, angle_rad, rate_rad_s=None):
         """One tick: the torque command (N m). rate_rad_s (gyro) for LP-MLADRC, PID, CASCADED and INDI."""
-        if rate_rad_s is None:
-            return self._lib.axis_step(self._state, ref_rad, angle_rad)
-        return self._lib.axis_step_with_rate(self._state, ref_rad, angle_rad, rate_rad_s)
+        lib = self._lib
+        torque = lib.real()
+        rate = None if rate_rad_s is None else ctypes.byref(lib.real(rate_rad_s))
+        lib.axis_step(self._state, ref_rad, angle_rad, rate, ctypes.byref(torque))
+        return torque.value
 
     def set_applied(self, torque_Nm):
         self._lib.axis_set_applied(self._state, torque_Nm)

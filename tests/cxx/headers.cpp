@@ -29,8 +29,9 @@ int main()
         std::printf("init: %s\n", ladrc_status_str(st));
         return 1;
     }
-    const ladrc_real_t u = ladrc_axis_step(&axis, LADRC_R(0.1), LADRC_R(0.0));
-    if (!(u > LADRC_R(0.0)) || ladrc_sizeof_axis_t() != sizeof(ladrc_axis_t) || !ladrc_is_positive(u)) {
+    ladrc_real_t u = LADRC_R(0.0);
+    const ladrc_fault_t faults = ladrc_axis_step(&axis, LADRC_R(0.1), LADRC_R(0.0), nullptr, &u);
+    if (faults != LADRC_FAULT_NONE || !(u > LADRC_R(0.0)) || ladrc_sizeof_axis_t() != sizeof(ladrc_axis_t) || !ladrc_is_positive(u)) {
         std::printf("unexpected: u = %g\n", static_cast<double>(u));
         return 1;
     }

@@ -74,7 +74,8 @@ static int trace_axis(FILE *f, ladrc_variant_t variant)
         /* 20 + 60 sin-like triangle disturbance (rad/s^2) from 1.5 s */
         const ladrc_real_t dist =
             (k >= 1500) ? LADRC_R(20.0) + LADRC_R(0.06) * (ladrc_real_t)((k % 1000) - 500) : LADRC_R(0.0);
-        const ladrc_real_t u = ladrc_axis_step_with_rate(&axis, ref, angle, rate);
+        ladrc_real_t u;
+        (void)ladrc_axis_step(&axis, ref, angle, &rate, &u);
         ladrc_axis_set_applied(&axis, u);
         fprintf(f, "axis %d", (int)variant);
         put(f, ref);

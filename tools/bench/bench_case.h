@@ -104,7 +104,9 @@ int bench_setup_attitude(ladrc_attitude_t *att, ladrc_mixer_t *mixer, int bench_
  * calls as firmware would, and nothing more. */
 static inline ladrc_real_t bench_axis_tick(ladrc_axis_t *axis, const bench_inputs_t *in, int i)
 {
-    return ladrc_axis_step_with_rate(axis, bench_ref[i][0], in->axis_ang[i], in->axis_rate[i]);
+    ladrc_real_t torque_Nm;
+    (void)ladrc_axis_step(axis, bench_ref[i][0], in->axis_ang[i], &in->axis_rate[i], &torque_Nm);
+    return torque_Nm;
 }
 
 /* 3 axes + mixer: attitude step, thrust from the tilt, mix, the achieved

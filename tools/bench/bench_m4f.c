@@ -139,10 +139,17 @@ static ladrc_real_t lone_tick(int i)
     for (int a = 0; a < LADRC_AXES; ++a) {
         ladrc_axis_set_disturbance_rate(&mod.lone[a], frate_in[i][a]);
         ladrc_axis_set_known_disturbance(&mod.lone[a], known_in[i][a]);
-        u = ladrc_axis_step_with_rate(&mod.lone[a], bench_ref[i][a], in->ang[i][a], in->rate[i][a]);
+        (void)ladrc_axis_step(&mod.lone[a], bench_ref[i][a], in->ang[i][a], &in->rate[i][a], &u);
         ladrc_axis_set_applied(&mod.lone[a], applied_in[i][a]);
     }
     return u;
+}
+
+static inline ladrc_real_t pid_tick(int i)
+{
+    ladrc_real_t torque_Nm;
+    (void)ladrc_pid_step(&mod.pid, bench_ref[i][0], in->ang[i][0], &in->rate[i][0], &torque_Nm);
+    return torque_Nm;
 }
 
 static ladrc_real_t lone_empty(int i)
@@ -204,8 +211,7 @@ static uint32_t run(run_t what, int warm, int timed)
         BLOCK((void)ladrc_rls_update(&mod.rls5, phi5_in[i], y5_in[i]), phi5_in[i][1] + y5_in[i]);
         break;
     case RUN_PID:
-        BLOCK(sink = ladrc_pid_step(&mod.pid, bench_ref[i][0], in->ang[i][0], &in->rate[i][0]),
-              bench_empty_tick(in, i));
+        BLOCK(sink = pid_tick(i), bench_empty_tick(in, i));
         break;
     case RUN_THRUST:
         BLOCK(sink = ladrc_mixer_thrust_from_tilt(&mod.mixer, in->ang[i][0], in->ang[i][1]),

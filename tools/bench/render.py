@@ -86,7 +86,7 @@ def render(fig):
     echo("| measure | value | budget | status |")
     echo("|---|---:|---:|---|")
     for v in cases:
-        row(f"{label(v)}, one axis (ladrc_axis_step_with_rate), instructions/tick", insn(v, 1), "", "")
+        row(f"{label(v)}, one axis (ladrc_axis_step with a rate), instructions/tick", insn(v, 1), "", "")
     for v in ("PID", "LADRC", "LP-MLADRC"):
         row(f"{v}, 3 axes + mixer, instructions/tick", insn(v, 2), "", "")
     row("HP-MLADRC, 3 axes + mixer, instructions/tick", hp3, "<= 1500", mark(hp3, "<=", 1500))
@@ -207,7 +207,7 @@ def render(fig):
     brow("ladrc_hp_step without its RLS update (gate, tones, online frequencies, model), one tone", hp_own, 3)
     brow(f"ladrc_rls_update, 3 params (HP fit of bias and one tone, every {fd} ticks)", mod("ladrc_rls_update_3"),
          calc(3 / fit_decimation))
-    brow("rest of ladrc_axis_step_with_rate (checks, hand-over, control law) and the feed setters: a lone HP axis "
+    brow("rest of ladrc_axis_step with a rate (checks, hand-over, control law) and the feed setters: a lone HP axis "
          "minus the rows above", axis_rest, 3)
     brow("ladrc_mixer_thrust_from_tilt", thrust, 1)
     brow("ladrc_mixer_step (allocate, saturate)", mixer, 1)
