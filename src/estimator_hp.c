@@ -3,6 +3,7 @@
  * by one RLS at known or online-estimated frequencies, behind a gate that
  * checks the frequencies themselves (see estimator.h). */
 #include "ladrc/estimator.h"
+#include "require.h"
 
 #include "compiler.h"
 
@@ -274,7 +275,7 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
 
 void ladrc_hp_reset(ladrc_hp_estimator_t *est)
 {
-    LADRC_ASSERT(est != NULL);
+    LADRC_REQUIRE_VOID(est != NULL);
     est->fit_rate_per_s = est->lambda0_max;
     (void)ladrc_rls_set_lambda0(&est->fit, est->fit_rate_per_s);
     start_fit(est, est->online ? 1u : est->n_tones, NULL);
@@ -733,7 +734,7 @@ static void advance_phase(ladrc_hp_tone_t *tone)
 
 ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s2)
 {
-    LADRC_ASSERT(est != NULL);
+    LADRC_REQUIRE(est != NULL, LADRC_FAULT_STATE);
     est->faults = LADRC_FAULT_NONE;
     ladrc_real_t weight_before = est->weight;
     if (!ladrc_within(sample_rad_s2, HP_SAMPLE_LIMIT_RAD_S2)) {
@@ -781,11 +782,13 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
 
 ladrc_real_t ladrc_hp_get_estimate(const ladrc_hp_estimator_t *est)
 {
+    LADRC_REQUIRE(est != NULL, LADRC_R(0.0));
     return est->estimate;
 }
 
 ladrc_real_t ladrc_hp_get_command(const ladrc_hp_estimator_t *est)
 {
+    LADRC_REQUIRE(est != NULL, LADRC_R(0.0));
     if (!est->advance) {
         return est->estimate;
     }
@@ -802,21 +805,25 @@ ladrc_real_t ladrc_hp_get_command(const ladrc_hp_estimator_t *est)
 
 ladrc_real_t ladrc_hp_get_handover(const ladrc_hp_estimator_t *est)
 {
+    LADRC_REQUIRE(est != NULL, LADRC_R(0.0));
     return est->handover;
 }
 
 unsigned ladrc_hp_get_active_tones(const ladrc_hp_estimator_t *est)
 {
+    LADRC_REQUIRE(est != NULL, 0u);
     return est->n_active;
 }
 
 ladrc_real_t ladrc_hp_get_freq(const ladrc_hp_estimator_t *est, unsigned k)
 {
+    LADRC_REQUIRE(est != NULL, LADRC_R(0.0));
     return (k < est->n_active) ? est->tone[k].w_rad_s : LADRC_R(0.0);
 }
 
 ladrc_real_t ladrc_hp_get_amplitude(const ladrc_hp_estimator_t *est, unsigned k)
 {
+    LADRC_REQUIRE(est != NULL, LADRC_R(0.0));
     if (k >= est->n_active) {
         return LADRC_R(0.0);
     }
@@ -828,20 +835,24 @@ ladrc_real_t ladrc_hp_get_amplitude(const ladrc_hp_estimator_t *est, unsigned k)
 
 int ladrc_hp_tone_locked(const ladrc_hp_estimator_t *est, unsigned k)
 {
+    LADRC_REQUIRE(est != NULL, 0);
     return (k < est->n_active) ? (int)est->tone[k].locked : 0;
 }
 
 ladrc_real_t ladrc_hp_get_weight(const ladrc_hp_estimator_t *est)
 {
+    LADRC_REQUIRE(est != NULL, LADRC_R(0.0));
     return est->weight;
 }
 
 ladrc_real_t ladrc_hp_get_bias(const ladrc_hp_estimator_t *est)
 {
+    LADRC_REQUIRE(est != NULL, LADRC_R(0.0));
     return ladrc_rls_get_theta(&est->fit)[0];
 }
 
 const ladrc_rls_t *ladrc_hp_get_fit(const ladrc_hp_estimator_t *est)
 {
+    LADRC_REQUIRE(est != NULL, NULL);
     return &est->fit;
 }

@@ -6,7 +6,9 @@
  * function returns a safe value instead of dereferencing it: a step
  * LADRC_FAULT_STATE, a getter 0, a function without a result nothing.
  * Inits report NULL as LADRC_ERR_NULL, like any other bad config, without
- * asserting (a status is how init reports).
+ * asserting (a status is how init reports). Measured cost of the checks on
+ * the tick's path (tools/bench, Cortex-M4F -Os): 16 instructions per HP
+ * axis, 67 of the 3-axis HP tick with the mixer (2,804 -> 2,871, 2.4 %).
  */
 #ifndef LADRC_REQUIRE_H
 #define LADRC_REQUIRE_H
