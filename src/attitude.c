@@ -58,7 +58,6 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
     if (cfg->coupling_feed > 1u) {
         return LADRC_ERR_COUPLING_FEED;
     }
-    att->observers = 1u;
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
         /* The feed mixes the axes' states tick by tick: one clock for all. */
         ladrc_status_t status = (cfg->axis[i].dt_s == cfg->axis[0].dt_s) ? LADRC_OK : LADRC_ERR_DT_S;
@@ -77,9 +76,6 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
             axis_hp_stagger(&att->axis[i], i);
         }
 #endif
-        if ((cfg->axis[i].variant == LADRC_VARIANT_PID) || (cfg->axis[i].variant == LADRC_VARIANT_CASCADED)) {
-            att->observers = 0u; /* set_applied must reach its integrator */
-        }
         /* (J of the next axis - J of the one after) / J, roll -> pitch -> yaw -> roll */
         const unsigned next = (i == LADRC_YAW) ? 0u : i + 1u;
         const unsigned after = (next == LADRC_YAW) ? 0u : next + 1u;
@@ -181,20 +177,7 @@ ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_
 void ladrc_attitude_set_applied(ladrc_attitude_t *att, const ladrc_real_t torque_Nm[LADRC_AXES])
 {
     LADRC_REQUIRE_VOID(att != NULL && torque_Nm != NULL);
-    const ladrc_real_t t0 = torque_Nm[0];
-    const ladrc_real_t t1 = torque_Nm[1];
-    const ladrc_real_t t2 = torque_Nm[2];
-    ladrc_axis_t *ax = att->axis;
-    if (att->observers && axis_applied_plausible(&ax[0], t0) && axis_applied_plausible(&ax[1], t1) &&
-        axis_applied_plausible(&ax[2], t2)) {
-        /* No axis has an integrator to tell and every torque is plausible:
-         * all that ladrc_axis_set_applied would do. */
-        axis_put_applied(&ax[0], t0);
-        axis_put_applied(&ax[1], t1);
-        axis_put_applied(&ax[2], t2);
-    } else {
-        for (unsigned i = 0; i < LADRC_AXES; ++i) {
-            ladrc_axis_set_applied(&ax[i], torque_Nm[i]);
-        }
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        ladrc_axis_set_applied(&att->axis[i], torque_Nm[i]);
     }
 }

@@ -404,12 +404,12 @@ ladrc_fault_t ladrc_axis_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_re
 void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
 {
     LADRC_REQUIRE_VOID(axis != NULL);
-    if (!axis_applied_plausible(axis, torque_Nm)) {
+    if (!ladrc_within(torque_Nm, axis->applied_limit_Nm)) {
         axis->faults |= LADRC_FAULT_APPLIED;
         axis->applied_Nm = axis->output_Nm;
         return;
     }
-    axis_put_applied(axis, torque_Nm);
+    axis->applied_Nm = torque_Nm;
     switch (axis->variant) {
         CASE_PID(axis_pid_set_applied(axis, torque_Nm))
         CASE_CASCADED(axis_cascaded_set_applied(axis, torque_Nm))

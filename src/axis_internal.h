@@ -178,20 +178,6 @@ static inline ladrc_real_t axis_advance_actuator(ladrc_axis_t *axis)
     return mean;
 }
 
-/** ladrc_axis_set_applied's test of a torque: plausible when finite and
- *  within +-applied_limit_Nm. */
-static inline int axis_applied_plausible(const ladrc_axis_t *axis, ladrc_real_t torque_Nm)
-{
-    return ladrc_within(torque_Nm, axis->applied_limit_Nm);
-}
-
-/** All of ladrc_axis_set_applied for a plausible torque on a variant with no
- *  integrator to tell (not PID, not CASCADED): the attitude layer's path. */
-static inline void axis_put_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
-{
-    axis->applied_Nm = torque_Nm;
-}
-
 /** The command's bounds (axis.c): u_min_Nm..u_max_Nm inside
  *  +-applied_limit_Nm (the command is applied by default, so it must be a
  *  plausible applied torque). */

@@ -46,12 +46,10 @@ typedef struct {
 } ladrc_attitude_config_t;
 
 typedef struct {
-    /* The feed's constants first: short offsets from the struct's address. */
     ladrc_real_t coupling[LADRC_AXES];    /**< (Jy-Jz)/Jx, (Jz-Jx)/Jy, (Jx-Jy)/Jz */
     ladrc_real_t drag_per_s[LADRC_AXES];  /**< kt / J per axis (1/s) */
     ladrc_real_t feed_rad_s3[LADRC_AXES]; /**< h fed at the latest tick */
     uint8_t coupling_feed;
-    uint8_t observers; /**< 1 when no axis is PID or CASCADED (no axis needs set_applied beyond applied_Nm) */
     ladrc_axis_t axis[LADRC_AXES];
 } ladrc_attitude_t;
 
