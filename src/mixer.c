@@ -443,23 +443,20 @@ void ladrc_mixer_reset(ladrc_mixer_t *mx)
 ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
                                ladrc_mixer_output_t *out)
 {
-    ladrc_fault_t faults = LADRC_FAULT_INPUT;
+    ladrc_fault_t faults = LADRC_FAULT_NONE;
 
-    LADRC_REQUIRE(mx != NULL, LADRC_FAULT_STATE);
-    if (torque_Nm != NULL) {
-        /* The request: thrust, roll, pitch, yaw. Scalars and local arrays of
-         * constant index, so that the common case below stays in registers. */
-        const ladrc_real_t f[4] = {thrust_N, torque_Nm[0], torque_Nm[1], torque_Nm[2]};
-        ladrc_real_t w2[4];
-        allocate(mx, thrust_N, &f[1], w2);
-        /* in_range() is false for NaN, so also the finiteness test. */
-        if (in_range(mx, w2)) {
-            /* The common case: nothing to limit. */
-            commit(mx, w2, f, &mx->out);
-            faults = LADRC_FAULT_NONE;
-        } else {
-            faults = mix(mx, f, &mx->out);
-        }
+    LADRC_REQUIRE(mx != NULL && torque_Nm != NULL, LADRC_FAULT_STATE);
+    /* The request: thrust, roll, pitch, yaw. Scalars and local arrays of
+     * constant index, so that the common case below stays in registers. */
+    const ladrc_real_t f[4] = {thrust_N, torque_Nm[0], torque_Nm[1], torque_Nm[2]};
+    ladrc_real_t w2[4];
+    allocate(mx, thrust_N, &f[1], w2);
+    /* in_range() is false for NaN, so also the finiteness test. */
+    if (in_range(mx, w2)) {
+        /* The common case: nothing to limit. */
+        commit(mx, w2, f, &mx->out);
+    } else {
+        faults = mix(mx, f, &mx->out);
     }
     mx->out.faults = faults;
     if (out != NULL) {

@@ -1076,8 +1076,10 @@ static void test_mixer_functions_tolerate_null_pointers(void)
     ladrc_mixer_saturate(&mx, w2, LADRC_R(1.0), torque_Nm, NULL);
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_mixer_step(NULL, LADRC_R(1.0), torque_Nm, &out));
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_mixer_get_faults(NULL));
-    /* a missing torque is a bad input; a missing output is allowed */
-    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_mixer_step(&mx, LADRC_R(1.0), NULL, &out));
+    /* a missing torque is a programmer error (the state untouched); a missing output is allowed */
+    const ladrc_mixer_output_t held = mx.out;
+    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_mixer_step(&mx, LADRC_R(1.0), NULL, &out));
+    TEST_ASSERT_EQUAL_INT(0, memcmp(&held, &mx.out, sizeof held));
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, ladrc_mixer_step(&mx, LADRC_R(1.0), torque_Nm, NULL));
 }
 

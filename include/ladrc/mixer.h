@@ -204,8 +204,9 @@ void ladrc_mixer_forward(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[
  * LADRC_FAULT_INPUT. In saturate mode every finite request, up to the largest float,
  * is mixed (limited as the file comment says). In ideal mode a finite request whose
  * w^2 would pass +-(largest float)/4 returns the held output with LADRC_FAULT_STATE.
- * The held output starts as hover (see reset). A NULL mx (a programmer error,
- * LADRC_ASSERT) returns LADRC_FAULT_STATE with asserts off.
+ * The held output starts as hover (see reset). A NULL mx or torque_Nm (a
+ * programmer error, LADRC_ASSERT) returns LADRC_FAULT_STATE with asserts off,
+ * the state untouched.
  * @return the step's fault flags
  */
 ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
