@@ -1247,7 +1247,8 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
     memset(out, 0, sizeof *out);
     out->peak_dist_rad = INFINITY;
     /* closest misses of the searched core and of the whole adaptive variant */
-    fallback_t fb_core = {-INFINITY, NAN, -1}, fb_whole = {-INFINITY, NAN, -1};
+    fallback_t fb_core = {.score = -INFINITY, .w = NAN, .shape = -1},
+               fb_whole = {.score = -INFINITY, .w = NAN, .shape = -1};
     double best_w = NAN;
     int best_shape = -1;
     for (int shape = 0; shape < n_shapes(); ++shape) {

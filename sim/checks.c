@@ -251,49 +251,65 @@ typedef struct {
 
 #define CTRL_SEC (-1)
 /* clang-format off */
-#define END_KEYS {0, NULL}
+#define END_KEYS {.sec = 0, .name = NULL}
 /* clang-format on */
 
 /* The keys behind a refused value, most likely first (the first one the
  * file gives is reported). */
 static const key_ref_t *keys_of_status(ladrc_status_t st, int known_freqs)
 {
-    static const key_ref_t dt[] = {{SEC_RUN, "control_dt_s"}, END_KEYS};
-    static const key_ref_t inertia[] = {{SEC_VEHICLE, "inertia_kg_m2"}, {SEC_MISMATCH, "inertia_scale"}, END_KEYS};
-    static const key_ref_t drag[] = {{SEC_VEHICLE, "rot_drag_Nm_s"}, {SEC_MISMATCH, "rot_drag_scale"}, END_KEYS};
-    static const key_ref_t wc[] = {{CTRL_SEC, "wc_rad_s"}, END_KEYS};
-    static const key_ref_t wo[] = {{CTRL_SEC, "wo_rad_s"}, END_KEYS};
-    static const key_ref_t euler[] = {
-        {CTRL_SEC, "wo_rad_s"}, {SEC_RUN, "control_dt_s"}, {CTRL_SEC, "leso_method"}, END_KEYS};
-    static const key_ref_t td_accel[] = {{CTRL_SEC, "td_accel_rad_s2"}, END_KEYS};
-    static const key_ref_t levant[] = {{CTRL_SEC, "levant_lipschitz_rad_s4"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
-    static const key_ref_t kp[] = {{CTRL_SEC, "pid_kp"}, END_KEYS};
-    static const key_ref_t ki[] = {{CTRL_SEC, "pid_ki"}, END_KEYS};
-    static const key_ref_t kd[] = {{CTRL_SEC, "pid_kd"}, END_KEYS};
-    static const key_ref_t indi_att[] = {{CTRL_SEC, "indi_att_kp_per_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
-    static const key_ref_t indi_rate[] = {{CTRL_SEC, "indi_rate_kp_per_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
-    static const key_ref_t indi_filter[] = {{CTRL_SEC, "indi_filter_rad_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
-    static const key_ref_t cas_att[] = {{CTRL_SEC, "cas_att_kp"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
-    static const key_ref_t cas_max[] = {{CTRL_SEC, "cas_rate_max_deg_s"}, END_KEYS};
-    static const key_ref_t cas_kp[] = {{CTRL_SEC, "cas_rate_kp"}, END_KEYS};
-    static const key_ref_t cas_ki[] = {{CTRL_SEC, "cas_rate_ki"}, END_KEYS};
-    static const key_ref_t cas_kd[] = {{CTRL_SEC, "cas_rate_kd"}, END_KEYS};
-    static const key_ref_t cas_tau[] = {{CTRL_SEC, "cas_d_filter_tau_s"}, END_KEYS};
-    static const key_ref_t cas_i[] = {{CTRL_SEC, "cas_i_limit_Nm"}, END_KEYS};
-    static const key_ref_t freqs[] = {
-        {CTRL_SEC, "hp_freq_rad_s"}, {CTRL_SEC, "hp_freq2_rad_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
-    static const key_ref_t tones[] = {
-        {CTRL_SEC, "hp_tones"}, {CTRL_SEC, "hp_freq2_rad_s"}, {CTRL_SEC, "hp_freq_mode"}, END_KEYS};
-    static const key_ref_t mixer_kl[] = {{SEC_VEHICLE, "thrust_coeff_N_s2"}, END_KEYS};
-    static const key_ref_t mixer_arm[] = {{SEC_VEHICLE, "arm_m"}, END_KEYS};
-    static const key_ref_t mixer_b[] = {{SEC_VEHICLE, "yaw_coeff_Nm_s2"}, END_KEYS};
-    static const key_ref_t mixer_mass[] = {{SEC_VEHICLE, "mass_kg"}, END_KEYS};
-    static const key_ref_t mixer_g[] = {{SEC_VEHICLE, "g_m_s2"}, END_KEYS};
-    static const key_ref_t w2_min[] = {{SEC_ROTORS, "w2_min_rad2_s2"}, END_KEYS};
-    static const key_ref_t w2_max[] = {{SEC_ROTORS, "w2_max_rad2_s2"}, {SEC_ROTORS, "w2_min_rad2_s2"}, END_KEYS};
-    static const key_ref_t tilt[] = {{SEC_ROTORS, "tilt_max_deg"}, END_KEYS};
-    static const key_ref_t motor_tau[] = {{CTRL_SEC, "model_motor_tau_s"}, {SEC_ROTORS, "motor_tau_s"}, END_KEYS};
-    static const key_ref_t delay[] = {{CTRL_SEC, "model_delay_ticks"}, {SEC_SENSORS, "delay_ticks"}, END_KEYS};
+    static const key_ref_t dt[] = {{.sec = SEC_RUN, .name = "control_dt_s"}, END_KEYS};
+    static const key_ref_t inertia[] = {
+        {.sec = SEC_VEHICLE, .name = "inertia_kg_m2"}, {.sec = SEC_MISMATCH, .name = "inertia_scale"}, END_KEYS};
+    static const key_ref_t drag[] = {
+        {.sec = SEC_VEHICLE, .name = "rot_drag_Nm_s"}, {.sec = SEC_MISMATCH, .name = "rot_drag_scale"}, END_KEYS};
+    static const key_ref_t wc[] = {{.sec = CTRL_SEC, .name = "wc_rad_s"}, END_KEYS};
+    static const key_ref_t wo[] = {{.sec = CTRL_SEC, .name = "wo_rad_s"}, END_KEYS};
+    static const key_ref_t euler[] = {{.sec = CTRL_SEC, .name = "wo_rad_s"},
+                                      {.sec = SEC_RUN, .name = "control_dt_s"},
+                                      {.sec = CTRL_SEC, .name = "leso_method"},
+                                      END_KEYS};
+    static const key_ref_t td_accel[] = {{.sec = CTRL_SEC, .name = "td_accel_rad_s2"}, END_KEYS};
+    static const key_ref_t levant[] = {
+        {.sec = CTRL_SEC, .name = "levant_lipschitz_rad_s4"}, {.sec = SEC_RUN, .name = "control_dt_s"}, END_KEYS};
+    static const key_ref_t kp[] = {{.sec = CTRL_SEC, .name = "pid_kp"}, END_KEYS};
+    static const key_ref_t ki[] = {{.sec = CTRL_SEC, .name = "pid_ki"}, END_KEYS};
+    static const key_ref_t kd[] = {{.sec = CTRL_SEC, .name = "pid_kd"}, END_KEYS};
+    static const key_ref_t indi_att[] = {
+        {.sec = CTRL_SEC, .name = "indi_att_kp_per_s"}, {.sec = SEC_RUN, .name = "control_dt_s"}, END_KEYS};
+    static const key_ref_t indi_rate[] = {
+        {.sec = CTRL_SEC, .name = "indi_rate_kp_per_s"}, {.sec = SEC_RUN, .name = "control_dt_s"}, END_KEYS};
+    static const key_ref_t indi_filter[] = {
+        {.sec = CTRL_SEC, .name = "indi_filter_rad_s"}, {.sec = SEC_RUN, .name = "control_dt_s"}, END_KEYS};
+    static const key_ref_t cas_att[] = {
+        {.sec = CTRL_SEC, .name = "cas_att_kp"}, {.sec = SEC_RUN, .name = "control_dt_s"}, END_KEYS};
+    static const key_ref_t cas_max[] = {{.sec = CTRL_SEC, .name = "cas_rate_max_deg_s"}, END_KEYS};
+    static const key_ref_t cas_kp[] = {{.sec = CTRL_SEC, .name = "cas_rate_kp"}, END_KEYS};
+    static const key_ref_t cas_ki[] = {{.sec = CTRL_SEC, .name = "cas_rate_ki"}, END_KEYS};
+    static const key_ref_t cas_kd[] = {{.sec = CTRL_SEC, .name = "cas_rate_kd"}, END_KEYS};
+    static const key_ref_t cas_tau[] = {{.sec = CTRL_SEC, .name = "cas_d_filter_tau_s"}, END_KEYS};
+    static const key_ref_t cas_i[] = {{.sec = CTRL_SEC, .name = "cas_i_limit_Nm"}, END_KEYS};
+    static const key_ref_t freqs[] = {{.sec = CTRL_SEC, .name = "hp_freq_rad_s"},
+                                      {.sec = CTRL_SEC, .name = "hp_freq2_rad_s"},
+                                      {.sec = SEC_RUN, .name = "control_dt_s"},
+                                      END_KEYS};
+    static const key_ref_t tones[] = {{.sec = CTRL_SEC, .name = "hp_tones"},
+                                      {.sec = CTRL_SEC, .name = "hp_freq2_rad_s"},
+                                      {.sec = CTRL_SEC, .name = "hp_freq_mode"},
+                                      END_KEYS};
+    static const key_ref_t mixer_kl[] = {{.sec = SEC_VEHICLE, .name = "thrust_coeff_N_s2"}, END_KEYS};
+    static const key_ref_t mixer_arm[] = {{.sec = SEC_VEHICLE, .name = "arm_m"}, END_KEYS};
+    static const key_ref_t mixer_b[] = {{.sec = SEC_VEHICLE, .name = "yaw_coeff_Nm_s2"}, END_KEYS};
+    static const key_ref_t mixer_mass[] = {{.sec = SEC_VEHICLE, .name = "mass_kg"}, END_KEYS};
+    static const key_ref_t mixer_g[] = {{.sec = SEC_VEHICLE, .name = "g_m_s2"}, END_KEYS};
+    static const key_ref_t w2_min[] = {{.sec = SEC_ROTORS, .name = "w2_min_rad2_s2"}, END_KEYS};
+    static const key_ref_t w2_max[] = {
+        {.sec = SEC_ROTORS, .name = "w2_max_rad2_s2"}, {.sec = SEC_ROTORS, .name = "w2_min_rad2_s2"}, END_KEYS};
+    static const key_ref_t tilt[] = {{.sec = SEC_ROTORS, .name = "tilt_max_deg"}, END_KEYS};
+    static const key_ref_t motor_tau[] = {
+        {.sec = CTRL_SEC, .name = "model_motor_tau_s"}, {.sec = SEC_ROTORS, .name = "motor_tau_s"}, END_KEYS};
+    static const key_ref_t delay[] = {
+        {.sec = CTRL_SEC, .name = "model_delay_ticks"}, {.sec = SEC_SENSORS, .name = "delay_ticks"}, END_KEYS};
     switch (st) {
     case LADRC_ERR_INERTIA_KG_M2:
     case LADRC_ERR_B0:
@@ -373,10 +389,12 @@ static const key_ref_t *keys_of_status(ladrc_status_t st, int known_freqs)
 
 static const key_ref_t *keys_of_differentiator_status(ladrc_status_t st)
 {
-    static const key_ref_t levant[] = {
-        {SEC_DIFFERENTIATOR, "levant_lipschitz_rad_s4"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
-    static const key_ref_t td_accel[] = {{SEC_DIFFERENTIATOR, "td_accel_rad_s2"}, END_KEYS};
-    static const key_ref_t td_h0[] = {{SEC_DIFFERENTIATOR, "td_h0_s"}, {SEC_RUN, "control_dt_s"}, END_KEYS};
+    static const key_ref_t levant[] = {{.sec = SEC_DIFFERENTIATOR, .name = "levant_lipschitz_rad_s4"},
+                                       {.sec = SEC_RUN, .name = "control_dt_s"},
+                                       END_KEYS};
+    static const key_ref_t td_accel[] = {{.sec = SEC_DIFFERENTIATOR, .name = "td_accel_rad_s2"}, END_KEYS};
+    static const key_ref_t td_h0[] = {
+        {.sec = SEC_DIFFERENTIATOR, .name = "td_h0_s"}, {.sec = SEC_RUN, .name = "control_dt_s"}, END_KEYS};
     switch (st) {
     case LADRC_ERR_LEVANT_LIPSCHITZ:
     case LADRC_ERR_LEVANT_RANGE:
@@ -404,7 +422,9 @@ static loc_t locate(const parser_t *p, const key_ref_t *keys, int ctrl_sec)
             return *at;
         }
     }
-    const loc_t header = {ctrl_sec >= 0 && p->section_line[ctrl_sec] != 0 ? p->section_line[ctrl_sec] : 1, 1, 1};
+    const loc_t header = {.line = ctrl_sec >= 0 && p->section_line[ctrl_sec] != 0 ? p->section_line[ctrl_sec] : 1,
+                          .key_col = 1,
+                          .value_col = 1};
     return header;
 }
 
@@ -433,7 +453,7 @@ static void check_controllers(parser_t *p)
             listed |= (int)sc->controllers[i] == id;
         }
         if (st == LADRC_OK && sim_controller_needs_rate((sim_controller_id_t)id) && !sc->use_rate) {
-            static const key_ref_t use_rate[] = {{SEC_SENSORS, "use_rate"}, END_KEYS};
+            static const key_ref_t use_rate[] = {{.sec = SEC_SENSORS, .name = "use_rate"}, END_KEYS};
             const loc_t at = locate(p, use_rate, -1);
             if (listed) {
                 check_fail(p, at.line, at.value_col, "INDI needs the measured rate ([sensors] use_rate = yes)");

@@ -120,7 +120,7 @@ int sim_fly_tune(sim_scenario_t *scenarios, int n_sc, int n_threads, int quiet, 
         return 0;
     }
     const double start = sim_fly_now_s();
-    tune_pool_t pool = {tasks, n, 0, PTHREAD_MUTEX_INITIALIZER};
+    tune_pool_t pool = {.tasks = tasks, .n = n, .next = 0, .lock = PTHREAD_MUTEX_INITIALIZER};
     pthread_t threads[MAX_THREADS];
     int started = 0;
     for (int t = 0; t < n_threads && t < n && t < MAX_THREADS; ++t) {
@@ -179,7 +179,7 @@ static void *worker(void *arg)
             return NULL;
         }
         job_t *job = &pool->jobs[pool->order[i]];
-        const sim_progress_t progress = {&job->ticks_done};
+        const sim_progress_t progress = {.ticks_done = &job->ticks_done};
         if (job->controller_index < 0) {
             const char *csv = job->csv_path[0] != '\0' ? job->csv_path : NULL;
             job->failed =
@@ -188,12 +188,12 @@ static void *worker(void *arg)
             sim_run_spec_t runs[SIM_MAX_CONTROLLERS];
             for (int g = 0; g < job->group_size; ++g) {
                 job_t *j = job + g;
-                const sim_run_spec_t spec = {j->sc->controllers[j->controller_index],
-                                             j->csv_path[0] != '\0' ? j->csv_path : NULL,
-                                             j->attitude,
-                                             j->error,
-                                             sizeof j->error,
-                                             0};
+                const sim_run_spec_t spec = {.ctrl = j->sc->controllers[j->controller_index],
+                                             .csv_path = j->csv_path[0] != '\0' ? j->csv_path : NULL,
+                                             .metrics = j->attitude,
+                                             .err = j->error,
+                                             .err_len = sizeof j->error,
+                                             .rc = 0};
                 runs[g] = spec;
             }
             sim_run_attitude_group(job->sc, runs, job->group_size, &progress);
@@ -261,13 +261,13 @@ static int write_signals_csv(FILE *f, const sim_scenario_t *sc)
         const char *what;
         const sim_signal_t *sig;
         const char *axis;
-    } rows[] = {{"reference", &sc->reference[0], AXIS[0]},
-                {"reference", &sc->reference[1], AXIS[1]},
-                {"reference", &sc->reference[2], AXIS[2]},
-                {"disturbance", &sc->disturbance[0], AXIS[0]},
-                {"disturbance", &sc->disturbance[1], AXIS[1]},
-                {"disturbance", &sc->disturbance[2], AXIS[2]},
-                {"signal", &sc->diff_signal, "-"}};
+    } rows[] = {{.what = "reference", .sig = &sc->reference[0], .axis = AXIS[0]},
+                {.what = "reference", .sig = &sc->reference[1], .axis = AXIS[1]},
+                {.what = "reference", .sig = &sc->reference[2], .axis = AXIS[2]},
+                {.what = "disturbance", .sig = &sc->disturbance[0], .axis = AXIS[0]},
+                {.what = "disturbance", .sig = &sc->disturbance[1], .axis = AXIS[1]},
+                {.what = "disturbance", .sig = &sc->disturbance[2], .axis = AXIS[2]},
+                {.what = "signal", .sig = &sc->diff_signal, .axis = "-"}};
     const int first = sc->kind == SIM_KIND_DIFFERENTIATOR ? 6 : 0;
     const int last = sc->kind == SIM_KIND_DIFFERENTIATOR ? 7 : 6;
     for (int r = first; r < last; ++r) {
@@ -379,8 +379,9 @@ static int order[MAX_JOBS];
  * metrics.csv and signals.csv; counts its diverged runs. */
 static void write_outputs(const sim_scenario_t *sc, int s, const sim_fly_options_t *opt, sim_fly_result_t *res)
 {
-    const sim_scenario_result_t out = {sc, sc->kind == SIM_KIND_DIFFERENTIATOR ? NULL : attitude[s],
-                                       sc->kind == SIM_KIND_DIFFERENTIATOR ? &diff[s] : NULL};
+    const sim_scenario_result_t out = {.sc = sc,
+                                       .attitude = sc->kind == SIM_KIND_DIFFERENTIATOR ? NULL : attitude[s],
+                                       .diff = sc->kind == SIM_KIND_DIFFERENTIATOR ? &diff[s] : NULL};
     if (opt->print_tables) {
         sim_report_tables(stdout, &out);
     }

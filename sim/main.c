@@ -204,7 +204,13 @@ int main(int argc, char **argv)
         return EXIT_BAD_INPUT;
     }
 
-    const sim_fly_options_t opt = {(int)jobs_wanted, want_csv, quiet, 1, 1, NULL, NULL};
+    const sim_fly_options_t opt = {.jobs = (int)jobs_wanted,
+                                   .want_csv = want_csv,
+                                   .quiet = quiet,
+                                   .print_tables = 1,
+                                   .report_divergence = 1,
+                                   .progress = NULL,
+                                   .progress_ctx = NULL};
     sim_fly_result_t res;
     int status = sim_fly_batch(scenarios, n_sc, &opt, &res) != 0 ? EXIT_RUN_FAILED : 0;
     if (status == 0 && res.runs_diverged > 0) {

@@ -191,12 +191,16 @@ int main(int argc, char **argv)
         sim_setup_attitude(&sc, id, &acfg);
         for (int i = axis_from; i <= axis_to; ++i) {
             const double j_model = sc.inertia_kg_m2[i] * sc.inertia_scale[i];
-            const ladrc_margins_plant_t plant = {
-                sc.control_dt_s,  j_model,        sc.inertia_kg_m2[i] * inertia_factor / j_model,
-                sc.rot_drag_Nm_s, sc.motor_tau_s, sc.delay_ticks};
+            const ladrc_margins_plant_t plant = {.dt_s = sc.control_dt_s,
+                                                 .inertia_kg_m2 = j_model,
+                                                 .inertia_factor = sc.inertia_kg_m2[i] * inertia_factor / j_model,
+                                                 .drag_Nm_s = sc.rot_drag_Nm_s,
+                                                 .motor_tau_s = sc.motor_tau_s,
+                                                 .delay_ticks = sc.delay_ticks};
             ladrc_margins_request_t req;
             ladrc_margins_request_default(&req, &plant);
-            const ladrc_margins_controller_t ctl = {&acfg, i, NULL, sc.use_rate};
+            const ladrc_margins_controller_t ctl = {
+                .attitude = &acfg, .axis_index = i, .axis = NULL, .use_rate = sc.use_rate};
             int idle = 0;
             ladrc_margins_status_t st = ladrc_margins_analyse_reported(&ws, &ctl, &req, &res, &idle);
             /* HP-MLADRC's converged tone model may have no settled linear
@@ -234,7 +238,7 @@ int main(int argc, char **argv)
             if (csv_dir != NULL && write_csv(csv_dir, sim_controller_name(id), i, &res) != 0)
                 status = 1;
             if (tune) {
-                const ladrc_margins_targets_t targets = {45.0, 6.0};
+                const ladrc_margins_targets_t targets = {.pm_min_deg = 45.0, .gm_min_db = 6.0};
                 ladrc_axis_config_t tuned;
                 st = ladrc_margins_tune(&ws, &ctl, &req, &targets, &tuned, &tuning);
                 const ladrc_margins_result_t *m = &tuning.margins;

@@ -357,7 +357,7 @@ void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int sub
     }
     sim_plant_t *const one[1] = {p};
     const double cmd[1][4] = {{w2_cmd[0], w2_cmd[1], w2_cmd[2], w2_cmd[3]}};
-    const source_t src = {NULL, dist, ctx};
+    const source_t src = {.table = NULL, .dist = dist, .ctx = ctx};
     step_lanes(one, cmd, 1, dt_s, substeps, &src);
 }
 
@@ -406,14 +406,14 @@ static int step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4], in
 void sim_plant_step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s, int substeps,
                           sim_disturbance_fn dist, void *ctx)
 {
-    const source_t src = {NULL, dist, ctx};
+    const source_t src = {.table = NULL, .dist = dist, .ctx = ctx};
     (void)step_group(plants, w2_cmd, n, dt_s, substeps, &src, &src);
 }
 
 int sim_plant_step_group_table(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s, int substeps,
                                const double (*d_stage)[3])
 {
-    const source_t src = {d_stage, NULL, NULL};
+    const source_t src = {.table = d_stage, .dist = NULL, .ctx = NULL};
     return step_group(plants, w2_cmd, n, dt_s, substeps, &src, NULL);
 }
 

@@ -90,12 +90,18 @@ int schema_key_kind(int sec, const key_def_t *def)
 
 /* ---- keys --------------------------------------------------------------------- */
 
-static const choice_t YES_NO[] = {{"yes", 1}, {"no", 0}, {NULL, 0}};
-static const choice_t KINDS[] = {
-    {"attitude", SIM_KIND_ATTITUDE}, {"differentiator", SIM_KIND_DIFFERENTIATOR}, {NULL, 0}};
-static const choice_t LESO_METHODS[] = {{"zoh", LADRC_LESO_ZOH}, {"euler", LADRC_LESO_EULER}, {NULL, 0}};
-static const choice_t TUNE_MODES[] = {{"none", SIM_TUNE_NONE}, {"margins", SIM_TUNE_MARGINS}, {NULL, 0}};
-static const choice_t HP_FREQ_MODES[] = {{"known", LADRC_HP_FREQ_KNOWN}, {"online", LADRC_HP_FREQ_ONLINE}, {NULL, 0}};
+static const choice_t YES_NO[] = {{.name = "yes", .value = 1}, {.name = "no", .value = 0}, {.name = NULL, .value = 0}};
+static const choice_t KINDS[] = {{.name = "attitude", .value = SIM_KIND_ATTITUDE},
+                                 {.name = "differentiator", .value = SIM_KIND_DIFFERENTIATOR},
+                                 {.name = NULL, .value = 0}};
+static const choice_t LESO_METHODS[] = {
+    {.name = "zoh", .value = LADRC_LESO_ZOH}, {.name = "euler", .value = LADRC_LESO_EULER}, {.name = NULL, .value = 0}};
+static const choice_t TUNE_MODES[] = {{.name = "none", .value = SIM_TUNE_NONE},
+                                      {.name = "margins", .value = SIM_TUNE_MARGINS},
+                                      {.name = NULL, .value = 0}};
+static const choice_t HP_FREQ_MODES[] = {{.name = "known", .value = LADRC_HP_FREQ_KNOWN},
+                                         {.name = "online", .value = LADRC_HP_FREQ_ONLINE},
+                                         {.name = NULL, .value = 0}};
 
 #define CTRL_BIT(id) (1u << (id))
 #define C_HP CTRL_BIT(SIM_CTRL_HP_MLADRC)

@@ -85,9 +85,9 @@ static void apply_overrides(ladrc_axis_config_t *a, const sim_overrides_t *o)
         a->delay_ticks = (uint8_t)o->model_delay_ticks;
 }
 
-#define GAIN(key, label, unit)                                                                                         \
+#define GAIN(field, text, units)                                                                                       \
     {                                                                                                                  \
-#key, label, unit, offsetof(ladrc_axis_config_t, key)                                                          \
+        .key = #field, .label = (text), .unit = (units), .offset = offsetof(ladrc_axis_config_t, field)                \
     }
 static const sim_gain_field_t LADRC_GAINS[] = {GAIN(wc_rad_s, "wc", "rad/s"), GAIN(wo_rad_s, "wo", "rad/s")};
 static const sim_gain_field_t PID_GAINS[] = {GAIN(pid_kp, "kp", ""), GAIN(pid_ki, "ki", ""), GAIN(pid_kd, "kd", ""),

@@ -84,8 +84,9 @@ int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margin
     }
     const double start = now_s();
     const sim_overrides_t *o = &sc->overrides[id];
-    const ladrc_margins_targets_t targets = {isnan(o->tune_pm_deg) ? SIM_TUNE_PM_DEG_DEFAULT : o->tune_pm_deg,
-                                             isnan(o->tune_gm_db) ? SIM_TUNE_GM_DB_DEFAULT : o->tune_gm_db};
+    const ladrc_margins_targets_t targets = {
+        .pm_min_deg = isnan(o->tune_pm_deg) ? SIM_TUNE_PM_DEG_DEFAULT : o->tune_pm_deg,
+        .gm_min_db = isnan(o->tune_gm_db) ? SIM_TUNE_GM_DB_DEFAULT : o->tune_gm_db};
     t->pm_target_deg = targets.pm_min_deg;
     t->gm_target_db = targets.gm_min_db;
     ladrc_attitude_config_t acfg;
@@ -102,7 +103,8 @@ int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margin
         if (i == 1 && plant.inertia_kg_m2 == sc->inertia_kg_m2[0] * sc->inertia_scale[0]) {
             ladrc_attitude_config_t shared = acfg;
             sim_setup_tuned_gains(t, 0, &shared.axis[1]);
-            const ladrc_margins_controller_t chk = {&shared, 1, NULL, sc->use_rate};
+            const ladrc_margins_controller_t chk = {
+                .attitude = &shared, .axis_index = 1, .axis = NULL, .use_rate = sc->use_rate};
             int idle = 0;
             ladrc_margins_result_t *m = &ws->scratch;
             if (ladrc_margins_analyse_reported(ws, &chk, &req, m, &idle) == LADRC_MARGINS_OK && meets(m, &targets)) {
@@ -116,7 +118,8 @@ int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margin
                 continue;
             }
         }
-        const ladrc_margins_controller_t ctl = {&acfg, i, NULL, sc->use_rate};
+        const ladrc_margins_controller_t ctl = {
+            .attitude = &acfg, .axis_index = i, .axis = NULL, .use_rate = sc->use_rate};
         ladrc_axis_config_t tuned;
         ladrc_margins_tuning_t result;
         const ladrc_margins_status_t st = ladrc_margins_tune(ws, &ctl, &req, &targets, &tuned, &result);
@@ -125,7 +128,8 @@ int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margin
             /* whether the reported margins are HP-MLADRC's idle ones */
             ladrc_attitude_config_t again = acfg;
             again.axis[i] = tuned;
-            const ladrc_margins_controller_t chk = {&again, i, NULL, sc->use_rate};
+            const ladrc_margins_controller_t chk = {
+                .attitude = &again, .axis_index = i, .axis = NULL, .use_rate = sc->use_rate};
             (void)ladrc_margins_analyse_reported(ws, &chk, &req, &ws->scratch, &idle);
         }
         keep(t, i, &tuned, &result, idle);

@@ -19,7 +19,11 @@ ladrc_status_t ladrc_lp_init(ladrc_lp_estimator_t *est, const ladrc_lp_config_t 
         return LADRC_ERR_EST_K0;
     }
     /* Starting at the bound gives the fastest first estimate. */
-    const ladrc_rls_config_t rls_cfg = {1u, cfg->dt_s, cfg->lambda0_per_s, cfg->k0_per_s, cfg->k0_per_s};
+    const ladrc_rls_config_t rls_cfg = {.n_params = 1u,
+                                        .dt_s = cfg->dt_s,
+                                        .lambda0_per_s = cfg->lambda0_per_s,
+                                        .p_bound = cfg->k0_per_s,
+                                        .p_initial = cfg->k0_per_s};
     const ladrc_status_t status = ladrc_rls_init(&est->rls, &rls_cfg);
     if (status != LADRC_OK) {
         return status;

@@ -108,7 +108,7 @@ typedef char check_list_length[(list_length == (int)LADRC_STATUS_COUNT) ? 1 : -1
 
 /* One array per text, so offsetof gives each text's place in the pool. */
 #define POOL_MEMBER(code, explanation) char code[sizeof STATUS_TEXT(code, explanation)];
-#define POOL_TEXT(code, explanation) STATUS_TEXT(code, explanation),
+#define POOL_TEXT(code, explanation) .code = STATUS_TEXT(code, explanation),
 #define POOL_OFFSET(code, explanation) (uint16_t) offsetof(status_pool_t, code),
 
 typedef struct {
@@ -116,7 +116,8 @@ typedef struct {
     char unknown[sizeof STATUS_TEXT(LADRC_ERR_UNKNOWN, "not a ladrc_status_t")];
 } status_pool_t;
 
-static const status_pool_t pool = {LADRC_STATUS_LIST(POOL_TEXT) STATUS_TEXT(LADRC_ERR_UNKNOWN, "not a ladrc_status_t")};
+static const status_pool_t pool = {LADRC_STATUS_LIST(POOL_TEXT) /* each code's text, then the fallback */
+                                       .unknown = STATUS_TEXT(LADRC_ERR_UNKNOWN, "not a ladrc_status_t")};
 
 static const uint16_t offsets[LADRC_STATUS_COUNT] = {LADRC_STATUS_LIST(POOL_OFFSET)};
 

@@ -120,10 +120,15 @@ static void test_zero_model_is_bit_for_bit_the_plain_observer_and_law(void)
         ladrc_axis_t axis;
         init_axis(&axis, &cfg);
         ladrc_leso_t leso;
-        const ladrc_leso_config_t lc = {cfg.dt_s, cfg.wo_rad_s, cfg.b0, cfg.leso_method};
+        const ladrc_leso_config_t lc = {
+            .dt_s = cfg.dt_s, .wo_rad_s = cfg.wo_rad_s, .b0 = cfg.b0, .method = cfg.leso_method};
         TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_leso_init(&leso, &lc));
         ladrc_lp_estimator_t est;
-        const ladrc_lp_config_t pc = {cfg.dt_s, cfg.lp_lambda0_per_s, cfg.lp_k0_per_s, 0.0f, 0u};
+        const ladrc_lp_config_t pc = {.dt_s = cfg.dt_s,
+                                      .lambda0_per_s = cfg.lp_lambda0_per_s,
+                                      .k0_per_s = cfg.lp_k0_per_s,
+                                      .act_tau_s = 0.0f,
+                                      .act_delay_ticks = 0u};
         TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_lp_init(&est, &pc));
         const ladrc_real_t kp = cfg.wc_rad_s * cfg.wc_rad_s, kd = LADRC_R(2.0) * cfg.wc_rad_s;
         ladrc_real_t applied = LADRC_R(0.0), d_hat = LADRC_R(0.0);

@@ -291,8 +291,15 @@ static void test_feed_improves_the_disturbance_estimate_on_the_coupled_body(void
 
 static ladrc_mixer_config_t paper_mixer(ladrc_mixer_mode_t mode, double w2_min, double w2_max)
 {
-    const ladrc_mixer_config_t cfg = {
-        2.98e-5f, 0.165f, 2e-6f, 0.8f, 9.81f, (ladrc_real_t)w2_min, (ladrc_real_t)w2_max, 0.7853982f, mode};
+    const ladrc_mixer_config_t cfg = {.kL_N_s2 = 2.98e-5f,
+                                      .arm_m = 0.165f,
+                                      .b_Nm_s2 = 2e-6f,
+                                      .mass_kg = 0.8f,
+                                      .g_m_s2 = 9.81f,
+                                      .w2_min_rad2_s2 = (ladrc_real_t)w2_min,
+                                      .w2_max_rad2_s2 = (ladrc_real_t)w2_max,
+                                      .tilt_max_rad = 0.7853982f,
+                                      .mode = mode};
     return cfg;
 }
 

@@ -54,7 +54,7 @@ typedef struct {
 
 static void run_loop(ladrc_axis_t *axis, const loop_t *loop, int n, double *y, double *z3, double *peak_u)
 {
-    const test_sine_t none = {0.0, 0.0, 0.0, 0.0};
+    const test_sine_t none = {.bias = 0.0, .amp = 0.0, .w_rad_s = 0.0, .phase_rad = 0.0};
     test_double_integrator_t plant;
     test_plant_init(&plant, 1.0 / J_KG_M2, test_sine_disturbance, loop->d ? loop->d : &none);
     for (int k = 0; k < n; ++k) {
@@ -97,7 +97,7 @@ static void test_ladrc_step_settles_as_its_closed_loop_poles_predict(void)
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&axis, &cfg));
     enum { N = 2000 };
     static double y[N];
-    const loop_t loop = {STEP_RAD, NULL, 0.0, 0};
+    const loop_t loop = {.ref_rad = STEP_RAD, .d = NULL, .torque_limit_Nm = 0.0, .report_applied = 0};
     /* when the reference steps by 10 deg */
     run_loop(&axis, &loop, N, y, NULL, NULL);
     /* then 2% settling matches the double pole at -wc: 5.834 / wc */
@@ -114,10 +114,10 @@ static void test_ladrc_rejects_a_constant_disturbance_to_zero_steady_error(void)
     ladrc_axis_t axis;
     const ladrc_axis_config_t cfg = ladrc_config(LADRC_SHAPER_TD);
     ladrc_axis_init(&axis, &cfg);
-    const test_sine_t d = {20.0, 0.0, 0.0, 0.0}; /* the paper's bias, rad/s^2 */
+    const test_sine_t d = {.bias = 20.0, .amp = 0.0, .w_rad_s = 0.0, .phase_rad = 0.0}; /* the paper's bias, rad/s^2 */
     enum { N = 3000 };
     static double y[N];
-    const loop_t loop = {0.0, &d, 0.0, 0};
+    const loop_t loop = {.ref_rad = 0.0, .d = &d, .torque_limit_Nm = 0.0, .report_applied = 0};
     run_loop(&axis, &loop, N, y, NULL, NULL);
     TEST_ASSERT_FLOAT_WITHIN(STEADY_ERROR_TOL_RAD, 0.0, y[N - 1]);
 }
@@ -141,13 +141,13 @@ static double sine_error_amplitude(double w_rad_s)
     ladrc_axis_t axis;
     const ladrc_axis_config_t cfg = ladrc_config(LADRC_SHAPER_TD);
     ladrc_axis_init(&axis, &cfg);
-    const test_sine_t d = {0.0, 120.0, w_rad_s, 0.0};
+    const test_sine_t d = {.bias = 0.0, .amp = 120.0, .w_rad_s = w_rad_s, .phase_rad = 0.0};
     const double period_s = 2.0 * 3.14159265358979 / w_rad_s;
     /* 2 s lets the loop transient (slowest pole -15 rad/s) fade to 1e-13 */
     const int n_settle = 2000;
     const int n = n_settle + (int)(2.0 * period_s / DT_S);
     static double y[40000];
-    const loop_t loop = {0.0, &d, 0.0, 0};
+    const loop_t loop = {.ref_rad = 0.0, .d = &d, .torque_limit_Nm = 0.0, .report_applied = 0};
     run_loop(&axis, &loop, n, y, NULL, NULL);
     double peak = 0.0;
     for (int k = n_settle; k < n; ++k) {
@@ -174,7 +174,7 @@ static double peak_torque_for_step(ladrc_shaper_t shaper)
     ladrc_axis_t axis;
     const ladrc_axis_config_t cfg = ladrc_config(shaper);
     ladrc_axis_init(&axis, &cfg);
-    const loop_t loop = {STEP_RAD, NULL, 0.0, 0};
+    const loop_t loop = {.ref_rad = STEP_RAD, .d = NULL, .torque_limit_Nm = 0.0, .report_applied = 0};
     double peak = 0.0;
     run_loop(&axis, &loop, 1000, NULL, NULL, &peak);
     return peak;
@@ -197,8 +197,8 @@ static void test_observer_fed_the_applied_torque_does_not_wind_up(void)
     static double z3_reported[N];
     static double z3_ignored[N];
     static double y[N];
-    const loop_t reported = {3.0 * STEP_RAD, NULL, 0.02, 1};
-    const loop_t ignored = {3.0 * STEP_RAD, NULL, 0.02, 0};
+    const loop_t reported = {.ref_rad = 3.0 * STEP_RAD, .d = NULL, .torque_limit_Nm = 0.02, .report_applied = 1};
+    const loop_t ignored = {.ref_rad = 3.0 * STEP_RAD, .d = NULL, .torque_limit_Nm = 0.02, .report_applied = 0};
     ladrc_axis_t axis;
     const ladrc_axis_config_t cfg = ladrc_config(LADRC_SHAPER_TD);
     ladrc_axis_init(&axis, &cfg);
@@ -242,7 +242,7 @@ static void test_pid_variant_settles_a_step_through_the_axis_api(void)
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&axis, &cfg));
     enum { N = 5000 };
     static double y[N];
-    const loop_t loop = {STEP_RAD, NULL, 0.0, 0};
+    const loop_t loop = {.ref_rad = STEP_RAD, .d = NULL, .torque_limit_Nm = 0.0, .report_applied = 0};
     run_loop(&axis, &loop, N, y, NULL, NULL);
     /* kp / J = 3673 s^-2 and kd / J = 9.2 s^-1: lightly damped but stable;
      * after 5 s (23 time constants of the 1 / (kd/J/2) envelope) within 0.1% */
@@ -263,33 +263,60 @@ static void test_every_invalid_field_is_rejected_with_its_status(void)
     const float nan_ = NAN;
     const float inf = INFINITY;
     const bad_field_t cases[] = {
-        {LADRC_VARIANT_LADRC, FIELD(dt_s), 0.0f, LADRC_ERR_DT_S},
-        {LADRC_VARIANT_LADRC, FIELD(dt_s), nan_, LADRC_ERR_DT_S},
-        {LADRC_VARIANT_PID, FIELD(dt_s), -1e-3f, LADRC_ERR_DT_S},
-        {LADRC_VARIANT_LADRC, FIELD(u_min_Nm), nan_, LADRC_ERR_U_LIMITS},
-        {LADRC_VARIANT_LADRC, FIELD(u_max_Nm), -inf, LADRC_ERR_U_LIMITS},
-        {LADRC_VARIANT_PID, FIELD(u_max_Nm), nan_, LADRC_ERR_U_LIMITS},
-        {LADRC_VARIANT_LADRC, FIELD(wc_rad_s), 0.0f, LADRC_ERR_WC_RAD_S},
-        {LADRC_VARIANT_LADRC, FIELD(wc_rad_s), inf, LADRC_ERR_WC_RAD_S},
-        {LADRC_VARIANT_LADRC, FIELD(wo_rad_s), -75.0f, LADRC_ERR_WO_RAD_S},
-        {LADRC_VARIANT_LADRC, FIELD(wo_rad_s), nan_, LADRC_ERR_WO_RAD_S},
-        {LADRC_VARIANT_LADRC, FIELD(b0), 0.0f, LADRC_ERR_B0},
-        {LADRC_VARIANT_LADRC, FIELD(b0), inf, LADRC_ERR_B0},
-        {LADRC_VARIANT_LADRC, FIELD(td_accel_rad_s2), 0.0f, LADRC_ERR_TD_ACCEL_RAD_S2},
-        {LADRC_VARIANT_LADRC, FIELD(td_accel_rad_s2), nan_, LADRC_ERR_TD_ACCEL_RAD_S2},
-        {LADRC_VARIANT_LADRC, FIELD(td_h0_s), 1e-4f, LADRC_ERR_TD_H0_S},
-        {LADRC_VARIANT_LADRC, FIELD(td_h0_s), nan_, LADRC_ERR_TD_H0_S},
-        {LADRC_VARIANT_PID, FIELD(pid_kp), -1.0f, LADRC_ERR_PID_KP},
-        {LADRC_VARIANT_PID, FIELD(pid_ki), nan_, LADRC_ERR_PID_KI},
-        {LADRC_VARIANT_PID, FIELD(pid_kd), inf, LADRC_ERR_PID_KD},
-        {LADRC_VARIANT_PID, FIELD(pid_d_filter_tau_s), -1.0f, LADRC_ERR_PID_D_TAU_S},
-        {LADRC_VARIANT_PID, FIELD(pid_i_limit_Nm), -1.0f, LADRC_ERR_PID_I_LIMIT_NM},
-        {LADRC_VARIANT_HP_MLADRC, FIELD(levant_lipschitz_rad_s4), 0.0f, LADRC_ERR_LEVANT_LIPSCHITZ},
-        {LADRC_VARIANT_HP_MLADRC, FIELD(hp_freq_rad_s[0]), nan_, LADRC_ERR_HP_FREQ_RAD_S},
-        {LADRC_VARIANT_HP_MLADRC, FIELD(hp_lambda0_per_s), 0.0f, LADRC_ERR_EST_LAMBDA0},
-        {LADRC_VARIANT_LP_MLADRC, FIELD(lp_lambda0_per_s), inf, LADRC_ERR_EST_LAMBDA0},
-        {LADRC_VARIANT_LP_MLADRC, FIELD(lp_k0_per_s), -300.0f, LADRC_ERR_EST_K0},
-        {LADRC_VARIANT_LP_MLADRC, FIELD(wo_rad_s), 0.0f, LADRC_ERR_WO_RAD_S},
+        {.variant = LADRC_VARIANT_LADRC, .offset = FIELD(dt_s), .value = 0.0f, .expected = LADRC_ERR_DT_S},
+        {.variant = LADRC_VARIANT_LADRC, .offset = FIELD(dt_s), .value = nan_, .expected = LADRC_ERR_DT_S},
+        {.variant = LADRC_VARIANT_PID, .offset = FIELD(dt_s), .value = -1e-3f, .expected = LADRC_ERR_DT_S},
+        {.variant = LADRC_VARIANT_LADRC, .offset = FIELD(u_min_Nm), .value = nan_, .expected = LADRC_ERR_U_LIMITS},
+        {.variant = LADRC_VARIANT_LADRC, .offset = FIELD(u_max_Nm), .value = -inf, .expected = LADRC_ERR_U_LIMITS},
+        {.variant = LADRC_VARIANT_PID, .offset = FIELD(u_max_Nm), .value = nan_, .expected = LADRC_ERR_U_LIMITS},
+        {.variant = LADRC_VARIANT_LADRC, .offset = FIELD(wc_rad_s), .value = 0.0f, .expected = LADRC_ERR_WC_RAD_S},
+        {.variant = LADRC_VARIANT_LADRC, .offset = FIELD(wc_rad_s), .value = inf, .expected = LADRC_ERR_WC_RAD_S},
+        {.variant = LADRC_VARIANT_LADRC, .offset = FIELD(wo_rad_s), .value = -75.0f, .expected = LADRC_ERR_WO_RAD_S},
+        {.variant = LADRC_VARIANT_LADRC, .offset = FIELD(wo_rad_s), .value = nan_, .expected = LADRC_ERR_WO_RAD_S},
+        {.variant = LADRC_VARIANT_LADRC, .offset = FIELD(b0), .value = 0.0f, .expected = LADRC_ERR_B0},
+        {.variant = LADRC_VARIANT_LADRC, .offset = FIELD(b0), .value = inf, .expected = LADRC_ERR_B0},
+        {.variant = LADRC_VARIANT_LADRC,
+         .offset = FIELD(td_accel_rad_s2),
+         .value = 0.0f,
+         .expected = LADRC_ERR_TD_ACCEL_RAD_S2},
+        {.variant = LADRC_VARIANT_LADRC,
+         .offset = FIELD(td_accel_rad_s2),
+         .value = nan_,
+         .expected = LADRC_ERR_TD_ACCEL_RAD_S2},
+        {.variant = LADRC_VARIANT_LADRC, .offset = FIELD(td_h0_s), .value = 1e-4f, .expected = LADRC_ERR_TD_H0_S},
+        {.variant = LADRC_VARIANT_LADRC, .offset = FIELD(td_h0_s), .value = nan_, .expected = LADRC_ERR_TD_H0_S},
+        {.variant = LADRC_VARIANT_PID, .offset = FIELD(pid_kp), .value = -1.0f, .expected = LADRC_ERR_PID_KP},
+        {.variant = LADRC_VARIANT_PID, .offset = FIELD(pid_ki), .value = nan_, .expected = LADRC_ERR_PID_KI},
+        {.variant = LADRC_VARIANT_PID, .offset = FIELD(pid_kd), .value = inf, .expected = LADRC_ERR_PID_KD},
+        {.variant = LADRC_VARIANT_PID,
+         .offset = FIELD(pid_d_filter_tau_s),
+         .value = -1.0f,
+         .expected = LADRC_ERR_PID_D_TAU_S},
+        {.variant = LADRC_VARIANT_PID,
+         .offset = FIELD(pid_i_limit_Nm),
+         .value = -1.0f,
+         .expected = LADRC_ERR_PID_I_LIMIT_NM},
+        {.variant = LADRC_VARIANT_HP_MLADRC,
+         .offset = FIELD(levant_lipschitz_rad_s4),
+         .value = 0.0f,
+         .expected = LADRC_ERR_LEVANT_LIPSCHITZ},
+        {.variant = LADRC_VARIANT_HP_MLADRC,
+         .offset = FIELD(hp_freq_rad_s[0]),
+         .value = nan_,
+         .expected = LADRC_ERR_HP_FREQ_RAD_S},
+        {.variant = LADRC_VARIANT_HP_MLADRC,
+         .offset = FIELD(hp_lambda0_per_s),
+         .value = 0.0f,
+         .expected = LADRC_ERR_EST_LAMBDA0},
+        {.variant = LADRC_VARIANT_LP_MLADRC,
+         .offset = FIELD(lp_lambda0_per_s),
+         .value = inf,
+         .expected = LADRC_ERR_EST_LAMBDA0},
+        {.variant = LADRC_VARIANT_LP_MLADRC,
+         .offset = FIELD(lp_k0_per_s),
+         .value = -300.0f,
+         .expected = LADRC_ERR_EST_K0},
+        {.variant = LADRC_VARIANT_LP_MLADRC, .offset = FIELD(wo_rad_s), .value = 0.0f, .expected = LADRC_ERR_WO_RAD_S},
     };
     for (unsigned i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         ladrc_axis_config_t cfg;
@@ -454,7 +481,7 @@ static double hp_bias_with_known_part(double known_rad_s2)
     ladrc_axis_config_default(&cfg, LADRC_VARIANT_HP_MLADRC, (ladrc_real_t)DT_S, (ladrc_real_t)J_KG_M2);
     ladrc_axis_t axis;
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&axis, &cfg));
-    const test_sine_t d = {50.0, 0.0, 0.0, 0.0};
+    const test_sine_t d = {.bias = 50.0, .amp = 0.0, .w_rad_s = 0.0, .phase_rad = 0.0};
     test_double_integrator_t plant;
     test_plant_init(&plant, 1.0 / J_KG_M2, test_sine_disturbance, &d);
     for (int k = 0; k < 3000; ++k) {

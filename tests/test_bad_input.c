@@ -85,7 +85,7 @@ static double reference_rad(double t_s)
 {
     return 0.2 * sin(0.5 * t_s);
 }
-static const test_sine_t disturbance = {5.0, 30.0, 3.0, 0.0};
+static const test_sine_t disturbance = {.bias = 5.0, .amp = 30.0, .w_rad_s = 3.0, .phase_rad = 0.0};
 
 /* As flown: real actuator bounds, which are also the applied torque's range;
  * the default angle and rate ranges (1000 rad, 100 rad/s), so that values
@@ -198,7 +198,7 @@ static void judge_recovery(tally_t *t, long tick, double error_rad)
 static tally_t run_axis(ladrc_variant_t v, entry_t entry, long n)
 {
     tally_t t = {0};
-    test_rng_t rng = {SEED + (uint64_t)v * 16u + (uint64_t)entry};
+    test_rng_t rng = {.state = SEED + (uint64_t)v * 16u + (uint64_t)entry};
     ladrc_axis_config_t cfg;
     static ladrc_axis_t axis;
     ladrc_axis_t before;
@@ -249,7 +249,7 @@ static tally_t run_axis(ladrc_variant_t v, entry_t entry, long n)
 static tally_t run_attitude(ladrc_variant_t v, long n)
 {
     tally_t t = {0};
-    test_rng_t rng = {SEED + (uint64_t)v * 16u + (uint64_t)ENTRY_ATTITUDE};
+    test_rng_t rng = {.state = SEED + (uint64_t)v * 16u + (uint64_t)ENTRY_ATTITUDE};
     ladrc_attitude_config_t cfg;
     static ladrc_attitude_t att;
     ladrc_real_t j[3];

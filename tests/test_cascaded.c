@@ -82,19 +82,23 @@ static void test_init_names_the_bad_field(void)
 #define FIELD(f) offsetof(ladrc_axis_config_t, f)
     const float nan_ = (float)NAN, inf = (float)INFINITY;
     const bad_t cases[] = {
-        {FIELD(cas_att_kp), 0.0f, LADRC_ERR_CAS_ATT_KP},
-        {FIELD(cas_att_kp), 1000.0f, LADRC_ERR_CAS_ATT_KP}, /* att_kp dt = 1 */
-        {FIELD(cas_att_kp), nan_, LADRC_ERR_CAS_ATT_KP},
-        {FIELD(cas_rate_max_rad_s), 0.0f, LADRC_ERR_CAS_RATE_MAX},
-        {FIELD(cas_rate_max_rad_s), 101.0f, LADRC_ERR_CAS_RATE_MAX}, /* beyond rate_limit_rad_s */
-        {FIELD(cas_rate_max_rad_s), inf, LADRC_ERR_CAS_RATE_MAX},
-        {FIELD(cas_rate_kp), -1.0f, LADRC_ERR_CAS_RATE_KP},
-        {FIELD(cas_rate_ki), nan_, LADRC_ERR_CAS_RATE_KI},
-        {FIELD(cas_rate_kd), inf, LADRC_ERR_CAS_RATE_KD},
-        {FIELD(cas_d_filter_tau_s), -1e-3f, LADRC_ERR_CAS_D_TAU_S},
-        {FIELD(cas_rate_filter_tau_s), nan_, LADRC_ERR_CAS_RATE_TAU_S},
-        {FIELD(cas_i_limit_Nm), -1.0f, LADRC_ERR_CAS_I_LIMIT_NM},
-        {FIELD(td_accel_rad_s2), -1.0f, LADRC_ERR_TD_ACCEL_RAD_S2}, /* the shaper's fields are read */
+        {.offset = FIELD(cas_att_kp), .value = 0.0f, .expected = LADRC_ERR_CAS_ATT_KP},
+        {.offset = FIELD(cas_att_kp), .value = 1000.0f, .expected = LADRC_ERR_CAS_ATT_KP}, /* att_kp dt = 1 */
+        {.offset = FIELD(cas_att_kp), .value = nan_, .expected = LADRC_ERR_CAS_ATT_KP},
+        {.offset = FIELD(cas_rate_max_rad_s), .value = 0.0f, .expected = LADRC_ERR_CAS_RATE_MAX},
+        {.offset = FIELD(cas_rate_max_rad_s),
+         .value = 101.0f,
+         .expected = LADRC_ERR_CAS_RATE_MAX}, /* beyond rate_limit_rad_s */
+        {.offset = FIELD(cas_rate_max_rad_s), .value = inf, .expected = LADRC_ERR_CAS_RATE_MAX},
+        {.offset = FIELD(cas_rate_kp), .value = -1.0f, .expected = LADRC_ERR_CAS_RATE_KP},
+        {.offset = FIELD(cas_rate_ki), .value = nan_, .expected = LADRC_ERR_CAS_RATE_KI},
+        {.offset = FIELD(cas_rate_kd), .value = inf, .expected = LADRC_ERR_CAS_RATE_KD},
+        {.offset = FIELD(cas_d_filter_tau_s), .value = -1e-3f, .expected = LADRC_ERR_CAS_D_TAU_S},
+        {.offset = FIELD(cas_rate_filter_tau_s), .value = nan_, .expected = LADRC_ERR_CAS_RATE_TAU_S},
+        {.offset = FIELD(cas_i_limit_Nm), .value = -1.0f, .expected = LADRC_ERR_CAS_I_LIMIT_NM},
+        {.offset = FIELD(td_accel_rad_s2),
+         .value = -1.0f,
+         .expected = LADRC_ERR_TD_ACCEL_RAD_S2}, /* the shaper's fields are read */
     };
 #undef FIELD
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
@@ -139,7 +143,7 @@ static void test_constant_disturbance_leaves_no_steady_state_error(void)
 {
     /* given: a constant 20 rad/s^2 disturbance (the paper's bias), a held
      * 0.1 rad reference; with and without a gyro */
-    static const test_sine_t bias = {20.0, 0.0, 1.0, 0.0};
+    static const test_sine_t bias = {.bias = 20.0, .amp = 0.0, .w_rad_s = 1.0, .phase_rad = 0.0};
     for (int with_rate = 0; with_rate <= 1; ++with_rate) {
         const ladrc_axis_config_t cfg = paper_config();
         ladrc_axis_t axis;
@@ -182,7 +186,7 @@ static void test_disturbance_response_matches_the_transfer_function(void)
     for (int i = 0; i < 3; ++i) {
         /* given: a 1 rad/s^2 tone at w on the paper's roll axis */
         const double w = tones[i];
-        const test_sine_t tone = {0.0, 1.0, w, 0.0};
+        const test_sine_t tone = {.bias = 0.0, .amp = 1.0, .w_rad_s = w, .phase_rad = 0.0};
         const ladrc_axis_config_t cfg = paper_config();
         ladrc_axis_t axis;
         init_axis(&axis, &cfg);
@@ -372,7 +376,7 @@ static void test_runs_are_bit_identical_however_split(void)
 {
     enum { N = 3000 };
     static ladrc_real_t whole[N], split[N], again[N], reinit[N];
-    static const test_sine_t tone = {20.0, 120.0, 3.0, 0.0};
+    static const test_sine_t tone = {.bias = 20.0, .amp = 120.0, .w_rad_s = 3.0, .phase_rad = 0.0};
     const ladrc_axis_config_t cfg = paper_config();
     ladrc_axis_t a, b;
     test_double_integrator_t p;

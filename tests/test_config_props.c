@@ -193,7 +193,7 @@ static void report(const char *name, tally_t t)
 static void axis_campaign(ladrc_variant_t v, const char *name)
 {
     tally_t t = {0};
-    test_rng_t rng = {SEED + (uint64_t)v};
+    test_rng_t rng = {.state = SEED + (uint64_t)v};
     static ladrc_axis_t axis;
     const long n = cases();
     for (t.tried = 0; t.tried < n; ++t.tried) {
@@ -261,7 +261,7 @@ static void run_attitude(tally_t *t, ladrc_attitude_t *att, const ladrc_attitude
 static void test_attitude_configs(void)
 {
     tally_t t = {0};
-    test_rng_t rng = {SEED + 100u};
+    test_rng_t rng = {.state = SEED + 100u};
     static ladrc_attitude_t att;
     const long n = cases();
     for (t.tried = 0; t.tried < n; ++t.tried) {

@@ -443,7 +443,11 @@ static void test_lp_tracks_the_measured_acceleration_minus_the_known_input(void)
 {
     /* given a rate whose derivative is 30 rad/s^2, of which 10 came from the input */
     ladrc_lp_estimator_t est;
-    const ladrc_lp_config_t cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f, 0.0f, 0u};
+    const ladrc_lp_config_t cfg = {.dt_s = (ladrc_real_t)DT_S,
+                                   .lambda0_per_s = 100.0f,
+                                   .k0_per_s = 300.0f,
+                                   .act_tau_s = 0.0f,
+                                   .act_delay_ticks = 0u};
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_lp_init(&est, &cfg));
     for (int k = 0; k < 200; ++k) {
         ladrc_lp_step(&est, (ladrc_real_t)(30.0 * k * DT_S), 10.0f);
@@ -458,7 +462,11 @@ static void test_lp_bandwidth_is_lambda0_k0_over_their_sum(void)
     /* a step of the sample reaches 1 - 1/e after 1/75 s = 13 ms (discrete
      * gain per tick 0.075: 1 - 0.925^13 = 0.637, one tick = 5% of the rise) */
     ladrc_lp_estimator_t est;
-    const ladrc_lp_config_t cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f, 0.0f, 0u};
+    const ladrc_lp_config_t cfg = {.dt_s = (ladrc_real_t)DT_S,
+                                   .lambda0_per_s = 100.0f,
+                                   .k0_per_s = 300.0f,
+                                   .act_tau_s = 0.0f,
+                                   .act_delay_ticks = 0u};
     ladrc_lp_init(&est, &cfg);
     for (int k = 0; k < 1000; ++k) { /* let P settle on a zero sample */
         ladrc_lp_step(&est, 0.0f, 0.0f);
@@ -480,7 +488,11 @@ static void test_lp_bandwidth_is_lambda0_k0_over_their_sum(void)
 static void test_lp_rate_gap_restarts_the_difference(void)
 {
     ladrc_lp_estimator_t est;
-    const ladrc_lp_config_t cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f, 0.0f, 0u};
+    const ladrc_lp_config_t cfg = {.dt_s = (ladrc_real_t)DT_S,
+                                   .lambda0_per_s = 100.0f,
+                                   .k0_per_s = 300.0f,
+                                   .act_tau_s = 0.0f,
+                                   .act_delay_ticks = 0u};
     ladrc_lp_init(&est, &cfg);
     ladrc_lp_step(&est, 0.0f, 0.0f);
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_lp_step(&est, (ladrc_real_t)NAN, 0.0f));
@@ -492,7 +504,11 @@ static void test_lp_rate_gap_restarts_the_difference(void)
 static void test_lp_invalid_fields_are_rejected(void)
 {
     ladrc_lp_estimator_t est;
-    const ladrc_lp_config_t good = {(ladrc_real_t)DT_S, 100.0f, 300.0f, 0.0f, 0u};
+    const ladrc_lp_config_t good = {.dt_s = (ladrc_real_t)DT_S,
+                                    .lambda0_per_s = 100.0f,
+                                    .k0_per_s = 300.0f,
+                                    .act_tau_s = 0.0f,
+                                    .act_delay_ticks = 0u};
     ladrc_lp_config_t cfg = good;
     cfg.dt_s = (ladrc_real_t)NAN;
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_DT_S, ladrc_lp_init(&est, &cfg));
@@ -588,7 +604,11 @@ static void test_lp_lead_is_n_at_once_and_unity_at_dc(void)
 {
     /* given: LP with a 30 ms lag and 2 ticks to lead over, on a sample step */
     const double tau_eff = 0.03 + 2.0 * DT_S;
-    const ladrc_lp_config_t cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f, 0.03f, 2u};
+    const ladrc_lp_config_t cfg = {.dt_s = (ladrc_real_t)DT_S,
+                                   .lambda0_per_s = 100.0f,
+                                   .k0_per_s = 300.0f,
+                                   .act_tau_s = 0.03f,
+                                   .act_delay_ticks = 2u};
     ladrc_lp_estimator_t est;
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_lp_init(&est, &cfg));
     /* when: a still rate and a known input of -10 rad/s^2 (sample 10,
@@ -617,7 +637,11 @@ static void test_lp_lead_is_n_at_once_and_unity_at_dc(void)
     }
     TEST_ASSERT_FLOAT_WITHIN(LEAD_SETTLED_TOL * 30.0, ladrc_lp_get_estimate(&est), command);
     /* and: without an actuator the lead is d_hat itself */
-    const ladrc_lp_config_t plain_cfg = {(ladrc_real_t)DT_S, 100.0f, 300.0f, 0.0f, 0u};
+    const ladrc_lp_config_t plain_cfg = {.dt_s = (ladrc_real_t)DT_S,
+                                         .lambda0_per_s = 100.0f,
+                                         .k0_per_s = 300.0f,
+                                         .act_tau_s = 0.0f,
+                                         .act_delay_ticks = 0u};
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_lp_init(&est, &plain_cfg));
     int differ = 0;
     for (int k = 0; k < 100; ++k) {

@@ -24,7 +24,7 @@
 #define REAL_MIN FLT_MIN
 #endif
 /* The paper's roll disturbance: bias 20, 120 rad/s^2 at 3 rad/s. */
-static const test_sine_t paper_tone = {20.0, 120.0, 3.0, 0.0};
+static const test_sine_t paper_tone = {.bias = 20.0, .amp = 120.0, .w_rad_s = 3.0, .phase_rad = 0.0};
 /* Back to normal 6 s after a glitch: the last second's largest error within
  * 10 % (+1e-5 rad for HP's near-zero error) of the same flight without it. */
 #define RECOVERED_FACTOR 1.1
@@ -207,15 +207,21 @@ static void test_steps_no_module_can_discretise_are_refused(void)
     const ladrc_real_t steps[4] = {(ladrc_real_t)1e30, (ladrc_real_t)2.0, (ladrc_real_t)9e-7, REAL_MIN};
     for (int i = 0; i < 4; ++i) {
         ladrc_leso_t leso;
-        const ladrc_leso_config_t leso_cfg = {steps[i], LADRC_R(75.0), LADRC_R(100.0), LADRC_LESO_ZOH};
+        const ladrc_leso_config_t leso_cfg = {
+            .dt_s = steps[i], .wo_rad_s = LADRC_R(75.0), .b0 = LADRC_R(100.0), .method = LADRC_LESO_ZOH};
         TEST_ASSERT_EQUAL_INT(LADRC_ERR_DT_S, ladrc_leso_init(&leso, &leso_cfg));
         ladrc_rls_t rls;
-        const ladrc_rls_config_t rls_cfg = {3u, steps[i], LADRC_R(0.0), LADRC_R(1e4), LADRC_R(1.0)};
+        const ladrc_rls_config_t rls_cfg = {.n_params = 3u,
+                                            .dt_s = steps[i],
+                                            .lambda0_per_s = LADRC_R(0.0),
+                                            .p_bound = LADRC_R(1e4),
+                                            .p_initial = LADRC_R(1.0)};
         TEST_ASSERT_EQUAL_INT(LADRC_ERR_DT_S, ladrc_rls_init(&rls, &rls_cfg));
     }
     ladrc_leso_t leso;
-    const ladrc_leso_config_t edge[2] = {{LADRC_DT_MIN_S, LADRC_R(75.0), LADRC_R(100.0), LADRC_LESO_ZOH},
-                                         {LADRC_DT_MAX_S, LADRC_R(75.0), LADRC_R(100.0), LADRC_LESO_ZOH}};
+    const ladrc_leso_config_t edge[2] = {
+        {.dt_s = LADRC_DT_MIN_S, .wo_rad_s = LADRC_R(75.0), .b0 = LADRC_R(100.0), .method = LADRC_LESO_ZOH},
+        {.dt_s = LADRC_DT_MAX_S, .wo_rad_s = LADRC_R(75.0), .b0 = LADRC_R(100.0), .method = LADRC_LESO_ZOH}};
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_leso_init(&leso, &edge[0]));
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_leso_init(&leso, &edge[1]));
 }

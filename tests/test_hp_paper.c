@@ -85,7 +85,7 @@ static paper_result_t fly(ladrc_variant_t variant, ladrc_hp_freq_mode_t mode, do
     test_rigid_body_t body;
     test_rigid_body_init(&body);
     unsigned seed = 88172645u;
-    paper_result_t res = {0.0, 0.0, 0.0, 0.0, 0.0};
+    paper_result_t res = {.band_deg = 0.0, .relock_s = 0.0, .rms_deg = 0.0, .stop_settle_s = 0.0, .stop_max_deg = 0.0};
     double sum_sq[3] = {0.0, 0.0, 0.0};
     long rms_samples = 0;
     const long ticks = (long)(RUN_S / DT_S + 0.5);

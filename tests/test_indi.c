@@ -117,15 +117,21 @@ static void test_init_names_the_bad_field(void)
         float value;
         ladrc_status_t status;
     } cases[] = {
-        {offsetof(ladrc_axis_config_t, indi_att_kp_per_s), 0.0f, LADRC_ERR_INDI_ATT_KP},
-        {offsetof(ladrc_axis_config_t, indi_att_kp_per_s), 1000.0f, LADRC_ERR_INDI_ATT_KP}, /* k dt = 1 */
-        {offsetof(ladrc_axis_config_t, indi_rate_kp_per_s), NAN, LADRC_ERR_INDI_RATE_KP},
-        {offsetof(ladrc_axis_config_t, indi_rate_kp_per_s), -1.0f, LADRC_ERR_INDI_RATE_KP},
-        {offsetof(ladrc_axis_config_t, indi_filter_rad_s), INFINITY, LADRC_ERR_INDI_FILTER},
-        {offsetof(ladrc_axis_config_t, indi_filter_rad_s), 3200.0f, LADRC_ERR_INDI_FILTER}, /* beyond pi / dt */
-        {offsetof(ladrc_axis_config_t, b0), 0.0f, LADRC_ERR_B0},
-        {offsetof(ladrc_axis_config_t, motor_tau_s), -1.0f, LADRC_ERR_MOTOR_TAU_S},
-        {offsetof(ladrc_axis_config_t, td_accel_rad_s2), -1.0f, LADRC_ERR_TD_ACCEL_RAD_S2},
+        {.offset = offsetof(ladrc_axis_config_t, indi_att_kp_per_s), .value = 0.0f, .status = LADRC_ERR_INDI_ATT_KP},
+        {.offset = offsetof(ladrc_axis_config_t, indi_att_kp_per_s),
+         .value = 1000.0f,
+         .status = LADRC_ERR_INDI_ATT_KP}, /* k dt = 1 */
+        {.offset = offsetof(ladrc_axis_config_t, indi_rate_kp_per_s), .value = NAN, .status = LADRC_ERR_INDI_RATE_KP},
+        {.offset = offsetof(ladrc_axis_config_t, indi_rate_kp_per_s), .value = -1.0f, .status = LADRC_ERR_INDI_RATE_KP},
+        {.offset = offsetof(ladrc_axis_config_t, indi_filter_rad_s),
+         .value = INFINITY,
+         .status = LADRC_ERR_INDI_FILTER},
+        {.offset = offsetof(ladrc_axis_config_t, indi_filter_rad_s),
+         .value = 3200.0f,
+         .status = LADRC_ERR_INDI_FILTER}, /* beyond pi / dt */
+        {.offset = offsetof(ladrc_axis_config_t, b0), .value = 0.0f, .status = LADRC_ERR_B0},
+        {.offset = offsetof(ladrc_axis_config_t, motor_tau_s), .value = -1.0f, .status = LADRC_ERR_MOTOR_TAU_S},
+        {.offset = offsetof(ladrc_axis_config_t, td_accel_rad_s2), .value = -1.0f, .status = LADRC_ERR_TD_ACCEL_RAD_S2},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         ladrc_axis_config_t bad = config();

@@ -24,7 +24,8 @@
 
 static ladrc_leso_config_t config(ladrc_leso_method_t method)
 {
-    ladrc_leso_config_t cfg = {(ladrc_real_t)DT_S, (ladrc_real_t)WO_RAD_S, (ladrc_real_t)B0, method};
+    ladrc_leso_config_t cfg = {
+        .dt_s = (ladrc_real_t)DT_S, .wo_rad_s = (ladrc_real_t)WO_RAD_S, .b0 = (ladrc_real_t)B0, .method = method};
     return cfg;
 }
 
@@ -43,7 +44,7 @@ static void record_errors(ladrc_leso_method_t method, double f, int n, double er
     const ladrc_leso_config_t cfg = config(method);
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_leso_init(&obs, &cfg));
     ladrc_leso_reset(&obs, 0.0f);
-    const test_sine_t d = {f, 0.0, 0.0, 0.0};
+    const test_sine_t d = {.bias = f, .amp = 0.0, .w_rad_s = 0.0, .phase_rad = 0.0};
     test_double_integrator_t plant;
     test_plant_init(&plant, B0, test_sine_disturbance, &d);
     plant.y_rad = 0.2;
@@ -185,7 +186,7 @@ static void test_known_disturbance_rate_removes_the_ramp_lag(void)
 static void test_known_acceleration_is_not_counted_as_disturbance(void)
 {
     /* given a plant pushed by a known 30 rad/s^2 that the observer is told of */
-    const test_sine_t d = {30.0, 0.0, 0.0, 0.0};
+    const test_sine_t d = {.bias = 30.0, .amp = 0.0, .w_rad_s = 0.0, .phase_rad = 0.0};
     ladrc_leso_t obs;
     const ladrc_leso_config_t cfg = config(LADRC_LESO_ZOH);
     ladrc_leso_init(&obs, &cfg);

@@ -531,7 +531,7 @@ static double best_td_rms(double *best_accel, double *best_h0)
         for (ih = 0; ih < 5; ++ih) {
             ladrc_td_t td;
             ladrc_td_config_t cfg;
-            gauss_rng_t rng = {0x9E3779B97F4A7C15ull};
+            gauss_rng_t rng = {.s = 0x9E3779B97F4A7C15ull};
             double sum = 0.0;
             int n = 0;
             int k;
@@ -565,7 +565,7 @@ static void test_derivative_of_a_noisy_sine_has_a_lower_rms_error_than_the_best_
     /* given: the default differentiator with L from the sine's 4th-derivative
      * bound, and the same noisy samples for both shapers */
     const ladrc_levant_config_t cfg = lipschitz_config(LADRC_LEVANT_IMPLICIT, NOISE_LIPSCHITZ);
-    gauss_rng_t rng = {0x9E3779B97F4A7C15ull};
+    gauss_rng_t rng = {.s = 0x9E3779B97F4A7C15ull};
     ladrc_levant_t lev;
     double sum = 0.0;
     double td_accel = 0.0;
@@ -986,7 +986,7 @@ static void test_step_reset_and_getters_tolerate_null_pointers(void)
     /* given */
     const ladrc_levant_config_t cfg = lipschitz_config(LADRC_LEVANT_IMPLICIT, 10.0);
     ladrc_levant_t lev;
-    ladrc_ref_t out = {LADRC_R(7.0), LADRC_R(7.0), LADRC_R(7.0)};
+    ladrc_ref_t out = {.r = LADRC_R(7.0), .dr = LADRC_R(7.0), .ddr = LADRC_R(7.0)};
     init_ok(&lev, &cfg);
     /* when / then: no crash; a NULL instance reports a state fault, a NULL output is allowed */
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_levant_step(NULL, LADRC_R(1.0), &out));

@@ -121,9 +121,15 @@ static void test_axis_cascaded_holds_on_non_finite_input(void)
 static void test_attitude_and_mixer_hold_on_non_finite_input(void)
 {
     static const ladrc_real_t inertia[3] = {LADRC_R(5.445e-3), LADRC_R(5.445e-3), LADRC_R(1.089e-2)};
-    static const ladrc_mixer_config_t mix = {LADRC_R(2.98e-5), LADRC_R(0.165), LADRC_R(2e-6),
-                                             LADRC_R(0.8),     LADRC_R(9.81),  LADRC_R(1e4),
-                                             LADRC_R(2e5),     LADRC_R(0.7),   LADRC_MIXER_SATURATE};
+    static const ladrc_mixer_config_t mix = {.kL_N_s2 = LADRC_R(2.98e-5),
+                                             .arm_m = LADRC_R(0.165),
+                                             .b_Nm_s2 = LADRC_R(2e-6),
+                                             .mass_kg = LADRC_R(0.8),
+                                             .g_m_s2 = LADRC_R(9.81),
+                                             .w2_min_rad2_s2 = LADRC_R(1e4),
+                                             .w2_max_rad2_s2 = LADRC_R(2e5),
+                                             .tilt_max_rad = LADRC_R(0.7),
+                                             .mode = LADRC_MIXER_SATURATE};
     ladrc_attitude_config_t cfg;
     ladrc_attitude_t att;
     ladrc_mixer_t mixer;

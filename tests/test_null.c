@@ -73,7 +73,7 @@ static void test_axis_functions_give_safe_values_for_null(void)
     ladrc_axis_get_estimate(NULL, &angle, &rate, &dist);
     ladrc_axis_get_estimate(&axis, NULL, &rate, &dist);
     TEST_ASSERT_TRUE(angle == UNTOUCHED && rate == UNTOUCHED && dist == UNTOUCHED);
-    ladrc_ref_t ref = {UNTOUCHED, UNTOUCHED, UNTOUCHED};
+    ladrc_ref_t ref = {.r = UNTOUCHED, .dr = UNTOUCHED, .ddr = UNTOUCHED};
     ladrc_axis_get_reference(NULL, &ref);
     ladrc_axis_get_reference(&axis, NULL);
     TEST_ASSERT_TRUE(ref.r == UNTOUCHED);
@@ -102,9 +102,9 @@ static void test_building_block_steps_give_faults_for_null(void)
 {
     skip_with_asserts();
     ladrc_real_t out = UNTOUCHED;
-    const ladrc_ref_t ref = {LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0)};
+    const ladrc_ref_t ref = {.r = LADRC_R(0.0), .dr = LADRC_R(0.0), .ddr = LADRC_R(0.0)};
     const ladrc_real_t phi[LADRC_RLS_MAX_PARAMS] = {LADRC_R(1.0)};
-    ladrc_leso_twin_t twin = {LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0)};
+    ladrc_leso_twin_t twin = {.z1 = LADRC_R(0.0), .z2 = LADRC_R(0.0), .z3 = LADRC_R(0.0)};
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE,
                            ladrc_leso_step(NULL, LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0)));
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE,

@@ -297,7 +297,7 @@ static void test_factored_update_matches_the_plain_update_computed_in_double(voi
         init_rls(&rls, n, LAMBDA0_PER_S, p0);
         ref_rls_t ref;
         ref_init(&ref, n, p0);
-        rng_t rng = {12345u + n};
+        rng_t rng = {.s = 12345u + n};
         const double theta_true[MAXP] = {1.5, -2.0, 0.7};
         for (int k = 0; k < 300; ++k) {
             /* when both see the same noisy samples of a random regressor */
@@ -359,7 +359,7 @@ static void test_noise_free_regression_converges_to_the_true_parameters(void)
     ladrc_rls_t rls;
     init_rls(&rls, NP, LAMBDA0_PER_S, P0);
     const double theta_true[NP] = {0.5, -2.0, 3.0};
-    rng_t rng = {7u};
+    rng_t rng = {.s = 7u};
     /* when 1 s of samples has been seen */
     for (int k = 0; k < 1000; ++k) {
         const ladrc_real_t phi[NP] = {1.0f, (ladrc_real_t)rng_normal(&rng), (ladrc_real_t)rng_normal(&rng)};
@@ -388,7 +388,7 @@ static void test_noisy_regression_error_matches_the_noise_and_the_forgetting_win
     ladrc_rls_t rls;
     init_rls(&rls, NP, LAMBDA0_PER_S, P0);
     const double theta_true[NP] = {0.5, -2.0, 3.0};
-    rng_t rng = {2024u};
+    rng_t rng = {.s = 2024u};
     double sum_sq[NP] = {0.0, 0.0, 0.0};
     double sum_lambda = 0.0;
     long count = 0;
@@ -434,7 +434,7 @@ static double time_to_track_a_step(double lambda0, int n_steps)
     init_rls(&rls, NP, lambda0, P0);
     const double before[NP] = {1.0, 2.0, -1.0};
     const double after[NP] = {2.0, 1.0, 0.0};
-    rng_t rng = {99u};
+    rng_t rng = {.s = 99u};
     long last_out = -1;
     for (long k = -1000; k < n_steps; ++k) { /* 1 s on the old parameters first */
         const double *theta_true = k < 0 ? before : after;
@@ -544,7 +544,7 @@ static void test_without_excitation_p_reaches_an_exact_fixed_point_on_the_bound(
         for (unsigned m = 0; m < 3; ++m) {
             ladrc_rls_t rls;
             init_rls(&rls, n, lambda0s[m], 1.0 / n);
-            rng_t rng = {n * 10u + m};
+            rng_t rng = {.s = n * 10u + m};
             for (int k = 0; k < 50; ++k) {
                 ladrc_real_t phi[MAXP];
                 for (unsigned i = 0; i < MAXP; ++i) {
@@ -574,7 +574,7 @@ static void test_a_long_run_without_excitation_keeps_p_bounded_and_definite(void
     /* given a full-size estimator after some excitation */
     ladrc_rls_t rls;
     init_rls(&rls, MAXP, LAMBDA0_PER_S, 1.0);
-    rng_t rng = {31u};
+    rng_t rng = {.s = 31u};
     for (int k = 0; k < 100; ++k) {
         const ladrc_real_t phi[MAXP] = {1.0f, (ladrc_real_t)rng_normal(&rng), (ladrc_real_t)rng_normal(&rng)};
         ladrc_rls_update(&rls, phi, 0.5f);
@@ -608,7 +608,7 @@ static void test_bursts_of_huge_excitation_keep_p_bounded_and_definite(void)
      * bound) with bursts of regressors up to 1e6 and noisy y */
     ladrc_rls_t rls;
     init_rls(&rls, MAXP, LAMBDA0_PER_S, 10.0);
-    rng_t rng = {4242u};
+    rng_t rng = {.s = 4242u};
     const double theta_true[MAXP] = {1.0, -1.0, 0.5};
     long repairs = 0;
     double smallest_d = 1e300;
@@ -777,7 +777,7 @@ static void test_entries_beyond_n_params_are_ignored(void)
 
 static void run_samples(ladrc_rls_t *rls, int with_bad)
 {
-    rng_t rng = {555u};
+    rng_t rng = {.s = 555u};
     for (int k = 0; k < 500; ++k) {
         const ladrc_real_t phi[NP] = {1.0f, (ladrc_real_t)rng_normal(&rng), (ladrc_real_t)rng_normal(&rng)};
         const ladrc_real_t y = (ladrc_real_t)(1.0 + 2.0 * (double)phi[1] + 0.1 * rng_normal(&rng));

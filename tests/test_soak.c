@@ -263,7 +263,7 @@ static void fly(ladrc_variant_t variant, double seconds, soak_result_t *r)
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_attitude_init(&att, &cfg, NULL));
     test_rigid_body_t body;
     test_rigid_body_init(&body);
-    soak_rng_t rng = {UINT64_C(0x9E3779B97F4A7C15), 0.0, 0};
+    soak_rng_t rng = {.s = UINT64_C(0x9E3779B97F4A7C15), .spare = 0.0, .has_spare = 0};
 
     memset(r, 0, sizeof *r);
     r->seconds = seconds;

@@ -35,7 +35,12 @@ void tearDown(void)
 
 static ladrc_margins_plant_t paper_plant(double tau_s, int delay)
 {
-    const ladrc_margins_plant_t p = {0.001, 5.445e-3, 1.0, 0.09, tau_s, delay};
+    const ladrc_margins_plant_t p = {.dt_s = 0.001,
+                                     .inertia_kg_m2 = 5.445e-3,
+                                     .inertia_factor = 1.0,
+                                     .drag_Nm_s = 0.09,
+                                     .motor_tau_s = tau_s,
+                                     .delay_ticks = delay};
     return p;
 }
 
@@ -43,7 +48,12 @@ static void test_double_integrator_matches_its_zoh_closed_form(void)
 {
     const double dt = 0.002, j = 0.02;
     for (int delay = 0; delay <= 2; ++delay) {
-        const ladrc_margins_plant_t p = {dt, j, 1.0, 0.0, 0.0, delay};
+        const ladrc_margins_plant_t p = {.dt_s = dt,
+                                         .inertia_kg_m2 = j,
+                                         .inertia_factor = 1.0,
+                                         .drag_Nm_s = 0.0,
+                                         .motor_tau_s = 0.0,
+                                         .delay_ticks = delay};
         const double ws_test[] = {0.5, 20.0, 900.0};
         for (int i = 0; i < 3; ++i) {
             double out[4];
@@ -78,7 +88,7 @@ static void test_measured_pid_matches_its_transfer_function(void)
     ladrc_axis_config_t cfg;
     ladrc_axis_config_default(&cfg, LADRC_VARIANT_PID, 0.001f, 5.445e-3f);
     cfg.pid_d_filter_tau_s = 0.004f;
-    const ladrc_margins_controller_t ctl = {NULL, 0, &cfg, 0};
+    const ladrc_margins_controller_t ctl = {.attitude = NULL, .axis_index = 0, .axis = &cfg, .use_rate = 0};
     ladrc_margins_plant_t p = paper_plant(0.0, 0);
     ladrc_margins_request_t req;
     ladrc_margins_request_default(&req, &p);
@@ -120,7 +130,7 @@ static void test_integrator_with_delay_has_its_textbook_margins(void)
     const double ks[] = {20.0, 150.0, 400.0};
     for (int d = 1; d <= 3; ++d) {
         for (int i = 0; i < 3; ++i) {
-            integrator_t c = {ks[i], 0.001, d};
+            integrator_t c = {.k = ks[i], .dt = 0.001, .d = d};
             ladrc_margins_of_loop(integrator_loop, &c, c.dt, &res);
             const double wc = 2.0 * asin(c.k * c.dt / 2.0);
             const double pm = (PI / 2.0 - wc * (d + 0.5)) * 180.0 / PI;
@@ -157,7 +167,8 @@ static void sweep(ladrc_variant_t variant, int use_rate, double wc, double kp_sc
             cfg.wc_rad_s = (ladrc_real_t)wc;
             cfg.wo_rad_s = (ladrc_real_t)(5.0 * wc);
             cfg.pid_kp *= (ladrc_real_t)kp_scale;
-            const ladrc_margins_controller_t ctl = {NULL, 0, &cfg, use_rate};
+            const ladrc_margins_controller_t ctl = {
+                .attitude = NULL, .axis_index = 0, .axis = &cfg, .use_rate = use_rate};
             const ladrc_margins_plant_t p = paper_plant(lags[i], delays[j]);
             ladrc_margins_request_t req;
             ladrc_margins_request_default(&req, &p);
@@ -202,7 +213,7 @@ static void test_boundaries_bracket_the_verdict(void)
 {
     ladrc_axis_config_t cfg;
     ladrc_axis_config_default(&cfg, LADRC_VARIANT_LADRC, 0.001f, 5.445e-3f);
-    const ladrc_margins_controller_t ctl = {NULL, 0, &cfg, 0};
+    const ladrc_margins_controller_t ctl = {.attitude = NULL, .axis_index = 0, .axis = &cfg, .use_rate = 0};
     const ladrc_margins_plant_t p = paper_plant(0.0, 0);
     ladrc_margins_request_t req;
     ladrc_margins_request_default(&req, &p);
@@ -230,7 +241,7 @@ static void test_bad_requests_are_refused_by_name(void)
 {
     ladrc_axis_config_t cfg;
     ladrc_axis_config_default(&cfg, LADRC_VARIANT_LADRC, 0.001f, 5.445e-3f);
-    const ladrc_margins_controller_t ctl = {NULL, 0, &cfg, 0};
+    const ladrc_margins_controller_t ctl = {.attitude = NULL, .axis_index = 0, .axis = &cfg, .use_rate = 0};
     ladrc_margins_plant_t p = paper_plant(0.0, 0);
     ladrc_margins_request_t req;
     ladrc_margins_request_default(&req, &p);

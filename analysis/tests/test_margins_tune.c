@@ -29,8 +29,11 @@ typedef struct {
 /* Paper roll (5.445e-3) and yaw (1.089e-2) with kt = 0.09; a 1.5-2 kg quad
  * (0.025 kg m^2); each with one of the lag / delay pairs. */
 static const airframe_t CASES[] = {
-    {5.445e-3, 0.0, 0},  {5.445e-3, 0.02, 1}, {5.445e-3, 0.04, 2}, {1.089e-2, 0.0, 1}, {1.089e-2, 0.02, 2},
-    {1.089e-2, 0.04, 0}, {0.025, 0.0, 2},     {0.025, 0.02, 0},    {0.025, 0.04, 1},
+    {.j = 5.445e-3, .tau = 0.0, .delay = 0},  {.j = 5.445e-3, .tau = 0.02, .delay = 1},
+    {.j = 5.445e-3, .tau = 0.04, .delay = 2}, {.j = 1.089e-2, .tau = 0.0, .delay = 1},
+    {.j = 1.089e-2, .tau = 0.02, .delay = 2}, {.j = 1.089e-2, .tau = 0.04, .delay = 0},
+    {.j = 0.025, .tau = 0.0, .delay = 2},     {.j = 0.025, .tau = 0.02, .delay = 0},
+    {.j = 0.025, .tau = 0.04, .delay = 1},
 };
 
 static void tune_case(ladrc_variant_t variant, const airframe_t *a)
@@ -38,14 +41,19 @@ static void tune_case(ladrc_variant_t variant, const airframe_t *a)
     ladrc_axis_config_t cfg, tuned;
     ladrc_axis_config_default(&cfg, variant, 0.001f, (ladrc_real_t)a->j);
     const int use_rate = variant == LADRC_VARIANT_INDI; /* INDI flies on the measured rate */
-    const ladrc_margins_controller_t ctl = {NULL, 0, &cfg, use_rate};
-    const ladrc_margins_plant_t p = {0.001, a->j, 1.0, 0.09, a->tau, a->delay};
+    const ladrc_margins_controller_t ctl = {.attitude = NULL, .axis_index = 0, .axis = &cfg, .use_rate = use_rate};
+    const ladrc_margins_plant_t p = {.dt_s = 0.001,
+                                     .inertia_kg_m2 = a->j,
+                                     .inertia_factor = 1.0,
+                                     .drag_Nm_s = 0.09,
+                                     .motor_tau_s = a->tau,
+                                     .delay_ticks = a->delay};
     ladrc_margins_request_t req;
     ladrc_margins_request_default(&req, &p);
-    const ladrc_margins_targets_t targets = {45.0, 6.0};
+    const ladrc_margins_targets_t targets = {.pm_min_deg = 45.0, .gm_min_db = 6.0};
     TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_tune(&ws, &ctl, &req, &targets, &tuned, &tuning));
     /* Analysed again, independently of the search. */
-    const ladrc_margins_controller_t again = {NULL, 0, &tuned, use_rate};
+    const ladrc_margins_controller_t again = {.attitude = NULL, .axis_index = 0, .axis = &tuned, .use_rate = use_rate};
     TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_analyse(&ws, &again, &req, &res));
     printf("%s J %g lag %g delay %d: wc %.1f wo %.1f kp %.3g ki %.3g kd %.3g k_att %.1f k_rate %.1f w_f %.1f"
            " att_kp %.3g rate kp %.3g -> PM %.1f GM %.1f peak |d->e| %.3g\n",
@@ -83,11 +91,16 @@ static void test_indi_without_its_rate_is_refused(void)
 {
     ladrc_axis_config_t cfg, tuned;
     ladrc_axis_config_default(&cfg, LADRC_VARIANT_INDI, 0.001f, 5.445e-3f);
-    const ladrc_margins_controller_t ctl = {NULL, 0, &cfg, 0};
-    const ladrc_margins_plant_t p = {0.001, 5.445e-3, 1.0, 0.09, 0.0, 0};
+    const ladrc_margins_controller_t ctl = {.attitude = NULL, .axis_index = 0, .axis = &cfg, .use_rate = 0};
+    const ladrc_margins_plant_t p = {.dt_s = 0.001,
+                                     .inertia_kg_m2 = 5.445e-3,
+                                     .inertia_factor = 1.0,
+                                     .drag_Nm_s = 0.09,
+                                     .motor_tau_s = 0.0,
+                                     .delay_ticks = 0};
     ladrc_margins_request_t req;
     ladrc_margins_request_default(&req, &p);
-    const ladrc_margins_targets_t targets = {45.0, 6.0};
+    const ladrc_margins_targets_t targets = {.pm_min_deg = 45.0, .gm_min_db = 6.0};
     TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_ERR_CONTROLLER, ladrc_margins_analyse(&ws, &ctl, &req, &res));
     TEST_ASSERT_NOT_EQUAL(LADRC_MARGINS_OK, ladrc_margins_tune(&ws, &ctl, &req, &targets, &tuned, &tuning));
 }
@@ -103,7 +116,7 @@ static void test_lag_lowers_the_tuned_bandwidth(void)
     /* More lag, less bandwidth: the tuning follows the airframe. */
     double wc[2];
     for (int k = 0; k < 2; ++k) {
-        const airframe_t a = {5.445e-3, k == 0 ? 0.02 : 0.04, 1};
+        const airframe_t a = {.j = 5.445e-3, .tau = k == 0 ? 0.02 : 0.04, .delay = 1};
         tune_case(LADRC_VARIANT_LADRC, &a);
         wc[k] = tuning.wc_rad_s;
     }
@@ -114,11 +127,16 @@ static void test_impossible_targets_are_refused_with_the_best_margins(void)
 {
     ladrc_axis_config_t cfg, tuned;
     ladrc_axis_config_default(&cfg, LADRC_VARIANT_LADRC, 0.001f, 5.445e-3f);
-    const ladrc_margins_controller_t ctl = {NULL, 0, &cfg, 0};
-    const ladrc_margins_plant_t p = {0.001, 5.445e-3, 1.0, 0.09, 0.04, 2};
+    const ladrc_margins_controller_t ctl = {.attitude = NULL, .axis_index = 0, .axis = &cfg, .use_rate = 0};
+    const ladrc_margins_plant_t p = {.dt_s = 0.001,
+                                     .inertia_kg_m2 = 5.445e-3,
+                                     .inertia_factor = 1.0,
+                                     .drag_Nm_s = 0.09,
+                                     .motor_tau_s = 0.04,
+                                     .delay_ticks = 2};
     ladrc_margins_request_t req;
     ladrc_margins_request_default(&req, &p);
-    const ladrc_margins_targets_t targets = {89.0, 40.0};
+    const ladrc_margins_targets_t targets = {.pm_min_deg = 89.0, .gm_min_db = 40.0};
     TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_ERR_TARGETS_NOT_MET,
                           ladrc_margins_tune(&ws, &ctl, &req, &targets, &tuned, &tuning));
     TEST_ASSERT_FALSE(tuning.met);

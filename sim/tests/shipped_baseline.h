@@ -53,7 +53,8 @@ static void check_shipped_scenario(sim_scenario_t *sc, ladrc_margins_workspace_t
         sim_tune_plant(sc, i, &plant);
         ladrc_margins_request_t req;
         ladrc_margins_request_default(&req, &plant);
-        const ladrc_margins_controller_t ctl = {&acfg, i, NULL, sc->use_rate};
+        const ladrc_margins_controller_t ctl = {
+            .attitude = &acfg, .axis_index = i, .axis = NULL, .use_rate = sc->use_rate};
         static ladrc_margins_result_t res;
         TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_analyse(ws, &ctl, &req, &res));
         printf("%-18s %s %s axis %d: RMS error %.4f deg, band %.4f deg; PM %.1f deg, GM %.1f dB, stable %d\n", sc->name,

@@ -69,16 +69,22 @@ static void test_tuned_gains_meet_the_margins_on_every_shipped_airframe(void)
             if (seen)
                 continue;
             memcpy(done[n_done++], key, sizeof key);
-            const ladrc_margins_plant_t plant = {
-                sc.control_dt_s, j, sc.inertia_kg_m2[i] / j, sc.rot_drag_Nm_s, sc.motor_tau_s, sc.delay_ticks};
+            const ladrc_margins_plant_t plant = {.dt_s = sc.control_dt_s,
+                                                 .inertia_kg_m2 = j,
+                                                 .inertia_factor = sc.inertia_kg_m2[i] / j,
+                                                 .drag_Nm_s = sc.rot_drag_Nm_s,
+                                                 .motor_tau_s = sc.motor_tau_s,
+                                                 .delay_ticks = sc.delay_ticks};
             ladrc_margins_request_t req;
             ladrc_margins_request_default(&req, &plant);
-            const ladrc_margins_controller_t ctl = {&acfg, i, NULL, sc.use_rate};
-            const ladrc_margins_targets_t targets = {PM_MIN_DEG, GM_MIN_DB};
+            const ladrc_margins_controller_t ctl = {
+                .attitude = &acfg, .axis_index = i, .axis = NULL, .use_rate = sc.use_rate};
+            const ladrc_margins_targets_t targets = {.pm_min_deg = PM_MIN_DEG, .gm_min_db = GM_MIN_DB};
             ladrc_axis_config_t tuned;
             TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_tune(&ws, &ctl, &req, &targets, &tuned, &tuning));
             /* analysed again and flown, independently of the search */
-            const ladrc_margins_controller_t again = {NULL, 0, &tuned, sc.use_rate};
+            const ladrc_margins_controller_t again = {
+                .attitude = NULL, .axis_index = 0, .axis = &tuned, .use_rate = sc.use_rate};
             static ladrc_margins_result_t res;
             TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_analyse(&ws, &again, &req, &res));
             double growth = INFINITY;

@@ -83,13 +83,18 @@ static void predict(const char *controller, double inertia, double *tau_s, int *
     load(controller, inertia, 0.0, 0);
     ladrc_attitude_config_t acfg;
     sim_setup_attitude(&sc, sc.controllers[0], &acfg);
-    const ladrc_margins_plant_t plant = {0.001, inertia, 1.0, 0.09, 0.0, 0};
+    const ladrc_margins_plant_t plant = {.dt_s = 0.001,
+                                         .inertia_kg_m2 = inertia,
+                                         .inertia_factor = 1.0,
+                                         .drag_Nm_s = 0.09,
+                                         .motor_tau_s = 0.0,
+                                         .delay_ticks = 0};
     ladrc_margins_request_t req;
     ladrc_margins_request_default(&req, &plant);
     /* Linearised where the simulated runs fly: at rest, no tone (LP's gain
      * bound adapts to the excitation it sees). */
     req.tone_rad_s2 = 0.0;
-    const ladrc_margins_controller_t ctl = {&acfg, 0, NULL, sc.use_rate};
+    const ladrc_margins_controller_t ctl = {.attitude = &acfg, .axis_index = 0, .axis = NULL, .use_rate = sc.use_rate};
     TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_measure(&ws, &ctl, &req));
     TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_max_motor_tau(&ws, &plant, 0.5, tau_s));
     TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_max_delay(&ws, &plant, delay));

@@ -32,9 +32,9 @@ static void test_durations_are_written_in_the_unit_that_fits(void)
         double s;
         const char *text;
     } cases[] = {
-        {0.0, "0 s"},           {4.4, "4 s"},           {59.4, "59 s"},
-        {59.6, "1 min 00 s"},   {125.0, "2 min 05 s"},  {3599.4, "59 min 59 s"},
-        {3599.6, "1 h 00 min"}, {7620.0, "2 h 07 min"}, {90000.0, "25 h 00 min"},
+        {.s = 0.0, .text = "0 s"},           {.s = 4.4, .text = "4 s"},           {.s = 59.4, .text = "59 s"},
+        {.s = 59.6, .text = "1 min 00 s"},   {.s = 125.0, .text = "2 min 05 s"},  {.s = 3599.4, .text = "59 min 59 s"},
+        {.s = 3599.6, .text = "1 h 00 min"}, {.s = 7620.0, .text = "2 h 07 min"}, {.s = 90000.0, .text = "25 h 00 min"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         char buf[32];

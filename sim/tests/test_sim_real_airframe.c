@@ -115,7 +115,8 @@ static void test_tuned_controllers_meet_their_margins_and_fly_40ms_lag_2_ticks(v
             sim_tune_plant(&sc, i, &plant);
             ladrc_margins_request_t req;
             ladrc_margins_request_default(&req, &plant);
-            const ladrc_margins_controller_t ctl = {&acfg, i, NULL, sc.use_rate};
+            const ladrc_margins_controller_t ctl = {
+                .attitude = &acfg, .axis_index = i, .axis = NULL, .use_rate = sc.use_rate};
             int idle = 0;
             TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_analyse_reported(&ws, &ctl, &req, &res, &idle));
             printf("%s %s: PM %.2f deg GM %.2f dB lower GM %.2f dB crossover %.2f rad/s%s\n", sim_controller_name(id),

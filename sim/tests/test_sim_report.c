@@ -51,7 +51,7 @@ static void capture(int csv, char *buf, size_t len)
 {
     FILE *f = tmpfile();
     TEST_ASSERT_NOT_NULL(f);
-    const sim_scenario_result_t res = {&sc, m, NULL};
+    const sim_scenario_result_t res = {.sc = &sc, .attitude = m, .diff = NULL};
     if (csv) {
         TEST_ASSERT_EQUAL_INT(0, sim_report_metrics_csv(f, &res, 1));
     } else {

@@ -54,7 +54,7 @@ static void test_xoshiro256starstar_gives_the_published_outputs_from_state_1_2_3
                                           UINT64_C(8476171486693032832),
                                           UINT64_C(10595114339597558777),
                                           UINT64_C(2904607092377533576)};
-    sim_rng_t r = {{1, 2, 3, 4}, 0.0, 0};
+    sim_rng_t r = {.s = {1, 2, 3, 4}, .spare = 0.0, .has_spare = 0};
     for (int i = 0; i < 10; ++i) {
         TEST_ASSERT_TRUE(sim_rng_next(&r) == expected[i]);
     }

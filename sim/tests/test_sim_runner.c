@@ -154,7 +154,12 @@ static void test_a_lockstep_group_gives_each_run_bit_for_bit(void)
     for (int g = 0; g < 3; ++g) {
         TEST_ASSERT_EQUAL_INT_MESSAGE(
             0, sim_run_attitude(&sc, sc.controllers[g], NULL, NULL, &alone[g], err[g], sizeof err[g]), err[g]);
-        const sim_run_spec_t spec = {sc.controllers[g], NULL, &grouped[g], err[g], sizeof err[g], -1};
+        const sim_run_spec_t spec = {.ctrl = sc.controllers[g],
+                                     .csv_path = NULL,
+                                     .metrics = &grouped[g],
+                                     .err = err[g],
+                                     .err_len = sizeof err[g],
+                                     .rc = -1};
         runs[g] = spec;
     }
     /* the group really loses runs midway and keeps one to the end */
@@ -191,7 +196,12 @@ static void test_six_runs_in_lockstep_with_pieces_changing_within_a_step_give_ea
     for (int g = 0; g < 6; ++g) {
         TEST_ASSERT_EQUAL_INT_MESSAGE(
             0, sim_run_attitude(&sc, sc.controllers[g], NULL, NULL, &alone[g], err[g], sizeof err[g]), err[g]);
-        const sim_run_spec_t spec = {sc.controllers[g], NULL, &grouped[g], err[g], sizeof err[g], -1};
+        const sim_run_spec_t spec = {.ctrl = sc.controllers[g],
+                                     .csv_path = NULL,
+                                     .metrics = &grouped[g],
+                                     .err = err[g],
+                                     .err_len = sizeof err[g],
+                                     .rc = -1};
         runs[g] = spec;
     }
     sim_run_attitude_group(&sc, runs, 6, NULL);

@@ -46,18 +46,21 @@ static void test_setting_errors_name_the_setting_and_column(void)
         int column;
         const char *message;
     } cases[] = {
-        {"run.seed=abc", 10, "expected an unsigned integer, got 'abc'"},
-        {"seed=3", 1, "expected SECTION.KEY=VALUE, got 'seed=3'"},
-        {"runs.seed=3", 1, "unknown section 'runs'"},
-        {"run.sed=3", 5, "unknown key 'sed' in [run]"},
-        {"controller:LADRC.pid_kp=1", 18, "'pid_kp' does not apply to LADRC"},
-        {"controller:XY.wc_rad_s=1", 12,
-         "unknown controller 'XY' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, "
-         "CASCADED or INDI)"},
-        {"controller.wc_rad_s=1", 11, "expected a controller name after 'controller' ('controller:NAME.KEY=VALUE')"},
-        {"controller:LADRC.wc_rad_s=-1", 27, "wc_rad_s must be > 0"},
-        {"run.duration_s=", 16, "missing value for 'duration_s'"},
-        {"run.controllers=LADRC,,PID", 23, "expected a controller name before ','"},
+        {.set = "run.seed=abc", .column = 10, .message = "expected an unsigned integer, got 'abc'"},
+        {.set = "seed=3", .column = 1, .message = "expected SECTION.KEY=VALUE, got 'seed=3'"},
+        {.set = "runs.seed=3", .column = 1, .message = "unknown section 'runs'"},
+        {.set = "run.sed=3", .column = 5, .message = "unknown key 'sed' in [run]"},
+        {.set = "controller:LADRC.pid_kp=1", .column = 18, .message = "'pid_kp' does not apply to LADRC"},
+        {.set = "controller:XY.wc_rad_s=1",
+         .column = 12,
+         .message = "unknown controller 'XY' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, "
+                    "CASCADED or INDI)"},
+        {.set = "controller.wc_rad_s=1",
+         .column = 11,
+         .message = "expected a controller name after 'controller' ('controller:NAME.KEY=VALUE')"},
+        {.set = "controller:LADRC.wc_rad_s=-1", .column = 27, .message = "wc_rad_s must be > 0"},
+        {.set = "run.duration_s=", .column = 16, .message = "missing value for 'duration_s'"},
+        {.set = "run.controllers=LADRC,,PID", .column = 23, .message = "expected a controller name before ','"},
     };
     const char *text = "[run]\nduration_s = 2\n";
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
@@ -105,14 +108,15 @@ static void test_controller_lists_take_commas_spaces_or_both(void)
         size_t at;
         const char *message;
     } bad[] = {
-        {"LADRC,", 6, "expected a controller name"},
-        {",LADRC", 0, "expected a controller name before ','"},
-        {"LADRC,,PID", 6, "expected a controller name before ','"},
-        {"LADRC PID,LADRC", 10, "controller 'LADRC' listed twice"},
-        {"LADRC;PID", 0,
-         "unknown controller 'LADRC;PID' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, CASCADED or "
-         "INDI)"},
-        {"", 0, "expected a controller name"},
+        {.text = "LADRC,", .at = 6, .message = "expected a controller name"},
+        {.text = ",LADRC", .at = 0, .message = "expected a controller name before ','"},
+        {.text = "LADRC,,PID", .at = 6, .message = "expected a controller name before ','"},
+        {.text = "LADRC PID,LADRC", .at = 10, .message = "controller 'LADRC' listed twice"},
+        {.text = "LADRC;PID",
+         .at = 0,
+         .message = "unknown controller 'LADRC;PID' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, CASCADED or "
+                    "INDI)"},
+        {.text = "", .at = 0, .message = "expected a controller name"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         sim_controller_id_t ids[SIM_MAX_CONTROLLERS];
@@ -128,7 +132,10 @@ static void test_controller_lists_take_commas_spaces_or_both(void)
     parse_ok("[run]\nduration_s = 1\ncontrollers = PID, LADRC\n");
     TEST_ASSERT_EQUAL_INT(2, sc.n_controllers);
     TEST_ASSERT_EQUAL_INT(SIM_CTRL_PID, sc.controllers[0]);
-    const bad_case_t cases[] = {{"[run]\nduration_s = 1\ncontrollers = PID,\n", 3, 19, "expected a controller name"}};
+    const bad_case_t cases[] = {{.text = "[run]\nduration_s = 1\ncontrollers = PID,\n",
+                                 .line = 3,
+                                 .column = 19,
+                                 .message = "expected a controller name"}};
     CHECK_BAD_CASES(cases);
 }
 
