@@ -7,7 +7,6 @@
  * [set] lines keep pointers into the copy.
  */
 #include <errno.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,33 +17,6 @@
 static const char *const SECTION_NAMES[SEC_COUNT] = {"campaign", "grid", "draw", "set"};
 static const char *const CAMPAIGN_KEYS[K_COUNT] = {"name", "base", "seed", "samples", "output_dir"};
 
-int campaign_column(const parser_t *p, const char *at)
-{
-    return (int)(at - p->line_start) + 1;
-}
-
-int campaign_fail(parser_t *p, const char *at, const char *format, ...)
-{
-    p->err->line = p->line;
-    p->err->column = at != NULL ? campaign_column(p, at) : 1;
-    va_list ap;
-    va_start(ap, format);
-    vsnprintf(p->err->message, sizeof p->err->message, format, ap);
-    va_end(ap);
-    return -1;
-}
-
-int campaign_fail_at(parser_t *p, int line, int col, const char *format, ...)
-{
-    p->err->line = line;
-    p->err->column = col;
-    va_list ap;
-    va_start(ap, format);
-    vsnprintf(p->err->message, sizeof p->err->message, format, ap);
-    va_end(ap);
-    return -1;
-}
-
 static int parse_campaign_key(parser_t *p, char *key, char *value)
 {
     int k = 0;
@@ -52,33 +24,33 @@ static int parse_campaign_key(parser_t *p, char *key, char *value)
         ++k;
     }
     if (k == K_COUNT) {
-        return campaign_fail(p, key, "unknown key '%s' in [campaign] (expected name, base, seed, samples, output_dir)",
-                             key);
+        return ini_fail(&p->place, key,
+                        "unknown key '%s' in [campaign] (expected name, base, seed, samples, output_dir)", key);
     }
     if (p->key_line[k] != 0) {
-        return campaign_fail(p, key, "duplicate key '%s' (first given on line %d)", key, p->key_line[k]);
+        return ini_fail(&p->place, key, "duplicate key '%s' (first given on line %d)", key, p->key_line[k]);
     }
-    p->key_line[k] = p->line;
+    p->key_line[k] = p->place.line;
     sim_campaign_t *c = p->c;
     uint64_t v = 0;
     switch (k) {
     case K_NAME:
         for (char *s = value; *s != '\0'; ++s) {
             if (!campaign_is_name_char(*s)) {
-                return campaign_fail(p, s, "a campaign's name is made of letters, digits, '_', '.' and '-', got '%s'",
-                                     value);
+                return ini_fail(&p->place, s,
+                                "a campaign's name is made of letters, digits, '_', '.' and '-', got '%s'", value);
             }
         }
         if (strlen(value) >= sizeof c->name) {
-            return campaign_fail(p, value, "name longer than %d characters", (int)sizeof c->name - 1);
+            return ini_fail(&p->place, value, "name longer than %d characters", (int)sizeof c->name - 1);
         }
         strcpy(c->name, value);
         return 0;
     case K_BASE:
         if (strlen(value) >= sizeof c->base_path - 1) {
-            return campaign_fail(p, value, "path too long");
+            return ini_fail(&p->place, value, "path too long");
         }
-        p->base_col = campaign_column(p, value);
+        p->base_col = ini_column(&p->place, value);
         strcpy(c->base_path, value); /* made relative to the campaign's directory once read */
         return 0;
     case K_SEED:
@@ -92,13 +64,13 @@ static int parse_campaign_key(parser_t *p, char *key, char *value)
             return -1;
         }
         if (v < 1u) {
-            return campaign_fail(p, value, "samples must be at least 1");
+            return ini_fail(&p->place, value, "samples must be at least 1");
         }
         c->samples = (long)v;
         return 0;
     default:
         if (strlen(value) >= sizeof c->output_dir) {
-            return campaign_fail(p, value, "path too long");
+            return ini_fail(&p->place, value, "path too long");
         }
         strcpy(c->output_dir, value);
         return 0;
@@ -109,16 +81,17 @@ static int parse_campaign_key(parser_t *p, char *key, char *value)
 static int parse_set(parser_t *p, char *key, char *value)
 {
     if (p->c->n_sets >= SIM_CAMPAIGN_MAX_SETS) {
-        return campaign_fail(p, key, "more than %d [set] lines", SIM_CAMPAIGN_MAX_SETS);
+        return ini_fail(&p->place, key, "more than %d [set] lines", SIM_CAMPAIGN_MAX_SETS);
     }
     if (strchr(key, '.') == NULL) {
-        return campaign_fail(p, key, "expected SECTION.KEY = VALUE, got '%s' (a [set] line sets a scenario key)", key);
+        return ini_fail(&p->place, key, "expected SECTION.KEY = VALUE, got '%s' (a [set] line sets a scenario key)",
+                        key);
     }
     sim_campaign_set_t *s = &p->c->sets[p->c->n_sets++];
     s->key = key;
     s->value = value;
-    s->line = p->line;
-    s->value_column = campaign_column(p, value);
+    s->line = p->place.line;
+    s->value_column = ini_column(&p->place, value);
     return 0;
 }
 
@@ -126,11 +99,11 @@ static int parse_section(parser_t *p, char *s)
 {
     char *close = strchr(s, ']');
     if (close == NULL) {
-        return campaign_fail(p, s + strlen(s), "expected ']'");
+        return ini_fail(&p->place, s + strlen(s), "expected ']'");
     }
     char *after = ini_skip_space(close + 1);
     if (*after != '\0') {
-        return campaign_fail(p, after, "trailing characters after ']'");
+        return ini_fail(&p->place, after, "trailing characters after ']'");
     }
     *close = '\0';
     char *name = ini_skip_space(s + 1);
@@ -140,13 +113,13 @@ static int parse_section(parser_t *p, char *s)
         ++sec;
     }
     if (sec == SEC_COUNT) {
-        return campaign_fail(p, name, "unknown section [%.*s] (expected [campaign], [grid], [draw] or [set])",
-                             SHOWN(strlen(name)), name);
+        return ini_fail(&p->place, name, "unknown section [%.*s] (expected [campaign], [grid], [draw] or [set])",
+                        SHOWN(strlen(name)), name);
     }
     if (p->section_line[sec] != 0) {
-        return campaign_fail(p, s, "section [%s] already given on line %d", name, p->section_line[sec]);
+        return ini_fail(&p->place, s, "section [%s] already given on line %d", name, p->section_line[sec]);
     }
-    p->section_line[sec] = p->line;
+    p->section_line[sec] = p->place.line;
     p->section = sec;
     return 0;
 }
@@ -155,19 +128,19 @@ static int parse_key_line(parser_t *p, char *s)
 {
     char *eq = strchr(s, '=');
     if (eq == NULL) {
-        return campaign_fail(p, s + strlen(s), "expected KEY = VALUE");
+        return ini_fail(&p->place, s + strlen(s), "expected KEY = VALUE");
     }
     *eq = '\0';
     ini_trim_end(s);
     char *value = ini_skip_space(eq + 1);
     if (*s == '\0') {
-        return campaign_fail(p, s, "expected a key before '='");
+        return ini_fail(&p->place, s, "expected a key before '='");
     }
     if (p->section < 0) {
-        return campaign_fail(p, s, "key '%s' before any [section]", s);
+        return ini_fail(&p->place, s, "key '%s' before any [section]", s);
     }
     if (*value == '\0') {
-        return campaign_fail(p, value, "missing value for '%s'", s);
+        return ini_fail(&p->place, value, "missing value for '%s'", s);
     }
     switch (p->section) {
     case SEC_CAMPAIGN:
@@ -179,16 +152,15 @@ static int parse_key_line(parser_t *p, char *s)
     }
 }
 
-static int parse_line(void *ctx, const char *line_start, char *s)
+static int parse_line(void *ctx, char *s)
 {
     parser_t *p = (parser_t *)ctx;
-    p->line_start = line_start;
     return (*s == '[') ? parse_section(p, s) : parse_key_line(p, s);
 }
 
 static int parse_lines(parser_t *p, char *text)
 {
-    return ini_lines(text, &p->line, parse_line, p);
+    return ini_lines(text, &p->place, parse_line, p);
 }
 
 /* The key with every blank removed, for comparing [set] keys with varied ones. */
@@ -213,14 +185,14 @@ static int check_variables(parser_t *p)
         for (const char *v = s->value; *v != '\0'; ++v) {
             const int col = s->value_column + (int)(v - s->value);
             if (*v == '}') {
-                return campaign_fail_at(p, s->line, col, "'}' without '{'");
+                return ini_fail_at(&p->place, s->line, col, "'}' without '{'");
             }
             if (*v != '{') {
                 continue;
             }
             const char *close = strchr(v, '}');
             if (close == NULL) {
-                return campaign_fail_at(p, s->line, col, "'{' without '}'");
+                return ini_fail_at(&p->place, s->line, col, "'{' without '}'");
             }
             const size_t len = (size_t)(close - v - 1);
             int found = -1;
@@ -231,8 +203,8 @@ static int check_variables(parser_t *p)
                 }
             }
             if (found < 0) {
-                return campaign_fail_at(p, s->line, col, "unknown variable '{%.*s}' (define it in [grid] or [draw])",
-                                        SHOWN(len), v + 1);
+                return ini_fail_at(&p->place, s->line, col, "unknown variable '{%.*s}' (define it in [grid] or [draw])",
+                                   SHOWN(len), v + 1);
             }
             used[found] = 1;
             v = close;
@@ -244,17 +216,17 @@ static int check_variables(parser_t *p)
         }
         for (int k = 0; k < c->n_keys; ++k) {
             if (!c->keys[k].is_variable && strcmp(a, c->keys[k].name) == 0) {
-                return campaign_fail_at(p, s->line, s->value_column - (int)(s->value - s->key),
-                                        "'%s' is varied in [%s] (line %d): set it there or here, not both", a,
-                                        c->keys[k].is_draw ? "draw" : "grid", c->keys[k].line);
+                return ini_fail_at(&p->place, s->line, s->value_column - (int)(s->value - s->key),
+                                   "'%s' is varied in [%s] (line %d): set it there or here, not both", a,
+                                   c->keys[k].is_draw ? "draw" : "grid", c->keys[k].line);
             }
         }
     }
     for (int k = 0; k < c->n_keys; ++k) {
         if (c->keys[k].is_variable && !used[k]) {
-            return campaign_fail_at(p, c->keys[k].line, c->keys[k].column,
-                                    "variable '%s' is not used in [set] (write {%s} in a value there)", c->keys[k].name,
-                                    c->keys[k].name);
+            return ini_fail_at(&p->place, c->keys[k].line, c->keys[k].column,
+                               "variable '%s' is not used in [set] (write {%s} in a value there)", c->keys[k].name,
+                               c->keys[k].name);
         }
         if (strcmp(c->keys[k].name, "run.seed") == 0) {
             c->sets_seed = 1;
@@ -276,63 +248,27 @@ static void name_from_path(char *name, size_t n, const char *path)
     snprintf(name, n, "%.*s", (int)len, base);
 }
 
-static int read_file(const char *path, char **text, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (f == NULL) {
-        return -1;
-    }
-    size_t cap = 4096;
-    size_t n = 0;
-    char *buf = malloc(cap);
-    while (buf != NULL) {
-        n += fread(buf + n, 1, cap - 1 - n, f);
-        if (n < cap - 1) {
-            break;
-        }
-        char *grown = realloc(buf, cap * 2);
-        if (grown == NULL) {
-            free(buf);
-            buf = NULL;
-        } else {
-            buf = grown;
-            cap *= 2;
-        }
-    }
-    const int bad = ferror(f);
-    fclose(f);
-    if (buf == NULL || bad) {
-        free(buf);
-        errno = buf == NULL ? ENOMEM : EIO;
-        return -1;
-    }
-    buf[n] = '\0';
-    *text = buf;
-    *len = n;
-    return 0;
-}
-
 /* What follows the file's lines: required keys, the order of the keys, the
  * variables, the number of runs, the base scenario's bytes. */
 static int finish(parser_t *p)
 {
     sim_campaign_t *c = p->c;
     if (p->key_line[K_BASE] == 0) {
-        return campaign_fail_at(p, p->section_line[SEC_CAMPAIGN], p->section_line[SEC_CAMPAIGN] > 0 ? 1 : 0,
-                                "missing base = SCENARIO in [campaign] (the scenario every run starts from)");
+        return ini_fail_at(&p->place, p->section_line[SEC_CAMPAIGN], p->section_line[SEC_CAMPAIGN] > 0 ? 1 : 0,
+                           "missing base = SCENARIO in [campaign] (the scenario every run starts from)");
     }
     if (c->name[0] == '\0') {
         name_from_path(c->name, sizeof c->name, c->path);
         for (const char *s = c->name; *s != '\0'; ++s) {
             if (!campaign_is_name_char(*s)) {
-                return campaign_fail_at(p, 0, 0,
-                                        "the file's name '%s' is no campaign name (letters, digits, '_', '.', '-'): "
-                                        "give [campaign] name",
-                                        c->name);
+                return ini_fail_at(&p->place, 0, 0,
+                                   "the file's name '%s' is no campaign name (letters, digits, '_', '.', '-'): "
+                                   "give [campaign] name",
+                                   c->name);
             }
         }
         if (c->name[0] == '\0') {
-            return campaign_fail_at(p, 0, 0, "no campaign name: give [campaign] name");
+            return ini_fail_at(&p->place, 0, 0, "no campaign name: give [campaign] name");
         }
     }
     if (c->output_dir[0] == '\0') {
@@ -351,7 +287,7 @@ static int finish(parser_t *p)
         runs *= (double)c->keys[k].n_values;
     }
     if (runs > (double)SIM_CAMPAIGN_MAX_RUNS) {
-        return campaign_fail_at(p, 0, 0, "%.0f runs: at most %ld in a campaign", runs, SIM_CAMPAIGN_MAX_RUNS);
+        return ini_fail_at(&p->place, 0, 0, "%.0f runs: at most %ld in a campaign", runs, SIM_CAMPAIGN_MAX_RUNS);
     }
     c->n_runs = (long)runs;
     if (check_variables(p) != 0) {
@@ -364,12 +300,12 @@ static int finish(parser_t *p)
         snprintf(base, sizeof base, "%s", c->base_path);
     } else if (snprintf(base, sizeof base, "%.*s/%s", (int)(slash - c->path), c->path, c->base_path) >=
                (int)sizeof base) {
-        return campaign_fail_at(p, p->key_line[K_BASE], p->base_col, "base path too long");
+        return ini_fail_at(&p->place, p->key_line[K_BASE], p->base_col, "base path too long");
     }
     memcpy(c->base_path, base, sizeof base);
-    if (read_file(c->base_path, &c->base_text, &c->base_len) != 0) {
-        return campaign_fail_at(p, p->key_line[K_BASE], p->base_col, "cannot read the base scenario '%s': %s",
-                                c->base_path, strerror(errno));
+    if (ini_read_file(c->base_path, &c->base_text, &c->base_len) != 0) {
+        return ini_fail_at(&p->place, p->key_line[K_BASE], p->base_col, "cannot read the base scenario '%s': %s",
+                           c->base_path, strerror(errno));
     }
     return 0;
 }
@@ -411,7 +347,7 @@ int sim_campaign_parse(sim_campaign_t *c, const char *text, const char *path, si
     }
     memcpy(c->text, text, len + 1);
     p->c = c;
-    p->err = err;
+    p->place.err = err;
     p->section = -1;
     int rc = parse_lines(p, c->text);
     if (rc == 0) {
@@ -435,7 +371,7 @@ int sim_campaign_load(sim_campaign_t *c, const char *path, sim_campaign_error_t 
     char *text = NULL;
     size_t len = 0;
     memset(c, 0, sizeof *c);
-    if (read_file(path, &text, &len) != 0) {
+    if (ini_read_file(path, &text, &len) != 0) {
         memset(err, 0, sizeof *err);
         snprintf(err->path, sizeof err->path, "%s", path);
         snprintf(err->message, sizeof err->message, "cannot read: %s", strerror(errno));

@@ -14,11 +14,7 @@
 
 #include "campaign.h"
 
-#if defined(__GNUC__)
-#define PRINTF_LIKE(f, a) __attribute__((format(printf, f, a)))
-#else
-#define PRINTF_LIKE(f, a)
-#endif
+#include "ini.h"
 
 enum { SEC_CAMPAIGN, SEC_GRID, SEC_DRAW, SEC_SET, SEC_COUNT };
 
@@ -26,9 +22,7 @@ enum { K_NAME, K_BASE, K_SEED, K_SAMPLES, K_OUTPUT_DIR, K_COUNT };
 
 typedef struct {
     sim_campaign_t *c;
-    sim_campaign_error_t *err;
-    int line;
-    const char *line_start;
+    ini_place_t place; /* the current line, and where errors go */
     int section;
     int section_line[SEC_COUNT];
     int key_line[K_COUNT];
@@ -37,18 +31,6 @@ typedef struct {
     sim_campaign_key_t grid[SIM_CAMPAIGN_MAX_VARIED], draw[SIM_CAMPAIGN_MAX_VARIED];
     int n_grid, n_draw;
 } parser_t;
-
-/* 1-based column of `at` in the current line. */
-int campaign_column(const parser_t *p, const char *at);
-
-/* Records an error at `at` in the current line (column 1 if NULL); returns -1. */
-int PRINTF_LIKE(3, 4) campaign_fail(parser_t *p, const char *at, const char *format, ...);
-
-/* Records an error at (line, col); returns -1. */
-int PRINTF_LIKE(4, 5) campaign_fail_at(parser_t *p, int line, int col, const char *format, ...);
-
-/* Tokens are shown in messages up to this many characters. */
-#define SHOWN(len) ((len) > 40 ? 40 : (int)(len))
 
 /* ---- campaign_values.c ------------------------------------------------------- */
 

@@ -50,10 +50,10 @@ static int parse_number(parser_t *p, char *s, size_t len, double *v)
 {
     const size_t n = len > 0 ? scan_signed(s, v) : 0u;
     if (n == 0 || n != len) {
-        return campaign_fail(p, s, "expected a number, got '%.*s'", SHOWN(len), s);
+        return ini_fail(&p->place, s, "expected a number, got '%.*s'", SHOWN(len), s);
     }
     if (!isfinite(*v)) {
-        return campaign_fail(p, s, "number out of range");
+        return ini_fail(&p->place, s, "number out of range");
     }
     return 0;
 }
@@ -66,12 +66,12 @@ int campaign_parse_whole(parser_t *p, char *s, uint64_t max, uint64_t *out, cons
     for (; *d >= '0' && *d <= '9'; ++d) {
         const uint64_t digit = (uint64_t)(*d - '0');
         if (v > (max - digit) / 10u) {
-            return campaign_fail(p, s, "%s out of range (at most %llu)", what, (unsigned long long)max);
+            return ini_fail(&p->place, s, "%s out of range (at most %llu)", what, (unsigned long long)max);
         }
         v = v * 10u + digit;
     }
     if (d == s || *d != '\0') {
-        return campaign_fail(p, s, "%s: expected a whole number, got '%.*s'", what, SHOWN(strlen(s)), s);
+        return ini_fail(&p->place, s, "%s: expected a whole number, got '%.*s'", what, SHOWN(strlen(s)), s);
     }
     *out = v;
     return 0;
@@ -93,10 +93,10 @@ static int parse_call(parser_t *p, char *s, char **name, size_t *name_len, char 
     }
     char *close = strrchr(open, ')');
     if (close == NULL) {
-        return campaign_fail(p, open + strlen(open), "expected ')'");
+        return ini_fail(&p->place, open + strlen(open), "expected ')'");
     }
     if (*ini_skip_space(close + 1) != '\0') {
-        return campaign_fail(p, ini_skip_space(close + 1), "trailing characters after ')'");
+        return ini_fail(&p->place, ini_skip_space(close + 1), "trailing characters after ')'");
     }
     *close = '\0';
     int n = 0;
@@ -109,7 +109,7 @@ static int parse_call(parser_t *p, char *s, char **name, size_t *name_len, char 
         arg = ini_skip_space(arg);
         ini_trim_end(arg);
         if (n == max_args) {
-            return campaign_fail(p, arg, "too many arguments to %.*s()", SHOWN(*name_len), *name);
+            return ini_fail(&p->place, arg, "too many arguments to %.*s()", SHOWN(*name_len), *name);
         }
         args[n++] = arg;
         if (comma == NULL) {
@@ -123,7 +123,7 @@ static int parse_call(parser_t *p, char *s, char **name, size_t *name_len, char 
 static int expect_args(parser_t *p, char *name, size_t len, int n, int wanted, const char *form)
 {
     if (n != wanted) {
-        return campaign_fail(p, name, "%.*s takes %d numbers: %s", SHOWN(len), name, wanted, form);
+        return ini_fail(&p->place, name, "%.*s takes %d numbers: %s", SHOWN(len), name, wanted, form);
     }
     return 0;
 }
@@ -147,9 +147,9 @@ static int parse_grid_values(parser_t *p, sim_campaign_key_t *key, char *value)
     }
     if (n >= 0) {
         if (name_len != 5 || strncmp(name, "range", 5) != 0) {
-            return campaign_fail(p, name,
-                                 "unknown function '%.*s' in [grid] (expected a list or range(FROM, TO, COUNT))",
-                                 SHOWN(name_len), name);
+            return ini_fail(&p->place, name,
+                            "unknown function '%.*s' in [grid] (expected a list or range(FROM, TO, COUNT))",
+                            SHOWN(name_len), name);
         }
         double from, to, count;
         if (expect_args(p, name, name_len, n, 3, "range(FROM, TO, COUNT)") != 0 || parse_arg(p, args[0], &from) != 0 ||
@@ -157,16 +157,16 @@ static int parse_grid_values(parser_t *p, sim_campaign_key_t *key, char *value)
             return -1;
         }
         if (count != floor(count) || count < 2.0 || count > (double)SIM_CAMPAIGN_MAX_VALUES) {
-            return campaign_fail(p, args[2], "range COUNT must be a whole number from 2 to %d, got '%s'",
-                                 SIM_CAMPAIGN_MAX_VALUES, args[2]);
+            return ini_fail(&p->place, args[2], "range COUNT must be a whole number from 2 to %d, got '%s'",
+                            SIM_CAMPAIGN_MAX_VALUES, args[2]);
         }
         if (!(from != to)) {
-            return campaign_fail(p, args[1], "range FROM and TO must differ");
+            return ini_fail(&p->place, args[1], "range FROM and TO must differ");
         }
         key->n_values = (long)count;
         key->values = malloc((size_t)key->n_values * sizeof *key->values);
         if (key->values == NULL) {
-            return campaign_fail(p, name, "out of memory");
+            return ini_fail(&p->place, name, "out of memory");
         }
         for (long i = 0; i < key->n_values; ++i) {
             /* ends exact: FROM at i = 0, TO at the last */
@@ -184,13 +184,13 @@ static int parse_grid_values(parser_t *p, sim_campaign_key_t *key, char *value)
             s = ini_skip_space(s);
             if (*s == '\0') {
                 if (after_comma && count > 0) {
-                    return campaign_fail(p, s, "empty value after ','");
+                    return ini_fail(&p->place, s, "empty value after ','");
                 }
                 break;
             }
             if (*s == ',') {
                 if (after_comma) {
-                    return campaign_fail(p, s, "empty value before ','");
+                    return ini_fail(&p->place, s, "empty value before ','");
                 }
                 after_comma = 1;
                 ++s;
@@ -208,7 +208,7 @@ static int parse_grid_values(parser_t *p, sim_campaign_key_t *key, char *value)
                 key->values[count] = v;
             }
             if (++count > SIM_CAMPAIGN_MAX_VALUES) {
-                return campaign_fail(p, s, "more than %d values", SIM_CAMPAIGN_MAX_VALUES);
+                return ini_fail(&p->place, s, "more than %d values", SIM_CAMPAIGN_MAX_VALUES);
             }
             after_comma = 0;
             s = end;
@@ -216,7 +216,7 @@ static int parse_grid_values(parser_t *p, sim_campaign_key_t *key, char *value)
         if (pass == 0) {
             key->values = malloc((size_t)count * sizeof *key->values);
             if (key->values == NULL) {
-                return campaign_fail(p, start, "out of memory");
+                return ini_fail(&p->place, start, "out of memory");
             }
         }
     }
@@ -236,8 +236,8 @@ static int parse_draw(parser_t *p, sim_campaign_key_t *key, char *value)
     }
     static const char *const EXPECTED = "expected uniform(A, B), normal(MEAN, STD) or log_uniform(A, B)";
     if (n == -2) {
-        return campaign_fail(p, value, "expected a distribution, got '%.*s' (%s)", SHOWN(strlen(value)), value,
-                             EXPECTED);
+        return ini_fail(&p->place, value, "expected a distribution, got '%.*s' (%s)", SHOWN(strlen(value)), value,
+                        EXPECTED);
     }
     double a = 0.0, b = 0.0;
     if (len == 7 && strncmp(name, "uniform", 7) == 0) {
@@ -246,7 +246,7 @@ static int parse_draw(parser_t *p, sim_campaign_key_t *key, char *value)
             return -1;
         }
         if (!(a < b)) {
-            return campaign_fail(p, name, "uniform(A, B) needs A < B");
+            return ini_fail(&p->place, name, "uniform(A, B) needs A < B");
         }
         key->dist = SIM_DRAW_UNIFORM;
     } else if (len == 6 && strncmp(name, "normal", 6) == 0) {
@@ -255,7 +255,7 @@ static int parse_draw(parser_t *p, sim_campaign_key_t *key, char *value)
             return -1;
         }
         if (!(b > 0.0)) {
-            return campaign_fail(p, args[1], "normal(MEAN, STD) needs STD > 0");
+            return ini_fail(&p->place, args[1], "normal(MEAN, STD) needs STD > 0");
         }
         key->dist = SIM_DRAW_NORMAL;
     } else if (len == 11 && strncmp(name, "log_uniform", 11) == 0) {
@@ -264,11 +264,11 @@ static int parse_draw(parser_t *p, sim_campaign_key_t *key, char *value)
             return -1;
         }
         if (!(a > 0.0 && a < b)) {
-            return campaign_fail(p, name, "log_uniform(A, B) needs 0 < A < B");
+            return ini_fail(&p->place, name, "log_uniform(A, B) needs 0 < A < B");
         }
         key->dist = SIM_DRAW_LOG_UNIFORM;
     } else {
-        return campaign_fail(p, name, "unknown distribution '%.*s' (%s)", SHOWN(len), name, EXPECTED);
+        return ini_fail(&p->place, name, "unknown distribution '%.*s' (%s)", SHOWN(len), name, EXPECTED);
     }
     key->a = a;
     key->b = b;
@@ -296,18 +296,18 @@ int campaign_parse_varied(parser_t *p, char *key, size_t key_len, char *value)
     const int draw = p->section == SEC_DRAW;
     int *n = draw ? &p->n_draw : &p->n_grid;
     if (p->n_grid + p->n_draw >= SIM_CAMPAIGN_MAX_VARIED) {
-        return campaign_fail(p, key, "more than %d [grid] and [draw] keys", SIM_CAMPAIGN_MAX_VARIED);
+        return ini_fail(&p->place, key, "more than %d [grid] and [draw] keys", SIM_CAMPAIGN_MAX_VARIED);
     }
     for (size_t i = 0; i < key_len; ++i) {
         if (!is_name_char(key[i])) {
-            return campaign_fail(p, key + i,
-                                 "unexpected '%c' in a name (a variable: letters, digits, '_'; a scenario key: "
-                                 "SECTION.KEY)",
-                                 key[i]);
+            return ini_fail(&p->place, key + i,
+                            "unexpected '%c' in a name (a variable: letters, digits, '_'; a scenario key: "
+                            "SECTION.KEY)",
+                            key[i]);
         }
     }
     if (key_len >= SIM_CAMPAIGN_KEY_LEN) {
-        return campaign_fail(p, key, "name longer than %d characters", SIM_CAMPAIGN_KEY_LEN - 1);
+        return ini_fail(&p->place, key, "name longer than %d characters", SIM_CAMPAIGN_KEY_LEN - 1);
     }
     sim_campaign_key_t k;
     memset(&k, 0, sizeof k);
@@ -316,19 +316,19 @@ int campaign_parse_varied(parser_t *p, char *key, size_t key_len, char *value)
     k.is_variable = memchr(key, '.', key_len) == NULL;
     if (k.is_variable &&
         (!is_alpha(key[0]) || memchr(key, ':', key_len) != NULL || memchr(key, '-', key_len) != NULL)) {
-        return campaign_fail(p, key, "a variable's name is a letter or '_' then letters, digits or '_', got '%s'",
-                             k.name);
+        return ini_fail(&p->place, key, "a variable's name is a letter or '_' then letters, digits or '_', got '%s'",
+                        k.name);
     }
     if (!k.is_variable && (key[0] == '.' || key[key_len - 1] == '.')) {
-        return campaign_fail(p, key, "expected SECTION.KEY, got '%s'", k.name);
+        return ini_fail(&p->place, key, "expected SECTION.KEY, got '%s'", k.name);
     }
     const sim_campaign_key_t *twice = find_varied(p, k.name);
     if (twice != NULL) {
-        return campaign_fail(p, key, "'%s' already varied on line %d", k.name, twice->line);
+        return ini_fail(&p->place, key, "'%s' already varied on line %d", k.name, twice->line);
     }
     k.is_draw = draw;
-    k.line = p->line;
-    k.column = campaign_column(p, key);
+    k.line = p->place.line;
+    k.column = ini_column(&p->place, key);
     k.draw_index = draw ? *n + 1 : 0;
     if ((draw ? parse_draw(p, &k, value) : parse_grid_values(p, &k, value)) != 0) {
         free(k.values);
