@@ -25,18 +25,19 @@ void runner_disturbance_batch_init(disturbance_batch_t *b, const sim_scenario_t 
     b->last_t_s = NAN; /* never equal: empty */
 }
 
-void runner_disturbance_batch_fill(disturbance_batch_t *b, const sim_plant_t *p, double dt_s, int substeps)
+/* The step's distinct stage times into distinct[] (the first carried over
+ * from the step before when it is that step's last), each stage time's row
+ * in b->slot; returns the rows, *carried the rows already valued. */
+static int distinct_times(disturbance_batch_t *b, double distinct[STAGES_MAX], int *carried)
 {
-    /* more than the parser lets through: no table, every call evaluates */
-    b->n = substeps <= SIM_PLANT_SUBSTEPS_MAX ? sim_plant_stage_times(p, dt_s, substeps, b->t_s) : 0;
-    int rows = 0, carried = 0;
-    double distinct[STAGES_MAX];
+    int rows = 0;
+    *carried = 0;
     if (b->n > 0 && b->t_s[0] == b->last_t_s) { /* carried over from the step before */
         for (int i = 0; i < 3; ++i) {
             b->value[0][i] = b->value[b->last][i];
         }
         distinct[0] = b->t_s[0];
-        rows = carried = 1;
+        rows = *carried = 1;
     }
     for (int k = 0; k < b->n; ++k) {
         if (rows == 0 || b->t_s[k] != distinct[rows - 1]) {
@@ -44,9 +45,14 @@ void runner_disturbance_batch_fill(disturbance_batch_t *b, const sim_plant_t *p,
         }
         b->slot[k] = rows - 1;
     }
-    /* the new rows, SIM_EXPR_BATCH_MAX instants at a time, the three axes
-     * sharing their function results */
-    for (int r = carried; r < rows; r += SIM_EXPR_BATCH_MAX) {
+    return rows;
+}
+
+/* The rows [from, rows) valued, SIM_EXPR_BATCH_MAX instants at a time, the
+ * three axes sharing their function results. */
+static void value_rows(disturbance_batch_t *b, const double distinct[STAGES_MAX], int from, int rows)
+{
+    for (int r = from; r < rows; r += SIM_EXPR_BATCH_MAX) {
         const int m = rows - r < SIM_EXPR_BATCH_MAX ? rows - r : SIM_EXPR_BATCH_MAX;
         double lo, hi;
         sim_signal_batch_range(&distinct[r], m, &lo, &hi);
@@ -60,6 +66,16 @@ void runner_disturbance_batch_fill(disturbance_batch_t *b, const sim_plant_t *p,
             }
         }
     }
+}
+
+void runner_disturbance_batch_fill(disturbance_batch_t *b, const sim_plant_t *p, double dt_s, int substeps)
+{
+    /* more than the parser lets through: no table, every call evaluates */
+    b->n = substeps <= SIM_PLANT_SUBSTEPS_MAX ? sim_plant_stage_times(p, dt_s, substeps, b->t_s) : 0;
+    double distinct[STAGES_MAX];
+    int carried;
+    const int rows = distinct_times(b, distinct, &carried);
+    value_rows(b, distinct, carried, rows);
     for (int k = 0; k < b->n; ++k) {
         for (int i = 0; i < 3; ++i) {
             b->stage[k][i] = b->value[b->slot[k]][i];

@@ -10,26 +10,48 @@
 #include "runner_parts.h"
 #include "setup.h"
 
-int sim_run_differentiator(const sim_scenario_t *sc, const char *csv_path, const sim_progress_t *progress,
-                           sim_diff_metrics_t *m, char *err, size_t err_len)
+/* Levant and the TD configured as the parser checked them, at the signal's
+ * value at t = 0; 0, or -1 with the message. */
+static int diff_open(const sim_scenario_t *sc, ladrc_levant_t *lev, ladrc_td_t *td, char *err, size_t err_len)
 {
-    memset(m, 0, sizeof *m);
     ladrc_levant_config_t lcfg;
     ladrc_td_config_t tcfg;
     sim_setup_differentiators(sc, &lcfg, &tcfg);
-    ladrc_levant_t lev;
-    ladrc_td_t td;
-    ladrc_status_t st = ladrc_levant_init(&lev, &lcfg);
+    ladrc_status_t st = ladrc_levant_init(lev, &lcfg);
     if (st == LADRC_OK) {
-        st = ladrc_td_init(&td, &tcfg);
+        st = ladrc_td_init(td, &tcfg);
     }
     if (st != LADRC_OK) {
         snprintf(err, err_len, "%s: differentiator: %s", sc->path, ladrc_status_str(st));
         return -1;
     }
     const double r0 = sim_signal_eval(&sc->diff_signal, 0.0);
-    ladrc_levant_reset(&lev, (ladrc_real_t)r0);
-    ladrc_td_reset(&td, (ladrc_real_t)r0);
+    ladrc_levant_reset(lev, (ladrc_real_t)r0);
+    ladrc_td_reset(td, (ladrc_real_t)r0);
+    return 0;
+}
+
+/* A line of the time series: "%.4f,%.7g,%.7g,%.7g,%.7g\n" of t, the noisy
+ * signal, the true derivative, Levant's and the TD's. */
+static void diff_csv_line(csv_line_t *line, FILE *csv, double t, double r, double dr, double dr_levant, double dr_td)
+{
+    runner_line_f4(line, t);
+    runner_line_g(line, r, 7);
+    runner_line_g(line, dr, 7);
+    runner_line_g(line, dr_levant, 7);
+    runner_line_g(line, dr_td, 7);
+    runner_line_end(line, csv);
+}
+
+int sim_run_differentiator(const sim_scenario_t *sc, const char *csv_path, const sim_progress_t *progress,
+                           sim_diff_metrics_t *m, char *err, size_t err_len)
+{
+    memset(m, 0, sizeof *m);
+    ladrc_levant_t lev;
+    ladrc_td_t td;
+    if (diff_open(sc, &lev, &td, err, err_len) != 0) {
+        return -1;
+    }
     sim_rng_t rng;
     sim_rng_seed(&rng, sc->seed);
     FILE *csv = runner_open_csv(csv_path, "t_s,r_noisy,dr_true,dr_levant,dr_td\n", err, err_len);
@@ -54,13 +76,8 @@ int sim_run_differentiator(const sim_scenario_t *sc, const char *csv_path, const
             sim_stat_add(&m->levant_error, (double)lev_out.dr - dr);
             sim_stat_add(&m->td_error, (double)td_out.dr - dr_next);
         }
-        if (csv != NULL) { /* "%.4f,%.7g,%.7g,%.7g,%.7g\n" */
-            runner_line_f4(&line, t);
-            runner_line_g(&line, r, 7);
-            runner_line_g(&line, dr, 7);
-            runner_line_g(&line, (double)lev_out.dr, 7);
-            runner_line_g(&line, (double)td_out.dr, 7);
-            runner_line_end(&line, csv);
+        if (csv != NULL) {
+            diff_csv_line(&line, csv, t, r, dr, (double)lev_out.dr, (double)td_out.dr);
         }
         if (progress != NULL && progress->ticks_done != NULL && (k & 1023) == 1023) {
             *progress->ticks_done += 1024;
