@@ -34,12 +34,22 @@ static void logging_ramp(double t_s, void *ctx, double d_out[3])
     d_out[2] = 0.0;
 }
 
-static void test_disturbance_is_evaluated_at_the_rk4_stage_times(void)
+/* The paper's vehicle without drag at rest, hovering, and the command that
+ * keeps its rotors where they are. */
+static void plant_at_rest(sim_plant_t *p, double cmd[4])
 {
     const sim_vehicle_t v = vehicle_no_drag();
+    sim_plant_init(p, &v);
+    for (int i = 0; i < 4; ++i) {
+        cmd[i] = p->w2_rad2_s2[i];
+    }
+}
+
+static void test_disturbance_is_evaluated_at_the_rk4_stage_times(void)
+{
     sim_plant_t p;
-    sim_plant_init(&p, &v);
-    const double cmd[4] = {p.w2_rad2_s2[0], p.w2_rad2_s2[1], p.w2_rad2_s2[2], p.w2_rad2_s2[3]};
+    double cmd[4];
+    plant_at_rest(&p, cmd);
     call_log_t log = {0};
     sim_plant_step(&p, cmd, 0.01, 1, logging_ramp, &log);
     log.n_calls = 0;
@@ -58,10 +68,9 @@ static void test_disturbance_is_evaluated_at_the_rk4_stage_times(void)
 
 static void test_the_listed_stage_times_are_those_asked_bit_for_bit(void)
 {
-    const sim_vehicle_t v = vehicle_no_drag();
     sim_plant_t p;
-    sim_plant_init(&p, &v);
-    const double cmd[4] = {p.w2_rad2_s2[0], p.w2_rad2_s2[1], p.w2_rad2_s2[2], p.w2_rad2_s2[3]};
+    double cmd[4];
+    plant_at_rest(&p, cmd);
     call_log_t log = {0};
     double listed[64];
     for (int k = 0; k < 7; ++k) { /* from times that are not round: 0.0013 s steps */
@@ -83,10 +92,9 @@ static void test_a_ramp_disturbance_gives_the_exact_cubic(void)
     /* phi'' = t from rest: phi = t^3 / 6, phi' = t^2 / 2. RK4 with d at the
      * stage times is Simpson's rule on each step, exact for this cubic; with
      * d held at the step start the rate would lag by t h / 2. */
-    const sim_vehicle_t v = vehicle_no_drag();
     sim_plant_t p;
-    sim_plant_init(&p, &v);
-    const double cmd[4] = {p.w2_rad2_s2[0], p.w2_rad2_s2[1], p.w2_rad2_s2[2], p.w2_rad2_s2[3]};
+    double cmd[4];
+    plant_at_rest(&p, cmd);
     call_log_t log = {0};
     for (int k = 1; k <= 1000; ++k) {
         sim_plant_step(&p, cmd, 1e-3, 1, logging_ramp, &log);
