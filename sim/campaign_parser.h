@@ -5,6 +5,9 @@
  *                      the checks once the file is read, the entry points;
  *   campaign_values.c  the names and values of [grid] and [draw] keys, and
  *                      whole numbers.
+ * Errors are recorded at their place with ini.h's helpers (ini_fail), as the
+ * scenario parser's are. The draws and the runs (campaign_draw.c,
+ * campaign_runs.c) work on a parsed campaign.
  */
 #ifndef LADRC_SIM_CAMPAIGN_PARSER_H
 #define LADRC_SIM_CAMPAIGN_PARSER_H
@@ -13,7 +16,6 @@
 #include <stdint.h>
 
 #include "campaign.h"
-
 #include "ini.h"
 
 enum { SEC_CAMPAIGN, SEC_GRID, SEC_DRAW, SEC_SET, SEC_COUNT };

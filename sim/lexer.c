@@ -2,8 +2,7 @@
 /*
  * The scenario lexer (parser.h): a value's text into tokens, numbers,
  * integers, words of a list, windows and signal pieces, each checked by the
- * key's schema entry, and the errors at a place in the text. Values are cut
- * up in place.
+ * key's schema entry. Values are cut up in place.
  */
 #include "parser.h"
 

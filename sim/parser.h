@@ -2,13 +2,14 @@
 /*
  * The scenario parser's state, internal to it (scenario.h is the interface).
  * One parse goes through four rooms:
- *   lexer.c    a value's text into numbers, words, windows and signal pieces,
- *              and the errors at a place in the text;
+ *   lexer.c    a value's text into numbers, words, windows and signal pieces;
  *   reader.c   lines, [section] headers and the command line's settings,
  *              each KEY = VALUE filed by the key table (schema.h);
  *   checks.c   once everything is read: the checks across keys, then what
  *              the library accepts, each error at the key responsible;
  *   scenario.c the entry points: defaults, the text, the order of the above.
+ * Errors are recorded at their place with ini.h's helpers (ini_fail), as the
+ * campaign parser's are.
  */
 #ifndef LADRC_SIM_PARSER_H
 #define LADRC_SIM_PARSER_H
@@ -34,7 +35,7 @@ typedef struct {
     int section_line[SEC_COUNT];
     loc_t seen[SEC_COUNT][SCHEMA_MAX_KEYS];
     int piece_line[SCHEMA_MAX_KEYS][SIM_MAX_PIECES];
-    int checked;        /* a consistency error is in err */
+    int checked;        /* a consistency error is in place.err */
     int first_set_line; /* > 0: reading the command line's settings from this line */
 } parser_t;
 
