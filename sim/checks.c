@@ -16,13 +16,13 @@
 /* A consistency error: kept if it is the earliest in the file so far. */
 static void PRINTF_LIKE(4, 5) check_fail(parser_t *p, int line, int col, const char *format, ...)
 {
-    if (p->checked && (line > p->err->line || (line == p->err->line && col >= p->err->column))) {
+    if (p->checked && (line > p->place.err->line || (line == p->place.err->line && col >= p->place.err->column))) {
         return;
     }
     p->checked = 1;
     va_list ap;
     va_start(ap, format);
-    parser_vset_error(p->err, line, col, format, ap);
+    ini_vset_error(p->place.err, line, col, format, ap);
     va_end(ap);
 }
 
@@ -434,7 +434,7 @@ static void PRINTF_LIKE(4, 5) set_error(sim_parse_error_t *err, const char *path
     snprintf(err->path, sizeof err->path, "%s", path);
     va_list ap;
     va_start(ap, format);
-    parser_vset_error(err, at.line, at.value_col, format, ap);
+    ini_vset_error(err, at.line, at.value_col, format, ap);
     va_end(ap);
 }
 

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
- * Expression compiler: recursive descent straight to postfix.
+ * Expression compiler (expr_code.h): recursive descent straight to postfix,
+ * then the postfix program into the evaluated form.
  *
  *   sum     := product (('+' | '-') product)*
  *   product := unary (('*' | '/') unary)*
@@ -11,40 +12,13 @@
  * The exponent of ^ is a unary, so a power chain recurses to the right and
  * a minus in front of a power applies to the whole power.
  */
-#include "expr.h"
-
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-enum {
-    OP_CONST,
-    OP_T,
-    OP_NEG,
-    OP_ADD,
-    OP_SUB,
-    OP_MUL,
-    OP_DIV,
-    OP_POW,
-    OP_SIN,
-    OP_COS,
-    OP_TAN,
-    OP_ASIN,
-    OP_ACOS,
-    OP_ATAN,
-    OP_EXP,
-    OP_LOG,
-    OP_SQRT,
-    OP_ABS,
-    OP_FLOOR,
-    OP_CEIL,
-    OP_STEP,
-    OP_SIGN,
-    OP_MIN,
-    OP_MAX
-};
+#include "expr_code.h"
 
 typedef struct {
     const char *name;
@@ -369,94 +343,6 @@ int sim_expr_compile(sim_expr_t *expr, const char *text, sim_expr_error_t *err)
     return 0;
 }
 
-static double nan_or(double x, double value)
-{
-    return isnan(x) ? x : value;
-}
-
-/* a op b for the binary operators, a the left operand; NaN wins in min/max */
-static double apply_binary(unsigned char op, double a, double b)
-{
-    switch (op) {
-    case OP_ADD:
-        return a + b;
-    case OP_SUB:
-        return a - b;
-    case OP_MUL:
-        return a * b;
-    case OP_DIV:
-        return a / b;
-    case OP_POW:
-        return pow(a, b);
-    case OP_MIN:
-        return isnan(b) ? b : ((!isnan(a) && b < a) ? b : a);
-    default:
-        return isnan(b) ? b : ((!isnan(a) && b > a) ? b : a); /* OP_MAX */
-    }
-}
-
-static double apply_unary(unsigned char op, double x)
-{
-    switch (op) {
-    case OP_NEG:
-        return -x;
-    case OP_SIN:
-        return sin(x);
-    case OP_COS:
-        return cos(x);
-    case OP_TAN:
-        return tan(x);
-    case OP_ASIN:
-        return asin(x);
-    case OP_ACOS:
-        return acos(x);
-    case OP_ATAN:
-        return atan(x);
-    case OP_EXP:
-        return exp(x);
-    case OP_LOG:
-        return log(x);
-    case OP_SQRT:
-        return sqrt(x);
-    case OP_ABS:
-        return fabs(x);
-    case OP_FLOOR:
-        return floor(x);
-    case OP_CEIL:
-        return ceil(x);
-    case OP_STEP:
-        return nan_or(x, x >= 0.0 ? 1.0 : 0.0);
-    default:
-        return nan_or(x, x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0)); /* OP_SIGN */
-    }
-}
-
-static int is_binary(unsigned char op)
-{
-    return (op >= OP_ADD && op <= OP_POW) || op == OP_MIN || op == OP_MAX;
-}
-
-double sim_expr_eval_postfix(const sim_expr_t *expr, double t_s)
-{
-    double stack[SIM_EXPR_MAX_STACK];
-    int sp = 0;
-    if (expr->n_ops <= 0) {
-        return NAN;
-    }
-    for (int i = 0; i < expr->n_ops; ++i) {
-        const unsigned char op = expr->op[i];
-        if (op == OP_CONST || op == OP_T) {
-            stack[sp++] = (op == OP_T) ? t_s : expr->value[i];
-        } else if (is_binary(op)) {
-            --sp;
-            stack[sp - 1] = apply_binary(op, stack[sp - 1], stack[sp]);
-        } else {
-            stack[sp - 1] = apply_unary(op, stack[sp - 1]);
-        }
-    }
-    return stack[0];
-}
-
 /* ---- the evaluated form ------------------------------------------------
  *
  * The postfix program becomes a tree; subtrees without t are folded to
@@ -466,17 +352,6 @@ double sim_expr_eval_postfix(const sim_expr_t *expr, double t_s)
  * operand is a constant or t takes it directly (modes C and T); one whose
  * left operand is (RC, RT) takes the accumulator as its right operand;
  * otherwise the left value is pushed while the right one is worked out (S). */
-
-enum { MODE_C, MODE_T, MODE_S, MODE_RC, MODE_RT, N_MODES };
-enum { X_LOADC, X_LOADT, X_PUSH, X_UNARY };
-/* unary op u: X_UNARY + u - OP_NEG (OP_NEG .. OP_SIGN but the binary ones);
- * binary: X_BINARY + index * N_MODES + mode */
-#define X_BINARY (X_UNARY + OP_SIGN - OP_NEG + 1)
-
-static int binary_index(unsigned char op)
-{
-    return op == OP_MIN ? 5 : (op == OP_MAX ? 6 : op - OP_ADD);
-}
 
 typedef struct {
     unsigned char op; /* OP_CONST (folded or written), OP_T, or an operator */
@@ -558,237 +433,4 @@ static void build_code(sim_expr_t *expr)
     }
     expr->n_code = 0;
     emit_node(&b, stack[0]);
-}
-
-void sim_expr_memo_clear(sim_expr_memo_t *memo)
-{
-    memo->n = 0;
-    memo->next = 0;
-}
-
-static int same_bits(double a, double b)
-{
-    uint64_t x, y;
-    memcpy(&x, &a, sizeof x);
-    memcpy(&y, &b, sizeof y);
-    return x == y;
-}
-
-/* The memo's next slot: a free one while there is one, else the oldest. */
-static int memo_slot(int *n, int *next)
-{
-    if (*n < SIM_EXPR_MEMO_SIZE) {
-        return (*n)++;
-    }
-    const int slot = *next;
-    *next = (slot + 1) % SIM_EXPR_MEMO_SIZE;
-    return slot;
-}
-
-/* apply_unary through the memo for the functions worth remembering */
-static double unary_memo(unsigned char op, double x, sim_expr_memo_t *memo)
-{
-    if (memo == NULL || op < OP_SIN || op > OP_LOG) {
-        return apply_unary(op, x);
-    }
-    for (int i = 0; i < memo->n; ++i) {
-        if (memo->fn[i] == op && same_bits(memo->arg[i], x)) {
-            return memo->result[i];
-        }
-    }
-    const double y = apply_unary(op, x);
-    const int slot = memo_slot(&memo->n, &memo->next);
-    memo->fn[slot] = op;
-    memo->arg[slot] = x;
-    memo->result[slot] = y;
-    return y;
-}
-
-#define BINARY_CASES(op)                                                                                               \
-    case X_BINARY + (op)*N_MODES + MODE_C:                                                                             \
-        acc = BIN_##op(acc, expr->operand[i]);                                                                         \
-        break;                                                                                                         \
-    case X_BINARY + (op)*N_MODES + MODE_T:                                                                             \
-        acc = BIN_##op(acc, t_s);                                                                                      \
-        break;                                                                                                         \
-    case X_BINARY + (op)*N_MODES + MODE_S:                                                                             \
-        --sp;                                                                                                          \
-        acc = BIN_##op(stack[sp], acc);                                                                                \
-        break;                                                                                                         \
-    case X_BINARY + (op)*N_MODES + MODE_RC:                                                                            \
-        acc = BIN_##op(expr->operand[i], acc);                                                                         \
-        break;                                                                                                         \
-    case X_BINARY + (op)*N_MODES + MODE_RT:                                                                            \
-        acc = BIN_##op(t_s, acc);                                                                                      \
-        break;
-#define BIN_0(a, b) ((a) + (b))
-#define BIN_1(a, b) ((a) - (b))
-#define BIN_2(a, b) ((a) * (b))
-#define BIN_3(a, b) ((a) / (b))
-#define BIN_4(a, b) pow((a), (b))
-#define BIN_5(a, b) apply_binary(OP_MIN, (a), (b))
-#define BIN_6(a, b) apply_binary(OP_MAX, (a), (b))
-
-double sim_expr_eval_memo(const sim_expr_t *expr, double t_s, sim_expr_memo_t *memo)
-{
-    double stack[SIM_EXPR_MAX_STACK];
-    int sp = 0;
-    double acc = NAN; /* an empty program gives NaN */
-    for (int i = 0; i < expr->n_code; ++i) {
-        const unsigned char c = expr->code[i];
-        switch (c) {
-        case X_LOADC:
-            acc = expr->operand[i];
-            break;
-        case X_LOADT:
-            acc = t_s;
-            break;
-        case X_PUSH:
-            stack[sp++] = acc;
-            break;
-            BINARY_CASES(0)
-            BINARY_CASES(1)
-            BINARY_CASES(2)
-            BINARY_CASES(3)
-            BINARY_CASES(4)
-            BINARY_CASES(5)
-            BINARY_CASES(6)
-        default:
-            acc = unary_memo((unsigned char)(c - X_UNARY + OP_NEG), acc, memo);
-            break;
-        }
-    }
-    return acc;
-}
-
-double sim_expr_eval(const sim_expr_t *expr, double t_s)
-{
-    return sim_expr_eval_memo(expr, t_s, NULL);
-}
-
-void sim_expr_batch_memo_clear(sim_expr_batch_memo_t *memo)
-{
-    memo->n = 0;
-    memo->next = 0;
-}
-
-/* apply_unary on x[0..n) in place, through the memo for the functions worth
- * remembering: a hit needs the same function on the same n arguments, bit
- * for bit. */
-static void unary_batch(unsigned char op, double *x, int n, sim_expr_batch_memo_t *memo)
-{
-    const int remember = memo != NULL && op >= OP_SIN && op <= OP_LOG;
-    if (remember) {
-        for (int i = 0; i < memo->n; ++i) {
-            if (memo->fn[i] == op && memo->len[i] == n && memcmp(memo->arg[i], x, (size_t)n * sizeof x[0]) == 0) {
-                memcpy(x, memo->result[i], (size_t)n * sizeof x[0]);
-                return;
-            }
-        }
-    }
-    int slot = 0;
-    if (remember) {
-        slot = memo_slot(&memo->n, &memo->next);
-        memo->fn[slot] = op;
-        memo->len[slot] = n;
-        memcpy(memo->arg[slot], x, (size_t)n * sizeof x[0]);
-    }
-    if (op == OP_NEG) {
-        for (int k = 0; k < n; ++k) {
-            x[k] = -x[k];
-        }
-    } else if (op == OP_SIN) { /* the usual disturbance: no switch per value */
-        for (int k = 0; k < n; ++k) {
-            x[k] = sin(x[k]);
-        }
-    } else if (op == OP_COS) {
-        for (int k = 0; k < n; ++k) {
-            x[k] = cos(x[k]);
-        }
-    } else {
-        for (int k = 0; k < n; ++k) {
-            x[k] = apply_unary(op, x[k]);
-        }
-    }
-    if (remember) {
-        memcpy(memo->result[slot], x, (size_t)n * sizeof x[0]);
-    }
-}
-
-#define BATCH_BINARY_CASES(op)                                                                                         \
-    case X_BINARY + (op)*N_MODES + MODE_C: {                                                                           \
-        const double operand = expr->operand[i];                                                                       \
-        for (int k = 0; k < n; ++k)                                                                                    \
-            acc[k] = BIN_##op(acc[k], operand);                                                                        \
-    } break;                                                                                                           \
-    case X_BINARY + (op)*N_MODES + MODE_T:                                                                             \
-        for (int k = 0; k < n; ++k)                                                                                    \
-            acc[k] = BIN_##op(acc[k], t_s[k]);                                                                         \
-        break;                                                                                                         \
-    case X_BINARY + (op)*N_MODES + MODE_S:                                                                             \
-        --sp;                                                                                                          \
-        for (int k = 0; k < n; ++k)                                                                                    \
-            acc[k] = BIN_##op(stack[sp][k], acc[k]);                                                                   \
-        break;                                                                                                         \
-    case X_BINARY + (op)*N_MODES + MODE_RC: {                                                                          \
-        const double operand = expr->operand[i];                                                                       \
-        for (int k = 0; k < n; ++k)                                                                                    \
-            acc[k] = BIN_##op(operand, acc[k]);                                                                        \
-    } break;                                                                                                           \
-    case X_BINARY + (op)*N_MODES + MODE_RT:                                                                            \
-        for (int k = 0; k < n; ++k)                                                                                    \
-            acc[k] = BIN_##op(t_s[k], acc[k]);                                                                         \
-        break;
-
-void sim_expr_eval_batch(const sim_expr_t *expr, const double *t_s, int n, double *out, sim_expr_batch_memo_t *memo)
-{
-    double stack[SIM_EXPR_MAX_STACK][SIM_EXPR_BATCH_MAX];
-    double acc[SIM_EXPR_BATCH_MAX];
-    int sp = 0;
-    n = n < 0 ? 0 : (n > SIM_EXPR_BATCH_MAX ? SIM_EXPR_BATCH_MAX : n);
-    for (int k = 0; k < n; ++k) {
-        acc[k] = NAN; /* an empty program gives NaN */
-    }
-    for (int i = 0; i < expr->n_code; ++i) {
-        const unsigned char c = expr->code[i];
-        switch (c) {
-        case X_LOADC:
-            for (int k = 0; k < n; ++k)
-                acc[k] = expr->operand[i];
-            break;
-        case X_LOADT:
-            memcpy(acc, t_s, (size_t)n * sizeof acc[0]);
-            break;
-        case X_PUSH:
-            memcpy(stack[sp++], acc, (size_t)n * sizeof acc[0]);
-            break;
-            BATCH_BINARY_CASES(0)
-            BATCH_BINARY_CASES(1)
-            BATCH_BINARY_CASES(2)
-            BATCH_BINARY_CASES(3)
-            BATCH_BINARY_CASES(4)
-            BATCH_BINARY_CASES(5)
-            BATCH_BINARY_CASES(6)
-        default:
-            unary_batch((unsigned char)(c - X_UNARY + OP_NEG), acc, n, memo);
-            break;
-        }
-    }
-    memcpy(out, acc, (size_t)n * sizeof acc[0]);
-}
-
-int sim_expr_is_constant(const sim_expr_t *expr, double *value)
-{
-    if (expr->n_ops <= 0) {
-        return 0;
-    }
-    for (int i = 0; i < expr->n_ops; ++i) {
-        if (expr->op[i] == OP_T) {
-            return 0;
-        }
-    }
-    if (value != NULL) {
-        *value = sim_expr_eval_postfix(expr, 0.0);
-    }
-    return 1;
 }

@@ -279,30 +279,54 @@ static int write_signals_csv(FILE *f, const sim_scenario_t *sc)
     return ferror(f) ? -1 : 0;
 }
 
-/* Rough cost of a job in ns of one core (measured on the paper scenario),
- * for the order only: the longest runs go first, so that the last one to
- * start is a short one and the workers finish together. */
-static double job_cost(const job_t *job)
+/* Rough cost of a job in ns of one core per control tick, for the order
+ * only: the longest groups go first, so that the last one to start is a
+ * short one and the workers finish together. Measured on a Release build
+ * (2 shared cores) with ten copies of a shipped scenario flown one after
+ * the other (--jobs 1, the fly time ladrc_sil prints, best of 7):
+ *   paper.ini alone, 10 substeps, no CSV, ns per tick: PID 1233,
+ *     CASCADED 1267, INDI 1233, LADRC 1300, LP-MLADRC 1367, HP-MLADRC 1433;
+ *   PID with 1 substep 500, with 4 substeps 667: the plant ~80 ns a substep;
+ *   real_paper_lag20.ini (PID, tune = none): motor lag 1467 against 1300
+ *     without, x1.2 on the plant's ~800;
+ *   every CSV: +1733 ns a run alone, +1861 ns a run in a group of six;
+ *   table3_differentiator.ini: ~150 ns, its CSV (five columns) ~250 ns.
+ * The rest of a run alone (controller, sensor, signals, metrics) is the
+ * controller's figure below: its time less the plant's ~800. */
+static double job_compute_ns(const job_t *job)
 {
-    static const double CONTROLLER_NS[SIM_CTRL_COUNT] = {1000.0, 450.0, 400.0, 200.0, 200.0, 250.0};
+    static const double CONTROLLER_NS[SIM_CTRL_COUNT] = {630.0, 570.0, 500.0, 430.0, 470.0, 430.0};
     /* HP LP LADRC PID CASCADED INDI */
-    const double csv_ns = job->csv_path[0] != '\0' ? 1200.0 : 0.0;
     const double ticks = (double)sim_run_ticks(job->sc);
     if (job->controller_index < 0) {
-        return ticks * (300.0 + csv_ns);
+        return ticks * 150.0;
     }
     const sim_controller_id_t id = job->sc->controllers[job->controller_index];
-    return ticks *
-           (100.0 * job->sc->plant_substeps * (job->sc->motor_tau_s > 0.0 ? 2.0 : 1.0) + CONTROLLER_NS[id] + csv_ns);
+    return ticks * (80.0 * job->sc->plant_substeps * (job->sc->motor_tau_s > 0.0 ? 1.2 : 1.0) + CONTROLLER_NS[id]);
 }
 
-/* Rough cost of a group: its runs' costs less the disturbances they share
- * (one run's worth, about 60 % of a run, paid once). */
+/* Writing the job's time series, ns: the same alone or in a group. */
+static double job_csv_ns(const job_t *job)
+{
+    if (job->csv_path[0] == '\0') {
+        return 0.0;
+    }
+    return (double)sim_run_ticks(job->sc) * (job->controller_index < 0 ? 250.0 : 1750.0);
+}
+
+/* Rough cost of a group: every run's time series, the first run's
+ * computing, and 0.35 of each other run's, the share a run adds to a
+ * lockstep group (shared references and disturbances, the plants in
+ * interleaved lanes). Measured as above, PID, CASCADED, INDI, LADRC,
+ * LP-MLADRC, HP-MLADRC added one by one: the group of 1 to 6 runs took
+ * 1233, 1533, 2000, 2100, 2833, 3500 ns per tick, each added run 0.24,
+ * 0.38, 0.08 (a fourth plant fills the lanes of three), 0.54 and 0.47 of
+ * its time alone (mean 0.34); six runs took 0.45 of their times alone. */
 static double group_cost(const job_t *jobs, int first)
 {
     double c = 0.0;
     for (int g = 0; g < jobs[first].group_size; ++g) {
-        c += job_cost(&jobs[first + g]) * (g == 0 ? 1.0 : 0.4);
+        c += job_csv_ns(&jobs[first + g]) + job_compute_ns(&jobs[first + g]) * (g == 0 ? 1.0 : 0.35);
     }
     return c;
 }

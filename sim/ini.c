@@ -1,7 +1,11 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* The line structure of scenario and campaign files (ini.h). */
+/* The line structure of scenario and campaign files, and the places of
+ * their errors (ini.h). */
 #include "ini.h"
 
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 int ini_is_space(char c)
@@ -25,7 +29,28 @@ void ini_trim_end(char *s)
     }
 }
 
-int ini_lines(char *text, int *line, ini_line_fn fn, void *ctx)
+int ini_column(const ini_place_t *place, const char *at)
+{
+    return (int)(at - place->line_start) + 1;
+}
+
+void ini_vset_error(sim_parse_error_t *err, int line, int col, const char *format, va_list ap)
+{
+    err->line = line;
+    err->column = col;
+    vsnprintf(err->message, sizeof err->message, format, ap);
+}
+
+int ini_fail_at(ini_place_t *place, int line, int col, const char *format, ...)
+{
+    va_list ap;
+    va_start(ap, format);
+    ini_vset_error(place->err, line, col, format, ap);
+    va_end(ap);
+    return -1;
+}
+
+int ini_lines(char *text, ini_place_t *place, ini_line_fn fn, void *ctx)
 {
     if (strncmp(text, "\xEF\xBB\xBF", 3) == 0) {
         text += 3; /* UTF-8 byte order mark */
@@ -39,16 +64,53 @@ int ini_lines(char *text, int *line, ini_line_fn fn, void *ctx)
             *nl = '\0';
             next = nl + 1;
         }
-        ++*line;
+        ++place->line;
+        place->line_start = start;
         char *hash = strchr(start, '#');
         if (hash != NULL) {
             *hash = '\0';
         }
         ini_trim_end(start);
         char *s = ini_skip_space(start);
-        if (*s != '\0' && fn(ctx, start, s) != 0) {
+        if (*s != '\0' && fn(ctx, s) != 0) {
             return -1;
         }
     }
+    return 0;
+}
+
+int ini_read_file(const char *path, char **text, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL) {
+        return -1;
+    }
+    size_t cap = 4096;
+    size_t n = 0;
+    char *buf = malloc(cap);
+    while (buf != NULL) {
+        n += fread(buf + n, 1, cap - 1 - n, f);
+        if (n < cap - 1) {
+            break;
+        }
+        char *grown = realloc(buf, cap * 2);
+        if (grown == NULL) {
+            free(buf);
+            buf = NULL;
+        } else {
+            buf = grown;
+            cap *= 2;
+        }
+    }
+    const int bad = ferror(f);
+    fclose(f);
+    if (buf == NULL || bad) {
+        free(buf);
+        errno = buf == NULL ? ENOMEM : EIO;
+        return buf == NULL ? -2 : -3;
+    }
+    buf[n] = '\0';
+    *text = buf;
+    *len = n;
     return 0;
 }

@@ -2,8 +2,7 @@
 /*
  * The scenario lexer (parser.h): a value's text into tokens, numbers,
  * integers, words of a list, windows and signal pieces, each checked by the
- * key's schema entry, and the errors at a place in the text. Values are cut
- * up in place.
+ * key's schema entry. Values are cut up in place.
  */
 #include "parser.h"
 
@@ -13,29 +12,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* ---- errors ------------------------------------------------------------------ */
-
-int parser_column(const parser_t *p, const char *at)
-{
-    return (int)(at - p->line_start) + 1;
-}
-
-void parser_vset_error(sim_parse_error_t *err, int line, int col, const char *format, va_list ap)
-{
-    err->line = line;
-    err->column = col;
-    vsnprintf(err->message, sizeof err->message, format, ap);
-}
-
-int parser_fail_at(parser_t *p, int line, int col, const char *format, ...)
-{
-    va_list ap;
-    va_start(ap, format);
-    parser_vset_error(p->err, line, col, format, ap);
-    va_end(ap);
-    return -1;
-}
 
 /* ---- tokens and values ------------------------------------------------------- */
 
@@ -58,10 +34,10 @@ static int parse_number(parser_t *p, const char *tok, size_t len, double *value)
     double x = 0.0;
     size_t n = (i < len) ? sim_expr_scan_number(tok + i, &x) : 0u;
     if (n == 0 || i + n != len) {
-        return parser_fail(p, tok, "expected a number, got '%.*s'", SHOWN(len), tok);
+        return ini_fail(&p->place, tok, "expected a number, got '%.*s'", SHOWN(len), tok);
     }
     if (!isfinite(x)) {
-        return parser_fail(p, tok, "number out of range");
+        return ini_fail(&p->place, tok, "number out of range");
     }
     *value = (tok[0] == '-') ? -x : x;
     return 0;
@@ -70,8 +46,8 @@ static int parse_number(parser_t *p, const char *tok, size_t len, double *value)
 /* The key's per-key check (schema.h) of v, an error at tok. */
 static int check_range(parser_t *p, const key_def_t *def, const char *tok, double v)
 {
-    char msg[sizeof p->err->message];
-    return schema_check_range(def, v, msg, sizeof msg) == 0 ? 0 : parser_fail(p, tok, "%s", msg);
+    char msg[sizeof p->place.err->message];
+    return schema_check_range(def, v, msg, sizeof msg) == 0 ? 0 : ini_fail(&p->place, tok, "%s", msg);
 }
 
 /* Exactly `count` numbers in value, each in range, stored with the unit factor. */
@@ -83,7 +59,7 @@ static int parse_reals(parser_t *p, const key_def_t *def, char *value, double *o
         char *tok = lex_next_token(&s, &len);
         double v = 0.0;
         if (len == 0) { /* only with count > 1: an empty value is refused before */
-            return parser_fail(p, tok, "expected %d numbers", count);
+            return ini_fail(&p->place, tok, "expected %d numbers", count);
         }
         if (parse_number(p, tok, len, &v) != 0 || check_range(p, def, tok, v) != 0) {
             return -1;
@@ -93,8 +69,8 @@ static int parse_reals(parser_t *p, const key_def_t *def, char *value, double *o
     }
     char *extra = lex_next_token(&s, &len);
     if (len > 0) {
-        return count == 1 ? parser_fail(p, extra, "expected a single number")
-                          : parser_fail(p, extra, "expected %d numbers", count);
+        return count == 1 ? ini_fail(&p->place, extra, "expected a single number")
+                          : ini_fail(&p->place, extra, "expected %d numbers", count);
     }
     return 0;
 }
@@ -107,7 +83,7 @@ static char *single_token(parser_t *p, char *value, size_t *len, const char *exp
     size_t extra_len;
     char *extra = lex_next_token(&s, &extra_len);
     if (extra_len > 0) {
-        parser_fail(p, extra, "expected %s, got '%.*s'", expected, SHOWN(extra_len), extra);
+        ini_fail(&p->place, extra, "expected %s, got '%.*s'", expected, SHOWN(extra_len), extra);
         return NULL;
     }
     return tok;
@@ -122,17 +98,17 @@ static int parse_int(parser_t *p, const key_def_t *def, char *value, int *out)
     }
     size_t i = (tok[0] == '-' || tok[0] == '+') ? 1u : 0u;
     if (i == len) {
-        return parser_fail(p, tok, "expected an integer, got '%.*s'", SHOWN(len), tok);
+        return ini_fail(&p->place, tok, "expected an integer, got '%.*s'", SHOWN(len), tok);
     }
     for (size_t k = i; k < len; ++k) {
         if (tok[k] < '0' || tok[k] > '9') {
-            return parser_fail(p, tok, "expected an integer, got '%.*s'", SHOWN(len), tok);
+            return ini_fail(&p->place, tok, "expected an integer, got '%.*s'", SHOWN(len), tok);
         }
     }
     errno = 0;
     long v = strtol(tok, NULL, 10);
     if (errno != 0 || v > 1000000000L || v < -1000000000L) {
-        return parser_fail(p, tok, "number out of range");
+        return ini_fail(&p->place, tok, "number out of range");
     }
     if (check_range(p, def, tok, (double)v) != 0) {
         return -1;
@@ -151,11 +127,11 @@ static int parse_seed(parser_t *p, char *value, uint64_t *out)
     uint64_t v = 0;
     for (size_t k = 0; k < len; ++k) {
         if (tok[k] < '0' || tok[k] > '9') {
-            return parser_fail(p, tok, "expected an unsigned integer, got '%.*s'", SHOWN(len), tok);
+            return ini_fail(&p->place, tok, "expected an unsigned integer, got '%.*s'", SHOWN(len), tok);
         }
         const uint64_t digit = (uint64_t)(tok[k] - '0');
         if (v > (UINT64_MAX - digit) / 10u) {
-            return parser_fail(p, tok, "seed out of range (at most 18446744073709551615)");
+            return ini_fail(&p->place, tok, "seed out of range (at most 18446744073709551615)");
         }
         v = v * 10u + digit;
     }
@@ -182,16 +158,16 @@ static int parse_choice(parser_t *p, const choice_t *choices, char *value, int *
             return 0;
         }
     }
-    return parser_fail(p, tok, "expected %s, got '%.*s'", expected, SHOWN(len), tok);
+    return ini_fail(&p->place, tok, "expected %s, got '%.*s'", expected, SHOWN(len), tok);
 }
 
 /* Controller id of a name, or -1. */
 
 int lex_fail_unknown_controller(parser_t *p, const char *tok, size_t len)
 {
-    return parser_fail(p, tok,
-                       "unknown controller '%.*s' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, CASCADED or INDI)",
-                       SHOWN(len), tok);
+    return ini_fail(&p->place, tok,
+                    "unknown controller '%.*s' (expected HP-MLADRC, LP-MLADRC, LADRC, PID, CASCADED or INDI)",
+                    SHOWN(len), tok);
 }
 
 static int is_list_space(char c)
@@ -256,7 +232,7 @@ static int parse_controllers(parser_t *p, char *value)
     sim_controller_id_t ids[SIM_MAX_CONTROLLERS];
     int n = 0;
     if (sim_controller_list_parse(value, ids, &n, &at, msg, sizeof msg) != 0) {
-        return parser_fail(p, value + at, "%s", msg);
+        return ini_fail(&p->place, value + at, "%s", msg);
     }
     memcpy(sc->controllers, ids, sizeof ids);
     sc->n_controllers = n;
@@ -273,7 +249,7 @@ static int parse_window(parser_t *p, const key_def_t *def, char *value, double *
         tok[i] = lex_next_token(&s, &len[i]);
     }
     if (len[1] == 0 || len[2] > 0) {
-        return parser_fail(p, len[1] == 0 ? tok[1] : tok[2], "expected two numbers FROM TO");
+        return ini_fail(&p->place, len[1] == 0 ? tok[1] : tok[2], "expected two numbers FROM TO");
     }
     for (int i = 0; i < 2; ++i) {
         if (parse_number(p, tok[i], len[i], &v[i]) != 0) {
@@ -281,10 +257,10 @@ static int parse_window(parser_t *p, const key_def_t *def, char *value, double *
         }
     }
     if (v[0] < 0.0) {
-        return parser_fail(p, tok[0], "%s must start at or after 0", def->name);
+        return ini_fail(&p->place, tok[0], "%s must start at or after 0", def->name);
     }
     if (v[0] >= v[1]) {
-        return parser_fail(p, tok[0], "%s: window start must be before its end", def->name);
+        return ini_fail(&p->place, tok[0], "%s: window start must be before its end", def->name);
     }
     *from = v[0];
     *to = v[1];
@@ -313,47 +289,48 @@ static int parse_signal(parser_t *p, int key, sim_signal_t *sig, char *value, in
         *colon = '\0';
         char *dots = strstr(value, "..");
         if (dots == NULL) {
-            return parser_fail(p, value, "expected 'FROM .. TO' before ':'");
+            return ini_fail(&p->place, value, "expected 'FROM .. TO' before ':'");
         }
         *dots = '\0';
         if (parse_bound(p, value, -INFINITY, &from) != 0 || parse_bound(p, dots + 2, INFINITY, &to) != 0) {
             return -1;
         }
         if (!(from < to)) {
-            return parser_fail(p, value, "window start must be before its end");
+            return ini_fail(&p->place, value, "window start must be before its end");
         }
         text = ini_skip_space(colon + 1);
         if (*text == '\0') {
-            return parser_fail(p, text, "expected an expression after ':'");
+            return ini_fail(&p->place, text, "expected an expression after ':'");
         }
     } else {
         char *dots = strstr(value, "..");
         if (dots != NULL) {
-            return parser_fail(p, dots, "expected ':' between the window and the expression");
+            return ini_fail(&p->place, dots, "expected ':' between the window and the expression");
         }
     }
     if (sig->n_pieces >= SIM_MAX_PIECES) {
-        return parser_fail_at(p, p->line, key_col, "more than %d pieces for '%s'", SIM_MAX_PIECES,
-                              SCHEMA_KEYS[key].name);
+        return ini_fail_at(&p->place, p->place.line, key_col, "more than %d pieces for '%s'", SIM_MAX_PIECES,
+                           SCHEMA_KEYS[key].name);
     }
     for (int i = 0; i < sig->n_pieces; ++i) {
         if (from < sig->to_s[i] && sig->from_s[i] < to) {
             if (p->first_set_line > 0) {
-                return parser_fail(p, value, "window (%g, %g] overlaps another setting of '%s' on the command line",
-                                   from, to, SCHEMA_KEYS[key].name);
+                return ini_fail(&p->place, value,
+                                "window (%g, %g] overlaps another setting of '%s' on the command line", from, to,
+                                SCHEMA_KEYS[key].name);
             }
-            return parser_fail(p, value, "window (%g, %g] overlaps the one given on line %d", from, to,
-                               p->piece_line[key][i]);
+            return ini_fail(&p->place, value, "window (%g, %g] overlaps the one given on line %d", from, to,
+                            p->piece_line[key][i]);
         }
     }
     sim_expr_error_t e;
     const int n = sig->n_pieces;
     if (sim_expr_compile(&sig->expr[n], text, &e) != 0) {
-        return parser_fail_at(p, p->line, parser_column(p, text) + e.column - 1, "%s", e.message);
+        return ini_fail_at(&p->place, p->place.line, ini_column(&p->place, text) + e.column - 1, "%s", e.message);
     }
     sig->from_s[n] = from;
     sig->to_s[n] = to;
-    p->piece_line[key][n] = p->line;
+    p->piece_line[key][n] = p->place.line;
     sig->n_pieces = n + 1;
     return 0;
 }
@@ -383,7 +360,7 @@ int lex_value(parser_t *p, int key, char *base, char *value, int key_col)
     }
     case V_TEXT:
         if (strlen(value) >= SIM_PATH_LEN) {
-            return parser_fail(p, value, "%s longer than %d characters", def->name, SIM_PATH_LEN - 1);
+            return ini_fail(&p->place, value, "%s longer than %d characters", def->name, SIM_PATH_LEN - 1);
         }
         memcpy(field, value, strlen(value) + 1);
         return 0;

@@ -2,13 +2,14 @@
 /*
  * The scenario parser's state, internal to it (scenario.h is the interface).
  * One parse goes through four rooms:
- *   lexer.c    a value's text into numbers, words, windows and signal pieces,
- *              and the errors at a place in the text;
+ *   lexer.c    a value's text into numbers, words, windows and signal pieces;
  *   reader.c   lines, [section] headers and the command line's settings,
  *              each KEY = VALUE filed by the key table (schema.h);
  *   checks.c   once everything is read: the checks across keys, then what
  *              the library accepts, each error at the key responsible;
  *   scenario.c the entry points: defaults, the text, the order of the above.
+ * Errors are recorded at their place with ini.h's helpers (ini_fail), as the
+ * campaign parser's are.
  */
 #ifndef LADRC_SIM_PARSER_H
 #define LADRC_SIM_PARSER_H
@@ -29,33 +30,16 @@ typedef struct {
 
 typedef struct {
     sim_scenario_t *sc;
-    sim_parse_error_t *err;
-    int line;
-    const char *line_start;
-    int section; /* SEC_* slot, -1 before the first header */
+    ini_place_t place; /* the current line, and where errors go */
+    int section;       /* SEC_* slot, -1 before the first header */
     int section_line[SEC_COUNT];
     loc_t seen[SEC_COUNT][SCHEMA_MAX_KEYS];
     int piece_line[SCHEMA_MAX_KEYS][SIM_MAX_PIECES];
-    int checked;        /* a consistency error is in err */
+    int checked;        /* a consistency error is in place.err */
     int first_set_line; /* > 0: reading the command line's settings from this line */
 } parser_t;
 
 /* ---- lexer.c ---------------------------------------------------------------- */
-
-/* 1-based column of `at` in the current line. */
-int parser_column(const parser_t *p, const char *at);
-
-/* err's line, column and message. */
-void parser_vset_error(sim_parse_error_t *err, int line, int col, const char *format, va_list ap);
-
-/* Records an error at (line, col) of the current file; returns -1. */
-int PRINTF_LIKE(4, 5) parser_fail_at(parser_t *p, int line, int col, const char *format, ...);
-
-/* The same at `at` in the current line. */
-#define parser_fail(p, at, ...) parser_fail_at((p), (p)->line, parser_column((p), (at)), __VA_ARGS__)
-
-/* Tokens are shown in messages up to this many characters. */
-#define SHOWN(len) ((len) > 40 ? 40 : (int)(len))
 
 /* Next whitespace-separated token at or after *s: its start and length
  * (0 at the end of the value); *s moves past it. */

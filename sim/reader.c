@@ -24,31 +24,31 @@ static int parse_key_line(parser_t *p, char *s)
     }
     const size_t key_len = (size_t)(s - key);
     if (key_len == 0) {
-        return parser_fail(p, key, "expected a key or a [section]");
+        return ini_fail(&p->place, key, "expected a key or a [section]");
     }
     char *eq = ini_skip_space(s);
     if (*eq != '=') {
-        return parser_fail(p, eq, "expected '=' after '%.*s'", SHOWN(key_len), key);
+        return ini_fail(&p->place, eq, "expected '=' after '%.*s'", SHOWN(key_len), key);
     }
     key[key_len] = '\0'; /* may overwrite '=': eq still points past the key */
     char *value = ini_skip_space(eq + 1);
-    const int key_col = parser_column(p, key);
+    const int key_col = ini_column(&p->place, key);
     if (p->section < 0) {
-        return parser_fail(p, key, "key '%s' before any [section]", key);
+        return ini_fail(&p->place, key, "key '%s' before any [section]", key);
     }
     if (*value == '\0') {
-        return parser_fail(p, value, "missing value for '%s'", key);
+        return ini_fail(&p->place, value, "missing value for '%s'", key);
     }
     const int sec = p->section;
     const int table = SCHEMA_TABLE(sec);
     const int k = schema_find_key(table, key);
     if (k < 0) {
         char title[48];
-        return parser_fail(p, key, "unknown key '%s' in %s", key, schema_section_title(sec, title, sizeof title));
+        return ini_fail(&p->place, key, "unknown key '%s' in %s", key, schema_section_title(sec, title, sizeof title));
     }
     if (table == SEC_CONTROLLER && !schema_applies_to(&SCHEMA_KEYS[k], sec - SEC_CONTROLLER)) {
-        return parser_fail(p, key, "'%s' does not apply to %s", key,
-                           sim_controller_name((sim_controller_id_t)(sec - SEC_CONTROLLER)));
+        return ini_fail(&p->place, key, "'%s' does not apply to %s", key,
+                        sim_controller_name((sim_controller_id_t)(sec - SEC_CONTROLLER)));
     }
     loc_t *seen = &p->seen[sec][k];
     char *base = (table == SEC_CONTROLLER) ? (char *)&p->sc->overrides[sec - SEC_CONTROLLER] : (char *)p->sc;
@@ -67,25 +67,25 @@ static int parse_key_line(parser_t *p, char *s)
     }
     if (seen->line != 0 && SCHEMA_KEYS[k].type != V_SIGNAL) {
         if (p->first_set_line > 0) {
-            return parser_fail(p, key, "duplicate key '%s' (set twice on the command line)", key);
+            return ini_fail(&p->place, key, "duplicate key '%s' (set twice on the command line)", key);
         }
-        return parser_fail(p, key, "duplicate key '%s' (first given on line %d)", key, seen->line);
+        return ini_fail(&p->place, key, "duplicate key '%s' (first given on line %d)", key, seen->line);
     }
     if (SCHEMA_KEYS[k].twin != NULL) {
         const loc_t *twin = &p->seen[sec][schema_find_key(table, SCHEMA_KEYS[k].twin)];
         if (twin->line != 0) {
             if (p->first_set_line > 0) {
-                return parser_fail(p, key, "'%s' and '%s' set the same value (both on the command line)", key,
-                                   SCHEMA_KEYS[k].twin);
+                return ini_fail(&p->place, key, "'%s' and '%s' set the same value (both on the command line)", key,
+                                SCHEMA_KEYS[k].twin);
             }
-            return parser_fail(p, key, "'%s' and '%s' (line %d) set the same value", key, SCHEMA_KEYS[k].twin,
-                               twin->line);
+            return ini_fail(&p->place, key, "'%s' and '%s' (line %d) set the same value", key, SCHEMA_KEYS[k].twin,
+                            twin->line);
         }
     }
     if (seen->line == 0) {
-        seen->line = p->line;
+        seen->line = p->place.line;
         seen->key_col = key_col;
-        seen->value_col = parser_column(p, value);
+        seen->value_col = ini_column(&p->place, value);
     }
     return lex_value(p, k, base, value, key_col);
 }
@@ -94,27 +94,27 @@ static int parse_section(parser_t *p, char *s)
 {
     char *close = strchr(s, ']');
     if (close == NULL) {
-        return parser_fail(p, s + strlen(s), "expected ']'");
+        return ini_fail(&p->place, s + strlen(s), "expected ']'");
     }
     char *after = ini_skip_space(close + 1);
     if (*after != '\0') {
-        return parser_fail(p, after, "trailing characters after ']'");
+        return ini_fail(&p->place, after, "trailing characters after ']'");
     }
     *close = '\0';
     char *rest = s + 1;
     size_t len;
     char *name = lex_next_token(&rest, &len);
     if (len == 0) {
-        return parser_fail(p, name, "expected a section name");
+        return ini_fail(&p->place, name, "expected a section name");
     }
     int sec = schema_find_section(name, len);
     if (sec < 0) {
-        return parser_fail(p, name, "unknown section [%.*s]", SHOWN(len), name);
+        return ini_fail(&p->place, name, "unknown section [%.*s]", SHOWN(len), name);
     }
     if (sec == SEC_CONTROLLER) {
         char *ctrl = lex_next_token(&rest, &len);
         if (len == 0) {
-            return parser_fail(p, ctrl, "expected a controller name after 'controller'");
+            return ini_fail(&p->place, ctrl, "expected a controller name after 'controller'");
         }
         const int id = schema_controller_id(ctrl, len);
         if (id < 0) {
@@ -124,14 +124,14 @@ static int parse_section(parser_t *p, char *s)
     }
     char *extra = lex_next_token(&rest, &len);
     if (len > 0) {
-        return parser_fail(p, extra, "unexpected '%.*s' in the section header", SHOWN(len), extra);
+        return ini_fail(&p->place, extra, "unexpected '%.*s' in the section header", SHOWN(len), extra);
     }
     if (p->section_line[sec] != 0) {
         char title[48];
-        return parser_fail(p, s, "section %s already given on line %d", schema_section_title(sec, title, sizeof title),
-                           p->section_line[sec]);
+        return ini_fail(&p->place, s, "section %s already given on line %d",
+                        schema_section_title(sec, title, sizeof title), p->section_line[sec]);
     }
-    p->section_line[sec] = p->line;
+    p->section_line[sec] = p->place.line;
     p->section = sec;
     return 0;
 }
@@ -139,11 +139,11 @@ static int parse_section(parser_t *p, char *s)
 /* One command-line setting SECTION.KEY=VALUE as a line of SECTION. */
 static int parse_setting(parser_t *p, char *s)
 {
-    p->line_start = s;
+    p->place.line_start = s;
     char *eq = strchr(s, '=');
     char *dot = strchr(s, '.');
     if (eq == NULL || dot == NULL || dot > eq) {
-        return parser_fail(p, s, "expected SECTION.KEY=VALUE, got '%.*s'", SHOWN(strlen(s)), s);
+        return ini_fail(&p->place, s, "expected SECTION.KEY=VALUE, got '%.*s'", SHOWN(strlen(s)), s);
     }
     char *name = ini_skip_space(s);
     size_t len = 0;
@@ -153,7 +153,7 @@ static int parse_setting(parser_t *p, char *s)
     int sec = schema_find_section(name, len);
     char *rest = name + len;
     if (sec < 0 || (sec != SEC_CONTROLLER && ini_skip_space(rest) != dot)) {
-        return parser_fail(p, name, "unknown section '%.*s'", SHOWN((size_t)(dot - name)), name);
+        return ini_fail(&p->place, name, "unknown section '%.*s'", SHOWN((size_t)(dot - name)), name);
     }
     if (sec == SEC_CONTROLLER) {
         if (*rest == ':') {
@@ -165,50 +165,50 @@ static int parse_setting(parser_t *p, char *s)
             ++end;
         }
         if (end == ctrl) {
-            return parser_fail(p, ctrl, "expected a controller name after 'controller' ('controller:NAME.KEY=VALUE')");
+            return ini_fail(&p->place, ctrl,
+                            "expected a controller name after 'controller' ('controller:NAME.KEY=VALUE')");
         }
         const int id = schema_controller_id(ctrl, (size_t)(end - ctrl));
         if (id < 0) {
             return lex_fail_unknown_controller(p, ctrl, (size_t)(end - ctrl));
         }
         if (ini_skip_space(end) != dot) {
-            return parser_fail(p, ini_skip_space(end), "expected '.' after the controller's name");
+            return ini_fail(&p->place, ini_skip_space(end), "expected '.' after the controller's name");
         }
         sec += id;
     }
     if (p->section_line[sec] == 0) {
-        p->section_line[sec] = p->line;
+        p->section_line[sec] = p->place.line;
     }
     p->section = sec;
     char *key = ini_skip_space(dot + 1);
     if (key == eq) {
-        return parser_fail(p, key, "expected a key after '.'");
+        return ini_fail(&p->place, key, "expected a key after '.'");
     }
     return parse_key_line(p, key);
 }
 
-static int read_line(void *ctx, const char *line_start, char *s)
+static int read_line(void *ctx, char *s)
 {
     parser_t *p = (parser_t *)ctx;
-    p->line_start = line_start;
     return (*s == '[') ? parse_section(p, s) : parse_key_line(p, s);
 }
 
 int reader_lines(parser_t *p, char *text)
 {
-    return ini_lines(text, &p->line, read_line, p);
+    return ini_lines(text, &p->place, read_line, p);
 }
 
 int reader_settings(parser_t *p, const char *const *sets, int n_sets)
 {
-    p->first_set_line = p->line + 1;
+    p->first_set_line = p->place.line + 1;
     p->sc->first_set_line = p->first_set_line;
     for (int i = 0; i < n_sets; ++i) {
-        p->line = p->first_set_line + i;
+        p->place.line = p->first_set_line + i;
         const size_t n = strlen(sets[i]);
         char *copy = malloc(n + 1);
         if (copy == NULL) {
-            return parser_fail_at(p, p->line, 1, "out of memory");
+            return ini_fail_at(&p->place, p->place.line, 1, "out of memory");
         }
         memcpy(copy, sets[i], n + 1);
         const int rc = parse_setting(p, copy);

@@ -103,7 +103,7 @@ int sim_scenario_parse_buffer_with(sim_scenario_t *sc, const char *data, size_t 
     memcpy(copy, data, len);
     copy[len] = '\0';
     p->sc = sc;
-    p->err = err;
+    p->place.err = err;
     p->section = -1;
 
     int rc = reader_lines(p, copy);
@@ -181,33 +181,15 @@ int sim_scenario_load_with(sim_scenario_t *sc, const char *path, const char *con
     }
     memset(err, 0, sizeof *err);
     copy_path(err->path, path != NULL ? path : "");
-    FILE *f = (path != NULL) ? fopen(path, "rb") : NULL;
-    if (f == NULL) {
-        snprintf(err->message, sizeof err->message, "cannot open: %s", path != NULL ? strerror(errno) : "no path");
-        return -1;
-    }
-    size_t cap = 4096;
+    char *text = NULL;
     size_t len = 0;
-    char *text = malloc(cap);
-    while (text != NULL) {
-        len += fread(text + len, 1, cap - 1 - len, f);
-        if (len < cap - 1) {
-            break;
-        }
-        char *grown = realloc(text, cap * 2);
-        if (grown == NULL) {
-            free(text);
-            text = NULL;
+    const int read = path != NULL ? ini_read_file(path, &text, &len) : -1;
+    if (read != 0) {
+        if (read == -1) {
+            snprintf(err->message, sizeof err->message, "cannot open: %s", path != NULL ? strerror(errno) : "no path");
         } else {
-            text = grown;
-            cap *= 2;
+            snprintf(err->message, sizeof err->message, "%s", read == -2 ? "out of memory" : "read error");
         }
-    }
-    const int read_error = ferror(f);
-    fclose(f);
-    if (text == NULL || read_error) {
-        snprintf(err->message, sizeof err->message, text == NULL ? "out of memory" : "read error");
-        free(text);
         return -1;
     }
     const int rc = sim_scenario_parse_buffer_with(sc, text, len, path, sets, n_sets, err);

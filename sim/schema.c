@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "ladrc/estimator.h"
+#include "ini.h"
 #include "ladrc/leso.h"
 #include "plant.h"
 #include "sensor.h"

@@ -13,12 +13,6 @@
 
 #include "scenario.h"
 
-#if defined(__GNUC__)
-#define PRINTF_LIKE(f, a) __attribute__((format(printf, f, a)))
-#else
-#define PRINTF_LIKE(f, a)
-#endif
-
 #define DEG_TO_RAD (3.14159265358979323846 / 180.0)
 
 /* Sections. */

@@ -1,0 +1,161 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * The runner's parts, internal to it (runner.h is the interface):
+ *   runner.c          the lockstep group's steps and the attitude entry points;
+ *   runner_run.c      one run of a group: set-up, a control tick, its
+ *                     metrics and divergence, the close;
+ *   runner_batches.c  references and disturbances worked out in batches;
+ *   runner_csv.c      the time series: files and lines;
+ *   runner_diff.c     the differentiator run.
+ */
+#ifndef LADRC_SIM_RUNNER_PARTS_H
+#define LADRC_SIM_RUNNER_PARTS_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "expr.h"
+#include "ladrc/attitude.h"
+#include "ladrc/mixer.h"
+#include "numfmt.h"
+#include "plant.h"
+#include "runner.h"
+#include "sensor.h"
+
+#define RAD2DEG (180.0 / 3.14159265358979323846)
+
+/* Metric windows hold (from, to], as signal windows do. */
+static inline int in_window(const double w[2], double t)
+{
+    return t > w[0] && t <= w[1];
+}
+
+/* The monotonic clock, s (runs' wall times). */
+double runner_wall_now_s(void);
+
+/* ---- runner_batches.c -------------------------------------------------------- */
+
+/* The disturbances of one plant step, worked out in one batch before it:
+ * the plant lists its stage times (sim_plant_stage_times), each distinct
+ * time is evaluated once (t + h of a substep is often the next one's t, and
+ * the last of a step the next step's first), and the plant's calls, in the
+ * listed order, read the table. The same values bit for bit as evaluating
+ * at every call. */
+#define STAGES_MAX (3 * SIM_PLANT_SUBSTEPS_MAX)
+typedef struct {
+    const sim_scenario_t *sc;
+    int n; /* stage times of the step */
+    double t_s[STAGES_MAX];
+    int slot[STAGES_MAX];        /* its row of value */
+    double value[STAGES_MAX][3]; /* by distinct time, in order */
+    double stage[STAGES_MAX][3]; /* by stage time: value[slot[k]] */
+    double last_t_s;             /* the last distinct time (NaN: none) */
+    int last;                    /* and its row */
+} disturbance_batch_t;
+
+void runner_disturbance_batch_init(disturbance_batch_t *b, const sim_scenario_t *sc);
+
+/* The disturbances of p's next step of dt_s in substeps (sim_plant_stage_times). */
+void runner_disturbance_batch_fill(disturbance_batch_t *b, const sim_plant_t *p, double dt_s, int substeps);
+
+/* The control instants t = k dt of SIM_EXPR_BATCH_MAX ticks from `first`,
+ * with the references and disturbances there, worked out together: each
+ * signal's program interpreted once for all of them, the function results
+ * shared by the six signals (sim_signal_eval's values, bit for bit). */
+typedef struct {
+    long first; /* the tick of row 0 */
+    int n;      /* rows */
+    double t_s[SIM_EXPR_BATCH_MAX];
+    ladrc_real_t ref[3][SIM_EXPR_BATCH_MAX]; /* rad, as the controllers get them */
+    double dist[3][SIM_EXPR_BATCH_MAX];
+} instants_t;
+
+/* The rows from tick `first` on, at most up to tick n_ticks - 1. */
+void runner_instants_fill(instants_t *b, const sim_scenario_t *sc, long first, long n_ticks);
+
+/* One plant's reading of a batch: the stage time it asks for next. Runs in
+ * lockstep share the batch (their plants' times are the same bits). */
+typedef struct {
+    const disturbance_batch_t *b;
+    int next;
+} batch_reader_t;
+
+/* The plant's disturbance callback (ctx a batch_reader_t): the batch's
+ * value at the stage time it lists next, else the disturbances evaluated at t_s. */
+void runner_read_batch(double t_s, void *ctx, double d_out[3]);
+
+/* The references at t, rad, as the controllers get them (ladrc_real_t). */
+void runner_references(const sim_scenario_t *sc, double t_s, sim_expr_memo_t *memo, ladrc_real_t ref[3]);
+
+/* ---- runner_csv.c ------------------------------------------------------------ */
+
+/* A new time series at path with its header line (path NULL: none, NULL
+ * returned); NULL with the message in err when it cannot be written. */
+FILE *runner_open_csv(const char *path, const char *header, char *err, size_t err_len);
+
+/* One CSV line in memory, written with one fwrite. */
+typedef struct {
+    char text[64 * SIM_NUMFMT_MAX];
+    int len;
+} csv_line_t;
+
+/* x as %.4f; then ",x" as %.{precision}g (numfmt.h); then the line's end, written to f. */
+void runner_line_f4(csv_line_t *l, double x);
+void runner_line_g(csv_line_t *l, double x, int precision);
+void runner_line_end(csv_line_t *l, FILE *f);
+
+/* ---- runner_run.c ------------------------------------------------------------ */
+
+/* What one control tick of a run saw and did, for its metrics and time series. */
+typedef struct {
+    double t;                     /* s */
+    const ladrc_real_t *ref;      /* rad, as the controller got them */
+    const double *ref_rad, *dist; /* the same widened; disturbances, rad/s^2 */
+    double meas_angle[3], meas_rate[3];
+    ladrc_real_t torque[3]; /* commanded, N m */
+    ladrc_mixer_output_t out;
+    /* the truth at this tick: the disturbance the observer should see is
+     * the plant's acceleration minus what the applied torque explains */
+    double applied[3], f_true[3], f_est[3], err_rad[3], z1[3], z2[3];
+} tick_t;
+
+/* One run of a lockstep group: what it keeps from tick to tick. */
+typedef struct {
+    sim_run_spec_t *spec;
+    ladrc_attitude_t att;
+    ladrc_mixer_t mixer;
+    sim_plant_t plant;
+    sim_sensor_t sensor;
+    FILE *csv;
+    csv_line_t line;
+    double last_out_s[3];
+    int out_at_last[3]; /* outside the band at the settle window's latest sample so far */
+    int wrap_yaw;
+    int flying; /* 1 until it diverges */
+} attitude_run_t;
+
+/* Sets a run up; 0, or -1 with the message in its spec (then it does not fly). */
+int runner_run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t *spec);
+
+/* The controller's part of a tick at t: measure, check, control, record.
+ * ref and dist are the references and disturbances at t. Returns 0 when the
+ * run diverged (nothing of this instant or later is recorded), else 1 with
+ * the rotors' command in w2_cmd. */
+int runner_run_tick(const sim_scenario_t *sc, attitude_run_t *r, double t, const ladrc_real_t ref[3],
+                    const double ref_rad[3], const double dist[3], double w2_cmd[4]);
+
+/* Divergence at t (runner.h): the plant's state non-finite, or the tracking
+ * error ref - angle beyond the scenario's limit on an axis. Records the first
+ * cause found in m and returns 1; 0 while the run is healthy. */
+int runner_diverged(const sim_scenario_t *sc, const sim_plant_t *p, const double ref_rad[3], int wrap_yaw, double t_s,
+                    sim_metrics_t *m);
+
+/* Settling times and the time series' end; 0, or -1 with the message. */
+int runner_run_close(const sim_scenario_t *sc, attitude_run_t *r);
+
+/* The header of an attitude run's time series, and the tick's line of it
+ * (runner_csv.c): the text of %.4f, %.6g and %.7g (numfmt.h). */
+extern const char RUNNER_ATTITUDE_CSV_HEADER[];
+void runner_csv_line(attitude_run_t *r, const tick_t *tk);
+
+#endif

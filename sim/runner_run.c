@@ -1,0 +1,243 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * One attitude run of a lockstep group (runner_parts.h): its controller,
+ * plant and sensor set up, each control tick (measure, check, control, mix,
+ * the truth, metrics, the time series' line), divergence, and the close.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "runner_parts.h"
+#include "setup.h"
+
+/* The controller and mixer of the run, configured as the parser checked them. */
+static int configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_t *att, ladrc_mixer_t *mixer,
+                     char *err, size_t err_len)
+{
+    ladrc_attitude_config_t cfg;
+    sim_setup_attitude(sc, id, &cfg);
+    int bad_axis = -1;
+    ladrc_status_t st = ladrc_attitude_init(att, &cfg, &bad_axis);
+    if (st != LADRC_OK) {
+        snprintf(err, err_len, "%s: controller %s, axis %d: %s", sc->path, sim_controller_name(id), bad_axis,
+                 ladrc_status_str(st));
+        return -1;
+    }
+    ladrc_mixer_config_t mix;
+    sim_setup_mixer(sc, &mix);
+    st = ladrc_mixer_init(mixer, &mix);
+    if (st != LADRC_OK) {
+        snprintf(err, err_len, "%s: mixer: %s", sc->path, ladrc_status_str(st));
+        return -1;
+    }
+    return 0;
+}
+
+/* An angle into (-pi, pi], and itself bit for bit when it is there already. */
+static double wrap_pi(double x)
+{
+    const double pi = 3.14159265358979323846;
+    return (x > -pi && x <= pi) ? x : x - 2.0 * pi * ceil((x - pi) / (2.0 * pi));
+}
+
+/* ref - angle (rad); on a wrapped axis taken into (-pi, pi]: 359 deg of error is 1 deg. */
+static double tracking_error_rad(double ref_rad, double angle_rad, int wrapped)
+{
+    const double e = ref_rad - angle_rad;
+    return wrapped ? wrap_pi(e) : e;
+}
+
+/* Divergence at t (runner.h): the plant's state non-finite, or the tracking
+ * error ref - angle beyond the scenario's limit on an axis. Records the first
+ * cause found in m and returns 1; 0 while the run is healthy. */
+int runner_diverged(const sim_scenario_t *sc, const sim_plant_t *p, const double ref_rad[3], int wrap_yaw, double t_s,
+                    sim_metrics_t *m)
+{
+    int axis = -2;
+    double error_deg = NAN;
+    for (int i = 0; i < 3 && axis == -2; ++i) {
+        const double e_deg = tracking_error_rad(ref_rad[i], p->angle_rad[i], i == 2 && wrap_yaw) * RAD2DEG;
+        if (!isfinite(e_deg) || !isfinite(p->rate_rad_s[i])) {
+            axis = i;
+            m->finite = 0;
+        } else if (fabs(e_deg) > sc->diverge_limit_deg) {
+            axis = i;
+            error_deg = fabs(e_deg);
+        }
+    }
+    for (int r = 0; r < 4 && axis == -2; ++r) {
+        if (!isfinite(p->w2_rad2_s2[r])) {
+            axis = -1;
+            m->finite = 0;
+        }
+    }
+    if (axis == -2) {
+        return 0;
+    }
+    m->diverged = 1;
+    m->diverged_at_s = t_s;
+    m->diverged_axis = axis;
+    m->diverged_error_deg = error_deg;
+    return 1;
+}
+
+/* Sets a run up; 0, or -1 with the message in its spec (then it does not fly). */
+int runner_run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t *spec)
+{
+    sim_metrics_t *m = spec->metrics;
+    r->spec = spec;
+    r->flying = 0;
+    r->csv = NULL;
+    memset(m, 0, sizeof *m);
+    if (configure(sc, spec->ctrl, &r->att, &r->mixer, spec->err, spec->err_len) != 0) {
+        return -1;
+    }
+    const sim_vehicle_t vehicle = {
+        sc->mass_kg,         {sc->inertia_kg_m2[0], sc->inertia_kg_m2[1], sc->inertia_kg_m2[2]},
+        sc->arm_m,           sc->thrust_coeff_N_s2,
+        sc->yaw_coeff_Nm_s2, sc->rot_drag_Nm_s,
+        sc->g_m_s2,          sc->rotors_ideal,
+        sc->w2_min_rad2_s2,  sc->w2_max_rad2_s2,
+        sc->motor_tau_s};
+    sim_plant_init(&r->plant, &vehicle);
+    if (sim_sensor_init(&r->sensor, sc->angle_noise_std_rad, sc->rate_noise_std_rad_s, sc->delay_ticks, sc->seed) !=
+        0) {
+        snprintf(spec->err, spec->err_len, "%s: bad sensor settings", sc->path);
+        return -1;
+    }
+    r->csv = runner_open_csv(spec->csv_path, RUNNER_ATTITUDE_CSV_HEADER, spec->err, spec->err_len);
+    if (spec->csv_path != NULL && r->csv == NULL) {
+        return -1;
+    }
+    r->line.len = 0;
+    for (int i = 0; i < 3; ++i) {
+        r->last_out_s[i] = sc->settle_after_s;
+        r->out_at_last[i] = 0;
+        m->settle_s[i] = SIM_NOT_SETTLED;
+    }
+    /* A wrapping controller is told yaw as an attitude estimator gives it,
+     * in (-pi, pi]; the plant's own yaw is continuous (not wrapped). */
+    r->wrap_yaw = sim_setup_wraps_yaw(sc, spec->ctrl);
+    m->has_estimate = spec->ctrl != SIM_CTRL_PID && spec->ctrl != SIM_CTRL_CASCADED;
+    m->finite = 1;
+    m->diverged_axis = -1;
+    m->diverged_at_s = m->diverged_error_deg = NAN;
+    r->flying = 1;
+    return 0;
+}
+
+/* Measure, check, control and mix at tk->t; 0 when the run diverged (nothing
+ * of this instant or later is recorded), else 1 with the rotors' command. */
+static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, double w2_cmd[4])
+{
+    const sim_plant_t *plant = &r->plant;
+    sim_sensor_measure(&r->sensor, plant->angle_rad, plant->rate_rad_s, tk->meas_angle, tk->meas_rate);
+    if (r->wrap_yaw) {
+        tk->meas_angle[2] = wrap_pi(tk->meas_angle[2]);
+    }
+    if (runner_diverged(sc, plant, tk->ref_rad, r->wrap_yaw, tk->t, r->spec->metrics)) {
+        return 0;
+    }
+    ladrc_real_t angle[3], rate[3];
+    for (int i = 0; i < 3; ++i) {
+        angle[i] = (ladrc_real_t)tk->meas_angle[i];
+        rate[i] = (ladrc_real_t)tk->meas_rate[i];
+    }
+    if (ladrc_attitude_step(&r->att, tk->ref, angle, sc->use_rate ? rate : NULL, tk->torque) != LADRC_FAULT_NONE) {
+        r->spec->metrics->faults++;
+    }
+    ladrc_mixer_step(&r->mixer, ladrc_mixer_thrust_from_tilt(&r->mixer, angle[0], angle[1]), tk->torque, &tk->out);
+    ladrc_attitude_set_applied(&r->att, tk->out.torque_Nm);
+    for (int q = 0; q < 4; ++q) {
+        w2_cmd[q] = tk->out.w2_rad2_s2[q];
+    }
+    return 1;
+}
+
+/* The truth of the tick and the controller's estimates (tick_t). */
+static void run_truth(const sim_scenario_t *sc, const attitude_run_t *r, tick_t *tk)
+{
+    const sim_plant_t *plant = &r->plant;
+    double accel[3], thrust_actual, torque_actual[3];
+    for (int i = 0; i < 3; ++i) {
+        tk->applied[i] = tk->out.torque_Nm[i];
+    }
+    sim_plant_forces(&plant->v, plant->w2_rad2_s2, &thrust_actual, torque_actual);
+    sim_plant_accel(plant, torque_actual, tk->dist, accel);
+    for (int i = 0; i < 3; ++i) {
+        tk->f_true[i] = accel[i] - tk->applied[i] / (sc->inertia_kg_m2[i] * sc->inertia_scale[i]);
+        ladrc_real_t a_est, r_est, d_est;
+        ladrc_axis_get_estimate(&r->att.axis[i], &a_est, &r_est, &d_est);
+        tk->f_est[i] = d_est;
+        tk->z1[i] = a_est;
+        tk->z2[i] = r_est;
+        tk->err_rad[i] = tracking_error_rad(tk->ref_rad[i], plant->angle_rad[i], i == 2 && r->wrap_yaw);
+    }
+}
+
+/* The tick into the run's statistics (metrics.h) and settling. */
+static void run_metrics(const sim_scenario_t *sc, attitude_run_t *r, const tick_t *tk)
+{
+    sim_metrics_t *m = r->spec->metrics;
+    const double t = tk->t;
+    const double band_rad = sc->settle_band_deg / RAD2DEG;
+    for (int i = 0; i < 3; ++i) {
+        const double e_deg = tk->err_rad[i] * RAD2DEG;
+        if (in_window(sc->error_window_s, t)) {
+            sim_stat_add(&m->error_deg[i], e_deg);
+            if (fabs(e_deg) > m->max_error_deg[i])
+                m->max_error_deg[i] = fabs(e_deg);
+            if (m->has_estimate)
+                sim_stat_add(&m->dist_error[i], tk->f_est[i] - tk->f_true[i]);
+        }
+        if (in_window(sc->steady_window_s, t) && fabs(e_deg) > m->band_deg[i]) {
+            m->band_deg[i] = fabs(e_deg);
+        }
+        if (t >= sc->settle_after_s && t <= sc->settle_until_s) {
+            r->out_at_last[i] = fabs(tk->err_rad[i]) > band_rad;
+            if (r->out_at_last[i]) {
+                r->last_out_s[i] = t + sc->control_dt_s;
+            }
+        }
+    }
+    for (int q = 0; q < 4; ++q) {
+        sim_stat_add(&m->rotor_w2[q], r->plant.w2_rad2_s2[q]);
+    }
+}
+
+/* The controller's part of a tick at t: measure, check, control, record.
+ * ref and dist are the references and disturbances at t. Returns 0 when the
+ * run diverged (nothing of this instant or later is recorded), else 1. */
+int runner_run_tick(const sim_scenario_t *sc, attitude_run_t *r, double t, const ladrc_real_t ref[3],
+                    const double ref_rad[3], const double dist[3], double w2_cmd[4])
+{
+    tick_t tk;
+    tk.t = t;
+    tk.ref = ref;
+    tk.ref_rad = ref_rad;
+    tk.dist = dist;
+    if (!run_control(sc, r, &tk, w2_cmd)) {
+        return 0;
+    }
+    run_truth(sc, r, &tk);
+    run_metrics(sc, r, &tk);
+    if (r->csv != NULL) {
+        runner_csv_line(r, &tk);
+    }
+    return 1;
+}
+
+/* Settling times and the time series' end; 0, or -1 with the message. */
+int runner_run_close(const sim_scenario_t *sc, attitude_run_t *r)
+{
+    sim_metrics_t *m = r->spec->metrics;
+    for (int i = 0; i < 3; ++i) {
+        m->settle_s[i] = r->out_at_last[i] ? SIM_NOT_SETTLED : r->last_out_s[i] - sc->settle_after_s;
+    }
+    if (r->csv != NULL && fclose(r->csv) != 0) {
+        snprintf(r->spec->err, r->spec->err_len, "%s: write failed", r->spec->csv_path);
+        return -1;
+    }
+    return 0;
+}
