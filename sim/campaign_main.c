@@ -324,9 +324,23 @@ int sim_campaign_main(int argc, char **argv)
     /* The runs, in batches. */
     static sim_scenario_t batch[SIM_FLY_MAX_SCENARIOS];
     static long batch_run[SIM_FLY_MAX_SCENARIOS];
-    progress_t progress = {c.name, sim_fly_now_s(), 0.0, total_ticks, 0.0, 0, runs_total, isatty(fileno(stderr)), quiet,
-                           0};
-    const sim_fly_options_t opt = {(int)jobs, want_csv, quiet, 0, 0, on_progress, &progress};
+    progress_t progress = {.name = c.name,
+                           .start = sim_fly_now_s(),
+                           .last_print = 0.0,
+                           .total_ticks = total_ticks,
+                           .ticks_before = 0.0,
+                           .runs_before = 0,
+                           .runs_total = runs_total,
+                           .tty = isatty(fileno(stderr)),
+                           .quiet = quiet,
+                           .printed = 0};
+    const sim_fly_options_t opt = {.jobs = (int)jobs,
+                                   .want_csv = want_csv,
+                                   .quiet = quiet,
+                                   .print_tables = 0,
+                                   .report_divergence = 0,
+                                   .progress = on_progress,
+                                   .progress_ctx = &progress};
     int status = 0;
     long flights = 0, failed_flights = 0, diverged_flights = 0, diverged_runs = 0;
     double simulated = 0.0;

@@ -51,7 +51,7 @@ int sim_campaign_expand(const sim_campaign_t *c, long r, sim_campaign_run_t *out
         sim_campaign_format_value(out->text[k], out->values[k]);
     }
     out->run_seed = sim_campaign_stream(c->seed, r, 0, 1);
-    text_t t = {out->buf, 0, sizeof out->buf, 0};
+    text_t t = {.buf = out->buf, .n = 0, .cap = sizeof out->buf, .overflow = 0};
     /* each setting is NUL-terminated in buf; pointers taken once it is full */
     size_t starts[SIM_CAMPAIGN_MAX_SETS + SIM_CAMPAIGN_MAX_VARIED + 1];
     if (!c->sets_seed) {

@@ -27,10 +27,14 @@ typedef struct {
 } function_t;
 
 static const function_t FUNCTIONS[] = {
-    {"sin", OP_SIN, 1},   {"cos", OP_COS, 1},   {"tan", OP_TAN, 1},     {"asin", OP_ASIN, 1},
-    {"acos", OP_ACOS, 1}, {"atan", OP_ATAN, 1}, {"exp", OP_EXP, 1},     {"log", OP_LOG, 1},
-    {"sqrt", OP_SQRT, 1}, {"abs", OP_ABS, 1},   {"floor", OP_FLOOR, 1}, {"ceil", OP_CEIL, 1},
-    {"step", OP_STEP, 1}, {"sign", OP_SIGN, 1}, {"min", OP_MIN, 2},     {"max", OP_MAX, 2},
+    {.name = "sin", .op = OP_SIN, .arity = 1},     {.name = "cos", .op = OP_COS, .arity = 1},
+    {.name = "tan", .op = OP_TAN, .arity = 1},     {.name = "asin", .op = OP_ASIN, .arity = 1},
+    {.name = "acos", .op = OP_ACOS, .arity = 1},   {.name = "atan", .op = OP_ATAN, .arity = 1},
+    {.name = "exp", .op = OP_EXP, .arity = 1},     {.name = "log", .op = OP_LOG, .arity = 1},
+    {.name = "sqrt", .op = OP_SQRT, .arity = 1},   {.name = "abs", .op = OP_ABS, .arity = 1},
+    {.name = "floor", .op = OP_FLOOR, .arity = 1}, {.name = "ceil", .op = OP_CEIL, .arity = 1},
+    {.name = "step", .op = OP_STEP, .arity = 1},   {.name = "sign", .op = OP_SIGN, .arity = 1},
+    {.name = "min", .op = OP_MIN, .arity = 2},     {.name = "max", .op = OP_MAX, .arity = 2},
 };
 
 /* Parentheses, unary signs and powers nest the parser's recursion. */

@@ -121,7 +121,7 @@ static void group_step_plants(group_t *g, const sim_plant_t *lead, const double 
         (void)sim_plant_step_group_table(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps,
                                          (const double(*)[3])g->batch.stage);
     } else {
-        batch_reader_t reader = {&g->batch, 0};
+        batch_reader_t reader = {.b = &g->batch, .next = 0};
         sim_plant_step_group(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps, runner_read_batch,
                              &reader);
     }
@@ -184,7 +184,7 @@ void sim_run_attitude_group(const sim_scenario_t *sc, sim_run_spec_t *runs, int 
 int sim_run_attitude(const sim_scenario_t *sc, sim_controller_id_t ctrl, const char *csv_path,
                      const sim_progress_t *progress, sim_metrics_t *m, char *err, size_t err_len)
 {
-    sim_run_spec_t spec = {ctrl, csv_path, m, err, err_len, 0};
+    sim_run_spec_t spec = {.ctrl = ctrl, .csv_path = csv_path, .metrics = m, .err = err, .err_len = err_len, .rc = 0};
     sim_run_attitude_group(sc, &spec, 1, progress);
     return spec.rc;
 }

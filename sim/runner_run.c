@@ -93,13 +93,17 @@ int runner_run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t 
     if (configure(sc, spec->ctrl, &r->att, &r->mixer, spec->err, spec->err_len) != 0) {
         return -1;
     }
-    const sim_vehicle_t vehicle = {
-        sc->mass_kg,         {sc->inertia_kg_m2[0], sc->inertia_kg_m2[1], sc->inertia_kg_m2[2]},
-        sc->arm_m,           sc->thrust_coeff_N_s2,
-        sc->yaw_coeff_Nm_s2, sc->rot_drag_Nm_s,
-        sc->g_m_s2,          sc->rotors_ideal,
-        sc->w2_min_rad2_s2,  sc->w2_max_rad2_s2,
-        sc->motor_tau_s};
+    const sim_vehicle_t vehicle = {.mass_kg = sc->mass_kg,
+                                   .inertia_kg_m2 = {sc->inertia_kg_m2[0], sc->inertia_kg_m2[1], sc->inertia_kg_m2[2]},
+                                   .arm_m = sc->arm_m,
+                                   .thrust_coeff_N_s2 = sc->thrust_coeff_N_s2,
+                                   .yaw_coeff_Nm_s2 = sc->yaw_coeff_Nm_s2,
+                                   .rot_drag_Nm_s = sc->rot_drag_Nm_s,
+                                   .g_m_s2 = sc->g_m_s2,
+                                   .rotors_ideal = sc->rotors_ideal,
+                                   .w2_min_rad2_s2 = sc->w2_min_rad2_s2,
+                                   .w2_max_rad2_s2 = sc->w2_max_rad2_s2,
+                                   .motor_tau_s = sc->motor_tau_s};
     sim_plant_init(&r->plant, &vehicle);
     if (sim_sensor_init(&r->sensor, sc->angle_noise_std_rad, sc->rate_noise_std_rad_s, sc->delay_ticks, sc->seed) !=
         0) {
