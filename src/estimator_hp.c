@@ -83,23 +83,23 @@ static void small_rotation(ladrc_real_t x, ladrc_real_t *c, ladrc_real_t *s)
                    x2 / LADRC_R(20.0) * (LADRC_R(1.0) - x2 / LADRC_R(42.0) * (LADRC_R(1.0) - x2 / LADRC_R(72.0)))));
 }
 
-void hp_set_tone_freq(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone, ladrc_real_t w_rad_s)
+void hp_set_tone_freq(const ladrc_hp_tone_basis_t *basis, unsigned advance, ladrc_hp_tone_t *tone, ladrc_real_t w_rad_s)
 {
     tone->w_rad_s = w_rad_s;
-    small_rotation(w_rad_s * est->dt_s, &tone->cos_step, &tone->sin_step);
-    const ladrc_real_t x = (est->lag_wo_rad_s > LADRC_R(0.0)) ? w_rad_s / est->lag_wo_rad_s : LADRC_R(0.0);
+    small_rotation(w_rad_s * basis->dt_s, &tone->cos_step, &tone->sin_step);
+    const ladrc_real_t x = (basis->lag_wo_rad_s > LADRC_R(0.0)) ? w_rad_s / basis->lag_wo_rad_s : LADRC_R(0.0);
     tone->lead_re = LADRC_R(1.0) - LADRC_R(3.0) * x * x;
     tone->lead_im = LADRC_R(3.0) * x - x * x * x;
-    if (est->advance) {
+    if (advance) {
         /* lead (1 + j w tau) e^{j w d h}, times e^{-j w h}: the command is
          * read after the tick has turned the phase by w h (estimator.h).
          * The turn by w (d - 1) h as |d - 1| turns by w h (exact to
          * rounding, no trig; d <= LADRC_MAX_DELAY_TICKS). */
-        const ladrc_real_t wt = min_real(w_rad_s * est->act_tau_s, HP_LEAD_RATIO_MAX);
+        const ladrc_real_t wt = min_real(w_rad_s * basis->act_tau_s, HP_LEAD_RATIO_MAX);
         ladrc_real_t re = tone->lead_re - wt * tone->lead_im;
         ladrc_real_t im = tone->lead_im + wt * tone->lead_re;
-        const ladrc_real_t back = (est->act_delay_ticks == 0u) ? LADRC_R(-1.0) : LADRC_R(1.0);
-        const unsigned turns = (est->act_delay_ticks == 0u) ? 1u : est->act_delay_ticks - 1u;
+        const ladrc_real_t back = (basis->act_delay_ticks == 0u) ? LADRC_R(-1.0) : LADRC_R(1.0);
+        const unsigned turns = (basis->act_delay_ticks == 0u) ? 1u : basis->act_delay_ticks - 1u;
         for (unsigned i = 0u; i < turns; ++i) {
             const ladrc_real_t sin_step = back * tone->sin_step;
             const ladrc_real_t turned = re * tone->cos_step - im * sin_step;
@@ -129,6 +129,11 @@ static ladrc_status_t check_config(const ladrc_hp_config_t *cfg)
     if (cfg->freq_mode != LADRC_HP_FREQ_KNOWN && cfg->freq_mode != LADRC_HP_FREQ_ONLINE) {
         return LADRC_ERR_HP_FREQ_MODE;
     }
+#if !LADRC_WITH_HP_ONLINE
+    if (cfg->freq_mode == LADRC_HP_FREQ_ONLINE) {
+        return LADRC_ERR_FEATURE_NOT_BUILT;
+    }
+#endif
     if (cfg->n_tones < 1u || cfg->n_tones > LADRC_HP_MAX_TONES) {
         return LADRC_ERR_HP_N_TONES;
     }
@@ -186,7 +191,9 @@ void hp_start_fit(ladrc_hp_estimator_t *est, unsigned n, const ladrc_real_t *the
     /* Valid: init checked the largest n. */
     (void)ladrc_rls_restart(&est->fit, (uint8_t)(1u + 2u * n), theta0);
     est->n_active = (uint8_t)n;
+#if LADRC_WITH_HP_ONLINE
     est->hold = 0u;
+#endif
 }
 
 ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t *cfg)
@@ -206,23 +213,26 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
     if (status != LADRC_OK) {
         return status;
     }
-    est->dt_s = cfg->dt_s;
+    const ladrc_hp_tone_basis_t basis = {.dt_s = cfg->dt_s,
+                                         .lag_wo_rad_s = cfg->sample_lag_wo_rad_s,
+                                         .act_tau_s = cfg->act_tau_s,
+                                         .act_delay_ticks = cfg->act_delay_ticks};
     est->fit_period_s = fit_period_s;
-    est->lag_wo_rad_s = cfg->sample_lag_wo_rad_s;
-    est->act_tau_s = cfg->act_tau_s;
-    est->act_delay_ticks = cfg->act_delay_ticks;
     est->advance = (cfg->act_tau_s > LADRC_R(0.0) || cfg->act_delay_ticks > 0u) ? 1u : 0u;
+#if LADRC_WITH_HP_ONLINE
+    est->basis = basis;
     est->online = (cfg->freq_mode == LADRC_HP_FREQ_ONLINE) ? 1u : 0u;
     est->freq_min_rad_s = cfg->freq_min_rad_s;
     est->freq_max_rad_s = cfg->freq_max_rad_s;
-    est->lambda0_max = cfg->lambda0_per_s;
     est->freq_lambda0_per_s = cfg->freq_lambda0_per_s;
     est->filter_rad_s = cfg->freq_filter_rad_s;
+#endif
+    est->lambda0_max = cfg->lambda0_per_s;
     est->fit_decimation = cfg->fit_decimation;
     est->fit_phase = cfg->fit_phase;
     est->n_tones = cfg->n_tones;
     for (unsigned k = 0u; k < LADRC_HP_MAX_TONES; ++k) {
-        hp_set_tone_freq(est, &est->tone[k], (k < cfg->n_tones) ? cfg->freq_rad_s[k] : LADRC_R(0.0));
+        hp_set_tone_freq(&basis, est->advance, &est->tone[k], (k < cfg->n_tones) ? cfg->freq_rad_s[k] : LADRC_R(0.0));
     }
     ladrc_hp_reset(est);
     return LADRC_OK;
@@ -233,7 +243,7 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
     LADRC_ASSERT(est != NULL);
     est->fit_rate_per_s = est->lambda0_max;
     (void)ladrc_rls_set_lambda0(&est->fit, est->fit_rate_per_s);
-    hp_start_fit(est, est->online ? 1u : est->n_tones, NULL);
+    hp_start_fit(est, hp_online(est) ? 1u : est->n_tones, NULL);
     for (unsigned k = 0u; k < LADRC_HP_MAX_TONES; ++k) {
         ladrc_hp_tone_t *tone = &est->tone[k];
         tone->cos_psi = LADRC_R(1.0);
@@ -242,7 +252,9 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
     }
     est->sample_mean = LADRC_R(0.0);
     est->sig_power = LADRC_R(0.0);
+#if LADRC_WITH_HP_ONLINE
     hp_freq_reset(est);
+#endif
     est->err_fast = LADRC_R(0.0);
     est->err_slow = LADRC_R(0.0);
     est->weight = LADRC_R(0.0);
@@ -334,7 +346,9 @@ static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
         return 0;
     }
     est->change_left = (uint16_t)(CHANGE_HOLD_S / t + LADRC_R(0.5));
+#if LADRC_WITH_HP_ONLINE
     hp_freq_after_change(est);
+#endif
     ladrc_rls_reset(&est->fit, NULL);
     est->weight = LADRC_R(0.0);
     for (unsigned k = 0u; k < est->n_active; ++k) {
@@ -379,7 +393,7 @@ LADRC_NOINLINE static void after_fit(ladrc_hp_estimator_t *est, ladrc_real_t sam
         /* A tone locks only once the fit predicts the sample (its phasor also
          * turns while the fit converges) and, ONLINE, while the frequency fit
          * sees a clean model. */
-        const int ready = tone->locked || (settled && (!est->online || est->clean));
+        const int ready = tone->locked || (settled && hp_search_agrees(est));
         /* to lock, the phasor must stand still; to stay locked, it must not
          * turn (two tones' fitted sizes breathe a little as they settle) */
         const ladrc_real_t moving = tone->locked ? ladrc_fabs(tone->slip_rad_s) : motion;
@@ -442,10 +456,12 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
         }
         est->faults = ladrc_rls_update(&est->fit, phi, sample_rad_s2);
         after_fit(est, sample_rad_s2, changing);
+#if LADRC_WITH_HP_ONLINE
         const unsigned restart = est->online ? hp_update_frequencies(est, sample_rad_s2) : 0u;
         if (restart > 0u) {
             hp_restart_tones(est, restart);
         }
+#endif
     }
     /* The fit's clock runs on every tick, fitted or not, so it stays in step. */
     if (++est->fit_count >= est->fit_decimation) {

@@ -6,6 +6,8 @@
  * only. */
 #include "estimator_hp_internal.h"
 
+#if LADRC_WITH_HP_ONLINE
+
 /* ONLINE: a model with another number of tones replaces the tones only
  * after TONE_HOLD_S without such a change, so the fit settles in between;
  * two tones must lie more than TONE_SEPARATION (relative) apart. */
@@ -45,7 +47,8 @@ static void track_slip(ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone)
     if (tone->locked) {
         const ladrc_real_t gain = TRACK_FRACTION * est->fit_rate_per_s * est->fit_period_s;
         hp_set_tone_freq(
-            est, tone, ladrc_clamp(tone->w_rad_s + gain * tone->slip_rad_s, est->freq_min_rad_s, est->freq_max_rad_s));
+            &est->basis, est->advance, tone,
+            ladrc_clamp(tone->w_rad_s + gain * tone->slip_rad_s, est->freq_min_rad_s, est->freq_max_rad_s));
     }
 }
 
@@ -114,7 +117,7 @@ void hp_restart_tones(ladrc_hp_estimator_t *est, unsigned n)
             hp_forget_tone(tone);
         }
         if (!tone->locked) {
-            hp_set_tone_freq(est, tone, target[k]);
+            hp_set_tone_freq(&est->basis, est->advance, tone, target[k]);
         }
     }
     hp_start_fit(est, n, theta);
@@ -281,7 +284,7 @@ unsigned hp_update_frequencies(ladrc_hp_estimator_t *est, ladrc_real_t sample)
         } else if (!tone->locked && far) {
             jumped = 1u; /* what the fit holds for it belongs to another frequency */
         } else {
-            hp_set_tone_freq(est, tone, w[k]);
+            hp_set_tone_freq(&est->basis, est->advance, tone, w[k]);
         }
     }
     return jumped ? found : 0u;
@@ -315,3 +318,5 @@ void hp_freq_after_change(ladrc_hp_estimator_t *est)
             (uint16_t)(FILTER_SETTLE_PER_WF / (est->filter_rad_s * est->fit_period_s) + LADRC_R(0.5));
     }
 }
+
+#endif /* LADRC_WITH_HP_ONLINE */

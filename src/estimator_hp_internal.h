@@ -21,16 +21,41 @@ static inline ladrc_real_t min_real(ladrc_real_t a, ladrc_real_t b)
     return (b < a) ? b : a;
 }
 
+/* 1: the frequencies are searched online (never without the search built). */
+static inline int hp_online(const ladrc_hp_estimator_t *est)
+{
+#if LADRC_WITH_HP_ONLINE
+    return est->online;
+#else
+    (void)est;
+    return 0;
+#endif
+}
+
+/* 1 unless an ONLINE search sees another number of clean tones than are
+ * active (a tone may lock only while it agrees). */
+static inline int hp_search_agrees(const ladrc_hp_estimator_t *est)
+{
+#if LADRC_WITH_HP_ONLINE
+    return !est->online || est->clean;
+#else
+    (void)est;
+    return 1;
+#endif
+}
+
 /* estimator_hp.c */
 
 /* A tone's frequency and what follows from it (its turn per tick, the
- * leads of the estimate and of the command). */
-void hp_set_tone_freq(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone, ladrc_real_t w_rad_s);
+ * leads of the estimate and, with advance, of the command). */
+void hp_set_tone_freq(const ladrc_hp_tone_basis_t *basis, unsigned advance, ladrc_hp_tone_t *tone,
+                      ladrc_real_t w_rad_s);
 /* A tone whose fit starts over: no phasor history, not significant, not locked. */
 void hp_forget_tone(ladrc_hp_tone_t *tone);
 /* (Re)starts the fit with n tones and the given estimate (NULL: 0). */
 void hp_start_fit(ladrc_hp_estimator_t *est, unsigned n, const ladrc_real_t *theta0);
 
+#if LADRC_WITH_HP_ONLINE
 /* estimator_hp_freq.c: the ONLINE frequency search */
 
 /* Forgets the search's filter, averages and findings. */
@@ -43,5 +68,6 @@ void hp_freq_after_change(ladrc_hp_estimator_t *est);
 unsigned hp_update_frequencies(ladrc_hp_estimator_t *est, ladrc_real_t sample);
 /* Restarts the fit with n tones at the frequencies found. */
 void hp_restart_tones(ladrc_hp_estimator_t *est, unsigned n);
+#endif
 
 #endif /* LADRC_ESTIMATOR_HP_INTERNAL_H */
