@@ -111,16 +111,6 @@ void hp_set_tone_freq(const ladrc_hp_tone_basis_t *basis, unsigned advance, ladr
     }
 }
 
-void hp_forget_tone(ladrc_hp_tone_t *tone)
-{
-    tone->prev_a = LADRC_R(0.0);
-    tone->prev_b = LADRC_R(0.0);
-    tone->slip_rad_s = LADRC_R(0.0);
-    tone->drift_per_s = LADRC_R(0.0);
-    tone->significant = 0u;
-    tone->locked = 0u;
-}
-
 static ladrc_status_t check_config(const ladrc_hp_config_t *cfg)
 {
     if (!ladrc_dt_is_valid(cfg->dt_s)) {
@@ -184,16 +174,6 @@ static ladrc_status_t check_config(const ladrc_hp_config_t *cfg)
         return LADRC_ERR_HP_FREQ_FILTER;
     }
     return LADRC_OK;
-}
-
-void hp_start_fit(ladrc_hp_estimator_t *est, unsigned n, const ladrc_real_t *theta0)
-{
-    /* Valid: init checked the largest n. */
-    (void)ladrc_rls_restart(&est->fit, (uint8_t)(1u + 2u * n), theta0);
-    est->n_active = (uint8_t)n;
-#if LADRC_WITH_HP_ONLINE
-    est->hold = 0u;
-#endif
 }
 
 ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t *cfg)
@@ -275,20 +255,6 @@ static LADRC_FORCE_INLINE ladrc_real_t tone_turned(const ladrc_hp_tone_t *tone, 
     const ladrc_real_t x = a * re + b * im;
     const ladrc_real_t y = a * im - b * re;
     return x * tone->cos_psi - y * tone->sin_psi;
-}
-
-/* Fitted value of active tone k at its current phase, as sampled (lagged)
- * or with the sample's lag undone (lead: (1 + j w / wo)^3). */
-static ladrc_real_t tone_value(const ladrc_hp_estimator_t *est, unsigned k, int lead)
-{
-    const ladrc_hp_tone_t *tone = &est->tone[k];
-    const ladrc_real_t *theta = ladrc_rls_get_theta(&est->fit);
-    const ladrc_real_t a = theta[theta_a(k)];
-    const ladrc_real_t b = theta[theta_a(k) + 1u];
-    if (!lead) {
-        return a * tone->cos_psi + b * tone->sin_psi;
-    }
-    return tone_turned(tone, a, b, tone->lead_re, tone->lead_im);
 }
 
 /* Turn of a tone's fitted phasor since the previous fit sample, as a rate
@@ -467,10 +433,14 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
     if (++est->fit_count >= est->fit_decimation) {
         est->fit_count = 0u;
     }
-    ladrc_real_t model = ladrc_rls_get_theta(&est->fit)[0];
+    /* The model at this tick's phases with the sample's lag undone per tone
+     * (lead: (1 + j w / wo)^3); theta read once (the getter is a call). */
+    const ladrc_real_t *theta = ladrc_rls_get_theta(&est->fit);
+    ladrc_real_t model = theta[0];
     for (unsigned k = 0u; k < est->n_active; ++k) {
-        model += tone_value(est, k, 1);
-        advance_phase(&est->tone[k]);
+        ladrc_hp_tone_t *tone = &est->tone[k];
+        model += tone_turned(tone, theta[theta_a(k)], theta[theta_a(k) + 1u], tone->lead_re, tone->lead_im);
+        advance_phase(tone);
     }
     est->estimate = est->weight * model;
     est->handover = (est->weight - weight_before) * model;

@@ -50,10 +50,28 @@ static inline int hp_search_agrees(const ladrc_hp_estimator_t *est)
  * leads of the estimate and, with advance, of the command). */
 void hp_set_tone_freq(const ladrc_hp_tone_basis_t *basis, unsigned advance, ladrc_hp_tone_t *tone,
                       ladrc_real_t w_rad_s);
+
 /* A tone whose fit starts over: no phasor history, not significant, not locked. */
-void hp_forget_tone(ladrc_hp_tone_t *tone);
+static inline void hp_forget_tone(ladrc_hp_tone_t *tone)
+{
+    tone->prev_a = LADRC_R(0.0);
+    tone->prev_b = LADRC_R(0.0);
+    tone->slip_rad_s = LADRC_R(0.0);
+    tone->drift_per_s = LADRC_R(0.0);
+    tone->significant = 0u;
+    tone->locked = 0u;
+}
+
 /* (Re)starts the fit with n tones and the given estimate (NULL: 0). */
-void hp_start_fit(ladrc_hp_estimator_t *est, unsigned n, const ladrc_real_t *theta0);
+static inline void hp_start_fit(ladrc_hp_estimator_t *est, unsigned n, const ladrc_real_t *theta0)
+{
+    /* Valid: init checked the largest n. */
+    (void)ladrc_rls_restart(&est->fit, (uint8_t)(1u + 2u * n), theta0);
+    est->n_active = (uint8_t)n;
+#if LADRC_WITH_HP_ONLINE
+    est->hold = 0u;
+#endif
+}
 
 #if LADRC_WITH_HP_ONLINE
 /* estimator_hp_freq.c: the ONLINE frequency search */
