@@ -127,22 +127,28 @@ static ladrc_status_t check_config(const ladrc_hp_config_t *cfg)
     if (cfg->n_tones < 1u || cfg->n_tones > LADRC_HP_MAX_TONES) {
         return LADRC_ERR_HP_N_TONES;
     }
-    const int online = cfg->freq_mode == LADRC_HP_FREQ_ONLINE;
-    ladrc_real_t fastest_rad_s = online ? cfg->freq_max_rad_s : LADRC_R(0.0);
+    /* The fastest tone the estimator may model: KNOWN the fastest given,
+     * ONLINE the top of the search range. */
+    ladrc_real_t fastest_rad_s = LADRC_R(0.0);
     for (unsigned k = 0u; k < cfg->n_tones; ++k) {
         const ladrc_real_t w = cfg->freq_rad_s[k];
         /* The phasor must turn by less than half a turn per tick. */
         if (!ladrc_is_positive(w) || w * cfg->dt_s >= HP_PI) {
             return LADRC_ERR_HP_FREQ_RAD_S;
         }
-        if (!online && w > fastest_rad_s) {
+        if (w > fastest_rad_s) {
             fastest_rad_s = w;
         }
     }
-    if (online && !(ladrc_is_positive(cfg->freq_min_rad_s) && ladrc_is_finite(cfg->freq_max_rad_s) &&
-                    cfg->freq_min_rad_s < cfg->freq_max_rad_s && cfg->freq_max_rad_s * cfg->dt_s < HP_PI)) {
-        return LADRC_ERR_HP_FREQ_RANGE;
+#if LADRC_WITH_HP_ONLINE
+    if (cfg->freq_mode == LADRC_HP_FREQ_ONLINE) {
+        if (!(ladrc_is_positive(cfg->freq_min_rad_s) && ladrc_is_finite(cfg->freq_max_rad_s) &&
+              cfg->freq_min_rad_s < cfg->freq_max_rad_s && cfg->freq_max_rad_s * cfg->dt_s < HP_PI)) {
+            return LADRC_ERR_HP_FREQ_RANGE;
+        }
+        fastest_rad_s = cfg->freq_max_rad_s;
     }
+#endif
     const ladrc_real_t fit_period_s = (ladrc_real_t)cfg->fit_decimation * cfg->dt_s;
     if (!ladrc_is_positive(cfg->lambda0_per_s) || cfg->lambda0_per_s * fit_period_s > LADRC_R(1.0)) {
         return LADRC_ERR_EST_LAMBDA0;
@@ -164,15 +170,17 @@ static ladrc_status_t check_config(const ladrc_hp_config_t *cfg)
         (lag_wo > LADRC_R(0.0) && !(fastest_rad_s <= HP_LEAD_RATIO_MAX * lag_wo))) {
         return LADRC_ERR_HP_SAMPLE_LAG;
     }
-    if (online &&
-        !(ladrc_is_positive(cfg->freq_lambda0_per_s) && cfg->freq_lambda0_per_s * fit_period_s <= LADRC_R(1.0))) {
-        return LADRC_ERR_HP_FREQ_LAMBDA0;
+#if LADRC_WITH_HP_ONLINE
+    if (cfg->freq_mode == LADRC_HP_FREQ_ONLINE) {
+        if (!(ladrc_is_positive(cfg->freq_lambda0_per_s) && cfg->freq_lambda0_per_s * fit_period_s <= LADRC_R(1.0))) {
+            return LADRC_ERR_HP_FREQ_LAMBDA0;
+        }
+        /* The derivative filter is integrated once per fit sample. */
+        if (!(ladrc_is_positive(cfg->freq_filter_rad_s) && cfg->freq_filter_rad_s * fit_period_s < LADRC_R(0.2))) {
+            return LADRC_ERR_HP_FREQ_FILTER;
+        }
     }
-    /* The derivative filter is integrated once per fit sample. */
-    if (online &&
-        !(ladrc_is_positive(cfg->freq_filter_rad_s) && cfg->freq_filter_rad_s * fit_period_s < LADRC_R(0.2))) {
-        return LADRC_ERR_HP_FREQ_FILTER;
-    }
+#endif
     return LADRC_OK;
 }
 
