@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
-# Variants and reference shapers chosen at build time (include/ladrc/axis.h):
-# the sources a selection compiles and the definitions it gives the library
-# and everything linking it (LADRC_WITH_<NAME>=0 for each one left out).
+# Variants and reference shapers chosen at build time (include/ladrc/axis.h),
+# and whether the HP estimator's online frequency search is built
+# (LADRC_HP_ONLINE, include/ladrc/types.h): the sources a selection compiles
+# and the definitions it gives the library and everything linking it
+# (LADRC_WITH_<NAME>=0 for each one left out, LADRC_WITH_HP_ONLINE=0).
 include_guard(GLOBAL)
 
 set(LADRC_ALL_VARIANTS LADRC LP_MLADRC HP_MLADRC PID CASCADED INDI)
@@ -15,6 +17,9 @@ set(_ladrc_needs_axis_lp_c LP_MLADRC)
 set(_ladrc_needs_estimator_lp_c LP_MLADRC)
 set(_ladrc_needs_axis_hp_c HP_MLADRC)
 set(_ladrc_needs_estimator_hp_c HP_MLADRC)
+set(_ladrc_needs_estimator_hp_freq_c HP_MLADRC)
+# Source files needed only with the online frequency search.
+set(_ladrc_online_only_estimator_hp_freq_c ON)
 set(_ladrc_needs_rls_c LP_MLADRC HP_MLADRC)
 set(_ladrc_needs_axis_pid_c PID)
 set(_ladrc_needs_pid_c PID)
@@ -26,10 +31,15 @@ set(_ladrc_needs_td_c TD)
 set(_ladrc_needs_levant_c LEVANT)
 
 # ladrc_select_variants(<sources_out> <definitions_out> <all_sources>
-#                       VARIANTS <names...> SHAPERS <names...>)
+#                       VARIANTS <names...> SHAPERS <names...>
+#                       [HP_ONLINE <bool>])
+# HP_ONLINE (default ON): build the HP estimator's online frequency search.
 # Fails on an unknown or empty selection.
 function(ladrc_select_variants sources_out definitions_out all_sources)
-  cmake_parse_arguments(PARSE_ARGV 3 ARG "" "" "VARIANTS;SHAPERS")
+  cmake_parse_arguments(PARSE_ARGV 3 ARG "" "HP_ONLINE" "VARIANTS;SHAPERS")
+  if(NOT DEFINED ARG_HP_ONLINE)
+    set(ARG_HP_ONLINE ON)
+  endif()
   if(NOT ARG_VARIANTS)
     message(FATAL_ERROR "ladrc: LADRC_VARIANTS is empty; choose from ${LADRC_ALL_VARIANTS}")
   endif()
@@ -50,6 +60,9 @@ function(ladrc_select_variants sources_out definitions_out all_sources)
       list(APPEND definitions "LADRC_WITH_${name}=0")
     endif()
   endforeach()
+  if(NOT ARG_HP_ONLINE)
+    list(APPEND definitions "LADRC_WITH_HP_ONLINE=0")
+  endif()
   set(sources "")
   foreach(source IN LISTS all_sources)
     get_filename_component(base "${source}" NAME)
@@ -62,6 +75,9 @@ function(ladrc_select_variants sources_out definitions_out all_sources)
           set(needed ON)
         endif()
       endforeach()
+    endif()
+    if(_ladrc_online_only_${key} AND NOT ARG_HP_ONLINE)
+      set(needed OFF)
     endif()
     if(needed)
       list(APPEND sources "${source}")

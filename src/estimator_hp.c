@@ -2,10 +2,10 @@
 /* HP disturbance estimator: a bias and up to LADRC_HP_MAX_TONES tones fitted
  * by one RLS at known or online-estimated frequencies, behind a gate that
  * checks the frequencies themselves (see estimator.h). */
-#include "ladrc/estimator.h"
 #include "require.h"
 
 #include "compiler.h"
+#include "estimator_hp_internal.h"
 
 #define HP_PI LADRC_R(3.14159265358979)
 /* Largest sample the fit takes (rad/s^2): a hundred times the largest
@@ -62,50 +62,10 @@
 #define CHANGE_SHARE LADRC_R(0.01)
 #define CHANGE_HOLD_S LADRC_R(0.1)
 enum { CHANGE_HOLD = 1, CHANGE_NEW = 2 };
-/* ONLINE: a model with another number of tones replaces the tones only
- * after TONE_HOLD_S without such a change, so the fit settles in between;
- * two tones must lie more than TONE_SEPARATION (relative) apart. */
-#define TONE_SEPARATION LADRC_R(0.15)
-#define TONE_HOLD_S LADRC_R(0.5)
-/* ONLINE: a locked tone's frequency follows its slip at this fraction of
- * the fit's forgetting rate. */
-#define TRACK_FRACTION LADRC_R(0.25)
-/* ONLINE: a model is clean while it leaves less than this share of the
- * highest derivative's power unexplained (1 - correlation^2 for one tone). */
-#define IMPURITY_MAX LADRC_R(0.01)
-/* The frequency fit's averages keep at least this much of the slowest
- * tone's phase (rad). */
-#define FREQ_MEMORY_RAD LADRC_R(1.0)
-/* A change's transient has passed the frequency fit's filter (wf / (s + wf))^6
- * FILTER_SETTLE_PER_WF / wf seconds after it: u^5 e^-u, the slowest term of
- * its response, is down to 3e-4 of its peak at u = 20. */
-#define FILTER_SETTLE_PER_WF LADRC_R(20.0)
-/* The frequency fit's model is judged every this many fit samples. */
-#define SPEC_DECIDE 4u
-/* The frequency fit speaks only after this much data since its (re)start (s). */
-#define SPEC_MIN_S LADRC_R(0.1)
-/* The frequency fit needs this much derivative power ((rad/s^3)^2). */
-#define FILTER_MIN_POWER LADRC_R(1.0e-6)
-/* Indices of the frequency fit's averages: x1 x1, x3 x1, x3 x3, x5 x1, x5 x3, x5 x5. */
-enum { SPEC_11 = 0, SPEC_31, SPEC_33, SPEC_51, SPEC_53, SPEC_55, SPEC_COUNT };
-
-#if LADRC_HP_MAX_TONES < 1 || LADRC_HP_MAX_TONES > 2
-#error "the online frequency fit resolves one or two tones: LADRC_HP_MAX_TONES must be 1 or 2"
-#endif
 
 /* The rarely taken paths below (LADRC_NOINLINE) are kept out of line so
  * that their locals are not on the stack of the path through the RLS
  * update, the deepest of a tick. */
-
-static unsigned theta_a(unsigned k)
-{
-    return 1u + 2u * k;
-}
-
-static ladrc_real_t min_real(ladrc_real_t a, ladrc_real_t b)
-{
-    return (b < a) ? b : a;
-}
 
 /* cos and sin of a small angle x by their series to x^8 and x^9: exact to
  * float rounding for the per-tick turns of the defaults (|x| <= 0.04 at
@@ -125,24 +85,23 @@ static void small_rotation(ladrc_real_t x, ladrc_real_t *c, ladrc_real_t *s)
                    x2 / LADRC_R(20.0) * (LADRC_R(1.0) - x2 / LADRC_R(42.0) * (LADRC_R(1.0) - x2 / LADRC_R(72.0)))));
 }
 
-/* A tone's frequency and what follows from it. */
-static void set_tone_freq(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone, ladrc_real_t w_rad_s)
+void hp_set_tone_freq(const ladrc_hp_tone_basis_t *basis, unsigned advance, ladrc_hp_tone_t *tone, ladrc_real_t w_rad_s)
 {
     tone->w_rad_s = w_rad_s;
-    small_rotation(w_rad_s * est->dt_s, &tone->cos_step, &tone->sin_step);
-    const ladrc_real_t x = (est->lag_wo_rad_s > LADRC_R(0.0)) ? w_rad_s / est->lag_wo_rad_s : LADRC_R(0.0);
+    small_rotation(w_rad_s * basis->dt_s, &tone->cos_step, &tone->sin_step);
+    const ladrc_real_t x = (basis->lag_wo_rad_s > LADRC_R(0.0)) ? w_rad_s / basis->lag_wo_rad_s : LADRC_R(0.0);
     tone->lead_re = LADRC_R(1.0) - LADRC_R(3.0) * x * x;
     tone->lead_im = LADRC_R(3.0) * x - x * x * x;
-    if (est->advance) {
+    if (advance) {
         /* lead (1 + j w tau) e^{j w d h}, times e^{-j w h}: the command is
          * read after the tick has turned the phase by w h (estimator.h).
          * The turn by w (d - 1) h as |d - 1| turns by w h (exact to
          * rounding, no trig; d <= LADRC_MAX_DELAY_TICKS). */
-        const ladrc_real_t wt = min_real(w_rad_s * est->act_tau_s, HP_LEAD_RATIO_MAX);
+        const ladrc_real_t wt = min_real(w_rad_s * basis->act_tau_s, HP_LEAD_RATIO_MAX);
         ladrc_real_t re = tone->lead_re - wt * tone->lead_im;
         ladrc_real_t im = tone->lead_im + wt * tone->lead_re;
-        const ladrc_real_t back = (est->act_delay_ticks == 0u) ? LADRC_R(-1.0) : LADRC_R(1.0);
-        const unsigned turns = (est->act_delay_ticks == 0u) ? 1u : est->act_delay_ticks - 1u;
+        const ladrc_real_t back = (basis->act_delay_ticks == 0u) ? LADRC_R(-1.0) : LADRC_R(1.0);
+        const unsigned turns = (basis->act_delay_ticks == 0u) ? 1u : basis->act_delay_ticks - 1u;
         for (unsigned i = 0u; i < turns; ++i) {
             const ladrc_real_t sin_step = back * tone->sin_step;
             const ladrc_real_t turned = re * tone->cos_step - im * sin_step;
@@ -154,17 +113,6 @@ static void set_tone_freq(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone
     }
 }
 
-/* A tone whose fit starts over: no phasor history, not significant, not locked. */
-static void forget_tone(ladrc_hp_tone_t *tone)
-{
-    tone->prev_a = LADRC_R(0.0);
-    tone->prev_b = LADRC_R(0.0);
-    tone->slip_rad_s = LADRC_R(0.0);
-    tone->drift_per_s = LADRC_R(0.0);
-    tone->significant = 0u;
-    tone->locked = 0u;
-}
-
 static ladrc_status_t check_config(const ladrc_hp_config_t *cfg)
 {
     if (!ladrc_dt_is_valid(cfg->dt_s)) {
@@ -173,25 +121,36 @@ static ladrc_status_t check_config(const ladrc_hp_config_t *cfg)
     if (cfg->freq_mode != LADRC_HP_FREQ_KNOWN && cfg->freq_mode != LADRC_HP_FREQ_ONLINE) {
         return LADRC_ERR_HP_FREQ_MODE;
     }
+#if !LADRC_WITH_HP_ONLINE
+    if (cfg->freq_mode == LADRC_HP_FREQ_ONLINE) {
+        return LADRC_ERR_FEATURE_NOT_BUILT;
+    }
+#endif
     if (cfg->n_tones < 1u || cfg->n_tones > LADRC_HP_MAX_TONES) {
         return LADRC_ERR_HP_N_TONES;
     }
-    const int online = cfg->freq_mode == LADRC_HP_FREQ_ONLINE;
-    ladrc_real_t fastest_rad_s = online ? cfg->freq_max_rad_s : LADRC_R(0.0);
+    /* The fastest tone the estimator may model: KNOWN the fastest given,
+     * ONLINE the top of the search range. */
+    ladrc_real_t fastest_rad_s = LADRC_R(0.0);
     for (unsigned k = 0u; k < cfg->n_tones; ++k) {
         const ladrc_real_t w = cfg->freq_rad_s[k];
         /* The phasor must turn by less than half a turn per tick. */
         if (!ladrc_is_positive(w) || w * cfg->dt_s >= HP_PI) {
             return LADRC_ERR_HP_FREQ_RAD_S;
         }
-        if (!online && w > fastest_rad_s) {
+        if (w > fastest_rad_s) {
             fastest_rad_s = w;
         }
     }
-    if (online && !(ladrc_is_positive(cfg->freq_min_rad_s) && ladrc_is_finite(cfg->freq_max_rad_s) &&
-                    cfg->freq_min_rad_s < cfg->freq_max_rad_s && cfg->freq_max_rad_s * cfg->dt_s < HP_PI)) {
-        return LADRC_ERR_HP_FREQ_RANGE;
+#if LADRC_WITH_HP_ONLINE
+    if (cfg->freq_mode == LADRC_HP_FREQ_ONLINE) {
+        if (!(ladrc_is_positive(cfg->freq_min_rad_s) && ladrc_is_finite(cfg->freq_max_rad_s) &&
+              cfg->freq_min_rad_s < cfg->freq_max_rad_s && cfg->freq_max_rad_s * cfg->dt_s < HP_PI)) {
+            return LADRC_ERR_HP_FREQ_RANGE;
+        }
+        fastest_rad_s = cfg->freq_max_rad_s;
     }
+#endif
     const ladrc_real_t fit_period_s = (ladrc_real_t)cfg->fit_decimation * cfg->dt_s;
     if (!ladrc_is_positive(cfg->lambda0_per_s) || cfg->lambda0_per_s * fit_period_s > LADRC_R(1.0)) {
         return LADRC_ERR_EST_LAMBDA0;
@@ -213,25 +172,18 @@ static ladrc_status_t check_config(const ladrc_hp_config_t *cfg)
         (lag_wo > LADRC_R(0.0) && !(fastest_rad_s <= HP_LEAD_RATIO_MAX * lag_wo))) {
         return LADRC_ERR_HP_SAMPLE_LAG;
     }
-    if (online &&
-        !(ladrc_is_positive(cfg->freq_lambda0_per_s) && cfg->freq_lambda0_per_s * fit_period_s <= LADRC_R(1.0))) {
-        return LADRC_ERR_HP_FREQ_LAMBDA0;
+#if LADRC_WITH_HP_ONLINE
+    if (cfg->freq_mode == LADRC_HP_FREQ_ONLINE) {
+        if (!(ladrc_is_positive(cfg->freq_lambda0_per_s) && cfg->freq_lambda0_per_s * fit_period_s <= LADRC_R(1.0))) {
+            return LADRC_ERR_HP_FREQ_LAMBDA0;
+        }
+        /* The derivative filter is integrated once per fit sample. */
+        if (!(ladrc_is_positive(cfg->freq_filter_rad_s) && cfg->freq_filter_rad_s * fit_period_s < LADRC_R(0.2))) {
+            return LADRC_ERR_HP_FREQ_FILTER;
+        }
     }
-    /* The derivative filter is integrated once per fit sample. */
-    if (online &&
-        !(ladrc_is_positive(cfg->freq_filter_rad_s) && cfg->freq_filter_rad_s * fit_period_s < LADRC_R(0.2))) {
-        return LADRC_ERR_HP_FREQ_FILTER;
-    }
+#endif
     return LADRC_OK;
-}
-
-/* (Re)starts the fit with n tones and the given estimate (NULL: 0). */
-static void start_fit(ladrc_hp_estimator_t *est, unsigned n, const ladrc_real_t *theta0)
-{
-    /* Valid: init checked the largest n. */
-    (void)ladrc_rls_restart(&est->fit, (uint8_t)(1u + 2u * n), theta0);
-    est->n_active = (uint8_t)n;
-    est->hold = 0u;
 }
 
 ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t *cfg)
@@ -251,23 +203,26 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
     if (status != LADRC_OK) {
         return status;
     }
-    est->dt_s = cfg->dt_s;
+    const ladrc_hp_tone_basis_t basis = {.dt_s = cfg->dt_s,
+                                         .lag_wo_rad_s = cfg->sample_lag_wo_rad_s,
+                                         .act_tau_s = cfg->act_tau_s,
+                                         .act_delay_ticks = cfg->act_delay_ticks};
     est->fit_period_s = fit_period_s;
-    est->lag_wo_rad_s = cfg->sample_lag_wo_rad_s;
-    est->act_tau_s = cfg->act_tau_s;
-    est->act_delay_ticks = cfg->act_delay_ticks;
     est->advance = (cfg->act_tau_s > LADRC_R(0.0) || cfg->act_delay_ticks > 0u) ? 1u : 0u;
+#if LADRC_WITH_HP_ONLINE
+    est->basis = basis;
     est->online = (cfg->freq_mode == LADRC_HP_FREQ_ONLINE) ? 1u : 0u;
     est->freq_min_rad_s = cfg->freq_min_rad_s;
     est->freq_max_rad_s = cfg->freq_max_rad_s;
-    est->lambda0_max = cfg->lambda0_per_s;
     est->freq_lambda0_per_s = cfg->freq_lambda0_per_s;
     est->filter_rad_s = cfg->freq_filter_rad_s;
+#endif
+    est->lambda0_max = cfg->lambda0_per_s;
     est->fit_decimation = cfg->fit_decimation;
     est->fit_phase = cfg->fit_phase;
     est->n_tones = cfg->n_tones;
     for (unsigned k = 0u; k < LADRC_HP_MAX_TONES; ++k) {
-        set_tone_freq(est, &est->tone[k], (k < cfg->n_tones) ? cfg->freq_rad_s[k] : LADRC_R(0.0));
+        hp_set_tone_freq(&basis, est->advance, &est->tone[k], (k < cfg->n_tones) ? cfg->freq_rad_s[k] : LADRC_R(0.0));
     }
     ladrc_hp_reset(est);
     return LADRC_OK;
@@ -278,29 +233,18 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
     LADRC_REQUIRE_VOID(est != NULL);
     est->fit_rate_per_s = est->lambda0_max;
     (void)ladrc_rls_set_lambda0(&est->fit, est->fit_rate_per_s);
-    start_fit(est, est->online ? 1u : est->n_tones, NULL);
+    hp_start_fit(est, hp_online(est) ? 1u : est->n_tones, NULL);
     for (unsigned k = 0u; k < LADRC_HP_MAX_TONES; ++k) {
         ladrc_hp_tone_t *tone = &est->tone[k];
         tone->cos_psi = LADRC_R(1.0);
         tone->sin_psi = LADRC_R(0.0);
-        forget_tone(tone);
+        hp_forget_tone(tone);
     }
     est->sample_mean = LADRC_R(0.0);
     est->sig_power = LADRC_R(0.0);
-    for (unsigned i = 0u; i < 6u; ++i) {
-        est->spec_x[i] = LADRC_R(0.0);
-    }
-    for (unsigned i = 0u; i < SPEC_COUNT; ++i) {
-        est->spec_avg[i] = LADRC_R(0.0);
-    }
-    est->spec_x1_prev[0] = LADRC_R(0.0);
-    est->spec_x1_prev[1] = LADRC_R(0.0);
-    est->spec_x3_prev = LADRC_R(0.0);
-    est->spec_count = 0u;
-    est->spec_decide = 0u;
-    est->found_rad_s[0] = LADRC_R(0.0);
-    est->found_rad_s[LADRC_HP_MAX_TONES - 1u] = LADRC_R(0.0);
-    est->clean = 0u;
+#if LADRC_WITH_HP_ONLINE
+    hp_freq_reset(est);
+#endif
     est->err_fast = LADRC_R(0.0);
     est->err_slow = LADRC_R(0.0);
     est->weight = LADRC_R(0.0);
@@ -309,7 +253,6 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
     est->handover = LADRC_R(0.0);
     est->fit_count = 0u;
     est->change_left = 0u;
-    est->spec_restart_left = 0u;
     est->faults = LADRC_FAULT_NONE;
 }
 
@@ -322,20 +265,6 @@ static LADRC_FORCE_INLINE ladrc_real_t tone_turned(const ladrc_hp_tone_t *tone, 
     const ladrc_real_t x = a * re + b * im;
     const ladrc_real_t y = a * im - b * re;
     return x * tone->cos_psi - y * tone->sin_psi;
-}
-
-/* Fitted value of active tone k at its current phase, as sampled (lagged)
- * or with the sample's lag undone (lead: (1 + j w / wo)^3). */
-static ladrc_real_t tone_value(const ladrc_hp_estimator_t *est, unsigned k, int lead)
-{
-    const ladrc_hp_tone_t *tone = &est->tone[k];
-    const ladrc_real_t *theta = ladrc_rls_get_theta(&est->fit);
-    const ladrc_real_t a = theta[theta_a(k)];
-    const ladrc_real_t b = theta[theta_a(k) + 1u];
-    if (!lead) {
-        return a * tone->cos_psi + b * tone->sin_psi;
-    }
-    return tone_turned(tone, a, b, tone->lead_re, tone->lead_im);
 }
 
 /* Turn of a tone's fitted phasor since the previous fit sample, as a rate
@@ -393,11 +322,9 @@ static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
         return 0;
     }
     est->change_left = (uint16_t)(CHANGE_HOLD_S / t + LADRC_R(0.5));
-    /* One restart of the frequency fit at a time: a change seen again while
-     * one is pending does not delay it further. */
-    if (est->spec_restart_left == 0u) {
-        est->spec_restart_left = (uint16_t)(FILTER_SETTLE_PER_WF / (est->filter_rad_s * t) + LADRC_R(0.5));
-    }
+#if LADRC_WITH_HP_ONLINE
+    hp_freq_after_change(est);
+#endif
     ladrc_rls_reset(&est->fit, NULL);
     est->weight = LADRC_R(0.0);
     for (unsigned k = 0u; k < est->n_active; ++k) {
@@ -409,256 +336,6 @@ static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
         tone->locked = 0u;
     }
     return CHANGE_NEW;
-}
-
-/* ONLINE: a locked tone's frequency follows its slip at TRACK_FRACTION of
- * the fit's forgetting rate (the loop of the slip through the fit's lag is
- * then well damped). */
-static void track_slip(ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone)
-{
-    if (tone->locked) {
-        const ladrc_real_t gain = TRACK_FRACTION * est->fit_rate_per_s * est->fit_period_s;
-        set_tone_freq(est, tone,
-                      ladrc_clamp(tone->w_rad_s + gain * tone->slip_rad_s, est->freq_min_rad_s, est->freq_max_rad_s));
-    }
-}
-
-/* ONLINE: the slot of the active tone within TONE_SEPARATION of w nearest
- * to it, or n_active if none. */
-static unsigned nearest_tone(const ladrc_hp_estimator_t *est, ladrc_real_t w)
-{
-    unsigned nearest = est->n_active;
-    for (unsigned j = 0u; j < est->n_active; ++j) {
-        const ladrc_real_t gap = ladrc_fabs(est->tone[j].w_rad_s - w);
-        if (gap < TONE_SEPARATION * w &&
-            (nearest == est->n_active || gap < ladrc_fabs(est->tone[nearest].w_rad_s - w))) {
-            nearest = j;
-        }
-    }
-    return nearest;
-}
-
-/* ONLINE: the fit restarts with n tones at the frequencies found (ascending;
- * LADRC_HP_MAX_TONES <= 2): one tone becomes two, two one, or a tone that is
- * not locked jumped. A tone that is still there keeps its state and fitted
- * values (and, unless locked, takes the frequency found for it); a new one
- * starts at its frequency with zero amplitude. Called from ladrc_hp_step,
- * beside the RLS update, to keep the stack of a tick shallow. */
-LADRC_NOINLINE static void restart_tones(ladrc_hp_estimator_t *est, unsigned n)
-{
-    const ladrc_real_t *w = est->found_rad_s;
-    ladrc_real_t theta[LADRC_RLS_MAX_PARAMS];
-    const ladrc_real_t *old = ladrc_rls_get_theta(&est->fit);
-    for (unsigned i = 0u; i < LADRC_RLS_MAX_PARAMS; ++i) {
-        theta[i] = (i < theta_a(est->n_active)) ? old[i] : LADRC_R(0.0);
-    }
-    ladrc_real_t target[LADRC_HP_MAX_TONES];
-    unsigned fresh = 0u; /* bit k: slot k starts a new tone */
-    if (n < est->n_active) {
-        /* two -> one: the tone nearest w[0] stays, in slot 0 */
-        const unsigned kept = nearest_tone(est, w[0]);
-        if (kept == 1u) {
-            est->tone[0] = est->tone[1];
-            theta[theta_a(0u)] = theta[theta_a(1u)];
-            theta[theta_a(0u) + 1u] = theta[theta_a(1u) + 1u];
-        }
-        target[0] = w[0];
-        fresh = (kept < est->n_active) ? 0u : 1u;
-    } else if (n > est->n_active) {
-        /* one -> two: tone 0 keeps the frequency it is near, slot 1 the other */
-        const unsigned near_first = nearest_tone(est, w[0]) == 0u;
-        const unsigned near_second = !near_first && nearest_tone(est, w[n - 1u]) == 0u;
-        target[0] = near_second ? w[n - 1u] : w[0];
-        target[n - 1u] = near_second ? w[0] : w[n - 1u];
-        fresh = (near_first || near_second) ? 2u : 3u;
-    } else {
-        /* as many: a tone that is not locked and far from its frequency jumped */
-        for (unsigned k = 0u; k < n; ++k) {
-            target[k] = w[k];
-            if (!est->tone[k].locked && ladrc_fabs(w[k] - est->tone[k].w_rad_s) > TONE_SEPARATION * w[k]) {
-                fresh |= 1u << k;
-            }
-        }
-    }
-    for (unsigned k = 0u; k < n; ++k) {
-        ladrc_hp_tone_t *tone = &est->tone[k];
-        if ((fresh & (1u << k)) != 0u) {
-            theta[theta_a(k)] = LADRC_R(0.0);
-            theta[theta_a(k) + 1u] = LADRC_R(0.0);
-            forget_tone(tone);
-        }
-        if (!tone->locked) {
-            set_tone_freq(est, tone, target[k]);
-        }
-    }
-    start_fit(est, n, theta);
-}
-
-/* ONLINE frequency fit (see estimator.h). One fit sample of the raw sample
- * x through (wf / (s + wf))^6, whose states are x and its first five
- * derivatives (semi-implicit Euler, the highest derivative first), and the
- * averages of the products of x1, x3 and x5.
- * Each state is the backward difference of the next lower one, so for a
- * tone x3_k = -sigma^2 x1_k-1 and x5_k = sigma^4 x1_k-2 exactly, with
- * sigma = 2 sin(w T / 2) / T: the averages pair x1_k-2, x3_k-1 and x5_k,
- * and every ratio of them is exact at every instant (no ripple from the
- * averaging). The filter does not see the bias, so it needs no fitted bias
- * (which over a short memory would also follow a slow tone and hide it). */
-static void update_spectrum(ladrc_hp_estimator_t *est, ladrc_real_t x)
-{
-    const ladrc_real_t wf = est->filter_rad_s;
-    const ladrc_real_t t = est->fit_period_s;
-    ladrc_real_t *v = est->spec_x;
-    /* (s + wf)^6 = s^6 + 6 wf s^5 + 15 wf^2 s^4 + 20 wf^3 s^3 + 15 wf^4 s^2 + 6 wf^5 s + wf^6 */
-    const ladrc_real_t w2 = wf * wf;
-    const ladrc_real_t w3 = w2 * wf;
-    const ladrc_real_t d6 = w3 * w3 * (x - v[0]) - LADRC_R(6.0) * w3 * w2 * v[1] - LADRC_R(15.0) * w2 * w2 * v[2] -
-                            LADRC_R(20.0) * w3 * v[3] - LADRC_R(15.0) * w2 * v[4] - LADRC_R(6.0) * wf * v[5];
-    const ladrc_real_t x1_2 = est->spec_x1_prev[1];
-    const ladrc_real_t x3_1 = est->spec_x3_prev;
-    est->spec_x1_prev[1] = est->spec_x1_prev[0];
-    est->spec_x1_prev[0] = v[1];
-    est->spec_x3_prev = v[3];
-    v[5] += t * d6;
-    for (unsigned i = 5u; i > 0u; --i) {
-        v[i - 1u] += t * v[i];
-    }
-    const ladrc_real_t x5 = v[5];
-    /* The averages keep at least FREQ_MEMORY_RAD of the slowest locked
-     * tone's phase (a tone not locked may be far off its frequency). */
-    ladrc_real_t rate = est->freq_lambda0_per_s;
-    for (unsigned k = 0u; k < est->n_active; ++k) {
-        if (est->tone[k].locked) {
-            rate = min_real(rate, est->tone[k].w_rad_s / FREQ_MEMORY_RAD);
-        }
-    }
-    ladrc_real_t *m = est->spec_avg;
-    if (est->spec_restart_left > 0u) {
-        if (--est->spec_restart_left == 0u) {
-            for (unsigned i = 0u; i < SPEC_COUNT; ++i) {
-                m[i] = LADRC_R(0.0);
-            }
-            est->spec_count = 0u;
-        }
-        return;
-    }
-    if (est->spec_count < UINT16_MAX) {
-        est->spec_count++;
-    }
-    /* Plain means of everything since the (re)start until those hold as
-     * many samples as the forgetting's memory, then forgetting. */
-    const ladrc_real_t alpha = ladrc_clamp(LADRC_R(1.0) / (ladrc_real_t)est->spec_count, rate * t, LADRC_R(1.0));
-    m[SPEC_11] += alpha * (x1_2 * x1_2 - m[SPEC_11]);
-    m[SPEC_31] += alpha * (x3_1 * x1_2 - m[SPEC_31]);
-    m[SPEC_33] += alpha * (x3_1 * x3_1 - m[SPEC_33]);
-    m[SPEC_51] += alpha * (x5 * x1_2 - m[SPEC_51]);
-    m[SPEC_53] += alpha * (x5 * x3_1 - m[SPEC_53]);
-    m[SPEC_55] += alpha * (x5 * x5 - m[SPEC_55]);
-}
-
-/* w from sigma^2 = (2 sin(w T / 2) / T)^2: w = (2 / T) asin(sigma T / 2),
- * here to the cubic term (relative error under 1e-5 for w T < 0.2); 0 when
- * sigma^2 gives no frequency in range. */
-static ladrc_real_t freq_of(const ladrc_hp_estimator_t *est, ladrc_real_t sigma2)
-{
-    if (!(sigma2 > LADRC_R(0.0))) {
-        return LADRC_R(0.0);
-    }
-    const ladrc_real_t s = ladrc_sqrt(sigma2);
-    const ladrc_real_t t = est->fit_period_s;
-    const ladrc_real_t w = s + sigma2 * s * t * t / LADRC_R(24.0);
-    return (w > est->freq_min_rad_s && w < est->freq_max_rad_s) ? w : LADRC_R(0.0);
-}
-
-/* The clean model the averages show: one tone if x3 = -sigma^2 x1 explains
- * x3, else (n_tones 2) two tones if x5 + p1 x3 + p2 x1 = 0 explains x5, the
- * roots of sigma^4 - p1 sigma^2 + p2 giving the two; returns the number of
- * tones found (0: none clean) and their frequencies in w, ascending. */
-static unsigned clean_tones(const ladrc_hp_estimator_t *est, ladrc_real_t w[LADRC_HP_MAX_TONES])
-{
-    const ladrc_real_t *m = est->spec_avg;
-    if ((ladrc_real_t)est->spec_count * est->fit_period_s < SPEC_MIN_S || est->spec_restart_left > 0u ||
-        !(m[SPEC_11] > FILTER_MIN_POWER && m[SPEC_33] > LADRC_R(0.0))) {
-        return 0u;
-    }
-    /* One tone: 1 - correlation^2 of x3 and x1 is the share of x3 it leaves. */
-    const ladrc_real_t det = m[SPEC_33] * m[SPEC_11] - m[SPEC_31] * m[SPEC_31];
-    if (det < IMPURITY_MAX * m[SPEC_33] * m[SPEC_11]) {
-        w[0] = freq_of(est, -m[SPEC_31] / m[SPEC_11]);
-        return (w[0] > LADRC_R(0.0)) ? 1u : 0u;
-    }
-    if (est->n_tones < 2u || !(m[SPEC_55] > LADRC_R(0.0))) {
-        return 0u;
-    }
-    /* Two tones: least squares for (p1, p2) on x5 = -p1 x3 - p2 x1. */
-    const ladrc_real_t p1 = -(m[SPEC_53] * m[SPEC_11] - m[SPEC_51] * m[SPEC_31]) / det;
-    const ladrc_real_t p2 = -(m[SPEC_33] * m[SPEC_51] - m[SPEC_31] * m[SPEC_53]) / det;
-    const ladrc_real_t left = m[SPEC_55] + p1 * m[SPEC_53] + p2 * m[SPEC_51];
-    const ladrc_real_t disc = p1 * p1 - LADRC_R(4.0) * p2;
-    if (!(left < IMPURITY_MAX * m[SPEC_55]) || !(p2 > LADRC_R(0.0)) || !(disc > LADRC_R(0.0))) {
-        return 0u;
-    }
-    const ladrc_real_t root = ladrc_sqrt(disc);
-    w[0] = freq_of(est, LADRC_R(0.5) * (p1 - root));
-    w[1] = freq_of(est, LADRC_R(0.5) * (p1 + root));
-    const int apart = w[1] > (LADRC_R(1.0) + TONE_SEPARATION) * w[0];
-    return (w[0] > LADRC_R(0.0) && w[1] > LADRC_R(0.0) && apart) ? 2u : 0u;
-}
-
-/* ONLINE: the active tones follow the frequency fit while it sees a clean
- * model with as many tones (exact for one clean tone). While it does not
- * (the loop's transients, which the derivatives weigh heavily, blur it), and
- * for a locked pair of tones (their fit uses the fifth derivative, noisier
- * than their slips), a locked tone follows its slip instead. Returns the
- * number of tones the fit must restart with (restart_tones, at the
- * frequencies found), 0 if none: a clean model with another number of
- * tones (after TONE_HOLD_S without such a change), or a tone not locked
- * that jumped. */
-LADRC_NOINLINE static unsigned update_frequencies(ladrc_hp_estimator_t *est, ladrc_real_t sample)
-{
-    update_spectrum(est, sample);
-    /* The model is judged every SPEC_DECIDE-th fit sample: its averages
-     * change slowly, and the judgement costs divisions and roots. */
-    if (++est->spec_decide < SPEC_DECIDE) {
-        /* in between, the tones that follow their slips follow them */
-        if (!est->clean || est->n_active > 1u) {
-            for (unsigned k = 0u; k < est->n_active; ++k) {
-                track_slip(est, &est->tone[k]);
-            }
-        }
-        return 0u;
-    }
-    est->spec_decide = 0u;
-    ladrc_real_t *w = est->found_rad_s;
-    const unsigned found = clean_tones(est, w);
-    est->clean = (found == est->n_active) ? 1u : 0u;
-    if (est->hold < UINT16_MAX) {
-        est->hold++;
-    }
-    if (found == 0u || (found != est->n_active && (ladrc_real_t)est->hold * est->fit_period_s < TONE_HOLD_S)) {
-        for (unsigned k = 0u; k < est->n_active; ++k) {
-            track_slip(est, &est->tone[k]);
-        }
-        return 0u;
-    }
-    if (found != est->n_active) {
-        return found;
-    }
-    unsigned jumped = 0u;
-    for (unsigned k = 0u; k < est->n_active; ++k) {
-        ladrc_hp_tone_t *tone = &est->tone[k];
-        const int far = ladrc_fabs(w[k] - tone->w_rad_s) > TONE_SEPARATION * tone->w_rad_s;
-        if (tone->locked && (found > 1u || far)) {
-            /* Two tones come from the fifth derivative, noisier than a
-             * locked pair's slips; a far frequency is another tone. */
-            track_slip(est, tone);
-        } else if (!tone->locked && far) {
-            jumped = 1u; /* what the fit holds for it belongs to another frequency */
-        } else {
-            set_tone_freq(est, tone, w[k]);
-        }
-    }
-    return jumped ? found : 0u;
 }
 
 /* After the RLS took a fit sample: per tone its slip and lock, the gate and
@@ -692,7 +369,7 @@ LADRC_NOINLINE static void after_fit(ladrc_hp_estimator_t *est, ladrc_real_t sam
         /* A tone locks only once the fit predicts the sample (its phasor also
          * turns while the fit converges) and, ONLINE, while the frequency fit
          * sees a clean model. */
-        const int ready = tone->locked || (settled && (!est->online || est->clean));
+        const int ready = tone->locked || (settled && hp_search_agrees(est));
         /* to lock, the phasor must stand still; to stay locked, it must not
          * turn (two tones' fitted sizes breathe a little as they settle) */
         const ladrc_real_t moving = tone->locked ? ladrc_fabs(tone->slip_rad_s) : motion;
@@ -755,19 +432,25 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
         }
         est->faults = ladrc_rls_update(&est->fit, phi, sample_rad_s2);
         after_fit(est, sample_rad_s2, changing);
-        const unsigned restart = est->online ? update_frequencies(est, sample_rad_s2) : 0u;
+#if LADRC_WITH_HP_ONLINE
+        const unsigned restart = est->online ? hp_update_frequencies(est, sample_rad_s2) : 0u;
         if (restart > 0u) {
-            restart_tones(est, restart);
+            hp_restart_tones(est, restart);
         }
+#endif
     }
     /* The fit's clock runs on every tick, fitted or not, so it stays in step. */
     if (++est->fit_count >= est->fit_decimation) {
         est->fit_count = 0u;
     }
-    ladrc_real_t model = ladrc_rls_get_theta(&est->fit)[0];
+    /* The model at this tick's phases with the sample's lag undone per tone
+     * (lead: (1 + j w / wo)^3); theta read once (the getter is a call). */
+    const ladrc_real_t *theta = ladrc_rls_get_theta(&est->fit);
+    ladrc_real_t model = theta[0];
     for (unsigned k = 0u; k < est->n_active; ++k) {
-        model += tone_value(est, k, 1);
-        advance_phase(&est->tone[k]);
+        ladrc_hp_tone_t *tone = &est->tone[k];
+        model += tone_turned(tone, theta[theta_a(k)], theta[theta_a(k) + 1u], tone->lead_re, tone->lead_im);
+        advance_phase(tone);
     }
     est->estimate = est->weight * model;
     est->handover = (est->weight - weight_before) * model;

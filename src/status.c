@@ -90,7 +90,9 @@
     X(LADRC_ERR_CAS_RATE_TAU_S, "cas_rate_filter_tau_s must be finite and >= 0")                                       \
     X(LADRC_ERR_CAS_I_LIMIT_NM, "cas_i_limit_Nm must be >= 0 and not NaN")                                             \
     X(LADRC_ERR_VARIANT_NOT_BUILT, "variant is left out of this build of the library (LADRC_VARIANTS)")                \
-    X(LADRC_ERR_SHAPER_NOT_BUILT, "shaper is left out of this build of the library (LADRC_SHAPERS)")
+    X(LADRC_ERR_SHAPER_NOT_BUILT, "shaper is left out of this build of the library (LADRC_SHAPERS)")                   \
+    X(LADRC_ERR_FEATURE_NOT_BUILT,                                                                                     \
+      "hp freq_mode ONLINE: the online frequency search is left out of this build of the library (LADRC_HP_ONLINE)")
 
 #ifdef LADRC_STATUS_NAMES_ONLY
 #define STATUS_TEXT(code, explanation) #code

@@ -40,7 +40,7 @@ static void test_the_real_size_matches_the_build(void)
 
 static void test_the_abi_set_names_every_variant_and_shaper_of_the_build(void)
 {
-    char expected[] = "_v000000_s00";
+    char expected[] = "_v000000_s00_o0";
     const int with[] = {LADRC_WITH_LADRC, LADRC_WITH_LP_MLADRC, LADRC_WITH_HP_MLADRC,
                         LADRC_WITH_PID,   LADRC_WITH_CASCADED,  LADRC_WITH_INDI};
     size_t i;
@@ -49,6 +49,7 @@ static void test_the_abi_set_names_every_variant_and_shaper_of_the_build(void)
     }
     expected[10] = (char)('0' + LADRC_WITH_TD);
     expected[11] = (char)('0' + LADRC_WITH_LEVANT);
+    expected[14] = (char)('0' + LADRC_WITH_HP_ONLINE);
     TEST_ASSERT_EQUAL_STRING(expected, ladrc_abi_set());
 }
 

@@ -87,6 +87,7 @@ static const char *const status_names[LADRC_STATUS_COUNT] = {
     "LADRC_ERR_CAS_I_LIMIT_NM",
     "LADRC_ERR_VARIANT_NOT_BUILT",
     "LADRC_ERR_SHAPER_NOT_BUILT",
+    "LADRC_ERR_FEATURE_NOT_BUILT",
 };
 
 /* 1 if text is name alone (names-only build) or name ": " and an explanation. */

@@ -22,6 +22,9 @@
 #    -icount shift=0, twice: the two outputs must be identical; the same
 #    image times each module alone (where the instructions go);
 #  - sizeof of the state and config structs (same image);
+#  - the lean HP build (HP-MLADRC + Levant, known frequency, one tone, no
+#    online search): its 3-axis tick and state (ladrc_bench_lean, run the
+#    same way) and the library flash its firmware links;
 #  - flash and RAM of libladrc.a per object (arm-none-eabi-size);
 #  - worst-case stack of one tick from -fcallgraph-info=su (tools/bench/stack.py);
 #  - host: build/bench-host (the host-release preset with LADRC_BUILD_BENCH=ON),

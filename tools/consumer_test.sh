@@ -129,12 +129,27 @@ if abi_link "$work/prefix-hp" ""; then
   echo "error: an all-variants application linked against an HP-MLADRC-only library" >&2
   exit 1
 fi
-grep -q "ladrc_attitude_init_float_v111111_s11" "$work/abi.log"
+grep -q "ladrc_attitude_init_float_v111111_s11_o1" "$work/abi.log"
 if abi_link "$work/prefix" "$hp_flags"; then
   echo "error: an HP-MLADRC-only application linked against an all-variants library" >&2
   exit 1
 fi
-grep -q "ladrc_attitude_init_float_v001000_s01" "$work/abi.log"
+grep -q "ladrc_attitude_init_float_v001000_s01_o1" "$work/abi.log"
 log "abi: variant-set mismatches fail to link naming the set, a matching build links"
+
+log "abi: the online frequency search (LADRC_HP_ONLINE) of the library against the application's"
+install_ladrc hpknown "$work/prefix-hpknown" "-DLADRC_VARIANTS=HP_MLADRC" "-DLADRC_SHAPERS=LEVANT" "-DLADRC_HP_ONLINE=OFF"
+abi_link "$work/prefix-hpknown" "$hp_flags -DLADRC_WITH_HP_ONLINE=0"
+if abi_link "$work/prefix-hpknown" "$hp_flags"; then
+  echo "error: an application with the online search linked against a library without it" >&2
+  exit 1
+fi
+grep -q "ladrc_attitude_init_float_v001000_s01_o1" "$work/abi.log"
+if abi_link "$work/prefix-hp" "$hp_flags -DLADRC_WITH_HP_ONLINE=0"; then
+  echo "error: an application without the online search linked against a library with it" >&2
+  exit 1
+fi
+grep -q "ladrc_attitude_init_float_v001000_s01_o0" "$work/abi.log"
+log "abi: online-search mismatches fail to link naming it, a matching build links"
 
 echo "consumer tests: all passed"

@@ -91,7 +91,8 @@
  * tones leave unexplained, when that residue keeps a real share of the
  * sample's power; a tone that stays insignificant, or that runs onto another
  * tone's frequency, stops (the fit is restarted with its current values for
- * the remaining tones).
+ * the remaining tones). The search is built with LADRC_WITH_HP_ONLINE (types.h,
+ * CMake LADRC_HP_ONLINE); without it only KNOWN frequencies are accepted.
  */
 #ifndef LADRC_ESTIMATOR_H
 #define LADRC_ESTIMATOR_H
@@ -200,45 +201,57 @@ typedef struct {
     uint8_t locked;                  /**< significant and its phasor stands still */
 } ladrc_hp_tone_t;
 
+/** What a tone's constants follow from besides its frequency (from the
+ *  config): needed again only when a frequency changes (ONLINE). */
+typedef struct {
+    ladrc_real_t dt_s;
+    ladrc_real_t lag_wo_rad_s; /**< bandwidth of the sample's lag, 0 = none */
+    ladrc_real_t act_tau_s;    /**< actuator lag the command is advanced over (s) */
+    uint8_t act_delay_ticks;   /**< actuator delay the command is advanced over (ticks) */
+} ladrc_hp_tone_basis_t;
+
 typedef struct {
     ladrc_rls_t fit;                          /**< theta = (c, a_1, b_1, ..., a_n, b_n), n = n_active */
     ladrc_real_t phi[LADRC_RLS_MAX_PARAMS];   /**< the fit's regressors at the latest fit sample */
     ladrc_hp_tone_t tone[LADRC_HP_MAX_TONES]; /**< the first n_active are in the fit */
-    ladrc_real_t dt_s, fit_period_s;
+    ladrc_real_t fit_period_s;
+    ladrc_real_t lambda0_max;        /**< configured fastest forgetting of the fit */
+    ladrc_real_t fit_rate_per_s;     /**< forgetting rate of the fit outside changes */
+    ladrc_real_t sample_mean;        /**< the sample's mean, averaged */
+    ladrc_real_t sig_power;          /**< the sample's power around its mean, averaged */
+    ladrc_real_t err_fast, err_slow; /**< short and long averages of the fit's prior error power */
+    ladrc_real_t weight;             /**< compensation weight in [0, 1] */
+    ladrc_real_t estimate;           /**< the applied d_hat (rad/s^2) */
+    ladrc_real_t handover;           /**< part of estimate's latest change due to the weight */
+#if LADRC_WITH_HP_ONLINE
+    /* The ONLINE frequency search (estimator_hp_freq.c): left out with
+     * LADRC_WITH_HP_ONLINE 0 (types.h). */
+    ladrc_hp_tone_basis_t basis;
     ladrc_real_t freq_min_rad_s, freq_max_rad_s;
-    ladrc_real_t lambda0_max;    /**< configured fastest forgetting of the fit */
-    ladrc_real_t fit_rate_per_s; /**< forgetting rate of the fit outside changes */
     ladrc_real_t freq_lambda0_per_s;
     ladrc_real_t filter_rad_s;                    /**< derivative filter bandwidth wf */
-    ladrc_real_t lag_wo_rad_s;                    /**< bandwidth of the sample's lag, 0 = none */
-    ladrc_real_t sample_mean;                     /**< the sample's mean, averaged */
-    ladrc_real_t sig_power;                       /**< the sample's power around its mean, averaged */
-    ladrc_real_t spec_x[6];                       /**< ONLINE derivative filter: x and its first five derivatives */
-    ladrc_real_t spec_x1_prev[2];                 /**< ONLINE x1 one and two fit samples ago */
-    ladrc_real_t spec_x3_prev;                    /**< ONLINE x3 one fit sample ago */
-    ladrc_real_t spec_avg[6];                     /**< ONLINE averages of x1 x1, x3 x1, x3 x3, x5 x1, x5 x3, x5 x5 */
-    ladrc_real_t found_rad_s[LADRC_HP_MAX_TONES]; /**< ONLINE frequencies of the latest clean model */
-    ladrc_real_t err_fast, err_slow;              /**< short and long averages of the fit's prior error power */
-    ladrc_real_t weight;                          /**< compensation weight in [0, 1] */
-    ladrc_real_t estimate;                        /**< the applied d_hat (rad/s^2) */
-    ladrc_real_t act_tau_s;                       /**< actuator lag the command is advanced over (s) */
-    ladrc_real_t handover;                        /**< part of estimate's latest change due to the weight */
+    ladrc_real_t spec_x[6];                       /**< derivative filter: x and its first five derivatives */
+    ladrc_real_t spec_x1_prev[2];                 /**< x1 one and two fit samples ago */
+    ladrc_real_t spec_x3_prev;                    /**< x3 one fit sample ago */
+    ladrc_real_t spec_avg[6];                     /**< averages of x1 x1, x3 x1, x3 x3, x5 x1, x5 x3, x5 x5 */
+    ladrc_real_t found_rad_s[LADRC_HP_MAX_TONES]; /**< frequencies of the latest clean model */
+    uint16_t spec_restart_left;                   /**< fit samples until the frequency fit's averages restart */
+    uint16_t spec_count;                          /**< fit samples in the frequency fit's averages since their start */
+    uint16_t hold;                                /**< fit samples since the last tone started or stopped */
+    uint8_t spec_decide;                          /**< fit samples since the frequency fit's model was last judged */
+    uint8_t online;                               /**< 1: freq_mode ONLINE */
+    uint8_t clean;                                /**< the frequency fit sees as many clean tones as are active */
+#endif
     uint16_t fit_decimation, fit_count, fit_phase;
-    uint16_t change_left;       /**< fit samples left of a change's hold */
-    uint16_t engaged;           /**< fit samples in a row with the weight at 1 */
-    uint16_t spec_restart_left; /**< ONLINE: fit samples until the frequency fit's averages restart */
-    uint16_t spec_count;        /**< ONLINE: fit samples in the frequency fit's averages since their start */
-    uint16_t hold;              /**< ONLINE: fit samples since the last tone started or stopped */
-    uint8_t spec_decide;        /**< ONLINE: fit samples since the frequency fit's model was last judged */
+    uint16_t change_left; /**< fit samples left of a change's hold */
+    uint16_t engaged;     /**< fit samples in a row with the weight at 1 */
     uint8_t n_tones, n_active;
-    uint8_t online;
-    uint8_t clean;           /**< ONLINE: the frequency fit sees as many clean tones as are active */
-    uint8_t act_delay_ticks; /**< actuator delay the command is advanced over (ticks) */
-    uint8_t advance;         /**< 1: act_tau_s > 0 or act_delay_ticks > 0 */
+    uint8_t advance; /**< 1: act_tau_s > 0 or act_delay_ticks > 0 (the command is advanced) */
     ladrc_fault_t faults;
 } ladrc_hp_estimator_t;
 
-/** Validates (LADRC_ERR_DT_S, _HP_FREQ_MODE, _HP_N_TONES, _HP_FREQ_RAD_S, _HP_FREQ_RANGE,
+/** Validates (LADRC_ERR_DT_S, _HP_FREQ_MODE, _FEATURE_NOT_BUILT (ONLINE when
+ *  LADRC_WITH_HP_ONLINE is 0), _HP_N_TONES, _HP_FREQ_RAD_S, _HP_FREQ_RANGE,
  *  _EST_LAMBDA0, _HP_FIT_DECIMATION, _HP_SAMPLE_LAG, _HP_FREQ_LAMBDA0, _HP_FREQ_FILTER,
  *  _MOTOR_TAU_S, _DELAY_TICKS) and resets. */
 ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t *cfg);

@@ -33,9 +33,9 @@ size_t ladrc_sizeof_mixer_output_t(void);
 size_t ladrc_sizeof_ref_t(void);
 /** LADRC_HP_MAX_TONES: the length of ladrc_axis_config_t's hp_freq_rad_s. */
 size_t ladrc_hp_max_tones(void);
-/** The variant and shaper set the library was built with, as the suffix its
- *  axis and attitude symbols carry after the real type (types.h, ABI guard):
- *  "_v111111_s11" with everything built. */
+/** The variant and shaper set and the online search the library was built
+ *  with, as the suffix its axis and attitude symbols carry after the real
+ *  type (types.h, ABI guard): "_v111111_s11_o1" with everything built. */
 const char *ladrc_abi_set(void);
 
 #ifdef __cplusplus

@@ -101,6 +101,17 @@ typedef float ladrc_real_t;
 #ifndef LADRC_WITH_LEVANT
 #define LADRC_WITH_LEVANT 1
 #endif
+/*
+ * The HP estimator's online frequency search (LADRC_HP_FREQ_ONLINE,
+ * estimator.h) built (1) or left out (0), by the CMake option LADRC_HP_ONLINE
+ * (default ON) as the variants are. Left out, the estimator knows its
+ * frequencies only: its state has no room for the search, and ladrc_hp_init
+ * (so the axis and attitude inits) refuses LADRC_HP_FREQ_ONLINE with
+ * LADRC_ERR_FEATURE_NOT_BUILT.
+ */
+#ifndef LADRC_WITH_HP_ONLINE
+#define LADRC_WITH_HP_ONLINE 1
+#endif
 
 /*
  * ABI guard. The functions every user of a module calls (the inits, the
@@ -110,11 +121,14 @@ typedef float ladrc_real_t;
  * attitude controller, whose states' layout depends on the variants built,
  * carry the variant and shaper set as well: _v then LADRC_WITH_ of LADRC,
  * LP_MLADRC, HP_MLADRC, PID, CASCADED, INDI, then _s then those of TD,
- * LEVANT (ladrc_axis_init_float_v111111_s11 for everything built,
- * ladrc_axis_init_float_v001000_s01 for HP-MLADRC + Levant). A library and
- * an application built with another real type or variant set fail to link
- * ("undefined reference to ladrc_axis_init_float_v111111_s11") instead of
- * reading misplaced fields. Call the functions by their plain names.
+ * LEVANT, then _o then LADRC_WITH_HP_ONLINE
+ * (ladrc_axis_init_float_v111111_s11_o1 for everything built,
+ * ladrc_axis_init_float_v001000_s01_o0 for HP-MLADRC + Levant without the
+ * online frequency search); the HP estimator's init, whose state depends on
+ * the search, carries _o too (ladrc_hp_init_float_o1). A library and an
+ * application built with another real type or set fail to link ("undefined
+ * reference to ladrc_axis_init_float_v111111_s11_o1") instead of reading
+ * misplaced fields. Call the functions by their plain names.
  */
 #define LADRC_ABI_CAT_(a, b) a##b
 #define LADRC_ABI_CAT(a, b) LADRC_ABI_CAT_(a, b)
@@ -123,12 +137,18 @@ typedef float ladrc_real_t;
 #else
 #define LADRC_ABI_REAL_ _float
 #endif
-#define LADRC_ABI_SET_PASTE_(a, b, c, d, e, f, g, h) _v##a##b##c##d##e##f##_s##g##h
-#define LADRC_ABI_SET_EXPAND_(a, b, c, d, e, f, g, h) LADRC_ABI_SET_PASTE_(a, b, c, d, e, f, g, h)
-/** The variant and shaper set as a symbol-name suffix, e.g. _v111111_s11. */
+#define LADRC_ABI_SET_PASTE_(a, b, c, d, e, f, g, h, o) _v##a##b##c##d##e##f##_s##g##h##_o##o
+#define LADRC_ABI_SET_EXPAND_(a, b, c, d, e, f, g, h, o) LADRC_ABI_SET_PASTE_(a, b, c, d, e, f, g, h, o)
+/** The variant and shaper set and the online search as a symbol-name suffix,
+ *  e.g. _v111111_s11_o1. */
 #define LADRC_ABI_SET_                                                                                                 \
     LADRC_ABI_SET_EXPAND_(LADRC_WITH_LADRC, LADRC_WITH_LP_MLADRC, LADRC_WITH_HP_MLADRC, LADRC_WITH_PID,                \
-                          LADRC_WITH_CASCADED, LADRC_WITH_INDI, LADRC_WITH_TD, LADRC_WITH_LEVANT)
+                          LADRC_WITH_CASCADED, LADRC_WITH_INDI, LADRC_WITH_TD, LADRC_WITH_LEVANT,                      \
+                          LADRC_WITH_HP_ONLINE)
+#define LADRC_ABI_HP_PASTE_(o) _o##o
+#define LADRC_ABI_HP_EXPAND_(o) LADRC_ABI_HP_PASTE_(o)
+/** The online search as a symbol-name suffix, e.g. _o1. */
+#define LADRC_ABI_HP_ LADRC_ABI_HP_EXPAND_(LADRC_WITH_HP_ONLINE)
 #define LADRC_ABI_NAME_(name) LADRC_ABI_CAT(name, LADRC_ABI_REAL_)
 /* One paste of the three parts: a name passed through two nested pastes trips
  * some preprocessors (cppcheck's) on the macro's own name. */
@@ -140,7 +160,7 @@ typedef float ladrc_real_t;
 #define ladrc_axis_config_default LADRC_ABI_SET_NAME_(ladrc_axis_config_default)
 #define ladrc_axis_init LADRC_ABI_SET_NAME_(ladrc_axis_init)
 #define ladrc_cascaded_init LADRC_ABI_NAME_(ladrc_cascaded_init)
-#define ladrc_hp_init LADRC_ABI_NAME_(ladrc_hp_init)
+#define ladrc_hp_init LADRC_ABI_CAT3(ladrc_hp_init, LADRC_ABI_REAL_, LADRC_ABI_HP_)
 #define ladrc_indi_init LADRC_ABI_NAME_(ladrc_indi_init)
 #define ladrc_leso_init LADRC_ABI_NAME_(ladrc_leso_init)
 #define ladrc_levant_init LADRC_ABI_NAME_(ladrc_levant_init)
@@ -233,6 +253,7 @@ typedef enum {
     LADRC_ERR_CAS_I_LIMIT_NM,    /**< cas_i_limit_Nm NaN or < 0 (INFINITY = no clamp) */
     LADRC_ERR_VARIANT_NOT_BUILT, /**< axis variant left out of this build (LADRC_VARIANTS, axis.h) */
     LADRC_ERR_SHAPER_NOT_BUILT,  /**< axis shaper left out of this build (LADRC_SHAPERS, axis.h) */
+    LADRC_ERR_FEATURE_NOT_BUILT, /**< hp freq_mode ONLINE: the online search is left out of this build (LADRC_HP_ONLINE) */
     LADRC_STATUS_COUNT           /**< number of status codes (not a status) */
 } ladrc_status_t;
 

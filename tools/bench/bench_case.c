@@ -24,13 +24,25 @@ const int bench_case_inputs[BENCH_CASES] = {BENCH_ONE_TONE, BENCH_ONE_TONE,  BEN
                                             BENCH_ONE_TONE, BENCH_TWO_TONES, BENCH_ONE_TONE,
                                             BENCH_ONE_TONE, BENCH_ONE_TONE,  BENCH_ONE_TONE};
 
-/* The actuator model of the case's axes (none but for the -act cases). */
-static void set_actuator(ladrc_axis_config_t *cfg, int bench_case)
+/* The actuator model of the case's axes (none but for the -act cases) and,
+ * in a build without the online frequency search (LADRC_WITH_HP_ONLINE 0:
+ * the lean HP build, bench_lean.c), the disturbance's frequencies as known
+ * ones, as many as the build models (bench_disturbance). */
+static void set_case(ladrc_axis_config_t *cfg, int bench_case)
 {
     if (bench_case == BENCH_CASE_HP_ACT || bench_case == BENCH_CASE_LADRC_ACT) {
         cfg->motor_tau_s = BENCH_ACT_MOTOR_TAU_S;
         cfg->delay_ticks = BENCH_ACT_DELAY_TICKS;
     }
+#if !LADRC_WITH_HP_ONLINE
+    static const ladrc_real_t tone_rad_s[2] = {BENCH_TONE1_RAD_S, BENCH_TONE2_RAD_S};
+    const unsigned tones = (bench_case_inputs[bench_case] == BENCH_TWO_TONES) ? 2u : 1u;
+    cfg->hp_freq_mode = LADRC_HP_FREQ_KNOWN;
+    cfg->hp_n_tones = (uint8_t)(tones < LADRC_HP_MAX_TONES ? tones : LADRC_HP_MAX_TONES);
+    for (unsigned k = 0u; k < cfg->hp_n_tones; ++k) {
+        cfg->hp_freq_rad_s[k] = tone_rad_s[k];
+    }
+#endif
 }
 const ladrc_real_t bench_inertia[LADRC_AXES] = {5.445e-3f, 5.445e-3f, 1.089e-2f};
 
@@ -52,9 +64,9 @@ ladrc_real_t bench_disturbance(int which, int axis, ladrc_real_t t_s)
      * torque, over twice what the rotor limits allow (the paper's rotors are
      * ideal); the mixer would saturate yaw on almost every tick. */
     const float scale = (axis == 2) ? 0.25f : 1.0f;
-    float d = 20.0f + sign * 120.0f * sinf(3.0f * t_s);
+    float d = 20.0f + sign * 120.0f * sinf(BENCH_TONE1_RAD_S * t_s);
     if (which == BENCH_TWO_TONES) {
-        d += 30.0f * sinf(8.0f * t_s);
+        d += 30.0f * sinf(BENCH_TONE2_RAD_S * t_s);
     }
     return scale * d;
 }
@@ -188,7 +200,7 @@ int bench_setup_axis(ladrc_axis_t *axis, int bench_case)
 {
     ladrc_axis_config_t cfg;
     ladrc_axis_config_default(&cfg, bench_case_variant[bench_case], BENCH_DT_S, bench_inertia[0]);
-    set_actuator(&cfg, bench_case);
+    set_case(&cfg, bench_case);
     if (ladrc_axis_init(axis, &cfg) != LADRC_OK) {
         return -1;
     }
@@ -202,7 +214,7 @@ int bench_setup_attitude(ladrc_attitude_t *att, ladrc_mixer_t *mixer, int bench_
     int bad_axis = -1;
     ladrc_attitude_config_default(&cfg, bench_case_variant[bench_case], BENCH_DT_S, bench_inertia, DRAG_NMS);
     for (int a = 0; a < LADRC_AXES; ++a) {
-        set_actuator(&cfg.axis[a], bench_case);
+        set_case(&cfg.axis[a], bench_case);
     }
     if (ladrc_attitude_init(att, &cfg, &bad_axis) != LADRC_OK ||
         ladrc_mixer_init(mixer, &bench_mixer_cfg) != LADRC_OK) {

@@ -39,6 +39,9 @@
                              yaw a quarter of roll's (within the rotor limits) */
 #define BENCH_TWO_TONES 1 /* the same plus 30 sin(8 t) (yaw: a quarter) */
 #define BENCH_DISTURBANCES 2
+/* Their tones (rad/s): the paper's, and the second of the two-tone case. */
+#define BENCH_TONE1_RAD_S 3.0f
+#define BENCH_TONE2_RAD_S 8.0f
 
 /* The angles and rates of one disturbance's closed loops. */
 typedef struct {

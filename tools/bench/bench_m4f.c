@@ -4,12 +4,12 @@
  * icount mode (qemu -icount shift=S: every instruction advances virtual time
  * by 2^S ns, so any clock that follows virtual time counts instructions).
  *
- * The clock is SysTick on the processor clock (qemu does not model the DWT
- * cycle counter). Its rate relative to instructions is measured here, on a
- * loop of known length, and not assumed. Each measurement times one block of
- * BENCH_TICKS ticks and subtracts the same loop with the call removed (it
- * still loads the inputs and stores the output), so the figure includes the
- * call, argument passing and return as firmware would pay them.
+ * The clock (bench_timer.h) is SysTick on the processor clock, its rate
+ * relative to instructions measured on a loop of known length. Each
+ * measurement times one block of BENCH_TICKS ticks and subtracts the same
+ * loop with the call removed (it still loads the inputs and stores the
+ * output), so the figure includes the call, argument passing and return as
+ * firmware would pay them.
  *
  * Cases (bench_case.h): each variant on one axis and on 3 axes + mixer, and
  * HP-MLADRC on a two-tone disturbance.
@@ -24,6 +24,7 @@
 #include <stdio.h>
 
 #include "bench_case.h"
+#include "bench_timer.h"
 #include "ladrc/estimator.h"
 #include "ladrc/leso.h"
 #include "ladrc/levant.h"
@@ -31,41 +32,7 @@
 #include "ladrc/rls.h"
 #include "ladrc/td.h"
 
-#define SYST_CSR (*(volatile uint32_t *)0xE000E010u)
-#define SYST_RVR (*(volatile uint32_t *)0xE000E014u)
-#define SYST_CVR (*(volatile uint32_t *)0xE000E018u)
-#define SYST_MASK 0x00FFFFFFu
-
 static volatile ladrc_real_t sink;
-
-static void timer_start(void)
-{
-    SYST_CSR = 0u;
-    SYST_RVR = SYST_MASK;
-    SYST_CVR = 0u;
-    SYST_CSR = 5u; /* enable, processor clock, no interrupt */
-}
-
-static inline uint32_t timer_now(void)
-{
-    return SYST_CVR;
-}
-
-/* The counter counts down; blocks are far shorter than one wrap. */
-static inline uint32_t timer_since(uint32_t start)
-{
-    return (start - SYST_CVR) & SYST_MASK;
-}
-
-/* 2 * n + 2 instructions from the first subs to the final bne falling through:
- * measured between two timer reads, so the fixed cost of the reads cancels
- * out in the difference of two lengths. */
-static uint32_t timed_spin(uint32_t n)
-{
-    uint32_t t0 = timer_now();
-    __asm__ volatile("1:\n\tsubs %0, %0, #1\n\tbne 1b" : "+r"(n) : : "cc");
-    return timer_since(t0);
-}
 
 /* What a block runs. */
 typedef enum {
@@ -344,12 +311,6 @@ static int setup_modules(void)
     return 0;
 }
 
-/* Instructions per tick, in hundredths, from counts over BENCH_TICKS ticks. */
-static uint32_t per_tick_x100(uint32_t counts, uint32_t empty, uint32_t insn_per_count)
-{
-    return (uint32_t)(((uint64_t)(counts - empty) * insn_per_count * 100u + BENCH_TICKS / 2) / BENCH_TICKS);
-}
-
 /* Warm-up, measured block, empty block; instructions per tick in hundredths. */
 static uint32_t measure(run_t what, uint32_t ipc, uint32_t *counts, uint32_t *empty)
 {
@@ -375,50 +336,14 @@ static void print_hp_state(const char *name, const ladrc_hp_estimator_t *est)
            ladrc_hp_get_active_tones(est));
 }
 
-/* The dearest single 3-axis tick of the block, in instructions to within one
- * SysTick count (ipc instructions): each tick timed alone, less the cheapest
- * empty tick. Averages hide the ticks on which decimated work falls. */
-static uint32_t worst_attitude_tick(uint32_t ipc)
-{
-    uint32_t worst = 0u;
-    uint32_t empty = UINT32_MAX;
-    for (int i = BENCH_WARMUP; i < BENCH_WARMUP + BENCH_TICKS; ++i) {
-        const uint32_t t0 = timer_now();
-        sink = bench_attitude_tick(&att, &mixer, in, i);
-        const uint32_t c = timer_since(t0);
-        worst = (c > worst) ? c : worst;
-    }
-    for (int i = BENCH_WARMUP; i < BENCH_WARMUP + BENCH_TICKS; ++i) {
-        const uint32_t t0 = timer_now();
-        sink = bench_empty_tick(in, i);
-        const uint32_t c = timer_since(t0);
-        empty = (c < empty) ? c : empty;
-    }
-    return (worst - empty) * ipc;
-}
-
 #define SIZE_LINE(type) printf("BENCH sizeof %s %u\n", #type, (unsigned)sizeof(type))
 
 int main(void)
 {
-    timer_start();
-
-    /* Calibration: the difference of two spins is exactly 2 * (n2 - n1) instructions;
-     * each timed interval is read to within one count, so the quotient is rounded. */
-    const uint32_t n1 = 1000u, n2 = 101000u;
-    const uint32_t c1 = timed_spin(n1), c2 = timed_spin(n2);
-    const uint32_t insns = 2u * (n2 - n1);
-    const uint32_t counts = c2 - c1;
-    const uint32_t ipc = counts == 0u ? 0u : (insns + counts / 2u) / counts;
-    if (ipc == 0u || (insns > ipc * counts ? insns - ipc * counts : ipc * counts - insns) > 2u * ipc) {
-        printf("BENCH error: SysTick does not follow the instruction count "
-               "(%lu instructions, %lu counts); run qemu with -icount shift=S\n",
-               (unsigned long)insns, (unsigned long)counts);
+    const uint32_t ipc = bench_calibrate("");
+    if (ipc == 0u) {
         return 1;
     }
-    printf("BENCH clock SysTick(processor clock) under qemu -icount: %lu instructions per count "
-           "(%lu instructions in %lu counts); %d ticks per block after %d warm-up ticks\n",
-           (unsigned long)ipc, (unsigned long)insns, (unsigned long)counts, BENCH_TICKS, BENCH_WARMUP);
 
     if (bench_make_inputs() != 0) {
         printf("BENCH error: init failed while recording the inputs\n");
@@ -460,7 +385,8 @@ int main(void)
             return 1;
         }
         (void)run(RUN_ATTITUDE, 1, 1);
-        printf("BENCH worst %s %lu\n", bench_case_name[v], (unsigned long)worst_attitude_tick(ipc));
+        printf("BENCH worst %s %lu\n", bench_case_name[v],
+               (unsigned long)worst_attitude_tick(&att, &mixer, in, ipc, &sink));
     }
 
     if (setup_modules() != 0) {

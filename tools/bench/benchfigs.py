@@ -110,8 +110,23 @@ class Figures:
             out.append((obj, int(f[0]) + int(f[1])))
         return out
 
-    def linked_hp(self):
-        return self._first([f for f in self.fields("linked") if len(f) > 2 and f[2] == "total"], 3)
+    def linked_hp(self, source="linked"):
+        """Library flash the HP firmware links; source "linked-lean": the lean HP build's."""
+        return self._first([f for f in self.fields(source) if len(f) > 2 and f[2] == "total"], 3)
+
+    # ---- the lean HP build (tools/bench/bench_lean.c: "BENCH lean ...") ---------------
+    def lean(self, kind, *match):
+        """Fields of the lean lines ("BENCH lean kind ..."): f[0] "lean", f[1] kind, f[2]..."""
+        return [f[2:] for f in self.m4f("lean", kind, *match)]
+
+    def lean_insn(self):
+        return self._first(self.lean("insn", "HP-MLADRC"), 3)
+
+    def lean_worst(self):
+        return self._first(self.lean("worst", "HP-MLADRC"), 3)
+
+    def lean_size_of(self, type_name):
+        return self._first(self.lean("sizeof", type_name), 3)
 
     def stack(self):
         """(worst bytes, its root, its chain, external names) of the tick roots."""
@@ -138,6 +153,10 @@ class Figures:
             "stack.tick": self.stack()[0],
             "flash.linked_hp": self.linked_hp(),
             "sizeof.ladrc_attitude_t": self.size_of("ladrc_attitude_t"),
+            "flash.linked_hp_lean": self.linked_hp("linked-lean"),
+            "sizeof.ladrc_attitude_t.hp_lean": self.lean_size_of("ladrc_attitude_t"),
+            "insn.3axes.HP-MLADRC-lean": self.lean_insn(),
+            "insn.worst.HP-MLADRC-lean": self.lean_worst(),
         }
         for v in self.CASES:
             out["insn.axis." + v] = self.insn(v, 1)

@@ -5,6 +5,8 @@
  * init, and the control loop. Built like the library (-Os, one section per
  * function) and linked with --gc-sections; tools/bench.sh reads the link map
  * for the bytes of libladrc.a this image carries. It is linked, never run.
+ * Linked against the lean HP build (ladrc_fw_hp_lean: no online frequency
+ * search) it tells the estimators their frequency instead.
  */
 #include "bench_case.h"
 
@@ -20,6 +22,13 @@ int main(void)
     static ladrc_mixer_t mixer;
     int bad_axis = -1;
     ladrc_attitude_config_default(&cfg, LADRC_VARIANT_HP_MLADRC, 0.001f, bench_inertia, 0.09f);
+#if !LADRC_WITH_HP_ONLINE
+    for (int a = 0; a < LADRC_AXES; ++a) {
+        cfg.axis[a].hp_freq_mode = LADRC_HP_FREQ_KNOWN;
+        cfg.axis[a].hp_n_tones = 1u;
+        cfg.axis[a].hp_freq_rad_s[0] = BENCH_TONE1_RAD_S;
+    }
+#endif
     ladrc_status_t status = ladrc_attitude_init(&att, &cfg, &bad_axis);
     if (status == LADRC_OK) {
         status = ladrc_mixer_init(&mixer, &bench_mixer_cfg);

@@ -12,10 +12,13 @@
 #
 # FILE holds one record per line, "SOURCE TEXT": SOURCE names where TEXT
 # comes from:
-#   m4f       a line of the Cortex-M4F benchmark's output under qemu -icount
-#             (tools/bench/bench_m4f.c: "BENCH ..."), the same in two runs
+#   m4f       a line of the Cortex-M4F benchmarks' output under qemu -icount
+#             (tools/bench/bench_m4f.c: "BENCH ...", tools/bench/bench_lean.c,
+#             the lean HP build: "BENCH lean ..."), each the same in two runs
 #   size      a line of arm-none-eabi-size -t on libladrc.a
 #   linked    a line of tools/bench/linked.py on the HP-MLADRC firmware's map
+#   linked-lean  the same on the lean HP firmware's map (tools/bench/fw_hp.c
+#             against the lean HP build)
 #   stack     a line of tools/bench/stack.py ("STACK root bytes chain",
 #             "EXTERNAL names"); "stack-roots NAMES": the roots it was given
 #   host      a line of the host benchmark (tools/bench/bench_host.c)
@@ -57,30 +60,33 @@ record() { sed "s/^/$1 /" >>"$FIG"; }
 # --- Cortex-M4F: instructions, sizes, stack --------------------------------------
 log "building the Cortex-M4F benchmark ($CROSS)"
 [[ -f $CROSS/CMakeCache.txt ]] || cmake --preset cortex-m4f -B "$CROSS" -DLADRC_BUILD_BENCH=ON >&2
-cmake --build "$CROSS" -j "$JOBS" --target ladrc_bench_m4f ladrc_fw_hp >&2
+cmake --build "$CROSS" -j "$JOBS" --target ladrc_bench_m4f ladrc_fw_hp ladrc_bench_lean ladrc_fw_hp_lean >&2
 
-qemu() {
+qemu() { # IMAGE
   timeout 300 qemu-system-arm -machine mps2-an386 -cpu cortex-m4 -nographic -monitor none \
     -serial none -semihosting-config enable=on,target=native -icount shift=0 \
-    -kernel "$CROSS/tools/bench/ladrc_bench_m4f.elf" 2>&1
+    -kernel "$CROSS/tools/bench/$1.elf" 2>&1
 }
-log "running the benchmark under qemu -icount, twice"
-qemu >"$tmp/run1"
-qemu >"$tmp/run2"
-if grep -q 'BENCH error' "$tmp/run1"; then
-  cat "$tmp/run1" >&2
-  exit 1
-fi
-if ! cmp -s "$tmp/run1" "$tmp/run2"; then
-  echo "error: two runs of the benchmark gave different outputs:" >&2
-  diff "$tmp/run1" "$tmp/run2" >&2 || true
-  exit 1
-fi
-record m4f <"$tmp/run1"
+for image in ladrc_bench_m4f ladrc_bench_lean; do
+  log "running $image under qemu -icount, twice"
+  qemu "$image" >"$tmp/run1"
+  qemu "$image" >"$tmp/run2"
+  if grep -q 'BENCH error' "$tmp/run1"; then
+    cat "$tmp/run1" >&2
+    exit 1
+  fi
+  if ! cmp -s "$tmp/run1" "$tmp/run2"; then
+    echo "error: two runs of $image gave different outputs:" >&2
+    diff "$tmp/run1" "$tmp/run2" >&2 || true
+    exit 1
+  fi
+  record m4f <"$tmp/run1"
+done
 
 arm-none-eabi-size -t "$CROSS/libladrc.a" | record size
 # What an HP-MLADRC firmware links of the library (tools/bench/fw_hp.c, --gc-sections).
 python3 tools/bench/linked.py "$CROSS/tools/bench/ladrc_fw_hp.map" libladrc.a | record linked
+python3 tools/bench/linked.py "$CROSS/tools/bench/ladrc_fw_hp_lean.map" libladrc.a | record linked-lean
 echo "${ROOTS[*]}" | record stack-roots
 python3 tools/bench/stack.py "$CROSS/CMakeFiles/ladrc.dir" "${ROOTS[@]}" | record stack
 

@@ -16,6 +16,8 @@ sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 from benchfigs import Figures, awk_num
 
 START, END = "<!-- performance:start -->", "<!-- performance:end -->"
+# The lean HP build (tools/bench/bench_lean.c), as the rows name it.
+LEAN = "lean HP build (HP + Levant only, known frequency, one tone, no online search)"
 
 
 def num(text):
@@ -91,6 +93,8 @@ def render(fig):
         row(f"{v}, 3 axes + mixer, instructions/tick", insn(v, 2), "", "")
     row("HP-MLADRC, 3 axes + mixer, instructions/tick", hp3, "<= 1500", mark(hp3, "<=", 1500))
     row("HP-MLADRC (two tones), 3 axes + mixer, instructions/tick", insn("HP-MLADRC-2tones", 2), "", "")
+    lean3 = fig.lean_insn()
+    row(f"HP-MLADRC, {LEAN}, 3 axes + mixer, instructions/tick", lean3, "<= 1500", mark(lean3, "<=", 1500))
     row("ratio HP-MLADRC / PID, 3 axes + mixer", ratio(hp3, insn("PID", 2)), "", "")
     for v in ("HP-MLADRC-act", "CASCADED", "INDI", "LADRC-act"):
         row(f"{v}, 3 axes + mixer, instructions/tick", insn(v, 2), "", "")
@@ -103,6 +107,7 @@ def render(fig):
             mark(extra, "<", 60))
     for v in cases:
         row(f"{label(v)}, 3 axes + mixer, dearest single tick, instructions (+-{ipc})", fig.worst(v), "", "")
+    row(f"HP-MLADRC, {LEAN}, 3 axes + mixer, dearest single tick, instructions (+-{ipc})", fig.lean_worst(), "", "")
     for c in (1, 2):
         for v in cases:
             row(f"{label(v)}, {'one axis' if c == 1 else '3 axes + mixer'}, host, ns/tick", host_ns(v, c), "", "")
@@ -111,6 +116,10 @@ def render(fig):
             row(f"{label(v)}, {'one axis' if c == 'axis' else '3 axes + mixer'}, host, instructions/tick (callgrind)",
                 host_insn(c, v), "", "")
     row("3-axis state, sizeof(ladrc_attitude_t), B", att_size, "<= 512", mark(att_size, "<=", 512))
+    lean_size = fig.lean_size_of("ladrc_attitude_t")
+    row(f"3-axis state, {LEAN}, sizeof(ladrc_attitude_t), B", lean_size, "<= 512", mark(lean_size, "<=", 512))
+    for t in ("ladrc_axis_t", "ladrc_hp_estimator_t", "ladrc_rls_t"):
+        row(f"sizeof({t}), {LEAN}, B", fig.lean_size_of(t), "", "")
     row("mixer state, sizeof(ladrc_mixer_t), B", fig.size_of("ladrc_mixer_t"), "", "")
     for t in ("ladrc_attitude_config_t", "ladrc_axis_t", "ladrc_axis_config_t", "ladrc_mixer_config_t", "ladrc_pid_t",
               "ladrc_cascaded_t", "ladrc_leso_t", "ladrc_td_t", "ladrc_levant_t", "ladrc_lp_estimator_t",
@@ -121,6 +130,9 @@ def render(fig):
         row(f"flash of {obj}, B", obj_flash, "", "")
     row("library RAM (data + bss), B", ram, "", "")
     row("library flash an HP-MLADRC firmware links (tools/bench/fw_hp.c, --gc-sections), B", linked_hp, "", "")
+    lean_flash = fig.linked_hp("linked-lean")
+    row(f"library flash the HP-MLADRC firmware links, {LEAN} (tools/bench/fw_hp.c, --gc-sections), B", lean_flash,
+        "<= 8192", mark(lean_flash, "<=", 8192))
     row("worst-case stack of one tick, B", stack_worst, "<= 256", mark(stack_worst, "<=", 256))
     for c in controllers:
         row(f"simulator, paper, {c} alone, no CSV, --jobs 1, x real time", rate(wall[f"ctrl_nocsv:{c}"], duration),

@@ -1,0 +1,91 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * What the HP estimator (estimator_hp.c) and its ONLINE frequency search
+ * (estimator_hp_freq.c) share; not installed. The search's functions run on
+ * fit samples only, out of line, so that their locals are not on the stack
+ * of the path through the RLS update, the deepest of a tick.
+ */
+#ifndef LADRC_ESTIMATOR_HP_INTERNAL_H
+#define LADRC_ESTIMATOR_HP_INTERNAL_H
+
+#include "ladrc/estimator.h"
+
+/* Index of tone k's a in the fit's theta = (c, a_1, b_1, ..., a_n, b_n). */
+static inline unsigned theta_a(unsigned k)
+{
+    return 1u + 2u * k;
+}
+
+static inline ladrc_real_t min_real(ladrc_real_t a, ladrc_real_t b)
+{
+    return (b < a) ? b : a;
+}
+
+/* 1: the frequencies are searched online (never without the search built). */
+static inline int hp_online(const ladrc_hp_estimator_t *est)
+{
+#if LADRC_WITH_HP_ONLINE
+    return est->online;
+#else
+    (void)est;
+    return 0;
+#endif
+}
+
+/* 1 unless an ONLINE search sees another number of clean tones than are
+ * active (a tone may lock only while it agrees). */
+static inline int hp_search_agrees(const ladrc_hp_estimator_t *est)
+{
+#if LADRC_WITH_HP_ONLINE
+    return !est->online || est->clean;
+#else
+    (void)est;
+    return 1;
+#endif
+}
+
+/* estimator_hp.c */
+
+/* A tone's frequency and what follows from it (its turn per tick, the
+ * leads of the estimate and, with advance, of the command). */
+void hp_set_tone_freq(const ladrc_hp_tone_basis_t *basis, unsigned advance, ladrc_hp_tone_t *tone,
+                      ladrc_real_t w_rad_s);
+
+/* A tone whose fit starts over: no phasor history, not significant, not locked. */
+static inline void hp_forget_tone(ladrc_hp_tone_t *tone)
+{
+    tone->prev_a = LADRC_R(0.0);
+    tone->prev_b = LADRC_R(0.0);
+    tone->slip_rad_s = LADRC_R(0.0);
+    tone->drift_per_s = LADRC_R(0.0);
+    tone->significant = 0u;
+    tone->locked = 0u;
+}
+
+/* (Re)starts the fit with n tones and the given estimate (NULL: 0). */
+static inline void hp_start_fit(ladrc_hp_estimator_t *est, unsigned n, const ladrc_real_t *theta0)
+{
+    /* Valid: init checked the largest n. */
+    (void)ladrc_rls_restart(&est->fit, (uint8_t)(1u + 2u * n), theta0);
+    est->n_active = (uint8_t)n;
+#if LADRC_WITH_HP_ONLINE
+    est->hold = 0u;
+#endif
+}
+
+#if LADRC_WITH_HP_ONLINE
+/* estimator_hp_freq.c: the ONLINE frequency search */
+
+/* Forgets the search's filter, averages and findings. */
+void hp_freq_reset(ladrc_hp_estimator_t *est);
+/* A change was detected: the search restarts its averages once the change
+ * has passed its filter. */
+void hp_freq_after_change(ladrc_hp_estimator_t *est);
+/* One fit sample of the search; returns the number of tones the fit must
+ * restart with (hp_restart_tones), 0 if none. */
+unsigned hp_update_frequencies(ladrc_hp_estimator_t *est, ladrc_real_t sample);
+/* Restarts the fit with n tones at the frequencies found. */
+void hp_restart_tones(ladrc_hp_estimator_t *est, unsigned n);
+#endif
+
+#endif /* LADRC_ESTIMATOR_HP_INTERNAL_H */
