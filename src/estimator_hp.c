@@ -197,8 +197,11 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
     }
     const ladrc_real_t fit_period_s = (ladrc_real_t)cfg->fit_decimation * cfg->dt_s;
     /* The largest fit, checked once: every later start_fit is smaller or equal. */
-    const ladrc_rls_config_t fit = {(uint8_t)(1u + 2u * cfg->n_tones), fit_period_s, cfg->lambda0_per_s,
-                                    HP_P_BOUND_PER_SAMPLE / fit_period_s, HP_P_INITIAL_PER_SAMPLE / fit_period_s};
+    const ladrc_rls_config_t fit = {.n_params = (uint8_t)(1u + 2u * cfg->n_tones),
+                                    .dt_s = fit_period_s,
+                                    .lambda0_per_s = cfg->lambda0_per_s,
+                                    .p_bound = HP_P_BOUND_PER_SAMPLE / fit_period_s,
+                                    .p_initial = HP_P_INITIAL_PER_SAMPLE / fit_period_s};
     status = ladrc_rls_init(&est->fit, &fit);
     if (status != LADRC_OK) {
         return status;

@@ -5,6 +5,7 @@
  * name at every init that reaches the estimator, and KNOWN still closes the
  * loop and cancels its tone. */
 #include "unity.h"
+#include "test_axis_command.h"
 #include "ladrc/attitude.h"
 #include "ladrc/estimator.h"
 #include "ladrc/sizes.h"
@@ -121,7 +122,7 @@ static void test_the_known_axis_cancels_its_tone(void)
     const int from = ticks - (int)(LAST_S / DT_S + 0.5);
     for (int k = 0; k < ticks; ++k) {
         const double t = k * DT_S;
-        const double u = (double)ladrc_axis_step(&axis, LADRC_R(0.0), (ladrc_real_t)theta);
+        const double u = (double)axis_command(&axis, LADRC_R(0.0), (ladrc_real_t)theta);
         const double a = u / J_KG_M2 + BIAS_RAD_S2 - TONE_RAD_S2 * sin(TONE_RAD_S * t);
         theta += omega * DT_S + 0.5 * a * DT_S * DT_S;
         omega += a * DT_S;

@@ -283,19 +283,35 @@ static int setup_modules(void)
         }
         ladrc_axis_reset(&mod.lone[a], in->ang[0][a]);
     }
-    const ladrc_leso_config_t leso = {hp->dt_s, hp->wo_rad_s, hp->b0, hp->leso_method};
-    const ladrc_td_config_t td = {ladrc.dt_s, ladrc.td_accel_rad_s2, ladrc.td_h0_s};
-    const ladrc_levant_config_t lev = {
-        hp->dt_s, hp->levant_method, LADRC_LEVANT_GAINS_LIPSCHITZ, hp->levant_lipschitz_rad_s4, 0.0f, 0.0f, 0.0f, 0.0f};
-    const ladrc_lp_config_t lp = {hp->dt_s, hp->lp_lambda0_per_s, hp->lp_k0_per_s, hp->motor_tau_s, hp->delay_ticks};
+    const ladrc_leso_config_t leso = {
+        .dt_s = hp->dt_s, .wo_rad_s = hp->wo_rad_s, .b0 = hp->b0, .method = hp->leso_method};
+    const ladrc_td_config_t td = {.dt_s = ladrc.dt_s, .accel_rad_s2 = ladrc.td_accel_rad_s2, .h0_s = ladrc.td_h0_s};
+    const ladrc_levant_config_t lev = {.dt_s = hp->dt_s,
+                                       .method = hp->levant_method,
+                                       .gains = LADRC_LEVANT_GAINS_LIPSCHITZ,
+                                       .lipschitz_rad_s4 = hp->levant_lipschitz_rad_s4};
+    const ladrc_lp_config_t lp = {.dt_s = hp->dt_s,
+                                  .lambda0_per_s = hp->lp_lambda0_per_s,
+                                  .k0_per_s = hp->lp_k0_per_s,
+                                  .act_tau_s = hp->motor_tau_s,
+                                  .act_delay_ticks = hp->delay_ticks};
     const ladrc_hp_config_t hpc = hp_config(hp);
     /* The HP fit as the estimator runs it engaged: P bound 1e4 and initial P
      * 1e3 per sample, its engaged forgetting rate. */
     const float t3 = (float)hp->hp_fit_decimation * hp->dt_s;
-    const ladrc_rls_config_t rls3 = {3u, t3, mod.fit_rate_per_s, 1e4f / t3, 1e3f / t3};
-    const ladrc_rls_config_t rls5 = {5u, t3, mod.fit_rate2_per_s, 1e4f / t3, 1e3f / t3};
-    const ladrc_pid_config_t pidc = {pid.dt_s,           pid.pid_kp,   pid.pid_ki,   pid.pid_kd, pid.pid_d_filter_tau_s,
-                                     pid.pid_i_limit_Nm, pid.u_min_Nm, pid.u_max_Nm, 0u};
+    const ladrc_rls_config_t rls3 = {
+        .n_params = 3u, .dt_s = t3, .lambda0_per_s = mod.fit_rate_per_s, .p_bound = 1e4f / t3, .p_initial = 1e3f / t3};
+    const ladrc_rls_config_t rls5 = {
+        .n_params = 5u, .dt_s = t3, .lambda0_per_s = mod.fit_rate2_per_s, .p_bound = 1e4f / t3, .p_initial = 1e3f / t3};
+    const ladrc_pid_config_t pidc = {.dt_s = pid.dt_s,
+                                     .kp = pid.pid_kp,
+                                     .ki = pid.pid_ki,
+                                     .kd = pid.pid_kd,
+                                     .d_filter_tau_s = pid.pid_d_filter_tau_s,
+                                     .i_limit_Nm = pid.pid_i_limit_Nm,
+                                     .u_min_Nm = pid.u_min_Nm,
+                                     .u_max_Nm = pid.u_max_Nm,
+                                     .wrap_angle = 0u};
     if (ladrc_leso_init(&mod.leso, &leso) != LADRC_OK || ladrc_td_init(&mod.td, &td) != LADRC_OK ||
         ladrc_levant_init(&mod.levant, &lev) != LADRC_OK || ladrc_lp_init(&mod.lp, &lp) != LADRC_OK ||
         ladrc_hp_init(&mod.hp, &hpc) != LADRC_OK || ladrc_hp_init(&mod.hp2, &hpc) != LADRC_OK ||
