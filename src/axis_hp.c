@@ -2,6 +2,7 @@
 /* HP-MLADRC: the LADRC axis with the HP estimator and its shadow observer
  * (axis.h, estimator.h). */
 #include "axis_internal.h"
+#include "estimator_hp_internal.h"
 
 ladrc_status_t axis_hp_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
 {
@@ -29,8 +30,7 @@ ladrc_status_t axis_hp_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
 
 void axis_hp_stagger(ladrc_axis_t *axis, unsigned phase)
 {
-    ladrc_hp_estimator_t *est = &axis->part.hp.est;
-    est->fit_phase = (uint16_t)(phase % est->fit_decimation); /* fit_decimation >= 1 (init) */
+    hp_set_fit_phase(&axis->part.hp.est, phase);
 }
 
 void axis_hp_restart(ladrc_axis_t *axis)

@@ -5,6 +5,7 @@
 #define LADRC_AXIS_HP_H
 
 #include "axis_internal.h"
+#include "estimator_hp_internal.h"
 
 /* z3 holds f - d_hat seen through the observer's lag, plus what the fed
  * rate h put in; the shadow, a twin of the observer on a still plant told
@@ -22,12 +23,12 @@ static inline ladrc_real_t axis_hp_sample(ladrc_axis_t *axis, ladrc_real_t rate_
     (void)ladrc_hp_step(&axis->part.hp.est, axis->leso.z3 - shadow->z3);
     /* What the weight moved in or out of d_hat leaves or enters z3 at once,
      * in both observers (the sample stays as it was). */
-    const ladrc_real_t handover = ladrc_hp_get_handover(&axis->part.hp.est);
+    const ladrc_real_t handover = hp_handover(&axis->part.hp.est);
     if (handover != LADRC_R(0.0)) { /* only while the weight moves */
         ladrc_leso_hand_over(&axis->leso, handover);
         ladrc_leso_twin_hand_over(shadow, handover);
     }
-    return ladrc_hp_get_estimate(&axis->part.hp.est);
+    return hp_estimate(&axis->part.hp.est);
 }
 
 #endif /* LADRC_AXIS_HP_H */

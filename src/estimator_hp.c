@@ -469,7 +469,7 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
 ladrc_real_t ladrc_hp_get_estimate(const ladrc_hp_estimator_t *est)
 {
     LADRC_REQUIRE(est != NULL, LADRC_R(0.0));
-    return est->estimate;
+    return hp_estimate(est);
 }
 
 ladrc_real_t ladrc_hp_get_command(const ladrc_hp_estimator_t *est)
@@ -492,7 +492,7 @@ ladrc_real_t ladrc_hp_get_command(const ladrc_hp_estimator_t *est)
 ladrc_real_t ladrc_hp_get_handover(const ladrc_hp_estimator_t *est)
 {
     LADRC_REQUIRE(est != NULL, LADRC_R(0.0));
-    return est->handover;
+    return hp_handover(est);
 }
 
 unsigned ladrc_hp_get_active_tones(const ladrc_hp_estimator_t *est)

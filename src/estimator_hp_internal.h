@@ -10,6 +10,26 @@
 
 #include "ladrc/estimator.h"
 
+/* What ladrc_hp_get_estimate and ladrc_hp_get_handover read, for the HP
+ * axis's tick too (axis_hp.h): no call and no NULL test for an estimator
+ * the axis owns. */
+static inline ladrc_real_t hp_estimate(const ladrc_hp_estimator_t *est)
+{
+    return est->estimate;
+}
+
+static inline ladrc_real_t hp_handover(const ladrc_hp_estimator_t *est)
+{
+    return est->handover;
+}
+
+/* Which tick of each block of fit_decimation ticks fits (the attitude layer
+ * staggers its axes so that a tick carries at most one fit). */
+static inline void hp_set_fit_phase(ladrc_hp_estimator_t *est, unsigned phase)
+{
+    est->fit_phase = (uint16_t)(phase % est->fit_decimation); /* fit_decimation >= 1 (init) */
+}
+
 /* Index of tone k's a in the fit's theta = (c, a_1, b_1, ..., a_n, b_n). */
 static inline unsigned theta_a(unsigned k)
 {
