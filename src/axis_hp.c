@@ -3,26 +3,35 @@
  * (axis.h, estimator.h). */
 #include "axis_internal.h"
 #include "estimator_hp_internal.h"
+#include "require.h"
+
+void ladrc_axis_hp_config(const ladrc_axis_config_t *cfg, ladrc_hp_config_t *hp)
+{
+    LADRC_REQUIRE_VOID(cfg != NULL && hp != NULL);
+    ladrc_hp_config_t c = {.dt_s = cfg->dt_s,
+                           .freq_mode = cfg->hp_freq_mode,
+                           .n_tones = cfg->hp_n_tones,
+                           .freq_min_rad_s = cfg->hp_freq_min_rad_s,
+                           .freq_max_rad_s = cfg->hp_freq_max_rad_s,
+                           .lambda0_per_s = cfg->hp_lambda0_per_s,
+                           .freq_lambda0_per_s = cfg->hp_freq_lambda0_per_s,
+                           .freq_filter_rad_s = cfg->hp_freq_filter_rad_s,
+                           .sample_lag_wo_rad_s = cfg->wo_rad_s, /* the sample comes through this axis's LESO */
+                           .fit_decimation = cfg->hp_fit_decimation,
+                           .fit_phase = 0u, /* the first tick of each block; axis_hp_stagger moves it */
+                           /* the command's tones are advanced over the modelled actuator */
+                           .act_tau_s = cfg->motor_tau_s,
+                           .act_delay_ticks = cfg->delay_ticks};
+    for (unsigned k = 0u; k < LADRC_HP_MAX_TONES; ++k) {
+        c.freq_rad_s[k] = cfg->hp_freq_rad_s[k];
+    }
+    *hp = c;
+}
 
 ladrc_status_t axis_hp_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
 {
-    ladrc_hp_config_t hp = {.dt_s = cfg->dt_s,
-                            .freq_mode = cfg->hp_freq_mode,
-                            .n_tones = cfg->hp_n_tones,
-                            .freq_min_rad_s = cfg->hp_freq_min_rad_s,
-                            .freq_max_rad_s = cfg->hp_freq_max_rad_s,
-                            .lambda0_per_s = cfg->hp_lambda0_per_s,
-                            .freq_lambda0_per_s = cfg->hp_freq_lambda0_per_s,
-                            .freq_filter_rad_s = cfg->hp_freq_filter_rad_s,
-                            .sample_lag_wo_rad_s = cfg->wo_rad_s, /* the sample comes through this axis's LESO */
-                            .fit_decimation = cfg->hp_fit_decimation,
-                            .fit_phase = 0u, /* the first tick of each block; axis_hp_stagger moves it */
-                            /* the command's tones are advanced over the modelled actuator */
-                            .act_tau_s = cfg->motor_tau_s,
-                            .act_delay_ticks = cfg->delay_ticks};
-    for (unsigned k = 0u; k < LADRC_HP_MAX_TONES; ++k) {
-        hp.freq_rad_s[k] = cfg->hp_freq_rad_s[k];
-    }
+    ladrc_hp_config_t hp;
+    ladrc_axis_hp_config(cfg, &hp);
     /* The shadow runs with the LESO's gains (initialised just before). */
     ladrc_leso_twin_reset(&axis->part.hp.shadow, LADRC_R(0.0));
     return ladrc_hp_init(&axis->part.hp.est, &hp);

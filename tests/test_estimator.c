@@ -38,20 +38,10 @@ static ladrc_hp_config_t hp_config(ladrc_hp_freq_mode_t mode, double freq)
     /* the axis defaults: one place says what a sensible HP setting is */
     ladrc_axis_config_t axis;
     ladrc_axis_config_default(&axis, LADRC_VARIANT_HP_MLADRC, (ladrc_real_t)DT_S, 1.0f);
-    ladrc_hp_config_t cfg = {.dt_s = (ladrc_real_t)DT_S,
-                             .freq_mode = mode,
-                             .n_tones = axis.hp_n_tones,
-                             .freq_min_rad_s = axis.hp_freq_min_rad_s,
-                             .freq_max_rad_s = axis.hp_freq_max_rad_s,
-                             .lambda0_per_s = axis.hp_lambda0_per_s,
-                             .freq_lambda0_per_s = axis.hp_freq_lambda0_per_s,
-                             .freq_filter_rad_s = axis.hp_freq_filter_rad_s,
-                             .sample_lag_wo_rad_s = 0.0f,
-                             .fit_decimation = axis.hp_fit_decimation,
-                             .fit_phase = 0u};
-    for (unsigned k = 0; k < LADRC_HP_MAX_TONES; ++k) {
-        cfg.freq_rad_s[k] = axis.hp_freq_rad_s[k];
-    }
+    ladrc_hp_config_t cfg;
+    ladrc_axis_hp_config(&axis, &cfg);
+    cfg.freq_mode = mode;
+    cfg.sample_lag_wo_rad_s = 0.0f; /* the samples come straight, not through a LESO */
     cfg.freq_rad_s[0] = (ladrc_real_t)freq;
     if (mode == LADRC_HP_FREQ_KNOWN) {
         cfg.n_tones = 1u;

@@ -374,6 +374,13 @@ const ladrc_hp_estimator_t *ladrc_axis_get_hp(const ladrc_axis_t *axis);
  *  NULL for another variant. */
 const ladrc_lp_estimator_t *ladrc_axis_get_lp(const ladrc_axis_t *axis);
 
+#if LADRC_WITH_HP_MLADRC
+/** The HP estimator's config an HP-MLADRC axis builds from its own (what
+ *  ladrc_axis_init uses; its sample comes through the axis's LESO, so the
+ *  lag undone is wo_rad_s's), e.g. to run the estimator alone. */
+void ladrc_axis_hp_config(const ladrc_axis_config_t *cfg, ladrc_hp_config_t *hp);
+#endif
+
 #ifdef __cplusplus
 }
 #endif

@@ -133,6 +133,24 @@ static int same_metrics(sim_metrics_t a, sim_metrics_t b)
     return memcmp(&a, &b, sizeof a) == 0;
 }
 
+/* Flies each of the first n controllers alone into alone[g] and sets up
+ * runs[g], the same run in a group writing grouped[g]. */
+static void fly_alone_then_spec(const sim_scenario_t *sc, int n, sim_metrics_t *alone, sim_metrics_t *grouped,
+                                char (*err)[256], sim_run_spec_t *runs)
+{
+    for (int g = 0; g < n; ++g) {
+        TEST_ASSERT_EQUAL_INT_MESSAGE(
+            0, sim_run_attitude(sc, sc->controllers[g], NULL, NULL, &alone[g], err[g], sizeof err[g]), err[g]);
+        const sim_run_spec_t spec = {.ctrl = sc->controllers[g],
+                                     .csv_path = NULL,
+                                     .metrics = &grouped[g],
+                                     .err = err[g],
+                                     .err_len = sizeof err[g],
+                                     .rc = -1};
+        runs[g] = spec;
+    }
+}
+
 static void test_a_lockstep_group_gives_each_run_bit_for_bit(void)
 {
     /* a 55 ms motor lag none of them models: PID diverges at once (0.36 s),
@@ -151,17 +169,7 @@ static void test_a_lockstep_group_gives_each_run_bit_for_bit(void)
     static sim_metrics_t alone[3], grouped[3];
     char err[3][256];
     sim_run_spec_t runs[3];
-    for (int g = 0; g < 3; ++g) {
-        TEST_ASSERT_EQUAL_INT_MESSAGE(
-            0, sim_run_attitude(&sc, sc.controllers[g], NULL, NULL, &alone[g], err[g], sizeof err[g]), err[g]);
-        const sim_run_spec_t spec = {.ctrl = sc.controllers[g],
-                                     .csv_path = NULL,
-                                     .metrics = &grouped[g],
-                                     .err = err[g],
-                                     .err_len = sizeof err[g],
-                                     .rc = -1};
-        runs[g] = spec;
-    }
+    fly_alone_then_spec(&sc, 3, alone, grouped, err, runs);
     /* the group really loses runs midway and keeps one to the end */
     TEST_ASSERT_TRUE(alone[0].diverged && alone[1].diverged && !alone[2].diverged);
     sim_run_attitude_group(&sc, runs, 3, NULL);
@@ -193,17 +201,7 @@ static void test_six_runs_in_lockstep_with_pieces_changing_within_a_step_give_ea
     static sim_metrics_t alone[6], grouped[6];
     char err[6][256];
     sim_run_spec_t runs[6];
-    for (int g = 0; g < 6; ++g) {
-        TEST_ASSERT_EQUAL_INT_MESSAGE(
-            0, sim_run_attitude(&sc, sc.controllers[g], NULL, NULL, &alone[g], err[g], sizeof err[g]), err[g]);
-        const sim_run_spec_t spec = {.ctrl = sc.controllers[g],
-                                     .csv_path = NULL,
-                                     .metrics = &grouped[g],
-                                     .err = err[g],
-                                     .err_len = sizeof err[g],
-                                     .rc = -1};
-        runs[g] = spec;
-    }
+    fly_alone_then_spec(&sc, 6, alone, grouped, err, runs);
     sim_run_attitude_group(&sc, runs, 6, NULL);
     for (int g = 0; g < 6; ++g) {
         TEST_ASSERT_EQUAL_INT_MESSAGE(0, runs[g].rc, err[g]);

@@ -243,25 +243,6 @@ static void record_inputs(void)
 }
 
 /* ladrc_hp_config_t of a 3-axis HP axis config, as ladrc_axis_init builds it. */
-static ladrc_hp_config_t hp_config(const ladrc_axis_config_t *c)
-{
-    ladrc_hp_config_t hp = {.dt_s = c->dt_s,
-                            .freq_mode = c->hp_freq_mode,
-                            .n_tones = c->hp_n_tones,
-                            .freq_min_rad_s = c->hp_freq_min_rad_s,
-                            .freq_max_rad_s = c->hp_freq_max_rad_s,
-                            .lambda0_per_s = c->hp_lambda0_per_s,
-                            .freq_lambda0_per_s = c->hp_freq_lambda0_per_s,
-                            .freq_filter_rad_s = c->hp_freq_filter_rad_s,
-                            .sample_lag_wo_rad_s = c->wo_rad_s,
-                            .fit_decimation = c->hp_fit_decimation,
-                            .fit_phase = 0u}; /* as an axis alone (axis_hp.c) */
-    for (unsigned k = 0u; k < LADRC_HP_MAX_TONES; ++k) {
-        hp.freq_rad_s[k] = c->hp_freq_rad_s[k];
-    }
-    return hp;
-}
-
 /* Each module configured as the axis defaults configure it (HP-MLADRC for
  * the LESO, Levant and estimators, LADRC for TD, PID for PID), the HP axes as
  * the attitude defaults configure them. */
@@ -295,7 +276,8 @@ static int setup_modules(void)
                                   .k0_per_s = hp->lp_k0_per_s,
                                   .act_tau_s = hp->motor_tau_s,
                                   .act_delay_ticks = hp->delay_ticks};
-    const ladrc_hp_config_t hpc = hp_config(hp);
+    ladrc_hp_config_t hpc;
+    ladrc_axis_hp_config(hp, &hpc);
     /* The HP fit as the estimator runs it engaged: P bound 1e4 and initial P
      * 1e3 per sample, its engaged forgetting rate. */
     const float t3 = (float)hp->hp_fit_decimation * hp->dt_s;
