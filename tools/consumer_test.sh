@@ -129,12 +129,12 @@ if abi_link "$work/prefix-hp" ""; then
   echo "error: an all-variants application linked against an HP-MLADRC-only library" >&2
   exit 1
 fi
-grep -q "ladrc_attitude_init_float_v111111_s11_o1" "$work/abi.log"
+grep -q "ladrc_attitude_init_float_v111111_s11_o1_t2" "$work/abi.log"
 if abi_link "$work/prefix" "$hp_flags"; then
   echo "error: an HP-MLADRC-only application linked against an all-variants library" >&2
   exit 1
 fi
-grep -q "ladrc_attitude_init_float_v001000_s01_o1" "$work/abi.log"
+grep -q "ladrc_attitude_init_float_v001000_s01_o1_t2" "$work/abi.log"
 log "abi: variant-set mismatches fail to link naming the set, a matching build links"
 
 log "abi: the online frequency search (LADRC_HP_ONLINE) of the library against the application's"
@@ -144,12 +144,20 @@ if abi_link "$work/prefix-hpknown" "$hp_flags"; then
   echo "error: an application with the online search linked against a library without it" >&2
   exit 1
 fi
-grep -q "ladrc_attitude_init_float_v001000_s01_o1" "$work/abi.log"
+grep -q "ladrc_attitude_init_float_v001000_s01_o1_t2" "$work/abi.log"
 if abi_link "$work/prefix-hp" "$hp_flags -DLADRC_WITH_HP_ONLINE=0"; then
   echo "error: an application without the online search linked against a library with it" >&2
   exit 1
 fi
-grep -q "ladrc_attitude_init_float_v001000_s01_o0" "$work/abi.log"
+grep -q "ladrc_attitude_init_float_v001000_s01_o0_t2" "$work/abi.log"
 log "abi: online-search mismatches fail to link naming it, a matching build links"
+
+log "abi: the most tones (LADRC_HP_MAX_TONES, the size of every RLS) of the library against the application's"
+if abi_link "$work/prefix" "-DLADRC_HP_MAX_TONES=1"; then
+  echo "error: an application built for one tone linked against a library built for two" >&2
+  exit 1
+fi
+grep -q "ladrc_attitude_init_float_v111111_s11_o1_t1" "$work/abi.log"
+log "abi: a most-tones mismatch fails to link naming it"
 
 echo "consumer tests: all passed"

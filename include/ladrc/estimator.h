@@ -14,7 +14,7 @@
  * first-order tracker of s with bandwidth lambda0 k0 / (lambda0 + k0) = 75 rad/s.
  *
  * Through the actuator (act_tau_s = tau, act_delay_ticks = d): the
- * compensation the command carries (ladrc_lp_get_command) is d_hat through
+ * compensation the command carries (ladrc_lp_step_lead) is d_hat through
  * the bounded lead
  *     (1 + tau' s) / (1 + tau' s / N),   tau' = tau + d h,   N = LADRC_LP_LEAD_MAX
  * which undoes the lag 1 / (1 + tau' s) (the first-order view of

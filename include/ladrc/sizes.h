@@ -35,7 +35,7 @@ size_t ladrc_sizeof_ref_t(void);
 size_t ladrc_hp_max_tones(void);
 /** The variant and shaper set and the online search the library was built
  *  with, as the suffix its axis and attitude symbols carry after the real
- *  type (types.h, ABI guard): "_v111111_s11_o1" with everything built. */
+ *  type (types.h, ABI guard): "_v111111_s11_o1_t2" with everything built and the default most tones. */
 const char *ladrc_abi_set(void);
 
 #ifdef __cplusplus

@@ -121,14 +121,15 @@ typedef float ladrc_real_t;
  * attitude controller, whose states' layout depends on the variants built,
  * carry the variant and shaper set as well: _v then LADRC_WITH_ of LADRC,
  * LP_MLADRC, HP_MLADRC, PID, CASCADED, INDI, then _s then those of TD,
- * LEVANT, then _o then LADRC_WITH_HP_ONLINE
- * (ladrc_axis_init_float_v111111_s11_o1 for everything built,
- * ladrc_axis_init_float_v001000_s01_o0 for HP-MLADRC + Levant without the
- * online frequency search); the HP estimator's init, whose state depends on
- * the search, carries _o too (ladrc_hp_init_float_o1). A library and an
- * application built with another real type or set fail to link ("undefined
- * reference to ladrc_axis_init_float_v111111_s11_o1") instead of reading
- * misplaced fields. Call the functions by their plain names.
+ * LEVANT, then _o then LADRC_WITH_HP_ONLINE, then _t then LADRC_HP_MAX_TONES
+ * (ladrc_axis_init_float_v111111_s11_o1_t2 for everything built,
+ * ladrc_axis_init_float_v001000_s01_o0_t1 for HP-MLADRC + Levant without the
+ * online frequency search and one tone); the HP estimator's init, whose
+ * state depends on both, carries _o and _t (ladrc_hp_init_float_o1_t2), the
+ * RLS's and the LP estimator's _t (ladrc_rls_init_float_t2). A library and
+ * an application built with another real type or set fail to link
+ * ("undefined reference to ladrc_axis_init_float_v111111_s11_o1_t2") instead
+ * of reading misplaced fields. Call the functions by their plain names.
  */
 #define LADRC_ABI_CAT_(a, b) a##b
 #define LADRC_ABI_CAT(a, b) LADRC_ABI_CAT_(a, b)
@@ -137,18 +138,23 @@ typedef float ladrc_real_t;
 #else
 #define LADRC_ABI_REAL_ _float
 #endif
-#define LADRC_ABI_SET_PASTE_(a, b, c, d, e, f, g, h, o) _v##a##b##c##d##e##f##_s##g##h##_o##o
-#define LADRC_ABI_SET_EXPAND_(a, b, c, d, e, f, g, h, o) LADRC_ABI_SET_PASTE_(a, b, c, d, e, f, g, h, o)
-/** The variant and shaper set and the online search as a symbol-name suffix,
- *  e.g. _v111111_s11_o1. */
+#define LADRC_ABI_SET_PASTE_(a, b, c, d, e, f, g, h, o, t) _v##a##b##c##d##e##f##_s##g##h##_o##o##_t##t
+#define LADRC_ABI_SET_EXPAND_(a, b, c, d, e, f, g, h, o, t) LADRC_ABI_SET_PASTE_(a, b, c, d, e, f, g, h, o, t)
+/** The variant and shaper set, the online search and the most tones as a
+ *  symbol-name suffix, e.g. _v111111_s11_o1_t2 (LADRC_HP_MAX_TONES, rls.h,
+ *  must then be a plain whole number). */
 #define LADRC_ABI_SET_                                                                                                 \
     LADRC_ABI_SET_EXPAND_(LADRC_WITH_LADRC, LADRC_WITH_LP_MLADRC, LADRC_WITH_HP_MLADRC, LADRC_WITH_PID,                \
                           LADRC_WITH_CASCADED, LADRC_WITH_INDI, LADRC_WITH_TD, LADRC_WITH_LEVANT,                      \
-                          LADRC_WITH_HP_ONLINE)
-#define LADRC_ABI_HP_PASTE_(o) _o##o
-#define LADRC_ABI_HP_EXPAND_(o) LADRC_ABI_HP_PASTE_(o)
-/** The online search as a symbol-name suffix, e.g. _o1. */
-#define LADRC_ABI_HP_ LADRC_ABI_HP_EXPAND_(LADRC_WITH_HP_ONLINE)
+                          LADRC_WITH_HP_ONLINE, LADRC_HP_MAX_TONES)
+#define LADRC_ABI_HP_PASTE_(o, t) _o##o##_t##t
+#define LADRC_ABI_HP_EXPAND_(o, t) LADRC_ABI_HP_PASTE_(o, t)
+/** The online search and the most tones as a symbol-name suffix, e.g. _o1_t2. */
+#define LADRC_ABI_HP_ LADRC_ABI_HP_EXPAND_(LADRC_WITH_HP_ONLINE, LADRC_HP_MAX_TONES)
+#define LADRC_ABI_TONES_PASTE_(t) _t##t
+#define LADRC_ABI_TONES_EXPAND_(t) LADRC_ABI_TONES_PASTE_(t)
+/** The most tones as a symbol-name suffix, e.g. _t2: the size of every RLS. */
+#define LADRC_ABI_TONES_ LADRC_ABI_TONES_EXPAND_(LADRC_HP_MAX_TONES)
 #define LADRC_ABI_NAME_(name) LADRC_ABI_CAT(name, LADRC_ABI_REAL_)
 /* One paste of the three parts: a name passed through two nested pastes trips
  * some preprocessors (cppcheck's) on the macro's own name. */
@@ -164,10 +170,10 @@ typedef float ladrc_real_t;
 #define ladrc_indi_init LADRC_ABI_NAME_(ladrc_indi_init)
 #define ladrc_leso_init LADRC_ABI_NAME_(ladrc_leso_init)
 #define ladrc_levant_init LADRC_ABI_NAME_(ladrc_levant_init)
-#define ladrc_lp_init LADRC_ABI_NAME_(ladrc_lp_init)
+#define ladrc_lp_init LADRC_ABI_CAT3(ladrc_lp_init, LADRC_ABI_REAL_, LADRC_ABI_TONES_)
 #define ladrc_mixer_init LADRC_ABI_NAME_(ladrc_mixer_init)
 #define ladrc_pid_init LADRC_ABI_NAME_(ladrc_pid_init)
-#define ladrc_rls_init LADRC_ABI_NAME_(ladrc_rls_init)
+#define ladrc_rls_init LADRC_ABI_CAT3(ladrc_rls_init, LADRC_ABI_REAL_, LADRC_ABI_TONES_)
 #define ladrc_td_init LADRC_ABI_NAME_(ladrc_td_init)
 #define ladrc_tune_b0_from_inertia LADRC_ABI_NAME_(ladrc_tune_b0_from_inertia)
 #define ladrc_tune_wc_from_settling LADRC_ABI_NAME_(ladrc_tune_wc_from_settling)

@@ -54,7 +54,7 @@ static void known_config(ladrc_axis_config_t *cfg)
 
 static void test_the_abi_set_names_the_search_left_out(void)
 {
-    TEST_ASSERT_EQUAL_STRING("_v001000_s01_o0", ladrc_abi_set());
+    TEST_ASSERT_EQUAL_STRING("_v001000_s01_o0_t1", ladrc_abi_set());
     TEST_ASSERT_EQUAL_UINT32(1u, (uint32_t)ladrc_hp_max_tones());
 }
 
