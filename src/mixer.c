@@ -9,18 +9,7 @@
 
 #include "compiler.h"
 
-#include <float.h>
 #include <stddef.h>
-
-#ifdef LADRC_REAL_DOUBLE
-#define REAL_MAX DBL_MAX
-#define REAL_EPS DBL_EPSILON
-#define REAL_MIN DBL_MIN
-#else
-#define REAL_MAX FLT_MAX
-#define REAL_EPS FLT_EPSILON
-#define REAL_MIN FLT_MIN
-#endif
 
 /* Report tolerance, relative part: 8 eps times coef sum|w_i^2|. Between a request
  * and the forward model of its allocation lie about 9 roundings (of at most eps/2)
@@ -28,11 +17,11 @@
  * the forward model's sums and product): at most about 4.5 eps. Measured on the
  * paper's vehicle over 2e6 requests: 2.0 eps in range (thrust), 1.7 eps on an axis
  * the desaturation did not cut back. */
-#define REPORT_TOL_REL (LADRC_R(8.0) * REAL_EPS)
-/* Absolute part: below REAL_MIN, results round to multiples of the smallest
- * subnormal (REAL_MIN * REAL_EPS), which the relative part does not cover;
+#define REPORT_TOL_REL (LADRC_R(8.0) * LADRC_REAL_EPS)
+/* Absolute part: below LADRC_REAL_MIN, results round to multiples of the smallest
+ * subnormal (LADRC_REAL_MIN * LADRC_REAL_EPS), which the relative part does not cover;
  * 16 of them cover the same handful of roundings. */
-#define REPORT_TOL_ABS (LADRC_R(16.0) * REAL_MIN * REAL_EPS)
+#define REPORT_TOL_ABS (LADRC_R(16.0) * LADRC_REAL_MIN * LADRC_REAL_EPS)
 
 /* Just below pi/2 in both builds (float rounds pi/2 itself upwards). */
 #define HALF_PI_BELOW LADRC_R(1.5707963)
@@ -99,7 +88,7 @@ ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *c
     }
     if (cfg->mode == LADRC_MIXER_SATURATE) {
         /* Rotor limits: 0 <= w2_min < w2_max, w2_max in its bounds. */
-        if (!within(cfg->w2_min_rad2_s2, LADRC_R(0.0), REAL_MAX)) {
+        if (!within(cfg->w2_min_rad2_s2, LADRC_R(0.0), LADRC_REAL_MAX)) {
             return LADRC_ERR_MIXER_W2_MIN;
         }
         if (!within(cfg->w2_max_rad2_s2, LADRC_MIXER_W2_MAX_MIN_RAD2_S2, LADRC_MIXER_W2_MAX_MAX_RAD2_S2) ||
@@ -131,8 +120,8 @@ ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *c
     mx->mode = cfg->mode;
     if (cfg->mode == LADRC_MIXER_IDEAL) {
         /* No limits: every w^2 whose four-term sums cannot overflow is in range. */
-        mx->w2_min_rad2_s2 = -LADRC_R(0.25) * REAL_MAX;
-        mx->w2_max_rad2_s2 = LADRC_R(0.25) * REAL_MAX;
+        mx->w2_min_rad2_s2 = -LADRC_R(0.25) * LADRC_REAL_MAX;
+        mx->w2_max_rad2_s2 = LADRC_R(0.25) * LADRC_REAL_MAX;
     } else {
         const ladrc_real_t range = cfg->w2_max_rad2_s2 - cfg->w2_min_rad2_s2;
         mx->w2_min_rad2_s2 = cfg->w2_min_rad2_s2;
@@ -293,7 +282,7 @@ static void desaturate(const ladrc_mixer_t *mx, ladrc_real_t w2[4])
 }
 
 /* 1 when every w^2 lies within [w2_min, w2_max]: nothing to limit. NaN fails
- * every comparison, and in ideal mode the bounds are -+REAL_MAX/4, so this is
+ * every comparison, and in ideal mode the bounds are -+LADRC_REAL_MAX/4, so this is
  * also the step's finiteness test of the allocation. */
 static LADRC_FORCE_INLINE int in_range(const ladrc_mixer_t *mx, const ladrc_real_t w2[4])
 {
@@ -385,7 +374,7 @@ LADRC_NOINLINE static void commit_cold(const ladrc_mixer_t *mx, const ladrc_real
 /* The mix of a request f = {thrust, roll, pitch, yaw} whose allocation is out of
  * range or not finite: refused if f is not finite (every input reaches some w^2
  * with a non-zero factor, so a non-finite input always ends here), and in ideal
- * mode (an allocation beyond -+REAL_MAX/4: nothing to cut back to); otherwise the
+ * mode (an allocation beyond -+LADRC_REAL_MAX/4: nothing to cut back to); otherwise the
  * limited request is allocated, desaturated and written to out. Out of line: the
  * step's common case (in range) does not come here. */
 LADRC_NOINLINE static ladrc_fault_t mix(const ladrc_mixer_t *mx, const ladrc_real_t f[4], ladrc_mixer_output_t *out)

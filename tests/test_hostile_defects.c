@@ -12,17 +12,11 @@
 #include "ladrc/rls.h"
 #include "test_plant.h"
 
-#include <float.h>
 #include <math.h>
 #include <string.h>
 
 #define DT_S 0.001
 #define J_KG_M2 5.445e-3
-#ifdef LADRC_REAL_DOUBLE
-#define REAL_MIN DBL_MIN
-#else
-#define REAL_MIN FLT_MIN
-#endif
 /* The paper's roll disturbance: bias 20, 120 rad/s^2 at 3 rad/s. */
 static const test_sine_t paper_tone = {.bias = 20.0, .amp = 120.0, .w_rad_s = 3.0, .phase_rad = 0.0};
 /* Back to normal 6 s after a glitch: the last second's largest error within
@@ -181,7 +175,7 @@ static void test_axis_init_refuses_what_it_cannot_discretise(void)
     bad.wc_rad_s = (ladrc_real_t)(0.99 / DT_S);
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&axis, &bad));
     bad = cfg;
-    bad.b0 = REAL_MIN / LADRC_R(16.0); /* 1 / b0 overflows */
+    bad.b0 = LADRC_REAL_MIN / LADRC_R(16.0); /* 1 / b0 overflows */
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_B0, ladrc_axis_init(&axis, &bad));
     bad = cfg;
     bad.wo_rad_s = (ladrc_real_t)1e-30; /* HP's lead (1 + j w / wo)^3 overflowed: estimate NaN, no flag */
@@ -204,7 +198,7 @@ static void test_axis_init_refuses_what_it_cannot_discretise(void)
 
 static void test_steps_no_module_can_discretise_are_refused(void)
 {
-    const ladrc_real_t steps[4] = {(ladrc_real_t)1e30, (ladrc_real_t)2.0, (ladrc_real_t)9e-7, REAL_MIN};
+    const ladrc_real_t steps[4] = {(ladrc_real_t)1e30, (ladrc_real_t)2.0, (ladrc_real_t)9e-7, LADRC_REAL_MIN};
     for (int i = 0; i < 4; ++i) {
         ladrc_leso_t leso;
         const ladrc_leso_config_t leso_cfg = {

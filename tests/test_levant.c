@@ -6,22 +6,11 @@
 #include "ladrc/levant.h"
 #include "ladrc/td.h"
 
-#include <float.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
-
-#ifdef LADRC_REAL_DOUBLE
-#define REAL_MAX DBL_MAX
-#define REAL_MIN DBL_MIN
-#define REAL_EPS DBL_EPSILON
-#else
-#define REAL_MAX FLT_MAX
-#define REAL_MIN FLT_MIN
-#define REAL_EPS FLT_EPSILON
-#endif
 
 #define DT_S 1e-3
 
@@ -43,10 +32,10 @@
  * smallest bound until a step no longer decreases, reference_quartic_root):
  * both stop within about an ulp of u, and e = s u^4 multiplies that by 4
  * plus the roundings of u^2 u^2. Measured over the sweep: at most 6.0
- * REAL_EPS relative in e in float, 6.2 in double, about 1.5 ulps of u; the
+ * LADRC_REAL_EPS relative in e in float, 6.2 in double, about 1.5 ulps of u; the
  * tolerance leaves 4 times that. Stopping one iteration early (a step of
  * 2^-12) would differ by 1e-3. */
-#define ROOT_AGREEMENT_REL_TOL (24.0 * REAL_EPS)
+#define ROOT_AGREEMENT_REL_TOL (24.0 * LADRC_REAL_EPS)
 
 /* The published non-recursive coefficients 4.16 and 3.06 are the products
  * 2 * 3^(2/3) = 4.1602 and 1.5 * sqrt(2) * 3^(1/3) = 3.0596 rounded to three
@@ -55,7 +44,7 @@
 
 /* Cubic tests, L = 1, r in [0.1, 0.35]. Three sources of error, measured
  * from 4 s on (float / double):
- * - the rounding of the samples and of the state, eps = REAL_EPS * 0.35,
+ * - the rounding of the samples and of the state, eps = LADRC_REAL_EPS * 0.35,
  *   which any differentiator of this form turns into errors of order
  *   L^(i/4) eps^((4-i)/4) in the i-th derivative (Levant 2003): 4.2e-8,
  *   3.0e-6, 2.0e-4, 1.4e-2 in float. The implicit form has no other error
@@ -335,8 +324,8 @@ static void test_implicit_root_agrees_with_the_earlier_solver_over_forty_decades
     }
     {
         char msg[120];
-        snprintf(msg, sizeof msg, "%d steps: largest relative difference in e %.3g (%.2f REAL_EPS)", steps, worst,
-                 worst / REAL_EPS);
+        snprintf(msg, sizeof msg, "%d steps: largest relative difference in e %.3g (%.2f LADRC_REAL_EPS)", steps, worst,
+                 worst / LADRC_REAL_EPS);
         TEST_MESSAGE(msg);
     }
 }
@@ -365,7 +354,7 @@ static void test_implicit_step_absorbs_a_small_error_with_the_set_valued_sign(vo
         /* and the sign term s = q / (h^3 g0), inside [-1, 1], moves the rest */
         TEST_ASSERT_FLOAT_WITHIN(tol, -g0 * s, ladrc_levant_get_dddr(&lev));
         TEST_ASSERT_FLOAT_WITHIN(2.0 * h * tol, -2.0 * h * g0 * s, out.ddr);
-        TEST_ASSERT_FLOAT_WITHIN(11.0 / 6.0 * h * h * tol + 2.0 * REAL_EPS * v1, v1 - 11.0 / 6.0 * h * h * g0 * s,
+        TEST_ASSERT_FLOAT_WITHIN(11.0 / 6.0 * h * h * tol + 2.0 * LADRC_REAL_EPS * v1, v1 - 11.0 / 6.0 * h * h * g0 * s,
                                  out.dr);
     }
 }
@@ -433,7 +422,7 @@ static double cubic_tol(ladrc_levant_method_t method, int i)
     /* Largest |r^(i+1)| on [0, 5] s where Euler's chain lags: r' by half a
      * step (h/2 |r''|), r'' by one (h |r'''|); r and r''' show no lag. */
     const double lagging_rate[4] = {0.0, 0.3, 0.12, 0.0};
-    const double eps = REAL_EPS * CUBIC_R_MAX;
+    const double eps = LADRC_REAL_EPS * CUBIC_R_MAX;
     double tol = CUBIC_NOISE_FACTOR * pow(CUBIC_LIPSCHITZ, i / 4.0) * pow(eps, (4.0 - i) / 4.0);
     if (method != LADRC_LEVANT_IMPLICIT) {
         tol += CUBIC_STEP_FACTOR * CUBIC_LIPSCHITZ * pow(DT_S, 4.0 - i);
@@ -714,29 +703,29 @@ static void test_init_rejects_each_invalid_field_with_its_own_status(void)
     cases[n++].expected = LADRC_ERR_LEVANT_GAINS;
     /* steps no module discretises (types.h) */
     cases[n].cfg = lip_ok;
-    cases[n].cfg.dt_s = (ladrc_real_t)sqrt((double)REAL_MAX);
+    cases[n].cfg.dt_s = (ladrc_real_t)sqrt((double)LADRC_REAL_MAX);
     cases[n++].expected = LADRC_ERR_DT_S;
     cases[n].cfg = lip_ok;
-    cases[n].cfg.dt_s = (ladrc_real_t)cbrt((double)REAL_MIN);
+    cases[n].cfg.dt_s = (ladrc_real_t)cbrt((double)LADRC_REAL_MIN);
     cases[n++].expected = LADRC_ERR_DT_S;
     /* 1.1 L overflows */
     cases[n].cfg = lip_ok;
-    cases[n].cfg.lipschitz_rad_s4 = REAL_MAX;
+    cases[n].cfg.lipschitz_rad_s4 = LADRC_REAL_MAX;
     cases[n++].expected = LADRC_ERR_LEVANT_RANGE;
     /* h^3 g0 = 1.1 h^4 L underflows to 0 */
     cases[n].cfg = lip_ok;
     cases[n].cfg.dt_s = LADRC_DT_MIN_S;
-    cases[n].cfg.lipschitz_rad_s4 = REAL_MIN;
+    cases[n].cfg.lipschitz_rad_s4 = LADRC_REAL_MIN;
     cases[n++].expected = LADRC_ERR_LEVANT_RANGE;
     /* (g3 = h L1 cannot overflow: h <= LADRC_DT_MAX_S = 1 s) */
     /* k1 = L3 L2^(1/2) L1^(1/3) overflows */
     cases[n].cfg = exp_ok;
-    cases[n].cfg.l3 = REAL_MAX;
+    cases[n].cfg.l3 = LADRC_REAL_MAX;
     cases[n++].expected = LADRC_ERR_LEVANT_RANGE;
     /* L2 L1^(2/3) overflows */
     cases[n].cfg = exp_ok;
-    cases[n].cfg.l1 = REAL_MAX;
-    cases[n].cfg.l2 = REAL_MAX;
+    cases[n].cfg.l1 = LADRC_REAL_MAX;
+    cases[n].cfg.l2 = LADRC_REAL_MAX;
     cases[n++].expected = LADRC_ERR_LEVANT_RANGE;
     /* the fields of the unused gain mode are not read */
     cases[n].cfg = lip_ok;
@@ -908,16 +897,16 @@ static void test_an_update_that_would_overflow_is_refused_with_a_state_fault(voi
         ladrc_levant_t held;
         ladrc_ref_t out;
         init_ok(&lev, &cfg);
-        ladrc_levant_reset(&lev, -REAL_MAX * LADRC_R(0.75));
+        ladrc_levant_reset(&lev, -LADRC_REAL_MAX * LADRC_R(0.75));
         memcpy(&held, &lev, sizeof held);
         /* when: the reference jumps to the top, so the error overflows */
-        TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_levant_step(&lev, REAL_MAX * LADRC_R(0.75), &out));
+        TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_levant_step(&lev, LADRC_REAL_MAX * LADRC_R(0.75), &out));
         /* then: nothing moved, the held estimate is written */
         held.faults = LADRC_FAULT_STATE;
         TEST_ASSERT_EQUAL_MEMORY(&held, &lev, sizeof lev);
         TEST_ASSERT_EQUAL_MEMORY(&held.r_last, &out.r, sizeof out.r);
         /* and a reachable reference is followed again */
-        TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, ladrc_levant_step(&lev, -REAL_MAX * LADRC_R(0.5), &out));
+        TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, ladrc_levant_step(&lev, -LADRC_REAL_MAX * LADRC_R(0.5), &out));
         TEST_ASSERT_TRUE(isfinite((double)out.r) && isfinite((double)out.dr) && isfinite((double)out.ddr));
     }
 }
@@ -926,14 +915,14 @@ static void test_an_update_that_would_overflow_any_derivative_is_refused(void)
 {
     /* Three white-box states, each pushing one derivative past the range in
      * one Euler step of h = 1 s while the estimate of r stays finite. */
-    const ladrc_real_t big = REAL_MAX * LADRC_R(0.9);
+    const ladrc_real_t big = LADRC_REAL_MAX * LADRC_R(0.9);
     const ladrc_real_t state[3][3] = {{big, big, LADRC_R(0.0)},            /* z1 + h z2 */
                                       {LADRC_R(0.0), big, big},            /* z2 + h z3 */
                                       {LADRC_R(0.0), LADRC_R(0.0), -big}}; /* z3 - g0 */
     size_t c;
     for (c = 0; c < 3; ++c) {
-        /* given: L = REAL_MAX / 2, so that g0 = 1.1 h L is a large push */
-        ladrc_levant_config_t cfg = lipschitz_config(LADRC_LEVANT_EULER, (double)REAL_MAX / 2.0);
+        /* given: L = LADRC_REAL_MAX / 2, so that g0 = 1.1 h L is a large push */
+        ladrc_levant_config_t cfg = lipschitz_config(LADRC_LEVANT_EULER, (double)LADRC_REAL_MAX / 2.0);
         ladrc_levant_t lev;
         ladrc_levant_t held;
         ladrc_ref_t out;

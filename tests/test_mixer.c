@@ -4,22 +4,11 @@
 #include "unity.h"
 #include "ladrc/mixer.h"
 
-#include <float.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
-
-#ifdef LADRC_REAL_DOUBLE
-#define REAL_MAX DBL_MAX
-#define REAL_EPS DBL_EPSILON
-#define REAL_MIN DBL_MIN
-#else
-#define REAL_MAX FLT_MAX
-#define REAL_EPS FLT_EPSILON
-#define REAL_MIN FLT_MIN
-#endif
 
 /* Paper vehicle (Table 1). */
 #define KL_N_S2 2.98e-5
@@ -138,8 +127,8 @@ static split_t split_double(double thrust_N, const ladrc_real_t torque_Nm[3])
 static double report_tol(const ladrc_real_t w2[4], double coef)
 {
     const double sum = fabs((double)w2[0]) + fabs((double)w2[1]) + fabs((double)w2[2]) + fabs((double)w2[3]);
-    return (REPORT_TOL_EPS + FORWARD_ROUNDING_EPS) * REAL_EPS * coef * sum +
-           REPORT_TOL_SUBNORMALS * REAL_MIN * REAL_EPS;
+    return (REPORT_TOL_EPS + FORWARD_ROUNDING_EPS) * LADRC_REAL_EPS * coef * sum +
+           REPORT_TOL_SUBNORMALS * LADRC_REAL_MIN * LADRC_REAL_EPS;
 }
 
 /* |actual - expected| <= tol, compared in double: the Unity float asserts round to
@@ -789,7 +778,7 @@ static void test_mixer_mixes_a_finite_request_of_any_size_at_the_limits(void)
      * Before the request was limited these were refused with a state fault;
      * now every finite request is mixed: the thrust is what the rotors can give. */
     const ladrc_real_t torque_Nm[3] = {LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0)};
-    const ladrc_real_t huge[3] = {REAL_MAX, REAL_MAX * (ladrc_real_t)(2.0 * KL_N_S2), -REAL_MAX};
+    const ladrc_real_t huge[3] = {LADRC_REAL_MAX, LADRC_REAL_MAX * (ladrc_real_t)(2.0 * KL_N_S2), -LADRC_REAL_MAX};
     const double limit[3] = {W2_MAX, W2_MAX, W2_MIN};
     ladrc_mixer_t mx;
     ladrc_mixer_output_t out;
@@ -825,7 +814,7 @@ static void test_mixer_ideal_mode_refuses_non_finite_and_overflowing_requests(vo
      * overflows is a state fault; both hold the previous rotors */
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_mixer_step(&mx, LADRC_R(9.0), nan_roll, &held));
     TEST_ASSERT_EQUAL_MEMORY(first.w2_rad2_s2, held.w2_rad2_s2, sizeof first.w2_rad2_s2);
-    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_mixer_step(&mx, REAL_MAX, good, &held));
+    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_mixer_step(&mx, LADRC_REAL_MAX, good, &held));
     TEST_ASSERT_EQUAL_MEMORY(first.w2_rad2_s2, held.w2_rad2_s2, sizeof first.w2_rad2_s2);
     TEST_ASSERT_EQUAL_MEMORY(first.torque_Nm, held.torque_Nm, sizeof first.torque_Nm);
 }
@@ -1067,7 +1056,7 @@ static void test_mixer_saturate_leaves_its_output_alone_for_what_it_cannot_mix(v
      * w^2 beyond the range whose sums could overflow */
     const ladrc_real_t torque_Nm[3] = {LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0)};
     const ladrc_real_t nan_w2[4] = {(ladrc_real_t)NAN, LADRC_R(6e4), LADRC_R(6e4), LADRC_R(6e4)};
-    const ladrc_real_t huge_w2[4] = {REAL_MAX, REAL_MAX, REAL_MAX, REAL_MAX};
+    const ladrc_real_t huge_w2[4] = {LADRC_REAL_MAX, LADRC_REAL_MAX, LADRC_REAL_MAX, LADRC_REAL_MAX};
     ladrc_mixer_t mx;
     ladrc_mixer_t ideal;
     ladrc_mixer_output_t marker;
@@ -1079,7 +1068,7 @@ static void test_mixer_saturate_leaves_its_output_alone_for_what_it_cannot_mix(v
     out = marker;
     ladrc_mixer_saturate(&mx, nan_w2, LADRC_R(7.0), torque_Nm, &out);
     TEST_ASSERT_EQUAL_MEMORY(&marker, &out, sizeof out);
-    ladrc_mixer_saturate(&ideal, huge_w2, REAL_MAX, torque_Nm, &out);
+    ladrc_mixer_saturate(&ideal, huge_w2, LADRC_REAL_MAX, torque_Nm, &out);
     TEST_ASSERT_EQUAL_MEMORY(&marker, &out, sizeof out);
 }
 

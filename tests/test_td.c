@@ -8,14 +8,6 @@
 #include <stddef.h>
 #include <string.h>
 
-#ifdef LADRC_REAL_DOUBLE
-#define REAL_MAX DBL_MAX
-#define REAL_EPS DBL_EPSILON
-#else
-#define REAL_MAX FLT_MAX
-#define REAL_EPS FLT_EPSILON
-#endif
-
 /* Hand computations below chain about ten roundings of values up to |a0| = 6.4,
  * scaled by accel / d = 10: 10 * 6.4 * 10 * 2^-23 = 7.6e-5. */
 #define FHAN_HAND_TOL (1e-4)
@@ -36,7 +28,7 @@
 
 /* r' moves by h r'' per step; rounding the product and the sum costs up to
  * 4 eps relative (2 roundings of 2 eps bounds, generous). */
-#define ACCEL_BOUND_REL (4.0 * REAL_EPS)
+#define ACCEL_BOUND_REL (4.0 * LADRC_REAL_EPS)
 
 static const double dt_s = 1e-3;
 
@@ -77,8 +69,8 @@ static void test_fhan_never_exceeds_its_acceleration_bound(void)
      * from 0 to the largest finite value with both signs */
     const double accels[] = {1e-20, 0.1, 50.0, 1e4, 1e30};
     const double h0s[] = {1e-20, 1e-3, 0.05, 2.0};
-    const double mags[] = {0.0,  1e-30,           1e-6, 1e-3, 0.01, 0.1, 0.5, 1.0, 3.0, 10.0, 1e3, 1e6, 1e15,
-                           1e30, (double)REAL_MAX};
+    const double mags[] = {
+        0.0, 1e-30, 1e-6, 1e-3, 0.01, 0.1, 0.5, 1.0, 3.0, 10.0, 1e3, 1e6, 1e15, 1e30, (double)LADRC_REAL_MAX};
     const size_t n_mag = sizeof mags / sizeof mags[0];
     size_t ia, ih, i1, i2;
     int s1, s2;
@@ -286,7 +278,7 @@ static void test_td_shaped_acceleration_never_exceeds_its_bound(void)
         /* then: |r''| <= R exactly, and r' moved by at most R dt up to rounding */
         TEST_ASSERT_TRUE(fabs((double)out.ddr) <= accel);
         if (k > 0) {
-            TEST_ASSERT_LESS_OR_EQUAL_FLOAT(bound * dt_s + 4.0 * REAL_EPS * fabs((double)out.dr),
+            TEST_ASSERT_LESS_OR_EQUAL_FLOAT(bound * dt_s + 4.0 * LADRC_REAL_EPS * fabs((double)out.dr),
                                             fabs((double)out.dr - (double)prev.dr));
         }
         prev = out;
@@ -500,13 +492,13 @@ static void test_td_holds_its_state_when_the_position_would_overflow(void)
     ladrc_real_t x1_before;
     ladrc_real_t x2_before;
     init_td(&td, 100.0, 0.01);
-    ladrc_td_reset(&td, REAL_MAX);
-    td.x2 = REAL_MAX; /* white-box: no valid config gets here quickly */
+    ladrc_td_reset(&td, LADRC_REAL_MAX);
+    td.x2 = LADRC_REAL_MAX; /* white-box: no valid config gets here quickly */
     x1_before = td.x1;
     x2_before = td.x2;
 
     /* when */
-    const ladrc_fault_t faults = ladrc_td_step(&td, REAL_MAX, &out);
+    const ladrc_fault_t faults = ladrc_td_step(&td, LADRC_REAL_MAX, &out);
 
     /* then: state fault, state and output held and finite */
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, faults);
@@ -521,19 +513,19 @@ static void test_td_holds_its_state_when_the_rate_would_overflow(void)
 {
     /* given: a valid but extreme TD (dt = h0 = 1 s, R = max / 4) at -0.6 max rising
      * at 0.9 max, its reference at +0.6 max: x1 - r overflows, fhan accelerates at +R */
-    const ladrc_td_config_t extreme = make_config(1.0, (double)REAL_MAX / 4.0, 1.0);
+    const ladrc_td_config_t extreme = make_config(1.0, (double)LADRC_REAL_MAX / 4.0, 1.0);
     ladrc_td_t td;
     ladrc_ref_t out;
     ladrc_real_t x1_before;
     ladrc_real_t x2_before;
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_td_init(&td, &extreme));
-    ladrc_td_reset(&td, -REAL_MAX * LADRC_R(0.6));
-    td.x2 = REAL_MAX * LADRC_R(0.9); /* white-box, as above */
+    ladrc_td_reset(&td, -LADRC_REAL_MAX * LADRC_R(0.6));
+    td.x2 = LADRC_REAL_MAX * LADRC_R(0.9); /* white-box, as above */
     x1_before = td.x1;
     x2_before = td.x2;
 
     /* when: x1 + h x2 stays finite, x2 + h R does not */
-    const ladrc_fault_t faults = ladrc_td_step(&td, REAL_MAX * LADRC_R(0.6), &out);
+    const ladrc_fault_t faults = ladrc_td_step(&td, LADRC_REAL_MAX * LADRC_R(0.6), &out);
 
     /* then */
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, faults);
@@ -548,9 +540,9 @@ static void test_td_brakes_at_full_bound_when_the_error_overflows(void)
     ladrc_td_t td;
     ladrc_ref_t out;
     init_td(&td, 100.0, 0.01);
-    ladrc_td_reset(&td, REAL_MAX);
+    ladrc_td_reset(&td, LADRC_REAL_MAX);
     /* when: the reference is at the bottom, so x1 - r overflows to +inf */
-    const ladrc_fault_t faults = ladrc_td_step(&td, -REAL_MAX, &out);
+    const ladrc_fault_t faults = ladrc_td_step(&td, -LADRC_REAL_MAX, &out);
     /* then: a normal step at full braking, with a finite state */
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, faults);
     TEST_ASSERT_FLOAT_WITHIN(FHAN_HAND_TOL, -100.0, out.ddr);

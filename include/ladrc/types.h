@@ -45,12 +45,18 @@ extern "C" {
 typedef double ladrc_real_t;
 #define LADRC_R(x) (x)
 #define LADRC_REAL_MAX DBL_MAX
+#define LADRC_REAL_MIN DBL_MIN
+#define LADRC_REAL_EPS DBL_EPSILON
 #else
 typedef float ladrc_real_t;
 /* Appends the f suffix so float builds never promote to double. */
 #define LADRC_R(x) (x##f)
 /** Largest finite ladrc_real_t. */
 #define LADRC_REAL_MAX FLT_MAX
+/** Smallest positive normal ladrc_real_t. */
+#define LADRC_REAL_MIN FLT_MIN
+/** Distance from 1 to the next ladrc_real_t. */
+#define LADRC_REAL_EPS FLT_EPSILON
 #endif
 
 /** Programmer-error check (null pointers in debug builds); never used on flight data.

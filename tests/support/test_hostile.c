@@ -1,18 +1,15 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 #include "test_hostile.h"
 
-#include <float.h>
 #include <math.h>
 #include <string.h>
 
 #ifdef LADRC_REAL_DOUBLE
 #define REAL_MAX_LOG10 308.0
 #define REAL_DENORM_MIN 4.9406564584124654e-324
-#define REAL_NORMAL_MIN DBL_MIN
 #else
 #define REAL_MAX_LOG10 38.0
 #define REAL_DENORM_MIN 1.40129846e-45
-#define REAL_NORMAL_MIN FLT_MIN
 #endif
 
 uint64_t test_rng_next(test_rng_t *rng)
@@ -82,7 +79,7 @@ ladrc_real_t test_value_of_class(test_rng_t *rng, test_value_class_t cls, double
         break;
     }
     case TEST_VALUE_DENORMAL: {
-        const double span = REAL_NORMAL_MIN / REAL_DENORM_MIN;
+        const double span = LADRC_REAL_MIN / REAL_DENORM_MIN;
         x = (ladrc_real_t)(random_sign(rng) * REAL_DENORM_MIN * (1.0 + test_rng_uniform(rng) * (span - 2.0)));
         break;
     }
