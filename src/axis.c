@@ -364,7 +364,6 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
 static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad, ladrc_real_t rate_rad_s,
                               int has_rate)
 {
-    LADRC_ASSERT(axis != NULL);
     ladrc_fault_t faults = LADRC_FAULT_NONE;
     if (has_rate && !ladrc_within(rate_rad_s, axis->rate_limit_rad_s)) {
         faults |= LADRC_FAULT_RATE;
