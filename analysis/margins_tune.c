@@ -1,0 +1,302 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* The margins-based tuner: the gains of a variant searched for the highest
+ * bandwidth that meets phase and gain margin targets (docs/margins.md). */
+#include "margins_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+typedef struct {
+    ladrc_margins_workspace_t *ws;
+    ladrc_margins_controller_t ctl;
+    ladrc_attitude_config_t att;
+    ladrc_axis_config_t axis;
+    const ladrc_margins_request_t *req;
+    const ladrc_margins_targets_t *tg;
+} tuner_t;
+
+static ladrc_axis_config_t *tuner_axis(tuner_t *t)
+{
+    return t->ctl.attitude != NULL ? &t->att.axis[t->ctl.axis_index] : &t->axis;
+}
+
+/* Sets the candidate's gains from the search parameters (w, shape index). */
+static void set_gains(tuner_t *t, double w, int shape, double j_model)
+{
+    static const double ratios[] = {3.0, 5.0, 8.0};
+    static const double integral[] = {3.0, 5.0, 10.0};
+    static const double separation[] = {3.0, 4.0, 6.0};
+    ladrc_axis_config_t *a = tuner_axis(t);
+    if (a->variant == LADRC_VARIANT_INDI) {
+        /* The LADRC rule with the acceleration filter in the observer's
+         * place: loop (s + w)^2, w_f = r w (at most 0.9 pi / dt). */
+        const double wf_max = 0.9 * PI / (double)a->dt_s;
+        a->indi_att_kp_per_s = (ladrc_real_t)w;
+        a->indi_rate_kp_per_s = (ladrc_real_t)w;
+        a->indi_filter_rad_s = (ladrc_real_t)fmin(ratios[shape] * w, wf_max);
+    } else if (a->variant == LADRC_VARIANT_CASCADED) {
+        /* w: the rate loop's crossover; the default's rule (axis.h) with
+         * the attitude gain w / n, n the cascade's separation */
+        const double kp = j_model * w;
+        const double tf = 1.0 / (8.0 * w);
+        a->cas_rate_kp = (ladrc_real_t)kp;
+        a->cas_rate_ki = (ladrc_real_t)(kp * w / 5.0);
+        a->cas_rate_kd = (ladrc_real_t)(kp / (4.0 * w));
+        a->cas_att_kp = (ladrc_real_t)(w / separation[shape]);
+        a->cas_d_filter_tau_s = (ladrc_real_t)(tf >= (double)a->dt_s ? tf : 0.0);
+        a->cas_rate_filter_tau_s = a->cas_d_filter_tau_s;
+    } else if (a->variant == LADRC_VARIANT_PID) {
+        a->pid_kp = (ladrc_real_t)(j_model * w * w);
+        a->pid_kd = (ladrc_real_t)(2.0 * j_model * w);
+        a->pid_ki = (ladrc_real_t)(j_model * w * w * w / integral[shape]);
+        const double tf = 1.0 / (10.0 * w);
+        a->pid_d_filter_tau_s = (ladrc_real_t)(tf >= (double)a->dt_s ? tf : 0.0);
+    } else {
+        a->wc_rad_s = (ladrc_real_t)w;
+        a->wo_rad_s = (ladrc_real_t)(ratios[shape] * w);
+    }
+}
+
+static int n_shapes(void)
+{
+    return 3;
+}
+
+/* 1 when a result meets the targets: stable, PM and both gain margins. */
+static int meets(const ladrc_margins_result_t *res, const ladrc_margins_targets_t *tg)
+{
+    return res->stable && res->pm_deg >= tg->pm_min_deg && res->gm_db >= tg->gm_min_db &&
+           res->gm_low_db <= -tg->gm_min_db;
+}
+
+/* Margins of the candidate (whole: as ladrc_margins reports the variant;
+ * otherwise the search's LADRC core, margins only, no output grid); 1 when
+ * it meets the targets. */
+static int evaluate(tuner_t *t, ladrc_margins_result_t *res, int whole)
+{
+    if (whole) {
+        if (ladrc_margins_analyse_reported(t->ws, &t->ctl, t->req, res, NULL) != LADRC_MARGINS_OK) {
+            res->stable = 0; /* not analysable: no fallback either */
+            return 0;
+        }
+        return meets(res, t->tg);
+    }
+    loop_t lp;
+    if (ladrc_margins_measure(t->ws, &t->ctl, t->req) != LADRC_MARGINS_OK ||
+        margins_make_loop(t->ws, &t->req->plant, &lp) != LADRC_MARGINS_OK) {
+        res->stable = 0;
+        return 0;
+    }
+    memset(res, 0, sizeof *res);
+    margins_compute(&lp, t->req->plant.dt_s, res);
+    return meets(res, t->tg);
+}
+
+/* A missed candidate's distance to the targets (larger: closer). */
+static double miss_score(const ladrc_margins_result_t *res, const ladrc_margins_targets_t *tg)
+{
+    return fmin(res->pm_deg - tg->pm_min_deg, 3.0 * (res->gm_db - tg->gm_min_db));
+}
+
+/* The closest stable miss so far (the report when nothing meets the targets). */
+typedef struct {
+    double score, w;
+    int shape;
+} fallback_t;
+
+static void note_miss(fallback_t *f, const ladrc_margins_result_t *res, const ladrc_margins_targets_t *tg, double w,
+                      int shape)
+{
+    const double score = miss_score(res, tg);
+    if (res->stable && score > f->score) {
+        f->score = score;
+        f->w = w;
+        f->shape = shape;
+    }
+}
+
+/* Largest w on the geometric scan from w_lo (factor 1.5, up to w_hi) whose
+ * candidate meets the targets, refined by bisection to 1 % against the next
+ * scan point; NAN if none. */
+static double search_up(tuner_t *t, int shape, double j_model, double w_lo, double w_hi, int whole, fallback_t *fb)
+{
+    ladrc_margins_result_t *res = &t->ws->scratch;
+    double ok_w = NAN, bad_w = NAN;
+    for (double w = w_lo; w <= w_hi; w *= 1.5) {
+        set_gains(t, w, shape, j_model);
+        if (evaluate(t, res, whole)) {
+            ok_w = w;
+        } else {
+            note_miss(fb, res, t->tg, w, shape);
+            if (!isnan(ok_w)) {
+                bad_w = w;
+                break;
+            }
+        }
+    }
+    if (isnan(ok_w) || isnan(bad_w))
+        return ok_w;
+    double lo = ok_w, hi = bad_w;
+    while (hi - lo > 0.01 * lo) {
+        const double m = sqrt(lo * hi);
+        set_gains(t, m, shape, j_model);
+        if (evaluate(t, res, whole))
+            lo = m;
+        else
+            hi = m;
+    }
+    return lo;
+}
+
+/* Adaptive variants: from the core's w down (factor 1.1, to w_lo) to the
+ * first w at which the whole variant meets the targets, refined by bisection
+ * to 1 % against the scan point above it; NAN if none. The step is finer
+ * than the core's scan: the variant's margins need not fall monotonically
+ * with w (LP's gain bound adapts to what it sees), and a coarse step can
+ * jump over the highest band that meets them. */
+static double search_down(tuner_t *t, int shape, double j_model, double w_top, double w_lo, fallback_t *fb)
+{
+    ladrc_margins_result_t *res = &t->ws->scratch;
+    double bad_w = NAN;
+    for (double w = w_top; w >= w_lo; w /= 1.1) {
+        set_gains(t, w, shape, j_model);
+        if (evaluate(t, res, 1)) {
+            if (isnan(bad_w))
+                return w;
+            double lo = w, hi = bad_w;
+            while (hi - lo > 0.01 * lo) {
+                const double m = sqrt(lo * hi);
+                set_gains(t, m, shape, j_model);
+                if (evaluate(t, res, 1))
+                    lo = m;
+                else
+                    hi = m;
+            }
+            return lo;
+        }
+        note_miss(fb, res, t->tg, w, shape);
+        bad_w = w;
+    }
+    return NAN;
+}
+
+/* The gains of every variant as the tuning reports them (its result struct). */
+static void report_gains(const ladrc_axis_config_t *a, ladrc_margins_tuning_t *out)
+{
+    out->wc_rad_s = (double)a->wc_rad_s;
+    out->wo_rad_s = (double)a->wo_rad_s;
+    out->kp = (double)a->pid_kp;
+    out->ki = (double)a->pid_ki;
+    out->kd = (double)a->pid_kd;
+    out->d_filter_tau_s = (double)a->pid_d_filter_tau_s;
+    out->indi_att_kp_per_s = (double)a->indi_att_kp_per_s;
+    out->indi_rate_kp_per_s = (double)a->indi_rate_kp_per_s;
+    out->indi_filter_rad_s = (double)a->indi_filter_rad_s;
+    out->cas_att_kp = (double)a->cas_att_kp;
+    out->cas_rate_kp = (double)a->cas_rate_kp;
+    out->cas_rate_ki = (double)a->cas_rate_ki;
+    out->cas_rate_kd = (double)a->cas_rate_kd;
+    out->cas_d_filter_tau_s = (double)a->cas_d_filter_tau_s;
+}
+
+ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
+                                          const ladrc_margins_request_t *req, const ladrc_margins_targets_t *targets,
+                                          ladrc_axis_config_t *tuned, ladrc_margins_tuning_t *out)
+{
+    if (ws == NULL || ctl == NULL || req == NULL || targets == NULL || tuned == NULL || out == NULL)
+        return LADRC_MARGINS_ERR_NULL;
+    if ((ctl->attitude == NULL) == (ctl->axis == NULL))
+        return LADRC_MARGINS_ERR_CONTROLLER;
+    if (ctl->attitude != NULL && (ctl->axis_index < 0 || ctl->axis_index >= LADRC_AXES))
+        return LADRC_MARGINS_ERR_CONTROLLER;
+    const ladrc_margins_status_t st = margins_check_request(req);
+    if (st != LADRC_MARGINS_OK)
+        return st;
+    if (!(isfinite(targets->pm_min_deg) && isfinite(targets->gm_min_db)))
+        return LADRC_MARGINS_ERR_REQUEST;
+    tuner_t t;
+    memset(&t, 0, sizeof t);
+    t.ws = ws;
+    t.ctl = *ctl;
+    t.req = req;
+    t.tg = targets;
+    if (ctl->attitude != NULL) {
+        t.att = *ctl->attitude;
+        t.ctl.attitude = &t.att;
+    } else {
+        t.axis = *ctl->axis;
+        t.ctl.axis = &t.axis;
+    }
+    ladrc_axis_config_t *a = tuner_axis(&t);
+    const ladrc_variant_t variant = a->variant;
+    /* The adaptive variants are tuned on their LADRC core. */
+    if (is_adaptive(a))
+        a->variant = LADRC_VARIANT_LADRC;
+    const double dt = req->plant.dt_s;
+    const double j_model = req->plant.inertia_kg_m2;
+    /* w from 0.5 rad/s up to the sampled loop's limit (wc dt < 1 for LADRC;
+     * the same bound keeps PID's w below the Nyquist frequency). */
+    const double w_lo = 0.5, w_hi = 0.95 / dt;
+    const int adaptive = variant != a->variant;
+    memset(out, 0, sizeof *out);
+    out->peak_dist_rad = INFINITY;
+    /* closest misses of the searched core and of the whole adaptive variant */
+    fallback_t fb_core = {.score = -INFINITY, .w = NAN, .shape = -1},
+               fb_whole = {.score = -INFINITY, .w = NAN, .shape = -1};
+    double best_w = NAN;
+    int best_shape = -1;
+    for (int shape = 0; shape < n_shapes(); ++shape) {
+        double ok_w = search_up(&t, shape, j_model, w_lo, w_hi, 0, &fb_core);
+        if (isnan(ok_w))
+            continue;
+        if (adaptive) {
+            /* The whole variant at the core's bandwidth, and lower until it
+             * meets the targets too: its estimator adds phase lag. */
+            a->variant = variant;
+            ok_w = search_down(&t, shape, j_model, ok_w, w_lo, &fb_whole);
+            a->variant = LADRC_VARIANT_LADRC;
+            if (isnan(ok_w))
+                continue;
+        }
+        a->variant = variant;
+        set_gains(&t, ok_w, shape, j_model);
+        ladrc_margins_result_t *res = &ws->scratch;
+        const ladrc_margins_status_t st_c = ladrc_margins_analyse_reported(ws, &t.ctl, req, res, NULL);
+        a->variant = adaptive ? LADRC_VARIANT_LADRC : variant;
+        if (st_c != LADRC_MARGINS_OK)
+            continue;
+        if (best_shape < 0 || res->dist_peak_rad < out->peak_dist_rad) {
+            best_w = ok_w;
+            best_shape = shape;
+            out->peak_dist_rad = res->dist_peak_rad;
+        }
+    }
+    const int found = best_shape >= 0;
+    const fallback_t fb = (adaptive && fb_whole.shape >= 0) ? fb_whole : fb_core;
+    if (!found) {
+        if (fb.shape < 0) {
+            /* Not one stable candidate: the margins of the controller as given. */
+            a->variant = variant;
+            *a = *margins_ctl_axis_config(ctl);
+            (void)ladrc_margins_analyse_reported(ws, &t.ctl, req, &out->margins, NULL);
+            out->met = 0;
+            report_gains(a, out);
+            out->peak_dist_rad = out->margins.dist_peak_rad;
+            *tuned = *a;
+            return LADRC_MARGINS_ERR_TARGETS_NOT_MET;
+        }
+        best_w = fb.w;
+        best_shape = fb.shape;
+    }
+    set_gains(&t, best_w, best_shape, j_model);
+    a->variant = variant;
+    /* Margins of the variant as it will fly (and as ladrc_margins reports them). */
+    const ladrc_margins_status_t fin = ladrc_margins_analyse_reported(ws, &t.ctl, req, &out->margins, NULL);
+    out->met = found && fin == LADRC_MARGINS_OK && meets(&out->margins, targets);
+    out->peak_dist_rad = out->margins.dist_peak_rad;
+    report_gains(a, out);
+    *tuned = *a;
+    if (fin != LADRC_MARGINS_OK)
+        return fin;
+    return out->met ? LADRC_MARGINS_OK : LADRC_MARGINS_ERR_TARGETS_NOT_MET;
+}
