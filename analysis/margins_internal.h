@@ -95,7 +95,7 @@ static inline void psim_measure(psim_t *ps, const dplant_t *dp, double *angle, d
 
 static inline void psim_step(psim_t *ps, const dplant_t *dp, double u, double d)
 {
-    double nx[NX_MAX];
+    double nx[NX_MAX] = {0.0}; /* the states beyond n stay 0 */
     for (int r = 0; r < dp->n; ++r) {
         double s = dp->b[r] * u + dp->e[r] * d;
         for (int c = 0; c < dp->n; ++c)
