@@ -107,17 +107,19 @@ install_ladrc double "$work/prefix-double" -DLADRC_REAL_DOUBLE=ON
 abi_link() { # prefix app-flags -> 0 if it links
   cc -std=c99 -I"$1/include" $2 "$cons/app.c" -o "$work/app-abi" -L"$1/lib" -lladrc -lm 2>"$work/abi.log"
 }
+# An application that must not link against a library: the linker names the
+# symbol the application asked for (its own real type, variant set, ...).
+must_not_link() { # prefix app-flags missing-symbol what
+  if abi_link "$1" "$2"; then
+    echo "error: $4 linked" >&2
+    exit 1
+  fi
+  grep -q "$3" "$work/abi.log"
+}
 abi_link "$work/prefix-double" "-DLADRC_REAL_DOUBLE" && "$work/app-abi"
-if abi_link "$work/prefix-double" ""; then
-  echo "error: a float application linked against a double library" >&2
-  exit 1
-fi
-grep -q "ladrc_attitude_init_float" "$work/abi.log"
-if abi_link "$work/prefix" "-DLADRC_REAL_DOUBLE"; then
-  echo "error: a double application linked against a float library" >&2
-  exit 1
-fi
-grep -q "ladrc_attitude_init_double" "$work/abi.log"
+must_not_link "$work/prefix-double" "" ladrc_attitude_init_float "a float application against a double library"
+must_not_link "$work/prefix" "-DLADRC_REAL_DOUBLE" ladrc_attitude_init_double \
+  "a double application against a float library"
 log "abi: mismatches fail to link naming the real type, matching builds link and run"
 
 log "abi: variant set of the library against the application's"
@@ -125,39 +127,24 @@ install_ladrc hp "$work/prefix-hp" "-DLADRC_VARIANTS=HP_MLADRC" "-DLADRC_SHAPERS
 hp_flags="-DLADRC_WITH_LADRC=0 -DLADRC_WITH_LP_MLADRC=0 -DLADRC_WITH_PID=0 -DLADRC_WITH_CASCADED=0"
 hp_flags+=" -DLADRC_WITH_INDI=0 -DLADRC_WITH_TD=0"
 abi_link "$work/prefix-hp" "$hp_flags"
-if abi_link "$work/prefix-hp" ""; then
-  echo "error: an all-variants application linked against an HP-MLADRC-only library" >&2
-  exit 1
-fi
-grep -q "ladrc_attitude_init_float_v111111_s11_o1_t2" "$work/abi.log"
-if abi_link "$work/prefix" "$hp_flags"; then
-  echo "error: an HP-MLADRC-only application linked against an all-variants library" >&2
-  exit 1
-fi
-grep -q "ladrc_attitude_init_float_v001000_s01_o1_t2" "$work/abi.log"
+must_not_link "$work/prefix-hp" "" ladrc_attitude_init_float_v111111_s11_o1_t2 \
+  "an all-variants application against an HP-MLADRC-only library"
+must_not_link "$work/prefix" "$hp_flags" ladrc_attitude_init_float_v001000_s01_o1_t2 \
+  "an HP-MLADRC-only application against an all-variants library"
 log "abi: variant-set mismatches fail to link naming the set, a matching build links"
 
 log "abi: the online frequency search (LADRC_HP_ONLINE) of the library against the application's"
 install_ladrc hpknown "$work/prefix-hpknown" "-DLADRC_VARIANTS=HP_MLADRC" "-DLADRC_SHAPERS=LEVANT" "-DLADRC_HP_ONLINE=OFF"
 abi_link "$work/prefix-hpknown" "$hp_flags -DLADRC_WITH_HP_ONLINE=0"
-if abi_link "$work/prefix-hpknown" "$hp_flags"; then
-  echo "error: an application with the online search linked against a library without it" >&2
-  exit 1
-fi
-grep -q "ladrc_attitude_init_float_v001000_s01_o1_t2" "$work/abi.log"
-if abi_link "$work/prefix-hp" "$hp_flags -DLADRC_WITH_HP_ONLINE=0"; then
-  echo "error: an application without the online search linked against a library with it" >&2
-  exit 1
-fi
-grep -q "ladrc_attitude_init_float_v001000_s01_o0_t2" "$work/abi.log"
+must_not_link "$work/prefix-hpknown" "$hp_flags" ladrc_attitude_init_float_v001000_s01_o1_t2 \
+  "an application with the online search against a library without it"
+must_not_link "$work/prefix-hp" "$hp_flags -DLADRC_WITH_HP_ONLINE=0" ladrc_attitude_init_float_v001000_s01_o0_t2 \
+  "an application without the online search against a library with it"
 log "abi: online-search mismatches fail to link naming it, a matching build links"
 
 log "abi: the most tones (LADRC_HP_MAX_TONES, the size of every RLS) of the library against the application's"
-if abi_link "$work/prefix" "-DLADRC_HP_MAX_TONES=1"; then
-  echo "error: an application built for one tone linked against a library built for two" >&2
-  exit 1
-fi
-grep -q "ladrc_attitude_init_float_v111111_s11_o1_t1" "$work/abi.log"
+must_not_link "$work/prefix" "-DLADRC_HP_MAX_TONES=1" ladrc_attitude_init_float_v111111_s11_o1_t1 \
+  "an application built for one tone against a library built for two"
 log "abi: a most-tones mismatch fails to link naming it"
 
 echo "consumer tests: all passed"
