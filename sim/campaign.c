@@ -97,15 +97,9 @@ static int parse_set(parser_t *p, char *key, char *value)
 
 static int parse_section(parser_t *p, char *s)
 {
-    char *close = strchr(s, ']');
-    if (close == NULL) {
-        return ini_fail(&p->place, s + strlen(s), "expected ']'");
+    if (ini_section_header(&p->place, s) != 0) {
+        return -1;
     }
-    char *after = ini_skip_space(close + 1);
-    if (*after != '\0') {
-        return ini_fail(&p->place, after, "trailing characters after ']'");
-    }
-    *close = '\0';
     char *name = ini_skip_space(s + 1);
     ini_trim_end(name);
     int sec = 0;

@@ -50,6 +50,20 @@ int ini_fail_at(ini_place_t *place, int line, int col, const char *format, ...)
     return -1;
 }
 
+int ini_section_header(ini_place_t *place, char *s)
+{
+    char *close = strchr(s, ']');
+    if (close == NULL) {
+        return ini_fail(place, s + strlen(s), "expected ']'");
+    }
+    char *after = ini_skip_space(close + 1);
+    if (*after != '\0') {
+        return ini_fail(place, after, "trailing characters after ']'");
+    }
+    *close = '\0';
+    return 0;
+}
+
 int ini_lines(char *text, ini_place_t *place, ini_line_fn fn, void *ctx)
 {
     if (strncmp(text, "\xEF\xBB\xBF", 3) == 0) {

@@ -45,6 +45,11 @@ int PRINTF_LIKE(4, 5) ini_fail_at(ini_place_t *place, int line, int col, const c
 /* The same at `at` in the current line. */
 #define ini_fail(place, at, ...) ini_fail_at((place), (place)->line, ini_column((place), (at)), __VA_ARGS__)
 
+/* A section header line s = "[...]": checks its closing ']' and that nothing
+ * follows it, and ends the string there (the name starts at s + 1).
+ * Returns 0, or -1 with the error recorded at the fault. */
+int ini_section_header(ini_place_t *place, char *s);
+
 /* One line with its comment and surrounding blanks removed, s its first
  * non-blank character. Returns 0 to go on, nonzero to stop. */
 typedef int (*ini_line_fn)(void *ctx, char *s);

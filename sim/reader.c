@@ -92,15 +92,9 @@ static int parse_key_line(parser_t *p, char *s)
 
 static int parse_section(parser_t *p, char *s)
 {
-    char *close = strchr(s, ']');
-    if (close == NULL) {
-        return ini_fail(&p->place, s + strlen(s), "expected ']'");
+    if (ini_section_header(&p->place, s) != 0) {
+        return -1;
     }
-    char *after = ini_skip_space(close + 1);
-    if (*after != '\0') {
-        return ini_fail(&p->place, after, "trailing characters after ']'");
-    }
-    *close = '\0';
     char *rest = s + 1;
     size_t len;
     char *name = lex_next_token(&rest, &len);
