@@ -13,7 +13,9 @@
 #           makes sbatch, squeue, scontrol talk to this cluster
 #
 # State dir: build/slurm-local (LADRC_SLURM_STATE overrides it); it holds the munge
-# key and socket, slurm.conf, the controller's state, slurmd's spool and the logs.
+# key, slurm.conf, the controller's state, slurmd's spool and the logs. The munge
+# socket lives in /tmp/ladrc-munge-<uid>-<checksum of the state dir>: munged wants
+# every directory above it open to all, which a checkout's path need not be.
 # Ports: LADRC_SLURM_PORT (controller, default 6817) and the next one (slurmd).
 # Run as root (SlurmUser=root, the jobs run as the submitting user).
 set -euo pipefail
@@ -22,11 +24,12 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 state=${LADRC_SLURM_STATE:-$root/build/slurm-local}
 port=${LADRC_SLURM_PORT:-6817}
 conf=$state/slurm.conf
-munge_socket=$state/munge/munge.socket
+munge_run=/tmp/ladrc-munge-$(id -u)-$(printf '%s' "$state" | cksum | cut -d' ' -f1)
+munge_socket=$munge_run/munge.socket
 # How long `start` waits for the node to come up (daemon start-up, not a test timeout).
 start_wait_s=${LADRC_SLURM_START_WAIT_S:-60}
 
-usage() { sed -n '3,18s/^# \{0,1\}//p' "$0"; }
+usage() { sed -n '3,20s/^# \{0,1\}//p' "$0"; }
 die() { echo "local_cluster.sh: error: $*" >&2; exit 1; }
 
 pid_alive() { [[ -s $1 ]] && kill -0 "$(cat "$1")" 2>/dev/null; }
@@ -105,6 +108,8 @@ start() {
   # munged refuses a socket dir that not everyone may enter ("Socket is inaccessible"),
   # and a key, log or socket dir that others may write.
   chmod 755 "$state/munge"
+  mkdir -p "$munge_run"
+  chmod 755 "$munge_run"
 
   if [[ ! -s $state/munge/munge.key ]]; then
     mungekey --create --keyfile="$state/munge/munge.key"
@@ -175,6 +180,7 @@ stop() {
   stop_pid slurmd "$state/run/slurmd.pid"
   stop_pid slurmctld "$state/run/slurmctld.pid"
   stop_pid munged "$state/run/munged.pid"
+  rmdir "$munge_run" 2>/dev/null || true # gone with munged's socket, unless another user's
 }
 
 status() {
