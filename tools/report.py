@@ -362,10 +362,11 @@ def incumbents_block(out_dir):
 
 
 def deg(v):
-    """A figure in deg for the real-airframes and headline tables: two decimals, three below 0.1."""
+    """A figure in deg for the real-airframes and headline tables: two decimals, three below 0.1,
+    two significant digits below 0.01 (HP-MLADRC's bands under a steady tone)."""
     if not is_number(v) or math.isnan(v):
         return num(v)
-    return "%.2f" % v if abs(v) >= 0.1 else "%.3f" % v
+    return "%.2f" % v if abs(v) >= 0.1 else "%.3f" % v if abs(v) >= 0.01 else "%.2g" % v
 
 
 def real_block(out_dir):
