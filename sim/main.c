@@ -17,7 +17,7 @@
 
 #define MAX_SCENARIOS SIM_FLY_MAX_SCENARIOS
 
-/* Exit statuses (usage(), README "The simulator"). */
+/* Exit statuses (usage(), docs/simulator.md). */
 enum { EXIT_RUN_FAILED = 1, EXIT_BAD_INPUT = 2, EXIT_DIVERGED = 3 };
 
 /* The command line's settings: --set items and --seed, in their order. */

@@ -24,8 +24,8 @@ typedef struct {
 #define SIM_TEXT_DIVERGED "diverged"       /* every statistic of a run that diverged */
 #define SIM_TEXT_NOT_SETTLED "not settled" /* a settling time when the error ends outside the band */
 
-/* The tokens of metrics.csv's value column in place of a number (README,
- * "The simulator"; tools/sim_output.py reads them). */
+/* The tokens of metrics.csv's value column in place of a number (docs/simulator.md;
+ * tools/sim_output.py reads them). */
 #define SIM_TOKEN_DIVERGED "diverged"       /* every statistic of a run that diverged */
 #define SIM_TOKEN_NOT_SETTLED "not_settled" /* settling_s when the error ends outside the band */
 #define SIM_TOKEN_NONE "-"                  /* diverged_at_s, diverged_error_deg of a healthy run */

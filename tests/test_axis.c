@@ -124,7 +124,7 @@ static void test_ladrc_rejects_a_constant_disturbance_to_zero_steady_error(void)
 
 /* |Y/D|(jw) = w |(jw)^2 + a jw + b| / ((w^2 + wc^2) (w^2 + wo^2)^1.5) with
  * a = 2 wc + 3 wo and b = wc^2 + 2 wc 3 wo + 3 wo^2 (derived from the
- * observer error transfer functions; see the README design notes). */
+ * observer error transfer functions; see docs/design.md). */
 static double disturbance_gain(double w)
 {
     const double wc = WC_RAD_S;

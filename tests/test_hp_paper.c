@@ -179,7 +179,7 @@ static void test_a_stopped_tone_is_dropped_within_half_a_second_below_ladrcs_err
     TEST_ASSERT_LESS_THAN_FLOAT((float)STOP_SETTLE_MAX_S, (float)known.stop_settle_s);
     TEST_ASSERT_LESS_THAN_FLOAT((float)ladrc.stop_max_deg, (float)known.stop_max_deg);
     /* HP's RMS over (12, 25] s carries the LADRC-like seconds after the jump
-     * and stays above LP's (README, "HP-MLADRC"); it must stay below LADRC's */
+     * and stays above LP's (docs/comparisons.md, "HP-MLADRC against its targets"); it must stay below LADRC's */
     TEST_ASSERT_LESS_THAN_FLOAT((float)ladrc.rms_deg, (float)hp.rms_deg);
 }
 

@@ -4,10 +4,10 @@
 # budget figure marked against its budget ("meets" / "over"). Three rooms:
 # tools/bench/measure.sh builds and runs everything and writes the data file
 # build/bench/figures.txt; tools/bench/render.py turns it into the tables
-# (and the README's); tools/bench/check.py holds it against the limits.
+# (and docs/performance.md's); tools/bench/check.py holds it against the limits.
 #
 # Usage: tools/bench.sh            print the tables
-#        tools/bench.sh --readme   also rewrite README.md's Performance tables
+#        tools/bench.sh --docs     also rewrite the tables of docs/performance.md
 #        tools/bench.sh --check    deterministic figures only, against the
 #                                  limits in tools/bench/limits.txt (CI: the
 #                                  bench stage of tools/run_tests.sh); exits 1
@@ -42,8 +42,8 @@ set -euo pipefail
 
 MODE=${1:-}
 case $MODE in
-  "" | --readme | --check) ;;
-  *) echo "usage: tools/bench.sh [--readme | --check]" >&2; exit 2 ;;
+  "" | --docs | --check) ;;
+  *) echo "usage: tools/bench.sh [--docs | --check]" >&2; exit 2 ;;
 esac
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -56,9 +56,9 @@ case $MODE in
     tools/bench/measure.sh --m4f "$FIGURES"
     exec "$PYTHON" tools/bench/check.py "$FIGURES" tools/bench/limits.txt
     ;;
-  --readme)
+  --docs)
     tools/bench/measure.sh --all "$FIGURES"
-    exec "$PYTHON" tools/bench/render.py "$FIGURES" --readme README.md
+    exec "$PYTHON" tools/bench/render.py "$FIGURES" --page docs/performance.md
     ;;
   *)
     tools/bench/measure.sh --all "$FIGURES"

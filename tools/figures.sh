@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # Flies the paper's scenarios (tools/paper.sh) and draws the figures and the report:
-# docs/figures/*.png and docs/report.md, and the README's incumbents and
-# real-airframes tables (between their <!-- ...:begin/end --> markers).
+# docs/figures/*.png and docs/report.md, the incumbents and real-airframes
+# tables of docs/comparisons.md and the headline table of README.md (each
+# between its <!-- ...:begin/end --> markers).
 #
 # Usage: tools/figures.sh [OUT_DIR]
 #   OUT_DIR  where the simulator's CSV output goes (default: build/paper-out)
@@ -30,4 +31,4 @@ tools/paper.sh --out "$out" --quiet | tee "$out/tables.txt"
 echo "== figures and report"
 rm -f docs/figures/fig*.png  # the figures drawn below (margins_*.png come from tools/margins_plot.py)
 "$py" tools/figures.py "$out" docs/figures
-"$py" tools/report.py "$out" docs/report.md --readme README.md
+"$py" tools/report.py "$out" docs/report.md --docs docs --front-page README.md

@@ -3,7 +3,11 @@
 """Writes a Markdown report that sets the simulator's Tables 3-7 beside the paper's.
 
 Usage: report.py OUT_DIR REPORT_MD [--paper NAME] [--noisy NAME] [--known NAME] [--noisy-known NAME]
-                 [--diff NAME]
+                 [--diff NAME] [--docs DIR] [--front-page MD]
+
+--docs DIR rewrites the incumbents and real-airframes blocks of DIR/comparisons.md,
+--front-page MD the headline block of MD (README.md), each between its
+<!-- NAME:begin --> and <!-- NAME:end --> markers.
 
 OUT_DIR holds one directory per scenario with its metrics.csv, as written by
 `ladrc_sil --out OUT_DIR`. If OUT_DIR/tables.txt holds ladrc_sil's printed tables, their
@@ -308,7 +312,7 @@ def section_real(rep, out_dir, headings):
                "RMS roll / pitch / yaw (deg)", "band roll / pitch / yaw (deg)", "diverged"], rows)
 
 
-# The README's answer to "against what people fly today": HP-MLADRC and LP-MLADRC against the
+# docs/comparisons.md's answer to "against what people fly today": HP-MLADRC and LP-MLADRC against the
 # better of the two incumbent baselines on each figure and axis.
 INCUMBENTS = ("CASCADED", "INDI")
 CHALLENGERS = ("HP-MLADRC", "LP-MLADRC")
@@ -358,10 +362,11 @@ def incumbents_block(out_dir):
 
 
 def deg(v):
-    """A figure in deg for the README's tables: two decimals, three below 0.1."""
+    """A figure in deg for the real-airframes and headline tables: two decimals, three below 0.1,
+    two significant digits below 0.01 (HP-MLADRC's bands under a steady tone)."""
     if not is_number(v) or math.isnan(v):
         return num(v)
-    return "%.2f" % v if abs(v) >= 0.1 else "%.3f" % v
+    return "%.2f" % v if abs(v) >= 0.1 else "%.3f" % v if abs(v) >= 0.01 else "%.2g" % v
 
 
 def real_block(out_dir):
@@ -385,7 +390,49 @@ def real_block(out_dir):
     return rep.lines
 
 
-def rewrite_readme(path, blocks):
+# The front page's headline: per airframe class, the best of the LADRC family against the best
+# incumbent on each axis, the figures of the real-airframes and incumbents tables.
+FAMILY = ("LADRC", "LP-MLADRC", "HP-MLADRC")
+HEADLINE_CLASSES = (("paper, ideal rotors", ("paper",)),
+                    ("paper, real motors", ("real_paper_lag20", "real_paper_lag30", "real_paper_lag40")),
+                    ("heavy, 1.96 kg", ("real_heavy_lag20", "real_heavy_lag30", "real_heavy_lag40")))
+
+
+def best_of(m, controllers, t, q, axis):
+    """(value, controller) of the smallest figure among the controllers that did not diverge."""
+    have = [(m.get((c, t, q, axis)), c) for c in controllers if divergence(m, c) is None]
+    have = [(v, c) for v, c in have if is_number(v) and not math.isnan(v)]
+    return min(have) if have else (None, None)
+
+
+def headline_block(out_dir):
+    """Markdown lines: per class, scenario and axis, the best LADRC-family and the best incumbent
+    RMS and band (deg, who); then every figure where the family's best is worse."""
+    rows, losses, n_figures = [], [], 0
+    for title, scenarios in HEADLINE_CLASSES:
+        for name in scenarios:
+            m = load_metrics(os.path.join(out_dir, name))
+            if m is None:
+                return None
+            for axis in AXES:
+                row = [title, "`%s.ini`" % name, axis]
+                for t, q, fig in FIGURES:
+                    ours, theirs = best_of(m, FAMILY, t, q, axis), best_of(m, INCUMBENTS, t, q, axis)
+                    for v, who in (ours, theirs):
+                        row.append("%s (%s)" % (deg(v), who) if who else "—")
+                    n_figures += 1
+                    if ours[0] is None or (theirs[0] is not None and ours[0] > theirs[0]):
+                        losses.append("`%s.ini` %s %s %s against %s" % (name, axis, fig, deg(ours[0]), deg(theirs[0])))
+                rows.append(row)
+    rep = Report()
+    rep.table(["airframe", "scenario", "axis", "RMS, LADRC family", "RMS, incumbent",
+               "band, LADRC family", "band, incumbent"], rows)
+    rep.add("The best of the LADRC family is worse than the best incumbent on %d of %d figures%s"
+            % (len(losses), n_figures, (": " + "; ".join(losses) + ".") if losses else "."))
+    return rep.lines
+
+
+def rewrite_blocks(path, blocks):
     """Replaces the text between <!-- NAME:begin --> and <!-- NAME:end --> for each block."""
     with open(path) as f:
         text = f.read()
@@ -411,7 +458,9 @@ def main(argv):
     p.add_argument("--known", default="paper_known")
     p.add_argument("--noisy-known", default="paper_noisy_known")
     p.add_argument("--diff", default="table3_differentiator")
-    p.add_argument("--readme", help="README whose incumbents and real-airframes blocks to rewrite")
+    p.add_argument("--docs", metavar="DIR",
+                   help="docs directory whose comparisons.md incumbents and real-airframes blocks to rewrite")
+    p.add_argument("--front-page", metavar="MD", help="front page (README.md) whose headline block to rewrite")
     a = p.parse_args(argv)
     headings = table_headings(os.path.join(a.out_dir, "tables.txt"))
     rep = Report()
@@ -484,12 +533,17 @@ def main(argv):
     for name in missing:
         rep.add("*No output of scenario `%s` was found; its tables are missing.*" % name, "")
         print("report.py: no metrics of scenario '%s' in %s" % (name, a.out_dir), file=sys.stderr)
-    if a.readme and (incumbents is None or real is None):
-        print("report.py: %s not rewritten: the incumbents or real-airframe outputs are missing" % a.readme,
-              file=sys.stderr)
-        missing.append("the README's blocks")
-    elif a.readme and rewrite_readme(a.readme, {"incumbents": incumbents, "real-airframes": real}) != 0:
-        missing.append("the README's blocks")
+    pages = []
+    if a.docs:
+        pages.append((os.path.join(a.docs, "comparisons.md"), {"incumbents": incumbents, "real-airframes": real}))
+    if a.front_page:
+        pages.append((a.front_page, {"headline": headline_block(a.out_dir)}))
+    for path, blocks in pages:
+        if any(lines is None for lines in blocks.values()):
+            print("report.py: %s not rewritten: the outputs of its scenarios are missing" % path, file=sys.stderr)
+            missing.append(path)
+        elif rewrite_blocks(path, blocks) != 0:
+            missing.append(path)
     os.makedirs(os.path.dirname(os.path.abspath(a.report_md)), exist_ok=True)
     with open(a.report_md, "w") as f:
         f.write("\n".join(rep.lines).rstrip() + "\n")

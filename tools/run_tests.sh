@@ -32,6 +32,10 @@
 #                linked into a small program; no-heap check of each archive
 #   fuzz         tools/fuzz.sh: the libFuzzer targets of the scenario parser
 #                and the expression compiler (clang, ASan + UBSan), 60 s each
+#   links        the checker's own test (tools/check_links_test.py), then
+#                tools/check_links.py: every relative link, image and #anchor
+#                of README.md and docs/**/*.md resolves, the README's firmware
+#                example equals examples/firmware_roll.c's marked lines
 #   campaigns    a campaign flown three ways (tools/campaign_engines.sh): one
 #                process, GNU parallel with 4 shards, a Slurm array of 4 tasks
 #                on a local single-node cluster; the merged tables must be
@@ -43,7 +47,7 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 STAGES=(host-debug host-double coverage asan-ubsan cortex-m4f no-heap cppcheck bench
-        host-release asserts fast-math consumers cxx cross fuzz campaigns)
+        host-release asserts fast-math consumers cxx cross fuzz links campaigns)
 
 # What each stage needs: "stage check package". A check is a command name,
 # "py:<module>" for a Python module, "newlib" for the Arm C library, or
@@ -91,6 +95,8 @@ REQUIREMENTS=(
   "cross picolibc-rv32 picolibc-riscv64-unknown-elf"
   "fuzz clang clang"
   "fuzz libfuzzer libclang-rt-14-dev"
+  "links python3 python3"
+  "links git git"
   "campaigns parallel parallel"
   "campaigns slurmctld slurm-wlm"
   "campaigns slurmd slurm-wlm"
@@ -102,7 +108,7 @@ REQUIREMENTS=(
 
 JOBS=2
 
-usage() { sed -n '3,41s/^# \{0,1\}//p' "$0"; }
+usage() { sed -n '3,45s/^# \{0,1\}//p' "$0"; }
 
 have() {
   case $1 in
@@ -241,6 +247,14 @@ stage_cross() {
 
 # libFuzzer targets, CI form (tools/fuzz.sh --long for the long one).
 stage_fuzz() { tools/fuzz.sh; }
+
+# The checker's own test, then the Markdown's links, anchors and the README's snippet.
+stage_links() {
+  local py=python3
+  [[ -x /usr/bin/python3 ]] && py=/usr/bin/python3
+  "$py" tools/check_links_test.py
+  "$py" tools/check_links.py
+}
 
 # The campaign of the CI, flown three ways: the 1,000-run Monte Carlo (about 45 s per way
 # in one process or GNU parallel on 2 cores, 75 s through Slurm; under 3 min in all).

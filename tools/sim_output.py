@@ -8,7 +8,7 @@ import os
 CONTROLLERS = ["HP-MLADRC", "LP-MLADRC", "LADRC", "PID", "CASCADED", "INDI"]
 AXES = ["roll", "pitch", "yaw"]
 
-# The words metrics.csv's value column holds in place of a number (README, "The simulator").
+# The words metrics.csv's value column holds in place of a number (docs/simulator.md).
 DIVERGED = "diverged"        # every statistic of a run that diverged
 NOT_SETTLED = "not_settled"  # a settling time when the error ends outside the band
 NONE = "-"                   # diverged_at_s and diverged_error_deg of a run that did not diverge

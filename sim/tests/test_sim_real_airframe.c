@@ -24,8 +24,8 @@
  * acceptance criterion, not a measured figure. LP-MLADRC meets it (0.12 to
  * 0.16 measured). */
 #define MODIFIED_RMS_RATIO_MAX 0.3
-/* HP-MLADRC misses it (0.39 to 0.42 measured at 30 ms and 2 ticks; README
- * "Real airframes"): after the tone changes at 12 s it spends about 2 s
+/* HP-MLADRC misses it (0.39 to 0.42 measured at 30 ms and 2 ticks;
+ * docs/comparisons.md, "Real airframes"): after the tone changes at 12 s it spends about 2 s
  * verifying the new tone as plain LADRC before it cancels it (its error after
  * locking is 0.06 deg RMS). This bound only guards what it reaches: the
  * measured worst axis plus 7 %, about the spread between tunings of the

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # The measuring part of tools/bench.sh: builds the benchmarks, runs them and
 # writes what they report, unprocessed, into one data file that
-# tools/bench/render.py (Markdown tables, README) and tools/bench/check.py
+# tools/bench/render.py (Markdown tables, docs/performance.md) and tools/bench/check.py
 # (limits) read. Nothing here judges a figure.
 #
 # Usage: tools/bench/measure.sh --m4f FILE   the Cortex-M4F part only (what

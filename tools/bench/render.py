@@ -5,9 +5,10 @@
 ("meets" / "over"), then where the instructions of the HP-MLADRC tick go.
 
 Usage: render.py FIGURES              print the tables
-       render.py FIGURES --readme MD  also put them between MD's
+       render.py FIGURES --page MD    also put them between MD's
                                       <!-- performance:start --> and
                                       <!-- performance:end --> markers
+                                      (tools/bench.sh --docs: docs/performance.md)
 """
 import sys
 
@@ -250,8 +251,8 @@ def render(fig):
 
 def main() -> int:
     args = sys.argv[1:]
-    if len(args) not in (1, 3) or (len(args) == 3 and args[1] != "--readme"):
-        print("usage: render.py FIGURES [--readme MARKDOWN]", file=sys.stderr)
+    if len(args) not in (1, 3) or (len(args) == 3 and args[1] != "--page"):
+        print("usage: render.py FIGURES [--page MARKDOWN]", file=sys.stderr)
         return 2
     table = render(Figures(args[0]))
     print(table)
