@@ -14,7 +14,7 @@ import subprocess
 
 from setuptools import setup
 from setuptools.command.build_py import build_py
-from setuptools.dist import Distribution
+from wheel.bdist_wheel import bdist_wheel
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
@@ -48,7 +48,8 @@ class BuildWithLibrary(build_py):
         if not cmake:
             raise RuntimeError("cmake not found: it builds the ladrc shared library (Debian: apt-get install cmake)")
         tree = os.path.join(self.get_finalized_command("build").build_temp, "cmake")
-        configure = [cmake, "-S", REPO, "-B", tree, "-DCMAKE_BUILD_TYPE=Release", "-DBUILD_SHARED_LIBS=ON",
+        # --fresh: options of an earlier LADRC_CMAKE_ARGS do not linger in the cache.
+        configure = [cmake, "--fresh", "-S", REPO, "-B", tree, "-DCMAKE_BUILD_TYPE=Release", "-DBUILD_SHARED_LIBS=ON",
                      "-DLADRC_BUILD_TESTS=OFF", "-DLADRC_INSTALL=OFF"]
         subprocess.run(configure + shlex.split(os.environ.get("LADRC_CMAKE_ARGS", "")), check=True)
         subprocess.run([cmake, "--build", tree, "--target", "ladrc"], check=True)
@@ -63,12 +64,17 @@ class BuildWithLibrary(build_py):
                     f'__version__ = "{VERSION}"\n')
 
 
-class BinaryDistribution(Distribution):
-    """The wheel carries a native library: platform-specific, not pure."""
+class PlatformWheel(bdist_wheel):
+    """The wheel carries a native library, loaded through ctypes: for this
+    platform, any Python 3 (no extension module, so no CPython ABI tag)."""
 
-    def has_ext_modules(self):
-        return True
+    def finalize_options(self):
+        super().finalize_options()
+        self.root_is_pure = False
+
+    def get_tag(self):
+        return ("py3", "none", super().get_tag()[2])
 
 
-setup(version=VERSION, packages=["ladrc"], cmdclass={"build_py": BuildWithLibrary},
-      distclass=BinaryDistribution)
+setup(version=VERSION, packages=["ladrc"],
+      cmdclass={"build_py": BuildWithLibrary, "bdist_wheel": PlatformWheel})

@@ -222,7 +222,10 @@ stage_python-package() {
   mkdir -p "$out/run"
   untracked=$(git ls-files --others --exclude-standard)
   /usr/bin/python3 -m venv --system-site-packages "$venv"
-  "$venv/bin/pip" install --no-index --no-build-isolation ./python
+  # Without this machine's pip settings (PIP_* variables, config files): no extra wheel sources.
+  local pip_env=(env) var
+  for var in $(compgen -e | grep '^PIP_' || true); do pip_env+=(-u "$var"); done
+  "${pip_env[@]}" PIP_CONFIG_FILE=/dev/null "$venv/bin/pip" install --no-index --no-build-isolation ./python
   if [[ $(git ls-files --others --exclude-standard) != "$untracked" ]]; then
     echo "error: the install left files in the source tree that .gitignore does not cover:" >&2
     diff <(echo "$untracked") <(git ls-files --others --exclude-standard) >&2 || true
