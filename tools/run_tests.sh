@@ -86,7 +86,6 @@ REQUIREMENTS=(
   "host-release py:matplotlib python3-matplotlib"
   "host-release py:numpy python3-numpy"
   "python-package py:ensurepip python3-venv"
-  "python-package py:setuptools python3-setuptools"
   "python-package py:wheel python3-wheel"
   "python-package py:numpy python3-numpy"
   "python-package py:matplotlib python3-matplotlib"
@@ -228,15 +227,15 @@ stage_python-package() {
   "${pip_env[@]}" PIP_CONFIG_FILE=/dev/null "$venv/bin/pip" install --no-index --no-build-isolation ./python
   if [[ $(git ls-files --others --exclude-standard) != "$untracked" ]]; then
     echo "error: the install left files in the source tree that .gitignore does not cover:" >&2
-    diff <(echo "$untracked") <(git ls-files --others --exclude-standard) >&2 || true
+    comm -13 <(echo "$untracked") <(git ls-files --others --exclude-standard) | head -20 >&2
     return 1
   fi
   # Outside the checkout, without PYTHONPATH or LADRC_LIBRARY: only the installed copy can import.
-  local py=(env -u PYTHONPATH -u LADRC_LIBRARY "$venv/bin/python") src=$PWD
+  local ipy=(env -u PYTHONPATH -u LADRC_LIBRARY "$venv/bin/python") src=$PWD
   (
     cd "$out/run"
-    "${py[@]}" -c "import ladrc; print(ladrc.__version__)"
-    "${py[@]}" - "$version" <<'PY'
+    "${ipy[@]}" -c "import ladrc; print(ladrc.__version__)"
+    "${ipy[@]}" - "$version" <<'PY'
 import importlib.metadata
 import os
 import sys
@@ -255,13 +254,14 @@ if not ladrc.__version__ == meta == sys.argv[1]:
              f"CMake {sys.argv[1]}")
 print(f"-- installed ladrc {meta} in {package}, library {library}")
 PY
-    "${py[@]}" "$src/tests/python/test_binding.py" "$trace" "$out/binding_trace.txt"
-    "${py[@]}" "$src/python/examples/step_response.py" "$out/step_response.png"
+    "${ipy[@]}" "$src/tests/python/test_binding.py" "$trace" "$out/binding_trace.txt"
+    "${ipy[@]}" "$src/python/examples/step_response.py" "$out/step_response.png"
     check_png "$out/step_response.png" 30000
     # The README's usage snippet, as written there.
+    # shellcheck disable=SC2016 # (the backquotes are Markdown, not shell)
     sed -n '/^```python$/,/^```$/{/^```/d;p}' "$src/python/README.md" > "$out/readme_snippet.py"
     [[ -s $out/readme_snippet.py ]] || { echo "error: no python block in python/README.md" >&2; exit 1; }
-    "${py[@]}" "$out/readme_snippet.py"
+    "${ipy[@]}" "$out/readme_snippet.py"
   )
 }
 
