@@ -19,6 +19,13 @@
 #   host-release the suite in Release (-O3), Python binding included, with the
 #                tests labelled slow (margins against the simulator, tuning,
 #                the real-airframe acceptance runs)
+#   python-package
+#                the binding as a pip package: a fresh venv in
+#                build/python-package, pip install --no-index
+#                --no-build-isolation ./python (CMake builds the shared library
+#                into the package), then the binding's test, the example and
+#                python/README.md's snippet against the installed copy, and
+#                its version against the CMake project's
 #   asserts      the suite with LADRC_ASSERT = assert() (LADRC_CONFIG hook)
 #   fast-math    library and non-finite-input tests built with -ffast-math,
 #                then test_nonfinite with -ffinite-math-only alone
@@ -47,7 +54,7 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 STAGES=(host-debug host-double coverage asan-ubsan cortex-m4f no-heap cppcheck bench
-        host-release asserts fast-math consumers cxx cross fuzz links campaigns)
+        host-release python-package asserts fast-math consumers cxx cross fuzz links campaigns)
 
 # What each stage needs: "stage check package". A check is a command name,
 # "py:<module>" for a Python module, "newlib" for the Arm C library, or
@@ -82,6 +89,11 @@ REQUIREMENTS=(
   "asan-ubsan py:numpy python3-numpy"
   "host-release py:matplotlib python3-matplotlib"
   "host-release py:numpy python3-numpy"
+  "python-package py:ensurepip python3-venv"
+  "python-package py:wheel python3-wheel"
+  "python-package py:numpy python3-numpy"
+  "python-package py:matplotlib python3-matplotlib"
+  "python-package git git"
   "asserts py:matplotlib python3-matplotlib"
   "asserts py:numpy python3-numpy"
   "consumers pkg-config pkg-config"
@@ -108,7 +120,8 @@ REQUIREMENTS=(
 
 JOBS=2
 
-usage() { sed -n '3,45s/^# \{0,1\}//p' "$0"; }
+# The header comment, from its third line to its end.
+usage() { awk 'NR < 3 { next } !/^#/ { exit } { sub(/^# ?/, ""); print }' "$0"; }
 
 have() {
   case $1 in
@@ -201,6 +214,64 @@ stage_cppcheck() {
 stage_bench() { tools/bench.sh --check; }
 
 stage_host-release() { workflow host-release; }
+# Offline: pip may use no index; setuptools, wheel and NumPy are Debian's.
+stage_python-package() {
+  local out=$PWD/build/python-package untracked version
+  local venv=$out/venv trace=$PWD/build/host-release/python/ladrc_binding_trace
+  # The bit-for-bit test's trace program, and the version as CMake wrote it.
+  [[ -f build/host-release/CMakeCache.txt ]] || cmake --preset host-release
+  cmake --build --preset host-release --target ladrc_binding_trace
+  version=$(sed -n 's/^#define LADRC_VERSION_STRING "\(.*\)"$/\1/p' build/host-release/include/ladrc/version.h)
+  [[ -n $version ]] || { echo "error: no LADRC_VERSION_STRING in the host-release version.h" >&2; return 1; }
+  # From scratch: no venv, no earlier setuptools build tree.
+  rm -rf "$out" python/build python/*.egg-info
+  mkdir -p "$out/run"
+  untracked=$(git ls-files --others --exclude-standard)
+  /usr/bin/python3 -m venv --system-site-packages "$venv"
+  # Without this machine's pip settings (PIP_* variables, config files): no extra wheel sources.
+  local pip_env=(env) var
+  for var in $(compgen -e | grep '^PIP_' || true); do pip_env+=(-u "$var"); done
+  "${pip_env[@]}" PIP_CONFIG_FILE=/dev/null "$venv/bin/pip" install --no-index --no-build-isolation ./python
+  if [[ $(git ls-files --others --exclude-standard) != "$untracked" ]]; then
+    echo "error: the install left files in the source tree that .gitignore does not cover:" >&2
+    comm -13 <(echo "$untracked") <(git ls-files --others --exclude-standard) | head -20 >&2
+    return 1
+  fi
+  # Outside the checkout, without PYTHONPATH or LADRC_LIBRARY: only the installed copy can import.
+  local ipy=(env -u PYTHONPATH -u LADRC_LIBRARY "$venv/bin/python") src=$PWD
+  (
+    cd "$out/run"
+    "${ipy[@]}" -c "import ladrc; print(ladrc.__version__)"
+    "${ipy[@]}" - "$version" <<'PY'
+import importlib.metadata
+import os
+import sys
+
+import ladrc
+
+package = os.path.dirname(os.path.abspath(ladrc.__file__))
+if not package.startswith(os.path.abspath(sys.prefix) + os.sep):
+    sys.exit(f"error: ladrc imported from {package}, not from the venv {sys.prefix}")
+library = os.path.abspath(ladrc.library().path)
+if os.path.dirname(library) != package:
+    sys.exit(f"error: the library loaded is {library}, not the one in the package {package}")
+meta = importlib.metadata.version("ladrc")
+if not ladrc.__version__ == meta == sys.argv[1]:
+    sys.exit(f"error: versions differ: ladrc.__version__ {ladrc.__version__}, metadata {meta}, "
+             f"CMake {sys.argv[1]}")
+print(f"-- installed ladrc {meta} in {package}, library {library}")
+PY
+    "${ipy[@]}" "$src/tests/python/test_binding.py" "$trace" "$out/binding_trace.txt"
+    "${ipy[@]}" "$src/python/examples/step_response.py" "$out/step_response.png"
+    check_png "$out/step_response.png" 30000
+    # The README's usage snippet, as written there.
+    # shellcheck disable=SC2016 # (the backquotes are Markdown, not shell)
+    sed -n '/^```python$/,/^```$/{/^```/d;p}' "$src/python/README.md" > "$out/readme_snippet.py"
+    [[ -s $out/readme_snippet.py ]] || { echo "error: no python block in python/README.md" >&2; exit 1; }
+    "${ipy[@]}" "$out/readme_snippet.py"
+  )
+}
+
 stage_asserts() { workflow host-asserts; }
 stage_fast-math() {
   workflow host-fastmath

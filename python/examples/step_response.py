@@ -5,14 +5,13 @@ step at 0.2 s, then a 4 rad/s^2 disturbance with a 3 rad/s tone of 3 rad/s^2 fro
 for LADRC, HP-MLADRC and PID, motors limited to 0.05 N m. Writes a PNG (first argument, default
 step_response.png).
 
-Run with the shared library built (-DBUILD_SHARED_LIBS=ON):
+Run with the package installed (python/README.md), or from the checkout with
+the shared library built (-DBUILD_SHARED_LIBS=ON):
     LADRC_LIBRARY=build/libladrc.so PYTHONPATH=python python3 python/examples/step_response.py
 """
 import math
-import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 try:
     import numpy as np
     import matplotlib

@@ -8,8 +8,9 @@
     axis.set_applied(u)
 
 The library is found through the LADRC_LIBRARY environment variable (path of
-libladrc.so), else next to this package, else on the system's library path;
-ladrc.load(path) picks one explicitly. A library built with LADRC_REAL_DOUBLE
+libladrc.so), else next to this package (where pip install puts the one it
+builds), else on the system's library path; ladrc.load(path) picks one
+explicitly. A library built with LADRC_REAL_DOUBLE
 works too: the real type is asked from the library.
 
 Configs are dicts: the keys are the C config's field names (ladrc/axis.h,
@@ -25,7 +26,15 @@ import os
 
 import numpy as np
 
-__all__ = ["Axis", "Attitude", "Mixer", "MixerOutput", "LadrcError", "LadrcLayoutError",
+try:
+    from ._version import __version__  # written by setup.py into the installed package
+except ImportError:  # a source checkout on PYTHONPATH: the CMake project's version
+    from . import _project_version
+
+    __version__ = _project_version.read(
+        os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "CMakeLists.txt"))
+
+__all__ = ["__version__", "Axis", "Attitude", "Mixer", "MixerOutput", "LadrcError", "LadrcLayoutError",
            "load", "library", "status_str", "FAULT_INPUT", "FAULT_RATE", "FAULT_APPLIED",
            "FAULT_STATE"]
 

@@ -3,7 +3,8 @@
 """The Python binding against the C library, bit for bit.
 
 Usage: test_binding.py TRACE_PROGRAM TRACE_FILE
-(LADRC_LIBRARY names the shared library, PYTHONPATH holds python/.)
+(LADRC_LIBRARY names the shared library and PYTHONPATH holds python/, or the
+package is installed: tools/run_tests.sh python-package.)
 
 Runs TRACE_PROGRAM (tests/python/binding_trace.c), which flies closed loops
 with the library and writes each tick's inputs and outputs as the bits of the
