@@ -36,6 +36,9 @@
 #                process, GNU parallel with 4 shards, a Slurm array of 4 tasks
 #                on a local single-node cluster; the merged tables must be
 #                byte-identical; then tools/campaign.py plot draws its figures
+#   apidocs      the Doxygen API reference (target docs) with warnings as
+#                errors, then tools/check_apidocs.sh: the check must fail on
+#                a missing doc comment, @param or @ref
 #
 # Missing tools are installed with apt-get (as root, or through sudo).
 set -euo pipefail
@@ -43,7 +46,7 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 STAGES=(host-debug host-double coverage asan-ubsan cortex-m4f no-heap cppcheck bench
-        host-release asserts fast-math consumers cxx cross fuzz campaigns)
+        host-release asserts fast-math consumers cxx cross fuzz campaigns apidocs)
 
 # What each stage needs: "stage check package". A check is a command name,
 # "py:<module>" for a Python module, "newlib" for the Arm C library, or
@@ -98,11 +101,13 @@ REQUIREMENTS=(
   "campaigns munged munge"
   "campaigns py:matplotlib python3-matplotlib"
   "campaigns py:numpy python3-numpy"
+  "apidocs doxygen doxygen"
+  "apidocs perl perl"
 )
 
 JOBS=2
 
-usage() { sed -n '3,41s/^# \{0,1\}//p' "$0"; }
+usage() { sed -n '3,44s/^# \{0,1\}//p' "$0"; }
 
 have() {
   case $1 in
@@ -283,6 +288,16 @@ stage_campaigns() {
     n=$((n + 1))
   done
   [[ $n -eq 2 ]] || { echo "error: expected a map and a box plot in $dir/figures, found $n files" >&2; return 1; }
+}
+
+# The reference of the host-debug configuration (no compile needed: the
+# docs target reads the headers and the generated version.h).
+stage_apidocs() {
+  # Configured again: a tree configured before Doxygen was installed has no docs target.
+  cmake --preset host-debug >/dev/null
+  cmake --build --preset host-debug --target docs
+  echo "apidocs: reference in build/host-debug/docs/html, no Doxygen warning"
+  tools/check_apidocs.sh build/host-debug
 }
 
 case ${1:-} in
