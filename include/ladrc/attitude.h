@@ -100,7 +100,7 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
 void ladrc_attitude_reset(ladrc_attitude_t *att, const ladrc_real_t angle_rad[LADRC_AXES]);
 
 /**
- * One tick of the three axes: the coupling feed, then each axis's step
+ * One tick of the three axes: the coupling feed (when on), then each axis's step
  * (non-finite inputs as ladrc_axis_step).
  * @param att         the controller
  * @param ref_rad     references (rad)

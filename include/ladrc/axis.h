@@ -307,7 +307,7 @@ typedef struct {
  * filter at the observer's bandwidth, w_f = wo = 75 rad/s (the observer's
  * noise budget; F d then follows d with the lag 2 / w_f = 27 ms).
  * @param cfg            out: the config; NULL: nothing happens
- * @param variant        the variant (any value: its fields are filled when it is one)
+ * @param variant        the variant, copied (every field is filled whatever it is)
  * @param dt_s           control step (s), copied unchecked (init checks it)
  * @param inertia_kg_m2  the axis's inertia J (kg m^2), copied unchecked into b0 = 1 / J
  */
