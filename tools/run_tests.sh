@@ -39,6 +39,9 @@
 #                linked into a small program; no-heap check of each archive
 #   fuzz         tools/fuzz.sh: the libFuzzer targets of the scenario parser
 #                and the expression compiler (clang, ASan + UBSan), 60 s each
+#   apidocs      the Doxygen API reference (target docs) with warnings as
+#                errors, then tools/check_apidocs.sh: the check must fail on
+#                a missing doc comment, @param or @ref
 #   links        the checker's own test (tools/check_links_test.py), then
 #                tools/check_links.py: every relative link, image and #anchor
 #                of README.md and docs/**/*.md resolves, the README's firmware
@@ -54,7 +57,7 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 STAGES=(host-debug host-double coverage asan-ubsan cortex-m4f no-heap cppcheck bench
-        host-release python-package asserts fast-math consumers cxx cross fuzz links campaigns)
+        host-release python-package asserts fast-math consumers cxx cross fuzz apidocs links campaigns)
 
 # What each stage needs: "stage check package". A check is a command name,
 # "py:<module>" for a Python module, "newlib" for the Arm C library, or
@@ -116,6 +119,8 @@ REQUIREMENTS=(
   "campaigns munged munge"
   "campaigns py:matplotlib python3-matplotlib"
   "campaigns py:numpy python3-numpy"
+  "apidocs doxygen doxygen"
+  "apidocs perl perl"
 )
 
 JOBS=2
@@ -368,6 +373,16 @@ stage_campaigns() {
     n=$((n + 1))
   done
   [[ $n -eq 2 ]] || { echo "error: expected a map and a box plot in $dir/figures, found $n files" >&2; return 1; }
+}
+
+# The reference of the host-debug configuration (no compile needed: the
+# docs target reads the headers and the generated version.h).
+stage_apidocs() {
+  # Configured again: a tree configured before Doxygen was installed has no docs target.
+  cmake --preset host-debug >/dev/null
+  cmake --build --preset host-debug --target docs
+  echo "apidocs: reference in build/host-debug/docs/html, no Doxygen warning"
+  tools/check_apidocs.sh build/host-debug
 }
 
 case ${1:-} in

@@ -36,55 +36,88 @@
 extern "C" {
 #endif
 
-enum { LADRC_ROLL = 0, LADRC_PITCH = 1, LADRC_YAW = 2, LADRC_AXES = 3 };
+/** Indices of the axes in the attitude layer's arrays. */
+enum {
+    LADRC_ROLL = 0,  /**< roll, phi about body X */
+    LADRC_PITCH = 1, /**< pitch, theta about body Y */
+    LADRC_YAW = 2,   /**< yaw, psi about body Z */
+    LADRC_AXES = 3   /**< number of axes (not an axis) */
+};
 
+/** Attitude configuration (ladrc_attitude_init validates it); can live in flash. */
 typedef struct {
     ladrc_axis_config_t axis[LADRC_AXES];   /**< roll, pitch, yaw; equal dt_s */
-    ladrc_real_t inertia_kg_m2[LADRC_AXES]; /**< Jx, Jy, Jz the feed assumes, > 0 */
+    ladrc_real_t inertia_kg_m2[LADRC_AXES]; /**< Jx, Jy, Jz the feed assumes (kg m^2), > 0, a rigid body's */
     ladrc_real_t drag_Nms;                  /**< rotational drag kt (N m s), >= 0 */
     uint8_t coupling_feed;                  /**< 1: feed h to the observers, 0: off */
 } ladrc_attitude_config_t;
 
+/** Attitude state; owned by the caller. */
 typedef struct {
     ladrc_real_t coupling[LADRC_AXES];    /**< (Jy-Jz)/Jx, (Jz-Jx)/Jy, (Jx-Jy)/Jz */
     ladrc_real_t drag_per_s[LADRC_AXES];  /**< kt / J per axis (1/s) */
-    ladrc_real_t feed_rad_s3[LADRC_AXES]; /**< h fed at the latest tick */
-    uint8_t coupling_feed;
-    ladrc_axis_t axis[LADRC_AXES];
+    ladrc_real_t feed_rad_s3[LADRC_AXES]; /**< h fed at the latest tick (rad/s^3) */
+    uint8_t coupling_feed;                /**< of the config */
+    ladrc_axis_t axis[LADRC_AXES];        /**< roll, pitch, yaw */
 } ladrc_attitude_t;
 
 /**
  * Fills cfg with ladrc_axis_config_default for each axis (inertia from
  * inertia_kg_m2), the given drag and the feed on, wrap_angle on for yaw
- * (off for roll and pitch).
+ * (off for roll and pitch). Copies without checking (init checks).
+ * @param cfg            out: the config; cfg or inertia_kg_m2 NULL: nothing happens
+ * @param variant        the variant of every axis
+ * @param dt_s           control step (s)
+ * @param inertia_kg_m2  Jx, Jy, Jz (kg m^2)
+ * @param drag_Nms       rotational drag kt (N m s)
  */
 void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t variant, ladrc_real_t dt_s,
                                    const ladrc_real_t inertia_kg_m2[LADRC_AXES], ladrc_real_t drag_Nms);
 
 /**
- * Validates the vehicle fields (LADRC_ERR_INERTIA_KG_M2, LADRC_ERR_DRAG_NMS,
- * LADRC_ERR_COUPLING_FEED, LADRC_ERR_DT_S when the axes' steps differ) and
- * each axis in turn; failed_axis (may be NULL) receives the index of the axis
- * whose config was rejected, or -1.
+ * Validates the vehicle fields in the order below, then each axis in turn
+ * (ladrc_axis_init, whose statuses pass through).
+ * @param[out] att          the controller to set up
+ * @param[in]  cfg          its configuration
+ * @param[out] failed_axis  the index of the axis whose config was rejected,
+ *                          else -1 (also for a vehicle field); may be NULL
+ * @retval LADRC_OK                   set up
+ * @retval LADRC_ERR_NULL             att or cfg is NULL
+ * @retval LADRC_ERR_INERTIA_KG_M2    an inertia not finite or not > 0
+ * @retval LADRC_ERR_INERTIA_TRIANGLE an inertia above the sum of the other two
+ * @retval LADRC_ERR_DRAG_NMS         drag_Nms not finite, < 0, or drag_Nms / J * dt_s > 2
+ * @retval LADRC_ERR_COUPLING_FEED    coupling_feed not 0 or 1
+ * @retval LADRC_ERR_DT_S             an axis's dt_s differs from roll's (or, from
+ *                                    ladrc_axis_init, is invalid)
+ * @return any other status of ladrc_axis_init, for axis *failed_axis
  */
 ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_config_t *cfg, int *failed_axis);
 
-/** Restarts every axis at rest on the given angles (rad). */
+/** Restarts every axis at rest on the given angles and clears the feed.
+ *  @param att        the controller; att or angle_rad NULL: nothing happens
+ *  @param angle_rad  roll, pitch, yaw to rest on (rad); non-finite or beyond
+ *                    an axis's angle_limit_rad: 0 */
 void ladrc_attitude_reset(ladrc_attitude_t *att, const ladrc_real_t angle_rad[LADRC_AXES]);
 
 /**
- * One tick of the three axes.
+ * One tick of the three axes: the coupling feed (when on), then each axis's step
+ * (non-finite inputs as ladrc_axis_step).
+ * @param att         the controller
  * @param ref_rad     references (rad)
  * @param angle_rad   measured angles (rad)
  * @param rate_rad_s  measured body rates (rad/s), or NULL
  * @param torque_Nm   out: torque commands (N m)
- * @return the union of the axes' fault flags
+ * @return the union of the axes' fault flags; att, ref_rad, angle_rad or
+ *         torque_Nm NULL: LADRC_FAULT_STATE, nothing changes
  */
 ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
                                   const ladrc_real_t angle_rad[LADRC_AXES], const ladrc_real_t *rate_rad_s,
                                   ladrc_real_t torque_Nm[LADRC_AXES]);
 
-/** Reports the torques the mixer achieved (N m) to each axis. */
+/** Reports the torques the mixer achieved to each axis (ladrc_axis_set_applied).
+ *  @param att        the controller; att or torque_Nm NULL: nothing happens
+ *  @param torque_Nm  roll, pitch, yaw torque (N m); non-finite or beyond an
+ *                    axis's applied_limit_Nm: ignored, LADRC_FAULT_APPLIED */
 void ladrc_attitude_set_applied(ladrc_attitude_t *att, const ladrc_real_t torque_Nm[LADRC_AXES]);
 
 #ifdef __cplusplus

@@ -107,6 +107,7 @@ extern "C" {
 
 /* LADRC_WITH_<NAME>, the variants and shapers built: types.h (the ABI guard reads them). */
 
+/** The controller behind an axis. */
 typedef enum {
     LADRC_VARIANT_LADRC = 0,     /**< traditional LADRC: TD + LESO + control law */
     LADRC_VARIANT_LP_MLADRC = 1, /**< LADRC + LP estimator (needs the measured rate) */
@@ -114,19 +115,22 @@ typedef enum {
     LADRC_VARIANT_PID = 3,       /**< PID baseline (pid.h) */
     LADRC_VARIANT_CASCADED = 4,  /**< attitude P -> rate PID, as PX4 / ArduPilot / Betaflight (cascaded.h) */
     LADRC_VARIANT_INDI = 5,      /**< INDI baseline (indi.h; needs the measured rate) */
-    LADRC_VARIANT_COUNT = 6
+    LADRC_VARIANT_COUNT = 6      /**< number of variants (not a variant) */
 } ladrc_variant_t;
 
 /** 1 for the variants with an extended state observer (LADRC, LP-MLADRC,
  *  HP-MLADRC, numbered 0..2): the LESO, the coupling feed and the observer
  *  getters' LESO readings apply to them only (INDI reads the actuator model
  *  but has no LESO). One comparison (it sits on every
- *  tick's path), for a variant that init accepted. */
+ *  tick's path), for a variant that init accepted.
+ *  @param v  the variant
+ *  @return 1 with an observer, 0 without */
 static inline int ladrc_variant_has_observer(ladrc_variant_t v)
 {
     return (v <= LADRC_VARIANT_HP_MLADRC) ? 1 : 0; /* v >= 0: a variant init accepted */
 }
 
+/** How an axis shapes its raw reference into (r, r', r''). */
 typedef enum {
     LADRC_SHAPER_TD = 0,    /**< Han's tracking differentiator gives r, r', r'' */
     LADRC_SHAPER_NONE = 1,  /**< raw reference, r' = r'' = 0 */
@@ -141,10 +145,10 @@ typedef enum {
  * the shaper's fields, the actuator model and indi_*.
  */
 typedef struct {
-    ladrc_variant_t variant;
-    ladrc_real_t dt_s;     /**< fixed control step (s), > 0 */
-    ladrc_real_t u_min_Nm; /**< torque command lower bound (N m), < 0, may be -INFINITY */
-    ladrc_real_t u_max_Nm; /**< torque command upper bound (N m), > 0; the command also
+    ladrc_variant_t variant; /**< the controller */
+    ladrc_real_t dt_s;       /**< fixed control step (s), in [LADRC_DT_MIN_S, LADRC_DT_MAX_S] */
+    ladrc_real_t u_min_Nm;   /**< torque command lower bound (N m), < 0, may be -INFINITY */
+    ladrc_real_t u_max_Nm;   /**< torque command upper bound (N m), > 0; the command also
                                        stays within +-applied_limit_Nm */
     /* Plausible ranges (finite; angle and rate >= 1e-3, applied > 0): a sample
      * beyond is a bad input, held and flagged like a NaN. The defaults are far
@@ -153,12 +157,12 @@ typedef struct {
     ladrc_real_t rate_limit_rad_s; /**< |measured rate| (rad/s); default 100 */
     ladrc_real_t applied_limit_Nm; /**< |applied torque| (N m); default 1e4 rad/s^2 times the inertia */
     /* LADRC */
-    ladrc_real_t wc_rad_s; /**< controller bandwidth (rad/s), > 0; closed loop (s + wc)^2 */
-    ladrc_real_t wo_rad_s; /**< observer bandwidth (rad/s), > 0 */
-    ladrc_real_t b0;       /**< rad/s^2 per N m (1/J), |b0| in [1e-3, 1e7] (J from 1e-7 to
+    ladrc_real_t wc_rad_s;                /**< controller bandwidth (rad/s), > 0; closed loop (s + wc)^2 */
+    ladrc_real_t wo_rad_s;                /**< observer bandwidth (rad/s), > 0 */
+    ladrc_real_t b0;                      /**< rad/s^2 per N m (1/J), |b0| in [1e-3, 1e7] (J from 1e-7 to
                                        1000 kg m^2) */
-    ladrc_leso_method_t leso_method;
-    ladrc_shaper_t shaper;
+    ladrc_leso_method_t leso_method;      /**< LESO discretisation */
+    ladrc_shaper_t shaper;                /**< reference shaper */
     ladrc_real_t td_accel_rad_s2;         /**< TD acceleration bound (rad/s^2), > 0 (shaper TD only) */
     ladrc_real_t td_h0_s;                 /**< TD filter factor (s), >= dt_s (shaper TD only) */
     ladrc_levant_method_t levant_method;  /**< shaper LEVANT only */
@@ -173,16 +177,16 @@ typedef struct {
     ladrc_real_t lp_lambda0_per_s; /**< maximum forgetting rate (1/s); paper 100 */
     ladrc_real_t lp_k0_per_s;      /**< gain bound (1/s); paper 300 */
     /* HP-MLADRC (estimator.h) */
-    ladrc_hp_freq_mode_t hp_freq_mode;
+    ladrc_hp_freq_mode_t hp_freq_mode;              /**< known or online frequencies */
     uint8_t hp_n_tones;                             /**< tones modelled, 1..LADRC_HP_MAX_TONES */
     ladrc_real_t hp_freq_rad_s[LADRC_HP_MAX_TONES]; /**< KNOWN: the disturbance frequencies;
                                         ONLINE: first guesses (rad/s) */
-    ladrc_real_t hp_freq_min_rad_s;                 /**< ONLINE search range */
-    ladrc_real_t hp_freq_max_rad_s;
-    ladrc_real_t hp_lambda0_per_s;      /**< fastest forgetting of the fit (1/s) */
-    ladrc_real_t hp_freq_lambda0_per_s; /**< ONLINE forgetting of the frequency fits (1/s) */
-    ladrc_real_t hp_freq_filter_rad_s;  /**< ONLINE derivative filter bandwidth (rad/s) */
-    uint16_t hp_fit_decimation;         /**< ticks per sample of the fit (an axis alone fits on the
+    ladrc_real_t hp_freq_min_rad_s;                 /**< ONLINE search range, lower end (rad/s) */
+    ladrc_real_t hp_freq_max_rad_s;                 /**< ONLINE search range, upper end (rad/s) */
+    ladrc_real_t hp_lambda0_per_s;                  /**< fastest forgetting of the fit (1/s) */
+    ladrc_real_t hp_freq_lambda0_per_s;             /**< ONLINE forgetting of the frequency fits (1/s) */
+    ladrc_real_t hp_freq_filter_rad_s;              /**< ONLINE derivative filter bandwidth (rad/s) */
+    uint16_t hp_fit_decimation;                     /**< ticks per sample of the fit (an axis alone fits on the
                                         first tick of each block; the attitude layer staggers its
                                         axes over the block) */
     /* Actuator model (LADRC family; see above), default 0 and 0: none */
@@ -217,41 +221,47 @@ typedef struct {
 
 /** Axis state; owned by the caller, read through the getters. */
 typedef struct {
-    ladrc_variant_t variant;
-    ladrc_shaper_t shaper;
-    ladrc_real_t u_min_Nm, u_max_Nm;
+    ladrc_variant_t variant; /**< of the config */
+    ladrc_shaper_t shaper;   /**< of the config */
+    /** @{ */
+    ladrc_real_t u_min_Nm, u_max_Nm; /**< command bounds, within +-applied_limit_Nm (N m) */
+    /** @} */
+    /** @{ */
     ladrc_real_t angle_limit_rad, rate_limit_rad_s, applied_limit_Nm; /**< plausible ranges */
-    ladrc_real_t kp, kd, b0;                                          /**< wc^2, 2 wc, b0 */
-    ladrc_leso_t leso;                                                /**< the LADRC family (not PID, not INDI) */
+    /** @} */
+    /** @{ */
+    ladrc_real_t kp, kd, b0; /**< wc^2, 2 wc, b0 */
+    /** @} */
+    ladrc_leso_t leso; /**< the LADRC family (not PID, not INDI) */
 #if LADRC_WITH_TD || LADRC_WITH_LEVANT
     union {
 #if LADRC_WITH_TD
-        ladrc_td_t td;
+        ladrc_td_t td; /**< shaper TD */
 #endif
 #if LADRC_WITH_LEVANT
-        ladrc_levant_t levant;
+        ladrc_levant_t levant; /**< shaper LEVANT */
 #endif
     } shaping; /**< by shaper */
 #endif
 #if LADRC_WITH_PID || LADRC_WITH_CASCADED || LADRC_WITH_LP_MLADRC || LADRC_WITH_HP_MLADRC || LADRC_WITH_INDI
     union {
 #if LADRC_WITH_PID
-        ladrc_pid_t pid;
+        ladrc_pid_t pid; /**< PID */
 #endif
 #if LADRC_WITH_CASCADED
-        ladrc_cascaded_t cas;
+        ladrc_cascaded_t cas; /**< CASCADED */
 #endif
 #if LADRC_WITH_LP_MLADRC
-        ladrc_lp_estimator_t lp;
+        ladrc_lp_estimator_t lp; /**< LP-MLADRC */
 #endif
 #if LADRC_WITH_HP_MLADRC
         struct {
-            ladrc_hp_estimator_t est;
+            ladrc_hp_estimator_t est; /**< the estimator */
             ladrc_leso_twin_t shadow; /**< the LESO's view of a still plant: z3 caused by d_hat alone */
-        } hp;
+        } hp;                         /**< HP-MLADRC */
 #endif
 #if LADRC_WITH_INDI
-        ladrc_indi_t indi;
+        ladrc_indi_t indi; /**< INDI */
 #endif
     } part; /**< by variant */
 #endif
@@ -296,19 +306,92 @@ typedef struct {
  * k_att = k_rate = wc = 15 /s, the same TD shaping, and the acceleration
  * filter at the observer's bandwidth, w_f = wo = 75 rad/s (the observer's
  * noise budget; F d then follows d with the lag 2 / w_f = 27 ms).
+ * @param cfg            out: the config; NULL: nothing happens
+ * @param variant        the variant, copied (every field is filled whatever it is)
+ * @param dt_s           control step (s), copied unchecked (init checks it)
+ * @param inertia_kg_m2  the axis's inertia J (kg m^2), copied unchecked into b0 = 1 / J
  */
 void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant, ladrc_real_t dt_s,
                                ladrc_real_t inertia_kg_m2);
 
-/** Validates the fields the variant reads (status names the first bad one)
- *  and resets at angle 0. */
+/**
+ * Validates the fields the variant reads (the status names the first bad
+ * one: the common fields, then the variant's, then its actuator model,
+ * shaper and estimator) and resets at angle 0. The modules' own statuses
+ * pass through (leso.h, td.h, levant.h, pid.h, cascaded.h, indi.h,
+ * estimator.h); the checks on an axis are sometimes tighter.
+ * @param[out] axis  the axis to set up
+ * @param[in]  cfg   its configuration
+ * @retval LADRC_OK                      set up
+ * @retval LADRC_ERR_NULL                axis or cfg is NULL
+ * @retval LADRC_ERR_DT_S                dt_s not finite or outside [LADRC_DT_MIN_S, LADRC_DT_MAX_S];
+ *                                       HP: also its fit period above LADRC_DT_MAX_S
+ * @retval LADRC_ERR_U_LIMITS            not u_min_Nm < 0 < u_max_Nm (NaN included)
+ * @retval LADRC_ERR_INPUT_LIMITS        angle or rate limit not finite or below 1e-3,
+ *                                       applied_limit_Nm not finite or not > 0
+ * @retval LADRC_ERR_WRAP_ANGLE          wrap_angle not 0 or 1
+ * @retval LADRC_ERR_VARIANT             variant not a ladrc_variant_t
+ * @retval LADRC_ERR_VARIANT_NOT_BUILT   variant left out of this build
+ * @retval LADRC_ERR_WC_RAD_S            LADRC family: wc_rad_s not finite, not > 0, or wc dt >= 1
+ * @retval LADRC_ERR_B0                  LADRC family, INDI: |b0| outside [1e-3, 1e7]
+ * @retval LADRC_ERR_LESO_EULER_UNSTABLE LADRC family, Euler LESO: wo dt above 0.88 / (1 + 3.6 wc dt)
+ * @retval LADRC_ERR_WO_RAD_S            LADRC family: wo_rad_s not finite or not > 0
+ * @retval LADRC_ERR_LESO_METHOD         LADRC family: leso_method not a ladrc_leso_method_t
+ * @retval LADRC_ERR_MOTOR_TAU_S         LADRC family, INDI: motor_tau_s not finite or outside
+ *                                       0..LADRC_MOTOR_TAU_MAX_S
+ * @retval LADRC_ERR_DELAY_TICKS         LADRC family, INDI: delay_ticks above LADRC_MAX_DELAY_TICKS
+ * @retval LADRC_ERR_SHAPER              all but PID: shaper not a ladrc_shaper_t
+ * @retval LADRC_ERR_SHAPER_NOT_BUILT    all but PID: shaper left out of this build
+ * @retval LADRC_ERR_TD_ACCEL_RAD_S2     shaper TD: td_accel_rad_s2 not finite or not > 0
+ * @retval LADRC_ERR_TD_H0_S             shaper TD: td_h0_s not finite or < dt_s
+ * @retval LADRC_ERR_LEVANT_LIPSCHITZ    shaper LEVANT: levant_lipschitz_rad_s4 not finite, not > 0
+ *                                       or above 10 / dt_s^2
+ * @retval LADRC_ERR_LEVANT_METHOD       shaper LEVANT: levant_method not a ladrc_levant_method_t
+ * @retval LADRC_ERR_LEVANT_RANGE        shaper LEVANT: per-sample coefficients out of range
+ * @retval LADRC_ERR_EST_LAMBDA0         LP, HP: forgetting rate not finite or not > 0 (HP: or times
+ *                                       its fit period > 1)
+ * @retval LADRC_ERR_EST_K0              LP: lp_k0_per_s not finite or not > 0
+ * @retval LADRC_ERR_RLS_LAMBDA0         LP: lp_lambda0_per_s * dt_s > 1
+ * @retval LADRC_ERR_HP_FREQ_MODE        HP: hp_freq_mode not a ladrc_hp_freq_mode_t
+ * @retval LADRC_ERR_FEATURE_NOT_BUILT   HP: ONLINE left out of this build
+ * @retval LADRC_ERR_HP_N_TONES          HP: hp_n_tones outside 1..LADRC_HP_MAX_TONES
+ * @retval LADRC_ERR_HP_FREQ_RAD_S       HP: a modelled hp_freq_rad_s not finite, not > 0, or >= pi / dt_s
+ * @retval LADRC_ERR_HP_FREQ_RANGE       HP ONLINE: the search range (ladrc_hp_init)
+ * @retval LADRC_ERR_HP_FIT_DECIMATION   HP: hp_fit_decimation (ladrc_hp_init)
+ * @retval LADRC_ERR_HP_SAMPLE_LAG       HP: wo_rad_s below a tenth of the fastest tone
+ * @retval LADRC_ERR_HP_FREQ_LAMBDA0     HP ONLINE: hp_freq_lambda0_per_s (ladrc_hp_init)
+ * @retval LADRC_ERR_HP_FREQ_FILTER      HP ONLINE: hp_freq_filter_rad_s (ladrc_hp_init)
+ * @retval LADRC_ERR_PID_KP              PID: pid_kp not finite or < 0
+ * @retval LADRC_ERR_PID_KI              PID: pid_ki not finite or < 0
+ * @retval LADRC_ERR_PID_KD              PID: pid_kd not finite or < 0
+ * @retval LADRC_ERR_PID_D_TAU_S         PID: pid_d_filter_tau_s not finite or < 0
+ * @retval LADRC_ERR_PID_I_LIMIT_NM      PID: pid_i_limit_Nm NaN or < 0
+ * @retval LADRC_ERR_CAS_ATT_KP          CASCADED: cas_att_kp (ladrc_cascaded_init)
+ * @retval LADRC_ERR_CAS_RATE_MAX        CASCADED: cas_rate_max_rad_s (ladrc_cascaded_init)
+ * @retval LADRC_ERR_CAS_RATE_KP         CASCADED: cas_rate_kp (ladrc_cascaded_init)
+ * @retval LADRC_ERR_CAS_RATE_KI         CASCADED: cas_rate_ki (ladrc_cascaded_init)
+ * @retval LADRC_ERR_CAS_RATE_KD         CASCADED: cas_rate_kd (ladrc_cascaded_init)
+ * @retval LADRC_ERR_CAS_D_TAU_S         CASCADED: cas_d_filter_tau_s not finite or < 0
+ * @retval LADRC_ERR_CAS_RATE_TAU_S      CASCADED: cas_rate_filter_tau_s not finite or < 0
+ * @retval LADRC_ERR_CAS_I_LIMIT_NM      CASCADED: cas_i_limit_Nm NaN or < 0
+ * @retval LADRC_ERR_INDI_ATT_KP         INDI: indi_att_kp_per_s (ladrc_indi_init)
+ * @retval LADRC_ERR_INDI_RATE_KP        INDI: indi_rate_kp_per_s (ladrc_indi_init)
+ * @retval LADRC_ERR_INDI_FILTER         INDI: indi_filter_rad_s (ladrc_indi_init)
+ */
 ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg);
 
-/** Restarts at rest on angle_rad (reference shaper and observer start there). */
+/** Restarts at rest on angle_rad (reference shaper and observer start there).
+ *  @param axis       the axis; NULL: nothing happens
+ *  @param angle_rad  the angle to rest on (rad); non-finite or beyond
+ *                    angle_limit_rad: 0 */
 void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad);
 
 /**
- * One tick.
+ * One tick. Non-finite or implausible inputs: see the file comment (state
+ * held, LADRC_FAULT_INPUT / _RATE / _STATE raised).
+ * @param axis        the axis
+ * @param ref_rad     the raw reference (rad)
+ * @param angle_rad   the measured angle (rad)
  * @param rate_rad_s  the measured rate (rad/s), or NULL without one: PID uses
  *                    it for its derivative, CASCADED for its rate loop,
  *                    LP-MLADRC for its disturbance sample (without a rate LP
@@ -316,18 +399,23 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad);
  *                    acceleration (without a rate INDI holds its command and
  *                    raises LADRC_FAULT_RATE); LADRC and HP-MLADRC ignore it
  * @param torque_Nm   out: the torque command (N m)
- * @return the tick's fault flags (also ladrc_axis_get_faults)
+ * @return the tick's fault flags (also ladrc_axis_get_faults); axis or
+ *         torque_Nm NULL: LADRC_FAULT_STATE, nothing changes
  */
 ladrc_fault_t ladrc_axis_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
                               const ladrc_real_t *rate_rad_s, ladrc_real_t *torque_Nm);
 
 /** Reports the torque actually applied since the last tick (N m), e.g. after
  *  mixer saturation. Not finite or beyond applied_limit_Nm: ignored,
- *  LADRC_FAULT_APPLIED raised. */
+ *  LADRC_FAULT_APPLIED raised.
+ *  @param axis       the axis; NULL: nothing happens
+ *  @param torque_Nm  the applied torque (N m) */
 void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm);
 
 /** Known rate of change of the total disturbance for the next tick (rad/s^3),
- *  the coupling feed; held until set again. Non-finite: ignored, 0 used. */
+ *  the coupling feed; held until set again.
+ *  @param axis         the axis; NULL: nothing happens
+ *  @param rate_rad_s3  the rate (rad/s^3); non-finite: 0 used */
 void ladrc_axis_set_disturbance_rate(ladrc_axis_t *axis, ladrc_real_t rate_rad_s3);
 
 /**
@@ -337,47 +425,72 @@ void ladrc_axis_set_disturbance_rate(ladrc_axis_t *axis, ladrc_real_t rate_rad_s
  * its shadow observer is told -f_known (and the fed rate h), so that
  *     sample = z3 - z3_shadow = L(s) (f - f_known),  L = wo^3 / (s + wo)^3
  * and the fit sees only what is not already known. Other variants ignore it.
+ * @param axis            the axis; NULL: nothing happens
+ * @param f_known_rad_s2  the known part (rad/s^2); non-finite: 0 used
  */
 void ladrc_axis_set_known_disturbance(ladrc_axis_t *axis, ladrc_real_t f_known_rad_s2);
 
 /** Torque (N m) the next tick's observer step takes as acting: the applied
- *  torque without a model, else its delayed and lagged mean (see above). */
+ *  torque without a model, else its delayed and lagged mean (see above).
+ *  @param axis  the axis; NULL: 0
+ *  @return the acting torque (N m) */
 ladrc_real_t ladrc_axis_get_acting_Nm(const ladrc_axis_t *axis);
 
 /** Angular acceleration the model expects over the observer's next step
  *  (rad/s^2): b0 * acting torque + z3 + d_hat. PID, CASCADED: 0. INDI: b0 *
- *  acting torque + its filtered disturbance. */
+ *  acting torque + its filtered disturbance.
+ *  @param axis  the axis; NULL: 0
+ *  @return the expected acceleration (rad/s^2) */
 ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis);
 
-/** Fault flags of the latest tick (and of set_applied since). */
+/** Fault flags of the latest tick (and of set_applied since).
+ *  @param axis  the axis
+ *  @return the flags; axis NULL: LADRC_FAULT_STATE */
 ladrc_fault_t ladrc_axis_get_faults(const ladrc_axis_t *axis);
 
-/** Ticks in a row that raised LADRC_FAULT_INPUT or LADRC_FAULT_STATE. */
+/** Ticks in a row that raised LADRC_FAULT_INPUT or LADRC_FAULT_STATE.
+ *  @param axis  the axis; NULL: 0
+ *  @return the count (ticks) */
 uint32_t ladrc_axis_get_consecutive_faults(const ladrc_axis_t *axis);
 
-/** Shaped reference of the latest tick (PID: raw reference, zero derivatives). */
+/** Shaped reference of the latest tick (PID: raw reference, zero derivatives).
+ *  @param axis  the axis
+ *  @param ref   out: (r, r', r'') in rad, rad/s, rad/s^2; axis or ref NULL:
+ *               nothing written */
 void ladrc_axis_get_reference(const ladrc_axis_t *axis, ladrc_ref_t *ref);
 
 /** Observer estimates: angle (rad), rate (rad/s), total disturbance z3 + d_hat
  *  (rad/s^2). PID has no observer: last measured angle, its filtered rate, and 0;
  *  CASCADED: last measured angle, the rate its rate loop used, and 0;
- *  INDI: last angle and rate measured with a rate, and omegadot_f - b0 u_f. */
+ *  INDI: last angle and rate measured with a rate, and omegadot_f - b0 u_f.
+ *  Any pointer NULL: nothing written.
+ *  @param axis                the axis
+ *  @param angle_rad           out: angle (rad)
+ *  @param rate_rad_s          out: rate (rad/s)
+ *  @param disturbance_rad_s2  out: total disturbance (rad/s^2) */
 void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad, ladrc_real_t *rate_rad_s,
                              ladrc_real_t *disturbance_rad_s2);
 
 /** The HP estimator of an HP-MLADRC axis, read-only (valid while axis is),
  *  for diagnostics through the estimator.h getters (weight, tones, fit);
- *  NULL for another variant. */
+ *  NULL for another variant.
+ *  @param axis  the axis; NULL: NULL
+ *  @return the estimator or NULL */
 const ladrc_hp_estimator_t *ladrc_axis_get_hp(const ladrc_axis_t *axis);
 
 /** The LP estimator of an LP-MLADRC axis, read-only (valid while axis is);
- *  NULL for another variant. */
+ *  NULL for another variant.
+ *  @param axis  the axis; NULL: NULL
+ *  @return the estimator or NULL */
 const ladrc_lp_estimator_t *ladrc_axis_get_lp(const ladrc_axis_t *axis);
 
 #if LADRC_WITH_HP_MLADRC
 /** The HP estimator's config an HP-MLADRC axis builds from its own (what
  *  ladrc_axis_init uses; its sample comes through the axis's LESO, so the
- *  lag undone is wo_rad_s's), e.g. to run the estimator alone. */
+ *  lag undone is wo_rad_s's), e.g. to run the estimator alone. Copies
+ *  without checking (ladrc_hp_init checks).
+ *  @param cfg  the axis config
+ *  @param hp   out: the estimator config; cfg or hp NULL: nothing written */
 void ladrc_axis_hp_config(const ladrc_axis_config_t *cfg, ladrc_hp_config_t *hp);
 #endif
 

@@ -68,8 +68,9 @@
 extern "C" {
 #endif
 
+/** Cascaded configuration (ladrc_cascaded_init validates it). */
 typedef struct {
-    ladrc_real_t dt_s;              /**< fixed step (s) */
+    ladrc_real_t dt_s;              /**< fixed step (s), in [LADRC_DT_MIN_S, LADRC_DT_MAX_S] */
     ladrc_real_t att_kp_per_s;      /**< attitude P gain (1/s), > 0, att_kp dt < 1 */
     ladrc_real_t rate_max_rad_s;    /**< |rate setpoint| bound (rad/s), > 0, <= rate_limit_rad_s */
     ladrc_real_t rate_kp;           /**< N m s / rad, >= 0 */
@@ -79,19 +80,31 @@ typedef struct {
     ladrc_real_t rate_filter_tau_s; /**< filter of the rate from the angle (no gyro) (s), >= 0 */
     ladrc_real_t i_limit_Nm;        /**< |integral| bound (N m), >= 0, INFINITY = none */
     ladrc_real_t rate_limit_rad_s;  /**< plausible |rate| (rad/s), finite, > 0 */
-    ladrc_real_t u_min_Nm;          /**< output bounds (N m), u_min < 0 < u_max, may be infinite */
-    ladrc_real_t u_max_Nm;
-    uint8_t wrap_angle; /**< 1: e and y_k - y_k-1 are taken modulo 2 pi */
+    ladrc_real_t u_min_Nm;          /**< output lower bound (N m), < u_max_Nm, may be -INFINITY */
+    ladrc_real_t u_max_Nm;          /**< output upper bound (N m), may be INFINITY */
+    uint8_t wrap_angle;             /**< 1: e and y_k - y_k-1 are taken modulo 2 pi */
 } ladrc_cascaded_config_t;
 
 /** Cascaded state; owned by the caller. */
 typedef struct {
-    ladrc_real_t dt_s, inv_dt;
-    ladrc_real_t att_kp_per_s, rate_max_rad_s;
-    ladrc_real_t rate_kp, rate_ki_dt, rate_kd;
+    /** @{ */
+    ladrc_real_t dt_s, inv_dt; /**< step h (s) and 1 / h (1/s) */
+    /** @} */
+    /** @{ */
+    ladrc_real_t att_kp_per_s, rate_max_rad_s; /**< of the config */
+    /** @} */
+    /** @{ */
+    ladrc_real_t rate_kp, rate_ki_dt, rate_kd; /**< rate gains; ki per sample (ki h) */
+    /** @} */
+    /** @{ */
     ladrc_real_t d_alpha, d_keep; /**< derivative filter */
+    /** @} */
+    /** @{ */
     ladrc_real_t w_alpha, w_keep; /**< rate-from-angle filter */
-    ladrc_real_t i_limit_Nm, rate_limit_rad_s, u_min_Nm, u_max_Nm;
+    /** @} */
+    /** @{ */
+    ladrc_real_t i_limit_Nm, rate_limit_rad_s, u_min_Nm, u_max_Nm; /**< of the config */
+    /** @} */
     ladrc_real_t integral_Nm;    /**< I_k */
     ladrc_real_t rate_rad_s;     /**< m_k: the rate the latest tick used */
     ladrc_real_t accel_rad_s2;   /**< D_k: filtered derivative of the rate */
@@ -101,18 +114,35 @@ typedef struct {
     ladrc_real_t output_Nm;      /**< latest command */
     ladrc_real_t applied_Nm;     /**< torque applied since the latest tick */
     uint8_t has_prev;            /**< 0 until a first tick ran */
-    uint8_t wrap;
+    uint8_t wrap;                /**< wrap_angle */
 } ladrc_cascaded_t;
 
 /** Validates (LADRC_ERR_DT_S, _CAS_ATT_KP, _CAS_RATE_MAX, _CAS_RATE_KP,
  *  _CAS_RATE_KI, _CAS_RATE_KD, _CAS_D_TAU_S, _CAS_RATE_TAU_S, _CAS_I_LIMIT_NM,
  *  _U_LIMITS, _WRAP_ANGLE in that order; _NULL) and resets at angle 0. The
  *  gain checks also refuse gains whose terms could leave the real type for
- *  rates inside +-2 rate_limit_rad_s. */
+ *  rates inside +-2 rate_limit_rad_s.
+ *  @param[out] c    the controller to set up
+ *  @param[in]  cfg  its configuration
+ *  @retval LADRC_OK                 set up
+ *  @retval LADRC_ERR_NULL           c or cfg is NULL
+ *  @retval LADRC_ERR_DT_S           dt_s not finite or outside [LADRC_DT_MIN_S, LADRC_DT_MAX_S]
+ *  @retval LADRC_ERR_CAS_ATT_KP     att_kp_per_s not finite, not > 0, or times dt_s >= 1
+ *  @retval LADRC_ERR_CAS_RATE_MAX   rate_max_rad_s not finite and > 0, or above rate_limit_rad_s
+ *  @retval LADRC_ERR_CAS_RATE_KP    rate_kp not finite, < 0, or its term beyond the real type
+ *  @retval LADRC_ERR_CAS_RATE_KI    rate_ki not finite, < 0, or its step beyond the real type
+ *  @retval LADRC_ERR_CAS_RATE_KD    rate_kd not finite, < 0, or its term beyond the real type
+ *  @retval LADRC_ERR_CAS_D_TAU_S    d_filter_tau_s not finite or < 0
+ *  @retval LADRC_ERR_CAS_RATE_TAU_S rate_filter_tau_s not finite or < 0
+ *  @retval LADRC_ERR_CAS_I_LIMIT_NM i_limit_Nm NaN or < 0
+ *  @retval LADRC_ERR_U_LIMITS       u_min_Nm or u_max_Nm NaN, or u_min_Nm >= u_max_Nm
+ *  @retval LADRC_ERR_WRAP_ANGLE     wrap_angle not 0 or 1 */
 ladrc_status_t ladrc_cascaded_init(ladrc_cascaded_t *c, const ladrc_cascaded_config_t *cfg);
 
 /** Restarts at rest: integral, filters and commands 0, previous angle
- *  angle_rad (finite: the caller checks). */
+ *  angle_rad.
+ *  @param c          the controller; NULL: nothing happens
+ *  @param angle_rad  the measured angle (rad), finite (not checked: the axis checks) */
 void ladrc_cascaded_reset(ladrc_cascaded_t *c, ladrc_real_t angle_rad);
 
 /**
@@ -121,11 +151,20 @@ void ladrc_cascaded_reset(ladrc_cascaded_t *c, ladrc_real_t angle_rad);
  * the command (N m). Returns 0, or LADRC_FAULT_STATE when the update would
  * leave the real type: the state and the command are then left as they
  * were (the axis restarts it).
+ * @param c           the controller
+ * @param ref         the shaped reference (rad, rad/s; ddr unused)
+ * @param angle_rad   the measured angle (rad), finite (not checked)
+ * @param rate_rad_s  the measured rate (rad/s), finite, or NULL
+ * @param torque_Nm   out: the command (N m)
+ * @return 0 or LADRC_FAULT_STATE; c, ref or torque_Nm NULL:
+ *         LADRC_FAULT_STATE, nothing changes
  */
 ladrc_fault_t ladrc_cascaded_step(ladrc_cascaded_t *c, const ladrc_ref_t *ref, ladrc_real_t angle_rad,
                                   const ladrc_real_t *rate_rad_s, ladrc_real_t *torque_Nm);
 
-/** Torque actually applied since the latest tick (finite: the caller checks). */
+/** Torque actually applied since the latest tick.
+ *  @param c           the controller; NULL: nothing happens
+ *  @param applied_Nm  the applied torque (N m), finite (not checked: the axis checks) */
 void ladrc_cascaded_set_applied(ladrc_cascaded_t *c, ladrc_real_t applied_Nm);
 
 #ifdef __cplusplus

@@ -82,7 +82,7 @@
  * ONLINE frequencies: for each tone, a bias-free least squares on
  * state-variable-filtered derivatives of the part of the sample the other
  * tones do not explain,
- *     w_k^2 = <x3 x1> / <x1 x1> with the sign flipped,
+ *     w_k^2 = avg(x3 x1) / avg(x1 x1) with the sign flipped,
  * x1 and x3 the first and third derivative of that signal through
  * (wf / (s + wf))^4, the averages forgetting at freq_lambda0. It is exact for
  * one tone whatever its amplitude, phase and bias (a bias step only kicks
@@ -104,9 +104,10 @@
 extern "C" {
 #endif
 
+/** LP estimator configuration (ladrc_lp_init validates it). */
 typedef struct {
-    ladrc_real_t dt_s;          /**< fixed step h (s), > 0 */
-    ladrc_real_t lambda0_per_s; /**< maximum forgetting rate (1/s), > 0; paper 100 */
+    ladrc_real_t dt_s;          /**< fixed step h (s), in [LADRC_DT_MIN_S, LADRC_DT_MAX_S] */
+    ladrc_real_t lambda0_per_s; /**< maximum forgetting rate (1/s), > 0, lambda0 h <= 1; paper 100 */
     ladrc_real_t k0_per_s;      /**< bound on the continuous-time gain P (1/s), > 0; paper 300 */
     ladrc_real_t act_tau_s;     /**< the command acts through this first-order lag (s),
                                      0..LADRC_MOTOR_TAU_MAX_S, 0 = none */
@@ -119,116 +120,154 @@ typedef struct {
 #define LADRC_LP_LEAD_MAX LADRC_R(4.0)
 #endif
 
+/** LP estimator state; owned by the caller, read through the getters. */
 typedef struct {
-    ladrc_rls_t rls; /**< one parameter: d_hat */
-    ladrc_real_t dt_s;
-    ladrc_real_t prev_rate_rad_s;
-    ladrc_real_t lead_x;    /**< the lead's low-pass state x (rad/s^2) */
-    ladrc_real_t lead_beta; /**< beta = 1 - exp(-N h / tau') */
-    uint8_t lead;           /**< 1: act_tau_s > 0 or act_delay_ticks > 0 */
-    uint8_t has_prev_rate;
-    ladrc_fault_t faults;
+    ladrc_rls_t rls;              /**< one parameter: d_hat */
+    ladrc_real_t dt_s;            /**< fixed step h (s) */
+    ladrc_real_t prev_rate_rad_s; /**< the previous finite rate (rad/s) */
+    ladrc_real_t lead_x;          /**< the lead's low-pass state x (rad/s^2) */
+    ladrc_real_t lead_beta;       /**< beta = 1 - exp(-N h / tau') */
+    uint8_t lead;                 /**< 1: act_tau_s > 0 or act_delay_ticks > 0 */
+    uint8_t has_prev_rate;        /**< 0 until a finite rate was seen */
+    ladrc_fault_t faults;         /**< flags of the latest step */
 } ladrc_lp_estimator_t;
 
-/** Validates (LADRC_ERR_DT_S, LADRC_ERR_EST_LAMBDA0, LADRC_ERR_EST_K0, LADRC_ERR_MOTOR_TAU_S,
- *  LADRC_ERR_DELAY_TICKS) and resets. */
+/**
+ * Validates cfg in the order below and resets (ladrc_lp_reset).
+ * @param[out] est  the estimator to set up
+ * @param[in]  cfg  its configuration
+ * @retval LADRC_OK              set up
+ * @retval LADRC_ERR_NULL        est or cfg is NULL
+ * @retval LADRC_ERR_DT_S        dt_s not finite or outside [LADRC_DT_MIN_S, LADRC_DT_MAX_S]
+ * @retval LADRC_ERR_EST_LAMBDA0 lambda0_per_s not finite or not > 0
+ * @retval LADRC_ERR_EST_K0      k0_per_s not finite or not > 0
+ * @retval LADRC_ERR_RLS_LAMBDA0 lambda0_per_s * dt_s > 1 (the RLS's check)
+ * @retval LADRC_ERR_MOTOR_TAU_S act_tau_s not finite or outside 0..LADRC_MOTOR_TAU_MAX_S
+ * @retval LADRC_ERR_DELAY_TICKS act_delay_ticks above LADRC_MAX_DELAY_TICKS
+ */
 ladrc_status_t ladrc_lp_init(ladrc_lp_estimator_t *est, const ladrc_lp_config_t *cfg);
 
-/** Forgets the estimate (d_hat = 0) and the rate history. */
+/** Forgets the estimate (d_hat = 0), the rate history and the lead.
+ *  @param est  the estimator; NULL: nothing happens */
 void ladrc_lp_reset(ladrc_lp_estimator_t *est);
 
 /**
  * One tick.
- * @param rate_rad_s     measured angular rate now
- * @param accel_known    acceleration the known input gave over the last step,
- *                       b0 * applied torque (rad/s^2)
  * A non-finite argument holds the estimate and raises LADRC_FAULT_INPUT; the
  * next finite rate restarts the difference.
+ * @param est            the estimator
+ * @param rate_rad_s     measured angular rate now (rad/s)
+ * @param accel_known    acceleration the known input gave over the last step,
+ *                       b0 * applied torque (rad/s^2)
+ * @return the step's fault flags (also est->faults); est NULL:
+ *         LADRC_FAULT_STATE, nothing changes
  */
 ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s, ladrc_real_t accel_known);
 
-/** Current estimate d_hat (rad/s^2). */
+/** Current estimate d_hat.
+ *  @param est  the estimator; NULL: 0
+ *  @return d_hat (rad/s^2) */
 ladrc_real_t ladrc_lp_get_estimate(const ladrc_lp_estimator_t *est);
 
 /** One tick of the command's lead over the actuator (see above) on the
  *  current d_hat; call once per tick after ladrc_lp_step. command_rad_s2
  *  receives the compensation the command should carry (rad/s^2): d_hat
- *  itself without an actuator (then nothing is computed). Returns 0 (no
- *  input to fault on). */
+ *  itself without an actuator (then nothing is computed).
+ *  @param est             the estimator
+ *  @param command_rad_s2  out: the compensation (rad/s^2)
+ *  @return 0 (no input to fault on); est or command_rad_s2 NULL:
+ *          LADRC_FAULT_STATE, nothing changes */
 ladrc_fault_t ladrc_lp_step_lead(ladrc_lp_estimator_t *est, ladrc_real_t *command_rad_s2);
 
+/** Where the HP estimator's frequencies come from. */
 typedef enum {
     LADRC_HP_FREQ_KNOWN = 0, /**< the disturbance frequencies are given (paper) */
     LADRC_HP_FREQ_ONLINE = 1 /**< estimated online within [freq_min, freq_max] */
 } ladrc_hp_freq_mode_t;
 
+/** HP estimator configuration (ladrc_hp_init validates it). */
 typedef struct {
-    ladrc_real_t dt_s; /**< fixed step h (s), > 0 */
-    ladrc_hp_freq_mode_t freq_mode;
+    ladrc_real_t dt_s;                           /**< fixed step h (s), in [LADRC_DT_MIN_S, LADRC_DT_MAX_S] */
+    ladrc_hp_freq_mode_t freq_mode;              /**< known or online frequencies */
     uint8_t n_tones;                             /**< tones modelled at most, 1..LADRC_HP_MAX_TONES */
     ladrc_real_t freq_rad_s[LADRC_HP_MAX_TONES]; /**< KNOWN: the frequencies; ONLINE: the first
                                           guesses (rad/s), > 0; the first n_tones are read */
-    ladrc_real_t freq_min_rad_s;                 /**< ONLINE search range (rad/s), 0 < min < max */
-    ladrc_real_t freq_max_rad_s;
-    ladrc_real_t lambda0_per_s;       /**< fastest forgetting of the fit (1/s), > 0, lambda0 T <= 1 */
-    ladrc_real_t freq_lambda0_per_s;  /**< ONLINE: forgetting of the frequency averages (1/s) */
-    ladrc_real_t freq_filter_rad_s;   /**< ONLINE: bandwidth wf of the derivative filter (rad/s) */
-    ladrc_real_t sample_lag_wo_rad_s; /**< samples come through a LESO of this bandwidth, whose z3
+    ladrc_real_t freq_min_rad_s;                 /**< ONLINE search range, lower end (rad/s), > 0 */
+    ladrc_real_t freq_max_rad_s;                 /**< ONLINE search range, upper end (rad/s), > min, max h < pi */
+    ladrc_real_t lambda0_per_s;                  /**< fastest forgetting of the fit (1/s), > 0, lambda0 T <= 1 */
+    ladrc_real_t freq_lambda0_per_s;             /**< ONLINE: forgetting of the frequency averages (1/s) */
+    ladrc_real_t freq_filter_rad_s;              /**< ONLINE: bandwidth wf of the derivative filter (rad/s) */
+    ladrc_real_t sample_lag_wo_rad_s;            /**< samples come through a LESO of this bandwidth, whose z3
                                           lags f by wo^3 / (s + wo)^3: undone per tone; 0 = no lag;
                                           otherwise at least a tenth of the fastest tone */
-    uint16_t fit_decimation;          /**< ticks per fit sample (T = fit_decimation dt_s), >= 1;
+    uint16_t fit_decimation;                     /**< ticks per fit sample (T = fit_decimation dt_s), >= 1;
                                           every tone turns less than pi/2 per fit sample */
-    uint16_t fit_phase;               /**< which tick of each block fits, < fit_decimation
+    uint16_t fit_phase;                          /**< which tick of each block fits, < fit_decimation
                                           (give the axes of one controller different phases so a
                                           tick carries at most one fit) */
-    ladrc_real_t act_tau_s;           /**< the command acts through this first-order lag (s),
+    ladrc_real_t act_tau_s;                      /**< the command acts through this first-order lag (s),
                                           0..LADRC_MOTOR_TAU_MAX_S (axis.h), 0 = none */
-    uint8_t act_delay_ticks;          /**< and this delay (ticks), 0..LADRC_MAX_DELAY_TICKS */
+    uint8_t act_delay_ticks;                     /**< and this delay (ticks), 0..LADRC_MAX_DELAY_TICKS */
 } ladrc_hp_config_t;
 
 /** One tone. */
 typedef struct {
-    ladrc_real_t w_rad_s;            /**< frequency in use */
-    ladrc_real_t cos_psi, sin_psi;   /**< phase as a unit phasor */
+    ladrc_real_t w_rad_s; /**< frequency in use (rad/s) */
+    /** @{ */
+    ladrc_real_t cos_psi, sin_psi; /**< phase as a unit phasor */
+    /** @} */
+    /** @{ */
     ladrc_real_t cos_step, sin_step; /**< rotation by w h */
-    ladrc_real_t lead_re, lead_im;   /**< (1 + j w / wo)^3: undoes the sample's lag at w */
-    ladrc_real_t cmd_re, cmd_im;     /**< lead (1 + j w tau) e^{j w (d - 1) h}: also undoes the
+    /** @} */
+    /** @{ */
+    ladrc_real_t lead_re, lead_im; /**< (1 + j w / wo)^3: undoes the sample's lag at w */
+    /** @} */
+    /** @{ */
+    ladrc_real_t cmd_re, cmd_im; /**< lead (1 + j w tau) e^{j w (d - 1) h}: also undoes the
                                           actuator's (read one turn w h late) */
-    ladrc_real_t prev_a, prev_b;     /**< fitted (a, b) at the previous fit sample */
-    ladrc_real_t slip_rad_s;         /**< averaged turn rate of the fitted phasor */
-    ladrc_real_t drift_per_s;        /**< averaged relative rate of change of its size */
-    uint8_t significant;             /**< carries a real share of the sample's power */
-    uint8_t locked;                  /**< significant and its phasor stands still */
+    /** @} */
+    /** @{ */
+    ladrc_real_t prev_a, prev_b; /**< fitted (a, b) at the previous fit sample */
+    /** @} */
+    ladrc_real_t slip_rad_s;  /**< averaged turn rate of the fitted phasor */
+    ladrc_real_t drift_per_s; /**< averaged relative rate of change of its size */
+    uint8_t significant;      /**< carries a real share of the sample's power */
+    uint8_t locked;           /**< significant and its phasor stands still */
 } ladrc_hp_tone_t;
 
 /** What a tone's constants follow from besides its frequency (from the
  *  config): needed again only when a frequency changes (ONLINE). */
 typedef struct {
-    ladrc_real_t dt_s;
+    ladrc_real_t dt_s;         /**< fixed step h (s) */
     ladrc_real_t lag_wo_rad_s; /**< bandwidth of the sample's lag, 0 = none */
     ladrc_real_t act_tau_s;    /**< actuator lag the command is advanced over (s) */
     uint8_t act_delay_ticks;   /**< actuator delay the command is advanced over (ticks) */
 } ladrc_hp_tone_basis_t;
 
+/** HP estimator state; owned by the caller, read through the getters. */
 typedef struct {
     ladrc_rls_t fit;                          /**< theta = (c, a_1, b_1, ..., a_n, b_n), n = n_active */
     ladrc_real_t phi[LADRC_RLS_MAX_PARAMS];   /**< the fit's regressors at the latest fit sample */
     ladrc_hp_tone_t tone[LADRC_HP_MAX_TONES]; /**< the first n_active are in the fit */
-    ladrc_real_t fit_period_s;
-    ladrc_real_t lambda0_max;        /**< configured fastest forgetting of the fit */
-    ladrc_real_t fit_rate_per_s;     /**< forgetting rate of the fit outside changes */
-    ladrc_real_t sample_mean;        /**< the sample's mean, averaged */
-    ladrc_real_t sig_power;          /**< the sample's power around its mean, averaged */
+    ladrc_real_t fit_period_s;                /**< T = fit_decimation h (s) */
+    ladrc_real_t lambda0_max;                 /**< configured fastest forgetting of the fit */
+    ladrc_real_t fit_rate_per_s;              /**< forgetting rate of the fit outside changes */
+    ladrc_real_t sample_mean;                 /**< the sample's mean, averaged */
+    ladrc_real_t sig_power;                   /**< the sample's power around its mean, averaged */
+    /** @{ */
     ladrc_real_t err_fast, err_slow; /**< short and long averages of the fit's prior error power */
-    ladrc_real_t weight;             /**< compensation weight in [0, 1] */
-    ladrc_real_t estimate;           /**< the applied d_hat (rad/s^2) */
-    ladrc_real_t handover;           /**< part of estimate's latest change due to the weight */
+    /** @} */
+    ladrc_real_t weight;   /**< compensation weight in [0, 1] */
+    ladrc_real_t estimate; /**< the applied d_hat (rad/s^2) */
+    ladrc_real_t handover; /**< part of estimate's latest change due to the weight */
 #if LADRC_WITH_HP_ONLINE
     /* The ONLINE frequency search (estimator_hp_freq.c): left out with
      * LADRC_WITH_HP_ONLINE 0 (types.h). */
-    ladrc_hp_tone_basis_t basis;
-    ladrc_real_t freq_min_rad_s, freq_max_rad_s;
-    ladrc_real_t freq_lambda0_per_s;
+    ladrc_hp_tone_basis_t basis; /**< what the tones' constants follow from */
+    /** @{ */
+    ladrc_real_t freq_min_rad_s, freq_max_rad_s; /**< the search range (rad/s) */
+    /** @} */
+    ladrc_real_t freq_lambda0_per_s;              /**< forgetting of the frequency averages (1/s) */
     ladrc_real_t filter_rad_s;                    /**< derivative filter bandwidth wf */
     ladrc_real_t spec_x[6];                       /**< derivative filter: x and its first five derivatives */
     ladrc_real_t spec_x1_prev[2];                 /**< x1 one and two fit samples ago */
@@ -242,22 +281,46 @@ typedef struct {
     uint8_t online;                               /**< 1: freq_mode ONLINE */
     uint8_t clean;                                /**< the frequency fit sees as many clean tones as are active */
 #endif
-    uint16_t fit_decimation, fit_count, fit_phase;
+    /** @{ */
+    uint16_t fit_decimation, fit_count, fit_phase; /**< ticks per fit sample, tick in the block, tick that fits */
+    /** @} */
     uint16_t change_left; /**< fit samples left of a change's hold */
     uint16_t engaged;     /**< fit samples in a row with the weight at 1 */
-    uint8_t n_tones, n_active;
-    uint8_t advance; /**< 1: act_tau_s > 0 or act_delay_ticks > 0 (the command is advanced) */
-    ladrc_fault_t faults;
+    /** @{ */
+    uint8_t n_tones, n_active; /**< tones configured, tones in the fit */
+    /** @} */
+    uint8_t advance;      /**< 1: act_tau_s > 0 or act_delay_ticks > 0 (the command is advanced) */
+    ladrc_fault_t faults; /**< flags of the latest step */
 } ladrc_hp_estimator_t;
 
-/** Validates (LADRC_ERR_DT_S, _HP_FREQ_MODE, _FEATURE_NOT_BUILT (ONLINE when
- *  LADRC_WITH_HP_ONLINE is 0), _HP_N_TONES, _HP_FREQ_RAD_S, _HP_FREQ_RANGE,
- *  _EST_LAMBDA0, _HP_FIT_DECIMATION, _HP_SAMPLE_LAG, _HP_FREQ_LAMBDA0, _HP_FREQ_FILTER,
- *  _MOTOR_TAU_S, _DELAY_TICKS) and resets. */
+/**
+ * Validates cfg in the order below (the ONLINE fields only for ONLINE) and
+ * resets (ladrc_hp_reset). T = fit_decimation dt_s is the fit period.
+ * @param[out] est  the estimator to set up
+ * @param[in]  cfg  its configuration
+ * @retval LADRC_OK                    set up
+ * @retval LADRC_ERR_NULL              est or cfg is NULL
+ * @retval LADRC_ERR_DT_S              dt_s not finite or outside [LADRC_DT_MIN_S, LADRC_DT_MAX_S];
+ *                                     or (after the others) T above LADRC_DT_MAX_S
+ * @retval LADRC_ERR_HP_FREQ_MODE      freq_mode not a ladrc_hp_freq_mode_t
+ * @retval LADRC_ERR_FEATURE_NOT_BUILT ONLINE with LADRC_WITH_HP_ONLINE 0
+ * @retval LADRC_ERR_HP_N_TONES        n_tones outside 1..LADRC_HP_MAX_TONES
+ * @retval LADRC_ERR_HP_FREQ_RAD_S     one of the first n_tones freq_rad_s not finite, not > 0, or >= pi / dt_s
+ * @retval LADRC_ERR_HP_FREQ_RANGE     ONLINE: not 0 < freq_min_rad_s < freq_max_rad_s < pi / dt_s
+ * @retval LADRC_ERR_EST_LAMBDA0       lambda0_per_s not finite, not > 0, or lambda0_per_s T > 1
+ * @retval LADRC_ERR_HP_FIT_DECIMATION fit_decimation 0, fit_phase >= fit_decimation, or a tone
+ *                                     turns pi/2 or more per T
+ * @retval LADRC_ERR_MOTOR_TAU_S       act_tau_s not finite or outside 0..LADRC_MOTOR_TAU_MAX_S
+ * @retval LADRC_ERR_DELAY_TICKS       act_delay_ticks above LADRC_MAX_DELAY_TICKS
+ * @retval LADRC_ERR_HP_SAMPLE_LAG     sample_lag_wo_rad_s not finite, < 0, or below a tenth of the fastest tone
+ * @retval LADRC_ERR_HP_FREQ_LAMBDA0   ONLINE: freq_lambda0_per_s not finite, not > 0, or times T > 1
+ * @retval LADRC_ERR_HP_FREQ_FILTER    ONLINE: freq_filter_rad_s not finite, not > 0, or times T >= 0.2
+ */
 ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t *cfg);
 
 /** Forgets the model and the frequency averages; phases restart at 0, the
- *  frequencies stay where they are, ONLINE mode goes back to one active tone. */
+ *  frequencies stay where they are, ONLINE mode goes back to one active tone.
+ *  @param est  the estimator; NULL: nothing happens */
 void ladrc_hp_reset(ladrc_hp_estimator_t *est);
 
 /**
@@ -267,16 +330,24 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est);
  * LADRC_FAULT_INPUT (the phases still advance, so the model stays in step
  * with time). Should the estimate still turn non-finite, the estimator resets
  * (as ladrc_hp_reset) and raises LADRC_FAULT_STATE.
+ * @param est            the estimator
+ * @param sample_rad_s2  the disturbance sample (rad/s^2)
+ * @return the step's fault flags (also est->faults); est NULL:
+ *         LADRC_FAULT_STATE, nothing changes
  */
 ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s2);
 
-/** Applied estimate d_hat (rad/s^2): weight times the bias and the active tones. */
+/** Applied estimate d_hat: weight times the bias and the active tones.
+ *  @param est  the estimator; NULL: 0
+ *  @return d_hat (rad/s^2) */
 ladrc_real_t ladrc_hp_get_estimate(const ladrc_hp_estimator_t *est);
 
 /** The compensation the command should carry after the latest step
  *  (rad/s^2): the estimate with each tone advanced over the actuator (see
  *  above), computed on call; the estimate itself when there is no actuator
- *  to advance over. */
+ *  to advance over.
+ *  @param est  the estimator; NULL: 0
+ *  @return the compensation (rad/s^2) */
 ladrc_real_t ladrc_hp_get_command(const ladrc_hp_estimator_t *est);
 
 /**
@@ -286,30 +357,49 @@ ladrc_real_t ladrc_hp_get_command(const ladrc_hp_estimator_t *est);
  * disturbance must hand that part over to the known input at once
  * (z3 -= handover), or z3 + d_hat counts it twice for the observer's
  * settling time: engaging and releasing the compensation is then bumpless.
+ * @param est  the estimator; NULL: 0
+ * @return the weight's part of the change (rad/s^2)
  */
 ladrc_real_t ladrc_hp_get_handover(const ladrc_hp_estimator_t *est);
 
-/** Tones in the model now (KNOWN: n_tones). */
+/** Tones in the model now (KNOWN: n_tones).
+ *  @param est  the estimator; NULL: 0
+ *  @return the active tones */
 unsigned ladrc_hp_get_active_tones(const ladrc_hp_estimator_t *est);
 
-/** Frequency of active tone k (rad/s); 0 for k >= the active tones. */
+/** Frequency of active tone k.
+ *  @param est  the estimator; NULL: 0
+ *  @param k    the tone, from 0
+ *  @return its frequency (rad/s); 0 for k >= the active tones */
 ladrc_real_t ladrc_hp_get_freq(const ladrc_hp_estimator_t *est, unsigned k);
 
-/** Amplitude sqrt(a_k^2 + b_k^2) of active tone k (rad/s^2); 0 for k >= the active tones. */
+/** Amplitude sqrt(a_k^2 + b_k^2) of active tone k.
+ *  @param est  the estimator; NULL: 0
+ *  @param k    the tone, from 0
+ *  @return its amplitude (rad/s^2); 0 for k >= the active tones */
 ladrc_real_t ladrc_hp_get_amplitude(const ladrc_hp_estimator_t *est, unsigned k);
 
-/** 1 while active tone k is significant and its phasor stands still (locked). */
+/** Whether active tone k is significant and its phasor stands still (locked).
+ *  @param est  the estimator; NULL: 0
+ *  @param k    the tone, from 0
+ *  @return 1 locked, 0 not (or k >= the active tones) */
 int ladrc_hp_tone_locked(const ladrc_hp_estimator_t *est, unsigned k);
 
-/** Compensation weight in [0, 1] set by the gate. */
+/** Compensation weight set by the gate.
+ *  @param est  the estimator; NULL: 0
+ *  @return the weight, in [0, 1] */
 ladrc_real_t ladrc_hp_get_weight(const ladrc_hp_estimator_t *est);
 
-/** Fitted bias c (rad/s^2). */
+/** Fitted bias c.
+ *  @param est  the estimator; NULL: 0
+ *  @return c (rad/s^2) */
 ladrc_real_t ladrc_hp_get_bias(const ladrc_hp_estimator_t *est);
 
 /** The fit of the bias and the tones, read-only (valid while est is), for
  *  diagnostics through the rls.h getters: e.g. tr(P), ladrc_rls_get_p_norm,
- *  against its bound, ladrc_rls_get_p_bound. */
+ *  against its bound, ladrc_rls_get_p_bound.
+ *  @param est  the estimator
+ *  @return the fit; est NULL: NULL */
 const ladrc_rls_t *ladrc_hp_get_fit(const ladrc_hp_estimator_t *est);
 
 #ifdef __cplusplus

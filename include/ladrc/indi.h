@@ -84,8 +84,9 @@ extern "C" {
 /** Largest w_f dt_s: the filter's corner at the Nyquist frequency. */
 #define LADRC_INDI_FILTER_WH_MAX LADRC_PI
 
+/** INDI configuration (ladrc_indi_init validates it). */
 typedef struct {
-    ladrc_real_t dt_s;          /**< fixed step (s) */
+    ladrc_real_t dt_s;          /**< fixed step (s), in [LADRC_DT_MIN_S, LADRC_DT_MAX_S] */
     ladrc_real_t b0;            /**< control effectiveness G (rad/s^2 per N m), |b0| in [1e-3, 1e7] */
     ladrc_real_t att_kp_per_s;  /**< k_att (1/s), > 0, k_att dt_s < 1 */
     ladrc_real_t rate_kp_per_s; /**< k_rate (1/s), > 0, k_rate dt_s < 1 */
@@ -94,15 +95,19 @@ typedef struct {
 
 /** Two first-order stages of the filter F (see above). */
 typedef struct {
-    ladrc_real_t s1, s2;
+    /** @{ */
+    ladrc_real_t s1, s2; /**< outputs of the first and second stage */
+    /** @} */
 } ladrc_indi_lowpass_t;
 
 /** INDI state; owned by the axis. */
 typedef struct {
     ladrc_real_t inv_dt; /**< 1 / h */
     ladrc_real_t j;      /**< J = 1 / b0 (N m per rad/s^2) */
-    ladrc_real_t b0;
-    ladrc_real_t k_att, k_rate;   /**< 1/s */
+    ladrc_real_t b0;     /**< G of the config (rad/s^2 per N m) */
+    /** @{ */
+    ladrc_real_t k_att, k_rate; /**< k_att and k_rate of the config (1/s) */
+    /** @} */
     ladrc_real_t alpha;           /**< 1 - exp(-w_f h) */
     ladrc_indi_lowpass_t accel;   /**< F of the differenced rate: omegadot_f (rad/s^2) */
     ladrc_indi_lowpass_t torque;  /**< F of the acting torque: u_f (N m) */
@@ -113,11 +118,22 @@ typedef struct {
     uint8_t has_rate_last;        /**< 0 after a reset until a first rate */
 } ladrc_indi_t;
 
-/** Validates (LADRC_ERR_DT_S, _B0, _INDI_ATT_KP, _INDI_RATE_KP, _INDI_FILTER,
- *  in that order; LADRC_ERR_NULL) and resets. */
+/**
+ * Validates cfg in the order below and resets (ladrc_indi_reset).
+ * @param[out] indi  the controller to set up
+ * @param[in]  cfg   its configuration
+ * @retval LADRC_OK               set up
+ * @retval LADRC_ERR_NULL         indi or cfg is NULL
+ * @retval LADRC_ERR_DT_S         dt_s not finite or outside [LADRC_DT_MIN_S, LADRC_DT_MAX_S]
+ * @retval LADRC_ERR_B0           |b0| not in [1e-3, 1e7] (or NaN)
+ * @retval LADRC_ERR_INDI_ATT_KP  att_kp_per_s not finite, not > 0, or times dt_s >= 1
+ * @retval LADRC_ERR_INDI_RATE_KP rate_kp_per_s not finite, not > 0, or times dt_s >= 1
+ * @retval LADRC_ERR_INDI_FILTER  filter_rad_s not finite, not > 0, or times dt_s > LADRC_INDI_FILTER_WH_MAX
+ */
 ladrc_status_t ladrc_indi_init(ladrc_indi_t *indi, const ladrc_indi_config_t *cfg);
 
-/** At rest: filters at 0, no previous rate, no gap. */
+/** At rest: filters at 0, no previous rate, no gap.
+ *  @param indi  the controller; NULL: nothing happens */
 void ladrc_indi_reset(ladrc_indi_t *indi);
 
 /**
@@ -125,17 +141,30 @@ void ladrc_indi_reset(ladrc_indi_t *indi);
  * step just ended (ladrc_axis_get_acting_Nm). With a rate (rate_rad_s not NULL)
  * the filters take the step (or the gap's mean) and 1 is returned; without
  * one the step joins the gap and 0 is returned (hold the command). The first
- * rate after a reset only seeds: 1, filters unchanged.
+ * rate after a reset only seeds: 1, filters unchanged. The inputs are not
+ * checked for finiteness (the axis checks them first).
+ * @param indi        the controller; NULL: 0, nothing changes
+ * @param acting_Nm   the torque that acted over the step (N m)
+ * @param rate_rad_s  the measured rate (rad/s), or NULL without one
+ * @return 1 with a rate, 0 without one
  */
 int ladrc_indi_measure(ladrc_indi_t *indi, ladrc_real_t acting_Nm, const ladrc_real_t *rate_rad_s);
 
 /** The command u = u_f + J (nu - omegadot_f) for the attitude error
  *  (r - theta, already wrapped), the shaped reference's r' and r'' and the
- *  measured rate (N m, unclamped; may be non-finite for absurd inputs). */
+ *  measured rate. Not checked for finiteness (the axis clamps and checks).
+ *  @param indi              the controller; NULL: 0
+ *  @param error_rad         r - theta (rad), wrapped for a wrapped angle
+ *  @param ref_rate_rad_s    r' (rad/s)
+ *  @param ref_accel_rad_s2  r'' (rad/s^2)
+ *  @param rate_rad_s        the measured rate (rad/s)
+ *  @return the command (N m), unclamped; non-finite for absurd inputs */
 ladrc_real_t ladrc_indi_command(const ladrc_indi_t *indi, ladrc_real_t error_rad, ladrc_real_t ref_rate_rad_s,
                                 ladrc_real_t ref_accel_rad_s2, ladrc_real_t rate_rad_s);
 
-/** The disturbance INDI acts on, omegadot_f - b0 u_f = (F d) (rad/s^2). */
+/** The disturbance INDI acts on, omegadot_f - b0 u_f = (F d).
+ *  @param indi  the controller; NULL: 0
+ *  @return the filtered disturbance (rad/s^2) */
 ladrc_real_t ladrc_indi_get_disturbance(const ladrc_indi_t *indi);
 
 #ifdef __cplusplus

@@ -72,19 +72,22 @@
 extern "C" {
 #endif
 
+/** How the differentiator is discretised. */
 typedef enum {
     LADRC_LEVANT_IMPLICIT = 0, /**< implicit, set-valued sign: no chattering (default) */
     LADRC_LEVANT_HD = 1,       /**< explicit homogeneous discrete differentiator */
     LADRC_LEVANT_EULER = 2     /**< explicit Euler (paper) */
 } ladrc_levant_method_t;
 
+/** Where the differentiator's gains come from. */
 typedef enum {
     LADRC_LEVANT_GAINS_LIPSCHITZ = 0, /**< from lipschitz_rad_s4 with Levant's coefficients (default) */
     LADRC_LEVANT_GAINS_EXPLICIT = 1   /**< recursive-form gains l1..l4 as given */
 } ladrc_levant_gains_t;
 
+/** Differentiator configuration (ladrc_levant_init validates it). */
 typedef struct {
-    ladrc_real_t dt_s;             /**< fixed step h (s), > 0 */
+    ladrc_real_t dt_s;             /**< fixed step h (s), in [LADRC_DT_MIN_S, LADRC_DT_MAX_S] */
     ladrc_levant_method_t method;  /**< discretisation */
     ladrc_levant_gains_t gains;    /**< which gain fields are read */
     ladrc_real_t lipschitz_rad_s4; /**< LIPSCHITZ: L >= |r''''| (rad/s^4), finite, > 0 */
@@ -97,15 +100,17 @@ typedef struct {
 /** Differentiator state; owned by the caller. Read it through the getters
  *  (faults may be read directly); never write it. */
 typedef struct {
-    ladrc_real_t w;              /**< z0 minus r_last (rad) */
-    ladrc_real_t r_last;         /**< last finite reference sample (rad) */
-    ladrc_real_t z1;             /**< estimate of r' (rad/s) */
-    ladrc_real_t z2;             /**< estimate of r'' (rad/s^2) */
-    ladrc_real_t z3;             /**< estimate of r''' (rad/s^3) */
-    ladrc_real_t h_s;            /**< step h (s) */
+    ladrc_real_t w;      /**< z0 minus r_last (rad) */
+    ladrc_real_t r_last; /**< last finite reference sample (rad) */
+    ladrc_real_t z1;     /**< estimate of r' (rad/s) */
+    ladrc_real_t z2;     /**< estimate of r'' (rad/s^2) */
+    ladrc_real_t z3;     /**< estimate of r''' (rad/s^3) */
+    ladrc_real_t h_s;    /**< step h (s) */
+    /** @{ */
     ladrc_real_t g3, g2, g1, g0; /**< per-sample gains h k3 .. h k0 */
-    uint8_t method;              /**< a ladrc_levant_method_t */
-    ladrc_fault_t faults;        /**< flags of the latest step */
+    /** @} */
+    uint8_t method;       /**< a ladrc_levant_method_t */
+    ladrc_fault_t faults; /**< flags of the latest step */
 } ladrc_levant_t;
 
 /**
@@ -115,13 +120,29 @@ typedef struct {
  * (LADRC_ERR_LEVANT_LIPSCHITZ, or LADRC_ERR_LEVANT_L1 .. _L4), then
  * LADRC_ERR_LEVANT_RANGE when dt_s and the gains give per-sample
  * coefficients (up to h^4 k0) that overflow or vanish in ladrc_real_t.
- * On an error *lev is zeroed: its steps raise LADRC_FAULT_STATE and output 0.
+ * On an error (not LADRC_ERR_NULL) *lev is zeroed: its steps raise
+ * LADRC_FAULT_STATE and output 0.
+ * @param[out] lev  the differentiator to set up
+ * @param[in]  cfg  its configuration
+ * @retval LADRC_OK                   set up
+ * @retval LADRC_ERR_NULL             lev or cfg is NULL
+ * @retval LADRC_ERR_DT_S             dt_s not finite or outside [LADRC_DT_MIN_S, LADRC_DT_MAX_S]
+ * @retval LADRC_ERR_LEVANT_METHOD    method not a ladrc_levant_method_t
+ * @retval LADRC_ERR_LEVANT_LIPSCHITZ gains LIPSCHITZ: lipschitz_rad_s4 not finite or not > 0
+ * @retval LADRC_ERR_LEVANT_L1        gains EXPLICIT: l1 not finite or not > 0
+ * @retval LADRC_ERR_LEVANT_L2        gains EXPLICIT: l2 not finite or not > 0
+ * @retval LADRC_ERR_LEVANT_L3        gains EXPLICIT: l3 not finite or not > 0
+ * @retval LADRC_ERR_LEVANT_L4        gains EXPLICIT: l4 not finite or not > 0
+ * @retval LADRC_ERR_LEVANT_GAINS     gains not a ladrc_levant_gains_t
+ * @retval LADRC_ERR_LEVANT_RANGE     per-sample coefficients overflow or vanish
  */
 ladrc_status_t ladrc_levant_init(ladrc_levant_t *lev, const ladrc_levant_config_t *cfg);
 
 /** Restarts at rest on r_rad: r = r_rad, r' = r'' = r''' = 0, faults cleared.
  *  A non-finite r_rad restarts at rest on the current estimate of r and
- *  raises LADRC_FAULT_INPUT. */
+ *  raises LADRC_FAULT_INPUT.
+ *  @param lev    the differentiator; NULL: nothing happens
+ *  @param r_rad  the reference to rest on (rad) */
 void ladrc_levant_reset(ladrc_levant_t *lev, ladrc_real_t r_rad);
 
 /**
@@ -131,14 +152,23 @@ void ladrc_levant_reset(ladrc_levant_t *lev, ladrc_real_t r_rad);
  * finite steps continue as if the bad samples had been skipped. An update
  * that would make the state non-finite is refused the same way with
  * LADRC_FAULT_STATE.
- * @return the fault flags of this step (also kept in lev->faults)
+ * @param lev    the differentiator
+ * @param r_rad  newest reference sample (rad)
+ * @param out    out: the estimate (rad, rad/s, rad/s^2), or NULL
+ * @return the fault flags of this step (also kept in lev->faults); lev
+ *         NULL: LADRC_FAULT_STATE, nothing written
  */
 ladrc_fault_t ladrc_levant_step(ladrc_levant_t *lev, ladrc_real_t r_rad, ladrc_ref_t *out);
 
-/** The current estimate (r, r', r''). */
+/** The current estimate (r, r', r'').
+ *  @param lev  the differentiator
+ *  @param out  out: (r, r', r'') in rad, rad/s, rad/s^2; lev or out NULL:
+ *              nothing written */
 void ladrc_levant_get_ref(const ladrc_levant_t *lev, ladrc_ref_t *out);
 
-/** The current estimate of r''' (rad/s^3). */
+/** The current estimate of r''' (rad/s^3).
+ *  @param lev  the differentiator; NULL: 0
+ *  @return r''' (rad/s^3) */
 ladrc_real_t ladrc_levant_get_dddr(const ladrc_levant_t *lev);
 
 #ifdef __cplusplus

@@ -100,6 +100,7 @@ extern "C" {
 #define LADRC_MIXER_W2_MAX_MAX_RAD2_S2 LADRC_R(1e10)
 /** @} */
 
+/** Whether the mixer applies rotor limits. */
 typedef enum {
     LADRC_MIXER_SATURATE = 0, /**< rotor limits applied with priorities */
     LADRC_MIXER_IDEAL = 1     /**< no limits: the paper's ideal actuators */
@@ -107,29 +108,30 @@ typedef enum {
 
 /** Bits of ladrc_mixer_output_t.saturated: achieved value differs from the request. */
 enum {
-    LADRC_MIXER_SAT_ROLL = 1u << 0,
-    LADRC_MIXER_SAT_PITCH = 1u << 1,
-    LADRC_MIXER_SAT_YAW = 1u << 2,
-    LADRC_MIXER_SAT_THRUST = 1u << 3
+    LADRC_MIXER_SAT_ROLL = 1u << 0,  /**< roll torque */
+    LADRC_MIXER_SAT_PITCH = 1u << 1, /**< pitch torque */
+    LADRC_MIXER_SAT_YAW = 1u << 2,   /**< yaw torque */
+    LADRC_MIXER_SAT_THRUST = 1u << 3 /**< thrust */
 };
 
+/** Mixer configuration (ladrc_mixer_init validates it); can live in flash. */
 typedef struct {
     ladrc_real_t kL_N_s2;        /**< rotor thrust coefficient kL (N s^2), in [1e-10, 0.1] */
     ladrc_real_t arm_m;          /**< rotor arm length l from the centre (m), in [1e-3, 10] */
     ladrc_real_t b_Nm_s2;        /**< rotor drag-torque coefficient b (N m s^2), in [1e-13, 0.1] */
     ladrc_real_t mass_kg;        /**< vehicle mass m (kg), in [1e-3, 1e3] */
     ladrc_real_t g_m_s2;         /**< gravity g (m/s^2), in [0.1, 100] */
-    ladrc_real_t w2_min_rad2_s2; /**< lowest rotor speed squared, >= 0 (IDEAL: any finite value, unused) */
-    ladrc_real_t w2_max_rad2_s2; /**< highest rotor speed squared, > w2_min_rad2_s2 and in [1e2, 1e10]
+    ladrc_real_t w2_min_rad2_s2; /**< lowest rotor speed squared (rad^2/s^2), >= 0 (IDEAL: any finite value, unused) */
+    ladrc_real_t w2_max_rad2_s2; /**< highest rotor speed squared (rad^2/s^2), > w2_min_rad2_s2 and in [1e2, 1e10]
                                       (IDEAL: any finite value > w2_min_rad2_s2, unused) */
-    ladrc_real_t tilt_max_rad;   /**< tilt beyond which thrust_from_tilt stops growing, in (0, pi/2) */
+    ladrc_real_t tilt_max_rad;   /**< tilt beyond which thrust_from_tilt stops growing (rad), in (0, pi/2) */
     ladrc_mixer_mode_t mode;     /**< saturate (flight) or ideal (paper) */
 } ladrc_mixer_config_t;
 
 /** One mix: what the motors get and what the airframe gets from it. */
 typedef struct {
-    ladrc_real_t w2_rad2_s2[4]; /**< rotor speeds squared, rotors 1..4 */
-    ladrc_real_t w_rad_s[4];    /**< sqrt(max(w^2, 0)) */
+    ladrc_real_t w2_rad2_s2[4]; /**< rotor speeds squared (rad^2/s^2), rotors 1..4 */
+    ladrc_real_t w_rad_s[4];    /**< rotor speeds sqrt(max(w^2, 0)) (rad/s) */
     ladrc_real_t thrust_N;      /**< achieved U_L: forward model of w2_rad2_s2 (the request if within rounding) */
     ladrc_real_t torque_Nm[3];  /**< achieved roll, pitch, yaw torque, likewise */
     uint8_t saturated;          /**< LADRC_MIXER_SAT_* bits */
@@ -138,18 +140,25 @@ typedef struct {
 
 /** Mixer state; owned by the caller. Constants derived at init, plus the last good output. */
 typedef struct {
-    ladrc_real_t kL_N_s2, lkL_Nm_s2, b_Nm_s2;    /**< forward-model coefficients */
-    ladrc_real_t a4_per_N;                       /**< 1 / (4 kL) */
-    ladrc_real_t p2_per_Nm;                      /**< 1 / (2 l kL) */
-    ladrc_real_t r4_per_Nm;                      /**< 1 / (4 b) */
-    ladrc_real_t weight_N;                       /**< m g */
-    ladrc_real_t cos_tilt_min;                   /**< cos(tilt_max_rad) */
-    ladrc_real_t thrust_max_N;                   /**< m g / cos(tilt_max_rad): thrust_from_tilt's cap */
-    ladrc_real_t w2_min_rad2_s2, w2_max_rad2_s2; /**< rotor limits; ideal mode: -+ (largest finite value)/4 */
-    ladrc_real_t rp_limit_Nm;                    /**< l kL (w2_max - w2_min): most roll or pitch torque (0 if ideal) */
-    ladrc_real_t yaw_limit_Nm;                   /**< 2 b (w2_max - w2_min): most yaw torque (0 if ideal) */
-    ladrc_real_t thrust_lo_N, thrust_hi_N;       /**< 4 kL w2_min, 4 kL w2_max: thrust range (0 if ideal) */
-    ladrc_mixer_mode_t mode;
+    /** @{ */
+    ladrc_real_t kL_N_s2, lkL_Nm_s2, b_Nm_s2; /**< forward-model coefficients kL (N s^2), l kL (N m s^2), b (N m s^2) */
+    /** @} */
+    ladrc_real_t a4_per_N;     /**< 1 / (4 kL) */
+    ladrc_real_t p2_per_Nm;    /**< 1 / (2 l kL) */
+    ladrc_real_t r4_per_Nm;    /**< 1 / (4 b) */
+    ladrc_real_t weight_N;     /**< m g */
+    ladrc_real_t cos_tilt_min; /**< cos(tilt_max_rad) */
+    ladrc_real_t thrust_max_N; /**< m g / cos(tilt_max_rad): thrust_from_tilt's cap */
+    /** @{ */
+    ladrc_real_t w2_min_rad2_s2,
+        w2_max_rad2_s2; /**< rotor limits (rad^2/s^2); ideal mode: -+ (largest finite value)/4 */
+    /** @} */
+    ladrc_real_t rp_limit_Nm;  /**< l kL (w2_max - w2_min): most roll or pitch torque (0 if ideal) */
+    ladrc_real_t yaw_limit_Nm; /**< 2 b (w2_max - w2_min): most yaw torque (0 if ideal) */
+    /** @{ */
+    ladrc_real_t thrust_lo_N, thrust_hi_N; /**< 4 kL w2_min, 4 kL w2_max: thrust range (0 if ideal) */
+    /** @} */
+    ladrc_mixer_mode_t mode;  /**< of the config */
     ladrc_mixer_output_t out; /**< last good output */
 } ladrc_mixer_t;
 
@@ -159,20 +168,41 @@ typedef struct {
  *  failure is reported with the status of the last field, in that order, the constant
  *  depends on; the bounds above make that unreachable, the check stays should they be
  *  widened), then resets. On a config error *mx is zeroed: every step then outputs
- *  w^2 = 0 and achieved values 0 (do not fly a rejected mixer). */
+ *  w^2 = 0 and achieved values 0 (do not fly a rejected mixer).
+ *  @param[out] mx   the mixer to set up
+ *  @param[in]  cfg  its configuration
+ *  @retval LADRC_OK                     set up
+ *  @retval LADRC_ERR_NULL               mx or cfg is NULL
+ *  @retval LADRC_ERR_MIXER_KL_N_S2      kL_N_s2 outside [LADRC_MIXER_KL_MIN_N_S2, LADRC_MIXER_KL_MAX_N_S2]
+ *  @retval LADRC_ERR_MIXER_ARM_M        arm_m outside [LADRC_MIXER_ARM_MIN_M, LADRC_MIXER_ARM_MAX_M]
+ *  @retval LADRC_ERR_MIXER_B_NM_S2      b_Nm_s2 outside [LADRC_MIXER_B_MIN_NM_S2, LADRC_MIXER_B_MAX_NM_S2]
+ *  @retval LADRC_ERR_MIXER_MASS_KG      mass_kg outside [LADRC_MIXER_MASS_MIN_KG, LADRC_MIXER_MASS_MAX_KG]
+ *  @retval LADRC_ERR_MIXER_G_M_S2       g_m_s2 outside [LADRC_MIXER_G_MIN_M_S2, LADRC_MIXER_G_MAX_M_S2]
+ *  @retval LADRC_ERR_MIXER_MODE         mode not a ladrc_mixer_mode_t
+ *  @retval LADRC_ERR_MIXER_W2_MIN       w2_min_rad2_s2 not finite, or < 0 in saturate mode
+ *  @retval LADRC_ERR_MIXER_W2_MAX       w2_max_rad2_s2 not > w2_min_rad2_s2 or, saturating, outside
+ *                                       [LADRC_MIXER_W2_MAX_MIN_RAD2_S2, LADRC_MIXER_W2_MAX_MAX_RAD2_S2]
+ *  @retval LADRC_ERR_MIXER_TILT_MAX_RAD tilt_max_rad not in (0, pi/2) */
 ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *cfg);
 
-/** Sets the held output to the mix of level hover (U_L = m g, no torque) and clears faults. */
+/** Sets the held output to the mix of level hover (U_L = m g, no torque) and clears faults.
+ *  @param mx  the mixer; NULL: nothing happens */
 void ladrc_mixer_reset(ladrc_mixer_t *mx);
 
 /**
  * Thrust that holds altitude at the given attitude: m g / max(cos(roll) cos(pitch),
- * cos(tilt_max_rad)) in N. Non-finite angles give m g (level hover).
+ * cos(tilt_max_rad)). Non-finite angles give m g (level hover).
+ * @param mx         the mixer; NULL: 0
+ * @param roll_rad   roll angle (rad)
+ * @param pitch_rad  pitch angle (rad)
+ * @return the thrust (N)
  */
 ladrc_real_t ladrc_mixer_thrust_from_tilt(const ladrc_mixer_t *mx, ladrc_real_t roll_rad, ladrc_real_t pitch_rad);
 
 /**
- * Step 1, pure: allocation (paper eq. 33), no limits.
+ * Step 1, pure: allocation (paper eq. 33), no limits. Non-finite inputs
+ * give non-finite outputs (ladrc_mixer_step checks them).
+ * @param mx         the mixer; mx, torque_Nm or w2_rad2_s2 NULL: nothing written
  * @param thrust_N   requested U_L (N)
  * @param torque_Nm  requested roll, pitch, yaw torque (N m)
  * @param w2_rad2_s2 out: rotor speeds squared, may be negative or beyond the limits
@@ -187,14 +217,21 @@ void ladrc_mixer_allocate(const ladrc_mixer_t *mx, ladrc_real_t thrust_N, const 
  * w^2 must be the allocation of that request. Inputs must be finite (ladrc_mixer_step
  * checks them): a non-finite w^2 or request, or in ideal mode a w^2 beyond the
  * range, leaves *out untouched. out->faults is set to LADRC_FAULT_NONE.
- * @param w2_rad2_s2 allocation of the request, from ladrc_mixer_allocate
- * @param thrust_N, torque_Nm the request that was allocated (reported back bit for
- *        bit on the axes whose rotors give it within rounding)
+ * @param mx         the mixer; any pointer NULL: nothing written
+ * @param w2_rad2_s2 allocation of the request (rad^2/s^2), from ladrc_mixer_allocate
+ * @param thrust_N, torque_Nm the request that was allocated (N, N m; reported back
+ *        bit for bit on the axes whose rotors give it within rounding)
+ * @param out        out: the achieved mix
  */
 void ladrc_mixer_saturate(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[4], ladrc_real_t thrust_N,
                           const ladrc_real_t torque_Nm[3], ladrc_mixer_output_t *out);
 
-/** Forward model: thrust (N) and roll, pitch, yaw torque (N m) of the given w^2. */
+/** Forward model: thrust and roll, pitch, yaw torque of the given w^2; no
+ *  finiteness check (non-finite in, non-finite out).
+ *  @param mx          the mixer; any pointer NULL: nothing written
+ *  @param w2_rad2_s2  rotor speeds squared (rad^2/s^2)
+ *  @param thrust_N    out: thrust (N)
+ *  @param torque_Nm   out: roll, pitch, yaw torque (N m) */
 void ladrc_mixer_forward(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[4], ladrc_real_t *thrust_N,
                          ladrc_real_t torque_Nm[3]);
 
@@ -207,12 +244,18 @@ void ladrc_mixer_forward(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[
  * The held output starts as hover (see reset). A NULL mx or torque_Nm (a
  * programmer error, LADRC_ASSERT) returns LADRC_FAULT_STATE with asserts off,
  * the state untouched.
+ * @param mx         the mixer
+ * @param thrust_N   requested thrust U_L (N)
+ * @param torque_Nm  requested roll, pitch, yaw torque (N m)
+ * @param out        out: the mix, or NULL
  * @return the step's fault flags
  */
 ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
                                ladrc_mixer_output_t *out);
 
-/** Fault flags of the latest step. */
+/** Fault flags of the latest step.
+ *  @param mx  the mixer
+ *  @return the flags; mx NULL: LADRC_FAULT_STATE */
 ladrc_fault_t ladrc_mixer_get_faults(const ladrc_mixer_t *mx);
 
 #ifdef __cplusplus

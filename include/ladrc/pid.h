@@ -38,8 +38,9 @@
 extern "C" {
 #endif
 
+/** PID configuration (ladrc_pid_init validates it); can live in flash. */
 typedef struct {
-    ladrc_real_t dt_s;           /**< fixed step (s), > 0 */
+    ladrc_real_t dt_s;           /**< fixed step (s), in [LADRC_DT_MIN_S, LADRC_DT_MAX_S] */
     ladrc_real_t kp;             /**< N m / rad, >= 0 */
     ladrc_real_t ki;             /**< N m / (rad s), >= 0 */
     ladrc_real_t kd;             /**< N m s / rad, >= 0 */
@@ -52,12 +53,16 @@ typedef struct {
 
 /** PID state; owned by the caller. */
 typedef struct {
-    ladrc_real_t dt_s;
-    ladrc_real_t kp, kd;
+    ladrc_real_t dt_s; /**< fixed step (s) */
+    /** @{ */
+    ladrc_real_t kp, kd; /**< the config's kp (N m / rad) and kd (N m s / rad) */
+    /** @} */
     ladrc_real_t ki_dt;   /**< ki h: integral gain per sample (N m / rad) */
     ladrc_real_t d_alpha; /**< h / (tau + h), derived at init */
     ladrc_real_t d_keep;  /**< 1 - d_alpha */
-    ladrc_real_t i_limit_Nm, u_min_Nm, u_max_Nm;
+    /** @{ */
+    ladrc_real_t i_limit_Nm, u_min_Nm, u_max_Nm; /**< the config's bounds (N m) */
+    /** @} */
     ladrc_real_t integral_Nm;      /**< integral term (N m) */
     ladrc_real_t d_filtered_rad_s; /**< filtered derivative of the measurement (rad/s) */
     ladrc_real_t prev_meas_rad;    /**< last finite measurement */
@@ -72,7 +77,12 @@ typedef struct {
 /** First-order low pass, backward Euler, written as a blend so that
  *  alpha = h / (tau + h) = 1 (tau = 0) gives the input exactly:
  *  y_k = keep y_k-1 + alpha x_k, keep = 1 - alpha. Shared by PID's and the
- *  cascaded controller's derivative filters. */
+ *  cascaded controller's derivative filters. No finiteness check.
+ *  @param keep   1 - alpha
+ *  @param alpha  h / (tau + h), in (0, 1]
+ *  @param prev   the filter's previous output (unit of the input)
+ *  @param in     the new input
+ *  @return the new output, keep prev + alpha in */
 static inline ladrc_real_t ladrc_lowpass_blend(ladrc_real_t keep, ladrc_real_t alpha, ladrc_real_t prev,
                                                ladrc_real_t in)
 {
@@ -81,21 +91,42 @@ static inline ladrc_real_t ladrc_lowpass_blend(ladrc_real_t keep, ladrc_real_t a
 
 /** Conditional integration: 1 when integrating error would push the command
  *  further into the saturation the last applied torque hit (applied below
- *  the unclamped command and error > 0, or above it and error < 0). */
+ *  the unclamped command and error > 0, or above it and error < 0).
+ *  NaN in any argument: 0 (integrate).
+ *  @param error         the error about to be integrated (its sign counts)
+ *  @param applied_Nm    the torque applied after the last command (N m)
+ *  @param unclamped_Nm  the last command before clamping (N m)
+ *  @return 1: do not integrate; 0: integrate */
 static inline int ladrc_integrator_frozen(ladrc_real_t error, ladrc_real_t applied_Nm, ladrc_real_t unclamped_Nm)
 {
     return (error > LADRC_R(0.0) && applied_Nm < unclamped_Nm) || (error < LADRC_R(0.0) && applied_Nm > unclamped_Nm);
 }
 
-/** Validates every field (LADRC_ERR_DT_S, _PID_KP, _PID_KI, _PID_KD, _PID_D_TAU_S,
- *  _PID_I_LIMIT_NM, _U_LIMITS, _WRAP_ANGLE, checked in that order; LADRC_ERR_NULL) and resets.
- *  i_limit_Nm may be +INFINITY and u_min_Nm / u_max_Nm -INFINITY / +INFINITY (no
- *  clamp); NaN is rejected. On a config error *pid is zeroed: its output stays 0. */
+/**
+ * Validates every field in the order below and resets (ladrc_pid_reset at 0).
+ * i_limit_Nm may be +INFINITY and u_min_Nm / u_max_Nm -INFINITY / +INFINITY
+ * (no clamp); NaN is rejected. On a config error (not LADRC_ERR_NULL) *pid
+ * is zeroed: its output stays 0.
+ * @param[out] pid  the controller to set up
+ * @param[in]  cfg  its configuration
+ * @retval LADRC_OK                  set up
+ * @retval LADRC_ERR_NULL            pid or cfg is NULL
+ * @retval LADRC_ERR_DT_S            dt_s not finite or outside [LADRC_DT_MIN_S, LADRC_DT_MAX_S]
+ * @retval LADRC_ERR_PID_KP          kp not finite or < 0
+ * @retval LADRC_ERR_PID_KI          ki not finite or < 0
+ * @retval LADRC_ERR_PID_KD          kd not finite or < 0
+ * @retval LADRC_ERR_PID_D_TAU_S     d_filter_tau_s not finite or < 0
+ * @retval LADRC_ERR_PID_I_LIMIT_NM  i_limit_Nm NaN or < 0
+ * @retval LADRC_ERR_U_LIMITS        u_min_Nm or u_max_Nm NaN, or u_min_Nm >= u_max_Nm
+ * @retval LADRC_ERR_WRAP_ANGLE      wrap_angle not 0 or 1
+ */
 ladrc_status_t ladrc_pid_init(ladrc_pid_t *pid, const ladrc_pid_config_t *cfg);
 
 /** Clears integral, derivative filter, faults and history; meas_rad seeds the derivative.
  *  The held output becomes 0 clamped into [u_min_Nm, u_max_Nm]. A non-finite meas_rad
- *  seeds nothing (the next good measurement does) and raises LADRC_FAULT_INPUT. */
+ *  seeds nothing (the next good measurement does) and raises LADRC_FAULT_INPUT.
+ *  @param pid       the controller; NULL: nothing happens
+ *  @param meas_rad  the measured angle (rad) */
 void ladrc_pid_reset(ladrc_pid_t *pid, ladrc_real_t meas_rad);
 
 /**
@@ -106,17 +137,27 @@ void ladrc_pid_reset(ladrc_pid_t *pid, ladrc_real_t meas_rad);
  * Non-finite *rate_rad_s: the finite difference is used, LADRC_FAULT_RATE.
  * An update that would overflow the state (huge finite inputs): state held,
  * last command given, LADRC_FAULT_STATE.
- * @return the tick's fault flags (also ladrc_pid_get_faults)
+ * @param pid         the controller
+ * @param ref_rad     the reference (rad)
+ * @param meas_rad    the measured angle (rad)
+ * @param rate_rad_s  the measured rate (rad/s), or NULL
+ * @param torque_Nm   out: the command (N m)
+ * @return the tick's fault flags (also ladrc_pid_get_faults); pid or
+ *         torque_Nm NULL: LADRC_FAULT_STATE, nothing changes
  */
 ladrc_fault_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t meas_rad,
                              const ladrc_real_t *rate_rad_s, ladrc_real_t *torque_Nm);
 
 /** Reports the torque actually applied after the last step (N m). A non-finite
  *  value is ignored (the clamped output counts) and adds LADRC_FAULT_APPLIED to the
- *  step's flags (set_applied never clears a flag). */
+ *  step's flags (set_applied never clears a flag).
+ *  @param pid         the controller; NULL: nothing happens
+ *  @param applied_Nm  the applied torque (N m) */
 void ladrc_pid_set_applied(ladrc_pid_t *pid, ladrc_real_t applied_Nm);
 
-/** Fault flags of the latest step or set_applied call. */
+/** Fault flags of the latest step or set_applied call.
+ *  @param pid  the controller
+ *  @return the flags; pid NULL: LADRC_FAULT_STATE */
 ladrc_fault_t ladrc_pid_get_faults(const ladrc_pid_t *pid);
 
 #ifdef __cplusplus

@@ -71,9 +71,10 @@ extern "C" {
 /** Entries of the strict upper triangle of U. */
 #define LADRC_RLS_U_SIZE (LADRC_RLS_MAX_PARAMS * (LADRC_RLS_MAX_PARAMS - 1) / 2)
 
+/** RLS configuration (ladrc_rls_init validates it). */
 typedef struct {
     uint8_t n_params;           /**< 1..LADRC_RLS_MAX_PARAMS */
-    ladrc_real_t dt_s;          /**< fixed step h (s), > 0 */
+    ladrc_real_t dt_s;          /**< fixed step h (s), in [LADRC_DT_MIN_S, LADRC_DT_MAX_S] */
     ladrc_real_t lambda0_per_s; /**< maximum forgetting rate (1/s), >= 0 (0 = no forgetting), lambda0 h <= 1 */
     ladrc_real_t p_bound;       /**< k0: bound on tr(P) (1/(s phi^2)), > 0 */
     ladrc_real_t p_initial;     /**< P after init/reset = p_initial I; > 0 and n_params p_initial <= p_bound */
@@ -89,19 +90,26 @@ typedef struct {
     ladrc_real_t d[LADRC_RLS_MAX_PARAMS];     /**< D(j), > 0 */
     ladrc_real_t trace;                       /**< tr(U D U^T), kept with the factors */
     ladrc_real_t lambda_per_s;                /**< forgetting rate of the last update */
-    ladrc_real_t dt_s;
-    ladrc_real_t lambda0_per_s;
-    ladrc_real_t p_bound;
-    ladrc_real_t p_initial;
-    uint8_t n_params;
-    ladrc_fault_t faults; /**< flags of the latest update */
+    ladrc_real_t dt_s;                        /**< of the config (s) */
+    ladrc_real_t lambda0_per_s;               /**< maximum forgetting rate (1/s) */
+    ladrc_real_t p_bound;                     /**< of the config */
+    ladrc_real_t p_initial;                   /**< of the config */
+    uint8_t n_params;                         /**< parameters in use */
+    ladrc_fault_t faults;                     /**< flags of the latest update */
 } ladrc_rls_t;
 
 /**
- * Validates cfg and starts at theta = 0, P = p_initial I.
- * @return LADRC_OK, LADRC_ERR_NULL, LADRC_ERR_RLS_N_PARAMS, LADRC_ERR_DT_S,
- *         LADRC_ERR_RLS_LAMBDA0, LADRC_ERR_RLS_P_BOUND or LADRC_ERR_RLS_P_INITIAL
- *         (first bad field, in that order).
+ * Validates cfg (first bad field, in the order below) and starts at
+ * theta = 0, P = p_initial I.
+ * @param[out] rls  the estimator to set up
+ * @param[in]  cfg  its configuration
+ * @retval LADRC_OK               set up
+ * @retval LADRC_ERR_NULL         rls or cfg is NULL
+ * @retval LADRC_ERR_RLS_N_PARAMS n_params outside 1..LADRC_RLS_MAX_PARAMS
+ * @retval LADRC_ERR_DT_S         dt_s not finite or outside [LADRC_DT_MIN_S, LADRC_DT_MAX_S]
+ * @retval LADRC_ERR_RLS_LAMBDA0  lambda0_per_s not finite, < 0, or times dt_s > 1
+ * @retval LADRC_ERR_RLS_P_BOUND  p_bound not finite or not > 0
+ * @retval LADRC_ERR_RLS_P_INITIAL p_initial not finite, not > 0, or n_params p_initial > p_bound
  */
 ladrc_status_t ladrc_rls_init(ladrc_rls_t *rls, const ladrc_rls_config_t *cfg);
 
@@ -109,53 +117,86 @@ ladrc_status_t ladrc_rls_init(ladrc_rls_t *rls, const ladrc_rls_config_t *cfg);
  * Restarts at theta = theta0 (n_params entries; NULL or non-finite entries
  * give 0) and P = p_initial I; clears the faults and the last lambda.
  * ladrc_rls_reset(rls, ladrc_rls_get_theta(rls)) restarts P only.
+ * @param rls     the estimator; NULL: nothing happens
+ * @param theta0  the start estimate (n_params entries), or NULL for 0
  */
 void ladrc_rls_reset(ladrc_rls_t *rls, const ladrc_real_t *theta0);
 
 /**
  * Restarts with n_params parameters (the others settings kept) at theta0, as
  * ladrc_rls_reset does (theta0 may be this estimator's own theta). Rejected,
- * state unchanged, as init would reject the count: LADRC_ERR_RLS_N_PARAMS,
- * LADRC_ERR_RLS_P_INITIAL (n_params p_initial > p_bound).
+ * state unchanged, as init would reject the count.
+ * @param rls       the estimator
+ * @param n_params  the new count, 1..LADRC_RLS_MAX_PARAMS
+ * @param theta0    the start estimate (n_params entries), or NULL for 0
+ * @retval LADRC_OK                restarted
+ * @retval LADRC_ERR_NULL          rls is NULL
+ * @retval LADRC_ERR_RLS_N_PARAMS  n_params outside 1..LADRC_RLS_MAX_PARAMS
+ * @retval LADRC_ERR_RLS_P_INITIAL n_params p_initial > p_bound
  */
 ladrc_status_t ladrc_rls_restart(ladrc_rls_t *rls, uint8_t n_params, const ladrc_real_t *theta0);
 
 /**
  * One sample of y = phi^T theta (see the file comment for the equations).
- * @param phi regressor, n_params entries
+ * @param rls estimator
+ * @param phi regressor, n_params entries (unit of y per unit of theta)
  * @param y   measurement
- * @return flags of this update: LADRC_FAULT_NONE, LADRC_FAULT_INPUT (state
- *         untouched) or LADRC_FAULT_STATE (refused, or P restarted).
+ * @return flags of this update: LADRC_FAULT_NONE, LADRC_FAULT_INPUT (a
+ *         non-finite phi or y: state untouched) or LADRC_FAULT_STATE (refused,
+ *         or P restarted); rls or phi NULL: LADRC_FAULT_STATE, nothing changes
  */
 ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_real_t y);
 
-/** Prediction phi^T theta (n_params entries of phi; a non-finite phi gives a non-finite result). */
+/** Prediction phi^T theta.
+ *  @param rls  the estimator
+ *  @param phi  regressor, n_params entries
+ *  @return phi^T theta (unit of y); non-finite for a non-finite phi; rls or
+ *          phi NULL: 0 */
 ladrc_real_t ladrc_rls_predict(const ladrc_rls_t *rls, const ladrc_real_t *phi);
 
-/** The estimate, n_params entries; valid while rls is. */
+/** The estimate.
+ *  @param rls  the estimator
+ *  @return theta, n_params entries, valid while rls is; rls NULL: NULL */
 const ladrc_real_t *ladrc_rls_get_theta(const ladrc_rls_t *rls);
 
-/** tr(P), the norm the forgetting and the bound use (1/(s phi^2)). */
+/** tr(P), the norm the forgetting and the bound use.
+ *  @param rls  the estimator; NULL: 0
+ *  @return tr(P) (1/(s phi^2)) */
 ladrc_real_t ladrc_rls_get_p_norm(const ladrc_rls_t *rls);
 
 /** k0, the configured bound on tr(P) (1/(s phi^2)): ladrc_rls_get_p_norm
- *  never exceeds it after init, reset, restart or any update (file comment). */
+ *  never exceeds it after init, reset, restart or any update (file comment).
+ *  @param rls  the estimator; NULL: 0
+ *  @return k0 (1/(s phi^2)) */
 ladrc_real_t ladrc_rls_get_p_bound(const ladrc_rls_t *rls);
 
 /** Entry (row, col) of P = U D U^T, both < n_params (0 otherwise); P(i,j) and
- *  P(j,i) are the same number. */
+ *  P(j,i) are the same number.
+ *  @param rls  the estimator; NULL: 0
+ *  @param row  row index
+ *  @param col  column index
+ *  @return P(row, col) (1/(s phi^2)) */
 ladrc_real_t ladrc_rls_get_p(const ladrc_rls_t *rls, uint8_t row, uint8_t col);
 
 /** Forgetting rate lambda (1/s) of the last update that got past the input
- *  check; 0 after init or reset. */
+ *  check; 0 after init or reset.
+ *  @param rls  the estimator; NULL: 0
+ *  @return lambda (1/s) */
 ladrc_real_t ladrc_rls_get_lambda(const ladrc_rls_t *rls);
 
 /** Changes the maximum forgetting rate from the next update on (e.g. a memory
  *  that follows a signal's period). Rejected, state unchanged, as init would
- *  reject it: LADRC_ERR_RLS_LAMBDA0. */
+ *  reject it.
+ *  @param rls            the estimator
+ *  @param lambda0_per_s  the new maximum forgetting rate (1/s)
+ *  @retval LADRC_OK              changed
+ *  @retval LADRC_ERR_NULL        rls is NULL
+ *  @retval LADRC_ERR_RLS_LAMBDA0 lambda0_per_s not finite, < 0, or times dt_s > 1 */
 ladrc_status_t ladrc_rls_set_lambda0(ladrc_rls_t *rls, ladrc_real_t lambda0_per_s);
 
-/** Flags of the latest update. */
+/** Flags of the latest update.
+ *  @param rls  the estimator
+ *  @return the flags; rls NULL: LADRC_FAULT_STATE */
 ladrc_fault_t ladrc_rls_get_faults(const ladrc_rls_t *rls);
 
 #ifdef __cplusplus

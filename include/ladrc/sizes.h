@@ -21,21 +21,32 @@
 extern "C" {
 #endif
 
-/** sizeof(ladrc_real_t): 4 (float) or 8 (LADRC_REAL_DOUBLE). */
+/** @return sizeof(ladrc_real_t) in the library's build (bytes): 4 (float) or 8 (LADRC_REAL_DOUBLE) */
 size_t ladrc_sizeof_real(void);
+/** @return sizeof(ladrc_axis_t) in the library's build (bytes) */
 size_t ladrc_sizeof_axis_t(void);
+/** @return sizeof(ladrc_axis_config_t) in the library's build (bytes) */
 size_t ladrc_sizeof_axis_config_t(void);
+/** @return sizeof(ladrc_attitude_t) in the library's build (bytes) */
 size_t ladrc_sizeof_attitude_t(void);
+/** @return sizeof(ladrc_attitude_config_t) in the library's build (bytes) */
 size_t ladrc_sizeof_attitude_config_t(void);
+/** @return sizeof(ladrc_mixer_t) in the library's build (bytes) */
 size_t ladrc_sizeof_mixer_t(void);
+/** @return sizeof(ladrc_mixer_config_t) in the library's build (bytes) */
 size_t ladrc_sizeof_mixer_config_t(void);
+/** @return sizeof(ladrc_mixer_output_t) in the library's build (bytes) */
 size_t ladrc_sizeof_mixer_output_t(void);
+/** @return sizeof(ladrc_ref_t) in the library's build (bytes) */
 size_t ladrc_sizeof_ref_t(void);
-/** LADRC_HP_MAX_TONES: the length of ladrc_axis_config_t's hp_freq_rad_s. */
+/** @return LADRC_HP_MAX_TONES of the library's build: the length of
+ *          ladrc_axis_config_t's hp_freq_rad_s */
 size_t ladrc_hp_max_tones(void);
 /** The variant and shaper set and the online search the library was built
  *  with, as the suffix its axis and attitude symbols carry after the real
- *  type (types.h, ABI guard): "_v111111_s11_o1_t2" with everything built and the default most tones. */
+ *  type (types.h, ABI guard).
+ *  @return the suffix, e.g. "_v111111_s11_o1_t2" with everything built and
+ *          the default most tones; never NULL */
 const char *ladrc_abi_set(void);
 
 #ifdef __cplusplus

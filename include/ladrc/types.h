@@ -42,14 +42,17 @@ extern "C" {
 #endif
 
 #ifdef LADRC_REAL_DOUBLE
+/** The real type of every quantity: double in this build. */
 typedef double ladrc_real_t;
+/** A literal of the real type. */
 #define LADRC_R(x) (x)
 #define LADRC_REAL_MAX DBL_MAX
 #define LADRC_REAL_MIN DBL_MIN
 #define LADRC_REAL_EPS DBL_EPSILON
 #else
+/** The real type of every quantity: float by default, double with LADRC_REAL_DOUBLE. */
 typedef float ladrc_real_t;
-/* Appends the f suffix so float builds never promote to double. */
+/** A literal of the real type: appends the f suffix so float builds never promote to double. */
 #define LADRC_R(x) (x##f)
 /** Largest finite ladrc_real_t. */
 #define LADRC_REAL_MAX FLT_MAX
@@ -67,7 +70,7 @@ typedef float ladrc_real_t;
  *  catches; with them off, the functions return LADRC_ERR_NULL or do nothing. */
 #ifndef LADRC_ASSERT
 #define LADRC_ASSERT(cond) ((void)0)
-#define LADRC_ASSERTS_ENABLED 0
+#define LADRC_ASSERTS_ENABLED 0 /**< 1: LADRC_ASSERT checks, 0: it does nothing */
 #elif !defined(LADRC_ASSERTS_ENABLED)
 #define LADRC_ASSERTS_ENABLED 1
 #endif
@@ -84,28 +87,28 @@ typedef float ladrc_real_t;
  * definitions (the state's layout depends on them: the ABI guard below).
  */
 #ifndef LADRC_WITH_LADRC
-#define LADRC_WITH_LADRC 1
+#define LADRC_WITH_LADRC 1 /**< 1: the LADRC variant built, 0: left out */
 #endif
 #ifndef LADRC_WITH_LP_MLADRC
-#define LADRC_WITH_LP_MLADRC 1
+#define LADRC_WITH_LP_MLADRC 1 /**< 1: the LP-MLADRC variant built, 0: left out */
 #endif
 #ifndef LADRC_WITH_HP_MLADRC
-#define LADRC_WITH_HP_MLADRC 1
+#define LADRC_WITH_HP_MLADRC 1 /**< 1: the HP-MLADRC variant built, 0: left out */
 #endif
 #ifndef LADRC_WITH_PID
-#define LADRC_WITH_PID 1
+#define LADRC_WITH_PID 1 /**< 1: the PID variant built, 0: left out */
 #endif
 #ifndef LADRC_WITH_CASCADED
-#define LADRC_WITH_CASCADED 1
+#define LADRC_WITH_CASCADED 1 /**< 1: the CASCADED variant built, 0: left out */
 #endif
 #ifndef LADRC_WITH_INDI
-#define LADRC_WITH_INDI 1
+#define LADRC_WITH_INDI 1 /**< 1: the INDI variant built, 0: left out */
 #endif
 #ifndef LADRC_WITH_TD
-#define LADRC_WITH_TD 1
+#define LADRC_WITH_TD 1 /**< 1: the TD shaper built, 0: left out */
 #endif
 #ifndef LADRC_WITH_LEVANT
-#define LADRC_WITH_LEVANT 1
+#define LADRC_WITH_LEVANT 1 /**< 1: the Levant shaper built, 0: left out */
 #endif
 /*
  * The HP estimator's online frequency search (LADRC_HP_FREQ_ONLINE,
@@ -116,7 +119,7 @@ typedef float ladrc_real_t;
  * LADRC_ERR_FEATURE_NOT_BUILT.
  */
 #ifndef LADRC_WITH_HP_ONLINE
-#define LADRC_WITH_HP_ONLINE 1
+#define LADRC_WITH_HP_ONLINE 1 /**< 1: the HP online frequency search built, 0: left out */
 #endif
 
 /*
@@ -137,6 +140,7 @@ typedef float ladrc_real_t;
  * ("undefined reference to ladrc_axis_init_float_v111111_s11_o1_t2") instead
  * of reading misplaced fields. Call the functions by their plain names.
  */
+/** @cond LADRC_INTERNAL */
 #define LADRC_ABI_CAT_(a, b) a##b
 #define LADRC_ABI_CAT(a, b) LADRC_ABI_CAT_(a, b)
 #ifdef LADRC_REAL_DOUBLE
@@ -185,13 +189,14 @@ typedef float ladrc_real_t;
 #define ladrc_tune_wc_from_settling LADRC_ABI_NAME_(ladrc_tune_wc_from_settling)
 #define ladrc_tune_wc_from_settling_exact LADRC_ABI_NAME_(ladrc_tune_wc_from_settling_exact)
 #define ladrc_tune_wo_from_wc LADRC_ABI_NAME_(ladrc_tune_wo_from_wc)
+/** @endcond */
 
 /**
  * Result of an init or a configuration helper. Each error names the one
  * configuration field that is wrong, so a caller can report it directly.
  */
 typedef enum {
-    LADRC_OK = 0,
+    LADRC_OK = 0,          /**< accepted */
     LADRC_ERR_NULL,        /**< a pointer argument is NULL */
     LADRC_ERR_DT_S,        /**< dt_s not finite or outside [LADRC_DT_MIN_S, LADRC_DT_MAX_S] (1e-6..1 s) */
     LADRC_ERR_WO_RAD_S,    /**< wo_rad_s not finite or not > 0 */
@@ -269,7 +274,10 @@ typedef enum {
     LADRC_STATUS_COUNT           /**< number of status codes (not a status) */
 } ladrc_status_t;
 
-/** Short, stable text for a status code ("LADRC_ERR_DT_S: ..."); never NULL. */
+/** Short, stable text for a status code.
+ *  @param status  any value (one outside the enum has a text too)
+ *  @return "LADRC_ERR_DT_S: ..." (the name alone with LADRC_STATUS_TEXTS
+ *          names); never NULL */
 const char *ladrc_status_str(ladrc_status_t status);
 
 /**
@@ -277,13 +285,14 @@ const char *ladrc_status_str(ladrc_status_t status);
  * module also counts consecutive faulty steps so a caller can fail over.
  */
 enum {
-    LADRC_FAULT_NONE = 0u,
+    LADRC_FAULT_NONE = 0u,       /**< no fault */
     LADRC_FAULT_INPUT = 1u << 0, /**< reference or measured angle not finite or beyond angle_limit_rad: state held */
     LADRC_FAULT_RATE = 1u << 1,  /**< measured rate not finite or beyond rate_limit_rad_s: step ran without it */
     LADRC_FAULT_APPLIED =
         1u << 2,                /**< applied command not finite or beyond applied_limit_Nm: own command used instead */
     LADRC_FAULT_STATE = 1u << 3 /**< an update would have made the state non-finite: state held */
 };
+/** Fault flags: LADRC_FAULT_* bits, or-ed. */
 typedef uint8_t ladrc_fault_t;
 
 /*
@@ -294,11 +303,13 @@ typedef uint8_t ladrc_fault_t;
  * (__FINITE_MATH_ONLY__, which -ffast-math sets) the tests read the exponent
  * bits instead: all ones is an infinity or a NaN, whatever the flags.
  */
+/** @cond LADRC_INTERNAL */
 #if (defined(__FINITE_MATH_ONLY__) && __FINITE_MATH_ONLY__) || defined(__FAST_MATH__)
 #define LADRC_FINITE_BY_BITS 1
 #else
 #define LADRC_FINITE_BY_BITS 0
 #endif
+/** @endcond */
 
 #if LADRC_FINITE_BY_BITS
 #ifdef LADRC_REAL_DOUBLE
@@ -318,7 +329,9 @@ static inline int ladrc_finite_bits_(ladrc_real_t x)
 }
 #endif
 
-/** 1 if x is neither NaN nor infinite. */
+/** Whether x is neither NaN nor infinite.
+ *  @param x  any value
+ *  @return 1 finite, 0 NaN or infinite */
 static inline int ladrc_is_finite(ladrc_real_t x)
 {
     return ladrc_finite_bits_(x);
@@ -339,42 +352,62 @@ static inline int ladrc_all_finite4(ladrc_real_t a, ladrc_real_t b, ladrc_real_t
     return ladrc_finite_bits_(a) & ladrc_finite_bits_(b) & ladrc_finite_bits_(c) & ladrc_finite_bits_(d);
 }
 #else
-/** 1 if x is neither NaN nor infinite. */
+/** Whether x is neither NaN nor infinite.
+ *  @param x  any value
+ *  @return 1 finite, 0 NaN or infinite */
 static inline int ladrc_is_finite(ladrc_real_t x)
 {
     return isfinite(x) ? 1 : 0;
 }
 
-/* 1 if every argument is finite, in one comparison: x * 0 is 0 for a finite
- * x and NaN for an infinity or a NaN, so the sum is 0 exactly when all are
- * finite. Cheaper than ladrc_is_finite per value on the hot paths. */
+/* In one comparison: x * 0 is 0 for a finite x and NaN for an infinity or
+ * a NaN, so the sum is 0 exactly when all are finite. Cheaper than
+ * ladrc_is_finite per value on the hot paths. */
+/** Whether both arguments are finite.
+ *  @param a, b  any values
+ *  @return 1 all finite, 0 otherwise */
 static inline int ladrc_all_finite2(ladrc_real_t a, ladrc_real_t b)
 {
     return (a * LADRC_R(0.0) + b * LADRC_R(0.0) == LADRC_R(0.0)) ? 1 : 0;
 }
 
+/** Whether all three arguments are finite.
+ *  @param a, b, c  any values
+ *  @return 1 all finite, 0 otherwise */
 static inline int ladrc_all_finite3(ladrc_real_t a, ladrc_real_t b, ladrc_real_t c)
 {
     return (a * LADRC_R(0.0) + b * LADRC_R(0.0) + c * LADRC_R(0.0) == LADRC_R(0.0)) ? 1 : 0;
 }
 
+/** Whether all four arguments are finite.
+ *  @param a, b, c, d  any values
+ *  @return 1 all finite, 0 otherwise */
 static inline int ladrc_all_finite4(ladrc_real_t a, ladrc_real_t b, ladrc_real_t c, ladrc_real_t d)
 {
     return (a * LADRC_R(0.0) + b * LADRC_R(0.0) + c * LADRC_R(0.0) + d * LADRC_R(0.0) == LADRC_R(0.0)) ? 1 : 0;
 }
 #endif
 
+/** x limited to [lo, hi] (lo <= hi).
+ *  @param x   the value; NaN stays NaN
+ *  @param lo  lower bound
+ *  @param hi  upper bound
+ *  @return lo, x or hi */
 static inline ladrc_real_t ladrc_clamp(ladrc_real_t x, ladrc_real_t lo, ladrc_real_t hi)
 {
     return (x < lo) ? lo : ((x > hi) ? hi : x);
 }
 
+/** The sign of x.
+ *  @param x  the value
+ *  @return 1, -1, or 0 for 0 and NaN */
 static inline ladrc_real_t ladrc_sign(ladrc_real_t x)
 {
     return (x > LADRC_R(0.0)) ? LADRC_R(1.0) : ((x < LADRC_R(0.0)) ? LADRC_R(-1.0) : LADRC_R(0.0));
 }
 
 /* The math functions on ladrc_real_t; a LADRC_CONFIG header may replace any of them. */
+/** The square root on ladrc_real_t; a LADRC_CONFIG header may replace it. */
 #ifndef LADRC_SQRT
 #ifdef LADRC_REAL_DOUBLE
 #define LADRC_SQRT(x) sqrt(x)
@@ -382,6 +415,7 @@ static inline ladrc_real_t ladrc_sign(ladrc_real_t x)
 #define LADRC_SQRT(x) sqrtf(x)
 #endif
 #endif
+/** The absolute value on ladrc_real_t; a LADRC_CONFIG header may replace it. */
 #ifndef LADRC_FABS
 #ifdef LADRC_REAL_DOUBLE
 #define LADRC_FABS(x) fabs(x)
@@ -389,6 +423,7 @@ static inline ladrc_real_t ladrc_sign(ladrc_real_t x)
 #define LADRC_FABS(x) fabsf(x)
 #endif
 #endif
+/** The exponential on ladrc_real_t; a LADRC_CONFIG header may replace it. */
 #ifndef LADRC_EXP
 #ifdef LADRC_REAL_DOUBLE
 #define LADRC_EXP(x) exp(x)
@@ -396,6 +431,7 @@ static inline ladrc_real_t ladrc_sign(ladrc_real_t x)
 #define LADRC_EXP(x) expf(x)
 #endif
 #endif
+/** The exp(x) - 1 on ladrc_real_t; a LADRC_CONFIG header may replace it. */
 #ifndef LADRC_EXPM1
 #ifdef LADRC_REAL_DOUBLE
 #define LADRC_EXPM1(x) expm1(x)
@@ -403,6 +439,7 @@ static inline ladrc_real_t ladrc_sign(ladrc_real_t x)
 #define LADRC_EXPM1(x) expm1f(x)
 #endif
 #endif
+/** The cosine on ladrc_real_t; a LADRC_CONFIG header may replace it. */
 #ifndef LADRC_COS
 #ifdef LADRC_REAL_DOUBLE
 #define LADRC_COS(x) cos(x)
@@ -410,6 +447,7 @@ static inline ladrc_real_t ladrc_sign(ladrc_real_t x)
 #define LADRC_COS(x) cosf(x)
 #endif
 #endif
+/** The sine on ladrc_real_t; a LADRC_CONFIG header may replace it. */
 #ifndef LADRC_SIN
 #ifdef LADRC_REAL_DOUBLE
 #define LADRC_SIN(x) sin(x)
@@ -417,6 +455,7 @@ static inline ladrc_real_t ladrc_sign(ladrc_real_t x)
 #define LADRC_SIN(x) sinf(x)
 #endif
 #endif
+/** The arc sine on ladrc_real_t; a LADRC_CONFIG header may replace it. */
 #ifndef LADRC_ASIN
 #ifdef LADRC_REAL_DOUBLE
 #define LADRC_ASIN(x) asin(x)
@@ -424,6 +463,7 @@ static inline ladrc_real_t ladrc_sign(ladrc_real_t x)
 #define LADRC_ASIN(x) asinf(x)
 #endif
 #endif
+/** The cube root on ladrc_real_t; a LADRC_CONFIG header may replace it. */
 #ifndef LADRC_CBRT
 #ifdef LADRC_REAL_DOUBLE
 #define LADRC_CBRT(x) cbrt(x)
@@ -432,40 +472,66 @@ static inline ladrc_real_t ladrc_sign(ladrc_real_t x)
 #endif
 #endif
 
+/** LADRC_SQRT as a function: the square root.
+ *  @param x  the argument
+ *  @return the result, as the C library gives it for non-finite x */
 static inline ladrc_real_t ladrc_sqrt(ladrc_real_t x)
 {
     return LADRC_SQRT(x);
 }
+/** LADRC_FABS as a function: the absolute value.
+ *  @param x  the argument
+ *  @return the result, as the C library gives it for non-finite x */
 static inline ladrc_real_t ladrc_fabs(ladrc_real_t x)
 {
     return LADRC_FABS(x);
 }
+/** LADRC_EXP as a function: the exponential.
+ *  @param x  the argument
+ *  @return the result, as the C library gives it for non-finite x */
 static inline ladrc_real_t ladrc_exp(ladrc_real_t x)
 {
     return LADRC_EXP(x);
 }
+/** LADRC_EXPM1 as a function: the exp(x) - 1.
+ *  @param x  the argument
+ *  @return the result, as the C library gives it for non-finite x */
 static inline ladrc_real_t ladrc_expm1(ladrc_real_t x)
 {
     return LADRC_EXPM1(x);
 }
+/** LADRC_COS as a function: the cosine (x in rad).
+ *  @param x  the argument
+ *  @return the result, as the C library gives it for non-finite x */
 static inline ladrc_real_t ladrc_cos(ladrc_real_t x)
 {
     return LADRC_COS(x);
 }
+/** LADRC_SIN as a function: the sine (x in rad).
+ *  @param x  the argument
+ *  @return the result, as the C library gives it for non-finite x */
 static inline ladrc_real_t ladrc_sin(ladrc_real_t x)
 {
     return LADRC_SIN(x);
 }
+/** LADRC_ASIN as a function: the arc sine (result in rad).
+ *  @param x  the argument
+ *  @return the result, as the C library gives it for non-finite x */
 static inline ladrc_real_t ladrc_asin(ladrc_real_t x)
 {
     return LADRC_ASIN(x);
 }
+/** LADRC_CBRT as a function: the cube root.
+ *  @param x  the argument
+ *  @return the result, as the C library gives it for non-finite x */
 static inline ladrc_real_t ladrc_cbrt(ladrc_real_t x)
 {
     return LADRC_CBRT(x);
 }
 
-/** 1 if x is finite and strictly positive: the check most config fields need. */
+/** Whether x is finite and strictly positive: the check most config fields need.
+ *  @param x  any value
+ *  @return 1 finite and > 0, 0 otherwise (NaN included) */
 static inline int ladrc_is_positive(ladrc_real_t x)
 {
 #if LADRC_FINITE_BY_BITS
@@ -477,7 +543,10 @@ static inline int ladrc_is_positive(ladrc_real_t x)
 }
 
 /** 1 if x is finite and |x| <= limit (limit finite, > 0): a sample inside its
- *  plausible range. One comparison, false for NaN and for an infinity. */
+ *  plausible range. One comparison, false for NaN and for an infinity.
+ *  @param x      any value
+ *  @param limit  the bound, finite, > 0
+ *  @return 1 within, 0 not (NaN and infinities included) */
 static inline int ladrc_within(ladrc_real_t x, ladrc_real_t limit)
 {
 #if LADRC_FINITE_BY_BITS
@@ -487,14 +556,18 @@ static inline int ladrc_within(ladrc_real_t x, ladrc_real_t limit)
 #endif
 }
 
+/** @{ */
 /** Shortest and longest control step every init accepts, s: 1 MHz to 1 Hz.
  *  Outside, the per-step constants the modules derive (h^3 / 6, 1 / h^2,
  *  powers of wo h) underflow or overflow in float. */
 #define LADRC_DT_MIN_S LADRC_R(1e-6)
 #define LADRC_DT_MAX_S LADRC_R(1.0)
+/** @} */
 
 /** 1 if dt_s is a control step every module can discretise (finite, in
- *  [LADRC_DT_MIN_S, LADRC_DT_MAX_S]). */
+ *  [LADRC_DT_MIN_S, LADRC_DT_MAX_S]).
+ *  @param dt_s  the step (s)
+ *  @return 1 valid, 0 not (NaN included) */
 static inline int ladrc_dt_is_valid(ladrc_real_t dt_s)
 {
     return (ladrc_is_finite(dt_s) && dt_s >= LADRC_DT_MIN_S && dt_s <= LADRC_DT_MAX_S) ? 1 : 0;
@@ -505,18 +578,24 @@ static inline int ladrc_dt_is_valid(ladrc_real_t dt_s)
 /** Largest motor lag an axis models (s): a large airframe's slow rotor, twenty times an ESC's lag. */
 #define LADRC_MOTOR_TAU_MAX_S LADRC_R(1.0)
 
-/** pi and 2 pi in the real type. LADRC_TWO_PI is the one period every wrap
+/** @{ */
+/** pi and 2 pi in the real type (rad). LADRC_TWO_PI is the one period every wrap
  *  and every shift by a turn uses, so that they agree to the last bit. */
 #define LADRC_PI LADRC_R(3.14159265358979323846)
 #define LADRC_TWO_PI LADRC_R(6.28318530717958647692)
+/** @} */
 
 /** x into (-pi, pi] by whole turns of LADRC_TWO_PI, for any x (the out-of-line
  *  branch of ladrc_wrap_pi, src/angle.c). Beyond 1e9 turns no fraction of
  *  a turn is left to resolve in either real type: 0. NaN and infinities
- *  give NaN. */
+ *  give NaN.
+ *  @param x  an angle (rad)
+ *  @return the wrapped angle (rad) */
 ladrc_real_t ladrc_wrap_pi_far(ladrc_real_t x);
 
-/** 1 if x lies in (-pi, pi] (0 for NaN). */
+/** Whether x lies in (-pi, pi].
+ *  @param x  an angle (rad)
+ *  @return 1 inside, 0 outside or NaN */
 static inline int ladrc_in_half_turn(ladrc_real_t x)
 {
     return (x > -LADRC_PI && x <= LADRC_PI) ? 1 : 0;
@@ -524,14 +603,20 @@ static inline int ladrc_in_half_turn(ladrc_real_t x)
 
 /** An angle difference into (-pi, pi]: x itself, bit for bit, when it is
  *  already there (two comparisons on the common path), else x minus whole
- *  turns of LADRC_TWO_PI. NaN stays NaN. */
+ *  turns of LADRC_TWO_PI. NaN stays NaN.
+ *  @param x  an angle difference (rad)
+ *  @return the wrapped difference (rad) */
 static inline ladrc_real_t ladrc_wrap_pi(ladrc_real_t x)
 {
     return ladrc_in_half_turn(x) ? x : ladrc_wrap_pi_far(x);
 }
 
 /** The angle x moved by whole turns to within pi of near (x - near wrapped,
- *  added to near): x itself, bit for bit, when it is already there. */
+ *  added to near): x itself, bit for bit, when it is already there.
+ *  Non-finite x or near: NaN.
+ *  @param x     an angle (rad)
+ *  @param near  the angle to come near (rad)
+ *  @return x moved by whole turns (rad) */
 static inline ladrc_real_t ladrc_unwrap_near(ladrc_real_t x, ladrc_real_t near)
 {
     const ladrc_real_t d = x - near;

@@ -44,8 +44,9 @@ extern "C" {
 /** Crossovers of each kind kept in a result. */
 #define LADRC_MARGINS_MAX_CROSS 8
 
+/** Result of a margins function; each error names what is wrong. */
 typedef enum {
-    LADRC_MARGINS_OK = 0,
+    LADRC_MARGINS_OK = 0,             /**< success */
     LADRC_MARGINS_ERR_NULL,           /**< a required pointer is NULL */
     LADRC_MARGINS_ERR_DT_S,           /**< plant dt_s not > 0 or not the controller's */
     LADRC_MARGINS_ERR_INERTIA,        /**< inertia_kg_m2 or inertia_factor not finite and > 0 */
@@ -60,7 +61,10 @@ typedef enum {
     LADRC_MARGINS_ERR_TARGETS_NOT_MET /**< tuning: no setting meets the targets (best one reported) */
 } ladrc_margins_status_t;
 
-/** "LADRC_MARGINS_ERR_...: explanation"; never NULL. */
+/** Text of a status.
+ *  @param status  any value
+ *  @return "LADRC_MARGINS_ERR_...: explanation" (a text for a value outside
+ *          the enum too); never NULL */
 const char *ladrc_margins_status_str(ladrc_margins_status_t status);
 
 /** The airframe as it really is. */
@@ -85,86 +89,127 @@ typedef struct {
 
 /** How to measure. ladrc_margins_request_default fills every field. */
 typedef struct {
-    ladrc_margins_plant_t plant;
-    double response_s;    /**< length of the impulse responses (s); default 4 */
-    double tone_rad_s;    /**< adaptive variants: disturbance tone they converge on;
+    ladrc_margins_plant_t plant; /**< the plant of the adaptive variants' converged run and of the loop */
+    double response_s;           /**< length of the impulse responses (s); default 4 */
+    double tone_rad_s;           /**< adaptive variants: disturbance tone they converge on;
                                   0: the axis's hp_freq_rad_s[0] (default) */
-    double tone_rad_s2;   /**< its amplitude (rad/s^2); default 20 */
-    double converge_s;    /**< adaptive variants: closed-loop run before the
+    double tone_rad_s2;          /**< its amplitude (rad/s^2); default 20 */
+    double converge_s;           /**< adaptive variants: closed-loop run before the
                                   linearisation (s); default 10 */
-    int n_starts;         /**< adaptive variants: start instants averaged over a
+    int n_starts;                /**< adaptive variants: start instants averaged over a
                                   tone period; default 4 */
-    double out_min_rad_s; /**< output grid: lowest frequency (rad/s); default 0.1 */
-    int n_out;            /**< output grid points, 2..LADRC_MARGINS_MAX_OUT; default 200 */
+    double out_min_rad_s;        /**< output grid: lowest frequency (rad/s); default 0.1 */
+    int n_out;                   /**< output grid points, 2..LADRC_MARGINS_MAX_OUT; default 200 */
 } ladrc_margins_request_t;
 
 /** Margins and verdict of one loop. Margins that do not exist are +INFINITY
  *  (no phase crossover: gain margin; no gain crossover: phase margin, delay
  *  margin), their frequencies NaN. */
 typedef struct {
-    int stable;             /**< 1: every closed-loop pole inside the unit circle (Nyquist) */
-    int encirclements;      /**< closed-loop poles outside the unit circle (Nyquist count) */
-    double gm_db;           /**< gain margin (dB): smallest over phase crossovers with |L| < 1 */
-    double gm_rad_s;        /**< its frequency */
-    double gm_low_db;       /**< lower gain margin (dB, <= 0): gain reduction the loop
+    int stable;                            /**< 1: every closed-loop pole inside the unit circle (Nyquist) */
+    int encirclements;                     /**< closed-loop poles outside the unit circle (Nyquist count) */
+    double gm_db;                          /**< gain margin (dB): smallest over phase crossovers with |L| < 1 */
+    double gm_rad_s;                       /**< its frequency */
+    double gm_low_db;                      /**< lower gain margin (dB, <= 0): gain reduction the loop
                                   tolerates (phase crossovers with |L| > 1); -INFINITY if none */
-    double pm_deg;          /**< phase margin (deg): smallest over gain crossovers */
-    double wc_rad_s;        /**< its crossover frequency */
-    double dm_s;            /**< delay margin (s): smallest PM / w over gain crossovers; 0 if
+    double pm_deg;                         /**< phase margin (deg): smallest over gain crossovers */
+    double wc_rad_s;                       /**< its crossover frequency */
+    double dm_s;                           /**< delay margin (s): smallest PM / w over gain crossovers; 0 if
                                   a crossover has PM <= 0 */
-    double dm_ticks;        /**< the same in control periods */
-    double ms;              /**< peak sensitivity max |1 / (1 + L)| */
-    double ms_db;           /**< the same in dB */
-    double dist_peak_rad;   /**< peak |angle error / acceleration disturbance| (rad per rad/s^2) */
-    double dist_peak_rad_s; /**< its frequency */
-    double tail_residue;    /**< largest |h_k - c| / max |h_k| over the last eighth of the
+    double dm_ticks;                       /**< the same in control periods */
+    double ms;                             /**< peak sensitivity max |1 / (1 + L)| */
+    double ms_db;                          /**< the same in dB */
+    double dist_peak_rad;                  /**< peak |angle error / acceleration disturbance| (rad per rad/s^2) */
+    double dist_peak_rad_s;                /**< its frequency */
+    double tail_residue;                   /**< largest |h_k - c| / max |h_k| over the last eighth of the
                                   responses (how well they settled) */
-    int linearised_nominal; /**< adaptive: the run on the requested plant diverged, so the
+    int linearised_nominal;                /**< adaptive: the run on the requested plant diverged, so the
                                   controller was linearised on the plant without lag and delay */
-    int n_out;              /**< output grid */
-    double w_rad_s[LADRC_MARGINS_MAX_OUT];
-    double l_re[LADRC_MARGINS_MAX_OUT], l_im[LADRC_MARGINS_MAX_OUT];   /**< L(e^jwT) */
-    double s_re[LADRC_MARGINS_MAX_OUT], s_im[LADRC_MARGINS_MAX_OUT];   /**< 1 / (1 + L) */
+    int n_out;                             /**< output grid */
+    double w_rad_s[LADRC_MARGINS_MAX_OUT]; /**< the grid's frequencies (rad/s), n_out of them */
+    /** @{ */
+    double l_re[LADRC_MARGINS_MAX_OUT], l_im[LADRC_MARGINS_MAX_OUT]; /**< L(e^jwT) */
+    /** @} */
+    /** @{ */
+    double s_re[LADRC_MARGINS_MAX_OUT], s_im[LADRC_MARGINS_MAX_OUT]; /**< 1 / (1 + L) */
+    /** @} */
+    /** @{ */
     double de_re[LADRC_MARGINS_MAX_OUT], de_im[LADRC_MARGINS_MAX_OUT]; /**< angle error per
                                   acceleration disturbance at the plant input (rad per rad/s^2) */
+    /** @} */
 } ladrc_margins_result_t;
 
 /** The measured controller and scratch space; large (about 1 MB): give it
  *  static storage. Opaque: read it through the functions below. */
 typedef struct {
-    int measured;
-    int has_rate;
-    double dt_s;
-    int n_taps;
-    double tail[2]; /**< c0 of the angle and rate responses' tails */
-    double ramp[2]; /**< c1: h_k -> c0 + c1 k */
-    double tail_residue;
-    int linearised_nominal;
+    int measured;                                      /**< 1 once a controller was measured */
+    int has_rate;                                      /**< the controller gets the measured rate */
+    double dt_s;                                       /**< its control period (s) */
+    int n_taps;                                        /**< length of the responses (ticks) */
+    double tail[2];                                    /**< c0 of the angle and rate responses' tails */
+    double ramp[2];                                    /**< c1: h_k -> c0 + c1 k */
+    double tail_residue;                               /**< as in ladrc_margins_result_t */
+    int linearised_nominal;                            /**< as in ladrc_margins_result_t */
     double h[2][LADRC_MARGINS_MAX_TAPS];               /**< angle (N m/rad), rate (N m s/rad) */
     double grid_re[2][LADRC_MARGINS_MAX_TAPS / 2 + 1]; /**< C on w_m = 2 pi m / MAX_TAPS */
-    double grid_im[2][LADRC_MARGINS_MAX_TAPS / 2 + 1];
-    double fft_re[LADRC_MARGINS_MAX_TAPS], fft_im[LADRC_MARGINS_MAX_TAPS];
+    double grid_im[2][LADRC_MARGINS_MAX_TAPS / 2 + 1]; /**< its imaginary part */
+    /** @{ */
+    double fft_re[LADRC_MARGINS_MAX_TAPS], fft_im[LADRC_MARGINS_MAX_TAPS]; /**< FFT scratch */
+    /** @} */
     union {
-        ladrc_axis_t axis;
-        ladrc_attitude_t attitude;
+        ladrc_axis_t axis;          /**< a bare axis */
+        ladrc_attitude_t attitude;  /**< an attitude controller */
     } copy[4];                      /**< base, angle-, rate-perturbed, saved */
     ladrc_margins_result_t scratch; /**< the tuning's candidates */
 } ladrc_margins_workspace_t;
 
-/** Defaults for the given plant (see the fields). */
+/** Defaults for the given plant (see the fields).
+ *  @param req    out: the request; must not be NULL (not checked)
+ *  @param plant  copied into req->plant; NULL: the plant is zeroed (set it) */
 void ladrc_margins_request_default(ladrc_margins_request_t *req, const ladrc_margins_plant_t *plant);
 
 /** Measures the controller's frequency response into ws (the plant of req
- *  is used only for the adaptive variants' converged run). */
+ *  is used only for the adaptive variants' converged run).
+ *  @param ws   the workspace
+ *  @param ctl  the controller
+ *  @param req  the request
+ *  @retval LADRC_MARGINS_OK              measured
+ *  @retval LADRC_MARGINS_ERR_NULL        ws, ctl or req is NULL
+  *  @retval LADRC_MARGINS_ERR_DT_S       plant dt_s not finite and > 0, or not the controller's
+  *  @retval LADRC_MARGINS_ERR_INERTIA    plant inertia_kg_m2 or inertia_factor not finite and > 0
+  *  @retval LADRC_MARGINS_ERR_DRAG       plant drag_Nm_s not finite and >= 0
+  *  @retval LADRC_MARGINS_ERR_MOTOR_TAU  plant motor_tau_s not finite and >= 0
+  *  @retval LADRC_MARGINS_ERR_DELAY      plant delay_ticks outside 0..LADRC_MARGINS_MAX_DELAY
+ *  @retval LADRC_MARGINS_ERR_REQUEST     a request field outside its range
+ *  @retval LADRC_MARGINS_ERR_CONTROLLER  not exactly one of attitude and axis, a bad
+ *                                        axis_index, INDI without use_rate, or its init refuses it
+ *  @retval LADRC_MARGINS_ERR_NOT_SETTLED the response did not settle within response_s */
 ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
                                              const ladrc_margins_request_t *req);
 
 /** Margins, verdict and output grid of the measured controller (ws) on
- *  req->plant (which may differ from the one it was measured with). */
+ *  req->plant (which may differ from the one it was measured with).
+ *  @param ws   the measured workspace
+ *  @param req  the request (plant and output grid)
+ *  @param res  out: the result
+ *  @retval LADRC_MARGINS_OK               computed
+ *  @retval LADRC_MARGINS_ERR_NULL         ws, req or res is NULL
+ *  @retval LADRC_MARGINS_ERR_NOT_MEASURED ws holds no measured controller
+  *  @retval LADRC_MARGINS_ERR_DT_S       plant dt_s not finite and > 0, or not the measured one's
+  *  @retval LADRC_MARGINS_ERR_INERTIA    plant inertia_kg_m2 or inertia_factor not finite and > 0
+  *  @retval LADRC_MARGINS_ERR_DRAG       plant drag_Nm_s not finite and >= 0
+  *  @retval LADRC_MARGINS_ERR_MOTOR_TAU  plant motor_tau_s not finite and >= 0
+  *  @retval LADRC_MARGINS_ERR_DELAY      plant delay_ticks outside 0..LADRC_MARGINS_MAX_DELAY
+ *  @retval LADRC_MARGINS_ERR_REQUEST      a request field outside its range */
 ladrc_margins_status_t ladrc_margins_loop(ladrc_margins_workspace_t *ws, const ladrc_margins_request_t *req,
                                           ladrc_margins_result_t *res);
 
-/** ladrc_margins_measure then ladrc_margins_loop. */
+/** ladrc_margins_measure then ladrc_margins_loop.
+ *  @param ws   the workspace
+ *  @param ctl  the controller
+ *  @param req  the request
+ *  @param res  out: the result
+ *  @return the first status that is not LADRC_MARGINS_OK of the two, else LADRC_MARGINS_OK */
 ladrc_margins_status_t ladrc_margins_analyse(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
                                              const ladrc_margins_request_t *req, ladrc_margins_result_t *res);
 
@@ -172,33 +217,81 @@ ladrc_margins_status_t ladrc_margins_analyse(ladrc_margins_workspace_t *ws, cons
  *  converged tone model has no settled linear response
  *  (LADRC_MARGINS_ERR_NOT_SETTLED under the tone) is analysed in its idle
  *  state (req's tone amplitude 0, estimator weight 0), and *idle (may be
- *  NULL) is set to 1. */
+ *  NULL) is set to 1, else 0.
+ *  @param ws    the workspace
+ *  @param ctl   the controller
+ *  @param req   the request
+ *  @param res   out: the result
+ *  @param idle  out: 1 analysed idle, 0 not; may be NULL
+ *  @return as ladrc_margins_analyse (of the idle analysis when it ran) */
 ladrc_margins_status_t ladrc_margins_analyse_reported(ladrc_margins_workspace_t *ws,
                                                       const ladrc_margins_controller_t *ctl,
                                                       const ladrc_margins_request_t *req, ladrc_margins_result_t *res,
                                                       int *idle);
 
-/** Nyquist verdict only (fast): 1 stable, 0 not. */
+/** Nyquist verdict only (fast).
+ *  @param ws     the measured workspace
+ *  @param plant  the plant
+ *  @return 1 stable; 0 unstable, or ws or plant NULL, unmeasured or invalid */
 int ladrc_margins_is_stable(ladrc_margins_workspace_t *ws, const ladrc_margins_plant_t *plant);
 
 /** Largest motor lag (s) for which the measured controller's loop on plant
  *  (motor_tau_s replaced) stays stable, by bisection on the Nyquist verdict
  *  to a relative 1e-3; searched up to tau_max_s (returned if still stable).
- *  0 if the loop is unstable without lag. */
+ *  0 if the loop is unstable without lag.
+ *  @param ws         the measured workspace
+ *  @param plant      the plant
+ *  @param tau_max_s  the search's top (s), finite, > 0
+ *  @param tau_s      out: the largest stable lag (s)
+ *  @retval LADRC_MARGINS_OK               found
+ *  @retval LADRC_MARGINS_ERR_NULL         ws, plant or tau_s is NULL
+ *  @retval LADRC_MARGINS_ERR_NOT_MEASURED ws holds no measured controller
+  *  @retval LADRC_MARGINS_ERR_DT_S       plant dt_s not finite and > 0, or not the measured one's
+  *  @retval LADRC_MARGINS_ERR_INERTIA    plant inertia_kg_m2 or inertia_factor not finite and > 0
+  *  @retval LADRC_MARGINS_ERR_DRAG       plant drag_Nm_s not finite and >= 0
+  *  @retval LADRC_MARGINS_ERR_MOTOR_TAU  plant motor_tau_s not finite and >= 0, or tau_max_s not finite and > 0
+  *  @retval LADRC_MARGINS_ERR_DELAY      plant delay_ticks outside 0..LADRC_MARGINS_MAX_DELAY */
 ladrc_margins_status_t ladrc_margins_max_motor_tau(ladrc_margins_workspace_t *ws, const ladrc_margins_plant_t *plant,
                                                    double tau_max_s, double *tau_s);
 
 /** Largest stable measurement delay (whole ticks, delay_ticks replaced),
- *  -1 if unstable at 0, LADRC_MARGINS_MAX_DELAY if stable throughout. */
+ *  -1 if unstable at 0, LADRC_MARGINS_MAX_DELAY if stable throughout.
+ *  @param ws     the measured workspace
+ *  @param plant  the plant
+ *  @param ticks  out: the largest stable delay (ticks)
+ *  @retval LADRC_MARGINS_OK               found
+ *  @retval LADRC_MARGINS_ERR_NULL         ws, plant or ticks is NULL
+ *  @retval LADRC_MARGINS_ERR_NOT_MEASURED ws holds no measured controller
+  *  @retval LADRC_MARGINS_ERR_DT_S       plant dt_s not finite and > 0, or not the measured one's
+  *  @retval LADRC_MARGINS_ERR_INERTIA    plant inertia_kg_m2 or inertia_factor not finite and > 0
+  *  @retval LADRC_MARGINS_ERR_DRAG       plant drag_Nm_s not finite and >= 0
+  *  @retval LADRC_MARGINS_ERR_MOTOR_TAU  plant motor_tau_s not finite and >= 0
+  *  @retval LADRC_MARGINS_ERR_DELAY      plant delay_ticks outside 0..LADRC_MARGINS_MAX_DELAY */
 ladrc_margins_status_t ladrc_margins_max_delay(ladrc_margins_workspace_t *ws, const ladrc_margins_plant_t *plant,
                                                int *ticks);
 
 /** Frequency responses at w (rad/s): plant from torque to measured angle and
- *  rate (delay included), out[0..3] = angle re, im, rate re, im. */
+ *  rate (delay included).
+ *  @param plant    the plant
+ *  @param w_rad_s  the frequency (rad/s)
+ *  @param out      out: angle re, im (rad per N m), rate re, im (rad/s per N m)
+ *  @retval LADRC_MARGINS_OK        computed
+ *  @retval LADRC_MARGINS_ERR_NULL  plant or out is NULL
+  *  @retval LADRC_MARGINS_ERR_DT_S       plant dt_s not finite and > 0
+  *  @retval LADRC_MARGINS_ERR_INERTIA    plant inertia_kg_m2 or inertia_factor not finite and > 0
+  *  @retval LADRC_MARGINS_ERR_DRAG       plant drag_Nm_s not finite and >= 0
+  *  @retval LADRC_MARGINS_ERR_MOTOR_TAU  plant motor_tau_s not finite and >= 0
+  *  @retval LADRC_MARGINS_ERR_DELAY      plant delay_ticks outside 0..LADRC_MARGINS_MAX_DELAY */
 ladrc_margins_status_t ladrc_margins_plant_freq(const ladrc_margins_plant_t *plant, double w_rad_s, double out[4]);
 
 /** The measured controller at w (rad/s): out[0..3] = angle re, im, rate re, im
- *  (torque per measured angle and per measured rate). */
+ *  (torque per measured angle and per measured rate).
+ *  @param ws       the measured workspace
+ *  @param w_rad_s  the frequency (rad/s)
+ *  @param out      out: angle re, im (N m/rad), rate re, im (N m s/rad)
+ *  @retval LADRC_MARGINS_OK               computed
+ *  @retval LADRC_MARGINS_ERR_NULL         ws or out is NULL
+ *  @retval LADRC_MARGINS_ERR_NOT_MEASURED ws holds no measured controller */
 ladrc_margins_status_t ladrc_margins_controller_freq(const ladrc_margins_workspace_t *ws, double w_rad_s,
                                                      double out[4]);
 
@@ -207,6 +300,11 @@ ladrc_margins_status_t ladrc_margins_controller_freq(const ladrc_margins_workspa
  *  margins and verdict by the same code (for textbook loops). The output
  *  grid is left empty. */
 typedef void (*ladrc_margins_loop_fn)(void *ctx, double z_re, double z_im, double *l_re, double *l_im);
+/** Margins and verdict of a loop given as a ladrc_margins_loop_fn.
+ *  @param fn    the loop L(z); must not be NULL (not checked)
+ *  @param ctx   passed to fn
+ *  @param dt_s  the sample period (s) the frequencies are scaled by
+ *  @param res   out: the result (grid empty); must not be NULL (not checked) */
 void ladrc_margins_of_loop(ladrc_margins_loop_fn fn, void *ctx, double dt_s, ladrc_margins_result_t *res);
 
 /**
@@ -216,22 +314,45 @@ void ladrc_margins_of_loop(ladrc_margins_loop_fn fn, void *ctx, double dt_s, lad
  * quarter before (0 once the angle has decayed below 1e-6 of its peak, the
  * float controller's rounding); a stable loop's error decays (growth < 1).
  * Linear controllers only need this; adaptive ones are flown as they are.
+ * @param ws       the workspace (its controller copies are used)
+ * @param ctl      the controller
+ * @param plant    the plant
+ * @param n_ticks  the run's length (ticks), >= 64
+ * @param growth   out: the growth ratio
+ * @retval LADRC_MARGINS_OK              flown
+ * @retval LADRC_MARGINS_ERR_NULL        ws, ctl, plant or growth is NULL
+ * @retval LADRC_MARGINS_ERR_DT_S       plant dt_s not finite and > 0
+ * @retval LADRC_MARGINS_ERR_INERTIA    plant inertia_kg_m2 or inertia_factor not finite and > 0
+ * @retval LADRC_MARGINS_ERR_DRAG       plant drag_Nm_s not finite and >= 0
+ * @retval LADRC_MARGINS_ERR_MOTOR_TAU  plant motor_tau_s not finite and >= 0
+ * @retval LADRC_MARGINS_ERR_DELAY      plant delay_ticks outside 0..LADRC_MARGINS_MAX_DELAY
+ * @retval LADRC_MARGINS_ERR_REQUEST     not exactly one of attitude and axis, or n_ticks < 64
+ * @retval LADRC_MARGINS_ERR_CONTROLLER  a bad axis_index, INDI without use_rate, or its init refuses it
  */
 ladrc_margins_status_t ladrc_margins_simulate(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
                                               const ladrc_margins_plant_t *plant, long n_ticks, double *growth);
 
 /** Targets and search of the margins-based tuning. */
 typedef struct {
-    double pm_min_deg; /**< default 45 */
-    double gm_min_db;  /**< default 6 */
+    double pm_min_deg; /**< least phase margin (deg), finite; default 45 */
+    double gm_min_db;  /**< least gain margins (dB), finite; default 6 */
 } ladrc_margins_targets_t;
 
+/** The tuning's outcome: the gains chosen (those of the variant) and their margins. */
 typedef struct {
-    int met;                                                         /**< 1 when the chosen setting meets the targets */
-    double wc_rad_s, wo_rad_s;                                       /**< LADRC family */
-    double kp, ki, kd, d_filter_tau_s;                               /**< PID */
+    int met; /**< 1 when the chosen setting meets the targets */
+    /** @{ */
+    double wc_rad_s, wo_rad_s; /**< LADRC family */
+    /** @} */
+    /** @{ */
+    double kp, ki, kd, d_filter_tau_s; /**< PID */
+    /** @} */
+    /** @{ */
     double indi_att_kp_per_s, indi_rate_kp_per_s, indi_filter_rad_s; /**< INDI */
+    /** @} */
+    /** @{ */
     double cas_att_kp, cas_rate_kp, cas_rate_ki, cas_rate_kd, cas_d_filter_tau_s; /**< CASCADED */
+    /** @} */
     double peak_dist_rad;           /**< objective: peak |d -> error| of the chosen setting */
     ladrc_margins_result_t margins; /**< of the chosen setting */
 } ladrc_margins_tuning_t;
@@ -262,6 +383,19 @@ typedef struct {
  * closest stable miss (smallest shortfall, gain margin weighted 3 per dB
  * against 1 per degree) in *tuned and its margins in out->margins (the
  * controller as given when not one candidate was stable).
+ * @param ws       the workspace
+ * @param ctl      the controller to tune
+ * @param req      the request (plant, grid)
+ * @param targets  the targets
+ * @param tuned    out: the tuned axis config
+ * @param out      out: the chosen gains and margins
+ * @retval LADRC_MARGINS_OK                setting found that meets the targets
+ * @retval LADRC_MARGINS_ERR_NULL          a pointer is NULL
+ * @retval LADRC_MARGINS_ERR_CONTROLLER    not exactly one of attitude and axis, or a bad axis_index
+ * @retval LADRC_MARGINS_ERR_REQUEST       a request field outside its range, or a target not finite
+ * @retval LADRC_MARGINS_ERR_TARGETS_NOT_MET no setting meets the targets (closest miss reported)
+ * @return otherwise the status of ladrc_margins_analyse_reported on the chosen setting
+ *         (the plant statuses, LADRC_MARGINS_ERR_NOT_SETTLED, ...)
  */
 ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
                                           const ladrc_margins_request_t *req, const ladrc_margins_targets_t *targets,
