@@ -17,6 +17,7 @@ set(_ladrc_needs_axis_lp_c LP_MLADRC)
 set(_ladrc_needs_estimator_lp_c LP_MLADRC)
 set(_ladrc_needs_axis_hp_c HP_MLADRC)
 set(_ladrc_needs_estimator_hp_c HP_MLADRC)
+set(_ladrc_needs_estimator_hp_tone_c HP_MLADRC)
 set(_ladrc_needs_estimator_hp_freq_c HP_MLADRC)
 # Source files needed only with the online frequency search.
 set(_ladrc_online_only_estimator_hp_freq_c ON)

@@ -106,8 +106,8 @@ static ladrc_real_t feed(const ladrc_attitude_t *att, unsigned i, ladrc_real_t r
     return att->coupling[i] * (accel_a * rate_b + rate_a * accel_b) - att->drag_per_s[i] * accel_i;
 }
 
-/* Rate z2 and acceleration of one axis (axis_observer_accel, the formula
- * of ladrc_axis_get_accel). A PID, CASCADED or INDI axis has no observer:
+/* Rate and acceleration of one axis (axis_observer_rate and
+ * axis_observer_accel, the formula of ladrc_axis_get_accel). A PID, CASCADED or INDI axis has no observer:
  * 0 and 0 (INDI measures the coupling in its acceleration and needs no
  * feed). Forced inline: 28 instructions of the 3-axis HP-MLADRC tick
  * (2,805.5 with it, 2,833.5 without). */
@@ -115,8 +115,8 @@ static LADRC_FORCE_INLINE void observed(const ladrc_axis_t *ax, ladrc_real_t *ra
 {
     *rate = LADRC_R(0.0);
     *accel = LADRC_R(0.0);
-    if (ladrc_variant_has_observer(ax->variant)) {
-        *rate = ax->leso.z2;
+    if (axis_has_observer(ax)) {
+        *rate = axis_observer_rate(ax);
         *accel = axis_observer_accel(ax);
     }
 }
@@ -126,7 +126,7 @@ static LADRC_FORCE_INLINE void observed(const ladrc_axis_t *ax, ladrc_real_t *ra
 static inline void put_feed(ladrc_attitude_t *att, unsigned i, ladrc_real_t h)
 {
     ladrc_axis_t *ax = &att->axis[i];
-    if (!ladrc_variant_has_observer(ax->variant)) {
+    if (!axis_has_observer(ax)) {
         h = LADRC_R(0.0);
     }
     att->feed_rad_s3[i] = h;

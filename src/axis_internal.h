@@ -1,15 +1,17 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
- * Inside the axis (not installed): what src/axis.c and the per-variant files
- * share. Each variant lives in its own file (axis_adrc.c for the LADRC
- * family with axis_lp.c and axis_hp.c as its estimators, axis_pid.c,
+ * Inside the axis (not installed): the interface between src/axis.c and the
+ * per-variant files. Each variant lives in its own file (axis_adrc.c for the
+ * LADRC family with axis_lp.c and axis_hp.c as its estimators, axis_pid.c,
  * axis_cascaded.c, axis_indi.c); axis.c is the one place that dispatches to
- * them. A variant left out of the build (LADRC_VARIANTS, axis.h) has no
- * code: its file is not compiled and its cases are not in the switches.
+ * them, and what they share sits below them (axis_shared.h). A variant left
+ * out of the build (LADRC_VARIANTS, axis.h) has no code: its file is not
+ * compiled and its cases are not in the switches.
  */
 #ifndef LADRC_AXIS_INTERNAL_H
 #define LADRC_AXIS_INTERNAL_H
 
+#include "axis_shared.h"
 #include "compiler.h"
 #include "ladrc/axis.h"
 
@@ -79,16 +81,17 @@ AXIS_ESTIMATOR_FUNCTIONS(lp)
 AXIS_ESTIMATOR_FUNCTIONS(hp)
 #endif
 
-/** Torque (N m) the next tick's observer step takes as acting: the applied
- *  torque without a model, else its delayed and lagged mean (axis.h). */
-static inline ladrc_real_t axis_acting_Nm(const ladrc_axis_t *axis)
+/** Whether the axis runs an observer (the LADRC family), whose rate and
+ *  acceleration estimates the attitude layer's coupling feed reads. */
+static inline int axis_has_observer(const ladrc_axis_t *axis)
 {
-    if (!axis->model) {
-        return axis->applied_Nm;
-    }
-    const ladrc_actuator_t *act = &axis->act;
-    const ladrc_real_t v = (act->delay_ticks != 0u) ? act->delayed_Nm[act->head] : axis->applied_Nm;
-    return act->lag_Nm + act->mean_gain * (v - act->lag_Nm);
+    return ladrc_variant_has_observer(axis->variant);
+}
+
+/** A LADRC-family axis's rate estimate (rad/s): the observer's z2. */
+static inline ladrc_real_t axis_observer_rate(const ladrc_axis_t *axis)
+{
+    return axis->leso.z2;
 }
 
 /** Angular acceleration a LADRC-family axis expects over its observer's
@@ -97,91 +100,5 @@ static inline ladrc_real_t axis_observer_accel(const ladrc_axis_t *axis)
 {
     return axis->b0 * axis_acting_Nm(axis) + axis->leso.z3 + axis->d_hat_rad_s2;
 }
-
-/** The fed rate of change of f as ladrc_axis_set_disturbance_rate takes it:
- *  a non-finite rate is fed as 0. */
-static inline void axis_put_disturbance_rate(ladrc_axis_t *axis, ladrc_real_t rate_rad_s3)
-{
-    axis->f_rate_rad_s3 = ladrc_is_finite(rate_rad_s3) ? rate_rad_s3 : LADRC_R(0.0);
-}
-
-/* --- the reference shaper (axis.c), for the variants that shape ------------ */
-
-/** Validates the shaper fields and starts the shaper (axis->shaper set). */
-ladrc_status_t axis_shaper_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg);
-
-/** Restarts the shaper and the shaped reference at rest on angle_rad. */
-void axis_shaper_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad);
-
-/** The shaper's tick on the raw reference: r, r', r'' into axis->ref (the
- *  shapers write straight into the axis: no copy on the stack). */
-static inline ladrc_fault_t axis_shape_reference(ladrc_axis_t *axis, ladrc_real_t ref_rad)
-{
-    ladrc_ref_t *ref = &axis->ref;
-#if LADRC_WITH_TD
-    if (axis->shaper == LADRC_SHAPER_TD) {
-        return ladrc_td_step(&axis->shaping.td, ref_rad, ref);
-    }
-#endif
-#if LADRC_WITH_LEVANT
-    if (axis->shaper == LADRC_SHAPER_LEVANT) {
-        return ladrc_levant_step(&axis->shaping.levant, ref_rad, ref);
-    }
-#endif
-    ref->r = ref_rad;
-    ref->dr = LADRC_R(0.0);
-    ref->ddr = LADRC_R(0.0);
-    return LADRC_FAULT_NONE;
-}
-
-/** The shaped reference and the shaper's state moved by a turn (a wrapped
- *  axis; axis.h). */
-static inline void axis_shift_reference(ladrc_axis_t *axis, ladrc_real_t turn)
-{
-    axis->ref.r += turn;
-#if LADRC_WITH_TD
-    if (axis->shaper == LADRC_SHAPER_TD) {
-        axis->shaping.td.x1 += turn;
-    }
-#endif
-#if LADRC_WITH_LEVANT
-    if (axis->shaper == LADRC_SHAPER_LEVANT) {
-        axis->shaping.levant.r_last += turn; /* z0 = r_last + w moves with it */
-    }
-#endif
-}
-
-/* --- the actuator model (axis.c; axis.h), LADRC family and INDI ------------ */
-
-/** Validates motor_tau_s and delay_ticks and derives the model's constants
- *  (axis->model set). */
-ladrc_status_t axis_actuator_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg);
-
-/** Torque the observer step of this tick takes (axis.h): the model's mean
- *  over the step, which also advances the model by the step; without a
- *  model the applied torque. */
-static inline ladrc_real_t axis_advance_actuator(ladrc_axis_t *axis)
-{
-    if (!axis->model) {
-        return axis->applied_Nm;
-    }
-    const ladrc_real_t mean = axis_acting_Nm(axis);
-    ladrc_actuator_t *act = &axis->act;
-    ladrc_real_t v = axis->applied_Nm;
-    if (act->delay_ticks != 0u) {
-        const uint8_t head = act->head;
-        v = act->delayed_Nm[head];
-        act->delayed_Nm[head] = axis->applied_Nm;
-        act->head = (uint8_t)((head + 1u < act->delay_ticks) ? head + 1u : 0u);
-    }
-    act->lag_Nm += act->alpha * (v - act->lag_Nm);
-    return mean;
-}
-
-/** The command's bounds (axis.c): u_min_Nm..u_max_Nm inside
- *  +-applied_limit_Nm (the command is applied by default, so it must be a
- *  plausible applied torque). */
-ladrc_real_t axis_command_min(const ladrc_axis_config_t *cfg);
-ladrc_real_t axis_command_max(const ladrc_axis_config_t *cfg);
 
 #endif /* LADRC_AXIS_INTERNAL_H */

@@ -12,9 +12,6 @@
  * angular acceleration a multirotor reaches, so squares and fifth
  * derivatives of it stay far inside float. A larger one is a bad input. */
 #define HP_SAMPLE_LIMIT_RAD_S2 LADRC_R(1e6)
-/* The lead that undoes the observer's lag, (1 + j w / wo)^3, grows as
- * (w / wo)^3: beyond w = 10 wo it would amplify the sample a thousandfold. */
-#define HP_LEAD_RATIO_MAX LADRC_R(10.0)
 /* Initial P of the RLS per sample (P h, rls.h keeps P in continuous units):
  * large against the gains it settles to, small enough that the first updates
  * do not amplify float rounding; the bound leaves room for 1 + 2 K of them. */
@@ -66,52 +63,6 @@ enum { CHANGE_HOLD = 1, CHANGE_NEW = 2 };
 /* The rarely taken paths below (LADRC_NOINLINE) are kept out of line so
  * that their locals are not on the stack of the path through the RLS
  * update, the deepest of a tick. */
-
-/* cos and sin of a small angle x by their series to x^8 and x^9: exact to
- * float rounding for the per-tick turns of the defaults (|x| <= 0.04 at
- * 40 rad/s and 1 kHz) and within 3e-5 at the largest init allows (pi/2: a
- * quarter turn per fit sample); the phasor is renormalised every tick. Cheap
- * enough for a frequency update on every fit sample. */
-static void small_rotation(ladrc_real_t x, ladrc_real_t *c, ladrc_real_t *s)
-{
-    const ladrc_real_t x2 = x * x;
-    *c = LADRC_R(1.0) -
-         x2 / LADRC_R(2.0) *
-             (LADRC_R(1.0) -
-              x2 / LADRC_R(12.0) * (LADRC_R(1.0) - x2 / LADRC_R(30.0) * (LADRC_R(1.0) - x2 / LADRC_R(56.0))));
-    *s = x * (LADRC_R(1.0) -
-              x2 / LADRC_R(6.0) *
-                  (LADRC_R(1.0) -
-                   x2 / LADRC_R(20.0) * (LADRC_R(1.0) - x2 / LADRC_R(42.0) * (LADRC_R(1.0) - x2 / LADRC_R(72.0)))));
-}
-
-void hp_set_tone_freq(const ladrc_hp_tone_basis_t *basis, unsigned advance, ladrc_hp_tone_t *tone, ladrc_real_t w_rad_s)
-{
-    tone->w_rad_s = w_rad_s;
-    small_rotation(w_rad_s * basis->dt_s, &tone->cos_step, &tone->sin_step);
-    const ladrc_real_t x = (basis->lag_wo_rad_s > LADRC_R(0.0)) ? w_rad_s / basis->lag_wo_rad_s : LADRC_R(0.0);
-    tone->lead_re = LADRC_R(1.0) - LADRC_R(3.0) * x * x;
-    tone->lead_im = LADRC_R(3.0) * x - x * x * x;
-    if (advance) {
-        /* lead (1 + j w tau) e^{j w d h}, times e^{-j w h}: the command is
-         * read after the tick has turned the phase by w h (estimator.h).
-         * The turn by w (d - 1) h as |d - 1| turns by w h (exact to
-         * rounding, no trig; d <= LADRC_MAX_DELAY_TICKS). */
-        const ladrc_real_t wt = min_real(w_rad_s * basis->act_tau_s, HP_LEAD_RATIO_MAX);
-        ladrc_real_t re = tone->lead_re - wt * tone->lead_im;
-        ladrc_real_t im = tone->lead_im + wt * tone->lead_re;
-        const ladrc_real_t back = (basis->act_delay_ticks == 0u) ? LADRC_R(-1.0) : LADRC_R(1.0);
-        const unsigned turns = (basis->act_delay_ticks == 0u) ? 1u : basis->act_delay_ticks - 1u;
-        for (unsigned i = 0u; i < turns; ++i) {
-            const ladrc_real_t sin_step = back * tone->sin_step;
-            const ladrc_real_t turned = re * tone->cos_step - im * sin_step;
-            im = im * tone->cos_step + re * sin_step;
-            re = turned;
-        }
-        tone->cmd_re = re;
-        tone->cmd_im = im;
-    }
-}
 
 static ladrc_status_t check_config(const ladrc_hp_config_t *cfg)
 {

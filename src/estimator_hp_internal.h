@@ -1,9 +1,11 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
  * What the HP estimator (estimator_hp.c) and its ONLINE frequency search
- * (estimator_hp_freq.c) share; not installed. The search's functions run on
- * fit samples only, out of line, so that their locals are not on the stack
- * of the path through the RLS update, the deepest of a tick.
+ * (estimator_hp_freq.c) share; not installed. A tone's frequency is set
+ * below both (estimator_hp_tone.c), so neither calls the other back. The
+ * search's functions run on fit samples only, out of line, so that their
+ * locals are not on the stack of the path through the RLS update, the
+ * deepest of a tick.
  */
 #ifndef LADRC_ESTIMATOR_HP_INTERNAL_H
 #define LADRC_ESTIMATOR_HP_INTERNAL_H
@@ -64,7 +66,11 @@ static inline int hp_search_agrees(const ladrc_hp_estimator_t *est)
 #endif
 }
 
-/* estimator_hp.c */
+/* The lead that undoes the observer's lag, (1 + j w / wo)^3, grows as
+ * (w / wo)^3: beyond w = 10 wo it would amplify the sample a thousandfold. */
+#define HP_LEAD_RATIO_MAX LADRC_R(10.0)
+
+/* estimator_hp_tone.c */
 
 /* A tone's frequency and what follows from it (its turn per tick, the
  * leads of the estimate and, with advance, of the command). */

@@ -58,8 +58,8 @@ CFLAGS=(-std=c99 -g -O1 -fno-omit-frame-pointer -fsanitize=fuzzer-no-link,addres
         -fno-sanitize-recover=all -Wall -Wextra -Wpedantic -Werror -Iinclude -Ianalysis/include -Isim -Itests/fuzz)
 sources=()
 objects=()
-for source in src/*.c analysis/*.c sim/*.c tests/fuzz/fuzz_common.c; do
-  [[ $source == sim/main.c || $source == sim/margins_main.c ]] && continue
+for source in src/*.c analysis/*.c sim/*/*.c tests/fuzz/fuzz_common.c; do
+  [[ $source == sim/tests/* || $source == sim/cli/main.c || $source == sim/cli/margins_main.c ]] && continue
   sources+=("$source")
   objects+=("$obj/$(echo "${source%.c}" | tr / _).o")
 done

@@ -12,7 +12,8 @@
 #   coverage     suite with gcov, then the gcovr gate (line 95 %, branch 85 %)
 #   asan-ubsan   suite under AddressSanitizer + UndefinedBehaviorSanitizer
 #   cortex-m4f   cross build, suite under qemu (mps2-an386), library size
-#   no-heap      no heap/stdio use and no writable globals, host + cross archive
+#   no-heap      no heap/stdio use and no writable globals, host + cross archive;
+#                no dependency cycle between the files of src/ (check_layers.py)
 #   cppcheck     static analysis of src/; every C file in the .clang-format style
 #   bench        tools/bench.sh --check: instructions per tick on the Cortex-M4F,
 #                sizes and tick stack against tools/bench/limits.txt
@@ -74,6 +75,8 @@ REQUIREMENTS=(
   "no-heap arm-none-eabi-nm binutils-arm-none-eabi"
   "no-heap arm-none-eabi-gcc gcc-arm-none-eabi"
   "no-heap newlib libnewlib-arm-none-eabi"
+  "no-heap python3 python3"
+  "no-heap cc gcc"
   "cppcheck cppcheck cppcheck"
   "cppcheck clang-format clang-format"
   "cppcheck git git"
@@ -202,6 +205,10 @@ stage_no-heap() {
   build_library cortex-m4f
   tools/check_no_heap.sh build/host-debug/libladrc.a nm
   tools/check_no_heap.sh build/cortex-m4f/libladrc.a arm-none-eabi-nm
+  # The files of src/ form layers (no circle); the check first fails on one.
+  python3 tools/check_layers_test.py cc nm
+  python3 tools/check_layers.py --nm nm build/host-debug/libladrc.a
+  python3 tools/check_layers.py --nm arm-none-eabi-nm --quiet build/cortex-m4f/libladrc.a
 }
 
 stage_cppcheck() {

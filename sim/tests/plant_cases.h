@@ -8,7 +8,7 @@
 #ifndef LADRC_SIM_TESTS_PLANT_CASES_H
 #define LADRC_SIM_TESTS_PLANT_CASES_H
 
-#include "plant.h"
+#include "plant/plant.h"
 
 #include <math.h>
 #include <stdio.h>

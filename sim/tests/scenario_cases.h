@@ -8,8 +8,8 @@
 #ifndef LADRC_SIM_TESTS_SCENARIO_CASES_H
 #define LADRC_SIM_TESTS_SCENARIO_CASES_H
 
-#include "scenario.h"
-#include "setup.h"
+#include "scenario/scenario.h"
+#include "scenario/setup.h"
 #include "ladrc/types.h"
 
 #include <math.h>

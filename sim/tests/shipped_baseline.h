@@ -11,10 +11,10 @@
 
 #include "unity.h"
 #include "ladrc/margins.h"
-#include "runner.h"
-#include "scenario.h"
-#include "setup.h"
-#include "tune.h"
+#include "run/runner.h"
+#include "scenario/scenario.h"
+#include "scenario/setup.h"
+#include "run/tune.h"
 
 #include <dirent.h>
 #include <stdio.h>

@@ -6,9 +6,9 @@
  * line, column and message. */
 #define _POSIX_C_SOURCE 200809L
 #include "unity.h"
-#include "campaign.h"
-#include "numfmt.h"
-#include "scenario.h"
+#include "campaign/campaign.h"
+#include "run/numfmt.h"
+#include "scenario/scenario.h"
 
 #include <math.h>
 #include <stdio.h>

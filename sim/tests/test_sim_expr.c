@@ -3,7 +3,7 @@
  * and functions, NaN propagation, constants, and every compile error with its
  * column and message. */
 #include "unity.h"
-#include "expr.h"
+#include "scenario/expr.h"
 
 #include <math.h>
 #include <stdio.h>

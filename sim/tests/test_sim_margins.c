@@ -5,9 +5,9 @@
  * them): the largest stable motor lag and sensor delay agree within 10 %. */
 #include "unity.h"
 #include "ladrc/margins.h"
-#include "runner.h"
-#include "scenario.h"
-#include "setup.h"
+#include "run/runner.h"
+#include "scenario/scenario.h"
+#include "scenario/setup.h"
 
 #include <math.h>
 #include <stdio.h>

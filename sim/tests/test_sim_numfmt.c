@@ -2,8 +2,8 @@
 /* Time-series number formatting: the same text as printf's %.6g, %.7g and
  * %.4f for every value, ties, exponent changes and special values included. */
 #include "unity.h"
-#include "numfmt.h"
-#include "rng.h"
+#include "run/numfmt.h"
+#include "plant/rng.h"
 
 #include <math.h>
 #include <stdio.h>

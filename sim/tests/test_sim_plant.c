@@ -4,9 +4,9 @@
  * accuracy, the rotors and the plants side by side are in
  * test_sim_plant_rk4.c, test_sim_plant_rotors.c, test_sim_plant_group.c). */
 #include "unity.h"
-#include "plant.h"
+#include "plant/plant.h"
 #include "plant_cases.h"
-#include "rng.h"
+#include "plant/rng.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -2,7 +2,7 @@
 /* Simulator plant, plants stepped side by side (sim_plant_step_group and
  * its table form) against a plain one-plant reference, bit for bit. */
 #include "unity.h"
-#include "plant.h"
+#include "plant/plant.h"
 #include "plant_cases.h"
 
 #include <math.h>

@@ -3,7 +3,7 @@
  * times, the stage times listed, exact cubics, fourth-order convergence of
  * the substeps, and steps of no time. */
 #include "unity.h"
-#include "plant.h"
+#include "plant/plant.h"
 #include "plant_cases.h"
 
 #include <math.h>

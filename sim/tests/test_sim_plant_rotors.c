@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Simulator plant, its rotors: the motor lag and the rotor limits. */
 #include "unity.h"
-#include "plant.h"
+#include "plant/plant.h"
 #include "plant_cases.h"
 
 #include <math.h>

@@ -2,7 +2,7 @@
 /* The progress line of ladrc_sil: the time left from the pace so far, its
  * wording, and no estimate before anything is done. */
 #include "unity.h"
-#include "progress.h"
+#include "run/progress.h"
 
 #include <math.h>
 

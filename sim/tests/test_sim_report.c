@@ -2,8 +2,8 @@
 /* The tables and metrics.csv of a diverged run and of a run that never
  * settles: words where there is no result, never numbers. */
 #include "unity.h"
-#include "report.h"
-#include "scenario.h"
+#include "report/report.h"
+#include "scenario/scenario.h"
 
 #include <math.h>
 #include <stdio.h>

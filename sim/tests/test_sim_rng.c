@@ -2,7 +2,7 @@
 /* Simulator RNG: published reference outputs, determinism, and the moments
  * of the uniform and normal deviates. */
 #include "unity.h"
-#include "rng.h"
+#include "plant/rng.h"
 
 #include <math.h>
 #include <stdint.h>

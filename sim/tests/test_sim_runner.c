@@ -4,8 +4,8 @@
  * paper's Table 7, that every run stays finite, and the orderings the paper
  * claims; and the Table 3 case. */
 #include "unity.h"
-#include "runner.h"
-#include "scenario.h"
+#include "run/runner.h"
+#include "scenario/scenario.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -2,7 +2,7 @@
 /* Simulator sensor: argument checks, exact pass-through without noise, the
  * delay line, and the noise statistics. */
 #include "unity.h"
-#include "sensor.h"
+#include "plant/sensor.h"
 
 #include <math.h>
 

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
- * libFuzzer target: the expression compiler (sim/expr.c) on arbitrary text
+ * libFuzzer target: the expression compiler (sim/scenario/expr.c) on arbitrary text
  * (the input up to its first NUL byte). Besides what the sanitizers catch,
  * it checks that:
  * - a refused text has its error inside the text (1 <= column <= length + 1,
@@ -30,7 +30,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "expr.h"
+#include "scenario/expr.h"
 
 /* Scenario times and the edges of double. */
 static const double TIMES[] = {

@@ -16,9 +16,9 @@
 #include <math.h>
 #include <string.h>
 
-#include "runner.h"
-#include "scenario.h"
-#include "setup.h"
+#include "run/runner.h"
+#include "scenario/scenario.h"
+#include "scenario/setup.h"
 
 static sim_scenario_t sc;
 

@@ -8,7 +8,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "setup.h"
+#include "scenario/setup.h"
 
 static const char *const AXIS_NAMES[3] = {"roll", "pitch", "yaw"};
 

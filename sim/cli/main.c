@@ -13,7 +13,7 @@
 
 #include "campaign_main.h"
 #include "fly.h"
-#include "scenario.h"
+#include "scenario/scenario.h"
 
 #define MAX_SCENARIOS SIM_FLY_MAX_SCENARIOS
 

@@ -16,7 +16,7 @@
 #include <stdint.h>
 
 #include "campaign.h"
-#include "ini.h"
+#include "scenario/ini.h"
 
 enum { SEC_CAMPAIGN, SEC_GRID, SEC_DRAW, SEC_SET, SEC_COUNT };
 

@@ -12,10 +12,10 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "progress.h"
-#include "report.h"
-#include "runner.h"
-#include "tune.h"
+#include "run/progress.h"
+#include "report/report.h"
+#include "run/runner.h"
+#include "run/tune.h"
 
 #define MAX_JOBS (SIM_FLY_MAX_SCENARIOS * SIM_MAX_CONTROLLERS)
 #define MAX_THREADS 256

@@ -12,7 +12,7 @@
 #define LADRC_SIM_TUNE_H
 
 #include "ladrc/margins.h"
-#include "scenario.h"
+#include "scenario/scenario.h"
 
 /* 1 when controller id of sc has tune = margins. */
 int sim_tune_wanted(const sim_scenario_t *sc, sim_controller_id_t id);

@@ -10,8 +10,8 @@
 #include <string.h>
 
 #include "campaign.h"
-#include "numfmt.h"
-#include "rng.h"
+#include "run/numfmt.h"
+#include "plant/rng.h"
 
 #define TWO_PI 6.28318530717958647692
 

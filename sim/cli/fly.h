@@ -11,7 +11,7 @@
 #ifndef LADRC_SIM_FLY_H
 #define LADRC_SIM_FLY_H
 
-#include "scenario.h"
+#include "scenario/scenario.h"
 
 /* Scenarios in one batch: the static arrays of a batch hold this many. */
 #define SIM_FLY_MAX_SCENARIOS 32

@@ -14,10 +14,10 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "campaign.h"
+#include "campaign/campaign.h"
 #include "fly.h"
-#include "progress.h"
-#include "scenario.h"
+#include "run/progress.h"
+#include "scenario/scenario.h"
 
 enum { EXIT_RUN_FAILED = 1, EXIT_BAD_INPUT = 2 };
 

@@ -13,8 +13,8 @@
 #include "ladrc/estimator.h"
 #include "ini.h"
 #include "ladrc/leso.h"
-#include "plant.h"
-#include "sensor.h"
+#include "plant/plant.h"
+#include "plant/sensor.h"
 
 /* Defaults that are not the paper vehicle's (documented in docs/scenario-format.md). */
 #define DEFAULT_CONTROL_DT_S 0.001

@@ -11,7 +11,7 @@
 #include <stddef.h>
 
 #include "metrics.h"
-#include "scenario.h"
+#include "scenario/scenario.h"
 
 /* Progress: the run adds its completed control ticks here (may be NULL);
  * the caller reads it from another thread, so it is only a hint. */

@@ -14,10 +14,10 @@
 #include <sys/stat.h>
 
 #include "ladrc/margins.h"
-#include "scenario.h"
-#include "report.h"
-#include "setup.h"
-#include "tune.h"
+#include "scenario/scenario.h"
+#include "report/report.h"
+#include "scenario/setup.h"
+#include "run/tune.h"
 
 /* Largest motor lag searched (s): ten times any real motor's. */
 #define TAU_SEARCH_MAX_S 0.5

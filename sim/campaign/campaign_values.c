@@ -9,8 +9,8 @@
 #include <string.h>
 
 #include "campaign_parser.h"
-#include "expr.h"
-#include "ini.h"
+#include "scenario/expr.h"
+#include "scenario/ini.h"
 
 static int is_alpha(char c)
 {

@@ -4,7 +4,7 @@
 
 #include <math.h>
 
-#include "setup.h"
+#include "scenario/setup.h"
 
 static const char *const AXES[3] = {"roll", "pitch", "yaw"};
 

@@ -6,9 +6,9 @@
 
 #include "ladrc/levant.h"
 #include "ladrc/td.h"
-#include "rng.h"
+#include "plant/rng.h"
 #include "runner_parts.h"
-#include "setup.h"
+#include "scenario/setup.h"
 
 /* Levant and the TD configured as the parser checked them, at the signal's
  * value at t = 0; 0, or -1 with the message. */

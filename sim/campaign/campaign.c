@@ -12,7 +12,7 @@
 #include <string.h>
 
 #include "campaign_parser.h"
-#include "ini.h"
+#include "scenario/ini.h"
 
 static const char *const SECTION_NAMES[SEC_COUNT] = {"campaign", "grid", "draw", "set"};
 static const char *const CAMPAIGN_KEYS[K_COUNT] = {"name", "base", "seed", "samples", "output_dir"};

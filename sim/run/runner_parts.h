@@ -14,13 +14,13 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "expr.h"
+#include "scenario/expr.h"
 #include "ladrc/attitude.h"
 #include "ladrc/mixer.h"
 #include "numfmt.h"
-#include "plant.h"
+#include "plant/plant.h"
 #include "runner.h"
-#include "sensor.h"
+#include "plant/sensor.h"
 
 #define RAD2DEG (180.0 / 3.14159265358979323846)
 

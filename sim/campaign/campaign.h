@@ -18,7 +18,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "scenario.h"
+#include "scenario/scenario.h"
 
 #define SIM_CAMPAIGN_MAX_VARIED 16      /* [grid] and [draw] keys together */
 #define SIM_CAMPAIGN_MAX_SETS 48        /* [set] lines */

@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "runner_parts.h"
-#include "setup.h"
+#include "scenario/setup.h"
 
 /* The controller and mixer of the run, configured as the parser checked them. */
 static int configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_t *att, ladrc_mixer_t *mixer,

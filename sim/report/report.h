@@ -9,8 +9,8 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "metrics.h"
-#include "scenario.h"
+#include "run/metrics.h"
+#include "scenario/scenario.h"
 
 /* Results of one scenario: one sim_metrics_t per controller in sc->controllers
  * (attitude), or the differentiator metrics. */
