@@ -107,9 +107,9 @@ static ladrc_real_t feed(const ladrc_attitude_t *att, unsigned i, ladrc_real_t r
 }
 
 /* Rate and acceleration of one axis (axis_observer_rate and
- * axis_observer_accel, the formula of ladrc_axis_get_accel). A PID, CASCADED or INDI axis has no observer:
- * 0 and 0 (INDI measures the coupling in its acceleration and needs no
- * feed). Forced inline: 28 instructions of the 3-axis HP-MLADRC tick
+ * axis_observer_accel, the formula of ladrc_axis_get_accel). A PID, CASCADED
+ * or INDI axis has no observer: 0 and 0 (INDI measures the coupling in its
+ * acceleration and needs no feed). Forced inline: 28 instructions of the 3-axis HP-MLADRC tick
  * (2,805.5 with it, 2,833.5 without). */
 static LADRC_FORCE_INLINE void observed(const ladrc_axis_t *ax, ladrc_real_t *rate, ladrc_real_t *accel)
 {
