@@ -8,7 +8,8 @@ Usage: estimators_plot.py OUT_DIR FIG_DIR SCENARIO [SCENARIO ...]
 
 OUT_DIR holds <scenario>/HP-MLADRC.csv and <scenario>/LP-MLADRC.csv as `ladrc_sil --out OUT_DIR`
 writes them; each scenario gives FIG_DIR/fig14_estimators_<scenario>.png. Printed per axis: where
-HP's gate holds its weight above ENGAGED, the measured figures docs/comparisons.md quotes. A
+HP's gate holds its weight above ENGAGED, and how closely LP's d̂ follows f after the first
+disturbance change: the measured figures docs/comparisons.md quotes. A
 scenario with neither run, or a run without the estimator columns, is an error (exit status 1).
 """
 import argparse
@@ -55,8 +56,20 @@ def summary(name, axis, t, weight):
     dt = t[1] - t[0] if t.size > 1 else 0.0
     total = sum(b - a + dt for a, b in spans)
     text = ", ".join("%.2f-%.2f s" % span for span in spans[:6]) + (" ..." if len(spans) > 6 else "")
-    return "%s %s: HP gate weight > %.1f for %.2f s of %.2f s in %d spans%s" % (
-        name, axis, ENGAGED, total, t[-1] - t[0] + dt, len(spans), (": " + text) if spans else "")
+    return "%s %s: HP gate weight > %.1f for %.2f s of %.2f s in %d span%s%s" % (
+        name, axis, ENGAGED, total, t[-1] - t[0] + dt, len(spans), "" if len(spans) == 1 else "s",
+        (": " + text) if spans else "")
+
+
+def lp_summary(name, axis, run, after_s):
+    """How closely LP's d̂ follows its run's true f after after_s (the first disturbance change)."""
+    keep = run["t_s"] > after_s
+    f, d = run["f_%s_rad_s2" % axis][keep], run["lp_est_%s_rad_s2" % axis][keep]
+    if f.size < 2:
+        return "%s %s: LP d̂: no samples after %.2f s" % (name, axis, after_s)
+    return "%s %s: LP d̂ against f over (%.2f, %.2f] s: correlation %.3f, RMS of d̂ - f %.3g rad/s² (f's %.3g)" % (
+        name, axis, after_s, run["t_s"][-1], np.corrcoef(d, f)[0, 1], np.sqrt(np.mean((d - f) ** 2)),
+        np.sqrt(np.mean(f ** 2)))
 
 
 def draw(out_dir, fig_dir, name):
@@ -94,6 +107,8 @@ def draw(out_dir, fig_dir, name):
                 amp.plot(t[::s], amps[-1][::s], color=COLOURS["HP-MLADRC"], ls=dash, lw=1.0, label=label)
             log_scale(amp, amps)
             lines.append(summary(name, axis, t, w))
+        if lp is not None:
+            lines.append(lp_summary(name, axis, lp, sc.onsets[0] if sc.onsets else lp["t_s"][0]))
         for c, r in runs.items():  # the truth of each run: f depends on how it flies
             s = stride(r["t_s"].size)
             est.plot(r["t_s"][::s], r["f_%s_rad_s2" % axis][::s], color=COLOURS[c], lw=2.4, alpha=0.3,

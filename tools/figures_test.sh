@@ -63,6 +63,8 @@ png_ok "$work/fig/fig14_estimators_short_paper.png" 1200 700 50000
 check fig14_estimators $?
 [[ $(grep -c "short_paper \(roll\|pitch\|yaw\): HP gate weight > 0.5 for" "$work/est.txt") -eq 3 ]]
 check estimators_plot_summarises_each_axis $?
+[[ $(grep -c "short_paper \(roll\|pitch\|yaw\): LP d̂ against f over (2.00, " "$work/est.txt") -eq 3 ]]
+check estimators_plot_compares_lp_with_f $?
 "$py" "$src/tools/estimators_plot.py" "$work/out" "$work/fig" short_differentiator > /dev/null 2>&1
 [[ $? -eq 1 ]]; check estimators_plot_refuses_a_scenario_without_the_runs $?
 
