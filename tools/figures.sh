@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # Flies the paper's scenarios (tools/paper.sh) and draws the figures and the report:
-# docs/figures/*.png and docs/report.md, the incumbents and real-airframes
+# docs/figures/*.png (the estimators' of paper and real_heavy_lag30 with
+# tools/estimators_plot.py) and docs/report.md, the incumbents and real-airframes
 # tables of docs/comparisons.md and the headline table of README.md (each
 # between its <!-- ...:begin/end --> markers).
 #
@@ -31,4 +32,5 @@ tools/paper.sh --out "$out" --quiet | tee "$out/tables.txt"
 echo "== figures and report"
 rm -f docs/figures/fig*.png  # the figures drawn below (margins_*.png come from tools/margins_plot.py)
 "$py" tools/figures.py "$out" docs/figures
+"$py" tools/estimators_plot.py "$out" docs/figures paper real_heavy_lag30
 "$py" tools/report.py "$out" docs/report.md --docs docs --front-page README.md

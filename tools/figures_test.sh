@@ -36,22 +36,37 @@ check figures_py_succeeds $?
 "$py" "$src/tools/report.py" "$work/out" "$work/report.md" "${report_names[@]}"
 check report_py_succeeds $?
 
-# Every figure: a PNG (signature), at least 800 x 500 pixels (IHDR), more than 20 kB.
+# 0 when file is a PNG (signature) of at least width x height pixels (IHDR) and more than bytes.
+png_ok() { # file, width, height, bytes
+  [[ -f $1 ]] || return 1
+  local hdr w h size
+  read -r -a hdr < <(od -An -tu1 -N24 "$1" | tr -s ' \n' ' ')
+  w=$(( (hdr[16] << 24) | (hdr[17] << 16) | (hdr[18] << 8) | hdr[19] ))
+  h=$(( (hdr[20] << 24) | (hdr[21] << 16) | (hdr[22] << 8) | hdr[23] ))
+  size=$(wc -c < "$1")
+  echo "$(basename "$1"): ${w}x${h}, $size bytes"
+  [[ ${hdr[1]} -eq 80 && ${hdr[2]} -eq 78 && ${hdr[3]} -eq 71 && $w -ge $2 && $h -ge $3 && $size -gt $4 ]]
+}
+
+# Every figure: at least 800 x 500 pixels, more than 20 kB.
 for fig in fig05_td_levant fig06_tracking fig06_tracking_onsets fig07_errors fig07_errors_onsets \
            fig08_radar fig09_disturbance fig10_noisy_tracking fig11_noisy_errors fig12_rotors fig13_hp_modes; do
-  f="$work/fig/$fig.png"
-  ok=1
-  if [[ -f $f ]]; then
-    read -r -a hdr < <(od -An -tu1 -N24 "$f" | tr -s ' \n' ' ')
-    width=$(( (hdr[16] << 24) | (hdr[17] << 16) | (hdr[18] << 8) | hdr[19] ))
-    height=$(( (hdr[20] << 24) | (hdr[21] << 16) | (hdr[22] << 8) | hdr[23] ))
-    size=$(wc -c < "$f")
-    echo "$fig.png: ${width}x${height}, $size bytes"
-    [[ ${hdr[1]} -eq 80 && ${hdr[2]} -eq 78 && ${hdr[3]} -eq 71 && $width -ge 800 && $height -ge 500 &&
-       $size -gt 20000 ]] && ok=0
-  fi
-  check "$fig" $ok
+  png_ok "$work/fig/$fig.png" 800 500 20000
+  check "$fig" $?
 done
+
+# The estimators' figure of a run (tools/estimators_plot.py): a PNG of its 15 x 8.5 in size, and the
+# gate's summary per axis; a scenario without HP-MLADRC and LP-MLADRC runs is an error.
+"$py" "$src/tools/estimators_plot.py" "$work/out" "$work/fig" short_paper > "$work/est.txt"
+check estimators_plot_succeeds $?
+png_ok "$work/fig/fig14_estimators_short_paper.png" 1200 700 50000
+check fig14_estimators $?
+[[ $(grep -c "short_paper \(roll\|pitch\|yaw\): HP gate weight > 0.5 for" "$work/est.txt") -eq 3 ]]
+check estimators_plot_summarises_each_axis $?
+[[ $(grep -c "short_paper \(roll\|pitch\|yaw\): LP d̂ against f over (2.00, " "$work/est.txt") -eq 3 ]]
+check estimators_plot_compares_lp_with_f $?
+"$py" "$src/tools/estimators_plot.py" "$work/out" "$work/fig" short_differentiator > /dev/null 2>&1
+[[ $? -eq 1 ]]; check estimators_plot_refuses_a_scenario_without_the_runs $?
 
 # The report: every table's heading, the paper's numbers, and ours from metrics.csv.
 r="$work/report.md"

@@ -52,7 +52,8 @@ void runner_line_end(csv_line_t *l, FILE *f)
     l->len = 0;
 }
 
-const char RUNNER_ATTITUDE_CSV_HEADER[] =
+/* The columns every attitude run has, in their order (docs/csv-format.md). */
+static const char BASE_COLUMNS[] =
     "t_s,ref_roll_deg,ref_pitch_deg,ref_yaw_deg,angle_roll_deg,angle_pitch_deg,angle_yaw_deg,"
     "error_roll_deg,error_pitch_deg,error_yaw_deg,torque_cmd_roll_Nm,torque_cmd_pitch_Nm,torque_cmd_yaw_Nm,"
     "torque_roll_Nm,torque_pitch_Nm,torque_yaw_Nm,w2_1_rad2_s2,w2_2_rad2_s2,w2_3_rad2_s2,w2_4_rad2_s2,"
@@ -62,9 +63,71 @@ const char RUNNER_ATTITUDE_CSV_HEADER[] =
     "meas_rate_roll_deg_s,meas_rate_pitch_deg_s,meas_rate_yaw_deg_s,"
     "est_angle_roll_deg,est_angle_pitch_deg,est_angle_yaw_deg,"
     "est_rate_roll_deg_s,est_rate_pitch_deg_s,est_rate_yaw_deg_s,"
-    "sat_roll_flag,sat_pitch_flag,sat_yaw_flag,sat_thrust_flag\n";
+    "sat_roll_flag,sat_pitch_flag,sat_yaw_flag,sat_thrust_flag";
 
-/* The tick's line of the time series (RUNNER_ATTITUDE_CSV_HEADER): the text of
+static const char *const AXIS_NAMES[3] = {"roll", "pitch", "yaw"};
+
+/* ",{prefix}{axis}{unit}" for roll, pitch and yaw at out[*at]; stops at the end. */
+static void axis_columns(char *out, size_t len, size_t *at, const char *prefix, const char *unit)
+{
+    for (int i = 0; i < 3 && *at < len; ++i) {
+        const int n = snprintf(out + *at, len - *at, ",%s%s%s", prefix, AXIS_NAMES[i], unit);
+        *at += n > 0 ? (size_t)n : 0u;
+    }
+}
+
+/* The estimators' columns follow the base ones, so their readers keep working;
+ * one frequency and amplitude pair per tone the build can model. */
+void runner_attitude_csv_header(char *out, size_t len)
+{
+    size_t at = (size_t)snprintf(out, len, "%s", BASE_COLUMNS);
+    axis_columns(out, len, &at, "hp_weight_", "_frac");
+    axis_columns(out, len, &at, "hp_tones_", "_count");
+    for (int k = 1; k <= LADRC_HP_MAX_TONES; ++k) {
+        char freq[32], amp[32];
+        snprintf(freq, sizeof freq, "hp_freq%d_", k);
+        snprintf(amp, sizeof amp, "hp_amp%d_", k);
+        axis_columns(out, len, &at, freq, "_rad_s");
+        axis_columns(out, len, &at, amp, "_rad_s2");
+    }
+    axis_columns(out, len, &at, "hp_est_", "_rad_s2");
+    axis_columns(out, len, &at, "lp_est_", "_rad_s2");
+    if (at + 1 < len) {
+        out[at++] = '\n';
+        out[at] = '\0';
+    }
+}
+
+/* The estimators' cells of the tick (runner_attitude_csv_header's order),
+ * read through the library's getters: nan where the axis has no such
+ * estimator, and for the tones beyond those active now. */
+static void estimator_cells(csv_line_t *line, const ladrc_attitude_t *att)
+{
+    const ladrc_hp_estimator_t *hp[3];
+    const ladrc_lp_estimator_t *lp[3];
+    unsigned tones[3];
+    for (int i = 0; i < 3; ++i) {
+        hp[i] = ladrc_axis_get_hp(&att->axis[i]);
+        lp[i] = ladrc_axis_get_lp(&att->axis[i]);
+        tones[i] = hp[i] != NULL ? ladrc_hp_get_active_tones(hp[i]) : 0u;
+    }
+    for (int i = 0; i < 3; ++i)
+        runner_line_g(line, hp[i] != NULL ? (double)ladrc_hp_get_weight(hp[i]) : NAN, 6);
+    for (int i = 0; i < 3; ++i)
+        runner_line_g(line, hp[i] != NULL ? (double)tones[i] : NAN, 6);
+    for (unsigned k = 0; k < LADRC_HP_MAX_TONES; ++k) {
+        for (int i = 0; i < 3; ++i)
+            runner_line_g(line, k < tones[i] ? (double)ladrc_hp_get_freq(hp[i], k) : NAN, 6);
+        for (int i = 0; i < 3; ++i)
+            runner_line_g(line, k < tones[i] ? (double)ladrc_hp_get_amplitude(hp[i], k) : NAN, 6);
+    }
+    for (int i = 0; i < 3; ++i)
+        runner_line_g(line, hp[i] != NULL ? (double)ladrc_hp_get_estimate(hp[i]) : NAN, 6);
+    for (int i = 0; i < 3; ++i)
+        runner_line_g(line, lp[i] != NULL ? (double)ladrc_lp_get_estimate(lp[i]) : NAN, 6);
+}
+
+/* The tick's line of the time series (runner_attitude_csv_header): the text of
  * %.4f, %.6g and %.7g (numfmt.h). */
 void runner_csv_line(attitude_run_t *r, const tick_t *tk)
 {
@@ -102,5 +165,6 @@ void runner_csv_line(attitude_run_t *r, const tick_t *tk)
                                          LADRC_MIXER_SAT_THRUST};
     for (int b = 0; b < 4; ++b)
         runner_line_g(line, (tk->out.saturated & SAT_BITS[b]) != 0u ? 1.0 : 0.0, 6);
+    estimator_cells(line, &r->att);
     runner_line_end(line, r->csv);
 }

@@ -93,9 +93,14 @@ void runner_references(const sim_scenario_t *sc, double t_s, sim_expr_memo_t *me
  * returned); NULL with the message in err when it cannot be written. */
 FILE *runner_open_csv(const char *path, const char *header, char *err, size_t err_len);
 
+/* Most fields of a line: the attitude run's 45 and its estimators' (per
+ * axis: HP's weight, tones, estimate, LP's estimate, and each tone's
+ * frequency and amplitude). */
+#define RUNNER_CSV_FIELDS_MAX (45 + 3 * (4 + 2 * LADRC_HP_MAX_TONES))
+
 /* One CSV line in memory, written with one fwrite. */
 typedef struct {
-    char text[64 * SIM_NUMFMT_MAX];
+    char text[RUNNER_CSV_FIELDS_MAX * SIM_NUMFMT_MAX];
     int len;
 } csv_line_t;
 
@@ -153,9 +158,12 @@ int runner_diverged(const sim_scenario_t *sc, const sim_plant_t *p, const double
 /* Settling times and the time series' end; 0, or -1 with the message. */
 int runner_run_close(const sim_scenario_t *sc, attitude_run_t *r);
 
-/* The header of an attitude run's time series, and the tick's line of it
- * (runner_csv.c): the text of %.4f, %.6g and %.7g (numfmt.h). */
-extern const char RUNNER_ATTITUDE_CSV_HEADER[];
+/* The header line of an attitude run's time series into out (len bytes,
+ * RUNNER_CSV_HEADER_MAX do: no name and its comma is longer than 32), and
+ * the tick's line of it (runner_csv.c): the text of %.4f, %.6g and %.7g
+ * (numfmt.h). */
+#define RUNNER_CSV_HEADER_MAX (32 * RUNNER_CSV_FIELDS_MAX)
+void runner_attitude_csv_header(char *out, size_t len);
 void runner_csv_line(attitude_run_t *r, const tick_t *tk);
 
 #endif

@@ -110,9 +110,13 @@ int runner_run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t 
         snprintf(spec->err, spec->err_len, "%s: bad sensor settings", sc->path);
         return -1;
     }
-    r->csv = runner_open_csv(spec->csv_path, RUNNER_ATTITUDE_CSV_HEADER, spec->err, spec->err_len);
-    if (spec->csv_path != NULL && r->csv == NULL) {
-        return -1;
+    if (spec->csv_path != NULL) {
+        char header[RUNNER_CSV_HEADER_MAX];
+        runner_attitude_csv_header(header, sizeof header);
+        r->csv = runner_open_csv(spec->csv_path, header, spec->err, spec->err_len);
+        if (r->csv == NULL) {
+            return -1;
+        }
     }
     r->line.len = 0;
     for (int i = 0; i < 3; ++i) {
