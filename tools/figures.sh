@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Flies the paper's scenarios (tools/paper.sh) and draws the figures and the report:
 # docs/figures/*.png and docs/report.md, the incumbents and real-airframes
-# tables of docs/comparisons.md and the headline table of README.md (each
+# tables of docs/comparisons.md and the headline table of README.md; then
+# flies the realistic suite (tools/suite.sh) for docs/suite.md's table (each
 # between its <!-- ...:begin/end --> markers).
 #
 # Usage: tools/figures.sh [OUT_DIR]
@@ -28,7 +29,10 @@ rm -rf "$out/paper" "$out/paper_noisy" "$out/paper_known" "$out/paper_noisy_know
 mkdir -p "$out"
 echo "== flying the paper's scenarios into $out"
 tools/paper.sh --out "$out" --quiet | tee "$out/tables.txt"
+echo "== flying the realistic suite into $out"
+tools/suite.sh "$out" --no-csv
 echo "== figures and report"
 rm -f docs/figures/fig*.png  # the figures drawn below (margins_*.png come from tools/margins_plot.py)
 "$py" tools/figures.py "$out" docs/figures
-"$py" tools/report.py "$out" docs/report.md --docs docs --front-page README.md
+"$py" tools/report.py "$out" docs/report.md --docs docs --front-page README.md \
+  --suite-page docs/suite.md
