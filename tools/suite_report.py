@@ -115,7 +115,7 @@ def suite_block(out_dir):
              "is over the others.", ""] + table
     lines += ["The best of the LADRC family is within %.1fx the better incumbent on %d of %d case-axes."
               % (TARGET_RATIO, len(results) - len(over_target), len(results)), ""]
-    lines += listing("Losses (ratio above 1, or no LADRC-family number)",
+    lines += listing("Losses: ratio above 1, or no ratio (a side did not fly)",
                      ["`%s` %s: %s" % (c, a, t) for c, a, _, t in losses])
     lines += listing("Above the %.1f target (losses included)" % TARGET_RATIO,
                      ["`%s` %s: %s" % (c, a, t) for c, a, _, t in over_target])
