@@ -3,7 +3,8 @@
 # Flies the paper's scenarios (tools/paper.sh) and draws the figures and the report:
 # docs/figures/*.png (the estimators' of paper and real_heavy_lag30 with
 # tools/estimators_plot.py) and docs/report.md, the incumbents and real-airframes
-# tables of docs/comparisons.md and the headline table of README.md (each
+# tables of docs/comparisons.md and the headline table of README.md; then
+# flies the realistic suite (tools/suite.sh) for docs/suite.md's table (each
 # between its <!-- ...:begin/end --> markers).
 #
 # Usage: tools/figures.sh [OUT_DIR]
@@ -29,8 +30,11 @@ rm -rf "$out/paper" "$out/paper_noisy" "$out/paper_known" "$out/paper_noisy_know
 mkdir -p "$out"
 echo "== flying the paper's scenarios into $out"
 tools/paper.sh --out "$out" --quiet | tee "$out/tables.txt"
+echo "== flying the realistic suite into $out"
+tools/suite.sh "$out" --no-csv
 echo "== figures and report"
 rm -f docs/figures/fig*.png  # the figures drawn below (margins_*.png come from tools/margins_plot.py)
 "$py" tools/figures.py "$out" docs/figures
 "$py" tools/estimators_plot.py "$out" docs/figures paper real_heavy_lag30
-"$py" tools/report.py "$out" docs/report.md --docs docs --front-page README.md
+"$py" tools/report.py "$out" docs/report.md --docs docs --front-page README.md \
+  --suite-page docs/suite.md

@@ -3,10 +3,11 @@
 """Writes a Markdown report that sets the simulator's Tables 3-7 beside the paper's.
 
 Usage: report.py OUT_DIR REPORT_MD [--paper NAME] [--noisy NAME] [--known NAME] [--noisy-known NAME]
-                 [--diff NAME] [--docs DIR] [--front-page MD]
+                 [--diff NAME] [--docs DIR] [--front-page MD] [--suite-page MD]
 
 --docs DIR rewrites the incumbents and real-airframes blocks of DIR/comparisons.md,
---front-page MD the headline block of MD (README.md), each between its
+--front-page MD the headline block of MD (README.md), --suite-page MD the suite block of MD
+(docs/suite.md, from tools/suite.sh's output), each between its
 <!-- NAME:begin --> and <!-- NAME:end --> markers.
 
 OUT_DIR holds one directory per scenario with its metrics.csv, as written by
@@ -22,6 +23,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from sim_output import (AXES, CONTROLLERS, NOT_SETTLED, divergence, divergence_text, is_number,  # noqa: E402
                         load_metrics)
+from suite_report import suite_block  # noqa: E402
 
 # Dong, Y. et al., "Decoupling-Free Attitude Control of UAV Considering High-Frequency
 # Disturbances: A Modified Linear Active Disturbance Rejection Method", Actuators 2025,
@@ -461,6 +463,8 @@ def main(argv):
     p.add_argument("--docs", metavar="DIR",
                    help="docs directory whose comparisons.md incumbents and real-airframes blocks to rewrite")
     p.add_argument("--front-page", metavar="MD", help="front page (README.md) whose headline block to rewrite")
+    p.add_argument("--suite-page", metavar="MD", help="page (docs/suite.md) whose suite block to rewrite from "
+                   "tools/suite.sh's output in OUT_DIR")
     a = p.parse_args(argv)
     headings = table_headings(os.path.join(a.out_dir, "tables.txt"))
     rep = Report()
@@ -538,6 +542,8 @@ def main(argv):
         pages.append((os.path.join(a.docs, "comparisons.md"), {"incumbents": incumbents, "real-airframes": real}))
     if a.front_page:
         pages.append((a.front_page, {"headline": headline_block(a.out_dir)}))
+    if a.suite_page:
+        pages.append((a.suite_page, {"suite": suite_block(a.out_dir)}))
     for path, blocks in pages:
         if any(lines is None for lines in blocks.values()):
             print("report.py: %s not rewritten: the outputs of its scenarios are missing" % path, file=sys.stderr)

@@ -1,0 +1,130 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""docs/suite.md's generated block: per suite case and axis the RMS error of every controller, the
+best of the LADRC family over the better incumbent, and every loss, tuning failure and divergence.
+
+Reads what tools/suite.sh wrote: OUT_DIR/<case>/metrics.csv and, when a tuning failed,
+OUT_DIR/<case>/tune_failed.txt ("CONTROLLER: message" per line; the case was flown without it).
+"""
+import glob
+import math
+import os
+
+from sim_output import AXES, CONTROLLERS, divergence, divergence_text, is_number, load_metrics
+
+FAMILY = ("HP-MLADRC", "LP-MLADRC", "LADRC")
+INCUMBENTS = ("CASCADED", "INDI")
+# Issue 22's acceptance: the family's best at most this fraction of the better incumbent's RMS.
+TARGET_RATIO = 0.5
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+PAPER_TUNED = "paper_tuned"
+
+
+def suite_cases():
+    """The suite's case names: scenarios/suite/*.ini, sorted."""
+    return sorted(os.path.splitext(os.path.basename(p))[0]
+                  for p in glob.glob(os.path.join(ROOT, "scenarios", "suite", "*.ini")))
+
+
+def tune_failures(case_dir):
+    """{controller: message} of the tunings that failed in a case."""
+    path = os.path.join(case_dir, "tune_failed.txt")
+    if not os.path.exists(path):
+        return {}
+    out = {}
+    with open(path) as f:
+        for line in f:
+            name, _, message = line.strip().partition(": ")
+            if name:
+                out[name] = message
+    return out
+
+
+def rms(m, c, axis):
+    """A controller's RMS error on an axis, or None when it has no number (diverged, not flown)."""
+    v = m.get((c, "4", "error_rms_deg", axis))
+    return v if is_number(v) and not math.isnan(v) and divergence(m, c) is None else None
+
+
+def fmt(v):
+    """An RMS in deg: three decimals, two significant digits below 0.1 (yaw's small figures)."""
+    return "%.3f" % v if abs(v) >= 0.1 else "%.2g" % v
+
+
+def cell(m, failed, c, axis):
+    if c in failed:
+        return "**tuning failed**"
+    if divergence(m, c) is not None:
+        return "**DIVERGED**"
+    v = rms(m, c, axis)
+    return "—" if v is None else fmt(v)
+
+
+def best(m, controllers, axis):
+    have = [(rms(m, c, axis), c) for c in controllers]
+    have = [(v, c) for v, c in have if v is not None]
+    return min(have) if have else (None, None)
+
+
+def case_table(out_dir, cases, controllers):
+    """(table lines, [(case, axis, ratio or None, text)], failures, divergences) or None when a case
+    has no output."""
+    header = ["case", "axis"] + ["%s RMS (deg)" % c for c in controllers] + [
+        "best LADRC family", "better incumbent", "ratio"]
+    rows, results, failures, divs = [], [], [], []
+    for case in cases:
+        d = os.path.join(out_dir, case)
+        m, failed = load_metrics(d), tune_failures(d)
+        if m is None and not failed:
+            return None
+        m = m or {}
+        failures += ["`%s` %s: %s" % (case, c, msg) for c, msg in sorted(failed.items())]
+        divs += ["`%s` %s: %s" % (case, c, divergence_text(m, c)) for c in controllers
+                 if divergence(m, c) is not None]
+        for axis in AXES:
+            (fv, fc), (iv, ic) = best(m, FAMILY, axis), best(m, INCUMBENTS, axis)
+            r = fv / iv if fv is not None and iv else None
+            text = ("%s (%s) / %s (%s) = %.2f" % (fmt(fv), fc, fmt(iv), ic, r) if r is not None else
+                    "no LADRC-family controller flew" if fv is None else "no incumbent flew")
+            results.append((case, axis, r, text))
+            rows.append(["`%s`" % case, axis] + [cell(m, failed, c, axis) for c in controllers]
+                        + ["%s (%s)" % (fmt(fv), fc) if fc else "**none**", "%s (%s)" % (fmt(iv), ic) if ic else "**none**",
+                           "%.2f" % r if r is not None else "**—**"])
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(r) + " |" for r in rows]
+    return lines + [""], results, failures, divs
+
+
+def listing(title, items):
+    return ["%s: %s" % (title, "none.") if not items else "%s (%d):" % (title, len(items))] + (
+        [""] + ["- " + i for i in items] if items else []) + [""]
+
+
+def suite_block(out_dir):
+    """Markdown lines of docs/suite.md's generated block, or None when an output is missing."""
+    suite = [c for c in CONTROLLERS if c in FAMILY + INCUMBENTS]
+    got = case_table(out_dir, suite_cases(), suite)
+    paper = case_table(out_dir, [PAPER_TUNED], CONTROLLERS)
+    if got is None or paper is None:
+        return None
+    table, results, failures, divs = got
+    over_target = [t for t in results if t[2] is None or t[2] > TARGET_RATIO]
+    losses = [t for t in results if t[2] is None or t[2] > 1.0]
+    lines = ["RMS tracking error over each case's error window (Table 4's), every controller tuned by "
+             "`tune = margins`; ratio: the best LADRC-family RMS over the better incumbent's (below 1: the "
+             "family wins). A controller whose tuning failed did not fly; its cell says so and the ratio "
+             "is over the others.", ""] + table
+    lines += ["The best of the LADRC family is within %.1fx the better incumbent on %d of %d case-axes."
+              % (TARGET_RATIO, len(results) - len(over_target), len(results)), ""]
+    lines += listing("Losses: ratio above 1, or no ratio (a side did not fly)",
+                     ["`%s` %s: %s" % (c, a, t) for c, a, _, t in losses])
+    lines += listing("Above the %.1f target (losses included)" % TARGET_RATIO,
+                     ["`%s` %s: %s" % (c, a, t) for c, a, _, t in over_target])
+    lines += listing("Tunings that failed (the case flew without them)", failures)
+    lines += listing("Runs that diverged", divs)
+    ptable, presults, pfail, pdivs = paper
+    lines += ["### The paper case, every controller tuned alike (`paper_tuned.ini`)", "",
+              "`scenarios/paper.ini` with `tune = margins` for all six controllers, PID included.", ""]
+    lines += ptable + listing("Losses (ratio above 1)", ["%s: %s" % (a, t) for _, a, r, t in presults
+                                                          if r is None or r > 1.0])
+    lines += listing("Tunings that failed", pfail) + listing("Runs that diverged", pdivs)
+    return lines
