@@ -13,7 +13,7 @@ from sim_output import AXES, CONTROLLERS, divergence, divergence_text, is_number
 
 FAMILY = ("HP-MLADRC", "LP-MLADRC", "LADRC")
 INCUMBENTS = ("CASCADED", "INDI")
-# Issue 22's acceptance: the family's best at most this fraction of the better incumbent's RMS.
+# The target: the family's best at most this fraction of the better incumbent's RMS.
 TARGET_RATIO = 0.5
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 PAPER_TUNED = "paper_tuned"
