@@ -25,12 +25,13 @@ const ladrc_axis_config_t *margins_ctl_axis_config(const ladrc_margins_controlle
 
 ladrc_margins_status_t margins_ctl_init(const ladrc_margins_controller_t *ctl, ctl_state_t *s)
 {
-    /* INDI holds its command without a rate: no loop to analyse. */
+    /* INDI and RATE-ADRC hold their command without a rate: no loop to analyse. */
     const ladrc_axis_config_t *own =
         (ctl->attitude != NULL)
             ? ((ctl->axis_index >= 0 && ctl->axis_index < LADRC_AXES) ? &ctl->attitude->axis[ctl->axis_index] : NULL)
             : ctl->axis;
-    if (own != NULL && own->variant == LADRC_VARIANT_INDI && !ctl->use_rate)
+    if (own != NULL && (own->variant == LADRC_VARIANT_INDI || own->variant == LADRC_VARIANT_RATE_ADRC) &&
+        !ctl->use_rate)
         return LADRC_MARGINS_ERR_CONTROLLER;
     if (ctl->attitude != NULL) {
         if (ctl->axis_index < 0 || ctl->axis_index >= LADRC_AXES)

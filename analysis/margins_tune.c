@@ -34,6 +34,12 @@ static void set_gains(tuner_t *t, double w, int shape, double j_model)
         a->indi_att_kp_per_s = (ladrc_real_t)w;
         a->indi_rate_kp_per_s = (ladrc_real_t)w;
         a->indi_filter_rad_s = (ladrc_real_t)fmin(ratios[shape] * w, wf_max);
+    } else if (a->variant == LADRC_VARIANT_RATE_ADRC) {
+        /* w: the rate loop's crossover k_w; its observer r w above it, the
+         * attitude gain w / 4 (the default's separation, axis.h) */
+        a->radrc_kp_per_s = (ladrc_real_t)w;
+        a->wo_rad_s = (ladrc_real_t)(ratios[shape] * w);
+        a->radrc_att_kp_per_s = (ladrc_real_t)(w / separation[1]);
     } else if (a->variant == LADRC_VARIANT_CASCADED) {
         /* w: the rate loop's crossover; the default's rule (axis.h) with
          * the attitude gain w / n, n the cascade's separation */
@@ -192,6 +198,8 @@ static void report_gains(const ladrc_axis_config_t *a, ladrc_margins_tuning_t *o
     out->indi_att_kp_per_s = (double)a->indi_att_kp_per_s;
     out->indi_rate_kp_per_s = (double)a->indi_rate_kp_per_s;
     out->indi_filter_rad_s = (double)a->indi_filter_rad_s;
+    out->radrc_kp_per_s = (double)a->radrc_kp_per_s;
+    out->radrc_att_kp_per_s = (double)a->radrc_att_kp_per_s;
     out->cas_att_kp = (double)a->cas_att_kp;
     out->cas_rate_kp = (double)a->cas_rate_kp;
     out->cas_rate_ki = (double)a->cas_rate_ki;

@@ -6,7 +6,7 @@
 # (LADRC_WITH_<NAME>=0 for each one left out, LADRC_WITH_HP_ONLINE=0).
 include_guard(GLOBAL)
 
-set(LADRC_ALL_VARIANTS LADRC LP_MLADRC HP_MLADRC PID CASCADED INDI)
+set(LADRC_ALL_VARIANTS LADRC LP_MLADRC HP_MLADRC PID CASCADED INDI RATE_ADRC)
 set(LADRC_ALL_SHAPERS TD LEVANT)
 
 # Source files of the library that only some selections need, each with the
@@ -28,6 +28,8 @@ set(_ladrc_needs_axis_cascaded_c CASCADED)
 set(_ladrc_needs_cascaded_c CASCADED)
 set(_ladrc_needs_axis_indi_c INDI)
 set(_ladrc_needs_indi_c INDI)
+set(_ladrc_needs_axis_rate_adrc_c RATE_ADRC)
+set(_ladrc_needs_reso_c RATE_ADRC)
 set(_ladrc_needs_td_c TD)
 set(_ladrc_needs_levant_c LEVANT)
 

@@ -39,6 +39,10 @@
 #define AXIS_DEFAULT_CAS_D_QUADRATURE LADRC_R(4.0)
 #define AXIS_DEFAULT_CAS_D_FILTER LADRC_R(8.0)
 #define AXIS_DEFAULT_CAS_RATE_MAX_RAD_S LADRC_R(3.8397243543875251) /* 220 deg/s */
+/* RATE-ADRC (axis.h): CASCADED's rate crossover and attitude separation,
+ * the rate observer's double pole four times above the crossover. */
+#define AXIS_DEFAULT_RADRC_RATE_BW_RAD_S AXIS_DEFAULT_CAS_RATE_BW_RAD_S
+#define AXIS_DEFAULT_RADRC_WO_PER_BW LADRC_R(4.0)
 #define AXIS_DEFAULT_LP_LAMBDA0_PER_S LADRC_R(100.0)
 #define AXIS_DEFAULT_LP_K0_PER_S LADRC_R(300.0)
 /* HP: the search range covers 0.5..30 rad/s with margin. The fit forgets at
@@ -137,13 +141,22 @@ void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant
     cfg->cas_d_filter_tau_s = LADRC_R(1.0) / (AXIS_DEFAULT_CAS_D_FILTER * wr);
     cfg->cas_i_limit_Nm = unlimited;
     cfg->cas_rate_filter_tau_s = cfg->cas_d_filter_tau_s;
+    const ladrc_real_t wr_adrc = AXIS_DEFAULT_RADRC_RATE_BW_RAD_S;
+    cfg->radrc_kp_per_s = wr_adrc;
+    cfg->radrc_att_kp_per_s = AXIS_DEFAULT_CAS_ATT_PER_BW * wr_adrc;
+    cfg->radrc_rate_max_rad_s = AXIS_DEFAULT_CAS_RATE_MAX_RAD_S;
+    cfg->radrc_acro = 0u;
+    if (variant == LADRC_VARIANT_RATE_ADRC) {
+        cfg->wo_rad_s = AXIS_DEFAULT_RADRC_WO_PER_BW * wr_adrc; /* its rate observer */
+    }
 }
 
 /* 1 for each variant built (LADRC_VARIANTS, axis.h). */
 static const uint8_t variant_built[LADRC_VARIANT_COUNT] = {
     [LADRC_VARIANT_LADRC] = LADRC_WITH_LADRC,         [LADRC_VARIANT_LP_MLADRC] = LADRC_WITH_LP_MLADRC,
     [LADRC_VARIANT_HP_MLADRC] = LADRC_WITH_HP_MLADRC, [LADRC_VARIANT_PID] = LADRC_WITH_PID,
-    [LADRC_VARIANT_CASCADED] = LADRC_WITH_CASCADED,   [LADRC_VARIANT_INDI] = LADRC_WITH_INDI};
+    [LADRC_VARIANT_CASCADED] = LADRC_WITH_CASCADED,   [LADRC_VARIANT_INDI] = LADRC_WITH_INDI,
+    [LADRC_VARIANT_RATE_ADRC] = LADRC_WITH_RATE_ADRC};
 
 /* The dispatch to the variant files (axis_internal.h): one switch per
  * operation, a case per variant built, for an axis whose variant init
@@ -182,6 +195,14 @@ static const uint8_t variant_built[LADRC_VARIANT_COUNT] = {
 #else
 #define CASE_INDI(call)
 #endif
+#if LADRC_WITH_RATE_ADRC
+#define CASE_RATE_ADRC(call)                                                                                           \
+    case LADRC_VARIANT_RATE_ADRC:                                                                                      \
+        call;                                                                                                          \
+        break;
+#else
+#define CASE_RATE_ADRC(call)
+#endif
 
 ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
 {
@@ -215,6 +236,7 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
         CASE_PID(status = axis_pid_init(axis, cfg))
         CASE_CASCADED(status = axis_cascaded_init(axis, cfg))
         CASE_INDI(status = axis_indi_init(axis, cfg))
+        CASE_RATE_ADRC(status = axis_rate_adrc_init(axis, cfg))
     default:
         break;
     }
@@ -243,6 +265,7 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
         CASE_PID(axis_pid_reset(axis, angle))
         CASE_CASCADED(axis_cascaded_reset(axis, angle))
         CASE_INDI(axis_indi_reset(axis, angle))
+        CASE_RATE_ADRC(axis_rate_adrc_reset(axis, angle))
     default:
         break;
     }
@@ -279,6 +302,7 @@ static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_re
             CASE_PID(faults |= axis_pid_step(axis, ref_rad, angle_rad, rate_rad_s, has_rate))
             CASE_CASCADED(faults |= axis_cascaded_step(axis, ref_rad, angle_rad, rate_rad_s, has_rate))
             CASE_INDI(faults |= axis_indi_step(axis, ref_rad, angle_rad, rate_rad_s, has_rate))
+            CASE_RATE_ADRC(faults |= axis_rate_adrc_step(axis, ref_rad, angle_rad, rate_rad_s, has_rate))
         default:
             break;
         }
@@ -338,6 +362,7 @@ ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis)
     switch (axis->variant) {
         CASE_ADRC(accel = axis_adrc_accel(axis))
         CASE_INDI(accel = axis_indi_accel(axis))
+        CASE_RATE_ADRC(accel = axis_rate_adrc_accel(axis))
     default:
         break;
     }
@@ -377,6 +402,7 @@ void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad, 
         CASE_PID(axis_pid_estimate(axis, angle_rad, rate_rad_s, disturbance_rad_s2))
         CASE_CASCADED(axis_cascaded_estimate(axis, angle_rad, rate_rad_s, disturbance_rad_s2))
         CASE_INDI(axis_indi_estimate(axis, angle_rad, rate_rad_s, disturbance_rad_s2))
+        CASE_RATE_ADRC(axis_rate_adrc_estimate(axis, angle_rad, rate_rad_s, disturbance_rad_s2))
     default:
         break;
     }

@@ -10,11 +10,6 @@
 #include "axis_hp.h"
 #endif
 
-/* |b0| for an inertia between 1e-7 and 1000 kg m^2 (a 10 g toy to a 500 kg
- * airframe): outside, the law's division by b0 or the observer's b0 u leaves
- * float for commands a real actuator gives. */
-#define AXIS_B0_MIN LADRC_R(1e-3)
-#define AXIS_B0_MAX LADRC_R(1e7)
 /* The Euler observer (poles at 1 - wo h) closes a stable loop with the law
  * only for wo h below a bound that shrinks as wc h grows: 0.90 at wc h -> 0,
  * 0.63 at 0.2, 0.38 at 0.5, 0.20 at 0.99 (eigenvalues of the sampled loop on
@@ -99,7 +94,7 @@ ladrc_status_t axis_adrc_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg
     if (!ladrc_is_positive(cfg->wc_rad_s) || !(cfg->wc_rad_s * cfg->dt_s < AXIS_WC_DT_LIMIT)) {
         return LADRC_ERR_WC_RAD_S;
     }
-    if (!(ladrc_fabs(cfg->b0) >= AXIS_B0_MIN && ladrc_fabs(cfg->b0) <= AXIS_B0_MAX)) {
+    if (!axis_b0_is_valid(cfg->b0)) {
         return LADRC_ERR_B0;
     }
     const ladrc_real_t wch = cfg->wc_rad_s * cfg->dt_s;

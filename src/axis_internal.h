@@ -3,7 +3,7 @@
  * Inside the axis (not installed): the interface between src/axis.c and the
  * per-variant files. Each variant lives in its own file (axis_adrc.c for the
  * LADRC family with axis_lp.c and axis_hp.c as its estimators, axis_pid.c,
- * axis_cascaded.c, axis_indi.c); axis.c is the one place that dispatches to
+ * axis_cascaded.c, axis_indi.c, axis_rate_adrc.c); axis.c is the one place that dispatches to
  * them, and what they share sits below them (axis_shared.h). A variant left
  * out of the build (LADRC_VARIANTS, axis.h) has no code: its file is not
  * compiled and its cases are not in the switches.
@@ -26,7 +26,7 @@
  *               tick's faults
  *   set_applied passes a plausible applied torque on (PID, CASCADED)
  *   estimate    ladrc_axis_get_estimate
- *   accel       ladrc_axis_get_accel (LADRC family, INDI; the others: 0)
+ *   accel       ladrc_axis_get_accel (LADRC family, INDI, RATE-ADRC; the others: 0)
  * The LADRC family (axis_adrc.c) shares one set for its three variants and
  * calls its estimator (axis_lp.c, axis_hp.c) through the axis_<est>_* hooks. */
 #define LADRC_WITH_ADRC_FAMILY (LADRC_WITH_LADRC || LADRC_WITH_LP_MLADRC || LADRC_WITH_HP_MLADRC)
@@ -60,6 +60,10 @@ void axis_hp_stagger(ladrc_axis_t *axis, unsigned phase);
 #if LADRC_WITH_INDI
 AXIS_VARIANT_FUNCTIONS(indi)
 ladrc_real_t axis_indi_accel(const ladrc_axis_t *axis);
+#endif
+#if LADRC_WITH_RATE_ADRC
+AXIS_VARIANT_FUNCTIONS(rate_adrc)
+ladrc_real_t axis_rate_adrc_accel(const ladrc_axis_t *axis);
 #endif
 
 /* The estimator of LP-MLADRC and HP-MLADRC, for axis_adrc.c:

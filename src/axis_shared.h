@@ -32,6 +32,14 @@ static inline void axis_put_disturbance_rate(ladrc_axis_t *axis, ladrc_real_t ra
     axis->f_rate_rad_s3 = ladrc_is_finite(rate_rad_s3) ? rate_rad_s3 : LADRC_R(0.0);
 }
 
+/** |b0| for an inertia between 1e-7 and 1000 kg m^2 (a 10 g toy to a 500 kg
+ *  airframe): outside, the law's division by b0 or the observer's b0 u
+ *  leaves float for commands a real actuator gives (LADRC family, RATE-ADRC). */
+static inline int axis_b0_is_valid(ladrc_real_t b0)
+{
+    return ladrc_fabs(b0) >= LADRC_R(1e-3) && ladrc_fabs(b0) <= LADRC_R(1e7);
+}
+
 /* --- the reference shaper, for the variants that shape ---------------------- */
 
 /** Validates the shaper fields and starts the shaper (axis->shaper set). */

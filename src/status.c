@@ -92,7 +92,11 @@
     X(LADRC_ERR_VARIANT_NOT_BUILT, "variant is left out of this build of the library (LADRC_VARIANTS)")                \
     X(LADRC_ERR_SHAPER_NOT_BUILT, "shaper is left out of this build of the library (LADRC_SHAPERS)")                   \
     X(LADRC_ERR_FEATURE_NOT_BUILT,                                                                                     \
-      "hp freq_mode ONLINE: the online frequency search is left out of this build of the library (LADRC_HP_ONLINE)")
+      "hp freq_mode ONLINE: the online frequency search is left out of this build of the library (LADRC_HP_ONLINE)")   \
+    X(LADRC_ERR_RADRC_KP, "radrc_kp_per_s must be finite, > 0 and radrc_kp_per_s * dt_s < 1")                          \
+    X(LADRC_ERR_RADRC_ATT_KP, "radrc_att_kp_per_s must be finite, > 0 and radrc_att_kp_per_s * dt_s < 1")              \
+    X(LADRC_ERR_RADRC_RATE_MAX, "radrc_rate_max_rad_s must be finite, > 0 and <= rate_limit_rad_s")                    \
+    X(LADRC_ERR_RADRC_ACRO, "radrc_acro must be 0 or 1")
 
 #ifdef LADRC_STATUS_NAMES_ONLY
 #define STATUS_TEXT(code, explanation) #code

@@ -42,16 +42,16 @@ static void test_the_real_size_matches_the_build(void)
 
 static void test_the_abi_set_names_every_variant_and_shaper_of_the_build(void)
 {
-    char expected[] = "_v000000_s00_o0";
-    const int with[] = {LADRC_WITH_LADRC, LADRC_WITH_LP_MLADRC, LADRC_WITH_HP_MLADRC,
-                        LADRC_WITH_PID,   LADRC_WITH_CASCADED,  LADRC_WITH_INDI};
+    char expected[] = "_v0000000_s00_o0";
+    const int with[] = {LADRC_WITH_LADRC,    LADRC_WITH_LP_MLADRC, LADRC_WITH_HP_MLADRC, LADRC_WITH_PID,
+                        LADRC_WITH_CASCADED, LADRC_WITH_INDI,      LADRC_WITH_RATE_ADRC};
     size_t i;
     for (i = 0u; i < sizeof with / sizeof with[0]; ++i) {
         expected[2u + i] = (char)('0' + with[i]);
     }
-    expected[10] = (char)('0' + LADRC_WITH_TD);
-    expected[11] = (char)('0' + LADRC_WITH_LEVANT);
-    expected[14] = (char)('0' + LADRC_WITH_HP_ONLINE);
+    expected[11] = (char)('0' + LADRC_WITH_TD);
+    expected[12] = (char)('0' + LADRC_WITH_LEVANT);
+    expected[15] = (char)('0' + LADRC_WITH_HP_ONLINE);
     char with_tones[sizeof expected + 16];
     (void)snprintf(with_tones, sizeof with_tones, "%s_t%d", expected, (int)LADRC_HP_MAX_TONES);
     TEST_ASSERT_EQUAL_STRING(with_tones, ladrc_abi_set());

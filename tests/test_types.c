@@ -88,6 +88,10 @@ static const char *const status_names[LADRC_STATUS_COUNT] = {
     "LADRC_ERR_VARIANT_NOT_BUILT",
     "LADRC_ERR_SHAPER_NOT_BUILT",
     "LADRC_ERR_FEATURE_NOT_BUILT",
+    "LADRC_ERR_RADRC_KP",
+    "LADRC_ERR_RADRC_ATT_KP",
+    "LADRC_ERR_RADRC_RATE_MAX",
+    "LADRC_ERR_RADRC_ACRO",
 };
 
 /* 1 if text is name alone (names-only build) or name ": " and an explanation. */

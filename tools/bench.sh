@@ -13,7 +13,7 @@
 #                                  bench stage of tools/run_tests.sh); exits 1
 #                                  naming every figure above its limit
 #
-#  - cases (tools/bench/bench_case.h): PID, LADRC, LP-MLADRC, HP-MLADRC, CASCADED, INDI,
+#  - cases (tools/bench/bench_case.h): PID, LADRC, LP-MLADRC, HP-MLADRC, CASCADED, INDI, RATE-ADRC,
 #    LADRC-act and HP-MLADRC-act (with a 30 ms motor lag and 2 ticks modelled) on
 #    the recorded closed loop of HP-MLADRC under the paper's one-tone
 #    disturbance, and HP-MLADRC-2tones on a two-tone disturbance;

@@ -125,25 +125,25 @@ log "abi: mismatches fail to link naming the real type, matching builds link and
 log "abi: variant set of the library against the application's"
 install_ladrc hp "$work/prefix-hp" "-DLADRC_VARIANTS=HP_MLADRC" "-DLADRC_SHAPERS=LEVANT"
 hp_flags="-DLADRC_WITH_LADRC=0 -DLADRC_WITH_LP_MLADRC=0 -DLADRC_WITH_PID=0 -DLADRC_WITH_CASCADED=0"
-hp_flags+=" -DLADRC_WITH_INDI=0 -DLADRC_WITH_TD=0"
+hp_flags+=" -DLADRC_WITH_INDI=0 -DLADRC_WITH_RATE_ADRC=0 -DLADRC_WITH_TD=0"
 abi_link "$work/prefix-hp" "$hp_flags"
-must_not_link "$work/prefix-hp" "" ladrc_attitude_init_float_v111111_s11_o1_t2 \
+must_not_link "$work/prefix-hp" "" ladrc_attitude_init_float_v1111111_s11_o1_t2 \
   "an all-variants application against an HP-MLADRC-only library"
-must_not_link "$work/prefix" "$hp_flags" ladrc_attitude_init_float_v001000_s01_o1_t2 \
+must_not_link "$work/prefix" "$hp_flags" ladrc_attitude_init_float_v0010000_s01_o1_t2 \
   "an HP-MLADRC-only application against an all-variants library"
 log "abi: variant-set mismatches fail to link naming the set, a matching build links"
 
 log "abi: the online frequency search (LADRC_HP_ONLINE) of the library against the application's"
 install_ladrc hpknown "$work/prefix-hpknown" "-DLADRC_VARIANTS=HP_MLADRC" "-DLADRC_SHAPERS=LEVANT" "-DLADRC_HP_ONLINE=OFF"
 abi_link "$work/prefix-hpknown" "$hp_flags -DLADRC_WITH_HP_ONLINE=0"
-must_not_link "$work/prefix-hpknown" "$hp_flags" ladrc_attitude_init_float_v001000_s01_o1_t2 \
+must_not_link "$work/prefix-hpknown" "$hp_flags" ladrc_attitude_init_float_v0010000_s01_o1_t2 \
   "an application with the online search against a library without it"
-must_not_link "$work/prefix-hp" "$hp_flags -DLADRC_WITH_HP_ONLINE=0" ladrc_attitude_init_float_v001000_s01_o0_t2 \
+must_not_link "$work/prefix-hp" "$hp_flags -DLADRC_WITH_HP_ONLINE=0" ladrc_attitude_init_float_v0010000_s01_o0_t2 \
   "an application without the online search against a library with it"
 log "abi: online-search mismatches fail to link naming it, a matching build links"
 
 log "abi: the most tones (LADRC_HP_MAX_TONES, the size of every RLS) of the library against the application's"
-must_not_link "$work/prefix" "-DLADRC_HP_MAX_TONES=1" ladrc_attitude_init_float_v111111_s11_o1_t1 \
+must_not_link "$work/prefix" "-DLADRC_HP_MAX_TONES=1" ladrc_attitude_init_float_v1111111_s11_o1_t1 \
   "an application built for one tone against a library built for two"
 log "abi: a most-tones mismatch fails to link naming it"
 

@@ -71,6 +71,23 @@
  * reference to within pi of r, wraps r - theta and shifts r and the
  * shaper's state by a turn once r is beyond +-pi.
  *
+ * RATE-ADRC tick (docs/method.md, "Rate-loop ADRC"): the disturbance
+ * rejection sits on the rate loop, under an attitude P loop, as the flight
+ * stacks place their rate PID. With the measured rate w_k and the acting
+ * torque ubar_k of the actuator model (as the LADRC family),
+ *
+ *     ESO    (z1, z2) <- step(w_k, ubar_k)                 (reso.h, bandwidth wo_rad_s)
+ *     shaper (r, r') <- TD(ref_k) | Levant(ref_k) | (ref_k, 0)
+ *     w_ref  = clamp(k_att (r - angle_k) + r', +-radrc_rate_max_rad_s)
+ *            (acro: clamp(ref_k, +-radrc_rate_max_rad_s), ref_k in rad/s)
+ *     u_k    = clamp((k_w (w_ref - z1) - z2) / b0, u_min_Nm, u_max_Nm)
+ *
+ * so the rate loop is k_w / (s + k_w) once z2 cancels f. Without a measured
+ * rate (NULL, or a bad one) it holds its command and raises
+ * LADRC_FAULT_RATE, as INDI; the shaper and the actuator model move on. In
+ * acro, a reference beyond rate_limit_rad_s is a bad input (held,
+ * LADRC_FAULT_INPUT); a wrapped angle only matters outside acro.
+ *
  * CASCADED tick (cascaded.h): the shaper gives (r, r') from the raw
  * reference as for LADRC (TD by default), then the attitude P loop and the
  * rate PID give the torque. Without a measured rate (NULL) the rate is a
@@ -96,6 +113,7 @@
 #include "ladrc/leso.h"
 #include "ladrc/levant.h"
 #include "ladrc/pid.h"
+#include "ladrc/reso.h"
 #include "ladrc/td.h"
 #include "ladrc/types.h"
 
@@ -115,7 +133,8 @@ typedef enum {
     LADRC_VARIANT_PID = 3,       /**< PID baseline (pid.h) */
     LADRC_VARIANT_CASCADED = 4,  /**< attitude P -> rate PID, as PX4 / ArduPilot / Betaflight (cascaded.h) */
     LADRC_VARIANT_INDI = 5,      /**< INDI baseline (indi.h; needs the measured rate) */
-    LADRC_VARIANT_COUNT = 6      /**< number of variants (not a variant) */
+    LADRC_VARIANT_RATE_ADRC = 6, /**< attitude P -> rate loop ADRC on the gyro (reso.h; needs the measured rate) */
+    LADRC_VARIANT_COUNT = 7      /**< number of variants (not a variant) */
 } ladrc_variant_t;
 
 /** 1 for the variants with an extended state observer (LADRC, LP-MLADRC,
@@ -142,7 +161,9 @@ typedef enum {
  * are read and validated: LADRC reads the common fields, wc_rad_s .. td_h0_s;
  * PID reads the common fields and pid_*; CASCADED the common fields, the
  * shaper's (shaper, td_* or levant_*) and cas_*; INDI the common fields, b0,
- * the shaper's fields, the actuator model and indi_*.
+ * the shaper's fields, the actuator model and indi_*; RATE-ADRC the common
+ * fields, wo_rad_s (its rate observer's bandwidth), b0, the shaper's fields
+ * (not in acro), the actuator model and radrc_*.
  */
 typedef struct {
     ladrc_variant_t variant; /**< the controller */
@@ -207,6 +228,15 @@ typedef struct {
     ladrc_real_t cas_i_limit_Nm;        /**< |integral| bound (N m), INFINITY = none */
     ladrc_real_t cas_rate_filter_tau_s; /**< low pass of the angle's difference when no rate is
                                         given (s), >= 0 */
+    /* RATE-ADRC (see above); wo_rad_s is its rate observer's bandwidth, b0 its gain */
+    ladrc_real_t radrc_kp_per_s;       /**< k_w (1/s): rate error -> acceleration, the rate loop's
+                                           crossover; > 0, times dt_s < 1 */
+    ladrc_real_t radrc_att_kp_per_s;   /**< k_att (1/s): attitude error -> rate setpoint; > 0,
+                                           times dt_s < 1 (not read in acro) */
+    ladrc_real_t radrc_rate_max_rad_s; /**< |rate setpoint| bound (rad/s), > 0, <= rate_limit_rad_s */
+    uint8_t radrc_acro;                /**< 1: the reference of ladrc_axis_step is a rate setpoint
+                                           (rad/s, within rate_limit_rad_s), no attitude loop;
+                                           0: an angle (rad) */
 } ladrc_axis_config_t;
 
 /** Actuator model state of an axis (see above). */
@@ -243,7 +273,8 @@ typedef struct {
 #endif
     } shaping; /**< by shaper */
 #endif
-#if LADRC_WITH_PID || LADRC_WITH_CASCADED || LADRC_WITH_LP_MLADRC || LADRC_WITH_HP_MLADRC || LADRC_WITH_INDI
+#if LADRC_WITH_PID || LADRC_WITH_CASCADED || LADRC_WITH_LP_MLADRC || LADRC_WITH_HP_MLADRC || LADRC_WITH_INDI ||        \
+    LADRC_WITH_RATE_ADRC
     union {
 #if LADRC_WITH_PID
         ladrc_pid_t pid; /**< PID */
@@ -262,6 +293,16 @@ typedef struct {
 #endif
 #if LADRC_WITH_INDI
         ladrc_indi_t indi; /**< INDI */
+#endif
+#if LADRC_WITH_RATE_ADRC
+        struct {
+            ladrc_reso_t eso;            /**< the rate observer: z1 ~ rate, z2 ~ f */
+            ladrc_real_t angle_rad;      /**< last measured angle */
+            ladrc_real_t rate_sp_rad_s;  /**< rate setpoint of the latest tick */
+            ladrc_real_t k_att;          /**< radrc_att_kp_per_s */
+            ladrc_real_t rate_max_rad_s; /**< radrc_rate_max_rad_s */
+            uint8_t acro;                /**< radrc_acro */
+        } radrc;                         /**< RATE-ADRC */
 #endif
     } part; /**< by variant */
 #endif
@@ -306,6 +347,11 @@ typedef struct {
  * k_att = k_rate = wc = 15 /s, the same TD shaping, and the acceleration
  * filter at the observer's bandwidth, w_f = wo = 75 rad/s (the observer's
  * noise budget; F d then follows d with the lag 2 / w_f = 27 ms).
+ * RATE-ADRC, by CASCADED's loop shaping: the rate loop crosses over at
+ * wr = 75 rad/s (radrc_kp_per_s = wr), its observer's double pole four
+ * times above (wo_rad_s = 4 wr = 300 rad/s), k_att = wr / 4 = 18.75 /s (the
+ * cascade's separation), the rate setpoint bound 220 deg/s, TD shaping as
+ * LADRC, not acro.
  * @param cfg            out: the config; NULL: nothing happens
  * @param variant        the variant, copied (every field is filled whatever it is)
  * @param dt_s           control step (s), copied unchecked (init checks it)
@@ -397,7 +443,8 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad);
  *                    LP-MLADRC for its disturbance sample (without a rate LP
  *                    holds its estimate) and INDI for its rate loop and
  *                    acceleration (without a rate INDI holds its command and
- *                    raises LADRC_FAULT_RATE); LADRC and HP-MLADRC ignore it
+ *                    raises LADRC_FAULT_RATE), as RATE-ADRC for its observer;
+ *                    LADRC and HP-MLADRC ignore it
  * @param torque_Nm   out: the torque command (N m)
  * @return the tick's fault flags (also ladrc_axis_get_faults); axis or
  *         torque_Nm NULL: LADRC_FAULT_STATE, nothing changes
@@ -438,7 +485,7 @@ ladrc_real_t ladrc_axis_get_acting_Nm(const ladrc_axis_t *axis);
 
 /** Angular acceleration the model expects over the observer's next step
  *  (rad/s^2): b0 * acting torque + z3 + d_hat. PID, CASCADED: 0. INDI: b0 *
- *  acting torque + its filtered disturbance.
+ *  acting torque + its filtered disturbance. RATE-ADRC: b0 * acting torque + z2.
  *  @param axis  the axis; NULL: 0
  *  @return the expected acceleration (rad/s^2) */
 ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis);
@@ -462,7 +509,8 @@ void ladrc_axis_get_reference(const ladrc_axis_t *axis, ladrc_ref_t *ref);
 /** Observer estimates: angle (rad), rate (rad/s), total disturbance z3 + d_hat
  *  (rad/s^2). PID has no observer: last measured angle, its filtered rate, and 0;
  *  CASCADED: last measured angle, the rate its rate loop used, and 0;
- *  INDI: last angle and rate measured with a rate, and omegadot_f - b0 u_f.
+ *  INDI: last angle and rate measured with a rate, and omegadot_f - b0 u_f;
+ *  RATE-ADRC: last measured angle, its observer's z1 and z2.
  *  Any pointer NULL: nothing written.
  *  @param axis                the axis
  *  @param angle_rad           out: angle (rad)

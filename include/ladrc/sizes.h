@@ -45,7 +45,7 @@ size_t ladrc_hp_max_tones(void);
 /** The variant and shaper set and the online search the library was built
  *  with, as the suffix its axis and attitude symbols carry after the real
  *  type (types.h, ABI guard).
- *  @return the suffix, e.g. "_v111111_s11_o1_t2" with everything built and
+ *  @return the suffix, e.g. "_v1111111_s11_o1_t2" with everything built and
  *          the default most tones; never NULL */
 const char *ladrc_abi_set(void);
 

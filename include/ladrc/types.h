@@ -77,7 +77,7 @@ typedef float ladrc_real_t;
 
 /*
  * Variants and shapers built (1) or left out (0). The CMake list options
- * LADRC_VARIANTS (default: all six) and LADRC_SHAPERS (default: TD;LEVANT)
+ * LADRC_VARIANTS (default: all seven) and LADRC_SHAPERS (default: TD;LEVANT)
  * define those left out as 0 for the library and everything that links it,
  * so that e.g. an HP-MLADRC firmware carries no PID, CASCADED, INDI, LP or
  * TD code and its axis state no space for them; init refuses a variant or
@@ -104,6 +104,9 @@ typedef float ladrc_real_t;
 #ifndef LADRC_WITH_INDI
 #define LADRC_WITH_INDI 1 /**< 1: the INDI variant built, 0: left out */
 #endif
+#ifndef LADRC_WITH_RATE_ADRC
+#define LADRC_WITH_RATE_ADRC 1 /**< 1: the RATE-ADRC variant built, 0: left out */
+#endif
 #ifndef LADRC_WITH_TD
 #define LADRC_WITH_TD 1 /**< 1: the TD shaper built, 0: left out */
 #endif
@@ -129,15 +132,15 @@ typedef float ladrc_real_t;
  * ladrc_pid_init_double with LADRC_REAL_DOUBLE. Those of the axis and the
  * attitude controller, whose states' layout depends on the variants built,
  * carry the variant and shaper set as well: _v then LADRC_WITH_ of LADRC,
- * LP_MLADRC, HP_MLADRC, PID, CASCADED, INDI, then _s then those of TD,
+ * LP_MLADRC, HP_MLADRC, PID, CASCADED, INDI, RATE_ADRC, then _s then those of TD,
  * LEVANT, then _o then LADRC_WITH_HP_ONLINE, then _t then LADRC_HP_MAX_TONES
- * (ladrc_axis_init_float_v111111_s11_o1_t2 for everything built,
- * ladrc_axis_init_float_v001000_s01_o0_t1 for HP-MLADRC + Levant without the
+ * (ladrc_axis_init_float_v1111111_s11_o1_t2 for everything built,
+ * ladrc_axis_init_float_v0010000_s01_o0_t1 for HP-MLADRC + Levant without the
  * online frequency search and one tone); the HP estimator's init, whose
  * state depends on both, carries _o and _t (ladrc_hp_init_float_o1_t2), the
  * RLS's and the LP estimator's _t (ladrc_rls_init_float_t2). A library and
  * an application built with another real type or set fail to link
- * ("undefined reference to ladrc_axis_init_float_v111111_s11_o1_t2") instead
+ * ("undefined reference to ladrc_axis_init_float_v1111111_s11_o1_t2") instead
  * of reading misplaced fields. Call the functions by their plain names.
  */
 /** @cond LADRC_INTERNAL */
@@ -148,15 +151,15 @@ typedef float ladrc_real_t;
 #else
 #define LADRC_ABI_REAL_ _float
 #endif
-#define LADRC_ABI_SET_PASTE_(a, b, c, d, e, f, g, h, o, t) _v##a##b##c##d##e##f##_s##g##h##_o##o##_t##t
-#define LADRC_ABI_SET_EXPAND_(a, b, c, d, e, f, g, h, o, t) LADRC_ABI_SET_PASTE_(a, b, c, d, e, f, g, h, o, t)
+#define LADRC_ABI_SET_PASTE_(a, b, c, d, e, f, r, g, h, o, t) _v##a##b##c##d##e##f##r##_s##g##h##_o##o##_t##t
+#define LADRC_ABI_SET_EXPAND_(a, b, c, d, e, f, r, g, h, o, t) LADRC_ABI_SET_PASTE_(a, b, c, d, e, f, r, g, h, o, t)
 /** The variant and shaper set, the online search and the most tones as a
- *  symbol-name suffix, e.g. _v111111_s11_o1_t2 (LADRC_HP_MAX_TONES, rls.h,
+ *  symbol-name suffix, e.g. _v1111111_s11_o1_t2 (LADRC_HP_MAX_TONES, rls.h,
  *  must then be a plain whole number). */
 #define LADRC_ABI_SET_                                                                                                 \
     LADRC_ABI_SET_EXPAND_(LADRC_WITH_LADRC, LADRC_WITH_LP_MLADRC, LADRC_WITH_HP_MLADRC, LADRC_WITH_PID,                \
-                          LADRC_WITH_CASCADED, LADRC_WITH_INDI, LADRC_WITH_TD, LADRC_WITH_LEVANT,                      \
-                          LADRC_WITH_HP_ONLINE, LADRC_HP_MAX_TONES)
+                          LADRC_WITH_CASCADED, LADRC_WITH_INDI, LADRC_WITH_RATE_ADRC, LADRC_WITH_TD,                   \
+                          LADRC_WITH_LEVANT, LADRC_WITH_HP_ONLINE, LADRC_HP_MAX_TONES)
 #define LADRC_ABI_HP_PASTE_(o, t) _o##o##_t##t
 #define LADRC_ABI_HP_EXPAND_(o, t) LADRC_ABI_HP_PASTE_(o, t)
 /** The online search and the most tones as a symbol-name suffix, e.g. _o1_t2. */
@@ -183,6 +186,7 @@ typedef float ladrc_real_t;
 #define ladrc_lp_init LADRC_ABI_CAT3(ladrc_lp_init, LADRC_ABI_REAL_, LADRC_ABI_TONES_)
 #define ladrc_mixer_init LADRC_ABI_NAME_(ladrc_mixer_init)
 #define ladrc_pid_init LADRC_ABI_NAME_(ladrc_pid_init)
+#define ladrc_reso_init LADRC_ABI_NAME_(ladrc_reso_init)
 #define ladrc_rls_init LADRC_ABI_CAT3(ladrc_rls_init, LADRC_ABI_REAL_, LADRC_ABI_TONES_)
 #define ladrc_td_init LADRC_ABI_NAME_(ladrc_td_init)
 #define ladrc_tune_b0_from_inertia LADRC_ABI_NAME_(ladrc_tune_b0_from_inertia)
@@ -271,6 +275,10 @@ typedef enum {
     LADRC_ERR_VARIANT_NOT_BUILT, /**< axis variant left out of this build (LADRC_VARIANTS, axis.h) */
     LADRC_ERR_SHAPER_NOT_BUILT,  /**< axis shaper left out of this build (LADRC_SHAPERS, axis.h) */
     LADRC_ERR_FEATURE_NOT_BUILT, /**< hp freq_mode ONLINE: the online search is left out of this build (LADRC_HP_ONLINE) */
+    LADRC_ERR_RADRC_KP,          /**< radrc_kp_per_s not finite, not > 0, or times dt_s >= 1 */
+    LADRC_ERR_RADRC_ATT_KP,      /**< radrc_att_kp_per_s not finite, not > 0, or times dt_s >= 1 */
+    LADRC_ERR_RADRC_RATE_MAX,    /**< radrc_rate_max_rad_s not finite and > 0, or above rate_limit_rad_s */
+    LADRC_ERR_RADRC_ACRO,        /**< radrc_acro not 0 or 1 */
     LADRC_STATUS_COUNT           /**< number of status codes (not a status) */
 } ladrc_status_t;
 

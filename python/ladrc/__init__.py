@@ -44,7 +44,8 @@ FAULT_APPLIED = 4
 FAULT_STATE = 8
 
 ENUMS = {
-    "variant": {"LADRC": 0, "LP_MLADRC": 1, "HP_MLADRC": 2, "PID": 3, "CASCADED": 4, "INDI": 5},
+    "variant": {"LADRC": 0, "LP_MLADRC": 1, "HP_MLADRC": 2, "PID": 3, "CASCADED": 4, "INDI": 5,
+                "RATE_ADRC": 6},
     "shaper": {"TD": 0, "NONE": 1, "LEVANT": 2},
     "leso_method": {"ZOH": 0, "EULER": 1},
     "levant_method": {"IMPLICIT": 0, "HD": 1, "EULER": 2},
@@ -144,7 +145,9 @@ class _Library:
                         ("indi_att_kp_per_s", r), ("indi_rate_kp_per_s", r), ("indi_filter_rad_s", r),
                         ("cas_att_kp", r), ("cas_rate_max_rad_s", r), ("cas_rate_kp", r),
                         ("cas_rate_ki", r), ("cas_rate_kd", r), ("cas_d_filter_tau_s", r),
-                        ("cas_i_limit_Nm", r), ("cas_rate_filter_tau_s", r)]
+                        ("cas_i_limit_Nm", r), ("cas_rate_filter_tau_s", r),
+                        ("radrc_kp_per_s", r), ("radrc_att_kp_per_s", r), ("radrc_rate_max_rad_s", r),
+                        ("radrc_acro", u8)]
 
         class AttitudeConfig(ctypes.Structure):
             _fields_ = [("axis", AxisConfig * 3), ("inertia_kg_m2", r * 3), ("drag_Nms", r),
@@ -313,7 +316,7 @@ class Axis:
         self._lib.axis_reset(self._state, angle_rad)
 
     def step(self, ref_rad, angle_rad, rate_rad_s=None):
-        """One tick: the torque command (N m). rate_rad_s (gyro) for LP-MLADRC, PID, CASCADED and INDI."""
+        """One tick: the torque command (N m). rate_rad_s (gyro) for LP-MLADRC, PID, CASCADED, INDI and RATE-ADRC."""
         lib = self._lib
         torque = lib.real()
         rate = None if rate_rad_s is None else ctypes.byref(lib.real(rate_rad_s))

@@ -208,10 +208,21 @@ static void check_differentiator(parser_t *p)
 static void check_tuning(parser_t *p)
 {
     /* the keys of the gains tune = margins chooses (setup.h, sim_setup_gain_fields) */
-    static const char *const gains[] = {
-        "wc_rad_s",          "wo_rad_s",           "pid_kp",           "pid_ki",      "pid_kd",
-        "cas_att_kp",        "cas_rate_kp",        "cas_rate_ki",      "cas_rate_kd", "cas_d_filter_tau_s",
-        "indi_att_kp_per_s", "indi_rate_kp_per_s", "indi_filter_rad_s"};
+    static const char *const gains[] = {"wc_rad_s",
+                                        "wo_rad_s",
+                                        "pid_kp",
+                                        "pid_ki",
+                                        "pid_kd",
+                                        "cas_att_kp",
+                                        "cas_rate_kp",
+                                        "cas_rate_ki",
+                                        "cas_rate_kd",
+                                        "cas_d_filter_tau_s",
+                                        "indi_att_kp_per_s",
+                                        "indi_rate_kp_per_s",
+                                        "indi_filter_rad_s",
+                                        "radrc_kp_per_s",
+                                        "radrc_att_kp_per_s"};
     static const char *const targets[] = {"tune_phase_margin_deg", "tune_gain_margin_db"};
     for (int id = 0; id < SIM_CTRL_COUNT; ++id) {
         const int sec = SEC_CONTROLLER + id;
@@ -281,6 +292,11 @@ static const key_ref_t *keys_of_status(ladrc_status_t st, int known_freqs)
         {.sec = CTRL_SEC, .name = "indi_rate_kp_per_s"}, {.sec = SEC_RUN, .name = "control_dt_s"}, END_KEYS};
     static const key_ref_t indi_filter[] = {
         {.sec = CTRL_SEC, .name = "indi_filter_rad_s"}, {.sec = SEC_RUN, .name = "control_dt_s"}, END_KEYS};
+    static const key_ref_t radrc_kp[] = {
+        {.sec = CTRL_SEC, .name = "radrc_kp_per_s"}, {.sec = SEC_RUN, .name = "control_dt_s"}, END_KEYS};
+    static const key_ref_t radrc_att[] = {
+        {.sec = CTRL_SEC, .name = "radrc_att_kp_per_s"}, {.sec = SEC_RUN, .name = "control_dt_s"}, END_KEYS};
+    static const key_ref_t radrc_max[] = {{.sec = CTRL_SEC, .name = "radrc_rate_max_deg_s"}, END_KEYS};
     static const key_ref_t cas_att[] = {
         {.sec = CTRL_SEC, .name = "cas_att_kp"}, {.sec = SEC_RUN, .name = "control_dt_s"}, END_KEYS};
     static const key_ref_t cas_max[] = {{.sec = CTRL_SEC, .name = "cas_rate_max_deg_s"}, END_KEYS};
@@ -340,6 +356,12 @@ static const key_ref_t *keys_of_status(ladrc_status_t st, int known_freqs)
         return indi_rate;
     case LADRC_ERR_INDI_FILTER:
         return indi_filter;
+    case LADRC_ERR_RADRC_KP:
+        return radrc_kp;
+    case LADRC_ERR_RADRC_ATT_KP:
+        return radrc_att;
+    case LADRC_ERR_RADRC_RATE_MAX:
+        return radrc_max;
     case LADRC_ERR_CAS_ATT_KP:
         return cas_att;
     case LADRC_ERR_CAS_RATE_MAX:
@@ -455,11 +477,12 @@ static void check_controllers(parser_t *p)
         if (st == LADRC_OK && sim_controller_needs_rate((sim_controller_id_t)id) && !sc->use_rate) {
             static const key_ref_t use_rate[] = {{.sec = SEC_SENSORS, .name = "use_rate"}, END_KEYS};
             const loc_t at = locate(p, use_rate, -1);
+            const char *needs = sim_controller_name((sim_controller_id_t)id);
             if (listed) {
-                check_fail(p, at.line, at.value_col, "INDI needs the measured rate ([sensors] use_rate = yes)");
+                check_fail(p, at.line, at.value_col, "%s needs the measured rate ([sensors] use_rate = yes)", needs);
             } else {
                 set_error(&sc->controller_error[id], sc->path, at,
-                          "INDI needs the measured rate ([sensors] use_rate = yes)");
+                          "%s needs the measured rate ([sensors] use_rate = yes)", needs);
             }
             continue;
         }

@@ -39,7 +39,8 @@ typedef enum {
     SIM_CTRL_PID,
     SIM_CTRL_CASCADED = 4,
     SIM_CTRL_INDI = 5,
-    SIM_CTRL_COUNT = 6
+    SIM_CTRL_RATE_ADRC = 6,
+    SIM_CTRL_COUNT = 7
 } sim_controller_id_t;
 
 /* [controller NAME] tune: how the controller's gains are chosen. */
@@ -66,6 +67,7 @@ typedef struct {
     double td_accel_rad_s2;
     double pid_kp, pid_ki, pid_kd;
     double indi_att_kp_per_s, indi_rate_kp_per_s, indi_filter_rad_s;
+    double radrc_kp_per_s, radrc_att_kp_per_s, radrc_rate_max_deg_s; /* RATE-ADRC; rate max in deg/s */
     double cas_att_kp, cas_rate_max_deg_s, cas_rate_kp, cas_rate_ki, cas_rate_kd, cas_d_filter_tau_s,
         cas_i_limit_Nm;       /* CASCADED; cas_rate_max in deg/s as in the file */
     int coupling_feed;        /* -1, 0 or 1 */
@@ -206,11 +208,11 @@ int sim_controller_list_parse(const char *text, sim_controller_id_t ids[SIM_MAX_
  * error the parser gives when it is listed in the file) or n is out of range. */
 int sim_scenario_set_controllers(sim_scenario_t *sc, const sim_controller_id_t *ids, int n, sim_parse_error_t *err);
 
-/* "HP-MLADRC", "LP-MLADRC", "LADRC", "PID", "CASCADED", "INDI"; "?" for anything else */
+/* "HP-MLADRC", "LP-MLADRC", "LADRC", "PID", "CASCADED", "INDI", "RATE-ADRC"; "?" for anything else */
 const char *sim_controller_name(sim_controller_id_t id);
 
 /* 1 for a controller that cannot fly without the measured rate ([sensors]
- * use_rate = yes): INDI holds its command without one (indi.h). */
+ * use_rate = yes): INDI and RATE-ADRC hold their command without one (axis.h). */
 int sim_controller_needs_rate(sim_controller_id_t id);
 
 #endif

@@ -26,12 +26,12 @@
 
 /* ---- controllers ------------------------------------------------------------ */
 
-static const char *const CONTROLLER_NAMES[SIM_CTRL_COUNT] = {"HP-MLADRC", "LP-MLADRC", "LADRC",
-                                                             "PID",       "CASCADED",  "INDI"};
+static const char *const CONTROLLER_NAMES[SIM_CTRL_COUNT] = {"HP-MLADRC", "LP-MLADRC", "LADRC",    "PID",
+                                                             "CASCADED",  "INDI",      "RATE-ADRC"};
 
 int sim_controller_needs_rate(sim_controller_id_t id)
 {
-    return id == SIM_CTRL_INDI;
+    return id == SIM_CTRL_INDI || id == SIM_CTRL_RATE_ADRC;
 }
 
 const char *sim_controller_name(sim_controller_id_t id)
@@ -111,6 +111,7 @@ static const choice_t HP_FREQ_MODES[] = {{.name = "known", .value = LADRC_HP_FRE
 #define C_PID CTRL_BIT(SIM_CTRL_PID)
 #define C_CAS CTRL_BIT(SIM_CTRL_CASCADED)
 #define C_INDI CTRL_BIT(SIM_CTRL_INDI)
+#define C_RADRC CTRL_BIT(SIM_CTRL_RATE_ADRC)
 #define LADRC_FAMILY (C_HP | C_LP | C_LADRC)
 #define ALL_CONTROLLERS ((1u << SIM_CTRL_COUNT) - 1u)
 
@@ -184,20 +185,23 @@ const key_def_t SCHEMA_KEYS[] = {
     {KEY(SEC_DIFFERENTIATOR, "error_window_s", V_WINDOW, SC(error_window_s[0])), .offset2 = SC(error_window_s[1])},
 
     {CTRL_KEY("wc_rad_s", V_REAL, wc_rad_s, LADRC_FAMILY), .range = R_POSITIVE},
-    {CTRL_KEY("wo_rad_s", V_REAL, wo_rad_s, LADRC_FAMILY), .range = R_POSITIVE},
+    {CTRL_KEY("wo_rad_s", V_REAL, wo_rad_s, LADRC_FAMILY | C_RADRC), .range = R_POSITIVE},
     {CTRL_KEY("leso_method", V_CHOICE, leso_method, LADRC_FAMILY), .choices = LESO_METHODS},
     {CTRL_KEY("hp_freq_mode", V_CHOICE, hp_freq_mode, C_HP), .choices = HP_FREQ_MODES},
     {CTRL_KEY("hp_freq_rad_s", V_REAL, hp_freq_rad_s, C_HP), .range = R_POSITIVE},
     {CTRL_KEY("hp_freq2_rad_s", V_REAL, hp_freq2_rad_s, C_HP), .range = R_POSITIVE},
     {CTRL_KEY("hp_tones", V_INT, hp_tones, C_HP), .range = R_HP_TONES},
     {CTRL_KEY("levant_lipschitz_rad_s4", V_REAL, levant_lipschitz_rad_s4, C_HP | C_LP), .range = R_POSITIVE},
-    {CTRL_KEY("td_accel_rad_s2", V_REAL, td_accel_rad_s2, C_LADRC | C_CAS | C_INDI), .range = R_POSITIVE},
+    {CTRL_KEY("td_accel_rad_s2", V_REAL, td_accel_rad_s2, C_LADRC | C_CAS | C_INDI | C_RADRC), .range = R_POSITIVE},
     {CTRL_KEY("pid_kp", V_REAL, pid_kp, C_PID), .range = R_NONNEGATIVE},
     {CTRL_KEY("pid_ki", V_REAL, pid_ki, C_PID), .range = R_NONNEGATIVE},
     {CTRL_KEY("pid_kd", V_REAL, pid_kd, C_PID), .range = R_NONNEGATIVE},
     {CTRL_KEY("indi_att_kp_per_s", V_REAL, indi_att_kp_per_s, C_INDI), .range = R_POSITIVE},
     {CTRL_KEY("indi_rate_kp_per_s", V_REAL, indi_rate_kp_per_s, C_INDI), .range = R_POSITIVE},
     {CTRL_KEY("indi_filter_rad_s", V_REAL, indi_filter_rad_s, C_INDI), .range = R_POSITIVE},
+    {CTRL_KEY("radrc_kp_per_s", V_REAL, radrc_kp_per_s, C_RADRC), .range = R_POSITIVE},
+    {CTRL_KEY("radrc_att_kp_per_s", V_REAL, radrc_att_kp_per_s, C_RADRC), .range = R_POSITIVE},
+    {CTRL_KEY("radrc_rate_max_deg_s", V_REAL, radrc_rate_max_deg_s, C_RADRC), .range = R_POSITIVE},
     {CTRL_KEY("cas_att_kp", V_REAL, cas_att_kp, C_CAS), .range = R_POSITIVE},
     {CTRL_KEY("cas_rate_max_deg_s", V_REAL, cas_rate_max_deg_s, C_CAS), .range = R_POSITIVE},
     {CTRL_KEY("cas_rate_kp", V_REAL, cas_rate_kp, C_CAS), .range = R_NONNEGATIVE},
@@ -206,9 +210,9 @@ const key_def_t SCHEMA_KEYS[] = {
     {CTRL_KEY("cas_d_filter_tau_s", V_REAL, cas_d_filter_tau_s, C_CAS), .range = R_NONNEGATIVE},
     {CTRL_KEY("cas_i_limit_Nm", V_REAL, cas_i_limit_Nm, C_CAS), .range = R_NONNEGATIVE},
     {CTRL_KEY("coupling_feed", V_CHOICE, coupling_feed, LADRC_FAMILY), .choices = YES_NO},
-    {CTRL_KEY("model_motor_tau_s", V_REAL, model_motor_tau_s, LADRC_FAMILY | C_INDI), .range = R_NONNEGATIVE},
-    {CTRL_KEY("model_delay_ticks", V_INT, model_delay_ticks, LADRC_FAMILY | C_INDI), .range = R_DELAY},
-    {CTRL_KEY("wrap_yaw", V_CHOICE, wrap_yaw, LADRC_FAMILY | C_PID | C_CAS | C_INDI), .choices = YES_NO},
+    {CTRL_KEY("model_motor_tau_s", V_REAL, model_motor_tau_s, LADRC_FAMILY | C_INDI | C_RADRC), .range = R_NONNEGATIVE},
+    {CTRL_KEY("model_delay_ticks", V_INT, model_delay_ticks, LADRC_FAMILY | C_INDI | C_RADRC), .range = R_DELAY},
+    {CTRL_KEY("wrap_yaw", V_CHOICE, wrap_yaw, LADRC_FAMILY | C_PID | C_CAS | C_INDI | C_RADRC), .choices = YES_NO},
     {CTRL_KEY("tune", V_CHOICE, tune, ALL_CONTROLLERS), .choices = TUNE_MODES},
     {CTRL_KEY("tune_phase_margin_deg", V_REAL, tune_pm_deg, ALL_CONTROLLERS), .range = R_PHASE_MARGIN},
     {CTRL_KEY("tune_gain_margin_db", V_REAL, tune_gm_db, ALL_CONTROLLERS), .range = R_POSITIVE},
@@ -333,6 +337,7 @@ void schema_set_defaults(sim_scenario_t *sc)
         o->tune = -1;
         o->tune_pm_deg = o->tune_gm_db = NAN;
         o->indi_att_kp_per_s = o->indi_rate_kp_per_s = o->indi_filter_rad_s = NAN;
+        o->radrc_kp_per_s = o->radrc_att_kp_per_s = o->radrc_rate_max_deg_s = NAN;
         o->cas_att_kp = o->cas_rate_max_deg_s = o->cas_rate_kp = o->cas_rate_ki = o->cas_rate_kd = NAN;
         o->cas_d_filter_tau_s = o->cas_i_limit_Nm = NAN;
     }

@@ -22,6 +22,8 @@ static ladrc_variant_t variant_of(sim_controller_id_t id)
         return LADRC_VARIANT_CASCADED;
     case SIM_CTRL_INDI:
         return LADRC_VARIANT_INDI;
+    case SIM_CTRL_RATE_ADRC:
+        return LADRC_VARIANT_RATE_ADRC;
     default:
         return LADRC_VARIANT_PID;
     }
@@ -65,6 +67,12 @@ static void apply_overrides(ladrc_axis_config_t *a, const sim_overrides_t *o)
         a->indi_rate_kp_per_s = (ladrc_real_t)o->indi_rate_kp_per_s;
     if (!isnan(o->indi_filter_rad_s))
         a->indi_filter_rad_s = (ladrc_real_t)o->indi_filter_rad_s;
+    if (!isnan(o->radrc_kp_per_s))
+        a->radrc_kp_per_s = (ladrc_real_t)o->radrc_kp_per_s;
+    if (!isnan(o->radrc_att_kp_per_s))
+        a->radrc_att_kp_per_s = (ladrc_real_t)o->radrc_att_kp_per_s;
+    if (!isnan(o->radrc_rate_max_deg_s))
+        a->radrc_rate_max_rad_s = (ladrc_real_t)(o->radrc_rate_max_deg_s * (3.14159265358979323846 / 180.0));
     if (!isnan(o->cas_att_kp))
         a->cas_att_kp = (ladrc_real_t)o->cas_att_kp;
     if (!isnan(o->cas_rate_max_deg_s))
@@ -101,6 +109,8 @@ static const sim_gain_field_t CASCADED_GAINS[] = {GAIN(cas_att_kp, "att_kp", "1/
 static const sim_gain_field_t INDI_GAINS[] = {GAIN(indi_att_kp_per_s, "k_att", "1/s"),
                                               GAIN(indi_rate_kp_per_s, "k_rate", "1/s"),
                                               GAIN(indi_filter_rad_s, "w_f", "rad/s")};
+static const sim_gain_field_t RATE_ADRC_GAINS[] = {GAIN(radrc_att_kp_per_s, "k_att", "1/s"),
+                                                   GAIN(radrc_kp_per_s, "k_w", "1/s"), GAIN(wo_rad_s, "wo", "rad/s")};
 #undef GAIN
 #define N_OF(a) ((int)(sizeof(a) / sizeof((a)[0])))
 
@@ -116,6 +126,9 @@ const sim_gain_field_t *sim_setup_gain_fields(ladrc_variant_t v, int *n)
     case LADRC_VARIANT_INDI:
         *n = N_OF(INDI_GAINS);
         return INDI_GAINS;
+    case LADRC_VARIANT_RATE_ADRC:
+        *n = N_OF(RATE_ADRC_GAINS);
+        return RATE_ADRC_GAINS;
     default:
         *n = N_OF(LADRC_GAINS);
         return LADRC_GAINS;

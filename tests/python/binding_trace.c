@@ -48,6 +48,11 @@ static void axis_overrides(ladrc_axis_config_t *cfg)
     if (cfg->variant == LADRC_VARIANT_INDI) {
         cfg->indi_rate_kp_per_s = LADRC_R(25.0);
     }
+    if (cfg->variant == LADRC_VARIANT_RATE_ADRC) {
+        cfg->radrc_kp_per_s = LADRC_R(30.0); /* the radrc_ block in the mirror */
+        cfg->radrc_att_kp_per_s = LADRC_R(8.0);
+        cfg->radrc_rate_max_rad_s = LADRC_R(2.0);
+    }
     if (cfg->variant == LADRC_VARIANT_CASCADED) {
         cfg->cas_att_kp = LADRC_R(6.0); /* the cas_ block in the mirror */
         cfg->cas_rate_max_rad_s = LADRC_R(2.0);

@@ -23,7 +23,7 @@ except ImportError:
 
 import ladrc
 
-VARIANTS = ["LADRC", "LP_MLADRC", "HP_MLADRC", "PID", "CASCADED", "INDI"]
+VARIANTS = ["LADRC", "LP_MLADRC", "HP_MLADRC", "PID", "CASCADED", "INDI", "RATE_ADRC"]
 
 
 def axis_dict(variant):
@@ -37,6 +37,8 @@ def axis_dict(variant):
         d.update(pid_kp=0.2)
     if variant == "INDI":
         d.update(indi_rate_kp_per_s=25.0)
+    if variant == "RATE_ADRC":
+        d.update(radrc_kp_per_s=30.0, radrc_att_kp_per_s=8.0, radrc_rate_max_rad_s=2.0)
     if variant == "CASCADED":
         d.update(cas_att_kp=6.0, cas_rate_max_rad_s=2.0, cas_i_limit_Nm=0.01)
     return d

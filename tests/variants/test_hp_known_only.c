@@ -33,7 +33,8 @@
 #define SETTLED_SWING_TOL_RAD 1e-3
 
 #if LADRC_WITH_PID || LADRC_WITH_CASCADED || LADRC_WITH_INDI || LADRC_WITH_LADRC || LADRC_WITH_LP_MLADRC ||            \
-    LADRC_WITH_TD || !LADRC_WITH_HP_MLADRC || !LADRC_WITH_LEVANT || LADRC_WITH_HP_ONLINE || LADRC_HP_MAX_TONES != 1
+    LADRC_WITH_RATE_ADRC || LADRC_WITH_TD || !LADRC_WITH_HP_MLADRC || !LADRC_WITH_LEVANT || LADRC_WITH_HP_ONLINE ||    \
+    LADRC_HP_MAX_TONES != 1
 #error "this test is built against the HP-MLADRC + Levant library without the online search, one tone"
 #endif
 
@@ -54,7 +55,7 @@ static void known_config(ladrc_axis_config_t *cfg)
 
 static void test_the_abi_set_names_the_search_left_out(void)
 {
-    TEST_ASSERT_EQUAL_STRING("_v001000_s01_o0_t1", ladrc_abi_set());
+    TEST_ASSERT_EQUAL_STRING("_v0010000_s01_o0_t1", ladrc_abi_set());
     TEST_ASSERT_EQUAL_UINT32(1u, (uint32_t)ladrc_hp_max_tones());
 }
 

@@ -21,7 +21,7 @@
 #define SETTLED_ERROR_TOL_RAD 1e-4
 
 #if LADRC_WITH_PID || LADRC_WITH_CASCADED || LADRC_WITH_INDI || LADRC_WITH_LADRC || LADRC_WITH_LP_MLADRC ||            \
-    LADRC_WITH_TD || !LADRC_WITH_HP_MLADRC || !LADRC_WITH_LEVANT
+    LADRC_WITH_RATE_ADRC || LADRC_WITH_TD || !LADRC_WITH_HP_MLADRC || !LADRC_WITH_LEVANT
 #error "this test is built against the HP-MLADRC + Levant library only"
 #endif
 
@@ -34,8 +34,8 @@ void tearDown(void)
 
 static void test_the_variants_left_out_are_refused_by_name(void)
 {
-    const ladrc_variant_t left_out[] = {LADRC_VARIANT_LADRC, LADRC_VARIANT_LP_MLADRC, LADRC_VARIANT_PID,
-                                        LADRC_VARIANT_CASCADED, LADRC_VARIANT_INDI};
+    const ladrc_variant_t left_out[] = {LADRC_VARIANT_LADRC,    LADRC_VARIANT_LP_MLADRC, LADRC_VARIANT_PID,
+                                        LADRC_VARIANT_CASCADED, LADRC_VARIANT_INDI,      LADRC_VARIANT_RATE_ADRC};
     for (unsigned i = 0u; i < sizeof left_out / sizeof left_out[0]; ++i) {
         ladrc_axis_config_t cfg;
         ladrc_axis_t axis;

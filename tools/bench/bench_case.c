@@ -15,14 +15,15 @@ bench_engagement_t bench_engaged_attitude[BENCH_DISTURBANCES];
 bench_engagement_t bench_engaged_axis[BENCH_DISTURBANCES];
 
 const char *const bench_case_name[BENCH_CASES] = {
-    "PID", "LADRC", "LP-MLADRC", "HP-MLADRC", "HP-MLADRC-2tones", "HP-MLADRC-act", "CASCADED", "INDI", "LADRC-act"};
+    "PID",           "LADRC",    "LP-MLADRC", "HP-MLADRC", "HP-MLADRC-2tones",
+    "HP-MLADRC-act", "CASCADED", "INDI",      "LADRC-act", "RATE-ADRC"};
 const ladrc_variant_t bench_case_variant[BENCH_CASES] = {
-    LADRC_VARIANT_PID,       LADRC_VARIANT_LADRC,     LADRC_VARIANT_LP_MLADRC,
-    LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_HP_MLADRC,
-    LADRC_VARIANT_CASCADED,  LADRC_VARIANT_INDI,      LADRC_VARIANT_LADRC};
-const int bench_case_inputs[BENCH_CASES] = {BENCH_ONE_TONE, BENCH_ONE_TONE,  BENCH_ONE_TONE,
-                                            BENCH_ONE_TONE, BENCH_TWO_TONES, BENCH_ONE_TONE,
-                                            BENCH_ONE_TONE, BENCH_ONE_TONE,  BENCH_ONE_TONE};
+    LADRC_VARIANT_PID,       LADRC_VARIANT_LADRC,     LADRC_VARIANT_LP_MLADRC, LADRC_VARIANT_HP_MLADRC,
+    LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_CASCADED,  LADRC_VARIANT_INDI,
+    LADRC_VARIANT_LADRC,     LADRC_VARIANT_RATE_ADRC};
+const int bench_case_inputs[BENCH_CASES] = {BENCH_ONE_TONE,  BENCH_ONE_TONE, BENCH_ONE_TONE, BENCH_ONE_TONE,
+                                            BENCH_TWO_TONES, BENCH_ONE_TONE, BENCH_ONE_TONE, BENCH_ONE_TONE,
+                                            BENCH_ONE_TONE,  BENCH_ONE_TONE};
 
 /* The actuator model of the case's axes (none but for the -act cases) and,
  * in a build without the online frequency search (LADRC_WITH_HP_ONLINE 0:

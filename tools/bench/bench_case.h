@@ -65,9 +65,9 @@ extern bench_inputs_t bench_in[BENCH_DISTURBANCES];
 extern bench_engagement_t bench_engaged_attitude[BENCH_DISTURBANCES];
 extern bench_engagement_t bench_engaged_axis[BENCH_DISTURBANCES];
 
-/* The cases: PID, LADRC, LP-MLADRC, HP-MLADRC, CASCADED, INDI and the -act ones on the one-tone inputs,
- * HP-MLADRC-2tones: HP-MLADRC on the two-tone inputs. */
-#define BENCH_CASES 9
+/* The cases: PID, LADRC, LP-MLADRC, HP-MLADRC, CASCADED, INDI, RATE-ADRC and the -act ones on the one-tone
+ * inputs, HP-MLADRC-2tones: HP-MLADRC on the two-tone inputs. */
+#define BENCH_CASES 10
 #define BENCH_CASE_HP 3
 #define BENCH_CASE_HP2 4
 /* HP-MLADRC-act: the one-tone HP case with the actuator model on every axis
@@ -82,6 +82,8 @@ extern bench_engagement_t bench_engaged_axis[BENCH_DISTURBANCES];
 /* LADRC-act: plain LADRC with the same actuator model: the model's own cost
  * (HP-MLADRC-act adds HP's command advanced over the actuator). */
 #define BENCH_CASE_LADRC_ACT 8
+/* RATE-ADRC: its default config on the one-tone inputs (with their measured rates). */
+#define BENCH_CASE_RATE_ADRC 9
 extern const char *const bench_case_name[BENCH_CASES];
 extern const ladrc_variant_t bench_case_variant[BENCH_CASES];
 extern const int bench_case_inputs[BENCH_CASES];     /* BENCH_ONE_TONE or BENCH_TWO_TONES */

@@ -29,6 +29,7 @@
 #include "ladrc/leso.h"
 #include "ladrc/levant.h"
 #include "ladrc/pid.h"
+#include "ladrc/reso.h"
 #include "ladrc/rls.h"
 #include "ladrc/td.h"
 
@@ -422,6 +423,7 @@ int main(void)
     SIZE_LINE(ladrc_pid_config_t);
     SIZE_LINE(ladrc_cascaded_t);
     SIZE_LINE(ladrc_indi_t);
+    SIZE_LINE(ladrc_reso_t);
     SIZE_LINE(ladrc_leso_t);
     SIZE_LINE(ladrc_leso_config_t);
     SIZE_LINE(ladrc_td_t);

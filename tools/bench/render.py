@@ -97,7 +97,7 @@ def render(fig):
     lean3 = fig.lean_insn()
     row(f"HP-MLADRC, {LEAN}, 3 axes + mixer, instructions/tick", lean3, "<= 1500", mark(lean3, "<=", 1500))
     row("ratio HP-MLADRC / PID, 3 axes + mixer", ratio(hp3, insn("PID", 2)), "", "")
-    for v in ("HP-MLADRC-act", "CASCADED", "INDI", "LADRC-act"):
+    for v in ("HP-MLADRC-act", "CASCADED", "INDI", "LADRC-act", "RATE-ADRC"):
         row(f"{v}, 3 axes + mixer, instructions/tick", insn(v, 2), "", "")
     # The actuator model's own cost (LADRC-act against LADRC) and HP-MLADRC's
     # with its command advanced over the modelled actuator, per axis.
@@ -124,7 +124,7 @@ def render(fig):
     row("mixer state, sizeof(ladrc_mixer_t), B", fig.size_of("ladrc_mixer_t"), "", "")
     for t in ("ladrc_attitude_config_t", "ladrc_axis_t", "ladrc_axis_config_t", "ladrc_mixer_config_t", "ladrc_pid_t",
               "ladrc_cascaded_t", "ladrc_leso_t", "ladrc_td_t", "ladrc_levant_t", "ladrc_lp_estimator_t",
-              "ladrc_hp_estimator_t", "ladrc_rls_t", "ladrc_indi_t"):
+              "ladrc_hp_estimator_t", "ladrc_rls_t", "ladrc_indi_t", "ladrc_reso_t"):
         row(f"sizeof({t}), B", fig.size_of(t), "", "")
     row("library flash (text + data), B", flash, "<= 8192", mark(flash, "<=", 8192))
     for obj, obj_flash in fig.size_objects():

@@ -182,7 +182,7 @@ void ladrc_margins_request_default(ladrc_margins_request_t *req, const ladrc_mar
   *  @retval LADRC_MARGINS_ERR_DELAY      plant delay_ticks outside 0..LADRC_MARGINS_MAX_DELAY
  *  @retval LADRC_MARGINS_ERR_REQUEST     a request field outside its range
  *  @retval LADRC_MARGINS_ERR_CONTROLLER  not exactly one of attitude and axis, a bad
- *                                        axis_index, INDI without use_rate, or its init refuses it
+ *                                        axis_index, INDI or RATE-ADRC without use_rate, or its init refuses it
  *  @retval LADRC_MARGINS_ERR_NOT_SETTLED the response did not settle within response_s */
 ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
                                              const ladrc_margins_request_t *req);
@@ -327,7 +327,7 @@ void ladrc_margins_of_loop(ladrc_margins_loop_fn fn, void *ctx, double dt_s, lad
  * @retval LADRC_MARGINS_ERR_MOTOR_TAU  plant motor_tau_s not finite and >= 0
  * @retval LADRC_MARGINS_ERR_DELAY      plant delay_ticks outside 0..LADRC_MARGINS_MAX_DELAY
  * @retval LADRC_MARGINS_ERR_REQUEST     not exactly one of attitude and axis, or n_ticks < 64
- * @retval LADRC_MARGINS_ERR_CONTROLLER  a bad axis_index, INDI without use_rate, or its init refuses it
+ * @retval LADRC_MARGINS_ERR_CONTROLLER  a bad axis_index, INDI or RATE-ADRC without use_rate, or its init refuses it
  */
 ladrc_margins_status_t ladrc_margins_simulate(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
                                               const ladrc_margins_plant_t *plant, long n_ticks, double *growth);
@@ -351,6 +351,9 @@ typedef struct {
     double indi_att_kp_per_s, indi_rate_kp_per_s, indi_filter_rad_s; /**< INDI */
     /** @} */
     /** @{ */
+    double radrc_kp_per_s, radrc_att_kp_per_s; /**< RATE-ADRC (its observer's bandwidth: wo_rad_s) */
+    /** @} */
+    /** @{ */
     double cas_att_kp, cas_rate_kp, cas_rate_ki, cas_rate_kd, cas_d_filter_tau_s; /**< CASCADED */
     /** @} */
     double peak_dist_rad;           /**< objective: peak |d -> error| of the chosen setting */
@@ -372,7 +375,10 @@ typedef struct {
  * w for each n;
  * INDI: k_att = k_rate = w (the loop (s + w)^2 of LADRC's rule), filter
  * w_f = r w, r in {3, 5, 8} (at most 0.9 pi / dt), the largest such w for
- * each r; INDI needs use_rate (else LADRC_MARGINS_ERR_CONTROLLER).
+ * each r; INDI needs use_rate (else LADRC_MARGINS_ERR_CONTROLLER);
+ * RATE-ADRC: rate-loop crossover radrc_kp_per_s = w, its observer
+ * wo = r w, r in {3, 5, 8}, radrc_att_kp_per_s = w / 4 (the default's
+ * separation), the largest such w for each r; it needs use_rate too.
  * The adaptive variants' estimator settings are kept; their wc and wo are
  * searched on the plain LADRC loop (estimator off), then lowered (by 1.5,
  * then bisection to 1 %) until the whole variant, as
