@@ -30,11 +30,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-COLOURS = {"HP-MLADRC": "#1f77b4", "LP-MLADRC": "#2ca02c", "LADRC": "#d62728", "PID": "#9467bd",
+COLOURS = {"HP-MLADRC": "#1f77b4", "LP-MLADRC": "#2ca02c", "LADRC": "#d62728", "RATE-ADRC": "#17becf", "PID": "#9467bd",
            "CASCADED": "#8c564b", "INDI": "#ff7f0e"}
 # Wider lines lie underneath, so that a curve lying on another stays visible.
-WIDTHS = {"HP-MLADRC": 1.0, "LP-MLADRC": 1.3, "LADRC": 2.0, "PID": 1.6, "CASCADED": 1.4, "INDI": 1.2}
-ZORDER = {"HP-MLADRC": 4, "LP-MLADRC": 3, "LADRC": 1, "PID": 2, "CASCADED": 2.5, "INDI": 3.5}
+WIDTHS = {"HP-MLADRC": 1.0, "LP-MLADRC": 1.3, "LADRC": 2.0, "RATE-ADRC": 1.1, "PID": 1.6, "CASCADED": 1.4, "INDI": 1.2}
+ZORDER = {"HP-MLADRC": 4, "LP-MLADRC": 3, "LADRC": 1, "RATE-ADRC": 3.8, "PID": 2, "CASCADED": 2.5, "INDI": 3.5}
 # Legend names: the baseline of today's flight stacks says what it is.
 NAMES = {"CASCADED": "CASCADED (attitude P → rate PID)"}
 AXIS_SYMBOLS = {"roll": "roll φ", "pitch": "pitch θ", "yaw": "yaw ψ"}

@@ -394,7 +394,7 @@ def real_block(out_dir):
 
 # The front page's headline: per airframe class, the best of the LADRC family against the best
 # incumbent on each axis, the figures of the real-airframes and incumbents tables.
-FAMILY = ("LADRC", "LP-MLADRC", "HP-MLADRC")
+FAMILY = ("LADRC", "LP-MLADRC", "HP-MLADRC", "RATE-ADRC")
 HEADLINE_CLASSES = (("paper, ideal rotors", ("paper",)),
                     ("paper, real motors", ("real_paper_lag20", "real_paper_lag30", "real_paper_lag40")),
                     ("heavy, 1.96 kg", ("real_heavy_lag20", "real_heavy_lag30", "real_heavy_lag40")))

@@ -5,7 +5,7 @@ import csv
 import os
 
 # The paper's four, then the baselines flown today (not in the paper: no published values).
-CONTROLLERS = ["HP-MLADRC", "LP-MLADRC", "LADRC", "PID", "CASCADED", "INDI"]
+CONTROLLERS = ["HP-MLADRC", "LP-MLADRC", "LADRC", "RATE-ADRC", "PID", "CASCADED", "INDI"]
 AXES = ["roll", "pitch", "yaw"]
 
 # The words metrics.csv's value column holds in place of a number (docs/simulator.md).

@@ -11,7 +11,7 @@ import os
 
 from sim_output import AXES, CONTROLLERS, divergence, divergence_text, is_number, load_metrics
 
-FAMILY = ("HP-MLADRC", "LP-MLADRC", "LADRC")
+FAMILY = ("HP-MLADRC", "LP-MLADRC", "LADRC", "RATE-ADRC")
 INCUMBENTS = ("CASCADED", "INDI")
 # The target: the family's best at most this fraction of the better incumbent's RMS.
 TARGET_RATIO = 0.5
