@@ -11,6 +11,9 @@
 #include <stddef.h>
 #include <string.h>
 
+/* Finite, yet a sum of two of them overflows the real type (float or double). */
+#define BIG_REAL (LADRC_REAL_MAX * LADRC_R(0.9))
+
 #define DT_S 0.001
 #define J_KG_M2 5.445e-3
 #define HIST 16
@@ -316,8 +319,8 @@ static void test_bad_inputs_hold_the_command(void)
     /* a good tick runs again */
     TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_NONE, ladrc_axis_step(&axis, 0.1f, (ladrc_real_t)p.y, &w, &u));
     /* a finite state driven beyond the real type: held, observer restarted on the rate */
-    axis.part.radrc.eso.z2 = 3e38f;
-    axis.applied_Nm = 3e38f * (ladrc_real_t)J_KG_M2;
+    axis.part.radrc.eso.z2 = BIG_REAL;
+    axis.applied_Nm = BIG_REAL * (ladrc_real_t)J_KG_M2;
     const ladrc_real_t held2 = axis.output_Nm;
     TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_STATE, ladrc_axis_step(&axis, 0.1f, (ladrc_real_t)p.y, &w, &u));
     TEST_ASSERT_EQUAL_FLOAT(held2, u);

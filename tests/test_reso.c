@@ -8,6 +8,9 @@
 #include <math.h>
 #include <string.h>
 
+/* Finite, yet a sum of two of them overflows the real type (float or double). */
+#define BIG_REAL (LADRC_REAL_MAX * LADRC_R(0.9))
+
 #define DT_S 1e-3
 #define WO_RAD_S 200.0
 /* Paper vehicle roll inertia: b0 = 1/Jx rad/s^2 per N m. */
@@ -224,7 +227,7 @@ static void test_non_finite_input_keeps_the_estimate(void)
     TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_INPUT, ladrc_reso_step(&obs, 1.0f, 0.0f, 0.0f, -INFINITY));
     TEST_ASSERT_EQUAL_FLOAT(before.z2, obs.z2);
     /* finite inputs whose result overflows: a state fault, estimate kept */
-    TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_STATE, ladrc_reso_step(&obs, 3e38f, 3e38f, 3e38f, 0.0f));
+    TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_STATE, ladrc_reso_step(&obs, BIG_REAL, BIG_REAL, BIG_REAL, 0.0f));
     TEST_ASSERT_EQUAL_UINT(LADRC_FAULT_STATE, obs.faults);
     TEST_ASSERT_EQUAL_FLOAT(before.z1, obs.z1);
     /* the next good step runs and clears the flags */
