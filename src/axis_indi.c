@@ -49,16 +49,7 @@ ladrc_fault_t axis_indi_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_rea
         return (ladrc_fault_t)(faults | LADRC_FAULT_RATE);
     }
     indi->angle_rad = angle_rad;
-    ladrc_real_t error_rad = ref->r - angle_rad;
-    if (axis->wrap) {
-        error_rad = ladrc_wrap_pi(error_rad);
-        /* r alone decides: the error is taken modulo 2 pi anyway. */
-        if (ref->r > LADRC_PI) {
-            axis_shift_reference(axis, -LADRC_TWO_PI);
-        } else if (ref->r < -LADRC_PI) {
-            axis_shift_reference(axis, LADRC_TWO_PI);
-        }
-    }
+    const ladrc_real_t error_rad = axis_wrapped_error(axis, angle_rad);
     const ladrc_real_t u = ladrc_indi_command(indi, error_rad, ref->dr, ref->ddr, rate_rad_s);
     if (!ladrc_is_finite(u)) { /* u sums both filters: they are finite when it is */
         /* Held; the filters restart at rest (the next rate seeds again). */

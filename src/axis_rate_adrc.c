@@ -65,17 +65,8 @@ void axis_rate_adrc_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
  * turn as INDI keeps it) plus the shaped rate. */
 static ladrc_real_t attitude_rate(ladrc_axis_t *axis, ladrc_real_t angle_rad)
 {
-    const ladrc_ref_t *ref = &axis->ref;
-    ladrc_real_t error_rad = ref->r - angle_rad;
-    if (axis->wrap) {
-        error_rad = ladrc_wrap_pi(error_rad);
-        if (ref->r > LADRC_PI) {
-            axis_shift_reference(axis, -LADRC_TWO_PI);
-        } else if (ref->r < -LADRC_PI) {
-            axis_shift_reference(axis, LADRC_TWO_PI);
-        }
-    }
-    return axis->part.radrc.k_att * error_rad + ref->dr;
+    const ladrc_real_t error_rad = axis_wrapped_error(axis, angle_rad);
+    return axis->part.radrc.k_att * error_rad + axis->ref.dr;
 }
 
 /* The tick on a plausible ref and angle (axis.h): without a rate the command

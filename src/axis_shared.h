@@ -119,4 +119,21 @@ static inline ladrc_real_t axis_advance_actuator(ladrc_axis_t *axis)
 ladrc_real_t axis_command_min(const ladrc_axis_config_t *cfg);
 ladrc_real_t axis_command_max(const ladrc_axis_config_t *cfg);
 
+/* Reference minus angle (rad); on a wrapped axis taken modulo 2 pi, and the
+ * shaped reference moved by a whole turn once it leaves (-pi, pi], which the
+ * error does not see. For the variants that close their own angle loop. */
+static inline ladrc_real_t axis_wrapped_error(ladrc_axis_t *axis, ladrc_real_t angle_rad)
+{
+    const ladrc_real_t r = axis->ref.r;
+    if (!axis->wrap) {
+        return r - angle_rad;
+    }
+    if (r > LADRC_PI) {
+        axis_shift_reference(axis, -LADRC_TWO_PI);
+    } else if (r < -LADRC_PI) {
+        axis_shift_reference(axis, LADRC_TWO_PI);
+    }
+    return ladrc_wrap_pi(r - angle_rad);
+}
+
 #endif /* LADRC_AXIS_SHARED_H */
