@@ -292,6 +292,30 @@ ladrc_margins_status_t ladrc_margins_analyse_reported(ladrc_margins_workspace_t 
 {
     if (idle != NULL)
         *idle = 0;
+    if (ctl != NULL && (ctl->attitude != NULL) != (ctl->axis != NULL) &&
+        (ctl->attitude == NULL || (ctl->axis_index >= 0 && ctl->axis_index < LADRC_AXES))) {
+        const ladrc_axis_config_t *a = margins_ctl_axis_config(ctl);
+        if (a->variant == LADRC_VARIANT_HP_MLADRC && a->hp_sample == LADRC_HP_SAMPLE_GYRO) {
+            /* HP-MLADRC on the gyro is LP-MLADRC until its gate engages on a
+             * steady tone, and lets go at any change: its margins are that
+             * LP-MLADRC's, its estimator idle. */
+            ladrc_attitude_config_t att;
+            ladrc_axis_config_t axis;
+            ladrc_margins_controller_t as_lp = *ctl;
+            if (ctl->attitude != NULL) {
+                att = *ctl->attitude;
+                att.axis[ctl->axis_index].variant = LADRC_VARIANT_LP_MLADRC;
+                as_lp.attitude = &att;
+            } else {
+                axis = *ctl->axis;
+                axis.variant = LADRC_VARIANT_LP_MLADRC;
+                as_lp.axis = &axis;
+            }
+            if (idle != NULL)
+                *idle = 1;
+            return ladrc_margins_analyse(ws, &as_lp, req, res);
+        }
+    }
     ladrc_margins_status_t st = ladrc_margins_analyse(ws, ctl, req, res);
     if (st == LADRC_MARGINS_ERR_NOT_SETTLED && ctl != NULL && req != NULL &&
         (ctl->attitude != NULL || ctl->axis != NULL) &&

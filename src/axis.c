@@ -126,6 +126,7 @@ void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant
     cfg->hp_freq_lambda0_per_s = AXIS_DEFAULT_HP_FREQ_LAMBDA0_PER_S;
     cfg->hp_freq_filter_rad_s = AXIS_DEFAULT_HP_FREQ_FILTER_RAD_S;
     cfg->hp_fit_decimation = ticks_in(AXIS_DEFAULT_HP_FIT_SAMPLE_S, dt_s);
+    cfg->hp_sample = LADRC_HP_SAMPLE_OBSERVER;
     cfg->motor_tau_s = LADRC_R(0.0);
     cfg->delay_ticks = 0u;
     cfg->wrap_angle = 0u;
@@ -426,6 +427,11 @@ const ladrc_lp_estimator_t *ladrc_axis_get_lp(const ladrc_axis_t *axis)
 #if LADRC_WITH_LP_MLADRC
     if (axis->variant == LADRC_VARIANT_LP_MLADRC) {
         return &axis->part.lp;
+    }
+#endif
+#if LADRC_WITH_HP_MLADRC
+    if (axis->variant == LADRC_VARIANT_HP_MLADRC && axis->part.hp.gyro) {
+        return &axis->part.hp.source.lp;
     }
 #endif
     (void)axis;

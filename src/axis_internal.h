@@ -81,6 +81,19 @@ ladrc_real_t axis_rate_adrc_accel(const ladrc_axis_t *axis);
 #if LADRC_WITH_LP_MLADRC
 AXIS_ESTIMATOR_FUNCTIONS(lp)
 #endif
+#if LADRC_WITH_LP_MLADRC || LADRC_WITH_HP_MLADRC
+/* An LP estimator from the axis's lp_ fields and actuator model (LP-MLADRC's,
+ * and HP-MLADRC's on the gyro). */
+static inline ladrc_status_t axis_lp_configure(ladrc_lp_estimator_t *lp, const ladrc_axis_config_t *cfg)
+{
+    const ladrc_lp_config_t c = {.dt_s = cfg->dt_s,
+                                 .lambda0_per_s = cfg->lp_lambda0_per_s,
+                                 .k0_per_s = cfg->lp_k0_per_s,
+                                 .act_tau_s = cfg->motor_tau_s,
+                                 .act_delay_ticks = cfg->delay_ticks};
+    return ladrc_lp_init(lp, &c);
+}
+#endif
 #if LADRC_WITH_HP_MLADRC
 AXIS_ESTIMATOR_FUNCTIONS(hp)
 #endif

@@ -4,12 +4,7 @@
 
 ladrc_status_t axis_lp_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
 {
-    const ladrc_lp_config_t lp = {.dt_s = cfg->dt_s,
-                                  .lambda0_per_s = cfg->lp_lambda0_per_s,
-                                  .k0_per_s = cfg->lp_k0_per_s,
-                                  .act_tau_s = cfg->motor_tau_s,
-                                  .act_delay_ticks = cfg->delay_ticks};
-    return ladrc_lp_init(&axis->part.lp, &lp);
+    return axis_lp_configure(&axis->part.lp, cfg);
 }
 
 void axis_lp_restart(ladrc_axis_t *axis)

@@ -41,6 +41,7 @@
 /* The fit has settled while its recent prior error power is below this
  * share of the sample's power. */
 #define SETTLED_SHARE LADRC_R(0.01)
+#define NOISY_EXPLAINED_SHARE LADRC_R(0.5)
 /* The fit's forgetting rate, times this once the weight has been 1 for
  * ENGAGED_SETTLE_S. */
 #define ENGAGED_RATE_FRACTION LADRC_R(0.5)
@@ -123,6 +124,11 @@ static ladrc_status_t check_config(const ladrc_hp_config_t *cfg)
         (lag_wo > LADRC_R(0.0) && !(fastest_rad_s <= HP_LEAD_RATIO_MAX * lag_wo))) {
         return LADRC_ERR_HP_SAMPLE_LAG;
     }
+    const ladrc_real_t age_s = cfg->sample_age_s;
+    if (!ladrc_is_finite(age_s) || age_s < LADRC_R(0.0) || !(fastest_rad_s * age_s <= LADRC_R(0.5) * HP_PI) ||
+        cfg->sample_block_mean > 1u) {
+        return LADRC_ERR_HP_SAMPLE_LAG;
+    }
 #if LADRC_WITH_HP_ONLINE
     if (cfg->freq_mode == LADRC_HP_FREQ_ONLINE) {
         if (!(ladrc_is_positive(cfg->freq_lambda0_per_s) && cfg->freq_lambda0_per_s * fit_period_s <= LADRC_R(1.0))) {
@@ -159,9 +165,12 @@ ladrc_status_t ladrc_hp_init(ladrc_hp_estimator_t *est, const ladrc_hp_config_t 
     }
     const ladrc_hp_tone_basis_t basis = {.dt_s = cfg->dt_s,
                                          .lag_wo_rad_s = cfg->sample_lag_wo_rad_s,
+                                         .age_s = cfg->sample_age_s,
                                          .act_tau_s = cfg->act_tau_s,
+                                         .block_ticks = cfg->sample_block_mean ? cfg->fit_decimation : 1u,
                                          .act_delay_ticks = cfg->act_delay_ticks};
     est->fit_period_s = fit_period_s;
+    est->block_mean = cfg->sample_block_mean;
     est->advance = (cfg->act_tau_s > LADRC_R(0.0) || cfg->act_delay_ticks > 0u) ? 1u : 0u;
 #if LADRC_WITH_HP_ONLINE
     est->basis = basis;
@@ -206,6 +215,8 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
     est->estimate = LADRC_R(0.0);
     est->handover = LADRC_R(0.0);
     est->fit_count = 0u;
+    est->block_sum = LADRC_R(0.0);
+    est->block_n = 0u;
     est->change_left = 0u;
     est->faults = LADRC_FAULT_NONE;
 }
@@ -292,6 +303,24 @@ static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
     return CHANGE_NEW;
 }
 
+/* 1 once the fit predicts the sample. A clean sample: its prior error power
+ * below SETTLED_SHARE of the sample's. A block mean (LP's residual on a
+ * noisy gyro, whose noise the fit cannot predict): the fit removes at least
+ * NOISY_EXPLAINED_SHARE of the power its tones claim. */
+static int fit_settled(const ladrc_hp_estimator_t *est, const ladrc_real_t *theta)
+{
+    if (!est->block_mean) {
+        return est->err_fast < SETTLED_SHARE * est->sig_power;
+    }
+    ladrc_real_t claimed = LADRC_R(0.0);
+    for (unsigned k = 0u; k < est->n_active; ++k) {
+        const ladrc_real_t a = theta[theta_a(k)];
+        const ladrc_real_t b = theta[theta_a(k) + 1u];
+        claimed += LADRC_R(0.5) * (a * a + b * b);
+    }
+    return est->sig_power - est->err_slow >= NOISY_EXPLAINED_SHARE * claimed;
+}
+
 /* After the RLS took a fit sample: per tone its slip and lock, the gate and
  * the fit's memory (the ONLINE frequencies follow). */
 LADRC_NOINLINE static void after_fit(ladrc_hp_estimator_t *est, ladrc_real_t sample, int changing)
@@ -304,7 +333,7 @@ LADRC_NOINLINE static void after_fit(ladrc_hp_estimator_t *est, ladrc_real_t sam
     const ladrc_real_t centred = sample - est->sample_mean;
     est->sig_power += POWER_AVERAGE_PER_S * t * (centred * centred - est->sig_power);
     const ladrc_real_t power_floor = LADRC_R(0.5) * AMP_FLOOR_RAD_S2 * AMP_FLOOR_RAD_S2;
-    const int settled = !changing && est->err_fast < SETTLED_SHARE * est->sig_power;
+    const int settled = !changing && fit_settled(est, theta);
     const ladrc_real_t tol = SLIP_TOL_FRACTION * est->fit_rate_per_s;
     ladrc_real_t rate = est->lambda0_max;
     int any_locked = 0;
@@ -368,9 +397,25 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
     LADRC_REQUIRE(est != NULL, LADRC_FAULT_STATE);
     est->faults = LADRC_FAULT_NONE;
     ladrc_real_t weight_before = est->weight;
-    if (!ladrc_within(sample_rad_s2, HP_SAMPLE_LIMIT_RAD_S2)) {
+    int usable = ladrc_within(sample_rad_s2, HP_SAMPLE_LIMIT_RAD_S2);
+    const int fit_tick = est->fit_count == est->fit_phase;
+    if (!usable) {
         est->faults = LADRC_FAULT_INPUT;
-    } else if (est->fit_count == est->fit_phase) {
+    }
+    if (est->block_mean) {
+        /* the fit takes the block's mean: what a gap left of it */
+        if (usable) {
+            est->block_sum += sample_rad_s2;
+            est->block_n++;
+        }
+        if (fit_tick) {
+            usable = est->block_n > 0u;
+            sample_rad_s2 = usable ? est->block_sum / (ladrc_real_t)est->block_n : LADRC_R(0.0);
+            est->block_sum = LADRC_R(0.0);
+            est->block_n = 0u;
+        }
+    }
+    if (usable && fit_tick) {
         /* One fit sample: the change detection on the prior error, the RLS
          * (called from here: the deepest path of a tick), the gate, the
          * ONLINE frequencies. */

@@ -26,16 +26,32 @@ void hp_set_tone_freq(const ladrc_hp_tone_basis_t *basis, unsigned advance, ladr
     tone->w_rad_s = w_rad_s;
     small_rotation(w_rad_s * basis->dt_s, &tone->cos_step, &tone->sin_step);
     const ladrc_real_t x = (basis->lag_wo_rad_s > LADRC_R(0.0)) ? w_rad_s / basis->lag_wo_rad_s : LADRC_R(0.0);
-    tone->lead_re = LADRC_R(1.0) - LADRC_R(3.0) * x * x;
-    tone->lead_im = LADRC_R(3.0) * x - x * x * x;
+    ladrc_real_t re = LADRC_R(1.0) - LADRC_R(3.0) * x * x;
+    ladrc_real_t im = LADRC_R(3.0) * x - x * x * x;
+    if (basis->age_s > LADRC_R(0.0) || basis->block_ticks > 1u) {
+        /* times e^{j w age} / G(w), G the block mean's gain at w,
+         * sin(N w h / 2) / (N sin(w h / 2)): >= 0.9 where init allows it */
+        ladrc_real_t c, sn, c_half, s_half, c_block, s_block;
+        small_rotation(w_rad_s * basis->age_s, &c, &sn);
+        small_rotation(LADRC_R(0.5) * w_rad_s * basis->dt_s, &c_half, &s_half);
+        small_rotation(LADRC_R(0.5) * (ladrc_real_t)basis->block_ticks * w_rad_s * basis->dt_s, &c_block, &s_block);
+        const ladrc_real_t gain = (s_half > LADRC_R(0.0))
+                                      ? s_block / ((ladrc_real_t)basis->block_ticks * s_half)
+                                      : LADRC_R(1.0);
+        const ladrc_real_t turned = (re * c - im * sn) / gain;
+        im = (im * c + re * sn) / gain;
+        re = turned;
+    }
+    tone->lead_re = re;
+    tone->lead_im = im;
     if (advance) {
         /* lead (1 + j w tau) e^{j w d h}, times e^{-j w h}: the command is
          * read after the tick has turned the phase by w h (estimator.h).
          * The turn by w (d - 1) h as |d - 1| turns by w h (exact to
          * rounding, no trig; d <= LADRC_MAX_DELAY_TICKS). */
         const ladrc_real_t wt = min_real(w_rad_s * basis->act_tau_s, HP_LEAD_RATIO_MAX);
-        ladrc_real_t re = tone->lead_re - wt * tone->lead_im;
-        ladrc_real_t im = tone->lead_im + wt * tone->lead_re;
+        re = tone->lead_re - wt * tone->lead_im;
+        im = tone->lead_im + wt * tone->lead_re;
         const ladrc_real_t back = (basis->act_delay_ticks == 0u) ? LADRC_R(-1.0) : LADRC_R(1.0);
         const unsigned turns = (basis->act_delay_ticks == 0u) ? 1u : basis->act_delay_ticks - 1u;
         for (unsigned i = 0u; i < turns; ++i) {

@@ -96,7 +96,8 @@
     X(LADRC_ERR_RADRC_KP, "radrc_kp_per_s must be finite, > 0 and radrc_kp_per_s * dt_s < 1")                          \
     X(LADRC_ERR_RADRC_ATT_KP, "radrc_att_kp_per_s must be finite, > 0 and radrc_att_kp_per_s * dt_s < 1")              \
     X(LADRC_ERR_RADRC_RATE_MAX, "radrc_rate_max_rad_s must be finite, > 0 and <= rate_limit_rad_s")                    \
-    X(LADRC_ERR_RADRC_ACRO, "radrc_acro must be 0 or 1")
+    X(LADRC_ERR_RADRC_ACRO, "radrc_acro must be 0 or 1")                                                               \
+    X(LADRC_ERR_HP_SAMPLE, "hp_sample must be LADRC_HP_SAMPLE_OBSERVER or LADRC_HP_SAMPLE_GYRO")
 
 #ifdef LADRC_STATUS_NAMES_ONLY
 #define STATUS_TEXT(code, explanation) #code

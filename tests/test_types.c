@@ -92,6 +92,7 @@ static const char *const status_names[LADRC_STATUS_COUNT] = {
     "LADRC_ERR_RADRC_ATT_KP",
     "LADRC_ERR_RADRC_RATE_MAX",
     "LADRC_ERR_RADRC_ACRO",
+    "LADRC_ERR_HP_SAMPLE",
 };
 
 /* 1 if text is name alone (names-only build) or name ": " and an explanation. */

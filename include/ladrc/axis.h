@@ -149,6 +149,14 @@ static inline int ladrc_variant_has_observer(ladrc_variant_t v)
     return (v <= LADRC_VARIANT_HP_MLADRC) ? 1 : 0; /* v >= 0: a variant init accepted */
 }
 
+/** What HP-MLADRC's fit samples (hp_sample). */
+typedef enum {
+    LADRC_HP_SAMPLE_OBSERVER = 0, /**< the LESO's view of the unknown f, from the angle alone (the paper's) */
+    LADRC_HP_SAMPLE_GYRO = 1      /**< the residual of an LP estimator on the measured rate: the axis flies as
+                                       LP-MLADRC and the fit adds what LP's tracking lags behind (needs the
+                                       rate on every tick; a tick without one holds both estimates) */
+} ladrc_hp_sample_t;
+
 /** How an axis shapes its raw reference into (r, r', r''). */
 typedef enum {
     LADRC_SHAPER_TD = 0,    /**< Han's tracking differentiator gives r, r', r'' */
@@ -210,6 +218,8 @@ typedef struct {
     uint16_t hp_fit_decimation;                     /**< ticks per sample of the fit (an axis alone fits on the
                                         first tick of each block; the attitude layer staggers its
                                         axes over the block) */
+    ladrc_hp_sample_t hp_sample;                    /**< what the fit samples; GYRO also reads lp_lambda0_per_s
+                                        and lp_k0_per_s */
     /* Actuator model (LADRC family; see above), default 0 and 0: none */
     ladrc_real_t motor_tau_s; /**< first-order lag of the torque (s), 0..LADRC_MOTOR_TAU_MAX_S, 0 = none */
     uint8_t delay_ticks;      /**< transport delay (whole ticks), 0..LADRC_MAX_DELAY_TICKS */
@@ -288,8 +298,12 @@ typedef struct {
 #if LADRC_WITH_HP_MLADRC
         struct {
             ladrc_hp_estimator_t est; /**< the estimator */
-            ladrc_leso_twin_t shadow; /**< the LESO's view of a still plant: z3 caused by d_hat alone */
-        } hp;                         /**< HP-MLADRC */
+            union {
+                ladrc_leso_twin_t shadow; /**< OBSERVER: the LESO's view of a still plant, z3 caused by d_hat alone */
+                ladrc_lp_estimator_t lp;  /**< GYRO: the LP estimator whose residual the fit samples */
+            } source;                     /**< by hp_sample */
+            uint8_t gyro;                 /**< hp_sample is LADRC_HP_SAMPLE_GYRO */
+        } hp;                             /**< HP-MLADRC */
 #endif
 #if LADRC_WITH_INDI
         ladrc_indi_t indi; /**< INDI */
@@ -394,10 +408,11 @@ void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant
  *                                       or above 10 / dt_s^2
  * @retval LADRC_ERR_LEVANT_METHOD       shaper LEVANT: levant_method not a ladrc_levant_method_t
  * @retval LADRC_ERR_LEVANT_RANGE        shaper LEVANT: per-sample coefficients out of range
+ * @retval LADRC_ERR_HP_SAMPLE           HP: hp_sample not a ladrc_hp_sample_t
  * @retval LADRC_ERR_EST_LAMBDA0         LP, HP: forgetting rate not finite or not > 0 (HP: or times
  *                                       its fit period > 1)
- * @retval LADRC_ERR_EST_K0              LP: lp_k0_per_s not finite or not > 0
- * @retval LADRC_ERR_RLS_LAMBDA0         LP: lp_lambda0_per_s * dt_s > 1
+ * @retval LADRC_ERR_EST_K0              LP, HP GYRO: lp_k0_per_s not finite or not > 0
+ * @retval LADRC_ERR_RLS_LAMBDA0         LP, HP GYRO: lp_lambda0_per_s * dt_s > 1
  * @retval LADRC_ERR_HP_FREQ_MODE        HP: hp_freq_mode not a ladrc_hp_freq_mode_t
  * @retval LADRC_ERR_FEATURE_NOT_BUILT   HP: ONLINE left out of this build
  * @retval LADRC_ERR_HP_N_TONES          HP: hp_n_tones outside 1..LADRC_HP_MAX_TONES
@@ -526,8 +541,8 @@ void ladrc_axis_get_estimate(const ladrc_axis_t *axis, ladrc_real_t *angle_rad, 
  *  @return the estimator or NULL */
 const ladrc_hp_estimator_t *ladrc_axis_get_hp(const ladrc_axis_t *axis);
 
-/** The LP estimator of an LP-MLADRC axis, read-only (valid while axis is);
- *  NULL for another variant.
+/** The LP estimator of an LP-MLADRC axis or of an HP-MLADRC axis on the
+ *  gyro (LADRC_HP_SAMPLE_GYRO), read-only (valid while axis is); NULL otherwise.
  *  @param axis  the axis; NULL: NULL
  *  @return the estimator or NULL */
 const ladrc_lp_estimator_t *ladrc_axis_get_lp(const ladrc_axis_t *axis);

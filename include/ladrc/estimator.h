@@ -127,6 +127,8 @@ typedef struct {
     ladrc_real_t prev_rate_rad_s; /**< the previous finite rate (rad/s) */
     ladrc_real_t lead_x;          /**< the lead's low-pass state x (rad/s^2) */
     ladrc_real_t lead_beta;       /**< beta = 1 - exp(-N h / tau') */
+    ladrc_real_t residual_rad_s2; /**< the latest sample minus the estimate it gave (rad/s^2) */
+    uint8_t has_residual;         /**< 1: the latest step took a sample */
     uint8_t lead;                 /**< 1: act_tau_s > 0 or act_delay_ticks > 0 */
     uint8_t has_prev_rate;        /**< 0 until a finite rate was seen */
     ladrc_fault_t faults;         /**< flags of the latest step */
@@ -169,6 +171,15 @@ ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s, 
  *  @return d_hat (rad/s^2) */
 ladrc_real_t ladrc_lp_get_estimate(const ladrc_lp_estimator_t *est);
 
+/** What the estimate leaves of the latest step's sample: the measured
+ *  acceleration minus the known input and the estimate after the update
+ *  (rad/s^2), the part of f the estimate does not yet track (HP-MLADRC on the
+ *  gyro fits it, axis.h).
+ *  @param est  the estimator; NULL: NAN
+ *  @return the residual (rad/s^2); NAN when the latest step took no sample
+ *          (the first rate, a gap, a non-finite input) */
+ladrc_real_t ladrc_lp_get_residual(const ladrc_lp_estimator_t *est);
+
 /** One tick of the command's lead over the actuator (see above) on the
  *  current d_hat; call once per tick after ladrc_lp_step. command_rad_s2
  *  receives the compensation the command should carry (rad/s^2): d_hat
@@ -200,6 +211,11 @@ typedef struct {
     ladrc_real_t sample_lag_wo_rad_s;            /**< samples come through a LESO of this bandwidth, whose z3
                                           lags f by wo^3 / (s + wo)^3: undone per tone; 0 = no lag;
                                           otherwise at least a tenth of the fastest tone */
+    ladrc_real_t sample_age_s;                   /**< samples are this much older than their tick (s), >= 0:
+                                          undone per tone; the fastest tone turns at most pi/2 in it */
+    uint8_t sample_block_mean;                   /**< 1: the fit takes the mean of the samples of each block
+                                          of fit_decimation ticks (noise averaged; its gain at each
+                                          tone undone), 0: the fit tick's sample alone */
     uint16_t fit_decimation;                     /**< ticks per fit sample (T = fit_decimation dt_s), >= 1;
                                           every tone turns less than pi/2 per fit sample */
     uint16_t fit_phase;                          /**< which tick of each block fits, < fit_decimation
@@ -240,7 +256,9 @@ typedef struct {
 typedef struct {
     ladrc_real_t dt_s;         /**< fixed step h (s) */
     ladrc_real_t lag_wo_rad_s; /**< bandwidth of the sample's lag, 0 = none */
+    ladrc_real_t age_s;        /**< the sample's age (s) */
     ladrc_real_t act_tau_s;    /**< actuator lag the command is advanced over (s) */
+    uint16_t block_ticks;      /**< ticks each fit sample averages, 1 = none */
     uint8_t act_delay_ticks;   /**< actuator delay the command is advanced over (ticks) */
 } ladrc_hp_tone_basis_t;
 
@@ -260,6 +278,9 @@ typedef struct {
     ladrc_real_t weight;   /**< compensation weight in [0, 1] */
     ladrc_real_t estimate; /**< the applied d_hat (rad/s^2) */
     ladrc_real_t handover; /**< part of estimate's latest change due to the weight */
+    ladrc_real_t block_sum; /**< sample_block_mean: the block's samples so far, summed (rad/s^2) */
+    uint16_t block_n;       /**< sample_block_mean: how many */
+    uint8_t block_mean;     /**< sample_block_mean */
 #if LADRC_WITH_HP_ONLINE
     /* The ONLINE frequency search (estimator_hp_freq.c): left out with
      * LADRC_WITH_HP_ONLINE 0 (types.h). */
@@ -312,7 +333,9 @@ typedef struct {
  *                                     turns pi/2 or more per T
  * @retval LADRC_ERR_MOTOR_TAU_S       act_tau_s not finite or outside 0..LADRC_MOTOR_TAU_MAX_S
  * @retval LADRC_ERR_DELAY_TICKS       act_delay_ticks above LADRC_MAX_DELAY_TICKS
- * @retval LADRC_ERR_HP_SAMPLE_LAG     sample_lag_wo_rad_s not finite, < 0, or below a tenth of the fastest tone
+ * @retval LADRC_ERR_HP_SAMPLE_LAG     sample_lag_wo_rad_s not finite, < 0, or below a tenth of the fastest tone;
+ *                                     sample_age_s not finite, < 0, or the fastest tone turns more than pi/2
+ *                                     in it; sample_block_mean not 0 or 1
  * @retval LADRC_ERR_HP_FREQ_LAMBDA0   ONLINE: freq_lambda0_per_s not finite, not > 0, or times T > 1
  * @retval LADRC_ERR_HP_FREQ_FILTER    ONLINE: freq_filter_rad_s not finite, not > 0, or times T >= 0.2
  */

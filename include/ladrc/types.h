@@ -279,6 +279,7 @@ typedef enum {
     LADRC_ERR_RADRC_ATT_KP,      /**< radrc_att_kp_per_s not finite, not > 0, or times dt_s >= 1 */
     LADRC_ERR_RADRC_RATE_MAX,    /**< radrc_rate_max_rad_s not finite and > 0, or above rate_limit_rad_s */
     LADRC_ERR_RADRC_ACRO,        /**< radrc_acro not 0 or 1 */
+    LADRC_ERR_HP_SAMPLE,         /**< hp_sample not a ladrc_hp_sample_t */
     LADRC_STATUS_COUNT           /**< number of status codes (not a status) */
 } ladrc_status_t;
 

@@ -474,7 +474,10 @@ static void check_controllers(parser_t *p)
         for (int i = 0; i < sc->n_controllers; ++i) {
             listed |= (int)sc->controllers[i] == id;
         }
-        if (st == LADRC_OK && sim_controller_needs_rate((sim_controller_id_t)id) && !sc->use_rate) {
+        /* HP-MLADRC on the gyro flies as LADRC without a rate: refused as the others */
+        const int needs_rate = sim_controller_needs_rate((sim_controller_id_t)id) ||
+                               (id == SIM_CTRL_HP_MLADRC && cfg.axis[0].hp_sample == LADRC_HP_SAMPLE_GYRO);
+        if (st == LADRC_OK && needs_rate && !sc->use_rate) {
             static const key_ref_t use_rate[] = {{.sec = SEC_SENSORS, .name = "use_rate"}, END_KEYS};
             const loc_t at = locate(p, use_rate, -1);
             const char *needs = sim_controller_name((sim_controller_id_t)id);

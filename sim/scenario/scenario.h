@@ -60,6 +60,7 @@ typedef struct {
     double wc_rad_s, wo_rad_s;
     int leso_method;       /* -1, or ladrc_leso_method_t */
     int hp_freq_mode;      /* -1, or ladrc_hp_freq_mode_t */
+    int hp_sample;         /* -1, or ladrc_hp_sample_t */
     double hp_freq_rad_s;  /* known frequency or first guess of the first tone */
     double hp_freq2_rad_s; /* the same for the second tone */
     int hp_tones;          /* -1, or the number of tones (1..LADRC_HP_MAX_TONES) */

@@ -103,6 +103,9 @@ static const choice_t TUNE_MODES[] = {{.name = "none", .value = SIM_TUNE_NONE},
 static const choice_t HP_FREQ_MODES[] = {{.name = "known", .value = LADRC_HP_FREQ_KNOWN},
                                          {.name = "online", .value = LADRC_HP_FREQ_ONLINE},
                                          {.name = NULL, .value = 0}};
+static const choice_t HP_SAMPLES[] = {{.name = "observer", .value = LADRC_HP_SAMPLE_OBSERVER},
+                                      {.name = "gyro", .value = LADRC_HP_SAMPLE_GYRO},
+                                      {.name = NULL, .value = 0}};
 
 #define CTRL_BIT(id) (1u << (id))
 #define C_HP CTRL_BIT(SIM_CTRL_HP_MLADRC)
@@ -188,6 +191,7 @@ const key_def_t SCHEMA_KEYS[] = {
     {CTRL_KEY("wo_rad_s", V_REAL, wo_rad_s, LADRC_FAMILY | C_RADRC), .range = R_POSITIVE},
     {CTRL_KEY("leso_method", V_CHOICE, leso_method, LADRC_FAMILY), .choices = LESO_METHODS},
     {CTRL_KEY("hp_freq_mode", V_CHOICE, hp_freq_mode, C_HP), .choices = HP_FREQ_MODES},
+    {CTRL_KEY("hp_sample", V_CHOICE, hp_sample, C_HP), .choices = HP_SAMPLES},
     {CTRL_KEY("hp_freq_rad_s", V_REAL, hp_freq_rad_s, C_HP), .range = R_POSITIVE},
     {CTRL_KEY("hp_freq2_rad_s", V_REAL, hp_freq2_rad_s, C_HP), .range = R_POSITIVE},
     {CTRL_KEY("hp_tones", V_INT, hp_tones, C_HP), .range = R_HP_TONES},
@@ -328,7 +332,7 @@ void schema_set_defaults(sim_scenario_t *sc)
     for (int i = 0; i < SIM_CTRL_COUNT; ++i) {
         sim_overrides_t *o = &sc->overrides[i];
         o->wc_rad_s = o->wo_rad_s = NAN;
-        o->leso_method = o->hp_freq_mode = o->coupling_feed = -1;
+        o->leso_method = o->hp_freq_mode = o->hp_sample = o->coupling_feed = -1;
         o->hp_freq_rad_s = o->hp_freq2_rad_s = o->levant_lipschitz_rad_s4 = o->td_accel_rad_s2 = NAN;
         o->hp_tones = -1;
         o->model_motor_tau_s = NAN;

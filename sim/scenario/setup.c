@@ -40,6 +40,8 @@ static void apply_overrides(ladrc_axis_config_t *a, const sim_overrides_t *o)
         a->leso_method = (ladrc_leso_method_t)o->leso_method;
     if (o->hp_freq_mode >= 0)
         a->hp_freq_mode = (ladrc_hp_freq_mode_t)o->hp_freq_mode;
+    if (o->hp_sample >= 0)
+        a->hp_sample = (ladrc_hp_sample_t)o->hp_sample;
     if (!isnan(o->hp_freq_rad_s))
         a->hp_freq_rad_s[0] = (ladrc_real_t)o->hp_freq_rad_s;
 #if LADRC_HP_MAX_TONES > 1

@@ -207,7 +207,7 @@ static ladrc_real_t record_attitude(int bench_case, int full, ladrc_real_t *samp
         (void)ladrc_mixer_step(&mixer, thrust, torque, &out);
         ladrc_attitude_set_applied(&att, out.torque_Nm);
         const ladrc_axis_t *roll = &att.axis[0];
-        sample[i] = roll->leso.z3 - roll->part.hp.shadow.z3;
+        sample[i] = roll->leso.z3 - roll->part.hp.source.shadow.z3;
         if (full) {
             thrust_in[i] = thrust;
             dhat_in[i] = roll->d_hat_rad_s2;
