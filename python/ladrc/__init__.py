@@ -50,6 +50,7 @@ ENUMS = {
     "leso_method": {"ZOH": 0, "EULER": 1},
     "levant_method": {"IMPLICIT": 0, "HD": 1, "EULER": 2},
     "hp_freq_mode": {"KNOWN": 0, "ONLINE": 1},
+    "hp_sample": {"OBSERVER": 0, "GYRO": 1},
     "mode": {"SATURATE": 0, "IDEAL": 1},
 }
 
@@ -78,7 +79,8 @@ class LadrcLayoutError(RuntimeError):
 
 
 _ENUM_PREFIXES = {"variant": "LADRC_VARIANT_", "shaper": "LADRC_SHAPER_", "leso_method": "LADRC_LESO_",
-                  "levant_method": "LADRC_LEVANT_", "hp_freq_mode": "LADRC_HP_FREQ_", "mode": "LADRC_MIXER_"}
+                  "levant_method": "LADRC_LEVANT_", "hp_freq_mode": "LADRC_HP_FREQ_",
+                  "hp_sample": "LADRC_HP_SAMPLE_", "mode": "LADRC_MIXER_"}
 
 
 def _enum_value(field, value):
