@@ -51,15 +51,15 @@ void ladrc_lp_reset(ladrc_lp_estimator_t *est)
     est->prev_rate_rad_s = LADRC_R(0.0);
     est->has_prev_rate = 0u;
     est->lead_x = LADRC_R(0.0);
-    est->residual_rad_s2 = LADRC_R(0.0);
-    est->has_residual = 0u;
+    est->sample_rad_s2 = LADRC_R(0.0);
+    est->has_sample = 0u;
     est->faults = LADRC_FAULT_NONE;
 }
 
 ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s, ladrc_real_t accel_known)
 {
     LADRC_REQUIRE(est != NULL, LADRC_FAULT_STATE);
-    est->has_residual = 0u;
+    est->has_sample = 0u;
     if (!(ladrc_is_finite(rate_rad_s) && ladrc_is_finite(accel_known))) {
         est->has_prev_rate = 0u; /* a difference across the gap would be wrong */
         est->faults = LADRC_FAULT_INPUT;
@@ -70,8 +70,8 @@ ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s, 
         const ladrc_real_t sample = (rate_rad_s - est->prev_rate_rad_s) / est->dt_s - accel_known;
         const ladrc_real_t one = LADRC_R(1.0);
         est->faults = ladrc_rls_update(&est->rls, &one, sample);
-        est->residual_rad_s2 = sample - ladrc_rls_get_theta(&est->rls)[0];
-        est->has_residual = ladrc_is_finite(est->residual_rad_s2) ? 1u : 0u;
+        est->sample_rad_s2 = sample;
+        est->has_sample = ladrc_is_finite(sample) ? 1u : 0u;
     }
     est->prev_rate_rad_s = rate_rad_s;
     est->has_prev_rate = 1u;
@@ -84,10 +84,19 @@ ladrc_real_t ladrc_lp_get_estimate(const ladrc_lp_estimator_t *est)
     return ladrc_rls_get_theta(&est->rls)[0];
 }
 
-ladrc_real_t ladrc_lp_get_residual(const ladrc_lp_estimator_t *est)
+ladrc_real_t ladrc_lp_get_sample(const ladrc_lp_estimator_t *est)
 {
     LADRC_REQUIRE(est != NULL, (ladrc_real_t)NAN);
-    return est->has_residual ? est->residual_rad_s2 : (ladrc_real_t)NAN;
+    return est->has_sample ? est->sample_rad_s2 : (ladrc_real_t)NAN;
+}
+
+void ladrc_lp_hand_over(ladrc_lp_estimator_t *est, ladrc_real_t delta)
+{
+    LADRC_REQUIRE_VOID(est != NULL);
+    if (ladrc_is_finite(delta) && ladrc_is_finite(est->lead_x + delta)) {
+        ladrc_rls_shift(&est->rls, 0u, delta);
+        est->lead_x += delta;
+    }
 }
 
 ladrc_fault_t ladrc_lp_step_lead(ladrc_lp_estimator_t *est, ladrc_real_t *command_rad_s2)

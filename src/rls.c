@@ -252,6 +252,17 @@ ladrc_real_t ladrc_rls_predict(const ladrc_rls_t *rls, const ladrc_real_t *phi)
     return y;
 }
 
+void ladrc_rls_shift(ladrc_rls_t *rls, unsigned k, ladrc_real_t delta)
+{
+    LADRC_REQUIRE_VOID(rls != NULL);
+    if (k < rls->n_params) {
+        const ladrc_real_t moved = rls->theta[k] + delta;
+        if (ladrc_is_finite(moved)) {
+            rls->theta[k] = moved;
+        }
+    }
+}
+
 const ladrc_real_t *ladrc_rls_get_theta(const ladrc_rls_t *rls)
 {
     LADRC_REQUIRE(rls != NULL, NULL);

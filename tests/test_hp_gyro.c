@@ -28,11 +28,16 @@
 #define TONE_RAD_S2 30.0
 #define TONE_W_RAD_S 9.0
 #define WINDOW_FROM_S 12.0
+#define SLOW_TONE_W_RAD_S 3.0
 #define WINDOW_TO_S 20.0
-/* Engaged, HP must halve LP's RMS over the window (measured 0.41x). */
-#define STEADY_TONE_RATIO_MAX 0.5
-/* After the tone stops, the gate lets go within a second (measured 0.2 s). */
-#define LET_GO_S 1.0
+/* Engaged, HP must hold at most this share of LP's RMS over the window:
+ * the fit takes the whole tone and advances it over the motor lag exactly
+ * (measured 0.007x; the bar a tenth of the 0.5x asked of the variant, still
+ * seven times the measurement, room for float against double). */
+#define STEADY_TONE_RATIO_MAX 0.05
+/* After the tone stops, the gate lets go within 0.2 s (measured 0.016 s:
+ * the change detection drops the weight at once). */
+#define LET_GO_S 0.2
 
 void setUp(void)
 {
@@ -86,6 +91,7 @@ typedef struct {
     double weight_at_stop; /* HP's gate weight when the tone stops */
     double let_go_s;       /* from the stop until the weight is 0 (HUGE_VAL: never) */
     double max_torque_diff_Nm; /* largest |torque - twin's torque|, twin given */
+    double max_error_rad;      /* largest |angle error| over the window */
 } result_t;
 
 /* Flies the axis; with twin, a second axis on the same measurements whose
@@ -100,7 +106,8 @@ static result_t fly(const ladrc_axis_config_t *cfg, const ladrc_axis_config_t *t
     }
     double y = 0.0, w = 0.0, m = 0.0;
     unsigned seed = 2463534242u;
-    result_t r = {.rms_rad = 0.0, .weight_at_stop = 0.0, .let_go_s = HUGE_VAL, .max_torque_diff_Nm = 0.0};
+    result_t r = {
+        .rms_rad = 0.0, .weight_at_stop = 0.0, .let_go_s = HUGE_VAL, .max_torque_diff_Nm = 0.0, .max_error_rad = 0.0};
     double sum_sq = 0.0;
     long samples = 0;
     const long n = (long)(to_s / DT_S + 0.5);
@@ -129,6 +136,7 @@ static result_t fly(const ladrc_axis_config_t *cfg, const ladrc_axis_config_t *t
         w += dw / J_KG_M2 + f * DT_S;
         TEST_ASSERT_TRUE_MESSAGE(isfinite(y) && fabs(y) < 1.0, "diverged");
         if (t + DT_S > from_s) {
+            r.max_error_rad = fmax(r.max_error_rad, fabs(y));
             sum_sq += y * y;
             samples++;
         }
@@ -149,7 +157,7 @@ static void test_without_a_tone_it_flies_as_lp_mladrc(void)
     TEST_ASSERT_EQUAL_FLOAT(0.0, r.max_torque_diff_Nm);
 }
 
-static void test_on_a_steady_tone_it_halves_lp_mladrcs_error(void)
+static void test_on_a_steady_tone_it_cuts_lp_mladrcs_error_twentyfold(void)
 {
     const ladrc_axis_config_t hp = config(LADRC_VARIANT_HP_MLADRC);
     const ladrc_axis_config_t lp = config(LADRC_VARIANT_LP_MLADRC);
@@ -159,9 +167,24 @@ static void test_on_a_steady_tone_it_halves_lp_mladrcs_error(void)
     char msg[128];
     snprintf(msg, sizeof msg, "RMS HP %.4f deg, LP %.4f deg (ratio %.3f)", r_hp.rms_rad / DEG, r_lp.rms_rad / DEG,
              r_hp.rms_rad / r_lp.rms_rad);
-    printf("%s\n", msg);
     TEST_ASSERT_TRUE_MESSAGE(r_hp.rms_rad <= STEADY_TONE_RATIO_MAX * r_lp.rms_rad, msg);
     TEST_ASSERT_EQUAL_FLOAT_MESSAGE(1.0, r_hp.weight_at_stop, "engaged");
+}
+
+static void test_engaging_never_makes_the_error_larger_than_lp_mladrcs(void)
+{
+    /* from a second after the onset, over the gate's opening: LP gives up
+     * at once what the fit takes over, so no step passes through its lead */
+    /* a slow tone, which LP tracks closely: a step through its lead would show */
+    ladrc_axis_config_t hp = config(LADRC_VARIANT_HP_MLADRC);
+    ladrc_axis_config_t lp = config(LADRC_VARIANT_LP_MLADRC);
+    hp.hp_freq_rad_s[0] = lp.hp_freq_rad_s[0] = (ladrc_real_t)SLOW_TONE_W_RAD_S;
+    const dist_t d = {.amp = TONE_RAD_S2, .w = SLOW_TONE_W_RAD_S, .stop_s = 1e9, .step = 5.0};
+    const result_t r_hp = fly(&hp, NULL, &d, ONSET_S + 1.0, WINDOW_TO_S);
+    const result_t r_lp = fly(&lp, NULL, &d, ONSET_S + 1.0, WINDOW_TO_S);
+    char msg[96];
+    snprintf(msg, sizeof msg, "max error HP %.4f deg, LP %.4f deg", r_hp.max_error_rad / DEG, r_lp.max_error_rad / DEG);
+    TEST_ASSERT_TRUE_MESSAGE(r_hp.max_error_rad <= r_lp.max_error_rad, msg);
 }
 
 static void test_the_gate_lets_go_when_the_tone_stops(void)
@@ -172,7 +195,6 @@ static void test_the_gate_lets_go_when_the_tone_stops(void)
     TEST_ASSERT_EQUAL_FLOAT_MESSAGE(1.0, r.weight_at_stop, "engaged before the stop");
     char msg[64];
     snprintf(msg, sizeof msg, "let go after %.3f s", r.let_go_s);
-    printf("%s\n", msg);
     TEST_ASSERT_TRUE_MESSAGE(r.let_go_s <= LET_GO_S, msg);
 }
 
@@ -191,7 +213,7 @@ static void test_a_non_finite_rate_holds_the_estimates_and_is_flagged(void)
     TEST_ASSERT_TRUE((f & LADRC_FAULT_RATE) != 0u);
     TEST_ASSERT_TRUE(isfinite((double)torque));
     TEST_ASSERT_EQUAL_FLOAT(before, ladrc_lp_get_estimate(ladrc_axis_get_lp(&axis)));
-    TEST_ASSERT_TRUE(isnan((double)ladrc_lp_get_residual(ladrc_axis_get_lp(&axis))));
+    TEST_ASSERT_TRUE(isnan((double)ladrc_lp_get_sample(ladrc_axis_get_lp(&axis))));
 }
 
 static void test_init_refuses_an_unknown_sample(void)
@@ -210,7 +232,8 @@ int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_without_a_tone_it_flies_as_lp_mladrc);
-    RUN_TEST(test_on_a_steady_tone_it_halves_lp_mladrcs_error);
+    RUN_TEST(test_on_a_steady_tone_it_cuts_lp_mladrcs_error_twentyfold);
+    RUN_TEST(test_engaging_never_makes_the_error_larger_than_lp_mladrcs);
     RUN_TEST(test_the_gate_lets_go_when_the_tone_stops);
     RUN_TEST(test_a_non_finite_rate_holds_the_estimates_and_is_flagged);
     RUN_TEST(test_init_refuses_an_unknown_sample);

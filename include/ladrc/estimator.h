@@ -127,8 +127,8 @@ typedef struct {
     ladrc_real_t prev_rate_rad_s; /**< the previous finite rate (rad/s) */
     ladrc_real_t lead_x;          /**< the lead's low-pass state x (rad/s^2) */
     ladrc_real_t lead_beta;       /**< beta = 1 - exp(-N h / tau') */
-    ladrc_real_t residual_rad_s2; /**< the latest sample minus the estimate it gave (rad/s^2) */
-    uint8_t has_residual;         /**< 1: the latest step took a sample */
+    ladrc_real_t sample_rad_s2;   /**< the latest sample (rad/s^2) */
+    uint8_t has_sample;           /**< 1: the latest step took a sample */
     uint8_t lead;                 /**< 1: act_tau_s > 0 or act_delay_ticks > 0 */
     uint8_t has_prev_rate;        /**< 0 until a finite rate was seen */
     ladrc_fault_t faults;         /**< flags of the latest step */
@@ -171,14 +171,20 @@ ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s, 
  *  @return d_hat (rad/s^2) */
 ladrc_real_t ladrc_lp_get_estimate(const ladrc_lp_estimator_t *est);
 
-/** What the estimate leaves of the latest step's sample: the measured
- *  acceleration minus the known input and the estimate after the update
- *  (rad/s^2), the part of f the estimate does not yet track (HP-MLADRC on the
- *  gyro fits it, axis.h).
+/** The latest step's sample: the measured acceleration minus the known
+ *  input (rad/s^2), what the estimate tracks (HP-MLADRC on the gyro fits
+ *  its tones to it, axis.h).
  *  @param est  the estimator; NULL: NAN
- *  @return the residual (rad/s^2); NAN when the latest step took no sample
+ *  @return the sample (rad/s^2); NAN when the latest step took no sample
  *          (the first rate, a gap, a non-finite input) */
-ladrc_real_t ladrc_lp_get_residual(const ladrc_lp_estimator_t *est);
+ladrc_real_t ladrc_lp_get_sample(const ladrc_lp_estimator_t *est);
+
+/** Moves the estimate and its lead's state by delta (rad/s^2): what another
+ *  estimator takes over from this one at once (HP-MLADRC on the gyro, as its
+ *  gate opens), without a step through the lead.
+ *  @param est    the estimator; NULL: nothing happens
+ *  @param delta  the move (rad/s^2); non-finite: nothing happens */
+void ladrc_lp_hand_over(ladrc_lp_estimator_t *est, ladrc_real_t delta);
 
 /** One tick of the command's lead over the actuator (see above) on the
  *  current d_hat; call once per tick after ladrc_lp_step. command_rad_s2

@@ -154,6 +154,14 @@ ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_
  *          phi NULL: 0 */
 ladrc_real_t ladrc_rls_predict(const ladrc_rls_t *rls, const ladrc_real_t *phi);
 
+/** Moves parameter k of the estimate by delta, P unchanged: for a part of
+ *  the estimate that another estimator takes over (a non-finite result
+ *  leaves it as it was).
+ *  @param rls    the estimator; NULL: nothing happens
+ *  @param k      the parameter, < n_params (others: nothing happens)
+ *  @param delta  the move (unit of theta[k]) */
+void ladrc_rls_shift(ladrc_rls_t *rls, unsigned k, ladrc_real_t delta);
+
 /** The estimate.
  *  @param rls  the estimator
  *  @return theta, n_params entries, valid while rls is; rls NULL: NULL */
