@@ -5,6 +5,7 @@
 Usage: campaign.py merge OUT
        campaign.py plot OUT [--x NAME] [--y NAME] [--axis roll|pitch|yaw] [--name TEXT]
                             [--label NAME=TEXT]...
+       campaign.py ratio OUT [the same options] [--where NAME=VALUE]...
 
 merge reads OUT/plan.csv and every OUT/runs/<run>/metrics.csv and writes OUT/campaign.csv:
 one row per run, in run order: `run`, the varied values as in plan.csv, then for each
@@ -22,6 +23,16 @@ plot reads OUT/campaign.csv and draws into OUT/figures/:
                            diverged is drawn as a contour
   rms_<axis>.png           the RMS error of every run per controller (box plots, log scale);
                            diverged runs have no RMS: they are counted in the labels
+ratio reads OUT/campaign.csv and draws into OUT/figures/:
+  ratio_<axis>_<x>_<y>[_<NAME><VALUE>...].png
+                           one panel per LADRC-family controller flown and one for the family's
+                           best: the median over the runs of each cell of the run's RMS error
+                           divided by the better tuned incumbent's (the smaller of INDI's and
+                           CASCADED's that did not diverge), log colour scale centred on 1,
+                           each cell's median written in it; cells where the controller
+                           diverged in a run are crossed. It prints, per panel, how many runs
+                           reach 0.5 (the suite's target). --where keeps the runs whose
+                           varied value NAME reads VALUE (repeatable: all must hold).
 --x and --y default to the first two varied names; an axis is labelled with the varied name
 and the unit its suffix names (_s, _deg, _rad_s, ...), or with --label NAME=TEXT. A varied name with few values (a [grid]
 key) gives one cell per value; one with many (a [draw] key) is cut into bins. An axis is
@@ -545,6 +556,55 @@ def cmd_plot(args):
     return 0
 
 
+def cmd_ratio(args):
+    from campaign_ratio import RatioError, plot_ratio_maps
+    varied, controllers, cols = read_campaign(args.out)
+    where = []
+    for spec in args.where:
+        key, sep, value = spec.partition("=")
+        if not sep or key not in varied:
+            raise CampaignError("--where %s: expected NAME=VALUE with NAME a varied name (%s)"
+                                % (spec, ", ".join(varied) if varied else "it varies nothing"))
+        where.append((key, value))
+    keep = [r for r in range(len(cols["run"]))
+            if all(cols[k][r] == v or (as_numbers([cols[k][r], v]) or [0, 1])[0] == (as_numbers([cols[k][r], v]) or [0, 1])[1]
+                   for k, v in where)]
+    if not keep:
+        raise CampaignError("--where %s: no run of the campaign" % " ".join(args.where))
+    cols = {name: [col[r] for r in keep] for name, col in cols.items()}
+    free = [v for v in varied if v not in dict(where)]
+    for opt, value in (("--x", args.x), ("--y", args.y)):
+        if value is not None and value not in free:
+            raise CampaignError("%s %s: not a varied name left free by --where (%s)"
+                                % (opt, value, ", ".join(free) if free else "none"))
+    labels = dict(spec.partition("=")[::2] for spec in args.label)
+    xname = args.x or (free[0] if free else None)
+    yname = args.y or next((v for v in free if v != xname), None)
+    if xname is None:
+        raise CampaignError("ratio: no varied name left for the x axis")
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError as e:
+        raise CampaignError("ratio needs matplotlib and numpy (apt-get install python3-matplotlib "
+                            "python3-numpy): %s" % e)
+    plt.rcParams.update({"font.size": 10})
+    name = args.name or os.path.basename(os.path.normpath(os.path.abspath(args.out)))
+    figdir = os.path.join(args.out, "figures")
+    os.makedirs(figdir, exist_ok=True)
+    try:
+        path, summary = plot_ratio_maps(name, cols, args.axis, xname, yname, figdir, labels, controllers, where,
+                                        Axis, save)
+    except RatioError as e:
+        raise CampaignError("%s: %s" % (args.out, e))
+    for ctrl, (n, met, div) in summary.items():
+        print("campaign.py: %s %s: ratio <= 0.5 in %d of %d runs with an incumbent, %d diverged"
+              % (ctrl, args.axis, met, n, div))
+    print("campaign.py: wrote %s" % path)
+    return 0
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="campaign.py", description=__doc__.split("\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -560,9 +620,18 @@ def main(argv=None):
     p.add_argument("--label", action="append", default=[], metavar="NAME=TEXT",
                    help="axis label of a varied name, e.g. 'w=tone frequency w (rad/s)' (default: the "
                         "name, with the unit its suffix gives)")
+    q = sub.add_parser("ratio", help="maps of each LADRC-family RMS / the better incumbent's into OUT/figures/")
+    q.add_argument("out", metavar="OUT")
+    q.add_argument("--x", metavar="NAME", help="varied name on the x axis (default: the first left free)")
+    q.add_argument("--y", metavar="NAME", help="varied name on the y axis (default: the second left free)")
+    q.add_argument("--axis", choices=AXES, default="roll", help="attitude axis of the RMS error (default roll)")
+    q.add_argument("--name", help="campaign name in the titles (default: OUT's directory name)")
+    q.add_argument("--label", action="append", default=[], metavar="NAME=TEXT", help="axis label of a varied name")
+    q.add_argument("--where", action="append", default=[], metavar="NAME=VALUE",
+                   help="only the runs whose varied value NAME is VALUE (repeatable)")
     args = parser.parse_args(argv)
     try:
-        return {"merge": cmd_merge, "plot": cmd_plot}[args.command](args)
+        return {"merge": cmd_merge, "plot": cmd_plot, "ratio": cmd_ratio}[args.command](args)
     except CampaignError as e:
         print("campaign.py: error: %s" % e, file=sys.stderr)
         return 1
