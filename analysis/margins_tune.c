@@ -23,7 +23,8 @@ static ladrc_axis_config_t *tuner_axis(tuner_t *t)
 /* Sets the candidate's gains from the search parameters (w, shape index). */
 static void set_gains(tuner_t *t, double w, int shape, double j_model)
 {
-    static const double ratios[] = {3.0, 5.0, 8.0};
+    /* observer ratios wo / w: the usual three, then the wide fallback ones */
+    static const double ratios[] = {3.0, 5.0, 8.0, 12.0, 20.0, 32.0};
     static const double integral[] = {3.0, 5.0, 10.0};
     static const double separation[] = {3.0, 4.0, 6.0};
     ladrc_axis_config_t *a = tuner_axis(t);
@@ -61,11 +62,6 @@ static void set_gains(tuner_t *t, double w, int shape, double j_model)
         a->wc_rad_s = (ladrc_real_t)w;
         a->wo_rad_s = (ladrc_real_t)(ratios[shape] * w);
     }
-}
-
-static int n_shapes(void)
-{
-    return 3;
 }
 
 /* 1 when a result meets the targets: stable, PM and both gain margins. */
@@ -207,6 +203,61 @@ static void report_gains(const ladrc_axis_config_t *a, ladrc_margins_tuning_t *o
     out->cas_d_filter_tau_s = (double)a->cas_d_filter_tau_s;
 }
 
+/* The search's shapes: the first N_SHAPES for every variant; the LADRC
+ * family's wide observer ratios after them, a fallback only (margins are
+ * blind to noise: searched everywhere, they made plain LADRC fly up to 15
+ * times worse where the usual ratios meet the targets). */
+#define N_SHAPES 3
+#define N_WIDE_SHAPES 6
+
+/* The best candidate so far: smallest peak |disturbance -> error| of the
+ * variant as it flies. */
+typedef struct {
+    double w, peak;
+    int shape;
+} best_t;
+
+/* One shape's candidate, searched on the LADRC core (whole 0; the adaptive
+ * variants then stepped down until the whole variant meets the targets) or
+ * on the whole variant's own loop (whole 1), kept in *best when its peak
+ * |disturbance -> error| is the smallest so far. */
+static void try_shape(tuner_t *t, int shape, int whole, ladrc_variant_t variant, double j_model, double w_lo,
+                      double w_hi, fallback_t *fb_core, fallback_t *fb_whole, best_t *best)
+{
+    ladrc_axis_config_t *a = tuner_axis(t);
+    const ladrc_variant_t searched = a->variant; /* the core (LADRC) for the adaptive variants */
+    const int adaptive = variant != searched;
+    double ok_w;
+    if (whole) {
+        a->variant = variant;
+        ok_w = search_up(t, shape, j_model, w_lo, w_hi, 1, fb_whole);
+        a->variant = searched;
+    } else {
+        ok_w = search_up(t, shape, j_model, w_lo, w_hi, 0, fb_core);
+        if (!isnan(ok_w) && adaptive) {
+            /* The whole variant at the core's bandwidth, and lower until it
+             * meets the targets too: its estimator adds phase lag. */
+            a->variant = variant;
+            ok_w = search_down(t, shape, j_model, ok_w, w_lo, fb_whole);
+            a->variant = searched;
+        }
+    }
+    if (isnan(ok_w))
+        return;
+    a->variant = variant;
+    set_gains(t, ok_w, shape, j_model);
+    ladrc_margins_result_t *res = &t->ws->scratch;
+    const ladrc_margins_status_t st = ladrc_margins_analyse_reported(t->ws, &t->ctl, t->req, res, NULL);
+    a->variant = searched;
+    if (st != LADRC_MARGINS_OK)
+        return;
+    if (best->shape < 0 || res->dist_peak_rad < best->peak) {
+        best->w = ok_w;
+        best->shape = shape;
+        best->peak = res->dist_peak_rad;
+    }
+}
+
 ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
                                           const ladrc_margins_request_t *req, const ladrc_margins_targets_t *targets,
                                           ladrc_axis_config_t *tuned, ladrc_margins_tuning_t *out)
@@ -247,39 +298,31 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
     const double w_lo = 0.5, w_hi = 0.95 / dt;
     const int adaptive = variant != a->variant;
     memset(out, 0, sizeof *out);
-    out->peak_dist_rad = INFINITY;
     /* closest misses of the searched core and of the whole adaptive variant */
     fallback_t fb_core = {.score = -INFINITY, .w = NAN, .shape = -1},
                fb_whole = {.score = -INFINITY, .w = NAN, .shape = -1};
-    double best_w = NAN;
-    int best_shape = -1;
-    for (int shape = 0; shape < n_shapes(); ++shape) {
-        double ok_w = search_up(&t, shape, j_model, w_lo, w_hi, 0, &fb_core);
-        if (isnan(ok_w))
-            continue;
-        if (adaptive) {
-            /* The whole variant at the core's bandwidth, and lower until it
-             * meets the targets too: its estimator adds phase lag. */
-            a->variant = variant;
-            ok_w = search_down(&t, shape, j_model, ok_w, w_lo, &fb_whole);
-            a->variant = LADRC_VARIANT_LADRC;
-            if (isnan(ok_w))
-                continue;
-        }
-        a->variant = variant;
-        set_gains(&t, ok_w, shape, j_model);
-        ladrc_margins_result_t *res = &ws->scratch;
-        const ladrc_margins_status_t st_c = ladrc_margins_analyse_reported(ws, &t.ctl, req, res, NULL);
-        a->variant = adaptive ? LADRC_VARIANT_LADRC : variant;
-        if (st_c != LADRC_MARGINS_OK)
-            continue;
-        if (best_shape < 0 || res->dist_peak_rad < out->peak_dist_rad) {
-            best_w = ok_w;
-            best_shape = shape;
-            out->peak_dist_rad = res->dist_peak_rad;
+    best_t best = {.w = NAN, .peak = INFINITY, .shape = -1};
+    for (int shape = 0; shape < N_SHAPES; ++shape)
+        try_shape(&t, shape, 0, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, &best);
+    /* Nothing meets the targets (e.g. a modelled plant without drag, whose
+     * LESO loop stays below PM 45 deg at every usual ratio): the adaptive
+     * variants' own loops, whose estimator may add the missing phase; then
+     * the LADRC family's wide ratios. Only then: whatever tunes with the
+     * usual search keeps its gains. */
+    if (best.shape < 0 && adaptive) {
+        for (int shape = 0; shape < N_SHAPES; ++shape)
+            try_shape(&t, shape, 1, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, &best);
+    }
+    if (best.shape < 0 && ladrc_variant_has_observer(variant)) {
+        for (int shape = N_SHAPES; shape < N_WIDE_SHAPES; ++shape) {
+            try_shape(&t, shape, 0, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, &best);
+            if (adaptive)
+                try_shape(&t, shape, 1, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, &best);
         }
     }
-    const int found = best_shape >= 0;
+    const int found = best.shape >= 0;
+    double best_w = best.w;
+    int best_shape = best.shape;
     const fallback_t fb = (adaptive && fb_whole.shape >= 0) ? fb_whole : fb_core;
     if (!found) {
         if (fb.shape < 0) {

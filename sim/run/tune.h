@@ -23,10 +23,13 @@ void sim_tune_plant(const sim_scenario_t *sc, int axis, ladrc_margins_plant_t *p
 /* Tunes controller id of sc (tune = margins) on each axis into
  * sc->tuning[id]; ws is scratch (ladrc_margins_workspace_t is about 1 MB).
  * Pitch takes roll's result when the two axes' modelled inertias are equal
- * (the same loop). Returns 0; or -1 with *err set at the `tune` key
- * (file:line:column) when an axis's targets cannot be met (the message
- * gives the best margins reached) or its analysis fails; sc->tuning[id]
- * then holds what was reached, with tuned = 0. Nothing to do: returns 0. */
+ * (the same loop). The tuned gains are then flown over the whole scenario
+ * (sim_run_attitude, no time series) before they are accepted. Returns 0;
+ * or -1 with *err set at the `tune` key (file:line:column) when an axis's
+ * targets cannot be met (the message gives the best margins reached), its
+ * analysis fails, or the check flight diverges (the message names the axis
+ * and the time); sc->tuning[id] then holds what was reached, with
+ * tuned = 0. Nothing to do: returns 0. */
 int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margins_workspace_t *ws,
                         sim_parse_error_t *err);
 
