@@ -303,6 +303,56 @@ def test_plot(work):
     check("plot_one_varied_name", rc == 0 and os.path.exists(os.path.join(small, "figures", "map_roll_tone.png")), se)
 
 
+def ratio_campaign():
+    """A 2 x 2 grid (lag x kind), 2 runs per cell: LP-MLADRC at 0.4x the better incumbent's RMS
+    (INDI 2, CASCADED 3: INDI is the better one), LADRC at 2x, RATE-ADRC diverged in run 8,
+    INDI diverged in run 7 (then CASCADED is the better one)."""
+    header = ["run", "rotors.motor_tau_s", "kind"]
+    plan, runs = [], {}
+    for r in range(1, 9):
+        lag, kind = ("0.015" if r <= 4 else "0.06"), ("1" if (r - 1) % 4 < 2 else "2")
+        plan.append([str(r), lag, kind])
+
+        def st(v):
+            return {a: ("%g" % v, "0.1", "1", "0.25") for a in ("roll", "pitch", "yaw")}
+        indi = None if r == 7 else st(2.0)
+        base = 3.0 if r == 7 else 2.0
+        runs[r] = [("LP-MLADRC", st(0.4 * base)), ("LADRC", st(2.0 * base)),
+                   ("RATE-ADRC", None if r == 8 else st(1.0 * base)), ("CASCADED", st(3.0)), ("INDI", indi)]
+    return header, plan, runs
+
+
+def test_ratio(work):
+    out = os.path.join(work, "ratio")
+    write_out(out, *ratio_campaign())
+    run(["merge", out])
+    varied, controllers, cols = campaign.read_campaign(out)
+    import campaign_ratio
+    ratios = campaign_ratio.run_ratios(controllers, cols, "roll", len(cols["run"]))
+    check("ratio_lp_against_the_better_incumbent", all(abs(v - 0.4) < 1e-12 for v in ratios["LP-MLADRC"]),
+          repr(ratios["LP-MLADRC"]))
+    check("ratio_ladrc", all(abs(v - 2.0) < 1e-12 for v in ratios["LADRC"]), repr(ratios["LADRC"]))
+    check("ratio_diverged_is_a_word", ratios["RATE-ADRC"][7] == "diverged" and abs(ratios["RATE-ADRC"][0] - 1.0) < 1e-12,
+          repr(ratios["RATE-ADRC"]))
+    check("ratio_family_best", all(abs(v - 0.4) < 1e-12 for v in ratios["family best"]), repr(ratios["family best"]))
+    rc, so, se = run(["ratio", out, "--where", "kind=1"])
+    path = os.path.join(out, "figures", "ratio_roll_rotors.motor_tau_s_kind1.png")
+    size = png_size(path) if os.path.exists(path) else None
+    check("ratio_draws_a_map", rc == 0 and size is not None and size[0] >= MIN_PNG_PIXELS[0], se)
+    check("ratio_prints_the_target_count", "LP-MLADRC roll: ratio <= 0.5 in 4 of 4 runs" in so and
+          "RATE-ADRC roll: ratio <= 0.5 in 0 of 4 runs with an incumbent, 0 diverged" in so, so)
+    rc, so, se = run(["ratio", out])
+    check("ratio_whole_campaign_counts_the_divergence", rc == 0 and
+          "RATE-ADRC roll: ratio <= 0.5 in 0 of 7 runs with an incumbent, 1 diverged" in so, so)
+    rc, _, se = run(["ratio", out, "--where", "kind=3"])
+    check("ratio_where_without_runs_exit_1", rc == 1 and "no run" in se, se)
+    rc, _, se = run(["ratio", out, "--where", "nonesuch=1"])
+    check("ratio_where_unknown_name_exit_1", rc == 1 and "--where nonesuch=1" in se, se)
+    small = os.path.join(work, "small")  # LADRC and PID only: no incumbent
+    rc, _, se = run(["ratio", small])
+    check("ratio_without_incumbent_exit_1", rc == 1 and "incumbent" in se, se)
+
+
 def main():
     work = tempfile.mkdtemp(prefix="campaign_test.")
     try:
@@ -317,6 +367,7 @@ def main():
             print("SKIPPED: the plot checks (matplotlib or numpy missing)")
         if have_plot:
             test_plot(work)
+            test_ratio(work)
     finally:
         shutil.rmtree(work)
     print("%d failed" % failures)
