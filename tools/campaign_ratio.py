@@ -73,7 +73,7 @@ def plot_ratio_maps(name, cols, axis, xname, yname, figdir, labels, controllers,
     nrows = (len(panels) + ncols - 1) // ncols
     width, height = 5.0 * ncols + 1.6, 3.9 * nrows + 1.9
     fig, axes = plt.subplots(nrows, ncols, figsize=(width, height), squeeze=False, sharex=True, sharey=True)
-    left, right, bottom, top = 0.9 / width, 1 - 1.5 / width, 1.2 / height, 1 - 1.0 / height
+    left, right, bottom, top = 1.4 / width, 1 - 1.5 / width, 1.2 / height, 1 - 1.0 / height
     fig.subplots_adjust(left=left, right=right, bottom=bottom, top=top, wspace=0.08, hspace=0.3)
     yedges = ax_y.edges if ax_y else np.array([0.0, 1.0])
     xc, yc = ax_x.centres, (ax_y.centres if ax_y else np.array([0.5]))

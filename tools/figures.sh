@@ -5,7 +5,9 @@
 # tools/estimators_plot.py) and docs/report.md, the incumbents and real-airframes
 # tables of docs/comparisons.md and the headline table of README.md; then
 # flies the realistic suite (tools/suite.sh) for docs/suite.md's table (each
-# between its <!-- ...:begin/end --> markers).
+# between its <!-- ...:begin/end --> markers); then flies the sweep
+# campaigns/real_sweep.ini into OUT_DIR/real_sweep and draws its ratio maps,
+# docs/figures/campaign/ratio_*.png (one per disturbance kind, roll).
 #
 # Usage: tools/figures.sh [OUT_DIR]
 #   OUT_DIR  where the simulator's CSV output goes (default: build/paper-out)
@@ -38,3 +40,14 @@ rm -f docs/figures/fig*.png  # the figures drawn below (margins_*.png come from 
 "$py" tools/estimators_plot.py "$out" docs/figures paper real_heavy_lag30
 "$py" tools/report.py "$out" docs/report.md --docs docs --front-page README.md \
   --suite-page docs/suite.md
+echo "== the sweep over airframe, lag and disturbance kind"
+rm -rf "$out/real_sweep"
+build/host-release/sim/ladrc_sil --campaign campaigns/real_sweep.ini --out "$out" --jobs 2 --quiet
+"$py" tools/campaign.py merge "$out/real_sweep"
+rm -f docs/figures/campaign/ratio_*.png
+for kind in 1 2 3; do
+  "$py" tools/campaign.py ratio "$out/real_sweep" --x rotors.motor_tau_s --y J --where kind=$kind \
+    --label "J=roll and pitch inertia J (kg m^2)" --label "rotors.motor_tau_s=motor lag (s)" --name real_sweep \
+    | tee "$out/real_sweep/ratio_kind$kind.txt"
+  cp "$out/real_sweep/figures/ratio_roll_rotors.motor_tau_s_J_kind$kind.png" docs/figures/campaign/
+done
