@@ -14,7 +14,8 @@
  * difference is the observer's view of the unknown f alone and the fit does
  * not chase its own output. The rate and the acting torque are not used.
  * GYRO: the sample s is the measured acceleration minus the known input;
- * the fit takes s itself (the whole tone: far above the noise) and LP takes
+ * the fit takes s less the known part f_known (the whole tone, far above the
+ * noise, and no drag or coupling that moves with the manoeuvres) and LP takes
  * s minus the fit's estimate (LP tracks what the fit leaves). d_hat is their
  * sum; with the gate shut the fit's estimate is 0 and LP sees s: LP-MLADRC. */
 static inline ladrc_real_t axis_hp_sample(ladrc_axis_t *axis, ladrc_real_t rate_rad_s, ladrc_real_t acting_Nm)
@@ -24,7 +25,7 @@ static inline ladrc_real_t axis_hp_sample(ladrc_axis_t *axis, ladrc_real_t rate_
         ladrc_lp_estimator_t *lp = &axis->part.hp.source.lp;
         const ladrc_real_t fitted = hp_estimate(est); /* applied over the step the rate saw */
         (void)ladrc_lp_step(lp, rate_rad_s, axis->b0 * acting_Nm + fitted);
-        (void)ladrc_hp_step(est, ladrc_lp_get_sample(lp) + fitted);
+        (void)ladrc_hp_step(est, ladrc_lp_get_sample(lp) + fitted - axis->f_known_rad_s2);
         /* what the weight brings in, LP gives up at once */
         const ladrc_real_t handover = hp_handover(est);
         if (handover != LADRC_R(0.0)) {

@@ -309,6 +309,10 @@ static const key_ref_t *keys_of_status(ladrc_status_t st, int known_freqs)
                                       {.sec = CTRL_SEC, .name = "hp_freq2_rad_s"},
                                       {.sec = SEC_RUN, .name = "control_dt_s"},
                                       END_KEYS};
+    static const key_ref_t range[] = {{.sec = CTRL_SEC, .name = "hp_freq_min_rad_s"},
+                                      {.sec = CTRL_SEC, .name = "hp_freq_max_rad_s"},
+                                      {.sec = SEC_RUN, .name = "control_dt_s"},
+                                      END_KEYS};
     static const key_ref_t tones[] = {{.sec = CTRL_SEC, .name = "hp_tones"},
                                       {.sec = CTRL_SEC, .name = "hp_freq2_rad_s"},
                                       {.sec = CTRL_SEC, .name = "hp_freq_mode"},
@@ -379,9 +383,11 @@ static const key_ref_t *keys_of_status(ladrc_status_t st, int known_freqs)
         return cas_i;
     case LADRC_ERR_HP_FREQ_RAD_S:
         return freqs;
+    case LADRC_ERR_HP_FREQ_RANGE:
+        return range;
     /* the fastest tone is a known frequency, or else the search range's top */
     case LADRC_ERR_HP_FIT_DECIMATION:
-        return known_freqs ? freqs : dt;
+        return known_freqs ? freqs : range;
     case LADRC_ERR_HP_N_TONES:
         return tones;
     case LADRC_ERR_MIXER_KL_N_S2:

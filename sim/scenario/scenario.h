@@ -63,6 +63,7 @@ typedef struct {
     int hp_sample;         /* -1, or ladrc_hp_sample_t */
     double hp_freq_rad_s;  /* known frequency or first guess of the first tone */
     double hp_freq2_rad_s; /* the same for the second tone */
+    double hp_freq_min_rad_s, hp_freq_max_rad_s; /* ONLINE search range */
     int hp_tones;          /* -1, or the number of tones (1..LADRC_HP_MAX_TONES) */
     double levant_lipschitz_rad_s4;
     double td_accel_rad_s2;

@@ -194,6 +194,8 @@ const key_def_t SCHEMA_KEYS[] = {
     {CTRL_KEY("hp_sample", V_CHOICE, hp_sample, C_HP), .choices = HP_SAMPLES},
     {CTRL_KEY("hp_freq_rad_s", V_REAL, hp_freq_rad_s, C_HP), .range = R_POSITIVE},
     {CTRL_KEY("hp_freq2_rad_s", V_REAL, hp_freq2_rad_s, C_HP), .range = R_POSITIVE},
+    {CTRL_KEY("hp_freq_min_rad_s", V_REAL, hp_freq_min_rad_s, C_HP), .range = R_POSITIVE},
+    {CTRL_KEY("hp_freq_max_rad_s", V_REAL, hp_freq_max_rad_s, C_HP), .range = R_POSITIVE},
     {CTRL_KEY("hp_tones", V_INT, hp_tones, C_HP), .range = R_HP_TONES},
     {CTRL_KEY("levant_lipschitz_rad_s4", V_REAL, levant_lipschitz_rad_s4, C_HP | C_LP), .range = R_POSITIVE},
     {CTRL_KEY("td_accel_rad_s2", V_REAL, td_accel_rad_s2, C_LADRC | C_CAS | C_INDI | C_RADRC), .range = R_POSITIVE},
@@ -333,7 +335,7 @@ void schema_set_defaults(sim_scenario_t *sc)
         sim_overrides_t *o = &sc->overrides[i];
         o->wc_rad_s = o->wo_rad_s = NAN;
         o->leso_method = o->hp_freq_mode = o->hp_sample = o->coupling_feed = -1;
-        o->hp_freq_rad_s = o->hp_freq2_rad_s = o->levant_lipschitz_rad_s4 = o->td_accel_rad_s2 = NAN;
+        o->hp_freq_rad_s = o->hp_freq2_rad_s = o->hp_freq_min_rad_s = o->hp_freq_max_rad_s = o->levant_lipschitz_rad_s4 = o->td_accel_rad_s2 = NAN;
         o->hp_tones = -1;
         o->model_motor_tau_s = NAN;
         o->model_delay_ticks = o->wrap_yaw = -1;

@@ -48,6 +48,10 @@ static void apply_overrides(ladrc_axis_config_t *a, const sim_overrides_t *o)
     if (!isnan(o->hp_freq2_rad_s))
         a->hp_freq_rad_s[1] = (ladrc_real_t)o->hp_freq2_rad_s;
 #endif
+    if (!isnan(o->hp_freq_min_rad_s))
+        a->hp_freq_min_rad_s = (ladrc_real_t)o->hp_freq_min_rad_s;
+    if (!isnan(o->hp_freq_max_rad_s))
+        a->hp_freq_max_rad_s = (ladrc_real_t)o->hp_freq_max_rad_s;
     /* Known frequencies: as many tones as frequencies given, unless said. */
     if (a->hp_freq_mode == LADRC_HP_FREQ_KNOWN)
         a->hp_n_tones = isnan(o->hp_freq2_rad_s) ? 1u : 2u;
