@@ -16,7 +16,9 @@
 #  - cases (tools/bench/bench_case.h): PID, LADRC, LP-MLADRC, HP-MLADRC, CASCADED, INDI, RATE-ADRC,
 #    LADRC-act and HP-MLADRC-act (with a 30 ms motor lag and 2 ticks modelled) on
 #    the recorded closed loop of HP-MLADRC under the paper's one-tone
-#    disturbance, and HP-MLADRC-2tones on a two-tone disturbance;
+#    disturbance, HP-MLADRC-2tones on a two-tone disturbance, and
+#    HP-MLADRC-gyro (the fit on the gyro, the same actuator model) on its own
+#    closed loop with those motors in the plant;
 #  - instructions per tick on the Cortex-M4F: build/bench-m4f (the cortex-m4f
 #    preset with LADRC_BUILD_BENCH=ON), image run under qemu mps2-an386 with
 #    -icount shift=0, twice: the two outputs must be identical; the same

@@ -10,20 +10,23 @@
 #define PLANT_SUBSTEPS 10 /* plant steps per control tick */
 
 ladrc_real_t bench_ref[BENCH_SAMPLES][LADRC_AXES];
-bench_inputs_t bench_in[BENCH_DISTURBANCES];
-bench_engagement_t bench_engaged_attitude[BENCH_DISTURBANCES];
-bench_engagement_t bench_engaged_axis[BENCH_DISTURBANCES];
+bench_inputs_t bench_in[BENCH_LOOPS];
+bench_engagement_t bench_engaged_attitude[BENCH_LOOPS];
+bench_engagement_t bench_engaged_axis[BENCH_LOOPS];
+const int bench_loop_case[BENCH_LOOPS] = {BENCH_CASE_HP, BENCH_CASE_HP2, BENCH_CASE_HP_GYRO};
+const int bench_loop_disturbance[BENCH_LOOPS] = {BENCH_ONE_TONE, BENCH_TWO_TONES, BENCH_ONE_TONE};
+const unsigned bench_loop_tones[BENCH_LOOPS] = {1u, 2u, 1u};
 
 const char *const bench_case_name[BENCH_CASES] = {
-    "PID",           "LADRC",    "LP-MLADRC", "HP-MLADRC", "HP-MLADRC-2tones",
-    "HP-MLADRC-act", "CASCADED", "INDI",      "LADRC-act", "RATE-ADRC"};
+    "PID",      "LADRC", "LP-MLADRC", "HP-MLADRC", "HP-MLADRC-2tones", "HP-MLADRC-act",
+    "CASCADED", "INDI",  "LADRC-act", "RATE-ADRC", "HP-MLADRC-gyro"};
 const ladrc_variant_t bench_case_variant[BENCH_CASES] = {
     LADRC_VARIANT_PID,       LADRC_VARIANT_LADRC,     LADRC_VARIANT_LP_MLADRC, LADRC_VARIANT_HP_MLADRC,
     LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_HP_MLADRC, LADRC_VARIANT_CASCADED,  LADRC_VARIANT_INDI,
-    LADRC_VARIANT_LADRC,     LADRC_VARIANT_RATE_ADRC};
+    LADRC_VARIANT_LADRC,     LADRC_VARIANT_RATE_ADRC, LADRC_VARIANT_HP_MLADRC};
 const int bench_case_inputs[BENCH_CASES] = {BENCH_ONE_TONE,  BENCH_ONE_TONE, BENCH_ONE_TONE, BENCH_ONE_TONE,
                                             BENCH_TWO_TONES, BENCH_ONE_TONE, BENCH_ONE_TONE, BENCH_ONE_TONE,
-                                            BENCH_ONE_TONE,  BENCH_ONE_TONE};
+                                            BENCH_ONE_TONE,  BENCH_ONE_TONE, BENCH_GYRO_LOOP};
 
 /* The actuator model of the case's axes (none but for the -act cases) and,
  * in a build without the online frequency search (LADRC_WITH_HP_ONLINE 0:
@@ -31,13 +34,16 @@ const int bench_case_inputs[BENCH_CASES] = {BENCH_ONE_TONE,  BENCH_ONE_TONE, BEN
  * ones, as many as the build models (bench_disturbance). */
 static void set_case(ladrc_axis_config_t *cfg, int bench_case)
 {
-    if (bench_case == BENCH_CASE_HP_ACT || bench_case == BENCH_CASE_LADRC_ACT) {
+    if (bench_case == BENCH_CASE_HP_ACT || bench_case == BENCH_CASE_LADRC_ACT || bench_case == BENCH_CASE_HP_GYRO) {
         cfg->motor_tau_s = BENCH_ACT_MOTOR_TAU_S;
         cfg->delay_ticks = BENCH_ACT_DELAY_TICKS;
     }
+    if (bench_case == BENCH_CASE_HP_GYRO) {
+        cfg->hp_sample = LADRC_HP_SAMPLE_GYRO;
+    }
 #if !LADRC_WITH_HP_ONLINE
     static const ladrc_real_t tone_rad_s[2] = {BENCH_TONE1_RAD_S, BENCH_TONE2_RAD_S};
-    const unsigned tones = (bench_case_inputs[bench_case] == BENCH_TWO_TONES) ? 2u : 1u;
+    const unsigned tones = bench_loop_tones[bench_case_inputs[bench_case]];
     cfg->hp_freq_mode = LADRC_HP_FREQ_KNOWN;
     cfg->hp_n_tones = (uint8_t)(tones < LADRC_HP_MAX_TONES ? tones : LADRC_HP_MAX_TONES);
     for (unsigned k = 0u; k < cfg->hp_n_tones; ++k) {
@@ -101,25 +107,79 @@ static void engagement_add(bench_engagement_t *e, const ladrc_axis_t *axis, int 
     }
 }
 
-/* Rigid body, small angles: J w' = torque - drag w + (J_next - J_after) w_next w_after + J d. */
-static void fly_attitude(int which)
+/* The motors of a loop flown with the actuator model in the plant
+ * (BENCH_GYRO_LOOP): the torque applied at a tick starts to act
+ * BENCH_ACT_DELAY_TICKS ticks later, through a first-order lag of
+ * BENCH_ACT_MOTOR_TAU_S (exact over each plant step). The other loops' body
+ * takes the applied torque at once. */
+typedef struct {
+    float delayed[BENCH_ACT_DELAY_TICKS]; /* applied torques of the last ticks, oldest at head */
+    float acting;                         /* lag output, N m */
+    unsigned head;
+} motor_t;
+
+static int loop_has_motors(int loop)
 {
-    bench_inputs_t *in = &bench_in[which];
+    return loop == BENCH_GYRO_LOOP;
+}
+
+/* The body's rotational drag (N m s), which the 3-axis controller is told
+ * (its attitude config). HP-MLADRC-gyro's fit samples the measured
+ * acceleration less the torque's part, the drag included (the observer's
+ * sample leaves out the known part the attitude layer tells it, the drag
+ * among it): where the rotor limits cut yaw back, yaw's rate and so its drag
+ * wander off the tone and its yaw fit never settles. Its loop flies a body
+ * without drag and tells its controller so, so that its fits engage; a drag
+ * of 0 runs the same instructions. */
+static float loop_drag_Nms(int loop)
+{
+    return (loop == BENCH_GYRO_LOOP) ? 0.0f : DRAG_NMS;
+}
+
+static void motor_start(motor_t *m)
+{
+    for (unsigned k = 0u; k < BENCH_ACT_DELAY_TICKS; ++k) {
+        m->delayed[k] = 0.0f;
+    }
+    m->acting = 0.0f;
+    m->head = 0u;
+}
+
+/* Takes the torque applied at this tick; returns the one whose lag the next
+ * control step runs on. */
+static float motor_push(motor_t *m, float applied_Nm)
+{
+    const float v = m->delayed[m->head];
+    m->delayed[m->head] = applied_Nm;
+    m->head = (m->head + 1u < BENCH_ACT_DELAY_TICKS) ? m->head + 1u : 0u;
+    return v;
+}
+
+/* Rigid body, small angles (torque through the motors): J w' = torque - drag w + (J_next - J_after) w_next w_after + J d. */
+static void fly_attitude(int loop)
+{
+    bench_inputs_t *in = &bench_in[loop];
+    const int which = bench_loop_disturbance[loop];
+    const int motors = loop_has_motors(loop);
+    const float drag = loop_drag_Nms(loop);
     float th[LADRC_AXES], w[LADRC_AXES];
+    motor_t motor[LADRC_AXES];
     for (int a = 0; a < LADRC_AXES; ++a) {
         th[a] = bench_ref[0][a];
         w[a] = 0.0f;
+        motor_start(&motor[a]);
     }
-    bench_engagement_t *e = &bench_engaged_attitude[which];
+    bench_engagement_t *e = &bench_engaged_attitude[loop];
     engagement_start(e);
     const float h = BENCH_DT_S / PLANT_SUBSTEPS;
+    const float lag = 1.0f - expf(-h / BENCH_ACT_MOTOR_TAU_S);
     for (int i = 0; i < BENCH_SAMPLES; ++i) {
         for (int a = 0; a < LADRC_AXES; ++a) {
             in->ang[i][a] = th[a];
             in->rate[i][a] = w[a];
         }
         if (i == 0) {
-            (void)bench_setup_attitude(&rec_att, &rec_mixer, which == BENCH_ONE_TONE ? BENCH_CASE_HP : BENCH_CASE_HP2);
+            (void)bench_setup_attitude(&rec_att, &rec_mixer, bench_loop_case[loop]);
         }
         /* As bench_attitude_tick. */
         ladrc_real_t torque[LADRC_AXES];
@@ -134,13 +194,22 @@ static void fly_attitude(int which)
         if (i >= BENCH_WARMUP && out.saturated != 0u) {
             e->saturated++;
         }
+        float held[LADRC_AXES];
+        for (int a = 0; a < LADRC_AXES; ++a) {
+            held[a] = motors ? motor_push(&motor[a], (float)out.torque_Nm[a]) : 0.0f;
+        }
         for (int s = 0; s < PLANT_SUBSTEPS; ++s) {
             const float t = BENCH_T0_S + (float)i * BENCH_DT_S + ((float)s + 0.5f) * h;
             float dw[LADRC_AXES];
             for (int a = 0; a < LADRC_AXES; ++a) {
                 const int n = (a + 1) % LADRC_AXES, m = (a + 2) % LADRC_AXES;
                 const float j = bench_inertia[a];
-                dw[a] = (out.torque_Nm[a] - DRAG_NMS * w[a] + (bench_inertia[n] - bench_inertia[m]) * w[n] * w[m]) / j +
+                float u = out.torque_Nm[a];
+                if (motors) {
+                    motor[a].acting += lag * (held[a] - motor[a].acting);
+                    u = motor[a].acting;
+                }
+                dw[a] = (u - drag * w[a] + (bench_inertia[n] - bench_inertia[m]) * w[n] * w[m]) / j +
                         bench_disturbance(which, a, t);
             }
             for (int a = 0; a < LADRC_AXES; ++a) {
@@ -151,25 +220,37 @@ static void fly_attitude(int which)
     }
 }
 
-/* One axis (roll inertia, drag and disturbance), its own torque applied. */
-static void fly_axis(int which)
+/* One axis (roll inertia, drag and disturbance), its own torque applied (through the motors). */
+static void fly_axis(int loop)
 {
-    bench_inputs_t *in = &bench_in[which];
+    bench_inputs_t *in = &bench_in[loop];
+    const int which = bench_loop_disturbance[loop];
+    const int motors = loop_has_motors(loop);
+    const float drag = loop_drag_Nms(loop);
     float th = bench_ref[0][0], w = 0.0f;
-    bench_engagement_t *e = &bench_engaged_axis[which];
+    motor_t motor;
+    motor_start(&motor);
+    bench_engagement_t *e = &bench_engaged_axis[loop];
     engagement_start(e);
     const float h = BENCH_DT_S / PLANT_SUBSTEPS;
+    const float lag = 1.0f - expf(-h / BENCH_ACT_MOTOR_TAU_S);
     for (int i = 0; i < BENCH_SAMPLES; ++i) {
         in->axis_ang[i] = th;
         in->axis_rate[i] = w;
         if (i == 0) {
-            (void)bench_setup_axis(&rec_axis, which == BENCH_ONE_TONE ? BENCH_CASE_HP : BENCH_CASE_HP2);
+            (void)bench_setup_axis(&rec_axis, bench_loop_case[loop]);
         }
         const float torque = (float)bench_axis_tick(&rec_axis, in, i);
         engagement_add(e, &rec_axis, i);
+        const float held = motors ? motor_push(&motor, torque) : 0.0f;
         for (int s = 0; s < PLANT_SUBSTEPS; ++s) {
             const float t = BENCH_T0_S + (float)i * BENCH_DT_S + ((float)s + 0.5f) * h;
-            w += h * ((torque - DRAG_NMS * w) / bench_inertia[0] + bench_disturbance(which, 0, t));
+            float u = torque;
+            if (motors) {
+                motor.acting += lag * (held - motor.acting);
+                u = motor.acting;
+            }
+            w += h * ((u - drag * w) / bench_inertia[0] + bench_disturbance(which, 0, t));
             th += h * w;
         }
     }
@@ -185,14 +266,15 @@ int bench_make_inputs(void)
         bench_ref[i][2] = 0.0f;
     }
     /* The setups must succeed before flying (fly_* ignore their status). */
-    for (int c = BENCH_CASE_HP; c <= BENCH_CASE_HP2; ++c) {
+    for (int loop = 0; loop < BENCH_LOOPS; ++loop) {
+        const int c = bench_loop_case[loop];
         if (bench_setup_attitude(&rec_att, &rec_mixer, c) != 0 || bench_setup_axis(&rec_axis, c) != 0) {
             return -1;
         }
     }
-    for (int which = 0; which < BENCH_DISTURBANCES; ++which) {
-        fly_attitude(which);
-        fly_axis(which);
+    for (int loop = 0; loop < BENCH_LOOPS; ++loop) {
+        fly_attitude(loop);
+        fly_axis(loop);
     }
     return 0;
 }
@@ -213,7 +295,8 @@ int bench_setup_attitude(ladrc_attitude_t *att, ladrc_mixer_t *mixer, int bench_
 {
     ladrc_attitude_config_t cfg;
     int bad_axis = -1;
-    ladrc_attitude_config_default(&cfg, bench_case_variant[bench_case], BENCH_DT_S, bench_inertia, DRAG_NMS);
+    ladrc_attitude_config_default(&cfg, bench_case_variant[bench_case], BENCH_DT_S, bench_inertia,
+                                  loop_drag_Nms(bench_case_inputs[bench_case]));
     for (int a = 0; a < LADRC_AXES; ++a) {
         set_case(&cfg.axis[a], bench_case);
     }

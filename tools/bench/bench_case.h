@@ -13,7 +13,11 @@
  * HP-MLADRC case runs, so that a timed HP-MLADRC case repeats that closed
  * loop exactly and its estimator takes its engaged path (compensation weight
  * 1, the tones locked) over the measured ticks; bench_make_inputs checks it.
- * The other variants see the same angles (open loop).
+ * The other variants see the same angles (open loop). HP-MLADRC-gyro flies
+ * its own closed loop (BENCH_GYRO_LOOP) the same way, with the actuator it
+ * models in the plant: on the observer loop's angles its 3-axis fit never
+ * engages (its LP estimator reads the rate against its own torque, which did
+ * not move that body).
  *
  * A case runs BENCH_WARMUP ticks from reset, then the measured BENCH_TICKS.
  */
@@ -39,11 +43,18 @@
                              yaw a quarter of roll's (within the rotor limits) */
 #define BENCH_TWO_TONES 1 /* the same plus 30 sin(8 t) (yaw: a quarter) */
 #define BENCH_DISTURBANCES 2
+/* The recorded closed loops (bench_in's index, a case's inputs): HP-MLADRC
+ * under BENCH_ONE_TONE and BENCH_TWO_TONES (the same numbers), and
+ * HP-MLADRC-gyro under BENCH_ONE_TONE with its actuator model (a first-order
+ * torque lag of BENCH_ACT_MOTOR_TAU_S after BENCH_ACT_DELAY_TICKS ticks of
+ * delay) in the plant. */
+#define BENCH_GYRO_LOOP 2
+#define BENCH_LOOPS 3
 /* Their tones (rad/s): the paper's, and the second of the two-tone case. */
 #define BENCH_TONE1_RAD_S 3.0f
 #define BENCH_TONE2_RAD_S 8.0f
 
-/* The angles and rates of one disturbance's closed loops. */
+/* The angles and rates of one recorded loop, 3 axes and one axis. */
 typedef struct {
     ladrc_real_t ang[BENCH_SAMPLES][LADRC_AXES];  /* 3 axes + mixer, rad */
     ladrc_real_t rate[BENCH_SAMPLES][LADRC_AXES]; /* rad/s */
@@ -61,13 +72,18 @@ typedef struct {
 } bench_engagement_t;
 
 extern ladrc_real_t bench_ref[BENCH_SAMPLES][LADRC_AXES]; /* rad */
-extern bench_inputs_t bench_in[BENCH_DISTURBANCES];
-extern bench_engagement_t bench_engaged_attitude[BENCH_DISTURBANCES];
-extern bench_engagement_t bench_engaged_axis[BENCH_DISTURBANCES];
+extern bench_inputs_t bench_in[BENCH_LOOPS];
+extern bench_engagement_t bench_engaged_attitude[BENCH_LOOPS];
+extern bench_engagement_t bench_engaged_axis[BENCH_LOOPS];
+/* The case each loop flies, its disturbance (BENCH_ONE_TONE or
+ * BENCH_TWO_TONES) and the tones its estimators must hold engaged. */
+extern const int bench_loop_case[BENCH_LOOPS];
+extern const int bench_loop_disturbance[BENCH_LOOPS];
+extern const unsigned bench_loop_tones[BENCH_LOOPS];
 
 /* The cases: PID, LADRC, LP-MLADRC, HP-MLADRC, CASCADED, INDI, RATE-ADRC and the -act ones on the one-tone
- * inputs, HP-MLADRC-2tones: HP-MLADRC on the two-tone inputs. */
-#define BENCH_CASES 10
+ * inputs, HP-MLADRC-2tones: HP-MLADRC on the two-tone inputs, HP-MLADRC-gyro on its own loop's. */
+#define BENCH_CASES 11
 #define BENCH_CASE_HP 3
 #define BENCH_CASE_HP2 4
 /* HP-MLADRC-act: the one-tone HP case with the actuator model on every axis
@@ -84,9 +100,13 @@ extern bench_engagement_t bench_engaged_axis[BENCH_DISTURBANCES];
 #define BENCH_CASE_LADRC_ACT 8
 /* RATE-ADRC: its default config on the one-tone inputs (with their measured rates). */
 #define BENCH_CASE_RATE_ADRC 9
+/* HP-MLADRC-gyro: HP-MLADRC with hp_sample = LADRC_HP_SAMPLE_GYRO (its fit on
+ * an LP estimator's residual of the measured rate) and the actuator model of
+ * HP-MLADRC-act, as it flies on an airframe with real motors. */
+#define BENCH_CASE_HP_GYRO 10
 extern const char *const bench_case_name[BENCH_CASES];
 extern const ladrc_variant_t bench_case_variant[BENCH_CASES];
-extern const int bench_case_inputs[BENCH_CASES];     /* BENCH_ONE_TONE or BENCH_TWO_TONES */
+extern const int bench_case_inputs[BENCH_CASES];     /* the loop: BENCH_ONE_TONE, BENCH_TWO_TONES, BENCH_GYRO_LOOP */
 extern const ladrc_real_t bench_inertia[LADRC_AXES]; /* kg m^2 */
 extern const ladrc_mixer_config_t bench_mixer_cfg;
 

@@ -15,7 +15,8 @@
  * HP-MLADRC on a two-tone disturbance.
  * Modules: each building block of a tick timed alone the same way, on the
  * inputs it sees in a tick (see setup_modules), to show where the
- * instructions of the HP-MLADRC 3-axis tick go.
+ * instructions of the HP-MLADRC 3-axis tick go, and those of the
+ * HP-MLADRC-gyro one (its LP estimator, lead and gyro-fed fit).
  *
  * Output: lines "BENCH key value..." for tools/bench.sh.
  */
@@ -40,12 +41,16 @@ typedef enum {
     RUN_AXIS,      /* one axis of the current case */
     RUN_ATTITUDE,  /* 3 axes + mixer of the current case */
     RUN_LONE_AXES, /* the three HP-MLADRC axes of the 3-axis case side by side, no attitude, no mixer */
+    RUN_LONE_GYRO, /* the same for the HP-MLADRC-gyro case */
     RUN_LESO,
     RUN_TWIN,
     RUN_TD,
     RUN_LEVANT,
     RUN_LP,
+    RUN_LP_ACT,
+    RUN_LP_LEAD,
     RUN_HP,
+    RUN_HP_GYRO,
     RUN_HP2,
     RUN_RLS3,
     RUN_RLS5,
@@ -57,17 +62,19 @@ typedef enum {
 static ladrc_axis_t axis;
 static ladrc_attitude_t att;
 static ladrc_mixer_t mixer;
-static const bench_inputs_t *in; /* inputs of the current case */
+static const bench_inputs_t *in;   /* inputs of the current case */
+static const bench_inputs_t *gyro; /* inputs of the HP-MLADRC-gyro case */
 
 /* The modules alone, and what they are fed. */
 static struct {
     ladrc_axis_t lone[LADRC_AXES];
+    ladrc_axis_t lone_gyro[LADRC_AXES];
     ladrc_leso_t leso;
     ladrc_leso_twin_t twin;
     ladrc_td_t td;
     ladrc_levant_t levant;
-    ladrc_lp_estimator_t lp;
-    ladrc_hp_estimator_t hp, hp2;
+    ladrc_lp_estimator_t lp, lp_act; /* LP-MLADRC's; the gyro axis's (actuator model) */
+    ladrc_hp_estimator_t hp, hp2, hp_gyro;
     ladrc_rls_t rls3, rls5;
     ladrc_pid_t pid;
     ladrc_mixer_t mixer;
@@ -86,6 +93,13 @@ static ladrc_real_t frate_in[BENCH_SAMPLES][LADRC_AXES];   /* fed rate h, rad/s^
 static ladrc_real_t dhat_in[BENCH_SAMPLES];                /* roll d_hat, rad/s^2 */
 static ladrc_real_t hp_in[BENCH_SAMPLES];                  /* roll HP sample z3 - z3_shadow, rad/s^2 */
 static ladrc_real_t hp2_in[BENCH_SAMPLES];
+/* Recorded from the HP-MLADRC-gyro 3-axis case: what its axes are fed, and
+ * roll's LP estimator's known input and its fit's sample. */
+static ladrc_real_t gyro_applied_in[BENCH_SAMPLES][LADRC_AXES];
+static ladrc_real_t gyro_known_in[BENCH_SAMPLES][LADRC_AXES];
+static ladrc_real_t gyro_frate_in[BENCH_SAMPLES][LADRC_AXES];
+static ladrc_real_t gyro_accel_in[BENCH_SAMPLES]; /* b0 times the acting torque plus the fit's estimate, rad/s^2 */
+static ladrc_real_t gyro_hp_in[BENCH_SAMPLES];    /* LP's sample plus the fit's estimate, rad/s^2 */
 /* Regressors and samples of the fits at the fit samples' times. */
 static ladrc_real_t phi5_in[BENCH_SAMPLES][5];
 static ladrc_real_t y3_in[BENCH_SAMPLES], y5_in[BENCH_SAMPLES];
@@ -111,6 +125,28 @@ static ladrc_real_t lone_tick(int i)
         ladrc_axis_set_applied(&mod.lone[a], applied_in[i][a]);
     }
     return u;
+}
+
+static ladrc_real_t lone_gyro_tick(int i)
+{
+    ladrc_real_t u = 0.0f;
+    for (int a = 0; a < LADRC_AXES; ++a) {
+        ladrc_axis_set_disturbance_rate(&mod.lone_gyro[a], gyro_frate_in[i][a]);
+        ladrc_axis_set_known_disturbance(&mod.lone_gyro[a], gyro_known_in[i][a]);
+        (void)ladrc_axis_step(&mod.lone_gyro[a], bench_ref[i][a], gyro->ang[i][a], &gyro->rate[i][a], &u);
+        ladrc_axis_set_applied(&mod.lone_gyro[a], gyro_applied_in[i][a]);
+    }
+    return u;
+}
+
+static ladrc_real_t lone_gyro_empty(int i)
+{
+    ladrc_real_t s = 0.0f;
+    for (int a = 0; a < LADRC_AXES; ++a) {
+        s += gyro_frate_in[i][a] + gyro_known_in[i][a] + bench_ref[i][a] + gyro->ang[i][a] + gyro->rate[i][a] +
+             gyro_applied_in[i][a];
+    }
+    return s;
 }
 
 static inline ladrc_real_t pid_tick(int i)
@@ -144,6 +180,9 @@ static uint32_t run(run_t what, int warm, int timed)
     case RUN_LONE_AXES:
         BLOCK(sink = lone_tick(i), lone_empty(i));
         break;
+    case RUN_LONE_GYRO:
+        BLOCK(sink = lone_gyro_tick(i), lone_gyro_empty(i));
+        break;
     case RUN_LESO:
         BLOCK((void)ladrc_leso_step(&mod.leso, in->ang[i][0], applied_in[i][0], dhat_in[i], frate_in[i][0]),
               in->ang[i][0] + applied_in[i][0] + dhat_in[i] + frate_in[i][0]);
@@ -166,8 +205,20 @@ static uint32_t run(run_t what, int warm, int timed)
         BLOCK((void)ladrc_lp_step(&mod.lp, in->rate[i][0], mod.b0 * applied_in[i][0]),
               in->rate[i][0] + mod.b0 * applied_in[i][0]);
         break;
+    case RUN_LP_ACT:
+        BLOCK((void)ladrc_lp_step(&mod.lp_act, gyro->rate[i][0], gyro_accel_in[i]),
+              gyro->rate[i][0] + gyro_accel_in[i]);
+        break;
+    case RUN_LP_LEAD: {
+        ladrc_real_t c;
+        BLOCK((void)ladrc_lp_step_lead(&mod.lp_act, &c); sink = c, gyro->rate[i][0]);
+        break;
+    }
     case RUN_HP:
         BLOCK((void)ladrc_hp_step(&mod.hp, hp_in[i]), hp_in[i]);
+        break;
+    case RUN_HP_GYRO:
+        BLOCK((void)ladrc_hp_step(&mod.hp_gyro, gyro_hp_in[i]), gyro_hp_in[i]);
         break;
     case RUN_HP2:
         BLOCK((void)ladrc_hp_step(&mod.hp2, hp2_in[i]), hp2_in[i]);
@@ -222,6 +273,43 @@ static ladrc_real_t record_attitude(int bench_case, int full, ladrc_real_t *samp
     return att.axis[0].part.hp.est.fit_rate_per_s;
 }
 
+/* The torque an axis's next observer step takes as acting (its actuator
+ * model's mean over the step, axis.h). */
+static ladrc_real_t acting_Nm(const ladrc_axis_t *ax)
+{
+    if (!ax->model) {
+        return ax->applied_Nm;
+    }
+    const ladrc_actuator_t *act = &ax->act;
+    const ladrc_real_t v = (act->delay_ticks != 0u) ? act->delayed_Nm[act->head] : ax->applied_Nm;
+    return act->lag_Nm + act->mean_gain * (v - act->lag_Nm);
+}
+
+/* Replays the HP-MLADRC-gyro 3-axis case (as bench_attitude_tick) and
+ * records what its axes are fed and what roll's LP estimator and fit see. */
+static void record_gyro(void)
+{
+    (void)bench_setup_attitude(&att, &mixer, BENCH_CASE_HP_GYRO);
+    const ladrc_axis_t *roll = &att.axis[0];
+    for (int i = 0; i < BENCH_SAMPLES; ++i) {
+        /* before the tick: LP's known input of this tick */
+        const ladrc_real_t fitted = ladrc_hp_get_estimate(&roll->part.hp.est);
+        gyro_accel_in[i] = roll->b0 * acting_Nm(roll) + fitted;
+        ladrc_real_t torque[LADRC_AXES];
+        ladrc_mixer_output_t out;
+        (void)ladrc_attitude_step(&att, bench_ref[i], gyro->ang[i], gyro->rate[i], torque);
+        (void)ladrc_mixer_step(&mixer, ladrc_mixer_thrust_from_tilt(&mixer, gyro->ang[i][0], gyro->ang[i][1]), torque,
+                               &out);
+        ladrc_attitude_set_applied(&att, out.torque_Nm);
+        gyro_hp_in[i] = ladrc_lp_get_sample(&roll->part.hp.source.lp) + fitted;
+        for (int a = 0; a < LADRC_AXES; ++a) {
+            gyro_applied_in[i][a] = out.torque_Nm[a];
+            gyro_known_in[i][a] = att.axis[a].f_known_rad_s2;
+            gyro_frate_in[i][a] = att.axis[a].f_rate_rad_s3;
+        }
+    }
+}
+
 /* Inputs of the modules: the torques, thrust, feeds and HP samples of the
  * HP-MLADRC 3-axis cases (replayed), and the regressors of the HP fit at its
  * sample times (bias and the phasors at 3 and 8 rad/s) with the disturbance
@@ -230,6 +318,7 @@ static void record_inputs(void)
 {
     mod.fit_rate_per_s = record_attitude(BENCH_CASE_HP, 1, hp_in);
     mod.fit_rate2_per_s = record_attitude(BENCH_CASE_HP2, 0, hp2_in);
+    record_gyro();
     const float period_s = (float)mod.fit_decimation * BENCH_DT_S;
     for (int i = 0; i < BENCH_SAMPLES; ++i) {
         const float t = BENCH_T0_S + (float)i * period_s;
@@ -255,15 +344,28 @@ static int setup_modules(void)
     const ladrc_axis_config_t *hp = &hp3.axis[0];
     ladrc_axis_config_default(&ladrc, LADRC_VARIANT_LADRC, BENCH_DT_S, bench_inertia[0]);
     ladrc_axis_config_default(&pid, LADRC_VARIANT_PID, BENCH_DT_S, bench_inertia[0]);
+    /* HP-MLADRC-gyro's axes: the same with the gyro sample and the actuator
+     * model (bench_case.c; its loop's body without drag). */
+    ladrc_attitude_config_t gyro3;
+    ladrc_attitude_config_default(&gyro3, LADRC_VARIANT_HP_MLADRC, BENCH_DT_S, bench_inertia, 0.0f);
+    for (int a = 0; a < LADRC_AXES; ++a) {
+        gyro3.axis[a].hp_sample = LADRC_HP_SAMPLE_GYRO;
+        gyro3.axis[a].motor_tau_s = BENCH_ACT_MOTOR_TAU_S;
+        gyro3.axis[a].delay_ticks = BENCH_ACT_DELAY_TICKS;
+    }
+    const ladrc_axis_config_t *hpg = &gyro3.axis[0];
     mod.b0 = hp->b0;
     mod.fit_decimation = hp->hp_fit_decimation;
+    gyro = &bench_in[BENCH_GYRO_LOOP];
     record_inputs();
     in = &bench_in[BENCH_ONE_TONE];
     for (int a = 0; a < LADRC_AXES; ++a) {
-        if (ladrc_axis_init(&mod.lone[a], &hp3.axis[a]) != LADRC_OK) {
+        if (ladrc_axis_init(&mod.lone[a], &hp3.axis[a]) != LADRC_OK ||
+            ladrc_axis_init(&mod.lone_gyro[a], &gyro3.axis[a]) != LADRC_OK) {
             return -1;
         }
         ladrc_axis_reset(&mod.lone[a], in->ang[0][a]);
+        ladrc_axis_reset(&mod.lone_gyro[a], gyro->ang[0][a]);
     }
     const ladrc_leso_config_t leso = {
         .dt_s = hp->dt_s, .wo_rad_s = hp->wo_rad_s, .b0 = hp->b0, .method = hp->leso_method};
@@ -277,8 +379,14 @@ static int setup_modules(void)
                                   .k0_per_s = hp->lp_k0_per_s,
                                   .act_tau_s = hp->motor_tau_s,
                                   .act_delay_ticks = hp->delay_ticks};
-    ladrc_hp_config_t hpc;
+    const ladrc_lp_config_t lp_act = {.dt_s = hpg->dt_s,
+                                      .lambda0_per_s = hpg->lp_lambda0_per_s,
+                                      .k0_per_s = hpg->lp_k0_per_s,
+                                      .act_tau_s = hpg->motor_tau_s,
+                                      .act_delay_ticks = hpg->delay_ticks};
+    ladrc_hp_config_t hpc, hpc_gyro;
     ladrc_axis_hp_config(hp, &hpc);
+    ladrc_axis_hp_config(hpg, &hpc_gyro);
     /* The HP fit as the estimator runs it engaged: P bound 1e4 and initial P
      * 1e3 per sample, its engaged forgetting rate. */
     const float t3 = (float)hp->hp_fit_decimation * hp->dt_s;
@@ -297,7 +405,8 @@ static int setup_modules(void)
                                      .wrap_angle = 0u};
     if (ladrc_leso_init(&mod.leso, &leso) != LADRC_OK || ladrc_td_init(&mod.td, &td) != LADRC_OK ||
         ladrc_levant_init(&mod.levant, &lev) != LADRC_OK || ladrc_lp_init(&mod.lp, &lp) != LADRC_OK ||
-        ladrc_hp_init(&mod.hp, &hpc) != LADRC_OK || ladrc_hp_init(&mod.hp2, &hpc) != LADRC_OK ||
+        ladrc_lp_init(&mod.lp_act, &lp_act) != LADRC_OK || ladrc_hp_init(&mod.hp, &hpc) != LADRC_OK ||
+        ladrc_hp_init(&mod.hp2, &hpc) != LADRC_OK || ladrc_hp_init(&mod.hp_gyro, &hpc_gyro) != LADRC_OK ||
         ladrc_rls_init(&mod.rls3, &rls3) != LADRC_OK || ladrc_rls_init(&mod.rls5, &rls5) != LADRC_OK ||
         ladrc_pid_init(&mod.pid, &pidc) != LADRC_OK || ladrc_mixer_init(&mod.mixer, &bench_mixer_cfg) != LADRC_OK) {
         return -1;
@@ -350,21 +459,22 @@ int main(void)
     }
     /* The HP-MLADRC cases must run their estimators engaged over the measured
      * ticks (weight 1, the disturbance's tones active). */
-    for (int d = 0; d < BENCH_DISTURBANCES; ++d) {
+    for (int l = 0; l < BENCH_LOOPS; ++l) {
         static const char *const kind[2] = {"attitude", "axis"};
-        const bench_engagement_t *e[2] = {&bench_engaged_attitude[d], &bench_engaged_axis[d]};
+        const char *name = bench_case_name[bench_loop_case[l]];
+        const bench_engagement_t *e[2] = {&bench_engaged_attitude[l], &bench_engaged_axis[l]};
         for (int k = 0; k < 2; ++k) {
-            const unsigned tones = (d == BENCH_TWO_TONES) ? 2u : 1u;
-            printf("BENCH engaged %s %s weight_min %d.%03d tones %u %u from %d\n", bench_case_name[BENCH_CASE_HP + d],
-                   kind[k], (int)e[k]->weight_min, (int)(1000.0f * (e[k]->weight_min - (float)(int)e[k]->weight_min)),
-                   e[k]->tones_min, e[k]->tones_max, e[k]->engaged_from);
+            const unsigned tones = bench_loop_tones[l];
+            printf("BENCH engaged %s %s weight_min %d.%03d tones %u %u from %d\n", name, kind[k], (int)e[k]->weight_min,
+                   (int)(1000.0f * (e[k]->weight_min - (float)(int)e[k]->weight_min)), e[k]->tones_min, e[k]->tones_max,
+                   e[k]->engaged_from);
             if (e[k]->weight_min < 1.0f || e[k]->tones_min != tones || e[k]->tones_max != tones) {
-                printf("BENCH error: %s (%s) does not run engaged with %u tone(s) over the measured ticks\n",
-                       bench_case_name[BENCH_CASE_HP + d], kind[k], tones);
+                printf("BENCH error: %s (%s) does not run engaged with %u tone(s) over the measured ticks\n", name,
+                       kind[k], tones);
                 return 1;
             }
         }
-        printf("BENCH saturated %s %d\n", bench_case_name[BENCH_CASE_HP + d], bench_engaged_attitude[d].saturated);
+        printf("BENCH saturated %s %d\n", name, bench_engaged_attitude[l].saturated);
     }
 
     for (int v = 0; v < BENCH_CASES; ++v) {
@@ -394,15 +504,20 @@ int main(void)
     }
     printf("BENCH hp_fit_decimation %u\n", (unsigned)mod.fit_decimation);
     print_module("lone_hp_axes_x3", RUN_LONE_AXES, ipc);
+    print_module("lone_hp_gyro_axes_x3", RUN_LONE_GYRO, ipc);
     print_module("ladrc_leso_step", RUN_LESO, ipc);
     print_module("ladrc_leso_step_twin", RUN_TWIN, ipc);
     print_module("ladrc_td_step", RUN_TD, ipc);
     print_module("ladrc_levant_step", RUN_LEVANT, ipc);
     print_module("ladrc_lp_step", RUN_LP, ipc);
+    print_module("ladrc_lp_step_act", RUN_LP_ACT, ipc);
+    print_module("ladrc_lp_step_lead", RUN_LP_LEAD, ipc);
     print_module("ladrc_hp_step", RUN_HP, ipc);
     print_hp_state("ladrc_hp_step", &mod.hp);
     print_module("ladrc_hp_step_2tones", RUN_HP2, ipc);
     print_hp_state("ladrc_hp_step_2tones", &mod.hp2);
+    print_module("ladrc_hp_step_gyro", RUN_HP_GYRO, ipc);
+    print_hp_state("ladrc_hp_step_gyro", &mod.hp_gyro);
     print_module("ladrc_rls_update_3", RUN_RLS3, ipc);
     print_module("ladrc_rls_update_5", RUN_RLS5, ipc);
     print_module("ladrc_pid_step", RUN_PID, ipc);
@@ -410,6 +525,9 @@ int main(void)
     print_module("ladrc_mixer_step", RUN_MIXER, ipc);
     for (int a = 0; a < LADRC_AXES; ++a) {
         print_hp_state("lone_hp_axis", &mod.lone[a].part.hp.est);
+    }
+    for (int a = 0; a < LADRC_AXES; ++a) {
+        print_hp_state("lone_hp_gyro_axis", &mod.lone_gyro[a].part.hp.est);
     }
 
     SIZE_LINE(ladrc_attitude_t);

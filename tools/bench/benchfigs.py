@@ -144,7 +144,7 @@ class Figures:
 
     # ---- the figures the limits gate (tools/bench/limits.txt keys) -------------------
     CASES = ("PID", "LADRC", "LP-MLADRC", "HP-MLADRC", "HP-MLADRC-2tones", "HP-MLADRC-act", "CASCADED", "INDI",
-             "LADRC-act", "RATE-ADRC")
+             "LADRC-act", "RATE-ADRC", "HP-MLADRC-gyro")
 
     def gated(self):
         text, data, _bss = self.size_totals()

@@ -118,7 +118,7 @@ if [[ $MODE == --all ]]; then
   ir=$(callgrind_ir empty)
   echo "empty $ir" | record callgrind
   echo "ticks $(sed -n 's/^BENCH host collected [^ ]* \([0-9]*\) ticks$/\1/p' "$tmp/cg.log")" | record callgrind
-  CASES=(PID LADRC LP-MLADRC HP-MLADRC HP-MLADRC-2tones HP-MLADRC-act CASCADED INDI LADRC-act)
+  CASES=(PID LADRC LP-MLADRC HP-MLADRC HP-MLADRC-2tones HP-MLADRC-act CASCADED INDI LADRC-act RATE-ADRC HP-MLADRC-gyro)
   for v in "${CASES[@]}"; do
     for c in axis attitude; do
       ir=$(callgrind_ir "$c:$v")

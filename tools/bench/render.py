@@ -97,8 +97,12 @@ def render(fig):
     lean3 = fig.lean_insn()
     row(f"HP-MLADRC, {LEAN}, 3 axes + mixer, instructions/tick", lean3, "<= 1500", mark(lean3, "<=", 1500))
     row("ratio HP-MLADRC / PID, 3 axes + mixer", ratio(hp3, insn("PID", 2)), "", "")
-    for v in ("HP-MLADRC-act", "CASCADED", "INDI", "LADRC-act", "RATE-ADRC"):
+    for v in ("HP-MLADRC-act", "CASCADED", "INDI", "LADRC-act", "RATE-ADRC", "HP-MLADRC-gyro"):
         row(f"{v}, 3 axes + mixer, instructions/tick", insn(v, 2), "", "")
+    # Against the cascaded P / PID baseline a flight stack would otherwise fly.
+    for v, budget in (("HP-MLADRC-gyro", 1.3), ("RATE-ADRC", 1.0)):
+        r = ratio(insn(v, 2), insn("CASCADED", 2))
+        row(f"ratio {v} / CASCADED, 3 axes + mixer", r, f"<= {budget}", mark(r, "<=", budget))
     # The actuator model's own cost (LADRC-act against LADRC) and HP-MLADRC's
     # with its command advanced over the modelled actuator, per axis.
     for v, base, what in (("LADRC-act", "LADRC", "LADRC"),
@@ -170,9 +174,16 @@ def render(fig):
          f"(checked: one tone, 3 axes: {engaged('HP-MLADRC', 'attitude')}, one axis: {engaged('HP-MLADRC', 'axis')}; "
          f"two tones, 3 axes: {engaged('HP-MLADRC-2tones', 'attitude')}, one axis: "
          f"{engaged('HP-MLADRC-2tones', 'axis')}). The warm-up is long enough for that. The other variants see the "
-         "same angles in open loop. The disturbance's peaks ask for more roll and pitch torque than the rotor limits "
+         "same angles in open loop. HP-MLADRC-gyro (on the observer loop's angles its 3-axis fit does not engage) "
+         "flies its own closed loop from reset the same way, with its actuator model in the plant (each torque acts "
+         "2 ticks late through a 30 ms first-order lag) and a body without drag, its controller told so (its fit "
+         "samples the measured acceleration with the drag in it, unlike the observer's sample, which leaves out the "
+         "known part; with the drag, yaw's fit does not settle where the rotor limits cut yaw back); checked: 3 axes: "
+         f"{engaged('HP-MLADRC-gyro', 'attitude')}, one axis: {engaged('HP-MLADRC-gyro', 'axis')}. "
+         "The disturbance's peaks ask for more roll and pitch torque than the rotor limits "
          "leave at hover thrust, so in the HP-MLADRC 3-axis cases the mixer cuts thrust or yaw back on "
-         f"{saturated('HP-MLADRC')} (one tone) and {saturated('HP-MLADRC-2tones')} (two tones) of the "
+         f"{saturated('HP-MLADRC')} (one tone), {saturated('HP-MLADRC-2tones')} (two tones) and "
+         f"{saturated('HP-MLADRC-gyro')} (gyro) of the "
          f"{fig.ticks_per_block()} measured ticks, and ladrc_mixer_step takes its saturating path.")
     host_clock = "\n".join(l[len("BENCH host clock "):] for l in fig.lines("host") if l.startswith("BENCH host clock "))
     echo(f"Host: {fig.keyed('env', 'cpu')}, gcc Release (-O3) build {fig.keyed('env', 'bench-host')}; ns/tick: "
@@ -246,6 +257,56 @@ def render(fig):
          f"torque, stepped side by side, no attitude layer, no mixer ({lone} instructions per tick for the three). The "
          "two \"rest\" rows make the shares add up to the measured tick, so they also carry any difference between "
          "the modules alone and inside the tick.")
+
+    # ---- where the instructions of the gyro tick go -----------------------------------
+    gyro3 = insn("HP-MLADRC-gyro", 2)
+    cas3 = insn("CASCADED", 2)
+    lp_act, lead = num(mod("ladrc_lp_step_act")), num(mod("ladrc_lp_step_lead"))
+    hpg = num(mod("ladrc_hp_step_gyro"))
+    lone_g = mod("lone_hp_gyro_axes_x3")
+    hpg_own = calc(hpg - rls3 / fit_decimation)
+    gaxis_rest = calc(num(lone_g) / 3 - leso - levant - lp_act - lead - hpg)
+    gatt_rest = calc(num(gyro3) - num(lone_g) - num(thrust) - num(mixer))
+
+    def grow(module, per_call, calls):
+        if calls in ("0", 0):
+            echo(f"| {module} | {per_call} | 0 |  |")
+        else:
+            echo(f"| {module} | {per_call} | {calls} | {calc(100 * num(per_call) * num(calls) / num(gyro3))} % |")
+
+    echo()
+    echo("Where the instructions of the HP-MLADRC-gyro 3-axis + mixer tick go (Cortex-M4F, same build and method), "
+         f"against CASCADED's {cas3} (ratio {ratio(gyro3, cas3)}):")
+    echo()
+    echo("| module | instructions/call | calls per HP-gyro 3-axis tick | share of the HP-gyro 3-axis tick |")
+    echo("|---|---:|---:|---:|")
+    grow("ladrc_leso_step (each axis's observer)", mod("ladrc_leso_step"), 3)
+    grow("ladrc_levant_step (implicit, the HP axis default)", mod("ladrc_levant_step"), 3)
+    grow("ladrc_lp_step with the actuator model (the LP estimator on the rate, its 1-param RLS)",
+         mod("ladrc_lp_step_act"), 3)
+    grow("ladrc_lp_step_lead (LP's command advanced over the actuator)", mod("ladrc_lp_step_lead"), 3)
+    grow("ladrc_hp_step on the gyro sample without its RLS update (block mean, gate, tones, online frequencies, "
+         "model, command)", hpg_own, 3)
+    grow(f"ladrc_rls_update, 3 params (HP fit of bias and one tone, every {fd} ticks)", mod("ladrc_rls_update_3"),
+         calc(3 / fit_decimation))
+    grow("rest of ladrc_axis_step with a rate (checks, actuator model, hand-over, control law) and the feed "
+         "setters: a lone HP-gyro axis minus the rows above", gaxis_rest, 3)
+    grow("ladrc_mixer_thrust_from_tilt", thrust, 1)
+    grow("ladrc_mixer_step (allocate, saturate)", mixer, 1)
+    grow("rest of the 3-axis tick (coupling feed, known part): the tick minus 3 lone axes and the mixer rows",
+         gatt_rest, 1)
+    grow("HP-MLADRC-gyro 3 axes + mixer, measured", gyro3, 1)
+    grow("not in this tick: CASCADED 3 axes + mixer, measured", cas3, 0)
+    grow("not in this tick: ladrc_leso_step_twin (the observer HP's shadow)", mod("ladrc_leso_step_twin"), 0)
+    gyro_state = "; ".join(f"{f[3]}: weight {f[5]}, {f[7]} tone(s)" for f in fig.fields("m4f")
+                           if len(f) > 7 and f[2] == "hp_state" and f[3] in ("ladrc_hp_step_gyro", "lone_hp_gyro_axis"))
+    echo()
+    echo("Timed as above, on the inputs of the HP-MLADRC-gyro 3-axis case (replayed): ladrc_lp_step configured as the "
+         "gyro axis configures its LP estimator (30 ms lag, 2 ticks), on roll's measured rate and its known input "
+         "(b0 times the acting torque plus the fit's estimate), ladrc_lp_step_lead on that estimator, ladrc_hp_step "
+         "configured as the gyro axis configures its fit (block means, the sample's age, the command advanced over "
+         "the actuator) on roll's recorded sample (LP's sample plus the fit's estimate); lone axes: the three "
+         f"HP-MLADRC-gyro axes ({lone_g} instructions per tick for the three). Engaged: {gyro_state}.")
     return "\n".join(out)
 
 
