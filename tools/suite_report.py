@@ -128,3 +128,32 @@ def suite_block(out_dir):
                                                           if r is None or r > 1.0])
     lines += listing("Tunings that failed", pfail) + listing("Runs that diverged", pdivs)
     return lines
+
+
+def front_page_lines(out_dir):
+    """Markdown lines for the front page: per suite case, each axis's ratio of the best LADRC-family
+    RMS to the better incumbent's, with who; None when an output is missing."""
+    rows, n, met, lost = [], 0, 0, 0
+    for case in suite_cases():
+        d = os.path.join(out_dir, case)
+        m = load_metrics(d)
+        if m is None and not tune_failures(d):
+            return None
+        m = m or {}
+        row = ["`%s`" % case]
+        for axis in AXES:
+            (fv, fc), (iv, ic) = best(m, FAMILY, axis), best(m, INCUMBENTS, axis)
+            r = fv / iv if fv is not None and iv else None
+            n += 1
+            if r is None or r > 1.0:
+                lost += 1
+            elif r <= TARGET_RATIO:
+                met += 1
+            row.append("%.2f (%s / %s)" % (r, fc, ic) if r is not None else "**—**")
+        rows.append(row)
+    lines = ["| suite case | roll | pitch | yaw |", "|---|---|---|---|"]
+    lines += ["| " + " | ".join(r) + " |" for r in rows]
+    lines += ["", "Ratio: the best LADRC-family RMS over the better incumbent's (below 1: the family wins). "
+              "The family's best loses on %d of %d case-axes and is within %.1fx the better incumbent on %d."
+              % (lost, n, TARGET_RATIO, met)]
+    return lines

@@ -73,5 +73,14 @@ check suite_table_marks_failed_tuning $?
 grep -q '^- `racer_tones` LADRC: x.ini:1:1: tune = margins' "$work/suite.md"; check suite_table_lists_failed_tuning $?
 grep -q '^- `big5_gusts` roll: no incumbent flew' "$work/suite.md"; check suite_table_lists_missing_figures $?
 
+# The front page's summary: one row per case, a case-axis without an incumbent counted as a loss.
+"$py" -c 'import sys; sys.path.insert(0, sys.argv[1]); import suite_report
+print("\n".join(suite_report.front_page_lines(sys.argv[2])))' "$src/tools" "$work/out" > "$work/front.md"
+check front_page_summary_is_written $?
+[[ $(grep -c '^| `' "$work/front.md") -eq $(ls "$src/scenarios/suite/"*.ini | wc -l) ]]
+check front_page_summary_has_a_row_per_case $?
+grep -q '^| `big5_gusts` | \*\*—\*\* |' "$work/front.md"; check front_page_summary_marks_missing_ratio $?
+grep -q 'loses on [1-9][0-9]* of [0-9]* case-axes' "$work/front.md"; check front_page_summary_counts_losses $?
+
 echo "suite_test.sh: $failures failure(s)"
 [[ $failures -eq 0 ]]
