@@ -23,7 +23,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from sim_output import (AXES, CONTROLLERS, NOT_SETTLED, divergence, divergence_text, is_number,  # noqa: E402
                         load_metrics)
-from suite_report import front_page_lines, suite_block  # noqa: E402
+from suite_report import front_page_lines, hp_lp_block, suite_block  # noqa: E402
 
 # Dong, Y. et al., "Decoupling-Free Attitude Control of UAV Considering High-Frequency
 # Disturbances: A Modified Linear Active Disturbance Rejection Method", Actuators 2025,
@@ -546,7 +546,7 @@ def main(argv):
     if a.front_page:
         pages.append((a.front_page, {"headline": headline_block(a.out_dir)}))
     if a.suite_page:
-        pages.append((a.suite_page, {"suite": suite_block(a.out_dir)}))
+        pages.append((a.suite_page, {"suite": suite_block(a.out_dir), "hp-lp": hp_lp_block(a.out_dir)}))
     for path, blocks in pages:
         if any(lines is None for lines in blocks.values()):
             print("report.py: %s not rewritten: the outputs of its scenarios are missing" % path, file=sys.stderr)

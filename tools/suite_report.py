@@ -8,6 +8,7 @@ OUT_DIR/<case>/tune_failed.txt ("CONTROLLER: message" per line; the case was flo
 import glob
 import math
 import os
+import re
 
 from sim_output import AXES, CONTROLLERS, divergence, divergence_text, is_number, load_metrics
 
@@ -156,4 +157,55 @@ def front_page_lines(out_dir):
     lines += ["", "Ratio: the best LADRC-family RMS over the better incumbent's (below 1: the family wins). "
               "The family's best loses on %d of %d case-axes and is within %.1fx the better incumbent on %d."
               % (lost, n, TARGET_RATIO, met)]
+    return lines
+
+
+# The cases whose HP-MLADRC is set against LP-MLADRC: every scenario flying both with the rate.
+HP_LP_CASES = ("real_paper_lag20", "real_paper_lag30", "real_paper_lag40", "real_heavy_lag20",
+               "real_heavy_lag30", "real_heavy_lag40", "tone_sweep", "paper_tuned", "paper", "paper_known")
+STEADY_TARGET = 0.5  # HP over LP over a steady tone's window
+
+
+def hp_sample_of(case):
+    """The HP-MLADRC sample a case's file sets: "gyro", or "observer" (the default)."""
+    for p in (os.path.join(ROOT, "scenarios", "suite", case + ".ini"), os.path.join(ROOT, "scenarios", case + ".ini")):
+        if os.path.exists(p):
+            with open(p) as f:
+                return "gyro" if re.search(r"^hp_sample\s*=\s*gyro\b", f.read(), re.M) else "observer"
+    return "?"
+
+
+def hp_lp_block(out_dir):
+    """Markdown lines: per case and axis, HP-MLADRC's RMS over LP-MLADRC's, over the error window
+    and over the steady window; None when an output is missing."""
+    rows, worse, steady = [], [], []
+    for case in list(suite_cases()) + list(HP_LP_CASES):
+        m = load_metrics(os.path.join(out_dir, case))
+        if m is None:
+            return None
+        sample = hp_sample_of(case)
+        for axis in AXES:
+            hp, lp = rms(m, "HP-MLADRC", axis), rms(m, "LP-MLADRC", axis)
+            hs, ls = (m.get((c, "5", "steady_rms_deg", axis)) for c in ("HP-MLADRC", "LP-MLADRC"))
+            r = hp / lp if hp is not None and lp else None
+            rs = hs / ls if is_number(hs) and is_number(ls) and ls else None
+            if r is None or r > 1.0:
+                worse.append("`%s` %s (%s): %s" % (case, axis, sample, "%.3f" % r if r is not None else "no ratio"))
+            if sample == "gyro" and rs is not None:
+                steady.append((case, axis, rs))
+            rows.append(["`%s`" % case, axis, sample, fmt(hp) if hp is not None else "**—**",
+                         fmt(lp) if lp is not None else "**—**", "%.3f" % r if r is not None else "**—**",
+                         "%.3f" % rs if rs is not None else "**—**"])
+    lines = ["HP-MLADRC's RMS error over LP-MLADRC's, each tuned by the case's rule: over the error window "
+             "(Table 4's) and over the steady window (`steady_rms_deg`); sample: what HP-MLADRC's fit takes "
+             "(`hp_sample`, [method.md](method.md)).", "",
+             "| case | axis | sample | HP-MLADRC RMS (deg) | LP-MLADRC RMS (deg) | ratio | ratio, steady window |",
+             "|---|---|---|---|---|---|---|"]
+    lines += ["| " + " | ".join(r) + " |" for r in rows] + [""]
+    gyro = [(c, a, rs) for c, a, rs in steady]
+    met = [t for t in gyro if t[2] <= STEADY_TARGET]
+    lines += listing("HP-MLADRC above LP-MLADRC's RMS (ratio above 1)", worse)
+    lines += ["On the gyro, over the steady window: at most %.1fx LP-MLADRC's RMS on %d of %d case-axes; "
+              "the others:" % (STEADY_TARGET, len(met), len(gyro)), ""]
+    lines += ["- `%s` %s: %.3f" % t for t in gyro if t[2] > STEADY_TARGET] + [""]
     return lines

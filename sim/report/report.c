@@ -289,6 +289,7 @@ int sim_report_metrics_csv(FILE *out, const sim_scenario_result_t *r, int header
                 stat_row(out, sc, m, name, "5", "settling_s", AXES[i], m->settle_s[i]);
             }
             stat_row(out, sc, m, name, "5", "steady_band_deg", AXES[i], m->band_deg[i]);
+            stat_row(out, sc, m, name, "5", "steady_rms_deg", AXES[i], sim_stat_rms(&m->steady_deg[i]));
             if (m->has_estimate) {
                 stat_row(out, sc, m, name, "6", "dist_error_mean", AXES[i], m->dist_error[i].mean);
                 stat_row(out, sc, m, name, "6", "dist_error_std", AXES[i], sim_stat_std(&m->dist_error[i]));

@@ -26,6 +26,7 @@ typedef struct {
     double settle_s[3];       /* Table 5: from settle_after_s until |error| stays in the band;
                                    * SIM_NOT_SETTLED: still outside it at the window's last sample */
     double band_deg[3];       /* Table 5: max |error| over the steady window */
+    sim_stat_t steady_deg[3]; /* Table 5: the error over the steady window (its RMS) */
     sim_stat_t dist_error[3]; /* Table 6: total-disturbance estimate - truth over the error window */
     sim_stat_t rotor_w2[4];   /* Table 7: over the whole run */
     int has_estimate;         /* 0 for PID: no disturbance estimate */

@@ -199,8 +199,10 @@ static void run_metrics(const sim_scenario_t *sc, attitude_run_t *r, const tick_
             if (m->has_estimate)
                 sim_stat_add(&m->dist_error[i], tk->f_est[i] - tk->f_true[i]);
         }
-        if (in_window(sc->steady_window_s, t) && fabs(e_deg) > m->band_deg[i]) {
-            m->band_deg[i] = fabs(e_deg);
+        if (in_window(sc->steady_window_s, t)) {
+            sim_stat_add(&m->steady_deg[i], e_deg);
+            if (fabs(e_deg) > m->band_deg[i])
+                m->band_deg[i] = fabs(e_deg);
         }
         if (t >= sc->settle_after_s && t <= sc->settle_until_s) {
             r->out_at_last[i] = fabs(tk->err_rad[i]) > band_rad;

@@ -93,7 +93,7 @@ grep -q "^ladrc_sil: lag (.*lag.ini): controller PID diverged at t = [0-9.]* s o
 check diverged_run_outputs_written $?
 # every statistic of PID: the token; then its time, which its time series stops short of
 awk -F, '$2 == "PID" && $3 != "-" && $6 != "diverged" { bad = 1 } $2 == "PID" && $3 != "-" { n++ }
-    END { exit (bad || n != 30) }' "$work/lag_out/lag/metrics.csv"; check diverged_statistics_are_tokens $?
+    END { exit (bad || n != 33) }' "$work/lag_out/lag/metrics.csv"; check diverged_statistics_are_tokens $?
 at=$(awk -F, '$2 == "PID" && $4 == "diverged_at_s" && $5 == "roll" { print $6 }' "$work/lag_out/lag/metrics.csv")
 last=$(tail -n 1 "$work/lag_out/lag/PID.csv" | cut -d, -f1)
 [ -n "$at" ] && awk -v a="$at" -v l="$last" 'BEGIN { exit !(a > 0 && l < a && a - l < 0.0015) }'

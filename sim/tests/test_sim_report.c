@@ -79,7 +79,7 @@ static void test_metrics_csv_says_diverged_for_every_statistic_of_a_diverged_run
             stats++;
         }
     }
-    TEST_ASSERT_EQUAL_INT(3 * 6 + 4 * 3, stats);
+    TEST_ASSERT_EQUAL_INT(3 * 7 + 4 * 3, stats);
     capture(1, text, sizeof text);
     TEST_ASSERT_NOT_NULL(strstr(text, "report,PID,-,diverged,-,1\n"));
     TEST_ASSERT_NOT_NULL(strstr(text, "report,PID,-,diverged_at_s,pitch,1.25\n"));
