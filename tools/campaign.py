@@ -317,6 +317,19 @@ class Axis:
         axis.set_label_text(self.label)
 
 
+def map_axes(cols, xname, yname, labels):
+    """The cells of a map over (x, y): the Axis of each varied name (yname None: no y axis), with
+    its --label applied, the number of y cells and each run's y cell."""
+    ax_x = Axis(xname, cols[xname])
+    ax_y = Axis(yname, cols[yname]) if yname else None
+    for a in (ax_x, ax_y):
+        if a is not None and a.name in labels:
+            a.label = labels[a.name]
+    ny = ax_y.cells if ax_y else 1
+    yidx = ax_y.index if ax_y else [0] * len(cols["run"])
+    return ax_x, ax_y, ny, yidx
+
+
 def plot_maps(out, name, varied, controllers, cols, axis, xname, yname, figdir, labels):
     import matplotlib.pyplot as plt
     import numpy as np
@@ -324,13 +337,7 @@ def plot_maps(out, name, varied, controllers, cols, axis, xname, yname, figdir, 
     from matplotlib.lines import Line2D
 
     n_runs = len(cols["run"])
-    ax_x = Axis(xname, cols[xname])
-    ax_y = Axis(yname, cols[yname]) if yname else None
-    for a in (ax_x, ax_y):
-        if a is not None and a.name in labels:
-            a.label = labels[a.name]
-    ny = ax_y.cells if ax_y else 1
-    yidx = ax_y.index if ax_y else [0] * n_runs
+    ax_x, ax_y, ny, yidx = map_axes(cols, xname, yname, labels)
 
     grids = {}
     for ctrl in controllers:
@@ -566,9 +573,10 @@ def cmd_ratio(args):
             raise CampaignError("--where %s: expected NAME=VALUE with NAME a varied name (%s)"
                                 % (spec, ", ".join(varied) if varied else "it varies nothing"))
         where.append((key, value))
-    keep = [r for r in range(len(cols["run"]))
-            if all(cols[k][r] == v or (as_numbers([cols[k][r], v]) or [0, 1])[0] == (as_numbers([cols[k][r], v]) or [0, 1])[1]
-                   for k, v in where)]
+    def same(text, value):  # the same text, or the same number written otherwise ("0.03" and "3e-2")
+        nums = as_numbers([text, value])
+        return text == value or (nums is not None and nums[0] == nums[1])
+    keep = [r for r in range(len(cols["run"])) if all(same(cols[k][r], v) for k, v in where)]
     if not keep:
         raise CampaignError("--where %s: no run of the campaign" % " ".join(args.where))
     cols = {name: [col[r] for r in keep] for name, col in cols.items()}
@@ -595,7 +603,7 @@ def cmd_ratio(args):
     os.makedirs(figdir, exist_ok=True)
     try:
         path, summary = plot_ratio_maps(name, cols, args.axis, xname, yname, figdir, labels, controllers, where,
-                                        Axis, save)
+                                        map_axes, save)
     except RatioError as e:
         raise CampaignError("%s: %s" % (args.out, e))
     for ctrl, (n, met, div) in summary.items():
@@ -611,24 +619,20 @@ def main(argv=None):
     sub = parser.add_subparsers(dest="command", required=True)
     m = sub.add_parser("merge", help="OUT/campaign.csv from OUT/plan.csv and OUT/runs/*/metrics.csv")
     m.add_argument("out", metavar="OUT")
-    p = sub.add_parser("plot", help="robustness maps and RMS box plots into OUT/figures/")
-    p.add_argument("out", metavar="OUT")
-    p.add_argument("--x", metavar="NAME", help="varied name on the x axis (default: the first)")
-    p.add_argument("--y", metavar="NAME", help="varied name on the y axis (default: the second)")
-    p.add_argument("--axis", choices=AXES, default="roll", help="attitude axis of the RMS error (default roll)")
-    p.add_argument("--name", help="campaign name in the titles (default: OUT's directory name)")
-    p.add_argument("--label", action="append", default=[], metavar="NAME=TEXT",
-                   help="axis label of a varied name, e.g. 'w=tone frequency w (rad/s)' (default: the "
-                        "name, with the unit its suffix gives)")
-    q = sub.add_parser("ratio", help="maps of each LADRC-family RMS / the better incumbent's into OUT/figures/")
-    q.add_argument("out", metavar="OUT")
-    q.add_argument("--x", metavar="NAME", help="varied name on the x axis (default: the first left free)")
-    q.add_argument("--y", metavar="NAME", help="varied name on the y axis (default: the second left free)")
-    q.add_argument("--axis", choices=AXES, default="roll", help="attitude axis of the RMS error (default roll)")
-    q.add_argument("--name", help="campaign name in the titles (default: OUT's directory name)")
-    q.add_argument("--label", action="append", default=[], metavar="NAME=TEXT", help="axis label of a varied name")
-    q.add_argument("--where", action="append", default=[], metavar="NAME=VALUE",
-                   help="only the runs whose varied value NAME is VALUE (repeatable)")
+    for cmd, what in (("plot", "robustness maps and RMS box plots into OUT/figures/"),
+                      ("ratio", "maps of each LADRC-family RMS / the better incumbent's into OUT/figures/")):
+        p = sub.add_parser(cmd, help=what)
+        p.add_argument("out", metavar="OUT")
+        p.add_argument("--x", metavar="NAME", help="varied name on the x axis (default: the first left free)")
+        p.add_argument("--y", metavar="NAME", help="varied name on the y axis (default: the second left free)")
+        p.add_argument("--axis", choices=AXES, default="roll", help="attitude axis of the RMS error (default roll)")
+        p.add_argument("--name", help="campaign name in the titles (default: OUT's directory name)")
+        p.add_argument("--label", action="append", default=[], metavar="NAME=TEXT",
+                       help="axis label of a varied name, e.g. 'w=tone frequency w (rad/s)' (default: the "
+                            "name, with the unit its suffix gives)")
+        if cmd == "ratio":
+            p.add_argument("--where", action="append", default=[], metavar="NAME=VALUE",
+                           help="only the runs whose varied value NAME is VALUE (repeatable)")
     args = parser.parse_args(argv)
     try:
         return {"merge": cmd_merge, "plot": cmd_plot, "ratio": cmd_ratio}[args.command](args)

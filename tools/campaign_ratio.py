@@ -50,7 +50,7 @@ def run_ratios(controllers, cols, axis, n_runs):
     return out
 
 
-def plot_ratio_maps(name, cols, axis, xname, yname, figdir, labels, controllers, where, axis_cls, save):
+def plot_ratio_maps(name, cols, axis, xname, yname, figdir, labels, controllers, where, map_axes, save):
     import matplotlib.pyplot as plt
     import numpy as np
     from matplotlib.colors import LogNorm
@@ -58,13 +58,7 @@ def plot_ratio_maps(name, cols, axis, xname, yname, figdir, labels, controllers,
 
     n_runs = len(cols["run"])
     ratios = run_ratios(controllers, cols, axis, n_runs)
-    ax_x = axis_cls(xname, cols[xname])
-    ax_y = axis_cls(yname, cols[yname]) if yname else None
-    for a in (ax_x, ax_y):
-        if a is not None and a.name in labels:
-            a.label = labels[a.name]
-    ny = ax_y.cells if ax_y else 1
-    yidx = ax_y.index if ax_y else [0] * n_runs
+    ax_x, ax_y, ny, yidx = map_axes(cols, xname, yname, labels)
     panels = list(ratios)
     norm = LogNorm(vmin=RATIO_RANGE[0], vmax=RATIO_RANGE[1])
     cmap = plt.get_cmap("RdBu_r").copy()

@@ -123,19 +123,6 @@ static int loop_has_motors(int loop)
     return loop == BENCH_GYRO_LOOP;
 }
 
-/* The body's rotational drag (N m s), which the 3-axis controller is told
- * (its attitude config). HP-MLADRC-gyro's fit samples the measured
- * acceleration less the torque's part, the drag included (the observer's
- * sample leaves out the known part the attitude layer tells it, the drag
- * among it): where the rotor limits cut yaw back, yaw's rate and so its drag
- * wander off the tone and its yaw fit never settles. Its loop flies a body
- * without drag and tells its controller so, so that its fits engage; a drag
- * of 0 runs the same instructions. */
-static float loop_drag_Nms(int loop)
-{
-    return (loop == BENCH_GYRO_LOOP) ? 0.0f : DRAG_NMS;
-}
-
 static void motor_start(motor_t *m)
 {
     for (unsigned k = 0u; k < BENCH_ACT_DELAY_TICKS; ++k) {
@@ -161,7 +148,7 @@ static void fly_attitude(int loop)
     bench_inputs_t *in = &bench_in[loop];
     const int which = bench_loop_disturbance[loop];
     const int motors = loop_has_motors(loop);
-    const float drag = loop_drag_Nms(loop);
+    const float drag = DRAG_NMS;
     float th[LADRC_AXES], w[LADRC_AXES];
     motor_t motor[LADRC_AXES];
     for (int a = 0; a < LADRC_AXES; ++a) {
@@ -226,7 +213,7 @@ static void fly_axis(int loop)
     bench_inputs_t *in = &bench_in[loop];
     const int which = bench_loop_disturbance[loop];
     const int motors = loop_has_motors(loop);
-    const float drag = loop_drag_Nms(loop);
+    const float drag = DRAG_NMS;
     float th = bench_ref[0][0], w = 0.0f;
     motor_t motor;
     motor_start(&motor);
@@ -296,7 +283,7 @@ int bench_setup_attitude(ladrc_attitude_t *att, ladrc_mixer_t *mixer, int bench_
     ladrc_attitude_config_t cfg;
     int bad_axis = -1;
     ladrc_attitude_config_default(&cfg, bench_case_variant[bench_case], BENCH_DT_S, bench_inertia,
-                                  loop_drag_Nms(bench_case_inputs[bench_case]));
+                                  DRAG_NMS);
     for (int a = 0; a < LADRC_AXES; ++a) {
         set_case(&cfg.axis[a], bench_case);
     }
