@@ -25,7 +25,7 @@ void ladrc_axis_hp_config(const ladrc_axis_config_t *cfg, ladrc_hp_config_t *hp)
         c.freq_rad_s[k] = cfg->hp_freq_rad_s[k];
     }
     if (cfg->hp_sample == LADRC_HP_SAMPLE_GYRO) {
-        /* LP's residual, a rate difference per tick, noisy: the fit takes
+        /* LP's sample, a rate difference per tick, noisy: the fit takes
          * each block's mean, centred half a block before the fit tick (the
          * difference half a tick, the mean (n - 1) / 2 ticks). */
         c.sample_block_mean = 1u;

@@ -304,8 +304,8 @@ static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
 }
 
 /* 1 once the fit predicts the sample. A clean sample: its prior error power
- * below SETTLED_SHARE of the sample's. A block mean (LP's residual on a
- * noisy gyro, whose noise the fit cannot predict): the fit removes at least
+ * below SETTLED_SHARE of the sample's. A block mean (the gyro's sample, whose
+ * noise the fit cannot predict): the fit removes at least
  * NOISY_EXPLAINED_SHARE of the power its tones claim. */
 static int fit_settled(const ladrc_hp_estimator_t *est, const ladrc_real_t *theta)
 {

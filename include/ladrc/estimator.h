@@ -35,6 +35,17 @@
  * unknown f by the observer's wo^3 / (s + wo)^3, which the estimate undoes
  * per tone.
  *
+ * HP on the gyro (the axis's hp_sample = LADRC_HP_SAMPLE_GYRO, axis.h): the
+ * sample is LP's, s_k above, minus the known part of f; the axis runs an LP
+ * estimator on s_k minus the fit's estimate, so that LP tracks what the fit
+ * leaves, and d_hat is their sum. The sample is noisy (a gyro's noise,
+ * differenced), so the fit takes the mean of each block of fit_decimation
+ * samples (sample_block_mean; the differences telescope, dividing white
+ * noise by the block's length), n h / 2 old (sample_age_s) and with the
+ * block mean's gain at each tone, both undone per tone; its gate settles
+ * when the fit removes at least half the power its tones claim, since the
+ * noise keeps its prior error above the 1 % share a clean sample reaches.
+ *
  * Through the actuator (act_tau_s = tau, act_delay_ticks = d): what the
  * command asks for acts through A(jw) = exp(-jw d h) / (1 + jw tau) (a
  * first-order lag and d ticks of delay, the axis's actuator model; the
@@ -354,7 +365,7 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est);
 
 /**
  * One tick on the disturbance sample (rad/s^2): the unknown part of f as the
- * axis's observer sees it (see above).
+ * axis's observer sees it, or the gyro's (see above).
  * Not finite or beyond 1e6 rad/s^2 (no multirotor comes near): held,
  * LADRC_FAULT_INPUT (the phases still advance, so the model stays in step
  * with time). Should the estimate still turn non-finite, the estimator resets

@@ -217,7 +217,8 @@ ladrc_margins_status_t ladrc_margins_analyse(ladrc_margins_workspace_t *ws, cons
  *  converged tone model has no settled linear response
  *  (LADRC_MARGINS_ERR_NOT_SETTLED under the tone) is analysed in its idle
  *  state (req's tone amplitude 0, estimator weight 0), and *idle (may be
- *  NULL) is set to 1, else 0.
+ *  NULL) is set to 1, else 0. HP-MLADRC on the gyro (hp_sample GYRO) is
+ *  analysed as the LP-MLADRC it is with its gate shut, *idle 1.
  *  @param ws    the workspace
  *  @param ctl   the controller
  *  @param req   the request
