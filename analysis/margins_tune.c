@@ -304,15 +304,18 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
     best_t best = {.w = NAN, .peak = INFINITY, .shape = -1};
     for (int shape = 0; shape < N_SHAPES; ++shape)
         try_shape(&t, shape, 0, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, &best);
-    /* Nothing meets the targets (e.g. a modelled plant without drag, whose
-     * LESO loop stays below PM 45 deg at every usual ratio): the adaptive
-     * variants' own loops, whose estimator may add the missing phase; then
-     * the LADRC family's wide ratios. Only then: whatever tunes with the
-     * usual search keeps its gains. */
-    if (best.shape < 0 && adaptive) {
+    /* The adaptive variants' own loops too, at the usual ratios: their core
+     * must not cap them (LP's estimate adds phase where the LESO alone lacks
+     * it; e.g. 30 ms behind the motors the core leaves LP 30 deg of PM
+     * unused), and where nothing meets the targets on the core (a modelled
+     * plant without drag: the LESO loop stays below PM 45 deg at every usual
+     * ratio) the estimator may add the missing phase. */
+    if (adaptive) {
         for (int shape = 0; shape < N_SHAPES; ++shape)
             try_shape(&t, shape, 1, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, &best);
     }
+    /* Still nothing: the LADRC family's wide ratios. Whatever tunes with the
+     * usual ratios keeps its gains. */
     if (best.shape < 0 && ladrc_variant_has_observer(variant)) {
         for (int shape = N_SHAPES; shape < N_WIDE_SHAPES; ++shape) {
             try_shape(&t, shape, 0, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, &best);
