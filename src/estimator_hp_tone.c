@@ -35,9 +35,8 @@ void hp_set_tone_freq(const ladrc_hp_tone_basis_t *basis, unsigned advance, ladr
         small_rotation(w_rad_s * basis->age_s, &c, &sn);
         small_rotation(LADRC_R(0.5) * w_rad_s * basis->dt_s, &c_half, &s_half);
         small_rotation(LADRC_R(0.5) * (ladrc_real_t)basis->block_ticks * w_rad_s * basis->dt_s, &c_block, &s_block);
-        const ladrc_real_t gain = (s_half > LADRC_R(0.0))
-                                      ? s_block / ((ladrc_real_t)basis->block_ticks * s_half)
-                                      : LADRC_R(1.0);
+        const ladrc_real_t gain =
+            (s_half > LADRC_R(0.0)) ? s_block / ((ladrc_real_t)basis->block_ticks * s_half) : LADRC_R(1.0);
         const ladrc_real_t turned = (re * c - im * sn) / gain;
         im = (im * c + re * sn) / gain;
         re = turned;

@@ -87,17 +87,17 @@ static ladrc_axis_config_t config(ladrc_variant_t variant)
 }
 
 typedef struct {
-    double rms_rad;        /* RMS angle error over the window */
-    double weight_at_stop; /* HP's gate weight when the tone stops */
-    double let_go_s;       /* from the stop until the weight is 0 (HUGE_VAL: never) */
+    double rms_rad;            /* RMS angle error over the window */
+    double weight_at_stop;     /* HP's gate weight when the tone stops */
+    double let_go_s;           /* from the stop until the weight is 0 (HUGE_VAL: never) */
     double max_torque_diff_Nm; /* largest |torque - twin's torque|, twin given */
     double max_error_rad;      /* largest |angle error| over the window */
 } result_t;
 
 /* Flies the axis; with twin, a second axis on the same measurements whose
  * torques are compared (the plant follows the first). */
-static result_t fly(const ladrc_axis_config_t *cfg, const ladrc_axis_config_t *twin_cfg, const dist_t *d,
-                    double from_s, double to_s)
+static result_t fly(const ladrc_axis_config_t *cfg, const ladrc_axis_config_t *twin_cfg, const dist_t *d, double from_s,
+                    double to_s)
 {
     ladrc_axis_t axis, twin;
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&axis, cfg));

@@ -153,8 +153,8 @@ typedef struct {
     uint8_t delay_ticks;
 } modelled_axis_t;
 
-static ladrc_margins_status_t tune_airframe(const modelled_axis_t *af, ladrc_variant_t variant, ladrc_hp_sample_t sample,
-                                            ladrc_axis_config_t *tuned)
+static ladrc_margins_status_t tune_airframe(const modelled_axis_t *af, ladrc_variant_t variant,
+                                            ladrc_hp_sample_t sample, ladrc_axis_config_t *tuned)
 {
     const ladrc_real_t inertia[LADRC_AXES] = {(ladrc_real_t)af->j, (ladrc_real_t)af->j, (ladrc_real_t)af->jz};
     static ladrc_attitude_config_t acfg;
@@ -194,12 +194,12 @@ static ladrc_margins_status_t tune_airframe(const modelled_axis_t *af, ladrc_var
 static ladrc_margins_status_t tune_big5(ladrc_variant_t variant, double drag_Nm_s, ladrc_axis_config_t *tuned)
 {
     const modelled_axis_t big5 = {.name = "big5",
-                             .j = 0.0873 * 1.3,
-                             .jz = 0.1605 * 0.7,
-                             .dt_s = 0.002,
-                             .tau_s = 0.06,
-                             .drag_Nm_s = drag_Nm_s,
-                             .delay_ticks = 2};
+                                  .j = 0.0873 * 1.3,
+                                  .jz = 0.1605 * 0.7,
+                                  .dt_s = 0.002,
+                                  .tau_s = 0.06,
+                                  .drag_Nm_s = drag_Nm_s,
+                                  .delay_ticks = 2};
     return tune_airframe(&big5, variant, LADRC_HP_SAMPLE_OBSERVER, tuned);
 }
 
@@ -244,17 +244,14 @@ static void test_what_tunes_with_the_usual_search_keeps_its_gains(void)
 #define OWN_LOOP_MIN_GAIN 1.5
 static void test_adaptive_variants_are_not_capped_by_their_core(void)
 {
-    const modelled_axis_t heavy = {.name = "heavy",
-                              .j = 0.0139,
-                              .jz = 0.0263,
-                              .dt_s = 0.001,
-                              .tau_s = 0.03,
-                              .drag_Nm_s = 0.09,
-                              .delay_ticks = 2};
+    const modelled_axis_t heavy = {
+        .name = "heavy", .j = 0.0139, .jz = 0.0263, .dt_s = 0.001, .tau_s = 0.03, .drag_Nm_s = 0.09, .delay_ticks = 2};
     ladrc_axis_config_t core, lp, hp;
-    TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, tune_airframe(&heavy, LADRC_VARIANT_LADRC, LADRC_HP_SAMPLE_OBSERVER, &core));
+    TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK,
+                          tune_airframe(&heavy, LADRC_VARIANT_LADRC, LADRC_HP_SAMPLE_OBSERVER, &core));
     const double core_peak = res.dist_peak_rad;
-    TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, tune_airframe(&heavy, LADRC_VARIANT_LP_MLADRC, LADRC_HP_SAMPLE_OBSERVER, &lp));
+    TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK,
+                          tune_airframe(&heavy, LADRC_VARIANT_LP_MLADRC, LADRC_HP_SAMPLE_OBSERVER, &lp));
     TEST_ASSERT_TRUE(res.pm_deg >= 45.0 && res.gm_db >= 6.0);
     TEST_ASSERT_TRUE(lp.wc_rad_s >= (ladrc_real_t)OWN_LOOP_MIN_GAIN * core.wc_rad_s);
     TEST_ASSERT_TRUE(res.dist_peak_rad < core_peak);

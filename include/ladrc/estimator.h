@@ -292,9 +292,9 @@ typedef struct {
     /** @{ */
     ladrc_real_t err_fast, err_slow; /**< short and long averages of the fit's prior error power */
     /** @} */
-    ladrc_real_t weight;   /**< compensation weight in [0, 1] */
-    ladrc_real_t estimate; /**< the applied d_hat (rad/s^2) */
-    ladrc_real_t handover; /**< part of estimate's latest change due to the weight */
+    ladrc_real_t weight;    /**< compensation weight in [0, 1] */
+    ladrc_real_t estimate;  /**< the applied d_hat (rad/s^2) */
+    ladrc_real_t handover;  /**< part of estimate's latest change due to the weight */
     ladrc_real_t block_sum; /**< sample_block_mean: the block's samples so far, summed (rad/s^2) */
     uint16_t block_n;       /**< sample_block_mean: how many */
     uint8_t block_mean;     /**< sample_block_mean */

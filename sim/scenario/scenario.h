@@ -58,13 +58,13 @@ typedef enum { SIM_TUNE_NONE = 0, SIM_TUNE_MARGINS = 1 } sim_tune_t;
 /* Optional per-controller overrides; NaN (or -1 for enums) = library default. */
 typedef struct {
     double wc_rad_s, wo_rad_s;
-    int leso_method;       /* -1, or ladrc_leso_method_t */
-    int hp_freq_mode;      /* -1, or ladrc_hp_freq_mode_t */
-    int hp_sample;         /* -1, or ladrc_hp_sample_t */
-    double hp_freq_rad_s;  /* known frequency or first guess of the first tone */
-    double hp_freq2_rad_s; /* the same for the second tone */
+    int leso_method;                             /* -1, or ladrc_leso_method_t */
+    int hp_freq_mode;                            /* -1, or ladrc_hp_freq_mode_t */
+    int hp_sample;                               /* -1, or ladrc_hp_sample_t */
+    double hp_freq_rad_s;                        /* known frequency or first guess of the first tone */
+    double hp_freq2_rad_s;                       /* the same for the second tone */
     double hp_freq_min_rad_s, hp_freq_max_rad_s; /* ONLINE search range */
-    int hp_tones;          /* -1, or the number of tones (1..LADRC_HP_MAX_TONES) */
+    int hp_tones;                                /* -1, or the number of tones (1..LADRC_HP_MAX_TONES) */
     double levant_lipschitz_rad_s4;
     double td_accel_rad_s2;
     double pid_kp, pid_ki, pid_kd;

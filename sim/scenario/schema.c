@@ -335,7 +335,8 @@ void schema_set_defaults(sim_scenario_t *sc)
         sim_overrides_t *o = &sc->overrides[i];
         o->wc_rad_s = o->wo_rad_s = NAN;
         o->leso_method = o->hp_freq_mode = o->hp_sample = o->coupling_feed = -1;
-        o->hp_freq_rad_s = o->hp_freq2_rad_s = o->hp_freq_min_rad_s = o->hp_freq_max_rad_s = o->levant_lipschitz_rad_s4 = o->td_accel_rad_s2 = NAN;
+        o->hp_freq_rad_s = o->hp_freq2_rad_s = o->hp_freq_min_rad_s = o->hp_freq_max_rad_s =
+            o->levant_lipschitz_rad_s4 = o->td_accel_rad_s2 = NAN;
         o->hp_tones = -1;
         o->model_motor_tau_s = NAN;
         o->model_delay_ticks = o->wrap_yaw = -1;

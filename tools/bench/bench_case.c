@@ -282,8 +282,7 @@ int bench_setup_attitude(ladrc_attitude_t *att, ladrc_mixer_t *mixer, int bench_
 {
     ladrc_attitude_config_t cfg;
     int bad_axis = -1;
-    ladrc_attitude_config_default(&cfg, bench_case_variant[bench_case], BENCH_DT_S, bench_inertia,
-                                  DRAG_NMS);
+    ladrc_attitude_config_default(&cfg, bench_case_variant[bench_case], BENCH_DT_S, bench_inertia, DRAG_NMS);
     for (int a = 0; a < LADRC_AXES; ++a) {
         set_case(&cfg.axis[a], bench_case);
     }

@@ -383,14 +383,13 @@ typedef struct {
  * The adaptive variants' estimator settings are kept; their wc and wo are
  * searched on the plain LADRC loop (estimator off), then lowered (by 1.1,
  * then bisection to 1 %) until the whole variant, as
- * ladrc_margins_analyse_reported analyses it, meets the targets too.
+ * ladrc_margins_analyse_reported analyses it, meets the targets too; and
+ * on the whole variant's own loop, searched like LADRC's, r in {3, 5, 8}.
  * Of these candidates the one with the smallest peak |disturbance -> error|
  * of the variant as it flies wins; out->margins are its margins.
  * Only when none meets the targets does the search widen (what tunes above
- * keeps its gains): the adaptive variants' whole loops searched like
- * LADRC's, r in {3, 5, 8}; then, still without a candidate, the LADRC
- * family at r in {12, 20, 32} (on the core and stepped down, and on the
- * whole loop), ranked the same way.
+ * keeps its gains): the LADRC family at r in {12, 20, 32} (on the core and
+ * stepped down, and on the whole loop), ranked the same way.
  * Returns LADRC_MARGINS_ERR_TARGETS_NOT_MET when none meets them, with the
  * closest stable miss (smallest shortfall, gain margin weighted 3 per dB
  * against 1 per degree) in *tuned and its margins in out->margins (the
