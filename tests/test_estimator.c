@@ -222,6 +222,67 @@ static void test_hp_undoes_the_observer_lag_of_its_samples(void)
     TEST_ASSERT_FLOAT_WITHIN(1.2, 120.0 * sin(w * 2999 * DT_S), ladrc_hp_get_estimate(&est));
 }
 
+static void test_hp_undoes_the_block_mean_and_the_age_of_its_samples(void)
+{
+    /* given per-tick samples of a 30 rad/s tone half a tick old (a rate
+     * difference) and a fit on the mean of each block of 8 ticks, told the
+     * age of that mean (4 ticks): at 30 rad/s the block's mean is 3.5 ticks
+     * late (0.105 rad) and 0.7 % small */
+    const double w = 30.0;
+    const unsigned n = 8u;
+    ladrc_hp_estimator_t est;
+    ladrc_hp_config_t cfg = hp_config(LADRC_HP_FREQ_KNOWN, w);
+    cfg.fit_decimation = (uint16_t)n;
+    cfg.sample_block_mean = 1u;
+    cfg.sample_age_s = (ladrc_real_t)(0.5 * n * DT_S);
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_hp_init(&est, &cfg));
+    for (int k = 0; k < 6000; ++k) {
+        ladrc_hp_step(&est, (ladrc_real_t)(120.0 * sin(w * (k - 0.5) * DT_S)));
+    }
+    /* then the estimate is the tone on time: within 1 % of 120 (uncorrected,
+     * the 0.105 rad of phase alone would leave 12.6) */
+    TEST_ASSERT_FLOAT_WITHIN(1.2, 120.0 * sin(w * 5999 * DT_S), ladrc_hp_get_estimate(&est));
+    /* and an age the fastest tone turns more than pi/2 in is refused */
+    cfg.sample_age_s = (ladrc_real_t)(0.6 * 3.14159265 / w);
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_SAMPLE_LAG, ladrc_hp_init(&est, &cfg));
+    cfg.sample_age_s = 0.0f;
+    cfg.sample_block_mean = 2u;
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_HP_SAMPLE_LAG, ladrc_hp_init(&est, &cfg));
+}
+
+static void test_lp_gives_its_sample_and_hands_over_past_its_lead(void)
+{
+    const ladrc_lp_config_t cfg = {.dt_s = (ladrc_real_t)DT_S,
+                                   .lambda0_per_s = 100.0f,
+                                   .k0_per_s = 300.0f,
+                                   .act_tau_s = 0.03f,
+                                   .act_delay_ticks = 2u};
+    ladrc_lp_estimator_t est;
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_lp_init(&est, &cfg));
+    /* the first rate gives no sample; the second its difference minus the known input */
+    (void)ladrc_lp_step(&est, 0.0f, 0.0f);
+    TEST_ASSERT_TRUE(isnan((double)ladrc_lp_get_sample(&est)));
+    (void)ladrc_lp_step(&est, 0.002f, -1.0f);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3, 0.002 / DT_S + 1.0, ladrc_lp_get_sample(&est));
+    for (int k = 0; k < 500; ++k) {
+        (void)ladrc_lp_step(&est, 0.002f, (ladrc_real_t)(-10.0 - 5.0 * sin(0.02 * k)));
+        (void)lp_lead(&est);
+    }
+    /* handed over, the estimate and the command move by exactly what was
+     * given up, at once: no step through the lead (whose gain there is 4) */
+    ladrc_lp_estimator_t moved = est;
+    const double d_before = ladrc_lp_get_estimate(&est);
+    const double c_before = lp_lead(&est);
+    ladrc_lp_hand_over(&moved, -6.0f);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5, d_before - 6.0, ladrc_lp_get_estimate(&moved));
+    TEST_ASSERT_FLOAT_WITHIN(1e-4, c_before - 6.0, lp_lead(&moved));
+    /* a non-finite hand-over changes nothing */
+    ladrc_lp_estimator_t kept = moved;
+    ladrc_lp_hand_over(&moved, (ladrc_real_t)NAN);
+    TEST_ASSERT_TRUE(ladrc_lp_get_estimate(&kept) == ladrc_lp_get_estimate(&moved));
+    TEST_ASSERT_TRUE(lp_lead(&kept) == lp_lead(&moved));
+}
+
 static void test_hp_hands_over_what_the_weight_moves(void)
 {
     /* given a locked model, the handover of each tick is the change of the
@@ -666,6 +727,8 @@ int main(void)
     RUN_TEST(test_hp_known_frequency_fits_the_amplitude_and_opens_the_gate);
     RUN_TEST(test_hp_fits_on_the_tick_its_phase_names);
     RUN_TEST(test_hp_undoes_the_observer_lag_of_its_samples);
+    RUN_TEST(test_hp_undoes_the_block_mean_and_the_age_of_its_samples);
+    RUN_TEST(test_lp_gives_its_sample_and_hands_over_past_its_lead);
     RUN_TEST(test_hp_hands_over_what_the_weight_moves);
     RUN_TEST(test_hp_online_stays_bounded_with_noise);
     RUN_TEST(test_hp_gate_stays_shut_on_noise_without_a_tone);
