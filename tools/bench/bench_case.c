@@ -148,7 +148,6 @@ static void fly_attitude(int loop)
     bench_inputs_t *in = &bench_in[loop];
     const int which = bench_loop_disturbance[loop];
     const int motors = loop_has_motors(loop);
-    const float drag = DRAG_NMS;
     float th[LADRC_AXES], w[LADRC_AXES];
     motor_t motor[LADRC_AXES];
     for (int a = 0; a < LADRC_AXES; ++a) {
@@ -196,7 +195,7 @@ static void fly_attitude(int loop)
                     motor[a].acting += lag * (held[a] - motor[a].acting);
                     u = motor[a].acting;
                 }
-                dw[a] = (u - drag * w[a] + (bench_inertia[n] - bench_inertia[m]) * w[n] * w[m]) / j +
+                dw[a] = (u - DRAG_NMS * w[a] + (bench_inertia[n] - bench_inertia[m]) * w[n] * w[m]) / j +
                         bench_disturbance(which, a, t);
             }
             for (int a = 0; a < LADRC_AXES; ++a) {
@@ -213,7 +212,6 @@ static void fly_axis(int loop)
     bench_inputs_t *in = &bench_in[loop];
     const int which = bench_loop_disturbance[loop];
     const int motors = loop_has_motors(loop);
-    const float drag = DRAG_NMS;
     float th = bench_ref[0][0], w = 0.0f;
     motor_t motor;
     motor_start(&motor);
@@ -237,7 +235,7 @@ static void fly_axis(int loop)
                 motor.acting += lag * (held - motor.acting);
                 u = motor.acting;
             }
-            w += h * ((u - drag * w) / bench_inertia[0] + bench_disturbance(which, 0, t));
+            w += h * ((u - DRAG_NMS * w) / bench_inertia[0] + bench_disturbance(which, 0, t));
             th += h * w;
         }
     }
