@@ -76,6 +76,17 @@ static double hp_convergence_time(double c, double a, double w, int n, ladrc_hp_
 }
 
 /* One tick of the LP command's lead: the compensation it gives (rad/s^2). */
+/* LP with the paper's forgetting behind a 30 ms motor lag and 2 ticks of delay. */
+static ladrc_lp_config_t lp_config_behind_motors(void)
+{
+    const ladrc_lp_config_t cfg = {.dt_s = (ladrc_real_t)DT_S,
+                                   .lambda0_per_s = 100.0f,
+                                   .k0_per_s = 300.0f,
+                                   .act_tau_s = 0.03f,
+                                   .act_delay_ticks = 2u};
+    return cfg;
+}
+
 static ladrc_real_t lp_lead(ladrc_lp_estimator_t *est)
 {
     ladrc_real_t command_rad_s2 = LADRC_R(0.0);
@@ -252,11 +263,7 @@ static void test_hp_undoes_the_block_mean_and_the_age_of_its_samples(void)
 
 static void test_lp_gives_its_sample_and_hands_over_past_its_lead(void)
 {
-    const ladrc_lp_config_t cfg = {.dt_s = (ladrc_real_t)DT_S,
-                                   .lambda0_per_s = 100.0f,
-                                   .k0_per_s = 300.0f,
-                                   .act_tau_s = 0.03f,
-                                   .act_delay_ticks = 2u};
+    const ladrc_lp_config_t cfg = lp_config_behind_motors();
     ladrc_lp_estimator_t est;
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_lp_init(&est, &cfg));
     /* the first rate gives no sample; the second its difference minus the known input */
@@ -656,11 +663,7 @@ static void test_lp_lead_is_n_at_once_and_unity_at_dc(void)
 {
     /* given: LP with a 30 ms lag and 2 ticks to lead over, on a sample step */
     const double tau_eff = 0.03 + 2.0 * DT_S;
-    const ladrc_lp_config_t cfg = {.dt_s = (ladrc_real_t)DT_S,
-                                   .lambda0_per_s = 100.0f,
-                                   .k0_per_s = 300.0f,
-                                   .act_tau_s = 0.03f,
-                                   .act_delay_ticks = 2u};
+    const ladrc_lp_config_t cfg = lp_config_behind_motors();
     ladrc_lp_estimator_t est;
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_lp_init(&est, &cfg));
     /* when: a still rate and a known input of -10 rad/s^2 (sample 10,
