@@ -63,6 +63,10 @@ typedef union {
     ladrc_attitude_t attitude;
 } ctl_state_t;
 
+/* 1 when ctl names one axis: an attitude controller and an axis index in
+ * range, or an axis alone (not both, not neither); 0 for NULL. */
+int margins_ctl_names_axis(const ladrc_margins_controller_t *ctl);
+/* The config of the axis ctl names (margins_ctl_names_axis). */
 const ladrc_axis_config_t *margins_ctl_axis_config(const ladrc_margins_controller_t *ctl);
 ladrc_margins_status_t margins_ctl_init(const ladrc_margins_controller_t *ctl, ctl_state_t *s);
 /* One tick of the real code at reference 0: torque command (N m). */

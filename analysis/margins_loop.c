@@ -292,8 +292,7 @@ ladrc_margins_status_t ladrc_margins_analyse_reported(ladrc_margins_workspace_t 
 {
     if (idle != NULL)
         *idle = 0;
-    if (ctl != NULL && (ctl->attitude != NULL) != (ctl->axis != NULL) &&
-        (ctl->attitude == NULL || (ctl->axis_index >= 0 && ctl->axis_index < LADRC_AXES))) {
+    if (margins_ctl_names_axis(ctl)) {
         const ladrc_axis_config_t *a = margins_ctl_axis_config(ctl);
         if (a->variant == LADRC_VARIANT_HP_MLADRC && a->hp_sample == LADRC_HP_SAMPLE_GYRO) {
             /* HP-MLADRC on the gyro is LP-MLADRC until its gate engages on a
@@ -317,9 +316,7 @@ ladrc_margins_status_t ladrc_margins_analyse_reported(ladrc_margins_workspace_t 
         }
     }
     ladrc_margins_status_t st = ladrc_margins_analyse(ws, ctl, req, res);
-    if (st == LADRC_MARGINS_ERR_NOT_SETTLED && ctl != NULL && req != NULL &&
-        (ctl->attitude != NULL || ctl->axis != NULL) &&
-        (ctl->attitude == NULL || (ctl->axis_index >= 0 && ctl->axis_index < LADRC_AXES)) &&
+    if (st == LADRC_MARGINS_ERR_NOT_SETTLED && req != NULL && margins_ctl_names_axis(ctl) &&
         margins_ctl_axis_config(ctl)->variant == LADRC_VARIANT_HP_MLADRC) {
         ladrc_margins_request_t quiet = *req;
         quiet.tone_rad_s2 = 0.0;

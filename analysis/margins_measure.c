@@ -18,6 +18,13 @@
 #define TAIL_SETTLED 1e-3
 #define WARMUP_TICKS 4
 
+int margins_ctl_names_axis(const ladrc_margins_controller_t *ctl)
+{
+    if (ctl == NULL || (ctl->attitude == NULL) == (ctl->axis == NULL))
+        return 0;
+    return ctl->attitude == NULL || (ctl->axis_index >= 0 && ctl->axis_index < LADRC_AXES);
+}
+
 const ladrc_axis_config_t *margins_ctl_axis_config(const ladrc_margins_controller_t *ctl)
 {
     return ctl->attitude != NULL ? &ctl->attitude->axis[ctl->axis_index] : ctl->axis;
@@ -150,9 +157,7 @@ ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, cons
     ladrc_margins_status_t st = margins_check_request(req);
     if (st != LADRC_MARGINS_OK)
         return st;
-    if ((ctl->attitude == NULL) == (ctl->axis == NULL))
-        return LADRC_MARGINS_ERR_CONTROLLER;
-    if (ctl->attitude != NULL && (ctl->axis_index < 0 || ctl->axis_index >= LADRC_AXES))
+    if (!margins_ctl_names_axis(ctl))
         return LADRC_MARGINS_ERR_CONTROLLER;
     const ladrc_axis_config_t *acfg = margins_ctl_axis_config(ctl);
     if (fabs((double)acfg->dt_s - req->plant.dt_s) > 1e-6 * req->plant.dt_s)

@@ -264,9 +264,7 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
 {
     if (ws == NULL || ctl == NULL || req == NULL || targets == NULL || tuned == NULL || out == NULL)
         return LADRC_MARGINS_ERR_NULL;
-    if ((ctl->attitude == NULL) == (ctl->axis == NULL))
-        return LADRC_MARGINS_ERR_CONTROLLER;
-    if (ctl->attitude != NULL && (ctl->axis_index < 0 || ctl->axis_index >= LADRC_AXES))
+    if (!margins_ctl_names_axis(ctl))
         return LADRC_MARGINS_ERR_CONTROLLER;
     const ladrc_margins_status_t st = margins_check_request(req);
     if (st != LADRC_MARGINS_OK)

@@ -307,6 +307,14 @@ static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
  * below SETTLED_SHARE of the sample's. A block mean (the gyro's sample, whose
  * noise the fit cannot predict): the fit removes at least
  * NOISY_EXPLAINED_SHARE of the power its tones claim. */
+/* The power a^2 / 2 of tone k's fitted phasor (rad^2/s^4). */
+static inline ladrc_real_t fit_tone_power(const ladrc_real_t *theta, unsigned k)
+{
+    const ladrc_real_t a = theta[theta_a(k)];
+    const ladrc_real_t b = theta[theta_a(k) + 1u];
+    return LADRC_R(0.5) * (a * a + b * b);
+}
+
 static int fit_settled(const ladrc_hp_estimator_t *est, const ladrc_real_t *theta)
 {
     if (!est->block_mean) {
@@ -314,9 +322,7 @@ static int fit_settled(const ladrc_hp_estimator_t *est, const ladrc_real_t *thet
     }
     ladrc_real_t claimed = LADRC_R(0.0);
     for (unsigned k = 0u; k < est->n_active; ++k) {
-        const ladrc_real_t a = theta[theta_a(k)];
-        const ladrc_real_t b = theta[theta_a(k) + 1u];
-        claimed += LADRC_R(0.5) * (a * a + b * b);
+        claimed += fit_tone_power(theta, k);
     }
     return est->sig_power - est->err_slow >= NOISY_EXPLAINED_SHARE * claimed;
 }
@@ -343,7 +349,7 @@ LADRC_NOINLINE static void after_fit(ladrc_hp_estimator_t *est, ladrc_real_t sam
         const ladrc_real_t a = theta[theta_a(k)];
         const ladrc_real_t b = theta[theta_a(k) + 1u];
         const ladrc_real_t motion = update_slip(est, tone, a, b);
-        const ladrc_real_t power = LADRC_R(0.5) * (a * a + b * b);
+        const ladrc_real_t power = fit_tone_power(theta, k);
         tone->significant = (power >= AMP_SHARE * est->sig_power && power >= power_floor) ? 1u : 0u;
         if (!tone->significant) {
             tone->locked = 0u;

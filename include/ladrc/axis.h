@@ -152,9 +152,10 @@ static inline int ladrc_variant_has_observer(ladrc_variant_t v)
 /** What HP-MLADRC's fit samples (hp_sample). */
 typedef enum {
     LADRC_HP_SAMPLE_OBSERVER = 0, /**< the LESO's view of the unknown f, from the angle alone (the paper's) */
-    LADRC_HP_SAMPLE_GYRO = 1      /**< the residual of an LP estimator on the measured rate: the axis flies as
-                                       LP-MLADRC and the fit adds what LP's tracking lags behind (needs the
-                                       rate on every tick; a tick without one holds both estimates) */
+    LADRC_HP_SAMPLE_GYRO = 1      /**< the measured acceleration from the rate, less the known input: the fit
+                                       takes the tones, an LP estimator what the fit leaves; the axis flies as
+                                       LP-MLADRC until the fit locks on a steady tone (needs the rate on every
+                                       tick; a tick without one holds both estimates) */
 } ladrc_hp_sample_t;
 
 /** How an axis shapes its raw reference into (r, r', r''). */
@@ -300,7 +301,7 @@ typedef struct {
             ladrc_hp_estimator_t est; /**< the estimator */
             union {
                 ladrc_leso_twin_t shadow; /**< OBSERVER: the LESO's view of a still plant, z3 caused by d_hat alone */
-                ladrc_lp_estimator_t lp;  /**< GYRO: the LP estimator whose residual the fit samples */
+                ladrc_lp_estimator_t lp;  /**< GYRO: the LP estimator beside the fit, on what the fit leaves */
             } source;                     /**< by hp_sample */
             uint8_t gyro;                 /**< hp_sample is LADRC_HP_SAMPLE_GYRO */
         } hp;                             /**< HP-MLADRC */
