@@ -520,37 +520,56 @@ def safe(name):
     return re.sub(r"[^A-Za-z0-9_.-]", "_", name)
 
 
-def cmd_plot(args):
-    varied, controllers, cols = read_campaign(args.out)
-    if not controllers:
-        raise CampaignError("%s/campaign.csv: no controller columns" % args.out)
-    for opt, value in (("--x", args.x), ("--y", args.y)):
-        if value is not None and value not in varied:
-            raise CampaignError("%s %s: not a varied name of the campaign (%s)"
-                                % (opt, value, ", ".join(varied) if varied else "it varies nothing"))
+def parse_labels(specs, varied):
+    """{varied name: axis label} from the --label NAME=TEXT options."""
     labels = {}
-    for spec in args.label:
+    for spec in specs:
         key, sep, text = spec.partition("=")
         if not sep or key not in varied or not text:
             raise CampaignError("--label %s: expected NAME=TEXT with NAME a varied name (%s)"
                                 % (spec, ", ".join(varied) if varied else "it varies nothing"))
         labels[key] = text
-    xname = args.x or (varied[0] if varied else None)
-    yname = args.y or next((v for v in varied if v != xname), None)
+    return labels
+
+
+def map_names(args, names, what, none):
+    """(x name, y name) of a map from --x and --y, each one of names (default: the first two);
+    what says where names come from and none what to say when there are none, for the error."""
+    for opt, value in (("--x", args.x), ("--y", args.y)):
+        if value is not None and value not in names:
+            raise CampaignError("%s %s: not a varied name %s (%s)"
+                                % (opt, value, what, ", ".join(names) if names else none))
+    xname = args.x or (names[0] if names else None)
+    yname = args.y or next((v for v in names if v != xname), None)
     if xname is not None and xname == yname:
         raise CampaignError("--x and --y name the same varied name %s" % xname)
+    return xname, yname
+
+
+def start_figures(args, command, style):
+    """Matplotlib on the Agg backend with style, the campaign's name and OUT/figures (made)."""
     try:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         import numpy  # noqa: F401 (only whether it is there)
     except ImportError as e:
-        raise CampaignError("plot needs matplotlib and numpy (apt-get install python3-matplotlib "
-                            "python3-numpy): %s" % e)
-    plt.rcParams.update({"font.size": 10, "axes.grid": True, "grid.alpha": 0.3})
+        raise CampaignError("%s needs matplotlib and numpy (apt-get install python3-matplotlib "
+                            "python3-numpy): %s" % (command, e))
+    plt.rcParams.update(style)
     name = args.name or os.path.basename(os.path.normpath(os.path.abspath(args.out)))
     figdir = os.path.join(args.out, "figures")
     os.makedirs(figdir, exist_ok=True)
+    return name, figdir
+
+
+def cmd_plot(args):
+    varied, controllers, cols = read_campaign(args.out)
+    if not controllers:
+        raise CampaignError("%s/campaign.csv: no controller columns" % args.out)
+    xname, yname = map_names(args, varied, "of the campaign", "it varies nothing")
+    labels = parse_labels(args.label, varied)
+    name, figdir = start_figures(args, "plot", {"font.size": 10, "axes.grid": True, "grid.alpha": 0.3})
     written = []
     if xname is not None:
         written.append(plot_maps(args.out, name, varied, controllers, cols, args.axis, xname, yname, figdir,
@@ -573,6 +592,7 @@ def cmd_ratio(args):
             raise CampaignError("--where %s: expected NAME=VALUE with NAME a varied name (%s)"
                                 % (spec, ", ".join(varied) if varied else "it varies nothing"))
         where.append((key, value))
+
     def same(text, value):  # the same text, or the same number written otherwise ("0.03" and "3e-2")
         nums = as_numbers([text, value])
         return text == value or (nums is not None and nums[0] == nums[1])
@@ -581,26 +601,11 @@ def cmd_ratio(args):
         raise CampaignError("--where %s: no run of the campaign" % " ".join(args.where))
     cols = {name: [col[r] for r in keep] for name, col in cols.items()}
     free = [v for v in varied if v not in dict(where)]
-    for opt, value in (("--x", args.x), ("--y", args.y)):
-        if value is not None and value not in free:
-            raise CampaignError("%s %s: not a varied name left free by --where (%s)"
-                                % (opt, value, ", ".join(free) if free else "none"))
-    labels = dict(spec.partition("=")[::2] for spec in args.label)
-    xname = args.x or (free[0] if free else None)
-    yname = args.y or next((v for v in free if v != xname), None)
+    xname, yname = map_names(args, free, "left free by --where", "none")
     if xname is None:
         raise CampaignError("ratio: no varied name left for the x axis")
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError as e:
-        raise CampaignError("ratio needs matplotlib and numpy (apt-get install python3-matplotlib "
-                            "python3-numpy): %s" % e)
-    plt.rcParams.update({"font.size": 10})
-    name = args.name or os.path.basename(os.path.normpath(os.path.abspath(args.out)))
-    figdir = os.path.join(args.out, "figures")
-    os.makedirs(figdir, exist_ok=True)
+    labels = parse_labels(args.label, varied)
+    name, figdir = start_figures(args, "ratio", {"font.size": 10})
     try:
         path, summary = plot_ratio_maps(name, cols, args.axis, xname, yname, figdir, labels, controllers, where,
                                         map_axes, save)

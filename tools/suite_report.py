@@ -66,6 +66,12 @@ def best(m, controllers, axis):
     return min(have) if have else (None, None)
 
 
+def family_ratio(m, axis):
+    """((best family RMS, who), (better incumbent RMS, who), their ratio or None) on an axis."""
+    (fv, fc), (iv, ic) = best(m, FAMILY, axis), best(m, INCUMBENTS, axis)
+    return (fv, fc), (iv, ic), (fv / iv if fv is not None and iv else None)
+
+
 def case_table(out_dir, cases, controllers):
     """(table lines, [(case, axis, ratio or None, text)], failures, divergences) or None when a case
     has no output."""
@@ -82,8 +88,7 @@ def case_table(out_dir, cases, controllers):
         divs += ["`%s` %s: %s" % (case, c, divergence_text(m, c)) for c in controllers
                  if divergence(m, c) is not None]
         for axis in AXES:
-            (fv, fc), (iv, ic) = best(m, FAMILY, axis), best(m, INCUMBENTS, axis)
-            r = fv / iv if fv is not None and iv else None
+            (fv, fc), (iv, ic), r = family_ratio(m, axis)
             text = ("%s (%s) / %s (%s) = %.2f" % (fmt(fv), fc, fmt(iv), ic, r) if r is not None else
                     "no LADRC-family controller flew" if fv is None else "no incumbent flew")
             results.append((case, axis, r, text))
@@ -143,8 +148,7 @@ def front_page_lines(out_dir):
         m = m or {}
         row = ["`%s`" % case]
         for axis in AXES:
-            (fv, fc), (iv, ic) = best(m, FAMILY, axis), best(m, INCUMBENTS, axis)
-            r = fv / iv if fv is not None and iv else None
+            (_, fc), (_, ic), r = family_ratio(m, axis)
             n += 1
             if r is None or r > 1.0:
                 lost += 1
