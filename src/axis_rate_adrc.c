@@ -62,7 +62,7 @@ void axis_rate_adrc_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
 
 /* The attitude P loop's rate setpoint before its bound (rad/s): k_att times
  * the angle error (wrapped on a wrapped axis, whose r is then kept within a
- * turn as INDI keeps it) plus the shaped rate. */
+ * turn as INDI keeps it) plus the shaped rate r'. */
 static ladrc_real_t attitude_rate(ladrc_axis_t *axis, ladrc_real_t angle_rad)
 {
     const ladrc_real_t error_rad = axis_wrapped_error(axis, angle_rad);
@@ -97,8 +97,12 @@ ladrc_fault_t axis_rate_adrc_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladr
     const ladrc_real_t setpoint = acro ? ref_rad : attitude_rate(axis, angle_rad);
     const ladrc_real_t max = axis->part.radrc.rate_max_rad_s;
     const ladrc_real_t rate_sp = ladrc_clamp(setpoint, -max, max);
+    /* The shaped acceleration r'' fed forward while the setpoint is within
+     * its bound (beyond it the bound, not r, is what the rate should follow;
+     * r'' is 0 in acro). */
+    const ladrc_real_t accel_ff = (rate_sp == setpoint) ? axis->ref.ddr : LADRC_R(0.0);
     const ladrc_real_t u = (ladrc_reso_step(eso, rate_rad_s, acting_Nm, LADRC_R(0.0), LADRC_R(0.0)) == LADRC_FAULT_NONE)
-                               ? (axis->kp * (rate_sp - eso->z1) - eso->z2) / axis->b0
+                               ? (axis->kp * (rate_sp - eso->z1) + accel_ff - eso->z2) / axis->b0
                                : (ladrc_real_t)NAN;
     if (!ladrc_is_finite(u)) {
         /* Held; the observer restarts on the measured rate. */

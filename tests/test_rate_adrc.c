@@ -27,6 +27,10 @@
  * 0.033 rad/s^2 at 0.5 rad/s and wo = 300, an angle error near 2e-5 rad;
  * the bound leaves a factor 5. */
 #define SLOW_ERROR_RAD 1e-4
+/* Tracking of a shaped reference with its rate and acceleration fed forward:
+ * the TD's peak rate on a 0.2 rad step, sqrt(20 rad/s^2 * 0.2 rad) = 2 rad/s,
+ * times a 1 ms tick. */
+#define TRACK_TICK_RAD 2e-3
 
 typedef struct {
     double y, w; /* angle (rad), rate (rad/s) */
@@ -194,6 +198,31 @@ static void test_step_settles_without_overshoot_beyond_the_cascade(void)
     TEST_ASSERT_FLOAT_WITHIN(1e-6, p.y, angle);
     TEST_ASSERT_FLOAT_WITHIN(1e-4, p.w, rate);
     TEST_ASSERT_FLOAT_WITHIN(1e-2, 0.0, dist);
+}
+
+static void test_shaped_reference_is_followed_through_the_transient(void)
+{
+    /* given the default gains, a 0.2 rad step shaped by the default TD and
+     * the nominal plant */
+    ladrc_axis_t axis;
+    ladrc_axis_config_t cfg = config();
+    cfg.shaper = LADRC_SHAPER_TD; /* the default's, with its bound */
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&axis, &cfg));
+    plant_t p;
+    plant_init(&p, 0.0, 0);
+    double worst_rad = 0.0;
+    for (int k = 0; k < 1500; ++k) {
+        const ladrc_real_t u = tick(&axis, &p, 0.2);
+        ladrc_ref_t ref;
+        ladrc_axis_get_reference(&axis, &ref);
+        worst_rad = fmax(worst_rad, fabs((double)ref.r - p.y));
+        plant_step(&p, (double)u, 0.0);
+    }
+    /* then with r' and r'' fed forward the angle stays within a tick's worth
+     * of the shaped r (measured 5.5e-4 rad). Without r'' the loop stands off
+     * by r'' / (k_att k_w) = 20 / 1406 = 0.014 rad while the TD accelerates
+     * (measured 0.012 rad). */
+    TEST_ASSERT_TRUE(worst_rad < TRACK_TICK_RAD);
 }
 
 static double constant(double t_s, const void *ctx)
@@ -395,6 +424,7 @@ int main(void)
     RUN_TEST(test_defaults_follow_the_stated_rule);
     RUN_TEST(test_init_names_the_bad_field);
     RUN_TEST(test_step_settles_without_overshoot_beyond_the_cascade);
+    RUN_TEST(test_shaped_reference_is_followed_through_the_transient);
     RUN_TEST(test_constant_disturbance_is_rejected_and_estimated);
     RUN_TEST(test_slow_torque_is_rejected);
     RUN_TEST(test_acro_follows_a_rate_setpoint);

@@ -77,10 +77,12 @@
  * torque ubar_k of the actuator model (as the LADRC family),
  *
  *     ESO    (z1, z2) <- step(w_k, ubar_k)                 (reso.h, bandwidth wo_rad_s)
- *     shaper (r, r') <- TD(ref_k) | Levant(ref_k) | (ref_k, 0)
+ *     shaper (r, r', r'') <- TD(ref_k) | Levant(ref_k) | (ref_k, 0, 0)
  *     w_ref  = clamp(k_att (r - angle_k) + r', +-radrc_rate_max_rad_s)
  *            (acro: clamp(ref_k, +-radrc_rate_max_rad_s), ref_k in rad/s)
- *     u_k    = clamp((k_w (w_ref - z1) - z2) / b0, u_min_Nm, u_max_Nm)
+ *     u_k    = clamp((k_w (w_ref - z1) + r'' - z2) / b0, u_min_Nm, u_max_Nm)
+ *            (r'' the shaper's acceleration; 0 in acro and while w_ref is
+ *            at its bound)
  *
  * so the rate loop is k_w / (s + k_w) once z2 cancels f. Without a measured
  * rate (NULL, or a bad one) it holds its command and raises
