@@ -10,6 +10,8 @@
  *   margins_loop.c     the Nyquist contour and the margins of a loop;
  *   margins_search.c   the largest stable motor lag and sensor delay, and the
  *                      simulated check;
+ *   margins_steps.c    the tuner's time-domain objective (reference and
+ *                      disturbance steps on the sampled plant);
  *   margins_tune.c     the margins-based tuner.
  * Double precision; no heap, no stdio.
  */
@@ -30,6 +32,10 @@ typedef double complex cplx;
 /* Divergence of a converged run: beyond a radian the small-angle loop is
  * meaningless. */
 #define DIVERGED_RAD 1.0
+/* The objective's reference step stays well inside that (rad), and its
+ * window within a minute of simulated flight (s). */
+#define STEP_MAX_RAD 0.5
+#define STEP_WINDOW_MAX_S 60.0
 
 /* ---- margins_plant.c ------------------------------------------------------ */
 
@@ -69,8 +75,9 @@ int margins_ctl_names_axis(const ladrc_margins_controller_t *ctl);
 /* The config of the axis ctl names (margins_ctl_names_axis). */
 const ladrc_axis_config_t *margins_ctl_axis_config(const ladrc_margins_controller_t *ctl);
 ladrc_margins_status_t margins_ctl_init(const ladrc_margins_controller_t *ctl, ctl_state_t *s);
-/* One tick of the real code at reference 0: torque command (N m). */
-double margins_ctl_step(const ladrc_margins_controller_t *ctl, ctl_state_t *s, double angle_rad, double rate_rad_s);
+/* One tick of the real code at reference ref_rad: torque command (N m). */
+double margins_ctl_step(const ladrc_margins_controller_t *ctl, ctl_state_t *s, double ref_rad, double angle_rad,
+                        double rate_rad_s);
 ladrc_margins_status_t margins_check_request(const ladrc_margins_request_t *req);
 
 /* The discrete plant in the time domain with its measurement delay line. */

@@ -49,16 +49,18 @@ ladrc_margins_status_t margins_ctl_init(const ladrc_margins_controller_t *ctl, c
     return ladrc_axis_init(&s->axis, ctl->axis) == LADRC_OK ? LADRC_MARGINS_OK : LADRC_MARGINS_ERR_CONTROLLER;
 }
 
-/* One tick of the real code at reference 0: torque command (N m). The other
- * axes of an attitude rest at 0, so the coupling products vanish and only
- * this axis's own (drag) feed remains, as in the linearised flight. */
-double margins_ctl_step(const ladrc_margins_controller_t *ctl, ctl_state_t *s, double angle_rad, double rate_rad_s)
+/* One tick of the real code: torque command (N m). The other axes of an
+ * attitude rest at 0, so the coupling products vanish and only this axis's
+ * own (drag) feed remains, as in the linearised flight. */
+double margins_ctl_step(const ladrc_margins_controller_t *ctl, ctl_state_t *s, double ref_rad, double angle_rad,
+                        double rate_rad_s)
 {
     if (ctl->attitude != NULL) {
-        const ladrc_real_t ref[LADRC_AXES] = {LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0)};
+        ladrc_real_t ref[LADRC_AXES] = {LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0)};
         ladrc_real_t angle[LADRC_AXES] = {LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0)};
         ladrc_real_t rate[LADRC_AXES] = {LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0)};
         ladrc_real_t torque[LADRC_AXES];
+        ref[ctl->axis_index] = (ladrc_real_t)ref_rad;
         angle[ctl->axis_index] = (ladrc_real_t)angle_rad;
         rate[ctl->axis_index] = (ladrc_real_t)rate_rad_s;
         (void)ladrc_attitude_step(&s->attitude, ref, angle, ctl->use_rate ? rate : NULL, torque);
@@ -66,7 +68,8 @@ double margins_ctl_step(const ladrc_margins_controller_t *ctl, ctl_state_t *s, d
     }
     const ladrc_real_t rate = (ladrc_real_t)rate_rad_s;
     ladrc_real_t torque_Nm;
-    (void)ladrc_axis_step(&s->axis, LADRC_R(0.0), (ladrc_real_t)angle_rad, ctl->use_rate ? &rate : NULL, &torque_Nm);
+    (void)ladrc_axis_step(&s->axis, (ladrc_real_t)ref_rad, (ladrc_real_t)angle_rad, ctl->use_rate ? &rate : NULL,
+                          &torque_Nm);
     return (double)torque_Nm;
 }
 
@@ -82,6 +85,9 @@ void ladrc_margins_request_default(ladrc_margins_request_t *req, const ladrc_mar
     req->n_starts = 4;
     req->out_min_rad_s = 0.1;
     req->n_out = 200;
+    req->track_step_rad = 0.1745; /* 10 deg */
+    req->dist_step_rad_s2 = 20.0;
+    req->step_window_s = 2.0;
 }
 
 ladrc_margins_status_t margins_check_request(const ladrc_margins_request_t *req)
@@ -94,7 +100,9 @@ ladrc_margins_status_t margins_check_request(const ladrc_margins_request_t *req)
         !isfinite(req->tone_rad_s) || !(req->tone_rad_s2 >= 0.0) || !isfinite(req->tone_rad_s2) ||
         !(req->converge_s >= 0.0 && req->converge_s < 1e5) || req->n_starts < 1 || req->n_starts > 64 ||
         !(req->out_min_rad_s > 0.0 && req->out_min_rad_s < PI / req->plant.dt_s) || req->n_out < 2 ||
-        req->n_out > LADRC_MARGINS_MAX_OUT)
+        req->n_out > LADRC_MARGINS_MAX_OUT || !(req->track_step_rad >= 0.0 && req->track_step_rad <= STEP_MAX_RAD) ||
+        !(req->dist_step_rad_s2 >= 0.0) || !isfinite(req->dist_step_rad_s2) ||
+        !(req->step_window_s > 0.0 && req->step_window_s <= STEP_WINDOW_MAX_S))
         return LADRC_MARGINS_ERR_REQUEST;
     return LADRC_MARGINS_OK;
 }
@@ -107,7 +115,7 @@ static int run_closed(const ladrc_margins_controller_t *ctl, ctl_state_t *s, psi
     for (long k = k0; k < k0 + n; ++k) {
         double y, r;
         psim_measure(ps, dp, &y, &r);
-        const double u = margins_ctl_step(ctl, s, y, r);
+        const double u = margins_ctl_step(ctl, s, 0.0, y, r);
         psim_step(ps, dp, u, tone_a * sin(tone_w * dt * (double)k));
         if (!(fabs(ps->x[0]) < DIVERGED_RAD))
             return 0;
@@ -220,11 +228,11 @@ ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, cons
         for (int i = 0; i < n; ++i, ++k) {
             double y, r;
             psim_measure(&ps, &dp, &y, &r);
-            const double u0 = margins_ctl_step(ctl, &s[0], y, r);
-            const double ua = margins_ctl_step(ctl, &s[1], y + (i == 0 ? IMPULSE_ANGLE_RAD : 0.0), r);
+            const double u0 = margins_ctl_step(ctl, &s[0], 0.0, y, r);
+            const double ua = margins_ctl_step(ctl, &s[1], 0.0, y + (i == 0 ? IMPULSE_ANGLE_RAD : 0.0), r);
             ws->h[0][i] += (ua - u0) / IMPULSE_ANGLE_RAD / starts;
             if (ws->has_rate) {
-                const double ur = margins_ctl_step(ctl, &s[2], y, r + (i == 0 ? IMPULSE_RATE_RAD_S : 0.0));
+                const double ur = margins_ctl_step(ctl, &s[2], 0.0, y, r + (i == 0 ? IMPULSE_RATE_RAD_S : 0.0));
                 ws->h[1][i] += (ur - u0) / IMPULSE_RATE_RAD_S / starts;
             }
             psim_step(&ps, &dp, u0, tone_a * sin(tone_w * dt * (double)k));

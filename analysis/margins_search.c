@@ -95,7 +95,7 @@ ladrc_margins_status_t ladrc_margins_simulate(ladrc_margins_workspace_t *ws, con
     for (long k = 0; k < n_ticks; ++k) {
         double y, r;
         psim_measure(&ps, &dp, &y, &r);
-        const double u = margins_ctl_step(ctl, &s[0], y, r);
+        const double u = margins_ctl_step(ctl, &s[0], 0.0, y, r);
         psim_step(&ps, &dp, u, k < pulse ? 1.0 : 0.0);
         const double a = fabs(ps.x[0]);
         if (!(a < DIVERGED_RAD)) {

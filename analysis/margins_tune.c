@@ -20,13 +20,29 @@ static ladrc_axis_config_t *tuner_axis(tuner_t *t)
     return t->ctl.attitude != NULL ? &t->att.axis[t->ctl.axis_index] : &t->axis;
 }
 
+/* The search's shapes: the first N_SHAPES for every variant; the LADRC
+ * family's wide observer ratios after them, a fallback only (margins are
+ * blind to noise: searched everywhere, they made plain LADRC fly up to 15
+ * times worse where the usual ratios meet the targets). RATE-ADRC searches
+ * its attitude gain too: shape = ratio index + N_WIDE_SHAPES * separation
+ * index. */
+#define N_SHAPES 3
+#define N_WIDE_SHAPES 6
+
+static int n_separations(ladrc_variant_t variant)
+{
+    return variant == LADRC_VARIANT_RATE_ADRC ? 3 : 1;
+}
+
 /* Sets the candidate's gains from the search parameters (w, shape index). */
 static void set_gains(tuner_t *t, double w, int shape, double j_model)
 {
     /* observer ratios wo / w: the usual three, then the wide fallback ones */
-    static const double ratios[] = {3.0, 5.0, 8.0, 12.0, 20.0, 32.0};
+    static const double ratios[N_WIDE_SHAPES] = {3.0, 5.0, 8.0, 12.0, 20.0, 32.0};
     static const double integral[] = {3.0, 5.0, 10.0};
-    static const double separation[] = {3.0, 4.0, 6.0};
+    static const double cascade_separation[] = {3.0, 4.0, 6.0};
+    /* RATE-ADRC's k_w / k_att: the default's 4 first, then tighter */
+    static const double rate_adrc_separation[] = {4.0, 3.0, 2.0};
     ladrc_axis_config_t *a = tuner_axis(t);
     if (a->variant == LADRC_VARIANT_INDI) {
         /* The LADRC rule with the acceleration filter in the observer's
@@ -37,10 +53,10 @@ static void set_gains(tuner_t *t, double w, int shape, double j_model)
         a->indi_filter_rad_s = (ladrc_real_t)fmin(ratios[shape] * w, wf_max);
     } else if (a->variant == LADRC_VARIANT_RATE_ADRC) {
         /* w: the rate loop's crossover k_w; its observer r w above it, the
-         * attitude gain w / 4 (the default's separation, axis.h) */
+         * attitude gain w / n */
         a->radrc_kp_per_s = (ladrc_real_t)w;
-        a->wo_rad_s = (ladrc_real_t)(ratios[shape] * w);
-        a->radrc_att_kp_per_s = (ladrc_real_t)(w / separation[1]);
+        a->wo_rad_s = (ladrc_real_t)(ratios[shape % N_WIDE_SHAPES] * w);
+        a->radrc_att_kp_per_s = (ladrc_real_t)(w / rate_adrc_separation[shape / N_WIDE_SHAPES]);
     } else if (a->variant == LADRC_VARIANT_CASCADED) {
         /* w: the rate loop's crossover; the default's rule (axis.h) with
          * the attitude gain w / n, n the cascade's separation */
@@ -49,7 +65,7 @@ static void set_gains(tuner_t *t, double w, int shape, double j_model)
         a->cas_rate_kp = (ladrc_real_t)kp;
         a->cas_rate_ki = (ladrc_real_t)(kp * w / 5.0);
         a->cas_rate_kd = (ladrc_real_t)(kp / (4.0 * w));
-        a->cas_att_kp = (ladrc_real_t)(w / separation[shape]);
+        a->cas_att_kp = (ladrc_real_t)(w / cascade_separation[shape]);
         a->cas_d_filter_tau_s = (ladrc_real_t)(tf >= (double)a->dt_s ? tf : 0.0);
         a->cas_rate_filter_tau_s = a->cas_d_filter_tau_s;
     } else if (a->variant == LADRC_VARIANT_PID) {
@@ -203,24 +219,46 @@ static void report_gains(const ladrc_axis_config_t *a, ladrc_margins_tuning_t *o
     out->cas_d_filter_tau_s = (double)a->cas_d_filter_tau_s;
 }
 
-/* The search's shapes: the first N_SHAPES for every variant; the LADRC
- * family's wide observer ratios after them, a fallback only (margins are
- * blind to noise: searched everywhere, they made plain LADRC fly up to 15
- * times worse where the usual ratios meet the targets). */
-#define N_SHAPES 3
-#define N_WIDE_SHAPES 6
+/* 1 when the request asks for the step objective (else the peak |d -> e|). */
+static int uses_steps(const ladrc_margins_request_t *req)
+{
+    return req->track_step_rad > 0.0 || req->dist_step_rad_s2 > 0.0;
+}
 
-/* The best candidate so far: smallest peak |disturbance -> error| of the
- * variant as it flies. */
+/* The candidate's objective (smaller: better) with its margins res: its
+ * step cost, or its peak |disturbance -> error| when the request's steps are
+ * both 0. +INFINITY when it diverges in the steps' flight: never chosen. */
+static double objective(tuner_t *t, const ladrc_margins_result_t *res)
+{
+    if (!uses_steps(t->req))
+        return res->dist_peak_rad;
+    double cost;
+    if (ladrc_margins_step_cost(t->ws, &t->ctl, t->req, &cost) != LADRC_MARGINS_OK)
+        return INFINITY;
+    return cost;
+}
+
+/* The chosen setting's peak |d -> e| (its margins in out) and step cost. */
+static void report_objective(tuner_t *t, ladrc_margins_tuning_t *out)
+{
+    out->peak_dist_rad = out->margins.dist_peak_rad;
+    out->step_cost_rad2_s = NAN;
+    if (uses_steps(t->req) &&
+        ladrc_margins_step_cost(t->ws, &t->ctl, t->req, &out->step_cost_rad2_s) != LADRC_MARGINS_OK)
+        out->step_cost_rad2_s = NAN;
+}
+
+/* The best candidate so far: the smallest objective of the variant as it
+ * flies. */
 typedef struct {
-    double w, peak;
+    double w, cost;
     int shape;
 } best_t;
 
 /* One shape's candidate, searched on the LADRC core (whole 0; the adaptive
  * variants then stepped down until the whole variant meets the targets) or
- * on the whole variant's own loop (whole 1), kept in *best when its peak
- * |disturbance -> error| is the smallest so far. */
+ * on the whole variant's own loop (whole 1), kept in *best when its
+ * objective is the smallest so far. */
 static void try_shape(tuner_t *t, int shape, int whole, ladrc_variant_t variant, double j_model, double w_lo,
                       double w_hi, fallback_t *fb_core, fallback_t *fb_whole, best_t *best)
 {
@@ -248,13 +286,12 @@ static void try_shape(tuner_t *t, int shape, int whole, ladrc_variant_t variant,
     set_gains(t, ok_w, shape, j_model);
     ladrc_margins_result_t *res = &t->ws->scratch;
     const ladrc_margins_status_t st = ladrc_margins_analyse_reported(t->ws, &t->ctl, t->req, res, NULL);
+    const double cost = st == LADRC_MARGINS_OK ? objective(t, res) : INFINITY;
     a->variant = searched;
-    if (st != LADRC_MARGINS_OK)
-        return;
-    if (best->shape < 0 || res->dist_peak_rad < best->peak) {
+    if (cost < best->cost) {
         best->w = ok_w;
         best->shape = shape;
-        best->peak = res->dist_peak_rad;
+        best->cost = cost;
     }
 }
 
@@ -299,9 +336,11 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
     /* closest misses of the searched core and of the whole adaptive variant */
     fallback_t fb_core = {.score = -INFINITY, .w = NAN, .shape = -1},
                fb_whole = {.score = -INFINITY, .w = NAN, .shape = -1};
-    best_t best = {.w = NAN, .peak = INFINITY, .shape = -1};
-    for (int shape = 0; shape < N_SHAPES; ++shape)
-        try_shape(&t, shape, 0, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, &best);
+    best_t best = {.w = NAN, .cost = INFINITY, .shape = -1};
+    const int n_sep = n_separations(variant);
+    for (int sep = 0; sep < n_sep; ++sep)
+        for (int shape = 0; shape < N_SHAPES; ++shape)
+            try_shape(&t, shape + N_WIDE_SHAPES * sep, 0, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, &best);
     /* The adaptive variants' own loops too, at the usual ratios: their core
      * must not cap them (LP's estimate adds phase where the LESO alone lacks
      * it; e.g. 30 ms behind the motors the core leaves LP 30 deg of PM
@@ -315,10 +354,12 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
     /* Still nothing: the LADRC family's wide ratios. Whatever tunes with the
      * usual ratios keeps its gains. */
     if (best.shape < 0 && ladrc_variant_has_observer(variant)) {
-        for (int shape = N_SHAPES; shape < N_WIDE_SHAPES; ++shape) {
-            try_shape(&t, shape, 0, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, &best);
-            if (adaptive)
-                try_shape(&t, shape, 1, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, &best);
+        for (int sep = 0; sep < n_sep; ++sep) {
+            for (int shape = N_SHAPES + N_WIDE_SHAPES * sep; shape < N_WIDE_SHAPES * (sep + 1); ++shape) {
+                try_shape(&t, shape, 0, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, &best);
+                if (adaptive)
+                    try_shape(&t, shape, 1, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, &best);
+            }
         }
     }
     const int found = best.shape >= 0;
@@ -333,7 +374,7 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
             (void)ladrc_margins_analyse_reported(ws, &t.ctl, req, &out->margins, NULL);
             out->met = 0;
             report_gains(a, out);
-            out->peak_dist_rad = out->margins.dist_peak_rad;
+            report_objective(&t, out);
             *tuned = *a;
             return LADRC_MARGINS_ERR_TARGETS_NOT_MET;
         }
@@ -345,7 +386,7 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
     /* Margins of the variant as it will fly (and as ladrc_margins reports them). */
     const ladrc_margins_status_t fin = ladrc_margins_analyse_reported(ws, &t.ctl, req, &out->margins, NULL);
     out->met = found && fin == LADRC_MARGINS_OK && meets(&out->margins, targets);
-    out->peak_dist_rad = out->margins.dist_peak_rad;
+    report_objective(&t, out);
     report_gains(a, out);
     *tuned = *a;
     if (fin != LADRC_MARGINS_OK)

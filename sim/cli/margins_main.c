@@ -245,8 +245,9 @@ int main(int argc, char **argv)
                 char gains[256];
                 (void)sim_setup_format_gains(&tuned, gains, sizeof gains);
                 printf("  tuned: %s", gains);
-                printf(" -> GM %.1f dB PM %.1f deg crossover %.1f rad/s Ms %.2f peak |d->e| %.3g rad per rad/s^2%s\n",
-                       m->gm_db, m->pm_deg, m->wc_rad_s, m->ms, tuning.peak_dist_rad,
+                printf(" -> GM %.1f dB PM %.1f deg crossover %.1f rad/s Ms %.2f peak |d->e| %.3g rad per rad/s^2"
+                       " step cost %.3g rad^2 s%s\n",
+                       m->gm_db, m->pm_deg, m->wc_rad_s, m->ms, tuning.peak_dist_rad, tuning.step_cost_rad2_s,
                        st == LADRC_MARGINS_OK ? "" : "  TARGETS NOT MET");
                 if (st != LADRC_MARGINS_OK)
                     status = 1;

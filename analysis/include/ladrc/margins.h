@@ -100,6 +100,11 @@ typedef struct {
                                   tone period; default 4 */
     double out_min_rad_s;        /**< output grid: lowest frequency (rad/s); default 0.1 */
     int n_out;                   /**< output grid points, 2..LADRC_MARGINS_MAX_OUT; default 200 */
+    double track_step_rad;       /**< tuning objective: reference step (rad), 0..0.5; default
+                                  0.1745 (10 deg) */
+    double dist_step_rad_s2;     /**< tuning objective: then a disturbance step (rad/s^2), >= 0;
+                                  default 20. Both 0: the peak |d -> error| is the objective */
+    double step_window_s;        /**< how long each step is flown (s), > 0 and <= 60; default 2 */
 } ladrc_margins_request_t;
 
 /** Margins and verdict of one loop. Margins that do not exist are +INFINITY
@@ -333,6 +338,31 @@ void ladrc_margins_of_loop(ladrc_margins_loop_fn fn, void *ctx, double dt_s, lad
 ladrc_margins_status_t ladrc_margins_simulate(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
                                               const ladrc_margins_plant_t *plant, long n_ticks, double *growth);
 
+/**
+ * The tuning's time-domain objective: the controller as it flies (its
+ * shaper, estimators and limits), from rest on the exact discrete plant
+ * req->plant (lag and delay included), given a reference step of
+ * req->track_step_rad for req->step_window_s, then, the reference held, an
+ * acceleration-disturbance step of req->dist_step_rad_s2 for as long again.
+ * *cost = sum over both windows of (reference - angle)^2 dt (rad^2 s): the
+ * square of the RMS error the simulator reports, times the time flown.
+ * +INFINITY when |reference - angle| reaches 1 rad (diverged).
+ * @param ws    the workspace (its controller copies are used)
+ * @param ctl   the controller
+ * @param req   the request (plant and steps)
+ * @param cost  out: the integral of the squared error (rad^2 s)
+ * @retval LADRC_MARGINS_OK          flown
+ * @retval LADRC_MARGINS_ERR_NULL    ws, ctl, req or cost is NULL
+ * @retval LADRC_MARGINS_ERR_DT_S    plant dt_s not finite and > 0, or not the controller's
+ * @retval LADRC_MARGINS_ERR_INERTIA, LADRC_MARGINS_ERR_DRAG, LADRC_MARGINS_ERR_MOTOR_TAU,
+ *         LADRC_MARGINS_ERR_DELAY   the plant field named is out of range
+ * @retval LADRC_MARGINS_ERR_REQUEST    a request field outside its range
+ * @retval LADRC_MARGINS_ERR_CONTROLLER not exactly one of attitude and axis, a bad
+ *                                      axis_index, INDI or RATE-ADRC without use_rate, or its init refuses it
+ */
+ladrc_margins_status_t ladrc_margins_step_cost(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
+                                               const ladrc_margins_request_t *req, double *cost);
+
 /** Targets and search of the margins-based tuning. */
 typedef struct {
     double pm_min_deg; /**< least phase margin (deg), finite; default 45 */
@@ -357,7 +387,9 @@ typedef struct {
     /** @{ */
     double cas_att_kp, cas_rate_kp, cas_rate_ki, cas_rate_kd, cas_d_filter_tau_s; /**< CASCADED */
     /** @} */
-    double peak_dist_rad;           /**< objective: peak |d -> error| of the chosen setting */
+    double peak_dist_rad;           /**< peak |d -> error| of the chosen setting (rad per rad/s^2) */
+    double step_cost_rad2_s;        /**< its ladrc_margins_step_cost (rad^2 s); NAN when the
+                                  request's steps are both 0 */
     ladrc_margins_result_t margins; /**< of the chosen setting */
 } ladrc_margins_tuning_t;
 
@@ -378,15 +410,19 @@ typedef struct {
  * w_f = r w, r in {3, 5, 8} (at most 0.9 pi / dt), the largest such w for
  * each r; INDI needs use_rate (else LADRC_MARGINS_ERR_CONTROLLER);
  * RATE-ADRC: rate-loop crossover radrc_kp_per_s = w, its observer
- * wo = r w, r in {3, 5, 8}, radrc_att_kp_per_s = w / 4 (the default's
- * separation), the largest such w for each r; it needs use_rate too.
+ * wo = r w, r in {3, 5, 8}, radrc_att_kp_per_s = w / n, n in {4, 3, 2}
+ * (4 the default's separation), the largest such w for each (r, n); it
+ * needs use_rate too.
  * The adaptive variants' estimator settings are kept; their wc and wo are
  * searched on the plain LADRC loop (estimator off), then lowered (by 1.1,
  * then bisection to 1 %) until the whole variant, as
  * ladrc_margins_analyse_reported analyses it, meets the targets too; and
  * on the whole variant's own loop, searched like LADRC's, r in {3, 5, 8}.
- * Of these candidates the one with the smallest peak |disturbance -> error|
- * of the variant as it flies wins; out->margins are its margins.
+ * Of these candidates the one with the smallest ladrc_margins_step_cost
+ * (the variant as it flies through req's reference and disturbance steps)
+ * wins; one that diverges there is never chosen. With both steps 0 the
+ * smallest peak |disturbance -> error| wins instead. out->margins are the
+ * winner's margins.
  * Only when none meets the targets does the search widen (what tunes above
  * keeps its gains): the LADRC family at r in {12, 20, 32} (on the core and
  * stepped down, and on the whole loop), ranked the same way.
