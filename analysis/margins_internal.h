@@ -32,9 +32,7 @@ typedef double complex cplx;
 /* Divergence of a converged run: beyond a radian the small-angle loop is
  * meaningless. */
 #define DIVERGED_RAD 1.0
-/* The objective's reference step stays well inside that (rad), and its
- * window within a minute of simulated flight (s). */
-#define STEP_MAX_RAD 0.5
+/* The objective's window: within a minute of simulated flight (s). */
 #define STEP_WINDOW_MAX_S 60.0
 
 /* ---- margins_plant.c ------------------------------------------------------ */

@@ -100,7 +100,8 @@ ladrc_margins_status_t margins_check_request(const ladrc_margins_request_t *req)
         !isfinite(req->tone_rad_s) || !(req->tone_rad_s2 >= 0.0) || !isfinite(req->tone_rad_s2) ||
         !(req->converge_s >= 0.0 && req->converge_s < 1e5) || req->n_starts < 1 || req->n_starts > 64 ||
         !(req->out_min_rad_s > 0.0 && req->out_min_rad_s < PI / req->plant.dt_s) || req->n_out < 2 ||
-        req->n_out > LADRC_MARGINS_MAX_OUT || !(req->track_step_rad >= 0.0 && req->track_step_rad <= STEP_MAX_RAD) ||
+        req->n_out > LADRC_MARGINS_MAX_OUT ||
+        !(req->track_step_rad >= 0.0 && req->track_step_rad <= LADRC_MARGINS_MAX_STEP_RAD) ||
         !(req->dist_step_rad_s2 >= 0.0) || !isfinite(req->dist_step_rad_s2) ||
         !(req->step_window_s > 0.0 && req->step_window_s <= STEP_WINDOW_MAX_S))
         return LADRC_MARGINS_ERR_REQUEST;

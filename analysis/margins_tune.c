@@ -225,17 +225,24 @@ static int uses_steps(const ladrc_margins_request_t *req)
     return req->track_step_rad > 0.0 || req->dist_step_rad_s2 > 0.0;
 }
 
-/* The candidate's objective (smaller: better) with its margins res: its
- * step cost, or its peak |disturbance -> error| when the request's steps are
- * both 0. +INFINITY when it diverges in the steps' flight: never chosen. */
-static double objective(tuner_t *t, const ladrc_margins_result_t *res)
+/* The candidate's step costs (rad^2 s), each flown alone from rest: the
+ * reference step, then the disturbance step (0 where the request's step is
+ * 0); +INFINITY where it diverges. */
+static void step_costs(tuner_t *t, double *track, double *dist)
 {
-    if (!uses_steps(t->req))
-        return res->dist_peak_rad;
-    double cost;
-    if (ladrc_margins_step_cost(t->ws, &t->ctl, t->req, &cost) != LADRC_MARGINS_OK)
-        return INFINITY;
-    return cost;
+    ladrc_margins_request_t r = *t->req;
+    *track = *dist = 0.0;
+    if (t->req->track_step_rad > 0.0) {
+        r.dist_step_rad_s2 = 0.0;
+        if (ladrc_margins_step_cost(t->ws, &t->ctl, &r, track) != LADRC_MARGINS_OK)
+            *track = INFINITY;
+    }
+    if (t->req->dist_step_rad_s2 > 0.0) {
+        r = *t->req;
+        r.track_step_rad = 0.0;
+        if (ladrc_margins_step_cost(t->ws, &t->ctl, &r, dist) != LADRC_MARGINS_OK)
+            *dist = INFINITY;
+    }
 }
 
 /* The chosen setting's peak |d -> e| (its margins in out) and step cost. */
@@ -248,19 +255,60 @@ static void report_objective(tuner_t *t, ladrc_margins_tuning_t *out)
         out->step_cost_rad2_s = NAN;
 }
 
-/* The best candidate so far: the smallest objective of the variant as it
- * flies. */
+/* The candidates that meet the targets, one per shape searched (and per
+ * search: on the core and on the whole loop), with what ranks them. */
+#define MAX_CANDIDATES (2 * N_WIDE_SHAPES * 3)
 typedef struct {
-    double w, cost;
+    double w, track, dist, peak;
     int shape;
-} best_t;
+} candidate_t;
+
+typedef struct {
+    int n;
+    candidate_t c[MAX_CANDIDATES];
+} candidates_t;
+
+static double share_of_best(double x, double best)
+{
+    return best > 0.0 ? x / best : 0.0;
+}
+
+/* The winner's index (-1 if none). With steps: each candidate's reference
+ * and disturbance step costs, each over the smallest of all candidates,
+ * summed, so the two weigh alike whatever their sizes; the smallest sum
+ * wins, and one that diverges in a step loses to every one that does not.
+ * Without steps, or where every candidate diverges (steps too large for an
+ * airframe this slow: the steps never fail a tuning the margins allow), the
+ * smallest peak |disturbance -> error| wins. */
+static int pick(const candidates_t *cs, int steps)
+{
+    double best_track = INFINITY, best_dist = INFINITY;
+    for (int i = 0; steps && i < cs->n; ++i) {
+        if (cs->c[i].track < INFINITY && cs->c[i].dist < INFINITY) {
+            best_track = fmin(best_track, cs->c[i].track);
+            best_dist = fmin(best_dist, cs->c[i].dist);
+        }
+    }
+    const int by_steps = best_track < INFINITY;
+    int win = -1;
+    double win_score = INFINITY;
+    for (int i = 0; i < cs->n; ++i) {
+        const candidate_t *c = &cs->c[i];
+        const double score =
+            by_steps ? share_of_best(c->track, best_track) + share_of_best(c->dist, best_dist) : c->peak;
+        if (score < win_score) {
+            win = i;
+            win_score = score;
+        }
+    }
+    return win;
+}
 
 /* One shape's candidate, searched on the LADRC core (whole 0; the adaptive
  * variants then stepped down until the whole variant meets the targets) or
- * on the whole variant's own loop (whole 1), kept in *best when its
- * objective is the smallest so far. */
+ * on the whole variant's own loop (whole 1), added to *cs. */
 static void try_shape(tuner_t *t, int shape, int whole, ladrc_variant_t variant, double j_model, double w_lo,
-                      double w_hi, fallback_t *fb_core, fallback_t *fb_whole, best_t *best)
+                      double w_hi, fallback_t *fb_core, fallback_t *fb_whole, candidates_t *cs)
 {
     ladrc_axis_config_t *a = tuner_axis(t);
     const ladrc_variant_t searched = a->variant; /* the core (LADRC) for the adaptive variants */
@@ -285,14 +333,15 @@ static void try_shape(tuner_t *t, int shape, int whole, ladrc_variant_t variant,
     a->variant = variant;
     set_gains(t, ok_w, shape, j_model);
     ladrc_margins_result_t *res = &t->ws->scratch;
-    const ladrc_margins_status_t st = ladrc_margins_analyse_reported(t->ws, &t->ctl, t->req, res, NULL);
-    const double cost = st == LADRC_MARGINS_OK ? objective(t, res) : INFINITY;
-    a->variant = searched;
-    if (cost < best->cost) {
-        best->w = ok_w;
-        best->shape = shape;
-        best->cost = cost;
+    if (ladrc_margins_analyse_reported(t->ws, &t->ctl, t->req, res, NULL) == LADRC_MARGINS_OK &&
+        cs->n < MAX_CANDIDATES) {
+        candidate_t *c = &cs->c[cs->n++];
+        c->w = ok_w;
+        c->shape = shape;
+        c->peak = res->dist_peak_rad;
+        step_costs(t, &c->track, &c->dist);
     }
+    a->variant = searched;
 }
 
 ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const ladrc_margins_controller_t *ctl,
@@ -336,11 +385,12 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
     /* closest misses of the searched core and of the whole adaptive variant */
     fallback_t fb_core = {.score = -INFINITY, .w = NAN, .shape = -1},
                fb_whole = {.score = -INFINITY, .w = NAN, .shape = -1};
-    best_t best = {.w = NAN, .cost = INFINITY, .shape = -1};
+    candidates_t cand_list = {.n = 0};
+    candidates_t *cands = &cand_list;
     const int n_sep = n_separations(variant);
     for (int sep = 0; sep < n_sep; ++sep)
         for (int shape = 0; shape < N_SHAPES; ++shape)
-            try_shape(&t, shape + N_WIDE_SHAPES * sep, 0, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, &best);
+            try_shape(&t, shape + N_WIDE_SHAPES * sep, 0, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, cands);
     /* The adaptive variants' own loops too, at the usual ratios: their core
      * must not cap them (LP's estimate adds phase where the LESO alone lacks
      * it; e.g. 30 ms behind the motors the core leaves LP 30 deg of PM
@@ -349,22 +399,23 @@ ladrc_margins_status_t ladrc_margins_tune(ladrc_margins_workspace_t *ws, const l
      * ratio) the estimator may add the missing phase. */
     if (adaptive) {
         for (int shape = 0; shape < N_SHAPES; ++shape)
-            try_shape(&t, shape, 1, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, &best);
+            try_shape(&t, shape, 1, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, cands);
     }
     /* Still nothing: the LADRC family's wide ratios. Whatever tunes with the
      * usual ratios keeps its gains. */
-    if (best.shape < 0 && ladrc_variant_has_observer(variant)) {
+    if (cands->n == 0 && ladrc_variant_has_observer(variant)) {
         for (int sep = 0; sep < n_sep; ++sep) {
             for (int shape = N_SHAPES + N_WIDE_SHAPES * sep; shape < N_WIDE_SHAPES * (sep + 1); ++shape) {
-                try_shape(&t, shape, 0, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, &best);
+                try_shape(&t, shape, 0, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, cands);
                 if (adaptive)
-                    try_shape(&t, shape, 1, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, &best);
+                    try_shape(&t, shape, 1, variant, j_model, w_lo, w_hi, &fb_core, &fb_whole, cands);
             }
         }
     }
-    const int found = best.shape >= 0;
-    double best_w = best.w;
-    int best_shape = best.shape;
+    const int win = pick(cands, uses_steps(req));
+    const int found = win >= 0;
+    double best_w = found ? cands->c[win].w : NAN;
+    int best_shape = found ? cands->c[win].shape : -1;
     const fallback_t fb = (adaptive && fb_whole.shape >= 0) ? fb_whole : fb_core;
     if (!found) {
         if (fb.shape < 0) {

@@ -199,6 +199,7 @@ int main(int argc, char **argv)
                                                  .delay_ticks = sc.delay_ticks};
             ladrc_margins_request_t req;
             ladrc_margins_request_default(&req, &plant);
+            sim_tune_objective(&sc, id, &req);
             const ladrc_margins_controller_t ctl = {
                 .attitude = &acfg, .axis_index = i, .axis = NULL, .use_rate = sc.use_rate};
             int idle = 0;

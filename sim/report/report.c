@@ -161,9 +161,11 @@ void sim_report_tuning(FILE *out, const sim_scenario_t *sc)
             char gains[256];
             (void)sim_setup_format_gains(&t->gains[i], gains, sizeof gains);
             fprintf(out, "tuned %s %s: %s", sim_controller_name(id), AXES[i], gains);
-            fprintf(out, " -> PM %.1f deg (>= %g), GM %.1f dB / %.1f dB (>= %g), crossover %.1f rad/s, Ms %.2f%s%s\n",
+            fprintf(out,
+                    " -> PM %.1f deg (>= %g), GM %.1f dB / %.1f dB (>= %g), crossover %.1f rad/s, Ms %.2f,"
+                    " step cost %.3g rad^2 s%s%s\n",
                     t->pm_deg[i], t->pm_target_deg, t->gm_db[i], t->gm_low_db[i], t->gm_target_db,
-                    t->crossover_rad_s[i], t->ms[i], t->idle[i] ? " (estimator idle)" : "",
+                    t->crossover_rad_s[i], t->ms[i], t->step_cost_rad2_s[i], t->idle[i] ? " (estimator idle)" : "",
                     t->shared[i] ? " (= roll)" : "");
         }
     }
@@ -314,6 +316,7 @@ int sim_report_metrics_csv(FILE *out, const sim_scenario_result_t *r, int header
             row(out, sc, name, "tune", "gm_low_db", AXES[i], t->gm_low_db[i]);
             row(out, sc, name, "tune", "crossover_rad_s", AXES[i], t->crossover_rad_s[i]);
             row(out, sc, name, "tune", "ms", AXES[i], t->ms[i]);
+            row(out, sc, name, "tune", "step_cost_rad2_s", AXES[i], t->step_cost_rad2_s[i]);
         }
         row(out, sc, name, "-", "finite", "-", m->finite);
         row(out, sc, name, "-", "fault_ticks", "-", (double)m->faults);

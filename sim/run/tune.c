@@ -18,6 +18,15 @@ int sim_tune_wanted(const sim_scenario_t *sc, sim_controller_id_t id)
     return sc->kind == SIM_KIND_ATTITUDE && sc->overrides[id].tune == SIM_TUNE_MARGINS;
 }
 
+void sim_tune_objective(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_margins_request_t *req)
+{
+    const sim_overrides_t *o = &sc->overrides[id];
+    if (!isnan(o->tune_step_rad))
+        req->track_step_rad = o->tune_step_rad;
+    if (!isnan(o->tune_dist_rad_s2))
+        req->dist_step_rad_s2 = o->tune_dist_rad_s2;
+}
+
 void sim_tune_plant(const sim_scenario_t *sc, int axis, ladrc_margins_plant_t *plant)
 {
     plant->dt_s = sc->control_dt_s;
@@ -54,6 +63,7 @@ static void keep(sim_tuning_t *t, int i, const ladrc_axis_config_t *tuned, const
     t->gm_low_db[i] = r->margins.gm_low_db;
     t->crossover_rad_s[i] = r->margins.wc_rad_s;
     t->ms[i] = r->margins.ms;
+    t->step_cost_rad2_s[i] = r->step_cost_rad2_s;
     t->idle[i] = idle;
 }
 
@@ -65,6 +75,7 @@ static void copy_axis(sim_tuning_t *t, int to, int from)
     t->gm_low_db[to] = t->gm_low_db[from];
     t->crossover_rad_s[to] = t->crossover_rad_s[from];
     t->ms[to] = t->ms[from];
+    t->step_cost_rad2_s[to] = t->step_cost_rad2_s[from];
     t->idle[to] = t->idle[from];
     t->shared[to] = 1;
 }
@@ -97,6 +108,7 @@ int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margin
         sim_tune_plant(sc, i, &plant);
         ladrc_margins_request_t req;
         ladrc_margins_request_default(&req, &plant);
+        sim_tune_objective(sc, id, &req);
         /* Roll and pitch of a symmetric airframe are the same loop: pitch
          * takes roll's gains when its own analysis with them meets the
          * targets (an adaptive variant's linearisation under the tone may

@@ -19,6 +19,10 @@ int sim_tune_wanted(const sim_scenario_t *sc, sim_controller_id_t id);
 
 /* The plant the tuning of axis i designs for (above). */
 void sim_tune_plant(const sim_scenario_t *sc, int axis, ladrc_margins_plant_t *plant);
+/* The tuning objective's steps the file gives controller id
+ * (tune_step_deg, tune_disturbance_step_rad_s2) into req; the others keep
+ * req's values. */
+void sim_tune_objective(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_margins_request_t *req);
 
 /* Tunes controller id of sc (tune = margins) on each axis into
  * sc->tuning[id]; ws is scratch (ladrc_margins_workspace_t is about 1 MB).

@@ -204,7 +204,8 @@ static void check_differentiator(parser_t *p)
 }
 
 /* tune = margins chooses the gains: a gain the file gives as well is an
- * error at that gain; targets without tune = margins are an error too. */
+ * error at that gain; its targets and objective steps without tune = margins
+ * are an error too. */
 static void check_tuning(parser_t *p)
 {
     /* the keys of the gains tune = margins chooses (setup.h, sim_setup_gain_fields) */
@@ -223,7 +224,8 @@ static void check_tuning(parser_t *p)
                                         "indi_filter_rad_s",
                                         "radrc_kp_per_s",
                                         "radrc_att_kp_per_s"};
-    static const char *const targets[] = {"tune_phase_margin_deg", "tune_gain_margin_db"};
+    static const char *const tune_only[] = {"tune_phase_margin_deg", "tune_gain_margin_db", "tune_step_deg",
+                                            "tune_disturbance_step_rad_s2"};
     for (int id = 0; id < SIM_CTRL_COUNT; ++id) {
         const int sec = SEC_CONTROLLER + id;
         const loc_t *tune = checks_seen(p, sec, "tune");
@@ -238,10 +240,10 @@ static void check_tuning(parser_t *p)
                 }
             }
         } else {
-            for (int g = 0; g < 2; ++g) {
-                const loc_t *at = checks_seen(p, sec, targets[g]);
+            for (int g = 0; g < (int)(sizeof tune_only / sizeof tune_only[0]); ++g) {
+                const loc_t *at = checks_seen(p, sec, tune_only[g]);
                 if (at->line != 0) {
-                    check_fail(p, at->line, at->key_col, "'%s' applies only with tune = margins", targets[g]);
+                    check_fail(p, at->line, at->key_col, "'%s' applies only with tune = margins", tune_only[g]);
                 }
             }
         }

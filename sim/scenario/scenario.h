@@ -79,6 +79,8 @@ typedef struct {
     int tune;                 /* -1 (none) or sim_tune_t */
     double tune_pm_deg;       /* tune = margins: phase margin target (deg); NaN: SIM_TUNE_PM_DEG_DEFAULT */
     double tune_gm_db;        /* gain margin target (dB); NaN: SIM_TUNE_GM_DB_DEFAULT */
+    double tune_step_rad;     /* objective's reference step (rad); NaN: the analysis's default */
+    double tune_dist_rad_s2;  /* its disturbance step (rad/s^2); NaN: the analysis's default */
 } sim_overrides_t;
 
 /* Gains chosen by tune = margins (sim_tune_controller, tune.h) for each axis
@@ -90,9 +92,10 @@ typedef struct {
     ladrc_axis_config_t gains[3]; /* the tuned config of each axis: its variant's gain fields
                                      (sim_setup_gain_fields) are the tuned gains */
     double pm_deg[3], gm_db[3], gm_low_db[3], crossover_rad_s[3], ms[3];
-    int idle[3];   /* HP-MLADRC margins of its idle estimator (margins.h) */
-    int shared[3]; /* 1: this axis took another's result (same airframe and controller) */
-    double wall_s; /* time the tuning took */
+    double step_cost_rad2_s[3]; /* the objective of the chosen gains (margins.h); NaN: steps off */
+    int idle[3];                /* HP-MLADRC margins of its idle estimator (margins.h) */
+    int shared[3];              /* 1: this axis took another's result (same airframe and controller) */
+    double wall_s;              /* time the tuning took */
 } sim_tuning_t;
 
 /* Where a parse failed, as file:line:column: message (line and column are

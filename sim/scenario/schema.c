@@ -13,6 +13,7 @@
 #include "ladrc/estimator.h"
 #include "ini.h"
 #include "ladrc/leso.h"
+#include "ladrc/margins.h"
 #include "plant/plant.h"
 #include "plant/sensor.h"
 
@@ -222,6 +223,8 @@ const key_def_t SCHEMA_KEYS[] = {
     {CTRL_KEY("tune", V_CHOICE, tune, ALL_CONTROLLERS), .choices = TUNE_MODES},
     {CTRL_KEY("tune_phase_margin_deg", V_REAL, tune_pm_deg, ALL_CONTROLLERS), .range = R_PHASE_MARGIN},
     {CTRL_KEY("tune_gain_margin_db", V_REAL, tune_gm_db, ALL_CONTROLLERS), .range = R_POSITIVE},
+    {CTRL_KEY("tune_step_deg", V_REAL, tune_step_rad, ALL_CONTROLLERS), .range = R_TUNE_STEP, .scale = DEG_TO_RAD},
+    {CTRL_KEY("tune_disturbance_step_rad_s2", V_REAL, tune_dist_rad_s2, ALL_CONTROLLERS), .range = R_NONNEGATIVE},
 };
 
 #define N_KEYS ((int)(sizeof SCHEMA_KEYS / sizeof SCHEMA_KEYS[0]))
@@ -275,6 +278,11 @@ int schema_check_range(const key_def_t *def, double v, char *msg, size_t msg_len
                    : refuse(msg, msg_len, "%s must be between 1 and %d", def->name, LADRC_HP_MAX_TONES);
     case R_PHASE_MARGIN:
         return (v > 0.0 && v < 90.0) ? 0 : refuse(msg, msg_len, "%s must be > 0 and < 90", def->name);
+    case R_TUNE_STEP:
+        return (v >= 0.0 && v <= LADRC_MARGINS_MAX_STEP_RAD / DEG_TO_RAD)
+                   ? 0
+                   : refuse(msg, msg_len, "%s must be between 0 and %.1f", def->name,
+                            LADRC_MARGINS_MAX_STEP_RAD / DEG_TO_RAD);
     case R_DURATION:
         return (v > 0.0 && v <= SIM_DURATION_MAX_S)
                    ? 0
@@ -343,6 +351,7 @@ void schema_set_defaults(sim_scenario_t *sc)
         o->pid_kp = o->pid_ki = o->pid_kd = NAN;
         o->tune = -1;
         o->tune_pm_deg = o->tune_gm_db = NAN;
+        o->tune_step_rad = o->tune_dist_rad_s2 = NAN;
         o->indi_att_kp_per_s = o->indi_rate_kp_per_s = o->indi_filter_rad_s = NAN;
         o->radrc_kp_per_s = o->radrc_att_kp_per_s = o->radrc_rate_max_deg_s = NAN;
         o->cas_att_kp = o->cas_rate_max_deg_s = o->cas_rate_kp = o->cas_rate_ki = o->cas_rate_kd = NAN;

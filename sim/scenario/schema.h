@@ -57,6 +57,7 @@ typedef enum {
     R_DELAY,
     R_HP_TONES,
     R_PHASE_MARGIN, /* > 0, < 90 */
+    R_TUNE_STEP,    /* 0 .. LADRC_MARGINS_MAX_STEP_RAD, in degrees */
     R_DURATION,     /* > 0, <= SIM_DURATION_MAX_S */
     R_CONTROL_DT,   /* SIM_CONTROL_DT_MIN_S .. SIM_CONTROL_DT_MAX_S */
     R_SUBSTEPS      /* 1 .. SIM_PLANT_SUBSTEPS_MAX */

@@ -258,6 +258,7 @@ static void test_tune_keys_land_in_their_controller_with_their_defaults(void)
 {
     parse_ok("[run]\nduration_s = 1\n"
              "[controller LADRC]\ntune = margins\ntune_phase_margin_deg = 50\ntune_gain_margin_db = 8\n"
+             "tune_step_deg = 5\ntune_disturbance_step_rad_s2 = 0\n"
              "[controller PID]\ntune = margins\n"
              "[controller LP-MLADRC]\ntune = none\n"
              "[controller CASCADED]\ntune = margins\n[controller INDI]\ntune = margins\n");
@@ -269,12 +270,15 @@ static void test_tune_keys_land_in_their_controller_with_their_defaults(void)
     assert_close(8.0, o[SIM_CTRL_LADRC].tune_gm_db, "gm target");
     TEST_ASSERT_EQUAL_INT(SIM_TUNE_MARGINS, o[SIM_CTRL_PID].tune);
     TEST_ASSERT_TRUE(isnan(o[SIM_CTRL_PID].tune_pm_deg) && isnan(o[SIM_CTRL_PID].tune_gm_db));
+    assert_close(5.0 * (3.14159265358979323846 / 180.0), o[SIM_CTRL_LADRC].tune_step_rad, "objective's reference step");
+    TEST_ASSERT_TRUE(o[SIM_CTRL_LADRC].tune_dist_rad_s2 == 0.0);
+    TEST_ASSERT_TRUE(isnan(o[SIM_CTRL_PID].tune_step_rad) && isnan(o[SIM_CTRL_PID].tune_dist_rad_s2));
     TEST_ASSERT_EQUAL_INT(SIM_TUNE_NONE, o[SIM_CTRL_LP_MLADRC].tune);
     TEST_ASSERT_EQUAL_INT(-1, o[SIM_CTRL_HP_MLADRC].tune); /* absent: none */
     /* where the errors of the tuning point: the value of each tune key */
     TEST_ASSERT_EQUAL_INT(4, sc.tune_line[SIM_CTRL_LADRC]);
     TEST_ASSERT_EQUAL_INT(8, sc.tune_column[SIM_CTRL_LADRC]);
-    TEST_ASSERT_EQUAL_INT(8, sc.tune_line[SIM_CTRL_PID]);
+    TEST_ASSERT_EQUAL_INT(10, sc.tune_line[SIM_CTRL_PID]);
     TEST_ASSERT_EQUAL_INT(0, sc.tune_line[SIM_CTRL_HP_MLADRC]);
     /* parsing tunes nothing: the gains stay the library's until sim_tune_controller runs */
     for (int id = 0; id < SIM_CTRL_COUNT; ++id)
@@ -329,6 +333,18 @@ static void test_tune_errors_name_the_key(void)
          .line = 5,
          .column = 23,
          .message = "tune_gain_margin_db must be > 0"},
+        {.text = "[run]\nduration_s = 1\n[controller PID]\ntune_step_deg = 5\n",
+         .line = 4,
+         .column = 1,
+         .message = "'tune_step_deg' applies only with tune = margins"},
+        {.text = "[run]\nduration_s = 1\n[controller LADRC]\ntune = margins\ntune_step_deg = 30\n",
+         .line = 5,
+         .column = 17,
+         .message = "tune_step_deg must be between 0 and 28.6"},
+        {.text = "[run]\nduration_s = 1\n[controller LADRC]\ntune = margins\ntune_disturbance_step_rad_s2 = -1\n",
+         .line = 5,
+         .column = 32,
+         .message = "tune_disturbance_step_rad_s2 must be >= 0"},
         {.text = "[run]\nkind = differentiator\nduration_s = 1\n[differentiator]\nsignal = t\nderivative = 1\n"
                  "[controller LADRC]\ntune = margins\n",
          .line = 7,

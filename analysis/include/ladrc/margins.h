@@ -41,6 +41,9 @@ extern "C" {
 #define LADRC_MARGINS_MAX_OUT 400
 /** Largest measurement delay analysed (ticks); the simulator's sensor limit. */
 #define LADRC_MARGINS_MAX_DELAY 64
+/** Largest reference step of the tuning objective (rad): well inside the
+ *  small-angle loop, whose error beyond 1 rad counts as diverged. */
+#define LADRC_MARGINS_MAX_STEP_RAD 0.5
 /** Crossovers of each kind kept in a result. */
 #define LADRC_MARGINS_MAX_CROSS 8
 
@@ -100,7 +103,8 @@ typedef struct {
                                   tone period; default 4 */
     double out_min_rad_s;        /**< output grid: lowest frequency (rad/s); default 0.1 */
     int n_out;                   /**< output grid points, 2..LADRC_MARGINS_MAX_OUT; default 200 */
-    double track_step_rad;       /**< tuning objective: reference step (rad), 0..0.5; default
+    double track_step_rad;       /**< tuning objective: reference step (rad),
+                                  0..LADRC_MARGINS_MAX_STEP_RAD; default
                                   0.1745 (10 deg) */
     double dist_step_rad_s2;     /**< tuning objective: then a disturbance step (rad/s^2), >= 0;
                                   default 20. Both 0: the peak |d -> error| is the objective */
@@ -418,10 +422,13 @@ typedef struct {
  * then bisection to 1 %) until the whole variant, as
  * ladrc_margins_analyse_reported analyses it, meets the targets too; and
  * on the whole variant's own loop, searched like LADRC's, r in {3, 5, 8}.
- * Of these candidates the one with the smallest ladrc_margins_step_cost
- * (the variant as it flies through req's reference and disturbance steps)
- * wins; one that diverges there is never chosen. With both steps 0 the
- * smallest peak |disturbance -> error| wins instead. out->margins are the
+ * Of these candidates, each flown as ladrc_margins_step_cost flies it
+ * through req's reference step alone and through its disturbance step
+ * alone, the one with the smallest sum of the two costs, each over the
+ * smallest among the candidates, wins; one that diverges in a step loses to
+ * every one that does not (and if all diverge, the smallest peak
+ * |disturbance -> error| wins: steps too large for the airframe never fail
+ * a tuning). With both steps 0 the smallest peak wins. out->margins are the
  * winner's margins.
  * Only when none meets the targets does the search widen (what tunes above
  * keeps its gains): the LADRC family at r in {12, 20, 32} (on the core and
