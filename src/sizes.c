@@ -4,6 +4,7 @@
 
 #include "ladrc/attitude.h"
 #include "ladrc/axis.h"
+#include "ladrc/gyro_filter.h"
 #include "ladrc/mixer.h"
 #include "ladrc/td.h"
 
@@ -42,6 +43,14 @@ size_t ladrc_sizeof_mixer_output_t(void)
 size_t ladrc_sizeof_ref_t(void)
 {
     return sizeof(ladrc_ref_t);
+}
+size_t ladrc_sizeof_gyro_filter_t(void)
+{
+    return sizeof(ladrc_gyro_filter_t);
+}
+size_t ladrc_sizeof_gyro_filter_config_t(void)
+{
+    return sizeof(ladrc_gyro_filter_config_t);
 }
 size_t ladrc_hp_max_tones(void)
 {

@@ -97,7 +97,18 @@
     X(LADRC_ERR_RADRC_ATT_KP, "radrc_att_kp_per_s must be finite, > 0 and radrc_att_kp_per_s * dt_s < 1")              \
     X(LADRC_ERR_RADRC_RATE_MAX, "radrc_rate_max_rad_s must be finite, > 0 and <= rate_limit_rad_s")                    \
     X(LADRC_ERR_RADRC_ACRO, "radrc_acro must be 0 or 1")                                                               \
-    X(LADRC_ERR_HP_SAMPLE, "hp_sample must be LADRC_HP_SAMPLE_OBSERVER or LADRC_HP_SAMPLE_GYRO")
+    X(LADRC_ERR_HP_SAMPLE, "hp_sample must be LADRC_HP_SAMPLE_OBSERVER or LADRC_HP_SAMPLE_GYRO")                       \
+    X(LADRC_ERR_GYRO_CHANNELS, "gyro filter channels must be 1..LADRC_GYRO_FILTER_MAX_CHANNELS")                       \
+    X(LADRC_ERR_GYRO_LPF_ORDER, "gyro filter lpf_order must be 0, 1 or 2")                                             \
+    X(LADRC_ERR_GYRO_LPF_CUTOFF_HZ, "gyro filter lpf_cutoff_hz must be finite and within (0, 0.5 / dt_s)")             \
+    X(LADRC_ERR_GYRO_N_NOTCHES, "gyro filter n_notches must be at most LADRC_GYRO_FILTER_MAX_NOTCHES")                 \
+    X(LADRC_ERR_GYRO_NOTCH_HZ, "gyro filter notch_hz must be finite and within (0, 0.45 / dt_s)")                      \
+    X(LADRC_ERR_GYRO_NOTCH_Q, "gyro filter notch_q must be finite, > 0 and low enough for a stable notch")             \
+    X(LADRC_ERR_GYRO_RPM_ROTORS, "gyro filter rpm_rotors must be at most LADRC_GYRO_FILTER_MAX_ROTORS")                \
+    X(LADRC_ERR_GYRO_RPM_HARMONICS, "gyro filter rpm_harmonics must be 1..LADRC_GYRO_FILTER_MAX_HARMONICS")            \
+    X(LADRC_ERR_GYRO_RPM_MIN_HZ, "gyro filter rpm_min_hz must be finite and within (0, 0.45 / dt_s)")                  \
+    X(LADRC_ERR_GYRO_RPM_FADE_HZ, "gyro filter rpm_fade_hz must be finite, >= 0, and 0 or with a finite inverse")      \
+    X(LADRC_ERR_GYRO_RPM_Q, "gyro filter rpm_q must be finite, > 0 and low enough for a stable notch")
 
 #ifdef LADRC_STATUS_NAMES_ONLY
 #define STATUS_TEXT(code, explanation) #code

@@ -14,6 +14,7 @@
 #include "ladrc/attitude.h"
 #include "ladrc/axis.h"
 #include "ladrc/estimator.h"
+#include "ladrc/gyro_filter.h"
 #include "ladrc/leso.h"
 #include "ladrc/levant.h"
 #include "ladrc/rls.h"
@@ -282,6 +283,78 @@ static void test_attitude_configs(void)
     report("attitude", t);
 }
 
+/* The gyro filter on nominal inputs: every channel a sinusoid within +-1, the rotors sweeping
+ * smoothly over the whole band (0 to 0.5 / dt_s, a few per mille of it per tick). */
+static void run_gyro_filter(tally_t *t, ladrc_gyro_filter_t *f, const ladrc_gyro_filter_config_t *c, long n)
+{
+    const double nyquist_hz = 0.5 / (double)c->dt_s;
+    for (long k = 0; k < n; ++k) {
+        const double time_s = (double)k * (double)c->dt_s;
+        ladrc_real_t in[LADRC_GYRO_FILTER_MAX_CHANNELS], out[LADRC_GYRO_FILTER_MAX_CHANNELS];
+        ladrc_real_t rotor_hz[LADRC_GYRO_FILTER_MAX_ROTORS];
+        for (unsigned r = 0; r < LADRC_GYRO_FILTER_MAX_ROTORS; ++r) {
+            rotor_hz[r] = (ladrc_real_t)(nyquist_hz * (0.5 + 0.5 * sin(0.01 * (double)k + r)));
+        }
+        for (unsigned i = 0; i < LADRC_GYRO_FILTER_MAX_CHANNELS; ++i) {
+            in[i] = (ladrc_real_t)sin(0.3 * (double)k + i + 5.0 * time_s);
+        }
+        if (ladrc_gyro_filter_set_rotor_hz(f, rotor_hz) != LADRC_FAULT_NONE) {
+            violation(t, "gyro filter", "a rotor speed refused (fault flag)", k);
+            return;
+        }
+        const ladrc_fault_t flags = ladrc_gyro_filter_step(f, in, out);
+        for (unsigned i = 0; i < c->channels; ++i) {
+            if (!test_is_finite(out[i])) {
+                violation(t, "gyro filter", "output not finite", k);
+                return;
+            }
+        }
+        if (flags != LADRC_FAULT_NONE) {
+            violation(t, "gyro filter", "an update refused (fault flag)", k);
+            return;
+        }
+    }
+}
+
+/* A gyro filter field: half the time its nominal value (eleven fields drawn as the others are
+ * would leave too few configs accepted), else as field() draws it. */
+static ladrc_real_t gyro_field(test_rng_t *rng, double nominal)
+{
+    return (test_rng_uniform(rng) < 0.5) ? (ladrc_real_t)nominal : field(rng, nominal);
+}
+
+/* The gyro filter's fields around a 1 kHz loop with every stage on. A twentieth of the configs of
+ * the other campaigns: a tick of six channels of 37 sections costs as much as twenty axis ticks. */
+static void test_gyro_filter_configs(void)
+{
+    tally_t t = {0};
+    test_rng_t rng = {.state = SEED + 200u};
+    static ladrc_gyro_filter_t f;
+    const long n = cases() / 20L;
+    for (t.tried = 0; t.tried < n; ++t.tried) {
+        ladrc_gyro_filter_config_t c;
+        const ladrc_real_t dt = gyro_field(&rng, 0.001);
+        ladrc_gyro_filter_config_default(&c, dt, (uint8_t)small_int(&rng, 3, 6));
+        c.lpf_order = (uint8_t)small_int(&rng, 2, 2);
+        c.lpf_cutoff_hz = gyro_field(&rng, 150.0);
+        c.n_notches = (uint8_t)small_int(&rng, 2, 4);
+        for (unsigned i = 0; i < LADRC_GYRO_FILTER_MAX_NOTCHES; ++i) {
+            c.notch_hz[i] = gyro_field(&rng, 60.0 + 50.0 * i);
+        }
+        c.notch_q = gyro_field(&rng, 5.0);
+        c.rpm_rotors = (uint8_t)small_int(&rng, 4, 8);
+        c.rpm_harmonics = (uint8_t)small_int(&rng, 3, 4);
+        c.rpm_q = gyro_field(&rng, 5.0);
+        c.rpm_min_hz = gyro_field(&rng, 80.0);
+        c.rpm_fade_hz = gyro_field(&rng, 40.0);
+        if (ladrc_gyro_filter_init(&f, &c) == LADRC_OK) {
+            t.accepted++;
+            run_gyro_filter(&t, &f, &c, ticks());
+        }
+    }
+    report("gyro filter", t);
+}
+
 void setUp(void)
 {
 }
@@ -299,5 +372,6 @@ int main(void)
     RUN_TEST(test_axis_indi_configs);
     RUN_TEST(test_axis_cascaded_configs);
     RUN_TEST(test_attitude_configs);
+    RUN_TEST(test_gyro_filter_configs);
     return UNITY_END();
 }

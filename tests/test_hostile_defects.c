@@ -8,6 +8,7 @@
 #include "ladrc/attitude.h"
 #include "ladrc/axis.h"
 #include "ladrc/estimator.h"
+#include "ladrc/gyro_filter.h"
 #include "ladrc/leso.h"
 #include "ladrc/rls.h"
 #include "test_plant.h"
@@ -211,6 +212,10 @@ static void test_steps_no_module_can_discretise_are_refused(void)
                                             .p_bound = LADRC_R(1e4),
                                             .p_initial = LADRC_R(1.0)};
         TEST_ASSERT_EQUAL_INT(LADRC_ERR_DT_S, ladrc_rls_init(&rls, &rls_cfg));
+        static ladrc_gyro_filter_t gf;
+        ladrc_gyro_filter_config_t gf_cfg;
+        ladrc_gyro_filter_config_default(&gf_cfg, steps[i], 3u);
+        TEST_ASSERT_EQUAL_INT(LADRC_ERR_DT_S, ladrc_gyro_filter_init(&gf, &gf_cfg));
     }
     ladrc_leso_t leso;
     const ladrc_leso_config_t edge[2] = {

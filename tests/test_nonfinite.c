@@ -8,6 +8,7 @@
 #include "test_axis_command.h"
 #include "ladrc/attitude.h"
 #include "ladrc/axis.h"
+#include "ladrc/gyro_filter.h"
 #include "ladrc/mixer.h"
 #include "test_hostile.h"
 
@@ -182,6 +183,59 @@ static void test_attitude_and_mixer_hold_on_non_finite_input(void)
     }
 }
 
+/* The gyro filter: bad samples and rotor speeds of every special kind put in
+ * between the ticks of a clean run change nothing of it, bit for bit. */
+static void test_gyro_filter_holds_on_non_finite_input(void)
+{
+    static ladrc_gyro_filter_t clean;
+    static ladrc_gyro_filter_t hit;
+    ladrc_gyro_filter_config_t cfg;
+    int k;
+    unsigned b;
+    ladrc_gyro_filter_config_default(&cfg, DT_S, 3u);
+    cfg.lpf_order = 2u;
+    cfg.n_notches = 1u;
+    cfg.notch_hz[0] = LADRC_R(170.0);
+    cfg.rpm_rotors = 4u;
+    cfg.rpm_min_hz = LADRC_R(60.0);
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_gyro_filter_init(&clean, &cfg));
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_gyro_filter_init(&hit, &cfg));
+    for (k = 0; k < N_TICKS; ++k) {
+        const ladrc_real_t rotors[4] = {LADRC_R(80.0) + rate_at(k), LADRC_R(95.0), LADRC_R(110.0),
+                                        LADRC_R(125.0) - rate_at(k)};
+        const ladrc_real_t in[3] = {rate_at(k), angle_at(k), ref_at(k) - rate_at(k)};
+        ladrc_real_t out_clean[3], out_hit[3];
+        if (k == BAD_AT) {
+            for (b = 0; b < TEST_SPECIAL_VALUES; ++b) {
+                const ladrc_real_t bad_in[3] = {test_special_value(b),
+                                                test_special_value((b + 1u) % TEST_SPECIAL_VALUES),
+                                                test_special_value((b + 2u) % TEST_SPECIAL_VALUES)};
+                ladrc_real_t bad_rotors[4];
+                ladrc_real_t held[3];
+                ladrc_gyro_filter_section_t sections[LADRC_GYRO_FILTER_MAX_STAGES];
+                memcpy(bad_rotors, rotors, sizeof bad_rotors);
+                bad_rotors[b % 4u] = test_special_value(b);
+                memcpy(sections, hit.section, sizeof sections);
+                TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_gyro_filter_set_rotor_hz(&hit, bad_rotors));
+                TEST_ASSERT_EQUAL_MEMORY(&sections[1u + 3u * (b % 4u)], &hit.section[1u + 3u * (b % 4u)],
+                                         3u * sizeof sections[0]);
+                TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_INPUT, ladrc_gyro_filter_step(&hit, bad_in, held));
+                for (unsigned i = 0; i < 3u; ++i) {
+                    TEST_ASSERT_TRUE_MESSAGE(test_is_finite(held[i]), "output not finite");
+                    TEST_ASSERT_TRUE_MESSAGE(same_bits(held[i], hit.out[i]), "output not held");
+                }
+            }
+        }
+        (void)ladrc_gyro_filter_set_rotor_hz(&clean, rotors);
+        (void)ladrc_gyro_filter_set_rotor_hz(&hit, rotors);
+        TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, ladrc_gyro_filter_step(&clean, in, out_clean));
+        TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_NONE, ladrc_gyro_filter_step(&hit, in, out_hit));
+        for (unsigned i = 0; i < 3u; ++i) {
+            TEST_ASSERT_TRUE_MESSAGE(same_bits(out_clean[i], out_hit[i]), "run differs from the clean run");
+        }
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -192,5 +246,6 @@ int main(void)
     RUN_TEST(test_axis_indi_holds_on_non_finite_input);
     RUN_TEST(test_axis_cascaded_holds_on_non_finite_input);
     RUN_TEST(test_attitude_and_mixer_hold_on_non_finite_input);
+    RUN_TEST(test_gyro_filter_holds_on_non_finite_input);
     return UNITY_END();
 }

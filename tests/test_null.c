@@ -7,6 +7,7 @@
 #include "ladrc/attitude.h"
 #include "ladrc/cascaded.h"
 #include "ladrc/estimator.h"
+#include "ladrc/gyro_filter.h"
 #include "ladrc/indi.h"
 #include "ladrc/leso.h"
 #include "ladrc/levant.h"
@@ -118,6 +119,8 @@ static void test_building_block_steps_give_faults_for_null(void)
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_pid_step(NULL, LADRC_R(0.0), LADRC_R(0.0), NULL, &out));
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_cascaded_step(NULL, &ref, LADRC_R(0.0), NULL, &out));
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_mixer_step(NULL, LADRC_R(0.0), phi, NULL));
+    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_gyro_filter_step(NULL, phi, &out));
+    TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_gyro_filter_set_rotor_hz(NULL, phi));
     TEST_ASSERT_TRUE(out == UNTOUCHED);
     TEST_ASSERT_EQUAL_INT(0, ladrc_indi_measure(NULL, LADRC_R(0.0), NULL));
 }
@@ -130,6 +133,7 @@ static void test_building_block_getters_give_zero_for_null(void)
     TEST_ASSERT_FALSE(ladrc_is_finite(ladrc_lp_get_sample(NULL))); /* NaN: no sample */
     ladrc_lp_hand_over(NULL, LADRC_R(1.0));                        /* nothing happens */
     ladrc_rls_shift(NULL, 0u, LADRC_R(1.0));
+    ladrc_gyro_filter_reset(NULL, NULL); /* nothing happens */
     TEST_ASSERT_TRUE(ladrc_hp_get_estimate(NULL) == LADRC_R(0.0));
     TEST_ASSERT_TRUE(ladrc_hp_get_weight(NULL) == LADRC_R(0.0));
     TEST_ASSERT_TRUE(ladrc_indi_get_disturbance(NULL) == LADRC_R(0.0));
@@ -139,6 +143,7 @@ static void test_building_block_getters_give_zero_for_null(void)
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_pid_get_faults(NULL));
     TEST_ASSERT_EQUAL_HEX8(LADRC_FAULT_STATE, ladrc_mixer_get_faults(NULL));
     TEST_ASSERT_NULL(ladrc_hp_get_fit(NULL));
+    TEST_ASSERT_TRUE(ladrc_gyro_filter_get_rpm_weight(NULL, 0u, 1u) == LADRC_R(0.0));
 }
 
 static void test_status_functions_report_null_as_a_status(void)
@@ -147,6 +152,7 @@ static void test_status_functions_report_null_as_a_status(void)
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_NULL, ladrc_axis_init(NULL, NULL));
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_NULL, ladrc_rls_restart(NULL, 1u, NULL));
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_NULL, ladrc_rls_set_lambda0(NULL, LADRC_R(1.0)));
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_NULL, ladrc_gyro_filter_init(NULL, NULL));
 }
 
 int main(void)

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include "ladrc/attitude.h"
 #include "ladrc/axis.h"
+#include "ladrc/gyro_filter.h"
 #include "ladrc/mixer.h"
 #include "ladrc/sizes.h"
 #include "ladrc/td.h"
@@ -28,6 +29,8 @@ static void test_every_reported_size_is_the_sizeof_of_its_type(void)
     TEST_ASSERT_EQUAL_UINT32(sizeof(ladrc_mixer_config_t), ladrc_sizeof_mixer_config_t());
     TEST_ASSERT_EQUAL_UINT32(sizeof(ladrc_mixer_output_t), ladrc_sizeof_mixer_output_t());
     TEST_ASSERT_EQUAL_UINT32(sizeof(ladrc_ref_t), ladrc_sizeof_ref_t());
+    TEST_ASSERT_EQUAL_UINT32(sizeof(ladrc_gyro_filter_t), ladrc_sizeof_gyro_filter_t());
+    TEST_ASSERT_EQUAL_UINT32(sizeof(ladrc_gyro_filter_config_t), ladrc_sizeof_gyro_filter_config_t());
     TEST_ASSERT_EQUAL_UINT32(LADRC_HP_MAX_TONES, ladrc_hp_max_tones());
 }
 

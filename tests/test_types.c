@@ -93,6 +93,17 @@ static const char *const status_names[LADRC_STATUS_COUNT] = {
     "LADRC_ERR_RADRC_RATE_MAX",
     "LADRC_ERR_RADRC_ACRO",
     "LADRC_ERR_HP_SAMPLE",
+    "LADRC_ERR_GYRO_CHANNELS",
+    "LADRC_ERR_GYRO_LPF_ORDER",
+    "LADRC_ERR_GYRO_LPF_CUTOFF_HZ",
+    "LADRC_ERR_GYRO_N_NOTCHES",
+    "LADRC_ERR_GYRO_NOTCH_HZ",
+    "LADRC_ERR_GYRO_NOTCH_Q",
+    "LADRC_ERR_GYRO_RPM_ROTORS",
+    "LADRC_ERR_GYRO_RPM_HARMONICS",
+    "LADRC_ERR_GYRO_RPM_MIN_HZ",
+    "LADRC_ERR_GYRO_RPM_FADE_HZ",
+    "LADRC_ERR_GYRO_RPM_Q",
 };
 
 /* 1 if text is name alone (names-only build) or name ": " and an explanation. */

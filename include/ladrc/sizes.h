@@ -39,6 +39,10 @@ size_t ladrc_sizeof_mixer_config_t(void);
 size_t ladrc_sizeof_mixer_output_t(void);
 /** @return sizeof(ladrc_ref_t) in the library's build (bytes) */
 size_t ladrc_sizeof_ref_t(void);
+/** @return sizeof(ladrc_gyro_filter_t) in the library's build (bytes) */
+size_t ladrc_sizeof_gyro_filter_t(void);
+/** @return sizeof(ladrc_gyro_filter_config_t) in the library's build (bytes) */
+size_t ladrc_sizeof_gyro_filter_config_t(void);
 /** @return LADRC_HP_MAX_TONES of the library's build: the length of
  *          ladrc_axis_config_t's hp_freq_rad_s */
 size_t ladrc_hp_max_tones(void);

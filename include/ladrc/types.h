@@ -179,6 +179,8 @@ typedef float ladrc_real_t;
 #define ladrc_axis_config_default LADRC_ABI_SET_NAME_(ladrc_axis_config_default)
 #define ladrc_axis_init LADRC_ABI_SET_NAME_(ladrc_axis_init)
 #define ladrc_cascaded_init LADRC_ABI_NAME_(ladrc_cascaded_init)
+#define ladrc_gyro_filter_config_default LADRC_ABI_NAME_(ladrc_gyro_filter_config_default)
+#define ladrc_gyro_filter_init LADRC_ABI_NAME_(ladrc_gyro_filter_init)
 #define ladrc_hp_init LADRC_ABI_CAT3(ladrc_hp_init, LADRC_ABI_REAL_, LADRC_ABI_HP_)
 #define ladrc_indi_init LADRC_ABI_NAME_(ladrc_indi_init)
 #define ladrc_leso_init LADRC_ABI_NAME_(ladrc_leso_init)
@@ -280,7 +282,18 @@ typedef enum {
     LADRC_ERR_RADRC_RATE_MAX,    /**< radrc_rate_max_rad_s not finite and > 0, or above rate_limit_rad_s */
     LADRC_ERR_RADRC_ACRO,        /**< radrc_acro not 0 or 1 */
     LADRC_ERR_HP_SAMPLE,         /**< hp_sample not a ladrc_hp_sample_t */
-    LADRC_STATUS_COUNT           /**< number of status codes (not a status) */
+    LADRC_ERR_GYRO_CHANNELS,     /**< gyro filter channels outside 1..LADRC_GYRO_FILTER_MAX_CHANNELS */
+    LADRC_ERR_GYRO_LPF_ORDER,    /**< gyro filter lpf_order not 0, 1 or 2 */
+    LADRC_ERR_GYRO_LPF_CUTOFF_HZ, /**< gyro filter lpf_cutoff_hz not finite or not in (0, 0.5 / dt_s) */
+    LADRC_ERR_GYRO_N_NOTCHES,     /**< gyro filter n_notches above LADRC_GYRO_FILTER_MAX_NOTCHES */
+    LADRC_ERR_GYRO_NOTCH_HZ,      /**< gyro filter notch_hz not finite or not in (0, 0.45 / dt_s) */
+    LADRC_ERR_GYRO_NOTCH_Q,       /**< gyro filter notch_q not finite, not > 0, or too high to round stable */
+    LADRC_ERR_GYRO_RPM_ROTORS,    /**< gyro filter rpm_rotors above LADRC_GYRO_FILTER_MAX_ROTORS */
+    LADRC_ERR_GYRO_RPM_HARMONICS, /**< gyro filter rpm_harmonics outside 1..LADRC_GYRO_FILTER_MAX_HARMONICS */
+    LADRC_ERR_GYRO_RPM_MIN_HZ,    /**< gyro filter rpm_min_hz not finite or not in (0, 0.45 / dt_s) */
+    LADRC_ERR_GYRO_RPM_FADE_HZ,   /**< gyro filter rpm_fade_hz not finite, < 0, or its inverse not finite */
+    LADRC_ERR_GYRO_RPM_Q,         /**< gyro filter rpm_q not finite, not > 0, or too high to round stable */
+    LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
 } ladrc_status_t;
 
 /** Short, stable text for a status code.

@@ -30,6 +30,11 @@ void sim_vehicle_paper(sim_vehicle_t *v)
     v->w2_min_rad2_s2 = 0.0;
     v->w2_max_rad2_s2 = HUGE_VAL;
     v->motor_tau_s = 0.0;
+    v->motor_tau_down_s = 0.0;
+    v->battery_life_s = 0.0;
+    v->battery_drop = 0.0;
+    v->rotor_drag_N_s_m = 0.0;
+    v->rotor_height_m = 0.0;
 }
 
 static double clamp_rotor(const sim_vehicle_t *v, double w2)
@@ -71,6 +76,67 @@ void sim_plant_forces(const sim_vehicle_t *v, const double w2[4], double *thrust
     torque_Nm[2] = v->yaw_coeff_Nm_s2 * (-w2[0] + w2[1] - w2[2] + w2[3]);
 }
 
+double sim_plant_battery_factor(const sim_vehicle_t *v, double t_s)
+{
+    if (!(v->battery_life_s > 0.0)) {
+        return 1.0;
+    }
+    const double drawn = t_s < v->battery_life_s ? (t_s > 0.0 ? t_s / v->battery_life_s : 0.0) : 1.0;
+    const double volts = 1.0 - v->battery_drop * drawn; /* of the full pack's */
+    return volts * volts;
+}
+
+/* Rows of R^T (world north-east-down into body axes) for roll, pitch, yaw
+ * (ZYX): body = m world. */
+static void world_to_body_rows(const double angle_rad[3], double m[3][3])
+{
+    const double cf = cos(angle_rad[0]), sf = sin(angle_rad[0]);
+    const double ct = cos(angle_rad[1]), st = sin(angle_rad[1]);
+    const double cp = cos(angle_rad[2]), sp = sin(angle_rad[2]);
+    m[0][0] = ct * cp;
+    m[0][1] = ct * sp;
+    m[0][2] = -st;
+    m[1][0] = -cf * sp + sf * st * cp;
+    m[1][1] = cf * cp + sf * st * sp;
+    m[1][2] = sf * ct;
+    m[2][0] = sf * sp + cf * st * cp;
+    m[2][1] = -sf * cp + cf * st * sp;
+    m[2][2] = cf * ct;
+}
+
+void sim_plant_wind_to_body(const double angle_rad[3], const double wind_m_s[3], double body_m_s[3])
+{
+    double m[3][3];
+    world_to_body_rows(angle_rad, m);
+    for (int i = 0; i < 3; ++i) {
+        body_m_s[i] = m[i][0] * wind_m_s[0] + m[i][1] * wind_m_s[1] + m[i][2] * wind_m_s[2];
+    }
+}
+
+/* The wind law of the header on rotor speeds w (rad/s) and the air's
+ * in-plane body velocity (vx, vy): the one formula of the rotor drag. */
+static inline void drag_torque(const sim_vehicle_t *v, const double w[4], double vx, double vy, double torque[3])
+{
+    const double kd = v->rotor_drag_N_s_m, h = v->rotor_height_m;
+    const double sum = w[0] + w[1] + w[2] + w[3];
+    torque[0] = h * kd * vy * sum;
+    torque[1] = -h * kd * vx * sum;
+    torque[2] = kd * v->arm_m * ((w[2] - w[0]) * vy + (w[1] - w[3]) * vx);
+}
+
+/* Rotor speed (rad/s) of a w^2; a negative w^2 (ideal rotors) turns backwards. */
+static inline double rotor_speed(double w2)
+{
+    return w2 >= 0.0 ? sqrt(w2) : -sqrt(-w2);
+}
+
+void sim_plant_wind_torque(const sim_vehicle_t *v, const double w2[4], const double wind_body_m_s[3],
+                           double torque_Nm[3])
+{
+    const double w[4] = {rotor_speed(w2[0]), rotor_speed(w2[1]), rotor_speed(w2[2]), rotor_speed(w2[3])};
+    drag_torque(v, w, wind_body_m_s[0], wind_body_m_s[1], torque_Nm);
+}
+
 /* Angular acceleration of one axis (eq. 2): own torque, the gyroscopic term
  * jd * ra * rb of the other two rates, drag on the own rate, then the
  * disturbance. The one formula of the plant's dynamics. */
@@ -102,24 +168,47 @@ void sim_plant_accel(const sim_plant_t *p, const double torque_Nm[3], const doub
  * lane's arithmetic is that of a plant stepped alone, in the same order. */
 typedef double lanes_t[SIM_PLANT_GROUP_MAX];
 
+/* The air of a stage: its velocity over the ground at the stage time, and
+ * each lane's rows x and y of R^T at the step's start (NULL wind: still air). */
+typedef struct {
+    const double *wind_m_s;
+    lanes_t (*rows)[3];
+} air_t;
+
 /* dx/dt of every lane for the held (clamped) command and the disturbance d
  * at the stage time (the same for all lanes). Without lag the torque is the
  * command's, worked out once per step; with it, the rotors' w^2 are state
- * and the torque follows them. */
+ * and the torque follows them, with the lag of spin-up or spin-down. */
 static SIM_ALWAYS_INLINE void derivative(const sim_vehicle_t *v, int lag, int n, lanes_t cmd[4], lanes_t cmd_torque[3],
-                                         lanes_t x[N_STATE], const double d[3], lanes_t dx[N_STATE])
+                                         lanes_t x[N_STATE], const double d[3], const air_t *air, lanes_t dx[N_STATE])
 {
+    const double tau_up = v->motor_tau_s;
+    const double tau_down = v->motor_tau_down_s > 0.0 ? v->motor_tau_down_s : tau_up;
     for (int l = 0; l < n; ++l) {
         double torque[3], rate[3], accel[3];
         if (lag) {
             const double w2[4] = {x[N_ROTOR][l], x[N_ROTOR + 1][l], x[N_ROTOR + 2][l], x[N_ROTOR + 3][l]};
             sim_plant_forces(v, w2, NULL, torque);
             for (int i = 0; i < 4; ++i) {
-                dx[N_ROTOR + i][l] = (cmd[i][l] - x[N_ROTOR + i][l]) / v->motor_tau_s;
+                const double gap = cmd[i][l] - x[N_ROTOR + i][l];
+                dx[N_ROTOR + i][l] = gap / (gap >= 0.0 ? tau_up : tau_down);
             }
         } else {
             for (int i = 0; i < 3; ++i) {
                 torque[i] = cmd_torque[i][l];
+            }
+        }
+        if (air->wind_m_s != NULL) {
+            const double *wd = air->wind_m_s;
+            const double vx = air->rows[0][0][l] * wd[0] + air->rows[0][1][l] * wd[1] + air->rows[0][2][l] * wd[2];
+            const double vy = air->rows[1][0][l] * wd[0] + air->rows[1][1][l] * wd[1] + air->rows[1][2][l] * wd[2];
+            double w[4], drag[3];
+            for (int i = 0; i < 4; ++i) {
+                w[i] = rotor_speed(lag ? x[N_ROTOR + i][l] : cmd[i][l]);
+            }
+            drag_torque(v, w, vx, vy, drag);
+            for (int i = 0; i < 3; ++i) {
+                torque[i] += drag[i];
             }
         }
         for (int i = 0; i < 3; ++i) {
@@ -138,6 +227,7 @@ static SIM_ALWAYS_INLINE void derivative(const sim_vehicle_t *v, int lag, int n,
  * stage time, else none. */
 typedef struct {
     const double (*table)[3];
+    const double (*wind)[3]; /* by stage as table; NULL: still air */
     sim_disturbance_fn dist;
     void *ctx;
 } source_t;
@@ -189,21 +279,26 @@ static SIM_ALWAYS_INLINE void stage_point(int m, int n, lanes_t x[N_STATE], doub
  * rotor states only take part with a lag (without one their derivative is 0
  * and they stay put). */
 static SIM_ALWAYS_INLINE void rk4_substep(const sim_vehicle_t *v, int lag, int n, lanes_t cmd[4], lanes_t cmd_torque[3],
-                                          double t0, int s, double h, const source_t *src, lanes_t x[N_STATE])
+                                          lanes_t rows[2][3], double t0, int s, double h, const source_t *src,
+                                          lanes_t x[N_STATE])
 {
     const int m = lag ? N_STATE : N_ROTOR;
     lanes_t k1[N_STATE], k2[N_STATE], k3[N_STATE], k4[N_STATE], y[N_STATE];
     double d[3];
+    air_t air = {.wind_m_s = NULL, .rows = rows};
     disturbance_at(src, s, 0, stage_time(t0, h, s, 0), d);
-    derivative(v, lag, n, cmd, cmd_torque, x, d, k1);
+    air.wind_m_s = src->wind != NULL ? src->wind[3 * s] : NULL;
+    derivative(v, lag, n, cmd, cmd_torque, x, d, &air, k1);
     stage_point(m, n, x, 0.5 * h, k1, y);
     disturbance_at(src, s, 1, stage_time(t0, h, s, 1), d); /* the same for k2 and k3 */
-    derivative(v, lag, n, cmd, cmd_torque, y, d, k2);
+    air.wind_m_s = src->wind != NULL ? src->wind[3 * s + 1] : NULL;
+    derivative(v, lag, n, cmd, cmd_torque, y, d, &air, k2);
     stage_point(m, n, x, 0.5 * h, k2, y);
-    derivative(v, lag, n, cmd, cmd_torque, y, d, k3);
+    derivative(v, lag, n, cmd, cmd_torque, y, d, &air, k3);
     stage_point(m, n, x, h, k3, y);
     disturbance_at(src, s, 2, stage_time(t0, h, s, 2), d);
-    derivative(v, lag, n, cmd, cmd_torque, y, d, k4);
+    air.wind_m_s = src->wind != NULL ? src->wind[3 * s + 2] : NULL;
+    derivative(v, lag, n, cmd, cmd_torque, y, d, &air, k4);
     const double h6 = h / 6.0;
     for (int i = 0; i < m; ++i) {
         for (int l = 0; l < n; ++l) {
@@ -215,25 +310,26 @@ static SIM_ALWAYS_INLINE void rk4_substep(const sim_vehicle_t *v, int lag, int n
 /* The substeps of a step for lanes [0, w); lag and w are constants where it
  * is called. */
 static SIM_ALWAYS_INLINE void integrate(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4], lanes_t cmd_torque[3],
-                                        int n_sub, double t0, double h, const source_t *src, lanes_t x[N_STATE])
+                                        lanes_t rows[2][3], int n_sub, double t0, double h, const source_t *src,
+                                        lanes_t x[N_STATE])
 {
     for (int s = 0; s < n_sub; ++s) {
-        rk4_substep(v, lag, w, cmd, cmd_torque, t0, s, h, src, x);
+        rk4_substep(v, lag, w, cmd, cmd_torque, rows, t0, s, h, src, x);
     }
 }
 
 /* integrate() for w lanes (1, 2, 4, 6 or SIM_PLANT_GROUP_MAX), each width
  * and lag its own code. */
 static SIM_ALWAYS_INLINE void integrate_width(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4],
-                                              lanes_t cmd_torque[3], int n_sub, double t0, double h,
+                                              lanes_t cmd_torque[3], lanes_t rows[2][3], int n_sub, double t0, double h,
                                               const source_t *src, lanes_t x[N_STATE])
 {
 #define LANES_CASE(W)                                                                                                  \
     case W:                                                                                                            \
         if (lag) {                                                                                                     \
-            integrate(v, 1, W, cmd, cmd_torque, n_sub, t0, h, src, x);                                                 \
+            integrate(v, 1, W, cmd, cmd_torque, rows, n_sub, t0, h, src, x);                                           \
         } else {                                                                                                       \
-            integrate(v, 0, W, cmd, cmd_torque, n_sub, t0, h, src, x);                                                 \
+            integrate(v, 0, W, cmd, cmd_torque, rows, n_sub, t0, h, src, x);                                           \
         }                                                                                                              \
         break;
     switch (w) {
@@ -247,10 +343,11 @@ static SIM_ALWAYS_INLINE void integrate_width(const sim_vehicle_t *v, int lag, i
 #undef LANES_CASE
 }
 
-static void integrate_portable(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4], lanes_t cmd_torque[3], int n_sub,
-                               double t0, double h, const source_t *src, lanes_t x[N_STATE])
+static void integrate_portable(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4], lanes_t cmd_torque[3],
+                               lanes_t rows[2][3], int n_sub, double t0, double h, const source_t *src,
+                               lanes_t x[N_STATE])
 {
-    integrate_width(v, lag, w, cmd, cmd_torque, n_sub, t0, h, src, x);
+    integrate_width(v, lag, w, cmd, cmd_torque, rows, n_sub, t0, h, src, x);
 }
 
 /* On x86-64 the build targets SSE2 (two lanes per instruction); where the
@@ -261,10 +358,10 @@ static void integrate_portable(const sim_vehicle_t *v, int lag, int w, lanes_t c
 #if defined(__GNUC__) && defined(__x86_64__)
 #define SIM_PLANT_AVX 1
 __attribute__((target("avx"))) static void integrate_avx(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4],
-                                                         lanes_t cmd_torque[3], int n_sub, double t0, double h,
-                                                         const source_t *src, lanes_t x[N_STATE])
+                                                         lanes_t cmd_torque[3], lanes_t rows[2][3], int n_sub,
+                                                         double t0, double h, const source_t *src, lanes_t x[N_STATE])
 {
-    integrate_width(v, lag, w, cmd, cmd_torque, n_sub, t0, h, src, x);
+    integrate_width(v, lag, w, cmd, cmd_torque, rows, n_sub, t0, h, src, x);
 }
 #endif
 
@@ -278,12 +375,22 @@ static void step_lanes(sim_plant_t *const plants[], const double (*w2_cmd)[4], i
     const double h = dt_s / n_sub;
     const double t0 = plants[0]->t_s;
     const int lag = v->motor_tau_s > 0.0;
-    lanes_t cmd[4], cmd_torque[3], x[N_STATE];
+    const double battery = sim_plant_battery_factor(v, t0);
+    lanes_t cmd[4], cmd_torque[3], x[N_STATE], rows[2][3];
     for (int l = 0; l < n; ++l) {
         const sim_plant_t *p = plants[l];
         double c[4], torque[3];
+        if (src->wind != NULL) {
+            double m[3][3];
+            world_to_body_rows(p->angle_rad, m);
+            for (int i = 0; i < 2; ++i) {
+                for (int j = 0; j < 3; ++j) {
+                    rows[i][j][l] = m[i][j];
+                }
+            }
+        }
         for (int i = 0; i < 4; ++i) {
-            c[i] = clamp_rotor(v, w2_cmd[l][i]);
+            c[i] = clamp_rotor(v, w2_cmd[l][i]) * battery;
             cmd[i][l] = c[i];
             x[N_ROTOR + i][l] = p->w2_rad2_s2[i];
         }
@@ -308,14 +415,19 @@ static void step_lanes(sim_plant_t *const plants[], const double (*w2_cmd)[4], i
         for (int i = 0; i < N_STATE; ++i) {
             x[i][l] = x[i][0];
         }
+        for (int i = 0; src->wind != NULL && i < 2; ++i) {
+            for (int j = 0; j < 3; ++j) {
+                rows[i][j][l] = rows[i][j][0];
+            }
+        }
     }
 #ifdef SIM_PLANT_AVX
     if (__builtin_cpu_supports("avx")) {
-        integrate_avx(v, lag, w, cmd, cmd_torque, n_sub, t0, h, src, x);
+        integrate_avx(v, lag, w, cmd, cmd_torque, rows, n_sub, t0, h, src, x);
     } else
 #endif
     {
-        integrate_portable(v, lag, w, cmd, cmd_torque, n_sub, t0, h, src, x);
+        integrate_portable(v, lag, w, cmd, cmd_torque, rows, n_sub, t0, h, src, x);
     }
     for (int l = 0; l < n; ++l) {
         sim_plant_t *p = plants[l];
@@ -346,7 +458,9 @@ static int same_vehicle(const sim_vehicle_t *a, const sim_vehicle_t *b)
            same_bits(a->yaw_coeff_Nm_s2, b->yaw_coeff_Nm_s2) && same_bits(a->rot_drag_Nm_s, b->rot_drag_Nm_s) &&
            same_bits(a->g_m_s2, b->g_m_s2) && a->rotors_ideal == b->rotors_ideal &&
            same_bits(a->w2_min_rad2_s2, b->w2_min_rad2_s2) && same_bits(a->w2_max_rad2_s2, b->w2_max_rad2_s2) &&
-           same_bits(a->motor_tau_s, b->motor_tau_s);
+           same_bits(a->motor_tau_s, b->motor_tau_s) && same_bits(a->motor_tau_down_s, b->motor_tau_down_s) &&
+           same_bits(a->battery_life_s, b->battery_life_s) && same_bits(a->battery_drop, b->battery_drop) &&
+           same_bits(a->rotor_drag_N_s_m, b->rotor_drag_N_s_m) && same_bits(a->rotor_height_m, b->rotor_height_m);
 }
 
 void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int substeps, sim_disturbance_fn dist,
@@ -357,7 +471,7 @@ void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int sub
     }
     sim_plant_t *const one[1] = {p};
     const double cmd[1][4] = {{w2_cmd[0], w2_cmd[1], w2_cmd[2], w2_cmd[3]}};
-    const source_t src = {.table = NULL, .dist = dist, .ctx = ctx};
+    const source_t src = {.table = NULL, .wind = NULL, .dist = dist, .ctx = ctx};
     step_lanes(one, cmd, 1, dt_s, substeps, &src);
 }
 
@@ -406,14 +520,20 @@ static int step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4], in
 void sim_plant_step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s, int substeps,
                           sim_disturbance_fn dist, void *ctx)
 {
-    const source_t src = {.table = NULL, .dist = dist, .ctx = ctx};
+    const source_t src = {.table = NULL, .wind = NULL, .dist = dist, .ctx = ctx};
     (void)step_group(plants, w2_cmd, n, dt_s, substeps, &src, &src);
 }
 
 int sim_plant_step_group_table(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s, int substeps,
                                const double (*d_stage)[3])
 {
-    const source_t src = {.table = d_stage, .dist = NULL, .ctx = NULL};
+    return sim_plant_step_group_air(plants, w2_cmd, n, dt_s, substeps, d_stage, NULL);
+}
+
+int sim_plant_step_group_air(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s, int substeps,
+                             const double (*d_stage)[3], const double (*wind_stage)[3])
+{
+    const source_t src = {.table = d_stage, .wind = wind_stage, .dist = NULL, .ctx = NULL};
     return step_group(plants, w2_cmd, n, dt_s, substeps, &src, NULL);
 }
 

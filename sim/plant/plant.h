@@ -23,7 +23,32 @@
  * the (clamped) command through a first-order lag
  *   (w_i^2)' = (w2_cmd_i - w_i^2) / motor_tau_s,
  * integrated with the attitude in the same RK4 state; with motor_tau_s = 0
- * w^2 equals the command throughout the step.
+ * w^2 equals the command throughout the step. A rotor slowing down follows
+ * motor_tau_down_s instead when it is > 0 (propellers brake on drag alone,
+ * slower than the motor spins them up; 0: motor_tau_s both ways).
+ *
+ * Battery: with battery_life_s > 0 the rotors give w^2 = command * s(t),
+ *   s(t) = (1 - battery_drop * min(t / battery_life_s, 1))^2,
+ * held over a step: a rotor's speed at a given command is proportional to
+ * the pack's voltage, which falls by the fraction battery_drop over its
+ * life (linear in the charge drawn at a steady hover); thrust and yaw
+ * torque go with w^2, so the effective thrust coefficient falls as s(t).
+ *
+ * Wind: the air's velocity relative to the ground, given at the stage
+ * times (sim_plant_step_group_air), acts through each rotor's drag. Body
+ * axes are forward-right-down, thrust along -z; the torques above put rotor
+ * 1 at x = -l, rotor 3 at x = +l, rotor 2 at y = -l, rotor 4 at y = +l,
+ * their hubs rotor_height_m above the centre of mass. The vehicle holds its
+ * place (no translation is simulated), so the air moves past it at the wind
+ * v, in body axes vb = R(angles)^T v (R from yaw, pitch, roll, ZYX, taken
+ * at the start of the step). Each rotor feels a force in the disc plane
+ *   F_i = k_d w_i (vb_x, vb_y, 0),   k_d = rotor_drag_N_s_m (N per m/s per rad/s)
+ * (the induced drag and the blade-flapping tilt of the thrust, both linear
+ * in w_i v at low advance ratio), at its hub: the torque r_i x F_i,
+ *   tau_x = h k_d vb_y sum(w_i),  tau_y = -h k_d vb_x sum(w_i),
+ *   tau_z = k_d l ((w3 - w1) vb_y + (w2 - w4) vb_x),
+ * with h = rotor_height_m, which also stands for the flapping hub moment
+ * (an effective height). rotor_drag_N_s_m = 0: the wind does nothing.
  *
  * No heap, no stdio, no globals.
  */
@@ -41,6 +66,11 @@ typedef struct {
     int rotors_ideal;                      /* 1: w^2 as commanded, any sign (paper) */
     double w2_min_rad2_s2, w2_max_rad2_s2; /* limits when not ideal */
     double motor_tau_s;                    /* first-order lag of w^2 towards the command, 0 = none */
+    double motor_tau_down_s;               /* the lag while w^2 falls; 0 = motor_tau_s */
+    double battery_life_s;                 /* time to the end of the voltage drop; 0 = no battery sag */
+    double battery_drop;                   /* fraction of the voltage lost over battery_life_s, [0, 1) */
+    double rotor_drag_N_s_m;               /* k_d: in-plane rotor force per m/s of air per rad/s, >= 0 */
+    double rotor_height_m;                 /* h: the hubs' (effective) height above the centre of mass */
 } sim_vehicle_t;
 
 /* Disturbance angular accelerations (rad/s^2) of axes 0..2 at time t_s,
@@ -100,6 +130,26 @@ void sim_plant_step_group(sim_plant_t *const plants[], const double (*w2_cmd)[4]
  * stepped. Returns the number of plants stepped. */
 int sim_plant_step_group_table(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s, int substeps,
                                const double (*d_stage)[3]);
+
+/* The same in wind: wind_stage[k] is the air's velocity over the ground
+ * (m/s, north-east-down) at the k-th stage time, as d_stage; NULL: still
+ * air (sim_plant_step_group_table). */
+int sim_plant_step_group_air(sim_plant_t *const plants[], const double (*w2_cmd)[4], int n, double dt_s, int substeps,
+                             const double (*d_stage)[3], const double (*wind_stage)[3]);
+
+/* The factor s(t) of the battery law above on the rotors' w^2 at t_s (1
+ * without battery sag). */
+double sim_plant_battery_factor(const sim_vehicle_t *v, double t_s);
+
+/* The torques (N m) the air moving at wind_body_m_s past the vehicle (body
+ * axes, forward-right-down) makes on rotors at w2 (rad^2/s^2), as the
+ * header's wind law gives them. */
+void sim_plant_wind_torque(const sim_vehicle_t *v, const double w2[4], const double wind_body_m_s[3],
+                           double torque_Nm[3]);
+
+/* wind_m_s (north-east-down) in the body axes of angle_rad (roll, pitch,
+ * yaw; ZYX). */
+void sim_plant_wind_to_body(const double angle_rad[3], const double wind_m_s[3], double body_m_s[3]);
 
 /* The times sim_plant_step(p, ., dt_s, substeps, dist, .) will call dist at,
  * in that order, bit for bit: t, t + h/2 and t + h of every substep, 3 per

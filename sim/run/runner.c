@@ -40,6 +40,8 @@ typedef struct {
     int n_flying;              /* of them, flying */
     instants_t at;             /* the control instants' references and disturbances */
     disturbance_batch_t batch; /* the disturbances of a plant step */
+    wind_field_t wind;         /* the air they all meet */
+    double wind_stage[STAGES_MAX][3];
 } group_t;
 
 /* Opens every run (those beyond SIM_MAX_CONTROLLERS fail). */
@@ -57,6 +59,16 @@ static void group_open(group_t *g, const sim_scenario_t *sc, sim_run_spec_t *run
         runs[k].rc = -1;
     }
     g->n = n_runs < SIM_MAX_CONTROLLERS ? n_runs : SIM_MAX_CONTROLLERS;
+    if (runner_wind_open(&g->wind, sc) != 0) {
+        for (int k = 0; k < g->n; ++k) {
+            if (runs[k].rc == 0) {
+                snprintf(runs[k].err, runs[k].err_len, "%s: bad [wind] settings", sc->path);
+                runs[k].rc = -1;
+                g->run[k].flying = 0;
+                --g->n_flying;
+            }
+        }
+    }
     runner_disturbance_batch_init(&g->batch, sc);
     g->at.first = g->at.n = 0;
 }
@@ -118,9 +130,13 @@ static void group_step_plants(group_t *g, const sim_plant_t *lead, const double 
         same_time = same_time && memcmp(&plants[q]->t_s, &lead->t_s, sizeof lead->t_s) == 0;
     }
     if (g->batch.n > 0 && same_time) {
-        (void)sim_plant_step_group_table(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps,
-                                         (const double(*)[3])g->batch.stage);
-    } else {
+        if (g->wind.on) {
+            runner_wind_at(&g->wind, g->batch.t_s, g->batch.n, g->wind_stage);
+        }
+        (void)sim_plant_step_group_air(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps,
+                                       (const double(*)[3])g->batch.stage,
+                                       g->wind.on ? (const double(*)[3])g->wind_stage : NULL);
+    } else { /* never with wind: the parser keeps substeps within the table, and the plants fly together */
         batch_reader_t reader = {.b = &g->batch, .next = 0};
         sim_plant_step_group(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps, runner_read_batch,
                              &reader);

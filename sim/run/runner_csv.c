@@ -63,7 +63,9 @@ static const char BASE_COLUMNS[] =
     "meas_rate_roll_deg_s,meas_rate_pitch_deg_s,meas_rate_yaw_deg_s,"
     "est_angle_roll_deg,est_angle_pitch_deg,est_angle_yaw_deg,"
     "est_rate_roll_deg_s,est_rate_pitch_deg_s,est_rate_yaw_deg_s,"
-    "sat_roll_flag,sat_pitch_flag,sat_yaw_flag,sat_thrust_flag";
+    "sat_roll_flag,sat_pitch_flag,sat_yaw_flag,sat_thrust_flag,"
+    "ctrl_rate_roll_deg_s,ctrl_rate_pitch_deg_s,ctrl_rate_yaw_deg_s,"
+    "accel_x_m_s2,accel_y_m_s2,accel_z_m_s2";
 
 static const char *const AXIS_NAMES[3] = {"roll", "pitch", "yaw"};
 
@@ -165,6 +167,10 @@ void runner_csv_line(attitude_run_t *r, const tick_t *tk)
                                          LADRC_MIXER_SAT_THRUST};
     for (int b = 0; b < 4; ++b)
         runner_line_g(line, (tk->out.saturated & SAT_BITS[b]) != 0u ? 1.0 : 0.0, 6);
+    for (int i = 0; i < 3; ++i)
+        runner_line_g(line, tk->ctrl_rate[i] * RAD2DEG, 6);
+    for (int i = 0; i < 3; ++i)
+        runner_line_g(line, tk->accel_m_s2[i], 6);
     estimator_cells(line, &r->att);
     runner_line_end(line, r->csv);
 }

@@ -16,11 +16,14 @@
 
 #include "scenario/expr.h"
 #include "ladrc/attitude.h"
+#include "ladrc/gyro_filter.h"
 #include "ladrc/mixer.h"
 #include "numfmt.h"
 #include "plant/plant.h"
 #include "runner.h"
 #include "plant/sensor.h"
+#include "plant/turbulence.h"
+#include "plant/vibration.h"
 
 #define RAD2DEG (180.0 / 3.14159265358979323846)
 
@@ -54,6 +57,24 @@ typedef struct {
 } disturbance_batch_t;
 
 void runner_disturbance_batch_init(disturbance_batch_t *b, const sim_scenario_t *sc);
+
+/* ---- runner_wind.c ------------------------------------------------------------ */
+
+/* The air a group's vehicles meet ([wind]). */
+typedef struct {
+    int on;          /* 0: still air */
+    int gusts;       /* 1: Dryden turbulence on top of the mean */
+    double mean_m_s; /* steady wind speed */
+    double along[2]; /* north, east of the direction it blows to */
+    sim_turb_t turb; /* the gusts: along, across, down the mean wind */
+} wind_field_t;
+
+/* Sets the wind up from sc; 0, or -1 when the turbulence refuses its settings. */
+int runner_wind_open(wind_field_t *w, const sim_scenario_t *sc);
+
+/* The air's velocity over the ground (m/s, north-east-down) at t_s[0..n),
+ * non-decreasing, into wind_m_s. */
+void runner_wind_at(wind_field_t *w, const double *t_s, int n, double (*wind_m_s)[3]);
 
 /* The disturbances of p's next step of dt_s in substeps (sim_plant_stage_times). */
 void runner_disturbance_batch_fill(disturbance_batch_t *b, const sim_plant_t *p, double dt_s, int substeps);
@@ -93,10 +114,10 @@ void runner_references(const sim_scenario_t *sc, double t_s, sim_expr_memo_t *me
  * returned); NULL with the message in err when it cannot be written. */
 FILE *runner_open_csv(const char *path, const char *header, char *err, size_t err_len);
 
-/* Most fields of a line: the attitude run's 45 and its estimators' (per
+/* Most fields of a line: the attitude run's 51 and its estimators' (per
  * axis: HP's weight, tones, estimate, LP's estimate, and each tone's
  * frequency and amplitude). */
-#define RUNNER_CSV_FIELDS_MAX (45 + 3 * (4 + 2 * LADRC_HP_MAX_TONES))
+#define RUNNER_CSV_FIELDS_MAX (51 + 3 * (4 + 2 * LADRC_HP_MAX_TONES))
 
 /* One CSV line in memory, written with one fwrite. */
 typedef struct {
@@ -113,11 +134,13 @@ void runner_line_end(csv_line_t *l, FILE *f);
 
 /* What one control tick of a run saw and did, for its metrics and time series. */
 typedef struct {
-    double t;                     /* s */
-    const ladrc_real_t *ref;      /* rad, as the controller got them */
-    const double *ref_rad, *dist; /* the same widened; disturbances, rad/s^2 */
-    double meas_angle[3], meas_rate[3];
-    ladrc_real_t torque[3]; /* commanded, N m */
+    double t;                           /* s */
+    const ladrc_real_t *ref;            /* rad, as the controller got them */
+    const double *ref_rad, *dist;       /* the same widened; disturbances, rad/s^2 */
+    double meas_angle[3], meas_rate[3]; /* the sensor's, vibration included */
+    double ctrl_rate[3];                /* the rate the controller got: filtered when [filter] is on */
+    double accel_m_s2[3];               /* the accelerometer: specific force in body axes */
+    ladrc_real_t torque[3];             /* commanded, N m */
     ladrc_mixer_output_t out;
     /* the truth at this tick: the disturbance the observer should see is
      * the plant's acceleration minus what the applied torque explains */
@@ -131,6 +154,9 @@ typedef struct {
     ladrc_mixer_t mixer;
     sim_plant_t plant;
     sim_sensor_t sensor;
+    sim_vibration_t vibration;
+    ladrc_gyro_filter_t filter;
+    int filtered; /* 1: the gyro filter stage is on */
     FILE *csv;
     csv_line_t line;
     double last_out_s[3];

@@ -11,6 +11,9 @@
 #include "runner_parts.h"
 #include "scenario/setup.h"
 
+/* The vibration's phases: another stream than the sensor noise's. */
+#define VIBRATION_SEED_SALT 0x56494252ULL /* "VIBR" */
+
 /* The controller and mixer of the run, configured as the parser checked them. */
 static int configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_t *att, ladrc_mixer_t *mixer,
                      char *err, size_t err_len)
@@ -93,22 +96,27 @@ int runner_run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t 
     if (configure(sc, spec->ctrl, &r->att, &r->mixer, spec->err, spec->err_len) != 0) {
         return -1;
     }
-    const sim_vehicle_t vehicle = {.mass_kg = sc->mass_kg,
-                                   .inertia_kg_m2 = {sc->inertia_kg_m2[0], sc->inertia_kg_m2[1], sc->inertia_kg_m2[2]},
-                                   .arm_m = sc->arm_m,
-                                   .thrust_coeff_N_s2 = sc->thrust_coeff_N_s2,
-                                   .yaw_coeff_Nm_s2 = sc->yaw_coeff_Nm_s2,
-                                   .rot_drag_Nm_s = sc->rot_drag_Nm_s,
-                                   .g_m_s2 = sc->g_m_s2,
-                                   .rotors_ideal = sc->rotors_ideal,
-                                   .w2_min_rad2_s2 = sc->w2_min_rad2_s2,
-                                   .w2_max_rad2_s2 = sc->w2_max_rad2_s2,
-                                   .motor_tau_s = sc->motor_tau_s};
+    const sim_vehicle_t vehicle = sim_setup_vehicle(sc);
     sim_plant_init(&r->plant, &vehicle);
     if (sim_sensor_init(&r->sensor, sc->angle_noise_std_rad, sc->rate_noise_std_rad_s, sc->delay_ticks, sc->seed) !=
         0) {
         snprintf(spec->err, spec->err_len, "%s: bad sensor settings", sc->path);
         return -1;
+    }
+    const sim_vibration_config_t vib = sim_setup_vibration(sc);
+    if (sim_vibration_init(&r->vibration, &vib, sc->seed ^ VIBRATION_SEED_SALT) != 0) {
+        snprintf(spec->err, spec->err_len, "%s: bad vibration settings", sc->path);
+        return -1;
+    }
+    r->filtered = sim_setup_filters_gyro(sc);
+    if (r->filtered) {
+        ladrc_gyro_filter_config_t fc;
+        sim_setup_gyro_filter(sc, &fc);
+        const ladrc_status_t st = ladrc_gyro_filter_init(&r->filter, &fc);
+        if (st != LADRC_OK) {
+            snprintf(spec->err, spec->err_len, "%s: [filter]: %s", sc->path, ladrc_status_str(st));
+            return -1;
+        }
     }
     if (spec->csv_path != NULL) {
         char header[RUNNER_CSV_HEADER_MAX];
@@ -141,16 +149,45 @@ static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, 
 {
     const sim_plant_t *plant = &r->plant;
     sim_sensor_measure(&r->sensor, plant->angle_rad, plant->rate_rad_s, tk->meas_angle, tk->meas_rate);
-    if (r->wrap_yaw) {
-        tk->meas_angle[2] = wrap_pi(tk->meas_angle[2]);
-    }
+    const double gravity[3] = {0.0, 0.0, -plant->v.g_m_s2}; /* what a level, hovering IMU reads */
+    sim_plant_wind_to_body(plant->angle_rad, gravity, tk->accel_m_s2);
+    sim_vibration_tick(&r->vibration, plant->w2_rad2_s2, sc->control_dt_s, tk->meas_rate, tk->meas_angle,
+                       tk->accel_m_s2);
     if (runner_diverged(sc, plant, tk->ref_rad, r->wrap_yaw, tk->t, r->spec->metrics)) {
         return 0;
     }
+    /* the filter stage sees the rates and the unwrapped angles, as the
+     * attitude estimator integrating the filtered gyro would give them;
+     * a wrapping controller gets yaw in (-pi, pi] after it */
+    const double yaw_rad = tk->meas_angle[2];
+    if (r->wrap_yaw) {
+        tk->meas_angle[2] = wrap_pi(yaw_rad);
+    }
+    ladrc_real_t signal[6];
+    for (int i = 0; i < 3; ++i) {
+        signal[i] = (ladrc_real_t)tk->meas_rate[i];
+        signal[3 + i] = (ladrc_real_t)tk->meas_angle[i];
+    }
+    if (r->filtered) {
+        signal[5] = (ladrc_real_t)yaw_rad;
+        ladrc_real_t rotor_hz[4];
+        for (int q = 0; q < 4; ++q) {
+            rotor_hz[q] = (ladrc_real_t)sim_vibration_rotor_hz(&r->vibration, q);
+        }
+        ladrc_fault_t f = ladrc_gyro_filter_set_rotor_hz(&r->filter, rotor_hz);
+        f |= ladrc_gyro_filter_step(&r->filter, signal, signal);
+        if (f != LADRC_FAULT_NONE) {
+            r->spec->metrics->faults++;
+        }
+        if (r->wrap_yaw) {
+            signal[5] = (ladrc_real_t)wrap_pi((double)signal[5]);
+        }
+    }
     ladrc_real_t angle[3], rate[3];
     for (int i = 0; i < 3; ++i) {
-        angle[i] = (ladrc_real_t)tk->meas_angle[i];
-        rate[i] = (ladrc_real_t)tk->meas_rate[i];
+        rate[i] = signal[i];
+        angle[i] = signal[3 + i];
+        tk->ctrl_rate[i] = (double)rate[i];
     }
     if (ladrc_attitude_step(&r->att, tk->ref, angle, sc->use_rate ? rate : NULL, tk->torque) != LADRC_FAULT_NONE) {
         r->spec->metrics->faults++;

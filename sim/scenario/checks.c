@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "plant/turbulence.h"
 #include "setup.h"
 
 /* A consistency error: kept if it is the earliest in the file so far. */
@@ -191,6 +192,54 @@ static void check_rotors(parser_t *p)
         check_fail(p, ideal->line, ideal->value_col, "ideal = no needs w2_max_rad2_s2");
     } else if (!(sc->w2_max_rad2_s2 > sc->w2_min_rad2_s2)) {
         check_fail(p, max->line, max->value_col, "w2_max_rad2_s2 must be > w2_min_rad2_s2 (%g)", sc->w2_min_rad2_s2);
+    }
+}
+
+/* A list key's count against the orders it goes with: equal, or not given. */
+static void check_list_length(parser_t *p, int sec, const char *name, int n, const char *of, int n_of)
+{
+    const loc_t *at = checks_seen(p, sec, name);
+    if (at->line != 0 && n != n_of) {
+        check_fail(p, at->line, at->value_col, "%s gives %d numbers; %s gives %d (one per order)", name, n, of, n_of);
+    }
+}
+
+/* [wind], [vibration] and [filter] keys against each other and the run. */
+static void check_environment(parser_t *p)
+{
+    const sim_scenario_t *sc = p->sc;
+    const loc_t *sigma = checks_seen(p, SEC_WIND, "sigma_m_s");
+    if (sc->turbulence == SIM_TURB_SIGMA && !(sc->turb_sigma_m_s > 0.0)) {
+        const loc_t *turb = checks_seen(p, SEC_WIND, "turbulence");
+        check_fail(p, turb->line, turb->value_col, "turbulence = sigma needs sigma_m_s > 0");
+    } else if (sc->turbulence != SIM_TURB_SIGMA && sigma->line != 0) {
+        check_fail(p, sigma->line, sigma->key_col, "'sigma_m_s' applies only with turbulence = sigma");
+    }
+    const loc_t *orders = checks_seen(p, SEC_VIBRATION, "orders");
+    if (orders->line == 0) {
+        static const char *const amplitudes[] = {"gyro_deg_s", "accel_m_s2", "axis_gain"};
+        const loc_t *at = first_given(p, SEC_VIBRATION, amplitudes, 3);
+        if (at != NULL) {
+            check_fail(p, at->line, at->key_col, "the vibration's amplitudes need its orders (orders = 1 2 3 ...)");
+        }
+    } else {
+        check_list_length(p, SEC_VIBRATION, "gyro_deg_s", sc->vib_n_gyro, "orders", sc->vib_n_orders);
+        check_list_length(p, SEC_VIBRATION, "accel_m_s2", sc->vib_n_accel, "orders", sc->vib_n_orders);
+    }
+    const double nyquist_hz = 0.5 / sc->control_dt_s;
+    const loc_t *lpf = checks_seen(p, SEC_FILTER, "lpf_hz");
+    if (sc->filter_lpf_order > 0 && !(sc->filter_lpf_hz < nyquist_hz)) {
+        const loc_t *at = lpf->line != 0 ? lpf : checks_seen(p, SEC_FILTER, "lpf_order");
+        check_fail(p, at->line, at->value_col, "lpf_hz must be below the Nyquist frequency 0.5 / control_dt_s (%g Hz)",
+                   nyquist_hz);
+    }
+    for (int i = 0; i < sc->filter_n_notches; ++i) {
+        if (!(sc->filter_notch_hz[i] < nyquist_hz)) {
+            const loc_t *at = checks_seen(p, SEC_FILTER, "notch_hz");
+            check_fail(p, at->line, at->value_col, "notch_hz %g must be below the Nyquist frequency %g Hz",
+                       sc->filter_notch_hz[i], nyquist_hz);
+            break;
+        }
     }
 }
 
@@ -554,6 +603,13 @@ void checks_finish(parser_t *p)
         sc->settle_after_s = 0.0;
         sc->settle_until_s = sc->duration_s;
     }
+    if (isnan(sc->rotor_drag_N_s_m)) { /* k_d w_hover 4 = m d: the drag d per kg at hover */
+        const double w_hover = sqrt(sc->mass_kg * sc->g_m_s2 / (4.0 * sc->thrust_coeff_N_s2));
+        sc->rotor_drag_N_s_m = sc->mass_kg * sc->rotor_drag_per_s / (4.0 * w_hover);
+    }
+    if (isnan(sc->rotor_height_m)) {
+        sc->rotor_height_m = SIM_ROTOR_HEIGHT_ARMS * sc->arm_m;
+    }
     if (sc->kind == SIM_KIND_DIFFERENTIATOR) {
         sc->n_controllers = 0; /* it runs the two differentiators, no controller */
     }
@@ -574,6 +630,7 @@ void checks_run(parser_t *p)
     check_run(p);
     if (sc->kind == SIM_KIND_ATTITUDE) {
         check_rotors(p);
+        check_environment(p);
         check_tuning(p);
     } else {
         check_differentiator(p);

@@ -75,6 +75,26 @@ static int parse_reals(parser_t *p, const key_def_t *def, char *value, double *o
     return 0;
 }
 
+/* 1 to SCHEMA_LIST_MAX numbers, each checked and scaled as parse_reals does; their count into *n. */
+static int parse_list(parser_t *p, const key_def_t *def, char *value, double *out, int *n)
+{
+    char *s = value;
+    size_t len;
+    int count = 0;
+    for (char *tok = lex_next_token(&s, &len); len > 0; tok = lex_next_token(&s, &len)) {
+        double v = 0.0;
+        if (count == SCHEMA_LIST_MAX) {
+            return ini_fail(&p->place, tok, "expected at most %d numbers", SCHEMA_LIST_MAX);
+        }
+        if (parse_number(p, tok, len, &v) != 0 || check_range(p, def, tok, v) != 0) {
+            return -1;
+        }
+        out[count++] = v * (def->scale != 0.0 ? def->scale : 1.0);
+    }
+    *n = count;
+    return 0;
+}
+
 /* The one token of a value, or an error naming what was expected. */
 static char *single_token(parser_t *p, char *value, size_t *len, const char *expected)
 {
@@ -368,6 +388,8 @@ int lex_value(parser_t *p, int key, char *base, char *value, int key_col)
         return parse_controllers(p, value);
     case V_WINDOW:
         return parse_window(p, def, value, (double *)field, (double *)(void *)(base + def->offset2));
+    case V_LIST:
+        return parse_list(p, def, value, (double *)field, (int *)(void *)(base + def->offset2));
     default:
         return parse_signal(p, key, (sim_signal_t *)field, value, key_col);
     }

@@ -54,6 +54,9 @@ typedef enum { SIM_TUNE_NONE = 0, SIM_TUNE_MARGINS = 1 } sim_tune_t;
  * (the paper's), so that the outputs of files without a list stay as they
  * were (a scenario lists the baselines to fly them). */
 #define SIM_CTRL_DEFAULT_COUNT 4
+/* rotor_height_m when not given, in arms: hubs some 4 cm above the centre
+ * of mass on the paper's 0.165 m arm */
+#define SIM_ROTOR_HEIGHT_ARMS 0.25
 
 /* Optional per-controller overrides; NaN (or -1 for enums) = library default. */
 typedef struct {
@@ -129,6 +132,30 @@ typedef struct {
     /* [rotors] */
     int rotors_ideal; /* 1: no limits (paper); 0: limited */
     double w2_min_rad2_s2, w2_max_rad2_s2, motor_tau_s, tilt_max_rad;
+    double motor_tau_down_s;             /* 0: motor_tau_s */
+    double battery_life_s, battery_drop; /* battery sag (plant.h); life 0: none */
+    double rotor_drag_N_s_m;             /* NaN: derived from rotor_drag_per_s */
+    double rotor_drag_per_s;             /* the vehicle's drag per unit mass at hover (1/s) */
+    double rotor_height_m;               /* NaN: 0.25 arm_m */
+
+    /* [wind] */
+    int turbulence;                           /* SIM_TURB_* (plant/turbulence.h) */
+    double turb_sigma_m_s;                    /* turbulence = sigma */
+    double altitude_m;                        /* for the scale lengths and intensities */
+    double mean_wind_m_s, mean_wind_from_rad; /* steady wind, from this heading (0: north) */
+
+    /* [vibration] (plant/vibration.h); n_orders 0: none */
+    int vib_n_orders, vib_n_gyro, vib_n_accel;
+    double vib_order[4], vib_gyro_rad_s[4], vib_accel_m_s2[4], vib_axis_gain[3];
+
+    /* [filter]: the library's gyro filter stage before every controller */
+    int filter_enabled, filter_angle; /* yes/no; filter_angle: the angles too */
+    int filter_lpf_order;             /* 0, 1, 2 */
+    double filter_lpf_hz;
+    int filter_n_notches;
+    double filter_notch_hz[4], filter_notch_q;
+    int filter_rpm_harmonics; /* 0: no RPM notch bank */
+    double filter_rpm_q, filter_rpm_min_hz, filter_rpm_fade_hz;
 
     /* [sensors] */
     double angle_noise_std_rad; /* file gives angle_noise_var_deg2 or angle_noise_std_deg */

@@ -16,6 +16,7 @@
 #include "ladrc/margins.h"
 #include "plant/plant.h"
 #include "plant/sensor.h"
+#include "plant/turbulence.h"
 
 /* Defaults that are not the paper vehicle's (documented in docs/scenario-format.md). */
 #define DEFAULT_CONTROL_DT_S 0.001
@@ -24,6 +25,14 @@
 #define DEFAULT_TILT_MAX_DEG 40.0
 #define DEFAULT_SETTLE_BAND_DEG 0.5
 #define DEFAULT_DIVERGE_LIMIT_DEG 90.0
+/* Rotor drag: a quadrotor of 0.5-1 kg drags about 0.2-0.4 N per m/s of air
+ * per kg at hover (published fits of its linear drag); 0.3 1/s is taken. */
+#define DEFAULT_ROTOR_DRAG_PER_S 0.3
+#define DEFAULT_ALTITUDE_M 10.0 /* a low hover, within the standard's low-altitude model */
+#define DEFAULT_FILTER_LPF_HZ 100.0
+#define DEFAULT_FILTER_Q 5.0 /* the RPM filters' usual notch Q */
+#define DEFAULT_FILTER_RPM_MIN_HZ 20.0
+#define DEFAULT_FILTER_RPM_FADE_HZ 10.0
 
 /* ---- controllers ------------------------------------------------------------ */
 
@@ -53,12 +62,12 @@ int schema_controller_id(const char *name, size_t len)
 /* ---- sections ----------------------------------------------------------------- */
 
 static const char *const SECTION_NAMES[SEC_CONTROLLER + 1] = {
-    "run",       "vehicle",     "rotors",  "sensors",        "mismatch",
-    "reference", "disturbance", "metrics", "differentiator", "controller"};
+    "run",     "vehicle",        "rotors", "sensors",   "mismatch", "reference", "disturbance",
+    "metrics", "differentiator", "wind",   "vibration", "filter",   "controller"};
 
-static const int SECTION_KIND[SEC_CONTROLLER + 1] = {FOR_BOTH,           FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE,
-                                                     FOR_ATTITUDE,       FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE,
-                                                     FOR_DIFFERENTIATOR, FOR_ATTITUDE};
+static const int SECTION_KIND[SEC_CONTROLLER + 1] = {
+    FOR_BOTH,     FOR_ATTITUDE,       FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE,
+    FOR_ATTITUDE, FOR_DIFFERENTIATOR, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE};
 
 int schema_find_section(const char *name, size_t len)
 {
@@ -98,6 +107,10 @@ static const choice_t KINDS[] = {{.name = "attitude", .value = SIM_KIND_ATTITUDE
                                  {.name = NULL, .value = 0}};
 static const choice_t LESO_METHODS[] = {
     {.name = "zoh", .value = LADRC_LESO_ZOH}, {.name = "euler", .value = LADRC_LESO_EULER}, {.name = NULL, .value = 0}};
+static const choice_t TURBULENCE[] = {
+    {.name = "off", .value = SIM_TURB_OFF},           {.name = "light", .value = SIM_TURB_LIGHT},
+    {.name = "moderate", .value = SIM_TURB_MODERATE}, {.name = "severe", .value = SIM_TURB_SEVERE},
+    {.name = "sigma", .value = SIM_TURB_SIGMA},       {.name = NULL, .value = 0}};
 static const choice_t TUNE_MODES[] = {{.name = "none", .value = SIM_TUNE_NONE},
                                       {.name = "margins", .value = SIM_TUNE_MARGINS},
                                       {.name = NULL, .value = 0}};
@@ -151,6 +164,14 @@ const key_def_t SCHEMA_KEYS[] = {
     {KEY(SEC_ROTORS, "w2_max_rad2_s2", V_REAL, SC(w2_max_rad2_s2)), .range = R_POSITIVE},
     {KEY(SEC_ROTORS, "motor_tau_s", V_REAL, SC(motor_tau_s)), .range = R_NONNEGATIVE},
     {KEY(SEC_ROTORS, "tilt_max_deg", V_REAL, SC(tilt_max_rad)), .range = R_TILT, .scale = DEG_TO_RAD},
+    {KEY(SEC_ROTORS, "motor_tau_down_s", V_REAL, SC(motor_tau_down_s)), .range = R_NONNEGATIVE},
+    {KEY(SEC_ROTORS, "battery_life_s", V_REAL, SC(battery_life_s)), .range = R_NONNEGATIVE},
+    {KEY(SEC_ROTORS, "battery_drop", V_REAL, SC(battery_drop)), .range = R_FRACTION},
+    {KEY(SEC_ROTORS, "rotor_drag_N_s_m", V_REAL, SC(rotor_drag_N_s_m)), .range = R_NONNEGATIVE,
+     .twin = "rotor_drag_per_s"},
+    {KEY(SEC_ROTORS, "rotor_drag_per_s", V_REAL, SC(rotor_drag_per_s)), .range = R_NONNEGATIVE,
+     .twin = "rotor_drag_N_s_m"},
+    {KEY(SEC_ROTORS, "rotor_height_m", V_REAL, SC(rotor_height_m)), .range = R_NONNEGATIVE},
 
     {KEY(SEC_SENSORS, "angle_noise_std_deg", V_REAL, SC(angle_noise_std_rad)), .range = R_NONNEGATIVE,
      .scale = DEG_TO_RAD, .twin = "angle_noise_var_deg2"},
@@ -179,6 +200,29 @@ const key_def_t SCHEMA_KEYS[] = {
     {KEY(SEC_METRICS, "settle_band_deg", V_REAL, SC(settle_band_deg)), .range = R_POSITIVE},
     {KEY(SEC_METRICS, "settle_window_s", V_WINDOW, SC(settle_after_s)), .offset2 = SC(settle_until_s)},
     {KEY(SEC_METRICS, "diverge_limit_deg", V_REAL, SC(diverge_limit_deg)), .range = R_POSITIVE},
+
+    {KEY(SEC_WIND, "turbulence", V_CHOICE, SC(turbulence)), .choices = TURBULENCE},
+    {KEY(SEC_WIND, "sigma_m_s", V_REAL, SC(turb_sigma_m_s)), .range = R_SIGMA},
+    {KEY(SEC_WIND, "altitude_m", V_REAL, SC(altitude_m)), .range = R_ALTITUDE},
+    {KEY(SEC_WIND, "mean_m_s", V_REAL, SC(mean_wind_m_s)), .range = R_WIND},
+    {KEY(SEC_WIND, "from_deg", V_REAL, SC(mean_wind_from_rad)), .scale = DEG_TO_RAD},
+
+    {KEY(SEC_VIBRATION, "orders", V_LIST, SC(vib_order)), .offset2 = SC(vib_n_orders), .range = R_ORDER},
+    {KEY(SEC_VIBRATION, "gyro_deg_s", V_LIST, SC(vib_gyro_rad_s)), .offset2 = SC(vib_n_gyro), .range = R_NONNEGATIVE,
+     .scale = DEG_TO_RAD},
+    {KEY(SEC_VIBRATION, "accel_m_s2", V_LIST, SC(vib_accel_m_s2)), .offset2 = SC(vib_n_accel), .range = R_NONNEGATIVE},
+    {KEY(SEC_VIBRATION, "axis_gain", V_VEC3, SC(vib_axis_gain)), .range = R_NONNEGATIVE},
+
+    {KEY(SEC_FILTER, "enabled", V_CHOICE, SC(filter_enabled)), .choices = YES_NO},
+    {KEY(SEC_FILTER, "angle", V_CHOICE, SC(filter_angle)), .choices = YES_NO},
+    {KEY(SEC_FILTER, "lpf_order", V_INT, SC(filter_lpf_order)), .range = R_LPF_ORDER},
+    {KEY(SEC_FILTER, "lpf_hz", V_REAL, SC(filter_lpf_hz)), .range = R_POSITIVE},
+    {KEY(SEC_FILTER, "notch_hz", V_LIST, SC(filter_notch_hz)), .offset2 = SC(filter_n_notches), .range = R_POSITIVE},
+    {KEY(SEC_FILTER, "notch_q", V_REAL, SC(filter_notch_q)), .range = R_Q},
+    {KEY(SEC_FILTER, "rpm_harmonics", V_INT, SC(filter_rpm_harmonics)), .range = R_HARMONICS},
+    {KEY(SEC_FILTER, "rpm_q", V_REAL, SC(filter_rpm_q)), .range = R_Q},
+    {KEY(SEC_FILTER, "rpm_min_hz", V_REAL, SC(filter_rpm_min_hz)), .range = R_POSITIVE},
+    {KEY(SEC_FILTER, "rpm_fade_hz", V_REAL, SC(filter_rpm_fade_hz)), .range = R_NONNEGATIVE},
 
     {KEY(SEC_DIFFERENTIATOR, "signal", V_SIGNAL, SC(diff_signal)), .required = 1},
     {KEY(SEC_DIFFERENTIATOR, "derivative", V_SIGNAL, SC(diff_derivative)), .required = 1},
@@ -296,6 +340,25 @@ int schema_check_range(const key_def_t *def, double v, char *msg, size_t msg_len
         return (v >= 1.0 && v <= SIM_PLANT_SUBSTEPS_MAX)
                    ? 0
                    : refuse(msg, msg_len, "%s must be between 1 and %d", def->name, SIM_PLANT_SUBSTEPS_MAX);
+    case R_FRACTION:
+        return (v >= 0.0 && v < 1.0) ? 0 : refuse(msg, msg_len, "%s must be >= 0 and < 1", def->name);
+    case R_LPF_ORDER:
+        return (v == 0.0 || v == 1.0 || v == 2.0) ? 0 : refuse(msg, msg_len, "%s must be 0, 1 or 2", def->name);
+    case R_HARMONICS:
+        return (v >= 0.0 && v <= 4.0) ? 0 : refuse(msg, msg_len, "%s must be between 0 and 4", def->name);
+    case R_ALTITUDE:
+        return (v > 0.0 && v <= SIM_TURB_ALTITUDE_MAX_M)
+                   ? 0
+                   : refuse(msg, msg_len, "%s must be > 0 and at most %g (1000 ft)", def->name,
+                            SIM_TURB_ALTITUDE_MAX_M);
+    case R_SIGMA:
+        return (v >= 0.0 && v <= 30.0) ? 0 : refuse(msg, msg_len, "%s must be between 0 and 30", def->name);
+    case R_WIND:
+        return (v >= 0.0 && v <= 50.0) ? 0 : refuse(msg, msg_len, "%s must be between 0 and 50", def->name);
+    case R_ORDER:
+        return (v > 0.0 && v <= 100.0) ? 0 : refuse(msg, msg_len, "%s must be > 0 and at most 100", def->name);
+    case R_Q:
+        return (v >= 0.1 && v <= 100.0) ? 0 : refuse(msg, msg_len, "%s must be between 0.1 and 100", def->name);
     default:
         return 0;
     }
@@ -330,6 +393,23 @@ void schema_set_defaults(sim_scenario_t *sc)
     sc->w2_max_rad2_s2 = v.w2_max_rad2_s2;
     sc->motor_tau_s = v.motor_tau_s;
     sc->tilt_max_rad = DEFAULT_TILT_MAX_DEG * DEG_TO_RAD;
+    sc->rotor_drag_N_s_m = NAN; /* derived from rotor_drag_per_s */
+    sc->rotor_drag_per_s = DEFAULT_ROTOR_DRAG_PER_S;
+    sc->rotor_height_m = NAN; /* SIM_ROTOR_HEIGHT_ARMS arms */
+
+    sc->turbulence = SIM_TURB_OFF;
+    sc->turb_sigma_m_s = 0.0;
+    sc->altitude_m = DEFAULT_ALTITUDE_M;
+    for (int i = 0; i < 3; ++i) {
+        sc->vib_axis_gain[i] = 1.0;
+    }
+    sc->filter_enabled = 1;
+    sc->filter_angle = 1;
+    sc->filter_lpf_hz = DEFAULT_FILTER_LPF_HZ;
+    sc->filter_notch_q = DEFAULT_FILTER_Q;
+    sc->filter_rpm_q = DEFAULT_FILTER_Q;
+    sc->filter_rpm_min_hz = DEFAULT_FILTER_RPM_MIN_HZ;
+    sc->filter_rpm_fade_hz = DEFAULT_FILTER_RPM_FADE_HZ;
 
     sc->use_rate = 1;
     for (int i = 0; i < 3; ++i) {

@@ -14,6 +14,7 @@
 #include "scenario.h"
 
 #define DEG_TO_RAD (3.14159265358979323846 / 180.0)
+#define SCHEMA_LIST_MAX 4
 
 /* Sections. */
 enum {
@@ -26,6 +27,9 @@ enum {
     SEC_DISTURBANCE,
     SEC_METRICS,
     SEC_DIFFERENTIATOR,
+    SEC_WIND,
+    SEC_VIBRATION,
+    SEC_FILTER,
     SEC_CONTROLLER, /* + controller id: one slot per [controller NAME] */
     SEC_COUNT = SEC_CONTROLLER + SIM_CTRL_COUNT
 };
@@ -46,6 +50,7 @@ typedef enum {
     V_TEXT,        /* the rest of the line */
     V_CONTROLLERS, /* controller names */
     V_WINDOW,      /* FROM TO, 0 <= FROM < TO, into offset and offset2 */
+    V_LIST,        /* 1 to SCHEMA_LIST_MAX numbers, their count (int) into offset2 */
     V_SIGNAL       /* [FROM .. TO :] expression, repeatable */
 } value_type_t;
 
@@ -60,7 +65,15 @@ typedef enum {
     R_TUNE_STEP,    /* 0 .. LADRC_MARGINS_MAX_STEP_RAD, in degrees */
     R_DURATION,     /* > 0, <= SIM_DURATION_MAX_S */
     R_CONTROL_DT,   /* SIM_CONTROL_DT_MIN_S .. SIM_CONTROL_DT_MAX_S */
-    R_SUBSTEPS      /* 1 .. SIM_PLANT_SUBSTEPS_MAX */
+    R_SUBSTEPS,     /* 1 .. SIM_PLANT_SUBSTEPS_MAX */
+    R_FRACTION,     /* 0 <= v < 1 */
+    R_LPF_ORDER,    /* 0, 1 or 2 */
+    R_HARMONICS,    /* 0 .. 4 */
+    R_ALTITUDE,     /* > 0, <= 1000 ft in m */
+    R_SIGMA,        /* 0 .. 30 m/s */
+    R_WIND,         /* 0 .. 50 m/s */
+    R_ORDER,        /* > 0, <= 100 */
+    R_Q             /* 0.1 .. 100 */
 } range_t;
 
 typedef struct {
@@ -86,7 +99,7 @@ typedef struct {
 
 /* The key table; key indices are positions in it. SCHEMA_MAX_KEYS bounds
  * the table (checked at compile time in schema.c) for the reader's arrays. */
-#define SCHEMA_MAX_KEYS 96
+#define SCHEMA_MAX_KEYS 128
 extern const key_def_t SCHEMA_KEYS[];
 extern const int SCHEMA_N_KEYS;
 

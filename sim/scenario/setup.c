@@ -238,3 +238,62 @@ void sim_setup_differentiators(const sim_scenario_t *sc, ladrc_levant_config_t *
     td->accel_rad_s2 = isnan(sc->diff_td_accel) ? axis.td_accel_rad_s2 : (ladrc_real_t)sc->diff_td_accel;
     td->h0_s = isnan(sc->diff_td_h0_s) ? axis.td_h0_s : (ladrc_real_t)sc->diff_td_h0_s;
 }
+
+sim_vehicle_t sim_setup_vehicle(const sim_scenario_t *sc)
+{
+    const sim_vehicle_t v = {.mass_kg = sc->mass_kg,
+                             .inertia_kg_m2 = {sc->inertia_kg_m2[0], sc->inertia_kg_m2[1], sc->inertia_kg_m2[2]},
+                             .arm_m = sc->arm_m,
+                             .thrust_coeff_N_s2 = sc->thrust_coeff_N_s2,
+                             .yaw_coeff_Nm_s2 = sc->yaw_coeff_Nm_s2,
+                             .rot_drag_Nm_s = sc->rot_drag_Nm_s,
+                             .g_m_s2 = sc->g_m_s2,
+                             .rotors_ideal = sc->rotors_ideal,
+                             .w2_min_rad2_s2 = sc->w2_min_rad2_s2,
+                             .w2_max_rad2_s2 = sc->w2_max_rad2_s2,
+                             .motor_tau_s = sc->motor_tau_s,
+                             .motor_tau_down_s = sc->motor_tau_down_s,
+                             .battery_life_s = sc->battery_life_s,
+                             .battery_drop = sc->battery_drop,
+                             .rotor_drag_N_s_m = sc->rotor_drag_N_s_m,
+                             .rotor_height_m = sc->rotor_height_m};
+    return v;
+}
+
+sim_vibration_config_t sim_setup_vibration(const sim_scenario_t *sc)
+{
+    sim_vibration_config_t c;
+    memset(&c, 0, sizeof c);
+    c.n_orders = sc->vib_n_orders;
+    for (int k = 0; k < sc->vib_n_orders && k < SIM_VIB_MAX_ORDERS; ++k) {
+        c.order[k] = sc->vib_order[k];
+        c.gyro_rad_s[k] = k < sc->vib_n_gyro ? sc->vib_gyro_rad_s[k] : 0.0;
+        c.accel_m_s2[k] = k < sc->vib_n_accel ? sc->vib_accel_m_s2[k] : 0.0;
+    }
+    for (int a = 0; a < 3; ++a) {
+        c.axis_gain[a] = sc->vib_axis_gain[a];
+    }
+    return c;
+}
+
+int sim_setup_filters_gyro(const sim_scenario_t *sc)
+{
+    return sc->filter_enabled && (sc->filter_lpf_order > 0 || sc->filter_n_notches > 0 || sc->filter_rpm_harmonics > 0);
+}
+
+void sim_setup_gyro_filter(const sim_scenario_t *sc, ladrc_gyro_filter_config_t *cfg)
+{
+    ladrc_gyro_filter_config_default(cfg, (ladrc_real_t)sc->control_dt_s, (uint8_t)(sc->filter_angle ? 6 : 3));
+    cfg->lpf_order = (uint8_t)sc->filter_lpf_order;
+    cfg->lpf_cutoff_hz = (ladrc_real_t)sc->filter_lpf_hz;
+    cfg->n_notches = (uint8_t)sc->filter_n_notches;
+    for (int i = 0; i < sc->filter_n_notches; ++i) {
+        cfg->notch_hz[i] = (ladrc_real_t)sc->filter_notch_hz[i];
+    }
+    cfg->notch_q = (ladrc_real_t)sc->filter_notch_q;
+    cfg->rpm_rotors = (uint8_t)(sc->filter_rpm_harmonics > 0 ? 4 : 0);
+    cfg->rpm_harmonics = (uint8_t)(sc->filter_rpm_harmonics > 0 ? sc->filter_rpm_harmonics : 1);
+    cfg->rpm_q = (ladrc_real_t)sc->filter_rpm_q;
+    cfg->rpm_min_hz = (ladrc_real_t)sc->filter_rpm_min_hz;
+    cfg->rpm_fade_hz = (ladrc_real_t)sc->filter_rpm_fade_hz;
+}

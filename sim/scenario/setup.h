@@ -8,9 +8,12 @@
 #define LADRC_SIM_SETUP_H
 
 #include "ladrc/attitude.h"
+#include "ladrc/gyro_filter.h"
 #include "ladrc/levant.h"
 #include "ladrc/mixer.h"
 #include "ladrc/td.h"
+#include "plant/plant.h"
+#include "plant/vibration.h"
 #include "scenario.h"
 
 /* Controller id on sc: the library defaults for the control period and the
@@ -54,5 +57,21 @@ void sim_setup_mixer(const sim_scenario_t *sc, ladrc_mixer_config_t *cfg);
 /* Levant's differentiator and the TD of a differentiator scenario; an absent
  * key takes the value the library gives an attitude axis (ladrc_axis_config_default). */
 void sim_setup_differentiators(const sim_scenario_t *sc, ladrc_levant_config_t *lev, ladrc_td_config_t *td);
+
+/* The plant's vehicle: [vehicle] and [rotors] (drag and rotor height as
+ * the parser resolved their defaults). */
+sim_vehicle_t sim_setup_vehicle(const sim_scenario_t *sc);
+
+/* The propeller vibration of [vibration] (none when it gives no orders). */
+sim_vibration_config_t sim_setup_vibration(const sim_scenario_t *sc);
+
+/* 1 when the controllers fly behind the gyro filter stage: [filter]
+ * enabled and some filter set (a low-pass, a notch or RPM harmonics). */
+int sim_setup_filters_gyro(const sim_scenario_t *sc);
+
+/* The gyro filter stage of [filter] at the control period: 6 channels (the
+ * rates, then the angles) with angle = yes, else 3 (the rates); the RPM
+ * bank on the four rotors. */
+void sim_setup_gyro_filter(const sim_scenario_t *sc, ladrc_gyro_filter_config_t *cfg);
 
 #endif

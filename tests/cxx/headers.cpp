@@ -5,6 +5,7 @@
 #include "ladrc/attitude.h"
 #include "ladrc/axis.h"
 #include "ladrc/estimator.h"
+#include "ladrc/gyro_filter.h"
 #include "ladrc/leso.h"
 #include "ladrc/levant.h"
 #include "ladrc/mixer.h"
@@ -31,7 +32,8 @@ int main()
     }
     ladrc_real_t u = LADRC_R(0.0);
     const ladrc_fault_t faults = ladrc_axis_step(&axis, LADRC_R(0.1), LADRC_R(0.0), nullptr, &u);
-    if (faults != LADRC_FAULT_NONE || !(u > LADRC_R(0.0)) || ladrc_sizeof_axis_t() != sizeof(ladrc_axis_t) || !ladrc_is_positive(u)) {
+    if (faults != LADRC_FAULT_NONE || !(u > LADRC_R(0.0)) || ladrc_sizeof_axis_t() != sizeof(ladrc_axis_t) ||
+        !ladrc_is_positive(u)) {
         std::printf("unexpected: u = %g\n", static_cast<double>(u));
         return 1;
     }

@@ -1,0 +1,92 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+#include "vibration.h"
+
+#include <math.h>
+#include <stddef.h>
+
+static int in_range(double x, double lo, double hi)
+{
+    return isfinite(x) && x >= lo && x <= hi;
+}
+
+int sim_vibration_init(sim_vibration_t *v, const sim_vibration_config_t *cfg, uint64_t seed)
+{
+    if (v == NULL || cfg == NULL || cfg->n_orders < 0 || cfg->n_orders > SIM_VIB_MAX_ORDERS) {
+        return -1;
+    }
+    for (int k = 0; k < cfg->n_orders; ++k) {
+        if (!in_range(cfg->order[k], 1e-3, 100.0) || !in_range(cfg->gyro_rad_s[k], 0.0, 100.0) ||
+            !in_range(cfg->accel_m_s2[k], 0.0, 1000.0)) {
+            return -1;
+        }
+    }
+    for (int a = 0; a < 3; ++a) {
+        if (!in_range(cfg->axis_gain[a], 0.0, 100.0)) {
+            return -1;
+        }
+    }
+    v->cfg = *cfg;
+    sim_rng_t rng;
+    sim_rng_seed(&rng, seed);
+    const double two_pi = 6.283185307179586;
+    for (int i = 0; i < SIM_VIB_ROTORS; ++i) {
+        v->theta_rad[i] = 0.0;
+        v->speed_rad_s[i] = 0.0;
+        for (int k = 0; k < SIM_VIB_MAX_ORDERS; ++k) {
+            for (int a = 0; a < 3; ++a) {
+                v->phase_rad[i][k][a] = two_pi * sim_rng_uniform(&rng);
+            }
+        }
+    }
+    v->started = 0;
+    return 0;
+}
+
+/* A rotor's signed speed (rad/s) from its w^2; non-finite: 0 (no line). */
+static double rotor_speed(double w2)
+{
+    if (!isfinite(w2)) {
+        return 0.0;
+    }
+    return w2 >= 0.0 ? sqrt(w2) : -sqrt(-w2);
+}
+
+void sim_vibration_tick(sim_vibration_t *v, const double w2_rad2_s2[SIM_VIB_ROTORS], double dt_s, double gyro_rad_s[3],
+                        double angle_rad[3], double accel_m_s2[3])
+{
+    const sim_vibration_config_t *c = &v->cfg;
+    for (int i = 0; i < SIM_VIB_ROTORS; ++i) {
+        const double w = rotor_speed(w2_rad2_s2[i]);
+        if (v->started) {
+            v->theta_rad[i] = fmod(v->theta_rad[i] + 0.5 * (v->speed_rad_s[i] + w) * dt_s, 6.283185307179586);
+        }
+        v->speed_rad_s[i] = w;
+    }
+    v->started = 1;
+    for (int i = 0; i < SIM_VIB_ROTORS; ++i) {
+        const double w = fabs(v->speed_rad_s[i]);
+        for (int k = 0; k < c->n_orders; ++k) {
+            const double line = c->order[k] * v->theta_rad[i];
+            const double wk = c->order[k] * w; /* the line's frequency (rad/s) */
+            for (int a = 0; a < 3; ++a) {
+                const double phase = line + v->phase_rad[i][k][a];
+                const double s = sin(phase), co = cos(phase);
+                const double g = c->gyro_rad_s[k] * c->axis_gain[a];
+                if (gyro_rad_s != NULL) {
+                    gyro_rad_s[a] += g * s;
+                }
+                if (angle_rad != NULL && wk > 0.0) {
+                    angle_rad[a] -= g * co / wk;
+                }
+                if (accel_m_s2 != NULL) {
+                    accel_m_s2[a] += c->accel_m_s2[k] * c->axis_gain[a] * co;
+                }
+            }
+        }
+    }
+}
+
+double sim_vibration_rotor_hz(const sim_vibration_t *v, int i)
+{
+    return fabs(v->speed_rad_s[i]) / 6.283185307179586;
+}

@@ -1,0 +1,419 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/**
+ * @file gyro_filter.c
+ * @brief Fixed notches, RPM notches and a low-pass on shared coefficients,
+ *        in direct form I (gyro_filter.h; docs/method.md section 7).
+ */
+#include "ladrc/gyro_filter.h"
+#include "require.h"
+
+#include <stddef.h>
+
+#define SQRT2 LADRC_R(1.41421356237309504880)
+
+/* A sample the chain may take: finite (by bits under fast-math) and within
+ * the bound that keeps the history 2^64 below overflow. */
+static inline int sample_is_good(ladrc_real_t x)
+{
+    return ladrc_is_finite(x) && ladrc_fabs(x) <= LADRC_GYRO_FILTER_INPUT_MAX;
+}
+
+/*
+ * The one section formula. Direct form I because the RPM notches get new
+ * coefficients every tick: its history is the section's own past inputs and
+ * outputs, which mean the same under any coefficients, so a change acts like
+ * a change of the filter from now on. Direct form II keeps internal states
+ * weighted by the old coefficients, which new ones misread into a transient.
+ */
+static inline ladrc_real_t section_step(const ladrc_gyro_filter_section_t *c, ladrc_gyro_filter_history_t *h,
+                                        ladrc_real_t x)
+{
+    const ladrc_real_t y = c->b0 * x + c->b1 * h->x1 + c->b2 * h->x2 - c->a1 * h->y1 - c->a2 * h->y2;
+    h->x2 = h->x1;
+    h->x1 = x;
+    h->y2 = h->y1;
+    h->y1 = y;
+    return y;
+}
+
+/* An off section passes its input and records it as its output, so that its
+ * history is what a notch with nothing to remove would have: it comes back
+ * without a step. */
+static inline void section_pass(ladrc_gyro_filter_history_t *h, ladrc_real_t x)
+{
+    h->x2 = h->x1;
+    h->x1 = x;
+    h->y2 = h->y1;
+    h->y1 = x;
+}
+
+/* The notch at cos(w0) = c with alpha = sin(w0) / (2 Q), divided through by
+ * 1 + alpha: its only division. */
+static void set_notch(ladrc_gyro_filter_section_t *s, ladrc_real_t c, ladrc_real_t alpha)
+{
+    const ladrc_real_t g = LADRC_R(1.0) / (LADRC_R(1.0) + alpha);
+    s->b0 = g;
+    s->b1 = LADRC_R(-2.0) * c * g;
+    s->b2 = g;
+    s->a1 = s->b1;
+    s->a2 = (LADRC_R(1.0) - alpha) * g;
+}
+
+/* The low-pass of order 1 or 2 at K = tan(pi fc dt). The numerator comes from
+ * the rounded denominator, b0 + b1 + b2 = 1 + a1 + a2, so the DC gain is 1
+ * to the last bit however close to 1 the poles are. */
+static void set_lowpass(ladrc_gyro_filter_section_t *s, uint8_t order, ladrc_real_t k)
+{
+    if (order == 1u) {
+        s->a1 = (k - LADRC_R(1.0)) / (k + LADRC_R(1.0));
+        s->a2 = LADRC_R(0.0);
+        s->b0 = LADRC_R(0.5) * (LADRC_R(1.0) + s->a1);
+        s->b1 = s->b0;
+        s->b2 = LADRC_R(0.0);
+    } else {
+        const ladrc_real_t norm = LADRC_R(1.0) / (LADRC_R(1.0) + SQRT2 * k + k * k);
+        s->a1 = LADRC_R(2.0) * (k * k - LADRC_R(1.0)) * norm;
+        s->a2 = (LADRC_R(1.0) - SQRT2 * k + k * k) * norm;
+        s->b0 = LADRC_R(0.25) * (LADRC_R(1.0) + s->a1 + s->a2);
+        s->b1 = LADRC_R(2.0) * s->b0;
+        s->b2 = s->b0;
+    }
+    s->weight = LADRC_R(1.0);
+}
+
+/* Finite, b0 > 0 and both poles strictly inside the unit circle as rounded
+ * (|a2| < 1, |a1| < 1 + a2): a section init may hand to the step. */
+static int section_is_stable(const ladrc_gyro_filter_section_t *s)
+{
+    return ladrc_all_finite4(s->b0, s->b1, s->b2, s->a1) && ladrc_is_finite(s->a2) && s->b0 > LADRC_R(0.0) &&
+           ladrc_fabs(s->a2) < LADRC_R(1.0) && ladrc_fabs(s->a1) < LADRC_R(1.0) + s->a2;
+}
+
+/* Whether the notch at w0_rad (radians per tick) with 1 / (2 Q) = inv_2q
+ * rounds to a stable section. */
+static int notch_is_stable(ladrc_real_t w0_rad, ladrc_real_t inv_2q)
+{
+    ladrc_gyro_filter_section_t s;
+    set_notch(&s, LADRC_COS(w0_rad), LADRC_SIN(w0_rad) * inv_2q);
+    return section_is_stable(&s);
+}
+
+/* A centre that can carry a notch: finite, > 0 and below centre_max_hz. */
+static int centre_is_valid(const ladrc_gyro_filter_t *f, ladrc_real_t hz)
+{
+    return ladrc_is_positive(hz) && hz < f->centre_max_hz;
+}
+
+static ladrc_status_t setup_lowpass(const ladrc_gyro_filter_config_t *cfg, ladrc_gyro_filter_section_t *s)
+{
+    const ladrc_real_t cycles = cfg->lpf_cutoff_hz * cfg->dt_s;
+    if (!ladrc_is_positive(cfg->lpf_cutoff_hz) || !(cycles < LADRC_R(0.5))) {
+        return LADRC_ERR_GYRO_LPF_CUTOFF_HZ;
+    }
+    /* tan from sin / cos: init only. Near Nyquist cos may round to 0 or below. */
+    set_lowpass(s, cfg->lpf_order, LADRC_SIN(LADRC_PI * cycles) / LADRC_COS(LADRC_PI * cycles));
+    return section_is_stable(s) ? LADRC_OK : LADRC_ERR_GYRO_LPF_CUTOFF_HZ;
+}
+
+static ladrc_status_t setup_notches(ladrc_gyro_filter_t *f, const ladrc_gyro_filter_config_t *cfg)
+{
+    ladrc_real_t inv_2q;
+    unsigned i;
+    if (cfg->n_notches > LADRC_GYRO_FILTER_MAX_NOTCHES) {
+        return LADRC_ERR_GYRO_N_NOTCHES;
+    }
+    for (i = 0u; i < cfg->n_notches; ++i) {
+        if (!centre_is_valid(f, cfg->notch_hz[i])) {
+            return LADRC_ERR_GYRO_NOTCH_HZ;
+        }
+    }
+    if (cfg->n_notches == 0u) {
+        return LADRC_OK;
+    }
+    if (!ladrc_is_positive(cfg->notch_q)) {
+        return LADRC_ERR_GYRO_NOTCH_Q;
+    }
+    inv_2q = LADRC_R(0.5) / cfg->notch_q;
+    for (i = 0u; i < cfg->n_notches; ++i) {
+        ladrc_gyro_filter_section_t *s = &f->section[i];
+        const ladrc_real_t w0 = f->rad_per_hz * cfg->notch_hz[i];
+        set_notch(s, LADRC_COS(w0), LADRC_SIN(w0) * inv_2q);
+        s->weight = LADRC_R(1.0);
+        if (!section_is_stable(s)) {
+            return LADRC_ERR_GYRO_NOTCH_Q;
+        }
+    }
+    return LADRC_OK;
+}
+
+static ladrc_status_t setup_rpm(ladrc_gyro_filter_t *f, const ladrc_gyro_filter_config_t *cfg)
+{
+    if (cfg->rpm_rotors > LADRC_GYRO_FILTER_MAX_ROTORS) {
+        return LADRC_ERR_GYRO_RPM_ROTORS;
+    }
+    if (cfg->rpm_rotors == 0u) {
+        return LADRC_OK;
+    }
+    if (cfg->rpm_harmonics < 1u || cfg->rpm_harmonics > LADRC_GYRO_FILTER_MAX_HARMONICS) {
+        return LADRC_ERR_GYRO_RPM_HARMONICS;
+    }
+    if (!centre_is_valid(f, cfg->rpm_min_hz)) {
+        return LADRC_ERR_GYRO_RPM_MIN_HZ;
+    }
+    /* The comparison is false for NaN, so NaN is rejected too. */
+    if (!ladrc_is_finite(cfg->rpm_fade_hz) || !(cfg->rpm_fade_hz >= LADRC_R(0.0))) {
+        return LADRC_ERR_GYRO_RPM_FADE_HZ;
+    }
+    f->rpm_inv_fade_per_hz = LADRC_R(0.0);
+    if (cfg->rpm_fade_hz > LADRC_R(0.0)) {
+        f->rpm_inv_fade_per_hz = LADRC_R(1.0) / cfg->rpm_fade_hz;
+        if (!ladrc_is_finite(f->rpm_inv_fade_per_hz)) {
+            return LADRC_ERR_GYRO_RPM_FADE_HZ;
+        }
+    }
+    if (!ladrc_is_positive(cfg->rpm_q)) {
+        return LADRC_ERR_GYRO_RPM_Q;
+    }
+    f->rpm_inv_2q = LADRC_R(0.5) / cfg->rpm_q;
+    /* alpha = sin(w0) / (2 Q) is smallest at the ends of the range an RPM
+     * notch can be on in (sin rises, then falls): the narrowest notches. */
+    if (!notch_is_stable(f->rad_per_hz * cfg->rpm_min_hz, f->rpm_inv_2q) ||
+        !notch_is_stable(LADRC_GYRO_FILTER_CENTRE_MAX_NYQUIST * LADRC_PI, f->rpm_inv_2q)) {
+        return LADRC_ERR_GYRO_RPM_Q;
+    }
+    f->rpm_min_hz = cfg->rpm_min_hz;
+    f->rpm_full_hz = cfg->rpm_min_hz + cfg->rpm_fade_hz;
+    f->rpm_rotors = cfg->rpm_rotors;
+    f->rpm_harmonics = cfg->rpm_harmonics;
+    /* Weight 0 (zeroed by init): off until the first set_rotor_hz. */
+    return LADRC_OK;
+}
+
+static ladrc_status_t setup(ladrc_gyro_filter_t *f, const ladrc_gyro_filter_config_t *cfg)
+{
+    ladrc_status_t st;
+    unsigned n;
+    if (!ladrc_dt_is_valid(cfg->dt_s)) {
+        return LADRC_ERR_DT_S;
+    }
+    if (cfg->channels < 1u || cfg->channels > LADRC_GYRO_FILTER_MAX_CHANNELS) {
+        return LADRC_ERR_GYRO_CHANNELS;
+    }
+    if (cfg->lpf_order > 2u) {
+        return LADRC_ERR_GYRO_LPF_ORDER;
+    }
+    f->rad_per_hz = LADRC_TWO_PI * cfg->dt_s;
+    f->centre_max_hz = LADRC_GYRO_FILTER_CENTRE_MAX_NYQUIST * LADRC_R(0.5) / cfg->dt_s;
+    /* The low-pass is the chain's last section: its index is known after the
+     * notches, its cutoff is checked before them (the documented order). */
+    ladrc_gyro_filter_section_t lpf = {0};
+    if (cfg->lpf_order > 0u) {
+        st = setup_lowpass(cfg, &lpf);
+        if (st != LADRC_OK) {
+            return st;
+        }
+    }
+    st = setup_notches(f, cfg);
+    if (st != LADRC_OK) {
+        return st;
+    }
+    st = setup_rpm(f, cfg);
+    if (st != LADRC_OK) {
+        return st;
+    }
+    f->rpm_first = cfg->n_notches;
+    n = (unsigned)cfg->n_notches + (unsigned)f->rpm_rotors * f->rpm_harmonics;
+    if (cfg->lpf_order > 0u) {
+        f->section[n] = lpf;
+        ++n;
+    }
+    f->n_sections = (uint8_t)n;
+    f->channels = cfg->channels;
+    return LADRC_OK;
+}
+
+void ladrc_gyro_filter_config_default(ladrc_gyro_filter_config_t *cfg, ladrc_real_t dt_s, uint8_t channels)
+{
+    const ladrc_real_t fifth_nyquist_hz = LADRC_R(0.1) / dt_s;
+    /* 100 Hz, or a fifth of Nyquist on slower loops (NaN from a bad dt_s: 100, which init refuses anyway) */
+    const ladrc_real_t hz = (fifth_nyquist_hz < LADRC_R(100.0)) ? fifth_nyquist_hz : LADRC_R(100.0);
+    const ladrc_gyro_filter_config_t zero = {0};
+    LADRC_REQUIRE_VOID(cfg != NULL);
+    *cfg = zero;
+    cfg->dt_s = dt_s;
+    cfg->channels = channels;
+    cfg->lpf_cutoff_hz = hz;
+    cfg->notch_q = LADRC_R(5.0);
+    cfg->rpm_harmonics = 3u;
+    cfg->rpm_q = LADRC_R(5.0);
+    cfg->rpm_min_hz = hz;
+    cfg->rpm_fade_hz = LADRC_R(0.5) * hz;
+}
+
+ladrc_status_t ladrc_gyro_filter_init(ladrc_gyro_filter_t *f, const ladrc_gyro_filter_config_t *cfg)
+{
+    ladrc_status_t st;
+    if (f == NULL || cfg == NULL) {
+        return LADRC_ERR_NULL;
+    }
+    /* A rejected config leaves an all-zero instance: no channels, its steps refused. */
+    (void)memset(f, 0, sizeof *f);
+    st = setup(f, cfg);
+    if (st != LADRC_OK) {
+        (void)memset(f, 0, sizeof *f);
+    }
+    return st;
+}
+
+void ladrc_gyro_filter_reset(ladrc_gyro_filter_t *f, const ladrc_real_t *value)
+{
+    LADRC_REQUIRE_VOID(f != NULL && value != NULL);
+    f->faults = LADRC_FAULT_NONE;
+    for (unsigned ch = 0u; ch < f->channels; ++ch) {
+        ladrc_real_t v = value[ch];
+        if (!sample_is_good(v)) {
+            /* Never let a bad sample into the state: rest where we are. */
+            v = f->out[ch];
+            f->faults = LADRC_FAULT_INPUT;
+        }
+        for (unsigned s = 0u; s < f->n_sections; ++s) {
+            ladrc_gyro_filter_history_t *h = &f->hist[ch][s];
+            h->x1 = v;
+            h->x2 = v;
+            h->y1 = v;
+            h->y2 = v;
+        }
+        f->out[ch] = v;
+    }
+}
+
+/* An RPM notch's weight at centre_hz: off below rpm_min_hz and from
+ * centre_max_hz on, 1 from rpm_full_hz, linear in between. */
+static ladrc_real_t rpm_weight(const ladrc_gyro_filter_t *f, ladrc_real_t centre_hz)
+{
+    if (!(centre_hz >= f->rpm_min_hz) || !(centre_hz < f->centre_max_hz)) {
+        return LADRC_R(0.0);
+    }
+    if (centre_hz >= f->rpm_full_hz) {
+        return LADRC_R(1.0);
+    }
+    /* The clamp catches a rounding above 1 just below rpm_full_hz. */
+    return ladrc_clamp((centre_hz - f->rpm_min_hz) * f->rpm_inv_fade_per_hz, LADRC_R(0.0), LADRC_R(1.0));
+}
+
+ladrc_fault_t ladrc_gyro_filter_set_rotor_hz(ladrc_gyro_filter_t *f, const ladrc_real_t *rotor_hz)
+{
+    ladrc_fault_t faults = LADRC_FAULT_NONE;
+    LADRC_REQUIRE(f != NULL && rotor_hz != NULL, LADRC_FAULT_STATE);
+    for (unsigned r = 0u; r < f->rpm_rotors; ++r) {
+        const ladrc_real_t hz = rotor_hz[r];
+        ladrc_gyro_filter_section_t *s = &f->section[f->rpm_first + r * f->rpm_harmonics];
+        ladrc_real_t c1, c, s1, sn, c_prev, s_prev;
+        if (!ladrc_is_finite(hz) || !(hz >= LADRC_R(0.0))) {
+            faults = LADRC_FAULT_INPUT; /* this rotor's notches stay where they were */
+            continue;
+        }
+        if (!(hz * (ladrc_real_t)f->rpm_harmonics >= f->rpm_min_hz) || !(hz < f->centre_max_hz)) {
+            /* Every harmonic below the minimum or the first past the guard: all
+             * off, no trigonometry (and none of a huge hz's overflow). */
+            for (unsigned h = 0u; h < f->rpm_harmonics; ++h) {
+                s[h].weight = LADRC_R(0.0);
+            }
+            continue;
+        }
+        c1 = LADRC_COS(f->rad_per_hz * hz);
+        s1 = LADRC_SIN(f->rad_per_hz * hz);
+        c = c1;
+        sn = s1;
+        c_prev = LADRC_R(1.0);
+        s_prev = LADRC_R(0.0);
+        for (unsigned h = 0u; h < f->rpm_harmonics; ++h) {
+            ladrc_real_t next;
+            s[h].weight = rpm_weight(f, (ladrc_real_t)(h + 1u) * hz);
+            if (s[h].weight > LADRC_R(0.0)) {
+                set_notch(&s[h], c, sn * f->rpm_inv_2q);
+            }
+            /* harmonic h + 2 from h + 1 and h: cos(kw) = 2 cos(w) cos((k-1)w) - cos((k-2)w) */
+            next = LADRC_R(2.0) * c1 * c - c_prev;
+            c_prev = c;
+            c = next;
+            next = LADRC_R(2.0) * c1 * sn - s_prev;
+            s_prev = sn;
+            sn = next;
+        }
+    }
+    return faults;
+}
+
+/* One channel through its chain, history moved on; the oldest history of each
+ * section is kept in undo first. */
+static ladrc_real_t chain_step(ladrc_gyro_filter_t *f, ladrc_gyro_filter_history_t *hist, ladrc_real_t x)
+{
+    for (unsigned i = 0u; i < f->n_sections; ++i) {
+        const ladrc_gyro_filter_section_t *s = &f->section[i];
+        ladrc_gyro_filter_history_t *h = &hist[i];
+        f->undo[i][0] = h->x2;
+        f->undo[i][1] = h->y2;
+        if (s->weight > LADRC_R(0.0)) {
+            const ladrc_real_t y = section_step(s, h, x);
+            x = (s->weight < LADRC_R(1.0)) ? x + s->weight * (y - x) : y;
+        } else {
+            section_pass(h, x);
+        }
+    }
+    return x;
+}
+
+/* Puts a channel's history back as it was before chain_step. */
+static void chain_undo(const ladrc_gyro_filter_t *f, ladrc_gyro_filter_history_t *hist)
+{
+    for (unsigned i = 0u; i < f->n_sections; ++i) {
+        ladrc_gyro_filter_history_t *h = &hist[i];
+        h->x1 = h->x2;
+        h->x2 = f->undo[i][0];
+        h->y1 = h->y2;
+        h->y2 = f->undo[i][1];
+    }
+}
+
+ladrc_fault_t ladrc_gyro_filter_step(ladrc_gyro_filter_t *f, const ladrc_real_t *in, ladrc_real_t *out)
+{
+    ladrc_fault_t faults = LADRC_FAULT_NONE;
+    LADRC_REQUIRE(f != NULL && in != NULL && out != NULL, LADRC_FAULT_STATE);
+    if (f->channels == 0u) {
+        /* init refused this instance: nothing to filter with */
+        f->faults = LADRC_FAULT_STATE;
+        return f->faults;
+    }
+    for (unsigned ch = 0u; ch < f->channels; ++ch) {
+        const ladrc_real_t x = in[ch];
+        ladrc_real_t y;
+        if (!sample_is_good(x)) {
+            faults |= LADRC_FAULT_INPUT;
+            out[ch] = f->out[ch];
+            continue;
+        }
+        /* A non-finite value anywhere in the chain reaches its output (every
+         * section passes its input with a non-zero gain), so one test suffices. */
+        y = chain_step(f, f->hist[ch], x);
+        if (!ladrc_is_finite(y)) {
+            chain_undo(f, f->hist[ch]);
+            faults |= LADRC_FAULT_STATE;
+            out[ch] = f->out[ch];
+            continue;
+        }
+        f->out[ch] = y;
+        out[ch] = y;
+    }
+    f->faults = faults;
+    return faults;
+}
+
+ladrc_real_t ladrc_gyro_filter_get_rpm_weight(const ladrc_gyro_filter_t *f, uint8_t rotor, uint8_t harmonic)
+{
+    LADRC_REQUIRE(f != NULL, LADRC_R(0.0));
+    if (rotor >= f->rpm_rotors || harmonic < 1u || harmonic > f->rpm_harmonics) {
+        return LADRC_R(0.0);
+    }
+    return f->section[f->rpm_first + (unsigned)rotor * f->rpm_harmonics + harmonic - 1u].weight;
+}
