@@ -42,7 +42,22 @@ typedef struct {
     disturbance_batch_t batch; /* the disturbances of a plant step */
     wind_field_t wind;         /* the air they all meet */
     double wind_stage[STAGES_MAX][3];
+    recorded_t rec;                               /* the recorded series they fly */
+    sim_series_cursor_t dist_cur, dist_stage_cur; /* the disturbance's, at the instants and the stages */
 } group_t;
+
+/* Every started run refused with err (it does not fly). */
+static void group_refuse(group_t *g, const char *err)
+{
+    for (int k = 0; k < g->n; ++k) {
+        if (g->runs[k].rc == 0) {
+            snprintf(g->runs[k].err, g->runs[k].err_len, "%s", err);
+            g->runs[k].rc = -1;
+            g->run[k].flying = 0;
+            --g->n_flying;
+        }
+    }
+}
 
 /* Opens every run (those beyond SIM_MAX_CONTROLLERS fail). */
 static void group_open(group_t *g, const sim_scenario_t *sc, sim_run_spec_t *runs, int n_runs)
@@ -59,15 +74,20 @@ static void group_open(group_t *g, const sim_scenario_t *sc, sim_run_spec_t *run
         runs[k].rc = -1;
     }
     g->n = n_runs < SIM_MAX_CONTROLLERS ? n_runs : SIM_MAX_CONTROLLERS;
+    char err[SIM_PATH_LEN + 320];
     if (runner_wind_open(&g->wind, sc) != 0) {
-        for (int k = 0; k < g->n; ++k) {
-            if (runs[k].rc == 0) {
-                snprintf(runs[k].err, runs[k].err_len, "%s: bad [wind] settings", sc->path);
-                runs[k].rc = -1;
-                g->run[k].flying = 0;
-                --g->n_flying;
-            }
-        }
+        snprintf(err, sizeof err, "%s: bad [wind] settings", sc->path);
+        group_refuse(g, err);
+    }
+    sim_series_cursor_init(&g->dist_cur);
+    sim_series_cursor_init(&g->dist_stage_cur);
+    if (runner_recorded_open(&g->rec, sc, err, sizeof err) != 0) {
+        group_refuse(g, err);
+    }
+    for (int k = 0; k < g->n; ++k) {
+        g->run[k].rec = &g->rec;
+        sim_series_cursor_init(&g->run[k].rate_cur);
+        sim_series_cursor_init(&g->run[k].angle_cur);
     }
     runner_disturbance_batch_init(&g->batch, sc);
     g->at.first = g->at.n = 0;
@@ -91,6 +111,9 @@ static const sim_plant_t *group_control(group_t *g, long k, long n_ticks, double
     for (int i = 0; i < 3; ++i) {
         ref[i] = g->at.ref[i][j];
         dist[i] = g->at.dist[i][j];
+    }
+    if (g->rec.has_dist) {
+        runner_recorded_add(&g->rec.dist, &g->dist_cur, t, dist);
     }
     widen(ref, ref_rad);
     const sim_plant_t *lead = NULL; /* the plants' times are the same bits */
@@ -116,6 +139,9 @@ static void group_step_plants(group_t *g, const sim_plant_t *lead, const double 
     const sim_scenario_t *sc = g->sc;
     const double dt = sc->control_dt_s;
     runner_disturbance_batch_fill(&g->batch, lead, dt, sc->plant_substeps);
+    for (int k = 0; g->rec.has_dist && k < g->batch.n; ++k) {
+        runner_recorded_add(&g->rec.dist, &g->dist_stage_cur, g->batch.t_s[k], g->batch.stage[k]);
+    }
     sim_plant_t *plants[SIM_MAX_CONTROLLERS];
     double cmds[SIM_MAX_CONTROLLERS][4];
     int n_plants = 0;
@@ -136,7 +162,8 @@ static void group_step_plants(group_t *g, const sim_plant_t *lead, const double 
         (void)sim_plant_step_group_air(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps,
                                        (const double(*)[3])g->batch.stage,
                                        g->wind.on ? (const double(*)[3])g->wind_stage : NULL);
-    } else { /* never with wind: the parser keeps substeps within the table, and the plants fly together */
+    } else { /* never with wind or a recorded disturbance: the parser keeps substeps within the table, and
+              * the plants fly together */
         batch_reader_t reader = {.b = &g->batch, .next = 0};
         sim_plant_step_group(plants, (const double(*)[4])cmds, n_plants, dt, sc->plant_substeps, runner_read_batch,
                              &reader);
@@ -171,6 +198,7 @@ static void group_close(group_t *g, double wall_s)
             g->runs[q].rc = runner_run_close(g->sc, &g->run[q]);
         }
     }
+    runner_recorded_close(&g->rec);
 }
 
 void sim_run_attitude_group(const sim_scenario_t *sc, sim_run_spec_t *runs, int n_runs, const sim_progress_t *progress)

@@ -24,6 +24,7 @@
 #include "plant/sensor.h"
 #include "plant/turbulence.h"
 #include "plant/vibration.h"
+#include "scenario/series.h"
 
 #define RAD2DEG (180.0 / 3.14159265358979323846)
 
@@ -57,6 +58,25 @@ typedef struct {
 } disturbance_batch_t;
 
 void runner_disturbance_batch_init(disturbance_batch_t *b, const sim_scenario_t *sc);
+
+/* ---- runner_series.c ---------------------------------------------------------- */
+
+/* The recorded series a group's runs fly (series.h): a disturbance on the
+ * plant, noises on the measured rate and angle. */
+typedef struct {
+    int has_dist, has_rate, has_angle;
+    sim_series_t dist;  /* rad/s^2 */
+    sim_series_t rate;  /* rad/s */
+    sim_series_t angle; /* rad */
+} recorded_t;
+
+/* Reads sc's series files; 0, or -1 with "file:line:column: message" in err
+ * and nothing held. */
+int runner_recorded_open(recorded_t *r, const sim_scenario_t *sc, char *err, size_t err_len);
+void runner_recorded_close(recorded_t *r);
+
+/* v += the series' first three columns at t_s (the missing ones 0). */
+void runner_recorded_add(const sim_series_t *s, sim_series_cursor_t *cursor, double t_s, double v[3]);
 
 /* ---- runner_wind.c ------------------------------------------------------------ */
 
@@ -156,7 +176,9 @@ typedef struct {
     sim_sensor_t sensor;
     sim_vibration_t vibration;
     ladrc_gyro_filter_t filter;
-    int filtered; /* 1: the gyro filter stage is on */
+    int filtered;                            /* 1: the gyro filter stage is on */
+    const recorded_t *rec;                   /* the group's series; NULL: none */
+    sim_series_cursor_t rate_cur, angle_cur; /* this run's places in them */
     FILE *csv;
     csv_line_t line;
     double last_out_s[3];

@@ -92,6 +92,7 @@ int runner_run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t 
     r->spec = spec;
     r->flying = 0;
     r->csv = NULL;
+    r->rec = NULL; /* no series unless the group gives its own */
     memset(m, 0, sizeof *m);
     if (configure(sc, spec->ctrl, &r->att, &r->mixer, spec->err, spec->err_len) != 0) {
         return -1;
@@ -149,6 +150,12 @@ static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, 
 {
     const sim_plant_t *plant = &r->plant;
     sim_sensor_measure(&r->sensor, plant->angle_rad, plant->rate_rad_s, tk->meas_angle, tk->meas_rate);
+    if (r->rec != NULL && r->rec->has_rate) {
+        runner_recorded_add(&r->rec->rate, &r->rate_cur, tk->t, tk->meas_rate);
+    }
+    if (r->rec != NULL && r->rec->has_angle) {
+        runner_recorded_add(&r->rec->angle, &r->angle_cur, tk->t, tk->meas_angle);
+    }
     const double gravity[3] = {0.0, 0.0, -plant->v.g_m_s2}; /* what a level, hovering IMU reads */
     sim_plant_wind_to_body(plant->angle_rad, gravity, tk->accel_m_s2);
     sim_vibration_tick(&r->vibration, plant->w2_rad2_s2, sc->control_dt_s, tk->meas_rate, tk->meas_angle,

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "plant/turbulence.h"
+#include "series.h"
 #include "setup.h"
 
 /* A consistency error: kept if it is the earliest in the file so far. */
@@ -623,6 +624,88 @@ void checks_finish(parser_t *p)
     }
 }
 
+/* A series key's file: `given` as written, resolved against the scenario's
+ * folder when relative, into out; 0, or -1 when it is too long. */
+static int series_path(const sim_scenario_t *sc, const char *given, char *out, size_t len)
+{
+    size_t dir = 0;
+    for (size_t i = 0; sc->path[i] != '\0'; ++i) {
+        if (sc->path[i] == '/') {
+            dir = i + 1;
+        }
+    }
+    const int n =
+        given[0] == '/' ? snprintf(out, len, "%s", given) : snprintf(out, len, "%.*s%s", (int)dir, sc->path, given);
+    return (n >= 0 && (size_t)n < len) ? 0 : -1;
+}
+
+/* One series key: its file read as the runs will read it (errors at the
+ * file's line and column), and long enough for the run when it refuses to
+ * repeat or hold. The resolved path replaces the given one. */
+static void check_one_series(parser_t *p, int sec, const char *name, char *path, sim_dim_t dim, int interp, int end)
+{
+    const loc_t *at = checks_seen(p, sec, name);
+    if (at->line == 0 || p->checked) {
+        return;
+    }
+    char resolved[SIM_PATH_LEN];
+    if (series_path(p->sc, path, resolved, sizeof resolved) != 0) {
+        check_fail(p, at->line, at->value_col, "%s: the path is longer than %d characters", name, SIM_PATH_LEN - 1);
+        return;
+    }
+    const sim_series_spec_t spec = {
+        .dim = dim, .key = name, .interp = (sim_series_interp_t)interp, .end = (sim_series_end_t)end};
+    sim_series_t s;
+    sim_series_error_t serr;
+    if (sim_series_load(&s, resolved, &spec, &serr) != 0) {
+        sim_parse_error_t *err = p->place.err;
+        snprintf(err->path, sizeof err->path, "%s", serr.path);
+        err->line = serr.line;
+        err->column = serr.column;
+        char msg[sizeof serr.message + SIM_PATH_LEN + 64];
+        snprintf(msg, sizeof msg, "%s (the file of %s, %s line %d)", serr.message, name, p->sc->path, at->line);
+        /* a long one is cut: its start says what is wrong */
+        const size_t n = strlen(msg) < sizeof err->message ? strlen(msg) : sizeof err->message - 1;
+        memcpy(err->message, msg, n);
+        err->message[n] = '\0';
+        p->checked = 1;
+        return;
+    }
+    char why[256];
+    if (!sim_series_covers(&s, p->sc->duration_s, resolved, why, sizeof why)) {
+        check_fail(p, at->line, at->value_col, "%s; set series_end = repeat or hold to fly past it", why);
+    }
+    sim_series_free(&s);
+    memcpy(path, resolved, sizeof resolved);
+}
+
+/* series_interp and series_end of a section that names no series. */
+static void check_series_options(parser_t *p, int sec, const char *const *series, int n_series)
+{
+    static const char *const options[] = {"series_interp", "series_end"};
+    const loc_t *opt = first_given(p, sec, options, 2);
+    if (opt != NULL && first_given(p, sec, series, n_series) == NULL) {
+        check_fail(p, opt->line, opt->key_col, "'%s' applies only with a series file",
+                   checks_seen(p, sec, options[0])->line == opt->line ? options[0] : options[1]);
+    }
+}
+
+/* The recorded series: read last, once the rest of the file is consistent. */
+static void check_series(parser_t *p)
+{
+    sim_scenario_t *sc = p->sc;
+    static const char *const dist[] = {"series"};
+    static const char *const noise[] = {"rate_noise_series", "angle_noise_series"};
+    check_series_options(p, SEC_DISTURBANCE, dist, 1);
+    check_series_options(p, SEC_SENSORS, noise, 2);
+    check_one_series(p, SEC_DISTURBANCE, "series", sc->dist_series, SIM_DIM_ANG_ACCEL, sc->dist_series_interp,
+                     sc->dist_series_end);
+    check_one_series(p, SEC_SENSORS, "rate_noise_series", sc->rate_noise_series, SIM_DIM_ANG_RATE,
+                     sc->noise_series_interp, sc->noise_series_end);
+    check_one_series(p, SEC_SENSORS, "angle_noise_series", sc->angle_noise_series, SIM_DIM_ANGLE,
+                     sc->noise_series_interp, sc->noise_series_end);
+}
+
 void checks_run(parser_t *p)
 {
     const sim_scenario_t *sc = p->sc;
@@ -638,6 +721,7 @@ void checks_run(parser_t *p)
     /* the library's own checks, once the file is consistent */
     if (!p->checked) {
         if (sc->kind == SIM_KIND_ATTITUDE) {
+            check_series(p);
             check_controllers(p);
         } else {
             check_differentiators(p);

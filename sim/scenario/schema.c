@@ -17,6 +17,7 @@
 #include "plant/plant.h"
 #include "plant/sensor.h"
 #include "plant/turbulence.h"
+#include "series.h"
 
 /* Defaults that are not the paper vehicle's (documented in docs/scenario-format.md). */
 #define DEFAULT_CONTROL_DT_S 0.001
@@ -107,6 +108,13 @@ static const choice_t KINDS[] = {{.name = "attitude", .value = SIM_KIND_ATTITUDE
                                  {.name = NULL, .value = 0}};
 static const choice_t LESO_METHODS[] = {
     {.name = "zoh", .value = LADRC_LESO_ZOH}, {.name = "euler", .value = LADRC_LESO_EULER}, {.name = NULL, .value = 0}};
+static const choice_t SERIES_INTERP[] = {{.name = "linear", .value = SIM_SERIES_LINEAR},
+                                         {.name = "hold", .value = SIM_SERIES_HOLD},
+                                         {.name = NULL, .value = 0}};
+static const choice_t SERIES_END[] = {{.name = "repeat", .value = SIM_SERIES_REPEAT},
+                                      {.name = "hold", .value = SIM_SERIES_HOLD_END},
+                                      {.name = "refuse", .value = SIM_SERIES_REFUSE},
+                                      {.name = NULL, .value = 0}};
 static const choice_t TURBULENCE[] = {
     {.name = "off", .value = SIM_TURB_OFF},           {.name = "light", .value = SIM_TURB_LIGHT},
     {.name = "moderate", .value = SIM_TURB_MODERATE}, {.name = "severe", .value = SIM_TURB_SEVERE},
@@ -183,6 +191,10 @@ const key_def_t SCHEMA_KEYS[] = {
      .scale = DEG_TO_RAD, .variance = 1, .twin = "rate_noise_std_deg_s"},
     {KEY(SEC_SENSORS, "delay_ticks", V_INT, SC(delay_ticks)), .range = R_DELAY},
     {KEY(SEC_SENSORS, "use_rate", V_CHOICE, SC(use_rate)), .choices = YES_NO},
+    {KEY(SEC_SENSORS, "rate_noise_series", V_TEXT, SC(rate_noise_series))},
+    {KEY(SEC_SENSORS, "angle_noise_series", V_TEXT, SC(angle_noise_series))},
+    {KEY(SEC_SENSORS, "series_interp", V_CHOICE, SC(noise_series_interp)), .choices = SERIES_INTERP},
+    {KEY(SEC_SENSORS, "series_end", V_CHOICE, SC(noise_series_end)), .choices = SERIES_END},
 
     {KEY(SEC_MISMATCH, "inertia_scale", V_VEC3, SC(inertia_scale)), .range = R_POSITIVE},
     {KEY(SEC_MISMATCH, "rot_drag_scale", V_REAL, SC(rot_drag_scale)), .range = R_NONNEGATIVE},
@@ -194,6 +206,9 @@ const key_def_t SCHEMA_KEYS[] = {
     {KEY(SEC_DISTURBANCE, "roll", V_SIGNAL, SC(disturbance[0]))},
     {KEY(SEC_DISTURBANCE, "pitch", V_SIGNAL, SC(disturbance[1]))},
     {KEY(SEC_DISTURBANCE, "yaw", V_SIGNAL, SC(disturbance[2]))},
+    {KEY(SEC_DISTURBANCE, "series", V_TEXT, SC(dist_series))},
+    {KEY(SEC_DISTURBANCE, "series_interp", V_CHOICE, SC(dist_series_interp)), .choices = SERIES_INTERP},
+    {KEY(SEC_DISTURBANCE, "series_end", V_CHOICE, SC(dist_series_end)), .choices = SERIES_END},
 
     {KEY(SEC_METRICS, "error_window_s", V_WINDOW, SC(error_window_s[0])), .offset2 = SC(error_window_s[1])},
     {KEY(SEC_METRICS, "steady_window_s", V_WINDOW, SC(steady_window_s[0])), .offset2 = SC(steady_window_s[1])},
@@ -397,6 +412,8 @@ void schema_set_defaults(sim_scenario_t *sc)
     sc->rotor_drag_per_s = DEFAULT_ROTOR_DRAG_PER_S;
     sc->rotor_height_m = NAN; /* SIM_ROTOR_HEIGHT_ARMS arms */
 
+    sc->dist_series_end = SIM_SERIES_REFUSE; /* a run past the recording is an error unless asked */
+    sc->noise_series_end = SIM_SERIES_REFUSE;
     sc->turbulence = SIM_TURB_OFF;
     sc->turb_sigma_m_s = 0.0;
     sc->altitude_m = DEFAULT_ALTITUDE_M;
