@@ -46,6 +46,13 @@ static void check_refused(const uint8_t *data, size_t size, const sim_parse_erro
 {
     int lines;
     size_t line_len;
+    if (strcmp(err->path, "fuzz.ini") != 0) {
+        /* an error in a series file the scenario names: at that file's place, naming the scenario's key */
+        FUZZ_CHECK(err->line >= 0 && err->column >= 0, "line %d column %d in '%s'", err->line, err->column, err->path);
+        FUZZ_CHECK(strstr(err->message, "(the file of ") != NULL && strstr(err->message, "fuzz.ini line ") != NULL,
+                   "series error without its key: %s", err->message);
+        return;
+    }
     measure(data, size, err->line, &lines, &line_len);
     FUZZ_CHECK(err->line >= 1 && err->line <= lines, "line %d of %d: %s", err->line, lines, err->message);
     FUZZ_CHECK(err->column >= 1 && (size_t)err->column <= line_len + 1, "column %d of a %zu-byte line %d: %s",
