@@ -642,7 +642,11 @@ void sim_series_eval(const sim_series_t *s, sim_series_cursor_t *cursor, double 
         return;
     }
     if (!(t < s->t_s[last])) {
-        copy_row(s, last, out); /* hold and refuse past the end; repeat rounded to the seam */
+        /* hold and refuse past the end; repeat rounded to the seam from
+         * below, where linear tends to the last row and hold keeps the one
+         * before it */
+        const int before_seam = s->end == SIM_SERIES_REPEAT && s->interp == SIM_SERIES_HOLD;
+        copy_row(s, before_seam ? last - 1 : last, out);
         return;
     }
     const size_t i = find_row(s, cursor, t);
