@@ -62,9 +62,14 @@ static inline cplx cpow_int(cplx z, int k)
 
 /* ---- margins_measure.c ---------------------------------------------------- */
 
-typedef union {
-    ladrc_axis_t axis;
-    ladrc_attitude_t attitude;
+/* One copy of the workspace (ladrc_margins_workspace_t.copy): the controller
+ * and the gyro filter before it. */
+typedef struct {
+    union {
+        ladrc_axis_t axis;
+        ladrc_attitude_t attitude;
+    } ctl;
+    ladrc_gyro_filter_t filter;
 } ctl_state_t;
 
 /* 1 when ctl names one axis: an attitude controller and an axis index in

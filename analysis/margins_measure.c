@@ -30,6 +30,21 @@ const ladrc_axis_config_t *margins_ctl_axis_config(const ladrc_margins_controlle
     return ctl->attitude != NULL ? &ctl->attitude->axis[ctl->axis_index] : ctl->axis;
 }
 
+/* The controller's gyro filter on the rate (channel 0) and, with
+ * filter_angle, the angle (channel 1), its RPM notches on the rotors' rates. */
+static ladrc_margins_status_t filter_init(const ladrc_margins_controller_t *ctl, ladrc_gyro_filter_t *f)
+{
+    ladrc_gyro_filter_config_t cfg = *ctl->filter;
+    cfg.channels = (uint8_t)(ctl->filter_angle ? 2 : 1);
+    if (ladrc_gyro_filter_init(f, &cfg) != LADRC_OK)
+        return LADRC_MARGINS_ERR_CONTROLLER;
+    if (cfg.rpm_rotors > 0u) {
+        if (ctl->filter_rotor_hz == NULL || ladrc_gyro_filter_set_rotor_hz(f, ctl->filter_rotor_hz) != LADRC_FAULT_NONE)
+            return LADRC_MARGINS_ERR_CONTROLLER;
+    }
+    return LADRC_MARGINS_OK;
+}
+
 ladrc_margins_status_t margins_ctl_init(const ladrc_margins_controller_t *ctl, ctl_state_t *s)
 {
     /* INDI and RATE-ADRC hold their command without a rate: no loop to analyse. */
@@ -40,13 +55,15 @@ ladrc_margins_status_t margins_ctl_init(const ladrc_margins_controller_t *ctl, c
     if (own != NULL && (own->variant == LADRC_VARIANT_INDI || own->variant == LADRC_VARIANT_RATE_ADRC) &&
         !ctl->use_rate)
         return LADRC_MARGINS_ERR_CONTROLLER;
+    if (ctl->filter != NULL && filter_init(ctl, &s->filter) != LADRC_MARGINS_OK)
+        return LADRC_MARGINS_ERR_CONTROLLER;
     if (ctl->attitude != NULL) {
         if (ctl->axis_index < 0 || ctl->axis_index >= LADRC_AXES)
             return LADRC_MARGINS_ERR_CONTROLLER;
-        return ladrc_attitude_init(&s->attitude, ctl->attitude, NULL) == LADRC_OK ? LADRC_MARGINS_OK
-                                                                                  : LADRC_MARGINS_ERR_CONTROLLER;
+        return ladrc_attitude_init(&s->ctl.attitude, ctl->attitude, NULL) == LADRC_OK ? LADRC_MARGINS_OK
+                                                                                      : LADRC_MARGINS_ERR_CONTROLLER;
     }
-    return ladrc_axis_init(&s->axis, ctl->axis) == LADRC_OK ? LADRC_MARGINS_OK : LADRC_MARGINS_ERR_CONTROLLER;
+    return ladrc_axis_init(&s->ctl.axis, ctl->axis) == LADRC_OK ? LADRC_MARGINS_OK : LADRC_MARGINS_ERR_CONTROLLER;
 }
 
 /* One tick of the real code: torque command (N m). The other axes of an
@@ -55,6 +72,14 @@ ladrc_margins_status_t margins_ctl_init(const ladrc_margins_controller_t *ctl, c
 double margins_ctl_step(const ladrc_margins_controller_t *ctl, ctl_state_t *s, double ref_rad, double angle_rad,
                         double rate_rad_s)
 {
+    if (ctl->filter != NULL) {
+        const ladrc_real_t in[2] = {(ladrc_real_t)rate_rad_s, (ladrc_real_t)angle_rad};
+        ladrc_real_t out[2] = {in[0], in[1]};
+        (void)ladrc_gyro_filter_step(&s->filter, in, out);
+        rate_rad_s = (double)out[0];
+        if (ctl->filter_angle)
+            angle_rad = (double)out[1];
+    }
     if (ctl->attitude != NULL) {
         ladrc_real_t ref[LADRC_AXES] = {LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0)};
         ladrc_real_t angle[LADRC_AXES] = {LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0)};
@@ -63,12 +88,12 @@ double margins_ctl_step(const ladrc_margins_controller_t *ctl, ctl_state_t *s, d
         ref[ctl->axis_index] = (ladrc_real_t)ref_rad;
         angle[ctl->axis_index] = (ladrc_real_t)angle_rad;
         rate[ctl->axis_index] = (ladrc_real_t)rate_rad_s;
-        (void)ladrc_attitude_step(&s->attitude, ref, angle, ctl->use_rate ? rate : NULL, torque);
+        (void)ladrc_attitude_step(&s->ctl.attitude, ref, angle, ctl->use_rate ? rate : NULL, torque);
         return (double)torque[ctl->axis_index];
     }
     const ladrc_real_t rate = (ladrc_real_t)rate_rad_s;
     ladrc_real_t torque_Nm;
-    (void)ladrc_axis_step(&s->axis, (ladrc_real_t)ref_rad, (ladrc_real_t)angle_rad, ctl->use_rate ? &rate : NULL,
+    (void)ladrc_axis_step(&s->ctl.axis, (ladrc_real_t)ref_rad, (ladrc_real_t)angle_rad, ctl->use_rate ? &rate : NULL,
                           &torque_Nm);
     return (double)torque_Nm;
 }

@@ -5,6 +5,7 @@
  *        in direct form I (gyro_filter.h; docs/method.md section 7).
  */
 #include "ladrc/gyro_filter.h"
+#include "compiler.h"
 #include "require.h"
 
 #include <stddef.h>
@@ -25,8 +26,8 @@ static inline int sample_is_good(ladrc_real_t x)
  * a change of the filter from now on. Direct form II keeps internal states
  * weighted by the old coefficients, which new ones misread into a transient.
  */
-static inline ladrc_real_t section_step(const ladrc_gyro_filter_section_t *c, ladrc_gyro_filter_history_t *h,
-                                        ladrc_real_t x)
+static LADRC_FORCE_INLINE ladrc_real_t section_step(const ladrc_gyro_filter_section_t *c,
+                                                    ladrc_gyro_filter_history_t *h, ladrc_real_t x)
 {
     const ladrc_real_t y = c->b0 * x + c->b1 * h->x1 + c->b2 * h->x2 - c->a1 * h->y1 - c->a2 * h->y2;
     h->x2 = h->x1;
@@ -47,9 +48,55 @@ static inline void section_pass(ladrc_gyro_filter_history_t *h, ladrc_real_t x)
     h->y1 = x;
 }
 
+/* Terms of the sine's Taylor series: the first one left out, x^(2n+1)/(2n+1)!
+ * at the largest x (below), is under half an ulp of the type. */
+#ifdef LADRC_REAL_DOUBLE
+#define SIN_TERMS 10u /* x^21/21! = 3e-17 at x = 1.414 */
+#else
+#define SIN_TERMS 6u /* x^13/13! = 1.5e-8 at x = 1.414 */
+#endif
+
+/* sin x for x in [0, 0.45 pi], half of any centre's angle below the Nyquist
+ * guard: the Taylor series by Horner, x (1 - x^2/(2 3) (1 - x^2/(4 5) (...))).
+ * A handful of multiplications, where the C library's sinf and cosf cost the
+ * RPM bank most of its update on a Cortex-M4F. */
+static LADRC_FORCE_INLINE ladrc_real_t sin_to_half_guard(ladrc_real_t x)
+{
+    static const ladrc_real_t inv[SIN_TERMS] = {
+        LADRC_R(0.0), /* unused: the leading 1 */
+        LADRC_R(1.0) / LADRC_R(6.0),
+        LADRC_R(1.0) / LADRC_R(20.0),
+        LADRC_R(1.0) / LADRC_R(42.0),
+        LADRC_R(1.0) / LADRC_R(72.0),
+        LADRC_R(1.0) / LADRC_R(110.0),
+#ifdef LADRC_REAL_DOUBLE
+        LADRC_R(1.0) / LADRC_R(156.0),
+        LADRC_R(1.0) / LADRC_R(210.0),
+        LADRC_R(1.0) / LADRC_R(272.0),
+        LADRC_R(1.0) / LADRC_R(342.0),
+#endif
+    };
+    const ladrc_real_t x2 = x * x;
+    ladrc_real_t p = LADRC_R(1.0);
+    for (unsigned k = SIN_TERMS - 1u; k >= 1u; --k) {
+        p = LADRC_R(1.0) - x2 * inv[k] * p;
+    }
+    return x * p;
+}
+
+/* cos and sin of a centre's angle w0 in [0, 0.9 pi] from its half angle:
+ * cos = 1 - 2 sin^2(w0/2) keeps the small 1 - cos of low centres exact to
+ * the ulp, sin = 2 sin(w0/2) cos(w0/2) with cos(w0/2) >= 0.156 there. */
+static LADRC_FORCE_INLINE void centre_cos_sin(ladrc_real_t w0_rad, ladrc_real_t *c, ladrc_real_t *s)
+{
+    const ladrc_real_t sh = sin_to_half_guard(LADRC_R(0.5) * w0_rad);
+    *c = LADRC_R(1.0) - LADRC_R(2.0) * sh * sh;
+    *s = LADRC_R(2.0) * sh * LADRC_SQRT(LADRC_R(1.0) - sh * sh);
+}
+
 /* The notch at cos(w0) = c with alpha = sin(w0) / (2 Q), divided through by
  * 1 + alpha: its only division. */
-static void set_notch(ladrc_gyro_filter_section_t *s, ladrc_real_t c, ladrc_real_t alpha)
+static LADRC_FORCE_INLINE void set_notch(ladrc_gyro_filter_section_t *s, ladrc_real_t c, ladrc_real_t alpha)
 {
     const ladrc_real_t g = LADRC_R(1.0) / (LADRC_R(1.0) + alpha);
     s->b0 = g;
@@ -94,7 +141,9 @@ static int section_is_stable(const ladrc_gyro_filter_section_t *s)
 static int notch_is_stable(ladrc_real_t w0_rad, ladrc_real_t inv_2q)
 {
     ladrc_gyro_filter_section_t s;
-    set_notch(&s, LADRC_COS(w0_rad), LADRC_SIN(w0_rad) * inv_2q);
+    ladrc_real_t c, sn;
+    centre_cos_sin(w0_rad, &c, &sn);
+    set_notch(&s, c, sn * inv_2q);
     return section_is_stable(&s);
 }
 
@@ -136,8 +185,9 @@ static ladrc_status_t setup_notches(ladrc_gyro_filter_t *f, const ladrc_gyro_fil
     inv_2q = LADRC_R(0.5) / cfg->notch_q;
     for (i = 0u; i < cfg->n_notches; ++i) {
         ladrc_gyro_filter_section_t *s = &f->section[i];
-        const ladrc_real_t w0 = f->rad_per_hz * cfg->notch_hz[i];
-        set_notch(s, LADRC_COS(w0), LADRC_SIN(w0) * inv_2q);
+        ladrc_real_t c, sn;
+        centre_cos_sin(f->rad_per_hz * cfg->notch_hz[i], &c, &sn);
+        set_notch(s, c, sn * inv_2q);
         s->weight = LADRC_R(1.0);
         if (!section_is_stable(s)) {
             return LADRC_ERR_GYRO_NOTCH_Q;
@@ -289,7 +339,7 @@ void ladrc_gyro_filter_reset(ladrc_gyro_filter_t *f, const ladrc_real_t *value)
 
 /* An RPM notch's weight at centre_hz: off below rpm_min_hz and from
  * centre_max_hz on, 1 from rpm_full_hz, linear in between. */
-static ladrc_real_t rpm_weight(const ladrc_gyro_filter_t *f, ladrc_real_t centre_hz)
+static LADRC_FORCE_INLINE ladrc_real_t rpm_weight(const ladrc_gyro_filter_t *f, ladrc_real_t centre_hz)
 {
     if (!(centre_hz >= f->rpm_min_hz) || !(centre_hz < f->centre_max_hz)) {
         return LADRC_R(0.0);
@@ -308,7 +358,7 @@ ladrc_fault_t ladrc_gyro_filter_set_rotor_hz(ladrc_gyro_filter_t *f, const ladrc
     for (unsigned r = 0u; r < f->rpm_rotors; ++r) {
         const ladrc_real_t hz = rotor_hz[r];
         ladrc_gyro_filter_section_t *s = &f->section[f->rpm_first + r * f->rpm_harmonics];
-        ladrc_real_t c1, c, s1, sn, c_prev, s_prev;
+        ladrc_real_t c1, c, s1, sn, c_prev, s_prev, centre_hz;
         if (!ladrc_is_finite(hz) || !(hz >= LADRC_R(0.0))) {
             faults = LADRC_FAULT_INPUT; /* this rotor's notches stay where they were */
             continue;
@@ -321,15 +371,15 @@ ladrc_fault_t ladrc_gyro_filter_set_rotor_hz(ladrc_gyro_filter_t *f, const ladrc
             }
             continue;
         }
-        c1 = LADRC_COS(f->rad_per_hz * hz);
-        s1 = LADRC_SIN(f->rad_per_hz * hz);
+        centre_cos_sin(f->rad_per_hz * hz, &c1, &s1);
         c = c1;
         sn = s1;
         c_prev = LADRC_R(1.0);
         s_prev = LADRC_R(0.0);
-        for (unsigned h = 0u; h < f->rpm_harmonics; ++h) {
+        centre_hz = hz;
+        for (unsigned h = 0u; h < f->rpm_harmonics; ++h, centre_hz += hz) {
             ladrc_real_t next;
-            s[h].weight = rpm_weight(f, (ladrc_real_t)(h + 1u) * hz);
+            s[h].weight = rpm_weight(f, centre_hz);
             if (s[h].weight > LADRC_R(0.0)) {
                 set_notch(&s[h], c, sn * f->rpm_inv_2q);
             }
@@ -356,7 +406,7 @@ static ladrc_real_t chain_step(ladrc_gyro_filter_t *f, ladrc_gyro_filter_history
         f->undo[i][1] = h->y2;
         if (s->weight > LADRC_R(0.0)) {
             const ladrc_real_t y = section_step(s, h, x);
-            x = (s->weight < LADRC_R(1.0)) ? x + s->weight * (y - x) : y;
+            x = x + s->weight * (y - x); /* one path: no branch on the weight (within an ulp of y at 1) */
         } else {
             section_pass(h, x);
         }

@@ -22,7 +22,8 @@
  * whose -3 dB points are where |cos w - cos w0| = alpha sin w (about
  * f0 +- f0 / (2 Q) for a notch well below Nyquist). The RPM notch of rotor r
  * and harmonic h sits at h * rotor_hz[r]; set_rotor_hz takes one sine and
- * one cosine per rotor and the harmonics by cos(h w) = 2 cos(w) cos((h-1) w)
+ * one cosine per rotor (from a Taylor series of the half angle, to the
+ * type's precision) and the harmonics by cos(h w) = 2 cos(w) cos((h-1) w)
  * - cos((h-2) w) (the same for sin). A notch's weight blends it with its
  * input, out = x + weight (y - x): 0 below rpm_min_hz, rising linearly to 1
  * at rpm_min_hz + rpm_fade_hz, and 0 at or above

@@ -189,6 +189,8 @@ int main(int argc, char **argv)
         const sim_controller_id_t id = sc.controllers[c];
         ladrc_attitude_config_t acfg;
         sim_setup_attitude(&sc, id, &acfg);
+        sim_tune_filter_t filter;
+        sim_tune_filter(&sc, &filter);
         for (int i = axis_from; i <= axis_to; ++i) {
             const double j_model = sc.inertia_kg_m2[i] * sc.inertia_scale[i];
             const ladrc_margins_plant_t plant = {.dt_s = sc.control_dt_s,
@@ -200,8 +202,7 @@ int main(int argc, char **argv)
             ladrc_margins_request_t req;
             ladrc_margins_request_default(&req, &plant);
             sim_tune_objective(&sc, id, &req);
-            const ladrc_margins_controller_t ctl = {
-                .attitude = &acfg, .axis_index = i, .axis = NULL, .use_rate = sc.use_rate};
+            const ladrc_margins_controller_t ctl = sim_tune_controller_of(&sc, &filter, &acfg, i);
             int idle = 0;
             ladrc_margins_status_t st = ladrc_margins_analyse_reported(&ws, &ctl, &req, &res, &idle);
             /* HP-MLADRC's converged tone model may have no settled linear

@@ -59,7 +59,7 @@ void sim_plant_init(sim_plant_t *p, const sim_vehicle_t *v)
         p->angle_rad[i] = 0.0;
         p->rate_rad_s[i] = 0.0;
     }
-    const double hover = v->mass_kg * v->g_m_s2 / (4.0 * v->thrust_coeff_N_s2);
+    const double hover = sim_hover_w2_rad2_s2(v->mass_kg, v->g_m_s2, v->thrust_coeff_N_s2);
     for (int i = 0; i < 4; ++i) {
         p->w2_rad2_s2[i] = clamp_rotor(v, hover);
     }

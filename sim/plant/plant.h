@@ -97,6 +97,12 @@ void sim_vehicle_paper(sim_vehicle_t *v);
  * ensure. */
 void sim_plant_init(sim_plant_t *p, const sim_vehicle_t *v);
 
+/* Each rotor's w^2 at hover, m g / (4 kL) (rad^2/s^2), unclamped. */
+static inline double sim_hover_w2_rad2_s2(double mass_kg, double g_m_s2, double thrust_coeff_N_s2)
+{
+    return mass_kg * g_m_s2 / (4.0 * thrust_coeff_N_s2);
+}
+
 /* Thrust and body torques of the four w^2 values, as given (no limits).
  * thrust_N may be NULL. */
 void sim_plant_forces(const sim_vehicle_t *v, const double w2[4], double *thrust_N, double torque_Nm[3]);

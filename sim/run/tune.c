@@ -37,6 +37,28 @@ void sim_tune_plant(const sim_scenario_t *sc, int axis, ladrc_margins_plant_t *p
     plant->delay_ticks = sc->delay_ticks;
 }
 
+void sim_tune_filter(const sim_scenario_t *sc, sim_tune_filter_t *f)
+{
+    f->on = sim_setup_filters_gyro(sc);
+    sim_setup_gyro_filter(sc, &f->cfg);
+    for (int q = 0; q < 4; ++q) {
+        f->rotor_hz[q] = (ladrc_real_t)sim_setup_hover_rotor_hz(sc);
+    }
+}
+
+ladrc_margins_controller_t sim_tune_controller_of(const sim_scenario_t *sc, const sim_tune_filter_t *f,
+                                                  const ladrc_attitude_config_t *acfg, int axis)
+{
+    const ladrc_margins_controller_t ctl = {.attitude = acfg,
+                                            .axis_index = axis,
+                                            .axis = NULL,
+                                            .use_rate = sc->use_rate,
+                                            .filter = f->on ? &f->cfg : NULL,
+                                            .filter_rotor_hz = f->rotor_hz,
+                                            .filter_angle = sc->filter_angle};
+    return ctl;
+}
+
 static double now_s(void)
 {
     struct timespec ts;
@@ -103,6 +125,8 @@ int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margin
     t->gm_target_db = targets.gm_min_db;
     ladrc_attitude_config_t acfg;
     sim_setup_attitude(sc, id, &acfg); /* tuning[id] is clear: the defaults and the file's keys */
+    sim_tune_filter_t filter;
+    sim_tune_filter(sc, &filter);
     for (int i = 0; i < 3; ++i) {
         ladrc_margins_plant_t plant;
         sim_tune_plant(sc, i, &plant);
@@ -116,8 +140,7 @@ int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margin
         if (i == 1 && plant.inertia_kg_m2 == sc->inertia_kg_m2[0] * sc->inertia_scale[0]) {
             ladrc_attitude_config_t shared = acfg;
             sim_setup_tuned_gains(t, 0, &shared.axis[1]);
-            const ladrc_margins_controller_t chk = {
-                .attitude = &shared, .axis_index = 1, .axis = NULL, .use_rate = sc->use_rate};
+            const ladrc_margins_controller_t chk = sim_tune_controller_of(sc, &filter, &shared, 1);
             int idle = 0;
             ladrc_margins_result_t *m = &ws->scratch;
             if (ladrc_margins_analyse_reported(ws, &chk, &req, m, &idle) == LADRC_MARGINS_OK && meets(m, &targets)) {
@@ -131,8 +154,7 @@ int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margin
                 continue;
             }
         }
-        const ladrc_margins_controller_t ctl = {
-            .attitude = &acfg, .axis_index = i, .axis = NULL, .use_rate = sc->use_rate};
+        const ladrc_margins_controller_t ctl = sim_tune_controller_of(sc, &filter, &acfg, i);
         ladrc_axis_config_t tuned;
         ladrc_margins_tuning_t result;
         const ladrc_margins_status_t st = ladrc_margins_tune(ws, &ctl, &req, &targets, &tuned, &result);
@@ -141,8 +163,7 @@ int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margin
             /* whether the reported margins are HP-MLADRC's idle ones */
             ladrc_attitude_config_t again = acfg;
             again.axis[i] = tuned;
-            const ladrc_margins_controller_t chk = {
-                .attitude = &again, .axis_index = i, .axis = NULL, .use_rate = sc->use_rate};
+            const ladrc_margins_controller_t chk = sim_tune_controller_of(sc, &filter, &again, i);
             (void)ladrc_margins_analyse_reported(ws, &chk, &req, &ws->scratch, &idle);
         }
         keep(t, i, &tuned, &result, idle);

@@ -24,6 +24,21 @@ void sim_tune_plant(const sim_scenario_t *sc, int axis, ladrc_margins_plant_t *p
  * req's values. */
 void sim_tune_objective(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_margins_request_t *req);
 
+/* The scenario's gyro filter ([filter]) as the tuning and the margins see it:
+ * before every controller, the RPM notches held on the rotors' rate at hover. */
+typedef struct {
+    ladrc_gyro_filter_config_t cfg;
+    ladrc_real_t rotor_hz[4];
+    int on; /* 0: no filter stage on */
+} sim_tune_filter_t;
+
+void sim_tune_filter(const sim_scenario_t *sc, sim_tune_filter_t *f);
+
+/* Axis `axis` of acfg as the tuning and the margins analyse it: the
+ * scenario's use of the rate and its filter (f, which must outlive it). */
+ladrc_margins_controller_t sim_tune_controller_of(const sim_scenario_t *sc, const sim_tune_filter_t *f,
+                                                  const ladrc_attitude_config_t *acfg, int axis);
+
 /* Tunes controller id of sc (tune = margins) on each axis into
  * sc->tuning[id]; ws is scratch (ladrc_margins_workspace_t is about 1 MB).
  * Pitch takes roll's result when the two axes' modelled inertias are equal

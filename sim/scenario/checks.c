@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "plant/plant.h"
 #include "plant/turbulence.h"
 #include "series.h"
 #include "setup.h"
@@ -205,6 +206,41 @@ static void check_list_length(parser_t *p, int sec, const char *name, int n, con
     }
 }
 
+/* What the library's gyro filter still refuses once the ranges hold (a Q so
+ * high that a notch rounds to an unstable section, a cut-off at the very
+ * edge), at the key responsible. */
+static void check_filter_init(parser_t *p)
+{
+    static const struct {
+        ladrc_status_t status;
+        const char *key;
+    } keys[] = {{LADRC_ERR_GYRO_LPF_CUTOFF_HZ, "lpf_hz"},    {LADRC_ERR_GYRO_NOTCH_HZ, "notch_hz"},
+                {LADRC_ERR_GYRO_NOTCH_Q, "notch_q"},         {LADRC_ERR_GYRO_RPM_MIN_HZ, "rpm_min_hz"},
+                {LADRC_ERR_GYRO_RPM_FADE_HZ, "rpm_fade_hz"}, {LADRC_ERR_GYRO_RPM_Q, "rpm_q"}};
+    const sim_scenario_t *sc = p->sc;
+    if (!sim_setup_filters_gyro(sc)) {
+        return;
+    }
+    ladrc_gyro_filter_config_t cfg;
+    ladrc_gyro_filter_t f;
+    sim_setup_gyro_filter(sc, &cfg);
+    const ladrc_status_t st = ladrc_gyro_filter_init(&f, &cfg);
+    if (st == LADRC_OK) {
+        return;
+    }
+    const char *key = "rpm_harmonics";
+    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; ++i) {
+        if (keys[i].status == st) {
+            key = keys[i].key;
+        }
+    }
+    const loc_t *at = checks_seen(p, SEC_FILTER, key);
+    if (at->line == 0) { /* a default the file left: the section's first key */
+        at = checks_seen(p, SEC_FILTER, "rpm_harmonics");
+    }
+    check_fail(p, at->line, at->value_col, "the gyro filter refuses it: %s", ladrc_status_str(st));
+}
+
 /* [wind], [vibration] and [filter] keys against each other and the run. */
 static void check_environment(parser_t *p)
 {
@@ -234,14 +270,23 @@ static void check_environment(parser_t *p)
         check_fail(p, at->line, at->value_col, "lpf_hz must be below the Nyquist frequency 0.5 / control_dt_s (%g Hz)",
                    nyquist_hz);
     }
+    /* A bilinear notch stops being one near Nyquist: the library's guard. */
+    const double guard_hz = (double)LADRC_GYRO_FILTER_CENTRE_MAX_NYQUIST * nyquist_hz;
     for (int i = 0; i < sc->filter_n_notches; ++i) {
-        if (!(sc->filter_notch_hz[i] < nyquist_hz)) {
+        if (!(sc->filter_notch_hz[i] < guard_hz)) {
             const loc_t *at = checks_seen(p, SEC_FILTER, "notch_hz");
-            check_fail(p, at->line, at->value_col, "notch_hz %g must be below the Nyquist frequency %g Hz",
-                       sc->filter_notch_hz[i], nyquist_hz);
+            check_fail(p, at->line, at->value_col, "notch_hz %g must be below %g Hz (0.9 of the Nyquist frequency)",
+                       sc->filter_notch_hz[i], guard_hz);
             break;
         }
     }
+    const loc_t *rpm_min = checks_seen(p, SEC_FILTER, "rpm_min_hz");
+    if (sc->filter_rpm_harmonics > 0 && !(sc->filter_rpm_min_hz < guard_hz)) {
+        const loc_t *at = rpm_min->line != 0 ? rpm_min : checks_seen(p, SEC_FILTER, "rpm_harmonics");
+        check_fail(p, at->line, at->value_col, "rpm_min_hz must be below %g Hz (0.9 of the Nyquist frequency)",
+                   guard_hz);
+    }
+    check_filter_init(p);
 }
 
 static void check_differentiator(parser_t *p)
@@ -605,7 +650,7 @@ void checks_finish(parser_t *p)
         sc->settle_until_s = sc->duration_s;
     }
     if (isnan(sc->rotor_drag_N_s_m)) { /* k_d w_hover 4 = m d: the drag d per kg at hover */
-        const double w_hover = sqrt(sc->mass_kg * sc->g_m_s2 / (4.0 * sc->thrust_coeff_N_s2));
+        const double w_hover = sqrt(sim_hover_w2_rad2_s2(sc->mass_kg, sc->g_m_s2, sc->thrust_coeff_N_s2));
         sc->rotor_drag_N_s_m = sc->mass_kg * sc->rotor_drag_per_s / (4.0 * w_hover);
     }
     if (isnan(sc->rotor_height_m)) {

@@ -220,7 +220,7 @@ const key_def_t SCHEMA_KEYS[] = {
     {KEY(SEC_WIND, "sigma_m_s", V_REAL, SC(turb_sigma_m_s)), .range = R_SIGMA},
     {KEY(SEC_WIND, "altitude_m", V_REAL, SC(altitude_m)), .range = R_ALTITUDE},
     {KEY(SEC_WIND, "mean_m_s", V_REAL, SC(mean_wind_m_s)), .range = R_WIND},
-    {KEY(SEC_WIND, "from_deg", V_REAL, SC(mean_wind_from_rad)), .scale = DEG_TO_RAD},
+    {KEY(SEC_WIND, "from_deg", V_REAL, SC(mean_wind_from_rad)), .range = R_HEADING, .scale = DEG_TO_RAD},
 
     {KEY(SEC_VIBRATION, "orders", V_LIST, SC(vib_order)), .offset2 = SC(vib_n_orders), .range = R_ORDER},
     {KEY(SEC_VIBRATION, "gyro_deg_s", V_LIST, SC(vib_gyro_rad_s)), .offset2 = SC(vib_n_gyro), .range = R_NONNEGATIVE,
@@ -374,6 +374,9 @@ int schema_check_range(const key_def_t *def, double v, char *msg, size_t msg_len
         return (v > 0.0 && v <= 100.0) ? 0 : refuse(msg, msg_len, "%s must be > 0 and at most 100", def->name);
     case R_Q:
         return (v >= 0.1 && v <= 100.0) ? 0 : refuse(msg, msg_len, "%s must be between 0.1 and 100", def->name);
+    case R_HEADING:
+        return (v >= 0.0 && v < 360.0 * DEG_TO_RAD) ? 0
+                                                    : refuse(msg, msg_len, "%s must be >= 0 and below 360", def->name);
     default:
         return 0;
     }
@@ -421,7 +424,7 @@ void schema_set_defaults(sim_scenario_t *sc)
         sc->vib_axis_gain[i] = 1.0;
     }
     sc->filter_enabled = 1;
-    sc->filter_angle = 1;
+    sc->filter_angle = 0; /* the rate loop's gyro only, as flight stacks do */
     sc->filter_lpf_hz = DEFAULT_FILTER_LPF_HZ;
     sc->filter_notch_q = DEFAULT_FILTER_Q;
     sc->filter_rpm_q = DEFAULT_FILTER_Q;

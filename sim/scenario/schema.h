@@ -73,7 +73,8 @@ typedef enum {
     R_SIGMA,        /* 0 .. 30 m/s */
     R_WIND,         /* 0 .. 50 m/s */
     R_ORDER,        /* > 0, <= 100 */
-    R_Q             /* 0.1 .. 100 */
+    R_Q,            /* 0.1 .. 100 */
+    R_HEADING       /* 0 <= v < 360 deg, in rad */
 } range_t;
 
 typedef struct {

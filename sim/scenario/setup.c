@@ -297,3 +297,8 @@ void sim_setup_gyro_filter(const sim_scenario_t *sc, ladrc_gyro_filter_config_t 
     cfg->rpm_min_hz = (ladrc_real_t)sc->filter_rpm_min_hz;
     cfg->rpm_fade_hz = (ladrc_real_t)sc->filter_rpm_fade_hz;
 }
+
+double sim_setup_hover_rotor_hz(const sim_scenario_t *sc)
+{
+    return sqrt(sim_hover_w2_rad2_s2(sc->mass_kg, sc->g_m_s2, sc->thrust_coeff_N_s2)) / 6.283185307179586; /* 2 pi */
+}

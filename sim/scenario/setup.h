@@ -73,5 +73,7 @@ int sim_setup_filters_gyro(const sim_scenario_t *sc);
  * rates, then the angles) with angle = yes, else 3 (the rates); the RPM
  * bank on the four rotors. */
 void sim_setup_gyro_filter(const sim_scenario_t *sc, ladrc_gyro_filter_config_t *cfg);
+/* Each rotor's rate at hover (Hz): where tune = margins holds the RPM notches. */
+double sim_setup_hover_rotor_hz(const sim_scenario_t *sc);
 
 #endif

@@ -649,6 +649,105 @@ static void test_values_the_library_refuses_are_errors_at_their_key(void)
     }
 }
 
+/* [wind], [vibration], [filter], the new [rotors] and [sensors] keys and
+ * the recorded-series keys: out of range, inconsistent, or refused by the
+ * library's gyro filter, each at its key. */
+static void test_environment_errors(void)
+{
+    static const bad_case_t cases[] = {
+        {.text = "[wind]\nturbulence = strong\n",
+         .line = 2,
+         .column = 14,
+         .message = "expected off, light, moderate, severe or sigma, got 'strong'"},
+        {.text = "[run]\nduration_s = 1\n[wind]\nturbulence = sigma\n",
+         .line = 4,
+         .column = 14,
+         .message = "turbulence = sigma needs sigma_m_s > 0"},
+        {.text = "[run]\nduration_s = 1\n[wind]\nsigma_m_s = 2\n",
+         .line = 4,
+         .column = 1,
+         .message = "'sigma_m_s' applies only with turbulence = sigma"},
+        {.text = "[wind]\nturbulence = sigma\nsigma_m_s = 31\n",
+         .line = 3,
+         .column = 13,
+         .message = "sigma_m_s must be between 0 and 30"},
+        {.text = "[wind]\naltitude_m = 400\n",
+         .line = 2,
+         .column = 14,
+         .message = "altitude_m must be > 0 and at most 304.8 (1000 ft)"},
+        {.text = "[wind]\nmean_m_s = -1\n", .line = 2, .column = 12, .message = "mean_m_s must be between 0 and 50"},
+        {.text = "[wind]\nfrom_deg = 360\n", .line = 2, .column = 12, .message = "from_deg must be >= 0 and below 360"},
+        {.text = "[vibration]\norders = 1 2 3 4 5\n", .line = 2, .column = 18, .message = "expected at most 4 numbers"},
+        {.text = "[vibration]\norders = 0\n", .line = 2, .column = 10, .message = "orders must be > 0 and at most 100"},
+        {.text = "[vibration]\norders = 1\ngyro_deg_s = -1\n",
+         .line = 3,
+         .column = 14,
+         .message = "gyro_deg_s must be >= 0"},
+        {.text = "[vibration]\norders = 1\naxis_gain = 1 1\n",
+         .line = 3,
+         .column = 16,
+         .message = "expected 3 numbers"},
+        {.text = "[run]\nduration_s = 1\n[vibration]\norders = 1 2\ngyro_deg_s = 1\n",
+         .line = 5,
+         .column = 14,
+         .message = "gyro_deg_s gives 1 numbers; orders gives 2 (one per order)"},
+        {.text = "[run]\nduration_s = 1\n[vibration]\ngyro_deg_s = 1\n",
+         .line = 4,
+         .column = 1,
+         .message = "the vibration's amplitudes need its orders (orders = 1 2 3 ...)"},
+        {.text = "[filter]\nlpf_order = 3\n", .line = 2, .column = 13, .message = "lpf_order must be 0, 1 or 2"},
+        {.text = "[run]\nduration_s = 1\n[filter]\nlpf_order = 2\nlpf_hz = 600\n",
+         .line = 5,
+         .column = 10,
+         .message = "lpf_hz must be below the Nyquist frequency 0.5 / control_dt_s (500 Hz)"},
+        {.text = "[run]\nduration_s = 1\n[filter]\nnotch_hz = 100 460\n",
+         .line = 4,
+         .column = 12,
+         .message = "notch_hz 460 must be below 450 Hz (0.9 of the Nyquist frequency)"},
+        {.text = "[filter]\nrpm_harmonics = 5\n",
+         .line = 2,
+         .column = 17,
+         .message = "rpm_harmonics must be between 0 and 4"},
+        {.text = "[filter]\nrpm_harmonics = 2\nrpm_q = 0\n",
+         .line = 3,
+         .column = 9,
+         .message = "rpm_q must be between 0.1 and 100"},
+        {.text = "[run]\nduration_s = 1\n[filter]\nrpm_harmonics = 2\nrpm_min_hz = 500\n",
+         .line = 5,
+         .column = 14,
+         .message = "rpm_min_hz must be below 450 Hz (0.9 of the Nyquist frequency)"},
+        {.text = "[rotors]\nmotor_tau_down_s = -1\n",
+         .line = 2,
+         .column = 20,
+         .message = "motor_tau_down_s must be >= 0"},
+        {.text = "[rotors]\nbattery_drop = 1\n",
+         .line = 2,
+         .column = 16,
+         .message = "battery_drop must be >= 0 and < 1"},
+        {.text = "[rotors]\nrotor_drag_per_s = 0.3\nrotor_drag_N_s_m = 1e-3\n",
+         .line = 3,
+         .column = 1,
+         .message = "'rotor_drag_N_s_m' and 'rotor_drag_per_s' (line 2) set the same value"},
+        {.text = "[disturbance]\nseries_end = wrap\n",
+         .line = 2,
+         .column = 14,
+         .message = "expected repeat, hold or refuse, got 'wrap'"},
+    };
+    CHECK_BAD_CASES(cases);
+#ifndef LADRC_REAL_DOUBLE
+    /* Within every range, yet a notch of Q 100 at 0.01 Hz rounds to an
+     * unstable section in float (its poles 6e-7 inside the unit circle). */
+    static const bad_case_t refused[] = {
+        {.text = "[run]\nduration_s = 1\n[filter]\nrpm_harmonics = 2\nrpm_q = 100\nrpm_min_hz = 0.01\n",
+         .line = 5,
+         .column = 9,
+         .message = "the gyro filter refuses it: LADRC_ERR_GYRO_RPM_Q: gyro filter rpm_q must be finite, > 0 and low "
+                    "enough for a stable notch"},
+    };
+    CHECK_BAD_CASES(refused);
+#endif
+}
+
 static void test_a_controller_not_listed_is_checked_when_chosen(void)
 {
     /* HP-MLADRC cannot run at 20 Hz; the file does not ask for it */
@@ -733,6 +832,7 @@ int main(void)
     RUN_TEST(test_run_limits_are_errors_at_the_key_responsible);
     RUN_TEST(test_runs_at_the_limits_are_accepted);
     RUN_TEST(test_values_the_library_refuses_are_errors_at_their_key);
+    RUN_TEST(test_environment_errors);
     RUN_TEST(test_a_controller_not_listed_is_checked_when_chosen);
     RUN_TEST(test_parse_buffer_needs_no_nul_and_refuses_one_inside);
     RUN_TEST(test_long_values_are_rejected_not_truncated);

@@ -27,6 +27,7 @@
 #include "bench_case.h"
 #include "bench_timer.h"
 #include "ladrc/estimator.h"
+#include "ladrc/gyro_filter.h"
 #include "ladrc/leso.h"
 #include "ladrc/levant.h"
 #include "ladrc/pid.h"
@@ -56,7 +57,12 @@ typedef enum {
     RUN_RLS5,
     RUN_PID,
     RUN_THRUST,
-    RUN_MIXER
+    RUN_MIXER,
+    RUN_GF_NOTCH,   /* one fixed notch on one channel */
+    RUN_GF_LPF2,    /* the second-order low-pass on one channel */
+    RUN_GF_CENTRES, /* the RPM bank's 12 centres moved (4 rotors x 3 harmonics) */
+    RUN_GF_RPM3,    /* centres moved, then the 12 notches on 3 channels */
+    RUN_GF_FULL3    /* the same with the second-order low-pass after them */
 } run_t;
 
 static ladrc_axis_t axis;
@@ -79,6 +85,8 @@ static struct {
     ladrc_pid_t pid;
     ladrc_mixer_t mixer;
     ladrc_mixer_output_t out;
+    ladrc_gyro_filter_t gf_notch, gf_lpf2, gf_rpm3, gf_full3;
+    ladrc_real_t gf_out[LADRC_AXES];
     ladrc_real_t b0;
     ladrc_real_t fit_rate_per_s, fit_rate2_per_s; /* the engaged fits' forgetting, one and two tones */
     uint16_t fit_decimation;
@@ -102,6 +110,9 @@ static ladrc_real_t gyro_accel_in[BENCH_SAMPLES]; /* b0 times the acting torque 
 static ladrc_real_t gyro_hp_in[BENCH_SAMPLES];    /* LP's sample plus the fit's estimate, rad/s^2 */
 /* Regressors and samples of the fits at the fit samples' times. */
 static ladrc_real_t phi5_in[BENCH_SAMPLES][5];
+/* Rotor rates for the RPM bank (Hz): four rotors each wandering +-10 %
+ * about 120 Hz at its own pace, so every centre moves every tick. */
+static ladrc_real_t rotor_hz_in[BENCH_SAMPLES][4];
 static ladrc_real_t y3_in[BENCH_SAMPLES], y5_in[BENCH_SAMPLES];
 
 /* Ticks the block from the first sample (warm-up) or after it; "empty" runs
@@ -239,6 +250,23 @@ static uint32_t run(run_t what, int warm, int timed)
     case RUN_MIXER:
         BLOCK((void)ladrc_mixer_step(&mod.mixer, thrust_in[i], torque_in[i], &mod.out), thrust_in[i] + torque_in[i][0]);
         break;
+    case RUN_GF_NOTCH:
+        BLOCK((void)ladrc_gyro_filter_step(&mod.gf_notch, &in->rate[i][0], mod.gf_out), in->rate[i][0]);
+        break;
+    case RUN_GF_LPF2:
+        BLOCK((void)ladrc_gyro_filter_step(&mod.gf_lpf2, &in->rate[i][0], mod.gf_out), in->rate[i][0]);
+        break;
+    case RUN_GF_CENTRES:
+        BLOCK((void)ladrc_gyro_filter_set_rotor_hz(&mod.gf_rpm3, rotor_hz_in[i]), rotor_hz_in[i][0]);
+        break;
+    case RUN_GF_RPM3:
+        BLOCK((void)ladrc_gyro_filter_set_rotor_hz(&mod.gf_rpm3, rotor_hz_in[i]);
+              (void)ladrc_gyro_filter_step(&mod.gf_rpm3, in->rate[i], mod.gf_out), rotor_hz_in[i][0] + in->rate[i][0]);
+        break;
+    case RUN_GF_FULL3:
+        BLOCK((void)ladrc_gyro_filter_set_rotor_hz(&mod.gf_full3, rotor_hz_in[i]);
+              (void)ladrc_gyro_filter_step(&mod.gf_full3, in->rate[i], mod.gf_out), rotor_hz_in[i][0] + in->rate[i][0]);
+        break;
     }
     return timer_since(t0);
 }
@@ -336,6 +364,45 @@ static void record_inputs(void)
 /* Each module configured as the axis defaults configure it (HP-MLADRC for
  * the LESO, Levant and estimators, LADRC for TD, PID for PID), the HP axes as
  * the attitude defaults configure them. */
+/* The gyro filter stages timed at the cases' control step: an RPM bank of
+ * 4 rotors x 3 harmonics (Q 5, on from 20 Hz, fading in over 10 Hz; the
+ * rotors near 120 Hz keep all 12 centres below the Nyquist guard), one
+ * fixed notch, a second-order low-pass. */
+static int setup_gyro_filters(ladrc_real_t dt_s)
+{
+    ladrc_gyro_filter_config_t one, rpm3, full3;
+    ladrc_gyro_filter_config_default(&one, dt_s, 1u);
+    ladrc_gyro_filter_config_default(&rpm3, dt_s, LADRC_AXES);
+    rpm3.rpm_rotors = 4u;
+    rpm3.rpm_harmonics = 3u;
+    rpm3.rpm_min_hz = LADRC_R(20.0);
+    rpm3.rpm_fade_hz = LADRC_R(10.0);
+    full3 = rpm3;
+    full3.lpf_order = 2u;
+    one.lpf_order = 2u;
+    if (ladrc_gyro_filter_init(&mod.gf_lpf2, &one) != LADRC_OK) {
+        return -1;
+    }
+    one.lpf_order = 0u;
+    one.n_notches = 1u;
+    one.notch_hz[0] = LADRC_R(0.15) / dt_s;
+    if (ladrc_gyro_filter_init(&mod.gf_notch, &one) != LADRC_OK ||
+        ladrc_gyro_filter_init(&mod.gf_rpm3, &rpm3) != LADRC_OK ||
+        ladrc_gyro_filter_init(&mod.gf_full3, &full3) != LADRC_OK) {
+        return -1;
+    }
+    for (int i = 0; i < BENCH_SAMPLES; ++i) {
+        for (int r = 0; r < 4; ++r) {
+            rotor_hz_in[i][r] =
+                LADRC_R(120.0) * (LADRC_R(1.0) + LADRC_R(0.1) * sinf(LADRC_R(0.01) * (float)(i * (r + 1))));
+        }
+    }
+    /* every centre on from the first timed tick */
+    (void)ladrc_gyro_filter_set_rotor_hz(&mod.gf_rpm3, rotor_hz_in[0]);
+    (void)ladrc_gyro_filter_set_rotor_hz(&mod.gf_full3, rotor_hz_in[0]);
+    return 0;
+}
+
 static int setup_modules(void)
 {
     ladrc_attitude_config_t hp3;
@@ -409,6 +476,9 @@ static int setup_modules(void)
         ladrc_hp_init(&mod.hp2, &hpc) != LADRC_OK || ladrc_hp_init(&mod.hp_gyro, &hpc_gyro) != LADRC_OK ||
         ladrc_rls_init(&mod.rls3, &rls3) != LADRC_OK || ladrc_rls_init(&mod.rls5, &rls5) != LADRC_OK ||
         ladrc_pid_init(&mod.pid, &pidc) != LADRC_OK || ladrc_mixer_init(&mod.mixer, &bench_mixer_cfg) != LADRC_OK) {
+        return -1;
+    }
+    if (setup_gyro_filters(hp->dt_s) != 0) {
         return -1;
     }
     ladrc_leso_reset(&mod.leso, in->ang[0][0]);
@@ -523,6 +593,11 @@ int main(void)
     print_module("ladrc_pid_step", RUN_PID, ipc);
     print_module("ladrc_mixer_thrust_from_tilt", RUN_THRUST, ipc);
     print_module("ladrc_mixer_step", RUN_MIXER, ipc);
+    print_module("ladrc_gyro_filter_step_notch_1ch", RUN_GF_NOTCH, ipc);
+    print_module("ladrc_gyro_filter_step_lpf2_1ch", RUN_GF_LPF2, ipc);
+    print_module("ladrc_gyro_filter_set_rotor_hz_4x3", RUN_GF_CENTRES, ipc);
+    print_module("gyro_filter_rpm_4x3_3ch", RUN_GF_RPM3, ipc);
+    print_module("gyro_filter_rpm_4x3_lpf2_3ch", RUN_GF_FULL3, ipc);
     for (int a = 0; a < LADRC_AXES; ++a) {
         print_hp_state("lone_hp_axis", &mod.lone[a].part.hp.est);
     }
@@ -554,5 +629,7 @@ int main(void)
     SIZE_LINE(ladrc_hp_config_t);
     SIZE_LINE(ladrc_rls_t);
     SIZE_LINE(ladrc_rls_config_t);
+    SIZE_LINE(ladrc_gyro_filter_t);
+    SIZE_LINE(ladrc_gyro_filter_config_t);
     return 0;
 }

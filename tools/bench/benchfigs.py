@@ -158,6 +158,7 @@ class Figures:
             "insn.3axes.HP-MLADRC-lean": self.lean_insn(),
             "insn.worst.HP-MLADRC-lean": self.lean_worst(),
         }
+        out["insn.gyro_filter.rpm_4x3_3ch"] = self.module("gyro_filter_rpm_4x3_3ch")
         for v in self.CASES:
             out["insn.axis." + v] = self.insn(v, 1)
             out["insn.3axes." + v] = self.insn(v, 2)

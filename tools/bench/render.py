@@ -128,7 +128,7 @@ def render(fig):
     row("mixer state, sizeof(ladrc_mixer_t), B", fig.size_of("ladrc_mixer_t"), "", "")
     for t in ("ladrc_attitude_config_t", "ladrc_axis_t", "ladrc_axis_config_t", "ladrc_mixer_config_t", "ladrc_pid_t",
               "ladrc_cascaded_t", "ladrc_leso_t", "ladrc_td_t", "ladrc_levant_t", "ladrc_lp_estimator_t",
-              "ladrc_hp_estimator_t", "ladrc_rls_t", "ladrc_indi_t", "ladrc_reso_t"):
+              "ladrc_hp_estimator_t", "ladrc_rls_t", "ladrc_indi_t", "ladrc_reso_t", "ladrc_gyro_filter_t"):
         row(f"sizeof({t}), B", fig.size_of(t), "", "")
     row("library flash (text + data), B", flash, "<= 8192", mark(flash, "<=", 8192))
     for obj, obj_flash in fig.size_objects():
@@ -305,7 +305,38 @@ def render(fig):
          "configured as the gyro axis configures its fit (block means, the sample's age, the command advanced over "
          "the actuator) on roll's recorded sample (LP's sample plus the fit's estimate); lone axes: the three "
          f"HP-MLADRC-gyro axes ({lone_g} instructions per tick for the three). Engaged: {gyro_state}.")
+    gyro_filter_table(echo, fig, calc)
     return "\n".join(out)
+
+
+def gyro_filter_table(echo, fig, calc):
+    """The gyro filter stage: per notch and channel, and the RPM bank against the HP-MLADRC estimators."""
+    mod = fig.module
+    notch, lpf2 = num(mod("ladrc_gyro_filter_step_notch_1ch")), num(mod("ladrc_gyro_filter_step_lpf2_1ch"))
+    centres, rpm3 = num(mod("ladrc_gyro_filter_set_rotor_hz_4x3")), num(mod("gyro_filter_rpm_4x3_3ch"))
+    full3 = num(mod("gyro_filter_rpm_4x3_lpf2_3ch"))
+    # The HP-MLADRC tick's own estimator: ladrc_hp_step (its RLS fit included) and the shadow observer, per axis.
+    hp_est = 3 * (num(mod("ladrc_hp_step")) + num(mod("ladrc_leso_step_twin")))
+    per_section = (rpm3 - centres) / (12 * 3)
+    echo()
+    echo("The gyro filter stage (Cortex-M4F, same build and method):")
+    echo()
+    echo("| stage | instructions/call | per notch and channel |")
+    echo("|---|---:|---:|")
+    echo(f"| one fixed notch on one channel (call included) | {calc(notch)} |  |")
+    echo(f"| second-order low-pass on one channel (call included) | {calc(lpf2)} |  |")
+    echo(f"| ladrc_gyro_filter_set_rotor_hz: 12 RPM centres moved (4 rotors x 3 harmonics) | {calc(centres)} | "
+         f"{calc(centres / 12)} per centre |")
+    echo(f"| RPM bank 4 x 3 on 3 axes: centres moved, then 36 notch steps | {calc(rpm3)} | {calc(per_section)} |")
+    echo(f"| the same with a second-order low-pass after it | {calc(full3)} |  |")
+    echo(f"| HP-MLADRC's own estimators, 3 axes: 3 x (ladrc_hp_step with its RLS + ladrc_leso_step_twin) | "
+         f"{calc(hp_est)} |  |")
+    echo()
+    echo(f"The 4 x 3 RPM bank on 3 axes costs {calc(rpm3 / hp_est)}x HP-MLADRC's own estimators (target: at most 2x). "
+         "The bank's centres move every tick (each rotor wandering +-10 % about 120 Hz, all 12 centres on); the gyro "
+         "samples are the HP 3-axis case's measured rates. sizeof(ladrc_gyro_filter_t) "
+         f"{fig.size_of('ladrc_gyro_filter_t')} B (6 channels, 4 fixed notches, 8 rotors x 4 harmonics and a low-pass "
+         "at most).")
 
 
 def main() -> int:

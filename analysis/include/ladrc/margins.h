@@ -30,6 +30,7 @@
 
 #include "ladrc/attitude.h"
 #include "ladrc/axis.h"
+#include "ladrc/gyro_filter.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -82,12 +83,21 @@ typedef struct {
 
 /** The controller analysed: one axis of an attitude controller (what the
  *  simulator and firmware fly: the coupling feed's drag term included), or a
- *  bare axis. Exactly one of attitude and axis is non-NULL. */
+ *  bare axis. Exactly one of attitude and axis is non-NULL. With a filter,
+ *  the measured rate (and the angle, with filter_angle) reaches the
+ *  controller through the gyro filter stage, its RPM notches held at
+ *  filter_rotor_hz: the margins, steps and tuning are those of the filtered
+ *  loop. Zero-initialised fields: no filter. */
 typedef struct {
-    const ladrc_attitude_config_t *attitude; /**< with axis_index */
-    int axis_index;                          /**< LADRC_ROLL, LADRC_PITCH or LADRC_YAW */
-    const ladrc_axis_config_t *axis;         /**< a bare axis */
-    int use_rate;                            /**< the controller gets the measured rate */
+    const ladrc_attitude_config_t *attitude;  /**< with axis_index */
+    int axis_index;                           /**< LADRC_ROLL, LADRC_PITCH or LADRC_YAW */
+    const ladrc_axis_config_t *axis;          /**< a bare axis */
+    int use_rate;                             /**< the controller gets the measured rate */
+    const ladrc_gyro_filter_config_t *filter; /**< the gyro filter before it; NULL: none (its channels are
+                                                    ignored: one, or two with filter_angle) */
+    const ladrc_real_t *filter_rotor_hz;      /**< the rotors' rates its RPM notches sit on (Hz), rpm_rotors
+                                                    of them; may be NULL without an RPM bank */
+    int filter_angle;                         /**< 1: the angle goes through the filter too */
 } ladrc_margins_controller_t;
 
 /** How to measure. ladrc_margins_request_default fills every field. */
@@ -165,11 +175,14 @@ typedef struct {
     /** @{ */
     double fft_re[LADRC_MARGINS_MAX_TAPS], fft_im[LADRC_MARGINS_MAX_TAPS]; /**< FFT scratch */
     /** @} */
-    union {
-        ladrc_axis_t axis;          /**< a bare axis */
-        ladrc_attitude_t attitude;  /**< an attitude controller */
-    } copy[4];                      /**< base, angle-, rate-perturbed, saved */
-    ladrc_margins_result_t scratch; /**< the tuning's candidates */
+    struct {
+        union {
+            ladrc_axis_t axis;         /**< a bare axis */
+            ladrc_attitude_t attitude; /**< an attitude controller */
+        } ctl;                         /**< the controller */
+        ladrc_gyro_filter_t filter;    /**< the gyro filter before it, if any */
+    } copy[4];                         /**< base, angle-, rate-perturbed, saved */
+    ladrc_margins_result_t scratch;    /**< the tuning's candidates */
 } ladrc_margins_workspace_t;
 
 /** Defaults for the given plant (see the fields).
