@@ -6,6 +6,10 @@
 #   clean_filtered  no vibration, the file's [filter] stage (what the filter alone does)
 #   raw             vibration, no filter
 #   filtered        vibration through the filter
+# and, in moderate turbulence, two more with a leaner filter (RPM notches of
+# Q 10, no low-pass: less lag near the crossover):
+#   lean_clean      no vibration, the lean filter
+#   lean            vibration through the lean filter
 # into OUT_DIR/<airframe>_<turbulence>_<way>/, then tools/vibration.py writes
 # the table (and, with --docs, docs/vibration.md's block and its figure).
 # Runs two ladrc_sil at a time. A run that diverged is a result (named in
@@ -24,9 +28,12 @@ mkdir -p "$out"
 fly() {
   local frame=$1 turb=$2 way=$3 dir="$out/$1_$2_$3"
   local set_way=()
+  local lean=(--set filter.rpm_q=10 --set filter.lpf_order=0)
   case $way in
     clean) set_way=(--set "vibration.gyro_deg_s=0 0 0" --set "vibration.accel_m_s2=0 0 0" --set filter.enabled=no) ;;
     clean_filtered) set_way=(--set "vibration.gyro_deg_s=0 0 0" --set "vibration.accel_m_s2=0 0 0") ;;
+    lean_clean) set_way=(--set "vibration.gyro_deg_s=0 0 0" --set "vibration.accel_m_s2=0 0 0" "${lean[@]}") ;;
+    lean) set_way=("${lean[@]}") ;;
     raw) set_way=(--set filter.enabled=no) ;;
   esac
   rm -rf "$dir"
@@ -51,6 +58,8 @@ for f in scenarios/vibration/*.ini; do
       echo "$(basename "$f" .ini) $turb $way"
     done
   done
+  echo "$(basename "$f" .ini) moderate lean_clean"
+  echo "$(basename "$f" .ini) moderate lean"
 done | xargs -P 2 -n 3 bash -c 'fly "$@"' _
 args=("$out")
 [[ $docs == --docs ]] && args+=(--docs docs/vibration.md --figure docs/figures/vibration_spectrum.png)

@@ -93,7 +93,7 @@ int ini_lines(char *text, ini_place_t *place, ini_line_fn fn, void *ctx)
     return 0;
 }
 
-int ini_read_file(const char *path, char **text, size_t *len)
+int ini_read_file_max(const char *path, size_t max_bytes, char **text, size_t *len)
 {
     FILE *f = fopen(path, "rb");
     if (f == NULL) {
@@ -102,29 +102,42 @@ int ini_read_file(const char *path, char **text, size_t *len)
     size_t cap = 4096;
     size_t n = 0;
     char *buf = malloc(cap);
-    while (buf != NULL) {
-        n += fread(buf + n, 1, cap - 1 - n, f);
-        if (n < cap - 1) {
-            break;
-        }
-        char *grown = realloc(buf, cap * 2);
-        if (grown == NULL) {
-            free(buf);
-            buf = NULL;
+    int rc = buf != NULL ? 0 : -2;
+    while (rc == 0) {
+        /* never more than one byte past the most: a huge file costs no more */
+        const size_t room = cap - 1 - n;
+        n += fread(buf + n, 1, max_bytes - n < room ? max_bytes - n + 1 : room, f);
+        if (n > max_bytes) {
+            rc = -4;
+        } else if (n < cap - 1) {
+            break; /* the end, or an error */
         } else {
-            buf = grown;
-            cap *= 2;
+            const size_t grow = cap * 2 - 1 > max_bytes + 1 ? max_bytes + 2 : cap * 2;
+            char *grown = realloc(buf, grow);
+            if (grown == NULL) {
+                rc = -2;
+            } else {
+                buf = grown;
+                cap = grow;
+            }
         }
     }
-    const int bad = ferror(f);
+    if (rc == 0 && ferror(f)) {
+        rc = -3;
+    }
     fclose(f);
-    if (buf == NULL || bad) {
+    if (rc != 0) {
         free(buf);
-        errno = buf == NULL ? ENOMEM : EIO;
-        return buf == NULL ? -2 : -3;
+        errno = rc == -2 ? ENOMEM : rc == -3 ? EIO : EFBIG;
+        return rc;
     }
     buf[n] = '\0';
     *text = buf;
     *len = n;
     return 0;
+}
+
+int ini_read_file(const char *path, char **text, size_t *len)
+{
+    return ini_read_file_max(path, (size_t)-1 / 2, text, len);
 }

@@ -65,4 +65,8 @@ int ini_lines(char *text, ini_place_t *place, ini_line_fn fn, void *ctx);
  * fopen), -2 out of memory (errno ENOMEM), -3 a read error (errno EIO). */
 int ini_read_file(const char *path, char **text, size_t *len);
 
+/* The same for a file of at most max_bytes (< SIZE_MAX / 2): -4 (errno
+ * EFBIG) for a larger one, having read one byte past the most. */
+int ini_read_file_max(const char *path, size_t max_bytes, char **text, size_t *len);
+
 #endif

@@ -5,6 +5,8 @@
  */
 #include "series.h"
 
+#include "ini.h"
+
 #include "expr.h"
 
 #include <errno.h>
@@ -493,50 +495,6 @@ int sim_series_parse(sim_series_t *s, const char *data, size_t len, const char *
     return 0;
 }
 
-/* The file's bytes, up to SIM_SERIES_MAX_BYTES, in *text (to free). Returns
- * 0; -1 when it cannot be opened (errno set), -2 out of memory, -3 a read
- * error, -4 a file too large. */
-static int read_file(const char *path, char **text, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (f == NULL) {
-        return -1;
-    }
-    size_t cap = 4096;
-    size_t n = 0;
-    char *buf = malloc(cap);
-    int rc = buf != NULL ? 0 : -2;
-    while (rc == 0) {
-        n += fread(buf + n, 1, cap - n, f);
-        if (n < cap) {
-            break; /* the end, or an error */
-        }
-        if (cap > SIM_SERIES_MAX_BYTES) {
-            rc = -4; /* one byte more than the most */
-            break;
-        }
-        const size_t grow = cap > SIM_SERIES_MAX_BYTES / 2 ? SIM_SERIES_MAX_BYTES + 1 : cap * 2;
-        char *grown = realloc(buf, grow);
-        if (grown == NULL) {
-            rc = -2;
-        } else {
-            buf = grown;
-            cap = grow;
-        }
-    }
-    if (rc == 0 && ferror(f)) {
-        rc = -3;
-    }
-    fclose(f);
-    if (rc != 0) {
-        free(buf);
-        return rc;
-    }
-    *text = buf;
-    *len = n;
-    return 0;
-}
-
 int sim_series_load(sim_series_t *s, const char *path, const sim_series_spec_t *spec, sim_series_error_t *err)
 {
     sim_series_error_t ignored;
@@ -553,7 +511,7 @@ int sim_series_load(sim_series_t *s, const char *path, const sim_series_spec_t *
     }
     char *text = NULL;
     size_t len = 0;
-    const int rc = read_file(path, &text, &len);
+    const int rc = ini_read_file_max(path, SIM_SERIES_MAX_BYTES, &text, &len);
     if (rc == -1) {
         return fail_line_col(err, 0, 0, "cannot open: %s", strerror(errno));
     }
