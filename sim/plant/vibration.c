@@ -34,7 +34,9 @@ int sim_vibration_init(sim_vibration_t *v, const sim_vibration_config_t *cfg, ui
         v->speed_rad_s[i] = 0.0;
         for (int k = 0; k < SIM_VIB_MAX_ORDERS; ++k) {
             for (int a = 0; a < 3; ++a) {
-                v->phase_rad[i][k][a] = two_pi * sim_rng_uniform(&rng);
+                const double phase_rad = two_pi * sim_rng_uniform(&rng);
+                v->phase_cos[i][k][a] = cos(phase_rad);
+                v->phase_sin[i][k][a] = sin(phase_rad);
             }
         }
     }
@@ -51,6 +53,30 @@ static double rotor_speed(double w2)
     return w2 >= 0.0 ? sqrt(w2) : -sqrt(-w2);
 }
 
+/* cos and sin of order * theta: for a whole order up to 16 by powers of
+ * e^(i theta) (c1, s1: its cosine and sine), a few roundings; else directly. */
+static void line_cos_sin(double order, double theta_rad, double c1, double s1, double *c, double *s)
+{
+    if (order == floor(order) && order <= 16.0) {
+        double pc = 1.0, ps = 0.0, bc = c1, bs = s1; /* the power so far, the base squared on */
+        for (unsigned k = (unsigned)order; k != 0u; k >>= 1) {
+            if (k & 1u) {
+                const double t = pc * bc - ps * bs;
+                ps = pc * bs + ps * bc;
+                pc = t;
+            }
+            const double t = bc * bc - bs * bs;
+            bs = 2.0 * bc * bs;
+            bc = t;
+        }
+        *c = pc;
+        *s = ps;
+        return;
+    }
+    *c = cos(order * theta_rad);
+    *s = sin(order * theta_rad);
+}
+
 void sim_vibration_tick(sim_vibration_t *v, const double w2_rad2_s2[SIM_VIB_ROTORS], double dt_s, double gyro_rad_s[3],
                         double angle_rad[3], double accel_m_s2[3])
 {
@@ -65,12 +91,15 @@ void sim_vibration_tick(sim_vibration_t *v, const double w2_rad2_s2[SIM_VIB_ROTO
     v->started = 1;
     for (int i = 0; i < SIM_VIB_ROTORS; ++i) {
         const double w = fabs(v->speed_rad_s[i]);
+        const double c1 = cos(v->theta_rad[i]), s1 = sin(v->theta_rad[i]);
         for (int k = 0; k < c->n_orders; ++k) {
-            const double line = c->order[k] * v->theta_rad[i];
             const double wk = c->order[k] * w; /* the line's frequency (rad/s) */
+            /* one sine and cosine per line, turned to each axis's phase */
+            double cl, sl;
+            line_cos_sin(c->order[k], v->theta_rad[i], c1, s1, &cl, &sl);
             for (int a = 0; a < 3; ++a) {
-                const double phase = line + v->phase_rad[i][k][a];
-                const double s = sin(phase), co = cos(phase);
+                const double s = sl * v->phase_cos[i][k][a] + cl * v->phase_sin[i][k][a];
+                const double co = cl * v->phase_cos[i][k][a] - sl * v->phase_sin[i][k][a];
                 const double g = c->gyro_rad_s[k] * c->axis_gain[a];
                 if (gyro_rad_s != NULL) {
                     gyro_rad_s[a] += g * s;

@@ -40,10 +40,11 @@ typedef struct {
 
 typedef struct {
     sim_vibration_config_t cfg;
-    double theta_rad[SIM_VIB_ROTORS];   /* each rotor's angle */
-    double speed_rad_s[SIM_VIB_ROTORS]; /* its speed at the latest tick */
-    double phase_rad[SIM_VIB_ROTORS][SIM_VIB_MAX_ORDERS][3];
-    int started; /* 0 until the first tick gave the speeds */
+    double theta_rad[SIM_VIB_ROTORS];                        /* each rotor's angle */
+    double speed_rad_s[SIM_VIB_ROTORS];                      /* its speed at the latest tick */
+    double phase_cos[SIM_VIB_ROTORS][SIM_VIB_MAX_ORDERS][3]; /* each line's seeded phase per axis, */
+    double phase_sin[SIM_VIB_ROTORS][SIM_VIB_MAX_ORDERS][3]; /* as its cosine and sine */
+    int started;                                             /* 0 until the first tick gave the speeds */
 } sim_vibration_t;
 
 /* Returns 0, or -1 (v untouched) when v or cfg is NULL, n_orders is outside
