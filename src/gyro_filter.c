@@ -48,6 +48,10 @@ static inline void section_pass(ladrc_gyro_filter_history_t *h, ladrc_real_t x)
     h->y1 = x;
 }
 
+/* LADRC_FORCE_INLINE below: -Os keeps these helpers out of line in
+ * ladrc_gyro_filter_set_rotor_hz; inlined, moving 12 RPM centres takes 902
+ * instructions instead of 1,061 on the Cortex-M4F (tools/bench). */
+
 /* Terms of the sine's Taylor series: the first one left out, x^(2n+1)/(2n+1)!
  * at the largest x (below), is under half an ulp of the type. */
 #ifdef LADRC_REAL_DOUBLE
