@@ -20,6 +20,7 @@ that is missing, is named as such in the table and makes the exit status 1.
 """
 import argparse
 import csv
+import functools
 import glob
 import math
 import os
@@ -98,6 +99,12 @@ def high_rms(x, dt_s):
 
 COLUMNS = (["t_s"] + ["torque_cmd_%s_Nm" % a for a in AXES] + ["meas_rate_%s_deg_s" % a for a in AXES]
            + ["ctrl_rate_%s_deg_s" % a for a in AXES] + ["w2_%d_rad2_s2" % i for i in range(1, 5)])
+
+
+@functools.lru_cache(maxsize=None)
+def run_of(path):
+    """The Run of a time series, read once however many tables use it."""
+    return Run(path)
 
 
 class Run:
@@ -211,7 +218,7 @@ class Study:
                 for c in controllers_of(m):
                     if divergence_text(m, c):
                         continue
-                    run = Run(self.csv(frame, turb, "filtered", c))
+                    run = run_of(self.csv(frame, turb, "filtered", c))
                     if hz is None:
                         hz = float(np.median(run.rotor_hz))
                     for axis in AXES:
@@ -258,7 +265,7 @@ class Study:
                  abs(rms["filtered"][2] / rms["clean"][2] - 1.0)]
         self.verdicts["tracking"].append(worst[0] <= TRACKING_TARGET)
         self.verdicts["tracking_yaw"].append(worst[1] <= TRACKING_TARGET)
-        noise = {w: [Run(self.csv(frame, turb, w, c)).cmd_noise(a) for a in AXES] for w in WAYS}
+        noise = {w: [run_of(self.csv(frame, turb, w, c)).cmd_noise(a) for a in AXES] for w in WAYS}
         down = min(r / f for r, f in zip(noise["raw"], noise["filtered"]))
         axis_max = max(range(3), key=lambda i: noise["raw"][i])
         part = self.vibration_part(noise)
@@ -310,7 +317,7 @@ class Study:
                 rms = {w: [ms[w].get((c, "4", "error_rms_deg", a)) for a in AXES] for w in ms}
                 change = {w: " / ".join(fmt_change(v, r) for v, r in zip(rms[w], rms["clean"]))
                           for w in ("lean_clean", "lean")}
-                runs = {w: Run(self.csv(frame, "moderate", w, c)) for w in ms}
+                runs = {w: run_of(self.csv(frame, "moderate", w, c)) for w in ms}
                 noise = {w: [runs[w].cmd_noise(a) for a in AXES] for w in ms}
                 part = self.vibration_part({"clean": noise["clean"], "raw": noise["raw"],
                                             "clean_filtered": noise["lean_clean"], "filtered": noise["lean"]})
@@ -345,7 +352,7 @@ def figure(out, png):
     fs = frames()
     fig, axes = plt.subplots(len(fs), 1, figsize=(10, 3.2 * len(fs)), dpi=110)
     for ax, frame in zip(np.atleast_1d(axes), fs):
-        run = Run(os.path.join(run_dir(out, frame, "moderate", "filtered"), "LADRC.csv"))
+        run = run_of(os.path.join(run_dir(out, frame, "moderate", "filtered"), "LADRC.csv"))
         f, pr, _ = welch(run.s["meas_rate_roll_deg_s"], run.dt_s)
         _, pf, _ = welch(run.s["ctrl_rate_roll_deg_s"], run.dt_s)
         ax.semilogy(f[1:], pr[1:], lw=0.8, color="#d62728", label="raw gyro (meas_rate_roll)")

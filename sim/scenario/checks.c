@@ -235,8 +235,10 @@ static void check_filter_init(parser_t *p)
         }
     }
     const loc_t *at = checks_seen(p, SEC_FILTER, key);
-    if (at->line == 0) { /* a default the file left: the section's first key */
-        at = checks_seen(p, SEC_FILTER, "rpm_harmonics");
+    if (at->line == 0) { /* a default the file left: at the [filter] header */
+        const int line = p->section_line[SEC_FILTER] != 0 ? p->section_line[SEC_FILTER] : 1;
+        check_fail(p, line, 1, "the gyro filter refuses %s's default: %s", key, ladrc_status_str(st));
+        return;
     }
     check_fail(p, at->line, at->value_col, "the gyro filter refuses it: %s", ladrc_status_str(st));
 }
