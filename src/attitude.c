@@ -21,6 +21,41 @@ void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t
     cfg->axis[LADRC_YAW].wrap_angle = 1u; /* yaw lives on a circle, roll and pitch do not */
     cfg->drag_Nms = drag_Nms;
     cfg->coupling_feed = 1u;
+    cfg->frame = LADRC_FRAME_EULER;
+    cfg->yaw_weight = LADRC_YAW_WEIGHT_DEFAULT;
+}
+
+void ladrc_attitude_config_quaternion(ladrc_attitude_config_t *cfg)
+{
+    LADRC_REQUIRE_VOID(cfg != NULL);
+    cfg->frame = LADRC_FRAME_QUATERNION;
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        cfg->axis[i].wrap_angle = 1u; /* body angles are kept within a turn */
+    }
+}
+
+/* The frame's own fields: the frame, and in the quaternion frame the yaw
+ * weight and a wrapped angle on every axis (failed_axis for the last). */
+static ladrc_status_t check_frame(const ladrc_attitude_config_t *cfg, int *failed_axis)
+{
+    if (cfg->frame != LADRC_FRAME_EULER && cfg->frame != LADRC_FRAME_QUATERNION) {
+        return LADRC_ERR_ATTITUDE_FRAME;
+    }
+    if (cfg->frame == LADRC_FRAME_EULER) {
+        return LADRC_OK;
+    }
+    if (!ladrc_is_finite(cfg->yaw_weight) || !(cfg->yaw_weight > LADRC_R(0.0)) || cfg->yaw_weight > LADRC_R(1.0)) {
+        return LADRC_ERR_YAW_WEIGHT;
+    }
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        if (cfg->axis[i].wrap_angle != 1u) {
+            if (failed_axis != NULL) {
+                *failed_axis = (int)i;
+            }
+            return LADRC_ERR_WRAP_ANGLE;
+        }
+    }
+    return LADRC_OK;
 }
 
 ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_config_t *cfg, int *failed_axis)
@@ -58,6 +93,10 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
     if (cfg->coupling_feed > 1u) {
         return LADRC_ERR_COUPLING_FEED;
     }
+    const ladrc_status_t frame_status = check_frame(cfg, failed_axis);
+    if (frame_status != LADRC_OK) {
+        return frame_status;
+    }
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
         /* The feed mixes the axes' states tick by tick: one clock for all. */
         ladrc_status_t status = (cfg->axis[i].dt_s == cfg->axis[0].dt_s) ? LADRC_OK : LADRC_ERR_DT_S;
@@ -82,8 +121,12 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
         att->coupling[i] = (j[next] - j[after]) / j[i];
         att->drag_per_s[i] = cfg->drag_Nms / j[i];
         att->feed_rad_s3[i] = LADRC_R(0.0);
+        att->body_angle_rad[i] = LADRC_R(0.0);
     }
     att->coupling_feed = cfg->coupling_feed;
+    att->frame = (uint8_t)cfg->frame;
+    att->yaw_weight = cfg->yaw_weight;
+    att->has_attitude = 0u;
     return LADRC_OK;
 }
 
@@ -92,10 +135,13 @@ void ladrc_attitude_reset(ladrc_attitude_t *att, const ladrc_real_t angle_rad[LA
     LADRC_REQUIRE_VOID(att != NULL && angle_rad != NULL);
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
         ladrc_axis_reset(&att->axis[i], angle_rad[i]);
+        ladrc_real_t rate_rad_s, disturbance_rad_s2; /* the axis's start, for the quaternion frame */
+        ladrc_axis_get_estimate(&att->axis[i], &att->body_angle_rad[i], &rate_rad_s, &disturbance_rad_s2);
         att->feed_rad_s3[i] = LADRC_R(0.0);
         ladrc_axis_set_disturbance_rate(&att->axis[i], LADRC_R(0.0));
         ladrc_axis_set_known_disturbance(&att->axis[i], LADRC_R(0.0));
     }
+    att->has_attitude = 0u;
 }
 
 /* h of one axis from the other two axes' rates and accelerations (a, b in
@@ -158,11 +204,12 @@ LADRC_NOINLINE static void update_feed(ladrc_attitude_t *att)
     ladrc_axis_set_known_disturbance(&att->axis[LADRC_YAW], known_part(att, LADRC_YAW, w0, w1, w2));
 }
 
-ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
-                                  const ladrc_real_t angle_rad[LADRC_AXES], const ladrc_real_t *rate_rad_s,
-                                  ladrc_real_t torque_Nm[LADRC_AXES])
+/* The tick of both frames: the feed, then each axis (inlined in both: the
+ * Euler tick pays nothing for the quaternion frame). */
+static LADRC_FORCE_INLINE ladrc_fault_t step_axes(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
+                               const ladrc_real_t angle_rad[LADRC_AXES], const ladrc_real_t *rate_rad_s,
+                               ladrc_real_t torque_Nm[LADRC_AXES])
 {
-    LADRC_REQUIRE(att != NULL && ref_rad != NULL && angle_rad != NULL && torque_Nm != NULL, LADRC_FAULT_STATE);
     if (att->coupling_feed) {
         update_feed(att);
     }
@@ -172,6 +219,59 @@ ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_
                                   &torque_Nm[i]);
     }
     return faults;
+}
+
+ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
+                                  const ladrc_real_t angle_rad[LADRC_AXES], const ladrc_real_t *rate_rad_s,
+                                  ladrc_real_t torque_Nm[LADRC_AXES])
+{
+    LADRC_REQUIRE(att != NULL && ref_rad != NULL && angle_rad != NULL && torque_Nm != NULL, LADRC_FAULT_STATE);
+    if (att->frame != LADRC_FRAME_EULER) {
+        return LADRC_FAULT_STATE;
+    }
+    return step_axes(att, ref_rad, angle_rad, rate_rad_s, torque_Nm);
+}
+
+/* Moves the body angles by the rotation from the previous good attitude to
+ * q (none for the first one). */
+static void advance_body_angles(ladrc_attitude_t *att, ladrc_quat_t q)
+{
+    if (att->has_attitude) {
+        ladrc_real_t step_rad[LADRC_AXES];
+        ladrc_quat_rotvec(ladrc_quat_mul(ladrc_quat_conj(att->attitude), q), step_rad);
+        for (unsigned i = 0; i < LADRC_AXES; ++i) {
+            att->body_angle_rad[i] = ladrc_wrap_pi(att->body_angle_rad[i] + step_rad[i]);
+        }
+    }
+    att->attitude = q;
+    att->has_attitude = 1u;
+}
+
+ladrc_fault_t ladrc_attitude_step_quat(ladrc_attitude_t *att, const ladrc_quat_t *q_ref, const ladrc_quat_t *q_meas,
+                                       const ladrc_real_t *rate_rad_s, ladrc_real_t torque_Nm[LADRC_AXES])
+{
+    LADRC_REQUIRE(att != NULL && q_ref != NULL && q_meas != NULL && torque_Nm != NULL, LADRC_FAULT_STATE);
+    if (att->frame != LADRC_FRAME_QUATERNION) {
+        return LADRC_FAULT_STATE;
+    }
+    ladrc_real_t angle[LADRC_AXES], ref[LADRC_AXES];
+    ladrc_quat_t q, qr;
+    const int measured = ladrc_quat_normalise(*q_meas, &q);
+    const int referenced = ladrc_quat_normalise(*q_ref, &qr);
+    if (measured) {
+        advance_body_angles(att, q);
+    }
+    ladrc_real_t error_rad[LADRC_AXES] = {LADRC_R(0.0), LADRC_R(0.0), LADRC_R(0.0)};
+    if (measured && referenced) {
+        ladrc_quat_tilt_error(q, qr, att->yaw_weight, error_rad);
+    }
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        /* a bad attitude or reference reaches each axis beyond any angle
+         * limit: it holds and raises LADRC_FAULT_INPUT */
+        angle[i] = measured ? att->body_angle_rad[i] : LADRC_REAL_MAX;
+        ref[i] = (measured && referenced) ? ladrc_wrap_pi(att->body_angle_rad[i] + error_rad[i]) : LADRC_REAL_MAX;
+    }
+    return step_axes(att, ref, angle, rate_rad_s, torque_Nm);
 }
 
 void ladrc_attitude_set_applied(ladrc_attitude_t *att, const ladrc_real_t torque_Nm[LADRC_AXES])

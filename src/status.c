@@ -108,7 +108,9 @@
     X(LADRC_ERR_GYRO_RPM_HARMONICS, "gyro filter rpm_harmonics must be 1..LADRC_GYRO_FILTER_MAX_HARMONICS")            \
     X(LADRC_ERR_GYRO_RPM_MIN_HZ, "gyro filter rpm_min_hz must be finite and within (0, 0.45 / dt_s)")                  \
     X(LADRC_ERR_GYRO_RPM_FADE_HZ, "gyro filter rpm_fade_hz must be finite, >= 0, and 0 or with a finite inverse")      \
-    X(LADRC_ERR_GYRO_RPM_Q, "gyro filter rpm_q must be finite, > 0 and low enough for a stable notch")
+    X(LADRC_ERR_GYRO_RPM_Q, "gyro filter rpm_q must be finite, > 0 and low enough for a stable notch")            \
+    X(LADRC_ERR_ATTITUDE_FRAME, "attitude frame must be LADRC_FRAME_EULER or LADRC_FRAME_QUATERNION")                  \
+    X(LADRC_ERR_YAW_WEIGHT, "yaw_weight must be finite and in (0, 1]")
 
 #ifdef LADRC_STATUS_NAMES_ONLY
 #define STATUS_TEXT(code, explanation) #code

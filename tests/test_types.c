@@ -104,6 +104,8 @@ static const char *const status_names[LADRC_STATUS_COUNT] = {
     "LADRC_ERR_GYRO_RPM_MIN_HZ",
     "LADRC_ERR_GYRO_RPM_FADE_HZ",
     "LADRC_ERR_GYRO_RPM_Q",
+    "LADRC_ERR_ATTITUDE_FRAME",
+    "LADRC_ERR_YAW_WEIGHT",
 };
 
 /* 1 if text is name alone (names-only build) or name ": " and an explanation. */

@@ -21,6 +21,19 @@
  * One tick: ladrc_attitude_step -> mixer -> ladrc_attitude_set_applied with
  * the torques actually achieved (so saturation never winds an observer up).
  *
+ * Two frames (docs/method.md, "Quaternion attitude"):
+ * - LADRC_FRAME_EULER, the paper's: each axis takes its own Euler angle and
+ *   reference (ladrc_attitude_step). Singular at +-90 deg pitch, and the
+ *   errors of different axes mix at large tilt.
+ * - LADRC_FRAME_QUATERNION, as flight stacks take attitude: the measured
+ *   attitude and the reference are unit quaternions
+ *   (ladrc_attitude_step_quat). Each axis works on its body angle, the sum
+ *   of the body-frame rotation increments between measured attitudes
+ *   (wrapped into (-pi, pi], so every axis needs wrap_angle = 1), whose
+ *   rate is the gyro's body rate; its raw reference is that body angle plus
+ *   the attitude error with tilt priority (quat.h). Valid through any
+ *   attitude; the coupling feed's body rates are then exact.
+ *
  * The layer owns its axes and, on the tick's path, reads their estimates and
  * writes their fed rate and applied torque directly, with the results of
  * ladrc_axis_get_accel, ladrc_axis_set_disturbance_rate and
@@ -31,6 +44,7 @@
 #define LADRC_ATTITUDE_H
 
 #include "ladrc/axis.h"
+#include "ladrc/quat.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -44,12 +58,25 @@ enum {
     LADRC_AXES = 3   /**< number of axes (not an axis) */
 };
 
+/** How the attitude layer takes the attitude and its reference. */
+typedef enum {
+    LADRC_FRAME_EULER = 0,     /**< per Euler angle (the paper's): ladrc_attitude_step */
+    LADRC_FRAME_QUATERNION = 1 /**< unit quaternions, tilt priority: ladrc_attitude_step_quat */
+} ladrc_attitude_frame_t;
+
+/** PX4's default weight of yaw against tilt (MC_YAW_WEIGHT). */
+#define LADRC_YAW_WEIGHT_DEFAULT LADRC_R(0.4)
+
 /** Attitude configuration (ladrc_attitude_init validates it); can live in flash. */
 typedef struct {
     ladrc_axis_config_t axis[LADRC_AXES];   /**< roll, pitch, yaw; equal dt_s */
     ladrc_real_t inertia_kg_m2[LADRC_AXES]; /**< Jx, Jy, Jz the feed assumes (kg m^2), > 0, a rigid body's */
     ladrc_real_t drag_Nms;                  /**< rotational drag kt (N m s), >= 0 */
     uint8_t coupling_feed;                  /**< 1: feed h to the observers, 0: off */
+    ladrc_attitude_frame_t frame;           /**< how attitude is taken; QUATERNION needs wrap_angle = 1
+                                                 on every axis */
+    ladrc_real_t yaw_weight;                /**< QUATERNION: weight of yaw against tilt in the error,
+                                                 (0, 1], 1 = none (quat.h) */
 } ladrc_attitude_config_t;
 
 /** Attitude state; owned by the caller. */
@@ -57,14 +84,20 @@ typedef struct {
     ladrc_real_t coupling[LADRC_AXES];    /**< (Jy-Jz)/Jx, (Jz-Jx)/Jy, (Jx-Jy)/Jz */
     ladrc_real_t drag_per_s[LADRC_AXES];  /**< kt / J per axis (1/s) */
     ladrc_real_t feed_rad_s3[LADRC_AXES]; /**< h fed at the latest tick (rad/s^3) */
+    ladrc_real_t body_angle_rad[LADRC_AXES]; /**< QUATERNION: the body angles the axes take (rad) */
+    ladrc_quat_t attitude;                /**< QUATERNION: the latest good measured attitude */
+    ladrc_real_t yaw_weight;              /**< of the config */
     uint8_t coupling_feed;                /**< of the config */
+    uint8_t frame;                        /**< of the config */
+    uint8_t has_attitude;                 /**< QUATERNION: 1 once a good attitude was measured */
     ladrc_axis_t axis[LADRC_AXES];        /**< roll, pitch, yaw */
 } ladrc_attitude_t;
 
 /**
  * Fills cfg with ladrc_axis_config_default for each axis (inertia from
  * inertia_kg_m2), the given drag and the feed on, wrap_angle on for yaw
- * (off for roll and pitch). Copies without checking (init checks).
+ * (off for roll and pitch), the Euler frame and yaw weight
+ * LADRC_YAW_WEIGHT_DEFAULT. Copies without checking (init checks).
  * @param cfg            out: the config; cfg or inertia_kg_m2 NULL: nothing happens
  * @param variant        the variant of every axis
  * @param dt_s           control step (s)
@@ -73,6 +106,11 @@ typedef struct {
  */
 void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t variant, ladrc_real_t dt_s,
                                    const ladrc_real_t inertia_kg_m2[LADRC_AXES], ladrc_real_t drag_Nms);
+
+/** Switches cfg to the quaternion frame: frame QUATERNION, wrap_angle on
+ *  every axis (the body angles live on a circle); the yaw weight is left.
+ *  @param cfg  the config; NULL: nothing happens */
+void ladrc_attitude_config_quaternion(ladrc_attitude_config_t *cfg);
 
 /**
  * Validates the vehicle fields in the order below, then each axis in turn
@@ -87,6 +125,9 @@ void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t
  * @retval LADRC_ERR_INERTIA_TRIANGLE an inertia above the sum of the other two
  * @retval LADRC_ERR_DRAG_NMS         drag_Nms not finite, < 0, or drag_Nms / J * dt_s > 2
  * @retval LADRC_ERR_COUPLING_FEED    coupling_feed not 0 or 1
+ * @retval LADRC_ERR_ATTITUDE_FRAME   frame not a ladrc_attitude_frame_t
+ * @retval LADRC_ERR_YAW_WEIGHT       QUATERNION: yaw_weight not finite or not in (0, 1]
+ * @retval LADRC_ERR_WRAP_ANGLE       QUATERNION: an axis (*failed_axis) with wrap_angle 0
  * @retval LADRC_ERR_DT_S             an axis's dt_s differs from roll's (or, from
  *                                    ladrc_axis_init, is invalid)
  * @return any other status of ladrc_axis_init, for axis *failed_axis
@@ -94,6 +135,9 @@ void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t
 ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_config_t *cfg, int *failed_axis);
 
 /** Restarts every axis at rest on the given angles and clears the feed.
+ *  QUATERNION: the angles are the body angles to restart from (0 0 0 will
+ *  do: only their changes matter) and the next good attitude measured is
+ *  taken as the start, with no increment.
  *  @param att        the controller; att or angle_rad NULL: nothing happens
  *  @param angle_rad  roll, pitch, yaw to rest on (rad); non-finite or beyond
  *                    an axis's angle_limit_rad: 0 */
@@ -108,11 +152,32 @@ void ladrc_attitude_reset(ladrc_attitude_t *att, const ladrc_real_t angle_rad[LA
  * @param rate_rad_s  measured body rates (rad/s), or NULL
  * @param torque_Nm   out: torque commands (N m)
  * @return the union of the axes' fault flags; att, ref_rad, angle_rad or
- *         torque_Nm NULL: LADRC_FAULT_STATE, nothing changes
+ *         torque_Nm NULL, or the QUATERNION frame: LADRC_FAULT_STATE,
+ *         nothing changes
  */
 ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
                                   const ladrc_real_t angle_rad[LADRC_AXES], const ladrc_real_t *rate_rad_s,
                                   ladrc_real_t torque_Nm[LADRC_AXES]);
+
+/**
+ * One tick in the QUATERNION frame: the body angles move by the rotation
+ * from the previous good attitude to this one, the error with tilt priority
+ * gives each axis its raw reference (body angle + error, wrapped), then the
+ * tick of ladrc_attitude_step. An attitude that is not finite or has no
+ * norm (ladrc_quat_normalise) is a bad input on every axis: each holds and
+ * raises LADRC_FAULT_INPUT, the body angles stay; a bad reference alone
+ * holds the axes while the body angles follow the attitude. Quaternions of
+ * any norm are normalised.
+ * @param att         the controller
+ * @param q_ref       the reference attitude
+ * @param q_meas      the measured attitude (body to world)
+ * @param rate_rad_s  measured body rates (rad/s), or NULL
+ * @param torque_Nm   out: torque commands (N m)
+ * @return the union of the axes' fault flags; a pointer but rate_rad_s NULL,
+ *         or the EULER frame: LADRC_FAULT_STATE, nothing changes
+ */
+ladrc_fault_t ladrc_attitude_step_quat(ladrc_attitude_t *att, const ladrc_quat_t *q_ref, const ladrc_quat_t *q_meas,
+                                       const ladrc_real_t *rate_rad_s, ladrc_real_t torque_Nm[LADRC_AXES]);
 
 /** Reports the torques the mixer achieved to each axis (ladrc_axis_set_applied).
  *  @param att        the controller; att or torque_Nm NULL: nothing happens

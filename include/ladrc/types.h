@@ -293,6 +293,8 @@ typedef enum {
     LADRC_ERR_GYRO_RPM_MIN_HZ,    /**< gyro filter rpm_min_hz not finite or not in (0, 0.45 / dt_s) */
     LADRC_ERR_GYRO_RPM_FADE_HZ,   /**< gyro filter rpm_fade_hz not finite, < 0, or its inverse not finite */
     LADRC_ERR_GYRO_RPM_Q,         /**< gyro filter rpm_q not finite, not > 0, or too high to round stable */
+    LADRC_ERR_ATTITUDE_FRAME,     /**< attitude frame not a ladrc_attitude_frame_t */
+    LADRC_ERR_YAW_WEIGHT,         /**< attitude yaw_weight not finite or not in (0, 1] (quaternion frame) */
     LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
 } ladrc_status_t;
 

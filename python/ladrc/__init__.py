@@ -153,7 +153,7 @@ class _Library:
 
         class AttitudeConfig(ctypes.Structure):
             _fields_ = [("axis", AxisConfig * 3), ("inertia_kg_m2", r * 3), ("drag_Nms", r),
-                        ("coupling_feed", u8)]
+                        ("coupling_feed", u8), ("frame", i), ("yaw_weight", r)]
 
         class MixerConfig(ctypes.Structure):
             _fields_ = [("kL_N_s2", r), ("arm_m", r), ("b_Nm_s2", r), ("mass_kg", r),

@@ -62,7 +62,9 @@ typedef enum {
     RUN_GF_LPF2,    /* the second-order low-pass on one channel */
     RUN_GF_CENTRES, /* the RPM bank's 12 centres moved (4 rotors x 3 harmonics) */
     RUN_GF_RPM3,    /* centres moved, then the 12 notches on 3 channels */
-    RUN_GF_FULL3    /* the same with the second-order low-pass after them */
+    RUN_GF_FULL3,   /* the same with the second-order low-pass after them */
+    RUN_ATT_EULER,  /* LADRC's 3 axes in the Euler frame (ladrc_attitude_step, no mixer) */
+    RUN_ATT_QUAT    /* the same in the quaternion frame on the same attitudes (ladrc_attitude_step_quat) */
 } run_t;
 
 static ladrc_axis_t axis;
@@ -87,6 +89,8 @@ static struct {
     ladrc_mixer_output_t out;
     ladrc_gyro_filter_t gf_notch, gf_lpf2, gf_rpm3, gf_full3;
     ladrc_real_t gf_out[LADRC_AXES];
+    ladrc_attitude_t att_euler, att_quat;
+    ladrc_real_t torque[LADRC_AXES];
     ladrc_real_t b0;
     ladrc_real_t fit_rate_per_s, fit_rate2_per_s; /* the engaged fits' forgetting, one and two tones */
     uint16_t fit_decimation;
@@ -114,6 +118,8 @@ static ladrc_real_t phi5_in[BENCH_SAMPLES][5];
  * about 120 Hz at its own pace, so every centre moves every tick. */
 static ladrc_real_t rotor_hz_in[BENCH_SAMPLES][4];
 static ladrc_real_t y3_in[BENCH_SAMPLES], y5_in[BENCH_SAMPLES];
+/* The one-tone loop's attitudes and the references as quaternions (ZYX). */
+static ladrc_quat_t q_meas_in[BENCH_SAMPLES], q_ref_in[BENCH_SAMPLES];
 
 /* Ticks the block from the first sample (warm-up) or after it; "empty" runs
  * the same loop and loads with the call left out. */
@@ -267,6 +273,14 @@ static uint32_t run(run_t what, int warm, int timed)
         BLOCK((void)ladrc_gyro_filter_set_rotor_hz(&mod.gf_full3, rotor_hz_in[i]);
               (void)ladrc_gyro_filter_step(&mod.gf_full3, in->rate[i], mod.gf_out), rotor_hz_in[i][0] + in->rate[i][0]);
         break;
+    case RUN_ATT_EULER:
+        BLOCK((void)ladrc_attitude_step(&mod.att_euler, bench_ref[i], in->ang[i], in->rate[i], mod.torque),
+              bench_ref[i][0] + in->ang[i][0] + in->rate[i][0] + q_ref_in[i].w + q_meas_in[i].w);
+        break;
+    case RUN_ATT_QUAT:
+        BLOCK((void)ladrc_attitude_step_quat(&mod.att_quat, &q_ref_in[i], &q_meas_in[i], in->rate[i], mod.torque),
+              bench_ref[i][0] + in->ang[i][0] + in->rate[i][0] + q_ref_in[i].w + q_meas_in[i].w);
+        break;
     }
     return timer_since(t0);
 }
@@ -403,6 +417,26 @@ static int setup_gyro_filters(ladrc_real_t dt_s)
     return 0;
 }
 
+/* LADRC's 3 axes in both frames, on the one-tone loop's attitudes. */
+static int setup_frames(void)
+{
+    ladrc_attitude_config_t cfg;
+    ladrc_attitude_config_default(&cfg, LADRC_VARIANT_LADRC, BENCH_DT_S, bench_inertia, 0.09f);
+    if (ladrc_attitude_init(&mod.att_euler, &cfg, NULL) != LADRC_OK) {
+        return -1;
+    }
+    ladrc_attitude_config_quaternion(&cfg);
+    if (ladrc_attitude_init(&mod.att_quat, &cfg, NULL) != LADRC_OK) {
+        return -1;
+    }
+    for (int i = 0; i < BENCH_SAMPLES; ++i) {
+        q_meas_in[i] = ladrc_quat_from_euler(in->ang[i][0], in->ang[i][1], in->ang[i][2]);
+        q_ref_in[i] = ladrc_quat_from_euler(bench_ref[i][0], bench_ref[i][1], bench_ref[i][2]);
+    }
+    ladrc_attitude_reset(&mod.att_euler, in->ang[0]);
+    return 0;
+}
+
 static int setup_modules(void)
 {
     ladrc_attitude_config_t hp3;
@@ -478,7 +512,7 @@ static int setup_modules(void)
         ladrc_pid_init(&mod.pid, &pidc) != LADRC_OK || ladrc_mixer_init(&mod.mixer, &bench_mixer_cfg) != LADRC_OK) {
         return -1;
     }
-    if (setup_gyro_filters(hp->dt_s) != 0) {
+    if (setup_gyro_filters(hp->dt_s) != 0 || setup_frames() != 0) {
         return -1;
     }
     ladrc_leso_reset(&mod.leso, in->ang[0][0]);
@@ -598,6 +632,8 @@ int main(void)
     print_module("ladrc_gyro_filter_set_rotor_hz_4x3", RUN_GF_CENTRES, ipc);
     print_module("gyro_filter_rpm_4x3_3ch", RUN_GF_RPM3, ipc);
     print_module("gyro_filter_rpm_4x3_lpf2_3ch", RUN_GF_FULL3, ipc);
+    print_module("attitude_step_ladrc_euler", RUN_ATT_EULER, ipc);
+    print_module("attitude_step_ladrc_quat", RUN_ATT_QUAT, ipc);
     for (int a = 0; a < LADRC_AXES; ++a) {
         print_hp_state("lone_hp_axis", &mod.lone[a].part.hp.est);
     }

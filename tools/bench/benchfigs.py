@@ -146,6 +146,12 @@ class Figures:
     CASES = ("PID", "LADRC", "LP-MLADRC", "HP-MLADRC", "HP-MLADRC-2tones", "HP-MLADRC-act", "CASCADED", "INDI",
              "LADRC-act", "RATE-ADRC", "HP-MLADRC-gyro")
 
+    def quaternion_frame(self):
+        """What the quaternion frame adds to LADRC's 3-axis attitude step (instructions per tick)."""
+        quat = float(self.module("attitude_step_ladrc_quat"))
+        euler = float(self.module("attitude_step_ladrc_euler"))
+        return f"{quat - euler:.2f}"
+
     def gated(self):
         text, data, _bss = self.size_totals()
         out = {
@@ -159,6 +165,7 @@ class Figures:
             "insn.worst.HP-MLADRC-lean": self.lean_worst(),
         }
         out["insn.gyro_filter.rpm_4x3_3ch"] = self.module("gyro_filter_rpm_4x3_3ch")
+        out["insn.frame.quaternion"] = self.quaternion_frame()
         for v in self.CASES:
             out["insn.axis." + v] = self.insn(v, 1)
             out["insn.3axes." + v] = self.insn(v, 2)

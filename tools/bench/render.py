@@ -306,6 +306,7 @@ def render(fig):
          "the actuator) on roll's recorded sample (LP's sample plus the fit's estimate); lone axes: the three "
          f"HP-MLADRC-gyro axes ({lone_g} instructions per tick for the three). Engaged: {gyro_state}.")
     gyro_filter_table(echo, fig, calc)
+    frame_table(echo, fig, calc)
     return "\n".join(out)
 
 
@@ -337,6 +338,20 @@ def gyro_filter_table(echo, fig, calc):
          "samples are the HP 3-axis case's measured rates. sizeof(ladrc_gyro_filter_t) "
          f"{fig.size_of('ladrc_gyro_filter_t')} B (6 channels, 4 fixed notches, 8 rotors x 4 harmonics and a low-pass "
          "at most).")
+
+
+def frame_table(echo, fig, calc):
+    """The quaternion frame's front end: LADRC's 3-axis attitude step in both frames."""
+    euler, quat = num(fig.module("attitude_step_ladrc_euler")), num(fig.module("attitude_step_ladrc_quat"))
+    echo()
+    echo("The attitude frames (Cortex-M4F, same build and method; LADRC's 3 axes, ladrc_attitude_step or "
+         "ladrc_attitude_step_quat, no mixer, on the HP 3-axis case's attitudes as quaternions):")
+    echo()
+    echo("| attitude step | instructions/tick |")
+    echo("|---|---:|")
+    echo(f"| Euler frame (per angle) | {calc(euler)} |")
+    echo(f"| quaternion frame (tilt priority, yaw weight 0.4) | {calc(quat)} |")
+    echo(f"| the quaternion front end | {calc(quat - euler)} |")
 
 
 def main() -> int:
