@@ -88,7 +88,14 @@ double margins_ctl_step(const ladrc_margins_controller_t *ctl, ctl_state_t *s, d
         ref[ctl->axis_index] = (ladrc_real_t)ref_rad;
         angle[ctl->axis_index] = (ladrc_real_t)angle_rad;
         rate[ctl->axis_index] = (ladrc_real_t)rate_rad_s;
-        (void)ladrc_attitude_step(&s->ctl.attitude, ref, angle, ctl->use_rate ? rate : NULL, torque);
+        if (ctl->attitude->frame == LADRC_FRAME_QUATERNION) {
+            /* the quaternion frame's own path: one axis turned from level */
+            const ladrc_quat_t q_ref = ladrc_quat_from_euler(ref[0], ref[1], ref[2]);
+            const ladrc_quat_t q_meas = ladrc_quat_from_euler(angle[0], angle[1], angle[2]);
+            (void)ladrc_attitude_step_quat(&s->ctl.attitude, &q_ref, &q_meas, ctl->use_rate ? rate : NULL, torque);
+        } else {
+            (void)ladrc_attitude_step(&s->ctl.attitude, ref, angle, ctl->use_rate ? rate : NULL, torque);
+        }
         return (double)torque[ctl->axis_index];
     }
     const ladrc_real_t rate = (ladrc_real_t)rate_rad_s;

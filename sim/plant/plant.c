@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 #include "plant.h"
+#include "rotation.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -12,8 +13,9 @@
 #define SIM_ALWAYS_INLINE inline
 #endif
 
-/* RK4 state: angles, rates, rotor w^2 (the last four only move with a lag). */
-enum { N_ANGLE = 0, N_RATE = 3, N_ROTOR = 6, N_STATE = 10 };
+/* RK4 state: angles, rates, rotor w^2 (these four only move with a lag),
+ * the attitude quaternion (only integrated for a rigid body). */
+enum { N_ANGLE = 0, N_RATE = 3, N_ROTOR = 6, N_QUAT = 10, N_STATE = 14 };
 
 void sim_vehicle_paper(sim_vehicle_t *v)
 {
@@ -35,6 +37,7 @@ void sim_vehicle_paper(sim_vehicle_t *v)
     v->battery_drop = 0.0;
     v->rotor_drag_N_s_m = 0.0;
     v->rotor_height_m = 0.0;
+    v->rigid_body = 0;
 }
 
 static double clamp_rotor(const sim_vehicle_t *v, double w2)
@@ -59,9 +62,22 @@ void sim_plant_init(sim_plant_t *p, const sim_vehicle_t *v)
         p->angle_rad[i] = 0.0;
         p->rate_rad_s[i] = 0.0;
     }
+    p->quat[0] = 1.0;
+    p->quat[1] = p->quat[2] = p->quat[3] = 0.0;
     const double hover = sim_hover_w2_rad2_s2(v->mass_kg, v->g_m_s2, v->thrust_coeff_N_s2);
     for (int i = 0; i < 4; ++i) {
         p->w2_rad2_s2[i] = clamp_rotor(v, hover);
+    }
+}
+
+void sim_plant_attitude(const sim_plant_t *p, double q[4])
+{
+    if (p->v.rigid_body) {
+        for (int i = 0; i < 4; ++i) {
+            q[i] = p->quat[i];
+        }
+    } else {
+        sim_quat_from_euler(p->angle_rad, q);
     }
 }
 
@@ -179,8 +195,9 @@ typedef struct {
  * at the stage time (the same for all lanes). Without lag the torque is the
  * command's, worked out once per step; with it, the rotors' w^2 are state
  * and the torque follows them, with the lag of spin-up or spin-down. */
-static SIM_ALWAYS_INLINE void derivative(const sim_vehicle_t *v, int lag, int n, lanes_t cmd[4], lanes_t cmd_torque[3],
-                                         lanes_t x[N_STATE], const double d[3], const air_t *air, lanes_t dx[N_STATE])
+static SIM_ALWAYS_INLINE void derivative(const sim_vehicle_t *v, int lag, int rigid, int n, lanes_t cmd[4],
+                                         lanes_t cmd_torque[3], lanes_t x[N_STATE], const double d[3], const air_t *air,
+                                         lanes_t dx[N_STATE])
 {
     const double tau_up = v->motor_tau_s;
     const double tau_down = v->motor_tau_down_s > 0.0 ? v->motor_tau_down_s : tau_up;
@@ -196,6 +213,9 @@ static SIM_ALWAYS_INLINE void derivative(const sim_vehicle_t *v, int lag, int n,
         } else {
             for (int i = 0; i < 3; ++i) {
                 torque[i] = cmd_torque[i][l];
+            }
+            for (int i = 0; rigid && i < 4; ++i) {
+                dx[N_ROTOR + i][l] = 0.0; /* integrated along with the quaternion, unmoved */
             }
         }
         if (air->wind_m_s != NULL) {
@@ -218,6 +238,15 @@ static SIM_ALWAYS_INLINE void derivative(const sim_vehicle_t *v, int lag, int n,
         body_accel(v, rate, torque, d, accel);
         for (int i = 0; i < 3; ++i) {
             dx[N_RATE + i][l] = accel[i];
+        }
+        if (rigid) {
+            const double q[4] = {x[N_QUAT][l], x[N_QUAT + 1][l], x[N_QUAT + 2][l], x[N_QUAT + 3][l]};
+            const double half_rate[4] = {0.0, 0.5 * rate[0], 0.5 * rate[1], 0.5 * rate[2]};
+            double dq[4];
+            sim_quat_mul(q, half_rate, dq);
+            for (int i = 0; i < 4; ++i) {
+                dx[N_QUAT + i][l] = dq[i];
+            }
         }
     }
 }
@@ -278,27 +307,27 @@ static SIM_ALWAYS_INLINE void stage_point(int m, int n, lanes_t x[N_STATE], doub
 /* One classical RK4 step of length h from time t0 + s h for every lane; the
  * rotor states only take part with a lag (without one their derivative is 0
  * and they stay put). */
-static SIM_ALWAYS_INLINE void rk4_substep(const sim_vehicle_t *v, int lag, int n, lanes_t cmd[4], lanes_t cmd_torque[3],
-                                          lanes_t rows[2][3], double t0, int s, double h, const source_t *src,
-                                          lanes_t x[N_STATE])
+static SIM_ALWAYS_INLINE void rk4_substep(const sim_vehicle_t *v, int lag, int rigid, int n, lanes_t cmd[4],
+                                          lanes_t cmd_torque[3], lanes_t rows[2][3], double t0, int s, double h,
+                                          const source_t *src, lanes_t x[N_STATE])
 {
-    const int m = lag ? N_STATE : N_ROTOR;
+    const int m = rigid ? N_STATE : (lag ? N_QUAT : N_ROTOR);
     lanes_t k1[N_STATE], k2[N_STATE], k3[N_STATE], k4[N_STATE], y[N_STATE];
     double d[3];
     air_t air = {.wind_m_s = NULL, .rows = rows};
     disturbance_at(src, s, 0, stage_time(t0, h, s, 0), d);
     air.wind_m_s = src->wind != NULL ? src->wind[3 * s] : NULL;
-    derivative(v, lag, n, cmd, cmd_torque, x, d, &air, k1);
+    derivative(v, lag, rigid, n, cmd, cmd_torque, x, d, &air, k1);
     stage_point(m, n, x, 0.5 * h, k1, y);
     disturbance_at(src, s, 1, stage_time(t0, h, s, 1), d); /* the same for k2 and k3 */
     air.wind_m_s = src->wind != NULL ? src->wind[3 * s + 1] : NULL;
-    derivative(v, lag, n, cmd, cmd_torque, y, d, &air, k2);
+    derivative(v, lag, rigid, n, cmd, cmd_torque, y, d, &air, k2);
     stage_point(m, n, x, 0.5 * h, k2, y);
-    derivative(v, lag, n, cmd, cmd_torque, y, d, &air, k3);
+    derivative(v, lag, rigid, n, cmd, cmd_torque, y, d, &air, k3);
     stage_point(m, n, x, h, k3, y);
     disturbance_at(src, s, 2, stage_time(t0, h, s, 2), d);
     air.wind_m_s = src->wind != NULL ? src->wind[3 * s + 2] : NULL;
-    derivative(v, lag, n, cmd, cmd_torque, y, d, &air, k4);
+    derivative(v, lag, rigid, n, cmd, cmd_torque, y, d, &air, k4);
     const double h6 = h / 6.0;
     for (int i = 0; i < m; ++i) {
         for (int l = 0; l < n; ++l) {
@@ -309,12 +338,22 @@ static SIM_ALWAYS_INLINE void rk4_substep(const sim_vehicle_t *v, int lag, int n
 
 /* The substeps of a step for lanes [0, w); lag and w are constants where it
  * is called. */
-static SIM_ALWAYS_INLINE void integrate(const sim_vehicle_t *v, int lag, int w, lanes_t cmd[4], lanes_t cmd_torque[3],
-                                        lanes_t rows[2][3], int n_sub, double t0, double h, const source_t *src,
-                                        lanes_t x[N_STATE])
+static SIM_ALWAYS_INLINE void integrate(const sim_vehicle_t *v, int lag, int rigid, int w, lanes_t cmd[4],
+                                        lanes_t cmd_torque[3], lanes_t rows[2][3], int n_sub, double t0, double h,
+                                        const source_t *src, lanes_t x[N_STATE])
 {
     for (int s = 0; s < n_sub; ++s) {
-        rk4_substep(v, lag, w, cmd, cmd_torque, rows, t0, s, h, src, x);
+        rk4_substep(v, lag, rigid, w, cmd, cmd_torque, rows, t0, s, h, src, x);
+        for (int l = 0; rigid && l < w; ++l) { /* back to unit norm after each substep */
+            double n2 = 0.0;
+            for (int i = 0; i < 4; ++i) {
+                n2 += x[N_QUAT + i][l] * x[N_QUAT + i][l];
+            }
+            const double inv = 1.0 / sqrt(n2);
+            for (int i = 0; i < 4; ++i) {
+                x[N_QUAT + i][l] *= inv;
+            }
+        }
     }
 }
 
@@ -326,10 +365,12 @@ static SIM_ALWAYS_INLINE void integrate_width(const sim_vehicle_t *v, int lag, i
 {
 #define LANES_CASE(W)                                                                                                  \
     case W:                                                                                                            \
-        if (lag) {                                                                                                     \
-            integrate(v, 1, W, cmd, cmd_torque, rows, n_sub, t0, h, src, x);                                           \
+        if (v->rigid_body) {                                                                                           \
+            integrate(v, lag, 1, W, cmd, cmd_torque, rows, n_sub, t0, h, src, x);                                      \
+        } else if (lag) {                                                                                              \
+            integrate(v, 1, 0, W, cmd, cmd_torque, rows, n_sub, t0, h, src, x);                                        \
         } else {                                                                                                       \
-            integrate(v, 0, W, cmd, cmd_torque, rows, n_sub, t0, h, src, x);                                           \
+            integrate(v, 0, 0, W, cmd, cmd_torque, rows, n_sub, t0, h, src, x);                                        \
         }                                                                                                              \
         break;
     switch (w) {
@@ -400,6 +441,9 @@ static void step_lanes(sim_plant_t *const plants[], const double (*w2_cmd)[4], i
             x[N_ANGLE + i][l] = p->angle_rad[i];
             x[N_RATE + i][l] = p->rate_rad_s[i];
         }
+        for (int i = 0; i < 4; ++i) {
+            x[N_QUAT + i][l] = p->quat[i];
+        }
     }
     /* The loops over the lanes run over a width known at compile time (the
      * next of 1, 2, 4, 6, 8), so that they unroll; lanes beyond n repeat
@@ -432,8 +476,18 @@ static void step_lanes(sim_plant_t *const plants[], const double (*w2_cmd)[4], i
     for (int l = 0; l < n; ++l) {
         sim_plant_t *p = plants[l];
         for (int i = 0; i < 3; ++i) {
-            p->angle_rad[i] = x[N_ANGLE + i][l];
             p->rate_rad_s[i] = x[N_RATE + i][l];
+        }
+        if (v->rigid_body) {
+            for (int i = 0; i < 4; ++i) {
+                p->quat[i] = x[N_QUAT + i][l];
+            }
+            const double previous[3] = {p->angle_rad[0], p->angle_rad[1], p->angle_rad[2]};
+            sim_quat_to_euler(p->quat, previous, p->angle_rad);
+        } else {
+            for (int i = 0; i < 3; ++i) {
+                p->angle_rad[i] = x[N_ANGLE + i][l];
+            }
         }
         for (int i = 0; i < 4; ++i) {
             p->w2_rad2_s2[i] = lag ? x[N_ROTOR + i][l] : cmd[i][l];
@@ -460,7 +514,8 @@ static int same_vehicle(const sim_vehicle_t *a, const sim_vehicle_t *b)
            same_bits(a->w2_min_rad2_s2, b->w2_min_rad2_s2) && same_bits(a->w2_max_rad2_s2, b->w2_max_rad2_s2) &&
            same_bits(a->motor_tau_s, b->motor_tau_s) && same_bits(a->motor_tau_down_s, b->motor_tau_down_s) &&
            same_bits(a->battery_life_s, b->battery_life_s) && same_bits(a->battery_drop, b->battery_drop) &&
-           same_bits(a->rotor_drag_N_s_m, b->rotor_drag_N_s_m) && same_bits(a->rotor_height_m, b->rotor_height_m);
+           same_bits(a->rotor_drag_N_s_m, b->rotor_drag_N_s_m) && same_bits(a->rotor_height_m, b->rotor_height_m) &&
+           a->rigid_body == b->rigid_body;
 }
 
 void sim_plant_step(sim_plant_t *p, const double w2_cmd[4], double dt_s, int substeps, sim_disturbance_fn dist,

@@ -13,7 +13,11 @@
  *   psi''   = (tau_z + (Jx - Jy) theta' phi' - kt psi'  ) / Jz + d_psi(t)
  * Index 0, 1, 2 = roll phi about body X, pitch theta about Y, yaw psi about
  * Z. As in the paper the Euler-angle rates are the body rates (no kinematic
- * transformation) and the angles are not wrapped. d(t) is an angular
+ * transformation) and the angles are not wrapped. With rigid_body the
+ * rates are body rates and the attitude a unit quaternion q (rotation.h),
+ * q' = q (0, rates) / 2, renormalised after each step: valid through any
+ * attitude; angle_rad then holds q's ZYX angles, roll and yaw continuous
+ * (moved by whole turns to within pi of the previous step's). d(t) is an angular
  * acceleration in rad/s^2 (docs/method.md section 1, [choice]). The altitude is not
  * simulated: the thrust holds it by construction (eq. 4).
  *
@@ -71,6 +75,7 @@ typedef struct {
     double battery_drop;                   /* fraction of the voltage lost over battery_life_s, [0, 1) */
     double rotor_drag_N_s_m;               /* k_d: in-plane rotor force per m/s of air per rad/s, >= 0 */
     double rotor_height_m;                 /* h: the hubs' (effective) height above the centre of mass */
+    int rigid_body;                        /* 1: quaternion kinematics (any attitude); 0: the paper's */
 } sim_vehicle_t;
 
 /* Disturbance angular accelerations (rad/s^2) of axes 0..2 at time t_s,
@@ -83,6 +88,7 @@ typedef struct {
     double angle_rad[3];
     double rate_rad_s[3];
     double w2_rad2_s2[4]; /* what the rotors give now (after limits and lag) */
+    double quat[4];       /* rigid_body: the attitude, body to world (else unused: sim_plant_attitude) */
 } sim_plant_t;
 
 /* The paper's vehicle (Table 1): m = 0.8 kg, J = (5.445e-3, 5.445e-3,
@@ -91,11 +97,15 @@ typedef struct {
  * unused then, are 0 and HUGE_VAL). */
 void sim_vehicle_paper(sim_vehicle_t *v);
 
-/* Copies *v; time 0, level, at rest, each rotor at the hover value
+/* Copies *v; time 0, level (quat 1 0 0 0), at rest, each rotor at the hover value
  * m g / (4 kL) (clamped to the limits when not ideal). The vehicle is not
  * validated: J_i > 0, kL > 0, and motor_tau_s >= 0 are the caller's to
  * ensure. */
 void sim_plant_init(sim_plant_t *p, const sim_vehicle_t *v);
+
+/* The attitude as a unit quaternion (rotation.h): the integrated one of a
+ * rigid body, else that of angle_rad (ZYX). */
+void sim_plant_attitude(const sim_plant_t *p, double q[4]);
 
 /* Each rotor's w^2 at hover, m g / (4 kL) (rad^2/s^2), unclamped. */
 static inline double sim_hover_w2_rad2_s2(double mass_kg, double g_m_s2, double thrust_coeff_N_s2)

@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 #include "sensor.h"
+#include "rotation.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -30,14 +31,16 @@ int sim_sensor_init(sim_sensor_t *s, double angle_std_rad, double rate_std_rad_s
             s->angle_hist[k][i] = 0.0;
             s->rate_hist[k][i] = 0.0;
         }
+        s->quat_hist[k][0] = 1.0;
+        s->quat_hist[k][1] = s->quat_hist[k][2] = s->quat_hist[k][3] = 0.0;
     }
     s->head = 0;
     s->primed = 0;
     return 0;
 }
 
-void sim_sensor_measure(sim_sensor_t *s, const double angle_rad[3], const double rate_rad_s[3], double angle_out[3],
-                        double rate_out[3])
+void sim_sensor_measure_quat(sim_sensor_t *s, const double angle_rad[3], const double quat[4],
+                             const double rate_rad_s[3], double angle_out[3], double rate_out[3], double quat_out[4])
 {
     const int len = s->delay_ticks + 1;
     if (!s->primed) {
@@ -46,12 +49,18 @@ void sim_sensor_measure(sim_sensor_t *s, const double angle_rad[3], const double
                 s->angle_hist[k][i] = angle_rad[i];
                 s->rate_hist[k][i] = rate_rad_s[i];
             }
+            for (int i = 0; quat != NULL && i < 4; ++i) {
+                s->quat_hist[k][i] = quat[i];
+            }
         }
         s->primed = 1;
     }
     for (int i = 0; i < 3; ++i) {
         s->angle_hist[s->head][i] = angle_rad[i];
         s->rate_hist[s->head][i] = rate_rad_s[i];
+    }
+    for (int i = 0; quat != NULL && i < 4; ++i) {
+        s->quat_hist[s->head][i] = quat[i];
     }
     /* the slot after the newest is the oldest: written delay_ticks calls ago */
     const int oldest = (s->head + 1) % len;
@@ -65,8 +74,21 @@ void sim_sensor_measure(sim_sensor_t *s, const double angle_rad[3], const double
             noise[i] = sim_rng_gauss(&s->rng);
         }
     }
+    double turn_rad[3];
     for (int i = 0; i < 3; ++i) {
         angle_out[i] = with_noise(s->angle_hist[oldest][i], s->angle_std_rad, noise[i]);
         rate_out[i] = with_noise(s->rate_hist[oldest][i], s->rate_std_rad_s, noise[3 + i]);
+        turn_rad[i] = s->angle_std_rad * noise[i];
     }
+    if (quat_out != NULL) {
+        double turn[4];
+        sim_quat_from_rotvec(turn_rad, turn);
+        sim_quat_mul(s->quat_hist[oldest], turn, quat_out);
+    }
+}
+
+void sim_sensor_measure(sim_sensor_t *s, const double angle_rad[3], const double rate_rad_s[3], double angle_out[3],
+                        double rate_out[3])
+{
+    sim_sensor_measure_quat(s, angle_rad, NULL, rate_rad_s, angle_out, rate_out, NULL);
 }

@@ -10,6 +10,10 @@
  * 0 passes the (delayed) truth exactly. When both are 0 nothing is drawn
  * (the generator is the sensor's own: no other output changes).
  *
+ * The attitude may also be given as a quaternion (rotation.h): its
+ * measurement is the delayed one turned by the angle noise as a small
+ * rotation in body axes, q exp(noise / 2), with the same deviates.
+ *
  * Delay: call k returns the truth of call k - delay_ticks; the first
  * delay_ticks calls return the truth of the first call (the sensor starts as
  * if the vehicle had been there forever).
@@ -30,6 +34,7 @@ typedef struct {
     /* ring of the last delay_ticks + 1 true values */
     double angle_hist[SIM_SENSOR_MAX_DELAY + 1][3];
     double rate_hist[SIM_SENSOR_MAX_DELAY + 1][3];
+    double quat_hist[SIM_SENSOR_MAX_DELAY + 1][4];
     int head;   /* slot the next call writes */
     int primed; /* 0 until the first call filled the ring */
 } sim_sensor_t;
@@ -41,5 +46,11 @@ int sim_sensor_init(sim_sensor_t *s, double angle_std_rad, double rate_std_rad_s
 /* One sample per control tick; angle_out and rate_out get the measurement. */
 void sim_sensor_measure(sim_sensor_t *s, const double angle_rad[3], const double rate_rad_s[3], double angle_out[3],
                         double rate_out[3]);
+
+/* The same with the attitude as a quaternion as well: quat_out gets its
+ * measurement (the same noise; the same outputs as sim_sensor_measure). A
+ * sensor is measured one way or the other throughout. */
+void sim_sensor_measure_quat(sim_sensor_t *s, const double angle_rad[3], const double quat[4],
+                             const double rate_rad_s[3], double angle_out[3], double rate_out[3], double quat_out[4]);
 
 #endif

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "plant/rotation.h"
 #include "runner_parts.h"
 #include "scenario/setup.h"
 
@@ -51,6 +52,25 @@ static double tracking_error_rad(double ref_rad, double angle_rad, int wrapped)
     return wrapped ? wrap_pi(e) : e;
 }
 
+/* The tracking error of every axis (rad): ref - angle per axis in the Euler
+ * frame (yaw's wrapped when the controller wraps it), the body-axis
+ * rotation vector from the attitude to the reference's (ZYX) in the
+ * quaternion frame. */
+static void attitude_error_rad(const sim_scenario_t *sc, const sim_plant_t *p, const double ref_rad[3], int wrap_yaw,
+                               double error_rad[3])
+{
+    if (sc->frame == LADRC_FRAME_QUATERNION) {
+        double q[4], q_ref[4];
+        sim_plant_attitude(p, q);
+        sim_quat_from_euler(ref_rad, q_ref);
+        sim_quat_error(q, q_ref, error_rad);
+        return;
+    }
+    for (int i = 0; i < 3; ++i) {
+        error_rad[i] = tracking_error_rad(ref_rad[i], p->angle_rad[i], i == 2 && wrap_yaw);
+    }
+}
+
 /* Divergence at t (runner.h): the plant's state non-finite, or the tracking
  * error ref - angle beyond the scenario's limit on an axis. Records the first
  * cause found in m and returns 1; 0 while the run is healthy. */
@@ -58,9 +78,10 @@ int runner_diverged(const sim_scenario_t *sc, const sim_plant_t *p, const double
                     sim_metrics_t *m)
 {
     int axis = -2;
-    double error_deg = NAN;
+    double error_deg = NAN, error_rad[3];
+    attitude_error_rad(sc, p, ref_rad, wrap_yaw, error_rad);
     for (int i = 0; i < 3 && axis == -2; ++i) {
-        const double e_deg = tracking_error_rad(ref_rad[i], p->angle_rad[i], i == 2 && wrap_yaw) * RAD2DEG;
+        const double e_deg = error_rad[i] * RAD2DEG;
         if (!isfinite(e_deg) || !isfinite(p->rate_rad_s[i])) {
             axis = i;
             m->finite = 0;
@@ -135,7 +156,7 @@ int runner_run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t 
     }
     /* A wrapping controller is told yaw as an attitude estimator gives it,
      * in (-pi, pi]; the plant's own yaw is continuous (not wrapped). */
-    r->wrap_yaw = sim_setup_wraps_yaw(sc, spec->ctrl);
+    r->wrap_yaw = sc->frame == LADRC_FRAME_EULER && sim_setup_wraps_yaw(sc, spec->ctrl);
     m->has_estimate = spec->ctrl != SIM_CTRL_PID && spec->ctrl != SIM_CTRL_CASCADED;
     m->finite = 1;
     m->diverged_axis = -1;
@@ -149,7 +170,17 @@ int runner_run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t 
 static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, double w2_cmd[4])
 {
     const sim_plant_t *plant = &r->plant;
-    sim_sensor_measure(&r->sensor, plant->angle_rad, plant->rate_rad_s, tk->meas_angle, tk->meas_rate);
+    const int quat_frame = sc->frame == LADRC_FRAME_QUATERNION;
+    double q_sensed[4], angle_sensed[3];
+    if (quat_frame) {
+        double q_true[4];
+        sim_plant_attitude(plant, q_true);
+        sim_sensor_measure_quat(&r->sensor, plant->angle_rad, q_true, plant->rate_rad_s, tk->meas_angle, tk->meas_rate,
+                                q_sensed);
+        memcpy(angle_sensed, tk->meas_angle, sizeof angle_sensed);
+    } else {
+        sim_sensor_measure(&r->sensor, plant->angle_rad, plant->rate_rad_s, tk->meas_angle, tk->meas_rate);
+    }
     if (r->rec != NULL && r->rec->has_rate) {
         runner_recorded_add(&r->rec->rate, &r->rate_cur, tk->t, tk->meas_rate);
     }
@@ -196,7 +227,29 @@ static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, 
         angle[i] = signal[3 + i];
         tk->ctrl_rate[i] = (double)rate[i];
     }
-    if (ladrc_attitude_step(&r->att, tk->ref, angle, sc->use_rate ? rate : NULL, tk->torque) != LADRC_FAULT_NONE) {
+    ladrc_fault_t faults;
+    if (quat_frame) {
+        /* what series and vibration added to the angles turns the sensed
+         * attitude as a small rotation in body axes */
+        double turn_rad[3], turn[4], q_meas[4], q_ref[4], tilt_rad[3];
+        for (int i = 0; i < 3; ++i) {
+            turn_rad[i] = tk->meas_angle[i] - angle_sensed[i];
+        }
+        sim_quat_from_rotvec(turn_rad, turn);
+        sim_quat_mul(q_sensed, turn, q_meas);
+        sim_quat_from_euler(tk->ref_rad, q_ref);
+        const ladrc_quat_t meas = {(ladrc_real_t)q_meas[0], (ladrc_real_t)q_meas[1], (ladrc_real_t)q_meas[2],
+                                   (ladrc_real_t)q_meas[3]};
+        const ladrc_quat_t ref = {(ladrc_real_t)q_ref[0], (ladrc_real_t)q_ref[1], (ladrc_real_t)q_ref[2],
+                                  (ladrc_real_t)q_ref[3]};
+        faults = ladrc_attitude_step_quat(&r->att, &ref, &meas, sc->use_rate ? rate : NULL, tk->torque);
+        sim_quat_to_euler(q_meas, NULL, tilt_rad); /* the mixer's tilt: cos(roll) cos(pitch) is R33 */
+        angle[0] = (ladrc_real_t)tilt_rad[0];
+        angle[1] = (ladrc_real_t)tilt_rad[1];
+    } else {
+        faults = ladrc_attitude_step(&r->att, tk->ref, angle, sc->use_rate ? rate : NULL, tk->torque);
+    }
+    if (faults != LADRC_FAULT_NONE) {
         r->spec->metrics->faults++;
     }
     ladrc_mixer_step(&r->mixer, ladrc_mixer_thrust_from_tilt(&r->mixer, angle[0], angle[1]), tk->torque, &tk->out);
@@ -217,6 +270,7 @@ static void run_truth(const sim_scenario_t *sc, const attitude_run_t *r, tick_t 
     }
     sim_plant_forces(&plant->v, plant->w2_rad2_s2, &thrust_actual, torque_actual);
     sim_plant_accel(plant, torque_actual, tk->dist, accel);
+    attitude_error_rad(sc, plant, tk->ref_rad, r->wrap_yaw, tk->err_rad);
     for (int i = 0; i < 3; ++i) {
         tk->f_true[i] = accel[i] - tk->applied[i] / (sc->inertia_kg_m2[i] * sc->inertia_scale[i]);
         ladrc_real_t a_est, r_est, d_est;
@@ -224,7 +278,6 @@ static void run_truth(const sim_scenario_t *sc, const attitude_run_t *r, tick_t 
         tk->f_est[i] = d_est;
         tk->z1[i] = a_est;
         tk->z2[i] = r_est;
-        tk->err_rad[i] = tracking_error_rad(tk->ref_rad[i], plant->angle_rad[i], i == 2 && r->wrap_yaw);
     }
 }
 

@@ -291,6 +291,31 @@ static void check_environment(parser_t *p)
     check_filter_init(p);
 }
 
+/* The quaternion frame's keys against the others. */
+static void check_frame(parser_t *p)
+{
+    const sim_scenario_t *sc = p->sc;
+    const loc_t *weight = checks_seen(p, SEC_REFERENCE, "yaw_weight");
+    if (sc->frame != LADRC_FRAME_QUATERNION) {
+        if (weight->line != 0) {
+            check_fail(p, weight->line, weight->key_col, "'yaw_weight' applies only with frame = quaternion");
+        }
+        return;
+    }
+    const loc_t *angle = checks_seen(p, SEC_FILTER, "angle");
+    if (sc->filter_angle && angle->line != 0) {
+        check_fail(p, angle->line, angle->value_col,
+                   "angle = yes needs [reference] frame = euler (the quaternion frame takes the attitude unfiltered)");
+    }
+    for (int id = 0; id < SIM_CTRL_COUNT; ++id) {
+        const loc_t *wrap = checks_seen(p, SEC_CONTROLLER + id, "wrap_yaw");
+        if (sc->overrides[id].wrap_yaw == 0 && wrap->line != 0) {
+            check_fail(p, wrap->line, wrap->value_col,
+                       "wrap_yaw = no needs [reference] frame = euler (the quaternion frame wraps every axis)");
+        }
+    }
+}
+
 static void check_differentiator(parser_t *p)
 {
     const sim_scenario_t *sc = p->sc;
@@ -761,6 +786,7 @@ void checks_run(parser_t *p)
     if (sc->kind == SIM_KIND_ATTITUDE) {
         check_rotors(p);
         check_environment(p);
+        check_frame(p);
         check_tuning(p);
     } else {
         check_differentiator(p);

@@ -128,6 +128,7 @@ typedef struct {
 
     /* [vehicle] (the plant) */
     double mass_kg, inertia_kg_m2[3], arm_m, thrust_coeff_N_s2, yaw_coeff_Nm_s2, rot_drag_Nm_s, g_m_s2;
+    int rigid_body; /* kinematics: 0 paper (angle rates = body rates), 1 rigid (quaternion) */
 
     /* [rotors] */
     int rotors_ideal; /* 1: no limits (paper); 0: limited */
@@ -178,6 +179,9 @@ typedef struct {
      * [disturbance] roll, pitch, yaw (rad/s^2) */
     sim_signal_t reference[3];
     sim_signal_t disturbance[3];
+    int frame;         /* [reference] frame: ladrc_attitude_frame_t; QUATERNION: the references are
+                          ZYX angles composed into an attitude, errors are body-axis rotation vectors */
+    double yaw_weight; /* [reference] yaw_weight: the quaternion frame's weight of yaw against tilt */
 
     /* [controller NAME] sections */
     sim_overrides_t overrides[SIM_CTRL_COUNT];

@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "ladrc/attitude.h"
 #include "ladrc/estimator.h"
 #include "ini.h"
 #include "ladrc/leso.h"
@@ -125,6 +126,11 @@ static const choice_t TUNE_MODES[] = {{.name = "none", .value = SIM_TUNE_NONE},
 static const choice_t HP_FREQ_MODES[] = {{.name = "known", .value = LADRC_HP_FREQ_KNOWN},
                                          {.name = "online", .value = LADRC_HP_FREQ_ONLINE},
                                          {.name = NULL, .value = 0}};
+static const choice_t KINEMATICS[] = {
+    {.name = "paper", .value = 0}, {.name = "rigid", .value = 1}, {.name = NULL, .value = 0}};
+static const choice_t FRAMES[] = {{.name = "euler", .value = LADRC_FRAME_EULER},
+                                  {.name = "quaternion", .value = LADRC_FRAME_QUATERNION},
+                                  {.name = NULL, .value = 0}};
 static const choice_t HP_SAMPLES[] = {{.name = "observer", .value = LADRC_HP_SAMPLE_OBSERVER},
                                       {.name = "gyro", .value = LADRC_HP_SAMPLE_GYRO},
                                       {.name = NULL, .value = 0}};
@@ -166,6 +172,7 @@ const key_def_t SCHEMA_KEYS[] = {
     {KEY(SEC_VEHICLE, "yaw_coeff_Nm_s2", V_REAL, SC(yaw_coeff_Nm_s2)), .range = R_POSITIVE},
     {KEY(SEC_VEHICLE, "rot_drag_Nm_s", V_REAL, SC(rot_drag_Nm_s)), .range = R_NONNEGATIVE},
     {KEY(SEC_VEHICLE, "g_m_s2", V_REAL, SC(g_m_s2)), .range = R_POSITIVE},
+    {KEY(SEC_VEHICLE, "kinematics", V_CHOICE, SC(rigid_body)), .choices = KINEMATICS},
 
     {KEY(SEC_ROTORS, "ideal", V_CHOICE, SC(rotors_ideal)), .choices = YES_NO},
     {KEY(SEC_ROTORS, "w2_min_rad2_s2", V_REAL, SC(w2_min_rad2_s2)), .range = R_NONNEGATIVE},
@@ -202,6 +209,8 @@ const key_def_t SCHEMA_KEYS[] = {
     {KEY(SEC_REFERENCE, "roll", V_SIGNAL, SC(reference[0]))},
     {KEY(SEC_REFERENCE, "pitch", V_SIGNAL, SC(reference[1]))},
     {KEY(SEC_REFERENCE, "yaw", V_SIGNAL, SC(reference[2]))},
+    {KEY(SEC_REFERENCE, "frame", V_CHOICE, SC(frame)), .choices = FRAMES},
+    {KEY(SEC_REFERENCE, "yaw_weight", V_REAL, SC(yaw_weight)), .range = R_WEIGHT},
 
     {KEY(SEC_DISTURBANCE, "roll", V_SIGNAL, SC(disturbance[0]))},
     {KEY(SEC_DISTURBANCE, "pitch", V_SIGNAL, SC(disturbance[1]))},
@@ -374,6 +383,8 @@ int schema_check_range(const key_def_t *def, double v, char *msg, size_t msg_len
         return (v > 0.0 && v <= 100.0) ? 0 : refuse(msg, msg_len, "%s must be > 0 and at most 100", def->name);
     case R_Q:
         return (v >= 0.1 && v <= 100.0) ? 0 : refuse(msg, msg_len, "%s must be between 0.1 and 100", def->name);
+    case R_WEIGHT:
+        return (v > 0.0 && v <= 1.0) ? 0 : refuse(msg, msg_len, "%s must be > 0 and at most 1", def->name);
     case R_HEADING:
         return (v >= 0.0 && v < 360.0 * DEG_TO_RAD) ? 0
                                                     : refuse(msg, msg_len, "%s must be >= 0 and below 360", def->name);
@@ -438,6 +449,8 @@ void schema_set_defaults(sim_scenario_t *sc)
         sc->disturbance[i].scale = 1.0;
     }
     sc->rot_drag_scale = 1.0;
+    sc->frame = LADRC_FRAME_EULER;
+    sc->yaw_weight = (double)LADRC_YAW_WEIGHT_DEFAULT;
 
     for (int i = 0; i < SIM_CTRL_COUNT; ++i) {
         sim_overrides_t *o = &sc->overrides[i];

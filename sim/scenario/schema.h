@@ -74,7 +74,8 @@ typedef enum {
     R_WIND,         /* 0 .. 50 m/s */
     R_ORDER,        /* > 0, <= 100 */
     R_Q,            /* 0.1 .. 100 */
-    R_HEADING       /* 0 <= v < 360 deg, in rad */
+    R_HEADING,      /* 0 <= v < 360 deg, in rad */
+    R_WEIGHT        /* 0 < v <= 1 */
 } range_t;
 
 typedef struct {

@@ -206,6 +206,10 @@ void sim_setup_attitude(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_
     if (o->coupling_feed >= 0) {
         cfg->coupling_feed = (uint8_t)o->coupling_feed;
     }
+    if (sc->frame == LADRC_FRAME_QUATERNION) {
+        ladrc_attitude_config_quaternion(cfg);
+        cfg->yaw_weight = (ladrc_real_t)sc->yaw_weight;
+    }
 }
 
 void sim_setup_mixer(const sim_scenario_t *sc, ladrc_mixer_config_t *cfg)
@@ -256,7 +260,8 @@ sim_vehicle_t sim_setup_vehicle(const sim_scenario_t *sc)
                              .battery_life_s = sc->battery_life_s,
                              .battery_drop = sc->battery_drop,
                              .rotor_drag_N_s_m = sc->rotor_drag_N_s_m,
-                             .rotor_height_m = sc->rotor_height_m};
+                             .rotor_height_m = sc->rotor_height_m,
+                             .rigid_body = sc->rigid_body};
     return v;
 }
 

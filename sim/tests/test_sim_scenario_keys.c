@@ -32,6 +32,9 @@ static void test_defaults_fill_every_key_not_given(void)
     assert_close(2e-6, sc.yaw_coeff_Nm_s2, "b");
     assert_close(0.09, sc.rot_drag_Nm_s, "kt");
     assert_close(9.81, sc.g_m_s2, "g");
+    TEST_ASSERT_EQUAL_INT(0, sc.rigid_body); /* the paper's kinematics, Euler frame */
+    TEST_ASSERT_EQUAL_INT(LADRC_FRAME_EULER, sc.frame);
+    assert_close(0.4, sc.yaw_weight, "yaw_weight");
 
     TEST_ASSERT_EQUAL_INT(1, sc.rotors_ideal);
     assert_close(0.0, sc.w2_min_rad2_s2, "w2_min");
@@ -101,6 +104,7 @@ static void test_every_attitude_key_lands_in_its_field_in_its_unit(void)
              "yaw_coeff_Nm_s2 = 4e-6\n"
              "rot_drag_Nm_s = 0\n"
              "g_m_s2 = 9.8\n"
+             "kinematics = rigid\n"
              "[rotors]\n"
              "ideal = no\n"
              "w2_min_rad2_s2 = 1e4\n"
@@ -119,6 +123,8 @@ static void test_every_attitude_key_lands_in_its_field_in_its_unit(void)
              "roll = 10\n"
              "pitch = -t\n"
              "yaw = 1 .. : 3\n"
+             "frame = quaternion\n"
+             "yaw_weight = 0.25\n"
              "[disturbance]\n"
              "roll = 2 .. 6 : 8\n"
              "pitch = 6\n"
@@ -149,6 +155,9 @@ static void test_every_attitude_key_lands_in_its_field_in_its_unit(void)
     assert_close(4e-6, sc.yaw_coeff_Nm_s2, "b");
     assert_close(0.0, sc.rot_drag_Nm_s, "kt");
     assert_close(9.8, sc.g_m_s2, "g");
+    TEST_ASSERT_EQUAL_INT(1, sc.rigid_body);
+    TEST_ASSERT_EQUAL_INT(LADRC_FRAME_QUATERNION, sc.frame);
+    assert_close(0.25, sc.yaw_weight, "yaw_weight");
 
     TEST_ASSERT_EQUAL_INT(0, sc.rotors_ideal);
     assert_close(1e4, sc.w2_min_rad2_s2, "w2_min");
