@@ -19,10 +19,14 @@ void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t
         cfg->inertia_kg_m2[i] = inertia_kg_m2[i];
     }
     cfg->axis[LADRC_YAW].wrap_angle = 1u; /* yaw lives on a circle, roll and pitch do not */
+    /* CASCADED as PX4: only the yaw setpoint's rate is fed forward. */
+    cfg->axis[LADRC_ROLL].cas_setpoint_ff = 0u;
+    cfg->axis[LADRC_PITCH].cas_setpoint_ff = 0u;
     cfg->drag_Nms = drag_Nms;
     cfg->coupling_feed = 1u;
     cfg->frame = LADRC_FRAME_EULER;
     cfg->yaw_weight = LADRC_YAW_WEIGHT_DEFAULT;
+    cfg->spool_up_s = LADRC_SPOOL_UP_DEFAULT_S;
 }
 
 void ladrc_attitude_config_quaternion(ladrc_attitude_config_t *cfg)
@@ -97,6 +101,9 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
     if (frame_status != LADRC_OK) {
         return frame_status;
     }
+    if (!ladrc_is_finite(cfg->spool_up_s) || cfg->spool_up_s < LADRC_R(0.0) || cfg->spool_up_s > LADRC_SPOOL_UP_MAX_S) {
+        return LADRC_ERR_SPOOL_UP_S;
+    }
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
         /* The feed mixes the axes' states tick by tick: one clock for all. */
         ladrc_status_t status = (cfg->axis[i].dt_s == cfg->axis[0].dt_s) ? LADRC_OK : LADRC_ERR_DT_S;
@@ -127,6 +134,20 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
     att->frame = (uint8_t)cfg->frame;
     att->yaw_weight = cfg->yaw_weight;
     att->has_attitude = 0u;
+    /* whole ticks, rounded up: a spool-up never ends early */
+    const ladrc_real_t spool_ticks = cfg->spool_up_s / cfg->axis[0].dt_s;
+    att->spool_up_ticks = (uint32_t)spool_ticks;
+    if ((ladrc_real_t)att->spool_up_ticks < spool_ticks) {
+        ++att->spool_up_ticks;
+    }
+    att->spool_ticks = 0u;
+    att->phase = LADRC_PHASE_FLYING; /* as it always flew */
+    att->landed = 0u;
+    att->restart = 0u;
+    att->engage = 0u;
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        att->engage_Nm[i] = LADRC_R(0.0);
+    }
     return LADRC_OK;
 }
 
@@ -221,6 +242,84 @@ static LADRC_FORCE_INLINE ladrc_fault_t step_axes(ladrc_attitude_t *att, const l
     return faults;
 }
 
+/* Every axis landed or not. */
+static void set_axes_landed(ladrc_attitude_t *att, uint8_t landed)
+{
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        ladrc_axis_set_landed(&att->axis[i], landed);
+    }
+}
+
+/* The restart of arming or engaging, on the tick's measurement; 0 (and the
+ * restart left pending) while an angle is bad, so that it waits for a good
+ * one. */
+static int restart_axes(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
+                        const ladrc_real_t angle_rad[LADRC_AXES], const ladrc_real_t *rate_rad_s)
+{
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        if (!ladrc_within(angle_rad[i], att->axis[i].angle_limit_rad)) {
+            return 0;
+        }
+    }
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        ladrc_axis_t *ax = &att->axis[i];
+        if (att->engage) {
+            ladrc_axis_engage(ax, ref_rad[i], angle_rad[i], (rate_rad_s != NULL) ? &rate_rad_s[i] : NULL,
+                              att->engage_Nm[i]);
+        } else {
+            ladrc_axis_reset(ax, angle_rad[i]);
+        }
+        att->feed_rad_s3[i] = LADRC_R(0.0);
+        ladrc_axis_set_disturbance_rate(ax, LADRC_R(0.0));
+        ladrc_axis_set_known_disturbance(ax, LADRC_R(0.0));
+    }
+    att->restart = 0u;
+    att->engage = 0u;
+    return 1;
+}
+
+/* The tick outside plain flight (disarmed, spooling up, a restart pending):
+ * out of line, off the flying tick's path. */
+LADRC_NOINLINE static ladrc_fault_t step_phases(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
+                                                const ladrc_real_t angle_rad[LADRC_AXES],
+                                                const ladrc_real_t *rate_rad_s, ladrc_real_t torque_Nm[LADRC_AXES])
+{
+    if (att->phase == LADRC_PHASE_DISARMED) {
+        for (unsigned i = 0; i < LADRC_AXES; ++i) {
+            torque_Nm[i] = LADRC_R(0.0);
+        }
+        return LADRC_FAULT_NONE;
+    }
+    if (att->restart) {
+        (void)restart_axes(att, ref_rad, angle_rad, rate_rad_s);
+    }
+    const ladrc_fault_t faults = step_axes(att, ref_rad, angle_rad, rate_rad_s, torque_Nm);
+    if (att->phase == LADRC_PHASE_SPOOL_UP) {
+        for (unsigned i = 0; i < LADRC_AXES; ++i) {
+            torque_Nm[i] = LADRC_R(0.0);
+        }
+        if (att->spool_ticks > 0u) {
+            --att->spool_ticks;
+        }
+        if (att->spool_ticks == 0u) {
+            att->phase = att->landed ? LADRC_PHASE_LANDED : LADRC_PHASE_FLYING;
+            set_axes_landed(att, att->landed);
+        }
+    }
+    return faults;
+}
+
+/* The tick of both frames, the phases' path only when not plainly flying. */
+static LADRC_FORCE_INLINE ladrc_fault_t tick(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
+                                             const ladrc_real_t angle_rad[LADRC_AXES], const ladrc_real_t *rate_rad_s,
+                                             ladrc_real_t torque_Nm[LADRC_AXES])
+{
+    if ((att->phase != LADRC_PHASE_FLYING && att->phase != LADRC_PHASE_LANDED) || att->restart) {
+        return step_phases(att, ref_rad, angle_rad, rate_rad_s, torque_Nm);
+    }
+    return step_axes(att, ref_rad, angle_rad, rate_rad_s, torque_Nm);
+}
+
 ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
                                   const ladrc_real_t angle_rad[LADRC_AXES], const ladrc_real_t *rate_rad_s,
                                   ladrc_real_t torque_Nm[LADRC_AXES])
@@ -229,7 +328,59 @@ ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_
     if (att->frame != LADRC_FRAME_EULER) {
         return LADRC_FAULT_STATE;
     }
-    return step_axes(att, ref_rad, angle_rad, rate_rad_s, torque_Nm);
+    return tick(att, ref_rad, angle_rad, rate_rad_s, torque_Nm);
+}
+
+void ladrc_attitude_arm(ladrc_attitude_t *att)
+{
+    LADRC_REQUIRE_VOID(att != NULL);
+    if (att->phase != LADRC_PHASE_DISARMED) {
+        return;
+    }
+    att->restart = 1u;
+    att->engage = 0u;
+    att->spool_ticks = att->spool_up_ticks;
+    if (att->spool_ticks > 0u) {
+        att->phase = LADRC_PHASE_SPOOL_UP;
+        set_axes_landed(att, 1u);
+    } else {
+        att->phase = att->landed ? LADRC_PHASE_LANDED : LADRC_PHASE_FLYING;
+        set_axes_landed(att, att->landed);
+    }
+}
+
+void ladrc_attitude_disarm(ladrc_attitude_t *att)
+{
+    LADRC_REQUIRE_VOID(att != NULL);
+    att->phase = LADRC_PHASE_DISARMED;
+    att->restart = 0u;
+    att->engage = 0u;
+}
+
+void ladrc_attitude_set_landed(ladrc_attitude_t *att, uint8_t landed)
+{
+    LADRC_REQUIRE_VOID(att != NULL);
+    att->landed = landed ? 1u : 0u;
+    if (att->phase == LADRC_PHASE_LANDED || att->phase == LADRC_PHASE_FLYING) {
+        att->phase = att->landed ? LADRC_PHASE_LANDED : LADRC_PHASE_FLYING;
+        set_axes_landed(att, att->landed);
+    }
+}
+
+ladrc_phase_t ladrc_attitude_get_phase(const ladrc_attitude_t *att)
+{
+    LADRC_REQUIRE(att != NULL, LADRC_PHASE_DISARMED);
+    return (ladrc_phase_t)att->phase;
+}
+
+void ladrc_attitude_engage(ladrc_attitude_t *att, const ladrc_real_t torque_Nm[LADRC_AXES])
+{
+    LADRC_REQUIRE_VOID(att != NULL && torque_Nm != NULL);
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        att->engage_Nm[i] = ladrc_is_finite(torque_Nm[i]) ? torque_Nm[i] : LADRC_R(0.0);
+    }
+    att->restart = 1u;
+    att->engage = 1u;
 }
 
 /* Moves the body angles by the rotation from the previous good attitude to
@@ -271,7 +422,7 @@ ladrc_fault_t ladrc_attitude_step_quat(ladrc_attitude_t *att, const ladrc_quat_t
         angle[i] = measured ? att->body_angle_rad[i] : LADRC_REAL_MAX;
         ref[i] = (measured && referenced) ? ladrc_wrap_pi(att->body_angle_rad[i] + error_rad[i]) : LADRC_REAL_MAX;
     }
-    return step_axes(att, ref, angle, rate_rad_s, torque_Nm);
+    return tick(att, ref, angle, rate_rad_s, torque_Nm);
 }
 
 void ladrc_attitude_set_applied(ladrc_attitude_t *att, const ladrc_real_t torque_Nm[LADRC_AXES])

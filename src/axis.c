@@ -39,6 +39,19 @@
 #define AXIS_DEFAULT_CAS_D_QUADRATURE LADRC_R(4.0)
 #define AXIS_DEFAULT_CAS_D_FILTER LADRC_R(8.0)
 #define AXIS_DEFAULT_CAS_RATE_MAX_RAD_S LADRC_R(3.8397243543875251) /* 220 deg/s */
+/* PX4's rate controller: the integrator relaxes to 0 at a rate error of
+ * 400 deg/s; the rate feed-forward gains (MC_ROLLRATE_FF, ...) default to 0. */
+#define AXIS_DEFAULT_CAS_I_RELAX_RAD_S LADRC_R(6.9813170079773183) /* 400 deg/s */
+/* INDI adaptation (off by default; these apply when turned on): a step of
+ * 0.005 follows a change over 200 excited ticks (0.2 s at 1 kHz of
+ * continuous excitation), slow enough to average the gyro noise that
+ * reaches domegadot_f; 50 rad/s^3 of expected jerk is a 0.05 rad/s^2 change
+ * of the commanded acceleration per millisecond, above that noise and far
+ * below a manoeuvre's; the bounds allow a factor 4 either way. */
+#define AXIS_DEFAULT_INDI_ADAPT_MU LADRC_R(0.005)
+#define AXIS_DEFAULT_INDI_ADAPT_JERK_MIN_RAD_S3 LADRC_R(50.0)
+#define AXIS_DEFAULT_INDI_ADAPT_MIN_RATIO LADRC_R(0.25)
+#define AXIS_DEFAULT_INDI_ADAPT_MAX_RATIO LADRC_R(4.0)
 /* RATE-ADRC (axis.h): CASCADED's rate crossover and attitude separation,
  * the rate observer's double pole four times above the crossover. */
 #define AXIS_DEFAULT_RADRC_RATE_BW_RAD_S AXIS_DEFAULT_CAS_RATE_BW_RAD_S
@@ -142,6 +155,14 @@ void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant
     cfg->cas_d_filter_tau_s = LADRC_R(1.0) / (AXIS_DEFAULT_CAS_D_FILTER * wr);
     cfg->cas_i_limit_Nm = unlimited;
     cfg->cas_rate_filter_tau_s = cfg->cas_d_filter_tau_s;
+    cfg->cas_i_relax_rad_s = AXIS_DEFAULT_CAS_I_RELAX_RAD_S;
+    cfg->cas_rate_ff = LADRC_R(0.0);
+    cfg->cas_setpoint_ff = 1u; /* the axis is unknown here: ladrc_attitude_config_default sets roll and pitch */
+    cfg->indi_adapt = 0u;
+    cfg->indi_adapt_mu = AXIS_DEFAULT_INDI_ADAPT_MU;
+    cfg->indi_adapt_jerk_min_rad_s3 = AXIS_DEFAULT_INDI_ADAPT_JERK_MIN_RAD_S3;
+    cfg->indi_adapt_min_ratio = AXIS_DEFAULT_INDI_ADAPT_MIN_RATIO;
+    cfg->indi_adapt_max_ratio = AXIS_DEFAULT_INDI_ADAPT_MAX_RATIO;
     const ladrc_real_t wr_adrc = AXIS_DEFAULT_RADRC_RATE_BW_RAD_S;
     cfg->radrc_kp_per_s = wr_adrc;
     cfg->radrc_att_kp_per_s = AXIS_DEFAULT_CAS_ATT_PER_BW * wr_adrc;
@@ -253,6 +274,7 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
     axis->wrap = cfg->wrap_angle;
     axis->f_rate_rad_s3 = LADRC_R(0.0);
     axis->f_known_rad_s2 = LADRC_R(0.0);
+    axis->landed = 0u;
     ladrc_axis_reset(axis, LADRC_R(0.0));
     return LADRC_OK;
 }
@@ -308,7 +330,7 @@ static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_re
             break;
         }
     }
-    axis->applied_Nm = axis->output_Nm;
+    axis->applied_Nm = axis->landed ? LADRC_R(0.0) : axis->output_Nm; /* landed: the ground takes it */
     axis->faults = faults;
     if ((faults & (LADRC_FAULT_INPUT | LADRC_FAULT_STATE)) != 0u) {
         axis->consecutive_faults++;
@@ -335,12 +357,64 @@ void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
         axis->applied_Nm = axis->output_Nm;
         return;
     }
-    axis->applied_Nm = torque_Nm;
+    axis->applied_Nm = axis->landed ? LADRC_R(0.0) : torque_Nm;
     switch (axis->variant) {
         CASE_PID(axis_pid_set_applied(axis, torque_Nm))
         CASE_CASCADED(axis_cascaded_set_applied(axis, torque_Nm))
     default:
         break; /* the others read applied_Nm */
+    }
+}
+
+void ladrc_axis_set_landed(ladrc_axis_t *axis, uint8_t landed)
+{
+    LADRC_REQUIRE_VOID(axis != NULL);
+    axis->landed = (landed != 0u) ? 1u : 0u;
+    if (axis->landed) {
+        axis->applied_Nm = LADRC_R(0.0);
+    }
+    switch (axis->variant) {
+        CASE_PID(ladrc_pid_set_landed(&axis->part.pid, axis->landed))
+        CASE_CASCADED(axis_cascaded_set_landed(axis, axis->landed))
+    default:
+        break; /* the others read applied_Nm */
+    }
+}
+
+void ladrc_axis_engage(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
+                       const ladrc_real_t *rate_rad_s, ladrc_real_t torque_Nm)
+{
+    LADRC_REQUIRE_VOID(axis != NULL);
+    ladrc_axis_reset(axis, angle_rad);
+    const ladrc_real_t angle = axis->ref.r; /* the angle reset took */
+    if (ladrc_within(ref_rad, axis->angle_limit_rad) && axis->variant != LADRC_VARIANT_PID) {
+        /* the shaper at rest on the reference (a wrapped one within a turn of the angle) */
+        const ladrc_real_t r = axis->wrap ? ladrc_unwrap_near(ref_rad, angle) : ref_rad;
+        axis_shaper_reset(axis, r);
+        axis->ref.r = r;
+    }
+    const int has_rate = rate_rad_s != NULL && ladrc_within(*rate_rad_s, axis->rate_limit_rad_s);
+    const ladrc_real_t rate = has_rate ? *rate_rad_s : LADRC_R(0.0);
+    const ladrc_real_t u = ladrc_within(torque_Nm, axis->applied_limit_Nm)
+                               ? ladrc_clamp(torque_Nm, axis->u_min_Nm, axis->u_max_Nm)
+                               : LADRC_R(0.0);
+    /* the torque has been acting, and is on its way */
+    for (unsigned k = 0u; k < LADRC_MAX_DELAY_TICKS; ++k) {
+        axis->act.delayed_Nm[k] = u;
+    }
+    axis->act.lag_Nm = u;
+    axis->output_Nm = u;
+    axis->applied_Nm = axis->landed ? LADRC_R(0.0) : u;
+    (void)angle; /* not every build has the variants that read them */
+    (void)has_rate;
+    switch (axis->variant) {
+        CASE_ADRC(axis_adrc_engage(axis, rate, u))
+        CASE_PID(ladrc_pid_engage(&axis->part.pid, angle, rate, u))
+        CASE_CASCADED(ladrc_cascaded_engage(&axis->part.cas, angle, rate, u))
+        CASE_INDI(ladrc_indi_engage(&axis->part.indi, angle, has_rate ? &rate : NULL, u))
+        CASE_RATE_ADRC(axis_rate_adrc_engage(axis, rate, u))
+    default:
+        break;
     }
 }
 
@@ -368,6 +442,20 @@ ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis)
         break;
     }
     return accel;
+}
+
+ladrc_real_t ladrc_axis_get_effectiveness(const ladrc_axis_t *axis)
+{
+    LADRC_REQUIRE(axis != NULL, LADRC_R(0.0));
+    ladrc_real_t g = LADRC_R(0.0); /* PID, CASCADED: no model */
+    switch (axis->variant) {
+        CASE_ADRC(g = axis->b0)
+        CASE_INDI(g = axis_indi_effectiveness(axis))
+        CASE_RATE_ADRC(g = axis->b0)
+    default:
+        break;
+    }
+    return g;
 }
 
 ladrc_real_t ladrc_axis_get_acting_Nm(const ladrc_axis_t *axis)

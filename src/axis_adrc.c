@@ -72,6 +72,25 @@ static inline ladrc_real_t estimator_sample(ladrc_axis_t *axis, ladrc_real_t rat
     return LADRC_R(0.0);
 }
 
+/* The part of f (rad/s^2) the estimator takes over after a restart: plain
+ * LADRC none, its LESO carries it all. */
+static ladrc_real_t estimator_preset(ladrc_axis_t *axis, ladrc_real_t f_rad_s2)
+{
+#if LADRC_WITH_LP_MLADRC
+    if (axis->variant == LADRC_VARIANT_LP_MLADRC) {
+        return axis_lp_preset(axis, f_rad_s2);
+    }
+#endif
+#if LADRC_WITH_HP_MLADRC
+    if (axis->variant == LADRC_VARIANT_HP_MLADRC) {
+        return axis_hp_preset(axis, f_rad_s2);
+    }
+#endif
+    (void)axis;
+    (void)f_rad_s2;
+    return LADRC_R(0.0);
+}
+
 /* plain LADRC: d_hat itself */
 static inline ladrc_real_t estimator_command(ladrc_axis_t *axis, ladrc_real_t d_hat)
 {
@@ -120,8 +139,32 @@ ladrc_status_t axis_adrc_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg
     }
     axis->kp = cfg->wc_rad_s * cfg->wc_rad_s;
     axis->kd = LADRC_R(2.0) * cfg->wc_rad_s;
+    axis_approach_init(axis, cfg, LADRC_R(0.5) * cfg->wc_rad_s); /* the law's closing rate is (wc / 2) e */
     axis->b0 = cfg->b0;
     return LADRC_OK;
+}
+
+/* The law's u0 = wc^2 e + 2 wc (r' - z2) + r'' (axis.h), on the axis's
+ * shaped reference and observer: the one formula of the step and of engage.
+ * It is 2 wc ((wc / 2) e + r' - z2) + r'': it asks to close the error at the
+ * rate (wc / 2) e, and beyond linear_rad at the braking rate instead
+ * (axis_shared.h), so that a large error is not overshot. */
+static inline ladrc_real_t law_u0(const ladrc_axis_t *axis, ladrc_real_t error_rad)
+{
+    if (ladrc_fabs(error_rad) > axis->linear_rad) {
+        return axis->kd * (axis_braking_rate(axis, error_rad) + axis->ref.dr - axis->leso.z2) + axis->ref.ddr;
+    }
+    return axis->kp * error_rad + axis->kd * (axis->ref.dr - axis->leso.z2) + axis->ref.ddr;
+}
+
+void axis_adrc_engage(ladrc_axis_t *axis, ladrc_real_t rate_rad_s, ladrc_real_t torque_Nm)
+{
+    axis->leso.z2 = rate_rad_s;
+    /* u = (u0 - z3 - d_hat) / b0 = torque at zero error: the disturbance
+     * f = u0 - b0 torque, shared between the estimator and z3 */
+    const ladrc_real_t f = law_u0(axis, LADRC_R(0.0)) - axis->b0 * torque_Nm;
+    axis->d_hat_rad_s2 = estimator_preset(axis, f);
+    axis->leso.z3 = f - axis->d_hat_rad_s2;
 }
 
 /* The observer at rest on angle_rad and the estimator from scratch. */
@@ -184,7 +227,7 @@ ladrc_fault_t axis_adrc_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_rea
         error_rad = ladrc_wrap_pi(error_rad);
         recentre(axis);
     }
-    const ladrc_real_t u0 = axis->kp * error_rad + axis->kd * (ref->dr - leso->z2) + ref->ddr;
+    const ladrc_real_t u0 = law_u0(axis, error_rad);
     /* With an actuator model the command carries d_hat advanced over it
      * (estimator.h); d_hat stays the observer's known input. */
     const ladrc_real_t compensation = axis->model ? estimator_command(axis, d_hat) : d_hat;

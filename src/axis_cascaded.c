@@ -16,7 +16,10 @@ ladrc_status_t axis_cascaded_init(ladrc_axis_t *axis, const ladrc_axis_config_t 
                                              .rate_limit_rad_s = cfg->rate_limit_rad_s,
                                              .u_min_Nm = axis_command_min(cfg),
                                              .u_max_Nm = axis_command_max(cfg),
-                                             .wrap_angle = cfg->wrap_angle};
+                                             .wrap_angle = cfg->wrap_angle,
+                                             .i_relax_rad_s = cfg->cas_i_relax_rad_s,
+                                             .rate_ff = cfg->cas_rate_ff,
+                                             .setpoint_ff = cfg->cas_setpoint_ff};
     axis->model = 0u; /* no observer to tell (axis.h) */
     ladrc_status_t status = ladrc_cascaded_init(&axis->part.cas, &cas_cfg);
     if (status == LADRC_OK) {
@@ -61,6 +64,11 @@ ladrc_fault_t axis_cascaded_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc
 void axis_cascaded_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
 {
     ladrc_cascaded_set_applied(&axis->part.cas, torque_Nm);
+}
+
+void axis_cascaded_set_landed(ladrc_axis_t *axis, uint8_t landed)
+{
+    ladrc_cascaded_set_landed(&axis->part.cas, landed);
 }
 
 /* No observer: the last measured angle, the rate its rate loop used, and 0. */

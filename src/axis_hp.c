@@ -71,6 +71,15 @@ void axis_hp_restart(ladrc_axis_t *axis)
     }
 }
 
+ladrc_real_t axis_hp_preset(ladrc_axis_t *axis, ladrc_real_t f_rad_s2)
+{
+    if (!axis->part.hp.gyro) {
+        return LADRC_R(0.0); /* the fit starts idle: the LESO carries f */
+    }
+    ladrc_lp_hand_over(&axis->part.hp.source.lp, f_rad_s2); /* the LP beside the fit at f at once */
+    return ladrc_lp_get_estimate(&axis->part.hp.source.lp);
+}
+
 ladrc_real_t axis_hp_command(ladrc_axis_t *axis)
 {
     const ladrc_real_t tones = ladrc_hp_get_command(&axis->part.hp.est);

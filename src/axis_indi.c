@@ -9,7 +9,12 @@ ladrc_status_t axis_indi_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg
                                           .b0 = cfg->b0,
                                           .att_kp_per_s = cfg->indi_att_kp_per_s,
                                           .rate_kp_per_s = cfg->indi_rate_kp_per_s,
-                                          .filter_rad_s = cfg->indi_filter_rad_s};
+                                          .filter_rad_s = cfg->indi_filter_rad_s,
+                                          .adapt = cfg->indi_adapt,
+                                          .adapt_mu = cfg->indi_adapt_mu,
+                                          .adapt_jerk_min_rad_s3 = cfg->indi_adapt_jerk_min_rad_s3,
+                                          .adapt_min_ratio = cfg->indi_adapt_min_ratio,
+                                          .adapt_max_ratio = cfg->indi_adapt_max_ratio};
     ladrc_status_t status = ladrc_indi_init(&axis->part.indi, &indi_cfg);
     if (status == LADRC_OK) {
         status = axis_actuator_init(axis, cfg);
@@ -61,10 +66,17 @@ ladrc_fault_t axis_indi_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_rea
     return faults;
 }
 
-/* b0 * acting torque + the filtered disturbance omegadot_f - b0 u_f. */
+/* G * acting torque + the filtered disturbance omegadot_f - G u_f (G = b0
+ * unless adapted). */
 ladrc_real_t axis_indi_accel(const ladrc_axis_t *axis)
 {
-    return axis->b0 * axis_acting_Nm(axis) + ladrc_indi_get_disturbance(&axis->part.indi);
+    const ladrc_indi_t *indi = &axis->part.indi;
+    return ladrc_indi_get_effectiveness(indi) * axis_acting_Nm(axis) + ladrc_indi_get_disturbance(indi);
+}
+
+ladrc_real_t axis_indi_effectiveness(const ladrc_axis_t *axis)
+{
+    return ladrc_indi_get_effectiveness(&axis->part.indi);
 }
 
 /* The last angle and rate measured with a rate, and omegadot_f - b0 u_f. */

@@ -25,8 +25,12 @@
  *               only when has_rate); sets output_Nm unless held; returns the
  *               tick's faults
  *   set_applied passes a plausible applied torque on (PID, CASCADED)
+ *   set_landed  passes the landed flag on (CASCADED; PID's is its module's)
+ *   engage      presets what stands for the disturbance after a reset
+ *               (LADRC family, RATE-ADRC; the baselines' modules do their own)
  *   estimate    ladrc_axis_get_estimate
  *   accel       ladrc_axis_get_accel (LADRC family, INDI, RATE-ADRC; the others: 0)
+ *   effectiveness ladrc_axis_get_effectiveness (INDI; the others read axis->b0)
  * The LADRC family (axis_adrc.c) shares one set for its three variants and
  * calls its estimator (axis_lp.c, axis_hp.c) through the axis_<est>_* hooks. */
 #define LADRC_WITH_ADRC_FAMILY (LADRC_WITH_LADRC || LADRC_WITH_LP_MLADRC || LADRC_WITH_HP_MLADRC)
@@ -42,6 +46,9 @@
 #if LADRC_WITH_ADRC_FAMILY
 AXIS_VARIANT_FUNCTIONS(adrc)
 ladrc_real_t axis_adrc_accel(const ladrc_axis_t *axis);
+/** Presets the observer after a reset (ladrc_axis_engage): z2 at the rate,
+ *  z3 so that the next command is torque_Nm. */
+void axis_adrc_engage(ladrc_axis_t *axis, ladrc_real_t rate_rad_s, ladrc_real_t torque_Nm);
 #endif
 #if LADRC_WITH_PID
 AXIS_VARIANT_FUNCTIONS(pid)
@@ -50,6 +57,7 @@ void axis_pid_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm);
 #if LADRC_WITH_CASCADED
 AXIS_VARIANT_FUNCTIONS(cascaded)
 void axis_cascaded_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm);
+void axis_cascaded_set_landed(ladrc_axis_t *axis, uint8_t landed);
 #endif
 #if LADRC_WITH_HP_MLADRC
 /** Moves an initialised HP-MLADRC axis's fit to tick phase (modulo the
@@ -60,15 +68,20 @@ void axis_hp_stagger(ladrc_axis_t *axis, unsigned phase);
 #if LADRC_WITH_INDI
 AXIS_VARIANT_FUNCTIONS(indi)
 ladrc_real_t axis_indi_accel(const ladrc_axis_t *axis);
+ladrc_real_t axis_indi_effectiveness(const ladrc_axis_t *axis);
 #endif
 #if LADRC_WITH_RATE_ADRC
 AXIS_VARIANT_FUNCTIONS(rate_adrc)
 ladrc_real_t axis_rate_adrc_accel(const ladrc_axis_t *axis);
+/** Presets the rate observer after a reset (ladrc_axis_engage): (rate, -b0 torque_Nm). */
+void axis_rate_adrc_engage(ladrc_axis_t *axis, ladrc_real_t rate_rad_s, ladrc_real_t torque_Nm);
 #endif
 
 /* The estimator of LP-MLADRC and HP-MLADRC, for axis_adrc.c:
  *   init     validates and starts it (the LESO is initialised before)
  *   restart  restarts it from scratch
+ *   preset   after a restart, takes over what it can of a known disturbance
+ *            (rad/s^2; ladrc_axis_engage) and returns that part
  *   command  the compensation the command carries with an actuator model
  * and, inline in src/axis_lp.h and src/axis_hp.h (the tick's deepest path
  * keeps no frame of its own for it),
@@ -76,6 +89,7 @@ ladrc_real_t axis_rate_adrc_accel(const ladrc_axis_t *axis);
 #define AXIS_ESTIMATOR_FUNCTIONS(e)                                                                                    \
     ladrc_status_t axis_##e##_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg);                                \
     void axis_##e##_restart(ladrc_axis_t *axis);                                                                       \
+    ladrc_real_t axis_##e##_preset(ladrc_axis_t *axis, ladrc_real_t f_rad_s2);                                         \
     ladrc_real_t axis_##e##_command(ladrc_axis_t *axis);
 
 #if LADRC_WITH_LP_MLADRC

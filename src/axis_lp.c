@@ -12,6 +12,12 @@ void axis_lp_restart(ladrc_axis_t *axis)
     ladrc_lp_reset(&axis->part.lp);
 }
 
+ladrc_real_t axis_lp_preset(ladrc_axis_t *axis, ladrc_real_t f_rad_s2)
+{
+    ladrc_lp_hand_over(&axis->part.lp, f_rad_s2); /* the estimate at f at once */
+    return ladrc_lp_get_estimate(&axis->part.lp);
+}
+
 ladrc_real_t axis_lp_command(ladrc_axis_t *axis)
 {
     ladrc_real_t command_rad_s2;

@@ -45,9 +45,17 @@ ladrc_status_t axis_rate_adrc_init(ladrc_axis_t *axis, const ladrc_axis_config_t
         axis->kd = LADRC_R(0.0);
         axis->part.radrc.k_att = cfg->radrc_att_kp_per_s;
         axis->part.radrc.rate_max_rad_s = cfg->radrc_rate_max_rad_s;
+        axis_approach_init(axis, cfg, cfg->radrc_att_kp_per_s);
         axis->part.radrc.acro = cfg->radrc_acro;
     }
     return status;
+}
+
+void axis_rate_adrc_engage(ladrc_axis_t *axis, ladrc_real_t rate_rad_s, ladrc_real_t torque_Nm)
+{
+    /* u = (k_w (w_ref - z1) + r'' - z2) / b0 with w_ref near the rate */
+    axis->part.radrc.eso.z1 = rate_rad_s;
+    axis->part.radrc.eso.z2 = -axis->b0 * torque_Nm;
 }
 
 void axis_rate_adrc_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
@@ -62,11 +70,14 @@ void axis_rate_adrc_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
 
 /* The attitude P loop's rate setpoint before its bound (rad/s): k_att times
  * the angle error (wrapped on a wrapped axis, whose r is then kept within a
- * turn as INDI keeps it) plus the shaped rate r'. */
+ * turn as INDI keeps it), beyond linear_rad the braking rate instead
+ * (axis_shared.h), plus the shaped rate r'. */
 static ladrc_real_t attitude_rate(ladrc_axis_t *axis, ladrc_real_t angle_rad)
 {
     const ladrc_real_t error_rad = axis_wrapped_error(axis, angle_rad);
-    return axis->part.radrc.k_att * error_rad + axis->ref.dr;
+    const ladrc_real_t closing = (ladrc_fabs(error_rad) > axis->linear_rad) ? axis_braking_rate(axis, error_rad)
+                                                                            : axis->part.radrc.k_att * error_rad;
+    return closing + axis->ref.dr;
 }
 
 /* The tick on a plausible ref and angle (axis.h): without a rate the command

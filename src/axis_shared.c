@@ -43,6 +43,20 @@ ladrc_status_t axis_shaper_init(ladrc_axis_t *axis, const ladrc_axis_config_t *c
     }
 }
 
+/* The share of the torque bounds' acceleration a large error is closed
+ * with (axis_shared.h): the other half stays for the disturbance rejected
+ * meanwhile. */
+#define AXIS_APPROACH_SHARE LADRC_R(0.5)
+
+void axis_approach_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg, ladrc_real_t k_per_s)
+{
+    const ladrc_real_t bound_Nm = (cfg->u_max_Nm < -cfg->u_min_Nm) ? cfg->u_max_Nm : -cfg->u_min_Nm;
+    const ladrc_real_t accel = AXIS_APPROACH_SHARE * ladrc_fabs(cfg->b0) * bound_Nm;
+    axis->approach_rad_s2 = LADRC_R(2.0) * accel;
+    axis->linear_rad =
+        ladrc_is_finite(accel) ? LADRC_R(2.0) * accel / (k_per_s * k_per_s) : (ladrc_real_t)INFINITY;
+}
+
 void axis_shaper_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
 {
 #if LADRC_WITH_TD

@@ -136,4 +136,19 @@ static inline ladrc_real_t axis_wrapped_error(ladrc_axis_t *axis, ladrc_real_t a
     return ladrc_wrap_pi(r - angle_rad);
 }
 
+/* A large error closed within the torque bounds. A P loop asks to close an
+ * error e at the rate k e; beyond linear_rad that is faster than the axis
+ * can brake from with half its torque bounds' acceleration a, and after any
+ * saturation it would overshoot. There the rate asked is sqrt(2 a |e|) =
+ * sqrt(approach_rad_s2 |e|), the fastest that still stops at the reference
+ * (equal to k e at linear_rad = 2 a / k^2). Infinite bounds: linear_rad
+ * infinite, the plain P loop. axis_approach_init sets both for gain k. */
+void axis_approach_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg, ladrc_real_t k_per_s);
+
+static inline ladrc_real_t axis_braking_rate(const ladrc_axis_t *axis, ladrc_real_t error_rad)
+{
+    const ladrc_real_t rate_rad_s = ladrc_sqrt(axis->approach_rad_s2 * ladrc_fabs(error_rad));
+    return (error_rad > LADRC_R(0.0)) ? rate_rad_s : -rate_rad_s;
+}
+
 #endif /* LADRC_AXIS_SHARED_H */

@@ -6,8 +6,9 @@
 #include <stddef.h>
 
 /* Largest size of one term of the command over the inputs' ranges: a
- * quarter of the real type's range, so that the sum of the P, I step and D
- * terms stays finite. */
+ * quarter of the real type's range, so that the P, D and feed-forward terms
+ * together stay within three quarters of it (and an integral step within a
+ * quarter). */
 #define CAS_TERM_MAX (LADRC_REAL_MAX * LADRC_R(0.25))
 /* att_kp dt below 1: the sampled attitude loop on an ideal rate loop (an
  * integrator held over each step) has its pole 1 - att_kp dt inside the
@@ -23,6 +24,22 @@ static int is_non_negative(ladrc_real_t x)
 static int term_fits(ladrc_real_t gain, ladrc_real_t size)
 {
     return gain <= CAS_TERM_MAX / size;
+}
+
+/* e_relax > 0 (INFINITY included) whose inverse is finite, so that the
+ * relax factor never multiplies 0 by infinity. NaN fails. */
+static int relax_is_valid(ladrc_real_t e_relax_rad_s)
+{
+    return e_relax_rad_s > LADRC_R(0.0) && ladrc_is_finite(LADRC_R(1.0) / e_relax_rad_s);
+}
+
+/* The relax factor g = max(0, 1 - (e / e_relax)^2) (cascaded.h); exactly 1
+ * when inv_relax is 0 (no relax). */
+static inline ladrc_real_t relax_factor(ladrc_real_t inv_relax_s_rad, ladrc_real_t rate_error_rad_s)
+{
+    const ladrc_real_t x = rate_error_rad_s * inv_relax_s_rad;
+    const ladrc_real_t g = LADRC_R(1.0) - x * x;
+    return (g > LADRC_R(0.0)) ? g : LADRC_R(0.0);
 }
 
 ladrc_status_t ladrc_cascaded_init(ladrc_cascaded_t *c, const ladrc_cascaded_config_t *cfg)
@@ -62,6 +79,16 @@ ladrc_status_t ladrc_cascaded_init(ladrc_cascaded_t *c, const ladrc_cascaded_con
     if (!(cfg->i_limit_Nm >= LADRC_R(0.0))) { /* INFINITY: no clamp; NaN fails */
         return LADRC_ERR_CAS_I_LIMIT_NM;
     }
+    if (!relax_is_valid(cfg->i_relax_rad_s)) {
+        return LADRC_ERR_CAS_I_RELAX;
+    }
+    /* |w_sp| <= rate_max. */
+    if (!(is_non_negative(cfg->rate_ff) && term_fits(cfg->rate_ff, cfg->rate_max_rad_s))) {
+        return LADRC_ERR_CAS_RATE_FF;
+    }
+    if (cfg->setpoint_ff > 1u) {
+        return LADRC_ERR_CAS_SETPOINT_FF;
+    }
     if (!(cfg->u_min_Nm < LADRC_R(0.0) && cfg->u_max_Nm > LADRC_R(0.0))) {
         return LADRC_ERR_U_LIMITS;
     }
@@ -75,6 +102,10 @@ ladrc_status_t ladrc_cascaded_init(ladrc_cascaded_t *c, const ladrc_cascaded_con
     c->rate_kp = cfg->rate_kp;
     c->rate_ki_dt = cfg->rate_ki * h;
     c->rate_kd = cfg->rate_kd;
+    c->inv_relax_s_rad = LADRC_R(1.0) / cfg->i_relax_rad_s; /* INFINITY: 0, no relax */
+    c->rate_ff = cfg->rate_ff;
+    c->setpoint_ff = cfg->setpoint_ff;
+    c->landed = 0u;
     c->d_alpha = h / (cfg->d_filter_tau_s + h);
     c->d_keep = LADRC_R(1.0) - c->d_alpha;
     c->w_alpha = h / (cfg->rate_filter_tau_s + h);
@@ -102,6 +133,17 @@ void ladrc_cascaded_reset(ladrc_cascaded_t *c, ladrc_real_t angle_rad)
     c->has_prev = 0u;
 }
 
+void ladrc_cascaded_engage(ladrc_cascaded_t *c, ladrc_real_t angle_rad, ladrc_real_t rate_rad_s, ladrc_real_t torque_Nm)
+{
+    LADRC_REQUIRE_VOID(c != NULL);
+    ladrc_cascaded_reset(c, angle_rad);
+    c->rate_rad_s = rate_rad_s;
+    c->integral_Nm = ladrc_clamp(torque_Nm, -c->i_limit_Nm, c->i_limit_Nm);
+    c->unclamped_Nm = torque_Nm;
+    c->output_Nm = torque_Nm;
+    c->applied_Nm = torque_Nm;
+}
+
 /* m_k: the measured rate, or the filtered difference of the angle. */
 static ladrc_real_t rate_of_tick(const ladrc_cascaded_t *c, ladrc_real_t angle_rad, const ladrc_real_t *rate_rad_s)
 {
@@ -127,17 +169,21 @@ ladrc_fault_t ladrc_cascaded_step(ladrc_cascaded_t *c, const ladrc_ref_t *ref, l
     if (c->wrap) {
         error_rad = ladrc_wrap_pi(error_rad);
     }
+    const ladrc_real_t setpoint_rate = c->setpoint_ff ? ref->dr : LADRC_R(0.0);
     const ladrc_real_t rate_sp =
-        ladrc_clamp(c->att_kp_per_s * error_rad + ref->dr, -c->rate_max_rad_s, c->rate_max_rad_s);
+        ladrc_clamp(c->att_kp_per_s * error_rad + setpoint_rate, -c->rate_max_rad_s, c->rate_max_rad_s);
     const ladrc_real_t m = rate_of_tick(c, angle_rad, rate_rad_s);
     const ladrc_real_t dm = c->has_prev ? (m - c->rate_rad_s) * c->inv_dt : LADRC_R(0.0);
     const ladrc_real_t accel = ladrc_lowpass_blend(c->d_keep, c->d_alpha, c->accel_rad_s2, dm);
     const ladrc_real_t rate_error = rate_sp - m;
+    /* The command takes the integral of the errors before this tick; this
+     * tick's error enters it afterwards (cascaded.h). */
+    const ladrc_real_t unclamped = c->rate_kp * rate_error + c->integral_Nm - c->rate_kd * accel + c->rate_ff * rate_sp;
     ladrc_real_t integral = c->integral_Nm;
-    if (!ladrc_integrator_frozen(rate_error, c->applied_Nm, c->unclamped_Nm)) {
-        integral = ladrc_clamp(integral + c->rate_ki_dt * rate_error, -c->i_limit_Nm, c->i_limit_Nm);
+    if (!c->landed && !ladrc_integrator_frozen(rate_error, c->applied_Nm, c->unclamped_Nm)) {
+        const ladrc_real_t step = relax_factor(c->inv_relax_s_rad, rate_error) * c->rate_ki_dt * rate_error;
+        integral = ladrc_clamp(integral + step, -c->i_limit_Nm, c->i_limit_Nm);
     }
-    const ladrc_real_t unclamped = c->rate_kp * rate_error + integral - c->rate_kd * accel;
     if (!ladrc_all_finite4(m, accel, integral, unclamped)) {
         *torque_Nm = c->output_Nm;
         return LADRC_FAULT_STATE;
@@ -159,4 +205,10 @@ void ladrc_cascaded_set_applied(ladrc_cascaded_t *c, ladrc_real_t applied_Nm)
 {
     LADRC_REQUIRE_VOID(c != NULL);
     c->applied_Nm = applied_Nm;
+}
+
+void ladrc_cascaded_set_landed(ladrc_cascaded_t *c, uint8_t landed)
+{
+    LADRC_REQUIRE_VOID(c != NULL);
+    c->landed = (landed != 0u) ? 1u : 0u;
 }

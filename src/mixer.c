@@ -107,6 +107,9 @@ ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *c
     if (!ladrc_is_positive(cfg->tilt_max_rad) || !(cfg->tilt_max_rad <= HALF_PI_BELOW)) {
         return LADRC_ERR_MIXER_TILT_MAX_RAD;
     }
+    if (!within(cfg->thrust_curve, LADRC_R(0.0), LADRC_R(1.0))) {
+        return LADRC_ERR_MIXER_THRUST_CURVE;
+    }
 
     mx->kL_N_s2 = cfg->kL_N_s2;
     mx->lkL_Nm_s2 = cfg->arm_m * cfg->kL_N_s2;
@@ -118,6 +121,7 @@ ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *c
     mx->cos_tilt_min = ladrc_cos(cfg->tilt_max_rad);
     mx->thrust_max_N = mx->weight_N / mx->cos_tilt_min;
     mx->mode = cfg->mode;
+    mx->thrust_curve = cfg->thrust_curve;
     if (cfg->mode == LADRC_MIXER_IDEAL) {
         /* No limits: every w^2 whose four-term sums cannot overflow is in range. */
         mx->w2_min_rad2_s2 = -LADRC_R(0.25) * LADRC_REAL_MAX;
@@ -130,6 +134,7 @@ ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *c
         mx->yaw_limit_Nm = LADRC_R(2.0) * cfg->b_Nm_s2 * range;
         mx->thrust_lo_N = LADRC_R(4.0) * cfg->kL_N_s2 * cfg->w2_min_rad2_s2;
         mx->thrust_hi_N = LADRC_R(4.0) * cfg->kL_N_s2 * cfg->w2_max_rad2_s2;
+        mx->command_per_w2 = LADRC_R(1.0) / cfg->w2_max_rad2_s2;
     }
     {
         /* Every derived constant finite and > 0 (thrust_lo_N lies in [0, thrust_hi_N]),
@@ -452,6 +457,20 @@ ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N, const l
         *out = mx->out;
     }
     return faults;
+}
+
+ladrc_real_t ladrc_mixer_command(const ladrc_mixer_t *mx, ladrc_real_t w2_rad2_s2)
+{
+    LADRC_REQUIRE(mx != NULL, LADRC_R(0.0));
+    if (mx->mode != LADRC_MIXER_SATURATE || !ladrc_is_finite(w2_rad2_s2)) {
+        return LADRC_R(0.0);
+    }
+    const ladrc_real_t f = ladrc_clamp(w2_rad2_s2 * mx->command_per_w2, LADRC_R(0.0), LADRC_R(1.0));
+    const ladrc_real_t k = mx->thrust_curve;
+    const ladrc_real_t lin = LADRC_R(1.0) - k;
+    const ladrc_real_t den = lin + ladrc_sqrt(lin * lin + LADRC_R(4.0) * k * f);
+    /* den > 0 unless k = 1 and f = 0, where the command is 0 */
+    return (den > LADRC_R(0.0)) ? ladrc_clamp(LADRC_R(2.0) * f / den, LADRC_R(0.0), LADRC_R(1.0)) : LADRC_R(0.0);
 }
 
 ladrc_fault_t ladrc_mixer_get_faults(const ladrc_mixer_t *mx)

@@ -139,7 +139,7 @@ static void update(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_t meas_rad
     d_rad_s = ladrc_lowpass_blend(pid->d_keep, pid->d_alpha, pid->d_filtered_rad_s, d_in_rad_s);
 
     integral_Nm = pid->integral_Nm;
-    if (!ladrc_integrator_frozen(error_rad, pid->applied_Nm, pid->unclamped_Nm)) {
+    if (!pid->landed && !ladrc_integrator_frozen(error_rad, pid->applied_Nm, pid->unclamped_Nm)) {
         integral_Nm = ladrc_clamp(integral_Nm + pid->ki_dt * error_rad, -pid->i_limit_Nm, pid->i_limit_Nm);
     }
     unclamped_Nm = pid->kp * error_rad + integral_Nm - pid->kd * d_rad_s;
@@ -167,6 +167,23 @@ ladrc_fault_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_
     update(pid, ref_rad, meas_rad, rate_rad_s);
     *torque_Nm = pid->output_Nm;
     return pid->faults;
+}
+
+void ladrc_pid_engage(ladrc_pid_t *pid, ladrc_real_t meas_rad, ladrc_real_t rate_rad_s, ladrc_real_t torque_Nm)
+{
+    LADRC_REQUIRE_VOID(pid != NULL);
+    ladrc_pid_reset(pid, meas_rad);
+    pid->d_filtered_rad_s = rate_rad_s;
+    pid->integral_Nm = ladrc_clamp(torque_Nm + pid->kd * rate_rad_s, -pid->i_limit_Nm, pid->i_limit_Nm);
+    pid->unclamped_Nm = torque_Nm;
+    pid->output_Nm = torque_Nm;
+    pid->applied_Nm = torque_Nm;
+}
+
+void ladrc_pid_set_landed(ladrc_pid_t *pid, uint8_t landed)
+{
+    LADRC_REQUIRE_VOID(pid != NULL);
+    pid->landed = (landed != 0u) ? 1u : 0u;
 }
 
 void ladrc_pid_set_applied(ladrc_pid_t *pid, ladrc_real_t applied_Nm)

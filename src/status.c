@@ -108,9 +108,21 @@
     X(LADRC_ERR_GYRO_RPM_HARMONICS, "gyro filter rpm_harmonics must be 1..LADRC_GYRO_FILTER_MAX_HARMONICS")            \
     X(LADRC_ERR_GYRO_RPM_MIN_HZ, "gyro filter rpm_min_hz must be finite and within (0, 0.45 / dt_s)")                  \
     X(LADRC_ERR_GYRO_RPM_FADE_HZ, "gyro filter rpm_fade_hz must be finite, >= 0, and 0 or with a finite inverse")      \
-    X(LADRC_ERR_GYRO_RPM_Q, "gyro filter rpm_q must be finite, > 0 and low enough for a stable notch")            \
+    X(LADRC_ERR_GYRO_RPM_Q, "gyro filter rpm_q must be finite, > 0 and low enough for a stable notch")                 \
     X(LADRC_ERR_ATTITUDE_FRAME, "attitude frame must be LADRC_FRAME_EULER or LADRC_FRAME_QUATERNION")                  \
-    X(LADRC_ERR_YAW_WEIGHT, "yaw_weight must be finite and in (0, 1]")
+    X(LADRC_ERR_YAW_WEIGHT, "yaw_weight must be finite and in (0, 1]")                                                 \
+    X(LADRC_ERR_CAS_I_RELAX, "cas_i_relax_rad_s must be > 0 with a finite inverse (INFINITY: no relax)")               \
+    X(LADRC_ERR_CAS_RATE_FF,                                                                                           \
+      "cas_rate_ff must be finite, >= 0 and its term finite for setpoints within +-cas_rate_max_rad_s")                \
+    X(LADRC_ERR_CAS_SETPOINT_FF, "cas_setpoint_ff must be 0 or 1")                                                     \
+    X(LADRC_ERR_INDI_ADAPT, "indi_adapt must be 0 or 1")                                                               \
+    X(LADRC_ERR_INDI_ADAPT_MU, "indi_adapt_mu must be finite and in (0, 1]")                                           \
+    X(LADRC_ERR_INDI_ADAPT_EXCITATION,                                                                                 \
+      "indi_adapt_jerk_min_rad_s3 must be finite, > 0 and give a torque threshold > 0")                                \
+    X(LADRC_ERR_INDI_ADAPT_MIN, "indi_adapt_min_ratio must be finite, in (0, 1] and |b0| times it >= 1e-3")            \
+    X(LADRC_ERR_INDI_ADAPT_MAX, "indi_adapt_max_ratio must be finite, >= 1 and |b0| times it <= 1e7")                 \
+    X(LADRC_ERR_SPOOL_UP_S, "spool_up_s must be finite and within [0, LADRC_SPOOL_UP_MAX_S]")                          \
+    X(LADRC_ERR_MIXER_THRUST_CURVE, "mixer thrust_curve must be finite and within [0, 1]")
 
 #ifdef LADRC_STATUS_NAMES_ONLY
 #define STATUS_TEXT(code, explanation) #code

@@ -279,6 +279,9 @@ static double fly(ladrc_variant_t variant, reference_fn ref_at, double duration_
          * bound (220 deg/s): a flip is flown at the acro bound */
         cfg.axis[i].cas_rate_max_rad_s = (ladrc_real_t)(FLIP_RATE_MAX_DEG_S * DEG);
         cfg.axis[i].radrc_rate_max_rad_s = (ladrc_real_t)(FLIP_RATE_MAX_DEG_S * DEG);
+        /* a flip's trajectory gives its rate on every axis: CASCADED feeds it
+         * forward as the others do (PX4's default feeds forward yaw only) */
+        cfg.axis[i].cas_setpoint_ff = 1u;
     }
     ladrc_attitude_t att;
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_attitude_init(&att, &cfg, NULL));

@@ -106,6 +106,16 @@ static const char *const status_names[LADRC_STATUS_COUNT] = {
     "LADRC_ERR_GYRO_RPM_Q",
     "LADRC_ERR_ATTITUDE_FRAME",
     "LADRC_ERR_YAW_WEIGHT",
+    "LADRC_ERR_CAS_I_RELAX",
+    "LADRC_ERR_CAS_RATE_FF",
+    "LADRC_ERR_CAS_SETPOINT_FF",
+    "LADRC_ERR_INDI_ADAPT",
+    "LADRC_ERR_INDI_ADAPT_MU",
+    "LADRC_ERR_INDI_ADAPT_EXCITATION",
+    "LADRC_ERR_INDI_ADAPT_MIN",
+    "LADRC_ERR_INDI_ADAPT_MAX",
+    "LADRC_ERR_SPOOL_UP_S",
+    "LADRC_ERR_MIXER_THRUST_CURVE",
 };
 
 /* 1 if text is name alone (names-only build) or name ": " and an explanation. */

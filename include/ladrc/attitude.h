@@ -64,8 +64,19 @@ typedef enum {
     LADRC_FRAME_QUATERNION = 1 /**< unit quaternions, tilt priority: ladrc_attitude_step_quat */
 } ladrc_attitude_frame_t;
 
+/** Flight phases (docs/method.md section 9), ladrc_attitude_get_phase. */
+typedef enum {
+    LADRC_PHASE_DISARMED = 0, /**< motors off: torque 0, the axes not stepped; arming starts them afresh */
+    LADRC_PHASE_SPOOL_UP = 1, /**< armed, the motors spinning up: torque 0 for spool_up_s, the axes as landed */
+    LADRC_PHASE_LANDED = 2,   /**< on the ground: the law acts, the ground takes the torque (ladrc_axis_set_landed) */
+    LADRC_PHASE_FLYING = 3    /**< in the air (init's phase) */
+} ladrc_phase_t;
+
 /** PX4's default weight of yaw against tilt (MC_YAW_WEIGHT). */
 #define LADRC_YAW_WEIGHT_DEFAULT LADRC_R(0.4)
+/** Default and longest spool-up (s): PX4 spools up over 1 s (COM_SPOOLUP_TIME), Betaflight at once. */
+#define LADRC_SPOOL_UP_DEFAULT_S LADRC_R(0.5)
+#define LADRC_SPOOL_UP_MAX_S LADRC_R(10.0)
 
 /** Attitude configuration (ladrc_attitude_init validates it); can live in flash. */
 typedef struct {
@@ -77,6 +88,8 @@ typedef struct {
                                                  on every axis */
     ladrc_real_t yaw_weight;                /**< QUATERNION: weight of yaw against tilt in the error,
                                                  (0, 1], 1 = none (quat.h) */
+    ladrc_real_t spool_up_s;                /**< time from arming to control (s), >= 0, at most
+                                                 LADRC_SPOOL_UP_MAX_S; default 0.5 */
 } ladrc_attitude_config_t;
 
 /** Attitude state; owned by the caller. */
@@ -90,6 +103,13 @@ typedef struct {
     uint8_t coupling_feed;                /**< of the config */
     uint8_t frame;                        /**< of the config */
     uint8_t has_attitude;                 /**< QUATERNION: 1 once a good attitude was measured */
+    uint8_t phase;                        /**< ladrc_phase_t */
+    uint8_t landed;                       /**< the caller's landed input */
+    uint8_t restart;                      /**< 1: the next tick restarts the axes on its measurement */
+    uint8_t engage;                       /**< 1: that restart takes over engage_Nm (bumpless) */
+    uint32_t spool_ticks;                 /**< SPOOL_UP: ticks left */
+    uint32_t spool_up_ticks;              /**< spool_up_s in ticks */
+    ladrc_real_t engage_Nm[LADRC_AXES];   /**< the other controller's last command (N m) */
     ladrc_axis_t axis[LADRC_AXES];        /**< roll, pitch, yaw */
 } ladrc_attitude_t;
 
@@ -97,7 +117,10 @@ typedef struct {
  * Fills cfg with ladrc_axis_config_default for each axis (inertia from
  * inertia_kg_m2), the given drag and the feed on, wrap_angle on for yaw
  * (off for roll and pitch), the Euler frame and yaw weight
- * LADRC_YAW_WEIGHT_DEFAULT. Copies without checking (init checks).
+ * LADRC_YAW_WEIGHT_DEFAULT. CASCADED's setpoint feed-forward as PX4 flies
+ * it: cas_setpoint_ff 0 on roll and pitch, 1 on yaw (PX4's attitude
+ * controller feeds forward the yaw setpoint's rate only; cascaded.h); the
+ * other variants do not read it. Copies without checking (init checks).
  * @param cfg            out: the config; cfg or inertia_kg_m2 NULL: nothing happens
  * @param variant        the variant of every axis
  * @param dt_s           control step (s)
@@ -128,6 +151,7 @@ void ladrc_attitude_config_quaternion(ladrc_attitude_config_t *cfg);
  * @retval LADRC_ERR_ATTITUDE_FRAME   frame not a ladrc_attitude_frame_t
  * @retval LADRC_ERR_YAW_WEIGHT       QUATERNION: yaw_weight not finite or not in (0, 1]
  * @retval LADRC_ERR_WRAP_ANGLE       QUATERNION: an axis (*failed_axis) with wrap_angle 0
+ * @retval LADRC_ERR_SPOOL_UP_S       spool_up_s not finite, < 0 or above LADRC_SPOOL_UP_MAX_S
  * @retval LADRC_ERR_DT_S             an axis's dt_s differs from roll's (or, from
  *                                    ladrc_axis_init, is invalid)
  * @return any other status of ladrc_axis_init, for axis *failed_axis
@@ -178,6 +202,48 @@ ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_
  */
 ladrc_fault_t ladrc_attitude_step_quat(ladrc_attitude_t *att, const ladrc_quat_t *q_ref, const ladrc_quat_t *q_meas,
                                        const ladrc_real_t *rate_rad_s, ladrc_real_t torque_Nm[LADRC_AXES]);
+
+/**
+ * Flight phases (docs/method.md section 9). Init leaves the controller
+ * FLYING and not landed, as it always flew. Disarming stops it (torque 0,
+ * the axes not stepped; in the quaternion frame the body angles still
+ * follow the attitude). Arming from DISARMED spools up for spool_up_s
+ * (torque 0), its first tick restarting every axis on its measurement, so
+ * nothing learnt in one flight reaches the next; then LANDED or FLYING, as
+ * the landed input says. While landed (and spooling up) every axis takes the
+ * ground's reaction: the torque it takes as acting is 0, so no observer or
+ * estimator learns the torque the ground resists, and the integrators hold
+ * (ladrc_axis_set_landed). Arming while armed, or disarming while disarmed,
+ * does nothing.
+ * @param att  the controller; NULL: nothing happens
+ */
+void ladrc_attitude_arm(ladrc_attitude_t *att);
+
+/** Disarms (above). @param att  the controller; NULL: nothing happens */
+void ladrc_attitude_disarm(ladrc_attitude_t *att);
+
+/** The landed input, from the caller's land detector (above): 1 on the
+ *  ground, 0 in the air; other values are taken as 1.
+ *  @param att     the controller; NULL: nothing happens
+ *  @param landed  1 or 0 */
+void ladrc_attitude_set_landed(ladrc_attitude_t *att, uint8_t landed);
+
+/** The phase. @param att  the controller; NULL: LADRC_PHASE_DISARMED
+ *  @return the ladrc_phase_t */
+ladrc_phase_t ladrc_attitude_get_phase(const ladrc_attitude_t *att);
+
+/**
+ * Bumpless engage from another controller: the next tick restarts every
+ * axis on its measurement (angle and, when given, rate) with torque_Nm as the
+ * command already acting, and the disturbance estimates (LADRC family,
+ * RATE-ADRC, INDI) or integrators (PID, CASCADED) preset so that its first
+ * command continues torque_Nm (ladrc_axis_engage). To hand back, give the
+ * other controller this one's last command the same way.
+ * @param att        the controller; att or torque_Nm NULL: nothing happens
+ * @param torque_Nm  the other controller's last roll, pitch, yaw command (N m);
+ *                   a non-finite one is taken as 0
+ */
+void ladrc_attitude_engage(ladrc_attitude_t *att, const ladrc_real_t torque_Nm[LADRC_AXES]);
 
 /** Reports the torques the mixer achieved to each axis (ladrc_axis_set_applied).
  *  @param att        the controller; att or torque_Nm NULL: nothing happens

@@ -93,7 +93,13 @@
  * CASCADED tick (cascaded.h): the shaper gives (r, r') from the raw
  * reference as for LADRC (TD by default), then the attitude P loop and the
  * rate PID give the torque. Without a measured rate (NULL) the rate is a
- * filtered difference of the measured angle (cas_rate_filter_tau_s).
+ * filtered difference of the measured angle (cas_rate_filter_tau_s). As
+ * PX4's rate controller: the integrator step shrinks with the rate error
+ * (cas_i_relax_rad_s), a feed-forward gain acts on the rate setpoint
+ * (cas_rate_ff), r' enters the setpoint only where cas_setpoint_ff is 1, and
+ * the integrator holds while landed (ladrc_axis_set_landed) and while the
+ * applied torque (ladrc_axis_set_applied) is limited in the direction it
+ * would push, the form PX4's allocator saturation flags take here.
  *
  * Faults: a reference or angle that is not finite or lies beyond
  * angle_limit_rad leaves every state untouched, holds the previous command
@@ -250,6 +256,21 @@ typedef struct {
     uint8_t radrc_acro;                /**< 1: the reference of ladrc_axis_step is a rate setpoint
                                            (rad/s, within rate_limit_rad_s), no attitude loop;
                                            0: an angle (rad) */
+    /* CASCADED, the rest of PX4's rate loop (cascaded.h) */
+    ladrc_real_t cas_i_relax_rad_s; /**< rate error at which the integrator step reaches 0
+                                         (rad/s), > 0, INFINITY = no relax; default 400 deg/s */
+    ladrc_real_t cas_rate_ff;       /**< rate-setpoint feed-forward gain (N m s/rad), >= 0
+                                         (PX4's MC_ROLLRATE_FF); default 0 */
+    uint8_t cas_setpoint_ff;        /**< 1: the shaped reference's rate r' is fed into the rate
+                                         setpoint, 0: not; default 1 (the attitude default: yaw
+                                         only, as PX4) */
+    /* INDI, adaptive effectiveness (indi.h); the adapt_ fields are read only with indi_adapt = 1 */
+    uint8_t indi_adapt;                      /**< 1: b0 adapted online by normalised LMS, 0: fixed;
+                                                  default 0 */
+    ladrc_real_t indi_adapt_mu;              /**< LMS step (dimensionless, per update), in (0, 1] */
+    ladrc_real_t indi_adapt_jerk_min_rad_s3; /**< least |b0 du_f| / dt_s (rad/s^3) that updates, > 0 */
+    ladrc_real_t indi_adapt_min_ratio;       /**< lower bound of the estimate / b0, in (0, 1] */
+    ladrc_real_t indi_adapt_max_ratio;       /**< upper bound of the estimate / b0, >= 1, finite */
 } ladrc_axis_config_t;
 
 /** Actuator model state of an axis (see above). */
@@ -274,6 +295,8 @@ typedef struct {
     /** @} */
     /** @{ */
     ladrc_real_t kp, kd, b0; /**< wc^2, 2 wc, b0 */
+    ladrc_real_t approach_rad_s2; /**< LADRC family, RATE-ADRC: 2 a, a half the torque bounds' acceleration (rad/s^2) */
+    ladrc_real_t linear_rad;      /**< LADRC family, RATE-ADRC: |error| up to which the loop is linear (rad) */
     /** @} */
     ladrc_leso_t leso; /**< the LADRC family (not PID, not INDI) */
 #if LADRC_WITH_TD || LADRC_WITH_LEVANT
@@ -334,6 +357,7 @@ typedef struct {
     uint8_t wrap;                /**< wrap_angle */
     ladrc_fault_t faults;        /**< flags of the latest tick */
     uint32_t consecutive_faults; /**< ticks in a row with LADRC_FAULT_INPUT or _STATE */
+    uint8_t landed;              /**< ladrc_axis_set_landed: the ground takes the torque */
 } ladrc_axis_t;
 
 /**
@@ -364,6 +388,14 @@ typedef struct {
  * k_att = k_rate = wc = 15 /s, the same TD shaping, and the acceleration
  * filter at the observer's bandwidth, w_f = wo = 75 rad/s (the observer's
  * noise budget; F d then follows d with the lag 2 / w_f = 27 ms).
+ * CASCADED's PX4 rate-loop fields follow PX4's defaults: integrator relax
+ * at 400 deg/s (cas_i_relax_rad_s = 6.98 rad/s), no rate feed-forward gain
+ * (cas_rate_ff = 0); cas_setpoint_ff = 1 (r' fed forward; this function
+ * does not know the axis: ladrc_attitude_config_default turns it off on
+ * roll and pitch, PX4 feeding forward the yaw rate only).
+ * INDI's adaptation is off (indi_adapt = 0: b0 fixed, today's law); when
+ * turned on: indi_adapt_mu = 0.005 (a time constant of 200 excited ticks,
+ * 0.2 s at 1 kHz), indi_adapt_jerk_min_rad_s3 = 50, bounds [b0 / 4, 4 b0].
  * RATE-ADRC, by CASCADED's loop shaping: the rate loop crosses over at
  * wr = 75 rad/s (radrc_kp_per_s = wr), its observer's double pole four
  * times above (wo_rad_s = 4 wr = 300 rad/s), k_att = wr / 4 = 18.75 /s (the
@@ -438,9 +470,18 @@ void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant
  * @retval LADRC_ERR_CAS_D_TAU_S         CASCADED: cas_d_filter_tau_s not finite or < 0
  * @retval LADRC_ERR_CAS_RATE_TAU_S      CASCADED: cas_rate_filter_tau_s not finite or < 0
  * @retval LADRC_ERR_CAS_I_LIMIT_NM      CASCADED: cas_i_limit_Nm NaN or < 0
+ * @retval LADRC_ERR_CAS_I_RELAX         CASCADED: cas_i_relax_rad_s NaN, not > 0 or with an
+ *                                       infinite inverse (INFINITY accepted: no relax)
+ * @retval LADRC_ERR_CAS_RATE_FF         CASCADED: cas_rate_ff (ladrc_cascaded_init)
+ * @retval LADRC_ERR_CAS_SETPOINT_FF     CASCADED: cas_setpoint_ff not 0 or 1
  * @retval LADRC_ERR_INDI_ATT_KP         INDI: indi_att_kp_per_s (ladrc_indi_init)
  * @retval LADRC_ERR_INDI_RATE_KP        INDI: indi_rate_kp_per_s (ladrc_indi_init)
  * @retval LADRC_ERR_INDI_FILTER         INDI: indi_filter_rad_s (ladrc_indi_init)
+ * @retval LADRC_ERR_INDI_ADAPT          INDI: indi_adapt not 0 or 1
+ * @retval LADRC_ERR_INDI_ADAPT_MU       INDI adapt: indi_adapt_mu (ladrc_indi_init)
+ * @retval LADRC_ERR_INDI_ADAPT_EXCITATION INDI adapt: indi_adapt_jerk_min_rad_s3 (ladrc_indi_init)
+ * @retval LADRC_ERR_INDI_ADAPT_MIN      INDI adapt: indi_adapt_min_ratio (ladrc_indi_init)
+ * @retval LADRC_ERR_INDI_ADAPT_MAX      INDI adapt: indi_adapt_max_ratio (ladrc_indi_init)
  */
 ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg);
 
@@ -477,6 +518,40 @@ ladrc_fault_t ladrc_axis_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_re
  *  @param torque_Nm  the applied torque (N m) */
 void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm);
 
+/** Whether the vehicle is landed (0: flying, anything else: landed); held
+ *  until set again, kept by ladrc_axis_reset, off after init. While landed
+ *  the ground takes the torque: the torque the axis takes as acting (its
+ *  applied torque, whatever set_applied reports) is 0, so that no observer,
+ *  estimator or INDI filter learns the torque the ground resists as a
+ *  disturbance; and the PID and CASCADED integrators hold their value (PX4
+ *  does not integrate on the ground; cascaded.h). The law still acts.
+ *  @param axis    the axis; NULL: nothing happens
+ *  @param landed  0: flying, else landed */
+void ladrc_axis_set_landed(ladrc_axis_t *axis, uint8_t landed);
+
+/**
+ * Bumpless engage from another controller: restarts the axis (as
+ * ladrc_axis_reset on angle_rad) as if torque_Nm had been acting for a
+ * while and the axis were at rate_rad_s: the actuator model's delayed and
+ * lagged torque at torque_Nm, the shaper at rest on the reference (so that
+ * it asks for no acceleration), and what stands for the disturbance preset
+ * so that the next tick continues the torque: the LESO's z2 at the rate and
+ * z3 at the law's output less b0 torque_Nm, RATE-ADRC's observer at (rate,
+ * -b0 torque_Nm), INDI's torque filter at it, the PID and CASCADED integrals
+ * at it. What the error asks for on top is the new controller's own answer
+ * (none while the other tracked the reference).
+ * @param axis        the axis; NULL: nothing happens
+ * @param ref_rad     the raw reference of the next tick (rad); non-finite or
+ *                    beyond the limit: the angle
+ * @param angle_rad   the measured angle (rad); non-finite or beyond the limit: 0
+ * @param rate_rad_s  the measured rate (rad/s), or NULL (non-finite or beyond
+ *                    the limit: none)
+ * @param torque_Nm   the other controller's last command (N m), clamped to the
+ *                    command bounds; non-finite or beyond applied_limit_Nm: 0
+ */
+void ladrc_axis_engage(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
+                       const ladrc_real_t *rate_rad_s, ladrc_real_t torque_Nm);
+
 /** Known rate of change of the total disturbance for the next tick (rad/s^3),
  *  the coupling feed; held until set again.
  *  @param axis         the axis; NULL: nothing happens
@@ -502,11 +577,18 @@ void ladrc_axis_set_known_disturbance(ladrc_axis_t *axis, ladrc_real_t f_known_r
 ladrc_real_t ladrc_axis_get_acting_Nm(const ladrc_axis_t *axis);
 
 /** Angular acceleration the model expects over the observer's next step
- *  (rad/s^2): b0 * acting torque + z3 + d_hat. PID, CASCADED: 0. INDI: b0 *
+ *  (rad/s^2): b0 * acting torque + z3 + d_hat. PID, CASCADED: 0. INDI: G *
  *  acting torque + its filtered disturbance. RATE-ADRC: b0 * acting torque + z2.
  *  @param axis  the axis; NULL: 0
  *  @return the expected acceleration (rad/s^2) */
 ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis);
+
+/** Control effectiveness the axis's law divides by (rad/s^2 per N m): INDI
+ *  its G (b0, or the online estimate with indi_adapt, indi.h); the LADRC
+ *  family and RATE-ADRC b0; PID and CASCADED have none: 0.
+ *  @param axis  the axis; NULL: 0
+ *  @return the effectiveness (rad/s^2 per N m) */
+ladrc_real_t ladrc_axis_get_effectiveness(const ladrc_axis_t *axis);
 
 /** Fault flags of the latest tick (and of set_applied since).
  *  @param axis  the axis
@@ -527,7 +609,8 @@ void ladrc_axis_get_reference(const ladrc_axis_t *axis, ladrc_ref_t *ref);
 /** Observer estimates: angle (rad), rate (rad/s), total disturbance z3 + d_hat
  *  (rad/s^2). PID has no observer: last measured angle, its filtered rate, and 0;
  *  CASCADED: last measured angle, the rate its rate loop used, and 0;
- *  INDI: last angle and rate measured with a rate, and omegadot_f - b0 u_f;
+ *  INDI: last angle and rate measured with a rate, and omegadot_f - G u_f
+ *  (G = b0 unless adapted, ladrc_axis_get_effectiveness);
  *  RATE-ADRC: last measured angle, its observer's z1 and z2.
  *  Any pointer NULL: nothing written.
  *  @param axis                the axis

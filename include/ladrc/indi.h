@@ -71,6 +71,36 @@
  * Saturation: u_f is the filtered torque that ACTED (what set_applied
  * reported), not the command, so a saturated actuator leaves nothing to wind
  * up: the next increment starts from what the actuator delivered.
+ *
+ * Adaptive effectiveness (adapt = 1; the "adaptive" of Smeur et al. 2016,
+ * who estimate G online by least mean squares on the filtered increments).
+ * The identity above holds for the TRUE effectiveness G: omegadot_f = G u_f
+ * + F d, so between two filter steps
+ *
+ *     domegadot_f = G du_f + d(F d),   du_f = u_f,k - u_f,k-1,
+ *                                      domegadot_f = omegadot_f,k - omegadot_f,k-1
+ *
+ * (the same filter F, so no extra lag enters). Each filter step whose
+ * increment is large enough, |du_f| >= du_min, moves the estimate by the
+ * normalised LMS step
+ *
+ *     G <- clamp(G - mu (G du_f - domegadot_f) du_f / (du_f^2 + du_min^2), G_lo, G_hi)
+ *
+ * then J = 1 / G serves the command and G the disturbance (omegadot_f - G
+ * u_f). Dividing by du_f^2 makes mu dimensionless and the step the same for
+ * any torque scale: one step moves G a fraction of about mu toward the
+ * sample's ratio domegadot_f / du_f, so G follows a change with a time
+ * constant of about dt_s / mu seconds of excitation (the du_min^2 term
+ * halves the weight of increments at the threshold and keeps the step
+ * finite). The threshold is an expected jerk: du_min = jerk_min dt_s / |b0|,
+ * so slow, noise-sized increments (hover) leave G alone. Bounds: G stays
+ * between min_ratio b0 and max_ratio b0 (its sign is b0's: a G through zero
+ * would invert the loop). No step is taken on a non-finite sample or one
+ * whose result is not finite (the estimate keeps its last good value). The
+ * estimate is unbiased while the disturbance is steady over the increments
+ * (d(F d) = 0); a disturbance that changes with the command biases it, as
+ * any closed-loop identification. adapt = 0: G = b0 always, the arithmetic
+ * of the fixed law bit for bit. A reset restarts G at b0.
  */
 #ifndef LADRC_INDI_H
 #define LADRC_INDI_H
@@ -91,6 +121,13 @@ typedef struct {
     ladrc_real_t att_kp_per_s;  /**< k_att (1/s), > 0, k_att dt_s < 1 */
     ladrc_real_t rate_kp_per_s; /**< k_rate (1/s), > 0, k_rate dt_s < 1 */
     ladrc_real_t filter_rad_s;  /**< w_f (rad/s), > 0, w_f dt_s <= pi */
+    uint8_t adapt;              /**< 1: G adapted online (see above), 0: G = b0 */
+    /* Read only when adapt is 1: */
+    ladrc_real_t adapt_mu;              /**< normalised LMS step mu (dimensionless), in (0, 1] */
+    ladrc_real_t adapt_jerk_min_rad_s3; /**< excitation threshold: least |b0 du_f| / dt_s
+                                             (rad/s^3) for a step, finite, > 0 */
+    ladrc_real_t adapt_min_ratio;       /**< G_lo / b0, in (0, 1], |b0| min_ratio >= 1e-3 */
+    ladrc_real_t adapt_max_ratio;       /**< G_hi / b0, >= 1, finite, |b0| max_ratio <= 1e7 */
 } ladrc_indi_config_t;
 
 /** Two first-order stages of the filter F (see above). */
@@ -103,8 +140,15 @@ typedef struct {
 /** INDI state; owned by the axis. */
 typedef struct {
     ladrc_real_t inv_dt; /**< 1 / h */
-    ladrc_real_t j;      /**< J = 1 / b0 (N m per rad/s^2) */
+    ladrc_real_t j;      /**< J = 1 / G (N m per rad/s^2) */
     ladrc_real_t b0;     /**< G of the config (rad/s^2 per N m) */
+    ladrc_real_t g;      /**< G in use (rad/s^2 per N m): b0, or its online estimate */
+    /** @{ */
+    ladrc_real_t g_lo, g_hi; /**< bounds of the estimate (rad/s^2 per N m), g_lo < g_hi */
+    /** @} */
+    ladrc_real_t mu;        /**< adapt_mu */
+    ladrc_real_t du_min_Nm; /**< excitation threshold on |du_f| (N m) */
+    ladrc_real_t du_min_sq; /**< du_min^2 (N^2 m^2) */
     /** @{ */
     ladrc_real_t k_att, k_rate; /**< k_att and k_rate of the config (1/s) */
     /** @} */
@@ -116,6 +160,7 @@ typedef struct {
     ladrc_real_t angle_rad;       /**< measured angle of the last tick with a rate */
     uint32_t gap_ticks;           /**< steps since then */
     uint8_t has_rate_last;        /**< 0 after a reset until a first rate */
+    uint8_t adapt;                /**< of the config */
 } ladrc_indi_t;
 
 /**
@@ -129,19 +174,39 @@ typedef struct {
  * @retval LADRC_ERR_INDI_ATT_KP  att_kp_per_s not finite, not > 0, or times dt_s >= 1
  * @retval LADRC_ERR_INDI_RATE_KP rate_kp_per_s not finite, not > 0, or times dt_s >= 1
  * @retval LADRC_ERR_INDI_FILTER  filter_rad_s not finite, not > 0, or times dt_s > LADRC_INDI_FILTER_WH_MAX
+ * @retval LADRC_ERR_INDI_ADAPT   adapt not 0 or 1
+ * @retval LADRC_ERR_INDI_ADAPT_MU         adapt: adapt_mu not finite or not in (0, 1]
+ * @retval LADRC_ERR_INDI_ADAPT_EXCITATION adapt: adapt_jerk_min_rad_s3 not finite, not > 0, or
+ *                                         its du_min = jerk_min dt_s / |b0| (or du_min^2) not > 0
+ * @retval LADRC_ERR_INDI_ADAPT_MIN        adapt: adapt_min_ratio not finite, not in (0, 1], or
+ *                                         |b0| min_ratio below 1e-3
+ * @retval LADRC_ERR_INDI_ADAPT_MAX        adapt: adapt_max_ratio not finite, below 1, or |b0|
+ *                                         max_ratio above 1e7
  */
 ladrc_status_t ladrc_indi_init(ladrc_indi_t *indi, const ladrc_indi_config_t *cfg);
 
-/** At rest: filters at 0, no previous rate, no gap.
+/** At rest: filters at 0, no previous rate, no gap, G = b0.
  *  @param indi  the controller; NULL: nothing happens */
 void ladrc_indi_reset(ladrc_indi_t *indi);
+
+/** Takes over from another controller: restarts as ladrc_indi_reset, as if
+ *  torque_Nm had been acting steadily at the measured rate (the torque
+ *  filter at it, the acceleration filter at rest), so that a first tick
+ *  asking for no acceleration continues torque_Nm.
+ *  @param indi        the controller; NULL: nothing happens
+ *  @param angle_rad   the measured angle (rad)
+ *  @param rate_rad_s  the measured rate (rad/s), or NULL without one
+ *  @param torque_Nm   the other controller's last command (N m) */
+void ladrc_indi_engage(ladrc_indi_t *indi, ladrc_real_t angle_rad, const ladrc_real_t *rate_rad_s,
+                       ladrc_real_t torque_Nm);
 
 /**
  * The measurement half of a tick: acting_Nm is the torque that acted over the
  * step just ended (ladrc_axis_get_acting_Nm). With a rate (rate_rad_s not NULL)
  * the filters take the step (or the gap's mean) and 1 is returned; without
  * one the step joins the gap and 0 is returned (hold the command). The first
- * rate after a reset only seeds: 1, filters unchanged. The inputs are not
+ * rate after a reset only seeds: 1, filters unchanged. With adapt, each
+ * filter step also takes the LMS step on G (see above). The inputs are not
  * checked for finiteness (the axis checks them first).
  * @param indi        the controller; NULL: 0, nothing changes
  * @param acting_Nm   the torque that acted over the step (N m)
@@ -162,10 +227,16 @@ int ladrc_indi_measure(ladrc_indi_t *indi, ladrc_real_t acting_Nm, const ladrc_r
 ladrc_real_t ladrc_indi_command(const ladrc_indi_t *indi, ladrc_real_t error_rad, ladrc_real_t ref_rate_rad_s,
                                 ladrc_real_t ref_accel_rad_s2, ladrc_real_t rate_rad_s);
 
-/** The disturbance INDI acts on, omegadot_f - b0 u_f = (F d).
+/** The disturbance INDI acts on, omegadot_f - G u_f = (F d).
  *  @param indi  the controller; NULL: 0
  *  @return the filtered disturbance (rad/s^2) */
 ladrc_real_t ladrc_indi_get_disturbance(const ladrc_indi_t *indi);
+
+/** The control effectiveness G in use: b0 without adaptation, else the
+ *  online estimate, always within [G_lo, G_hi].
+ *  @param indi  the controller; NULL: 0
+ *  @return G (rad/s^2 per N m) */
+ladrc_real_t ladrc_indi_get_effectiveness(const ladrc_indi_t *indi);
 
 #ifdef __cplusplus
 }

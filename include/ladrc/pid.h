@@ -15,7 +15,7 @@
  *
  * Frozen: the previous tick's applied torque was below the unclamped command
  * and e_k > 0, or above it and e_k < 0 (integrating would push further into
- * saturation). The applied torque is the clamped output unless the caller
+ * saturation); or the vehicle is landed (ladrc_pid_set_landed). The applied torque is the clamped output unless the caller
  * reports another one with ladrc_pid_set_applied (e.g. after the mixer).
  * The comparison is exact: a mixer that did not saturate must report the
  * command itself (or not call set_applied), not a recomputed torque with
@@ -71,6 +71,7 @@ typedef struct {
     ladrc_real_t applied_Nm;       /**< torque applied since the last step */
     uint8_t has_prev_meas;         /**< 0 until a first measurement was seen */
     uint8_t wrap;                  /**< wrap_angle */
+    uint8_t landed;                /**< 1: the integrator holds (ladrc_pid_set_landed) */
     ladrc_fault_t faults;          /**< flags of the latest step */
 } ladrc_pid_t;
 
@@ -154,6 +155,24 @@ ladrc_fault_t ladrc_pid_step(ladrc_pid_t *pid, ladrc_real_t ref_rad, ladrc_real_
  *  @param pid         the controller; NULL: nothing happens
  *  @param applied_Nm  the applied torque (N m) */
 void ladrc_pid_set_applied(ladrc_pid_t *pid, ladrc_real_t applied_Nm);
+
+/** Takes over from another controller: restarts as ladrc_pid_reset on
+ *  meas_rad, with the derivative filter at the measured rate and the
+ *  integral at torque_Nm + kd rate, so that a first step at zero error
+ *  continues torque_Nm (the error's P part is the PID's own).
+ *  @param pid        the controller; NULL: nothing happens
+ *  @param meas_rad   the measured angle (rad)
+ *  @param rate_rad_s the measured rate (rad/s); 0 without one
+ *  @param torque_Nm  the other controller's last command (N m), within the
+ *                    output bounds */
+void ladrc_pid_engage(ladrc_pid_t *pid, ladrc_real_t meas_rad, ladrc_real_t rate_rad_s, ladrc_real_t torque_Nm);
+
+/** Landed (1) or in the air (0): while landed the integrator holds, as the
+ *  flight stacks hold theirs on the ground; other values are taken as 1.
+ *  Kept by reset (the vehicle's, not the loop's); init clears it.
+ *  @param pid     the controller; NULL: nothing happens
+ *  @param landed  1 or 0 */
+void ladrc_pid_set_landed(ladrc_pid_t *pid, uint8_t landed);
 
 /** Fault flags of the latest step or set_applied call.
  *  @param pid  the controller

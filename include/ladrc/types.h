@@ -295,7 +295,17 @@ typedef enum {
     LADRC_ERR_GYRO_RPM_Q,         /**< gyro filter rpm_q not finite, not > 0, or too high to round stable */
     LADRC_ERR_ATTITUDE_FRAME,     /**< attitude frame not a ladrc_attitude_frame_t */
     LADRC_ERR_YAW_WEIGHT,         /**< attitude yaw_weight not finite or not in (0, 1] (quaternion frame) */
-    LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
+    LADRC_ERR_CAS_I_RELAX, /**< cas_i_relax_rad_s NaN, not > 0, or with an infinite inverse (INFINITY = no relax) */
+    LADRC_ERR_CAS_RATE_FF, /**< cas_rate_ff not finite, < 0, or its term beyond the real type for setpoints within +-cas_rate_max_rad_s */
+    LADRC_ERR_CAS_SETPOINT_FF, /**< cas_setpoint_ff not 0 or 1 */
+    LADRC_ERR_INDI_ADAPT,      /**< indi_adapt not 0 or 1 */
+    LADRC_ERR_INDI_ADAPT_MU,   /**< indi_adapt_mu not finite or not in (0, 1] */
+    LADRC_ERR_INDI_ADAPT_EXCITATION, /**< indi_adapt_jerk_min_rad_s3 not finite, not > 0, or its torque threshold jerk_min dt_s / |b0| vanishes */
+    LADRC_ERR_INDI_ADAPT_MIN, /**< indi_adapt_min_ratio not finite, not in (0, 1], or |b0| times it below 1e-3 */
+    LADRC_ERR_INDI_ADAPT_MAX, /**< indi_adapt_max_ratio not finite, below 1, or |b0| times it above 1e7 */
+    LADRC_ERR_SPOOL_UP_S,     /**< attitude spool_up_s not finite, < 0, or above LADRC_SPOOL_UP_MAX_S */
+    LADRC_ERR_MIXER_THRUST_CURVE, /**< mixer thrust_curve not finite or outside [0, 1] */
+    LADRC_STATUS_COUNT        /**< number of status codes (not a status) */
 } ladrc_status_t;
 
 /** Short, stable text for a status code.

@@ -149,16 +149,19 @@ class _Library:
                         ("cas_rate_ki", r), ("cas_rate_kd", r), ("cas_d_filter_tau_s", r),
                         ("cas_i_limit_Nm", r), ("cas_rate_filter_tau_s", r),
                         ("radrc_kp_per_s", r), ("radrc_att_kp_per_s", r), ("radrc_rate_max_rad_s", r),
-                        ("radrc_acro", u8)]
+                        ("radrc_acro", u8),
+                        ("cas_i_relax_rad_s", r), ("cas_rate_ff", r), ("cas_setpoint_ff", u8),
+                        ("indi_adapt", u8), ("indi_adapt_mu", r), ("indi_adapt_jerk_min_rad_s3", r),
+                        ("indi_adapt_min_ratio", r), ("indi_adapt_max_ratio", r)]
 
         class AttitudeConfig(ctypes.Structure):
             _fields_ = [("axis", AxisConfig * 3), ("inertia_kg_m2", r * 3), ("drag_Nms", r),
-                        ("coupling_feed", u8), ("frame", i), ("yaw_weight", r)]
+                        ("coupling_feed", u8), ("frame", i), ("yaw_weight", r), ("spool_up_s", r)]
 
         class MixerConfig(ctypes.Structure):
             _fields_ = [("kL_N_s2", r), ("arm_m", r), ("b_Nm_s2", r), ("mass_kg", r),
                         ("g_m_s2", r), ("w2_min_rad2_s2", r), ("w2_max_rad2_s2", r),
-                        ("tilt_max_rad", r), ("mode", i)]
+                        ("tilt_max_rad", r), ("mode", i), ("thrust_curve", r)]
 
         class MixerOutputC(ctypes.Structure):
             _fields_ = [("w2_rad2_s2", r * 4), ("w_rad_s", r * 4), ("thrust_N", r),
@@ -427,12 +430,12 @@ class MixerOutput:
 
 class Mixer:
     """The plus-frame mixer (ladrc_mixer_t). config: dict of every field of
-    ladrc_mixer_config_t; "mode" defaults to "SATURATE"."""
+    ladrc_mixer_config_t; "mode" defaults to "SATURATE", "thrust_curve" to 0."""
 
     def __init__(self, config):
         lib = self._lib = library()
         cfg = lib.MixerConfig()
-        config = {"mode": "SATURATE", **config}
+        config = {"mode": "SATURATE", "thrust_curve": 0.0, **config}
         missing = [f[0] for f in cfg._fields_ if f[0] not in config]
         if missing:
             raise KeyError(f"mixer config needs {missing}")

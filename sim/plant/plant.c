@@ -81,6 +81,15 @@ void sim_plant_attitude(const sim_plant_t *p, double q[4])
     }
 }
 
+void sim_plant_hold(sim_plant_t *p, const double angle_rad[3])
+{
+    for (int i = 0; i < 3; ++i) {
+        p->angle_rad[i] = angle_rad[i];
+        p->rate_rad_s[i] = 0.0;
+    }
+    sim_quat_from_euler(angle_rad, p->quat);
+}
+
 void sim_plant_forces(const sim_vehicle_t *v, const double w2[4], double *thrust_N, double torque_Nm[3])
 {
     const double kl = v->thrust_coeff_N_s2;

@@ -107,6 +107,10 @@ void sim_plant_init(sim_plant_t *p, const sim_vehicle_t *v);
  * rigid body, else that of angle_rad (ZYX). */
 void sim_plant_attitude(const sim_plant_t *p, double q[4]);
 
+/* The ground holds the vehicle: at rest on angle_rad (roll, pitch, yaw;
+ * the quaternion of a rigid body set from them), its rotors untouched. */
+void sim_plant_hold(sim_plant_t *p, const double angle_rad[3]);
+
 /* Each rotor's w^2 at hover, m g / (4 kL) (rad^2/s^2), unclamped. */
 static inline double sim_hover_w2_rad2_s2(double mass_kg, double g_m_s2, double thrust_coeff_N_s2)
 {

@@ -185,6 +185,10 @@ typedef struct {
     int out_at_last[3]; /* outside the band at the settle window's latest sample so far */
     int wrap_yaw;
     int flying; /* 1 until it diverges */
+    /* [phases]: the next event of the timeline, and where the vehicle is */
+    int next_event;
+    int armed, on_ground;
+    double ground_angle_rad[3]; /* the attitude the ground holds it at */
 } attitude_run_t;
 
 /* Sets a run up; 0, or -1 with the message in its spec (then it does not fly). */

@@ -157,12 +157,57 @@ int runner_run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t 
     /* A wrapping controller is told yaw as an attitude estimator gives it,
      * in (-pi, pi]; the plant's own yaw is continuous (not wrapped). */
     r->wrap_yaw = sc->frame == LADRC_FRAME_EULER && sim_setup_wraps_yaw(sc, spec->ctrl);
+    /* [phases]: disarmed until the first arm_s when one is given, on the
+     * ground until the first takeoff_s when one is given */
+    r->next_event = 0;
+    r->armed = sc->phase_n_arm == 0;
+    r->on_ground = sc->phase_n_takeoff > 0;
+    r->ground_angle_rad[0] = sc->ground_rad[0];
+    r->ground_angle_rad[1] = sc->ground_rad[1];
+    r->ground_angle_rad[2] = 0.0;
+    if (r->on_ground) {
+        sim_plant_hold(&r->plant, r->ground_angle_rad);
+        ladrc_attitude_set_landed(&r->att, (uint8_t)sc->landed_input);
+    }
+    if (!r->armed) {
+        ladrc_attitude_disarm(&r->att);
+    }
     m->has_estimate = spec->ctrl != SIM_CTRL_PID && spec->ctrl != SIM_CTRL_CASCADED;
     m->finite = 1;
     m->diverged_axis = -1;
     m->diverged_at_s = m->diverged_error_deg = NAN;
     r->flying = 1;
     return 0;
+}
+
+/* The thrust asked of the mixer (N): none while disarmed, the ground's share
+ * of the weight while armed on the ground, else what holds altitude at the
+ * measured tilt. */
+static ladrc_real_t run_thrust_N(const sim_scenario_t *sc, const attitude_run_t *r, const ladrc_real_t angle[3],
+                                 double t_s)
+{
+    if (!r->armed) {
+        return LADRC_R(0.0);
+    }
+    if (r->on_ground) {
+        return (ladrc_real_t)(sc->ground_thrust * sc->mass_kg * sc->g_m_s2);
+    }
+    if (sc->throttle.n_pieces > 0) { /* a fraction of the full thrust */
+        return (ladrc_real_t)(sim_signal_eval(&sc->throttle, t_s) * 4.0 * sc->thrust_coeff_N_s2 * sc->w2_max_rad2_s2);
+    }
+    return ladrc_mixer_thrust_from_tilt(&r->mixer, angle[0], angle[1]);
+}
+
+/* The w^2 a rotor gives for the mix's w2: itself, or with [rotors]
+ * thrust_curve through the ESC command the mixer gives (ladrc_mixer_command)
+ * and the rotors' own curve. */
+static double rotor_w2(const sim_scenario_t *sc, const attitude_run_t *r, ladrc_real_t w2)
+{
+    if (!isfinite(sc->thrust_curve)) {
+        return (double)w2;
+    }
+    const double c = (double)ladrc_mixer_command(&r->mixer, w2), k = sc->thrust_curve;
+    return sc->w2_max_rad2_s2 * ((1.0 - k) * c + k * c * c);
 }
 
 /* Measure, check, control and mix at tk->t; 0 when the run diverged (nothing
@@ -252,10 +297,10 @@ static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, 
     if (faults != LADRC_FAULT_NONE) {
         r->spec->metrics->faults++;
     }
-    ladrc_mixer_step(&r->mixer, ladrc_mixer_thrust_from_tilt(&r->mixer, angle[0], angle[1]), tk->torque, &tk->out);
+    ladrc_mixer_step(&r->mixer, run_thrust_N(sc, r, angle, tk->t), tk->torque, &tk->out);
     ladrc_attitude_set_applied(&r->att, tk->out.torque_Nm);
     for (int q = 0; q < 4; ++q) {
-        w2_cmd[q] = tk->out.w2_rad2_s2[q];
+        w2_cmd[q] = rotor_w2(sc, r, tk->out.w2_rad2_s2[q]);
     }
     return 1;
 }
@@ -313,6 +358,35 @@ static void run_metrics(const sim_scenario_t *sc, attitude_run_t *r, const tick_
     }
 }
 
+/* The [phases] events due by t, in order, and the ground's hold. */
+static void run_phases(const sim_scenario_t *sc, attitude_run_t *r, double t)
+{
+    for (; r->next_event < sc->n_events && sc->event_s[r->next_event] <= t; ++r->next_event) {
+        switch (sc->event_kind[r->next_event]) {
+        case SIM_EVENT_ARM:
+            r->armed = 1;
+            ladrc_attitude_arm(&r->att);
+            break;
+        case SIM_EVENT_TAKEOFF:
+            r->on_ground = 0;
+            ladrc_attitude_set_landed(&r->att, 0u);
+            break;
+        case SIM_EVENT_LAND: /* touch down level on the ground, heading kept */
+            r->on_ground = 1;
+            r->ground_angle_rad[2] = r->plant.angle_rad[2];
+            ladrc_attitude_set_landed(&r->att, (uint8_t)sc->landed_input);
+            break;
+        default:
+            r->armed = 0;
+            ladrc_attitude_disarm(&r->att);
+            break;
+        }
+    }
+    if (r->on_ground) {
+        sim_plant_hold(&r->plant, r->ground_angle_rad);
+    }
+}
+
 /* The controller's part of a tick at t: measure, check, control, record.
  * ref and dist are the references and disturbances at t. Returns 0 when the
  * run diverged (nothing of this instant or later is recorded), else 1. */
@@ -320,6 +394,9 @@ int runner_run_tick(const sim_scenario_t *sc, attitude_run_t *r, double t, const
                     const double ref_rad[3], const double dist[3], double w2_cmd[4])
 {
     tick_t tk;
+    if (sc->n_events > 0 || r->on_ground) {
+        run_phases(sc, r, t);
+    }
     tk.t = t;
     tk.ref = ref;
     tk.ref_rad = ref_rad;

@@ -177,15 +177,19 @@ static void check_run(parser_t *p)
 static void check_rotors(parser_t *p)
 {
     const sim_scenario_t *sc = p->sc;
-    const loc_t *min = checks_seen(p, SEC_ROTORS, "w2_min_rad2_s2");
     const loc_t *max = checks_seen(p, SEC_ROTORS, "w2_max_rad2_s2");
     if (sc->rotors_ideal) {
-        const loc_t *limit[2] = {min, max};
-        const char *name[2] = {"w2_min_rad2_s2", "w2_max_rad2_s2"};
-        for (int i = 0; i < 2; ++i) {
-            if (limit[i]->line != 0) {
-                check_fail(p, limit[i]->line, limit[i]->key_col, "'%s' does not apply with ideal = yes", name[i]);
+        /* the limits, and what needs a full thrust or an ESC command */
+        const char *name[4] = {"w2_min_rad2_s2", "w2_max_rad2_s2", "thrust_curve", "mixer_thrust_curve"};
+        for (int i = 0; i < 4; ++i) {
+            const loc_t *at = checks_seen(p, SEC_ROTORS, name[i]);
+            if (at->line != 0) {
+                check_fail(p, at->line, at->key_col, "'%s' does not apply with ideal = yes", name[i]);
             }
+        }
+        const loc_t *throttle = checks_seen(p, SEC_REFERENCE, "throttle");
+        if (throttle->line != 0) {
+            check_fail(p, throttle->line, throttle->key_col, "'throttle' needs [rotors] ideal = no (a full thrust)");
         }
         return;
     }
@@ -313,6 +317,95 @@ static void check_frame(parser_t *p)
             check_fail(p, wrap->line, wrap->value_col,
                        "wrap_yaw = no needs [reference] frame = euler (the quaternion frame wraps every axis)");
         }
+    }
+}
+
+/* One list of [phases]: strictly increasing, before the run's end. */
+static int check_event_list(parser_t *p, const char *key, const double *t_s, int n)
+{
+    const loc_t *at = checks_seen(p, SEC_PHASES, key);
+    for (int i = 0; i < n; ++i) {
+        if (i > 0 && !(t_s[i] > t_s[i - 1])) {
+            check_fail(p, at->line, at->value_col, "%s must increase", key);
+            return -1;
+        }
+        if (!(t_s[i] < p->sc->duration_s)) {
+            check_fail(p, at->line, at->value_col, "%s %g is not before the run's end (duration_s %g)", key, t_s[i],
+                       p->sc->duration_s);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* The [phases] timeline: the four lists merged in time order into sc's
+ * events, each event possible where it stands (arm and disarm on the
+ * ground, take-off armed, land in the air). */
+static void check_phases(parser_t *p)
+{
+    sim_scenario_t *sc = p->sc;
+    static const char *const keys[4] = {"arm_s", "takeoff_s", "land_s", "disarm_s"}; /* by sim_event_t */
+    const double *lists[4] = {sc->phase_arm_s, sc->phase_takeoff_s, sc->phase_land_s, sc->phase_disarm_s};
+    const int counts[4] = {sc->phase_n_arm, sc->phase_n_takeoff, sc->phase_n_land, sc->phase_n_disarm};
+    sc->n_events = 0;
+    for (int k = 0; k < 4; ++k) {
+        if (check_event_list(p, keys[k], lists[k], counts[k]) != 0) {
+            return;
+        }
+    }
+    if (sc->phase_n_takeoff == 0) {
+        static const char *const ground_keys[] = {"arm_s",         "disarm_s",    "land_s", "ground_deg",
+                                                  "ground_thrust", "landed_input"};
+        const loc_t *at = first_given(p, SEC_PHASES, ground_keys, 6);
+        if (at != NULL) {
+            check_fail(p, at->line, at->key_col, "the ground phases need takeoff_s (the vehicle starts on the ground)");
+        }
+        return;
+    }
+    int next[4] = {0, 0, 0, 0};
+    int armed = sc->phase_n_arm == 0, on_ground = 1;
+    for (int e = 0; e < sc->phase_n_arm + sc->phase_n_takeoff + sc->phase_n_land + sc->phase_n_disarm; ++e) {
+        int kind = -1;
+        for (int k = 0; k < 4; ++k) { /* the earliest event left; a tie is an error below */
+            if (next[k] < counts[k] && (kind < 0 || lists[k][next[k]] < lists[kind][next[kind]])) {
+                kind = k;
+            }
+        }
+        const double t = lists[kind][next[kind]];
+        const loc_t *at = checks_seen(p, SEC_PHASES, keys[kind]);
+        for (int k = 0; k < 4; ++k) {
+            if (k != kind && next[k] < counts[k] && lists[k][next[k]] == t) {
+                check_fail(p, at->line, at->value_col, "%s and %s both at %g s", keys[kind], keys[k], t);
+                return;
+            }
+        }
+        const char *why = NULL;
+        switch (kind) {
+        case SIM_EVENT_ARM:
+            why = armed ? "while armed" : NULL;
+            armed = 1;
+            break;
+        case SIM_EVENT_TAKEOFF:
+            why = !armed ? "while disarmed" : (!on_ground ? "in the air" : NULL);
+            on_ground = 0;
+            break;
+        case SIM_EVENT_LAND:
+            why = on_ground ? "on the ground" : NULL;
+            on_ground = 1;
+            break;
+        default:
+            why = !armed ? "while disarmed" : (!on_ground ? "in the air (land first)" : NULL);
+            armed = 0;
+            break;
+        }
+        if (why != NULL) {
+            check_fail(p, at->line, at->value_col, "%s %g %s", keys[kind], t, why);
+            return;
+        }
+        sc->event_s[sc->n_events] = t;
+        sc->event_kind[sc->n_events] = kind;
+        ++sc->n_events;
+        ++next[kind];
     }
 }
 
@@ -787,6 +880,7 @@ void checks_run(parser_t *p)
         check_rotors(p);
         check_environment(p);
         check_frame(p);
+        check_phases(p);
         check_tuning(p);
     } else {
         check_differentiator(p);

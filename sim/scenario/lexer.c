@@ -364,6 +364,8 @@ int lex_value(parser_t *p, int key, char *base, char *value, int key_col)
         return parse_reals(p, def, value, (double *)field, 1);
     case V_VEC3:
         return parse_reals(p, def, value, (double *)field, 3);
+    case V_VEC2:
+        return parse_reals(p, def, value, (double *)field, 2);
     case V_INT:
         return parse_int(p, def, value, (int *)field);
     case V_SEED:

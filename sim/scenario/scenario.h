@@ -32,6 +32,9 @@
 
 typedef enum { SIM_KIND_ATTITUDE = 0, SIM_KIND_DIFFERENTIATOR = 1 } sim_kind_t;
 
+/* The events of [phases], in the timeline sim_scenario_t holds. */
+typedef enum { SIM_EVENT_ARM = 0, SIM_EVENT_TAKEOFF = 1, SIM_EVENT_LAND = 2, SIM_EVENT_DISARM = 3 } sim_event_t;
+
 typedef enum {
     SIM_CTRL_HP_MLADRC = 0,
     SIM_CTRL_LP_MLADRC,
@@ -138,6 +141,9 @@ typedef struct {
     double rotor_drag_N_s_m;             /* NaN: derived from rotor_drag_per_s */
     double rotor_drag_per_s;             /* the vehicle's drag per unit mass at hover (1/s) */
     double rotor_height_m;               /* NaN: 0.25 arm_m */
+    double thrust_curve;                 /* the rotors' k in (1 - k) c + k c^2 of the ESC command c; NaN: none */
+    double mixer_thrust_curve;           /* the k the controllers' mixer inverts (ladrc_mixer_command) */
+    double battery_full_V;               /* the pack's voltage when full, for the controllers' schedule */
 
     /* [wind] */
     int turbulence;                           /* SIM_TURB_* (plant/turbulence.h) */
@@ -157,6 +163,17 @@ typedef struct {
     double filter_notch_hz[4], filter_notch_q;
     int filter_rpm_harmonics; /* 0: no RPM notch bank */
     double filter_rpm_q, filter_rpm_min_hz, filter_rpm_fade_hz;
+
+    /* [phases]: arming, the ground and take-off (docs/scenario-format.md); no arm_s:
+     * armed from the start; no takeoff_s: in the air from the start */
+    int phase_n_arm, phase_n_disarm, phase_n_takeoff, phase_n_land;
+    double phase_arm_s[4], phase_disarm_s[4], phase_takeoff_s[4], phase_land_s[4];
+    double ground_rad[2];  /* the ground's roll and pitch: the attitude the vehicle stands at */
+    double ground_thrust;  /* thrust while armed on the ground, as a fraction of the weight */
+    int landed_input;      /* 1: the controllers are told landed on the ground; 0: never (no land detector) */
+    int n_events;          /* the timeline the checks build from the four lists, in time order */
+    double event_s[16];
+    int event_kind[16];    /* SIM_EVENT_* */
 
     /* [sensors] */
     double angle_noise_std_rad; /* file gives angle_noise_var_deg2 or angle_noise_std_deg */
@@ -179,6 +196,8 @@ typedef struct {
      * [disturbance] roll, pitch, yaw (rad/s^2) */
     sim_signal_t reference[3];
     sim_signal_t disturbance[3];
+    sim_signal_t throttle; /* [reference] throttle: fraction of the full thrust 4 kL w2_max; no pieces: hold
+                              altitude (the weight over the tilt) */
     int frame;         /* [reference] frame: ladrc_attitude_frame_t; QUATERNION: the references are
                           ZYX angles composed into an attitude, errors are body-axis rotation vectors */
     double yaw_weight; /* [reference] yaw_weight: the quaternion frame's weight of yaw against tilt */

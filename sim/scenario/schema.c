@@ -35,6 +35,9 @@
 #define DEFAULT_FILTER_Q 5.0 /* the RPM filters' usual notch Q */
 #define DEFAULT_FILTER_RPM_MIN_HZ 20.0
 #define DEFAULT_FILTER_RPM_FADE_HZ 10.0
+/* Armed on the ground, a flight stack idles its motors at a low throttle. */
+#define DEFAULT_GROUND_THRUST 0.2
+#define DEFAULT_BATTERY_FULL_V 16.8 /* a charged 4S pack */
 
 /* ---- controllers ------------------------------------------------------------ */
 
@@ -65,11 +68,11 @@ int schema_controller_id(const char *name, size_t len)
 
 static const char *const SECTION_NAMES[SEC_CONTROLLER + 1] = {
     "run",     "vehicle",        "rotors", "sensors",   "mismatch", "reference", "disturbance",
-    "metrics", "differentiator", "wind",   "vibration", "filter",   "controller"};
+    "metrics", "differentiator", "wind",   "vibration", "filter",   "phases",    "controller"};
 
 static const int SECTION_KIND[SEC_CONTROLLER + 1] = {
     FOR_BOTH,     FOR_ATTITUDE,       FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE,
-    FOR_ATTITUDE, FOR_DIFFERENTIATOR, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE};
+    FOR_ATTITUDE, FOR_DIFFERENTIATOR, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE};
 
 int schema_find_section(const char *name, size_t len)
 {
@@ -187,6 +190,9 @@ const key_def_t SCHEMA_KEYS[] = {
     {KEY(SEC_ROTORS, "rotor_drag_per_s", V_REAL, SC(rotor_drag_per_s)), .range = R_NONNEGATIVE,
      .twin = "rotor_drag_N_s_m"},
     {KEY(SEC_ROTORS, "rotor_height_m", V_REAL, SC(rotor_height_m)), .range = R_NONNEGATIVE},
+    {KEY(SEC_ROTORS, "thrust_curve", V_REAL, SC(thrust_curve)), .range = R_UNIT},
+    {KEY(SEC_ROTORS, "mixer_thrust_curve", V_REAL, SC(mixer_thrust_curve)), .range = R_UNIT},
+    {KEY(SEC_ROTORS, "battery_full_V", V_REAL, SC(battery_full_V)), .range = R_POSITIVE},
 
     {KEY(SEC_SENSORS, "angle_noise_std_deg", V_REAL, SC(angle_noise_std_rad)), .range = R_NONNEGATIVE,
      .scale = DEG_TO_RAD, .twin = "angle_noise_var_deg2"},
@@ -209,6 +215,7 @@ const key_def_t SCHEMA_KEYS[] = {
     {KEY(SEC_REFERENCE, "roll", V_SIGNAL, SC(reference[0]))},
     {KEY(SEC_REFERENCE, "pitch", V_SIGNAL, SC(reference[1]))},
     {KEY(SEC_REFERENCE, "yaw", V_SIGNAL, SC(reference[2]))},
+    {KEY(SEC_REFERENCE, "throttle", V_SIGNAL, SC(throttle))},
     {KEY(SEC_REFERENCE, "frame", V_CHOICE, SC(frame)), .choices = FRAMES},
     {KEY(SEC_REFERENCE, "yaw_weight", V_REAL, SC(yaw_weight)), .range = R_WEIGHT},
 
@@ -247,6 +254,14 @@ const key_def_t SCHEMA_KEYS[] = {
     {KEY(SEC_FILTER, "rpm_q", V_REAL, SC(filter_rpm_q)), .range = R_Q},
     {KEY(SEC_FILTER, "rpm_min_hz", V_REAL, SC(filter_rpm_min_hz)), .range = R_POSITIVE},
     {KEY(SEC_FILTER, "rpm_fade_hz", V_REAL, SC(filter_rpm_fade_hz)), .range = R_NONNEGATIVE},
+
+    {KEY(SEC_PHASES, "arm_s", V_LIST, SC(phase_arm_s)), .offset2 = SC(phase_n_arm), .range = R_NONNEGATIVE},
+    {KEY(SEC_PHASES, "disarm_s", V_LIST, SC(phase_disarm_s)), .offset2 = SC(phase_n_disarm), .range = R_NONNEGATIVE},
+    {KEY(SEC_PHASES, "takeoff_s", V_LIST, SC(phase_takeoff_s)), .offset2 = SC(phase_n_takeoff), .range = R_NONNEGATIVE},
+    {KEY(SEC_PHASES, "land_s", V_LIST, SC(phase_land_s)), .offset2 = SC(phase_n_land), .range = R_NONNEGATIVE},
+    {KEY(SEC_PHASES, "ground_deg", V_VEC2, SC(ground_rad)), .range = R_SLOPE, .scale = DEG_TO_RAD},
+    {KEY(SEC_PHASES, "ground_thrust", V_REAL, SC(ground_thrust)), .range = R_FRACTION},
+    {KEY(SEC_PHASES, "landed_input", V_CHOICE, SC(landed_input)), .choices = YES_NO},
 
     {KEY(SEC_DIFFERENTIATOR, "signal", V_SIGNAL, SC(diff_signal)), .required = 1},
     {KEY(SEC_DIFFERENTIATOR, "derivative", V_SIGNAL, SC(diff_derivative)), .required = 1},
@@ -386,8 +401,11 @@ int schema_check_range(const key_def_t *def, double v, char *msg, size_t msg_len
     case R_WEIGHT:
         return (v > 0.0 && v <= 1.0) ? 0 : refuse(msg, msg_len, "%s must be > 0 and at most 1", def->name);
     case R_HEADING:
-        return (v >= 0.0 && v < 360.0 * DEG_TO_RAD) ? 0
-                                                    : refuse(msg, msg_len, "%s must be >= 0 and below 360", def->name);
+        return (v >= 0.0 && v < 360.0) ? 0 : refuse(msg, msg_len, "%s must be >= 0 and below 360", def->name);
+    case R_UNIT:
+        return (v >= 0.0 && v <= 1.0) ? 0 : refuse(msg, msg_len, "%s must be between 0 and 1", def->name);
+    case R_SLOPE:
+        return (v > -30.0 && v < 30.0) ? 0 : refuse(msg, msg_len, "%s must be within (-30, 30)", def->name);
     default:
         return 0;
     }
@@ -449,6 +467,11 @@ void schema_set_defaults(sim_scenario_t *sc)
         sc->disturbance[i].scale = 1.0;
     }
     sc->rot_drag_scale = 1.0;
+    sc->ground_thrust = DEFAULT_GROUND_THRUST;
+    sc->landed_input = 1;
+    sc->throttle.scale = 1.0;
+    sc->thrust_curve = NAN; /* none: the rotors give the w^2 the mixer asks */
+    sc->battery_full_V = DEFAULT_BATTERY_FULL_V;
     sc->frame = LADRC_FRAME_EULER;
     sc->yaw_weight = (double)LADRC_YAW_WEIGHT_DEFAULT;
 

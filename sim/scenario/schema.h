@@ -30,6 +30,7 @@ enum {
     SEC_WIND,
     SEC_VIBRATION,
     SEC_FILTER,
+    SEC_PHASES,
     SEC_CONTROLLER, /* + controller id: one slot per [controller NAME] */
     SEC_COUNT = SEC_CONTROLLER + SIM_CTRL_COUNT
 };
@@ -43,6 +44,7 @@ enum { FOR_BOTH, FOR_ATTITUDE, FOR_DIFFERENTIATOR };
 typedef enum {
     V_REAL,        /* one number */
     V_VEC3,        /* three numbers */
+    V_VEC2,        /* two numbers */
     V_INT,         /* an integer */
     V_SEED,        /* an unsigned 64-bit integer */
     V_CHOICE,      /* one word of `choices`, stored as int */
@@ -74,8 +76,10 @@ typedef enum {
     R_WIND,         /* 0 .. 50 m/s */
     R_ORDER,        /* > 0, <= 100 */
     R_Q,            /* 0.1 .. 100 */
-    R_HEADING,      /* 0 <= v < 360 deg, in rad */
-    R_WEIGHT        /* 0 < v <= 1 */
+    R_HEADING,      /* 0 <= v < 360 (deg in the file) */
+    R_WEIGHT,       /* 0 < v <= 1 */
+    R_SLOPE,        /* -30 < v < 30 (deg in the file) */
+    R_UNIT          /* 0 <= v <= 1 */
 } range_t;
 
 typedef struct {

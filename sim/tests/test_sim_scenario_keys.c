@@ -34,7 +34,7 @@ static void test_defaults_fill_every_key_not_given(void)
     assert_close(9.81, sc.g_m_s2, "g");
     TEST_ASSERT_EQUAL_INT(0, sc.rigid_body); /* the paper's kinematics, Euler frame */
     TEST_ASSERT_EQUAL_INT(LADRC_FRAME_EULER, sc.frame);
-    assert_close(0.4, sc.yaw_weight, "yaw_weight");
+    assert_close((double)LADRC_YAW_WEIGHT_DEFAULT, sc.yaw_weight, "yaw_weight"); /* the library's */
 
     TEST_ASSERT_EQUAL_INT(1, sc.rotors_ideal);
     assert_close(0.0, sc.w2_min_rad2_s2, "w2_min");
@@ -134,6 +134,16 @@ static void test_every_attitude_key_lands_in_its_field_in_its_unit(void)
              "steady_window_s = 15 18.5\n"
              "settle_band_deg = 0.2\n"
              "settle_window_s = 2 4\n"
+             "[wind]\n"
+             "mean_m_s = 5\n"
+             "from_deg = 270\n"
+             "[phases]\n"
+             "arm_s = 1 15\n"
+             "takeoff_s = 4 16\n"
+             "land_s = 12\n"
+             "disarm_s = 13\n"
+             "ground_deg = 4 -2.5\n"
+             "ground_thrust = 0.3\n"
              "[controller LADRC]\n" /* the library models at most 8 ticks of delay */
              "model_delay_ticks = 8\n");
     TEST_ASSERT_EQUAL_INT(SIM_KIND_ATTITUDE, sc.kind);
@@ -157,6 +167,20 @@ static void test_every_attitude_key_lands_in_its_field_in_its_unit(void)
     assert_close(9.8, sc.g_m_s2, "g");
     TEST_ASSERT_EQUAL_INT(1, sc.rigid_body);
     TEST_ASSERT_EQUAL_INT(LADRC_FRAME_QUATERNION, sc.frame);
+    assert_close(5.0, sc.mean_wind_m_s, "mean wind");
+    assert_close(270.0 * DEG, sc.mean_wind_from_rad, "wind from, degrees to rad");
+    /* the timeline: arm, take off, land, disarm, arm, take off */
+    static const int kinds[6] = {SIM_EVENT_ARM,    SIM_EVENT_TAKEOFF, SIM_EVENT_LAND,
+                                 SIM_EVENT_DISARM, SIM_EVENT_ARM,     SIM_EVENT_TAKEOFF};
+    static const double times[6] = {1, 4, 12, 13, 15, 16};
+    TEST_ASSERT_EQUAL_INT(6, sc.n_events);
+    for (int e = 0; e < 6; ++e) {
+        TEST_ASSERT_EQUAL_INT(kinds[e], sc.event_kind[e]);
+        assert_close(times[e], sc.event_s[e], "event time");
+    }
+    assert_close(4.0 * DEG, sc.ground_rad[0], "ground roll");
+    assert_close(-2.5 * DEG, sc.ground_rad[1], "ground pitch");
+    assert_close(0.3, sc.ground_thrust, "ground thrust");
     assert_close(0.25, sc.yaw_weight, "yaw_weight");
 
     TEST_ASSERT_EQUAL_INT(0, sc.rotors_ideal);
