@@ -27,6 +27,10 @@ void ladrc_attitude_config_default(ladrc_attitude_config_t *cfg, ladrc_variant_t
     cfg->frame = LADRC_FRAME_EULER;
     cfg->yaw_weight = LADRC_YAW_WEIGHT_DEFAULT;
     cfg->spool_up_s = LADRC_SPOOL_UP_DEFAULT_S;
+    cfg->gain_thrust_curve = LADRC_R(0.0);
+    cfg->gain_full_thrust_N = LADRC_R(0.0);
+    cfg->gain_ref_thrust_N = LADRC_R(0.0);
+    cfg->gain_ref_voltage_V = LADRC_R(0.0);
 }
 
 void ladrc_attitude_config_quaternion(ladrc_attitude_config_t *cfg)
@@ -60,6 +64,14 @@ static ladrc_status_t check_frame(const ladrc_attitude_config_t *cfg, int *faile
         }
     }
     return LADRC_OK;
+}
+
+/* The thrust curve's slope at the command a thrust asked gives, (1 - k) +
+ * 2 k T / T_full: the torque per command there, up to a constant (1
+ * without a curve). */
+static ladrc_real_t thrust_slope(const ladrc_attitude_t *att, ladrc_real_t thrust_N)
+{
+    return LADRC_R(1.0) - att->gain_curve + att->gain_per_full_N * thrust_N;
 }
 
 ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_config_t *cfg, int *failed_axis)
@@ -104,6 +116,12 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
     if (!ladrc_is_finite(cfg->spool_up_s) || cfg->spool_up_s < LADRC_R(0.0) || cfg->spool_up_s > LADRC_SPOOL_UP_MAX_S) {
         return LADRC_ERR_SPOOL_UP_S;
     }
+    const ladrc_real_t k = cfg->gain_thrust_curve;
+    if (!ladrc_is_finite(k) || k < LADRC_R(0.0) || k > LADRC_R(1.0) ||
+        (k > LADRC_R(0.0) && !(ladrc_is_positive(cfg->gain_full_thrust_N) && ladrc_is_positive(cfg->gain_ref_thrust_N))) ||
+        !ladrc_is_finite(cfg->gain_ref_voltage_V) || cfg->gain_ref_voltage_V < LADRC_R(0.0)) {
+        return LADRC_ERR_GAIN_SCHEDULE;
+    }
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
         /* The feed mixes the axes' states tick by tick: one clock for all. */
         ladrc_status_t status = (cfg->axis[i].dt_s == cfg->axis[0].dt_s) ? LADRC_OK : LADRC_ERR_DT_S;
@@ -141,6 +159,10 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
         ++att->spool_up_ticks;
     }
     att->spool_ticks = 0u;
+    att->gain_curve = k;
+    att->gain_per_full_N = (k > LADRC_R(0.0)) ? LADRC_R(2.0) * k / cfg->gain_full_thrust_N : LADRC_R(0.0);
+    att->gain_ref_inv = LADRC_R(1.0) / thrust_slope(att, cfg->gain_ref_thrust_N);
+    att->gain_ref_voltage_V = cfg->gain_ref_voltage_V;
     att->phase = LADRC_PHASE_FLYING; /* as it always flew */
     att->landed = 0u;
     att->restart = 0u;
@@ -423,6 +445,29 @@ ladrc_fault_t ladrc_attitude_step_quat(ladrc_attitude_t *att, const ladrc_quat_t
         ref[i] = (measured && referenced) ? ladrc_wrap_pi(att->body_angle_rad[i] + error_rad[i]) : LADRC_REAL_MAX;
     }
     return tick(att, ref, angle, rate_rad_s, torque_Nm);
+}
+
+void ladrc_attitude_set_operating_point(ladrc_attitude_t *att, ladrc_real_t thrust_N, ladrc_real_t voltage_V)
+{
+    LADRC_REQUIRE_VOID(att != NULL);
+    if (att->gain_curve == LADRC_R(0.0) && att->gain_ref_voltage_V == LADRC_R(0.0)) {
+        return; /* no schedule */
+    }
+    ladrc_real_t scale = LADRC_R(1.0);
+    if (att->gain_curve > LADRC_R(0.0)) {
+        if (!ladrc_is_finite(thrust_N) || thrust_N < LADRC_R(0.0)) {
+            return; /* the last good scale kept */
+        }
+        scale = thrust_slope(att, thrust_N) * att->gain_ref_inv;
+    }
+    if (att->gain_ref_voltage_V > LADRC_R(0.0) && ladrc_is_positive(voltage_V)) {
+        const ladrc_real_t v = voltage_V / att->gain_ref_voltage_V;
+        scale *= v * v;
+    }
+    scale = ladrc_clamp(scale, LADRC_GAIN_SCALE_MIN, LADRC_GAIN_SCALE_MAX);
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        ladrc_axis_set_gain_scale(&att->axis[i], scale);
+    }
 }
 
 void ladrc_attitude_set_applied(ladrc_attitude_t *att, const ladrc_real_t torque_Nm[LADRC_AXES])

@@ -275,6 +275,7 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
     axis->f_rate_rad_s3 = LADRC_R(0.0);
     axis->f_known_rad_s2 = LADRC_R(0.0);
     axis->landed = 0u;
+    axis->gain_scale = LADRC_R(1.0);
     ladrc_axis_reset(axis, LADRC_R(0.0));
     return LADRC_OK;
 }
@@ -330,6 +331,12 @@ static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_re
             break;
         }
     }
+    ladrc_real_t command_Nm = axis->output_Nm;
+    if (axis->gain_scale != LADRC_R(1.0)) {
+        /* the command for the plant's gain, within the bounds; what acts, in b0's units */
+        command_Nm = ladrc_clamp(axis->output_Nm / axis->gain_scale, axis->u_min_Nm, axis->u_max_Nm);
+        axis->output_Nm = command_Nm * axis->gain_scale;
+    }
     axis->applied_Nm = axis->landed ? LADRC_R(0.0) : axis->output_Nm; /* landed: the ground takes it */
     axis->faults = faults;
     if ((faults & (LADRC_FAULT_INPUT | LADRC_FAULT_STATE)) != 0u) {
@@ -337,7 +344,7 @@ static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_re
     } else {
         axis->consecutive_faults = 0u;
     }
-    return axis->output_Nm;
+    return command_Nm;
 }
 
 ladrc_fault_t ladrc_axis_step(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
@@ -357,10 +364,11 @@ void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
         axis->applied_Nm = axis->output_Nm;
         return;
     }
-    axis->applied_Nm = axis->landed ? LADRC_R(0.0) : torque_Nm;
+    const ladrc_real_t acted_Nm = torque_Nm * axis->gain_scale; /* in b0's units */
+    axis->applied_Nm = axis->landed ? LADRC_R(0.0) : acted_Nm;
     switch (axis->variant) {
-        CASE_PID(axis_pid_set_applied(axis, torque_Nm))
-        CASE_CASCADED(axis_cascaded_set_applied(axis, torque_Nm))
+        CASE_PID(axis_pid_set_applied(axis, acted_Nm))
+        CASE_CASCADED(axis_cascaded_set_applied(axis, acted_Nm))
     default:
         break; /* the others read applied_Nm */
     }
@@ -381,6 +389,14 @@ void ladrc_axis_set_landed(ladrc_axis_t *axis, uint8_t landed)
     }
 }
 
+void ladrc_axis_set_gain_scale(ladrc_axis_t *axis, ladrc_real_t scale)
+{
+    LADRC_REQUIRE_VOID(axis != NULL);
+    if (ladrc_is_finite(scale) && scale >= LADRC_GAIN_SCALE_MIN && scale <= LADRC_GAIN_SCALE_MAX) {
+        axis->gain_scale = scale;
+    }
+}
+
 void ladrc_axis_engage(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
                        const ladrc_real_t *rate_rad_s, ladrc_real_t torque_Nm)
 {
@@ -396,8 +412,8 @@ void ladrc_axis_engage(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t an
     const int has_rate = rate_rad_s != NULL && ladrc_within(*rate_rad_s, axis->rate_limit_rad_s);
     const ladrc_real_t rate = has_rate ? *rate_rad_s : LADRC_R(0.0);
     const ladrc_real_t u = ladrc_within(torque_Nm, axis->applied_limit_Nm)
-                               ? ladrc_clamp(torque_Nm, axis->u_min_Nm, axis->u_max_Nm)
-                               : LADRC_R(0.0);
+                               ? ladrc_clamp(torque_Nm, axis->u_min_Nm, axis->u_max_Nm) * axis->gain_scale
+                               : LADRC_R(0.0); /* in b0's units */
     /* the torque has been acting, and is on its way */
     for (unsigned k = 0u; k < LADRC_MAX_DELAY_TICKS; ++k) {
         axis->act.delayed_Nm[k] = u;

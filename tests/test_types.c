@@ -116,6 +116,7 @@ static const char *const status_names[LADRC_STATUS_COUNT] = {
     "LADRC_ERR_INDI_ADAPT_MAX",
     "LADRC_ERR_SPOOL_UP_S",
     "LADRC_ERR_MIXER_THRUST_CURVE",
+    "LADRC_ERR_GAIN_SCHEDULE",
 };
 
 /* 1 if text is name alone (names-only build) or name ": " and an explanation. */

@@ -90,6 +90,12 @@ typedef struct {
                                                  (0, 1], 1 = none (quat.h) */
     ladrc_real_t spool_up_s;                /**< time from arming to control (s), >= 0, at most
                                                  LADRC_SPOOL_UP_MAX_S; default 0.5 */
+    /* The plant-gain schedule (ladrc_attitude_set_operating_point), off by default */
+    ladrc_real_t gain_thrust_curve;  /**< k of the rotors' thrust curve (1 - k) c + k c^2 that the mixer
+                                          leaves (0: the torque per command does not change with throttle) */
+    ladrc_real_t gain_full_thrust_N; /**< thrust at full command (N), > 0 when gain_thrust_curve > 0 */
+    ladrc_real_t gain_ref_thrust_N;  /**< thrust at which b0 holds (N, e.g. hover), > 0 when gain_thrust_curve > 0 */
+    ladrc_real_t gain_ref_voltage_V; /**< pack voltage at which b0 holds (V); 0: no voltage schedule */
 } ladrc_attitude_config_t;
 
 /** Attitude state; owned by the caller. */
@@ -110,6 +116,10 @@ typedef struct {
     uint32_t spool_ticks;                 /**< SPOOL_UP: ticks left */
     uint32_t spool_up_ticks;              /**< spool_up_s in ticks */
     ladrc_real_t engage_Nm[LADRC_AXES];   /**< the other controller's last command (N m) */
+    ladrc_real_t gain_curve;              /**< gain_thrust_curve */
+    ladrc_real_t gain_per_full_N;         /**< 2 k / gain_full_thrust_N (1/N) */
+    ladrc_real_t gain_ref_inv;            /**< 1 / the curve's slope at gain_ref_thrust_N */
+    ladrc_real_t gain_ref_voltage_V;      /**< of the config */
     ladrc_axis_t axis[LADRC_AXES];        /**< roll, pitch, yaw */
 } ladrc_attitude_t;
 
@@ -152,6 +162,8 @@ void ladrc_attitude_config_quaternion(ladrc_attitude_config_t *cfg);
  * @retval LADRC_ERR_YAW_WEIGHT       QUATERNION: yaw_weight not finite or not in (0, 1]
  * @retval LADRC_ERR_WRAP_ANGLE       QUATERNION: an axis (*failed_axis) with wrap_angle 0
  * @retval LADRC_ERR_SPOOL_UP_S       spool_up_s not finite, < 0 or above LADRC_SPOOL_UP_MAX_S
+ * @retval LADRC_ERR_GAIN_SCHEDULE    gain_thrust_curve not finite or outside [0, 1]; with it > 0, the
+ *                                    thrusts not finite and > 0; gain_ref_voltage_V not finite or < 0
  * @retval LADRC_ERR_DT_S             an axis's dt_s differs from roll's (or, from
  *                                    ladrc_axis_init, is invalid)
  * @return any other status of ladrc_axis_init, for axis *failed_axis
@@ -244,6 +256,25 @@ ladrc_phase_t ladrc_attitude_get_phase(const ladrc_attitude_t *att);
  *                   a non-finite one is taken as 0
  */
 void ladrc_attitude_engage(ladrc_attitude_t *att, const ladrc_real_t torque_Nm[LADRC_AXES]);
+
+/**
+ * The plant-gain schedule (docs/method.md section 9): b0 follows the thrust
+ * and the pack's voltage. On rotors whose thrust is (1 - k) c + k c^2 of the
+ * command c (the part of the curve the mixer does not undo), a mixer that
+ * takes thrust as linear gives the command c = T / T_full for the thrust T
+ * asked, and the torque per command there goes with the curve's slope,
+ * (1 - k) + 2 k T / T_full; rotor speeds go with the voltage, so torques
+ * with its square.
+ * Every axis's gain scale (ladrc_axis_set_gain_scale) becomes
+ *     slope(T) / slope(T_ref) * (V / V_ref)^2
+ * clamped to [LADRC_GAIN_SCALE_MIN, LADRC_GAIN_SCALE_MAX]; without a
+ * schedule configured it stays 1. Call once per tick, before the step, with
+ * the thrust asked of the mixer.
+ * @param att        the controller; NULL: nothing happens
+ * @param thrust_N   the collective thrust (N); not finite or < 0: the thrust part kept
+ * @param voltage_V  the pack's voltage (V); not finite or not > 0: the voltage part left out
+ */
+void ladrc_attitude_set_operating_point(ladrc_attitude_t *att, ladrc_real_t thrust_N, ladrc_real_t voltage_V);
 
 /** Reports the torques the mixer achieved to each axis (ladrc_axis_set_applied).
  *  @param att        the controller; att or torque_Nm NULL: nothing happens

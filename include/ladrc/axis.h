@@ -358,6 +358,7 @@ typedef struct {
     ladrc_fault_t faults;        /**< flags of the latest tick */
     uint32_t consecutive_faults; /**< ticks in a row with LADRC_FAULT_INPUT or _STATE */
     uint8_t landed;              /**< ladrc_axis_set_landed: the ground takes the torque */
+    ladrc_real_t gain_scale;     /**< ladrc_axis_set_gain_scale: the plant gain over b0 (1 after init) */
 } ladrc_axis_t;
 
 /**
@@ -528,6 +529,25 @@ void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm);
  *  @param axis    the axis; NULL: nothing happens
  *  @param landed  0: flying, else landed */
 void ladrc_axis_set_landed(ladrc_axis_t *axis, uint8_t landed);
+
+/** Bounds of ladrc_axis_set_gain_scale. */
+#define LADRC_GAIN_SCALE_MIN LADRC_R(0.1)
+#define LADRC_GAIN_SCALE_MAX LADRC_R(10.0)
+
+/**
+ * The plant's gain now, as a factor of the b0 configured (the torque per
+ * command grows with throttle on rotors whose thrust curve the mixer does not
+ * undo, and with the battery's voltage; ladrc_attitude_set_operating_point
+ * works it out). Every variant then computes its command as for b0 and
+ * divides it by the scale, and takes the torque reported applied times the
+ * scale: the loop is the one designed for b0 whatever the plant's gain
+ * (its internal torques, ladrc_axis_get_acting_Nm's included, are in b0's
+ * units). Held until set again; 1 after init, kept by reset.
+ * @param axis   the axis; NULL: nothing happens
+ * @param scale  the factor; not finite or outside [LADRC_GAIN_SCALE_MIN,
+ *               LADRC_GAIN_SCALE_MAX]: ignored (the last good one kept)
+ */
+void ladrc_axis_set_gain_scale(ladrc_axis_t *axis, ladrc_real_t scale);
 
 /**
  * Bumpless engage from another controller: restarts the axis (as

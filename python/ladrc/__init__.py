@@ -156,7 +156,9 @@ class _Library:
 
         class AttitudeConfig(ctypes.Structure):
             _fields_ = [("axis", AxisConfig * 3), ("inertia_kg_m2", r * 3), ("drag_Nms", r),
-                        ("coupling_feed", u8), ("frame", i), ("yaw_weight", r), ("spool_up_s", r)]
+                        ("coupling_feed", u8), ("frame", i), ("yaw_weight", r), ("spool_up_s", r),
+                        ("gain_thrust_curve", r), ("gain_full_thrust_N", r), ("gain_ref_thrust_N", r),
+                        ("gain_ref_voltage_V", r)]
 
         class MixerConfig(ctypes.Structure):
             _fields_ = [("kL_N_s2", r), ("arm_m", r), ("b_Nm_s2", r), ("mass_kg", r),

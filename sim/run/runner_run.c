@@ -198,6 +198,12 @@ static ladrc_real_t run_thrust_N(const sim_scenario_t *sc, const attitude_run_t 
     return ladrc_mixer_thrust_from_tilt(&r->mixer, angle[0], angle[1]);
 }
 
+/* The pack's voltage at t_s (V): full, less what the battery law takes off. */
+static ladrc_real_t run_voltage_V(const sim_scenario_t *sc, const attitude_run_t *r, double t_s)
+{
+    return (ladrc_real_t)(sc->battery_full_V * sqrt(sim_plant_battery_factor(&r->plant.v, t_s)));
+}
+
 /* The w^2 a rotor gives for the mix's w2: itself, or with [rotors]
  * thrust_curve through the ESC command the mixer gives (ladrc_mixer_command)
  * and the rotors' own curve. */
@@ -266,13 +272,13 @@ static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, 
             signal[5] = (ladrc_real_t)wrap_pi((double)signal[5]);
         }
     }
-    ladrc_real_t angle[3], rate[3];
+    ladrc_real_t angle[3], rate[3], thrust_N;
     for (int i = 0; i < 3; ++i) {
         rate[i] = signal[i];
         angle[i] = signal[3 + i];
         tk->ctrl_rate[i] = (double)rate[i];
     }
-    ladrc_fault_t faults;
+    ladrc_quat_t meas = {LADRC_R(1.0), 0, 0, 0}, ref = {LADRC_R(1.0), 0, 0, 0};
     if (quat_frame) {
         /* what series and vibration added to the angles turns the sensed
          * attitude as a small rotation in body axes */
@@ -283,21 +289,25 @@ static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, 
         sim_quat_from_rotvec(turn_rad, turn);
         sim_quat_mul(q_sensed, turn, q_meas);
         sim_quat_from_euler(tk->ref_rad, q_ref);
-        const ladrc_quat_t meas = {(ladrc_real_t)q_meas[0], (ladrc_real_t)q_meas[1], (ladrc_real_t)q_meas[2],
-                                   (ladrc_real_t)q_meas[3]};
-        const ladrc_quat_t ref = {(ladrc_real_t)q_ref[0], (ladrc_real_t)q_ref[1], (ladrc_real_t)q_ref[2],
-                                  (ladrc_real_t)q_ref[3]};
-        faults = ladrc_attitude_step_quat(&r->att, &ref, &meas, sc->use_rate ? rate : NULL, tk->torque);
+        meas = (ladrc_quat_t){(ladrc_real_t)q_meas[0], (ladrc_real_t)q_meas[1], (ladrc_real_t)q_meas[2],
+                              (ladrc_real_t)q_meas[3]};
+        ref = (ladrc_quat_t){(ladrc_real_t)q_ref[0], (ladrc_real_t)q_ref[1], (ladrc_real_t)q_ref[2],
+                             (ladrc_real_t)q_ref[3]};
         sim_quat_to_euler(q_meas, NULL, tilt_rad); /* the mixer's tilt: cos(roll) cos(pitch) is R33 */
         angle[0] = (ladrc_real_t)tilt_rad[0];
         angle[1] = (ladrc_real_t)tilt_rad[1];
-    } else {
-        faults = ladrc_attitude_step(&r->att, tk->ref, angle, sc->use_rate ? rate : NULL, tk->torque);
     }
+    thrust_N = run_thrust_N(sc, r, angle, tk->t);
+    ladrc_attitude_set_operating_point(&r->att, thrust_N, run_voltage_V(sc, r, tk->t));
+    const ladrc_fault_t faults = quat_frame
+                                     ? ladrc_attitude_step_quat(&r->att, &ref, &meas, sc->use_rate ? rate : NULL,
+                                                                tk->torque)
+                                     : ladrc_attitude_step(&r->att, tk->ref, angle, sc->use_rate ? rate : NULL,
+                                                           tk->torque);
     if (faults != LADRC_FAULT_NONE) {
         r->spec->metrics->faults++;
     }
-    ladrc_mixer_step(&r->mixer, run_thrust_N(sc, r, angle, tk->t), tk->torque, &tk->out);
+    ladrc_mixer_step(&r->mixer, thrust_N, tk->torque, &tk->out);
     ladrc_attitude_set_applied(&r->att, tk->out.torque_Nm);
     for (int q = 0; q < 4; ++q) {
         w2_cmd[q] = rotor_w2(sc, r, tk->out.w2_rad2_s2[q]);

@@ -79,6 +79,11 @@ typedef struct {
     double cas_att_kp, cas_rate_max_deg_s, cas_rate_kp, cas_rate_ki, cas_rate_kd, cas_d_filter_tau_s,
         cas_i_limit_Nm;       /* CASCADED; cas_rate_max in deg/s as in the file */
     int coupling_feed;        /* -1, 0 or 1 */
+    int cas_setpoint_ff;      /* -1 (the library's: yaw only), 0 or 1 on every axis */
+    double cas_rate_ff, cas_i_relax_deg_s; /* CASCADED's rate feed-forward gain, integrator relax (deg/s) */
+    int indi_adapt;           /* -1 (no), 0 or 1: INDI adapts its effectiveness */
+    double indi_adapt_mu;     /* its LMS step */
+    int gain_schedule;        /* -1 (no), 0 or 1: b0 follows the thrust and the battery's voltage */
     double model_motor_tau_s; /* NaN: [rotors] motor_tau_s; 0: no lag modelled (LADRC family) */
     int model_delay_ticks;    /* -1: [sensors] delay_ticks (LADRC family) */
     int wrap_yaw;             /* -1 (yes), 0 or 1: the controller's yaw wraps at +-180 deg */

@@ -300,6 +300,12 @@ const key_def_t SCHEMA_KEYS[] = {
     {CTRL_KEY("cas_d_filter_tau_s", V_REAL, cas_d_filter_tau_s, C_CAS), .range = R_NONNEGATIVE},
     {CTRL_KEY("cas_i_limit_Nm", V_REAL, cas_i_limit_Nm, C_CAS), .range = R_NONNEGATIVE},
     {CTRL_KEY("coupling_feed", V_CHOICE, coupling_feed, LADRC_FAMILY), .choices = YES_NO},
+    {CTRL_KEY("cas_setpoint_ff", V_CHOICE, cas_setpoint_ff, C_CAS), .choices = YES_NO},
+    {CTRL_KEY("cas_rate_ff", V_REAL, cas_rate_ff, C_CAS), .range = R_NONNEGATIVE},
+    {CTRL_KEY("cas_i_relax_deg_s", V_REAL, cas_i_relax_deg_s, C_CAS), .range = R_POSITIVE},
+    {CTRL_KEY("indi_adapt", V_CHOICE, indi_adapt, C_INDI), .choices = YES_NO},
+    {CTRL_KEY("indi_adapt_mu", V_REAL, indi_adapt_mu, C_INDI), .range = R_POSITIVE},
+    {CTRL_KEY("gain_schedule", V_CHOICE, gain_schedule, ALL_CONTROLLERS), .choices = YES_NO},
     {CTRL_KEY("model_motor_tau_s", V_REAL, model_motor_tau_s, LADRC_FAMILY | C_INDI | C_RADRC), .range = R_NONNEGATIVE},
     {CTRL_KEY("model_delay_ticks", V_INT, model_delay_ticks, LADRC_FAMILY | C_INDI | C_RADRC), .range = R_DELAY},
     {CTRL_KEY("wrap_yaw", V_CHOICE, wrap_yaw, LADRC_FAMILY | C_PID | C_CAS | C_INDI | C_RADRC), .choices = YES_NO},
@@ -492,6 +498,8 @@ void schema_set_defaults(sim_scenario_t *sc)
         o->radrc_kp_per_s = o->radrc_att_kp_per_s = o->radrc_rate_max_deg_s = NAN;
         o->cas_att_kp = o->cas_rate_max_deg_s = o->cas_rate_kp = o->cas_rate_ki = o->cas_rate_kd = NAN;
         o->cas_d_filter_tau_s = o->cas_i_limit_Nm = NAN;
+        o->cas_setpoint_ff = o->indi_adapt = o->gain_schedule = -1;
+        o->cas_rate_ff = o->cas_i_relax_deg_s = o->indi_adapt_mu = NAN;
     }
 
     sc->settle_band_deg = DEFAULT_SETTLE_BAND_DEG;

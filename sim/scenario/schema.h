@@ -105,7 +105,7 @@ typedef struct {
 
 /* The key table; key indices are positions in it. SCHEMA_MAX_KEYS bounds
  * the table (checked at compile time in schema.c) for the reader's arrays. */
-#define SCHEMA_MAX_KEYS 128
+#define SCHEMA_MAX_KEYS 160
 extern const key_def_t SCHEMA_KEYS[];
 extern const int SCHEMA_N_KEYS;
 

@@ -93,6 +93,16 @@ static void apply_overrides(ladrc_axis_config_t *a, const sim_overrides_t *o)
         a->cas_d_filter_tau_s = (ladrc_real_t)o->cas_d_filter_tau_s;
     if (!isnan(o->cas_i_limit_Nm))
         a->cas_i_limit_Nm = (ladrc_real_t)o->cas_i_limit_Nm;
+    if (o->cas_setpoint_ff >= 0)
+        a->cas_setpoint_ff = (uint8_t)o->cas_setpoint_ff;
+    if (!isnan(o->cas_rate_ff))
+        a->cas_rate_ff = (ladrc_real_t)o->cas_rate_ff;
+    if (!isnan(o->cas_i_relax_deg_s))
+        a->cas_i_relax_rad_s = (ladrc_real_t)(o->cas_i_relax_deg_s * (3.14159265358979323846 / 180.0));
+    if (o->indi_adapt >= 0)
+        a->indi_adapt = (uint8_t)o->indi_adapt;
+    if (!isnan(o->indi_adapt_mu))
+        a->indi_adapt_mu = (ladrc_real_t)o->indi_adapt_mu;
     if (!isnan(o->model_motor_tau_s))
         a->motor_tau_s = (ladrc_real_t)o->model_motor_tau_s;
     if (o->model_delay_ticks >= 0)
@@ -209,6 +219,14 @@ void sim_setup_attitude(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_
     if (sc->frame == LADRC_FRAME_QUATERNION) {
         ladrc_attitude_config_quaternion(cfg);
         cfg->yaw_weight = (ladrc_real_t)sc->yaw_weight;
+    }
+    if (o->gain_schedule == 1) {
+        /* the rotors' own curve (the mixer's is then 0: checks), full thrust,
+         * b0 at hover; the voltage with a battery that sags */
+        cfg->gain_thrust_curve = (ladrc_real_t)(isfinite(sc->thrust_curve) ? sc->thrust_curve : 0.0);
+        cfg->gain_full_thrust_N = (ladrc_real_t)(4.0 * sc->thrust_coeff_N_s2 * sc->w2_max_rad2_s2);
+        cfg->gain_ref_thrust_N = (ladrc_real_t)(sc->mass_kg * sc->g_m_s2);
+        cfg->gain_ref_voltage_V = (ladrc_real_t)(sc->battery_life_s > 0.0 ? sc->battery_full_V : 0.0);
     }
 }
 
