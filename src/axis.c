@@ -298,6 +298,7 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
     axis->ref.ddr = LADRC_R(0.0);
     axis->output_Nm = LADRC_R(0.0);
     axis->applied_Nm = LADRC_R(0.0);
+    axis->command_Nm = LADRC_R(0.0);
     /* At rest: no torque acting, none on its way. */
     for (unsigned k = 0u; k < LADRC_MAX_DELAY_TICKS; ++k) {
         axis->act.delayed_Nm[k] = LADRC_R(0.0);
@@ -334,9 +335,13 @@ static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_re
     ladrc_real_t command_Nm = axis->output_Nm;
     if (axis->gain_scale != LADRC_R(1.0)) {
         /* the command for the plant's gain, within the bounds; what acts, in b0's units */
-        command_Nm = ladrc_clamp(axis->output_Nm / axis->gain_scale, axis->u_min_Nm, axis->u_max_Nm);
-        axis->output_Nm = command_Nm * axis->gain_scale;
+        const ladrc_real_t scaled_Nm = axis->output_Nm / axis->gain_scale;
+        command_Nm = ladrc_clamp(scaled_Nm, axis->u_min_Nm, axis->u_max_Nm);
+        if (command_Nm != scaled_Nm) {
+            axis->output_Nm = command_Nm * axis->gain_scale; /* bounded: what acts */
+        }
     }
+    axis->command_Nm = command_Nm;
     axis->applied_Nm = axis->landed ? LADRC_R(0.0) : axis->output_Nm; /* landed: the ground takes it */
     axis->faults = faults;
     if ((faults & (LADRC_FAULT_INPUT | LADRC_FAULT_STATE)) != 0u) {
@@ -364,7 +369,9 @@ void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
         axis->applied_Nm = axis->output_Nm;
         return;
     }
-    const ladrc_real_t acted_Nm = torque_Nm * axis->gain_scale; /* in b0's units */
+    /* in b0's units; the command itself as it was (no rounding for the
+     * integrators' exact saturation test, pid.h) */
+    const ladrc_real_t acted_Nm = (torque_Nm == axis->command_Nm) ? axis->output_Nm : torque_Nm * axis->gain_scale;
     axis->applied_Nm = axis->landed ? LADRC_R(0.0) : acted_Nm;
     switch (axis->variant) {
         CASE_PID(axis_pid_set_applied(axis, acted_Nm))
@@ -421,6 +428,7 @@ void ladrc_axis_engage(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t an
     axis->act.lag_Nm = u;
     axis->output_Nm = u;
     axis->applied_Nm = axis->landed ? LADRC_R(0.0) : u;
+    axis->command_Nm = u / axis->gain_scale;
     (void)angle; /* not every build has the variants that read them */
     (void)has_rate;
     switch (axis->variant) {

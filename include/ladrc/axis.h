@@ -359,6 +359,7 @@ typedef struct {
     uint32_t consecutive_faults; /**< ticks in a row with LADRC_FAULT_INPUT or _STATE */
     uint8_t landed;              /**< ladrc_axis_set_landed: the ground takes the torque */
     ladrc_real_t gain_scale;     /**< ladrc_axis_set_gain_scale: the plant gain over b0 (1 after init) */
+    ladrc_real_t command_Nm;     /**< the latest command returned (N m): output_Nm / gain_scale, bounded */
 } ladrc_axis_t;
 
 /**
