@@ -166,7 +166,6 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
     att->phase = LADRC_PHASE_FLYING; /* as it always flew */
     att->landed = 0u;
     att->restart = 0u;
-    att->engage = 0u;
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
         att->engage_Nm[i] = LADRC_R(0.0);
     }
@@ -253,7 +252,7 @@ static LADRC_FORCE_INLINE ladrc_fault_t step_axes(ladrc_attitude_t *att, const l
                                const ladrc_real_t angle_rad[LADRC_AXES], const ladrc_real_t *rate_rad_s,
                                ladrc_real_t torque_Nm[LADRC_AXES])
 {
-    if (att->coupling_feed) {
+    if (att->coupling_feed && !att->restart) { /* no feed from states waiting to restart */
         update_feed(att);
     }
     ladrc_fault_t faults = LADRC_FAULT_NONE;
@@ -272,74 +271,67 @@ static void set_axes_landed(ladrc_attitude_t *att, uint8_t landed)
     }
 }
 
-/* The restart of arming or engaging, on the tick's measurement; 0 (and the
- * restart left pending) while an angle is bad, so that it waits for a good
- * one. */
-static int restart_axes(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
-                        const ladrc_real_t angle_rad[LADRC_AXES], const ladrc_real_t *rate_rad_s)
+/* Arming or engaging: every axis restarts on its next good measurement
+ * (axis_request_restart), the feed off until then. */
+static void request_restart(ladrc_attitude_t *att, int engage)
 {
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
-        if (!ladrc_within(angle_rad[i], att->axis[i].angle_limit_rad)) {
-            return 0;
-        }
+        axis_request_restart(&att->axis[i], engage, att->engage_Nm[i]);
+        att->feed_rad_s3[i] = LADRC_R(0.0);
+        ladrc_axis_set_disturbance_rate(&att->axis[i], LADRC_R(0.0));
+        ladrc_axis_set_known_disturbance(&att->axis[i], LADRC_R(0.0));
     }
+    att->restart = 1u;
+}
+
+/* The restarts asked for, before the axes step (off the flying tick's path
+ * and out of its stack); the flag stays up while an angle waits. */
+LADRC_NOINLINE static void restart_pass(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
+                                        const ladrc_real_t angle_rad[LADRC_AXES], const ladrc_real_t *rate_rad_s)
+{
+    uint8_t pending = 0u;
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
         ladrc_axis_t *ax = &att->axis[i];
-        if (att->engage) {
-            ladrc_axis_engage(ax, ref_rad[i], angle_rad[i], (rate_rad_s != NULL) ? &rate_rad_s[i] : NULL,
-                              att->engage_Nm[i]);
-        } else {
-            ladrc_axis_reset(ax, angle_rad[i]);
-        }
-        att->feed_rad_s3[i] = LADRC_R(0.0);
-        ladrc_axis_set_disturbance_rate(ax, LADRC_R(0.0));
-        ladrc_axis_set_known_disturbance(ax, LADRC_R(0.0));
+        axis_restart_now(ax, ref_rad[i], angle_rad[i], (rate_rad_s != NULL) ? &rate_rad_s[i] : NULL);
+        pending |= ax->restart;
     }
-    att->restart = 0u;
-    att->engage = 0u;
-    return 1;
+    att->restart = pending ? 1u : 0u;
 }
 
-/* The tick outside plain flight (disarmed, spooling up, a restart pending):
- * out of line, off the flying tick's path. */
-LADRC_NOINLINE static ladrc_fault_t step_phases(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
-                                                const ladrc_real_t angle_rad[LADRC_AXES],
-                                                const ladrc_real_t *rate_rad_s, ladrc_real_t torque_Nm[LADRC_AXES])
+/* After the axes stepped while spooling up: the torque held at 0, the
+ * spool-up counted down, then landed or flying as the input says. */
+LADRC_NOINLINE static void spool_up_after(ladrc_attitude_t *att, ladrc_real_t torque_Nm[LADRC_AXES])
 {
-    if (att->phase == LADRC_PHASE_DISARMED) {
-        for (unsigned i = 0; i < LADRC_AXES; ++i) {
-            torque_Nm[i] = LADRC_R(0.0);
-        }
-        return LADRC_FAULT_NONE;
+    for (unsigned i = 0; i < LADRC_AXES; ++i) {
+        torque_Nm[i] = LADRC_R(0.0);
     }
-    if (att->restart) {
-        (void)restart_axes(att, ref_rad, angle_rad, rate_rad_s);
+    if (att->spool_ticks > 0u) {
+        --att->spool_ticks;
     }
-    const ladrc_fault_t faults = step_axes(att, ref_rad, angle_rad, rate_rad_s, torque_Nm);
-    if (att->phase == LADRC_PHASE_SPOOL_UP) {
-        for (unsigned i = 0; i < LADRC_AXES; ++i) {
-            torque_Nm[i] = LADRC_R(0.0);
-        }
-        if (att->spool_ticks > 0u) {
-            --att->spool_ticks;
-        }
-        if (att->spool_ticks == 0u) {
-            att->phase = att->landed ? LADRC_PHASE_LANDED : LADRC_PHASE_FLYING;
-            set_axes_landed(att, att->landed);
-        }
+    if (att->spool_ticks == 0u) {
+        att->phase = att->landed ? LADRC_PHASE_LANDED : LADRC_PHASE_FLYING;
+        set_axes_landed(att, att->landed);
     }
-    return faults;
 }
 
-/* The tick of both frames, the phases' path only when not plainly flying. */
+/* The tick of both frames with the phases: disarmed, torque 0 and the
+ * axes left; spooling up, torque 0 after they step. */
 static LADRC_FORCE_INLINE ladrc_fault_t tick(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
                                              const ladrc_real_t angle_rad[LADRC_AXES], const ladrc_real_t *rate_rad_s,
                                              ladrc_real_t torque_Nm[LADRC_AXES])
 {
-    if ((att->phase != LADRC_PHASE_FLYING && att->phase != LADRC_PHASE_LANDED) || att->restart) {
-        return step_phases(att, ref_rad, angle_rad, rate_rad_s, torque_Nm);
+    if (att->phase == LADRC_PHASE_DISARMED) {
+        torque_Nm[0] = torque_Nm[1] = torque_Nm[2] = LADRC_R(0.0);
+        return LADRC_FAULT_NONE;
     }
-    return step_axes(att, ref_rad, angle_rad, rate_rad_s, torque_Nm);
+    if (att->restart) {
+        restart_pass(att, ref_rad, angle_rad, rate_rad_s);
+    }
+    const ladrc_fault_t faults = step_axes(att, ref_rad, angle_rad, rate_rad_s, torque_Nm);
+    if (att->phase == LADRC_PHASE_SPOOL_UP) {
+        spool_up_after(att, torque_Nm);
+    }
+    return faults;
 }
 
 ladrc_fault_t ladrc_attitude_step(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
@@ -359,8 +351,7 @@ void ladrc_attitude_arm(ladrc_attitude_t *att)
     if (att->phase != LADRC_PHASE_DISARMED) {
         return;
     }
-    att->restart = 1u;
-    att->engage = 0u;
+    request_restart(att, 0);
     att->spool_ticks = att->spool_up_ticks;
     if (att->spool_ticks > 0u) {
         att->phase = LADRC_PHASE_SPOOL_UP;
@@ -375,8 +366,6 @@ void ladrc_attitude_disarm(ladrc_attitude_t *att)
 {
     LADRC_REQUIRE_VOID(att != NULL);
     att->phase = LADRC_PHASE_DISARMED;
-    att->restart = 0u;
-    att->engage = 0u;
 }
 
 void ladrc_attitude_set_landed(ladrc_attitude_t *att, uint8_t landed)
@@ -401,8 +390,7 @@ void ladrc_attitude_engage(ladrc_attitude_t *att, const ladrc_real_t torque_Nm[L
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
         att->engage_Nm[i] = ladrc_is_finite(torque_Nm[i]) ? torque_Nm[i] : LADRC_R(0.0);
     }
-    att->restart = 1u;
-    att->engage = 1u;
+    request_restart(att, 1);
 }
 
 /* Moves the body angles by the rotation from the previous good attitude to

@@ -276,6 +276,9 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
     axis->f_known_rad_s2 = LADRC_R(0.0);
     axis->landed = 0u;
     axis->gain_scale = LADRC_R(1.0);
+    axis->adjusted = 0u;
+    axis->restart = 0u;
+    axis->engage_Nm = LADRC_R(0.0);
     ladrc_axis_reset(axis, LADRC_R(0.0));
     return LADRC_OK;
 }
@@ -309,8 +312,62 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
     axis->faults = LADRC_FAULT_NONE;
 }
 
+/* The tick's end for an axis landed or gain-scaled (its adjusted flag),
+ * off the common path: the command for the plant's gain, within the bounds
+ * (what acts is kept in b0's units), and the torque taken as acting, 0 on
+ * the ground. Returns the command. */
+LADRC_NOINLINE static ladrc_real_t adjusted_command(ladrc_axis_t *axis)
+{
+    ladrc_real_t command_Nm = axis->output_Nm;
+    if (axis->gain_scale != LADRC_R(1.0)) {
+        const ladrc_real_t scaled_Nm = axis->output_Nm / axis->gain_scale;
+        command_Nm = ladrc_clamp(scaled_Nm, axis->u_min_Nm, axis->u_max_Nm);
+        if (command_Nm != scaled_Nm) {
+            axis->output_Nm = command_Nm * axis->gain_scale; /* bounded: what acts */
+        }
+    }
+    axis->command_Nm = command_Nm;
+    axis->applied_Nm = axis->landed ? LADRC_R(0.0) : axis->output_Nm; /* landed: the ground takes it */
+    return command_Nm;
+}
+
+/* The applied torque of an adjusted axis in b0's units: the command itself
+ * as it was, not a rounded product (the integrators' saturation test is
+ * exact, pid.h); the torque taken as acting, 0 on the ground. */
+static ladrc_real_t adjusted_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
+{
+    const ladrc_real_t acted_Nm = (torque_Nm == axis->command_Nm) ? axis->output_Nm : torque_Nm * axis->gain_scale;
+    axis->applied_Nm = axis->landed ? LADRC_R(0.0) : acted_Nm;
+    return acted_Nm;
+}
+
+/* Whether the tick's end takes the adjusted path. */
+static void update_adjusted(ladrc_axis_t *axis)
+{
+    axis->adjusted = (axis->landed || axis->gain_scale != LADRC_R(1.0)) ? 1u : 0u;
+}
+
 /* rate_rad_s is read only when has_rate; the rate goes by value so the
  * deepest path (HP) keeps no copy of it on the stack. */
+void axis_request_restart(ladrc_axis_t *axis, int engage, ladrc_real_t torque_Nm)
+{
+    axis->restart = engage ? 2u : 1u;
+    axis->engage_Nm = torque_Nm;
+}
+
+void axis_restart_now(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad, const ladrc_real_t *rate_rad_s)
+{
+    if (!axis->restart || !ladrc_within(angle_rad, axis->angle_limit_rad)) {
+        return; /* none asked, or it waits for a good measurement */
+    }
+    if (axis->restart == 2u) {
+        ladrc_axis_engage(axis, ref_rad, angle_rad, rate_rad_s, axis->engage_Nm);
+    } else {
+        ladrc_axis_reset(axis, angle_rad);
+    }
+    axis->restart = 0u;
+}
+
 static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad, ladrc_real_t rate_rad_s,
                               int has_rate)
 {
@@ -333,16 +390,10 @@ static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_re
         }
     }
     ladrc_real_t command_Nm = axis->output_Nm;
-    if (axis->gain_scale != LADRC_R(1.0)) {
-        /* the command for the plant's gain, within the bounds; what acts, in b0's units */
-        const ladrc_real_t scaled_Nm = axis->output_Nm / axis->gain_scale;
-        command_Nm = ladrc_clamp(scaled_Nm, axis->u_min_Nm, axis->u_max_Nm);
-        if (command_Nm != scaled_Nm) {
-            axis->output_Nm = command_Nm * axis->gain_scale; /* bounded: what acts */
-        }
+    axis->applied_Nm = axis->output_Nm;
+    if (axis->adjusted) {
+        command_Nm = adjusted_command(axis);
     }
-    axis->command_Nm = command_Nm;
-    axis->applied_Nm = axis->landed ? LADRC_R(0.0) : axis->output_Nm; /* landed: the ground takes it */
     axis->faults = faults;
     if ((faults & (LADRC_FAULT_INPUT | LADRC_FAULT_STATE)) != 0u) {
         axis->consecutive_faults++;
@@ -369,10 +420,12 @@ void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm)
         axis->applied_Nm = axis->output_Nm;
         return;
     }
-    /* in b0's units; the command itself as it was (no rounding for the
-     * integrators' exact saturation test, pid.h) */
-    const ladrc_real_t acted_Nm = (torque_Nm == axis->command_Nm) ? axis->output_Nm : torque_Nm * axis->gain_scale;
-    axis->applied_Nm = axis->landed ? LADRC_R(0.0) : acted_Nm;
+    ladrc_real_t acted_Nm = torque_Nm;
+    axis->applied_Nm = torque_Nm;
+    if (axis->adjusted) {
+        acted_Nm = adjusted_applied(axis, torque_Nm);
+    }
+    (void)acted_Nm; /* read by PID and CASCADED, which a build may leave out */
     switch (axis->variant) {
         CASE_PID(axis_pid_set_applied(axis, acted_Nm))
         CASE_CASCADED(axis_cascaded_set_applied(axis, acted_Nm))
@@ -385,6 +438,7 @@ void ladrc_axis_set_landed(ladrc_axis_t *axis, uint8_t landed)
 {
     LADRC_REQUIRE_VOID(axis != NULL);
     axis->landed = (landed != 0u) ? 1u : 0u;
+    update_adjusted(axis);
     if (axis->landed) {
         axis->applied_Nm = LADRC_R(0.0);
     }
@@ -401,6 +455,7 @@ void ladrc_axis_set_gain_scale(ladrc_axis_t *axis, ladrc_real_t scale)
     LADRC_REQUIRE_VOID(axis != NULL);
     if (ladrc_is_finite(scale) && scale >= LADRC_GAIN_SCALE_MIN && scale <= LADRC_GAIN_SCALE_MAX) {
         axis->gain_scale = scale;
+        update_adjusted(axis);
     }
 }
 

@@ -33,6 +33,13 @@
  *   effectiveness ladrc_axis_get_effectiveness (INDI; the others read axis->b0)
  * The LADRC family (axis_adrc.c) shares one set for its three variants and
  * calls its estimator (axis_lp.c, axis_hp.c) through the axis_<est>_* hooks. */
+/* The attitude layer's restart of an axis on its next good measurement:
+ * engage 0 afresh (ladrc_axis_reset), 1 from torque_Nm (ladrc_axis_engage). */
+void axis_request_restart(ladrc_axis_t *axis, int engage, ladrc_real_t torque_Nm);
+/* Does a requested restart on this measurement (the rate may be NULL) once
+ * the angle is plausible; nothing when none is pending. */
+void axis_restart_now(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad, const ladrc_real_t *rate_rad_s);
+
 #define LADRC_WITH_ADRC_FAMILY (LADRC_WITH_LADRC || LADRC_WITH_LP_MLADRC || LADRC_WITH_HP_MLADRC)
 
 #define AXIS_VARIANT_FUNCTIONS(v)                                                                                      \

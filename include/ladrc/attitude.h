@@ -111,8 +111,7 @@ typedef struct {
     uint8_t has_attitude;                 /**< QUATERNION: 1 once a good attitude was measured */
     uint8_t phase;                        /**< ladrc_phase_t */
     uint8_t landed;                       /**< the caller's landed input */
-    uint8_t restart;                      /**< 1: the next tick restarts the axes on its measurement */
-    uint8_t engage;                       /**< 1: that restart takes over engage_Nm (bumpless) */
+    uint8_t restart;                      /**< 1: the axes restart at the next tick (the feed off for it) */
     uint32_t spool_ticks;                 /**< SPOOL_UP: ticks left */
     uint32_t spool_up_ticks;              /**< spool_up_s in ticks */
     ladrc_real_t engage_Nm[LADRC_AXES];   /**< the other controller's last command (N m) */

@@ -359,7 +359,10 @@ typedef struct {
     uint32_t consecutive_faults; /**< ticks in a row with LADRC_FAULT_INPUT or _STATE */
     uint8_t landed;              /**< ladrc_axis_set_landed: the ground takes the torque */
     ladrc_real_t gain_scale;     /**< ladrc_axis_set_gain_scale: the plant gain over b0 (1 after init) */
-    ladrc_real_t command_Nm;     /**< the latest command returned (N m): output_Nm / gain_scale, bounded */
+    ladrc_real_t command_Nm;     /**< landed or scaled: the latest command returned (N m), output_Nm / gain_scale */
+    uint8_t adjusted;            /**< 1: landed or gain_scale != 1 (the tick's end takes their path) */
+    uint8_t restart;             /**< the next good tick restarts first: 1 afresh, 2 engaging engage_Nm */
+    ladrc_real_t engage_Nm;      /**< restart 2: the other controller's last command (N m) */
 } ladrc_axis_t;
 
 /**
