@@ -74,8 +74,9 @@ typedef enum {
 
 /** PX4's default weight of yaw against tilt (MC_YAW_WEIGHT). */
 #define LADRC_YAW_WEIGHT_DEFAULT LADRC_R(0.4)
-/** Default and longest spool-up (s): PX4 spools up over 1 s (COM_SPOOLUP_TIME), Betaflight at once. */
+/** Default spool-up (s): PX4 spools up over 1 s (COM_SPOOLUP_TIME), Betaflight at once. */
 #define LADRC_SPOOL_UP_DEFAULT_S LADRC_R(0.5)
+/** Longest spool-up init accepts (s). */
 #define LADRC_SPOOL_UP_MAX_S LADRC_R(10.0)
 
 /** Attitude configuration (ladrc_attitude_init validates it); can live in flash. */

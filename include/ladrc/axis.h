@@ -534,8 +534,9 @@ void ladrc_axis_set_applied(ladrc_axis_t *axis, ladrc_real_t torque_Nm);
  *  @param landed  0: flying, else landed */
 void ladrc_axis_set_landed(ladrc_axis_t *axis, uint8_t landed);
 
-/** Bounds of ladrc_axis_set_gain_scale. */
+/** Smallest gain scale ladrc_axis_set_gain_scale takes. */
 #define LADRC_GAIN_SCALE_MIN LADRC_R(0.1)
+/** Largest gain scale ladrc_axis_set_gain_scale takes. */
 #define LADRC_GAIN_SCALE_MAX LADRC_R(10.0)
 
 /**
