@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* Large angles: every controller in the quaternion frame through the
- * shipped flips and the yaw turn held at 60 deg of pitch
- * (scenarios/large_angle), tuned as ladrc_sil tunes them. */
+/* The flight stack's scenarios, every controller tuned as ladrc_sil tunes
+ * it: the quaternion frame through the shipped flips and the yaw turn held
+ * at 60 deg of pitch (scenarios/large_angle), and a flight from a sloped
+ * ground with a land, disarm, arm cycle (scenarios/phases). */
 #include "unity.h"
 #include "ladrc/margins.h"
 #include "run/runner.h"
@@ -14,9 +15,9 @@
 #error "SIM_SCENARIO_DIR must name the scenarios folder"
 #endif
 
-/* After each manoeuvre every controller settles within the scenario's
- * band (0.5 deg) and stays there: its steady band, with the measurement
- * noise (0.05 deg, 0.5 deg/s), is a few hundredths of a degree. */
+/* After each manoeuvre (and after take-off) every controller settles within
+ * the scenario's band (0.5 deg) and stays there: its steady band, with the
+ * measurement noise (0.05 deg, 0.5 deg/s), is a few hundredths of a degree. */
 #define STEADY_BAND_MAX_DEG 0.5
 
 void setUp(void)
@@ -26,17 +27,15 @@ void tearDown(void)
 {
 }
 
-/* Every controller of a shipped large-angle scenario: tuned, flown, settled. */
-static void fly_every_controller(const char *file)
+/* Every controller of a shipped scenario (folder/file): tuned, flown, settled. */
+static void fly_every_controller(const char *folder, const char *file)
 {
     static sim_scenario_t sc;
     static ladrc_margins_workspace_t ws;
     char path[1024];
-    snprintf(path, sizeof path, "%s/large_angle/%s", SIM_SCENARIO_DIR, file);
+    snprintf(path, sizeof path, "%s/%s/%s", SIM_SCENARIO_DIR, folder, file);
     sim_parse_error_t perr;
     TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_scenario_load(&sc, path, &perr), perr.message);
-    TEST_ASSERT_EQUAL_INT(LADRC_FRAME_QUATERNION, sc.frame);
-    TEST_ASSERT_EQUAL_INT(1, sc.rigid_body);
     TEST_ASSERT_EQUAL_INT(SIM_CTRL_COUNT, sc.n_controllers);
     for (int c = 0; c < sc.n_controllers; ++c) {
         const sim_controller_id_t id = sc.controllers[c];
@@ -59,12 +58,17 @@ static void fly_every_controller(const char *file)
 
 static void test_every_controller_flips(void)
 {
-    fly_every_controller("flips.ini");
+    fly_every_controller("large_angle", "flips.ini");
 }
 
 static void test_every_controller_turns_yaw_at_60_deg_of_pitch(void)
 {
-    fly_every_controller("yaw_turn_pitched.ini");
+    fly_every_controller("large_angle", "yaw_turn_pitched.ini");
+}
+
+static void test_every_controller_takes_off_lands_and_takes_off_again(void)
+{
+    fly_every_controller("phases", "takeoff_land.ini");
 }
 
 int main(void)
@@ -72,5 +76,6 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_every_controller_flips);
     RUN_TEST(test_every_controller_turns_yaw_at_60_deg_of_pitch);
+    RUN_TEST(test_every_controller_takes_off_lands_and_takes_off_again);
     return UNITY_END();
 }
