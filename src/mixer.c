@@ -107,9 +107,6 @@ ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *c
     if (!ladrc_is_positive(cfg->tilt_max_rad) || !(cfg->tilt_max_rad <= HALF_PI_BELOW)) {
         return LADRC_ERR_MIXER_TILT_MAX_RAD;
     }
-    if (!within(cfg->thrust_curve, LADRC_R(0.0), LADRC_R(1.0))) {
-        return LADRC_ERR_MIXER_THRUST_CURVE;
-    }
 
     mx->kL_N_s2 = cfg->kL_N_s2;
     mx->lkL_Nm_s2 = cfg->arm_m * cfg->kL_N_s2;
@@ -121,7 +118,7 @@ ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *c
     mx->cos_tilt_min = ladrc_cos(cfg->tilt_max_rad);
     mx->thrust_max_N = mx->weight_N / mx->cos_tilt_min;
     mx->mode = cfg->mode;
-    mx->thrust_curve = cfg->thrust_curve;
+    mx->thrust_curve = LADRC_R(0.0);
     if (cfg->mode == LADRC_MIXER_IDEAL) {
         /* No limits: every w^2 whose four-term sums cannot overflow is in range. */
         mx->w2_min_rad2_s2 = -LADRC_R(0.25) * LADRC_REAL_MAX;
@@ -457,6 +454,18 @@ ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N, const l
         *out = mx->out;
     }
     return faults;
+}
+
+ladrc_status_t ladrc_mixer_set_thrust_curve(ladrc_mixer_t *mx, ladrc_real_t k)
+{
+    if (mx == NULL) {
+        return LADRC_ERR_NULL;
+    }
+    if (!within(k, LADRC_R(0.0), LADRC_R(1.0))) {
+        return LADRC_ERR_MIXER_THRUST_CURVE;
+    }
+    mx->thrust_curve = k;
+    return LADRC_OK;
 }
 
 ladrc_real_t ladrc_mixer_command(const ladrc_mixer_t *mx, ladrc_real_t w2_rad2_s2)

@@ -128,12 +128,13 @@ static void test_mixer_command_inverts_the_thrust_curve(void)
 {
     ladrc_mixer_config_t mc = {.kL_N_s2 = 2.98e-5f, .arm_m = 0.165f, .b_Nm_s2 = 2e-6f, .mass_kg = 0.8f,
                                .g_m_s2 = 9.81f, .w2_min_rad2_s2 = 0.0f, .w2_max_rad2_s2 = 1e5f,
-                               .tilt_max_rad = 0.7f, .mode = LADRC_MIXER_SATURATE, .thrust_curve = 0.0f};
+                               .tilt_max_rad = 0.7f, .mode = LADRC_MIXER_SATURATE};
     ladrc_mixer_t mx;
     const ladrc_real_t curves[3] = {LADRC_R(0.0), LADRC_R(0.3), LADRC_R(1.0)};
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_mixer_init(&mx, &mc));
+    TEST_ASSERT_TRUE(mx.thrust_curve == LADRC_R(0.0)); /* linear after init */
     for (int k = 0; k < 3; ++k) {
-        mc.thrust_curve = curves[k];
-        TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_mixer_init(&mx, &mc));
+        TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_mixer_set_thrust_curve(&mx, curves[k]));
         for (int i = 0; i <= 10; ++i) {
             const double f = 0.1 * i; /* the share of full thrust asked */
             const double c = (double)ladrc_mixer_command(&mx, (ladrc_real_t)(f * 1e5));
@@ -144,8 +145,9 @@ static void test_mixer_command_inverts_the_thrust_curve(void)
     TEST_ASSERT_TRUE(ladrc_mixer_command(&mx, LADRC_R(2e5)) == LADRC_R(1.0));  /* beyond full: full */
     TEST_ASSERT_TRUE(ladrc_mixer_command(&mx, LADRC_R(-5.0)) == LADRC_R(0.0)); /* below 0: 0 */
     TEST_ASSERT_TRUE(ladrc_mixer_command(&mx, (ladrc_real_t)NAN) == LADRC_R(0.0));
-    mc.thrust_curve = LADRC_R(1.2);
-    TEST_ASSERT_EQUAL_INT(LADRC_ERR_MIXER_THRUST_CURVE, ladrc_mixer_init(&mx, &mc));
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_MIXER_THRUST_CURVE, ladrc_mixer_set_thrust_curve(&mx, LADRC_R(1.2)));
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_MIXER_THRUST_CURVE, ladrc_mixer_set_thrust_curve(&mx, (ladrc_real_t)NAN));
+    TEST_ASSERT_TRUE(mx.thrust_curve == LADRC_R(1.0)); /* the last good one kept */
 }
 
 int main(void)

@@ -61,7 +61,8 @@
  * Motor commands. A rotor's ESC takes a command c in [0, 1], and real rotors'
  * thrust is not linear in it: between linear and quadratic, thrust / thrust
  * at full command = (1 - k) c + k c^2, k = thrust_curve (PX4's THR_MDL_FAC,
- * ArduPilot's MOT_THST_EXPO). ladrc_mixer_command inverts that curve for a
+ * ArduPilot's MOT_THST_EXPO; ladrc_mixer_set_thrust_curve, 0 after init).
+ * ladrc_mixer_command inverts that curve for a
  * rotor's w^2 (proportional to its thrust), so that the commands it gives
  * make the thrusts the mix asked for: the torque per unit of command is then
  * the same at every throttle. With k = 0 the command is w^2 / w2_max.
@@ -134,8 +135,6 @@ typedef struct {
                                       (IDEAL: any finite value > w2_min_rad2_s2, unused) */
     ladrc_real_t tilt_max_rad;   /**< tilt beyond which thrust_from_tilt stops growing (rad), in (0, pi/2) */
     ladrc_mixer_mode_t mode;     /**< saturate (flight) or ideal (paper) */
-    ladrc_real_t thrust_curve;   /**< k of the rotors' thrust curve (1 - k) c + k c^2, in [0, 1] (0: linear in
-                                      the command; ladrc_mixer_command) */
 } ladrc_mixer_config_t;
 
 /** One mix: what the motors get and what the airframe gets from it. */
@@ -169,7 +168,7 @@ typedef struct {
     ladrc_real_t thrust_lo_N, thrust_hi_N; /**< 4 kL w2_min, 4 kL w2_max: thrust range (0 if ideal) */
     /** @} */
     ladrc_mixer_mode_t mode;  /**< of the config */
-    ladrc_real_t thrust_curve; /**< of the config */
+    ladrc_real_t thrust_curve; /**< ladrc_mixer_set_thrust_curve's k, 0 after init */
     ladrc_real_t command_per_w2; /**< 1 / w2_max of the config (1/(rad^2/s^2)) */
     ladrc_mixer_output_t out; /**< last good output */
 } ladrc_mixer_t;
@@ -194,8 +193,7 @@ typedef struct {
  *  @retval LADRC_ERR_MIXER_W2_MIN       w2_min_rad2_s2 not finite, or < 0 in saturate mode
  *  @retval LADRC_ERR_MIXER_W2_MAX       w2_max_rad2_s2 not > w2_min_rad2_s2 or, saturating, outside
  *                                       [LADRC_MIXER_W2_MAX_MIN_RAD2_S2, LADRC_MIXER_W2_MAX_MAX_RAD2_S2]
- *  @retval LADRC_ERR_MIXER_TILT_MAX_RAD tilt_max_rad not in (0, pi/2)
- *  @retval LADRC_ERR_MIXER_THRUST_CURVE thrust_curve not finite or outside [0, 1] */
+ *  @retval LADRC_ERR_MIXER_TILT_MAX_RAD tilt_max_rad not in (0, pi/2) */
 ladrc_status_t ladrc_mixer_init(ladrc_mixer_t *mx, const ladrc_mixer_config_t *cfg);
 
 /** Sets the held output to the mix of level hover (U_L = m g, no torque) and clears faults.
@@ -265,6 +263,15 @@ void ladrc_mixer_forward(const ladrc_mixer_t *mx, const ladrc_real_t w2_rad2_s2[
  */
 ladrc_fault_t ladrc_mixer_step(ladrc_mixer_t *mx, ladrc_real_t thrust_N, const ladrc_real_t torque_Nm[3],
                                ladrc_mixer_output_t *out);
+
+/** Sets the rotors' thrust curve k (file comment) that ladrc_mixer_command
+ *  inverts; 0 after init (thrust linear in the command).
+ *  @param mx  the mixer; NULL: LADRC_ERR_NULL
+ *  @param k   the curve, in [0, 1]
+ *  @retval LADRC_OK                     set
+ *  @retval LADRC_ERR_NULL               mx is NULL
+ *  @retval LADRC_ERR_MIXER_THRUST_CURVE k not finite or outside [0, 1] (the curve kept) */
+ladrc_status_t ladrc_mixer_set_thrust_curve(ladrc_mixer_t *mx, ladrc_real_t k);
 
 /**
  * The ESC command of one rotor for its w^2: the c in [0, 1] whose thrust on

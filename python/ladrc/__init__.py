@@ -163,7 +163,7 @@ class _Library:
         class MixerConfig(ctypes.Structure):
             _fields_ = [("kL_N_s2", r), ("arm_m", r), ("b_Nm_s2", r), ("mass_kg", r),
                         ("g_m_s2", r), ("w2_min_rad2_s2", r), ("w2_max_rad2_s2", r),
-                        ("tilt_max_rad", r), ("mode", i), ("thrust_curve", r)]
+                        ("tilt_max_rad", r), ("mode", i)]
 
         class MixerOutputC(ctypes.Structure):
             _fields_ = [("w2_rad2_s2", r * 4), ("w_rad_s", r * 4), ("thrust_N", r),
@@ -432,12 +432,12 @@ class MixerOutput:
 
 class Mixer:
     """The plus-frame mixer (ladrc_mixer_t). config: dict of every field of
-    ladrc_mixer_config_t; "mode" defaults to "SATURATE", "thrust_curve" to 0."""
+    ladrc_mixer_config_t; "mode" defaults to "SATURATE"."""
 
     def __init__(self, config):
         lib = self._lib = library()
         cfg = lib.MixerConfig()
-        config = {"mode": "SATURATE", "thrust_curve": 0.0, **config}
+        config = {"mode": "SATURATE", **config}
         missing = [f[0] for f in cfg._fields_ if f[0] not in config]
         if missing:
             raise KeyError(f"mixer config needs {missing}")

@@ -31,6 +31,9 @@ static int configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_att
     ladrc_mixer_config_t mix;
     sim_setup_mixer(sc, &mix);
     st = ladrc_mixer_init(mixer, &mix);
+    if (st == LADRC_OK) {
+        st = ladrc_mixer_set_thrust_curve(mixer, (ladrc_real_t)sc->mixer_thrust_curve);
+    }
     if (st != LADRC_OK) {
         snprintf(err, err_len, "%s: mixer: %s", sc->path, ladrc_status_str(st));
         return -1;

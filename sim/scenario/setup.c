@@ -243,7 +243,6 @@ void sim_setup_mixer(const sim_scenario_t *sc, ladrc_mixer_config_t *cfg)
     cfg->w2_max_rad2_s2 = (ladrc_real_t)w2_max;
     cfg->tilt_max_rad = (ladrc_real_t)sc->tilt_max_rad;
     cfg->mode = sc->rotors_ideal ? LADRC_MIXER_IDEAL : LADRC_MIXER_SATURATE;
-    cfg->thrust_curve = (ladrc_real_t)sc->mixer_thrust_curve;
 }
 
 void sim_setup_differentiators(const sim_scenario_t *sc, ladrc_levant_config_t *lev, ladrc_td_config_t *td)
