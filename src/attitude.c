@@ -118,7 +118,8 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
     }
     const ladrc_real_t k = cfg->gain_thrust_curve;
     if (!ladrc_is_finite(k) || k < LADRC_R(0.0) || k > LADRC_R(1.0) ||
-        (k > LADRC_R(0.0) && !(ladrc_is_positive(cfg->gain_full_thrust_N) && ladrc_is_positive(cfg->gain_ref_thrust_N))) ||
+        (k > LADRC_R(0.0) &&
+         !(ladrc_is_positive(cfg->gain_full_thrust_N) && ladrc_is_positive(cfg->gain_ref_thrust_N))) ||
         !ladrc_is_finite(cfg->gain_ref_voltage_V) || cfg->gain_ref_voltage_V < LADRC_R(0.0)) {
         return LADRC_ERR_GAIN_SCHEDULE;
     }
@@ -249,8 +250,8 @@ LADRC_NOINLINE static void update_feed(ladrc_attitude_t *att)
 /* The tick of both frames: the feed, then each axis (inlined in both: the
  * Euler tick pays nothing for the quaternion frame). */
 static LADRC_FORCE_INLINE ladrc_fault_t step_axes(ladrc_attitude_t *att, const ladrc_real_t ref_rad[LADRC_AXES],
-                               const ladrc_real_t angle_rad[LADRC_AXES], const ladrc_real_t *rate_rad_s,
-                               ladrc_real_t torque_Nm[LADRC_AXES])
+                                                  const ladrc_real_t angle_rad[LADRC_AXES],
+                                                  const ladrc_real_t *rate_rad_s, ladrc_real_t torque_Nm[LADRC_AXES])
 {
     if (att->coupling_feed && !att->restart) { /* no feed from states waiting to restart */
         update_feed(att);

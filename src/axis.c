@@ -459,8 +459,8 @@ void ladrc_axis_set_gain_scale(ladrc_axis_t *axis, ladrc_real_t scale)
     }
 }
 
-void ladrc_axis_engage(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
-                       const ladrc_real_t *rate_rad_s, ladrc_real_t torque_Nm)
+void ladrc_axis_engage(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad, const ladrc_real_t *rate_rad_s,
+                       ladrc_real_t torque_Nm)
 {
     LADRC_REQUIRE_VOID(axis != NULL);
     ladrc_axis_reset(axis, angle_rad);

@@ -53,8 +53,7 @@ void axis_approach_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg, ladr
     const ladrc_real_t bound_Nm = (cfg->u_max_Nm < -cfg->u_min_Nm) ? cfg->u_max_Nm : -cfg->u_min_Nm;
     const ladrc_real_t accel = AXIS_APPROACH_SHARE * ladrc_fabs(cfg->b0) * bound_Nm;
     axis->approach_rad_s2 = LADRC_R(2.0) * accel;
-    axis->linear_rad =
-        ladrc_is_finite(accel) ? LADRC_R(2.0) * accel / (k_per_s * k_per_s) : (ladrc_real_t)INFINITY;
+    axis->linear_rad = ladrc_is_finite(accel) ? LADRC_R(2.0) * accel / (k_per_s * k_per_s) : (ladrc_real_t)INFINITY;
 }
 
 void axis_shaper_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)

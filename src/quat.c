@@ -50,14 +50,14 @@ static ladrc_real_t angle_per_sine(ladrc_real_t w, ladrc_real_t u)
     if (u < QUAT_SERIES_MAX_U) {
         /* 2 asin(s) / s = 2 (1 + u/6 + 3u^2/40 + 5u^3/112 + 35u^4/1152) */
         return LADRC_R(2.0) *
-               (LADRC_R(1.0) +
-                u * (LADRC_R(1.0) / LADRC_R(6.0) +
-                     u * (LADRC_R(3.0) / LADRC_R(40.0) +
-                          u * (LADRC_R(5.0) / LADRC_R(112.0) + u * (LADRC_R(35.0) / LADRC_R(1152.0))))));
+               (LADRC_R(1.0) + u * (LADRC_R(1.0) / LADRC_R(6.0) +
+                                    u * (LADRC_R(3.0) / LADRC_R(40.0) +
+                                         u * (LADRC_R(5.0) / LADRC_R(112.0) + u * (LADRC_R(35.0) / LADRC_R(1152.0))))));
     }
     const ladrc_real_t s = ladrc_sqrt(u);
-    const ladrc_real_t half = (s <= QUAT_ASIN_SWITCH) ? ladrc_asin(s)
-                                                      : LADRC_R(0.5) * LADRC_PI - ladrc_asin(ladrc_clamp(w, LADRC_R(0.0), LADRC_R(1.0)));
+    const ladrc_real_t half = (s <= QUAT_ASIN_SWITCH)
+                                  ? ladrc_asin(s)
+                                  : LADRC_R(0.5) * LADRC_PI - ladrc_asin(ladrc_clamp(w, LADRC_R(0.0), LADRC_R(1.0)));
     return LADRC_R(2.0) * half / s;
 }
 

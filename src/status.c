@@ -120,10 +120,11 @@
     X(LADRC_ERR_INDI_ADAPT_EXCITATION,                                                                                 \
       "indi_adapt_jerk_min_rad_s3 must be finite, > 0 and give a torque threshold > 0")                                \
     X(LADRC_ERR_INDI_ADAPT_MIN, "indi_adapt_min_ratio must be finite, in (0, 1] and |b0| times it >= 1e-3")            \
-    X(LADRC_ERR_INDI_ADAPT_MAX, "indi_adapt_max_ratio must be finite, >= 1 and |b0| times it <= 1e7")                 \
+    X(LADRC_ERR_INDI_ADAPT_MAX, "indi_adapt_max_ratio must be finite, >= 1 and |b0| times it <= 1e7")                  \
     X(LADRC_ERR_SPOOL_UP_S, "spool_up_s must be finite and within [0, LADRC_SPOOL_UP_MAX_S]")                          \
-    X(LADRC_ERR_MIXER_THRUST_CURVE, "mixer thrust_curve must be finite and within [0, 1]")                            \
-    X(LADRC_ERR_GAIN_SCHEDULE, "gain_thrust_curve must be in [0, 1] (> 0: both thrusts finite and > 0), gain_ref_voltage_V >= 0")
+    X(LADRC_ERR_MIXER_THRUST_CURVE, "mixer thrust_curve must be finite and within [0, 1]")                             \
+    X(LADRC_ERR_GAIN_SCHEDULE,                                                                                         \
+      "gain_thrust_curve must be in [0, 1] (> 0: both thrusts finite and > 0), gain_ref_voltage_V >= 0")
 
 #ifdef LADRC_STATUS_NAMES_ONLY
 #define STATUS_TEXT(code, explanation) #code

@@ -163,7 +163,8 @@ static void test_take_off_after_ten_seconds_on_the_ground(void)
         TEST_ASSERT_TRUE(after_ground <= TAKE_OFF_RATIO_MAX * in_air);
     }
     /* the test can fail: an observer that learns the ground's reaction winds up */
-    TEST_ASSERT_TRUE(take_off(LADRC_VARIANT_LADRC, 10.0, 0) > TAKE_OFF_RATIO_MAX * take_off(LADRC_VARIANT_LADRC, 0.0, 1));
+    TEST_ASSERT_TRUE(take_off(LADRC_VARIANT_LADRC, 10.0, 0) >
+                     TAKE_OFF_RATIO_MAX * take_off(LADRC_VARIANT_LADRC, 0.0, 1));
 }
 
 /* What an axis has learnt: its disturbance estimate and, for PID and

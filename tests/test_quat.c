@@ -120,15 +120,16 @@ static void test_tilt_error_near_level_is_the_per_axis_error(void)
 {
     /* errors of up to 5 deg on every axis, from a level and from a tilted attitude */
     const double starts[2][3] = {{0.0, 0.0, 0.0}, {0.1, -0.05, 2.0}};
-    const double errors[3][3] = {{2.0 * DEG, 0.0, 0.0}, {-1.0 * DEG, 3.0 * DEG, 0.5 * DEG}, {5 * DEG, -5 * DEG, 5 * DEG}};
+    const double errors[3][3] = {
+        {2.0 * DEG, 0.0, 0.0}, {-1.0 * DEG, 3.0 * DEG, 0.5 * DEG}, {5 * DEG, -5 * DEG, 5 * DEG}};
     for (int s = 0; s < 2; ++s) {
         for (int k = 0; k < 3; ++k) {
             double q[4], qr[4], ref_err[3];
             test_quat_from_euler(starts[s][0], starts[s][1], starts[s][2], q);
             /* the reference: q rotated by the error in body axes */
-            const ladrc_quat_t dq = axis_angle(errors[k][0], errors[k][1], errors[k][2],
-                                               sqrt(errors[k][0] * errors[k][0] + errors[k][1] * errors[k][1] +
-                                                    errors[k][2] * errors[k][2]));
+            const ladrc_quat_t dq = axis_angle(
+                errors[k][0], errors[k][1], errors[k][2],
+                sqrt(errors[k][0] * errors[k][0] + errors[k][1] * errors[k][1] + errors[k][2] * errors[k][2]));
             const ladrc_quat_t ref = ladrc_quat_mul(to_quat(q), dq);
             qr[0] = ref.w, qr[1] = ref.x, qr[2] = ref.y, qr[3] = ref.z;
             test_quat_error(q, qr, ref_err);
@@ -157,7 +158,8 @@ static void test_tilt_error_serves_the_tilt_first(void)
 {
     /* a tilt of 60 deg and a yaw of 150 deg at once, from 45 deg of roll */
     const ladrc_quat_t q = ladrc_quat_from_euler(LADRC_R(45.0) * (ladrc_real_t)DEG, 0, 0);
-    const ladrc_quat_t ref = ladrc_quat_mul(q, ladrc_quat_mul(axis_angle(0, 0, 1, 150 * DEG), axis_angle(1, 1, 0, 60 * DEG)));
+    const ladrc_quat_t ref =
+        ladrc_quat_mul(q, ladrc_quat_mul(axis_angle(0, 0, 1, 150 * DEG), axis_angle(1, 1, 0, 60 * DEG)));
     ladrc_real_t plain[3], weighted[3], tilt_only[3];
     ladrc_quat_tilt_error(q, ref, LADRC_R(1.0), plain);
     ladrc_quat_tilt_error(q, ref, LADRC_YAW_WEIGHT_DEFAULT, weighted);
@@ -182,7 +184,7 @@ static void test_tilt_error_of_a_half_turn_is_finite(void)
         TEST_ASSERT_TRUE(fabs(fabs((double)e[0]) - PI) <= ROTVEC_TOL * 10.0);
         TEST_ASSERT_TRUE(fabs((double)e[1]) <= ROTVEC_TOL && fabs((double)e[2]) <= ROTVEC_TOL);
         ladrc_quat_tilt_error(level, axis_angle(0, 0, 1, PI), weights[w], e); /* turned round */
-        TEST_ASSERT_TRUE(fabs(fabs((double)e[2]) - PI) <= 0.1 * PI); /* the weighted turn: within 10 % of pi */
+        TEST_ASSERT_TRUE(fabs(fabs((double)e[2]) - PI) <= 0.1 * PI);          /* the weighted turn: within 10 % of pi */
         TEST_ASSERT_TRUE(fabs((double)e[0]) <= ROTVEC_TOL && fabs((double)e[1]) <= ROTVEC_TOL);
     }
 }
@@ -243,7 +245,8 @@ static void test_bad_attitude_holds_every_axis(void)
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_attitude_init(&att, &cfg, NULL));
     const ladrc_quat_t level = {LADRC_R(1.0), 0, 0, 0};
     const ladrc_quat_t ref = ladrc_quat_from_euler(LADRC_R(0.1), LADRC_R(-0.1), LADRC_R(0.2));
-    const ladrc_quat_t bad[3] = {{(ladrc_real_t)NAN, 0, 0, 0}, {0, 0, 0, 0}, {LADRC_R(1.0), (ladrc_real_t)INFINITY, 0, 0}};
+    const ladrc_quat_t bad[3] = {
+        {(ladrc_real_t)NAN, 0, 0, 0}, {0, 0, 0, 0}, {LADRC_R(1.0), (ladrc_real_t)INFINITY, 0, 0}};
     ladrc_real_t torque[3], held[3];
     for (int k = 0; k < 20; ++k) {
         TEST_ASSERT_EQUAL_UINT8(LADRC_FAULT_NONE, ladrc_attitude_step_quat(&att, &ref, &level, NULL, held));

@@ -126,9 +126,15 @@ static void test_operating_point_scales_every_axis(void)
 
 static void test_mixer_command_inverts_the_thrust_curve(void)
 {
-    ladrc_mixer_config_t mc = {.kL_N_s2 = 2.98e-5f, .arm_m = 0.165f, .b_Nm_s2 = 2e-6f, .mass_kg = 0.8f,
-                               .g_m_s2 = 9.81f, .w2_min_rad2_s2 = 0.0f, .w2_max_rad2_s2 = 1e5f,
-                               .tilt_max_rad = 0.7f, .mode = LADRC_MIXER_SATURATE};
+    ladrc_mixer_config_t mc = {.kL_N_s2 = 2.98e-5f,
+                               .arm_m = 0.165f,
+                               .b_Nm_s2 = 2e-6f,
+                               .mass_kg = 0.8f,
+                               .g_m_s2 = 9.81f,
+                               .w2_min_rad2_s2 = 0.0f,
+                               .w2_max_rad2_s2 = 1e5f,
+                               .tilt_max_rad = 0.7f,
+                               .mode = LADRC_MIXER_SATURATE};
     ladrc_mixer_t mx;
     const ladrc_real_t curves[3] = {LADRC_R(0.0), LADRC_R(0.3), LADRC_R(1.0)};
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_mixer_init(&mx, &mc));

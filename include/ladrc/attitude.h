@@ -101,26 +101,26 @@ typedef struct {
 
 /** Attitude state; owned by the caller. */
 typedef struct {
-    ladrc_real_t coupling[LADRC_AXES];    /**< (Jy-Jz)/Jx, (Jz-Jx)/Jy, (Jx-Jy)/Jz */
-    ladrc_real_t drag_per_s[LADRC_AXES];  /**< kt / J per axis (1/s) */
-    ladrc_real_t feed_rad_s3[LADRC_AXES]; /**< h fed at the latest tick (rad/s^3) */
+    ladrc_real_t coupling[LADRC_AXES];       /**< (Jy-Jz)/Jx, (Jz-Jx)/Jy, (Jx-Jy)/Jz */
+    ladrc_real_t drag_per_s[LADRC_AXES];     /**< kt / J per axis (1/s) */
+    ladrc_real_t feed_rad_s3[LADRC_AXES];    /**< h fed at the latest tick (rad/s^3) */
     ladrc_real_t body_angle_rad[LADRC_AXES]; /**< QUATERNION: the body angles the axes take (rad) */
-    ladrc_quat_t attitude;                /**< QUATERNION: the latest good measured attitude */
-    ladrc_real_t yaw_weight;              /**< of the config */
-    uint8_t coupling_feed;                /**< of the config */
-    uint8_t frame;                        /**< of the config */
-    uint8_t has_attitude;                 /**< QUATERNION: 1 once a good attitude was measured */
-    uint8_t phase;                        /**< ladrc_phase_t */
-    uint8_t landed;                       /**< the caller's landed input */
-    uint8_t restart;                      /**< 1: the axes restart at the next tick (the feed off for it) */
-    uint32_t spool_ticks;                 /**< SPOOL_UP: ticks left */
-    uint32_t spool_up_ticks;              /**< spool_up_s in ticks */
-    ladrc_real_t engage_Nm[LADRC_AXES];   /**< the other controller's last command (N m) */
-    ladrc_real_t gain_curve;              /**< gain_thrust_curve */
-    ladrc_real_t gain_per_full_N;         /**< 2 k / gain_full_thrust_N (1/N) */
-    ladrc_real_t gain_ref_inv;            /**< 1 / the curve's slope at gain_ref_thrust_N */
-    ladrc_real_t gain_ref_voltage_V;      /**< of the config */
-    ladrc_axis_t axis[LADRC_AXES];        /**< roll, pitch, yaw */
+    ladrc_quat_t attitude;                   /**< QUATERNION: the latest good measured attitude */
+    ladrc_real_t yaw_weight;                 /**< of the config */
+    uint8_t coupling_feed;                   /**< of the config */
+    uint8_t frame;                           /**< of the config */
+    uint8_t has_attitude;                    /**< QUATERNION: 1 once a good attitude was measured */
+    uint8_t phase;                           /**< ladrc_phase_t */
+    uint8_t landed;                          /**< the caller's landed input */
+    uint8_t restart;                         /**< 1: the axes restart at the next tick (the feed off for it) */
+    uint32_t spool_ticks;                    /**< SPOOL_UP: ticks left */
+    uint32_t spool_up_ticks;                 /**< spool_up_s in ticks */
+    ladrc_real_t engage_Nm[LADRC_AXES];      /**< the other controller's last command (N m) */
+    ladrc_real_t gain_curve;                 /**< gain_thrust_curve */
+    ladrc_real_t gain_per_full_N;            /**< 2 k / gain_full_thrust_N (1/N) */
+    ladrc_real_t gain_ref_inv;               /**< 1 / the curve's slope at gain_ref_thrust_N */
+    ladrc_real_t gain_ref_voltage_V;         /**< of the config */
+    ladrc_axis_t axis[LADRC_AXES];           /**< roll, pitch, yaw */
 } ladrc_attitude_t;
 
 /**

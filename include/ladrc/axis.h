@@ -294,7 +294,7 @@ typedef struct {
     ladrc_real_t angle_limit_rad, rate_limit_rad_s, applied_limit_Nm; /**< plausible ranges */
     /** @} */
     /** @{ */
-    ladrc_real_t kp, kd, b0; /**< wc^2, 2 wc, b0 */
+    ladrc_real_t kp, kd, b0;      /**< wc^2, 2 wc, b0 */
     ladrc_real_t approach_rad_s2; /**< LADRC family, RATE-ADRC: 2 a, a half the torque bounds' acceleration (rad/s^2) */
     ladrc_real_t linear_rad;      /**< LADRC family, RATE-ADRC: |error| up to which the loop is linear (rad) */
     /** @} */
@@ -574,8 +574,8 @@ void ladrc_axis_set_gain_scale(ladrc_axis_t *axis, ladrc_real_t scale);
  * @param torque_Nm   the other controller's last command (N m), clamped to the
  *                    command bounds; non-finite or beyond applied_limit_Nm: 0
  */
-void ladrc_axis_engage(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad,
-                       const ladrc_real_t *rate_rad_s, ladrc_real_t torque_Nm);
+void ladrc_axis_engage(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad, const ladrc_real_t *rate_rad_s,
+                       ladrc_real_t torque_Nm);
 
 /** Known rate of change of the total disturbance for the next tick (rad/s^3),
  *  the coupling feed; held until set again.

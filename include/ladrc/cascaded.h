@@ -187,7 +187,8 @@ void ladrc_cascaded_reset(ladrc_cascaded_t *c, ladrc_real_t angle_rad);
  *  @param rate_rad_s the measured rate (rad/s); 0 without one
  *  @param torque_Nm  the other controller's last command (N m), within the
  *                    output bounds */
-void ladrc_cascaded_engage(ladrc_cascaded_t *c, ladrc_real_t angle_rad, ladrc_real_t rate_rad_s, ladrc_real_t torque_Nm);
+void ladrc_cascaded_engage(ladrc_cascaded_t *c, ladrc_real_t angle_rad, ladrc_real_t rate_rad_s,
+                           ladrc_real_t torque_Nm);
 
 /**
  * One tick on finite inputs (the axis checks them): shaped reference ref,

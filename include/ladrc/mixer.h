@@ -167,10 +167,10 @@ typedef struct {
     /** @{ */
     ladrc_real_t thrust_lo_N, thrust_hi_N; /**< 4 kL w2_min, 4 kL w2_max: thrust range (0 if ideal) */
     /** @} */
-    ladrc_mixer_mode_t mode;  /**< of the config */
-    ladrc_real_t thrust_curve; /**< ladrc_mixer_set_thrust_curve's k, 0 after init */
+    ladrc_mixer_mode_t mode;     /**< of the config */
+    ladrc_real_t thrust_curve;   /**< ladrc_mixer_set_thrust_curve's k, 0 after init */
     ladrc_real_t command_per_w2; /**< 1 / w2_max of the config (1/(rad^2/s^2)) */
-    ladrc_mixer_output_t out; /**< last good output */
+    ladrc_mixer_output_t out;    /**< last good output */
 } ladrc_mixer_t;
 
 /** Validates every field against its bounds (LADRC_ERR_MIXER_KL_N_S2, _ARM_M, _B_NM_S2,

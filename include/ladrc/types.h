@@ -301,12 +301,12 @@ typedef enum {
     LADRC_ERR_INDI_ADAPT,      /**< indi_adapt not 0 or 1 */
     LADRC_ERR_INDI_ADAPT_MU,   /**< indi_adapt_mu not finite or not in (0, 1] */
     LADRC_ERR_INDI_ADAPT_EXCITATION, /**< indi_adapt_jerk_min_rad_s3 not finite, not > 0, or its torque threshold jerk_min dt_s / |b0| vanishes */
-    LADRC_ERR_INDI_ADAPT_MIN, /**< indi_adapt_min_ratio not finite, not in (0, 1], or |b0| times it below 1e-3 */
-    LADRC_ERR_INDI_ADAPT_MAX, /**< indi_adapt_max_ratio not finite, below 1, or |b0| times it above 1e7 */
-    LADRC_ERR_SPOOL_UP_S,     /**< attitude spool_up_s not finite, < 0, or above LADRC_SPOOL_UP_MAX_S */
+    LADRC_ERR_INDI_ADAPT_MIN,     /**< indi_adapt_min_ratio not finite, not in (0, 1], or |b0| times it below 1e-3 */
+    LADRC_ERR_INDI_ADAPT_MAX,     /**< indi_adapt_max_ratio not finite, below 1, or |b0| times it above 1e7 */
+    LADRC_ERR_SPOOL_UP_S,         /**< attitude spool_up_s not finite, < 0, or above LADRC_SPOOL_UP_MAX_S */
     LADRC_ERR_MIXER_THRUST_CURVE, /**< mixer thrust_curve not finite or outside [0, 1] */
     LADRC_ERR_GAIN_SCHEDULE,      /**< attitude gain schedule fields out of range (ladrc_attitude_init) */
-    LADRC_STATUS_COUNT        /**< number of status codes (not a status) */
+    LADRC_STATUS_COUNT            /**< number of status codes (not a status) */
 } ladrc_status_t;
 
 /** Short, stable text for a status code.

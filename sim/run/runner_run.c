@@ -302,11 +302,9 @@ static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, 
     }
     thrust_N = run_thrust_N(sc, r, angle, tk->t);
     ladrc_attitude_set_operating_point(&r->att, thrust_N, run_voltage_V(sc, r, tk->t));
-    const ladrc_fault_t faults = quat_frame
-                                     ? ladrc_attitude_step_quat(&r->att, &ref, &meas, sc->use_rate ? rate : NULL,
-                                                                tk->torque)
-                                     : ladrc_attitude_step(&r->att, tk->ref, angle, sc->use_rate ? rate : NULL,
-                                                           tk->torque);
+    const ladrc_fault_t faults =
+        quat_frame ? ladrc_attitude_step_quat(&r->att, &ref, &meas, sc->use_rate ? rate : NULL, tk->torque)
+                   : ladrc_attitude_step(&r->att, tk->ref, angle, sc->use_rate ? rate : NULL, tk->torque);
     if (faults != LADRC_FAULT_NONE) {
         r->spec->metrics->faults++;
     }

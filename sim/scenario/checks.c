@@ -354,8 +354,8 @@ static void check_phases(parser_t *p)
         }
     }
     if (sc->phase_n_takeoff == 0) {
-        static const char *const ground_keys[] = {"arm_s",         "disarm_s",    "land_s", "ground_deg",
-                                                  "ground_thrust", "landed_input"};
+        static const char *const ground_keys[] = {"arm_s",      "disarm_s",      "land_s",
+                                                  "ground_deg", "ground_thrust", "landed_input"};
         const loc_t *at = first_given(p, SEC_PHASES, ground_keys, 6);
         if (at != NULL) {
             check_fail(p, at->line, at->key_col, "the ground phases need takeoff_s (the vehicle starts on the ground)");

@@ -77,21 +77,21 @@ typedef struct {
     double indi_att_kp_per_s, indi_rate_kp_per_s, indi_filter_rad_s;
     double radrc_kp_per_s, radrc_att_kp_per_s, radrc_rate_max_deg_s; /* RATE-ADRC; rate max in deg/s */
     double cas_att_kp, cas_rate_max_deg_s, cas_rate_kp, cas_rate_ki, cas_rate_kd, cas_d_filter_tau_s,
-        cas_i_limit_Nm;       /* CASCADED; cas_rate_max in deg/s as in the file */
-    int coupling_feed;        /* -1, 0 or 1 */
-    int cas_setpoint_ff;      /* -1 (the library's: yaw only), 0 or 1 on every axis */
+        cas_i_limit_Nm;                    /* CASCADED; cas_rate_max in deg/s as in the file */
+    int coupling_feed;                     /* -1, 0 or 1 */
+    int cas_setpoint_ff;                   /* -1 (the library's: yaw only), 0 or 1 on every axis */
     double cas_rate_ff, cas_i_relax_deg_s; /* CASCADED's rate feed-forward gain, integrator relax (deg/s) */
-    int indi_adapt;           /* -1 (no), 0 or 1: INDI adapts its effectiveness */
-    double indi_adapt_mu;     /* its LMS step */
-    int gain_schedule;        /* -1 (no), 0 or 1: b0 follows the thrust and the battery's voltage */
-    double model_motor_tau_s; /* NaN: [rotors] motor_tau_s; 0: no lag modelled (LADRC family) */
-    int model_delay_ticks;    /* -1: [sensors] delay_ticks (LADRC family) */
-    int wrap_yaw;             /* -1 (yes), 0 or 1: the controller's yaw wraps at +-180 deg */
-    int tune;                 /* -1 (none) or sim_tune_t */
-    double tune_pm_deg;       /* tune = margins: phase margin target (deg); NaN: SIM_TUNE_PM_DEG_DEFAULT */
-    double tune_gm_db;        /* gain margin target (dB); NaN: SIM_TUNE_GM_DB_DEFAULT */
-    double tune_step_rad;     /* objective's reference step (rad); NaN: the analysis's default */
-    double tune_dist_rad_s2;  /* its disturbance step (rad/s^2); NaN: the analysis's default */
+    int indi_adapt;                        /* -1 (no), 0 or 1: INDI adapts its effectiveness */
+    double indi_adapt_mu;                  /* its LMS step */
+    int gain_schedule;                     /* -1 (no), 0 or 1: b0 follows the thrust and the battery's voltage */
+    double model_motor_tau_s;              /* NaN: [rotors] motor_tau_s; 0: no lag modelled (LADRC family) */
+    int model_delay_ticks;                 /* -1: [sensors] delay_ticks (LADRC family) */
+    int wrap_yaw;                          /* -1 (yes), 0 or 1: the controller's yaw wraps at +-180 deg */
+    int tune;                              /* -1 (none) or sim_tune_t */
+    double tune_pm_deg;                    /* tune = margins: phase margin target (deg); NaN: SIM_TUNE_PM_DEG_DEFAULT */
+    double tune_gm_db;                     /* gain margin target (dB); NaN: SIM_TUNE_GM_DB_DEFAULT */
+    double tune_step_rad;                  /* objective's reference step (rad); NaN: the analysis's default */
+    double tune_dist_rad_s2;               /* its disturbance step (rad/s^2); NaN: the analysis's default */
 } sim_overrides_t;
 
 /* Gains chosen by tune = margins (sim_tune_controller, tune.h) for each axis
@@ -173,12 +173,12 @@ typedef struct {
      * armed from the start; no takeoff_s: in the air from the start */
     int phase_n_arm, phase_n_disarm, phase_n_takeoff, phase_n_land;
     double phase_arm_s[4], phase_disarm_s[4], phase_takeoff_s[4], phase_land_s[4];
-    double ground_rad[2];  /* the ground's roll and pitch: the attitude the vehicle stands at */
-    double ground_thrust;  /* thrust while armed on the ground, as a fraction of the weight */
-    int landed_input;      /* 1: the controllers are told landed on the ground; 0: never (no land detector) */
-    int n_events;          /* the timeline the checks build from the four lists, in time order */
+    double ground_rad[2]; /* the ground's roll and pitch: the attitude the vehicle stands at */
+    double ground_thrust; /* thrust while armed on the ground, as a fraction of the weight */
+    int landed_input;     /* 1: the controllers are told landed on the ground; 0: never (no land detector) */
+    int n_events;         /* the timeline the checks build from the four lists, in time order */
     double event_s[16];
-    int event_kind[16];    /* SIM_EVENT_* */
+    int event_kind[16]; /* SIM_EVENT_* */
 
     /* [sensors] */
     double angle_noise_std_rad; /* file gives angle_noise_var_deg2 or angle_noise_std_deg */
@@ -203,9 +203,9 @@ typedef struct {
     sim_signal_t disturbance[3];
     sim_signal_t throttle; /* [reference] throttle: fraction of the full thrust 4 kL w2_max; no pieces: hold
                               altitude (the weight over the tilt) */
-    int frame;         /* [reference] frame: ladrc_attitude_frame_t; QUATERNION: the references are
+    int frame;             /* [reference] frame: ladrc_attitude_frame_t; QUATERNION: the references are
                           ZYX angles composed into an attitude, errors are body-axis rotation vectors */
-    double yaw_weight; /* [reference] yaw_weight: the quaternion frame's weight of yaw against tilt */
+    double yaw_weight;     /* [reference] yaw_weight: the quaternion frame's weight of yaw against tilt */
 
     /* [controller NAME] sections */
     sim_overrides_t overrides[SIM_CTRL_COUNT];

@@ -46,8 +46,8 @@ static void fly_every_controller(const char *folder, const char *file)
         char err[256] = "";
         TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_run_attitude(&sc, id, NULL, NULL, &m, err, sizeof err), err);
         for (int i = 0; i < 3; ++i) {
-            printf("%s %-9s axis %d: max %.2f deg, band %.4f deg, settled after %.3f s\n", file, sim_controller_name(id),
-                   i, m.max_error_deg[i], m.band_deg[i], m.settle_s[i]);
+            printf("%s %-9s axis %d: max %.2f deg, band %.4f deg, settled after %.3f s\n", file,
+                   sim_controller_name(id), i, m.max_error_deg[i], m.band_deg[i], m.settle_s[i]);
             TEST_ASSERT_TRUE_MESSAGE(m.finite && !m.diverged, sim_controller_name(id));
             TEST_ASSERT_TRUE_MESSAGE(m.band_deg[i] <= STEADY_BAND_MAX_DEG, sim_controller_name(id));
             TEST_ASSERT_TRUE_MESSAGE(m.settle_s[i] != SIM_NOT_SETTLED, sim_controller_name(id));
