@@ -46,11 +46,11 @@ void ladrc_attitude_config_quaternion(ladrc_attitude_config_t *cfg)
  * weight and a wrapped angle on every axis (failed_axis for the last). */
 static ladrc_status_t check_frame(const ladrc_attitude_config_t *cfg, int *failed_axis)
 {
-    if (cfg->frame != LADRC_FRAME_EULER && cfg->frame != LADRC_FRAME_QUATERNION) {
-        return LADRC_ERR_ATTITUDE_FRAME;
-    }
     if (cfg->frame == LADRC_FRAME_EULER) {
         return LADRC_OK;
+    }
+    if (cfg->frame != LADRC_FRAME_QUATERNION) {
+        return LADRC_ERR_ATTITUDE_FRAME;
     }
     if (!ladrc_is_finite(cfg->yaw_weight) || !(cfg->yaw_weight > LADRC_R(0.0)) || cfg->yaw_weight > LADRC_R(1.0)) {
         return LADRC_ERR_YAW_WEIGHT;
@@ -173,6 +173,14 @@ ladrc_status_t ladrc_attitude_init(ladrc_attitude_t *att, const ladrc_attitude_c
     return LADRC_OK;
 }
 
+/* No coupling feed on axis i until the next one is worked out. */
+static void clear_feed(ladrc_attitude_t *att, unsigned i)
+{
+    att->feed_rad_s3[i] = LADRC_R(0.0);
+    ladrc_axis_set_disturbance_rate(&att->axis[i], LADRC_R(0.0));
+    ladrc_axis_set_known_disturbance(&att->axis[i], LADRC_R(0.0));
+}
+
 void ladrc_attitude_reset(ladrc_attitude_t *att, const ladrc_real_t angle_rad[LADRC_AXES])
 {
     LADRC_REQUIRE_VOID(att != NULL && angle_rad != NULL);
@@ -180,9 +188,7 @@ void ladrc_attitude_reset(ladrc_attitude_t *att, const ladrc_real_t angle_rad[LA
         ladrc_axis_reset(&att->axis[i], angle_rad[i]);
         ladrc_real_t rate_rad_s, disturbance_rad_s2; /* the axis's start, for the quaternion frame */
         ladrc_axis_get_estimate(&att->axis[i], &att->body_angle_rad[i], &rate_rad_s, &disturbance_rad_s2);
-        att->feed_rad_s3[i] = LADRC_R(0.0);
-        ladrc_axis_set_disturbance_rate(&att->axis[i], LADRC_R(0.0));
-        ladrc_axis_set_known_disturbance(&att->axis[i], LADRC_R(0.0));
+        clear_feed(att, i);
     }
     att->has_attitude = 0u;
 }
@@ -272,15 +278,20 @@ static void set_axes_landed(ladrc_attitude_t *att, uint8_t landed)
     }
 }
 
+/* Landed or flying, as the landed input says, every axis told. */
+static void follow_landed_input(ladrc_attitude_t *att)
+{
+    att->phase = att->landed ? LADRC_PHASE_LANDED : LADRC_PHASE_FLYING;
+    set_axes_landed(att, att->landed);
+}
+
 /* Arming or engaging: every axis restarts on its next good measurement
  * (axis_request_restart), the feed off until then. */
 static void request_restart(ladrc_attitude_t *att, int engage)
 {
     for (unsigned i = 0; i < LADRC_AXES; ++i) {
         axis_request_restart(&att->axis[i], engage, att->engage_Nm[i]);
-        att->feed_rad_s3[i] = LADRC_R(0.0);
-        ladrc_axis_set_disturbance_rate(&att->axis[i], LADRC_R(0.0));
-        ladrc_axis_set_known_disturbance(&att->axis[i], LADRC_R(0.0));
+        clear_feed(att, i);
     }
     att->restart = 1u;
 }
@@ -310,8 +321,7 @@ LADRC_NOINLINE static void spool_up_after(ladrc_attitude_t *att, ladrc_real_t to
         --att->spool_ticks;
     }
     if (att->spool_ticks == 0u) {
-        att->phase = att->landed ? LADRC_PHASE_LANDED : LADRC_PHASE_FLYING;
-        set_axes_landed(att, att->landed);
+        follow_landed_input(att);
     }
 }
 
@@ -358,8 +368,7 @@ void ladrc_attitude_arm(ladrc_attitude_t *att)
         att->phase = LADRC_PHASE_SPOOL_UP;
         set_axes_landed(att, 1u);
     } else {
-        att->phase = att->landed ? LADRC_PHASE_LANDED : LADRC_PHASE_FLYING;
-        set_axes_landed(att, att->landed);
+        follow_landed_input(att);
     }
 }
 
@@ -374,8 +383,7 @@ void ladrc_attitude_set_landed(ladrc_attitude_t *att, uint8_t landed)
     LADRC_REQUIRE_VOID(att != NULL);
     att->landed = landed ? 1u : 0u;
     if (att->phase == LADRC_PHASE_LANDED || att->phase == LADRC_PHASE_FLYING) {
-        att->phase = att->landed ? LADRC_PHASE_LANDED : LADRC_PHASE_FLYING;
-        set_axes_landed(att, att->landed);
+        follow_landed_input(att);
     }
 }
 

@@ -347,8 +347,6 @@ static void update_adjusted(ladrc_axis_t *axis)
     axis->adjusted = (axis->landed || axis->gain_scale != LADRC_R(1.0)) ? 1u : 0u;
 }
 
-/* rate_rad_s is read only when has_rate; the rate goes by value so the
- * deepest path (HP) keeps no copy of it on the stack. */
 void axis_request_restart(ladrc_axis_t *axis, int engage, ladrc_real_t torque_Nm)
 {
     axis->restart = engage ? 2u : 1u;
@@ -368,6 +366,8 @@ void axis_restart_now(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t ang
     axis->restart = 0u;
 }
 
+/* rate_rad_s is read only when has_rate; the rate goes by value so the
+ * deepest path (HP) keeps no copy of it on the stack. */
 static ladrc_real_t step_axis(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t angle_rad, ladrc_real_t rate_rad_s,
                               int has_rate)
 {

@@ -44,6 +44,18 @@ int ladrc_quat_normalise(ladrc_quat_t q, ladrc_quat_t *unit)
     return 1;
 }
 
+/* The same attitude with w >= 0 (q and -q are one rotation): the short way. */
+static ladrc_quat_t short_way(ladrc_quat_t q)
+{
+    if (q.w < LADRC_R(0.0)) {
+        q.w = -q.w;
+        q.x = -q.x;
+        q.y = -q.y;
+        q.z = -q.z;
+    }
+    return q;
+}
+
 /* angle / |v| of a unit quaternion with w >= 0, from u = |v|^2. */
 static ladrc_real_t angle_per_sine(ladrc_real_t w, ladrc_real_t u)
 {
@@ -64,12 +76,7 @@ static ladrc_real_t angle_per_sine(ladrc_real_t w, ladrc_real_t u)
 void ladrc_quat_rotvec(ladrc_quat_t q, ladrc_real_t vec_rad[3])
 {
     LADRC_REQUIRE_VOID(vec_rad != NULL);
-    if (q.w < LADRC_R(0.0)) { /* -q is the same attitude: take the short way */
-        q.w = -q.w;
-        q.x = -q.x;
-        q.y = -q.y;
-        q.z = -q.z;
-    }
+    q = short_way(q);
     const ladrc_real_t g = angle_per_sine(q.w, q.x * q.x + q.y * q.y + q.z * q.z);
     vec_rad[0] = g * q.x;
     vec_rad[1] = g * q.y;
@@ -79,13 +86,7 @@ void ladrc_quat_rotvec(ladrc_quat_t q, ladrc_real_t vec_rad[3])
 void ladrc_quat_tilt_error(ladrc_quat_t q, ladrc_quat_t q_ref, ladrc_real_t yaw_weight, ladrc_real_t e_rad[3])
 {
     LADRC_REQUIRE_VOID(e_rad != NULL);
-    ladrc_quat_t qe = ladrc_quat_mul(ladrc_quat_conj(q), q_ref);
-    if (qe.w < LADRC_R(0.0)) {
-        qe.w = -qe.w;
-        qe.x = -qe.x;
-        qe.y = -qe.y;
-        qe.z = -qe.z;
-    }
+    const ladrc_quat_t qe = short_way(ladrc_quat_mul(ladrc_quat_conj(q), q_ref));
     const ladrc_real_t k = (yaw_weight > LADRC_R(0.0) && yaw_weight < LADRC_R(1.0)) ? yaw_weight : LADRC_R(1.0);
     ladrc_quat_t err = qe;
     const ladrc_real_t n2 = qe.w * qe.w + qe.z * qe.z;
