@@ -18,6 +18,8 @@
 #include "report/report.h"
 #include "scenario/setup.h"
 #include "run/tune.h"
+#include "cli/replay_report.h"
+#include "log/log_identify.h"
 
 /* Largest motor lag searched (s): ten times any real motor's. */
 #define TAU_SEARCH_MAX_S 0.5
@@ -32,7 +34,12 @@ static void usage(FILE *out)
 {
     fputs("usage: ladrc_margins SCENARIO [--controllers LIST] [--axis roll|pitch|yaw|all]\n"
           "                     [--inertia-factor F] [--csv DIR] [--tune]\n"
+          "       ladrc_margins --from-log LOG [--format betaflight|px4|generic] [--map F=SOURCE]...\n"
+          "                     [--save-scenario FILE] [the options above]\n"
           "  SCENARIO           an attitude scenario file (docs/scenario-format.md)\n"
+          "  --from-log LOG     the airframe identified from a flight log (docs/flight-logs.md),\n"
+          "                     its controllers tuned by tune = margins; --format, --map as ladrc_replay's;\n"
+          "                     --save-scenario writes that airframe's scenario\n"
           "  --controllers L    comma-separated subset of HP-MLADRC,LP-MLADRC,LADRC,PID,CASCADED,INDI\n"
           "  --axis A           axis to analyse (default: all)\n"
           "  --inertia-factor F true inertia = F times the scenario's (default 1)\n"
@@ -101,10 +108,60 @@ static void fmt_margin(char *buf, size_t len, double v, const char *unit)
     }
 }
 
+/* The scenario of the airframe identified from a log (log_identify.h,
+ * airframe.h): written to save_path when given, read from memory. */
+static int load_from_log(const char *log_path, sim_log_options_t *opt, const char *save_path, sim_scenario_t *sc)
+{
+    char err[1024];
+    if (snprintf(opt->path, sizeof opt->path, "%s", log_path) >= (int)sizeof opt->path) {
+        fprintf(stderr, "ladrc_margins: %s: path too long\n", log_path);
+        return -1;
+    }
+    const sim_log_identify_options_t io = {.log = *opt, .delay_max_ticks = -1};
+    static sim_airframe_t airframe;
+    if (sim_log_identify(&io, &airframe, NULL, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        return -1;
+    }
+    sim_report_identification(stdout, &airframe);
+    char *text = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&text, &len);
+    const char *base = strrchr(log_path, '/');
+    const int rc = mem == NULL
+                       ? -1
+                       : sim_airframe_write(mem, &airframe, base != NULL ? base + 1 : log_path, NULL, err, sizeof err);
+    if (mem == NULL || fclose(mem) != 0 || rc != 0) {
+        fprintf(stderr, "ladrc_margins: %s: no airframe: %s\n", log_path, rc != 0 ? err : "out of memory");
+        free(text);
+        return -1;
+    }
+    if (save_path != NULL) {
+        FILE *f = fopen(save_path, "w");
+        if (f == NULL || fputs(text, f) < 0 || fclose(f) != 0) {
+            fprintf(stderr, "ladrc_margins: --save-scenario: cannot write '%s'\n", save_path);
+            free(text);
+            return -1;
+        }
+    }
+    sim_parse_error_t perr;
+    char name[SIM_PATH_LEN];
+    snprintf(name, sizeof name, "%s.airframe.ini", log_path);
+    const int parsed = sim_scenario_parse(sc, text, name, &perr);
+    free(text);
+    if (parsed != 0) {
+        fprintf(stderr, "%s:%d:%d: %s\n", perr.path, perr.line, perr.column, perr.message);
+        return -1;
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     static sim_scenario_t sc;
-    const char *path = NULL, *csv_dir = NULL;
+    const char *path = NULL, *csv_dir = NULL, *from_log = NULL, *save_path = NULL;
+    sim_log_options_t log_opt;
+    sim_log_options_default(&log_opt);
     int axis_from = 0, axis_to = 2, tune = 0, n_override = 0;
     double inertia_factor = 1.0;
     sim_controller_id_t ids[SIM_MAX_CONTROLLERS];
@@ -142,6 +199,19 @@ int main(int argc, char **argv)
             csv_dir = argv[++a];
         } else if (strcmp(arg, "--tune") == 0) {
             tune = 1;
+        } else if (strcmp(arg, "--from-log") == 0 && a + 1 < argc) {
+            from_log = argv[++a];
+        } else if (strcmp(arg, "--format") == 0 && a + 1 < argc) {
+            const int f = sim_log_format_parse(argv[++a]);
+            if (f < 0) {
+                fprintf(stderr, "ladrc_margins: --format: expected betaflight, px4 or generic, got '%s'\n", argv[a]);
+                return 2;
+            }
+            log_opt.format = (sim_log_format_t)f;
+        } else if (strcmp(arg, "--map") == 0 && a + 1 < argc && log_opt.n_map < SIM_LOG_MAX_MAP) {
+            log_opt.map[log_opt.n_map++] = argv[++a];
+        } else if (strcmp(arg, "--save-scenario") == 0 && a + 1 < argc) {
+            save_path = argv[++a];
         } else if (arg[0] == '-' || path != NULL) {
             fprintf(stderr, "ladrc_margins: unknown, incomplete or extra argument '%s'\n", arg);
             usage(stderr);
@@ -150,12 +220,15 @@ int main(int argc, char **argv)
             path = arg;
         }
     }
-    if (path == NULL) {
+    if ((path == NULL) == (from_log == NULL)) {
         usage(stderr);
         return 2;
     }
     sim_parse_error_t perr;
-    if (sim_scenario_load(&sc, path, &perr) != 0 ||
+    if (from_log != NULL && load_from_log(from_log, &log_opt, save_path, &sc) != 0) {
+        return 2;
+    }
+    if ((from_log == NULL && sim_scenario_load(&sc, path, &perr) != 0) ||
         (n_override > 0 && sim_scenario_set_controllers(&sc, ids, n_override, &perr) != 0)) {
         if (perr.line > 0) {
             fprintf(stderr, "%s:%d:%d: %s\n", perr.path, perr.line, perr.column, perr.message);
@@ -164,6 +237,7 @@ int main(int argc, char **argv)
         }
         return 2;
     }
+    path = from_log != NULL ? from_log : path;
     if (sc.kind != SIM_KIND_ATTITUDE) {
         fprintf(stderr, "ladrc_margins: %s: not an attitude scenario\n", path);
         return 2;

@@ -46,11 +46,12 @@ typedef struct {
     sim_series_cursor_t dist_cur, dist_stage_cur; /* the disturbance's, at the instants and the stages */
 } group_t;
 
-/* Every started run refused with err (it does not fly). */
+/* Every started run refused with err (it does not fly; its files closed). */
 static void group_refuse(group_t *g, const char *err)
 {
     for (int k = 0; k < g->n; ++k) {
         if (g->runs[k].rc == 0) {
+            (void)runner_run_close(g->sc, &g->run[k]);
             snprintf(g->runs[k].err, g->runs[k].err_len, "%s", err);
             g->runs[k].rc = -1;
             g->run[k].flying = 0;

@@ -17,6 +17,11 @@
 
 FILE *runner_open_csv(const char *path, const char *header, char *err, size_t err_len)
 {
+    return runner_open_csv_buffered(path, header, CSV_BUFFER_BYTES, err, err_len);
+}
+
+FILE *runner_open_csv_buffered(const char *path, const char *header, size_t buffer_bytes, char *err, size_t err_len)
+{
     if (path == NULL) {
         return NULL;
     }
@@ -29,7 +34,7 @@ FILE *runner_open_csv(const char *path, const char *header, char *err, size_t er
         snprintf(err, err_len, "%s: cannot write: %s", path, strerror(errno));
         return NULL;
     }
-    setvbuf(f, NULL, _IOFBF, CSV_BUFFER_BYTES);
+    setvbuf(f, NULL, _IOFBF, buffer_bytes);
     fputs(header, f);
     return f;
 }

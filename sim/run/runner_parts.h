@@ -6,6 +6,7 @@
  *                     metrics and divergence, the close;
  *   runner_batches.c  references and disturbances worked out in batches;
  *   runner_csv.c      the time series: files and lines;
+ *   runner_log.c      the run as flight logs ([run] log);
  *   runner_diff.c     the differentiator run.
  */
 #ifndef LADRC_SIM_RUNNER_PARTS_H
@@ -134,6 +135,9 @@ void runner_references(const sim_scenario_t *sc, double t_s, sim_expr_memo_t *me
  * returned); NULL with the message in err when it cannot be written. */
 FILE *runner_open_csv(const char *path, const char *header, char *err, size_t err_len);
 
+/* The same with a stdio buffer of buffer_bytes. */
+FILE *runner_open_csv_buffered(const char *path, const char *header, size_t buffer_bytes, char *err, size_t err_len);
+
 /* Most fields of a line: the attitude run's 51 and its estimators' (per
  * axis: HP's weight, tones, estimate, LP's estimate, and each tone's
  * frequency and amplitude). */
@@ -150,17 +154,58 @@ void runner_line_f4(csv_line_t *l, double x);
 void runner_line_g(csv_line_t *l, double x, int precision);
 void runner_line_end(csv_line_t *l, FILE *f);
 
+/* ---- runner_log.c ------------------------------------------------------------ */
+
+/* The files of a run's flight logs: betaflight, generic, then the PX4
+ * topics a px4 log writes, one file each. */
+#define RUNNER_PX4_TOPICS 8
+#define RUNNER_LOG_FILES (2 + RUNNER_PX4_TOPICS)
+
+/* A run's flight logs ([run] log, docs/csv-format.md): each form asked for,
+ * in files named after the run's time series (its path without ".csv"),
+ * one line per control tick once the controller has acted. */
+typedef struct {
+    int forms;                    /* SIM_RUN_LOG_* bits of the files open; 0: none */
+    FILE *file[RUNNER_LOG_FILES]; /* NULL: a form not asked for */
+    char stem[SIM_PATH_LEN + 64]; /* the time series' path without ".csv" */
+    long ticks;                   /* lines written */
+    double last_ref_rad[3];       /* the reference of the tick before (rad) */
+    double authority_Nm[3];       /* a normalised command of 1 (sim_setup_authority_Nm) */
+    double full_w2_rad2_s2;       /* a rotor at full command (sim_setup_full_w2_rad2_s2) */
+    double full_thrust_N;         /* the four of them */
+} flight_log_t;
+
+struct runner_tick; /* tick_t, below */
+
+/* Opens the forms sc->log_forms asks for beside the time series at
+ * csv_path (NULL: no time series, and no flight log either); 0, or -1 with
+ * the message naming the file in err and nothing open. */
+int runner_log_open(flight_log_t *log, const sim_scenario_t *sc, const char *csv_path, char *err, size_t err_len);
+
+/* The tick's line of every open form: tk as runner_run_tick saw it, the
+ * plant at the tick (its rotors' speeds), the rotors' command w2_cmd. */
+void runner_log_tick(flight_log_t *log, const sim_scenario_t *sc, const sim_plant_t *plant,
+                     const struct runner_tick *tk, const double w2_cmd[4]);
+
+/* Closes every open form; 0, or -1 with "FILE: write failed" for the first
+ * that failed. */
+int runner_log_close(flight_log_t *log, char *err, size_t err_len);
+
 /* ---- runner_run.c ------------------------------------------------------------ */
 
-/* What one control tick of a run saw and did, for its metrics and time series. */
-typedef struct {
+/* What one control tick of a run saw and did, for its metrics, time series
+ * and flight logs. */
+typedef struct runner_tick {
     double t;                           /* s */
     const ladrc_real_t *ref;            /* rad, as the controller got them */
     const double *ref_rad, *dist;       /* the same widened; disturbances, rad/s^2 */
     double meas_angle[3], meas_rate[3]; /* the sensor's, vibration included */
     double ctrl_rate[3];                /* the rate the controller got: filtered when [filter] is on */
+    double ctrl_angle[3];               /* the angles it got (quaternion frame: the ZYX angles of ctrl_quat) */
+    double ctrl_quat[4];                /* quaternion frame: the attitude it got (w x y z); else unset */
     double accel_m_s2[3];               /* the accelerometer: specific force in body axes */
-    ladrc_real_t torque[3];             /* commanded, N m */
+    ladrc_real_t torque[3];             /* commanded by the controller, N m ([excitation]'s chirp is added after) */
+    ladrc_real_t thrust_N;              /* the thrust asked of the mixer */
     ladrc_mixer_output_t out;
     /* the truth at this tick: the disturbance the observer should see is
      * the plant's acceleration minus what the applied torque explains */
@@ -181,6 +226,10 @@ typedef struct {
     sim_series_cursor_t rate_cur, angle_cur; /* this run's places in them */
     FILE *csv;
     csv_line_t line;
+    flight_log_t log;
+    int excited;              /* 1: [excitation] adds its chirp to the torque */
+    double authority_Nm[3];   /* the chirp's unit on each axis (sim_setup_authority_Nm) */
+    ladrc_real_t asked_Nm[3]; /* excited: the torque asked of the mixer this tick */
     double last_out_s[3];
     int out_at_last[3]; /* outside the band at the settle window's latest sample so far */
     int wrap_yaw;

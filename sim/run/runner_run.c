@@ -10,6 +10,7 @@
 
 #include "plant/rotation.h"
 #include "runner_parts.h"
+#include "scenario/excitation.h"
 #include "scenario/setup.h"
 
 /* The vibration's phases: another stream than the sensor noise's. */
@@ -116,7 +117,8 @@ int runner_run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t 
     r->spec = spec;
     r->flying = 0;
     r->csv = NULL;
-    r->rec = NULL; /* no series unless the group gives its own */
+    memset(&r->log, 0, sizeof r->log); /* no flight log open */
+    r->rec = NULL;                     /* no series unless the group gives its own */
     memset(m, 0, sizeof *m);
     if (configure(sc, spec->ctrl, &r->att, &r->mixer, spec->err, spec->err_len) != 0) {
         return -1;
@@ -150,6 +152,17 @@ int runner_run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t 
         if (r->csv == NULL) {
             return -1;
         }
+    }
+    if (runner_log_open(&r->log, sc, spec->csv_path, spec->err, spec->err_len) != 0) {
+        if (r->csv != NULL) {
+            fclose(r->csv);
+            r->csv = NULL;
+        }
+        return -1;
+    }
+    r->excited = sc->excite_on;
+    for (int i = 0; i < 3; ++i) {
+        r->authority_Nm[i] = sim_setup_authority_Nm(sc, i);
     }
     r->line.len = 0;
     for (int i = 0; i < 3; ++i) {
@@ -219,6 +232,21 @@ static double rotor_w2(const sim_scenario_t *sc, const attitude_run_t *r, ladrc_
     return sc->w2_max_rad2_s2 * ((1.0 - k) * c + k * c * c);
 }
 
+/* The torque asked of the mixer: the controller's, plus [excitation]'s
+ * chirp (its normalised value times the axis's authority) when excited. */
+static const ladrc_real_t *run_excite(const sim_scenario_t *sc, attitude_run_t *r, const tick_t *tk)
+{
+    if (!r->excited) {
+        return tk->torque;
+    }
+    double command[3];
+    sim_excitation_at(sc, tk->t, command);
+    for (int i = 0; i < 3; ++i) {
+        r->asked_Nm[i] = (ladrc_real_t)((double)tk->torque[i] + command[i] * r->authority_Nm[i]);
+    }
+    return r->asked_Nm;
+}
+
 /* Measure, check, control and mix at tk->t; 0 when the run diverged (nothing
  * of this instant or later is recorded), else 1 with the rotors' command. */
 static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, double w2_cmd[4])
@@ -280,6 +308,7 @@ static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, 
         rate[i] = signal[i];
         angle[i] = signal[3 + i];
         tk->ctrl_rate[i] = (double)rate[i];
+        tk->ctrl_angle[i] = (double)angle[i];
     }
     ladrc_quat_t meas = {LADRC_R(1.0), 0, 0, 0}, ref = {LADRC_R(1.0), 0, 0, 0};
     if (quat_frame) {
@@ -299,8 +328,14 @@ static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, 
         sim_quat_to_euler(q_meas, NULL, tilt_rad); /* the mixer's tilt: cos(roll) cos(pitch) is R33 */
         angle[0] = (ladrc_real_t)tilt_rad[0];
         angle[1] = (ladrc_real_t)tilt_rad[1];
+        tk->ctrl_quat[0] = (double)meas.w;
+        tk->ctrl_quat[1] = (double)meas.x;
+        tk->ctrl_quat[2] = (double)meas.y;
+        tk->ctrl_quat[3] = (double)meas.z;
+        memcpy(tk->ctrl_angle, tilt_rad, sizeof tilt_rad);
     }
     thrust_N = run_thrust_N(sc, r, angle, tk->t);
+    tk->thrust_N = thrust_N;
     ladrc_attitude_set_operating_point(&r->att, thrust_N, run_voltage_V(sc, r, tk->t));
     const ladrc_fault_t faults =
         quat_frame ? ladrc_attitude_step_quat(&r->att, &ref, &meas, sc->use_rate ? rate : NULL, tk->torque)
@@ -308,8 +343,8 @@ static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, 
     if (faults != LADRC_FAULT_NONE) {
         r->spec->metrics->faults++;
     }
-    ladrc_mixer_step(&r->mixer, thrust_N, tk->torque, &tk->out);
-    ladrc_attitude_set_applied(&r->att, tk->out.torque_Nm);
+    ladrc_mixer_step(&r->mixer, thrust_N, run_excite(sc, r, tk), &tk->out);
+    ladrc_attitude_set_applied(&r->att, tk->out.torque_Nm); /* the chirp included */
     for (int q = 0; q < 4; ++q) {
         w2_cmd[q] = rotor_w2(sc, r, tk->out.w2_rad2_s2[q]);
     }
@@ -420,6 +455,9 @@ int runner_run_tick(const sim_scenario_t *sc, attitude_run_t *r, double t, const
     if (r->csv != NULL) {
         runner_csv_line(r, &tk);
     }
+    if (r->log.forms != 0) {
+        runner_log_tick(&r->log, sc, &r->plant, &tk, w2_cmd);
+    }
     return 1;
 }
 
@@ -430,9 +468,10 @@ int runner_run_close(const sim_scenario_t *sc, attitude_run_t *r)
     for (int i = 0; i < 3; ++i) {
         m->settle_s[i] = r->out_at_last[i] ? SIM_NOT_SETTLED : r->last_out_s[i] - sc->settle_after_s;
     }
+    const int log_rc = runner_log_close(&r->log, r->spec->err, r->spec->err_len);
     if (r->csv != NULL && fclose(r->csv) != 0) {
         snprintf(r->spec->err, r->spec->err_len, "%s: write failed", r->spec->csv_path);
         return -1;
     }
-    return 0;
+    return log_rc;
 }

@@ -13,6 +13,7 @@
 
 #include "plant/plant.h"
 #include "plant/turbulence.h"
+#include "excitation.h"
 #include "series.h"
 #include "setup.h"
 
@@ -406,6 +407,39 @@ static void check_phases(parser_t *p)
         sc->event_kind[sc->n_events] = kind;
         ++sc->n_events;
         ++next[kind];
+    }
+}
+
+/* [excitation]: f1 capped at 0.45 / control_dt_s unless given (then beyond
+ * it is an error), f0 below f1, and the chirps within the run. */
+static void check_excitation(parser_t *p)
+{
+    sim_scenario_t *sc = p->sc;
+    sc->excite_on = p->section_line[SEC_EXCITATION] != 0;
+    if (!sc->excite_on) {
+        return;
+    }
+    const double f_max_hz = 0.45 / sc->control_dt_s;
+    const loc_t *f0 = checks_seen(p, SEC_EXCITATION, "f0_hz");
+    const loc_t *f1 = checks_seen(p, SEC_EXCITATION, "f1_hz");
+    if (f1->line == 0 && sc->excite_f1_hz > f_max_hz) {
+        sc->excite_f1_hz = f_max_hz;
+    }
+    if (f1->line != 0 && sc->excite_f1_hz > f_max_hz) {
+        check_fail(p, f1->line, f1->value_col, "f1_hz must be at most 0.45 / control_dt_s (%g Hz)", f_max_hz);
+    } else if (!(sc->excite_f0_hz < sc->excite_f1_hz)) {
+        const loc_t *at = f0->line != 0 ? f0 : f1;
+        check_fail(p, at->line, at->value_col, "f0_hz (%g) must be below f1_hz (%g)", sc->excite_f0_hz,
+                   sc->excite_f1_hz);
+    }
+    const double end_s = sim_excitation_end_s(sc);
+    if (!isnan(sc->duration_s) && end_s > sc->duration_s) {
+        static const char *const keys[] = {"duration_s", "start_s", "axis"};
+        const loc_t *at = first_given(p, SEC_EXCITATION, keys, sim_excitation_axes(sc) > 1 ? 3 : 2);
+        const int line = at != NULL ? at->line : p->section_line[SEC_EXCITATION];
+        const int col = at != NULL ? at->value_col : 1;
+        check_fail(p, line, col, "the %s at %g s, after the run's end (duration_s = %g)",
+                   sim_excitation_axes(sc) > 1 ? "three chirps end" : "chirp ends", end_s, sc->duration_s);
     }
 }
 
@@ -881,6 +915,7 @@ void checks_run(parser_t *p)
         check_environment(p);
         check_frame(p);
         check_phases(p);
+        check_excitation(p);
         check_tuning(p);
     } else {
         check_differentiator(p);

@@ -159,14 +159,21 @@ static int parse_seed(parser_t *p, char *value, uint64_t *out)
     return 0;
 }
 
+/* "a, b or c" of the choices' names into expected. */
+static void choice_names(const choice_t *choices, char *expected, size_t len)
+{
+    size_t used = 0;
+    expected[0] = '\0';
+    for (int i = 0; choices[i].name != NULL && used < len; ++i) {
+        const char *sep = (i == 0) ? "" : (choices[i + 1].name == NULL ? " or " : ", ");
+        used += (size_t)snprintf(expected + used, len - used, "%s%s", sep, choices[i].name);
+    }
+}
+
 static int parse_choice(parser_t *p, const choice_t *choices, char *value, int *out)
 {
-    char expected[96] = "";
-    size_t used = 0;
-    for (int i = 0; choices[i].name != NULL; ++i) {
-        const char *sep = (i == 0) ? "" : (choices[i + 1].name == NULL ? " or " : ", ");
-        used += (size_t)snprintf(expected + used, sizeof expected - used, "%s%s", sep, choices[i].name);
-    }
+    char expected[96];
+    choice_names(choices, expected, sizeof expected);
     size_t len;
     char *tok = single_token(p, value, &len, expected);
     if (tok == NULL) {
@@ -257,6 +264,52 @@ static int parse_controllers(parser_t *p, char *value)
     memcpy(sc->controllers, ids, sizeof ids);
     sc->n_controllers = n;
     return 0;
+}
+
+/* Words of def's choices separated by commas, whitespace or both, as a
+ * list of controllers is, each at most once; their values or'ed into *out. */
+static int parse_flags(parser_t *p, const key_def_t *def, char *value, int *out)
+{
+    char expected[96];
+    choice_names(def->choices, expected, sizeof expected);
+    int flags = 0, after_comma = 0;
+    char *s = value;
+    for (;;) {
+        while (is_list_space(*s)) {
+            ++s;
+        }
+        if (*s == '\0' || *s == ',') {
+            if (flags != 0 && !after_comma && *s == '\0') {
+                *out = flags;
+                return 0;
+            }
+            return ini_fail(&p->place, s, "expected %s%s", expected, *s == ',' ? " before ','" : "");
+        }
+        char *tok = s;
+        while (*s != '\0' && *s != ',' && !is_list_space(*s)) {
+            ++s;
+        }
+        const size_t len = (size_t)(s - tok);
+        int i = 0;
+        while (def->choices[i].name != NULL &&
+               !(strlen(def->choices[i].name) == len && strncmp(def->choices[i].name, tok, len) == 0)) {
+            ++i;
+        }
+        if (def->choices[i].name == NULL) {
+            return ini_fail(&p->place, tok, "expected %s, got '%.*s'", expected, SHOWN(len), tok);
+        }
+        if ((flags & def->choices[i].value) != 0) {
+            return ini_fail(&p->place, tok, "'%s' listed twice in %s", def->choices[i].name, def->name);
+        }
+        flags |= def->choices[i].value;
+        while (is_list_space(*s)) {
+            ++s;
+        }
+        after_comma = *s == ',';
+        if (after_comma) {
+            ++s;
+        }
+    }
 }
 
 static int parse_window(parser_t *p, const key_def_t *def, char *value, double *from, double *to)
@@ -392,6 +445,8 @@ int lex_value(parser_t *p, int key, char *base, char *value, int key_col)
         return parse_window(p, def, value, (double *)field, (double *)(void *)(base + def->offset2));
     case V_LIST:
         return parse_list(p, def, value, (double *)field, (int *)(void *)(base + def->offset2));
+    case V_FLAGS:
+        return parse_flags(p, def, value, (int *)field);
     default:
         return parse_signal(p, key, (sim_signal_t *)field, value, key_col);
     }

@@ -32,6 +32,12 @@
 
 typedef enum { SIM_KIND_ATTITUDE = 0, SIM_KIND_DIFFERENTIATOR = 1 } sim_kind_t;
 
+/* [excitation] axis: one axis, or all three one chirp after another. */
+typedef enum { SIM_EXCITE_ROLL = 0, SIM_EXCITE_PITCH = 1, SIM_EXCITE_YAW = 2, SIM_EXCITE_ALL = 3 } sim_excite_axis_t;
+
+/* [run] log: the flight-log forms a run writes beside its time series, as bits. */
+enum { SIM_RUN_LOG_BETAFLIGHT = 1 << 0, SIM_RUN_LOG_PX4 = 1 << 1, SIM_RUN_LOG_GENERIC = 1 << 2 };
+
 /* The events of [phases], in the timeline sim_scenario_t holds. */
 typedef enum { SIM_EVENT_ARM = 0, SIM_EVENT_TAKEOFF = 1, SIM_EVENT_LAND = 2, SIM_EVENT_DISARM = 3 } sim_event_t;
 
@@ -133,6 +139,7 @@ typedef struct {
     char output_dir[SIM_PATH_LEN]; /* relative paths are relative to the current directory */
     int n_controllers;
     sim_controller_id_t controllers[SIM_MAX_CONTROLLERS];
+    int log_forms; /* SIM_RUN_LOG_* bits; 0: no flight log */
 
     /* [vehicle] (the plant) */
     double mass_kg, inertia_kg_m2[3], arm_m, thrust_coeff_N_s2, yaw_coeff_Nm_s2, rot_drag_Nm_s, g_m_s2;
@@ -206,6 +213,14 @@ typedef struct {
     int frame;             /* [reference] frame: ladrc_attitude_frame_t; QUATERNION: the references are
                           ZYX angles composed into an attitude, errors are body-axis rotation vectors */
     double yaw_weight;     /* [reference] yaw_weight: the quaternion frame's weight of yaw against tilt */
+
+    /* [excitation]: a logarithmic chirp added to the controller's torque
+     * (sim/scenario/excitation.h); absent: none */
+    int excite_on;           /* 1: the section is given */
+    int excite_axis;         /* sim_excite_axis_t */
+    double excite_amplitude; /* normalised command: a fraction of sim_setup_authority_Nm */
+    double excite_f0_hz, excite_f1_hz;
+    double excite_start_s, excite_duration_s; /* each axis's chirp lasts duration_s */
 
     /* [controller NAME] sections */
     sim_overrides_t overrides[SIM_CTRL_COUNT];

@@ -38,6 +38,13 @@
 /* Armed on the ground, a flight stack idles its motors at a low throttle. */
 #define DEFAULT_GROUND_THRUST 0.2
 #define DEFAULT_BATTERY_FULL_V 16.8 /* a charged 4S pack */
+/* [excitation]: a fifth of the authority, 1 to 40 Hz over 10 s from 1 s:
+ * the span of an attitude loop's crossover and the rotors' lag at 1 kHz */
+#define DEFAULT_EXCITE_AMPLITUDE 0.2
+#define DEFAULT_EXCITE_F0_HZ 1.0
+#define DEFAULT_EXCITE_F1_HZ 40.0 /* or 0.45 / control_dt_s when lower (checks.c) */
+#define DEFAULT_EXCITE_START_S 1.0
+#define DEFAULT_EXCITE_DURATION_S 10.0
 
 /* ---- controllers ------------------------------------------------------------ */
 
@@ -67,12 +74,13 @@ int schema_controller_id(const char *name, size_t len)
 /* ---- sections ----------------------------------------------------------------- */
 
 static const char *const SECTION_NAMES[SEC_CONTROLLER + 1] = {
-    "run",     "vehicle",        "rotors", "sensors",   "mismatch", "reference", "disturbance",
-    "metrics", "differentiator", "wind",   "vibration", "filter",   "phases",    "controller"};
+    "run",  "vehicle",   "rotors", "sensors", "mismatch",   "reference", "disturbance", "metrics", "differentiator",
+    "wind", "vibration", "filter", "phases",  "excitation", "controller"};
 
-static const int SECTION_KIND[SEC_CONTROLLER + 1] = {
-    FOR_BOTH,     FOR_ATTITUDE,       FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE,
-    FOR_ATTITUDE, FOR_DIFFERENTIATOR, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE};
+static const int SECTION_KIND[SEC_CONTROLLER + 1] = {FOR_BOTH,           FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE,
+                                                     FOR_ATTITUDE,       FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE,
+                                                     FOR_DIFFERENTIATOR, FOR_ATTITUDE, FOR_ATTITUDE, FOR_ATTITUDE,
+                                                     FOR_ATTITUDE,       FOR_ATTITUDE, FOR_ATTITUDE};
 
 int schema_find_section(const char *name, size_t len)
 {
@@ -134,6 +142,15 @@ static const choice_t KINEMATICS[] = {
 static const choice_t FRAMES[] = {{.name = "euler", .value = LADRC_FRAME_EULER},
                                   {.name = "quaternion", .value = LADRC_FRAME_QUATERNION},
                                   {.name = NULL, .value = 0}};
+static const choice_t EXCITE_AXES[] = {{.name = "roll", .value = SIM_EXCITE_ROLL},
+                                       {.name = "pitch", .value = SIM_EXCITE_PITCH},
+                                       {.name = "yaw", .value = SIM_EXCITE_YAW},
+                                       {.name = "all", .value = SIM_EXCITE_ALL},
+                                       {.name = NULL, .value = 0}};
+static const choice_t LOG_FORMS[] = {{.name = "betaflight", .value = SIM_RUN_LOG_BETAFLIGHT},
+                                     {.name = "px4", .value = SIM_RUN_LOG_PX4},
+                                     {.name = "generic", .value = SIM_RUN_LOG_GENERIC},
+                                     {.name = NULL, .value = 0}};
 static const choice_t HP_SAMPLES[] = {{.name = "observer", .value = LADRC_HP_SAMPLE_OBSERVER},
                                       {.name = "gyro", .value = LADRC_HP_SAMPLE_GYRO},
                                       {.name = NULL, .value = 0}};
@@ -167,6 +184,7 @@ const key_def_t SCHEMA_KEYS[] = {
     {KEY(SEC_RUN, "seed", V_SEED, SC(seed))},
     {KEY(SEC_RUN, "output_dir", V_TEXT, SC(output_dir))},
     {KEY(SEC_RUN, "controllers", V_CONTROLLERS, SC(controllers)), .kind = FOR_ATTITUDE},
+    {KEY(SEC_RUN, "log", V_FLAGS, SC(log_forms)), .choices = LOG_FORMS, .kind = FOR_ATTITUDE},
 
     {KEY(SEC_VEHICLE, "mass_kg", V_REAL, SC(mass_kg)), .range = R_POSITIVE},
     {KEY(SEC_VEHICLE, "inertia_kg_m2", V_VEC3, SC(inertia_kg_m2)), .range = R_POSITIVE},
@@ -262,6 +280,13 @@ const key_def_t SCHEMA_KEYS[] = {
     {KEY(SEC_PHASES, "ground_deg", V_VEC2, SC(ground_rad)), .range = R_SLOPE, .scale = DEG_TO_RAD},
     {KEY(SEC_PHASES, "ground_thrust", V_REAL, SC(ground_thrust)), .range = R_FRACTION},
     {KEY(SEC_PHASES, "landed_input", V_CHOICE, SC(landed_input)), .choices = YES_NO},
+
+    {KEY(SEC_EXCITATION, "axis", V_CHOICE, SC(excite_axis)), .choices = EXCITE_AXES},
+    {KEY(SEC_EXCITATION, "amplitude", V_REAL, SC(excite_amplitude)), .range = R_WEIGHT},
+    {KEY(SEC_EXCITATION, "f0_hz", V_REAL, SC(excite_f0_hz)), .range = R_POSITIVE},
+    {KEY(SEC_EXCITATION, "f1_hz", V_REAL, SC(excite_f1_hz)), .range = R_POSITIVE},
+    {KEY(SEC_EXCITATION, "start_s", V_REAL, SC(excite_start_s)), .range = R_NONNEGATIVE},
+    {KEY(SEC_EXCITATION, "duration_s", V_REAL, SC(excite_duration_s)), .range = R_POSITIVE},
 
     {KEY(SEC_DIFFERENTIATOR, "signal", V_SIGNAL, SC(diff_signal)), .required = 1},
     {KEY(SEC_DIFFERENTIATOR, "derivative", V_SIGNAL, SC(diff_derivative)), .required = 1},
@@ -478,6 +503,12 @@ void schema_set_defaults(sim_scenario_t *sc)
     sc->throttle.scale = 1.0;
     sc->thrust_curve = NAN; /* none: the rotors give the w^2 the mixer asks */
     sc->battery_full_V = DEFAULT_BATTERY_FULL_V;
+    sc->excite_axis = SIM_EXCITE_ROLL;
+    sc->excite_amplitude = DEFAULT_EXCITE_AMPLITUDE;
+    sc->excite_f0_hz = DEFAULT_EXCITE_F0_HZ;
+    sc->excite_f1_hz = DEFAULT_EXCITE_F1_HZ;
+    sc->excite_start_s = DEFAULT_EXCITE_START_S;
+    sc->excite_duration_s = DEFAULT_EXCITE_DURATION_S;
     sc->frame = LADRC_FRAME_EULER;
     sc->yaw_weight = (double)LADRC_YAW_WEIGHT_DEFAULT;
 

@@ -31,6 +31,7 @@ enum {
     SEC_VIBRATION,
     SEC_FILTER,
     SEC_PHASES,
+    SEC_EXCITATION,
     SEC_CONTROLLER, /* + controller id: one slot per [controller NAME] */
     SEC_COUNT = SEC_CONTROLLER + SIM_CTRL_COUNT
 };
@@ -53,6 +54,7 @@ typedef enum {
     V_CONTROLLERS, /* controller names */
     V_WINDOW,      /* FROM TO, 0 <= FROM < TO, into offset and offset2 */
     V_LIST,        /* 1 to SCHEMA_LIST_MAX numbers, their count (int) into offset2 */
+    V_FLAGS,       /* words of `choices`, separated by commas, spaces or both, each once: their values or'ed (int) */
     V_SIGNAL       /* [FROM .. TO :] expression, repeatable */
 } value_type_t;
 

@@ -325,3 +325,15 @@ double sim_setup_hover_rotor_hz(const sim_scenario_t *sc)
 {
     return sqrt(sim_hover_w2_rad2_s2(sc->mass_kg, sc->g_m_s2, sc->thrust_coeff_N_s2)) / 6.283185307179586; /* 2 pi */
 }
+
+double sim_setup_authority_Nm(const sim_scenario_t *sc, int axis)
+{
+    const double w2_hover = sim_hover_w2_rad2_s2(sc->mass_kg, sc->g_m_s2, sc->thrust_coeff_N_s2);
+    return axis == 2 ? 4.0 * sc->yaw_coeff_Nm_s2 * w2_hover : 2.0 * sc->arm_m * sc->thrust_coeff_N_s2 * w2_hover;
+}
+
+double sim_setup_full_w2_rad2_s2(const sim_scenario_t *sc)
+{
+    return sc->rotors_ideal ? 2.0 * sim_hover_w2_rad2_s2(sc->mass_kg, sc->g_m_s2, sc->thrust_coeff_N_s2)
+                            : sc->w2_max_rad2_s2;
+}

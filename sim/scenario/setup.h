@@ -76,4 +76,19 @@ void sim_setup_gyro_filter(const sim_scenario_t *sc, ladrc_gyro_filter_config_t 
 /* Each rotor's rate at hover (Hz): where tune = margins holds the RPM notches. */
 double sim_setup_hover_rotor_hz(const sim_scenario_t *sc);
 
+/* The torque (N m) that a normalised command of 1 means on axis 0 roll, 1
+ * pitch, 2 yaw: one rotor (one pair for yaw) from hover to 0 and its
+ * opposite to twice hover, from the plant's own [vehicle] values (not
+ * [mismatch]). With w2_hover = mass_kg g_m_s2 / (4 thrust_coeff_N_s2):
+ *   roll, pitch: 2 arm_m thrust_coeff_N_s2 w2_hover (= arm_m mass_kg g / 2),
+ *   yaw:         4 yaw_coeff_Nm_s2 w2_hover.
+ * [excitation]'s amplitude and the flight logs' normalised commands are in
+ * this unit: a log's command c is c times this, N m. */
+double sim_setup_authority_Nm(const sim_scenario_t *sc, int axis);
+
+/* A rotor's w^2 at full command (rad^2/s^2), the flight logs' full throttle
+ * and motor output: w2_max_rad2_s2, or twice hover with ideal rotors (which
+ * have no top). */
+double sim_setup_full_w2_rad2_s2(const sim_scenario_t *sc);
+
 #endif

@@ -862,6 +862,88 @@ static void test_parse_buffer_needs_no_nul_and_refuses_one_inside(void)
     TEST_ASSERT_EQUAL_INT(-1, sim_scenario_parse_buffer(&sc, NULL, 0, "buf.ini", &err));
 }
 
+/* [excitation] and [run] log: ranges, the chirp's frequencies against each
+ * other and the control rate, the chirps within the run, the list of forms. */
+static void test_excitation_and_log_errors(void)
+{
+    static const bad_case_t cases[] = {
+        {.text = "[excitation]\naxis = x\n",
+         .line = 2,
+         .column = 8,
+         .message = "expected roll, pitch, yaw or all, got 'x'"},
+        {.text = "[excitation]\namplitude = 0\n",
+         .line = 2,
+         .column = 13,
+         .message = "amplitude must be > 0 and at most 1"},
+        {.text = "[excitation]\namplitude = 1.01\n",
+         .line = 2,
+         .column = 13,
+         .message = "amplitude must be > 0 and at most 1"},
+        {.text = "[excitation]\nf0_hz = 0\n", .line = 2, .column = 9, .message = "f0_hz must be > 0"},
+        {.text = "[excitation]\nstart_s = -1\n", .line = 2, .column = 11, .message = "start_s must be >= 0"},
+        {.text = "[excitation]\nduration_s = 0\n", .line = 2, .column = 14, .message = "duration_s must be > 0"},
+        /* f1 beyond 0.45 / control_dt_s (450 Hz at 1 kHz), given */
+        {.text = "[run]\nduration_s = 20\n[excitation]\nf1_hz = 451\n",
+         .line = 4,
+         .column = 9,
+         .message = "f1_hz must be at most 0.45 / control_dt_s (450 Hz)"},
+        /* the default f1 is capped there: 22.5 Hz at 50 Hz, below a given f0 */
+        {.text = "[run]\nduration_s = 20\ncontrol_dt_s = 0.02\n[excitation]\nf0_hz = 30\n",
+         .line = 5,
+         .column = 9,
+         .message = "f0_hz (30) must be below f1_hz (22.5)"},
+        {.text = "[run]\nduration_s = 20\n[excitation]\nf1_hz = 0.5\n",
+         .line = 4,
+         .column = 9,
+         .message = "f0_hz (1) must be below f1_hz (0.5)"},
+        {.text = "[run]\nduration_s = 20\n[excitation]\nf1_hz = 10\nf0_hz = 10\n",
+         .line = 5,
+         .column = 9,
+         .message = "f0_hz (10) must be below f1_hz (10)"},
+        /* the defaults, start 1 s and 10 s long: at the section's header */
+        {.text = "[run]\nduration_s = 10\n[excitation]\n",
+         .line = 3,
+         .column = 1,
+         .message = "the chirp ends at 11 s, after the run's end (duration_s = 10)"},
+        {.text = "[run]\nduration_s = 10\n[excitation]\nstart_s = 0.5\n",
+         .line = 4,
+         .column = 11,
+         .message = "the chirp ends at 10.5 s, after the run's end (duration_s = 10)"},
+        {.text = "[run]\nduration_s = 10\n[excitation]\nstart_s = 0\nduration_s = 11\n",
+         .line = 5,
+         .column = 14,
+         .message = "the chirp ends at 11 s, after the run's end (duration_s = 10)"},
+        {.text = "[run]\nduration_s = 20\n[excitation]\naxis = all\n",
+         .line = 4,
+         .column = 8,
+         .message = "the three chirps end at 31 s, after the run's end (duration_s = 20)"},
+        {.text = "[run]\nkind = differentiator\nduration_s = 20\n[differentiator]\nsignal = t\nderivative = 1\n"
+                 "[excitation]\n",
+         .line = 7,
+         .column = 1,
+         .message = "[excitation] does not apply to kind = differentiator"},
+        {.text = "[run]\nlog = blackbox\n",
+         .line = 2,
+         .column = 7,
+         .message = "expected betaflight, px4 or generic, got 'blackbox'"},
+        {.text = "[run]\nlog = px4, px4\n", .line = 2, .column = 12, .message = "'px4' listed twice in log"},
+        {.text = "[run]\nlog = px4,,generic\n",
+         .line = 2,
+         .column = 11,
+         .message = "expected betaflight, px4 or generic before ','"},
+        {.text = "[run]\nlog = generic,\n", .line = 2, .column = 15, .message = "expected betaflight, px4 or generic"},
+        {.text = "[run]\nkind = differentiator\nduration_s = 1\nlog = px4\n[differentiator]\nsignal = t\n"
+                 "derivative = 1\n",
+         .line = 4,
+         .column = 1,
+         .message = "'log' does not apply to kind = differentiator"},
+    };
+    CHECK_BAD_CASES(cases);
+    /* exactly at the limits: accepted */
+    parse_ok("[run]\nduration_s = 11\n[excitation]\nf1_hz = 450\n");
+    parse_ok("[run]\nduration_s = 31\n[excitation]\naxis = all\n");
+}
+
 static void test_long_values_are_rejected_not_truncated(void)
 {
     static char text[2048];
@@ -897,6 +979,7 @@ int main(void)
     RUN_TEST(test_environment_errors);
     RUN_TEST(test_a_controller_not_listed_is_checked_when_chosen);
     RUN_TEST(test_parse_buffer_needs_no_nul_and_refuses_one_inside);
+    RUN_TEST(test_excitation_and_log_errors);
     RUN_TEST(test_long_values_are_rejected_not_truncated);
     RUN_TEST(test_null_arguments_are_refused_and_err_is_optional);
     return UNITY_END();

@@ -512,6 +512,41 @@ static void test_indi_keys_land_and_indi_needs_the_rate(void)
     TEST_ASSERT_EQUAL_INT(-1, sim_scenario_set_controllers(&sc, indi, 1, &err));
 }
 
+/* [excitation]: absent, none; given, every key in its field, the defaults
+ * for the rest (f1 capped at 0.45 / control_dt_s when not given); [run]
+ * log: the forms as bits, in any order and separation. */
+static void test_excitation_and_log_keys_land_in_their_fields(void)
+{
+    parse_ok("[run]\nduration_s = 12\n");
+    TEST_ASSERT_EQUAL_INT(0, sc.excite_on);
+    TEST_ASSERT_EQUAL_INT(0, sc.log_forms);
+
+    parse_ok("[run]\nduration_s = 12\n[excitation]\n");
+    TEST_ASSERT_EQUAL_INT(1, sc.excite_on);
+    TEST_ASSERT_EQUAL_INT(SIM_EXCITE_ROLL, sc.excite_axis);
+    assert_close(0.2, sc.excite_amplitude, "amplitude");
+    assert_close(1.0, sc.excite_f0_hz, "f0_hz");
+    assert_close(40.0, sc.excite_f1_hz, "f1_hz");
+    assert_close(1.0, sc.excite_start_s, "start_s");
+    assert_close(10.0, sc.excite_duration_s, "duration_s");
+
+    parse_ok("[run]\nduration_s = 40\ncontrol_dt_s = 0.004\ncontrollers = PID\nlog = generic px4,betaflight\n"
+             "[excitation]\naxis = all\namplitude = 1\nf0_hz = 0.5\nf1_hz = 112.5\nstart_s = 0\nduration_s = 13\n");
+    TEST_ASSERT_EQUAL_INT(SIM_EXCITE_ALL, sc.excite_axis);
+    assert_close(1.0, sc.excite_amplitude, "amplitude");
+    assert_close(0.5, sc.excite_f0_hz, "f0_hz");
+    assert_close(112.5, sc.excite_f1_hz, "f1_hz"); /* 0.45 / 0.004, given: accepted */
+    assert_close(0.0, sc.excite_start_s, "start_s");
+    assert_close(13.0, sc.excite_duration_s, "duration_s");
+    assert_close(40.0, sc.duration_s, "[run] duration_s"); /* a key of the same name elsewhere */
+    TEST_ASSERT_EQUAL_INT(SIM_RUN_LOG_BETAFLIGHT | SIM_RUN_LOG_PX4 | SIM_RUN_LOG_GENERIC, sc.log_forms);
+
+    parse_ok("[run]\nduration_s = 12\ncontrol_dt_s = 0.02\ncontrollers = PID\nlog = px4\n[excitation]\naxis = yaw\n");
+    TEST_ASSERT_EQUAL_INT(SIM_EXCITE_YAW, sc.excite_axis);
+    assert_close(22.5, sc.excite_f1_hz, "f1_hz capped at 0.45 / control_dt_s");
+    TEST_ASSERT_EQUAL_INT(SIM_RUN_LOG_PX4, sc.log_forms);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -527,5 +562,6 @@ int main(void)
     RUN_TEST(test_name_and_default_output_dir_come_from_the_file_name);
     RUN_TEST(test_controller_names);
     RUN_TEST(test_indi_keys_land_and_indi_needs_the_rate);
+    RUN_TEST(test_excitation_and_log_keys_land_in_their_fields);
     return UNITY_END();
 }

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "run/runner.h"
+#include "scenario/excitation.h"
 #include "scenario/scenario.h"
 #include "scenario/setup.h"
 
@@ -74,6 +75,27 @@ static void evaluate(const sim_signal_t *sig, const double *times, int n)
 {
     for (int i = 0; i < n; ++i) {
         (void)sim_signal_eval(sig, times[i]); /* any value; the sanitizers watch */
+    }
+}
+
+/* [excitation]: a chirp within the run, its amplitude and frequencies in
+ * range, a value within the amplitude at a few times; none without it. */
+static void check_excitation(const double *times, int n)
+{
+    if (sc.excite_on) {
+        FUZZ_CHECK(sc.excite_amplitude > 0.0 && sc.excite_amplitude <= 1.0, "amplitude %g", sc.excite_amplitude);
+        FUZZ_CHECK(sc.excite_f0_hz > 0.0 && sc.excite_f0_hz < sc.excite_f1_hz &&
+                       sc.excite_f1_hz <= 0.45 / sc.control_dt_s,
+                   "f0 %g, f1 %g Hz at dt %g", sc.excite_f0_hz, sc.excite_f1_hz, sc.control_dt_s);
+        FUZZ_CHECK(sc.excite_start_s >= 0.0 && sim_excitation_end_s(&sc) <= sc.duration_s,
+                   "the chirps from %g to %g s of %g", sc.excite_start_s, sim_excitation_end_s(&sc), sc.duration_s);
+    }
+    for (int i = 0; i < n; ++i) {
+        double c[3];
+        sim_excitation_at(&sc, times[i], c);
+        for (int a = 0; a < 3; ++a) {
+            FUZZ_CHECK(fabs(c[a]) <= (sc.excite_on ? sc.excite_amplitude : 0.0), "chirp %g at %g s", c[a], times[i]);
+        }
     }
 }
 
@@ -139,6 +161,7 @@ static void check_accepted(void)
         evaluate(&sc.reference[i], times, n_times);
         evaluate(&sc.disturbance[i], times, n_times);
     }
+    check_excitation(times, n_times);
     /* last: it changes the list */
     static const sim_controller_id_t every[] = {SIM_CTRL_PID,       SIM_CTRL_LADRC,    SIM_CTRL_LP_MLADRC,
                                                 SIM_CTRL_HP_MLADRC, SIM_CTRL_CASCADED, SIM_CTRL_INDI};

@@ -1,0 +1,144 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* The scenario of an identified airframe (airframe.h). */
+#include "airframe.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scenario/setup.h"
+
+#define RAD2DEG (180.0 / 3.14159265358979323846)
+#define SUBSTEPS_MIN 4
+
+static const char *const AXIS[3] = {"roll", "pitch", "yaw"};
+
+void sim_airframe_floor_band(double fs_hz, double *lo_hz, double *hi_hz)
+{
+    /* above the flight's own motion, below the anti-alias roll-off */
+    *lo_hz = 0.2 * fs_hz / 2.0;
+    *hi_hz = 0.9 * fs_hz / 2.0;
+}
+
+/* The nominal vehicle as a scenario, for the authority's one formula. */
+static void nominal(sim_scenario_t *sc)
+{
+    memset(sc, 0, sizeof *sc);
+    sc->mass_kg = SIM_AIRFRAME_MASS_KG;
+    sc->arm_m = SIM_AIRFRAME_ARM_M;
+    sc->thrust_coeff_N_s2 = SIM_AIRFRAME_THRUST_COEFF_N_S2;
+    sc->yaw_coeff_Nm_s2 = SIM_AIRFRAME_YAW_COEFF_NM_S2;
+    sc->g_m_s2 = SIM_AIRFRAME_G_M_S2;
+}
+
+double sim_airframe_inertia(int axis, double b0)
+{
+    static sim_scenario_t sc; /* large; only its vehicle fields are read */
+    nominal(&sc);
+    return b0 > 0.0 ? sim_setup_authority_Nm(&sc, axis) / b0 : NAN;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median3(double a, double b, double c)
+{
+    double v[3] = {a, b, c};
+    qsort(v, 3, sizeof v[0], cmp_double);
+    return v[1];
+}
+
+int sim_airframe_write(FILE *f, const sim_airframe_t *a, const char *source, const char *noise_series, char *why,
+                       size_t why_len)
+{
+    double J[3], drag[3];
+    for (int i = 0; i < 3; ++i) {
+        J[i] = sim_airframe_inertia(i, a->axis[i].b0);
+        if (!isfinite(J[i])) {
+            snprintf(why, why_len, "%s: no positive b0 identified (%s)", AXIS[i],
+                     isfinite(a->axis[i].b0) ? "it came out negative: check the axis's sign" : "too few samples");
+            return -1;
+        }
+        drag[i] = fmax(a->axis[i].damping_per_s, 0.0) * J[i];
+    }
+    const double kt = median3(drag[0], drag[1], drag[2]);
+    const double tau = median3(a->axis[0].lag_s, a->axis[1].lag_s, a->axis[2].lag_s);
+    const int delay = (int)median3(a->axis[0].delay_ticks, a->axis[1].delay_ticks, a->axis[2].delay_ticks);
+    const double fs = 1.0 / a->dt_s;
+    const double w2_hover = SIM_AIRFRAME_MASS_KG * SIM_AIRFRAME_G_M_S2 / (4.0 * SIM_AIRFRAME_THRUST_COEFF_N_S2);
+    /* the plant step within the shortest time constant: the lag, and each J / kt */
+    double shortest = tau > 0.0 ? tau : a->dt_s;
+    for (int i = 0; i < 3 && kt > 0.0; ++i) {
+        shortest = fmin(shortest, J[i] / kt);
+    }
+    int substeps = (int)ceil(2.0 * a->dt_s / shortest);
+    substeps = substeps < SUBSTEPS_MIN ? SUBSTEPS_MIN : substeps;
+    double white_deg_s = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        white_deg_s = fmax(white_deg_s, a->noise_floor_rad_s_rthz[i] * sqrt(fs / 2.0) * RAD2DEG);
+    }
+
+    fprintf(f, "# Airframe identified from the flight log %s (docs/flight-logs.md).\n", source);
+    fprintf(f, "# Per axis: b0 per unit of normalised command [95 %% interval], motor lag, delay, R^2.\n");
+    for (int i = 0; i < 3; ++i) {
+        const sim_ident_axis_t *x = &a->axis[i];
+        fprintf(
+            f, "#   %-5s b0 %.4g [%.4g, %.4g] rad/s^2, lag %.1f [%.1f, %.1f] ms, delay %d [%d, %d] ticks, R^2 %.3f%s\n",
+            AXIS[i], x->b0, x->b0_lo, x->b0_hi, 1e3 * x->lag_s, 1e3 * x->lag_lo_s, 1e3 * x->lag_hi_s, x->delay_ticks,
+            x->delay_lo_ticks, x->delay_hi_ticks, x->r2,
+            x->warnings ? "  (weak: see the identification's warnings)" : "");
+    }
+    fprintf(f,
+            "# The vehicle is nominal (%.3g kg, arm %.3g m, thrust to weight 2): a command of 1 is its\n"
+            "# torque authority, and each inertia is that authority over the axis's b0.\n\n",
+            SIM_AIRFRAME_MASS_KG, SIM_AIRFRAME_ARM_M);
+    fprintf(f, "[run]\nduration_s = 30\ncontrol_dt_s = %.9g\nplant_substeps = %d\nseed = 1\n", a->dt_s, substeps);
+    fprintf(f, "controllers = HP-MLADRC LP-MLADRC LADRC RATE-ADRC CASCADED INDI\n\n");
+    fprintf(f, "[vehicle]\nmass_kg = %.9g\ninertia_kg_m2 = %.9g %.9g %.9g\narm_m = %.9g\n", SIM_AIRFRAME_MASS_KG, J[0],
+            J[1], J[2], SIM_AIRFRAME_ARM_M);
+    fprintf(f, "thrust_coeff_N_s2 = %.9g\nyaw_coeff_Nm_s2 = %.9g\nrot_drag_Nm_s = %.9g\ng_m_s2 = %.9g\n\n",
+            SIM_AIRFRAME_THRUST_COEFF_N_S2, SIM_AIRFRAME_YAW_COEFF_NM_S2, kt, SIM_AIRFRAME_G_M_S2);
+    fprintf(f, "[rotors]\nideal = no\nw2_min_rad2_s2 = %.9g\nw2_max_rad2_s2 = %.9g\nmotor_tau_s = %.9g\n\n",
+            0.05 * w2_hover, 2.0 * w2_hover, tau);
+    fprintf(f, "[sensors]\nangle_noise_std_deg = 0.05\ndelay_ticks = %d\nuse_rate = yes\n", delay);
+    if (noise_series != NULL) {
+        double corner_hz, top_hz;
+        sim_airframe_floor_band(fs, &corner_hz, &top_hz);
+        double below_deg_s = 0.0; /* the white floor below the series' high-pass corner */
+        for (int i = 0; i < 3; ++i) {
+            below_deg_s = fmax(below_deg_s, a->noise_floor_rad_s_rthz[i] * sqrt(corner_hz) * RAD2DEG);
+        }
+        fprintf(f,
+                "# the log's own gyro noise above %.4g Hz, vibration lines included, looped; below it\n"
+                "# the white floor\n",
+                corner_hz);
+        fprintf(f, "rate_noise_std_deg_s = %.6g\nrate_noise_series = %s\nseries_end = repeat\n\n", below_deg_s,
+                noise_series);
+    } else {
+        fprintf(f, "# the log's white floor over the band it was measured in\n");
+        fprintf(f, "rate_noise_std_deg_s = %.6g\n\n", white_deg_s);
+    }
+    fprintf(f, "[reference]                     # degrees: steps both ways on each axis\n");
+    fprintf(f, "roll = 1 .. 7 : 10\nroll = 13 .. 19 : -10\npitch = 7 .. 13 : 10\npitch = 19 .. 25 : -10\n");
+    fprintf(f, "yaw = 4 .. 16 : 20\n\n");
+    fprintf(f, "[disturbance]                   # rad/s^2: a step, then a 3 rad/s tone, at 15 %% of b0\n");
+    for (int i = 0; i < 3; ++i) {
+        const double d = 0.15 * a->axis[i].b0;
+        fprintf(f, "%s = 2 .. 8 : %.6g\n%s = 14 .. 26 : %.6g*sin(3*t)\n", AXIS[i], d, AXIS[i], d);
+    }
+    fprintf(f, "\n[controller HP-MLADRC]\ntune = margins\nhp_sample = gyro\n\n");
+    const char *const others[] = {"LP-MLADRC", "LADRC", "RATE-ADRC", "CASCADED", "INDI"};
+    for (int c = 0; c < 5; ++c) {
+        fprintf(f, "[controller %s]\ntune = margins\n\n", others[c]);
+    }
+    fprintf(f, "[metrics]\nerror_window_s = 0 30\nsteady_window_s = 20 25\nsettle_band_deg = 0.5\nsettle_window_s = 1 "
+               "3\n");
+    if (ferror(f)) {
+        snprintf(why, why_len, "write failed");
+        return -1;
+    }
+    return 0;
+}

@@ -1,0 +1,52 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * From a log to a scenario: the airframe identified from a flight log
+ * (ident.h) and its gyro's noise, written as a scenario file ladrc_sil
+ * flies and ladrc_margins analyses (docs/flight-logs.md).
+ *
+ * The log gives each axis's b0 per unit of normalised command, not an
+ * inertia: the scenario takes a nominal vehicle (1 kg, 0.1 m arm, thrust to
+ * weight 2) whose torque authority (sim_setup_authority_Nm) is what a
+ * command of 1 means, and the inertia J = authority / b0 on each axis, so
+ * that the plant's b0 is the log's. Rate damping: the median over the axes
+ * of a J. Motor lag: the median of the axes'. Delay: the median in ticks.
+ * Gyro noise: its white floor as rate_noise_std, or, with a noise series,
+ * the log's own noise (vibration lines included) replayed from that file.
+ */
+#ifndef LADRC_SIM_AIRFRAME_H
+#define LADRC_SIM_AIRFRAME_H
+
+#include <stdio.h>
+
+#include "ident.h"
+#include "spectrum.h"
+
+/* The nominal vehicle of an identified airframe. */
+#define SIM_AIRFRAME_MASS_KG 1.0
+#define SIM_AIRFRAME_ARM_M 0.1
+#define SIM_AIRFRAME_THRUST_COEFF_N_S2 1e-5
+#define SIM_AIRFRAME_YAW_COEFF_NM_S2 2.5e-7 /* yaw authority a quarter of roll's */
+#define SIM_AIRFRAME_G_M_S2 9.81
+
+typedef struct {
+    double dt_s;
+    double prefilter_hz; /* the identification's low-pass corner */
+    sim_ident_axis_t axis[3];
+    double noise_floor_rad_s_rthz[3]; /* the gyro's white floor (sqrt of its PSD) */
+    int n_lines[3];
+    sim_spectrum_line_t lines[3][SIM_SPECTRUM_MAX_LINES];
+} sim_airframe_t;
+
+/* The band of the gyro's spectrum its floor is taken over (Hz), at sample rate fs. */
+void sim_airframe_floor_band(double fs_hz, double *lo_hz, double *hi_hz);
+
+/* The inertia (kg m^2) the scenario gives axis i for b0 (NaN when b0 is not > 0). */
+double sim_airframe_inertia(int axis, double b0);
+
+/* Writes the scenario to f: `source` names the log in its comment (a file
+ * name, no folders), `noise_series` the noise file next to it (NULL: none).
+ * Returns 0, or -1 when an axis has no usable b0 (the message in why). */
+int sim_airframe_write(FILE *f, const sim_airframe_t *a, const char *source, const char *noise_series, char *why,
+                       size_t why_len);
+
+#endif

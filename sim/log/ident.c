@@ -1,0 +1,664 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Identification of the axes' plant from a log (ident.h): three passes. */
+#include "ident.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+#define CHI2_1_95 3.841458820694124 /* chi-square(1) at 95 % */
+#define Z_95 1.959963984540054
+/* The profiles' threshold is chi-square's times this: in closed loop the
+ * gyro's noise reaches the command, which biases the fit by more than its
+ * scatter, and lag and delay trade against each other at low frequency.
+ * On the test loops a manoeuvre's wrong delay stood 2-600 sigma^2 above the
+ * best, a chirp's 1e4 and more. */
+#define PROFILE_SAFETY 25.0
+
+#define FIRST_TAU_S 0.0005 /* the coarse grid's first lag after 0 */
+#define RING (SIM_IDENT_MAX_DELAY + 1)
+#define MAX_CHANNELS (SIM_IDENT_COARSE_TAUS > SIM_IDENT_FINE_TAUS ? SIM_IDENT_COARSE_TAUS : SIM_IDENT_FINE_TAUS)
+
+/* Second-order Butterworth low-pass, bilinear with a prewarped corner. */
+typedef struct {
+    double b0, b1, b2, a1, a2;
+} biquad_coef_t;
+typedef struct {
+    double z1, z2;
+} biquad_t;
+
+/* A second-order high-pass section of quality q. */
+static biquad_coef_t highpass_section(double fc_hz, double dt_s, double q)
+{
+    const double k = tan(PI * fc_hz * dt_s), norm = 1.0 / (1.0 + k / q + k * k);
+    const biquad_coef_t c = {norm, -2.0 * norm, norm, 2.0 * (k * k - 1.0) * norm, (1.0 - k / q + k * k) * norm};
+    return c;
+}
+
+/* A second-order low-pass section of quality q (1/q the damping's double). */
+static biquad_coef_t lowpass_section(double fc_hz, double dt_s, double q)
+{
+    const double k = tan(PI * fc_hz * dt_s), norm = 1.0 / (1.0 + k / q + k * k);
+    const biquad_coef_t c = {k * k * norm, 2.0 * k * k * norm, k * k * norm, 2.0 * (k * k - 1.0) * norm,
+                             (1.0 - k / q + k * k) * norm};
+    return c;
+}
+
+/* Transposed direct form II. */
+static double biquad_step(const biquad_coef_t *c, biquad_t *s, double x)
+{
+    const double y = c->b0 * x + s->z1;
+    s->z1 = c->b1 * x - c->a1 * y + s->z2;
+    s->z2 = c->b2 * x - c->a2 * y;
+    return y;
+}
+
+/* The prefilter: a band from SIM_IDENT_HIGHPASS_HZ (second-order
+ * high-pass: the slow disturbances the loop cancels, wind and trim, are
+ * correlated with the command and would bias the fit) to the corner
+ * (fourth-order low-pass, -24 dB an octave above it, where the rotors'
+ * vibration lines lie: their frequency follows the command too). */
+#define PREFILTER_SECTIONS 3 /* two low-pass, one high-pass */
+static const double PREFILTER_Q[PREFILTER_SECTIONS] = {0.54119610014619690, 1.30656296487637653, 0.70710678118654752};
+typedef struct {
+    biquad_t s[PREFILTER_SECTIONS];
+} lowpass_t;
+
+/* A biquad settled on a constant input x. */
+static void biquad_settle(const biquad_coef_t *c, biquad_t *s, double x)
+{
+    const double gain = (c->b0 + c->b1 + c->b2) / (1.0 + c->a1 + c->a2);
+    const double y = gain * x;
+    s->z2 = c->b2 * x - c->a2 * y;
+    s->z1 = c->b1 * x - c->a1 * y + s->z2;
+}
+
+static double lowpass_step(const biquad_coef_t *c, lowpass_t *f, double x)
+{
+    for (int i = 0; i < PREFILTER_SECTIONS; ++i) {
+        x = biquad_step(&c[i], &f->s[i], x);
+    }
+    return x;
+}
+
+/* Settled on a constant input (unit gain at 0 Hz: each section passes x). */
+static void lowpass_settle(const biquad_coef_t *c, lowpass_t *f, double x)
+{
+    for (int i = 0; i < PREFILTER_SECTIONS; ++i) {
+        biquad_settle(&c[i], &f->s[i], x);
+    }
+}
+
+/* The command through one candidate lag: phi(j) = u(j) + (x(j) - u(j)) g,
+ * the mean of the lag's output over a hold of u(j) starting from x(j), then
+ * x(j + 1) = alpha x(j) + (1 - alpha) u(j); filtered, into a ring by tick. */
+typedef struct {
+    double tau_s, alpha, gain;
+    double x;
+    lowpass_t filter;
+    double ring[RING];
+} lag_channel_t;
+
+/* Sums of x x' and x y over the samples of one candidate (tau, d); x = (phi, w, 1). */
+typedef struct {
+    double pp, pw, p1, py;
+} candidate_sums_t;
+
+typedef struct {
+    double ww, w1, n, wy, y1, yy;
+} shared_sums_t;
+
+typedef struct {
+    /* streaming state */
+    double w_prev, u_prev;
+    long long since_restart;
+    lowpass_t fy, fw;
+    lag_channel_t ch[MAX_CHANNELS];
+    int pos; /* ring slot of the newest phi */
+    shared_sums_t sh;
+    candidate_sums_t cand[MAX_CHANNELS][RING];
+    /* profiles: the best sum of squares per candidate of each pass */
+    double sse_coarse[SIM_IDENT_COARSE_TAUS][RING], b0_coarse[SIM_IDENT_COARSE_TAUS][RING];
+    double sse_fine[SIM_IDENT_FINE_TAUS][SIM_IDENT_FINE_DELAYS], b0_fine[SIM_IDENT_FINE_TAUS][SIM_IDENT_FINE_DELAYS];
+    double tau_coarse[SIM_IDENT_COARSE_TAUS], tau_fine[SIM_IDENT_FINE_TAUS];
+    int fine_d0, fine_nd;
+    /* the choice */
+    double tau_s, tau_grid_s; /* the lag chosen, and the fine grid's best */
+    int delay;
+    double theta[3]; /* b0, -a, c */
+    double m_inv[3][3];
+    double sse, sst, n;
+    double phi_mean, phi_var;
+    /* pass 3: the residuals' sandwich */
+    double v[3]; /* row 1 of m_inv */
+    double h_ring[SIM_IDENT_MAX_HAC_LAGS + 1];
+    double hac[SIM_IDENT_MAX_HAC_LAGS + 1];
+    long long h_count, h_seg; /* residuals in all, and since the last gap */
+    sim_spectrum_t command;   /* pass 1: the command's spectrum */
+    double sse3;
+    int valid;
+} axis_t;
+
+struct sim_ident {
+    sim_ident_options_t opt;
+    biquad_coef_t lpf[PREFILTER_SECTIONS];
+    int delay_max, skip, hac_lags;
+    int pass;
+    axis_t axis[3];
+};
+
+sim_ident_t *sim_ident_new(const sim_ident_options_t *opt)
+{
+    if (opt == NULL || !(opt->dt_s > 0.0) || !isfinite(opt->dt_s)) {
+        return NULL;
+    }
+    sim_ident_t *id = calloc(1, sizeof *id);
+    if (id == NULL) {
+        return NULL;
+    }
+    id->opt = *opt;
+    const double fs = 1.0 / opt->dt_s;
+    if (!(id->opt.prefilter_hz > 0.0)) {
+        id->opt.prefilter_hz = fmin(SIM_IDENT_PREFILTER_MAX_HZ, 0.08 * fs);
+    }
+    id->opt.prefilter_hz = fmin(id->opt.prefilter_hz, 0.4 * fs);
+    if (!(id->opt.lag_max_s > 0.0)) {
+        id->opt.lag_max_s = 0.2;
+    }
+    id->delay_max = opt->delay_max_ticks >= 0 ? opt->delay_max_ticks : (int)ceil(0.040 / opt->dt_s);
+    if (id->delay_max > SIM_IDENT_MAX_DELAY) {
+        id->delay_max = SIM_IDENT_MAX_DELAY;
+    }
+    for (int i = 0; i < 2; ++i) {
+        id->lpf[i] = lowpass_section(id->opt.prefilter_hz, opt->dt_s, PREFILTER_Q[i]);
+    }
+    id->lpf[2] = highpass_section(SIM_IDENT_HIGHPASS_HZ, opt->dt_s, PREFILTER_Q[2]);
+    /* the low-pass settles in some 6 / fc; the ring fills in delay_max + 1 */
+    id->skip = (int)ceil(6.0 / (id->opt.prefilter_hz * opt->dt_s));
+    if (id->skip < id->delay_max + 2) {
+        id->skip = id->delay_max + 2;
+    }
+    /* residuals stay correlated over the low-pass's memory and the loop's */
+    id->hac_lags = (int)ceil(8.0 / (id->opt.prefilter_hz * opt->dt_s));
+    if (id->hac_lags > SIM_IDENT_MAX_HAC_LAGS) {
+        id->hac_lags = SIM_IDENT_MAX_HAC_LAGS;
+    }
+    return id;
+}
+
+void sim_ident_free(sim_ident_t *id)
+{
+    free(id);
+}
+
+int sim_ident_delay_max(const sim_ident_t *id)
+{
+    return id->delay_max;
+}
+
+double sim_ident_prefilter_hz(const sim_ident_t *id)
+{
+    return id->opt.prefilter_hz;
+}
+
+static double coarse_tau(const sim_ident_t *id, int i)
+{
+    if (i == 0) {
+        return 0.0;
+    }
+    const double ratio = pow(id->opt.lag_max_s / FIRST_TAU_S, 1.0 / (SIM_IDENT_COARSE_TAUS - 2));
+    return FIRST_TAU_S * pow(ratio, i - 1);
+}
+
+static int channels_of_pass(const sim_ident_t *id)
+{
+    return id->pass == 1 ? SIM_IDENT_COARSE_TAUS : id->pass == 2 ? SIM_IDENT_FINE_TAUS : 1;
+}
+
+static double channel_tau(const sim_ident_t *id, const axis_t *a, int c)
+{
+    return id->pass == 1 ? a->tau_coarse[c] : id->pass == 2 ? a->tau_fine[c] : a->tau_s;
+}
+
+/* The delays a pass fits: all in pass 1, about the best in pass 2, the chosen one in pass 3. */
+static void delays_of_pass(const sim_ident_t *id, const axis_t *a, int *d0, int *nd)
+{
+    if (id->pass == 1) {
+        *d0 = 0;
+        *nd = id->delay_max + 1;
+    } else if (id->pass == 2) {
+        *d0 = a->fine_d0;
+        *nd = a->fine_nd;
+    } else {
+        *d0 = a->delay;
+        *nd = 1;
+    }
+}
+
+/* A gap: the filters start again, and no residual is paired across it. */
+static void restart(axis_t *a)
+{
+    a->since_restart = 0;
+    a->h_seg = 0;
+}
+
+int sim_ident_begin_pass(sim_ident_t *id)
+{
+    if (id->pass >= 3) {
+        return 0;
+    }
+    id->pass++;
+    for (int i = 0; i < 3; ++i) {
+        axis_t *a = &id->axis[i];
+        memset(&a->sh, 0, sizeof a->sh);
+        memset(a->cand, 0, sizeof a->cand);
+        a->h_count = 0;
+        a->sse3 = 0.0;
+        memset(a->hac, 0, sizeof a->hac);
+        const int n = channels_of_pass(id);
+        for (int c = 0; c < n; ++c) {
+            if (id->pass == 1) {
+                a->tau_coarse[c] = coarse_tau(id, c);
+            }
+            const double tau = channel_tau(id, a, c);
+            a->ch[c].tau_s = tau;
+            a->ch[c].alpha = tau > 0.0 ? exp(-id->opt.dt_s / tau) : 0.0;
+            a->ch[c].gain = tau > 0.0 ? tau / id->opt.dt_s * (1.0 - a->ch[c].alpha) : 0.0;
+        }
+        restart(a);
+        if (id->pass == 1) {
+            sim_spectrum_init(&a->command, 1.0 / id->opt.dt_s);
+        }
+    }
+    return id->pass;
+}
+
+/* One axis's sample. */
+static void add_axis(sim_ident_t *id, axis_t *a, double w, double u)
+{
+    if (!isfinite(w) || !isfinite(u)) {
+        restart(a);
+        return;
+    }
+    if (id->pass == 1) {
+        sim_spectrum_push(&a->command, u);
+    }
+    const int n_ch = channels_of_pass(id);
+    if (a->since_restart == 0) {
+        /* settled on the first sample: the filters start where the signals are */
+        lowpass_settle(id->lpf, &a->fy, 0.0);
+        lowpass_settle(id->lpf, &a->fw, w);
+        for (int c = 0; c < n_ch; ++c) {
+            a->ch[c].x = u;
+            lowpass_settle(id->lpf, &a->ch[c].filter, u);
+            for (int k = 0; k < RING; ++k) {
+                a->ch[c].ring[k] = u;
+            }
+        }
+        a->w_prev = w;
+        a->u_prev = u;
+        a->since_restart = 1;
+        return;
+    }
+    const double y = lowpass_step(id->lpf, &a->fy, (w - a->w_prev) / id->opt.dt_s);
+    const double wm = lowpass_step(id->lpf, &a->fw, 0.5 * (w + a->w_prev));
+    a->pos = (a->pos + 1) % RING;
+    for (int c = 0; c < n_ch; ++c) {
+        lag_channel_t *ch = &a->ch[c];
+        const double phi = a->u_prev + (ch->x - a->u_prev) * ch->gain;
+        ch->x = ch->alpha * ch->x + (1.0 - ch->alpha) * a->u_prev;
+        ch->ring[a->pos] = lowpass_step(id->lpf, &ch->filter, phi);
+    }
+    a->w_prev = w;
+    a->u_prev = u;
+    a->since_restart++;
+    if (a->since_restart <= id->skip) {
+        return;
+    }
+    shared_sums_t *s = &a->sh;
+    s->ww += wm * wm;
+    s->w1 += wm;
+    s->n += 1.0;
+    s->wy += wm * y;
+    s->y1 += y;
+    s->yy += y * y;
+    int d0, nd;
+    delays_of_pass(id, a, &d0, &nd);
+    for (int c = 0; c < n_ch; ++c) {
+        const double *ring = a->ch[c].ring;
+        for (int j = 0; j < nd; ++j) {
+            const double p = ring[(a->pos - (d0 + j) + RING) % RING];
+            candidate_sums_t *cs = &a->cand[c][j];
+            cs->pp += p * p;
+            cs->pw += p * wm;
+            cs->p1 += p;
+            cs->py += p * y;
+        }
+    }
+    if (id->pass == 3 && a->valid) {
+        const double p = a->ch[0].ring[(a->pos - d0 + RING) % RING];
+        const double r = y - (a->theta[0] * p + a->theta[1] * wm + a->theta[2]);
+        const double h = (a->v[0] * p + a->v[1] * wm + a->v[2]) * r;
+        a->sse3 += r * r;
+        const int lags = id->hac_lags;
+        const long long k = a->h_seg++;
+        a->h_count++;
+        a->h_ring[k % (lags + 1)] = h;
+        const int m_max = k < lags ? (int)k : lags;
+        for (int m = 0; m <= m_max; ++m) {
+            a->hac[m] += h * a->h_ring[(k - m) % (lags + 1)];
+        }
+    }
+}
+
+void sim_ident_add(sim_ident_t *id, const double gyro_rad_s[3], const double command[3])
+{
+    for (int i = 0; i < 3; ++i) {
+        add_axis(id, &id->axis[i], gyro_rad_s[i], command[i]);
+    }
+}
+
+/* Least squares of candidate sums: theta, the inverse of the sums matrix and
+ * the residual sum of squares; 0 when the regressors are (nearly) collinear. */
+static int solve(const shared_sums_t *s, const candidate_sums_t *c, double theta[3], double inv[3][3], double *sse)
+{
+    const double m[3][3] = {{c->pp, c->pw, c->p1}, {c->pw, s->ww, s->w1}, {c->p1, s->w1, s->n}};
+    const double rhs[3] = {c->py, s->wy, s->y1};
+    const double cof00 = m[1][1] * m[2][2] - m[1][2] * m[2][1];
+    const double cof01 = m[1][2] * m[2][0] - m[1][0] * m[2][2];
+    const double cof02 = m[1][0] * m[2][1] - m[1][1] * m[2][0];
+    const double det = m[0][0] * cof00 + m[0][1] * cof01 + m[0][2] * cof02;
+    /* collinear when the determinant is lost against the diagonal's product */
+    if (!(s->n > 3.0) || !(fabs(det) > 1e-12 * fabs(m[0][0] * m[1][1] * m[2][2]))) {
+        return 0;
+    }
+    inv[0][0] = cof00 / det;
+    inv[0][1] = (m[0][2] * m[2][1] - m[0][1] * m[2][2]) / det;
+    inv[0][2] = (m[0][1] * m[1][2] - m[0][2] * m[1][1]) / det;
+    inv[1][0] = cof01 / det;
+    inv[1][1] = (m[0][0] * m[2][2] - m[0][2] * m[2][0]) / det;
+    inv[1][2] = (m[0][2] * m[1][0] - m[0][0] * m[1][2]) / det;
+    inv[2][0] = cof02 / det;
+    inv[2][1] = (m[0][1] * m[2][0] - m[0][0] * m[2][1]) / det;
+    inv[2][2] = (m[0][0] * m[1][1] - m[0][1] * m[1][0]) / det;
+    for (int i = 0; i < 3; ++i) {
+        theta[i] = inv[i][0] * rhs[0] + inv[i][1] * rhs[1] + inv[i][2] * rhs[2];
+    }
+    *sse = s->yy - (theta[0] * rhs[0] + theta[1] * rhs[1] + theta[2] * rhs[2]);
+    if (*sse < 0.0) {
+        *sse = 0.0; /* rounding on an exact fit */
+    }
+    return 1;
+}
+
+/* A candidate's residual sum of squares (+inf when it cannot be fitted) and b0. */
+static double candidate_fit(const axis_t *a, int c, int j, double *b0)
+{
+    double theta[3], inv[3][3], sse;
+    if (!solve(&a->sh, &a->cand[c][j], theta, inv, &sse)) {
+        *b0 = NAN;
+        return INFINITY;
+    }
+    *b0 = theta[0];
+    return sse;
+}
+
+/* After pass 1: the coarse profile, the fine grid about its best. */
+static void end_coarse(sim_ident_t *id, axis_t *a)
+{
+    int best_c = 0, best_d = 0;
+    for (int c = 0; c < SIM_IDENT_COARSE_TAUS; ++c) {
+        for (int d = 0; d < RING; ++d) {
+            a->sse_coarse[c][d] = d <= id->delay_max ? candidate_fit(a, c, d, &a->b0_coarse[c][d]) : INFINITY;
+            if (a->sse_coarse[c][d] < a->sse_coarse[best_c][best_d]) {
+                best_c = c;
+                best_d = d;
+            }
+        }
+    }
+    const double lo = a->tau_coarse[best_c > 0 ? best_c - 1 : 0];
+    const double hi = a->tau_coarse[best_c + 1 < SIM_IDENT_COARSE_TAUS ? best_c + 1 : best_c];
+    for (int c = 0; c < SIM_IDENT_FINE_TAUS; ++c) {
+        a->tau_fine[c] = lo + (hi - lo) * c / (SIM_IDENT_FINE_TAUS - 1);
+    }
+    a->fine_d0 = best_d - SIM_IDENT_FINE_DELAYS / 2 < 0 ? 0 : best_d - SIM_IDENT_FINE_DELAYS / 2;
+    a->fine_nd = SIM_IDENT_FINE_DELAYS;
+    if (a->fine_d0 + a->fine_nd > id->delay_max + 1) {
+        a->fine_nd = id->delay_max + 1 - a->fine_d0;
+    }
+}
+
+/* The lag at the vertex of the parabola through the fine profile's best and
+ * its two neighbours (at the best delay): the grid's spacing would
+ * otherwise show in b0. The grid point itself at an edge or a flat profile. */
+static double profile_vertex(const axis_t *a, int c, int j)
+{
+    if (c == 0 || c == SIM_IDENT_FINE_TAUS - 1) {
+        return a->tau_fine[c];
+    }
+    const double y0 = a->sse_fine[c - 1][j], y1 = a->sse_fine[c][j], y2 = a->sse_fine[c + 1][j];
+    const double curvature = y0 - 2.0 * y1 + y2;
+    if (!(curvature > 0.0) || !isfinite(curvature)) {
+        return a->tau_fine[c];
+    }
+    const double step = a->tau_fine[c + 1] - a->tau_fine[c];
+    return a->tau_fine[c] + 0.5 * step * (y0 - y2) / curvature;
+}
+
+/* After pass 2: the choice and its fit. */
+static void end_fine(axis_t *a)
+{
+    int best_c = -1, best_j = 0;
+    double best = INFINITY;
+    for (int c = 0; c < SIM_IDENT_FINE_TAUS; ++c) {
+        for (int j = 0; j < SIM_IDENT_FINE_DELAYS; ++j) {
+            a->sse_fine[c][j] = j < a->fine_nd ? candidate_fit(a, c, j, &a->b0_fine[c][j]) : INFINITY;
+            if (a->sse_fine[c][j] < best) {
+                best = a->sse_fine[c][j];
+                best_c = c;
+                best_j = j;
+            }
+        }
+    }
+    a->valid = best_c >= 0 && solve(&a->sh, &a->cand[best_c][best_j], a->theta, a->m_inv, &a->sse);
+    if (!a->valid) {
+        return;
+    }
+    const candidate_sums_t *c = &a->cand[best_c][best_j];
+    a->tau_grid_s = a->tau_fine[best_c];
+    a->tau_s = profile_vertex(a, best_c, best_j);
+    a->delay = a->fine_d0 + best_j;
+    a->n = a->sh.n;
+    a->sst = a->sh.yy - a->sh.y1 * a->sh.y1 / a->sh.n;
+    a->phi_mean = c->p1 / a->sh.n;
+    a->phi_var = c->pp / a->sh.n - a->phi_mean * a->phi_mean;
+    for (int i = 0; i < 3; ++i) {
+        a->v[i] = a->m_inv[0][i];
+    }
+}
+
+/* After pass 3: the fit at the refined lag when it beats the grid's best. */
+static void end_refined(axis_t *a)
+{
+    double theta[3], inv[3][3], sse;
+    if (solve(&a->sh, &a->cand[0][0], theta, inv, &sse) && sse <= a->sse) {
+        memcpy(a->theta, theta, sizeof theta);
+        memcpy(a->m_inv, inv, sizeof inv);
+        a->sse = sse;
+        a->phi_mean = a->cand[0][0].p1 / a->sh.n;
+        a->phi_var = a->cand[0][0].pp / a->sh.n - a->phi_mean * a->phi_mean;
+    } else {
+        a->tau_s = a->tau_grid_s;
+    }
+}
+
+void sim_ident_end_pass(sim_ident_t *id)
+{
+    for (int i = 0; i < 3; ++i) {
+        axis_t *a = &id->axis[i];
+        if (id->pass == 1) {
+            end_coarse(id, a);
+        } else if (id->pass == 2) {
+            end_fine(a);
+        } else if (a->valid) {
+            end_refined(a);
+        }
+    }
+}
+
+/* Bartlett-weighted sum of the residuals' autocovariances: the sandwich variance of b0. */
+static double sandwich_variance(const sim_ident_t *id, const axis_t *a)
+{
+    double v = a->hac[0];
+    for (int m = 1; m <= id->hac_lags; ++m) {
+        v += 2.0 * (1.0 - (double)m / (id->hac_lags + 1)) * a->hac[m];
+    }
+    return v;
+}
+
+/* The profile intervals: every candidate (tau, d) of both grids whose sum of
+ * squares lies within `limit` is consistent with the log; the lag's interval
+ * is widened to the next grid point outside that set (the boundary lies
+ * between), the delay's is the set's range, and b0's spans the set's b0s. */
+typedef struct {
+    double tau_lo, tau_hi, b0_lo, b0_hi;
+    int d_lo, d_hi;
+} profile_t;
+
+static void profile_take(profile_t *p, double sse, double limit, double tau, int d, double b0)
+{
+    if (sse <= limit) {
+        p->tau_lo = fmin(p->tau_lo, tau);
+        p->tau_hi = fmax(p->tau_hi, tau);
+        p->b0_lo = fmin(p->b0_lo, b0);
+        p->b0_hi = fmax(p->b0_hi, b0);
+        p->d_lo = d < p->d_lo ? d : p->d_lo;
+        p->d_hi = d > p->d_hi ? d : p->d_hi;
+    }
+}
+
+/* The grid's nearest lags outside the set's range, into *lo and *hi. */
+static void widen_to_grid(const double *grid, int n, const profile_t *p, double *lo, double *hi)
+{
+    for (int g = 0; g < n; ++g) {
+        *lo = grid[g] < p->tau_lo && grid[g] > *lo ? grid[g] : *lo;
+        *hi = grid[g] > p->tau_hi && grid[g] < *hi ? grid[g] : *hi;
+    }
+}
+
+static void profile_intervals(const sim_ident_t *id, const axis_t *a, double limit, profile_t *p)
+{
+    *p = (profile_t){a->tau_s, a->tau_s, a->theta[0], a->theta[0], a->delay, a->delay};
+    for (int c = 0; c < SIM_IDENT_COARSE_TAUS; ++c) {
+        for (int d = 0; d <= id->delay_max; ++d) {
+            profile_take(p, a->sse_coarse[c][d], limit, a->tau_coarse[c], d, a->b0_coarse[c][d]);
+        }
+    }
+    for (int c = 0; c < SIM_IDENT_FINE_TAUS; ++c) {
+        for (int j = 0; j < a->fine_nd; ++j) {
+            profile_take(p, a->sse_fine[c][j], limit, a->tau_fine[c], a->fine_d0 + j, a->b0_fine[c][j]);
+        }
+    }
+    double lo = 0.0, hi = id->opt.lag_max_s;
+    widen_to_grid(a->tau_coarse, SIM_IDENT_COARSE_TAUS, p, &lo, &hi);
+    widen_to_grid(a->tau_fine, SIM_IDENT_FINE_TAUS, p, &lo, &hi);
+    p->tau_lo = p->tau_lo > 0.0 ? lo : 0.0;
+    p->tau_hi = hi;
+}
+
+void sim_ident_result(const sim_ident_t *id, int axis, sim_ident_axis_t *out)
+{
+    const axis_t *a = &id->axis[axis];
+    memset(out, 0, sizeof *out);
+    out->samples = (long long)a->sh.n;
+    if (!a->valid || id->pass < 3) {
+        out->b0 = out->b0_lo = out->b0_hi = out->lag_s = out->lag_lo_s = out->lag_hi_s = NAN;
+        out->damping_per_s = out->r2 = out->command_rms = out->variance_ratio = NAN;
+        out->delay_ticks = out->delay_lo_ticks = out->delay_hi_ticks = -1;
+        out->warnings = SIM_IDENT_WARN_FEW | SIM_IDENT_WARN_LOW_FIT;
+        return;
+    }
+    const double dof = a->n - 3.0;
+    const double sigma2 = a->sse / dof;
+    const double var_ols = sigma2 * a->m_inv[0][0];
+    const double var_hac = sandwich_variance(id, a);
+    const double ratio = var_hac > var_ols ? var_hac / var_ols : 1.0;
+    const double half = Z_95 * sqrt(fmax(var_hac, var_ols));
+    const double limit = a->sse + CHI2_1_95 * sigma2 * fmax(ratio, PROFILE_SAFETY);
+    profile_t prof;
+    profile_intervals(id, a, limit, &prof);
+    out->b0 = a->theta[0];
+    out->b0_lo = prof.b0_lo - half;
+    out->b0_hi = prof.b0_hi + half;
+    out->damping_per_s = -a->theta[1];
+    out->r2 = a->sst > 0.0 ? 1.0 - a->sse / a->sst : 0.0;
+    out->command_rms = sqrt(fmax(a->phi_var, 0.0));
+    out->variance_ratio = ratio;
+    /* motors faster than the band fitted: nothing there tells lag from delay (share 0) */
+    const double corner_hz = 1.0 / (2.0 * PI * fmax(a->tau_s, id->opt.dt_s));
+    const double df_hz = 1.0 / (id->opt.dt_s * SIM_SPECTRUM_N);
+    out->band_share = corner_hz >= id->opt.prefilter_hz
+                          ? 0.0
+                          : sim_spectrum_band_rms(&a->command, corner_hz, id->opt.prefilter_hz) /
+                                sim_spectrum_band_rms(&a->command, df_hz, id->opt.prefilter_hz);
+    out->lag_s = a->tau_s;
+    out->lag_lo_s = prof.tau_lo;
+    out->lag_hi_s = prof.tau_hi;
+    out->delay_ticks = a->delay;
+    out->delay_lo_ticks = prof.d_lo;
+    out->delay_hi_ticks = prof.d_hi;
+
+    unsigned w = 0;
+    if (out->samples < SIM_IDENT_MIN_SAMPLES) {
+        w |= SIM_IDENT_WARN_FEW;
+    }
+    if (!(out->b0 > 0.0)) {
+        w |= SIM_IDENT_WARN_SIGN;
+    }
+    if (out->b0_hi - out->b0_lo > 2.0 * SIM_IDENT_B0_REL_MAX * fabs(out->b0)) {
+        w |= SIM_IDENT_WARN_B0_WIDE;
+    }
+    if (out->lag_hi_s - out->lag_lo_s > fmax(SIM_IDENT_LAG_REL_MAX * out->lag_s, 0.004)) {
+        w |= SIM_IDENT_WARN_LAG_WIDE;
+    }
+    if (out->delay_hi_ticks != out->delay_lo_ticks) {
+        w |= SIM_IDENT_WARN_DELAY_WIDE;
+    }
+    if (out->r2 < SIM_IDENT_R2_MIN) {
+        w |= SIM_IDENT_WARN_LOW_FIT;
+    }
+    if (out->lag_s >= a->tau_coarse[SIM_IDENT_COARSE_TAUS - 1] ||
+        (out->delay_ticks == id->delay_max && id->delay_max > 0)) {
+        w |= SIM_IDENT_WARN_EDGE;
+    }
+    if (!(out->band_share >= SIM_IDENT_BAND_SHARE_MIN)) {
+        w |= SIM_IDENT_WARN_NARROW;
+    }
+    out->warnings = w;
+}
+
+const char *sim_ident_warning_text(unsigned bit)
+{
+    switch (bit) {
+    case SIM_IDENT_WARN_FEW:
+        return "too few samples to fit";
+    case SIM_IDENT_WARN_SIGN:
+        return "b0 is not positive: the command and the gyro disagree in sign (check the axis's mapping)";
+    case SIM_IDENT_WARN_B0_WIDE:
+        return "b0's interval is wider than +-10 %: weak excitation (fly a chirp or sharper manoeuvres)";
+    case SIM_IDENT_WARN_LAG_WIDE:
+        return "the motor lag's interval is wide: weak excitation above the motors' corner";
+    case SIM_IDENT_WARN_DELAY_WIDE:
+        return "the delay is not told to the tick: weak excitation at high frequency";
+    case SIM_IDENT_WARN_LOW_FIT:
+        return "the model explains under half the filtered angular acceleration (R^2 < 0.5)";
+    case SIM_IDENT_WARN_EDGE:
+        return "the best fit lies at the edge of the lag or delay searched";
+    case SIM_IDENT_WARN_NARROW:
+        return "lag and delay are not told apart: the command has little content above the motors' corner, or "
+               "that corner lies above the band fitted (fly a chirp; their sum is told)";
+    default:
+        return "";
+    }
+}

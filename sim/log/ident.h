@@ -1,0 +1,113 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * The plant of each axis identified from a flight log's gyro and command:
+ *
+ *   (w[k] - w[k-1]) / dt = b0 phi(k - 1 - d) - a (w[k] + w[k-1]) / 2 + c
+ *
+ * w the gyro (rad/s), u the log's normalised command, phi(j) the mean over
+ * tick j's hold of u through a first-order lag of time constant tau (the
+ * motors), d whole ticks of delay between a command and the first gyro
+ * sample it moves beyond the hold itself; a the rate damping (1/s), c an
+ * constant (rad/s^2). Both sides go through the same band-pass (which keeps
+ * the relation, cuts the gyro's differentiated noise and the rotors'
+ * vibration lines above, and the disturbances the loop cancels below), then
+ * least squares for (b0, a, c) at every (tau, d) of a grid: a coarse pass,
+ * a fine pass about its best, and a pass for the residuals.
+ *
+ * Intervals (95 %): b0 from the sandwich (Newey-West, Bartlett) variance,
+ * which holds with coloured residuals; tau and d from the profile of the
+ * residual sum of squares, those within the chi-square(1) threshold, scaled
+ * by the same variance ratio. Warnings flag what the log cannot tell
+ * (SIM_IDENT_WARN_*): the fits of a log without enough excitation come with
+ * wide intervals and a warning, never as confident numbers.
+ *
+ * Memory is fixed (grid sums and short rings): a log of any length is
+ * streamed through each pass.
+ */
+#ifndef LADRC_SIM_IDENT_H
+#define LADRC_SIM_IDENT_H
+
+#include "spectrum.h"
+
+#define SIM_IDENT_COARSE_TAUS 40 /* 0, then geometric from 0.5 ms to lag_max_s */
+#define SIM_IDENT_FINE_TAUS 33   /* between the coarse best's neighbours */
+#define SIM_IDENT_MAX_DELAY 40   /* ticks */
+#define SIM_IDENT_FINE_DELAYS 7  /* the coarse best's delay +- 3 */
+#define SIM_IDENT_MAX_HAC_LAGS 256
+
+/* What the log cannot tell (bits of sim_ident_axis_t.warnings). */
+enum {
+    SIM_IDENT_WARN_FEW = 1u << 0,        /* fewer than SIM_IDENT_MIN_SAMPLES samples fitted */
+    SIM_IDENT_WARN_SIGN = 1u << 1,       /* b0 <= 0: command and gyro disagree in sign */
+    SIM_IDENT_WARN_B0_WIDE = 1u << 2,    /* b0's interval wider than +-SIM_IDENT_B0_REL_MAX */
+    SIM_IDENT_WARN_LAG_WIDE = 1u << 3,   /* the lag's interval wider than SIM_IDENT_LAG_REL_MAX or 4 ms */
+    SIM_IDENT_WARN_DELAY_WIDE = 1u << 4, /* the delay not told to the tick */
+    SIM_IDENT_WARN_LOW_FIT = 1u << 5,    /* R^2 below SIM_IDENT_R2_MIN */
+    SIM_IDENT_WARN_EDGE = 1u << 6,       /* the best fit at the edge of the grid */
+    SIM_IDENT_WARN_NARROW = 1u << 7 /* the command's share above the motors' corner under SIM_IDENT_BAND_SHARE_MIN */
+};
+#define SIM_IDENT_MIN_SAMPLES 2000
+#define SIM_IDENT_PREFILTER_MAX_HZ 40.0 /* the default corner: a chirp's top */
+#define SIM_IDENT_PREFILTER_MIN_HZ 10.0 /* the lowest a vibration line may push it */
+/* The band's low edge: on a chirp flight in turbulence (scenarios/logs), b0
+ * of roll came out 25 % low without it (the loop's answer to the gusts taken
+ * for the plant's), 4 % low with it; 2 and 4 Hz gave no better. */
+#define SIM_IDENT_HIGHPASS_HZ 1.0
+#define SIM_IDENT_B0_REL_MAX 0.10
+#define SIM_IDENT_LAG_REL_MAX 0.5
+#define SIM_IDENT_R2_MIN 0.5
+/* Lag and delay part only where the lag's phase differs from a delay's:
+ * above the motors' corner 1 / (2 pi tau), which must lie in the band
+ * fitted (below the prefilter's corner). The command's rms share there (up
+ * to the prefilter's corner) was 0.75-0.91 for 1-40 Hz chirps and 0.06-0.41
+ * for pilots' steps and sweeps on the same airframes. */
+#define SIM_IDENT_BAND_SHARE_MIN 0.5
+
+typedef struct {
+    double dt_s; /* the samples' period */
+    double
+        prefilter_hz; /* the low-pass of both sides (fourth order); 0: min(SIM_IDENT_PREFILTER_MAX_HZ, 0.08 / dt_s) */
+    double lag_max_s; /* largest motor lag searched; 0: 0.2 s */
+    int delay_max_ticks; /* largest delay searched; < 0: the ticks of 40 ms, at most SIM_IDENT_MAX_DELAY */
+} sim_ident_options_t;
+
+typedef struct {
+    long long samples;                /* fitted (after the low-pass's settling) */
+    double b0, b0_lo, b0_hi;          /* rad/s^2 per unit of command; 95 % interval */
+    double lag_s, lag_lo_s, lag_hi_s; /* motor lag tau */
+    int delay_ticks, delay_lo_ticks, delay_hi_ticks;
+    double damping_per_s;  /* a */
+    double r2;             /* of the filtered fit */
+    double command_rms;    /* the filtered command's rms about its mean: the excitation */
+    double variance_ratio; /* sandwich over ordinary variance of b0 (>= 1 with coloured residuals) */
+    double band_share;     /* the command's rms share above the motors' corner (SIM_IDENT_WARN_NARROW) */
+    unsigned warnings;     /* SIM_IDENT_WARN_* */
+} sim_ident_axis_t;
+
+typedef struct sim_ident sim_ident_t;
+
+/* A new identification (heap); NULL when out of memory or dt_s is not > 0. */
+sim_ident_t *sim_ident_new(const sim_ident_options_t *opt);
+void sim_ident_free(sim_ident_t *id);
+
+/* Starts the next pass over the log: returns its number (1, 2, 3), or 0
+ * when all are done. Each pass must see the same samples in the same order. */
+int sim_ident_begin_pass(sim_ident_t *id);
+
+/* One sample: the gyro (rad/s) and the normalised command of each axis. A
+ * sample with a non-finite value restarts the fit's filters (a gap). */
+void sim_ident_add(sim_ident_t *id, const double gyro_rad_s[3], const double command[3]);
+
+void sim_ident_end_pass(sim_ident_t *id);
+
+/* The result of axis 0 roll, 1 pitch, 2 yaw (after the last pass). */
+void sim_ident_result(const sim_ident_t *id, int axis, sim_ident_axis_t *out);
+
+/* The delay grid's last value and the prefilter's corner actually used. */
+int sim_ident_delay_max(const sim_ident_t *id);
+double sim_ident_prefilter_hz(const sim_ident_t *id);
+
+/* One sentence per warning bit; "" for 0. */
+const char *sim_ident_warning_text(unsigned bit);
+
+#endif

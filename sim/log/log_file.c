@@ -1,0 +1,435 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* One CSV of a log: header, rows, the first rows held, the bracket (log_file.h). */
+#include "log_file.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#if defined(__GNUC__)
+#define LOG_PRINTF_LIKE(f, a) __attribute__((format(printf, f, a)))
+#else
+#define LOG_PRINTF_LIKE(f, a)
+#endif
+
+/* 2^53 us (285 years): every whole microsecond up to it is a double, so
+ * tick times computed in integers compare exactly with the rows'. */
+#define TIME_MAX_US 9007199254740992.0
+/* Far beyond any quantity a log holds (rad/s, Hz, a motor's units); below
+ * it, sums, interpolations and integrals over 2^53 us stay finite. */
+#define VALUE_MAX 1e15
+/* A time within this of a whole microsecond is that microsecond: what a
+ * decimal time in seconds times 1e6 rounds to (a few ulps). */
+#define SNAP_ULPS 8.0
+#define SHOWN 40 /* characters of a cell quoted in a message */
+
+static int LOG_PRINTF_LIKE(4, 5) fail(sim_log_error_t *err, int line, int column, const char *format, ...)
+{
+    va_list ap;
+    err->line = line;
+    err->column = column;
+    va_start(ap, format);
+    vsnprintf(err->message, sizeof err->message, format, ap);
+    va_end(ap);
+    return -1;
+}
+
+static int shown(size_t len)
+{
+    return len > SHOWN ? SHOWN : (int)len;
+}
+
+static double snap_whole(double x, double rel)
+{
+    const double r = floor(x + 0.5);
+    return fabs(x - r) <= rel * fabs(x) + DBL_MIN ? r : x;
+}
+
+static int find_column(const sim_log_csv_t *c, const char *name)
+{
+    const size_t n = strlen(name);
+    for (int i = 0; i < c->n_cells; ++i) {
+        if (c->cells[i].len == n && memcmp(c->cells[i].text, name, n) == 0) {
+            return i;
+        }
+    }
+    return -1;
+}
+
+/* The header's cell of every term; a required one missing is an error at
+ * the header line's end. */
+static int resolve(sim_log_file_t *f, sim_log_error_t *err)
+{
+    char field[32];
+    const sim_log_csv_t *c = &f->csv;
+    for (int i = 0; i <= f->n_items; ++i) {
+        const sim_log_item_t *it = f->item[i];
+        int found = 0;
+        for (int k = 0; k < it->n_terms; ++k) {
+            f->col[i][k] = find_column(c, it->term[k].column);
+            found |= f->col[i][k] >= 0;
+            if (f->col[i][k] < 0 && !it->term[k].optional) {
+                sim_log_slot_name(it->slot, field, sizeof field);
+                return fail(err, f->header_line, f->header_end, "no column '%s' (needed for %s)", it->term[k].column,
+                            field);
+            }
+        }
+        if (i == 0 && !found) { /* a time made of optional columns only */
+            return fail(err, f->header_line, f->header_end, "no column '%s' (needed for time)", it->term[0].column);
+        }
+    }
+    return 0;
+}
+
+/* The cells read from each row, ascending, and whether only optional terms
+ * read each. */
+static void list_needed(sim_log_file_t *f)
+{
+    f->n_needed = 0;
+    for (int i = 0; i <= f->n_items; ++i) {
+        for (int k = 0; k < f->item[i]->n_terms; ++k) {
+            const int col = f->col[i][k];
+            const int optional = f->item[i]->term[k].optional;
+            int j = 0;
+            while (j < f->n_needed && f->needed[j] < col) {
+                ++j;
+            }
+            if (col < 0) {
+                continue;
+            }
+            if (j < f->n_needed && f->needed[j] == col) {
+                f->needed_optional[j] &= optional;
+                continue;
+            }
+            memmove(&f->needed[j + 1], &f->needed[j], (size_t)(f->n_needed - j) * sizeof f->needed[0]);
+            memmove(&f->needed_optional[j + 1], &f->needed_optional[j],
+                    (size_t)(f->n_needed - j) * sizeof f->needed_optional[0]);
+            f->needed[j] = col;
+            f->needed_optional[j] = optional;
+            ++f->n_needed;
+        }
+    }
+}
+
+/* A column of optional terms only that reads nan in the first row is taken
+ * as absent: ulog2csv writes nan for the unused entries of an array. */
+static void drop_column(sim_log_file_t *f, int col)
+{
+    for (int i = 0; i <= f->n_items; ++i) {
+        for (int k = 0; k < f->item[i]->n_terms; ++k) {
+            if (f->col[i][k] == col) {
+                f->col[i][k] = -1;
+            }
+        }
+    }
+}
+
+static const char *column_name(const sim_log_file_t *f, int col)
+{
+    for (int i = 0; i <= f->n_items; ++i) {
+        for (int k = 0; k < f->item[i]->n_terms; ++k) {
+            if (f->col[i][k] == col) {
+                return f->item[i]->term[k].column;
+            }
+        }
+    }
+    return "?";
+}
+
+/* Item i's sum of its columns, and the first of them (-1: none). */
+static double item_sum(const sim_log_file_t *f, int i, int *first_col)
+{
+    double sum = 0.0;
+    *first_col = -1;
+    for (int k = 0; k < f->item[i]->n_terms; ++k) {
+        const int col = f->col[i][k];
+        if (col >= 0) {
+            sum += f->cell_v[col];
+            if (*first_col < 0) {
+                *first_col = col;
+            }
+        }
+    }
+    return sum;
+}
+
+static int parse_cells(sim_log_file_t *f, sim_log_error_t *err)
+{
+    const sim_log_csv_t *c = &f->csv;
+    for (int j = 0; j < f->n_needed; ++j) {
+        const int col = f->needed[j];
+        if (col < 0) {
+            continue;
+        }
+        const sim_log_cell_t *cell = &c->cells[col];
+        if (f->rows == 0 && f->needed_optional[j] && sim_log_is_nan_text(cell->text, cell->len)) {
+            drop_column(f, col);
+            f->needed[j] = -1;
+            continue;
+        }
+        if (sim_log_number(cell->text, cell->len, &f->cell_v[col]) != 0) {
+            if (cell->len == 0) {
+                return fail(err, c->line_no, cell->column, "not a finite number in column '%s': empty cell",
+                            column_name(f, col));
+            }
+            return fail(err, c->line_no, cell->column, "not a finite number in column '%s': '%.*s'",
+                        column_name(f, col), shown(cell->len), cell->text);
+        }
+    }
+    return 0;
+}
+
+static int column_of(const sim_log_file_t *f, int col)
+{
+    return col >= 0 ? f->csv.cells[col].column : 1;
+}
+
+/* One row from the file: 1, 0 at its end, -1 on error. */
+static int read_row(sim_log_file_t *f, double *t_us, double *v, sim_log_error_t *err)
+{
+    const sim_log_csv_t *c = &f->csv;
+    int rc = sim_log_csv_next(&f->csv, err);
+    if (rc <= 0) {
+        return rc;
+    }
+    if (c->n_cells < f->n_header) {
+        return fail(err, c->line_no, c->end_column, "row has %d cells, the header %d", c->n_cells, f->n_header);
+    }
+    if (c->n_cells > f->n_header) {
+        return fail(err, c->line_no, c->cells[f->n_header].column, "row has %d cells, the header %d", c->n_cells,
+                    f->n_header);
+    }
+    if (parse_cells(f, err) != 0) {
+        return -1;
+    }
+    int col;
+    double t = snap_whole(item_sum(f, 0, &col) * f->time_to_us, SNAP_ULPS * DBL_EPSILON);
+    if (!(fabs(t) <= TIME_MAX_US)) {
+        return fail(err, c->line_no, column_of(f, col), "time %.9g s is beyond the reader's range (2^53 us)", t * 1e-6);
+    }
+    if (f->rows > 0 && t <= f->last_read_us) {
+        if (t == f->last_read_us) {
+            return fail(err, c->line_no, column_of(f, col), "time repeats (%.9g s)", t * 1e-6);
+        }
+        return fail(err, c->line_no, column_of(f, col), "time goes back from %.9g s to %.9g s", f->last_read_us * 1e-6,
+                    t * 1e-6);
+    }
+    for (int i = 1; i <= f->n_items; ++i) {
+        f->present[i - 1] = 0;
+        v[i - 1] = 0.0;
+        const double sum = item_sum(f, i, &col);
+        if (col < 0) {
+            continue;
+        }
+        f->present[i - 1] = 1;
+        v[i - 1] = sum * f->item[i]->scale;
+        if (!(fabs(v[i - 1]) <= VALUE_MAX)) {
+            char field[32];
+            sim_log_slot_name(f->slot[i - 1], field, sizeof field);
+            return fail(err, c->line_no, column_of(f, col), "%s is %g, beyond the reader's range (1e15)", field,
+                        v[i - 1]);
+        }
+    }
+    *t_us = t;
+    f->last_read_us = t;
+    ++f->rows;
+    return 1;
+}
+
+/* The next row in order: the held ones first. Counts the gaps. */
+static int next_row(sim_log_file_t *f, double *t_us, double *v, sim_log_error_t *err)
+{
+    if (f->buf_pos < f->buf_n) {
+        *t_us = f->buf_t[f->buf_pos];
+        memcpy(v, &f->buf_v[(size_t)f->buf_pos * (size_t)f->n_items], (size_t)f->n_items * sizeof *v);
+        ++f->buf_pos;
+    } else {
+        const int rc = read_row(f, t_us, v, err);
+        if (rc <= 0) {
+            return rc;
+        }
+    }
+    if (f->buf_pos > 1) { /* not the first row */
+        const double period = *t_us - f->prev_used_us;
+        if (period > SIM_LOG_GAP_FACTOR * f->median_us) {
+            ++f->gaps;
+            if (period > f->longest_gap_us) {
+                f->longest_gap_us = period;
+            }
+        }
+    }
+    f->prev_used_us = *t_us;
+    return 1;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Room for twice as many held rows (a short file holds a few). */
+static int grow_held(sim_log_file_t *f, size_t *cap)
+{
+    const size_t rows = *cap == 0 ? 16 : (2 * *cap < SIM_LOG_PERIOD_ROWS ? 2 * *cap : SIM_LOG_PERIOD_ROWS);
+    double *t = realloc(f->buf_t, rows * sizeof *t);
+    if (t == NULL) {
+        return -1;
+    }
+    f->buf_t = t;
+    double *v = realloc(f->buf_v, rows * ((size_t)f->n_items + 1) * sizeof *v);
+    if (v == NULL) {
+        return -1;
+    }
+    f->buf_v = v;
+    *cap = rows;
+    return 0;
+}
+
+/* Holds the first rows and takes the median of their periods (the lower
+ * middle one: a whole number of microseconds when the rows' times are). */
+static int hold_first_rows(sim_log_file_t *f, sim_log_error_t *err)
+{
+    const size_t stride = (size_t)f->n_items;
+    size_t cap = 0;
+    while (f->buf_n < SIM_LOG_PERIOD_ROWS) {
+        if ((size_t)f->buf_n == cap && grow_held(f, &cap) != 0) {
+            return fail(err, 0, 0, "out of memory");
+        }
+        const int rc = read_row(f, &f->buf_t[f->buf_n], &f->buf_v[(size_t)f->buf_n * stride], err);
+        if (rc < 0) {
+            return -1;
+        }
+        if (rc == 0) {
+            break;
+        }
+        ++f->buf_n;
+    }
+    if (f->buf_n < 2) {
+        int line, column;
+        sim_log_csv_end(&f->csv, &line, &column);
+        return fail(err, line, column, "fewer than 2 rows (%d)", f->buf_n);
+    }
+    double *period = malloc((size_t)(f->buf_n - 1) * sizeof *period);
+    if (period == NULL) {
+        return fail(err, 0, 0, "out of memory");
+    }
+    for (int i = 1; i < f->buf_n; ++i) {
+        period[i - 1] = f->buf_t[i] - f->buf_t[i - 1];
+    }
+    qsort(period, (size_t)(f->buf_n - 1), sizeof *period, cmp_double);
+    f->median_us = period[(f->buf_n - 2) / 2];
+    free(period);
+    return 0;
+}
+
+static long long file_size(FILE *stream)
+{
+    long long size = 0;
+    const long at = ftell(stream);
+    if (at >= 0 && fseek(stream, 0, SEEK_END) == 0) {
+        const long end = ftell(stream);
+        size = end > at ? end - at : 0;
+        if (fseek(stream, at, SEEK_SET) != 0) {
+            size = 0;
+        }
+    }
+    return size;
+}
+
+static int open_rest(sim_log_file_t *f, sim_log_error_t *err)
+{
+    int rc = sim_log_csv_init(&f->csv, f->f);
+    if (rc != 0) {
+        return fail(err, 0, 0, "out of memory");
+    }
+    f->csv_ready = 1;
+    rc = sim_log_csv_next(&f->csv, err);
+    if (rc < 0) {
+        return -1;
+    }
+    if (rc == 0) {
+        int line, column;
+        sim_log_csv_end(&f->csv, &line, &column);
+        return fail(err, line, column, "no header line");
+    }
+    f->n_header = f->csv.n_cells;
+    f->header_line = f->csv.line_no;
+    f->header_end = f->csv.end_column;
+    if (resolve(f, err) != 0) {
+        return -1;
+    }
+    list_needed(f);
+    f->cell_v = calloc((size_t)f->n_header, sizeof *f->cell_v);
+    f->v0 = malloc(((size_t)f->n_items + 1) * sizeof *f->v0);
+    f->v1 = malloc(((size_t)f->n_items + 1) * sizeof *f->v1);
+    if (f->cell_v == NULL || f->v0 == NULL || f->v1 == NULL) {
+        return fail(err, 0, 0, "out of memory");
+    }
+    if (hold_first_rows(f, err) != 0) {
+        return -1;
+    }
+    (void)next_row(f, &f->t0, f->v0, err); /* held: cannot fail */
+    (void)next_row(f, &f->t1, f->v1, err);
+    return 0;
+}
+
+int sim_log_file_open(sim_log_file_t *f, FILE *stream, int own, const char *path, const sim_log_item_t *time,
+                      const sim_log_map_t *map, const char *topic, sim_log_error_t *err)
+{
+    memset(f, 0, sizeof *f);
+    snprintf(f->path, sizeof f->path, "%s", path);
+    f->f = stream;
+    f->own = own;
+    f->size = own ? file_size(stream) : 0;
+    f->item[0] = time;
+    for (int slot = 1; slot < SIM_LOG_N_SLOTS; ++slot) {
+        if (map->mapped[slot] && (topic == NULL || strcmp(map->item[slot].topic, topic) == 0)) {
+            f->slot[f->n_items] = slot;
+            f->item[++f->n_items] = &map->item[slot];
+        }
+    }
+    f->time_to_us = snap_whole(time->scale * 1e6, 1e-9);
+    if (open_rest(f, err) != 0) {
+        sim_log_file_close(f);
+        return -1;
+    }
+    return 0;
+}
+
+int sim_log_file_reach(sim_log_file_t *f, double tick_us, sim_log_error_t *err)
+{
+    while (f->t1 < tick_us) {
+        double *swap = f->v0;
+        f->v0 = f->v1;
+        f->v1 = swap;
+        f->t0 = f->t1;
+        const int rc = next_row(f, &f->t1, f->v1, err);
+        if (rc <= 0) {
+            f->t1 = f->t0; /* the last row, for what is read after the end */
+            memcpy(f->v1, f->v0, (size_t)f->n_items * sizeof *f->v1);
+            return rc;
+        }
+    }
+    return 1;
+}
+
+void sim_log_file_close(sim_log_file_t *f)
+{
+    if (f->csv_ready) {
+        sim_log_csv_free(&f->csv);
+        f->csv_ready = 0;
+    }
+    if (f->own && f->f != NULL) {
+        fclose(f->f);
+    }
+    f->f = NULL;
+    free(f->cell_v);
+    free(f->buf_t);
+    free(f->buf_v);
+    free(f->v0);
+    free(f->v1);
+    f->cell_v = f->buf_t = f->buf_v = f->v0 = f->v1 = NULL;
+}

@@ -1,0 +1,157 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Controllers open loop on a log's streams (replay.h). */
+#include "replay.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "plant/rotation.h"
+#include "scenario/setup.h"
+
+const double SIM_REPLAY_BAND_EDGES_HZ[SIM_REPLAY_BANDS + 1] = {0.0, 20.0, 100.0, INFINITY};
+
+static void stat_add(sim_replay_stat_t *s, double x)
+{
+    /* Welford: stable over hours of samples */
+    s->n++;
+    const double d = x - s->mean;
+    s->mean += d / (double)s->n;
+    s->m2 += d * (x - s->mean);
+}
+
+double sim_replay_stat_std(const sim_replay_stat_t *s)
+{
+    return s->n > 1 ? sqrt(s->m2 / (double)(s->n - 1)) : NAN;
+}
+
+double sim_replay_stat_rms(const sim_replay_stat_t *s)
+{
+    return s->n > 0 ? sqrt(s->mean * s->mean + s->m2 / (double)s->n) : NAN;
+}
+
+static void axis_init(sim_replay_axis_t *a, double fs_hz)
+{
+    memset(a, 0, sizeof *a);
+    sim_spectrum_init(&a->spectrum, fs_hz);
+}
+
+int sim_replay_init(sim_replay_t *r, const sim_scenario_t *sc, const sim_controller_id_t *ids, int n, char *err,
+                    size_t err_len)
+{
+    memset(r, 0, sizeof *r);
+    if (n < 1 || n > SIM_MAX_CONTROLLERS) {
+        snprintf(err, err_len, "replay: %d controllers (1 to %d)", n, SIM_MAX_CONTROLLERS);
+        return -1;
+    }
+    const double fs = 1.0 / sc->control_dt_s;
+    r->n = n;
+    r->quat_frame = sc->frame == LADRC_FRAME_QUATERNION;
+    for (int i = 0; i < 3; ++i) {
+        r->authority_Nm[i] = sim_setup_authority_Nm(sc, i);
+        axis_init(&r->log_axis[i], fs);
+        sim_spectrum_init(&r->gyro[i], fs);
+        sim_spectrum_init(&r->gyro_raw[i], fs);
+    }
+    for (int c = 0; c < n; ++c) {
+        ladrc_attitude_config_t cfg;
+        sim_setup_attitude(sc, ids[c], &cfg);
+        int bad_axis = -1;
+        const ladrc_status_t st = ladrc_attitude_init(&r->att[c], &cfg, &bad_axis);
+        if (st != LADRC_OK) {
+            snprintf(err, err_len, "%s: controller %s, axis %d: %s", sc->path, sim_controller_name(ids[c]), bad_axis,
+                     ladrc_status_str(st));
+            return -1;
+        }
+        r->ids[c] = ids[c];
+        r->wrap_yaw[c] = !r->quat_frame && sim_setup_wraps_yaw(sc, ids[c]);
+        r->has_estimate[c] = ids[c] != SIM_CTRL_PID && ids[c] != SIM_CTRL_CASCADED;
+        for (int i = 0; i < 3; ++i) {
+            axis_init(&r->axis[c][i], fs);
+        }
+    }
+    return 0;
+}
+
+/* An angle into (-pi, pi], itself bit for bit when it is there already (as the simulator gives yaw). */
+static double wrap_pi(double x)
+{
+    const double pi = 3.14159265358979323846;
+    return (x > -pi && x <= pi) ? x : x - 2.0 * pi * ceil((x - pi) / (2.0 * pi));
+}
+
+static ladrc_quat_t to_quat(const double q[4])
+{
+    const ladrc_quat_t out = {(ladrc_real_t)q[0], (ladrc_real_t)q[1], (ladrc_real_t)q[2], (ladrc_real_t)q[3]};
+    return out;
+}
+
+/* The attitude and reference as quaternions: the log's own, else composed from the angles. */
+static void quats_of(const sim_log_sample_t *s, unsigned has, double q[4], double q_ref[4])
+{
+    if (has & SIM_LOG_HAS_ANGLE) {
+        memcpy(q, s->quat, 4 * sizeof q[0]);
+    } else {
+        sim_quat_from_euler(s->angle_rad, q);
+    }
+    if (has & SIM_LOG_HAS_REF_ANGLE) {
+        memcpy(q_ref, s->ref_quat, 4 * sizeof q_ref[0]);
+    } else {
+        sim_quat_from_euler(s->ref_angle_rad, q_ref);
+    }
+}
+
+void sim_replay_step(sim_replay_t *r, const sim_log_sample_t *s, unsigned has, sim_replay_tick_t *out)
+{
+    ladrc_real_t rate[3], applied[3], angle[3], ref[3];
+    for (int i = 0; i < 3; ++i) {
+        rate[i] = (ladrc_real_t)s->gyro_rad_s[i];
+        /* the torque that acted, as the simulator's controllers are told it */
+        applied[i] = (ladrc_real_t)(s->command[i] * r->authority_Nm[i]);
+        angle[i] = (ladrc_real_t)s->angle_rad[i];
+        ref[i] = (ladrc_real_t)s->ref_angle_rad[i];
+        sim_spectrum_push(&r->gyro[i], s->gyro_rad_s[i]);
+        if (has & SIM_LOG_HAS_GYRO_RAW) {
+            sim_spectrum_push(&r->gyro_raw[i], s->gyro_raw_rad_s[i]);
+        }
+        stat_add(&r->log_axis[i].command, s->command[i]);
+        sim_spectrum_push(&r->log_axis[i].spectrum, s->command[i]);
+    }
+    ladrc_quat_t meas = {LADRC_R(1.0), 0, 0, 0}, qref = {LADRC_R(1.0), 0, 0, 0};
+    if (r->quat_frame) {
+        double q[4], q_ref[4];
+        quats_of(s, has, q, q_ref);
+        meas = to_quat(q);
+        qref = to_quat(q_ref);
+    }
+    for (int c = 0; c < r->n; ++c) {
+        ladrc_real_t torque[3], a[3];
+        memcpy(a, angle, sizeof a);
+        if (r->wrap_yaw[c]) {
+            a[2] = (ladrc_real_t)wrap_pi((double)angle[2]);
+        }
+        const ladrc_fault_t f = r->quat_frame ? ladrc_attitude_step_quat(&r->att[c], &qref, &meas, rate, torque)
+                                              : ladrc_attitude_step(&r->att[c], ref, a, rate, torque);
+        ladrc_attitude_set_applied(&r->att[c], applied);
+        out->faults[c] = f;
+        if (f != LADRC_FAULT_NONE) {
+            r->fault_ticks[c]++;
+            r->faults_seen[c] |= f;
+        }
+        for (int i = 0; i < 3; ++i) {
+            const double u = (double)torque[i] / r->authority_Nm[i];
+            ladrc_real_t a_est, r_est, d_est;
+            ladrc_axis_get_estimate(&r->att[c].axis[i], &a_est, &r_est, &d_est);
+            out->command[c][i] = u;
+            out->estimate[c][i] = r->has_estimate[c] ? (double)d_est : NAN;
+            sim_replay_axis_t *ax = &r->axis[c][i];
+            stat_add(&ax->command, u);
+            stat_add(&ax->difference, u - s->command[i]);
+            if (r->has_estimate[c]) {
+                stat_add(&ax->estimate, (double)d_est);
+            }
+            sim_spectrum_push(&ax->spectrum, u);
+        }
+    }
+    r->ticks++;
+}

@@ -1,0 +1,83 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/*
+ * Replay: controllers run open loop on a flight log's recorded streams.
+ * Each tick every controller is given the log's reference, attitude and
+ * gyro (sim_log_sample_t) and steps as it would in flight; then it is told
+ * the log's own command as the torque that acted (ladrc_attitude_set_applied),
+ * so that its observer follows the flight that happened, not one its own
+ * commands would have made. What each would have commanded, its faults and
+ * its disturbance estimate are the replay's output; the log's own command is
+ * the comparison.
+ *
+ * The controllers are configured as a scenario configures them (its airframe,
+ * its tuning) and fly its frame (Euler or quaternion); the log's normalised
+ * command c is the torque c * sim_setup_authority_Nm, and the replay's
+ * commands are normalised the same way. Not replayed: the scenario's gyro
+ * filter (a log's gyro is the one its controller used, filtered already),
+ * flight phases and the gain schedule.
+ */
+#ifndef LADRC_SIM_REPLAY_H
+#define LADRC_SIM_REPLAY_H
+
+#include <stddef.h>
+
+#include "ladrc/attitude.h"
+#include "log.h"
+#include "scenario/scenario.h"
+#include "spectrum.h"
+
+/* The frequency bands the command's noise is told in (Hz): [0, 20), [20, 100), [100, Nyquist]. */
+#define SIM_REPLAY_BANDS 3
+extern const double SIM_REPLAY_BAND_EDGES_HZ[SIM_REPLAY_BANDS + 1];
+
+/* Running mean and spread. */
+typedef struct {
+    long long n;
+    double mean, m2;
+} sim_replay_stat_t;
+
+/* One stream of commands (a controller's, or the log's) on one axis. */
+typedef struct {
+    sim_replay_stat_t command;    /* normalised */
+    sim_replay_stat_t difference; /* this command - the log's */
+    sim_replay_stat_t estimate;   /* the disturbance estimate, rad/s^2 (controllers with one) */
+    sim_spectrum_t spectrum;      /* of the command */
+} sim_replay_axis_t;
+
+typedef struct {
+    int n; /* controllers */
+    sim_controller_id_t ids[SIM_MAX_CONTROLLERS];
+    ladrc_attitude_t att[SIM_MAX_CONTROLLERS];
+    int wrap_yaw[SIM_MAX_CONTROLLERS];
+    int has_estimate[SIM_MAX_CONTROLLERS];
+    long long fault_ticks[SIM_MAX_CONTROLLERS];     /* ticks with any fault flag */
+    ladrc_fault_t faults_seen[SIM_MAX_CONTROLLERS]; /* every flag raised */
+    sim_replay_axis_t axis[SIM_MAX_CONTROLLERS][3];
+    sim_replay_axis_t log_axis[3]; /* the log's own command */
+    sim_spectrum_t gyro[3], gyro_raw[3];
+    int quat_frame;
+    double authority_Nm[3];
+    long long ticks;
+} sim_replay_t;
+
+/* What one tick gave (normalised commands, estimates in rad/s^2). */
+typedef struct {
+    double command[SIM_MAX_CONTROLLERS][3];
+    double estimate[SIM_MAX_CONTROLLERS][3];
+    ladrc_fault_t faults[SIM_MAX_CONTROLLERS];
+} sim_replay_tick_t;
+
+/* Configures the scenario's controllers ids[0..n-1] (tuned already where it
+ * tunes them) for a log at sc's control period. Returns 0, or -1 with the
+ * message (a controller that refuses its configuration). r is large: heap
+ * or static. */
+int sim_replay_init(sim_replay_t *r, const sim_scenario_t *sc, const sim_controller_id_t *ids, int n, char *err,
+                    size_t err_len);
+
+/* One tick of the log (its fields as sim_log_has gives them). */
+void sim_replay_step(sim_replay_t *r, const sim_log_sample_t *s, unsigned has, sim_replay_tick_t *out);
+
+double sim_replay_stat_std(const sim_replay_stat_t *s);
+double sim_replay_stat_rms(const sim_replay_stat_t *s);
+
+#endif

@@ -1,0 +1,184 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Welch's PSD (spectrum.h): radix-2 FFT of Hann-windowed half-overlapping segments. */
+#include "spectrum.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+
+void sim_spectrum_init(sim_spectrum_t *s, double fs_hz)
+{
+    memset(s, 0, sizeof *s);
+    s->fs_hz = fs_hz;
+    for (int i = 0; i < SIM_SPECTRUM_N; ++i) {
+        s->window[i] = 0.5 - 0.5 * cos(2.0 * PI * i / SIM_SPECTRUM_N);
+        s->window_power += s->window[i] * s->window[i];
+    }
+    for (int k = 0; k < SIM_SPECTRUM_N / 2; ++k) {
+        s->twiddle_re[k] = cos(2.0 * PI * k / SIM_SPECTRUM_N);
+        s->twiddle_im[k] = -sin(2.0 * PI * k / SIM_SPECTRUM_N);
+    }
+}
+
+/* In place, iterative radix-2 of SIM_SPECTRUM_N points. */
+static void fft(const sim_spectrum_t *s, double *re, double *im)
+{
+    const int n = SIM_SPECTRUM_N;
+    for (int i = 1, j = 0; i < n; ++i) {
+        int bit = n >> 1;
+        for (; j & bit; bit >>= 1) {
+            j ^= bit;
+        }
+        j ^= bit;
+        if (i < j) {
+            double t = re[i];
+            re[i] = re[j];
+            re[j] = t;
+            t = im[i];
+            im[i] = im[j];
+            im[j] = t;
+        }
+    }
+    for (int len = 2; len <= n; len <<= 1) {
+        const int stride = n / len;
+        for (int i = 0; i < n; i += len) {
+            for (int k = 0; k < len / 2; ++k) {
+                const double wr = s->twiddle_re[k * stride], wi = s->twiddle_im[k * stride];
+                const int p = i + k, q = i + k + len / 2;
+                const double xr = re[q] * wr - im[q] * wi, xi = re[q] * wi + im[q] * wr;
+                re[q] = re[p] - xr;
+                im[q] = im[p] - xi;
+                re[p] += xr;
+                im[p] += xi;
+            }
+        }
+    }
+}
+
+/* The periodogram of the last SIM_SPECTRUM_N samples into the sum. */
+static void add_segment(sim_spectrum_t *s)
+{
+    const int n = SIM_SPECTRUM_N;
+    double re[SIM_SPECTRUM_N], im[SIM_SPECTRUM_N], mean = 0.0;
+    const int start = (int)(s->pushed % n); /* the oldest sample of the ring */
+    for (int i = 0; i < n; ++i) {
+        mean += s->buf[i];
+    }
+    mean /= n;
+    for (int i = 0; i < n; ++i) {
+        re[i] = s->window[i] * (s->buf[(start + i) % n] - mean);
+        im[i] = 0.0;
+    }
+    fft(s, re, im);
+    const double scale = 1.0 / (s->fs_hz * s->window_power);
+    for (int k = 0; k < SIM_SPECTRUM_BINS; ++k) {
+        const double one_sided = (k == 0 || k == n / 2) ? 1.0 : 2.0;
+        s->sum_psd[k] += one_sided * scale * (re[k] * re[k] + im[k] * im[k]);
+    }
+    s->segments++;
+}
+
+void sim_spectrum_push(sim_spectrum_t *s, double x)
+{
+    s->buf[s->pushed % SIM_SPECTRUM_N] = x;
+    s->pushed++;
+    if (s->pushed >= SIM_SPECTRUM_N && (s->pushed - SIM_SPECTRUM_N) % (SIM_SPECTRUM_N / 2) == 0) {
+        add_segment(s);
+    }
+}
+
+long sim_spectrum_segments(const sim_spectrum_t *s)
+{
+    return s->segments;
+}
+
+double sim_spectrum_psd(const sim_spectrum_t *s, int k)
+{
+    return s->segments > 0 ? s->sum_psd[k] / (double)s->segments : NAN;
+}
+
+double sim_spectrum_hz(const sim_spectrum_t *s, int k)
+{
+    return k * s->fs_hz / SIM_SPECTRUM_N;
+}
+
+double sim_spectrum_band_rms(const sim_spectrum_t *s, double f_lo_hz, double f_hi_hz)
+{
+    if (s->segments == 0) {
+        return NAN;
+    }
+    const double df = s->fs_hz / SIM_SPECTRUM_N;
+    double power = 0.0;
+    for (int k = 1; k < SIM_SPECTRUM_BINS; ++k) {
+        const double f = k * df;
+        if (f >= f_lo_hz && f < f_hi_hz) {
+            power += sim_spectrum_psd(s, k) * df;
+        }
+    }
+    return sqrt(power);
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double sim_spectrum_floor(const sim_spectrum_t *s, double f_lo_hz, double f_hi_hz)
+{
+    double v[SIM_SPECTRUM_BINS];
+    int n = 0;
+    for (int k = 1; k < SIM_SPECTRUM_BINS && s->segments > 0; ++k) {
+        const double f = sim_spectrum_hz(s, k);
+        if (f >= f_lo_hz && f <= f_hi_hz) {
+            v[n++] = sim_spectrum_psd(s, k);
+        }
+    }
+    if (n == 0) {
+        return NAN;
+    }
+    qsort(v, (size_t)n, sizeof v[0], cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+int sim_spectrum_lines(const sim_spectrum_t *s, double f_lo_hz, double floor_psd, double min_ratio,
+                       sim_spectrum_line_t *lines, int max)
+{
+    int n = 0;
+    if (s->segments == 0 || !(floor_psd > 0.0)) {
+        return 0;
+    }
+    const double df = s->fs_hz / SIM_SPECTRUM_N;
+    for (int k = 1; k + 1 < SIM_SPECTRUM_BINS; ++k) {
+        const double p = sim_spectrum_psd(s, k);
+        if (sim_spectrum_hz(s, k) < f_lo_hz || p < min_ratio * floor_psd || p < sim_spectrum_psd(s, k - 1) ||
+            p < sim_spectrum_psd(s, k + 1)) {
+            continue;
+        }
+        /* the line's power: its peak and the Hann window's two neighbours, less the floor */
+        double power = 0.0;
+        for (int j = k - 2; j <= k + 2; ++j) {
+            if (j >= 1 && j < SIM_SPECTRUM_BINS) {
+                const double excess = sim_spectrum_psd(s, j) - floor_psd;
+                power += excess > 0.0 ? excess * df : 0.0;
+            }
+        }
+        const sim_spectrum_line_t line = {sim_spectrum_hz(s, k), sqrt(power), p / floor_psd};
+        /* keep the strongest `max`, in order */
+        int at = n;
+        while (at > 0 && lines[at - 1].rms < line.rms) {
+            --at;
+        }
+        if (at >= max) {
+            continue;
+        }
+        if (n < max) {
+            ++n;
+        }
+        memmove(&lines[at + 1], &lines[at], (size_t)(n - 1 - at) * sizeof lines[0]);
+        lines[at] = line;
+    }
+    return n;
+}

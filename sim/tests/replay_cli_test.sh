@@ -1,0 +1,142 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
+# End-to-end checks of ladrc_replay and ladrc_margins --from-log on logs the
+# simulator writes: a flight replayed open loop gives the commands it flew
+# (generic form exactly, PX4 form within the quaternions' float rounding);
+# a chirp's log identifies the airframe, whose scenario ladrc_sil flies and
+# ladrc_margins tunes; bad logs and options exit 2 naming the place.
+# Usage: replay_cli_test.sh LADRC_REPLAY LADRC_SIL LADRC_MARGINS [TOOLS_DIR]
+# (TOOLS_DIR: tools/, whose replay_plot.py must draw the replay's figures
+# when Debian's python3 has matplotlib.)
+set -uo pipefail
+replay=$1
+sil=$2
+margins=$3
+tools=${4:-}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+check() { # name, condition exit code
+    if [ "$2" -eq 0 ]; then echo "replay_cli_test.sh:$1:PASS"; else echo "replay_cli_test.sh:$1:FAIL"; failures=$((failures + 1)); fi
+}
+# The largest |value| of a column of a CSV (by header name), over the rows whose first column matches.
+column_max() { # file, column, row filter (regex on column 1)
+    awk -F, -v col="$2" -v pat="$3" 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == col) c = i; next }
+        $1 ~ pat { v = $c < 0 ? -$c : $c; if (v > m) m = v } END { printf "%.9g\n", m + 0 }' "$1"
+}
+# 1 when a <= b (floating point).
+le() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a <= b) }'; }
+
+# The paper's airframe with a motor lag and ideal rotors (never saturated: a log's command is the
+# torque achieved, which then is the controller's own), every controller at its default gains (no
+# tuning: fast), flying references on all three axes; its runs written as logs in the three forms.
+cat > "$work/flight.ini" <<'INI'
+[run]
+duration_s = 6
+controllers = HP-MLADRC LP-MLADRC LADRC RATE-ADRC PID CASCADED INDI
+log = generic px4 betaflight
+[rotors]
+motor_tau_s = 0.002
+[sensors]
+angle_noise_std_deg = 0.05
+rate_noise_std_deg_s = 0.3
+delay_ticks = 1
+use_rate = yes
+[reference]
+roll = 5 + 10*cos(pi*t/2)
+pitch = 8*sin(pi*t/3)
+yaw = 1 .. 4 : 20
+INI
+"$sil" "$work/flight.ini" --out "$work/flight" --quiet > /dev/null 2>&1
+[ $? -eq 0 ] && [ -f "$work/flight/flight/LADRC_log.csv" ] && [ -f "$work/flight/flight/LADRC_betaflight.csv" ] &&
+  [ -f "$work/flight/flight/LADRC_px4_vehicle_torque_setpoint_0.csv" ]
+check simulator_writes_its_logs $?
+
+# Consistency: each controller replayed on its own flight's log commands what it flew. The generic
+# form carries the controller's float inputs with 9 digits (exact in float) and the command with 17:
+# the replay is the flight bit for bit (tolerance 0). The PX4 form carries the attitudes as
+# quaternions, whose conversion back to angles moves them by float rounding (1e-7 rad): the
+# observers carry that into the command by at most 1e-4 of the authority (2.9e-5 measured, yaw).
+PX4_TOL=1e-4
+ok_generic=0
+ok_px4=0
+for c in HP-MLADRC LP-MLADRC LADRC RATE-ADRC PID CASCADED INDI; do
+    "$replay" "$work/flight/flight/${c}_log.csv" --scenario "$work/flight.ini" --controllers "$c" --every 0 --quiet \
+        --out "$work/g_$c" > /dev/null 2>&1
+    d=$(column_max "$work/g_$c/replay_summary.csv" difference_rms "^$c\$")
+    le "$d" 0 || { echo "  $c generic: difference $d"; ok_generic=1; }
+    "$replay" "$work/flight/flight/${c}_px4" --scenario "$work/flight.ini" --controllers "$c" --every 0 --quiet \
+        --out "$work/p_$c" > /dev/null 2>&1
+    d=$(column_max "$work/p_$c/replay_summary.csv" difference_rms "^$c\$")
+    le "$d" "$PX4_TOL" || { echo "  $c px4: difference $d"; ok_px4=1; }
+done
+check replay_of_generic_log_is_the_flight_bit_for_bit $ok_generic
+check replay_of_px4_log_is_the_flight_within_rounding $ok_px4
+
+# The full replay: identification, scenario, tuning, replay, outputs; the time series has a row per tick.
+"$replay" "$work/flight/flight/CASCADED_betaflight.csv" --scenario "$work/flight.ini" --out "$work/full" \
+    > "$work/full.txt" 2> "$work/full.err"
+rc=$?
+{ [ $rc -eq 0 ] || [ $rc -eq 1 ]; } && grep -q "^identification at 1000 Hz" "$work/full.txt" &&
+  grep -q "^replayed 6000 ticks (6 s of flight) with 7 controllers" "$work/full.txt" &&
+  [ "$(wc -l < "$work/full/replay.csv")" -eq 6001 ] &&
+  head -n 1 "$work/full/replay.csv" | grep -q "^t_s,LOG_cmd_roll,LOG_cmd_pitch,LOG_cmd_yaw,HP-MLADRC_cmd_roll," &&
+  [ "$(wc -l < "$work/full/replay_summary.csv")" -eq 25 ] && [ -s "$work/full/spectrum.csv" ] &&
+  [ -s "$work/full/identification.csv" ] && grep -q "^\[vehicle\]" "$work/full/airframe.ini"
+check full_replay_writes_every_output $?
+# The figures of the replay.
+if [ -n "$tools" ] && /usr/bin/python3 -c "import matplotlib, numpy" 2> /dev/null; then
+    /usr/bin/python3 "$tools/replay_plot.py" "$work/full" > /dev/null 2>&1
+    [ $? -eq 0 ] && [ "$(wc -c < "$work/full/replay_commands.png")" -gt 30000 ] &&
+      [ "$(wc -c < "$work/full/replay_spectrum.png")" -gt 30000 ]
+    check replay_plot_draws_both_figures $?
+fi
+# Manoeuvres alone cannot part lag from delay: the identification says so, and the exit status is 1.
+[ $rc -eq 1 ] && grep -q "^warning: roll: lag and delay are not told apart" "$work/full.txt"
+check weak_excitation_is_warned $?
+
+# A chirp's log: the airframe (with a 20 ms motor lag) identified (b0 of the paper's roll: authority
+# l m g / 2 = 0.6475 N m over Jx 5.445e-3 = 118.9 rad/s^2; within the 5 % a chirp is held to), its
+# scenario flown by ladrc_sil, and ladrc_margins --from-log tunes the controllers from the log.
+sed -e 's/^duration_s = 6/duration_s = 40/' -e 's/^controllers = .*/controllers = LADRC/' \
+    -e 's/^log = .*/log = px4/' -e 's/^motor_tau_s = .*/motor_tau_s = 0.02/' "$work/flight.ini" > "$work/chirp.ini"
+printf '[excitation]\naxis = all\namplitude = 0.2\nstart_s = 1\nduration_s = 12\n' >> "$work/chirp.ini"
+"$sil" "$work/chirp.ini" --out "$work/chirp" --quiet > /dev/null 2>&1
+"$replay" "$work/chirp/chirp/LADRC_px4" --identify-only --quiet --out "$work/ident" > "$work/ident.txt" 2>&1
+rc=$?
+{ [ $rc -eq 0 ] || [ $rc -eq 1 ]; } &&
+  awk -F, '$1 == "roll" { e = ($2 - 118.9) / 118.9; exit !(e < 0.05 && e > -0.05 && $8 == 1) }' \
+      "$work/ident/identification.csv"
+check chirp_identifies_b0_and_delay $?
+"$sil" "$work/ident/airframe.ini" --controllers LADRC --out "$work/fly" --no-csv --quiet \
+    > /dev/null 2>&1
+[ $? -eq 0 ] && [ -s "$work/fly/airframe/metrics.csv" ]; check identified_scenario_flies $?
+"$margins" --from-log "$work/chirp/chirp/LADRC_px4" --format px4 --controllers LADRC --axis roll \
+    > "$work/margins.txt" 2>&1
+[ $? -eq 0 ] && grep -q "^tuned LADRC roll: .* -> PM 4[5-9]\.[0-9] deg" "$work/margins.txt" &&
+  grep -q "^LADRC  *roll .* yes " "$work/margins.txt"
+check margins_from_log_tunes_and_prints $?
+
+# Bad input: exit 2, the place on stderr.
+printf 'time (us), gyroADC[0], gyroADC[1], gyroADC[2], axisP[0], axisP[1], axisP[2]\n0, 1, 2, 3, 4, 5, 6\n1000, 1, 2\n' \
+    > "$work/short.csv"
+"$replay" "$work/short.csv" --quiet --out "$work/bad" > /dev/null 2> "$work/short.err"
+[ $? -eq 2 ] && grep -q "short.csv:3:11: " "$work/short.err"; check short_row_exits_2_at_its_place $?
+printf 'time (us), gyroADC[0], gyroADC[1], gyroADC[2], axisP[0], axisP[1], axisP[2]\n0, 1, 2, 3, 4, 5, 6\n0, 1, 2, 3, 4, 5, 6\n' \
+    > "$work/repeat.csv"
+"$replay" "$work/repeat.csv" --quiet --out "$work/bad" > /dev/null 2> "$work/repeat.err"
+[ $? -eq 2 ] && grep -q "repeat.csv:3:1: " "$work/repeat.err"; check time_that_repeats_exits_2 $?
+printf 'time (us), gyroADC[0], gyroADC[1], axisP[0], axisP[1], axisP[2]\n0, 1, 2, 4, 5, 6\n' > "$work/nocol.csv"
+"$replay" "$work/nocol.csv" --format betaflight --quiet --out "$work/bad" > /dev/null 2> "$work/nocol.err"
+[ $? -eq 2 ] && grep -q "nocol.csv:1:.*gyroADC\[2\]" "$work/nocol.err"; check missing_column_exits_2_naming_it $?
+"$replay" "$work/missing.csv" --quiet --out "$work/bad" > /dev/null 2> "$work/missing.err"
+[ $? -eq 2 ] && grep -q "missing.csv" "$work/missing.err"; check missing_log_exits_2 $?
+"$replay" "$work/short.csv" --format ulog --out "$work/bad" > /dev/null 2> "$work/format.err"
+[ $? -eq 2 ] && grep -q "'ulog'" "$work/format.err"; check bad_format_exits_2 $?
+"$replay" "$work/flight/flight/LADRC_log.csv" --map gyro[7]=x --quiet --out "$work/bad" > /dev/null 2> "$work/map.err"
+[ $? -eq 2 ] && grep -q "gyro\[7\]" "$work/map.err"; check bad_map_item_exits_2 $?
+"$replay" "$work/flight/flight/LADRC_log.csv" --every 1.5 --out "$work/bad" > /dev/null 2> "$work/every.err"
+[ $? -eq 2 ]; check bad_every_exits_2 $?
+
+[ "$failures" -eq 0 ] || { echo "replay_cli_test.sh: $failures check(s) failed"; exit 1; }
+echo "replay_cli_test.sh: all checks passed"

@@ -1,0 +1,238 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Identification from a log's gyro and command (log/ident.h) on small closed
+ * loops with known plants (ident_loop.h), and the Welch spectrum
+ * (log/spectrum.h) it reports the gyro's noise with. */
+#include "unity.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "ident_loop.h"
+#include "log/ident.h"
+#include "log/spectrum.h"
+
+#define DT_S 0.001
+#define CHIRP_TICKS 20000L /* 20 s: a 1 to 40 Hz sweep */
+
+/* What a chirp must give (the figures the identification is held to): b0
+ * within 5 %, the lag within 10 % or 2 ms, the delay exact. */
+#define B0_TOL 0.05
+#define LAG_REL_TOL 0.10
+#define LAG_ABS_TOL_S 0.002
+
+void setUp(void)
+{
+}
+void tearDown(void)
+{
+}
+
+/* Flies three loops (one per axis) for n ticks into arrays, then identifies over them. */
+static void identify(const loop_axis_t ax[3], long n, uint64_t seed, sim_ident_axis_t out[3], double nan_at_tick)
+{
+    double *gyro = malloc((size_t)n * 3 * sizeof *gyro), *cmd = malloc((size_t)n * 3 * sizeof *cmd);
+    TEST_ASSERT_NOT_NULL(gyro);
+    TEST_ASSERT_NOT_NULL(cmd);
+    for (int i = 0; i < 3; ++i) {
+        loop_t l;
+        loop_init(&l, &ax[i], DT_S, seed + (uint64_t)i);
+        for (long k = 0; k < n; ++k) {
+            loop_tick(&l, &gyro[k * 3 + i], &cmd[k * 3 + i]);
+        }
+    }
+    if (nan_at_tick >= 0) {
+        gyro[(long)nan_at_tick * 3] = NAN; /* a dropped sample on roll */
+    }
+    const sim_ident_options_t opt = {.dt_s = DT_S, .delay_max_ticks = -1};
+    sim_ident_t *id = sim_ident_new(&opt);
+    TEST_ASSERT_NOT_NULL(id);
+    int passes = 0;
+    while (sim_ident_begin_pass(id)) {
+        passes++;
+        for (long k = 0; k < n; ++k) {
+            sim_ident_add(id, &gyro[k * 3], &cmd[k * 3]);
+        }
+        sim_ident_end_pass(id);
+    }
+    TEST_ASSERT_EQUAL_INT(3, passes);
+    for (int i = 0; i < 3; ++i) {
+        sim_ident_result(id, i, &out[i]);
+    }
+    sim_ident_free(id);
+    free(gyro);
+    free(cmd);
+}
+
+static loop_axis_t random_airframe(sim_rng_t *r, double chirp_amp, double manoeuvre_rad)
+{
+    loop_axis_t ax = {.b0 = 40.0 + 400.0 * sim_rng_uniform(r),
+                      .tau_s = 0.008 + 0.05 * sim_rng_uniform(r),
+                      .damping_per_s = 10.0 * sim_rng_uniform(r),
+                      .bias_rad_s2 = 5.0 * (sim_rng_uniform(r) - 0.5),
+                      .delay_ticks = (int)(6.0 * sim_rng_uniform(r)),
+                      .noise_rad_s = 0.002 + 0.01 * sim_rng_uniform(r),
+                      .chirp_amp = chirp_amp,
+                      .f0_hz = 1.0,
+                      .f1_hz = 40.0,
+                      .chirp_s = CHIRP_TICKS * DT_S,
+                      .manoeuvre_rad = manoeuvre_rad};
+    return ax;
+}
+
+static void assert_close_to_truth(const loop_axis_t *ax, const sim_ident_axis_t *r)
+{
+    TEST_ASSERT_FLOAT_WITHIN(B0_TOL * ax->b0, ax->b0, r->b0);
+    TEST_ASSERT_FLOAT_WITHIN(fmax(LAG_REL_TOL * ax->tau_s, LAG_ABS_TOL_S), ax->tau_s, r->lag_s);
+    TEST_ASSERT_EQUAL_INT(ax->delay_ticks, r->delay_ticks);
+}
+
+static void test_a_chirp_gives_b0_lag_and_delay_on_random_airframes(void)
+{
+    sim_rng_t r;
+    sim_rng_seed(&r, 7);
+    for (int trial = 0; trial < 3; ++trial) {
+        loop_axis_t ax[3];
+        for (int i = 0; i < 3; ++i) {
+            ax[i] = random_airframe(&r, 0.2, 0.0);
+        }
+        sim_ident_axis_t res[3];
+        identify(ax, CHIRP_TICKS, 100u + (uint64_t)trial, res, -1);
+        for (int i = 0; i < 3; ++i) {
+            assert_close_to_truth(&ax[i], &res[i]);
+            /* the intervals hold the truth, and a chirp needs no warning */
+            TEST_ASSERT_TRUE(res[i].b0_lo <= ax[i].b0 && ax[i].b0 <= res[i].b0_hi);
+            TEST_ASSERT_TRUE(res[i].lag_lo_s <= ax[i].tau_s && ax[i].tau_s <= res[i].lag_hi_s);
+            TEST_ASSERT_TRUE(res[i].delay_lo_ticks <= ax[i].delay_ticks && ax[i].delay_ticks <= res[i].delay_hi_ticks);
+            TEST_ASSERT_EQUAL_UINT(0u, res[i].warnings);
+            TEST_ASSERT_FLOAT_WITHIN(0.1 * ax[i].damping_per_s + 0.2, ax[i].damping_per_s, res[i].damping_per_s);
+        }
+    }
+}
+
+/* Ordinary manoeuvres: the truth inside the stated intervals, or a warning. */
+static void test_manoeuvres_give_the_truth_within_the_intervals_or_a_warning(void)
+{
+    sim_rng_t r;
+    sim_rng_seed(&r, 11);
+    for (int trial = 0; trial < 3; ++trial) {
+        loop_axis_t ax[3];
+        for (int i = 0; i < 3; ++i) {
+            ax[i] = random_airframe(&r, 0.0, 0.2);
+        }
+        sim_ident_axis_t res[3];
+        identify(ax, CHIRP_TICKS, 200u + (uint64_t)trial, res, -1);
+        for (int i = 0; i < 3; ++i) {
+            const int inside = res[i].b0_lo <= ax[i].b0 && ax[i].b0 <= res[i].b0_hi && res[i].lag_lo_s <= ax[i].tau_s &&
+                               ax[i].tau_s <= res[i].lag_hi_s && res[i].delay_lo_ticks <= ax[i].delay_ticks &&
+                               ax[i].delay_ticks <= res[i].delay_hi_ticks;
+            TEST_ASSERT_TRUE(inside || res[i].warnings != 0u);
+        }
+    }
+}
+
+/* A hover on noise alone cannot tell b0: the fit says so. */
+static void test_a_hover_without_excitation_is_flagged(void)
+{
+    sim_rng_t r;
+    sim_rng_seed(&r, 13);
+    loop_axis_t ax[3];
+    for (int i = 0; i < 3; ++i) {
+        ax[i] = random_airframe(&r, 0.0, 0.0);
+    }
+    sim_ident_axis_t res[3];
+    identify(ax, CHIRP_TICKS, 300u, res, -1);
+    for (int i = 0; i < 3; ++i) {
+        TEST_ASSERT_TRUE(res[i].warnings & (SIM_IDENT_WARN_B0_WIDE | SIM_IDENT_WARN_LOW_FIT));
+    }
+}
+
+/* A command logged with the opposite sign: b0 comes out negative, flagged. */
+static void test_a_command_of_the_wrong_sign_is_flagged(void)
+{
+    sim_rng_t r;
+    sim_rng_seed(&r, 17);
+    loop_axis_t ax[3];
+    for (int i = 0; i < 3; ++i) {
+        ax[i] = random_airframe(&r, 0.2, 0.0);
+        ax[i].b0 = -ax[i].b0; /* the plant turns the other way: the same as a flipped log column */
+    }
+    sim_ident_axis_t res[3];
+    identify(ax, CHIRP_TICKS / 2, 400u, res, -1);
+    for (int i = 0; i < 3; ++i) {
+        TEST_ASSERT_TRUE(res[i].warnings & SIM_IDENT_WARN_SIGN);
+    }
+}
+
+/* A non-finite sample restarts the filters: the fit goes on around it. */
+static void test_a_dropped_sample_restarts_the_fit_without_harm(void)
+{
+    sim_rng_t r;
+    sim_rng_seed(&r, 19);
+    loop_axis_t ax[3];
+    for (int i = 0; i < 3; ++i) {
+        ax[i] = random_airframe(&r, 0.2, 0.0);
+    }
+    sim_ident_axis_t res[3];
+    identify(ax, CHIRP_TICKS, 500u, res, CHIRP_TICKS / 2);
+    assert_close_to_truth(&ax[0], &res[0]);
+    TEST_ASSERT_TRUE(res[0].samples < res[1].samples); /* the restart's settling left out */
+}
+
+static void test_too_few_samples_give_no_numbers(void)
+{
+    const sim_ident_options_t opt = {.dt_s = DT_S, .delay_max_ticks = -1};
+    sim_ident_t *id = sim_ident_new(&opt);
+    while (sim_ident_begin_pass(id)) {
+        const double g[3] = {0, 0, 0}, c[3] = {0, 0, 0};
+        sim_ident_add(id, g, c);
+        sim_ident_end_pass(id);
+    }
+    sim_ident_axis_t res;
+    sim_ident_result(id, 0, &res);
+    TEST_ASSERT_TRUE(isnan(res.b0));
+    TEST_ASSERT_TRUE(res.warnings & SIM_IDENT_WARN_FEW);
+    sim_ident_free(id);
+    const sim_ident_options_t bad = {.dt_s = 0.0};
+    TEST_ASSERT_NULL(sim_ident_new(&bad));
+}
+
+/* White noise of density q plus a tone: the floor within 10 % (the median of
+ * some 400 bins averaged over 97 segments: a few % of scatter, and the
+ * median of a chi-square's mean sits 1-2 % low), the line at its frequency
+ * within a bin and its rms within 10 %. */
+static void test_spectrum_finds_the_floor_and_a_line(void)
+{
+    const double fs = 1000.0, sigma = 0.01, tone_hz = 187.0, tone_rms = 0.02;
+    sim_spectrum_t s;
+    sim_spectrum_init(&s, fs);
+    sim_rng_t r;
+    sim_rng_seed(&r, 23);
+    for (long k = 0; k < 50000; ++k) {
+        sim_spectrum_push(&s, sigma * sim_rng_gauss(&r) + tone_rms * sqrt(2.0) * sin(2.0 * LOOP_PI * tone_hz * k / fs));
+    }
+    TEST_ASSERT_EQUAL_INT(96, sim_spectrum_segments(&s));
+    const double floor = sim_spectrum_floor(&s, 50.0, 450.0), expected = sigma * sigma / (fs / 2.0);
+    TEST_ASSERT_FLOAT_WITHIN(0.10 * expected, expected, floor);
+    sim_spectrum_line_t lines[4];
+    const int n = sim_spectrum_lines(&s, 20.0, floor, 10.0, lines, 4);
+    TEST_ASSERT_EQUAL_INT(1, n);
+    TEST_ASSERT_FLOAT_WITHIN(fs / SIM_SPECTRUM_N, tone_hz, lines[0].hz);
+    TEST_ASSERT_FLOAT_WITHIN(0.1 * tone_rms, tone_rms, lines[0].rms);
+    /* the band's rms: the noise's share of 50-150 Hz, and the whole band with the tone */
+    TEST_ASSERT_FLOAT_WITHIN(0.1 * sigma * sqrt(0.2), sigma * sqrt(0.2), sim_spectrum_band_rms(&s, 50.0, 150.0));
+    const double total = sqrt(sigma * sigma + tone_rms * tone_rms);
+    TEST_ASSERT_FLOAT_WITHIN(0.05 * total, total, sim_spectrum_band_rms(&s, 0.0, 500.0));
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_a_chirp_gives_b0_lag_and_delay_on_random_airframes);
+    RUN_TEST(test_manoeuvres_give_the_truth_within_the_intervals_or_a_warning);
+    RUN_TEST(test_a_hover_without_excitation_is_flagged);
+    RUN_TEST(test_a_command_of_the_wrong_sign_is_flagged);
+    RUN_TEST(test_a_dropped_sample_restarts_the_fit_without_harm);
+    RUN_TEST(test_too_few_samples_give_no_numbers);
+    RUN_TEST(test_spectrum_finds_the_floor_and_a_line);
+    return UNITY_END();
+}

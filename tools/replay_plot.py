@@ -1,0 +1,125 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
+"""Figures of a flight-log replay (docs/flight-logs.md), from what ladrc_replay wrote in DIR.
+
+Usage: replay_plot.py DIR [--from S] [--to S]
+
+Draws in DIR:
+- replay_commands.png: per axis, the log's own command and each replayed controller's over
+  time (the window --from/--to, default the whole replay.csv);
+- replay_spectrum.png: per axis, the gyro's spectrum (before the log's filters where the log
+  has it) with the vibration lines the identification found marked, and the commands' spectra.
+Exit status 1 when a file is missing or empty.
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+AXES = ("roll", "pitch", "yaw")
+
+
+def read_columns(path):
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    if len(rows) < 2:
+        sys.exit(f"replay_plot: {path}: no rows")
+    names = rows[0]
+    data = np.array([[float(x) if x not in ("", "nan", "-nan") else math.nan for x in r] for r in rows[1:]])
+    return {n: data[:, i] for i, n in enumerate(names)}
+
+
+def sources(columns):
+    """The replayed controllers, in the file's order."""
+    seen = []
+    for name in columns:
+        if name.endswith("_cmd_roll") and not name.startswith("LOG_"):
+            seen.append(name[: -len("_cmd_roll")])
+    return seen
+
+
+def commands_figure(d, out, t_from, t_to):
+    t = d["t_s"]
+    keep = (t >= t_from) & (t <= (t_to if t_to > 0 else t[-1]))
+    ctrls = sources(d)
+    fig, axs = plt.subplots(3, 1, figsize=(12, 9), sharex=True)
+    for i, axis in enumerate(AXES):
+        ax = axs[i]
+        ax.plot(t[keep], d[f"LOG_cmd_{axis}"][keep], color="black", lw=1.4, label="log (flown)")
+        for c in ctrls:
+            ax.plot(t[keep], d[f"{c}_cmd_{axis}"][keep], lw=0.8, label=c)
+        ax.set_ylabel(f"{axis} command\n(1: full authority)")
+        ax.grid(alpha=0.3)
+    axs[0].legend(ncol=4, fontsize=8, loc="upper right")
+    axs[-1].set_xlabel("time (s)")
+    fig.suptitle("What each controller would have commanded on the log's flight (open loop)")
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+
+
+def read_lines(ident_path):
+    lines = {}
+    with open(ident_path, newline="") as f:
+        for row in csv.DictReader(f):
+            lines[row["axis"]] = [float(x) for x in row["lines_hz"].split()] if row["lines_hz"] else []
+    return lines
+
+
+def spectrum_figure(s, lines, out):
+    hz = s["hz"]
+    ctrls = sorted({n.rsplit("_", 1)[0] for n in s if n.endswith("_roll") and not n.startswith(("gyro", "LOG"))})
+    fig, axs = plt.subplots(2, 3, figsize=(15, 8), sharex=True)
+    for i, axis in enumerate(AXES):
+        ax = axs[0][i]
+        raw = s[f"gyro_raw_{axis}"]
+        if np.isfinite(raw).any():
+            ax.semilogy(hz, np.sqrt(raw) * 180 / math.pi, color="tab:red", lw=0.8, label="gyro before filters")
+        ax.semilogy(hz, np.sqrt(s[f"gyro_{axis}"]) * 180 / math.pi, color="tab:blue", lw=0.8, label="gyro used")
+        for f in lines.get(axis, []):
+            ax.axvline(f, color="gray", ls=":", lw=1)
+        ax.set_title(f"{axis}: gyro (vibration lines dotted)")
+        ax.set_ylabel("deg/s/sqrt(Hz)")
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=8)
+        ax = axs[1][i]
+        ax.semilogy(hz, np.sqrt(s[f"LOG_{axis}"]), color="black", lw=1.2, label="log")
+        for c in ctrls:
+            ax.semilogy(hz, np.sqrt(s[f"{c}_{axis}"]), lw=0.8, label=c)
+        ax.set_title(f"{axis}: command")
+        ax.set_ylabel("1/sqrt(Hz)")
+        ax.set_xlabel("frequency (Hz)")
+        ax.grid(alpha=0.3, which="both")
+    axs[1][0].legend(fontsize=7, ncol=2)
+    fig.suptitle("Spectra of the log's gyro and of the commands")
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("dir")
+    ap.add_argument("--from", dest="t_from", type=float, default=0.0)
+    ap.add_argument("--to", dest="t_to", type=float, default=0.0)
+    args = ap.parse_args()
+    for name in ("replay.csv", "spectrum.csv", "identification.csv"):
+        if not os.path.isfile(os.path.join(args.dir, name)):
+            sys.exit(f"replay_plot: {os.path.join(args.dir, name)} is missing (ladrc_replay writes it)")
+    commands_figure(read_columns(os.path.join(args.dir, "replay.csv")), os.path.join(args.dir, "replay_commands.png"),
+                    args.t_from, args.t_to)
+    spectrum_figure(read_columns(os.path.join(args.dir, "spectrum.csv")),
+                    read_lines(os.path.join(args.dir, "identification.csv")),
+                    os.path.join(args.dir, "replay_spectrum.png"))
+    print(f"replay_plot: {args.dir}/replay_commands.png, {args.dir}/replay_spectrum.png")
+
+
+if __name__ == "__main__":
+    main()
