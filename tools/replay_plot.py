@@ -52,9 +52,9 @@ def commands_figure(d, out, t_from, t_to):
     fig, axs = plt.subplots(3, 1, figsize=(12, 9), sharex=True)
     for i, axis in enumerate(AXES):
         ax = axs[i]
-        ax.plot(t[keep], d[f"LOG_cmd_{axis}"][keep], color="black", lw=1.4, label="log (flown)")
         for c in ctrls:
             ax.plot(t[keep], d[f"{c}_cmd_{axis}"][keep], lw=0.8, label=c)
+        ax.plot(t[keep], d[f"LOG_cmd_{axis}"][keep], color="black", lw=1.6, label="log (flown)", zorder=10)
         ax.set_ylabel(f"{axis} command\n(1: full authority)")
         ax.grid(alpha=0.3)
     axs[0].legend(ncol=4, fontsize=8, loc="upper right")

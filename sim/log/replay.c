@@ -101,8 +101,14 @@ static void quats_of(const sim_log_sample_t *s, unsigned has, double q[4], doubl
     }
 }
 
+/* The spectra a tick feeds: gyro, gyro before filters, the log's command, each controller's. */
+#define TICK_SPECTRA (9 + 3 * SIM_MAX_CONTROLLERS)
+
 void sim_replay_step(sim_replay_t *r, const sim_log_sample_t *s, unsigned has, sim_replay_tick_t *out)
 {
+    sim_spectrum_t *spectra[TICK_SPECTRA];
+    double values[TICK_SPECTRA];
+    int n_spectra = 0;
     ladrc_real_t rate[3], applied[3], angle[3], ref[3];
     for (int i = 0; i < 3; ++i) {
         rate[i] = (ladrc_real_t)s->gyro_rad_s[i];
@@ -110,12 +116,15 @@ void sim_replay_step(sim_replay_t *r, const sim_log_sample_t *s, unsigned has, s
         applied[i] = (ladrc_real_t)(s->command[i] * r->authority_Nm[i]);
         angle[i] = (ladrc_real_t)s->angle_rad[i];
         ref[i] = (ladrc_real_t)s->ref_angle_rad[i];
-        sim_spectrum_push(&r->gyro[i], s->gyro_rad_s[i]);
+        spectra[n_spectra] = &r->gyro[i];
+        values[n_spectra++] = s->gyro_rad_s[i];
         if (has & SIM_LOG_HAS_GYRO_RAW) {
-            sim_spectrum_push(&r->gyro_raw[i], s->gyro_raw_rad_s[i]);
+            spectra[n_spectra] = &r->gyro_raw[i];
+            values[n_spectra++] = s->gyro_raw_rad_s[i];
         }
         stat_add(&r->log_axis[i].command, s->command[i]);
-        sim_spectrum_push(&r->log_axis[i].spectrum, s->command[i]);
+        spectra[n_spectra] = &r->log_axis[i].spectrum;
+        values[n_spectra++] = s->command[i];
     }
     ladrc_quat_t meas = {LADRC_R(1.0), 0, 0, 0}, qref = {LADRC_R(1.0), 0, 0, 0};
     if (r->quat_frame) {
@@ -150,8 +159,10 @@ void sim_replay_step(sim_replay_t *r, const sim_log_sample_t *s, unsigned has, s
             if (r->has_estimate[c]) {
                 stat_add(&ax->estimate, (double)d_est);
             }
-            sim_spectrum_push(&ax->spectrum, u);
+            spectra[n_spectra] = &ax->spectrum;
+            values[n_spectra++] = u;
         }
     }
+    sim_spectrum_push_many(spectra, values, n_spectra);
     r->ticks++;
 }

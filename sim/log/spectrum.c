@@ -57,35 +57,99 @@ static void fft(const sim_spectrum_t *s, double *re, double *im)
     }
 }
 
-/* The periodogram of the last SIM_SPECTRUM_N samples into the sum. */
-static void add_segment(sim_spectrum_t *s)
+/* The last SIM_SPECTRUM_N samples, windowed about their mean, into out. */
+static void windowed_segment(const sim_spectrum_t *s, double *out)
 {
     const int n = SIM_SPECTRUM_N;
-    double re[SIM_SPECTRUM_N], im[SIM_SPECTRUM_N], mean = 0.0;
     const int start = (int)(s->pushed % n); /* the oldest sample of the ring */
+    double mean = 0.0;
     for (int i = 0; i < n; ++i) {
         mean += s->buf[i];
     }
     mean /= n;
     for (int i = 0; i < n; ++i) {
-        re[i] = s->window[i] * (s->buf[(start + i) % n] - mean);
-        im[i] = 0.0;
+        out[i] = s->window[i] * (s->buf[(start + i) % n] - mean);
     }
+}
+
+/* |X[k]|^2 of a segment's transform into the sum, one-sided. */
+static void accumulate(sim_spectrum_t *s, int k, double power)
+{
+    const double one_sided = (k == 0 || k == SIM_SPECTRUM_N / 2) ? 1.0 : 2.0;
+    s->sum_psd[k] += one_sided * power / (s->fs_hz * s->window_power);
+}
+
+/* The periodogram of the last SIM_SPECTRUM_N samples into the sum. */
+static void add_segment(sim_spectrum_t *s)
+{
+    double re[SIM_SPECTRUM_N], im[SIM_SPECTRUM_N] = {0.0};
+    windowed_segment(s, re);
     fft(s, re, im);
-    const double scale = 1.0 / (s->fs_hz * s->window_power);
     for (int k = 0; k < SIM_SPECTRUM_BINS; ++k) {
-        const double one_sided = (k == 0 || k == n / 2) ? 1.0 : 2.0;
-        s->sum_psd[k] += one_sided * scale * (re[k] * re[k] + im[k] * im[k]);
+        accumulate(s, k, re[k] * re[k] + im[k] * im[k]);
     }
     s->segments++;
 }
 
-void sim_spectrum_push(sim_spectrum_t *s, double x)
+/* Two spectra's segments in one transform: z = a + i b, and with
+ * Z' the conjugate of Z at N - k, A = (Z + Z') / 2 and B = (Z - Z') / 2i. */
+static void add_segment_pair(sim_spectrum_t *a, sim_spectrum_t *b)
+{
+    const int n = SIM_SPECTRUM_N;
+    double re[SIM_SPECTRUM_N], im[SIM_SPECTRUM_N];
+    windowed_segment(a, re);
+    windowed_segment(b, im);
+    fft(a, re, im);
+    for (int k = 0; k < SIM_SPECTRUM_BINS; ++k) {
+        const int m = (n - k) % n;
+        const double ar = 0.5 * (re[k] + re[m]), ai = 0.5 * (im[k] - im[m]);
+        const double br = 0.5 * (im[k] + im[m]), bi = -0.5 * (re[k] - re[m]);
+        accumulate(a, k, ar * ar + ai * ai);
+        accumulate(b, k, br * br + bi * bi);
+    }
+    a->segments++;
+    b->segments++;
+}
+
+/* 1 when the sample just pushed completes a segment. */
+static int segment_due(const sim_spectrum_t *s)
+{
+    return s->pushed >= SIM_SPECTRUM_N && (s->pushed - SIM_SPECTRUM_N) % (SIM_SPECTRUM_N / 2) == 0;
+}
+
+static void store(sim_spectrum_t *s, double x)
 {
     s->buf[s->pushed % SIM_SPECTRUM_N] = x;
     s->pushed++;
-    if (s->pushed >= SIM_SPECTRUM_N && (s->pushed - SIM_SPECTRUM_N) % (SIM_SPECTRUM_N / 2) == 0) {
+}
+
+void sim_spectrum_push(sim_spectrum_t *s, double x)
+{
+    store(s, x);
+    if (segment_due(s)) {
         add_segment(s);
+    }
+}
+
+void sim_spectrum_push_many(sim_spectrum_t *const *s, const double *x, int n)
+{
+    sim_spectrum_t *waiting = NULL; /* a due segment without its pair yet */
+    for (int i = 0; i < n; ++i) {
+        store(s[i], x[i]);
+        if (!segment_due(s[i])) {
+            continue;
+        }
+        if (waiting != NULL && waiting->fs_hz == s[i]->fs_hz) {
+            add_segment_pair(waiting, s[i]);
+            waiting = NULL;
+        } else if (waiting == NULL) {
+            waiting = s[i];
+        } else {
+            add_segment(s[i]);
+        }
+    }
+    if (waiting != NULL) {
+        add_segment(waiting);
     }
 }
 

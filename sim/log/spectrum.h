@@ -35,6 +35,11 @@ typedef struct {
 void sim_spectrum_init(sim_spectrum_t *s, double fs_hz);
 void sim_spectrum_push(sim_spectrum_t *s, double x);
 
+/* x[i] into s[i] for i < n, the same as sim_spectrum_push on each; spectra
+ * of the same rate fed in lockstep share their FFTs two by two (one complex
+ * transform of two real segments), which halves their cost. */
+void sim_spectrum_push_many(sim_spectrum_t *const *s, const double *x, int n);
+
 /* Segments averaged so far (0: no estimate yet, fewer than SIM_SPECTRUM_N samples). */
 long sim_spectrum_segments(const sim_spectrum_t *s);
 

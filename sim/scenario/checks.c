@@ -419,6 +419,12 @@ static void check_excitation(parser_t *p)
     if (!sc->excite_on) {
         return;
     }
+    const loc_t *amplitude = checks_seen(p, SEC_EXCITATION, "amplitude");
+    if (amplitude->line != 0 && sc->excite_n_amplitudes != 1 && sc->excite_n_amplitudes != 3) {
+        check_fail(p, amplitude->line, amplitude->value_col,
+                   "amplitude gives %d numbers: one for every axis, or three (roll, pitch, yaw)",
+                   sc->excite_n_amplitudes);
+    }
     const double f_max_hz = 0.45 / sc->control_dt_s;
     const loc_t *f0 = checks_seen(p, SEC_EXCITATION, "f0_hz");
     const loc_t *f1 = checks_seen(p, SEC_EXCITATION, "f1_hz");

@@ -41,7 +41,8 @@ void sim_excitation_at(const sim_scenario_t *sc, double t_s, double command[3])
     for (int k = 0; k < sim_excitation_axes(sc); ++k) {
         const double start_s = sc->excite_start_s + k * sc->excite_duration_s;
         const int axis = all ? k : sc->excite_axis;
-        command[axis] = sim_chirp_value(sc->excite_amplitude, sc->excite_f0_hz, sc->excite_f1_hz, sc->excite_duration_s,
-                                        t_s - start_s);
+        const double amplitude = sc->excite_amplitude[sc->excite_n_amplitudes == 3 ? axis : 0];
+        command[axis] =
+            sim_chirp_value(amplitude, sc->excite_f0_hz, sc->excite_f1_hz, sc->excite_duration_s, t_s - start_s);
     }
 }

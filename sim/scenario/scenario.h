@@ -216,9 +216,11 @@ typedef struct {
 
     /* [excitation]: a logarithmic chirp added to the controller's torque
      * (sim/scenario/excitation.h); absent: none */
-    int excite_on;           /* 1: the section is given */
-    int excite_axis;         /* sim_excite_axis_t */
-    double excite_amplitude; /* normalised command: a fraction of sim_setup_authority_Nm */
+    int excite_on;              /* 1: the section is given */
+    int excite_axis;            /* sim_excite_axis_t */
+    double excite_amplitude[4]; /* normalised command: a fraction of sim_setup_authority_Nm; one for every
+                                   axis, or roll, pitch, yaw */
+    int excite_n_amplitudes;    /* 1 or 3 (checks.c) */
     double excite_f0_hz, excite_f1_hz;
     double excite_start_s, excite_duration_s; /* each axis's chirp lasts duration_s */
 

@@ -282,7 +282,8 @@ const key_def_t SCHEMA_KEYS[] = {
     {KEY(SEC_PHASES, "landed_input", V_CHOICE, SC(landed_input)), .choices = YES_NO},
 
     {KEY(SEC_EXCITATION, "axis", V_CHOICE, SC(excite_axis)), .choices = EXCITE_AXES},
-    {KEY(SEC_EXCITATION, "amplitude", V_REAL, SC(excite_amplitude)), .range = R_WEIGHT},
+    {KEY(SEC_EXCITATION, "amplitude", V_LIST, SC(excite_amplitude)), .offset2 = SC(excite_n_amplitudes),
+     .range = R_WEIGHT},
     {KEY(SEC_EXCITATION, "f0_hz", V_REAL, SC(excite_f0_hz)), .range = R_POSITIVE},
     {KEY(SEC_EXCITATION, "f1_hz", V_REAL, SC(excite_f1_hz)), .range = R_POSITIVE},
     {KEY(SEC_EXCITATION, "start_s", V_REAL, SC(excite_start_s)), .range = R_NONNEGATIVE},
@@ -504,7 +505,8 @@ void schema_set_defaults(sim_scenario_t *sc)
     sc->thrust_curve = NAN; /* none: the rotors give the w^2 the mixer asks */
     sc->battery_full_V = DEFAULT_BATTERY_FULL_V;
     sc->excite_axis = SIM_EXCITE_ROLL;
-    sc->excite_amplitude = DEFAULT_EXCITE_AMPLITUDE;
+    sc->excite_amplitude[0] = DEFAULT_EXCITE_AMPLITUDE;
+    sc->excite_n_amplitudes = 1;
     sc->excite_f0_hz = DEFAULT_EXCITE_F0_HZ;
     sc->excite_f1_hz = DEFAULT_EXCITE_F1_HZ;
     sc->excite_start_s = DEFAULT_EXCITE_START_S;

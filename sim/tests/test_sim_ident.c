@@ -224,6 +224,38 @@ static void test_spectrum_finds_the_floor_and_a_line(void)
     TEST_ASSERT_FLOAT_WITHIN(0.05 * total, total, sim_spectrum_band_rms(&s, 0.0, 500.0));
 }
 
+/* Two spectra fed in lockstep through one packed transform give what each
+ * gives alone, to rounding (1e-12 of the largest bin). */
+static void test_spectra_pushed_together_equal_spectra_pushed_alone(void)
+{
+    static sim_spectrum_t alone[3], together[3];
+    sim_spectrum_t *ptrs[3] = {&together[0], &together[1], &together[2]};
+    sim_rng_t r;
+    sim_rng_seed(&r, 31);
+    for (int i = 0; i < 3; ++i) {
+        sim_spectrum_init(&alone[i], 1000.0);
+        sim_spectrum_init(&together[i], 1000.0);
+    }
+    for (long k = 0; k < 5000; ++k) {
+        const double x[3] = {sim_rng_gauss(&r), sin(0.3 * (double)k) + 0.1 * sim_rng_gauss(&r),
+                             5.0 + sim_rng_uniform(&r)};
+        for (int i = 0; i < 3; ++i) {
+            sim_spectrum_push(&alone[i], x[i]);
+        }
+        sim_spectrum_push_many(ptrs, x, 3);
+    }
+    for (int i = 0; i < 3; ++i) {
+        TEST_ASSERT_EQUAL_INT(sim_spectrum_segments(&alone[i]), sim_spectrum_segments(&together[i]));
+        double peak = 0.0;
+        for (int k = 0; k < SIM_SPECTRUM_BINS; ++k) {
+            peak = fmax(peak, sim_spectrum_psd(&alone[i], k));
+        }
+        for (int k = 0; k < SIM_SPECTRUM_BINS; ++k) {
+            TEST_ASSERT_TRUE(fabs(sim_spectrum_psd(&alone[i], k) - sim_spectrum_psd(&together[i], k)) <= 1e-12 * peak);
+        }
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -234,5 +266,6 @@ int main(void)
     RUN_TEST(test_a_dropped_sample_restarts_the_fit_without_harm);
     RUN_TEST(test_too_few_samples_give_no_numbers);
     RUN_TEST(test_spectrum_finds_the_floor_and_a_line);
+    RUN_TEST(test_spectra_pushed_together_equal_spectra_pushed_alone);
     return UNITY_END();
 }

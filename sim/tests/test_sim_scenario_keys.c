@@ -4,6 +4,7 @@
  * a file (comments, blank lines, CRLF, tabs, a byte order mark), the name. */
 #include "unity.h"
 #include "scenario_cases.h"
+#include "scenario/excitation.h"
 
 static void test_defaults_fill_every_key_not_given(void)
 {
@@ -524,7 +525,8 @@ static void test_excitation_and_log_keys_land_in_their_fields(void)
     parse_ok("[run]\nduration_s = 12\n[excitation]\n");
     TEST_ASSERT_EQUAL_INT(1, sc.excite_on);
     TEST_ASSERT_EQUAL_INT(SIM_EXCITE_ROLL, sc.excite_axis);
-    assert_close(0.2, sc.excite_amplitude, "amplitude");
+    assert_close(0.2, sc.excite_amplitude[0], "amplitude");
+    TEST_ASSERT_EQUAL_INT(1, sc.excite_n_amplitudes);
     assert_close(1.0, sc.excite_f0_hz, "f0_hz");
     assert_close(40.0, sc.excite_f1_hz, "f1_hz");
     assert_close(1.0, sc.excite_start_s, "start_s");
@@ -533,7 +535,7 @@ static void test_excitation_and_log_keys_land_in_their_fields(void)
     parse_ok("[run]\nduration_s = 40\ncontrol_dt_s = 0.004\ncontrollers = PID\nlog = generic px4,betaflight\n"
              "[excitation]\naxis = all\namplitude = 1\nf0_hz = 0.5\nf1_hz = 112.5\nstart_s = 0\nduration_s = 13\n");
     TEST_ASSERT_EQUAL_INT(SIM_EXCITE_ALL, sc.excite_axis);
-    assert_close(1.0, sc.excite_amplitude, "amplitude");
+    assert_close(1.0, sc.excite_amplitude[0], "amplitude");
     assert_close(0.5, sc.excite_f0_hz, "f0_hz");
     assert_close(112.5, sc.excite_f1_hz, "f1_hz"); /* 0.45 / 0.004, given: accepted */
     assert_close(0.0, sc.excite_start_s, "start_s");
@@ -543,8 +545,23 @@ static void test_excitation_and_log_keys_land_in_their_fields(void)
 
     parse_ok("[run]\nduration_s = 12\ncontrol_dt_s = 0.02\ncontrollers = PID\nlog = px4\n[excitation]\naxis = yaw\n");
     TEST_ASSERT_EQUAL_INT(SIM_EXCITE_YAW, sc.excite_axis);
+
     assert_close(22.5, sc.excite_f1_hz, "f1_hz capped at 0.45 / control_dt_s");
     TEST_ASSERT_EQUAL_INT(SIM_RUN_LOG_PX4, sc.log_forms);
+    /* one amplitude per axis: each chirp at its own */
+    parse_ok("[run]\nduration_s = 40\n[excitation]\naxis = all\namplitude = 0.1 0.2 0.6\nduration_s = 10\n");
+    TEST_ASSERT_EQUAL_INT(3, sc.excite_n_amplitudes);
+    assert_close(0.6, sc.excite_amplitude[2], "yaw's amplitude");
+    double c[3], peak[3] = {0.0, 0.0, 0.0};
+    for (int k = 0; k < 31000; ++k) {
+        sim_excitation_at(&sc, 1.0 + k * 1e-3, c);
+        for (int i = 0; i < 3; ++i) {
+            peak[i] = fmax(peak[i], fabs(c[i]));
+        }
+    }
+    for (int i = 0; i < 3; ++i) { /* sampled at 1 ms, the 1 Hz start's peaks reach the amplitude within 1e-5 */
+        TEST_ASSERT_TRUE(fabs(peak[i] - sc.excite_amplitude[i]) <= 1e-5);
+    }
 }
 
 int main(void)

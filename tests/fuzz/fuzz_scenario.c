@@ -83,7 +83,11 @@ static void evaluate(const sim_signal_t *sig, const double *times, int n)
 static void check_excitation(const double *times, int n)
 {
     if (sc.excite_on) {
-        FUZZ_CHECK(sc.excite_amplitude > 0.0 && sc.excite_amplitude <= 1.0, "amplitude %g", sc.excite_amplitude);
+        FUZZ_CHECK(sc.excite_n_amplitudes == 1 || sc.excite_n_amplitudes == 3, "%d amplitudes", sc.excite_n_amplitudes);
+        for (int a = 0; a < sc.excite_n_amplitudes; ++a) {
+            FUZZ_CHECK(sc.excite_amplitude[a] > 0.0 && sc.excite_amplitude[a] <= 1.0, "amplitude %g",
+                       sc.excite_amplitude[a]);
+        }
         FUZZ_CHECK(sc.excite_f0_hz > 0.0 && sc.excite_f0_hz < sc.excite_f1_hz &&
                        sc.excite_f1_hz <= 0.45 / sc.control_dt_s,
                    "f0 %g, f1 %g Hz at dt %g", sc.excite_f0_hz, sc.excite_f1_hz, sc.control_dt_s);
@@ -94,7 +98,8 @@ static void check_excitation(const double *times, int n)
         double c[3];
         sim_excitation_at(&sc, times[i], c);
         for (int a = 0; a < 3; ++a) {
-            FUZZ_CHECK(fabs(c[a]) <= (sc.excite_on ? sc.excite_amplitude : 0.0), "chirp %g at %g s", c[a], times[i]);
+            const double amplitude = sc.excite_amplitude[sc.excite_n_amplitudes == 3 ? a : 0];
+            FUZZ_CHECK(fabs(c[a]) <= (sc.excite_on ? amplitude : 0.0), "chirp %g at %g s", c[a], times[i]);
         }
     }
 }
