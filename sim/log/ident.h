@@ -7,19 +7,22 @@
  * w the gyro (rad/s), u the log's normalised command, phi(j) the mean over
  * tick j's hold of u through a first-order lag of time constant tau (the
  * motors), d whole ticks of delay between a command and the first gyro
- * sample it moves beyond the hold itself; a the rate damping (1/s), c an
- * constant (rad/s^2). Both sides go through the same band-pass (which keeps
- * the relation, cuts the gyro's differentiated noise and the rotors'
- * vibration lines above, and the disturbances the loop cancels below), then
- * least squares for (b0, a, c) at every (tau, d) of a grid: a coarse pass,
- * a fine pass about its best, and a pass for the residuals.
+ * sample it moves beyond the hold itself; a the rate damping (1/s), c the
+ * fit's intercept (rad/s^2; the band-pass leaves no constant disturbance).
+ * Both sides go through the same band-pass (which keeps the relation, cuts
+ * the gyro's differentiated noise and the rotors' vibration lines above, and
+ * the disturbances the loop cancels below), then least squares for (b0, a,
+ * c) at every (tau, d) of a grid: a coarse pass, a fine pass about its best,
+ * and a pass at the profile's vertex for the lag, which also gives the
+ * residuals.
  *
- * Intervals (95 %): b0 from the sandwich (Newey-West, Bartlett) variance,
- * which holds with coloured residuals; tau and d from the profile of the
- * residual sum of squares, those within the chi-square(1) threshold, scaled
- * by the same variance ratio. Warnings flag what the log cannot tell
- * (SIM_IDENT_WARN_*): the fits of a log without enough excitation come with
- * wide intervals and a warning, never as confident numbers.
+ * Intervals (95 %): every candidate (tau, d) whose residual sum of squares
+ * lies within the chi-square(1) threshold, scaled by the sandwich
+ * (Newey-West, Bartlett) variance ratio and by PROFILE_SAFETY (ident.c),
+ * is consistent with the log: the lag's and delay's intervals span that
+ * set, b0's spans its b0s widened by b0's own sandwich interval. Warnings
+ * flag what the log cannot tell (SIM_IDENT_WARN_*): the fits of a log
+ * without enough excitation come with wide intervals and a warning.
  *
  * Memory is fixed (grid sums and short rings): a log of any length is
  * streamed through each pass.
