@@ -1,32 +1,13 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* Identification of the axes' plant from a log (ident.h): three passes. */
-#include "ident.h"
+/* Identification of the axes' plant from a log (ident.h): the prefilter, the
+ * candidates' sums over each pass, the fits at each pass's end. */
+#include "ident_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define PI 3.14159265358979323846
-#define CHI2_1_95 3.841458820694124 /* chi-square(1) at 95 % */
-#define Z_95 1.959963984540054
-/* The profiles' threshold is chi-square's times this: in closed loop the
- * gyro's noise reaches the command, which biases the fit by more than its
- * scatter, and lag and delay trade against each other at low frequency.
- * On the test loops a manoeuvre's wrong delay stood 2-600 sigma^2 above the
- * best, a chirp's 1e4 and more. */
-#define PROFILE_SAFETY 25.0
-
 #define FIRST_TAU_S 0.0005 /* the coarse grid's first lag after 0 */
-#define RING (SIM_IDENT_MAX_DELAY + 1)
-#define MAX_CHANNELS (SIM_IDENT_COARSE_TAUS > SIM_IDENT_FINE_TAUS ? SIM_IDENT_COARSE_TAUS : SIM_IDENT_FINE_TAUS)
-
-/* Second-order Butterworth low-pass, bilinear with a prewarped corner. */
-typedef struct {
-    double b0, b1, b2, a1, a2;
-} biquad_coef_t;
-typedef struct {
-    double z1, z2;
-} biquad_t;
 
 /* A second-order high-pass section of quality q. */
 static biquad_coef_t highpass_section(double fc_hz, double dt_s, double q)
@@ -59,11 +40,7 @@ static double biquad_step(const biquad_coef_t *c, biquad_t *s, double x)
  * correlated with the command and would bias the fit) to the corner
  * (fourth-order low-pass, -24 dB an octave above it, where the rotors'
  * vibration lines lie: their frequency follows the command too). */
-#define PREFILTER_SECTIONS 3 /* two low-pass, one high-pass */
 static const double PREFILTER_Q[PREFILTER_SECTIONS] = {0.54119610014619690, 1.30656296487637653, 0.70710678118654752};
-typedef struct {
-    biquad_t s[PREFILTER_SECTIONS];
-} lowpass_t;
 
 /* A biquad settled on a constant input x. */
 static void biquad_settle(const biquad_coef_t *c, biquad_t *s, double x)
@@ -74,7 +51,7 @@ static void biquad_settle(const biquad_coef_t *c, biquad_t *s, double x)
     s->z1 = c->b1 * x - c->a1 * y + s->z2;
 }
 
-static double lowpass_step(const biquad_coef_t *c, lowpass_t *f, double x)
+static double prefilter_step(const biquad_coef_t *c, prefilter_t *f, double x)
 {
     for (int i = 0; i < PREFILTER_SECTIONS; ++i) {
         x = biquad_step(&c[i], &f->s[i], x);
@@ -83,70 +60,12 @@ static double lowpass_step(const biquad_coef_t *c, lowpass_t *f, double x)
 }
 
 /* Settled on a constant input (unit gain at 0 Hz: each section passes x). */
-static void lowpass_settle(const biquad_coef_t *c, lowpass_t *f, double x)
+static void prefilter_settle(const biquad_coef_t *c, prefilter_t *f, double x)
 {
     for (int i = 0; i < PREFILTER_SECTIONS; ++i) {
         biquad_settle(&c[i], &f->s[i], x);
     }
 }
-
-/* The command through one candidate lag: phi(j) = u(j) + (x(j) - u(j)) g,
- * the mean of the lag's output over a hold of u(j) starting from x(j), then
- * x(j + 1) = alpha x(j) + (1 - alpha) u(j); filtered, into a ring by tick. */
-typedef struct {
-    double tau_s, alpha, gain;
-    double x;
-    lowpass_t filter;
-    double ring[RING];
-} lag_channel_t;
-
-/* Sums of x x' and x y over the samples of one candidate (tau, d); x = (phi, w, 1). */
-typedef struct {
-    double pp, pw, p1, py;
-} candidate_sums_t;
-
-typedef struct {
-    double ww, w1, n, wy, y1, yy;
-} shared_sums_t;
-
-typedef struct {
-    /* streaming state */
-    double w_prev, u_prev;
-    long long since_restart;
-    lowpass_t fy, fw;
-    lag_channel_t ch[MAX_CHANNELS];
-    int pos; /* ring slot of the newest phi */
-    shared_sums_t sh;
-    candidate_sums_t cand[MAX_CHANNELS][RING];
-    /* profiles: the best sum of squares per candidate of each pass */
-    double sse_coarse[SIM_IDENT_COARSE_TAUS][RING], b0_coarse[SIM_IDENT_COARSE_TAUS][RING];
-    double sse_fine[SIM_IDENT_FINE_TAUS][SIM_IDENT_FINE_DELAYS], b0_fine[SIM_IDENT_FINE_TAUS][SIM_IDENT_FINE_DELAYS];
-    double tau_coarse[SIM_IDENT_COARSE_TAUS], tau_fine[SIM_IDENT_FINE_TAUS];
-    int fine_d0, fine_nd;
-    /* the choice */
-    double tau_s, tau_grid_s; /* the lag chosen, and the fine grid's best */
-    int delay;
-    double theta[3]; /* b0, -a, c */
-    double m_inv[3][3];
-    double sse, sst, n;
-    double phi_mean, phi_var;
-    /* pass 3: the residuals' sandwich */
-    double v[3]; /* row 1 of m_inv */
-    double h_ring[SIM_IDENT_MAX_HAC_LAGS + 1];
-    double hac[SIM_IDENT_MAX_HAC_LAGS + 1];
-    long long h_count, h_seg; /* residuals in all, and since the last gap */
-    sim_spectrum_t command;   /* pass 1: the command's spectrum */
-    double sse3;
-    int valid;
-} axis_t;
-
-struct sim_ident {
-    sim_ident_options_t opt;
-    biquad_coef_t lpf[PREFILTER_SECTIONS];
-    int delay_max, skip, hac_lags;
-    int pass;
-    axis_t axis[3];
-};
 
 sim_ident_t *sim_ident_new(const sim_ident_options_t *opt)
 {
@@ -287,11 +206,11 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u)
     const int n_ch = channels_of_pass(id);
     if (a->since_restart == 0) {
         /* settled on the first sample: the filters start where the signals are */
-        lowpass_settle(id->lpf, &a->fy, 0.0);
-        lowpass_settle(id->lpf, &a->fw, w);
+        prefilter_settle(id->lpf, &a->fy, 0.0);
+        prefilter_settle(id->lpf, &a->fw, w);
         for (int c = 0; c < n_ch; ++c) {
             a->ch[c].x = u;
-            lowpass_settle(id->lpf, &a->ch[c].filter, u);
+            prefilter_settle(id->lpf, &a->ch[c].filter, u);
             for (int k = 0; k < RING; ++k) {
                 a->ch[c].ring[k] = u;
             }
@@ -301,14 +220,14 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u)
         a->since_restart = 1;
         return;
     }
-    const double y = lowpass_step(id->lpf, &a->fy, (w - a->w_prev) / id->opt.dt_s);
-    const double wm = lowpass_step(id->lpf, &a->fw, 0.5 * (w + a->w_prev));
+    const double y = prefilter_step(id->lpf, &a->fy, (w - a->w_prev) / id->opt.dt_s);
+    const double wm = prefilter_step(id->lpf, &a->fw, 0.5 * (w + a->w_prev));
     a->pos = (a->pos + 1) % RING;
     for (int c = 0; c < n_ch; ++c) {
         lag_channel_t *ch = &a->ch[c];
         const double phi = a->u_prev + (ch->x - a->u_prev) * ch->gain;
         ch->x = ch->alpha * ch->x + (1.0 - ch->alpha) * a->u_prev;
-        ch->ring[a->pos] = lowpass_step(id->lpf, &ch->filter, phi);
+        ch->ring[a->pos] = prefilter_step(id->lpf, &ch->filter, phi);
     }
     a->w_prev = w;
     a->u_prev = u;
@@ -504,161 +423,5 @@ void sim_ident_end_pass(sim_ident_t *id)
         } else if (a->valid) {
             end_refined(a);
         }
-    }
-}
-
-/* Bartlett-weighted sum of the residuals' autocovariances: the sandwich variance of b0. */
-static double sandwich_variance(const sim_ident_t *id, const axis_t *a)
-{
-    double v = a->hac[0];
-    for (int m = 1; m <= id->hac_lags; ++m) {
-        v += 2.0 * (1.0 - (double)m / (id->hac_lags + 1)) * a->hac[m];
-    }
-    return v;
-}
-
-/* The profile intervals: every candidate (tau, d) of both grids whose sum of
- * squares lies within `limit` is consistent with the log; the lag's interval
- * is widened to the next grid point outside that set (the boundary lies
- * between), the delay's is the set's range, and b0's spans the set's b0s. */
-typedef struct {
-    double tau_lo, tau_hi, b0_lo, b0_hi;
-    int d_lo, d_hi;
-} profile_t;
-
-static void profile_take(profile_t *p, double sse, double limit, double tau, int d, double b0)
-{
-    if (sse <= limit) {
-        p->tau_lo = fmin(p->tau_lo, tau);
-        p->tau_hi = fmax(p->tau_hi, tau);
-        p->b0_lo = fmin(p->b0_lo, b0);
-        p->b0_hi = fmax(p->b0_hi, b0);
-        p->d_lo = d < p->d_lo ? d : p->d_lo;
-        p->d_hi = d > p->d_hi ? d : p->d_hi;
-    }
-}
-
-/* The grid's nearest lags outside the set's range, into *lo and *hi. */
-static void widen_to_grid(const double *grid, int n, const profile_t *p, double *lo, double *hi)
-{
-    for (int g = 0; g < n; ++g) {
-        *lo = grid[g] < p->tau_lo && grid[g] > *lo ? grid[g] : *lo;
-        *hi = grid[g] > p->tau_hi && grid[g] < *hi ? grid[g] : *hi;
-    }
-}
-
-static void profile_intervals(const sim_ident_t *id, const axis_t *a, double limit, profile_t *p)
-{
-    *p = (profile_t){a->tau_s, a->tau_s, a->theta[0], a->theta[0], a->delay, a->delay};
-    for (int c = 0; c < SIM_IDENT_COARSE_TAUS; ++c) {
-        for (int d = 0; d <= id->delay_max; ++d) {
-            profile_take(p, a->sse_coarse[c][d], limit, a->tau_coarse[c], d, a->b0_coarse[c][d]);
-        }
-    }
-    for (int c = 0; c < SIM_IDENT_FINE_TAUS; ++c) {
-        for (int j = 0; j < a->fine_nd; ++j) {
-            profile_take(p, a->sse_fine[c][j], limit, a->tau_fine[c], a->fine_d0 + j, a->b0_fine[c][j]);
-        }
-    }
-    double lo = 0.0, hi = id->opt.lag_max_s;
-    widen_to_grid(a->tau_coarse, SIM_IDENT_COARSE_TAUS, p, &lo, &hi);
-    widen_to_grid(a->tau_fine, SIM_IDENT_FINE_TAUS, p, &lo, &hi);
-    p->tau_lo = p->tau_lo > 0.0 ? lo : 0.0;
-    p->tau_hi = hi;
-}
-
-void sim_ident_result(const sim_ident_t *id, int axis, sim_ident_axis_t *out)
-{
-    const axis_t *a = &id->axis[axis];
-    memset(out, 0, sizeof *out);
-    out->samples = (long long)a->sh.n;
-    if (!a->valid || id->pass < 3) {
-        out->b0 = out->b0_lo = out->b0_hi = out->lag_s = out->lag_lo_s = out->lag_hi_s = NAN;
-        out->damping_per_s = out->r2 = out->command_rms = out->variance_ratio = NAN;
-        out->delay_ticks = out->delay_lo_ticks = out->delay_hi_ticks = -1;
-        out->warnings = SIM_IDENT_WARN_FEW | SIM_IDENT_WARN_LOW_FIT;
-        return;
-    }
-    const double dof = a->n - 3.0;
-    const double sigma2 = a->sse / dof;
-    const double var_ols = sigma2 * a->m_inv[0][0];
-    const double var_hac = sandwich_variance(id, a);
-    const double ratio = var_hac > var_ols ? var_hac / var_ols : 1.0;
-    const double half = Z_95 * sqrt(fmax(var_hac, var_ols));
-    const double limit = a->sse + CHI2_1_95 * sigma2 * fmax(ratio, PROFILE_SAFETY);
-    profile_t prof;
-    profile_intervals(id, a, limit, &prof);
-    out->b0 = a->theta[0];
-    out->b0_lo = prof.b0_lo - half;
-    out->b0_hi = prof.b0_hi + half;
-    out->damping_per_s = -a->theta[1];
-    out->r2 = a->sst > 0.0 ? 1.0 - a->sse / a->sst : 0.0;
-    out->command_rms = sqrt(fmax(a->phi_var, 0.0));
-    out->variance_ratio = ratio;
-    /* motors faster than the band fitted: nothing there tells lag from delay (share 0) */
-    const double corner_hz = 1.0 / (2.0 * PI * fmax(a->tau_s, id->opt.dt_s));
-    const double df_hz = 1.0 / (id->opt.dt_s * SIM_SPECTRUM_N);
-    out->band_share = corner_hz >= id->opt.prefilter_hz
-                          ? 0.0
-                          : sim_spectrum_band_rms(&a->command, corner_hz, id->opt.prefilter_hz) /
-                                sim_spectrum_band_rms(&a->command, df_hz, id->opt.prefilter_hz);
-    out->lag_s = a->tau_s;
-    out->lag_lo_s = prof.tau_lo;
-    out->lag_hi_s = prof.tau_hi;
-    out->delay_ticks = a->delay;
-    out->delay_lo_ticks = prof.d_lo;
-    out->delay_hi_ticks = prof.d_hi;
-
-    unsigned w = 0;
-    if (out->samples < SIM_IDENT_MIN_SAMPLES) {
-        w |= SIM_IDENT_WARN_FEW;
-    }
-    if (!(out->b0 > 0.0)) {
-        w |= SIM_IDENT_WARN_SIGN;
-    }
-    if (out->b0_hi - out->b0_lo > 2.0 * SIM_IDENT_B0_REL_MAX * fabs(out->b0)) {
-        w |= SIM_IDENT_WARN_B0_WIDE;
-    }
-    if (out->lag_hi_s - out->lag_lo_s > fmax(SIM_IDENT_LAG_REL_MAX * out->lag_s, 0.004)) {
-        w |= SIM_IDENT_WARN_LAG_WIDE;
-    }
-    if (out->delay_hi_ticks != out->delay_lo_ticks) {
-        w |= SIM_IDENT_WARN_DELAY_WIDE;
-    }
-    if (out->r2 < SIM_IDENT_R2_MIN) {
-        w |= SIM_IDENT_WARN_LOW_FIT;
-    }
-    if (out->lag_s >= a->tau_coarse[SIM_IDENT_COARSE_TAUS - 1] ||
-        (out->delay_ticks == id->delay_max && id->delay_max > 0)) {
-        w |= SIM_IDENT_WARN_EDGE;
-    }
-    if (!(out->band_share >= SIM_IDENT_BAND_SHARE_MIN)) {
-        w |= SIM_IDENT_WARN_NARROW;
-    }
-    out->warnings = w;
-}
-
-const char *sim_ident_warning_text(unsigned bit)
-{
-    switch (bit) {
-    case SIM_IDENT_WARN_FEW:
-        return "too few samples to fit";
-    case SIM_IDENT_WARN_SIGN:
-        return "b0 is not positive: the command and the gyro disagree in sign (check the axis's mapping)";
-    case SIM_IDENT_WARN_B0_WIDE:
-        return "b0's interval is wider than +-10 %: weak excitation (fly a chirp or sharper manoeuvres)";
-    case SIM_IDENT_WARN_LAG_WIDE:
-        return "the motor lag's interval is wide: weak excitation above the motors' corner";
-    case SIM_IDENT_WARN_DELAY_WIDE:
-        return "the delay is not told to the tick: weak excitation at high frequency";
-    case SIM_IDENT_WARN_LOW_FIT:
-        return "the model explains under half the filtered angular acceleration (R^2 < 0.5)";
-    case SIM_IDENT_WARN_EDGE:
-        return "the best fit lies at the edge of the lag or delay searched";
-    case SIM_IDENT_WARN_NARROW:
-        return "lag and delay are not told apart: the command has little content above the motors' corner, or "
-               "that corner lies above the band fitted (fly a chirp; their sum is told)";
-    default:
-        return "";
     }
 }
