@@ -206,11 +206,20 @@ static void put_int(line_t *l, double x)
     l->len += snprintf(l->text + l->len, sizeof l->text - (size_t)l->len, "%.0f", r == 0.0 ? 0.0 : r);
 }
 
-/* x as %.9g: a float's value that reads back as the same float. */
-static void put_g9(line_t *l, double x)
+/* Digits that read back as the same ladrc_real_t: 9 for a float, 17 for a double. */
+#ifdef LADRC_REAL_DOUBLE
+#define REAL_DIGITS 17
+#else
+#define REAL_DIGITS 9
+#endif
+
+/* x with REAL_DIGITS: a value the controller got reads back as itself
+ * (sim_fmt_g, the fast form, writes up to 15 digits). */
+static void put_real(line_t *l, double x)
 {
     put_sep(l);
-    l->len += sim_fmt_g(l->text + l->len, x, 9);
+    l->len += REAL_DIGITS <= 15 ? sim_fmt_g(l->text + l->len, x, REAL_DIGITS)
+                                : snprintf(l->text + l->len, sizeof l->text - (size_t)l->len, "%.17g", x);
 }
 
 /* x as %.17g: a double's value that reads back as the same double. */
@@ -275,15 +284,15 @@ static void generic_line(const tick_t *tk, const values_t *v, line_t *l)
     line_start(l, ",");
     put_g17(l, v->t_s);
     for (int i = 0; i < 3; ++i)
-        put_g9(l, tk->ctrl_rate[i]);
+        put_real(l, tk->ctrl_rate[i]);
     for (int i = 0; i < 3; ++i)
         put_g17(l, tk->meas_rate[i]);
     for (int i = 0; i < 3; ++i)
-        put_g9(l, tk->ctrl_angle[i]);
+        put_real(l, tk->ctrl_angle[i]);
     for (int k = 0; k < 4; ++k)
         put_g17(l, v->quat[k]);
     for (int i = 0; i < 3; ++i)
-        put_g9(l, (double)tk->ref[i]);
+        put_real(l, (double)tk->ref[i]);
     for (int i = 0; i < 3; ++i)
         put_g17(l, v->ref_rate_rad_s[i]);
     for (int i = 0; i < 3; ++i)
@@ -301,13 +310,13 @@ static void px4_line(int topic, const tick_t *tk, const values_t *v, line_t *l)
     case PX4_ANGULAR_VELOCITY:
         put_int(l, v->timestamp_us); /* timestamp_sample */
         for (int i = 0; i < 3; ++i)
-            put_g9(l, tk->ctrl_rate[i]);
+            put_real(l, tk->ctrl_rate[i]);
         break;
     case PX4_SENSOR_COMBINED:
         for (int i = 0; i < 3; ++i)
-            put_g9(l, tk->meas_rate[i]);
+            put_real(l, tk->meas_rate[i]);
         for (int i = 0; i < 3; ++i)
-            put_g9(l, tk->accel_m_s2[i]);
+            put_real(l, tk->accel_m_s2[i]);
         break;
     case PX4_ATTITUDE: /* 17 digits: the angles read back from it are the controller's floats */
         for (int k = 0; k < 4; ++k)
@@ -317,16 +326,16 @@ static void px4_line(int topic, const tick_t *tk, const values_t *v, line_t *l)
         sim_quat_from_euler(tk->ref_rad, q_ref);
         for (int k = 0; k < 4; ++k)
             put_g17(l, q_ref[k]);
-        put_g9(l, 0.0);
-        put_g9(l, 0.0);
-        put_g9(l, -v->throttle); /* thrust_body: up is -z */
+        put_real(l, 0.0);
+        put_real(l, 0.0);
+        put_real(l, -v->throttle); /* thrust_body: up is -z */
         break;
     case PX4_RATES_SETPOINT:
         for (int i = 0; i < 3; ++i)
-            put_g9(l, v->ref_rate_rad_s[i]);
-        put_g9(l, 0.0);
-        put_g9(l, 0.0);
-        put_g9(l, -v->throttle);
+            put_real(l, v->ref_rate_rad_s[i]);
+        put_real(l, 0.0);
+        put_real(l, 0.0);
+        put_real(l, -v->throttle);
         break;
     case PX4_TORQUE_SETPOINT:
         for (int i = 0; i < 3; ++i)
@@ -334,7 +343,7 @@ static void px4_line(int topic, const tick_t *tk, const values_t *v, line_t *l)
         break;
     case PX4_ACTUATOR_MOTORS:
         for (int q = 0; q < 4; ++q)
-            put_g9(l, v->motor[q]);
+            put_real(l, v->motor[q]);
         break;
     default: /* PX4_ESC_STATUS: esc_rpm is an integer */
         for (int q = 0; q < 4; ++q)

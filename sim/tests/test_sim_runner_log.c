@@ -198,7 +198,7 @@ static void test_every_form_has_its_header_and_one_row_per_tick(void)
     }
 }
 
-/* The float the controller got, from its %.9g text (which reads back as it). */
+/* The real the controller got, from its text (9 digits for a float, 17 for a double: it reads back as itself). */
 static void assert_float_cell(ladrc_real_t expected, const char *cell)
 {
     char m[128];
@@ -295,7 +295,7 @@ static void test_px4_topics_agree_with_the_generic_form(void)
         TEST_ASSERT_TRUE(integer(t[0]) == us && integer(r[0]) == us && integer(r[1]) == us);
         for (int i = 0; i < 3; ++i) {
             TEST_ASSERT_EQUAL_STRING(g[20 + i], t[1 + i]); /* the command, %.17g */
-            TEST_ASSERT_EQUAL_STRING(g[1 + i], r[2 + i]);  /* the controller's rate, %.9g */
+            TEST_ASSERT_EQUAL_STRING(g[1 + i], r[2 + i]);  /* the controller's rate, as the real it was */
         }
     }
     free(generic);
