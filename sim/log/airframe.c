@@ -27,7 +27,7 @@ static void nominal(sim_scenario_t *sc)
     sc->mass_kg = SIM_AIRFRAME_MASS_KG;
     sc->arm_m = SIM_AIRFRAME_ARM_M;
     sc->thrust_coeff_N_s2 = SIM_AIRFRAME_THRUST_COEFF_N_S2;
-    sc->yaw_coeff_Nm_s2 = SIM_AIRFRAME_YAW_COEFF_NM_S2;
+    sc->yaw_coeff_Nm_s2 = 1.0; /* yaw's authority is linear in it: sim_airframe_yaw_coeff scales it */
     sc->g_m_s2 = SIM_AIRFRAME_G_M_S2;
 }
 
@@ -36,6 +36,13 @@ double sim_airframe_inertia(int axis, double b0)
     static sim_scenario_t sc; /* large; only its vehicle fields are read */
     nominal(&sc);
     return b0 > 0.0 ? sim_setup_authority_Nm(&sc, axis) / b0 : NAN;
+}
+
+double sim_airframe_yaw_coeff(double b0_yaw, double inertia_yaw)
+{
+    static sim_scenario_t sc; /* large; only its vehicle fields are read */
+    nominal(&sc);
+    return b0_yaw * inertia_yaw / sim_setup_authority_Nm(&sc, 2);
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -56,8 +63,8 @@ int sim_airframe_write(FILE *f, const sim_airframe_t *a, const char *source, con
 {
     double J[3], drag[3];
     for (int i = 0; i < 3; ++i) {
-        J[i] = sim_airframe_inertia(i, a->axis[i].b0);
-        if (!isfinite(J[i])) {
+        J[i] = i < 2 ? sim_airframe_inertia(i, a->axis[i].b0) : SIM_AIRFRAME_YAW_INERTIA_SHARE * (J[0] + J[1]);
+        if (!isfinite(J[i]) || !(a->axis[i].b0 > 0.0)) {
             snprintf(why, why_len, "%s: no positive b0 identified (%s)", AXIS[i],
                      isfinite(a->axis[i].b0) ? "it came out negative: check the axis's sign" : "too few samples");
             return -1;
@@ -93,14 +100,15 @@ int sim_airframe_write(FILE *f, const sim_airframe_t *a, const char *source, con
     }
     fprintf(f,
             "# The vehicle is nominal (%.3g kg, arm %.3g m, thrust to weight 2): a command of 1 is its\n"
-            "# torque authority, and each inertia is that authority over the axis's b0.\n\n",
+            "# torque authority; roll's and pitch's inertia are that authority over their b0, yaw's\n"
+            "# inertia is 0.9 (Jx + Jy) and its torque coefficient gives it yaw's b0.\n\n",
             SIM_AIRFRAME_MASS_KG, SIM_AIRFRAME_ARM_M);
     fprintf(f, "[run]\nduration_s = 30\ncontrol_dt_s = %.9g\nplant_substeps = %d\nseed = 1\n", a->dt_s, substeps);
     fprintf(f, "controllers = HP-MLADRC LP-MLADRC LADRC RATE-ADRC CASCADED INDI\n\n");
     fprintf(f, "[vehicle]\nmass_kg = %.9g\ninertia_kg_m2 = %.9g %.9g %.9g\narm_m = %.9g\n", SIM_AIRFRAME_MASS_KG, J[0],
             J[1], J[2], SIM_AIRFRAME_ARM_M);
     fprintf(f, "thrust_coeff_N_s2 = %.9g\nyaw_coeff_Nm_s2 = %.9g\nrot_drag_Nm_s = %.9g\ng_m_s2 = %.9g\n\n",
-            SIM_AIRFRAME_THRUST_COEFF_N_S2, SIM_AIRFRAME_YAW_COEFF_NM_S2, kt, SIM_AIRFRAME_G_M_S2);
+            SIM_AIRFRAME_THRUST_COEFF_N_S2, sim_airframe_yaw_coeff(a->axis[2].b0, J[2]), kt, SIM_AIRFRAME_G_M_S2);
     fprintf(f, "[rotors]\nideal = no\nw2_min_rad2_s2 = %.9g\nw2_max_rad2_s2 = %.9g\nmotor_tau_s = %.9g\n\n",
             0.05 * w2_hover, 2.0 * w2_hover, tau);
     fprintf(f, "[sensors]\nangle_noise_std_deg = 0.05\ndelay_ticks = %d\nuse_rate = yes\n", delay);

@@ -7,8 +7,10 @@
  * The log gives each axis's b0 per unit of normalised command, not an
  * inertia: the scenario takes a nominal vehicle (1 kg, 0.1 m arm, thrust to
  * weight 2) whose torque authority (sim_setup_authority_Nm) is what a
- * command of 1 means, and the inertia J = authority / b0 on each axis, so
- * that the plant's b0 is the log's. Rate damping: the median over the axes
+ * command of 1 means, and the inertia J = authority / b0 on roll and pitch;
+ * yaw's inertia is SIM_AIRFRAME_YAW_INERTIA_SHARE of their sum and its torque
+ * coefficient is set to give yaw's b0: the plant's b0 is the log's on every
+ * axis. Rate damping: the median over the axes
  * of a J. Motor lag: the median of the axes'. Delay: the median in ticks.
  * Gyro noise: its white floor as rate_noise_std, or, with a noise series,
  * the log's own noise (vibration lines included) replayed from that file.
@@ -25,7 +27,9 @@
 #define SIM_AIRFRAME_MASS_KG 1.0
 #define SIM_AIRFRAME_ARM_M 0.1
 #define SIM_AIRFRAME_THRUST_COEFF_N_S2 1e-5
-#define SIM_AIRFRAME_YAW_COEFF_NM_S2 2.5e-7 /* yaw authority a quarter of roll's */
+/* Yaw's inertia: this share of Jx + Jy (a rigid body's Jz is at most their
+ * sum; quadrotors' is 1.6-2 Jx); its torque coefficient then gives yaw's b0. */
+#define SIM_AIRFRAME_YAW_INERTIA_SHARE 0.9
 #define SIM_AIRFRAME_G_M_S2 9.81
 
 typedef struct {
@@ -40,8 +44,13 @@ typedef struct {
 /* The band of the gyro's spectrum its floor is taken over (Hz), at sample rate fs. */
 void sim_airframe_floor_band(double fs_hz, double *lo_hz, double *hi_hz);
 
-/* The inertia (kg m^2) the scenario gives axis i for b0 (NaN when b0 is not > 0). */
+/* The inertia (kg m^2) the scenario gives roll (0) or pitch (1) for b0: the
+ * axis's authority over b0 (NaN when b0 is not > 0). */
 double sim_airframe_inertia(int axis, double b0);
+
+/* The yaw torque coefficient (N m s^2) that makes yaw's authority over
+ * inertia_yaw equal b0_yaw. */
+double sim_airframe_yaw_coeff(double b0_yaw, double inertia_yaw);
 
 /* Writes the scenario to f: `source` names the log in its comment (a file
  * name, no folders), `noise_series` the noise file next to it (NULL: none).

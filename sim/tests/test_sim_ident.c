@@ -2,13 +2,19 @@
 /* Identification from a log's gyro and command (log/ident.h) on small closed
  * loops with known plants (ident_loop.h), and the Welch spectrum
  * (log/spectrum.h) it reports the gyro's noise with. */
+#define _POSIX_C_SOURCE 200809L /* open_memstream */
 #include "unity.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "ident_loop.h"
+#include "log/airframe.h"
 #include "log/ident.h"
+#include "scenario/scenario.h"
+#include "scenario/setup.h"
 #include "log/spectrum.h"
 
 #define DT_S 0.001
@@ -256,6 +262,50 @@ static void test_spectra_pushed_together_equal_spectra_pushed_alone(void)
     }
 }
 
+/* The scenario of an identified airframe: its plant's b0 (authority over
+ * inertia) is the identified one on every axis, to the 9 digits written;
+ * the median lag and delay; a rigid body (yaw's inertia below Jx + Jy) even
+ * where yaw's b0 is a tenth of roll's, as on real quadrotors. */
+static void test_the_airframe_scenario_has_the_identified_b0_lag_and_delay(void)
+{
+    static sim_airframe_t af;
+    static sim_scenario_t sc;
+    const double b0[3] = {240.0, 210.0, 24.0}, lag_s[3] = {0.021, 0.025, 0.030};
+    const int delay[3] = {2, 3, 3};
+    af.dt_s = 0.001;
+    for (int i = 0; i < 3; ++i) {
+        af.axis[i].b0 = b0[i];
+        af.axis[i].lag_s = lag_s[i];
+        af.axis[i].delay_ticks = delay[i];
+        af.axis[i].damping_per_s = 2.0;
+        af.noise_floor_rad_s_rthz[i] = 5e-4;
+    }
+    char *text = NULL, why[256];
+    size_t len = 0;
+    FILE *mem = open_memstream(&text, &len);
+    TEST_ASSERT_NOT_NULL(mem);
+    TEST_ASSERT_EQUAL_INT(0, sim_airframe_write(mem, &af, "test.csv", NULL, why, sizeof why));
+    TEST_ASSERT_EQUAL_INT(0, fclose(mem));
+    sim_parse_error_t err;
+    const int parsed = sim_scenario_parse(&sc, text, "airframe.ini", &err);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, parsed, err.message);
+    free(text);
+    for (int i = 0; i < 3; ++i) {
+        const double plant_b0 = sim_setup_authority_Nm(&sc, i) / sc.inertia_kg_m2[i];
+        TEST_ASSERT_TRUE(fabs(plant_b0 - b0[i]) <= 1e-8 * b0[i]);
+    }
+    TEST_ASSERT_TRUE(sc.inertia_kg_m2[2] < sc.inertia_kg_m2[0] + sc.inertia_kg_m2[1]);
+    TEST_ASSERT_TRUE(fabs(sc.motor_tau_s - 0.025) < 1e-12);
+    TEST_ASSERT_EQUAL_INT(3, sc.delay_ticks);
+    /* a negative b0 writes no scenario, and says why */
+    af.axis[1].b0 = -5.0;
+    mem = open_memstream(&text, &len);
+    TEST_ASSERT_EQUAL_INT(-1, sim_airframe_write(mem, &af, "test.csv", NULL, why, sizeof why));
+    fclose(mem);
+    free(text);
+    TEST_ASSERT_NOT_NULL(strstr(why, "pitch"));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -267,5 +317,6 @@ int main(void)
     RUN_TEST(test_too_few_samples_give_no_numbers);
     RUN_TEST(test_spectrum_finds_the_floor_and_a_line);
     RUN_TEST(test_spectra_pushed_together_equal_spectra_pushed_alone);
+    RUN_TEST(test_the_airframe_scenario_has_the_identified_b0_lag_and_delay);
     return UNITY_END();
 }
