@@ -38,8 +38,9 @@
 #   cross        library with -Werror for Cortex-M0 (soft float), Cortex-M7
 #                (fpv5-d16, LADRC_REAL_DOUBLE) and RV32IMAC (picolibc), each
 #                linked into a small program; no-heap check of each archive
-#   fuzz         tools/fuzz.sh: the libFuzzer targets of the scenario parser
-#                and the expression compiler (clang, ASan + UBSan), 60 s each
+#   fuzz         tools/fuzz.sh: the libFuzzer targets of the scenario parser,
+#                the expression compiler and the flight-log reader (clang,
+#                ASan + UBSan), 60 s each
 #   apidocs      the Doxygen API reference (target docs) with warnings as
 #                errors, then tools/check_apidocs.sh: the check must fail on
 #                a missing doc comment, @param or @ref
