@@ -9,47 +9,12 @@
 
 #define FIRST_TAU_S 0.0005 /* the coarse grid's first lag after 0 */
 
-/* A second-order high-pass section of quality q. */
-static biquad_coef_t highpass_section(double fc_hz, double dt_s, double q)
-{
-    const double k = tan(PI * fc_hz * dt_s), norm = 1.0 / (1.0 + k / q + k * k);
-    const biquad_coef_t c = {norm, -2.0 * norm, norm, 2.0 * (k * k - 1.0) * norm, (1.0 - k / q + k * k) * norm};
-    return c;
-}
-
-/* A second-order low-pass section of quality q (1/q the damping's double). */
-static biquad_coef_t lowpass_section(double fc_hz, double dt_s, double q)
-{
-    const double k = tan(PI * fc_hz * dt_s), norm = 1.0 / (1.0 + k / q + k * k);
-    const biquad_coef_t c = {k * k * norm, 2.0 * k * k * norm, k * k * norm, 2.0 * (k * k - 1.0) * norm,
-                             (1.0 - k / q + k * k) * norm};
-    return c;
-}
-
-/* Transposed direct form II. */
-static double biquad_step(const biquad_coef_t *c, biquad_t *s, double x)
-{
-    const double y = c->b0 * x + s->z1;
-    s->z1 = c->b1 * x - c->a1 * y + s->z2;
-    s->z2 = c->b2 * x - c->a2 * y;
-    return y;
-}
-
 /* The prefilter: a band from SIM_IDENT_HIGHPASS_HZ (second-order
  * high-pass: the slow disturbances the loop cancels, wind and trim, are
  * correlated with the command and would bias the fit) to the corner
  * (fourth-order low-pass, -24 dB an octave above it, where the rotors'
  * vibration lines lie: their frequency follows the command too). */
-static const double PREFILTER_Q[PREFILTER_SECTIONS] = {0.54119610014619690, 1.30656296487637653, 0.70710678118654752};
-
-/* A biquad settled on a constant input x. */
-static void biquad_settle(const biquad_coef_t *c, biquad_t *s, double x)
-{
-    const double gain = (c->b0 + c->b1 + c->b2) / (1.0 + c->a1 + c->a2);
-    const double y = gain * x;
-    s->z2 = c->b2 * x - c->a2 * y;
-    s->z1 = c->b1 * x - c->a1 * y + s->z2;
-}
+static const double PREFILTER_Q[PREFILTER_SECTIONS] = {0.54119610014619690, 1.30656296487637653, BIQUAD_Q_BUTTERWORTH};
 
 static double prefilter_step(const biquad_coef_t *c, prefilter_t *f, double x)
 {
@@ -90,9 +55,9 @@ sim_ident_t *sim_ident_new(const sim_ident_options_t *opt)
         id->delay_max = SIM_IDENT_MAX_DELAY;
     }
     for (int i = 0; i < 2; ++i) {
-        id->lpf[i] = lowpass_section(id->opt.prefilter_hz, opt->dt_s, PREFILTER_Q[i]);
+        id->lpf[i] = biquad_lowpass(id->opt.prefilter_hz, opt->dt_s, PREFILTER_Q[i]);
     }
-    id->lpf[2] = highpass_section(SIM_IDENT_HIGHPASS_HZ, opt->dt_s, PREFILTER_Q[2]);
+    id->lpf[2] = biquad_highpass(SIM_IDENT_HIGHPASS_HZ, opt->dt_s, PREFILTER_Q[2]);
     /* the low-pass settles in some 6 / fc; the ring fills in delay_max + 1 */
     id->skip = (int)ceil(6.0 / (id->opt.prefilter_hz * opt->dt_s));
     if (id->skip < id->delay_max + 2) {

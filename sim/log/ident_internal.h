@@ -6,20 +6,13 @@
 #ifndef LADRC_SIM_IDENT_INTERNAL_H
 #define LADRC_SIM_IDENT_INTERNAL_H
 
+#include "biquad.h"
 #include "ident.h"
 
 #define PI 3.14159265358979323846
 #define RING (SIM_IDENT_MAX_DELAY + 1)
 #define MAX_CHANNELS (SIM_IDENT_COARSE_TAUS > SIM_IDENT_FINE_TAUS ? SIM_IDENT_COARSE_TAUS : SIM_IDENT_FINE_TAUS)
 #define PREFILTER_SECTIONS 3 /* two low-pass, one high-pass */
-
-/* A second-order section (bilinear, prewarped) and its state. */
-typedef struct {
-    double b0, b1, b2, a1, a2;
-} biquad_coef_t;
-typedef struct {
-    double z1, z2;
-} biquad_t;
 
 /* The prefilter's sections' states (ident.c: the band-pass both sides go through). */
 typedef struct {

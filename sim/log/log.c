@@ -8,7 +8,6 @@
 
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,25 +18,6 @@
 #define K_MAX 4611686018427387904.0      /* 2^62 */
 #define TIME_SPAN_US 18014398509481984.0 /* 2^54 */
 #define DT_MIN_S 1e-6
-
-#if defined(__GNUC__)
-#define LOG_PRINTF_LIKE(f, a) __attribute__((format(printf, f, a)))
-#else
-#define LOG_PRINTF_LIKE(f, a)
-#endif
-
-static int LOG_PRINTF_LIKE(5, 6)
-    fail(sim_log_error_t *err, const char *path, int line, int column, const char *format, ...)
-{
-    va_list ap;
-    snprintf(err->path, sizeof err->path, "%s", path);
-    err->line = line;
-    err->column = column;
-    va_start(ap, format);
-    vsnprintf(err->message, sizeof err->message, format, ap);
-    va_end(ap);
-    return -1;
-}
 
 void sim_log_options_default(sim_log_options_t *o)
 {
@@ -74,19 +54,19 @@ void sim_log_error_format(const sim_log_error_t *err, char *buf, size_t len)
 static int check_options(const sim_log_options_t *o, const char *path, sim_log_error_t *err)
 {
     if ((int)o->format < 0 || (int)o->format > 2) {
-        return fail(err, path, 0, 0, "unknown log form %d", (int)o->format);
+        return sim_log_fail(err, path, 0, 0, "unknown log form %d", (int)o->format);
     }
     if (!(o->dt_s == 0.0 || (o->dt_s >= DT_MIN_S && isfinite(o->dt_s)))) {
-        return fail(err, path, 0, 0, "dt_s %g: 0 (the log's median row period) or 1e-6 s and up", o->dt_s);
+        return sim_log_fail(err, path, 0, 0, "dt_s %g: 0 (the log's median row period) or 1e-6 s and up", o->dt_s);
     }
     if (!(o->t_from_s >= 0.0 && isfinite(o->t_from_s) && isfinite(o->t_to_s))) {
-        return fail(err, path, 0, 0, "window %g to %g s: from 0 s up, finite", o->t_from_s, o->t_to_s);
+        return sim_log_fail(err, path, 0, 0, "window %g to %g s: from 0 s up, finite", o->t_from_s, o->t_to_s);
     }
     if (o->t_to_s > 0.0 && o->t_to_s <= o->t_from_s) {
-        return fail(err, path, 0, 0, "empty window: %g to %g s", o->t_from_s, o->t_to_s);
+        return sim_log_fail(err, path, 0, 0, "empty window: %g to %g s", o->t_from_s, o->t_to_s);
     }
     if (o->n_map < 0 || o->n_map > SIM_LOG_MAX_MAP) {
-        return fail(err, path, 0, 0, "%d map items (0 to %d)", o->n_map, SIM_LOG_MAX_MAP);
+        return sim_log_fail(err, path, 0, 0, "%d map items (0 to %d)", o->n_map, SIM_LOG_MAX_MAP);
     }
     return 0;
 }
@@ -102,14 +82,14 @@ static sim_log_t *start(const sim_log_options_t *opt, const char *path, sim_log_
     sim_log_item_t *t = log != NULL ? &log->px4_time : NULL;
     if (log == NULL || (log->files = calloc(file_slots, sizeof *log->files)) == NULL) {
         free(log);
-        fail(err, path, 0, 0, "out of memory");
+        sim_log_fail(err, path, 0, 0, "out of memory");
         return NULL;
     }
     log->format = opt->format;
     snprintf(log->path, sizeof log->path, "%s", path);
     char message[sizeof err->message];
     if (sim_log_map_build(&log->map, opt->format, opt->map, opt->n_map, message, sizeof message) != 0) {
-        fail(err, path, 0, 0, "%s", message);
+        sim_log_fail(err, path, 0, 0, "%s", message);
         sim_log_close(log);
         return NULL;
     }
@@ -138,8 +118,8 @@ static int check_quat(sim_log_t *log, sim_log_group_t g, sim_log_error_t *err)
         const sim_log_file_t *f = &log->files[log->slot_file[with]];
         sim_log_slot_name(without, a, sizeof a);
         sim_log_slot_name(with, b, sizeof b);
-        return fail(err, f->path, f->header_line, f->header_end,
-                    "no column for %s while %s has one (a quaternion takes all four)", a, b);
+        return sim_log_fail(err, f->path, f->header_line, f->header_end,
+                            "no column for %s while %s has one (a quaternion takes all four)", a, b);
     }
     return 0;
 }
@@ -225,8 +205,8 @@ static int find_start(sim_log_t *log, sim_log_error_t *err)
             return -1;
         }
         if (rc == 0) {
-            return fail(err, f->path, 0, 0, "no overlap in time: it ends at %.9g s, before %s starts at %.9g s",
-                        f->t0 * 1e-6, log->files[latest].path, log->t_first_us * 1e-6);
+            return sim_log_fail(err, f->path, 0, 0, "no overlap in time: it ends at %.9g s, before %s starts at %.9g s",
+                                f->t0 * 1e-6, log->files[latest].path, log->t_first_us * 1e-6);
         }
     }
     return 0;
@@ -261,7 +241,7 @@ static void set_grid(sim_log_t *log, const sim_log_options_t *opt)
 static sim_log_t *finish_open(sim_log_t *log, const sim_log_options_t *opt, sim_log_error_t *err)
 {
     if (log->n_files == 0) {
-        fail(err, log->path, 0, 0, "no topic file has a mapped column");
+        sim_log_fail(err, log->path, 0, 0, "no topic file has a mapped column");
     } else if (find_fields(log, err) == 0 && find_start(log, err) == 0) {
         set_grid(log, opt);
         return log;
@@ -332,14 +312,16 @@ static sim_log_t *open_px4(sim_log_t *log, const sim_log_options_t *opt, sim_log
     sim_log_px4_base(opt->path, topics, n, base, sizeof base);
     for (int i = 0; rc == 0 && i < n; ++i) {
         if (sim_log_px4_topic_path(base, topics[i], path, sizeof path) != 0) {
-            rc = fail(err, base, 0, 0, "the path of topic %s is longer than %d bytes", topics[i], SIM_LOG_PATH_LEN - 1);
+            rc = sim_log_fail(err, base, 0, 0, "the path of topic %s is longer than %d bytes", topics[i],
+                              SIM_LOG_PATH_LEN - 1);
             break;
         }
         FILE *stream = fopen(path, "rb");
         if (stream != NULL) {
             rc = open_file(log, stream, 1, path, topics[i], err);
         } else if (needs_topic(&log->map, topics[i], field, sizeof field)) {
-            rc = fail(err, path, 0, 0, "cannot open: %s (topic %s, needed for %s)", strerror(errno), topics[i], field);
+            rc = sim_log_fail(err, path, 0, 0, "cannot open: %s (topic %s, needed for %s)", strerror(errno), topics[i],
+                              field);
         } /* else its items are optional: absent */
     }
     if (rc == 0) {
@@ -360,7 +342,7 @@ sim_log_t *sim_log_open(const sim_log_options_t *opt, sim_log_error_t *err)
     }
     FILE *stream = fopen(opt->path, "rb");
     if (stream == NULL) {
-        fail(err, opt->path, 0, 0, "cannot open: %s", strerror(errno));
+        sim_log_fail(err, opt->path, 0, 0, "cannot open: %s", strerror(errno));
     } else if (open_file(log, stream, 1, opt->path, NULL, err) == 0) {
         return finish_open(log, opt, err);
     }
@@ -371,7 +353,7 @@ sim_log_t *sim_log_open(const sim_log_options_t *opt, sim_log_error_t *err)
 sim_log_t *sim_log_open_stream(FILE *stream, const char *name, const sim_log_options_t *opt, sim_log_error_t *err)
 {
     if (opt->format == SIM_LOG_PX4) {
-        fail(err, name, 0, 0, "the px4 form is read from its topic files, not a stream");
+        sim_log_fail(err, name, 0, 0, "the px4 form is read from its topic files, not a stream");
         return NULL;
     }
     sim_log_t *log = start(opt, name, err);

@@ -8,12 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#if defined(__GNUC__)
-#define LOG_PRINTF_LIKE(f, a) __attribute__((format(printf, f, a)))
-#else
-#define LOG_PRINTF_LIKE(f, a)
-#endif
-
 /* 2^53 us (285 years): every whole microsecond up to it is a double, so
  * tick times computed in integers compare exactly with the rows'. */
 #define TIME_MAX_US 9007199254740992.0
@@ -25,9 +19,10 @@
 #define SNAP_ULPS 8.0
 #define SHOWN 40 /* characters of a cell quoted in a message */
 
-static int LOG_PRINTF_LIKE(4, 5) fail(sim_log_error_t *err, int line, int column, const char *format, ...)
+int sim_log_fail(sim_log_error_t *err, const char *path, int line, int column, const char *format, ...)
 {
     va_list ap;
+    snprintf(err->path, sizeof err->path, "%s", path);
     err->line = line;
     err->column = column;
     va_start(ap, format);
@@ -72,12 +67,13 @@ static int resolve(sim_log_file_t *f, sim_log_error_t *err)
             found |= f->col[i][k] >= 0;
             if (f->col[i][k] < 0 && !it->term[k].optional) {
                 sim_log_slot_name(it->slot, field, sizeof field);
-                return fail(err, f->header_line, f->header_end, "no column '%s' (needed for %s)", it->term[k].column,
-                            field);
+                return sim_log_fail(err, f->path, f->header_line, f->header_end, "no column '%s' (needed for %s)",
+                                    it->term[k].column, field);
             }
         }
         if (i == 0 && !found) { /* a time made of optional columns only */
-            return fail(err, f->header_line, f->header_end, "no column '%s' (needed for time)", it->term[0].column);
+            return sim_log_fail(err, f->path, f->header_line, f->header_end, "no column '%s' (needed for time)",
+                                it->term[0].column);
         }
     }
     return 0;
@@ -171,11 +167,11 @@ static int parse_cells(sim_log_file_t *f, sim_log_error_t *err)
         }
         if (sim_log_number(cell->text, cell->len, &f->cell_v[col]) != 0) {
             if (cell->len == 0) {
-                return fail(err, c->line_no, cell->column, "not a finite number in column '%s': empty cell",
-                            column_name(f, col));
+                return sim_log_fail(err, f->path, c->line_no, cell->column,
+                                    "not a finite number in column '%s': empty cell", column_name(f, col));
             }
-            return fail(err, c->line_no, cell->column, "not a finite number in column '%s': '%.*s'",
-                        column_name(f, col), shown(cell->len), cell->text);
+            return sim_log_fail(err, f->path, c->line_no, cell->column, "not a finite number in column '%s': '%.*s'",
+                                column_name(f, col), shown(cell->len), cell->text);
         }
     }
     return 0;
@@ -195,11 +191,12 @@ static int read_row(sim_log_file_t *f, double *t_us, double *v, sim_log_error_t 
         return rc;
     }
     if (c->n_cells < f->n_header) {
-        return fail(err, c->line_no, c->end_column, "row has %d cells, the header %d", c->n_cells, f->n_header);
+        return sim_log_fail(err, f->path, c->line_no, c->end_column, "row has %d cells, the header %d", c->n_cells,
+                            f->n_header);
     }
     if (c->n_cells > f->n_header) {
-        return fail(err, c->line_no, c->cells[f->n_header].column, "row has %d cells, the header %d", c->n_cells,
-                    f->n_header);
+        return sim_log_fail(err, f->path, c->line_no, c->cells[f->n_header].column, "row has %d cells, the header %d",
+                            c->n_cells, f->n_header);
     }
     if (parse_cells(f, err) != 0) {
         return -1;
@@ -207,14 +204,15 @@ static int read_row(sim_log_file_t *f, double *t_us, double *v, sim_log_error_t 
     int col;
     double t = snap_whole(item_sum(f, 0, &col) * f->time_to_us, SNAP_ULPS * DBL_EPSILON);
     if (!(fabs(t) <= TIME_MAX_US)) {
-        return fail(err, c->line_no, column_of(f, col), "time %.9g s is beyond the reader's range (2^53 us)", t * 1e-6);
+        return sim_log_fail(err, f->path, c->line_no, column_of(f, col),
+                            "time %.9g s is beyond the reader's range (2^53 us)", t * 1e-6);
     }
     if (f->rows > 0 && t <= f->last_read_us) {
         if (t == f->last_read_us) {
-            return fail(err, c->line_no, column_of(f, col), "time repeats (%.9g s)", t * 1e-6);
+            return sim_log_fail(err, f->path, c->line_no, column_of(f, col), "time repeats (%.9g s)", t * 1e-6);
         }
-        return fail(err, c->line_no, column_of(f, col), "time goes back from %.9g s to %.9g s", f->last_read_us * 1e-6,
-                    t * 1e-6);
+        return sim_log_fail(err, f->path, c->line_no, column_of(f, col), "time goes back from %.9g s to %.9g s",
+                            f->last_read_us * 1e-6, t * 1e-6);
     }
     for (int i = 1; i <= f->n_items; ++i) {
         f->present[i - 1] = 0;
@@ -228,8 +226,8 @@ static int read_row(sim_log_file_t *f, double *t_us, double *v, sim_log_error_t 
         if (!(fabs(v[i - 1]) <= VALUE_MAX)) {
             char field[32];
             sim_log_slot_name(f->slot[i - 1], field, sizeof field);
-            return fail(err, c->line_no, column_of(f, col), "%s is %g, beyond the reader's range (1e15)", field,
-                        v[i - 1]);
+            return sim_log_fail(err, f->path, c->line_no, column_of(f, col),
+                                "%s is %g, beyond the reader's range (1e15)", field, v[i - 1]);
         }
     }
     *t_us = t;
@@ -296,7 +294,7 @@ static int hold_first_rows(sim_log_file_t *f, sim_log_error_t *err)
     size_t cap = 0;
     while (f->buf_n < SIM_LOG_PERIOD_ROWS) {
         if ((size_t)f->buf_n == cap && grow_held(f, &cap) != 0) {
-            return fail(err, 0, 0, "out of memory");
+            return sim_log_fail(err, f->path, 0, 0, "out of memory");
         }
         const int rc = read_row(f, &f->buf_t[f->buf_n], &f->buf_v[(size_t)f->buf_n * stride], err);
         if (rc < 0) {
@@ -310,11 +308,11 @@ static int hold_first_rows(sim_log_file_t *f, sim_log_error_t *err)
     if (f->buf_n < 2) {
         int line, column;
         sim_log_csv_end(&f->csv, &line, &column);
-        return fail(err, line, column, "fewer than 2 rows (%d)", f->buf_n);
+        return sim_log_fail(err, f->path, line, column, "fewer than 2 rows (%d)", f->buf_n);
     }
     double *period = malloc((size_t)(f->buf_n - 1) * sizeof *period);
     if (period == NULL) {
-        return fail(err, 0, 0, "out of memory");
+        return sim_log_fail(err, f->path, 0, 0, "out of memory");
     }
     for (int i = 1; i < f->buf_n; ++i) {
         period[i - 1] = f->buf_t[i] - f->buf_t[i - 1];
@@ -343,7 +341,7 @@ static int open_rest(sim_log_file_t *f, sim_log_error_t *err)
 {
     int rc = sim_log_csv_init(&f->csv, f->f);
     if (rc != 0) {
-        return fail(err, 0, 0, "out of memory");
+        return sim_log_fail(err, f->path, 0, 0, "out of memory");
     }
     f->csv_ready = 1;
     rc = sim_log_csv_next(&f->csv, err);
@@ -353,7 +351,7 @@ static int open_rest(sim_log_file_t *f, sim_log_error_t *err)
     if (rc == 0) {
         int line, column;
         sim_log_csv_end(&f->csv, &line, &column);
-        return fail(err, line, column, "no header line");
+        return sim_log_fail(err, f->path, line, column, "no header line");
     }
     f->n_header = f->csv.n_cells;
     f->header_line = f->csv.line_no;
@@ -366,7 +364,7 @@ static int open_rest(sim_log_file_t *f, sim_log_error_t *err)
     f->v0 = malloc(((size_t)f->n_items + 1) * sizeof *f->v0);
     f->v1 = malloc(((size_t)f->n_items + 1) * sizeof *f->v1);
     if (f->cell_v == NULL || f->v0 == NULL || f->v1 == NULL) {
-        return fail(err, 0, 0, "out of memory");
+        return sim_log_fail(err, f->path, 0, 0, "out of memory");
     }
     if (hold_first_rows(f, err) != 0) {
         return -1;

@@ -50,6 +50,17 @@ typedef struct {
     double longest_gap_us;
 } sim_log_file_t;
 
+#if defined(__GNUC__)
+#define SIM_LOG_PRINTF_LIKE(f, a) __attribute__((format(printf, f, a)))
+#else
+#define SIM_LOG_PRINTF_LIKE(f, a)
+#endif
+
+/* The reader's one form of an error: *err set to path, line, column and
+ * the message; returns -1. */
+int SIM_LOG_PRINTF_LIKE(5, 6)
+    sim_log_fail(sim_log_error_t *err, const char *path, int line, int column, const char *format, ...);
+
 /* Reads the header and the first rows of stream (closed with the file when
  * own), for the time item (kept, as map) and the items of map whose topic is `topic`
  * (every item but the time when topic is NULL), and puts the bracket on its

@@ -2,33 +2,14 @@
 /* A log's airframe (log_identify.h). */
 #include "log_identify.h"
 
+#include "biquad.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
-#define PI 3.14159265358979323846
 #define PROGRESS_EVERY 65536 /* ticks between progress calls */
 #define LINE_MIN_RATIO 10.0  /* a vibration line: a peak 10 dB over the floor */
-
-/* Second-order Butterworth high-pass, bilinear with a prewarped corner,
- * for the noise series: the flight's motion out, the sensor's noise in. */
-typedef struct {
-    double b0, b1, b2, a1, a2, z1, z2;
-} highpass_t;
-
-static void highpass_init(highpass_t *h, double fc_hz, double dt_s)
-{
-    const double k = tan(PI * fc_hz * dt_s), q = sqrt(2.0), norm = 1.0 / (1.0 + q * k + k * k);
-    *h = (highpass_t){norm, -2.0 * norm, norm, 2.0 * (k * k - 1.0) * norm, (1.0 - q * k + k * k) * norm, 0.0, 0.0};
-}
-
-static double highpass_step(highpass_t *h, double x)
-{
-    const double y = h->b0 * x + h->z1;
-    h->z1 = h->b1 * x - h->a1 * y + h->z2;
-    h->z2 = h->b2 * x - h->a2 * y;
-    return y;
-}
 
 double sim_log_noise_corner_hz(double fs_hz)
 {
@@ -46,7 +27,8 @@ typedef struct {
     sim_spectrum_t spectrum[3];
     long long rotor_hist[ROTOR_HIST_HZ];
     long long rotor_count;
-    highpass_t hp[3];
+    biquad_coef_t hp; /* the noise series' high-pass: the flight's motion out, the sensor's noise in */
+    biquad_t hp_state[3];
     FILE *noise;
     long long noise_rows, noise_rows_max;
 } survey_t;
@@ -56,7 +38,7 @@ static int survey_open(survey_t *s, const sim_log_identify_options_t *o, double 
     memset(s, 0, sizeof *s);
     for (int i = 0; i < 3; ++i) {
         sim_spectrum_init(&s->spectrum[i], 1.0 / dt_s);
-        highpass_init(&s->hp[i], sim_log_noise_corner_hz(1.0 / dt_s), dt_s);
+        s->hp = biquad_highpass(sim_log_noise_corner_hz(1.0 / dt_s), dt_s, BIQUAD_Q_BUTTERWORTH);
     }
     if (o->noise_series == NULL) {
         return 0;
@@ -121,7 +103,7 @@ static void survey_add(survey_t *s, double t_s, const double gyro[3])
     double hp[3];
     for (int i = 0; i < 3; ++i) {
         sim_spectrum_push(&s->spectrum[i], gyro[i]);
-        hp[i] = highpass_step(&s->hp[i], gyro[i]);
+        hp[i] = biquad_step(&s->hp, &s->hp_state[i], gyro[i]);
     }
     if (s->noise != NULL && s->noise_rows < s->noise_rows_max) {
         fprintf(s->noise, "%.9g, %.9g, %.9g, %.9g\n", t_s, hp[0], hp[1], hp[2]);

@@ -73,13 +73,6 @@ int sim_replay_init(sim_replay_t *r, const sim_scenario_t *sc, const sim_control
     return 0;
 }
 
-/* An angle into (-pi, pi], itself bit for bit when it is there already (as the simulator gives yaw). */
-static double wrap_pi(double x)
-{
-    const double pi = 3.14159265358979323846;
-    return (x > -pi && x <= pi) ? x : x - 2.0 * pi * ceil((x - pi) / (2.0 * pi));
-}
-
 static ladrc_quat_t to_quat(const double q[4])
 {
     const ladrc_quat_t out = {(ladrc_real_t)q[0], (ladrc_real_t)q[1], (ladrc_real_t)q[2], (ladrc_real_t)q[3]};
@@ -137,7 +130,7 @@ void sim_replay_step(sim_replay_t *r, const sim_log_sample_t *s, unsigned has, s
         ladrc_real_t torque[3], a[3];
         memcpy(a, angle, sizeof a);
         if (r->wrap_yaw[c]) {
-            a[2] = (ladrc_real_t)wrap_pi((double)angle[2]);
+            a[2] = (ladrc_real_t)sim_wrap_pi((double)angle[2]);
         }
         const ladrc_fault_t f = r->quat_frame ? ladrc_attitude_step_quat(&r->att[c], &qref, &meas, rate, torque)
                                               : ladrc_attitude_step(&r->att[c], ref, a, rate, torque);

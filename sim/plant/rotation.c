@@ -73,3 +73,9 @@ void sim_quat_error(const double q[4], const double q_ref[4], double error_rad[3
     sim_quat_mul(conj, q_ref, e);
     sim_quat_rotvec(e, error_rad);
 }
+
+double sim_wrap_pi(double x)
+{
+    const double pi = 3.14159265358979323846;
+    return (x > -pi && x <= pi) ? x : x - 2.0 * pi * ceil((x - pi) / (2.0 * pi));
+}

@@ -9,6 +9,10 @@
 #ifndef LADRC_SIM_ROTATION_H
 #define LADRC_SIM_ROTATION_H
 
+/* An angle (rad) into (-pi, pi], and itself bit for bit when it is there
+ * already (as an attitude estimator gives yaw to a wrapping controller). */
+double sim_wrap_pi(double x);
+
 /* a b */
 void sim_quat_mul(const double a[4], const double b[4], double out[4]);
 

@@ -42,18 +42,11 @@ static int configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_att
     return 0;
 }
 
-/* An angle into (-pi, pi], and itself bit for bit when it is there already. */
-static double wrap_pi(double x)
-{
-    const double pi = 3.14159265358979323846;
-    return (x > -pi && x <= pi) ? x : x - 2.0 * pi * ceil((x - pi) / (2.0 * pi));
-}
-
 /* ref - angle (rad); on a wrapped axis taken into (-pi, pi]: 359 deg of error is 1 deg. */
 static double tracking_error_rad(double ref_rad, double angle_rad, int wrapped)
 {
     const double e = ref_rad - angle_rad;
-    return wrapped ? wrap_pi(e) : e;
+    return wrapped ? sim_wrap_pi(e) : e;
 }
 
 /* The tracking error of every axis (rad): ref - angle per axis in the Euler
@@ -281,7 +274,7 @@ static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, 
      * a wrapping controller gets yaw in (-pi, pi] after it */
     const double yaw_rad = tk->meas_angle[2];
     if (r->wrap_yaw) {
-        tk->meas_angle[2] = wrap_pi(yaw_rad);
+        tk->meas_angle[2] = sim_wrap_pi(yaw_rad);
     }
     ladrc_real_t signal[6];
     for (int i = 0; i < 3; ++i) {
@@ -300,7 +293,7 @@ static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, 
             r->spec->metrics->faults++;
         }
         if (r->wrap_yaw) {
-            signal[5] = (ladrc_real_t)wrap_pi((double)signal[5]);
+            signal[5] = (ladrc_real_t)sim_wrap_pi((double)signal[5]);
         }
     }
     ladrc_real_t angle[3], rate[3], thrust_N;

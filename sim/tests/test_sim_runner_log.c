@@ -38,7 +38,7 @@ static const char *const PX4_TOPICS[8] = {
     "vehicle_angular_velocity", "sensor_combined",         "vehicle_attitude", "vehicle_attitude_setpoint",
     "vehicle_rates_setpoint",   "vehicle_torque_setpoint", "actuator_motors",  "esc_status"};
 
-/* The headers, as blackbox_decode and ulog2csv write them (the task's lists). */
+/* The headers, as blackbox_decode and ulog2csv write them (docs/csv-format.md). */
 static const char BETAFLIGHT_HEADER[] =
     "loopIteration, time (us), axisP[0], axisP[1], axisP[2], axisI[0], axisI[1], axisI[2], axisD[0], axisD[1], "
     "axisF[0], axisF[1], axisF[2], rcCommand[0], rcCommand[1], rcCommand[2], rcCommand[3], setpoint[0], "

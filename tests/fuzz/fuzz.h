@@ -20,4 +20,8 @@ __attribute__((noreturn, format(printf, 4, 5)))
 #endif
 void fuzz_fail(const char *file, int line, const char *cond, const char *format, ...);
 
+/* The text's line count, and the length (bytes) of its line `line`
+ * (1-based; 0 when there is none): where a refused input's error may lie. */
+void fuzz_measure_lines(const uint8_t *data, size_t size, int line, int *lines, size_t *line_len);
+
 #endif

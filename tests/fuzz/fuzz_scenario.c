@@ -23,26 +23,6 @@
 
 static sim_scenario_t sc;
 
-/* Line count of the text, and the length of line `line` (1-based). */
-static void measure(const uint8_t *data, size_t size, int line, int *lines, size_t *line_len)
-{
-    int n = 1;
-    size_t start = 0;
-    *line_len = 0;
-    for (size_t i = 0; i <= size; ++i) {
-        if (i == size || data[i] == '\n') {
-            if (n == line) {
-                *line_len = i - start;
-            }
-            if (i < size) {
-                ++n;
-                start = i + 1;
-            }
-        }
-    }
-    *lines = n;
-}
-
 static void check_refused(const uint8_t *data, size_t size, const sim_parse_error_t *err)
 {
     int lines;
@@ -54,7 +34,7 @@ static void check_refused(const uint8_t *data, size_t size, const sim_parse_erro
                    "series error without its key: %s", err->message);
         return;
     }
-    measure(data, size, err->line, &lines, &line_len);
+    fuzz_measure_lines(data, size, err->line, &lines, &line_len);
     FUZZ_CHECK(err->line >= 1 && err->line <= lines, "line %d of %d: %s", err->line, lines, err->message);
     FUZZ_CHECK(err->column >= 1 && (size_t)err->column <= line_len + 1, "column %d of a %zu-byte line %d: %s",
                err->column, line_len, err->line, err->message);
