@@ -3,6 +3,7 @@
 """Merges and draws the runs of a campaign flown by `ladrc_sil --campaign` (docs/campaigns.md).
 
 Usage: campaign.py merge OUT
+       campaign.py tunemap OUT [--by NAME]... [--name TEXT]
        campaign.py plot OUT [--x NAME] [--y NAME] [--axis roll|pitch|yaw] [--name TEXT]
                             [--label NAME=TEXT]...
        campaign.py ratio OUT [the same options] [--where NAME=VALUE]...
@@ -12,8 +13,11 @@ one row per run, in run order: `run`, the varied values as in plan.csv, then for
 controller (in metrics.csv order) and axis (roll, pitch, yaw) the columns
 <CTRL>.<axis>.rms_deg (Table 4 error_rms_deg), .band_deg (Table 5 steady_band_deg),
 .max_deg (Table 5 max_error_deg), .settling_s (Table 5 settling_s, or not_settled) and
-.diverged (yes/no). A statistic of a diverged run reads `diverged`. Values are copied as
-metrics.csv wrote them, so the table is the same bytes however the runs were sharded.
+.diverged (yes/no). A statistic of a diverged run reads `diverged`, one of a controller that
+could not be tuned `untunable` (its .diverged too). When any run's metrics.csv has a tuning
+outcome (`tune,status,-,TOKEN`: tuned, defaults, scenario or untunable), each controller's block
+ends with <CTRL>.tune, the token, `-` in runs without one. Values are copied as metrics.csv
+wrote them, so the table is the same bytes however the runs were sharded.
 Runs of the plan without metrics.csv: an error naming them, exit 1, no table written.
 
 plot reads OUT/campaign.csv and draws into OUT/figures/:
@@ -33,6 +37,15 @@ ratio reads OUT/campaign.csv and draws into OUT/figures/:
                            diverged in a run are crossed. It prints, per panel, how many runs
                            reach 0.5 (the suite's target). --where keeps the runs whose
                            varied value NAME reads VALUE (repeatable: all must hold).
+tunemap reads OUT/campaign.csv and draws OUT/figures/tunemap.png: one row per run (or per
+                           group of runs with --by, or by default when there are more than
+                           150 runs: per grid cell, the runs grouped by the varied names with
+                           few values), one column per controller, each cell coloured by
+                           the outcome (tuned, defaults, scenario, untunable, diverged; `no
+                           status` when metrics.csv had none) and annotated with the roll
+                           RMS error (deg); a group's cell takes its most frequent outcome,
+                           the median RMS and how many of its runs had that outcome. It
+                           prints the count of each outcome per controller over the runs.
 --x and --y default to the first two varied names; an axis is labelled with the varied name
 and the unit its suffix names (_s, _deg, _rad_s, ...), or with --label NAME=TEXT. A varied name with few values (a [grid]
 key) gives one cell per value; one with many (a [draw] key) is cut into bins. An axis is
@@ -114,12 +127,16 @@ def read_run_metrics(path, scenario):
     return controllers, values
 
 
-def run_columns(path, controllers, values):
-    """A run's statistics, in campaign.csv's column order."""
+def run_columns(path, controllers, values, with_tune):
+    """A run's statistics, in campaign.csv's column order (with_tune: each controller's block
+    ends with its tuning outcome, `-` when the run has none)."""
     cells = []
     for ctrl in controllers:
+        status = values.get((ctrl, "tune", "status", "-"), "-")
         flag = values.get((ctrl, "-", "diverged", "-"))
-        if flag not in ("0", "1"):
+        if status == "untunable":           # not flown: no diverged flag to read
+            flag = "untunable"
+        elif flag not in ("0", "1"):
             raise CampaignError("%s: no diverged flag (0 or 1) for %s" % (path, ctrl))
         for axis in AXES:
             for _, table, quantity in STATS:
@@ -127,8 +144,14 @@ def run_columns(path, controllers, values):
                 if v is None:
                     raise CampaignError("%s: no %s of %s on %s" % (path, quantity, ctrl, axis))
                 cells.append(v)
-            cells.append("yes" if flag == "1" else "no")
+            cells.append({"1": "yes", "0": "no"}.get(flag, flag))
+        if with_tune:
+            cells.append(status)
     return cells
+
+
+def has_tune_status(values):
+    return any(k[1:] == ("tune", "status", "-") for k in values)
 
 
 def merge_table(out):
@@ -150,7 +173,7 @@ def merge_table(out):
                             " and %d more" % (len(extra) - MISSING_NAMED) if len(extra) > MISSING_NAMED else ""))
 
     first = None
-    lines = []
+    read = []
     for row in plan:
         name = run_dir_name(int(row[0]))
         path = os.path.join(runs_dir, name, "metrics.csv")
@@ -161,13 +184,17 @@ def merge_table(out):
             first = controllers
         elif controllers != first:
             raise CampaignError("%s: controllers %s, run 1 flew %s" % (path, " ".join(controllers), " ".join(first)))
-        lines.append(row + run_columns(path, controllers, values))
+        read.append((row, path, values))
+    with_tune = any(has_tune_status(values) for _, _, values in read)
+    lines = [row + run_columns(path, first, values, with_tune) for row, path, values in read]
 
     columns = list(header)
     for ctrl in first:
         for axis in AXES:
             columns += ["%s.%s.%s" % (ctrl, axis, suffix) for suffix, _, _ in STATS]
             columns.append("%s.%s.diverged" % (ctrl, axis))
+        if with_tune:
+            columns.append("%s.tune" % ctrl)
     text = io.StringIO()
     for line in [columns] + lines:
         for cell in line:
@@ -348,6 +375,8 @@ def plot_maps(out, name, varied, controllers, cols, axis, xname, yname, figdir, 
         nd = np.zeros((ny, ax_x.cells))
         for r in range(n_runs):
             i, j = yidx[r], ax_x.index[r]
+            if div[r] != "yes" and as_numbers([rms[r]]) is None:
+                continue                    # untunable: not flown, neither RMS nor divergence
             n[i, j] += 1
             if div[r] == "yes":
                 nd[i, j] += 1
@@ -473,11 +502,12 @@ def box_data(controllers, cols, axis):
     for ctrl in controllers:
         rms = cols["%s.%s.rms_deg" % (ctrl, axis)]
         div = cols["%s.%s.diverged" % (ctrl, axis)]
-        vals = [float(v) for v, d in zip(rms, div) if d != "yes"]
-        n_div = n_runs - len(vals)
+        vals = [float(v) for v, d in zip(rms, div) if d != "yes" and as_numbers([v]) is not None]
+        n_div = sum(1 for d in div if d == "yes")
+        n_unt = n_runs - len(vals) - n_div
         data.append(vals)
-        labels.append("%s\n%d runs\n%s" % (ctrl, len(vals), "%d diverged, left out" % n_div if n_div
-                                             else "none diverged"))
+        labels.append("%s\n%d runs\n%s%s" % (ctrl, len(vals), "%d diverged, left out" % n_div if n_div
+                                               else "none diverged", "\n%d untunable" % n_unt if n_unt else ""))
     return data, labels
 
 
@@ -618,12 +648,174 @@ def cmd_ratio(args):
     return 0
 
 
+# ---------------------------------------------------------------------------------------------
+# tunemap
+
+# outcome, colour, what it means (the legend); in the order of the text table
+OUTCOMES = [("tuned", "#2ca02c", "tuned: the tuner's gains"),
+            ("defaults", "#9ecae1", "defaults: the library's gains flew better"),
+            ("scenario", "#c7a0d8", "scenario: the file's gains flew better"),
+            ("untunable", "#7f7f7f", "untunable: no candidate flew, not flown"),
+            ("diverged", "#d62728", "diverged"),
+            ("-", "#ffffff", "no tuning status in its metrics.csv")]
+TUNEMAP_MAX_ROWS = 150       # more runs than this: one row per grid cell by default
+
+
+def run_outcome(cols, ctrl, r):
+    """The outcome of controller ctrl in run r (index from 0): an OUTCOMES name."""
+    status = cols.get("%s.tune" % ctrl, ["-"] * (r + 1))[r]
+    if status == "untunable" or cols["%s.roll.rms_deg" % ctrl][r] == "untunable":
+        return "untunable"
+    if cols["%s.roll.diverged" % ctrl][r] == "yes":
+        return "diverged"
+    return status if status in ("tuned", "defaults", "scenario") else "-"
+
+
+def short_name(name):
+    """A varied name without its section: sensors.delay_ticks -> delay_ticks."""
+    return name.split(".", 1)[1] if "." in name else name
+
+
+def tunemap_rows(varied, cols, by):
+    """[(row label, [run indices])]: one row per run, or per distinct value of the names in by."""
+    n_runs = len(cols["run"])
+    if by is None:
+        if n_runs <= TUNEMAP_MAX_ROWS:
+            by = []
+        else:
+            by = [v for v in varied if len(set(cols[v])) <= MAX_CELLS] or varied[:1]
+    if not by:
+        names = varied
+        return [(("run %s" % cols["run"][r]) + ("" if not names else ": " + ", ".join(
+            "%s=%s" % (short_name(v), cols[v][r]) for v in names)), [r]) for r in range(n_runs)]
+    groups = {}
+    for r in range(n_runs):
+        groups.setdefault(tuple(cols[v][r] for v in by), []).append(r)
+    return [(", ".join("%s=%s" % (short_name(v), k) for v, k in zip(by, key))
+             + (" (%d runs)" % len(runs) if len(runs) > 1 else ""), runs) for key, runs in groups.items()]
+
+
+def tunemap_cell(cols, ctrl, runs):
+    """(outcome, annotation) of a cell over its runs: the most frequent outcome (ties: the
+    earlier in OUTCOMES), the median roll RMS (deg) of the runs flown without diverging, and
+    how many of the runs had that outcome when not all."""
+    outcomes = [run_outcome(cols, ctrl, r) for r in runs]
+    order = [o for o, _, _ in OUTCOMES]
+    best = max(order, key=lambda o: (outcomes.count(o), -order.index(o)))
+    rms = sorted(float(cols["%s.roll.rms_deg" % ctrl][r]) for r, o in zip(runs, outcomes)
+                 if o not in ("untunable", "diverged") and as_numbers([cols["%s.roll.rms_deg" % ctrl][r]]))
+    if rms:
+        mid = len(rms) // 2
+        text = "%.3g" % (rms[mid] if len(rms) % 2 else 0.5 * (rms[mid - 1] + rms[mid]))
+    else:
+        text = {"untunable": "untun.", "diverged": "div."}.get(best, "")
+    if outcomes.count(best) < len(outcomes):
+        text += " (%d/%d)" % (outcomes.count(best), len(outcomes))
+    return best, text
+
+
+def tunemap_counts(controllers, cols):
+    """{controller: {outcome: runs}} over every run."""
+    n_runs = len(cols["run"])
+    counts = {}
+    for ctrl in controllers:
+        c = {o: 0 for o, _, _ in OUTCOMES}
+        for r in range(n_runs):
+            c[run_outcome(cols, ctrl, r)] += 1
+        counts[ctrl] = c
+    return counts
+
+
+def tunemap_table(controllers, counts, n_runs):
+    """The text table of tunemap_counts: a header, then a line per controller."""
+    names = [o for o, _, _ in OUTCOMES]
+    width = max([len("controller")] + [len(c) for c in controllers])
+    lines = ["%-*s  %s" % (width, "controller", "  ".join("%9s" % (o if o != "-" else "no status") for o in names)),]
+    for ctrl in controllers:
+        lines.append("%-*s  %s" % (width, ctrl, "  ".join("%9d" % counts[ctrl][o] for o in names)))
+    lines.append("(runs per controller: %d)" % n_runs)
+    return "\n".join(lines)
+
+
+def plot_tunemap(name, controllers, cols, rows, figdir):
+    import matplotlib.pyplot as plt
+    import numpy as np
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    order = [o for o, _, _ in OUTCOMES]
+    grid = np.zeros((len(rows), len(controllers)))
+    texts = []
+    used = set()
+    for i, (_, runs) in enumerate(rows):
+        line = []
+        for j, ctrl in enumerate(controllers):
+            outcome, text = tunemap_cell(cols, ctrl, runs)
+            grid[i, j] = order.index(outcome)
+            used.add(outcome)
+            line.append(text)
+        texts.append(line)
+    label_w = 0.07 * max(len(lab) for lab, _ in rows)
+    width = max(8.0, label_w + 1.2 * len(controllers) + 0.6)
+    legend_rows = (len(used) + 1) // 2
+    height = 1.0 + 0.2 * legend_rows + 0.5 + 0.27 * len(rows)
+    fig, ax = plt.subplots(figsize=(width, height))
+    fig.subplots_adjust(left=(label_w + 0.25) / width, right=1 - 0.3 / width, top=1 - 0.75 / height,
+                        bottom=(0.35 + 0.2 * legend_rows) / height)
+    cmap = ListedColormap([c for _, c, _ in OUTCOMES])
+    ax.pcolormesh(np.arange(len(controllers) + 1), np.arange(len(rows) + 1), grid, cmap=cmap,
+                  vmin=-0.5, vmax=len(OUTCOMES) - 0.5, edgecolors="#444444", linewidth=0.4)
+    for i in range(len(rows)):
+        for j in range(len(controllers)):
+            dark = order[int(grid[i, j])] in ("tuned", "untunable", "diverged")
+            ax.text(j + 0.5, i + 0.5, texts[i][j], ha="center", va="center", fontsize=7.5,
+                    color="white" if dark else "black")
+    ax.set_xlim(0, len(controllers))
+    ax.set_ylim(len(rows), 0)
+    ax.set_xticks(np.arange(len(controllers)) + 0.5)
+    ax.set_xticklabels(controllers, fontsize=9)
+    ax.xaxis.tick_top()
+    ax.set_yticks(np.arange(len(rows)) + 0.5)
+    ax.set_yticklabels([lab for lab, _ in rows], fontsize=8)
+    ax.tick_params(length=0)
+    handles = [Patch(facecolor=c, edgecolor="#444444", label=text) for o, c, text in OUTCOMES if o in used]
+    fig.legend(handles=handles, loc="lower center", ncol=min(2, len(handles)), frameon=False, fontsize=8,
+               borderaxespad=0.2)
+    fig.suptitle("%s: tuning outcome per controller, roll RMS tracking error (deg) in each cell" % name,
+                 fontsize=10)
+    path = os.path.join(figdir, "tunemap.png")
+    save(fig, path)
+    return path
+
+
+def cmd_tunemap(args):
+    varied, controllers, cols = read_campaign(args.out)
+    if not controllers:
+        raise CampaignError("%s/campaign.csv: no controller columns" % args.out)
+    for b in args.by or []:
+        if b not in varied:
+            raise CampaignError("--by %s: not a varied name of the campaign (%s)"
+                                % (b, ", ".join(varied) if varied else "it varies nothing"))
+    rows = tunemap_rows(varied, cols, args.by)
+    name, figdir = start_figures(args, "tunemap", {"font.size": 9})
+    path = plot_tunemap(name, controllers, cols, rows, figdir)
+    print(tunemap_table(controllers, tunemap_counts(controllers, cols), len(cols["run"])))
+    print("campaign.py: wrote %s" % path)
+    return 0
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="campaign.py", description=__doc__.split("\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
     m = sub.add_parser("merge", help="OUT/campaign.csv from OUT/plan.csv and OUT/runs/*/metrics.csv")
     m.add_argument("out", metavar="OUT")
+    t = sub.add_parser("tunemap", help="the tuning outcome of every run and controller into OUT/figures/tunemap.png")
+    t.add_argument("out", metavar="OUT")
+    t.add_argument("--by", action="append", metavar="NAME",
+                   help="one row per value of this varied name (repeatable: per combination) instead of one "
+                        "per run")
+    t.add_argument("--name", help="campaign name in the title (default: OUT's directory name)")
     for cmd, what in (("plot", "robustness maps and RMS box plots into OUT/figures/"),
                       ("ratio", "maps of each LADRC-family RMS / the better incumbent's into OUT/figures/")):
         p = sub.add_parser(cmd, help=what)
@@ -640,7 +832,7 @@ def main(argv=None):
                            help="only the runs whose varied value NAME is VALUE (repeatable)")
     args = parser.parse_args(argv)
     try:
-        return {"merge": cmd_merge, "plot": cmd_plot, "ratio": cmd_ratio}[args.command](args)
+        return {"merge": cmd_merge, "plot": cmd_plot, "ratio": cmd_ratio, "tunemap": cmd_tunemap}[args.command](args)
     except CampaignError as e:
         print("campaign.py: error: %s" % e, file=sys.stderr)
         return 1

@@ -29,7 +29,10 @@ def run_ratios(controllers, cols, axis, n_runs):
     def rms(ctrl, r):
         if cols["%s.%s.diverged" % (ctrl, axis)][r] == "yes":
             return None
-        return float(cols["%s.%s.rms_deg" % (ctrl, axis)][r])
+        try:                                # `untunable`: not flown, a failure as a divergence is
+            return float(cols["%s.%s.rms_deg" % (ctrl, axis)][r])
+        except ValueError:
+            return None
 
     out = {c: [] for c in family + [BEST]}
     for r in range(n_runs):

@@ -353,11 +353,134 @@ def test_ratio(work):
     check("ratio_without_incumbent_exit_1", rc == 1 and "incumbent" in se, se)
 
 
+def tune_metrics_text(scenario, controllers, status):
+    """metrics_text with tuning outcomes: status {controller: token} adds its
+    `tune,status,-,TOKEN` row; a controller whose token is `untunable` is written as the
+    simulator writes one it did not fly: every statistic `untunable`, no diverged rows."""
+    lines = metrics_text(scenario, [(n, st if status.get(n) != "untunable" else None)
+                                    for n, st in controllers]).splitlines()
+    out = []
+    for line in lines:
+        f = line.split(",")
+        if len(f) == 6 and status.get(f[1]) == "untunable":
+            if f[2] == "-" and f[3].startswith("diverged"):
+                continue
+            if f[5] == "diverged":
+                f[5] = "untunable"
+        out.append(",".join(f))
+    for n, token in status.items():
+        out.append("%s,%s,tune,status,-,%s" % (scenario, n, token))
+    return "\n".join(out) + "\n"
+
+
+def tune_campaign():
+    """4 runs of LADRC and INDI over delay x J: LADRC tuned, defaults, untunable, and in run 4
+    (an older simulator) no status at all; INDI tuned, scenario, diverged after tuning, none."""
+    header = ["run", "sensors.delay_ticks", "J"]
+    plan = [["1", "0", "0.7"], ["2", "0", "1.3"], ["3", "50", "0.7"], ["4", "50", "1.3"]]
+
+    def stats(base):
+        return {a: ("%g" % (base + i), "0.1", "%g" % (3 * base), "0.25") for i, a in enumerate(AXES)}
+    runs = {1: ([("LADRC", stats(1.0)), ("INDI", stats(2.0))], {"LADRC": "tuned", "INDI": "tuned"}),
+            2: ([("LADRC", stats(1.5)), ("INDI", stats(2.5))], {"LADRC": "defaults", "INDI": "scenario"}),
+            3: ([("LADRC", stats(9.0)), ("INDI", None)], {"LADRC": "untunable", "INDI": "tuned"}),
+            4: ([("LADRC", stats(4.0)), ("INDI", stats(5.0))], {})}
+    return header, plan, runs
+
+
+def write_tune_out(out, header, plan, runs):
+    os.makedirs(os.path.join(out, "runs"), exist_ok=True)
+    with open(os.path.join(out, "plan.csv"), "w") as f:
+        f.write(",".join(header) + "\n" + "".join(",".join(row) + "\n" for row in plan))
+    for r, (controllers, status) in runs.items():
+        d = os.path.join(out, "runs", "%05d" % r)
+        os.makedirs(d, exist_ok=True)
+        with open(os.path.join(d, "metrics.csv"), "w") as f:
+            f.write(tune_metrics_text("%05d" % r, controllers, status))
+
+
+AXES = ("roll", "pitch", "yaw")
+
+
+def test_merge_tune(work):
+    out = os.path.join(work, "tune")
+    write_tune_out(out, *tune_campaign())
+    rc, so, se = run(["merge", out])
+    check("merge_tune_succeeds", rc == 0, se)
+    rows = read(os.path.join(out, "campaign.csv")).decode().splitlines() if rc == 0 else ["", "", "", "", ""]
+    header = rows[0].split(",")
+    check("merge_tune_columns", header.index("LADRC.tune") == header.index("LADRC.yaw.diverged") + 1 and
+          header[-1] == "INDI.tune" and header.count("LADRC.tune") == 1 and len(header) == 3 + 2 * 16, rows[0])
+    col = {name: [row.split(",")[i] for row in rows[1:]] for i, name in enumerate(header)}
+    check("merge_tune_tokens", col["LADRC.tune"] == ["tuned", "defaults", "untunable", "-"] and
+          col["INDI.tune"] == ["tuned", "scenario", "tuned", "-"], repr((col.get("LADRC.tune"), col.get("INDI.tune"))))
+    check("merge_untunable_passes_through", col["LADRC.roll.rms_deg"][2] == "untunable" and
+          col["LADRC.pitch.settling_s"][2] == "untunable" and col["LADRC.yaw.diverged"][2] == "untunable",
+          repr([c[2] for c in col.values()]))
+    check("merge_tune_diverged_still_read", col["INDI.roll.rms_deg"][2] == "diverged" and
+          col["INDI.roll.diverged"][2] == "yes" and col["INDI.roll.rms_deg"][0] == "2")
+
+    # Without any status row the table is as before: no .tune column (test_merge's bytes).
+    plain = os.path.join(work, "tune_none")
+    header, plan, runs = tune_campaign()
+    write_tune_out(plain, header, plan, {r: (c, {}) for r, (c, _) in runs.items()})
+    run(["merge", plain])
+    check("merge_no_status_no_column", ".tune" not in read(os.path.join(plain, "campaign.csv")).decode())
+
+
+def test_tunemap(work):
+    out = os.path.join(work, "tune_map")
+    write_tune_out(out, *tune_campaign())
+    rc, _, se = run(["tunemap", out])
+    check("tunemap_without_merge_exit_1", rc == 1 and "merge" in se, se)
+    run(["merge", out])
+    rc, so, se = run(["tunemap", out])
+    check("tunemap_succeeds", rc == 0, se)
+    path = os.path.join(out, "figures", "tunemap.png")
+    size = png_size(path) if os.path.exists(path) else None
+    print("tunemap.png: %s, %d bytes" % ("%dx%d" % size if size else "missing", os.path.getsize(path) if size else 0))
+    check("tunemap_draws_png", size is not None and size[0] >= 600 and size[1] >= 300)
+    lines = so.splitlines()
+    head = lines[0].split() if lines else []
+    ladrc = next((line.split() for line in lines if line.startswith("LADRC ")), [])
+    indi = next((line.split() for line in lines if line.startswith("INDI ")), [])
+    check("tunemap_table_header", head[:7] == ["controller", "tuned", "defaults", "scenario", "untunable",
+                                                "diverged", "no"], so)
+    check("tunemap_table_counts", ladrc[1:] == ["1", "1", "0", "1", "0", "1"] and
+          indi[1:] == ["1", "0", "1", "0", "1", "1"], so)
+
+    cols = campaign.read_campaign(out)[2]
+    outcomes = [[campaign.run_outcome(cols, c, r) for r in range(4)] for c in ("LADRC", "INDI")]
+    check("tunemap_outcomes", outcomes == [["tuned", "defaults", "untunable", "-"],
+                                           ["tuned", "scenario", "diverged", "-"]], repr(outcomes))
+    rows = campaign.tunemap_rows(["sensors.delay_ticks", "J"], cols, None)
+    check("tunemap_rows_per_run", [lab for lab, _ in rows][0] == "run 1: delay_ticks=0, J=0.7" and len(rows) == 4,
+          repr(rows))
+    # Grouped by the delay: the cell's most frequent outcome, its median RMS, its share.
+    rows = campaign.tunemap_rows(["sensors.delay_ticks", "J"], cols, ["sensors.delay_ticks"])
+    check("tunemap_rows_grouped", rows == [("delay_ticks=0 (2 runs)", [0, 1]), ("delay_ticks=50 (2 runs)", [2, 3])],
+          repr(rows))
+    check("tunemap_cell_group", campaign.tunemap_cell(cols, "LADRC", [0, 1]) == ("tuned", "1.25 (1/2)") and
+          campaign.tunemap_cell(cols, "INDI", [2]) == ("diverged", "div.") and
+          campaign.tunemap_cell(cols, "LADRC", [2]) == ("untunable", "untun."),
+          repr([campaign.tunemap_cell(cols, c, rr) for c, rr in (("LADRC", [0, 1]), ("INDI", [2]), ("LADRC", [2]))]))
+    rc, _, se = run(["tunemap", out, "--by", "J"])
+    check("tunemap_by", rc == 0, se)
+    rc, _, se = run(["tunemap", out, "--by", "nonesuch"])
+    check("tunemap_unknown_by_exit_1", rc == 1 and "--by nonesuch" in se, se)
+    # plot and ratio read a table with untunable runs
+    rc, _, se = run(["plot", out])
+    check("plot_reads_untunable", rc == 0, se)
+    rc, _, se = run(["ratio", out])
+    check("ratio_reads_untunable", rc == 0, se)
+
+
 def main():
     work = tempfile.mkdtemp(prefix="campaign_test.")
     try:
         test_merge(work)
         test_merge_errors(work)
+        test_merge_tune(work)
         try:
             import matplotlib  # noqa: F401
             import numpy  # noqa: F401
@@ -368,6 +491,7 @@ def main():
         if have_plot:
             test_plot(work)
             test_ratio(work)
+            test_tunemap(work)
     finally:
         shutil.rmtree(work)
     print("%d failed" % failures)
