@@ -111,6 +111,9 @@ void ladrc_margins_request_default(ladrc_margins_request_t *req, const ladrc_mar
     if (plant != NULL)
         req->plant = *plant;
     req->response_s = 4.0;
+    if (plant != NULL && plant->dt_s > 0.0 && req->response_s / plant->dt_s > (double)N_FFT) {
+        req->response_s = (double)N_FFT * plant->dt_s; /* at loop rates above 4 kHz: what the FFT holds */
+    }
     req->tone_rad_s = 0.0;
     req->tone_rad_s2 = 20.0;
     req->converge_s = 10.0;

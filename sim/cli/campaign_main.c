@@ -23,23 +23,24 @@ enum { EXIT_RUN_FAILED = 1, EXIT_BAD_INPUT = 2 };
 
 static void usage(FILE *out)
 {
-    fputs("usage: ladrc_sil --campaign FILE [--list | --print-out] [--shard K/N] [--jobs N] [--out DIR] [--csv] "
-          "[--quiet]\n"
-          "  --campaign FILE   a campaign file (format: docs/campaign-format.md): a base scenario's\n"
-          "                    runs with keys varied on a grid and drawn at random\n"
-          "  --list            print the plan (CSV: run, then each varied value) and write nothing\n"
-          "  --print-out       print the output directory OUT and write nothing\n"
-          "  --shard K/N       only the runs r with (r - 1) %% N = K - 1\n"
-          "  --jobs N          worker threads (default: the number of cores)\n"
-          "  --out DIR         write under DIR/<campaign name> (default: the campaign's output_dir)\n"
-          "  --csv             also the time series of every run (default: none)\n"
-          "  --quiet           no progress on stderr\n"
-          "Writes OUT/plan.csv and OUT/runs/<run>/metrics.csv, signals.csv. --set, --seed and\n"
-          "--controllers are refused with --campaign: put them in the campaign's [set].\n"
-          "Exit status: 0 every run of the shard flew and wrote its files (diverged runs are\n"
-          "results, counted on stderr); 1 a run failed or a file could not be written; 2 bad\n"
-          "input (then nothing is run or written).\n",
-          out);
+    fputs(
+        "usage: ladrc_sil --campaign FILE [--list | --print-out] [--shard K/N] [--jobs N] [--out DIR] [--csv] "
+        "[--quiet]\n"
+        "  --campaign FILE   a campaign file (format: docs/campaign-format.md): a base scenario's\n"
+        "                    runs with keys varied on a grid and drawn at random\n"
+        "  --list            print the plan (CSV: run, then each varied value) and write nothing\n"
+        "  --print-out       print the output directory OUT and write nothing\n"
+        "  --shard K/N       only the runs r with (r - 1) %% N = K - 1\n"
+        "  --jobs N          worker threads (default: the number of cores)\n"
+        "  --out DIR         write under DIR/<campaign name> (default: the campaign's output_dir)\n"
+        "  --csv             also the time series of every run (default: none)\n"
+        "  --quiet           no progress on stderr\n"
+        "Writes OUT/plan.csv and OUT/runs/<run>/metrics.csv, signals.csv. --set, --seed and\n"
+        "--controllers are refused with --campaign: put them in the campaign's [set].\n"
+        "Exit status: 0 every run of the shard flew and wrote its files (diverged runs and\n"
+        "untunable controllers are results, counted on stderr); 1 a run failed or a file could not be written; 2 bad\n"
+        "input (then nothing is run or written).\n",
+        out);
 }
 
 /* "name=value, ..." of a run, for messages. */
@@ -342,7 +343,7 @@ int sim_campaign_main(int argc, char **argv)
                                    .progress = on_progress,
                                    .progress_ctx = &progress};
     int status = 0;
-    long flights = 0, failed_flights = 0, diverged_flights = 0, diverged_runs = 0;
+    long flights = 0, failed_flights = 0, diverged_flights = 0, diverged_runs = 0, untunable_flights = 0;
     double simulated = 0.0;
     int threads = 0;
     long r = shard_k;
@@ -361,7 +362,9 @@ int sim_campaign_main(int argc, char **argv)
             break;
         }
         int failed = 0;
-        if (sim_fly_tune(batch, n, (int)jobs, 1, &perr, &failed) != 0) {
+        const sim_fly_tune_options_t tune_opt = {.jobs = (int)jobs, .quiet = 1};
+        const int untunable = sim_fly_tune(batch, n, &tune_opt, &perr, &failed);
+        if (untunable < 0) {
             sim_campaign_expand(&c, batch_run[failed], &run, msg, sizeof msg);
             print_run_error(&c, &run, &perr);
             status = EXIT_RUN_FAILED;
@@ -374,6 +377,7 @@ int sim_campaign_main(int argc, char **argv)
         flights += res.runs;
         failed_flights += res.runs_failed;
         diverged_flights += res.runs_diverged;
+        untunable_flights += untunable;
         diverged_runs += res.scenarios_diverged;
         simulated += res.simulated_s;
         threads = res.threads > threads ? res.threads : threads;
@@ -394,6 +398,11 @@ int sim_campaign_main(int argc, char **argv)
     if (diverged_flights > 0 || !quiet) {
         fprintf(stderr, "ladrc_sil: campaign %s: %ld runs with a diverged controller (%ld of %ld flights diverged)\n",
                 c.name, diverged_runs, diverged_flights, flights);
+    }
+    if (untunable_flights > 0) {
+        fprintf(stderr,
+                "ladrc_sil: campaign %s: %ld controllers untunable (not flown; their statistics read untunable)\n",
+                c.name, untunable_flights);
     }
     if (failed_flights > 0) {
         fprintf(stderr, "ladrc_sil: campaign %s: %ld flights failed to run\n", c.name, failed_flights);

@@ -69,7 +69,7 @@ typedef struct {
     int scenario_index;
     sim_controller_id_t id;
     sim_parse_error_t err;
-    int failed;
+    int rc; /* of sim_tune_controller; -1: not run (out of memory) */
 } tune_task_t;
 
 typedef struct {
@@ -92,16 +92,17 @@ static void *tune_worker(void *arg)
         tune_task_t *t = &pool->tasks[i];
         if (ws == NULL) {
             snprintf(t->err.message, sizeof t->err.message, "tune = margins: out of memory");
-            t->failed = 1;
+            t->rc = -1;
             continue;
         }
-        t->failed = sim_tune_controller(t->sc, t->id, ws, &t->err) != 0;
+        t->rc = sim_tune_controller(t->sc, t->id, ws, &t->err);
     }
     free(ws);
     return NULL;
 }
 
-int sim_fly_tune(sim_scenario_t *scenarios, int n_sc, int n_threads, int quiet, sim_parse_error_t *err, int *failed)
+int sim_fly_tune(sim_scenario_t *scenarios, int n_sc, const sim_fly_tune_options_t *opt, sim_parse_error_t *err,
+                 int *failed)
 {
     static tune_task_t tasks[MAX_JOBS];
     int n = 0;
@@ -123,7 +124,7 @@ int sim_fly_tune(sim_scenario_t *scenarios, int n_sc, int n_threads, int quiet, 
     tune_pool_t pool = {.tasks = tasks, .n = n, .next = 0, .lock = PTHREAD_MUTEX_INITIALIZER};
     pthread_t threads[MAX_THREADS];
     int started = 0;
-    for (int t = 0; t < n_threads && t < n && t < MAX_THREADS; ++t) {
+    for (int t = 0; t < opt->jobs && t < n && t < MAX_THREADS; ++t) {
         if (pthread_create(&threads[t], NULL, tune_worker, &pool) != 0) {
             break;
         }
@@ -135,18 +136,24 @@ int sim_fly_tune(sim_scenario_t *scenarios, int n_sc, int n_threads, int quiet, 
     for (int t = 0; t < started; ++t) {
         pthread_join(threads[t], NULL);
     }
+    int untunable = 0;
     for (int i = 0; i < n; ++i) {
-        if (tasks[i].failed) {
-            *err = tasks[i].err;
-            *failed = tasks[i].scenario_index;
+        const tune_task_t *t = &tasks[i];
+        if (t->rc < 0 || (opt->strict && t->rc != SIM_TUNE_OK)) {
+            *err = t->err;
+            *failed = t->scenario_index;
             return -1;
         }
+        untunable += t->rc == SIM_TUNE_UNTUNABLE;
+        if (t->rc != SIM_TUNE_OK && opt->note != NULL) {
+            opt->note(opt->note_ctx, t->scenario_index, t->rc, &t->err);
+        }
     }
-    if (!quiet) {
-        fprintf(stderr, "ladrc_sil: tuned %d controllers (tune = margins) in %.2f s with %d jobs\n", n,
-                sim_fly_now_s() - start, started > 0 ? started : 1);
+    if (!opt->quiet) {
+        fprintf(stderr, "ladrc_sil: tuned %d controllers (tune = margins) in %.2f s with %d jobs%s\n", n,
+                sim_fly_now_s() - start, started > 0 ? started : 1, untunable > 0 ? "; some untunable" : "");
     }
-    return 0;
+    return untunable;
 }
 
 int sim_fly_make_dirs(const char *path)
@@ -436,7 +443,11 @@ static void write_outputs(const sim_scenario_t *sc, int s, const sim_fly_options
     }
     res->runs_diverged += diverged;
     res->scenarios_diverged += diverged > 0;
-    res->simulated_s += sc->duration_s * (sc->kind == SIM_KIND_DIFFERENTIATOR ? 1 : sc->n_controllers);
+    int flown = sc->kind == SIM_KIND_DIFFERENTIATOR ? 1 : 0;
+    for (int c = 0; sc->kind == SIM_KIND_ATTITUDE && c < sc->n_controllers; ++c) {
+        flown += !attitude[s][c].untunable;
+    }
+    res->simulated_s += sc->duration_s * flown;
 }
 
 int sim_fly_batch(const sim_scenario_t *scenarios, int n_sc, const sim_fly_options_t *opt, sim_fly_result_t *res)
@@ -466,10 +477,16 @@ int sim_fly_batch(const sim_scenario_t *scenarios, int n_sc, const sim_fly_optio
             ++res->writes_failed;
             return -1;
         }
-        const int n = sc->kind == SIM_KIND_DIFFERENTIATOR ? 1 : sc->n_controllers;
-        pool.runs_left[s] = n;
-        pool.scenarios_done += n == 0;
-        for (int c = 0; c < n; ++c) {
+        const int n_ctl = sc->kind == SIM_KIND_DIFFERENTIATOR ? 1 : sc->n_controllers;
+        int n = 0; /* runs flown: an untunable controller is not */
+        for (int c = 0; c < n_ctl; ++c) {
+            if (sc->kind == SIM_KIND_ATTITUDE && sc->tuning[sc->controllers[c]].by == SIM_TUNED_UNTUNABLE) {
+                memset(&attitude[s][c], 0, sizeof attitude[s][c]);
+                attitude[s][c].untunable = 1;
+                ++res->runs_untunable;
+                continue;
+            }
+            ++n;
             job_t *job = &jobs[n_jobs++];
             memset(job, 0, sizeof *job);
             job->sc = sc;
@@ -483,6 +500,8 @@ int sim_fly_batch(const sim_scenario_t *scenarios, int n_sc, const sim_fly_optio
             }
             total_ticks += (double)sim_run_ticks(sc);
         }
+        pool.runs_left[s] = n;
+        pool.scenarios_done += n == 0;
         if (sc->kind == SIM_KIND_DIFFERENTIATOR) {
             jobs[n_jobs - 1].group_size = 1;
         } else if (n > 0) {

@@ -36,6 +36,7 @@ typedef struct {
     int runs_failed;        /* runs that could not run (their message printed on stderr) */
     int writes_failed;      /* metrics.csv or signals.csv not written (printed on stderr) */
     int runs_diverged;      /* attitude runs that diverged */
+    int runs_untunable;     /* controllers not flown: untunable (sim_fly_tune) */
     int scenarios_diverged; /* scenarios with at least one */
     double simulated_s;     /* simulated time of the runs that flew */
     double wall_s;          /* wall time of the flights */
@@ -49,11 +50,26 @@ double sim_fly_now_s(void);
  * the progress of several batches. */
 double sim_fly_total_ticks(const sim_scenario_t *scenarios, int n_sc);
 
-/* Tunes every listed controller with tune = margins, n_threads at a time.
- * Returns 0, or -1 with the first failure (in task order) in *err and the
- * failing scenario's index in *failed (nothing printed). A line of the time
- * it took on stderr unless quiet. */
-int sim_fly_tune(sim_scenario_t *scenarios, int n_sc, int n_threads, int quiet, sim_parse_error_t *err, int *failed);
+/* How sim_fly_tune runs and tells. */
+typedef struct {
+    int jobs;   /* worker threads, >= 1 */
+    int quiet;  /* no line of the time it took */
+    int strict; /* 1: a tuning that misses (SIM_TUNE_MISSED) or a controller untunable refuses the batch */
+    /* Called, when not strict, for each controller whose tuning missed or
+     * that is untunable (rc: SIM_TUNE_MISSED or SIM_TUNE_UNTUNABLE of
+     * tune.h), in task order, after every tuning ended; NULL: nothing. */
+    void (*note)(void *ctx, int scenario_index, int rc, const sim_parse_error_t *err);
+    void *note_ctx;
+} sim_fly_tune_options_t;
+
+/* Tunes every listed controller with tune = margins, opt->jobs at a time.
+ * Returns the number of controllers found untunable (they are not flown:
+ * sim_fly_batch marks them); or, when strict, -1 with the first that
+ * missed or is untunable (in task order) in *err and its scenario's index
+ * in *failed (nothing printed). A line of the time it took on stderr
+ * unless quiet. */
+int sim_fly_tune(sim_scenario_t *scenarios, int n_sc, const sim_fly_tune_options_t *opt, sim_parse_error_t *err,
+                 int *failed);
 
 /* Refuses two scenarios writing the same output_dir: returns 0, or -1 after
  * printing the first pair on stderr. */
@@ -62,7 +78,8 @@ int sim_fly_check_collisions(const sim_scenario_t *scenarios, int n_sc);
 /* mkdir -p: 0, or -1 with errno set. */
 int sim_fly_make_dirs(const char *path);
 
-/* Flies scenarios[0..n_sc-1] (at most SIM_FLY_MAX_SCENARIOS, tuned already)
+/* Flies scenarios[0..n_sc-1] (at most SIM_FLY_MAX_SCENARIOS, tuned already;
+ * a controller untunable is not flown: its statistics read untunable)
  * and writes each one's output_dir: the directory, the time series when
  * wanted, metrics.csv and signals.csv. Fills *res; returns 0 when every run
  * flew and every file was written, else -1 (each failure printed on stderr;

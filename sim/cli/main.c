@@ -13,12 +13,13 @@
 
 #include "campaign_main.h"
 #include "fly.h"
+#include "run/tune.h"
 #include "scenario/scenario.h"
 
 #define MAX_SCENARIOS SIM_FLY_MAX_SCENARIOS
 
 /* Exit statuses (usage(), docs/simulator.md). */
-enum { EXIT_RUN_FAILED = 1, EXIT_BAD_INPUT = 2, EXIT_DIVERGED = 3 };
+enum { EXIT_RUN_FAILED = 1, EXIT_BAD_INPUT = 2, EXIT_DIVERGED = 3, EXIT_UNTUNABLE = 4 };
 
 /* The command line's settings: --set items and --seed, in their order. */
 #define MAX_SETTINGS 64
@@ -33,24 +34,43 @@ typedef struct {
 
 /* Prints an error of a scenario or of a setting, as file:line:column or
  * "--set K (TEXT):column". */
-static void print_error(const sim_parse_error_t *e, const settings_t *set, const char *fallback_path)
+/* e on stderr, its message after prefix ("" or "warning: "). */
+static void print_error_as(const sim_parse_error_t *e, const settings_t *set, const char *fallback_path,
+                           const char *prefix)
 {
     const int k = e->first_set_line > 0 && e->line >= e->first_set_line ? e->line - e->first_set_line : -1;
     if (k >= 0 && k < set->n) {
         const int col = e->column - set->shift[k];
-        fprintf(stderr, "ladrc_sil: %s '%s':%d: %s (with %s)\n", set->label[k], set->shown[k], col > 0 ? col : 1,
-                e->message, e->path);
+        fprintf(stderr, "ladrc_sil: %s '%s':%d: %s%s (with %s)\n", set->label[k], set->shown[k], col > 0 ? col : 1,
+                prefix, e->message, e->path);
     } else if (e->line > 0) {
-        fprintf(stderr, "%s:%d:%d: %s\n", e->path, e->line, e->column, e->message);
+        fprintf(stderr, "%s:%d:%d: %s%s\n", e->path, e->line, e->column, prefix, e->message);
     } else {
-        fprintf(stderr, "%s: %s\n", e->path[0] != '\0' ? e->path : fallback_path, e->message);
+        fprintf(stderr, "%s: %s%s\n", e->path[0] != '\0' ? e->path : fallback_path, prefix, e->message);
     }
+}
+
+static void print_error(const sim_parse_error_t *e, const settings_t *set, const char *fallback_path)
+{
+    print_error_as(e, set, fallback_path, "");
+}
+
+/* A tuning that missed (a warning) or a controller untunable, at its key. */
+typedef struct {
+    const settings_t *set;
+    const sim_scenario_t *scenarios;
+} tune_note_ctx_t;
+
+static void tune_note(void *ctx, int scenario_index, int rc, const sim_parse_error_t *err)
+{
+    const tune_note_ctx_t *n = (const tune_note_ctx_t *)ctx;
+    print_error_as(err, n->set, n->scenarios[scenario_index].path, rc == SIM_TUNE_UNTUNABLE ? "" : "warning: ");
 }
 
 static void usage(FILE *out)
 {
     fputs("usage: ladrc_sil SCENARIO... [--jobs N] [--controllers LIST] [--set SECTION.KEY=VALUE]... [--seed N]\n"
-          "                 [--out DIR] [--no-csv] [--quiet]\n"
+          "                 [--out DIR] [--no-csv] [--strict] [--quiet]\n"
           "       ladrc_sil --campaign FILE [--list] [--shard K/N] [--jobs N] [--out DIR] [--csv] [--quiet]\n"
           "                 (its options: ladrc_sil --campaign --help; docs/campaign-format.md)\n"
           "  SCENARIO          a scenario file (format: docs/scenario-format.md)\n"
@@ -63,15 +83,21 @@ static void usage(FILE *out)
           "  --out DIR         write every scenario's output under DIR/<scenario name>\n"
           "                    (default: each scenario's output_dir)\n"
           "  --no-csv          no time series, only metrics.csv and the tables\n"
+          "  --strict          a tune = margins that misses its targets, or whose gains do not fly the\n"
+          "                    check flight, refuses the scenario (exit 2) instead of flying the best\n"
+          "                    candidate (docs/margins.md)\n"
           "  --quiet           no progress on stderr\n"
           "Prints the comparison tables on stdout; writes <out>/<controller>.csv time series and\n"
           "<out>/metrics.csv. A run diverges when |tracking error| on an axis exceeds the scenario's\n"
           "diverge_limit_deg (default 90) or its state turns non-finite: it stops there, its statistics\n"
           "print as \"diverged\", and stderr names it.\n"
+          "A controller that tune = margins leaves untunable (no candidate gains fly the check flight)\n"
+          "is not flown: stderr names it with the reason at its tune key, its statistics print as\n"
+          "\"untunable\"; every other controller flies.\n"
           "Exit status: 0 every run flew; 1 a run failed or an output could not be written;\n"
-          "2 bad usage or a bad scenario, a tune = margins target not met included (then nothing is\n"
-          "run or written); 3 every run and output\n"
-          "completed but a run diverged (1 wins over 3).\n",
+          "2 bad usage or a bad scenario, with --strict a tuning that missed included (then nothing is\n"
+          "run or written); 3 every run and output completed but a run diverged; 4 every run and\n"
+          "output completed, none diverged, but a controller was untunable (1 wins over 3, 3 over 4).\n",
           out);
 }
 
@@ -92,7 +118,7 @@ int main(int argc, char **argv)
     int n_sc = 0;
     long jobs_wanted = sysconf(_SC_NPROCESSORS_ONLN);
     const char *out_root = NULL;
-    int want_csv = 1, quiet = 0, n_override = 0;
+    int want_csv = 1, quiet = 0, strict = 0, n_override = 0;
     sim_controller_id_t override_ids[SIM_MAX_CONTROLLERS];
     const char *paths[MAX_SCENARIOS];
     int n_paths = 0;
@@ -157,6 +183,8 @@ int main(int argc, char **argv)
             return EXIT_BAD_INPUT;
         } else if (strcmp(arg, "--quiet") == 0) {
             quiet = 1;
+        } else if (strcmp(arg, "--strict") == 0) {
+            strict = 1;
         } else if (arg[0] == '-') {
             fprintf(stderr, "ladrc_sil: unknown or incomplete option '%s'\n", arg);
             usage(stderr);
@@ -195,11 +223,16 @@ int main(int argc, char **argv)
         return EXIT_BAD_INPUT;
     }
 
-    /* tune = margins, before anything is written: a target that cannot be
-     * met is an error of the file. */
+    /* tune = margins, before anything is written: a controller left
+     * untunable is named at its key and not flown; with --strict a tuning
+     * that misses is an error of the file. */
     sim_parse_error_t tune_err;
     int tune_failed = 0;
-    if (sim_fly_tune(scenarios, n_sc, (int)jobs_wanted, quiet, &tune_err, &tune_failed) != 0) {
+    tune_note_ctx_t note = {.set = &set, .scenarios = scenarios};
+    const sim_fly_tune_options_t tune_opt = {
+        .jobs = (int)jobs_wanted, .quiet = quiet, .strict = strict, .note = tune_note, .note_ctx = &note};
+    const int untunable = sim_fly_tune(scenarios, n_sc, &tune_opt, &tune_err, &tune_failed);
+    if (untunable < 0) {
         print_error(&tune_err, &set, scenarios[tune_failed].path);
         return EXIT_BAD_INPUT;
     }
@@ -215,6 +248,9 @@ int main(int argc, char **argv)
     int status = sim_fly_batch(scenarios, n_sc, &opt, &res) != 0 ? EXIT_RUN_FAILED : 0;
     if (status == 0 && res.runs_diverged > 0) {
         status = EXIT_DIVERGED;
+    }
+    if (status == 0 && untunable > 0) {
+        status = EXIT_UNTUNABLE;
     }
     if (!quiet && res.runs > 0) {
         fprintf(stderr, "ladrc_sil: %d runs, %.1f s simulated in %.2f s with %d jobs (%.0fx real time)\n", res.runs,

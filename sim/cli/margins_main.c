@@ -47,9 +47,11 @@ static void usage(FILE *out)
           "  --tune             also tune for PM >= 45 deg, GM >= 6 dB and print the result\n"
           "Prints per controller and axis: gain margin, phase margin, delay margin,\n"
           "crossover, peak sensitivity, the verdict, and the largest stable motor lag\n"
-          "and sensor delay. Exit status 0, 1 if an analysis failed or a loop is\n"
-          "unstable, 2 for bad usage or a bad scenario (a tune = margins target that\n"
-          "cannot be met included).\n",
+          "and sensor delay. A tune = margins that misses its targets is a warning (the\n"
+          "best candidate's gains are analysed); a controller with no candidate that\n"
+          "flies the check flight is untunable. Exit status 0, 1 if an analysis failed\n"
+          "or a loop is unstable, 2 for bad usage or a bad scenario, 4 when, else\n"
+          "clean, a controller was untunable.\n",
           out);
 }
 
@@ -243,11 +245,14 @@ int main(int argc, char **argv)
         return 2;
     }
     /* tune = margins: the controllers are analysed with the gains it chooses. */
+    int untunable = 0;
     for (int c = 0; c < sc.n_controllers; ++c) {
-        if (sim_tune_controller(&sc, sc.controllers[c], &ws, &perr) != 0) {
-            fprintf(stderr, "%s:%d:%d: %s\n", perr.path, perr.line, perr.column, perr.message);
-            return 2;
+        const int rc = sim_tune_controller(&sc, sc.controllers[c], &ws, &perr);
+        if (rc != SIM_TUNE_OK) {
+            fprintf(stderr, "%s:%d:%d: %s%s\n", perr.path, perr.line, perr.column,
+                    rc == SIM_TUNE_UNTUNABLE ? "" : "warning: ", perr.message);
         }
+        untunable += rc == SIM_TUNE_UNTUNABLE;
     }
     if (csv_dir != NULL && mkdir(csv_dir, 0777) != 0 && errno != EEXIST) {
         fprintf(stderr, "ladrc_margins: --csv: cannot create '%s': %s\n", csv_dir, strerror(errno));
@@ -261,6 +266,10 @@ int main(int argc, char **argv)
     int status = 0;
     for (int c = 0; c < sc.n_controllers; ++c) {
         const sim_controller_id_t id = sc.controllers[c];
+        if (sc.tuning[id].by == SIM_TUNED_UNTUNABLE) {
+            printf("%-10s untunable: no candidate gains fly the check flight\n", sim_controller_name(id));
+            continue;
+        }
         ladrc_attitude_config_t acfg;
         sim_setup_attitude(&sc, id, &acfg);
         sim_tune_filter_t filter;
@@ -330,5 +339,5 @@ int main(int argc, char **argv)
             }
         }
     }
-    return status;
+    return status == 0 && untunable > 0 ? 4 : status;
 }

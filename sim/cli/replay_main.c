@@ -18,6 +18,8 @@
 #include "cli/replay_report.h"
 #include "log/log_identify.h"
 #include "log/replay.h"
+#include "report/report.h"
+#include "run/tune.h"
 #include "scenario/scenario.h"
 
 #define NOISE_SERIES_S 60.0 /* the noise file: the log's first minute */
@@ -28,7 +30,7 @@ typedef struct {
     const char *scenario; /* NULL: the identified airframe */
     const char *out_dir;
     long every; /* time-series rows: every this many ticks; 0: none */
-    int identify_only, quiet;
+    int identify_only, quiet, strict;
     int n_controllers;
     sim_controller_id_t controllers[SIM_MAX_CONTROLLERS];
 } options_t;
@@ -37,7 +39,7 @@ static void usage(FILE *out)
 {
     fputs("usage: ladrc_replay LOG [--format betaflight|px4|generic] [--map FIELD=SOURCE]...\n"
           "                    [--dt S] [--from S] [--to S] [--scenario FILE] [--controllers LIST]\n"
-          "                    [--out DIR] [--every N] [--identify-only] [--quiet]\n"
+          "                    [--out DIR] [--every N] [--identify-only] [--strict] [--quiet]\n"
           "  LOG               a blackbox_decode CSV, a PX4 ulog2csv topic file (or their common\n"
           "                    prefix), or a CSV whose columns --map names (docs/flight-logs.md)\n"
           "  --format F        the log's form (default: told from the files)\n"
@@ -50,11 +52,14 @@ static void usage(FILE *out)
           "  --out DIR         where the outputs go (default: replay/<log name>)\n"
           "  --every N         write every Nth tick to replay.csv (default 1; 0: no time series)\n"
           "  --identify-only   stop after the identification and the scenario\n"
+          "  --strict          refuse the scenario when a tuning misses its targets or a controller\n"
+          "                    is untunable (default: the untunable are not replayed, the rest are)\n"
           "  --quiet           no progress on stderr\n"
           "Writes in DIR: identification.csv, airframe.ini, airframe_noise.csv, replay.csv,\n"
           "replay_summary.csv, spectrum.csv; tools/replay_plot.py DIR draws them.\n"
           "Exit status 0; 1 when a replayed controller faulted or the identification warned;\n"
-          "2 for bad usage, a refused log or scenario.\n",
+          "2 for bad usage, a refused log or scenario; 4 when, else clean, a controller was\n"
+          "untunable (not replayed; replay_summary.csv lists it as untunable).\n",
           out);
 }
 
@@ -86,6 +91,8 @@ static int parse_args(int argc, char **argv, options_t *o)
             o->identify_only = 1;
         } else if (strcmp(arg, "--quiet") == 0) {
             o->quiet = 1;
+        } else if (strcmp(arg, "--strict") == 0) {
+            o->strict = 1;
         } else if (val == NULL && arg[0] == '-') {
             fprintf(stderr, "ladrc_replay: %s needs a value\n", arg);
             return -1;
@@ -219,8 +226,19 @@ static int write_scenario(const char *dir, const sim_airframe_t *a, const char *
     return 0;
 }
 
-/* Loads and tunes the scenario the controllers come from. */
-static int load_scenario(const options_t *o, const char *path, sim_scenario_t *sc)
+/* A tuning that missed (a warning) or a controller untunable, at its key. */
+static void tune_note(void *ctx, int scenario_index, int rc, const sim_parse_error_t *err)
+{
+    (void)ctx;
+    (void)scenario_index;
+    fprintf(stderr, "%s:%d:%d: %s%s\n", err->path, err->line, err->column,
+            rc == SIM_TUNE_UNTUNABLE ? "" : "warning: ", err->message);
+}
+
+/* Loads and tunes the scenario the controllers come from; the controllers
+ * left untunable are taken off its list into untunable[*n_untunable]. */
+static int load_scenario(const options_t *o, const char *path, sim_scenario_t *sc, sim_controller_id_t *untunable,
+                         int *n_untunable)
 {
     sim_parse_error_t perr;
     if (sim_scenario_load(sc, path, &perr) != 0 ||
@@ -237,10 +255,23 @@ static int load_scenario(const options_t *o, const char *path, sim_scenario_t *s
         return -1;
     }
     int failed = 0;
-    if (sim_fly_tune(sc, 1, 2, o->quiet, &perr, &failed) != 0) {
+    const sim_fly_tune_options_t tune_opt = {.jobs = 2, .quiet = o->quiet, .strict = o->strict, .note = tune_note};
+    if (sim_fly_tune(sc, 1, &tune_opt, &perr, &failed) < 0) {
         fprintf(stderr, "%s:%d:%d: %s\n", perr.path, perr.line, perr.column, perr.message);
         return -1;
     }
+    /* an untunable controller is not replayed: the others are */
+    *n_untunable = 0;
+    int n = 0;
+    for (int c = 0; c < sc->n_controllers; ++c) {
+        const sim_controller_id_t id = sc->controllers[c];
+        if (sc->tuning[id].by == SIM_TUNED_UNTUNABLE) {
+            untunable[(*n_untunable)++] = id;
+        } else {
+            sc->controllers[n++] = id;
+        }
+    }
+    sc->n_controllers = n;
     return 0;
 }
 
@@ -372,9 +403,12 @@ int main(int argc, char **argv)
         return 2;
     }
     static sim_scenario_t sc;
-    if (load_scenario(&o, o.scenario != NULL ? o.scenario : ini, &sc) != 0) {
+    sim_controller_id_t untunable[SIM_MAX_CONTROLLERS];
+    int n_untunable = 0;
+    if (load_scenario(&o, o.scenario != NULL ? o.scenario : ini, &sc, untunable, &n_untunable) != 0) {
         return 2;
     }
+    sim_report_tuning(stdout, &sc);
     static sim_replay_t r;
     prog.start_s = sim_fly_now_s();
     if (replay(&o, &sc, dir, &r, &prog) != 0) {
@@ -384,7 +418,7 @@ int main(int argc, char **argv)
     printf("replayed %lld ticks (%.4g s of flight) with %d controllers in %.2f s: %.0fx real time\n", r.ticks,
            (double)r.ticks * sc.control_dt_s, r.n, replay_s, (double)r.ticks * sc.control_dt_s / replay_s);
     sim_report_replay(stdout, &r);
-    if (sim_write_replay_files(dir, &r, err, sizeof err) != 0) {
+    if (sim_write_replay_files(dir, &r, untunable, n_untunable, err, sizeof err) != 0) {
         fprintf(stderr, "ladrc_replay: %s\n", err);
         return 2;
     }
@@ -392,5 +426,5 @@ int main(int argc, char **argv)
         status |= r.fault_ticks[c] > 0;
     }
     printf("outputs in %s (tools/replay_plot.py %s draws them)\n", dir, dir);
-    return status;
+    return status == 0 && n_untunable > 0 ? 4 : status;
 }

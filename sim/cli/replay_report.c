@@ -124,7 +124,7 @@ void sim_report_replay(FILE *out, const sim_replay_t *r)
     }
 }
 
-static int write_summary(const char *path, const sim_replay_t *r)
+static int write_summary(const char *path, const sim_replay_t *r, const sim_controller_id_t *untunable, int n_untunable)
 {
     FILE *f = fopen(path, "w");
     if (f == NULL) {
@@ -144,6 +144,15 @@ static int write_summary(const char *path, const sim_replay_t *r)
                     c < 0 ? NAN : sim_replay_stat_rms(&a->difference), est ? a->estimate.mean : NAN,
                     est ? sim_replay_stat_std(&a->estimate) : NAN, c < 0 ? 0LL : r->fault_ticks[c],
                     c < 0 ? 0u : (unsigned)r->faults_seen[c]);
+        }
+    }
+    for (int c = 0; c < n_untunable; ++c) {
+        for (int i = 0; i < 3; ++i) {
+            fprintf(f, "%s,%s", sim_controller_name(untunable[c]), AXIS[i]);
+            for (int k = 0; k < 11; ++k) { /* every column after the axis */
+                fputs(",untunable", f);
+            }
+            fputc('\n', f);
         }
     }
     return (ferror(f) | fclose(f)) != 0 ? -1 : 0;
@@ -181,11 +190,12 @@ static int write_spectrum(const char *path, const sim_replay_t *r)
     return (ferror(f) | fclose(f)) != 0 ? -1 : 0;
 }
 
-int sim_write_replay_files(const char *dir, const sim_replay_t *r, char *why, size_t why_len)
+int sim_write_replay_files(const char *dir, const sim_replay_t *r, const sim_controller_id_t *untunable,
+                           int n_untunable, char *why, size_t why_len)
 {
     char path[1024];
     snprintf(path, sizeof path, "%s/replay_summary.csv", dir);
-    if (write_summary(path, r) != 0) {
+    if (write_summary(path, r, untunable, n_untunable) != 0) {
         snprintf(why, why_len, "%s: write failed", path);
         return -1;
     }

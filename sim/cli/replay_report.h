@@ -23,8 +23,11 @@ void sim_replay_csv_header(FILE *f, const sim_replay_t *r);
 void sim_replay_csv_row(FILE *f, const sim_replay_t *r, const sim_log_sample_t *s, const sim_replay_tick_t *t);
 
 /* The summary table on out, and replay_summary.csv and spectrum.csv in dir
- * (0, or -1 with the file that failed in why). */
+ * (0, or -1 with the file that failed in why); the untunable controllers
+ * (not replayed) are rows of replay_summary.csv whose values read
+ * untunable. */
 void sim_report_replay(FILE *out, const sim_replay_t *r);
-int sim_write_replay_files(const char *dir, const sim_replay_t *r, char *why, size_t why_len);
+int sim_write_replay_files(const char *dir, const sim_replay_t *r, const sim_controller_id_t *untunable,
+                           int n_untunable, char *why, size_t why_len);
 
 #endif

@@ -4,6 +4,7 @@
 
 #include <math.h>
 
+#include "run/tune.h"
 #include "scenario/setup.h"
 
 static const char *const AXES[3] = {"roll", "pitch", "yaw"};
@@ -28,6 +29,13 @@ void sim_report_divergence_text(char *buf, size_t len, const sim_scenario_t *sc,
     }
 }
 
+/* What a table prints in place of a run's statistics: "diverged",
+ * "untunable", or NULL when they are the run's. */
+static const char *withheld(const sim_metrics_t *m)
+{
+    return m->untunable ? SIM_TEXT_UNTUNABLE : m->diverged ? SIM_TEXT_DIVERGED : NULL;
+}
+
 /* The first column's title, then one column per controller. */
 static void column_titles(FILE *out, const sim_scenario_t *sc, const char *first, int width)
 {
@@ -48,8 +56,8 @@ static void table4(FILE *out, const sim_scenario_result_t *r)
         fprintf(out, "%-6s", AXES[i]);
         for (int c = 0; c < sc->n_controllers; ++c) {
             const sim_stat_t *s = &r->attitude[c].error_deg[i];
-            if (r->attitude[c].diverged) {
-                fprintf(out, " | %-28s", SIM_TEXT_DIVERGED);
+            if (withheld(&r->attitude[c]) != NULL) {
+                fprintf(out, " | %-28s", withheld(&r->attitude[c]));
                 continue;
             }
             fprintf(out, " | %8.4f / %8.4f / %8.4f", s->mean, sim_stat_std(s), sim_stat_rms(s));
@@ -72,8 +80,8 @@ static void table5(FILE *out, const sim_scenario_result_t *r)
         fprintf(out, "%-6s", AXES[i]);
         for (int c = 0; c < sc->n_controllers; ++c) {
             const sim_metrics_t *m = &r->attitude[c];
-            if (m->diverged) {
-                fprintf(out, " | %-33s", SIM_TEXT_DIVERGED);
+            if (withheld(m) != NULL) {
+                fprintf(out, " | %-33s", withheld(m));
                 continue;
             }
             char settle[32];
@@ -100,12 +108,12 @@ static void table6(FILE *out, const sim_scenario_result_t *r)
         fprintf(out, "%-6s", AXES[i]);
         for (int c = 0; c < sc->n_controllers; ++c) {
             const sim_metrics_t *m = &r->attitude[c];
-            if (!m->has_estimate) {
-                fprintf(out, " | %-28s", "(no estimate)");
+            if (withheld(m) != NULL) {
+                fprintf(out, " | %-28s", withheld(m));
                 continue;
             }
-            if (m->diverged) {
-                fprintf(out, " | %-28s", SIM_TEXT_DIVERGED);
+            if (!m->has_estimate) {
+                fprintf(out, " | %-28s", "(no estimate)");
                 continue;
             }
             const sim_stat_t *s = &m->dist_error[i];
@@ -124,8 +132,8 @@ static void table7(FILE *out, const sim_scenario_result_t *r)
         fprintf(out, "%-6d", k + 1);
         for (int c = 0; c < sc->n_controllers; ++c) {
             const sim_stat_t *s = &r->attitude[c].rotor_w2[k];
-            if (r->attitude[c].diverged) {
-                fprintf(out, " | %-32s", SIM_TEXT_DIVERGED);
+            if (withheld(&r->attitude[c]) != NULL) {
+                fprintf(out, " | %-32s", withheld(&r->attitude[c]));
                 continue;
             }
             const double sd = sim_stat_std(s);
@@ -151,22 +159,32 @@ static void table3(FILE *out, const sim_scenario_result_t *r)
 
 void sim_report_tuning(FILE *out, const sim_scenario_t *sc)
 {
+    static const char *const FROM[] = {[SIM_TUNED_MARGINS] = "",
+                                       [SIM_TUNED_DEFAULTS] = " (the library's defaults)",
+                                       [SIM_TUNED_SCENARIO] = " (the file's gains)"};
     for (int c = 0; c < sc->n_controllers; ++c) {
         const sim_controller_id_t id = sc->controllers[c];
         const sim_tuning_t *t = &sc->tuning[id];
+        if (t->by == SIM_TUNED_UNTUNABLE) {
+            fprintf(out, "untunable %s: not flown: %s\n", sim_controller_name(id), t->reason);
+            continue;
+        }
         if (!t->tuned) {
             continue;
         }
         for (int i = 0; i < 3; ++i) {
             char gains[256];
             (void)sim_setup_format_gains(&t->gains[i], gains, sizeof gains);
-            fprintf(out, "tuned %s %s: %s", sim_controller_name(id), AXES[i], gains);
+            fprintf(out, "tuned %s %s: %s%s", sim_controller_name(id), AXES[i], gains, FROM[t->by]);
             fprintf(out,
                     " -> PM %.1f deg (>= %g), GM %.1f dB / %.1f dB (>= %g), crossover %.1f rad/s, Ms %.2f,"
                     " step cost %.3g rad^2 s%s%s\n",
                     t->pm_deg[i], t->pm_target_deg, t->gm_db[i], t->gm_low_db[i], t->gm_target_db,
                     t->crossover_rad_s[i], t->ms[i], t->step_cost_rad2_s[i], t->idle[i] ? " (estimator idle)" : "",
                     t->shared[i] ? " (= roll)" : "");
+        }
+        if (t->reason[0] != '\0') {
+            fprintf(out, "tuning of %s: %s\n", sim_controller_name(id), t->reason);
         }
     }
 }
@@ -253,7 +271,9 @@ static void row(FILE *out, const sim_scenario_t *sc, const char *ctrl, const cha
 static void stat_row(FILE *out, const sim_scenario_t *sc, const sim_metrics_t *m, const char *ctrl, const char *table,
                      const char *quantity, const char *axis, double value)
 {
-    if (m->diverged) {
+    if (m->untunable) {
+        row_text(out, sc, ctrl, table, quantity, axis, SIM_TOKEN_UNTUNABLE);
+    } else if (m->diverged) {
         row_text(out, sc, ctrl, table, quantity, axis, SIM_TOKEN_DIVERGED);
     } else {
         row(out, sc, ctrl, table, quantity, axis, value);
@@ -285,7 +305,7 @@ int sim_report_metrics_csv(FILE *out, const sim_scenario_result_t *r, int header
             stat_row(out, sc, m, name, "4", "error_std_deg", AXES[i], sim_stat_std(&m->error_deg[i]));
             stat_row(out, sc, m, name, "4", "error_rms_deg", AXES[i], sim_stat_rms(&m->error_deg[i]));
             stat_row(out, sc, m, name, "5", "max_error_deg", AXES[i], m->max_error_deg[i]);
-            if (!m->diverged && m->settle_s[i] == SIM_NOT_SETTLED) {
+            if (withheld(m) == NULL && m->settle_s[i] == SIM_NOT_SETTLED) {
                 row_text(out, sc, name, "5", "settling_s", AXES[i], SIM_TOKEN_NOT_SETTLED);
             } else {
                 stat_row(out, sc, m, name, "5", "settling_s", AXES[i], m->settle_s[i]);
@@ -305,6 +325,21 @@ int sim_report_metrics_csv(FILE *out, const sim_scenario_result_t *r, int header
             stat_row(out, sc, m, name, "7", "w2_var", ROTORS[k], sd * sd);
         }
         const sim_tuning_t *t = &sc->tuning[sc->controllers[c]];
+        if (t->by != SIM_TUNED_NONE) {
+            row_text(out, sc, name, "tune", "status", "-", sim_tuned_by_name(t->by));
+            row(out, sc, name, "tune", "targets_met", "-", t->targets_met);
+            static const char *const CANDIDATES[SIM_N_CANDIDATES] = {"check_rms_tuned_deg", "check_rms_defaults_deg",
+                                                                     "check_rms_scenario_deg"};
+            for (int k = 0; k < SIM_N_CANDIDATES; ++k) {
+                if (isnan(t->check_cost_deg[k])) {
+                    row_text(out, sc, name, "tune", CANDIDATES[k], "-", SIM_TOKEN_NONE);
+                } else if (isinf(t->check_cost_deg[k])) {
+                    row_text(out, sc, name, "tune", CANDIDATES[k], "-", SIM_TOKEN_DIVERGED);
+                } else {
+                    row(out, sc, name, "tune", CANDIDATES[k], "-", t->check_cost_deg[k]);
+                }
+            }
+        }
         for (int i = 0; t->tuned && i < 3; ++i) {
             int n_gains;
             const sim_gain_field_t *g = sim_setup_gain_fields(t->gains[i].variant, &n_gains);
@@ -318,8 +353,13 @@ int sim_report_metrics_csv(FILE *out, const sim_scenario_result_t *r, int header
             row(out, sc, name, "tune", "ms", AXES[i], t->ms[i]);
             row(out, sc, name, "tune", "step_cost_rad2_s", AXES[i], t->step_cost_rad2_s[i]);
         }
-        row(out, sc, name, "-", "finite", "-", m->finite);
-        row(out, sc, name, "-", "fault_ticks", "-", (double)m->faults);
+        if (m->untunable) { /* not flown */
+            row_text(out, sc, name, "-", "finite", "-", SIM_TOKEN_UNTUNABLE);
+            row_text(out, sc, name, "-", "fault_ticks", "-", SIM_TOKEN_UNTUNABLE);
+        } else {
+            row(out, sc, name, "-", "finite", "-", m->finite);
+            row(out, sc, name, "-", "fault_ticks", "-", (double)m->faults);
+        }
         row(out, sc, name, "-", "diverged", "-", m->diverged);
         if (m->diverged) { /* the error is nan when the state turned non-finite */
             row(out, sc, name, "-", "diverged_at_s", diverged_axis_name(m), m->diverged_at_s);

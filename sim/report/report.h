@@ -22,19 +22,23 @@ typedef struct {
 
 /* What the tables print in place of a number. */
 #define SIM_TEXT_DIVERGED "diverged"       /* every statistic of a run that diverged */
+#define SIM_TEXT_UNTUNABLE "untunable"     /* every statistic of a controller not flown (tune.h) */
 #define SIM_TEXT_NOT_SETTLED "not settled" /* a settling time when the error ends outside the band */
 
 /* The tokens of metrics.csv's value column in place of a number (docs/simulator.md;
  * tools/sim_output.py reads them). */
 #define SIM_TOKEN_DIVERGED "diverged"       /* every statistic of a run that diverged */
+#define SIM_TOKEN_UNTUNABLE "untunable"     /* every statistic of a controller not flown (tune.h) */
 #define SIM_TOKEN_NOT_SETTLED "not_settled" /* settling_s when the error ends outside the band */
 #define SIM_TOKEN_NONE "-"                  /* diverged_at_s, diverged_error_deg of a healthy run */
 
 void sim_report_tables(FILE *out, const sim_scenario_result_t *res);
 
 /* One line per axis of each listed controller with tune = margins: the
- * gains chosen and their margins against the targets (part of the tables'
- * header; nothing for untuned controllers). */
+ * gains chosen, which candidate they are (tune.h) and their margins
+ * against the targets, then a line of why when the tuner's gains are not
+ * flown or miss (part of the tables' header; nothing for untuned
+ * controllers). */
 void sim_report_tuning(FILE *out, const sim_scenario_t *sc);
 
 /* "diverged at t = ... s on roll: |tracking error| ... deg exceeds diverge_limit_deg = ..."

@@ -37,8 +37,11 @@ typedef struct {
     double diverged_at_s;      /* the instant it was seen */
     int diverged_axis;         /* 0..2; -1: a rotor's w^2 turned non-finite */
     double diverged_error_deg; /* |error| on that axis then; NaN when non-finite */
-    long faults;               /* controller ticks with a fault flag */
-    double wall_s;             /* wall time of the run (of its lockstep group, runner.h) */
+    /* tune = margins found no gains that fly the check flight: the
+     * controller was not flown (the tables print "untunable"). */
+    int untunable;
+    long faults;   /* controller ticks with a fault flag */
+    double wall_s; /* wall time of the run (of its lockstep group, runner.h) */
 } sim_metrics_t;
 
 /* Table 3: derivative-error statistics of the two reference shapers. */

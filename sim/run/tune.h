@@ -39,17 +39,35 @@ void sim_tune_filter(const sim_scenario_t *sc, sim_tune_filter_t *f);
 ladrc_margins_controller_t sim_tune_controller_of(const sim_scenario_t *sc, const sim_tune_filter_t *f,
                                                   const ladrc_attitude_config_t *acfg, int axis);
 
-/* Tunes controller id of sc (tune = margins) on each axis into
- * sc->tuning[id]; ws is scratch (ladrc_margins_workspace_t is about 1 MB).
- * Pitch takes roll's result when the two axes' modelled inertias are equal
- * (the same loop). The tuned gains are then flown over the whole scenario
- * (sim_run_attitude, no time series) before they are accepted. Returns 0;
- * or -1 with *err set at the `tune` key (file:line:column) when an axis's
- * targets cannot be met (the message gives the best margins reached), its
- * analysis fails, or the check flight diverges (the message names the axis
- * and the time); sc->tuning[id] then holds what was reached, with
- * tuned = 0. Nothing to do: returns 0. */
+/* What sim_tune_controller returns. */
+enum {
+    SIM_TUNE_OK = 0,        /* the tuner met the targets and its gains fly the check flight */
+    SIM_TUNE_MISSED = 1,    /* the tuner missed a target, its analysis failed or its gains do not fly the check
+                               flight; another candidate flies (the reason at the key) */
+    SIM_TUNE_UNTUNABLE = 2, /* no candidate flies the check flight: the controller is not flown */
+};
+
+/* Tunes controller id of sc (tune = margins) into sc->tuning[id]; ws is
+ * scratch (ladrc_margins_workspace_t is about 1 MB).
+ * The tuner (ladrc_margins_tune) runs on each axis; pitch takes roll's
+ * result when the two axes' modelled inertias are equal (the same loop).
+ * Then every candidate flies the whole scenario (the check flight, no
+ * time series): the tuner's gains (its closest miss where it misses the
+ * targets), the library's defaults and the gains the file gives beside
+ * tune = margins (when it gives any). The candidate with the smallest sum
+ * over the axes of the RMS error flies (ties: the tuner's first); one that
+ * does not start, fails or diverges never does. sc->tuning[id].by says
+ * which candidate won, check_cost_deg what each flew, reason why the
+ * tuner's gains are not flown or where they miss; the margins reported are
+ * those of the gains flown.
+ * Returns SIM_TUNE_OK, SIM_TUNE_MISSED or SIM_TUNE_UNTUNABLE; with the
+ * last two *err holds the reason at the `tune` key (file:line:column).
+ * Nothing to do: SIM_TUNE_OK. */
 int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margins_workspace_t *ws,
                         sim_parse_error_t *err);
+
+/* The token of metrics.csv's tune status: tuned, defaults, scenario,
+ * untunable or none. */
+const char *sim_tuned_by_name(sim_tuned_by_t by);
 
 #endif

@@ -458,48 +458,22 @@ static void check_differentiator(parser_t *p)
     }
 }
 
-/* tune = margins chooses the gains: a gain the file gives as well is an
- * error at that gain; its targets and objective steps without tune = margins
- * are an error too. */
+/* The targets and objective steps of tune = margins without it are an
+ * error. Gains given beside tune = margins are not: they are one of the
+ * tuning's candidates (tune.h). */
 static void check_tuning(parser_t *p)
 {
-    /* the keys of the gains tune = margins chooses (setup.h, sim_setup_gain_fields) */
-    static const char *const gains[] = {"wc_rad_s",
-                                        "wo_rad_s",
-                                        "pid_kp",
-                                        "pid_ki",
-                                        "pid_kd",
-                                        "cas_att_kp",
-                                        "cas_rate_kp",
-                                        "cas_rate_ki",
-                                        "cas_rate_kd",
-                                        "cas_d_filter_tau_s",
-                                        "indi_att_kp_per_s",
-                                        "indi_rate_kp_per_s",
-                                        "indi_filter_rad_s",
-                                        "radrc_kp_per_s",
-                                        "radrc_att_kp_per_s"};
     static const char *const tune_only[] = {"tune_phase_margin_deg", "tune_gain_margin_db", "tune_step_deg",
                                             "tune_disturbance_step_rad_s2"};
     for (int id = 0; id < SIM_CTRL_COUNT; ++id) {
         const int sec = SEC_CONTROLLER + id;
-        const loc_t *tune = checks_seen(p, sec, "tune");
         if (p->sc->overrides[id].tune == SIM_TUNE_MARGINS) {
-            for (int g = 0; g < (int)(sizeof gains / sizeof gains[0]); ++g) {
-                const loc_t *at = checks_seen(p, sec, gains[g]);
-                if (at->line != 0) {
-                    check_fail(p, at->line, at->key_col,
-                               "'%s' conflicts with tune = margins (line %d), which chooses the gains: "
-                               "give one of them",
-                               gains[g], tune->line);
-                }
-            }
-        } else {
-            for (int g = 0; g < (int)(sizeof tune_only / sizeof tune_only[0]); ++g) {
-                const loc_t *at = checks_seen(p, sec, tune_only[g]);
-                if (at->line != 0) {
-                    check_fail(p, at->line, at->key_col, "'%s' applies only with tune = margins", tune_only[g]);
-                }
+            continue;
+        }
+        for (int g = 0; g < (int)(sizeof tune_only / sizeof tune_only[0]); ++g) {
+            const loc_t *at = checks_seen(p, sec, tune_only[g]);
+            if (at->line != 0) {
+                check_fail(p, at->line, at->key_col, "'%s' applies only with tune = margins", tune_only[g]);
             }
         }
     }

@@ -103,8 +103,27 @@ typedef struct {
 /* Gains chosen by tune = margins (sim_tune_controller, tune.h) for each axis
  * (roll, pitch, yaw), and the margins ladrc_analysis computes for them on
  * the scenario's airframe as the controller models it. */
+/* What tune = margins gave a controller (sim_tune_controller, tune.h): the
+ * candidate that flew the check flight best, or none. */
+typedef enum {
+    SIM_TUNED_NONE = 0,  /* not tuned (tune = none, or not yet) */
+    SIM_TUNED_MARGINS,   /* the tuner's gains */
+    SIM_TUNED_DEFAULTS,  /* the library's default gains */
+    SIM_TUNED_SCENARIO,  /* the gains the file gives */
+    SIM_TUNED_UNTUNABLE, /* no candidate flew the check flight: not flown */
+} sim_tuned_by_t;
+
+/* The candidates of tune = margins, in sim_tuning_t.check_cost_deg's order. */
+enum { SIM_CANDIDATE_MARGINS = 0, SIM_CANDIDATE_DEFAULTS = 1, SIM_CANDIDATE_SCENARIO = 2, SIM_N_CANDIDATES = 3 };
+
 typedef struct {
-    int tuned; /* 1: these gains replace the defaults (sim_setup_attitude) */
+    int tuned; /* 1: these gains replace the file's (sim_setup_attitude) */
+    sim_tuned_by_t by;
+    int targets_met;  /* 1: the gains flown meet the margin targets on every axis */
+    char reason[512]; /* why the tuner's gains are not flown, or where they miss; "" if nothing to say */
+    double check_cost_deg[SIM_N_CANDIDATES]; /* each candidate's check flight: the sum over the axes of the
+                                                RMS error (deg); INFINITY: diverged; NaN: not a candidate */
+    int candidate_met[SIM_N_CANDIDATES];     /* 1: that candidate meets the targets on every axis */
     double pm_target_deg, gm_target_db;
     ladrc_axis_config_t gains[3]; /* the tuned config of each axis: its variant's gain fields
                                      (sim_setup_gain_fields) are the tuned gains */
@@ -121,7 +140,7 @@ typedef struct {
     char path[SIM_PATH_LEN];
     int line;
     int column;
-    char message[256];
+    char message[768];
     int first_set_line; /* > 0: lines from this one on are the command line's --set items
                             (line first_set_line + k is item k, column is into its text) */
 } sim_parse_error_t;

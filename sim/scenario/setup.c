@@ -192,7 +192,7 @@ int sim_setup_wraps_yaw(const sim_scenario_t *sc, sim_controller_id_t id)
     return sc->overrides[id].wrap_yaw != 0;
 }
 
-void sim_setup_attitude(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_config_t *cfg)
+void sim_setup_library_defaults(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_config_t *cfg)
 {
     ladrc_real_t inertia[3];
     for (int i = 0; i < 3; ++i) {
@@ -200,6 +200,11 @@ void sim_setup_attitude(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_
     }
     ladrc_attitude_config_default(cfg, variant_of(id), (ladrc_real_t)sc->control_dt_s, inertia,
                                   (ladrc_real_t)(sc->rot_drag_Nm_s * sc->rot_drag_scale));
+}
+
+void sim_setup_attitude(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_config_t *cfg)
+{
+    sim_setup_library_defaults(sc, id, cfg);
     const sim_overrides_t *o = &sc->overrides[id];
     for (int i = 0; i < 3; ++i) {
         /* The controllers model the airframe they fly, as they are given its

@@ -16,6 +16,11 @@
 #include "plant/vibration.h"
 #include "scenario.h"
 
+/* The library's default config of controller id for the airframe as the
+ * controller models it (inertia times inertia_scale, drag times
+ * rot_drag_scale): no key of the file applied. */
+void sim_setup_library_defaults(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_config_t *cfg);
+
 /* Controller id on sc: the library defaults for the control period and the
  * inertia and drag the controllers assume (the plant's times the mismatch
  * factors), then the scenario's [controller NAME] overrides, then the gains

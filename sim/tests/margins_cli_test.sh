@@ -63,16 +63,40 @@ kp_margins=$(sed -n 's/^tuned PID roll: kp \([^ ]*\) .*/\1/p' "$work/tuned.txt")
 kp_sil=$(sed -n 's/^tuned PID roll: kp \([^ ]*\) .*/\1/p' "$work/sil.txt")
 [ -n "$kp_margins" ] && [ "$kp_margins" = "$kp_sil" ]; check both_commands_tune_alike $?
 
-# Targets that cannot be met: exit 2 at the tune key, the best margins reached named; nothing written.
+# Targets that cannot be met: a warning at the tune key naming the best margins reached, and the
+# best candidate flies (exit 0); with --strict, exit 2 there and nothing written.
 printf '[run]\nduration_s = 1\ncontrollers = LADRC\n[rotors]\nmotor_tau_s = 0.03\n[controller LADRC]\ntune = margins\ntune_phase_margin_deg = 89\ntune_gain_margin_db = 40\n' \
     > "$work/impossible.ini"
-"$sil" "$work/impossible.ini" --out "$work/impossible_out" --quiet > /dev/null 2> "$work/impossible.err"
-[ $? -eq 2 ] && grep -q "impossible.ini:7:8: tune = margins: LADRC on roll cannot meet PM >= 89 deg, GM >= 40 dB; best reached: .*PM [0-9.-]* deg, GM [0-9.-]* dB" \
-    "$work/impossible.err" && [ ! -e "$work/impossible_out" ]
-check unmet_targets_exit_2_at_the_tune_key $?
-"$margins" "$work/impossible.ini" > /dev/null 2> "$work/impossible_m.err"
-[ $? -eq 2 ] && grep -q "impossible.ini:7:8: tune = margins: LADRC" "$work/impossible_m.err"
-check unmet_targets_refused_by_ladrc_margins $?
+"$sil" "$work/impossible.ini" --out "$work/impossible_out" --quiet --no-csv > "$work/impossible.txt" 2> "$work/impossible.err"
+[ $? -eq 0 ] && grep -q "impossible.ini:7:8: warning: tune = margins: LADRC on roll cannot meet PM >= 89 deg, GM >= 40 dB; best reached: .*PM [0-9.-]* deg, GM [0-9.-]* dB" \
+    "$work/impossible.err" && grep -q "^impossible,LADRC,tune,targets_met,-,0$" "$work/impossible_out/impossible/metrics.csv" &&
+  grep -q "^impossible,LADRC,tune,status,-,\(tuned\|defaults\)$" "$work/impossible_out/impossible/metrics.csv"
+check unmet_targets_warn_at_the_tune_key_and_fly $?
+"$sil" "$work/impossible.ini" --out "$work/impossible_strict" --quiet --strict > /dev/null 2> "$work/impossible_s.err"
+[ $? -eq 2 ] && grep -q "impossible.ini:7:8: tune = margins: LADRC on roll cannot meet PM >= 89 deg" \
+    "$work/impossible_s.err" && [ ! -e "$work/impossible_strict" ]
+check unmet_targets_exit_2_with_strict $?
+"$margins" "$work/impossible.ini" > "$work/impossible_m.txt" 2> "$work/impossible_m.err"
+[ $? -eq 0 ] && grep -q "impossible.ini:7:8: warning: tune = margins: LADRC" "$work/impossible_m.err" &&
+  grep -q "^LADRC  *roll " "$work/impossible_m.txt"
+check unmet_targets_warned_by_ladrc_margins $?
 
-echo "$(( 14 - failures )) passed, $failures failed"
+# A controller that no candidate flies (its model of the airframe 8 times too heavy, so that the
+# defaults and the tuned gains alike diverge) is untunable: named at its key, not flown, its
+# statistics "untunable"; the other controller flies; exit 4.
+printf '[run]\nduration_s = 4\ncontrollers = LADRC CASCADED\n[rotors]\nideal = yes\nmotor_tau_s = 0.02\n[mismatch]\ninertia_scale = 8 8 8\n[reference]\nroll = 1 .. : 5\n[controller LADRC]\ntune = margins\n' \
+    > "$work/heavy_model.ini"
+"$sil" "$work/heavy_model.ini" --out "$work/heavy_out" --quiet --no-csv > "$work/heavy.txt" 2> "$work/heavy.err"
+rc=$?
+[ $rc -eq 4 ] && grep -q "heavy_model.ini:12:8: tune = margins: untunable: LADRC: the tuned gains on roll: diverge at" "$work/heavy.err" &&
+  grep -q "^heavy_model,LADRC,4,error_rms_deg,roll,untunable$" "$work/heavy_out/heavy_model/metrics.csv" &&
+  grep -q "^heavy_model,LADRC,tune,status,-,untunable$" "$work/heavy_out/heavy_model/metrics.csv" &&
+  grep -q "^heavy_model,CASCADED,4,error_rms_deg,roll,[0-9]" "$work/heavy_out/heavy_model/metrics.csv" &&
+  grep -q "^untunable LADRC: not flown: " "$work/heavy.txt"
+check untunable_controller_is_not_flown_and_the_others_are $?
+"$sil" "$work/heavy_model.ini" --out "$work/heavy_strict" --quiet --strict > /dev/null 2> "$work/heavy_s.err"
+[ $? -eq 2 ] && [ ! -e "$work/heavy_strict" ]
+check untunable_controller_refused_with_strict $?
+
+echo "$(( 17 - failures )) passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -52,7 +52,7 @@ static inline void assert_close(double expected, double actual, const char *what
 static inline void parse_ok(const char *text)
 {
     const int rc = sim_scenario_parse(&sc, text, "dir/test.ini", &err);
-    char message[300];
+    char message[800];
     snprintf(message, sizeof message, "%d:%d: %s", err.line, err.column, err.message);
     TEST_ASSERT_EQUAL_INT_MESSAGE(0, rc, message);
 }

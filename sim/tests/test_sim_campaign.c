@@ -46,7 +46,7 @@ void tearDown(void)
 static void parse_ok(const char *text)
 {
     const int rc = sim_campaign_parse(&c, text, "dir/test.ini", &err);
-    char message[400];
+    char message[800];
     snprintf(message, sizeof message, "%d:%d: %s", err.line, err.column, err.message);
     TEST_ASSERT_EQUAL_INT_MESSAGE(0, rc, message);
 }
@@ -517,7 +517,7 @@ static void test_malformed_campaigns_are_refused_at_line_and_column(void)
     };
     for (size_t i = 0; i < sizeof CASES / sizeof CASES[0]; ++i) {
         const bad_case_t *bc = &CASES[i];
-        char message[600];
+        char message[1200];
         const int rc = sim_campaign_parse(&c, bc->text, "dir/test.ini", &err);
         snprintf(message, sizeof message, "case %u: expected %d:%d: %s; got rc %d, %d:%d: %s", (unsigned)i, bc->line,
                  bc->column, bc->message, rc, err.line, err.column, err.message);

@@ -1,9 +1,12 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* tune = margins flies the whole scenario with the tuned gains before it
- * accepts them: gains whose margins hold on the modelled airframe but that
- * diverge on the one flown are refused at the `tune` key, naming the
- * controller, the axis and the time; gains that fly are kept. The
- * objective's keys and the gyro filter reach the tuning. */
+/* tune = margins flies the whole scenario with each candidate (the tuned
+ * gains, the library's defaults, the file's gains) before it chooses:
+ * gains whose margins hold on the modelled airframe but that diverge on the
+ * one flown are never chosen; when no candidate flies, the controller is
+ * untunable, named at the `tune` key with the axis and the time; a
+ * candidate that meets the targets beats one that does not, and between
+ * equals the check flight decides. The objective's keys and the gyro
+ * filter reach the tuning. */
 #include "unity.h"
 #include "ladrc/margins.h"
 #include "run/tune.h"
@@ -25,8 +28,9 @@ void tearDown(void)
 }
 
 /* The paper's airframe with a 20 ms motor lag; LADRC tuned on inertias
- * `scale` times the true ones, a 5 deg roll step at 1 s. */
-static int tune_on(double scale, sim_parse_error_t *err)
+ * `scale` times the true ones, a 5 deg roll step at 1 s; `keys` more of
+ * LADRC's section. */
+static int tune_with(double scale, const char *keys, sim_parse_error_t *err)
 {
     char text[1024];
     snprintf(text, sizeof text,
@@ -34,8 +38,8 @@ static int tune_on(double scale, sim_parse_error_t *err)
              "[vehicle]\nmass_kg = 0.8\ninertia_kg_m2 = 5.445e-3 5.445e-3 1.089e-2\narm_m = 0.165\n"
              "thrust_coeff_N_s2 = 2.98e-5\nyaw_coeff_Nm_s2 = 2e-6\nrot_drag_Nm_s = 0.09\ng_m_s2 = 9.81\n"
              "[rotors]\nideal = yes\nmotor_tau_s = 0.02\n[mismatch]\ninertia_scale = %g %g %g\n"
-             "[reference]\nroll = 1 .. : 5\n[controller LADRC]\ntune = margins\n",
-             scale, scale, scale);
+             "[reference]\nroll = 1 .. : 5\n[controller LADRC]\ntune = margins\n%s",
+             scale, scale, scale, keys);
     const int rc = sim_scenario_parse(&sc, text, "check.ini", err);
     if (rc != 0)
         printf("%s:%d: %s\n", err->path, err->line, err->message);
@@ -43,18 +47,54 @@ static int tune_on(double scale, sim_parse_error_t *err)
     return sim_tune_controller(&sc, SIM_CTRL_LADRC, &ws, err);
 }
 
-static void test_gains_that_diverge_are_refused(void)
+static int tune_on(double scale, sim_parse_error_t *err)
+{
+    return tune_with(scale, "", err);
+}
+
+/* The chosen candidate is never beaten by one the tuning had: none that
+ * meets the targets when it does not, none of equal standing that flies
+ * the check flight better. */
+static void assert_best_candidate(const sim_tuning_t *t)
+{
+    static const sim_tuned_by_t BY[SIM_N_CANDIDATES] = {SIM_TUNED_MARGINS, SIM_TUNED_DEFAULTS, SIM_TUNED_SCENARIO};
+    int win = -1;
+    for (int c = 0; c < SIM_N_CANDIDATES; ++c)
+        win = BY[c] == t->by ? c : win;
+    TEST_ASSERT_TRUE(win >= 0);
+    TEST_ASSERT_TRUE(t->check_cost_deg[win] < INFINITY);
+    TEST_ASSERT_EQUAL_INT(t->candidate_met[win], t->targets_met);
+    for (int c = 0; c < SIM_N_CANDIDATES; ++c) {
+        printf("  candidate %d: check flight %.4g deg, targets %s%s\n", c, t->check_cost_deg[c],
+               t->candidate_met[c] ? "met" : "missed", c == win ? " (flown)" : "");
+        if (c == win || !(t->check_cost_deg[c] < INFINITY))
+            continue;
+        TEST_ASSERT_TRUE(t->candidate_met[c] <= t->candidate_met[win]);
+        if (t->candidate_met[c] == t->candidate_met[win])
+            TEST_ASSERT_TRUE(t->check_cost_deg[win] <= t->check_cost_deg[c]);
+    }
+}
+
+static void test_gains_that_diverge_leave_the_controller_untunable(void)
 {
     /* Modelled 8 times heavier: the loop flown has 18 dB more gain than
-     * the one tuned, beyond its gain margin. */
+     * the one tuned, beyond its gain margin; the defaults, made for the
+     * same model, diverge too. */
     sim_parse_error_t err;
-    TEST_ASSERT_EQUAL_INT(-1, tune_on(8.0, &err));
+    TEST_ASSERT_EQUAL_INT(SIM_TUNE_UNTUNABLE, tune_on(8.0, &err));
     printf("%s:%d:%d: %s\n", err.path, err.line, err.column, err.message);
-    TEST_ASSERT_EQUAL_INT(0, sc.tuning[SIM_CTRL_LADRC].tuned);
-    /* "NAME on AXIS: ...", as tools/suite.sh reads a failed tuning */
-    TEST_ASSERT_NOT_NULL(strstr(err.message, "tune = margins: LADRC on roll: the tuned gains diverge at "));
+    const sim_tuning_t *t = &sc.tuning[SIM_CTRL_LADRC];
+    TEST_ASSERT_EQUAL_INT(0, t->tuned);
+    TEST_ASSERT_EQUAL_INT(SIM_TUNED_UNTUNABLE, t->by);
+    TEST_ASSERT_TRUE(isinf(t->check_cost_deg[SIM_CANDIDATE_MARGINS]));
+    TEST_ASSERT_TRUE(isinf(t->check_cost_deg[SIM_CANDIDATE_DEFAULTS]));
+    TEST_ASSERT_TRUE(isnan(t->check_cost_deg[SIM_CANDIDATE_SCENARIO])); /* the file gives no gains */
+    /* "NAME: CANDIDATE on AXIS: ...": the controller, the axis and the time */
+    TEST_ASSERT_NOT_NULL(strstr(err.message, "tune = margins: untunable: LADRC: the tuned gains on roll: diverge at "));
+    TEST_ASSERT_NOT_NULL(strstr(err.message, "the library's default gains on roll: diverge at "));
     TEST_ASSERT_EQUAL_STRING("check.ini", err.path);
     TEST_ASSERT_EQUAL_INT(sc.tune_line[SIM_CTRL_LADRC], err.line);
+    TEST_ASSERT_EQUAL_STRING("untunable", sim_tuned_by_name(t->by));
 }
 
 static void test_gains_that_fly_are_kept(void)
@@ -63,8 +103,41 @@ static void test_gains_that_fly_are_kept(void)
     const int rc = tune_on(1.0, &err);
     if (rc != 0)
         printf("%s\n", err.message);
-    TEST_ASSERT_EQUAL_INT(0, rc);
-    TEST_ASSERT_EQUAL_INT(1, sc.tuning[SIM_CTRL_LADRC].tuned);
+    TEST_ASSERT_EQUAL_INT(SIM_TUNE_OK, rc);
+    const sim_tuning_t *t = &sc.tuning[SIM_CTRL_LADRC];
+    TEST_ASSERT_EQUAL_INT(1, t->tuned);
+    TEST_ASSERT_EQUAL_INT(1, t->targets_met);
+    assert_best_candidate(t);
+}
+
+/* Gains the file gives beside tune = margins are a candidate (a slow loop,
+ * wc 2 rad/s: flown, never chosen over gains that track better). */
+static void test_the_files_gains_are_a_candidate(void)
+{
+    sim_parse_error_t err;
+    const int rc = tune_with(1.0, "wc_rad_s = 2\nwo_rad_s = 10\n", &err);
+    TEST_ASSERT_EQUAL_INT(SIM_TUNE_OK, rc);
+    const sim_tuning_t *t = &sc.tuning[SIM_CTRL_LADRC];
+    printf("check flights: tuned %.4g, defaults %.4g, the file's %.4g deg\n", t->check_cost_deg[0],
+           t->check_cost_deg[1], t->check_cost_deg[2]);
+    TEST_ASSERT_TRUE(t->check_cost_deg[SIM_CANDIDATE_SCENARIO] < INFINITY);
+    TEST_ASSERT_TRUE(t->by != SIM_TUNED_SCENARIO);
+    TEST_ASSERT_TRUE(t->check_cost_deg[SIM_CANDIDATE_SCENARIO] > t->check_cost_deg[SIM_CANDIDATE_MARGINS]);
+    assert_best_candidate(t);
+}
+
+/* Over model errors the tuning did not see (inertia 0.7x to 1.4x), the
+ * gains flown are never beaten by a candidate of equal standing. */
+static void test_the_chosen_gains_are_never_worse_than_an_equal_candidate(void)
+{
+    static const double SCALES[] = {0.7, 1.0, 1.4};
+    for (size_t k = 0; k < sizeof SCALES / sizeof SCALES[0]; ++k) {
+        sim_parse_error_t err;
+        const int rc = tune_on(SCALES[k], &err);
+        printf("inertia x %g: rc %d, flown: %s\n", SCALES[k], rc, sim_tuned_by_name(sc.tuning[SIM_CTRL_LADRC].by));
+        TEST_ASSERT_TRUE(rc != SIM_TUNE_UNTUNABLE);
+        assert_best_candidate(&sc.tuning[SIM_CTRL_LADRC]);
+    }
 }
 
 /* RATE-ADRC on the same airframe (its true inertias), the tuning's
@@ -154,8 +227,10 @@ static void test_the_tuning_sees_the_gyro_filter(void)
 int main(void)
 {
     UNITY_BEGIN();
-    RUN_TEST(test_gains_that_diverge_are_refused);
+    RUN_TEST(test_gains_that_diverge_leave_the_controller_untunable);
     RUN_TEST(test_gains_that_fly_are_kept);
+    RUN_TEST(test_the_files_gains_are_a_candidate);
+    RUN_TEST(test_the_chosen_gains_are_never_worse_than_an_equal_candidate);
     RUN_TEST(test_the_objective_keys_reach_the_tuning);
     RUN_TEST(test_the_tuning_sees_the_gyro_filter);
     return UNITY_END();

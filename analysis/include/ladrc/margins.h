@@ -103,7 +103,8 @@ typedef struct {
 /** How to measure. ladrc_margins_request_default fills every field. */
 typedef struct {
     ladrc_margins_plant_t plant; /**< the plant of the adaptive variants' converged run and of the loop */
-    double response_s;           /**< length of the impulse responses (s); default 4 */
+    double response_s;           /**< length of the impulse responses (s); default 4, or
+                                  LADRC_MARGINS_MAX_TAPS periods where that is shorter */
     double tone_rad_s;           /**< adaptive variants: disturbance tone they converge on;
                                   0: the axis's hp_freq_rad_s[0] (default) */
     double tone_rad_s2;          /**< its amplitude (rad/s^2); default 20 */
