@@ -12,7 +12,15 @@ AXES = ["roll", "pitch", "yaw"]
 DIVERGED = "diverged"        # every statistic of a run that diverged
 NOT_SETTLED = "not_settled"  # a settling time when the error ends outside the band
 NONE = "-"                   # diverged_at_s and diverged_error_deg of a run that did not diverge
-TOKENS = (DIVERGED, NOT_SETTLED, NONE)
+UNTUNABLE = "untunable"      # every statistic of a controller tune = margins left untunable (not flown)
+# tune,status: which candidate tune = margins flies (docs/margins.md)
+TUNE_STATUS = ("tuned", "defaults", "scenario", UNTUNABLE)
+TOKENS = (DIVERGED, NOT_SETTLED, NONE) + TUNE_STATUS
+
+
+def untunable(metrics, controller):
+    """True when tune = margins left the controller untunable (it was not flown)."""
+    return metrics.get((controller, "tune", "status", "-")) == UNTUNABLE
 
 
 def is_number(v):

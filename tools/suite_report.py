@@ -2,15 +2,16 @@
 """docs/suite.md's generated block: per suite case and axis the RMS error of every controller, the
 best of the LADRC family over the better incumbent, and every loss, tuning failure and divergence.
 
-Reads what tools/suite.sh wrote: OUT_DIR/<case>/metrics.csv and, when a tuning failed,
-OUT_DIR/<case>/tune_failed.txt ("CONTROLLER: message" per line; the case was flown without it).
+Reads what tools/suite.sh wrote: OUT_DIR/<case>/metrics.csv (a controller that tune = margins left
+untunable has the status `untunable` and was not flown) and OUT_DIR/<case>/tables.txt (its reason,
+"untunable CONTROLLER: not flown: ...").
 """
 import glob
 import math
 import os
 import re
 
-from sim_output import AXES, CONTROLLERS, divergence, divergence_text, is_number, load_metrics
+from sim_output import AXES, CONTROLLERS, divergence, divergence_text, is_number, load_metrics, untunable
 
 FAMILY = ("HP-MLADRC", "LP-MLADRC", "LADRC", "RATE-ADRC")
 INCUMBENTS = ("CASCADED", "INDI")
@@ -27,16 +28,18 @@ def suite_cases():
 
 
 def tune_failures(case_dir):
-    """{controller: message} of the tunings that failed in a case."""
-    path = os.path.join(case_dir, "tune_failed.txt")
-    if not os.path.exists(path):
+    """{controller: reason} of the controllers left untunable in a case (not flown)."""
+    m = load_metrics(case_dir)
+    if m is None:
         return {}
-    out = {}
-    with open(path) as f:
-        for line in f:
-            name, _, message = line.strip().partition(": ")
-            if name:
-                out[name] = message
+    out = {c: "untunable" for c in CONTROLLERS if untunable(m, c)}
+    tables = os.path.join(case_dir, "tables.txt")
+    if out and os.path.exists(tables):
+        with open(tables) as f:
+            for line in f:
+                found = re.match(r"untunable (\S+): not flown: (.*)", line.strip())
+                if found and found.group(1) in out:
+                    out[found.group(1)] = found.group(2)
     return out
 
 
@@ -53,7 +56,7 @@ def fmt(v):
 
 def cell(m, failed, c, axis):
     if c in failed:
-        return "**tuning failed**"
+        return "**untunable**"
     if divergence(m, c) is not None:
         return "**DIVERGED**"
     v = rms(m, c, axis)
@@ -117,7 +120,7 @@ def suite_block(out_dir):
     losses = [t for t in results if t[2] is None or t[2] > 1.0]
     lines = ["RMS tracking error over each case's error window (Table 4's), every controller tuned by "
              "`tune = margins`; ratio: the best LADRC-family RMS over the better incumbent's (below 1: the "
-             "family wins). A controller whose tuning failed did not fly; its cell says so and the ratio "
+             "family wins). A controller left untunable did not fly; its cell says so and the ratio "
              "is over the others.", ""] + table
     lines += ["The best of the LADRC family is within %.1fx the better incumbent on %d of %d case-axes."
               % (TARGET_RATIO, len(results) - len(over_target), len(results)), ""]
@@ -125,14 +128,14 @@ def suite_block(out_dir):
                      ["`%s` %s: %s" % (c, a, t) for c, a, _, t in losses])
     lines += listing("Above the %.1f target (losses included)" % TARGET_RATIO,
                      ["`%s` %s: %s" % (c, a, t) for c, a, _, t in over_target])
-    lines += listing("Tunings that failed (the case flew without them)", failures)
+    lines += listing("Controllers untunable (the case flew without them)", failures)
     lines += listing("Runs that diverged", divs)
     ptable, presults, pfail, pdivs = paper
     lines += ["### The paper case, every controller tuned alike (`paper_tuned.ini`)", "",
               "`scenarios/paper.ini` with `tune = margins` for all six controllers, PID included.", ""]
     lines += ptable + listing("Losses (ratio above 1)", ["%s: %s" % (a, t) for _, a, r, t in presults
                                                           if r is None or r > 1.0])
-    lines += listing("Tunings that failed", pfail) + listing("Runs that diverged", pdivs)
+    lines += listing("Controllers untunable", pfail) + listing("Runs that diverged", pdivs)
     return lines
 
 

@@ -61,16 +61,18 @@ sed 's/^roll = [0-9.]*\*/roll = 99*/' "$one" > "$work/stale.ini"
   --set controller:LADRC.tune=none --controllers LADRC --no-csv --quiet --out "$work/out" > /dev/null
 check paper_tuned_parses $?
 
-# The generated table (tools/suite_report.py) on these short runs: a failed tuning reads
-# "tuning failed", never a number, and is listed; a case-axis without the family is a loss.
-printf 'LADRC: x.ini:1:1: tune = margins: LADRC on roll cannot meet PM >= 45 deg\n' \
-  > "$work/out/racer_tones/tune_failed.txt"
+# The generated table (tools/suite_report.py) on these short runs: a controller left untunable
+# reads "untunable", never a number, and is listed with its reason; a case-axis without the
+# family is a loss.
+sed -i 's/^\(racer_tones,LADRC,[^,]*,[^,]*,[^,]*,\).*/\1untunable/' "$work/out/racer_tones/metrics.csv"
+printf 'racer_tones,LADRC,tune,status,-,untunable\n' >> "$work/out/racer_tones/metrics.csv"
+printf 'untunable LADRC: not flown: LADRC on roll cannot meet PM >= 45 deg\n' > "$work/out/racer_tones/tables.txt"
 "$py" -c 'import sys; sys.path.insert(0, sys.argv[1]); import suite_report
 print("\n".join(suite_report.suite_block(sys.argv[2])))' "$src/tools" "$work/out" > "$work/suite.md"
 check suite_table_is_written $?
-grep -q '^| `racer_tones` | roll | [0-9.e-]* | [0-9.e-]* | \*\*tuning failed\*\* |' "$work/suite.md"
-check suite_table_marks_failed_tuning $?
-grep -q '^- `racer_tones` LADRC: x.ini:1:1: tune = margins' "$work/suite.md"; check suite_table_lists_failed_tuning $?
+grep -q '^| `racer_tones` | roll | [0-9.e-]* | [0-9.e-]* | \*\*untunable\*\* |' "$work/suite.md"
+check suite_table_marks_untunable $?
+grep -q '^- `racer_tones` LADRC: LADRC on roll cannot meet PM >= 45 deg' "$work/suite.md"; check suite_table_lists_untunable $?
 grep -q '^- `big5_gusts` roll: no incumbent flew' "$work/suite.md"; check suite_table_lists_missing_figures $?
 
 # The front page's summary: one row per case, a case-axis without an incumbent counted as a loss.
