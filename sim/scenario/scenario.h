@@ -98,6 +98,11 @@ typedef struct {
     double tune_gm_db;                     /* gain margin target (dB); NaN: SIM_TUNE_GM_DB_DEFAULT */
     double tune_step_rad;                  /* objective's reference step (rad); NaN: the analysis's default */
     double tune_dist_rad_s2;               /* its disturbance step (rad/s^2); NaN: the analysis's default */
+    double tune_noise_max_Nm;              /* cap on the predicted command noise above 20 Hz (N m, margins.h
+                                 cmd_noise_max_Nm); NaN: none */
+    int tune_noise_ref;                    /* -1, or a sim_controller_id_t: the cap is that controller's tuned
+                                 command noise on the same axis times tune_noise_ratio */
+    double tune_noise_ratio;               /* > 0; default 1 */
 } sim_overrides_t;
 
 /* Gains chosen by tune = margins (sim_tune_controller, tune.h) for each axis
