@@ -12,6 +12,7 @@
  *                      simulated check;
  *   margins_steps.c    the tuner's time-domain objective (reference and
  *                      disturbance steps on the sampled plant);
+ *   margins_noise.c    the command noise a loop predicts;
  *   margins_tune.c     the margins-based tuner.
  * Double precision; no heap, no stdio.
  */
@@ -158,5 +159,15 @@ ladrc_margins_status_t margins_make_loop(const ladrc_margins_workspace_t *ws, co
                                          loop_t *lp);
 /* The margins of a loop into res (stability, GM, PM, DM, Ms; no output grid). */
 void margins_compute(const loop_t *lp, double dt, ladrc_margins_result_t *res);
+
+/* ---- margins_noise.c ------------------------------------------------------ */
+
+/* 1 when the request has angle or rate noise. */
+int margins_noise_wanted(const ladrc_margins_request_t *req);
+/* 0 when the request's noise fields are valid, else -1. */
+int margins_check_noise(const ladrc_margins_request_t *req);
+/* The predicted command noise (N m RMS above req->noise_corner_hz) of a
+ * measured controller's loop; 0 when the request has no noise. */
+double margins_cmd_noise(const loop_t *lp, const ladrc_margins_request_t *req);
 
 #endif

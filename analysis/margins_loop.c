@@ -237,6 +237,7 @@ ladrc_margins_status_t ladrc_margins_loop(ladrc_margins_workspace_t *ws, const l
     margins_compute(&lp, dt, res);
     res->tail_residue = ws->tail_residue;
     res->linearised_nominal = ws->linearised_nominal;
+    res->cmd_noise_Nm = margins_cmd_noise(&lp, req);
     /* Output grid, log-spaced up to the Nyquist frequency. */
     const double w_hi = PI / dt;
     res->n_out = req->n_out;

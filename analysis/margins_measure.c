@@ -123,6 +123,9 @@ void ladrc_margins_request_default(ladrc_margins_request_t *req, const ladrc_mar
     req->track_step_rad = 0.1745; /* 10 deg */
     req->dist_step_rad_s2 = 20.0;
     req->step_window_s = 2.0;
+    req->angle_noise_std_rad = 0.0;
+    req->rate_noise_std_rad_s = 0.0;
+    req->noise_corner_hz = LADRC_MARGINS_NOISE_CORNER_HZ;
 }
 
 ladrc_margins_status_t margins_check_request(const ladrc_margins_request_t *req)
@@ -138,7 +141,7 @@ ladrc_margins_status_t margins_check_request(const ladrc_margins_request_t *req)
         req->n_out > LADRC_MARGINS_MAX_OUT ||
         !(req->track_step_rad >= 0.0 && req->track_step_rad <= LADRC_MARGINS_MAX_STEP_RAD) ||
         !(req->dist_step_rad_s2 >= 0.0) || !isfinite(req->dist_step_rad_s2) ||
-        !(req->step_window_s > 0.0 && req->step_window_s <= STEP_WINDOW_MAX_S))
+        !(req->step_window_s > 0.0 && req->step_window_s <= STEP_WINDOW_MAX_S) || margins_check_noise(req) != 0)
         return LADRC_MARGINS_ERR_REQUEST;
     return LADRC_MARGINS_OK;
 }

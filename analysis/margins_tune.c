@@ -80,11 +80,21 @@ static void set_gains(tuner_t *t, double w, int shape, double j_model)
     }
 }
 
-/* 1 when a result meets the targets: stable, PM and both gain margins. */
-static int meets(const ladrc_margins_result_t *res, const ladrc_margins_targets_t *tg)
+/* 1 when the targets cap the command noise (a finite cap > 0). */
+static int caps_noise(const ladrc_margins_targets_t *tg)
+{
+    return tg->cmd_noise_max_Nm > 0.0 && isfinite(tg->cmd_noise_max_Nm);
+}
+
+int ladrc_margins_meets(const ladrc_margins_result_t *res, const ladrc_margins_targets_t *tg)
 {
     return res->stable && res->pm_deg >= tg->pm_min_deg && res->gm_db >= tg->gm_min_db &&
-           res->gm_low_db <= -tg->gm_min_db;
+           res->gm_low_db <= -tg->gm_min_db && (!caps_noise(tg) || res->cmd_noise_Nm <= tg->cmd_noise_max_Nm);
+}
+
+static int meets(const ladrc_margins_result_t *res, const ladrc_margins_targets_t *tg)
+{
+    return ladrc_margins_meets(res, tg);
 }
 
 /* Margins of the candidate (whole: as ladrc_margins reports the variant;
@@ -107,13 +117,19 @@ static int evaluate(tuner_t *t, ladrc_margins_result_t *res, int whole)
     }
     memset(res, 0, sizeof *res);
     margins_compute(&lp, t->req->plant.dt_s, res);
+    if (caps_noise(t->tg))
+        res->cmd_noise_Nm = margins_cmd_noise(&lp, t->req);
     return meets(res, t->tg);
 }
 
-/* A missed candidate's distance to the targets (larger: closer). */
+/* A missed candidate's distance to the targets (larger: closer); the noise
+ * over its cap counts in dB like the gain margin. */
 static double miss_score(const ladrc_margins_result_t *res, const ladrc_margins_targets_t *tg)
 {
-    return fmin(res->pm_deg - tg->pm_min_deg, 3.0 * (res->gm_db - tg->gm_min_db));
+    double score = fmin(res->pm_deg - tg->pm_min_deg, 3.0 * (res->gm_db - tg->gm_min_db));
+    if (caps_noise(tg) && res->cmd_noise_Nm > 0.0)
+        score = fmin(score, 3.0 * 20.0 * log10(tg->cmd_noise_max_Nm / res->cmd_noise_Nm));
+    return score;
 }
 
 /* The closest stable miss so far (the report when nothing meets the targets). */
@@ -249,6 +265,7 @@ static void step_costs(tuner_t *t, double *track, double *dist)
 static void report_objective(tuner_t *t, ladrc_margins_tuning_t *out)
 {
     out->peak_dist_rad = out->margins.dist_peak_rad;
+    out->cmd_noise_Nm = out->margins.cmd_noise_Nm;
     out->step_cost_rad2_s = NAN;
     if (uses_steps(t->req) &&
         ladrc_margins_step_cost(t->ws, &t->ctl, t->req, &out->step_cost_rad2_s) != LADRC_MARGINS_OK)

@@ -121,20 +121,40 @@ int sim_fly_tune(sim_scenario_t *scenarios, int n_sc, const sim_fly_tune_options
         return 0;
     }
     const double start = sim_fly_now_s();
-    tune_pool_t pool = {.tasks = tasks, .n = n, .next = 0, .lock = PTHREAD_MUTEX_INITIALIZER};
-    pthread_t threads[MAX_THREADS];
-    int started = 0;
-    for (int t = 0; t < opt->jobs && t < n && t < MAX_THREADS; ++t) {
-        if (pthread_create(&threads[t], NULL, tune_worker, &pool) != 0) {
-            break;
+    /* A controller capped by another's command noise (tune_noise_ref) is
+     * tuned after it: the tasks without such a cap first, then the rest. */
+    static tune_task_t ordered[MAX_JOBS];
+    int n_first = 0;
+    for (int pass = 0, k = 0; pass < 2; ++pass) {
+        for (int i = 0; i < n; ++i) {
+            if ((tasks[i].sc->overrides[tasks[i].id].tune_noise_ref >= 0) == pass) {
+                ordered[k++] = tasks[i];
+            }
         }
-        ++started;
+        n_first = pass == 0 ? k : n_first;
     }
-    if (started == 0) {
-        tune_worker(&pool);
-    }
-    for (int t = 0; t < started; ++t) {
-        pthread_join(threads[t], NULL);
+    memcpy(tasks, ordered, (size_t)n * sizeof tasks[0]);
+    int started = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+        tune_pool_t pool = {.tasks = tasks + (pass ? n_first : 0),
+                            .n = pass ? n - n_first : n_first,
+                            .next = 0,
+                            .lock = PTHREAD_MUTEX_INITIALIZER};
+        pthread_t threads[MAX_THREADS];
+        int running = 0;
+        for (int t = 0; t < opt->jobs && t < pool.n && t < MAX_THREADS; ++t) {
+            if (pthread_create(&threads[t], NULL, tune_worker, &pool) != 0) {
+                break;
+            }
+            ++running;
+        }
+        if (running == 0) {
+            tune_worker(&pool);
+        }
+        for (int t = 0; t < running; ++t) {
+            pthread_join(threads[t], NULL);
+        }
+        started = running > started ? running : started;
     }
     int untunable = 0;
     for (int i = 0; i < n; ++i) {

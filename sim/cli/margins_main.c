@@ -18,6 +18,8 @@
 #include "report/report.h"
 #include "scenario/setup.h"
 #include "run/tune.h"
+#include "run/tune_noise.h"
+#include "run/runner.h"
 #include "cli/replay_report.h"
 #include "log/log_identify.h"
 
@@ -33,7 +35,7 @@ static const char *const AXIS_NAMES[3] = {"roll", "pitch", "yaw"};
 static void usage(FILE *out)
 {
     fputs("usage: ladrc_margins SCENARIO [--controllers LIST] [--axis roll|pitch|yaw|all]\n"
-          "                     [--inertia-factor F] [--csv DIR] [--tune]\n"
+          "                     [--inertia-factor F] [--csv DIR] [--tune] [--fly]\n"
           "       ladrc_margins --from-log LOG [--format betaflight|px4|generic] [--map F=SOURCE]...\n"
           "                     [--save-scenario FILE] [the options above]\n"
           "  SCENARIO           an attitude scenario file (docs/scenario-format.md)\n"
@@ -45,13 +47,17 @@ static void usage(FILE *out)
           "  --inertia-factor F true inertia = F times the scenario's (default 1)\n"
           "  --csv DIR          write DIR/<controller>_<axis>.csv frequency responses\n"
           "  --tune             also tune for PM >= 45 deg, GM >= 6 dB and print the result\n"
+          "  --fly              also fly the scenario (as ladrc_sil, no time series) and print the\n"
+          "                     flown command noise above 20 Hz beside the predicted one\n"
           "Prints per controller and axis: gain margin, phase margin, delay margin,\n"
-          "crossover, peak sensitivity, the verdict, and the largest stable motor lag\n"
-          "and sensor delay. A tune = margins that misses its targets is a warning (the\n"
-          "best candidate's gains are analysed); a controller with no candidate that\n"
-          "flies the check flight is untunable. Exit status 0, 1 if an analysis failed\n"
-          "or a loop is unstable, 2 for bad usage or a bad scenario, 4 when, else\n"
-          "clean, a controller was untunable.\n",
+          "crossover, peak sensitivity, the verdict, the largest stable motor lag\n"
+          "and sensor delay, and the predicted RMS of the torque command above 20 Hz\n"
+          "from the scenario's [sensors] angle and rate noise (N m). A tune = margins\n"
+          "that misses its targets is a warning (the best candidate's gains are\n"
+          "analysed); a controller with no candidate that flies the check flight is\n"
+          "untunable. Exit status 0, 1 if an analysis failed or a loop is unstable,\n"
+          "2 for bad usage or a bad scenario, 4 when, else clean, a controller was\n"
+          "untunable.\n",
           out);
 }
 
@@ -164,7 +170,7 @@ int main(int argc, char **argv)
     const char *path = NULL, *csv_dir = NULL, *from_log = NULL, *save_path = NULL;
     sim_log_options_t log_opt;
     sim_log_options_default(&log_opt);
-    int axis_from = 0, axis_to = 2, tune = 0, n_override = 0;
+    int axis_from = 0, axis_to = 2, tune = 0, fly = 0, n_override = 0;
     double inertia_factor = 1.0;
     sim_controller_id_t ids[SIM_MAX_CONTROLLERS];
     for (int a = 1; a < argc; ++a) {
@@ -201,6 +207,8 @@ int main(int argc, char **argv)
             csv_dir = argv[++a];
         } else if (strcmp(arg, "--tune") == 0) {
             tune = 1;
+        } else if (strcmp(arg, "--fly") == 0) {
+            fly = 1;
         } else if (strcmp(arg, "--from-log") == 0 && a + 1 < argc) {
             from_log = argv[++a];
         } else if (strcmp(arg, "--format") == 0 && a + 1 < argc) {
@@ -246,7 +254,11 @@ int main(int argc, char **argv)
     }
     /* tune = margins: the controllers are analysed with the gains it chooses. */
     int untunable = 0;
-    for (int c = 0; c < sc.n_controllers; ++c) {
+    for (int k = 0; k < 2 * sc.n_controllers; ++k) { /* those capped by another's noise after it */
+        const int c = k % sc.n_controllers;
+        if ((sc.overrides[sc.controllers[c]].tune_noise_ref >= 0) != (k >= sc.n_controllers)) {
+            continue;
+        }
         const int rc = sim_tune_controller(&sc, sc.controllers[c], &ws, &perr);
         if (rc != SIM_TUNE_OK) {
             fprintf(stderr, "%s:%d:%d: %s%s\n", perr.path, perr.line, perr.column,
@@ -258,11 +270,34 @@ int main(int argc, char **argv)
         fprintf(stderr, "ladrc_margins: --csv: cannot create '%s': %s\n", csv_dir, strerror(errno));
         return 2;
     }
+    /* --fly: every controller flown once, its measured command noise (metrics.h) */
+    static sim_metrics_t flown[SIM_MAX_CONTROLLERS];
+    static char fly_err[SIM_MAX_CONTROLLERS][256];
+    if (fly) {
+        sim_run_spec_t runs[SIM_MAX_CONTROLLERS];
+        for (int c = 0; c < sc.n_controllers; ++c) {
+            const sim_run_spec_t spec = {.ctrl = sc.controllers[c],
+                                         .csv_path = NULL,
+                                         .metrics = &flown[c],
+                                         .err = fly_err[c],
+                                         .err_len = sizeof fly_err[c],
+                                         .rc = 0};
+            runs[c] = spec;
+        }
+        sim_run_attitude_group(&sc, runs, sc.n_controllers, NULL);
+        for (int c = 0; c < sc.n_controllers; ++c) {
+            if (runs[c].rc != 0) {
+                fprintf(stderr, "ladrc_margins: --fly: %s: %s\n", sim_controller_name(sc.controllers[c]), fly_err[c]);
+                return 1;
+            }
+        }
+    }
     printf("%s: dt %.4g s, motor lag %.4g s, sensor delay %d ticks, rate %s, true inertia x %.3g\n", sc.name,
            sc.control_dt_s, sc.motor_tau_s, sc.delay_ticks, sc.use_rate ? "used" : "not used", inertia_factor);
     sim_report_tuning(stdout, &sc);
-    printf("%-10s %-5s %9s %10s %8s %10s %14s %7s %6s %12s %10s\n", "controller", "axis", "GM", "GM at", "PM",
-           "crossover", "delay margin", "Ms", "stable", "max lag", "max delay");
+    printf("%-10s %-5s %9s %10s %8s %10s %14s %7s %6s %12s %10s %12s%s\n", "controller", "axis", "GM", "GM at", "PM",
+           "crossover", "delay margin", "Ms", "stable", "max lag", "max delay", "noise N m",
+           fly ? "     flown N m" : "");
     int status = 0;
     for (int c = 0; c < sc.n_controllers; ++c) {
         const sim_controller_id_t id = sc.controllers[c];
@@ -285,6 +320,7 @@ int main(int argc, char **argv)
             ladrc_margins_request_t req;
             ladrc_margins_request_default(&req, &plant);
             sim_tune_objective(&sc, id, &req);
+            sim_tune_noise_request(&sc, &req);
             const ladrc_margins_controller_t ctl = sim_tune_controller_of(&sc, &filter, &acfg, i);
             int idle = 0;
             ladrc_margins_status_t st = ladrc_margins_analyse_reported(&ws, &ctl, &req, &res, &idle);
@@ -316,8 +352,16 @@ int main(int argc, char **argv)
             } else {
                 snprintf(lag, sizeof lag, "%.1f ms", tau_max * 1e3);
             }
-            printf("%-10s %-5s %9s %10s %8s %10s %14s %7.2f %6s %12s %7d t%s\n", sim_controller_name(id), AXIS_NAMES[i],
-                   gm, gm_at, pm, wc, dm, res.ms, res.stable ? "yes" : "NO", lag, delay_max, note);
+            char flown_text[32] = "";
+            if (fly) {
+                if (flown[c].diverged)
+                    snprintf(flown_text, sizeof flown_text, " %13s", "diverged");
+                else
+                    snprintf(flown_text, sizeof flown_text, " %13.4g", flown[c].cmd_noise_Nm[i]);
+            }
+            printf("%-10s %-5s %9s %10s %8s %10s %14s %7.2f %6s %12s %7d t %12.4g%s%s\n", sim_controller_name(id),
+                   AXIS_NAMES[i], gm, gm_at, pm, wc, dm, res.ms, res.stable ? "yes" : "NO", lag, delay_max,
+                   res.cmd_noise_Nm, flown_text, note);
             if (!res.stable)
                 status = 1;
             if (csv_dir != NULL && write_csv(csv_dir, sim_controller_name(id), i, &res) != 0)
@@ -331,9 +375,9 @@ int main(int argc, char **argv)
                 (void)sim_setup_format_gains(&tuned, gains, sizeof gains);
                 printf("  tuned: %s", gains);
                 printf(" -> GM %.1f dB PM %.1f deg crossover %.1f rad/s Ms %.2f peak |d->e| %.3g rad per rad/s^2"
-                       " step cost %.3g rad^2 s%s\n",
+                       " step cost %.3g rad^2 s noise %.4g N m%s\n",
                        m->gm_db, m->pm_deg, m->wc_rad_s, m->ms, tuning.peak_dist_rad, tuning.step_cost_rad2_s,
-                       st == LADRC_MARGINS_OK ? "" : "  TARGETS NOT MET");
+                       tuning.cmd_noise_Nm, st == LADRC_MARGINS_OK ? "" : "  TARGETS NOT MET");
                 if (st != LADRC_MARGINS_OK)
                     status = 1;
             }

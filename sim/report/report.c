@@ -176,12 +176,16 @@ void sim_report_tuning(FILE *out, const sim_scenario_t *sc)
             char gains[256];
             (void)sim_setup_format_gains(&t->gains[i], gains, sizeof gains);
             fprintf(out, "tuned %s %s: %s%s", sim_controller_name(id), AXES[i], gains, FROM[t->by]);
+            char cap[48] = "";
+            if (t->cmd_noise_cap_Nm[i] > 0.0) {
+                snprintf(cap, sizeof cap, " (<= %.3g)", t->cmd_noise_cap_Nm[i]);
+            }
             fprintf(out,
                     " -> PM %.1f deg (>= %g), GM %.1f dB / %.1f dB (>= %g), crossover %.1f rad/s, Ms %.2f,"
-                    " step cost %.3g rad^2 s%s%s\n",
+                    " step cost %.3g rad^2 s, command noise %.3g N m%s above 20 Hz%s%s\n",
                     t->pm_deg[i], t->pm_target_deg, t->gm_db[i], t->gm_low_db[i], t->gm_target_db,
-                    t->crossover_rad_s[i], t->ms[i], t->step_cost_rad2_s[i], t->idle[i] ? " (estimator idle)" : "",
-                    t->shared[i] ? " (= roll)" : "");
+                    t->crossover_rad_s[i], t->ms[i], t->step_cost_rad2_s[i], t->cmd_noise_Nm[i], cap,
+                    t->idle[i] ? " (estimator idle)" : "", t->shared[i] ? " (= roll)" : "");
         }
         if (t->reason[0] != '\0') {
             fprintf(out, "tuning of %s: %s\n", sim_controller_name(id), t->reason);
@@ -312,6 +316,7 @@ int sim_report_metrics_csv(FILE *out, const sim_scenario_result_t *r, int header
             }
             stat_row(out, sc, m, name, "5", "steady_band_deg", AXES[i], m->band_deg[i]);
             stat_row(out, sc, m, name, "5", "steady_rms_deg", AXES[i], sim_stat_rms(&m->steady_deg[i]));
+            stat_row(out, sc, m, name, "-", "cmd_noise_Nm", AXES[i], m->cmd_noise_Nm[i]);
             if (m->has_estimate) {
                 stat_row(out, sc, m, name, "6", "dist_error_mean", AXES[i], m->dist_error[i].mean);
                 stat_row(out, sc, m, name, "6", "dist_error_std", AXES[i], sim_stat_std(&m->dist_error[i]));
@@ -352,6 +357,8 @@ int sim_report_metrics_csv(FILE *out, const sim_scenario_result_t *r, int header
             row(out, sc, name, "tune", "crossover_rad_s", AXES[i], t->crossover_rad_s[i]);
             row(out, sc, name, "tune", "ms", AXES[i], t->ms[i]);
             row(out, sc, name, "tune", "step_cost_rad2_s", AXES[i], t->step_cost_rad2_s[i]);
+            row(out, sc, name, "tune", "cmd_noise_Nm", AXES[i], t->cmd_noise_Nm[i]);
+            row(out, sc, name, "tune", "cmd_noise_cap_Nm", AXES[i], t->cmd_noise_cap_Nm[i]);
         }
         if (m->untunable) { /* not flown */
             row_text(out, sc, name, "-", "finite", "-", SIM_TOKEN_UNTUNABLE);

@@ -15,6 +15,9 @@ void sim_stat_add(sim_stat_t *s, double x);
 double sim_stat_std(const sim_stat_t *s); /* population standard deviation */
 double sim_stat_rms(const sim_stat_t *s);
 
+/* The corner of the measured command noise (Hz), the analysis's default. */
+#define SIM_CMD_NOISE_CORNER_HZ 20.0
+
 /* settle_s of an axis whose error is outside the band at the settle window's last sample */
 #define SIM_NOT_SETTLED (-1.0)
 
@@ -40,7 +43,14 @@ typedef struct {
     /* tune = margins found no gains that fly the check flight: the
      * controller was not flown (the tables print "untunable"). */
     int untunable;
-    long faults;   /* controller ticks with a fault flag */
+    long faults; /* controller ticks with a fault flag */
+    /* Command noise: the controller's torque command (before [excitation]'s
+     * chirp) through a second-order Butterworth high-pass at
+     * SIM_CMD_NOISE_CORNER_HZ, run over the whole flight; its RMS over the
+     * error window (N m), per axis. NaN when the corner is not below the
+     * Nyquist frequency. The predicted counterpart: margins.h cmd_noise_Nm. */
+    sim_stat_t cmd_hp_Nm[3];
+    double cmd_noise_Nm[3];
     double wall_s; /* wall time of the run (of its lockstep group, runner.h) */
 } sim_metrics_t;
 

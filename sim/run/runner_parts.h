@@ -19,6 +19,7 @@
 #include "ladrc/attitude.h"
 #include "ladrc/gyro_filter.h"
 #include "ladrc/mixer.h"
+#include "log/biquad.h"
 #include "numfmt.h"
 #include "plant/plant.h"
 #include "runner.h"
@@ -233,7 +234,10 @@ typedef struct {
     double last_out_s[3];
     int out_at_last[3]; /* outside the band at the settle window's latest sample so far */
     int wrap_yaw;
-    int flying; /* 1 until it diverges */
+    int flying;               /* 1 until it diverges */
+    int cmd_hp_on;            /* 1: the command noise's high-pass exists (its corner below Nyquist) */
+    biquad_coef_t cmd_hp;     /* the command noise's high-pass (metrics.h cmd_noise_Nm) */
+    biquad_t cmd_hp_state[3]; /* its state on each axis */
     /* [phases]: the next event of the timeline, and where the vehicle is */
     int next_event;
     int armed, on_ground;

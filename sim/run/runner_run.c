@@ -163,6 +163,15 @@ int runner_run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t 
         r->out_at_last[i] = 0;
         m->settle_s[i] = SIM_NOT_SETTLED;
     }
+    /* The command noise's high-pass, from rest (a corner at or above 0.45 of
+     * the sampling rate leaves no band: NaN) */
+    r->cmd_hp_on = SIM_CMD_NOISE_CORNER_HZ < 0.45 / sc->control_dt_s;
+    r->cmd_hp = biquad_highpass(SIM_CMD_NOISE_CORNER_HZ, sc->control_dt_s, BIQUAD_Q_BUTTERWORTH);
+    for (int i = 0; i < 3; ++i) {
+        r->cmd_hp_state[i].z1 = r->cmd_hp_state[i].z2 = 0.0;
+        memset(&m->cmd_hp_Nm[i], 0, sizeof m->cmd_hp_Nm[i]);
+        m->cmd_noise_Nm[i] = r->cmd_hp_on ? 0.0 : NAN;
+    }
     /* A wrapping controller is told yaw as an attitude estimator gives it,
      * in (-pi, pi]; the plant's own yaw is continuous (not wrapped). */
     r->wrap_yaw = sc->frame == LADRC_FRAME_EULER && sim_setup_wraps_yaw(sc, spec->ctrl);
@@ -373,6 +382,11 @@ static void run_metrics(const sim_scenario_t *sc, attitude_run_t *r, const tick_
     const double band_rad = sc->settle_band_deg / RAD2DEG;
     for (int i = 0; i < 3; ++i) {
         const double e_deg = tk->err_rad[i] * RAD2DEG;
+        if (r->cmd_hp_on) {
+            const double hp = biquad_step(&r->cmd_hp, &r->cmd_hp_state[i], (double)tk->torque[i]);
+            if (in_window(sc->error_window_s, t))
+                sim_stat_add(&m->cmd_hp_Nm[i], hp);
+        }
         if (in_window(sc->error_window_s, t)) {
             sim_stat_add(&m->error_deg[i], e_deg);
             if (fabs(e_deg) > m->max_error_deg[i])
@@ -460,6 +474,8 @@ int runner_run_close(const sim_scenario_t *sc, attitude_run_t *r)
     sim_metrics_t *m = r->spec->metrics;
     for (int i = 0; i < 3; ++i) {
         m->settle_s[i] = r->out_at_last[i] ? SIM_NOT_SETTLED : r->last_out_s[i] - sc->settle_after_s;
+        if (r->cmd_hp_on)
+            m->cmd_noise_Nm[i] = sim_stat_rms(&m->cmd_hp_Nm[i]);
     }
     const int log_rc = runner_log_close(&r->log, r->spec->err, r->spec->err_len);
     if (r->csv != NULL && fclose(r->csv) != 0) {

@@ -10,6 +10,7 @@
 #include <time.h>
 
 #include "run/runner.h"
+#include "run/tune_noise.h"
 #include "scenario/setup.h"
 
 static const char *const AXIS_NAMES[3] = {"roll", "pitch", "yaw"};
@@ -26,6 +27,24 @@ void sim_tune_objective(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_
         req->track_step_rad = o->tune_step_rad;
     if (!isnan(o->tune_dist_rad_s2))
         req->dist_step_rad_s2 = o->tune_dist_rad_s2;
+    sim_tune_noise_request(sc, req);
+}
+
+/* The targets of axis i: the file's margins and its command-noise cap (an
+ * absolute one, or the reference controller's noise on that axis, tuned
+ * before, times the ratio). */
+static ladrc_margins_targets_t axis_targets_of(const sim_scenario_t *sc, sim_controller_id_t id,
+                                               const ladrc_margins_targets_t *targets, int i)
+{
+    const sim_overrides_t *o = &sc->overrides[id];
+    ladrc_margins_targets_t tg = *targets;
+    if (!isnan(o->tune_noise_max_Nm)) {
+        tg.cmd_noise_max_Nm = o->tune_noise_max_Nm;
+    } else if (o->tune_noise_ref >= 0) {
+        const sim_tuning_t *ref = &sc->tuning[o->tune_noise_ref];
+        tg.cmd_noise_max_Nm = ref->tuned ? ref->cmd_noise_Nm[i] * o->tune_noise_ratio : 0.0;
+    }
+    return tg;
 }
 
 void sim_tune_plant(const sim_scenario_t *sc, int axis, ladrc_margins_plant_t *plant)
@@ -79,7 +98,7 @@ static void tune_error(const sim_scenario_t *sc, sim_controller_id_t id, sim_par
 }
 
 static void keep(sim_tuning_t *t, int i, const ladrc_axis_config_t *tuned, const ladrc_margins_result_t *m,
-                 double step_cost, int idle)
+                 double step_cost, double cap_Nm, int idle)
 {
     t->gains[i] = *tuned;
     t->pm_deg[i] = m->pm_deg;
@@ -88,6 +107,8 @@ static void keep(sim_tuning_t *t, int i, const ladrc_axis_config_t *tuned, const
     t->crossover_rad_s[i] = m->wc_rad_s;
     t->ms[i] = m->ms;
     t->step_cost_rad2_s[i] = step_cost;
+    t->cmd_noise_Nm[i] = m->cmd_noise_Nm;
+    t->cmd_noise_cap_Nm[i] = cap_Nm;
     t->idle[i] = idle;
 }
 
@@ -96,14 +117,8 @@ static void keep_unanalysed(sim_tuning_t *t, int i, const ladrc_axis_config_t *g
 {
     ladrc_margins_result_t none;
     memset(&none, 0, sizeof none);
-    none.pm_deg = none.gm_db = none.gm_low_db = none.wc_rad_s = none.ms = NAN;
-    keep(t, i, gains, &none, NAN, 0);
-}
-
-/* The targets of ladrc_margins_tune: stable, PM and both gain margins. */
-static int meets(const ladrc_margins_result_t *m, const ladrc_margins_targets_t *tg)
-{
-    return m->stable && m->pm_deg >= tg->pm_min_deg && m->gm_db >= tg->gm_min_db && m->gm_low_db <= -tg->gm_min_db;
+    none.pm_deg = none.gm_db = none.gm_low_db = none.wc_rad_s = none.ms = none.cmd_noise_Nm = NAN;
+    keep(t, i, gains, &none, NAN, 0.0, 0);
 }
 
 /* Appends printf-style text to buf (of size len), "; " between parts. */
@@ -142,6 +157,7 @@ static int tune_axes(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margins_w
         ladrc_margins_request_t req;
         ladrc_margins_request_default(&req, &plant);
         sim_tune_objective(sc, id, &req);
+        const ladrc_margins_targets_t axis_targets = axis_targets_of(sc, id, targets, i);
         /* Roll and pitch of a symmetric airframe are the same loop: pitch
          * takes roll's gains when its own analysis with them meets the
          * targets (an adaptive variant's linearisation under the tone may
@@ -152,8 +168,9 @@ static int tune_axes(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margins_w
             const ladrc_margins_controller_t chk = sim_tune_controller_of(sc, filter, &shared, 1);
             int idle = 0;
             ladrc_margins_result_t *m = &ws->scratch;
-            if (ladrc_margins_analyse_reported(ws, &chk, &req, m, &idle) == LADRC_MARGINS_OK && meets(m, targets)) {
-                keep(t, 1, &t->gains[0], m, t->step_cost_rad2_s[0], idle);
+            if (ladrc_margins_analyse_reported(ws, &chk, &req, m, &idle) == LADRC_MARGINS_OK &&
+                ladrc_margins_meets(m, &axis_targets)) {
+                keep(t, 1, &t->gains[0], m, t->step_cost_rad2_s[0], axis_targets.cmd_noise_max_Nm, idle);
                 t->shared[1] = 1;
                 continue;
             }
@@ -161,7 +178,7 @@ static int tune_axes(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margins_w
         const ladrc_margins_controller_t ctl = sim_tune_controller_of(sc, filter, &acfg, i);
         ladrc_axis_config_t tuned;
         ladrc_margins_tuning_t result;
-        const ladrc_margins_status_t st = ladrc_margins_tune(ws, &ctl, &req, targets, &tuned, &result);
+        const ladrc_margins_status_t st = ladrc_margins_tune(ws, &ctl, &req, &axis_targets, &tuned, &result);
         if (st != LADRC_MARGINS_OK && st != LADRC_MARGINS_ERR_TARGETS_NOT_MET) {
             add_reason(why, why_len, "%s on %s: the analysis failed: %s", sim_controller_name(id), AXIS_NAMES[i],
                        ladrc_margins_status_str(st));
@@ -175,14 +192,18 @@ static int tune_axes(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margins_w
         again.axis[i] = tuned;
         const ladrc_margins_controller_t chk = sim_tune_controller_of(sc, filter, &again, i);
         (void)ladrc_margins_analyse_reported(ws, &chk, &req, &ws->scratch, &idle);
-        keep(t, i, &tuned, &result.margins, result.step_cost_rad2_s, idle);
+        keep(t, i, &tuned, &result.margins, result.step_cost_rad2_s, axis_targets.cmd_noise_max_Nm, idle);
         if (st == LADRC_MARGINS_ERR_TARGETS_NOT_MET) {
             const ladrc_margins_result_t *m = &result.margins;
+            char cap[96] = "";
+            if (axis_targets.cmd_noise_max_Nm > 0.0) {
+                snprintf(cap, sizeof cap, ", command noise <= %.3g N m", axis_targets.cmd_noise_max_Nm);
+            }
             add_reason(why, why_len,
-                       "%s on %s cannot meet PM >= %g deg, GM >= %g dB; best reached: %s, PM %.1f deg, GM %.1f dB, "
-                       "lower GM %.1f dB",
-                       sim_controller_name(id), AXIS_NAMES[i], targets->pm_min_deg, targets->gm_min_db,
-                       m->stable ? "stable" : "UNSTABLE", m->pm_deg, m->gm_db, m->gm_low_db);
+                       "%s on %s cannot meet PM >= %g deg, GM >= %g dB%s; best reached: %s, PM %.1f deg, GM %.1f dB, "
+                       "lower GM %.1f dB, command noise %.3g N m",
+                       sim_controller_name(id), AXIS_NAMES[i], targets->pm_min_deg, targets->gm_min_db, cap,
+                       m->stable ? "stable" : "UNSTABLE", m->pm_deg, m->gm_db, m->gm_low_db, m->cmd_noise_Nm);
             met_all = 0;
         }
     }
@@ -205,6 +226,7 @@ static int analyse_candidate(sim_scenario_t *sc, sim_controller_id_t id, ladrc_m
         ladrc_margins_request_t req;
         ladrc_margins_request_default(&req, &plant);
         sim_tune_objective(sc, id, &req);
+        const ladrc_margins_targets_t axis_targets = axis_targets_of(sc, id, targets, i);
         const ladrc_margins_controller_t ctl = sim_tune_controller_of(sc, filter, &acfg, i);
         int idle = 0;
         double step_cost = NAN;
@@ -220,8 +242,8 @@ static int analyse_candidate(sim_scenario_t *sc, sim_controller_id_t id, ladrc_m
                 step_cost = NAN;
             }
         }
-        keep(t, i, &acfg.axis[i], &m, step_cost, idle);
-        met_all &= meets(&m, targets);
+        keep(t, i, &acfg.axis[i], &m, step_cost, axis_targets.cmd_noise_max_Nm, idle);
+        met_all &= ladrc_margins_meets(&m, &axis_targets);
     }
     return met_all;
 }

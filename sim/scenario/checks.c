@@ -458,16 +458,61 @@ static void check_differentiator(parser_t *p)
     }
 }
 
-/* The targets and objective steps of tune = margins without it are an
- * error. Gains given beside tune = margins are not: they are one of the
- * tuning's candidates (tune.h). */
+/* The noise cap of controller id (tune = margins): an absolute cap or
+ * another controller's noise, not both; the ratio only with the other
+ * controller, which the scenario flies with tune = margins, is not id and
+ * takes no other's noise itself (no chains, no cycles). */
+static void check_noise_cap(parser_t *p, int id)
+{
+    const sim_scenario_t *sc = p->sc;
+    const int sec = SEC_CONTROLLER + id;
+    const loc_t *max = checks_seen(p, sec, "tune_noise_max_Nm");
+    const loc_t *ref = checks_seen(p, sec, "tune_noise_ref");
+    const loc_t *ratio = checks_seen(p, sec, "tune_noise_ratio");
+    if (ratio->line != 0 && ref->line == 0) {
+        check_fail(p, ratio->line, ratio->key_col, "'tune_noise_ratio' applies only with tune_noise_ref");
+    }
+    if (ref->line == 0) {
+        return;
+    }
+    if (max->line != 0) {
+        check_fail(p, ref->line, ref->key_col,
+                   "'tune_noise_ref' conflicts with tune_noise_max_Nm (line %d): give one of them", max->line);
+        return;
+    }
+    const int other = sc->overrides[id].tune_noise_ref;
+    const char *name = sim_controller_name((sim_controller_id_t)other);
+    int listed = 0;
+    for (int i = 0; i < sc->n_controllers; ++i) {
+        listed |= (int)sc->controllers[i] == other;
+    }
+    if (other == id) {
+        check_fail(p, ref->line, ref->value_col, "tune_noise_ref must name another controller, not %s itself", name);
+    } else if (!listed) {
+        check_fail(p, ref->line, ref->value_col, "tune_noise_ref: the scenario does not fly %s ([run] controllers)",
+                   name);
+    } else if (sc->overrides[other].tune != SIM_TUNE_MARGINS) {
+        check_fail(p, ref->line, ref->value_col, "tune_noise_ref: %s is not tuned (its tune = margins is missing)",
+                   name);
+    } else if (sc->overrides[other].tune_noise_ref >= 0) {
+        check_fail(p, ref->line, ref->value_col,
+                   "tune_noise_ref: %s takes its own cap from another controller's noise; name one that does not",
+                   name);
+    }
+}
+
+/* The targets, objective steps and noise caps of tune = margins without it
+ * are an error. Gains given beside tune = margins are not: they are one of
+ * the tuning's candidates (tune.h). */
 static void check_tuning(parser_t *p)
 {
-    static const char *const tune_only[] = {"tune_phase_margin_deg", "tune_gain_margin_db", "tune_step_deg",
-                                            "tune_disturbance_step_rad_s2"};
+    static const char *const tune_only[] = {
+        "tune_phase_margin_deg", "tune_gain_margin_db", "tune_step_deg",   "tune_disturbance_step_rad_s2",
+        "tune_noise_max_Nm",     "tune_noise_ref",      "tune_noise_ratio"};
     for (int id = 0; id < SIM_CTRL_COUNT; ++id) {
         const int sec = SEC_CONTROLLER + id;
         if (p->sc->overrides[id].tune == SIM_TUNE_MARGINS) {
+            check_noise_cap(p, id);
             continue;
         }
         for (int g = 0; g < (int)(sizeof tune_only / sizeof tune_only[0]); ++g) {

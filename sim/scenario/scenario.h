@@ -98,6 +98,11 @@ typedef struct {
     double tune_gm_db;                     /* gain margin target (dB); NaN: SIM_TUNE_GM_DB_DEFAULT */
     double tune_step_rad;                  /* objective's reference step (rad); NaN: the analysis's default */
     double tune_dist_rad_s2;               /* its disturbance step (rad/s^2); NaN: the analysis's default */
+    double tune_noise_max_Nm;              /* cap on the predicted command noise above 20 Hz (N m, margins.h
+                                 cmd_noise_max_Nm); NaN: none */
+    int tune_noise_ref;                    /* -1, or a sim_controller_id_t: the cap is that controller's tuned
+                                 command noise on the same axis times tune_noise_ratio */
+    double tune_noise_ratio;               /* > 0; default 1 */
 } sim_overrides_t;
 
 /* Gains chosen by tune = margins (sim_tune_controller, tune.h) for each axis
@@ -129,6 +134,8 @@ typedef struct {
                                      (sim_setup_gain_fields) are the tuned gains */
     double pm_deg[3], gm_db[3], gm_low_db[3], crossover_rad_s[3], ms[3];
     double step_cost_rad2_s[3]; /* the objective of the chosen gains (margins.h); NaN: steps off */
+    double cmd_noise_Nm[3];     /* their predicted command noise above 20 Hz from [sensors]' noise (margins.h) */
+    double cmd_noise_cap_Nm[3]; /* the cap it was held to; 0: none */
     int idle[3];                /* HP-MLADRC margins of its idle estimator (margins.h) */
     int shared[3];              /* 1: this axis took another's result (same airframe and controller) */
     double wall_s;              /* time the tuning took */

@@ -134,6 +134,12 @@ static const choice_t TURBULENCE[] = {
 static const choice_t TUNE_MODES[] = {{.name = "none", .value = SIM_TUNE_NONE},
                                       {.name = "margins", .value = SIM_TUNE_MARGINS},
                                       {.name = NULL, .value = 0}};
+/* tune_noise_ref: a controller's name, its sim_controller_id_t */
+static const choice_t CONTROLLER_CHOICES[] = {
+    {.name = "HP-MLADRC", .value = SIM_CTRL_HP_MLADRC}, {.name = "LP-MLADRC", .value = SIM_CTRL_LP_MLADRC},
+    {.name = "LADRC", .value = SIM_CTRL_LADRC},         {.name = "PID", .value = SIM_CTRL_PID},
+    {.name = "CASCADED", .value = SIM_CTRL_CASCADED},   {.name = "INDI", .value = SIM_CTRL_INDI},
+    {.name = "RATE-ADRC", .value = SIM_CTRL_RATE_ADRC}, {.name = NULL, .value = 0}};
 static const choice_t HP_FREQ_MODES[] = {{.name = "known", .value = LADRC_HP_FREQ_KNOWN},
                                          {.name = "online", .value = LADRC_HP_FREQ_ONLINE},
                                          {.name = NULL, .value = 0}};
@@ -340,6 +346,9 @@ const key_def_t SCHEMA_KEYS[] = {
     {CTRL_KEY("tune_gain_margin_db", V_REAL, tune_gm_db, ALL_CONTROLLERS), .range = R_POSITIVE},
     {CTRL_KEY("tune_step_deg", V_REAL, tune_step_rad, ALL_CONTROLLERS), .range = R_TUNE_STEP, .scale = DEG_TO_RAD},
     {CTRL_KEY("tune_disturbance_step_rad_s2", V_REAL, tune_dist_rad_s2, ALL_CONTROLLERS), .range = R_NONNEGATIVE},
+    {CTRL_KEY("tune_noise_max_Nm", V_REAL, tune_noise_max_Nm, ALL_CONTROLLERS), .range = R_POSITIVE},
+    {CTRL_KEY("tune_noise_ref", V_CHOICE, tune_noise_ref, ALL_CONTROLLERS), .choices = CONTROLLER_CHOICES},
+    {CTRL_KEY("tune_noise_ratio", V_REAL, tune_noise_ratio, ALL_CONTROLLERS), .range = R_POSITIVE},
 };
 
 #define N_KEYS ((int)(sizeof SCHEMA_KEYS / sizeof SCHEMA_KEYS[0]))
@@ -527,6 +536,9 @@ void schema_set_defaults(sim_scenario_t *sc)
         o->tune = -1;
         o->tune_pm_deg = o->tune_gm_db = NAN;
         o->tune_step_rad = o->tune_dist_rad_s2 = NAN;
+        o->tune_noise_max_Nm = NAN;
+        o->tune_noise_ref = -1;
+        o->tune_noise_ratio = 1.0;
         o->indi_att_kp_per_s = o->indi_rate_kp_per_s = o->indi_filter_rad_s = NAN;
         o->radrc_kp_per_s = o->radrc_att_kp_per_s = o->radrc_rate_max_deg_s = NAN;
         o->cas_att_kp = o->cas_rate_max_deg_s = o->cas_rate_kp = o->cas_rate_ki = o->cas_rate_kd = NAN;

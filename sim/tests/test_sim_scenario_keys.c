@@ -317,6 +317,10 @@ static void test_tune_keys_land_in_their_controller_with_their_defaults(void)
     /* parsing tunes nothing: the gains stay the library's until sim_tune_controller runs */
     for (int id = 0; id < SIM_CTRL_COUNT; ++id)
         TEST_ASSERT_EQUAL_INT(0, sc.tuning[id].tuned);
+    /* the noise cap's keys: absent, no cap and no reference, ratio 1 */
+    TEST_ASSERT_TRUE(isnan(o[SIM_CTRL_LADRC].tune_noise_max_Nm));
+    TEST_ASSERT_EQUAL_INT(-1, o[SIM_CTRL_LADRC].tune_noise_ref);
+    assert_close(1.0, o[SIM_CTRL_LADRC].tune_noise_ratio, "default noise ratio");
     assert_close(45.0, SIM_TUNE_PM_DEG_DEFAULT, "default PM target");
     assert_close(6.0, SIM_TUNE_GM_DB_DEFAULT, "default GM target");
 }
@@ -361,6 +365,72 @@ static void test_tune_errors_name_the_key(void)
          .line = 7,
          .column = 1,
          .message = "[controller LADRC] does not apply to kind = differentiator"},
+    };
+    CHECK_BAD_CASES(cases);
+}
+
+static void test_noise_cap_keys_land_in_their_controller(void)
+{
+    parse_ok("[run]\nduration_s = 1\ncontrollers = LADRC PID RATE-ADRC\n[sensors]\nuse_rate = yes\n"
+             "[controller LADRC]\ntune = margins\ntune_noise_ref = PID\ntune_noise_ratio = 1.5\n"
+             "[controller PID]\ntune = margins\ntune_noise_max_Nm = 0.02\n"
+             "[controller RATE-ADRC]\ntune = margins\ntune_noise_ref = PID\n");
+    const sim_overrides_t *o = sc.overrides;
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_PID, o[SIM_CTRL_LADRC].tune_noise_ref);
+    assert_close(1.5, o[SIM_CTRL_LADRC].tune_noise_ratio, "noise ratio");
+    TEST_ASSERT_TRUE(isnan(o[SIM_CTRL_LADRC].tune_noise_max_Nm));
+    assert_close(0.02, o[SIM_CTRL_PID].tune_noise_max_Nm, "noise cap");
+    TEST_ASSERT_EQUAL_INT(-1, o[SIM_CTRL_PID].tune_noise_ref);
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_PID, o[SIM_CTRL_RATE_ADRC].tune_noise_ref);
+}
+
+static void test_bad_noise_cap_keys_fail_at_the_key(void)
+{
+    static const bad_case_t cases[] = {
+        {.text = "[run]\nduration_s = 1\n[controller LADRC]\ntune_noise_max_Nm = 0.1\n",
+         .line = 4,
+         .column = 1,
+         .message = "'tune_noise_max_Nm' applies only with tune = margins"},
+        {.text = "[run]\nduration_s = 1\n[controller LADRC]\ntune = margins\ntune_noise_max_Nm = 0\n",
+         .line = 5,
+         .column = 21,
+         .message = "tune_noise_max_Nm must be > 0"},
+        {.text = "[run]\nduration_s = 1\n[controller LADRC]\ntune = margins\ntune_noise_ref = FOO\n",
+         .line = 5,
+         .column = 18,
+         .message = "expected HP-MLADRC, LP-MLADRC, LADRC, PID, CASCADED, INDI or RATE-ADRC, got 'FOO'"},
+        {.text = "[run]\nduration_s = 1\n[controller LADRC]\ntune = margins\ntune_noise_ref = LADRC\n",
+         .line = 5,
+         .column = 18,
+         .message = "tune_noise_ref must name another controller, not LADRC itself"},
+        {.text = "[run]\nduration_s = 1\n[controller LADRC]\ntune = margins\ntune_noise_ref = PID\n",
+         .line = 5,
+         .column = 18,
+         .message = "tune_noise_ref: PID is not tuned (its tune = margins is missing)"},
+        {.text = "[run]\nduration_s = 1\n[controller LADRC]\ntune = margins\ntune_noise_ref = CASCADED\n"
+                 "[controller CASCADED]\ntune = margins\n",
+         .line = 5,
+         .column = 18,
+         .message = "tune_noise_ref: the scenario does not fly CASCADED ([run] controllers)"},
+        {.text = "[run]\nduration_s = 1\n[controller LADRC]\ntune = margins\ntune_noise_ref = PID\n"
+                 "[controller PID]\ntune = margins\ntune_noise_ref = LADRC\n",
+         .line = 5,
+         .column = 18,
+         .message = "tune_noise_ref: PID takes its own cap from another controller's noise; name one that does not"},
+        {.text = "[run]\nduration_s = 1\n[controller LADRC]\ntune = margins\ntune_noise_max_Nm = 0.1\n"
+                 "tune_noise_ref = PID\n[controller PID]\ntune = margins\n",
+         .line = 6,
+         .column = 1,
+         .message = "'tune_noise_ref' conflicts with tune_noise_max_Nm (line 5): give one of them"},
+        {.text = "[run]\nduration_s = 1\n[controller LADRC]\ntune = margins\ntune_noise_ratio = 2\n",
+         .line = 5,
+         .column = 1,
+         .message = "'tune_noise_ratio' applies only with tune_noise_ref"},
+        {.text = "[run]\nduration_s = 1\n[controller LADRC]\ntune = margins\ntune_noise_ref = PID\n"
+                 "tune_noise_ratio = -1\n[controller PID]\ntune = margins\n",
+         .line = 6,
+         .column = 20,
+         .message = "tune_noise_ratio must be > 0"},
     };
     CHECK_BAD_CASES(cases);
 }
@@ -546,6 +616,8 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_defaults_fill_every_key_not_given);
     RUN_TEST(test_every_attitude_key_lands_in_its_field_in_its_unit);
+    RUN_TEST(test_noise_cap_keys_land_in_their_controller);
+    RUN_TEST(test_bad_noise_cap_keys_fail_at_the_key);
     RUN_TEST(test_controllers_model_the_airframe_unless_told_otherwise);
     RUN_TEST(test_tune_keys_land_in_their_controller_with_their_defaults);
     RUN_TEST(test_tune_errors_name_the_key);

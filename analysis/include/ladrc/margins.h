@@ -45,6 +45,9 @@ extern "C" {
 /** Largest reference step of the tuning objective (rad): well inside the
  *  small-angle loop, whose error beyond 1 rad counts as diverged. */
 #define LADRC_MARGINS_MAX_STEP_RAD 0.5
+/** Default corner of the predicted command noise (Hz): above an attitude
+ *  loop's bandwidth, where what reaches the motors is noise, not control. */
+#define LADRC_MARGINS_NOISE_CORNER_HZ 20.0
 /** Crossovers of each kind kept in a result. */
 #define LADRC_MARGINS_MAX_CROSS 8
 
@@ -120,6 +123,13 @@ typedef struct {
     double dist_step_rad_s2;     /**< tuning objective: then a disturbance step (rad/s^2), >= 0;
                                   default 20. Both 0: the peak |d -> error| is the objective */
     double step_window_s;        /**< how long each step is flown (s), > 0 and <= 60; default 2 */
+    double angle_noise_std_rad;  /**< command noise: white noise on the measured angle, standard
+                                  deviation per sample (rad), finite and >= 0; default 0 */
+    double rate_noise_std_rad_s; /**< white noise on the measured rate (gyro), standard deviation
+                                  per sample (rad/s), finite and >= 0; default 0 */
+    double noise_corner_hz;      /**< the command noise is its RMS from this frequency (Hz) up to
+                                  the Nyquist frequency; > 0 and below it when a noise is
+                                  non-zero; default LADRC_MARGINS_NOISE_CORNER_HZ */
 } ladrc_margins_request_t;
 
 /** Margins and verdict of one loop. Margins that do not exist are +INFINITY
@@ -145,6 +155,11 @@ typedef struct {
                                   responses (how well they settled) */
     int linearised_nominal;                /**< adaptive: the run on the requested plant diverged, so the
                                   controller was linearised on the plant without lag and delay */
+    double cmd_noise_Nm;                   /**< predicted RMS of the torque command (N m) from
+                                  noise_corner_hz to the Nyquist frequency caused by the request's
+                                  white angle and rate noise through the closed loop:
+                                  u = S (C_angle n_angle + C_rate n_rate); 0 when both noises are 0
+                                  (docs/margins.md, "Command noise") */
     int n_out;                             /**< output grid */
     double w_rad_s[LADRC_MARGINS_MAX_OUT]; /**< the grid's frequencies (rad/s), n_out of them */
     /** @{ */
@@ -383,9 +398,19 @@ ladrc_margins_status_t ladrc_margins_step_cost(ladrc_margins_workspace_t *ws, co
 
 /** Targets and search of the margins-based tuning. */
 typedef struct {
-    double pm_min_deg; /**< least phase margin (deg), finite; default 45 */
-    double gm_min_db;  /**< least gain margins (dB), finite; default 6 */
+    double pm_min_deg;       /**< least phase margin (deg), finite; default 45 */
+    double gm_min_db;        /**< least gain margins (dB), finite; default 6 */
+    double cmd_noise_max_Nm; /**< largest predicted command noise (ladrc_margins_result_t
+                                  cmd_noise_Nm, N m) of the request's noise; 0, negative or
+                                  not finite: no cap */
 } ladrc_margins_targets_t;
+
+/** 1 when a result meets the targets: stable, phase margin and both gain
+ *  margins, and its command noise within the cap when the targets cap it
+ *  (the result must then carry cmd_noise_Nm: a request with noise).
+ *  @param res  the result; must not be NULL (not checked)
+ *  @param tg   the targets; must not be NULL (not checked) */
+int ladrc_margins_meets(const ladrc_margins_result_t *res, const ladrc_margins_targets_t *tg);
 
 /** The tuning's outcome: the gains chosen (those of the variant) and their margins. */
 typedef struct {
@@ -408,12 +433,18 @@ typedef struct {
     double peak_dist_rad;           /**< peak |d -> error| of the chosen setting (rad per rad/s^2) */
     double step_cost_rad2_s;        /**< its ladrc_margins_step_cost (rad^2 s); NAN when the
                                   request's steps are both 0 */
+    double cmd_noise_Nm;            /**< its predicted command noise (N m; margins.cmd_noise_Nm) */
     ladrc_margins_result_t margins; /**< of the chosen setting */
 } ladrc_margins_tuning_t;
 
 /**
  * Tunes ctl's axis (its config is copied into *tuned, the axis_index-th axis
- * for an attitude, and the gains written there) for req->plant:
+ * for an attitude, and the gains written there) for req->plant. A setting
+ * meets the targets when its loop is stable with PM >= pm_min_deg and both
+ * gain margins >= gm_min_db and, with a noise cap (targets->cmd_noise_max_Nm
+ * finite and > 0), its predicted command noise (cmd_noise_Nm of req's angle
+ * and rate noise above req->noise_corner_hz) is at most the cap: the cap
+ * lowers the bandwidth found below until the noise fits. Searched:
  * LADRC family: wo = r wc, r in {3, 5, 8}; for each r the largest
  * wc whose loop is stable with PM >= pm_min_deg and both gain margins
  * >= gm_min_db (geometric scan by 1.5 from 0.5 rad/s to 0.95 / dt, then
@@ -448,8 +479,8 @@ typedef struct {
  * keeps its gains): the LADRC family at r in {12, 20, 32} (on the core and
  * stepped down, and on the whole loop), ranked the same way.
  * Returns LADRC_MARGINS_ERR_TARGETS_NOT_MET when none meets them, with the
- * closest stable miss (smallest shortfall, gain margin weighted 3 per dB
- * against 1 per degree) in *tuned and its margins in out->margins (the
+ * closest stable miss (smallest shortfall, gain margin and noise over the
+ * cap weighted 3 per dB against 1 per degree) in *tuned and its margins in out->margins (the
  * controller as given when not one candidate was stable).
  * @param ws       the workspace
  * @param ctl      the controller to tune
@@ -460,7 +491,7 @@ typedef struct {
  * @retval LADRC_MARGINS_OK                setting found that meets the targets
  * @retval LADRC_MARGINS_ERR_NULL          a pointer is NULL
  * @retval LADRC_MARGINS_ERR_CONTROLLER    not exactly one of attitude and axis, or a bad axis_index
- * @retval LADRC_MARGINS_ERR_REQUEST       a request field outside its range, or a target not finite
+ * @retval LADRC_MARGINS_ERR_REQUEST       a request field outside its range, or a margin target not finite
  * @retval LADRC_MARGINS_ERR_TARGETS_NOT_MET no setting meets the targets (closest miss reported)
  * @return otherwise the status of ladrc_margins_analyse_reported on the chosen setting
  *         (the plant statuses, LADRC_MARGINS_ERR_NOT_SETTLED, ...)
