@@ -98,7 +98,7 @@ static ladrc_axis_config_t config(ladrc_variant_t v, double tau, int delay, int 
     ladrc_axis_config_t cfg;
     ladrc_axis_config_default(&cfg, v, (ladrc_real_t)DT_S, (ladrc_real_t)J_KG_M2);
     cfg.motor_tau_s = (ladrc_real_t)tau;
-    cfg.delay_ticks = (uint8_t)delay;
+    cfg.delay_ticks = (uint16_t)delay;
     cfg.wrap_angle = (uint8_t)wrap;
     return cfg;
 }

@@ -611,7 +611,7 @@ static void test_hp_command_is_the_estimate_turned_by_the_inverse_actuator(void)
     const int d = 2;
     ladrc_hp_config_t cfg = hp_config(LADRC_HP_FREQ_KNOWN, w);
     cfg.act_tau_s = (ladrc_real_t)tau;
-    cfg.act_delay_ticks = (uint8_t)d;
+    cfg.act_delay_ticks = (uint16_t)d;
     static ladrc_hp_estimator_t est;
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_hp_init(&est, &cfg));
     /* when: it converges on 2 + 5 sin(w t), then a whole number of periods is read */
@@ -710,14 +710,14 @@ static void test_lp_lead_is_n_at_once_and_unity_at_dc(void)
     bad.act_tau_s = -1.0f;
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_MOTOR_TAU_S, ladrc_lp_init(&est, &bad));
     bad = cfg;
-    bad.act_delay_ticks = (uint8_t)(LADRC_MAX_DELAY_TICKS + 1u);
+    bad.act_delay_ticks = (uint16_t)(LADRC_MAX_DELAY_TICKS + 1u);
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_DELAY_TICKS, ladrc_lp_init(&est, &bad));
     ladrc_hp_config_t hbad = hp_config(LADRC_HP_FREQ_KNOWN, 3.0);
     static ladrc_hp_estimator_t hp;
     hbad.act_tau_s = (ladrc_real_t)NAN;
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_MOTOR_TAU_S, ladrc_hp_init(&hp, &hbad));
     hbad = hp_config(LADRC_HP_FREQ_KNOWN, 3.0);
-    hbad.act_delay_ticks = (uint8_t)(LADRC_MAX_DELAY_TICKS + 1u);
+    hbad.act_delay_ticks = (uint16_t)(LADRC_MAX_DELAY_TICKS + 1u);
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_DELAY_TICKS, ladrc_hp_init(&hp, &hbad));
 }
 
