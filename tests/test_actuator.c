@@ -357,7 +357,11 @@ static void test_delay_above_the_maximum_is_refused_with_its_status(void)
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&axis, &cfg));
     cfg.delay_ticks = (uint16_t)(LADRC_MAX_DELAY_TICKS + 1u);
     TEST_ASSERT_EQUAL_INT(LADRC_ERR_DELAY_TICKS, ladrc_axis_init(&axis, &cfg));
-    TEST_ASSERT_NOT_NULL(strstr(ladrc_status_str(LADRC_ERR_DELAY_TICKS), "(400)"));
+    const char *text = ladrc_status_str(LADRC_ERR_DELAY_TICKS);
+    TEST_ASSERT_NOT_NULL(strstr(text, "LADRC_ERR_DELAY_TICKS"));
+    if (strchr(text, ' ') != NULL) { /* a build with the texts, not the names only */
+        TEST_ASSERT_NOT_NULL(strstr(text, "(400)"));
+    }
 }
 
 /* y'' = b m + d, m' = (u - m) / tau, at step dt_s; the sensor reports y of
