@@ -51,6 +51,9 @@ ladrc_margins_status_t ladrc_margins_max_motor_tau(ladrc_margins_workspace_t *ws
     return LADRC_MARGINS_OK;
 }
 
+/* Delays ladrc_margins_max_delay tries one by one (the range of earlier releases). */
+#define MAX_DELAY_SCAN 64
+
 ladrc_margins_status_t ladrc_margins_max_delay(ladrc_margins_workspace_t *ws, const ladrc_margins_plant_t *plant,
                                                int *ticks)
 {
@@ -62,12 +65,35 @@ ladrc_margins_status_t ladrc_margins_max_delay(ladrc_margins_workspace_t *ws, co
         return st;
     ladrc_margins_plant_t p = *plant;
     *ticks = -1;
-    for (int d = 0; d <= LADRC_MARGINS_MAX_DELAY; ++d) {
+    /* Every delay up to MAX_DELAY_SCAN (the first unstable one ends it, as
+     * always); past it, up to LADRC_MARGINS_MAX_DELAY (hundreds of ticks:
+     * 50 ms at 8 kHz), doubling then bisecting: about 2 log2 d verdicts,
+     * taking the loop as stable below one delay and unstable above it. */
+    int d = 0;
+    for (; d <= MAX_DELAY_SCAN; ++d) {
         p.delay_ticks = d;
         if (!ladrc_margins_is_stable(ws, &p))
             return LADRC_MARGINS_OK;
         *ticks = d;
     }
+    int lo = MAX_DELAY_SCAN, hi = LADRC_MARGINS_MAX_DELAY + 1; /* stable at lo; hi unstable or past the range */
+    for (d = 2 * MAX_DELAY_SCAN; d < hi; d *= 2) {
+        p.delay_ticks = d;
+        if (!ladrc_margins_is_stable(ws, &p)) {
+            hi = d;
+            break;
+        }
+        lo = d;
+    }
+    while (hi - lo > 1) {
+        p.delay_ticks = lo + (hi - lo) / 2;
+        if (ladrc_margins_is_stable(ws, &p)) {
+            lo = p.delay_ticks;
+        } else {
+            hi = p.delay_ticks;
+        }
+    }
+    *ticks = lo;
     return LADRC_MARGINS_OK;
 }
 

@@ -18,7 +18,7 @@ const char *ladrc_margins_status_str(ladrc_margins_status_t status)
     case LADRC_MARGINS_ERR_MOTOR_TAU:
         return "LADRC_MARGINS_ERR_MOTOR_TAU: motor_tau_s not finite and >= 0";
     case LADRC_MARGINS_ERR_DELAY:
-        return "LADRC_MARGINS_ERR_DELAY: delay_ticks outside 0..64";
+        return "LADRC_MARGINS_ERR_DELAY: delay_ticks outside 0..512";
     case LADRC_MARGINS_ERR_CONTROLLER:
         return "LADRC_MARGINS_ERR_CONTROLLER: the controller config is refused";
     case LADRC_MARGINS_ERR_REQUEST:

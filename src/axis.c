@@ -303,11 +303,8 @@ void ladrc_axis_reset(ladrc_axis_t *axis, ladrc_real_t angle_rad)
     axis->applied_Nm = LADRC_R(0.0);
     axis->command_Nm = LADRC_R(0.0);
     /* At rest: no torque acting, none on its way. */
-    for (unsigned k = 0u; k < LADRC_MAX_DELAY_TICKS; ++k) {
-        axis->act.delayed_Nm[k] = LADRC_R(0.0);
-    }
+    axis_delay_fill(&axis->act, LADRC_R(0.0));
     axis->act.lag_Nm = LADRC_R(0.0);
-    axis->act.head = 0u;
     axis->consecutive_faults = 0u;
     axis->faults = LADRC_FAULT_NONE;
 }
@@ -477,9 +474,7 @@ void ladrc_axis_engage(ladrc_axis_t *axis, ladrc_real_t ref_rad, ladrc_real_t an
                                ? ladrc_clamp(torque_Nm, axis->u_min_Nm, axis->u_max_Nm) * axis->gain_scale
                                : LADRC_R(0.0); /* in b0's units */
     /* the torque has been acting, and is on its way */
-    for (unsigned k = 0u; k < LADRC_MAX_DELAY_TICKS; ++k) {
-        axis->act.delayed_Nm[k] = u;
-    }
+    axis_delay_fill(&axis->act, u);
     axis->act.lag_Nm = u;
     axis->output_Nm = u;
     axis->applied_Nm = axis->landed ? LADRC_R(0.0) : u;

@@ -101,8 +101,22 @@ ladrc_status_t axis_actuator_init(ladrc_axis_t *axis, const ladrc_axis_config_t 
         }
     }
     act->delay_ticks = cfg->delay_ticks;
+    act->block_ticks = axis_delay_block_ticks(cfg->delay_ticks);
+    act->inv_block = LADRC_R(1.0) / (ladrc_real_t)act->block_ticks;
+    act->inv_2block = LADRC_R(0.5) * act->inv_block;
+    axis_delay_fill(act, LADRC_R(0.0));
     axis->model = (tau > LADRC_R(0.0) || cfg->delay_ticks > 0u) ? 1u : 0u;
     return LADRC_OK;
+}
+
+void axis_delay_fill(ladrc_actuator_t *act, ladrc_real_t torque_Nm)
+{
+    for (unsigned k = 0u; k < LADRC_DELAY_SLOTS; ++k) {
+        act->delayed_Nm[k] = torque_Nm;
+    }
+    act->block_sum_Nm = LADRC_R(0.0);
+    act->fill = 0u;
+    act->head = 0u;
 }
 
 ladrc_real_t axis_command_min(const ladrc_axis_config_t *cfg)

@@ -13,6 +13,60 @@
 #include "compiler.h"
 #include "ladrc/axis.h"
 
+/* --- the delay line (axis.h): the one place that reads and writes it ------- */
+
+/** The torque the line gives at its next push, v = a_k-1-d (N m); `now` (the
+ *  torque about to be pushed) when d = 0. Exact up to LADRC_DELAY_SLOTS
+ *  ticks; beyond, the line through the two block means whose centres
+ *  bracket the tick d pushes back. */
+static inline ladrc_real_t axis_delay_out(const ladrc_actuator_t *act, ladrc_real_t now)
+{
+    if (act->delay_ticks <= LADRC_DELAY_SLOTS) {
+        return (act->delay_ticks != 0u) ? act->delayed_Nm[act->head] : now;
+    }
+    /* The newest whole block's centre lies fill + (m + 1) / 2 ticks back of
+     * the next push, the wanted tick d; the distance between them in blocks
+     * is q = (2 (d - fill) - m - 1) / (2 m), >= 0 and < slots - 1 for the m
+     * of init (axis_delay_block_ticks). */
+    const unsigned m = act->block_ticks;
+    const unsigned twice = 2u * (act->delay_ticks - act->fill) - m - 1u;
+    const unsigned back = twice / (2u * m);
+    const ladrc_real_t w = (ladrc_real_t)(twice - back * 2u * m) * act->inv_2block;
+    const unsigned newer = (act->head + LADRC_DELAY_SLOTS - 1u - back) % LADRC_DELAY_SLOTS;
+    const unsigned older = (newer + LADRC_DELAY_SLOTS - 1u) % LADRC_DELAY_SLOTS;
+    return act->delayed_Nm[newer] + w * (act->delayed_Nm[older] - act->delayed_Nm[newer]);
+}
+
+/** Pushes the torque of the tick ended (N m) into the line (d > 0). */
+static inline void axis_delay_push(ladrc_actuator_t *act, ladrc_real_t torque_Nm)
+{
+    const unsigned head = act->head;
+    if (act->delay_ticks <= LADRC_DELAY_SLOTS) {
+        act->delayed_Nm[head] = torque_Nm;
+        act->head = (uint8_t)((head + 1u < act->delay_ticks) ? head + 1u : 0u);
+        return;
+    }
+    act->block_sum_Nm += torque_Nm;
+    if (++act->fill >= act->block_ticks) {
+        act->delayed_Nm[head] = act->block_sum_Nm * act->inv_block;
+        act->head = (uint8_t)((head + 1u < LADRC_DELAY_SLOTS) ? head + 1u : 0u);
+        act->block_sum_Nm = LADRC_R(0.0);
+        act->fill = 0u;
+    }
+}
+
+/** Ticks per slot for a delay of d ticks: 1 up to the slots; beyond, the
+ *  least m with 2 d <= m (2 S - 1), which keeps both blocks read within the
+ *  S slots at every fill (axis_delay_out). */
+static inline uint16_t axis_delay_block_ticks(unsigned d)
+{
+    const unsigned span = 2u * LADRC_DELAY_SLOTS - 1u;
+    return (uint16_t)((d <= LADRC_DELAY_SLOTS) ? 1u : (2u * d + span - 1u) / span);
+}
+
+/** The line as if torque_Nm had been pushed for ever (reset, engage). */
+void axis_delay_fill(ladrc_actuator_t *act, ladrc_real_t torque_Nm);
+
 /** Torque (N m) the next tick's observer step takes as acting: the applied
  *  torque without a model, else its delayed and lagged mean (axis.h). */
 static inline ladrc_real_t axis_acting_Nm(const ladrc_axis_t *axis)
@@ -21,7 +75,7 @@ static inline ladrc_real_t axis_acting_Nm(const ladrc_axis_t *axis)
         return axis->applied_Nm;
     }
     const ladrc_actuator_t *act = &axis->act;
-    const ladrc_real_t v = (act->delay_ticks != 0u) ? act->delayed_Nm[act->head] : axis->applied_Nm;
+    const ladrc_real_t v = axis_delay_out(act, axis->applied_Nm);
     return act->lag_Nm + act->mean_gain * (v - act->lag_Nm);
 }
 
@@ -100,14 +154,11 @@ static inline ladrc_real_t axis_advance_actuator(ladrc_axis_t *axis)
     if (!axis->model) {
         return axis->applied_Nm;
     }
-    const ladrc_real_t mean = axis_acting_Nm(axis);
     ladrc_actuator_t *act = &axis->act;
-    ladrc_real_t v = axis->applied_Nm;
+    const ladrc_real_t v = axis_delay_out(act, axis->applied_Nm);
+    const ladrc_real_t mean = act->lag_Nm + act->mean_gain * (v - act->lag_Nm);
     if (act->delay_ticks != 0u) {
-        const uint8_t head = act->head;
-        v = act->delayed_Nm[head];
-        act->delayed_Nm[head] = axis->applied_Nm;
-        act->head = (uint8_t)((head + 1u < act->delay_ticks) ? head + 1u : 0u);
+        axis_delay_push(act, axis->applied_Nm);
     }
     act->lag_Nm += act->alpha * (v - act->lag_Nm);
     return mean;

@@ -21,6 +21,27 @@ static void small_rotation(ladrc_real_t x, ladrc_real_t *c, ladrc_real_t *s)
                    x2 / LADRC_R(20.0) * (LADRC_R(1.0) - x2 / LADRC_R(42.0) * (LADRC_R(1.0) - x2 / LADRC_R(72.0)))));
 }
 
+/* (re, im) turned n times by the unit step (c, s): the step's binary powers,
+ * squared up and multiplied in as n's bits are set, so log2 n squarings and
+ * at most as many turns, no trig (d up to LADRC_MAX_DELAY_TICKS at every
+ * frequency update). The rounding grows as n eps, as n single turns would. */
+static void turn_by_steps(ladrc_real_t *re, ladrc_real_t *im, ladrc_real_t c, ladrc_real_t s, unsigned n)
+{
+    while (n != 0u) {
+        if ((n & 1u) != 0u) {
+            const ladrc_real_t turned = *re * c - *im * s;
+            *im = *im * c + *re * s;
+            *re = turned;
+        }
+        n >>= 1u;
+        if (n != 0u) {
+            const ladrc_real_t c2 = c * c - s * s;
+            s = LADRC_R(2.0) * c * s;
+            c = c2;
+        }
+    }
+}
+
 void hp_set_tone_freq(const ladrc_hp_tone_basis_t *basis, unsigned advance, ladrc_hp_tone_t *tone, ladrc_real_t w_rad_s)
 {
     tone->w_rad_s = w_rad_s;
@@ -47,18 +68,13 @@ void hp_set_tone_freq(const ladrc_hp_tone_basis_t *basis, unsigned advance, ladr
         /* lead (1 + j w tau) e^{j w d h}, times e^{-j w h}: the command is
          * read after the tick has turned the phase by w h (estimator.h).
          * The turn by w (d - 1) h as |d - 1| turns by w h (exact to
-         * rounding, no trig; d <= LADRC_MAX_DELAY_TICKS). */
+         * rounding, no trig). */
         const ladrc_real_t wt = min_real(w_rad_s * basis->act_tau_s, HP_LEAD_RATIO_MAX);
         re = tone->lead_re - wt * tone->lead_im;
         im = tone->lead_im + wt * tone->lead_re;
         const ladrc_real_t back = (basis->act_delay_ticks == 0u) ? LADRC_R(-1.0) : LADRC_R(1.0);
         const unsigned turns = (basis->act_delay_ticks == 0u) ? 1u : basis->act_delay_ticks - 1u;
-        for (unsigned i = 0u; i < turns; ++i) {
-            const ladrc_real_t sin_step = back * tone->sin_step;
-            const ladrc_real_t turned = re * tone->cos_step - im * sin_step;
-            im = im * tone->cos_step + re * sin_step;
-            re = turned;
-        }
+        turn_by_steps(&re, &im, tone->cos_step, back * tone->sin_step, turns);
         tone->cmd_re = re;
         tone->cmd_im = im;
     }

@@ -73,7 +73,7 @@
       "angle_limit_rad and rate_limit_rad_s must be finite and >= 1e-3, applied_limit_Nm finite and > 0")              \
     X(LADRC_ERR_INERTIA_TRIANGLE, "each inertia must be at most the sum of the other two (a rigid body)")              \
     X(LADRC_ERR_MOTOR_TAU_S, "motor_tau_s must be finite, >= 0 and at most LADRC_MOTOR_TAU_MAX_S (1 s)")               \
-    X(LADRC_ERR_DELAY_TICKS, "delay_ticks must be at most LADRC_MAX_DELAY_TICKS (8)")                                  \
+    X(LADRC_ERR_DELAY_TICKS, "delay_ticks must be at most LADRC_MAX_DELAY_TICKS (400)")                                \
     X(LADRC_ERR_WRAP_ANGLE, "wrap_angle must be 0 or 1")                                                               \
     X(LADRC_ERR_INDI_ATT_KP, "indi_att_kp_per_s must be finite, > 0 and below 1 / dt_s")                               \
     X(LADRC_ERR_INDI_RATE_KP, "indi_rate_kp_per_s must be finite, > 0 and below 1 / dt_s")                             \

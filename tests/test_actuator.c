@@ -48,6 +48,22 @@
 /* z1 and r of a wrapped axis stay within pi past +-pi plus their distance (< 2 pi). */
 #define WRAPPED_STATE_BOUND_RAD (4.0 * PI_D)
 
+/* The long delay line (axis.h) on a smooth torque a against a taken exactly
+ * d ticks late: the block mean's error |a''| (m^2 - 1) / 24 plus the linear
+ * interpolation's |a''| m^2 / 8 (a'' per tick^2), below |a''| m^2 / 6; for a
+ * sine of amplitude A at w: A (w h m)^2 / 6. LINE_ROUNDING_REL is the float
+ * rounding of a block sum of m <= 13 torques and the interpolation, relative
+ * to the torque (a few 6e-8 per operation: 1e-6). */
+#define LINE_ROUNDING_REL 1e-6
+/* The block mean of a ramp is its centre's value and the line between two
+ * centres is the ramp: exact but for the same rounding. */
+/* A long modelled delay: the loop on the late plant (20 and 50 ms at 1 and
+ * 8 kHz) with the delay modelled tracks a 0.1 rad swing under a 1 + 2 sin 2t
+ * rad/s^2 disturbance within this RMS (rad; measured 2.7e-3 at 20 ms, 9e-3 at
+ * 50 ms, at 1 kHz); the same gains without the delay modelled leave 1 rad or
+ * do worse. */
+#define LONG_DELAY_RMS_MAX_RAD 0.015
+
 void setUp(void)
 {
 }
@@ -98,7 +114,7 @@ static ladrc_axis_config_t config(ladrc_variant_t v, double tau, int delay, int 
     ladrc_axis_config_t cfg;
     ladrc_axis_config_default(&cfg, v, (ladrc_real_t)DT_S, (ladrc_real_t)J_KG_M2);
     cfg.motor_tau_s = (ladrc_real_t)tau;
-    cfg.delay_ticks = (uint8_t)delay;
+    cfg.delay_ticks = (uint16_t)delay;
     cfg.wrap_angle = (uint8_t)wrap;
     return cfg;
 }
@@ -209,6 +225,215 @@ static void test_delay_feeds_the_observer_the_torque_of_d_ticks_before(void)
         TEST_ASSERT_FLOAT_WITHIN(1e-9, expect, (double)ladrc_axis_get_acting_Nm(&axis));
         const double accel = cfg.b0 * expect + axis.leso.z3 + axis.d_hat_rad_s2;
         TEST_ASSERT_FLOAT_WITHIN(ACCEL_REL_TOL * fmax(1.0, fabs(accel)), accel, (double)ladrc_axis_get_accel(&axis));
+    }
+}
+
+#define LINE_TICKS_MAX 5000
+
+/* Ticks per slot the line uses for a delay of d ticks (axis.h), recomputed. */
+static int line_block_ticks(int d)
+{
+    const int span = 2 * (int)LADRC_DELAY_SLOTS - 1;
+    return (d <= (int)LADRC_DELAY_SLOTS) ? 1 : (2 * d + span - 1) / span;
+}
+
+/* The worst |acting - a_k-d| over ticks past the line's warm-up (the kink
+ * of a at 0 has left both blocks read), with torques a_k = torque(k) reported
+ * each tick on an axis at step dt_s with delay d and no lag. */
+static double line_worst_error(double dt_s, int d, double (*torque)(double t_s), int n, double *scale)
+{
+    ladrc_axis_config_t cfg;
+    ladrc_axis_config_default(&cfg, LADRC_VARIANT_LADRC, (ladrc_real_t)dt_s, (ladrc_real_t)J_KG_M2);
+    cfg.delay_ticks = (uint16_t)d;
+    ladrc_axis_t axis;
+    init_axis(&axis, &cfg);
+    double worst = 0.0;
+    *scale = 0.0;
+    const int warm = d + 3 * line_block_ticks(d);
+    static ladrc_real_t reported[LINE_TICKS_MAX];
+    TEST_ASSERT_TRUE(n <= LINE_TICKS_MAX);
+    for (int k = 0; k < n; ++k) {
+        (void)axis_command(&axis, LADRC_R(0.0), LADRC_R(0.0));
+        reported[k] = (ladrc_real_t)torque(k * dt_s);
+        ladrc_axis_set_applied(&axis, reported[k]);
+        *scale = fmax(*scale, fabs((double)reported[k]));
+        if (k >= warm) {
+            /* against the torque reported d ticks before */
+            worst = fmax(worst, fabs((double)ladrc_axis_get_acting_Nm(&axis) - (double)reported[k - d]));
+        }
+    }
+    return worst;
+}
+
+#define LINE_SINE_NM 0.05
+#define LINE_SINE_RAD_S (2.0 * PI_D * 10.0)
+static double line_sine(double t_s)
+{
+    return LINE_SINE_NM * sin(LINE_SINE_RAD_S * t_s + 0.3);
+}
+static double line_ramp(double t_s)
+{
+    return 0.1 * t_s - 0.05;
+}
+
+static void test_delay_line_is_exact_up_to_its_slots(void)
+{
+    /* given: every exact delay up to the slot count, a sine torque */
+    for (int d = 1; d <= (int)LADRC_DELAY_SLOTS; ++d) {
+        double scale;
+        /* when */
+        const double worst = line_worst_error(DT_S, d, line_sine, 600, &scale);
+        /* then: the torque of d ticks before (the lag's m + 1 (v - m) at
+         * tau = 0 rounds once or twice) */
+        TEST_ASSERT_TRUE(worst <= LINE_ROUNDING_REL * scale);
+    }
+}
+
+static void test_long_delay_line_follows_a_smooth_torque_within_the_block_bound(void)
+{
+    /* given: 20 and 50 ms at 1, 2, 4 and 8 kHz (d = 20 .. 400), a 10 Hz sine */
+    static const int rate_hz[] = {1000, 2000, 4000, 8000};
+    for (unsigned r = 0u; r < sizeof rate_hz / sizeof rate_hz[0]; ++r) {
+        for (int ms = 20; ms <= 50; ms += 30) {
+            const double dt = 1.0 / rate_hz[r];
+            const int d = ms * rate_hz[r] / 1000;
+            const int m = line_block_ticks(d);
+            double scale;
+            /* when */
+            const double worst = line_worst_error(dt, d, line_sine, d + 4000, &scale);
+            /* then */
+            const double x = LINE_SINE_RAD_S * dt * m;
+            const double bound = LINE_SINE_NM * x * x / 6.0 + LINE_ROUNDING_REL * scale;
+            printf("delay line %d Hz, %d ms: d %d, m %d, worst %.3e N m, bound %.3e N m\n", rate_hz[r], ms, d, m, worst,
+                   bound);
+            TEST_ASSERT_TRUE(worst <= bound);
+        }
+    }
+}
+
+static void test_long_delay_line_passes_a_ramp_exactly(void)
+{
+    /* given: a torque ramp, the longest delay at 8 kHz and 50 ms at 1 kHz */
+    static const int delays[] = {(int)LADRC_MAX_DELAY_TICKS, 50, (int)LADRC_DELAY_SLOTS + 1};
+    for (unsigned i = 0u; i < sizeof delays / sizeof delays[0]; ++i) {
+        double scale;
+        /* when */
+        const double worst = line_worst_error(1.0 / 8000.0, delays[i], line_ramp, delays[i] + 3000, &scale);
+        /* then: d ticks late, but for rounding */
+        TEST_ASSERT_TRUE(worst <= LINE_ROUNDING_REL * scale);
+    }
+}
+
+static void test_long_delay_line_starts_from_rest_and_from_engage(void)
+{
+    /* given: the longest delay, reset, then engaged on a held torque */
+    ladrc_axis_config_t cfg;
+    ladrc_axis_config_default(&cfg, LADRC_VARIANT_LADRC, LADRC_R(1.0 / 8000.0), (ladrc_real_t)J_KG_M2);
+    cfg.delay_ticks = (uint16_t)LADRC_MAX_DELAY_TICKS;
+    ladrc_axis_t axis;
+    init_axis(&axis, &cfg);
+    /* when, then: nothing on its way after the reset (not even a NaN reported) */
+    for (int k = 0; k < 2 * (int)LADRC_MAX_DELAY_TICKS; ++k) {
+        (void)axis_command(&axis, LADRC_R(0.0), LADRC_R(0.0));
+        ladrc_axis_set_applied(&axis, (ladrc_real_t)NAN);
+        TEST_ASSERT_TRUE(isfinite((double)ladrc_axis_get_acting_Nm(&axis)));
+    }
+    const ladrc_real_t held = LADRC_R(0.02);
+    ladrc_axis_engage(&axis, LADRC_R(0.0), LADRC_R(0.0), NULL, held);
+    for (int k = 0; k < (int)LADRC_MAX_DELAY_TICKS; ++k) {
+        /* the held torque is what acts for the next d ticks */
+        TEST_ASSERT_FLOAT_WITHIN(LINE_ROUNDING_REL * (double)held, (double)held,
+                                 (double)ladrc_axis_get_acting_Nm(&axis));
+        (void)axis_command(&axis, LADRC_R(0.0), (ladrc_real_t)NAN); /* a non-finite measurement: step still runs */
+        ladrc_axis_set_applied(&axis, LADRC_R(0.0));
+    }
+}
+
+static void test_delay_above_the_maximum_is_refused_with_its_status(void)
+{
+    ladrc_axis_config_t cfg = config(LADRC_VARIANT_LADRC, 0.0, 0, 0);
+    ladrc_axis_t axis;
+    cfg.delay_ticks = (uint16_t)LADRC_MAX_DELAY_TICKS;
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&axis, &cfg));
+    cfg.delay_ticks = (uint16_t)(LADRC_MAX_DELAY_TICKS + 1u);
+    TEST_ASSERT_EQUAL_INT(LADRC_ERR_DELAY_TICKS, ladrc_axis_init(&axis, &cfg));
+    const char *text = ladrc_status_str(LADRC_ERR_DELAY_TICKS);
+    TEST_ASSERT_NOT_NULL(strstr(text, "LADRC_ERR_DELAY_TICKS"));
+    if (strchr(text, ' ') != NULL) { /* a build with the texts, not the names only */
+        TEST_ASSERT_NOT_NULL(strstr(text, "(400)"));
+    }
+}
+
+/* y'' = b m + d, m' = (u - m) / tau, at step dt_s; the sensor reports y of
+ * `delay` ticks before (up to LADRC_MAX_DELAY_TICKS). */
+typedef struct {
+    double y, w, m, b, tau, d, dt;
+    double hist[LADRC_MAX_DELAY_TICKS + 1];
+    int delay, head;
+} late_plant_t;
+
+/* RMS of (ref - y) over the second half of a run of seconds_s; -1 when the
+ * run left 1 rad. LADRC at wc, wo (rad/s), motor lag tau modelled, delay
+ * d_model of the plant's d_plant modelled. */
+static double fly_late(double dt_s, double wc, double wo, double tau, int d_model, int d_plant, double seconds_s)
+{
+    ladrc_axis_config_t cfg;
+    ladrc_axis_config_default(&cfg, LADRC_VARIANT_LADRC, (ladrc_real_t)dt_s, (ladrc_real_t)J_KG_M2);
+    cfg.wc_rad_s = (ladrc_real_t)wc;
+    cfg.wo_rad_s = (ladrc_real_t)wo;
+    cfg.motor_tau_s = (ladrc_real_t)tau;
+    cfg.delay_ticks = (uint16_t)d_model;
+    ladrc_axis_t axis;
+    init_axis(&axis, &cfg);
+    static late_plant_t p;
+    memset(&p, 0, sizeof p);
+    p.b = 1.0 / J_KG_M2;
+    p.tau = tau;
+    p.dt = dt_s;
+    p.delay = d_plant;
+    const int n = (int)(seconds_s / dt_s + 0.5);
+    double sum = 0.0;
+    for (int k = 0; k < n; ++k) {
+        const double t = k * dt_s;
+        p.d = 2.0 * sin(2.0 * t) + 1.0;
+        const double ref = 0.1 * cos(PI_D * t / 4.0);
+        p.hist[p.head] = p.y;
+        p.head = (p.head + 1) % (p.delay + 1);
+        const double y = p.hist[p.head];
+        const double u = axis_command(&axis, (ladrc_real_t)ref, (ladrc_real_t)y);
+        double dy, dw;
+        test_lag_step(dt_s, p.tau, u, &p.m, &dy, &dw);
+        p.y += p.w * dt_s + p.b * dy + 0.5 * p.d * dt_s * dt_s;
+        p.w += p.b * dw + p.d * dt_s;
+        if (!(fabs(p.y) < 1.0)) {
+            return -1.0;
+        }
+        if (k >= n / 2) {
+            sum += (ref - p.y) * (ref - p.y);
+        }
+    }
+    return sqrt(sum / (n - n / 2));
+}
+
+static void test_long_modelled_delay_keeps_the_loop_the_same_gains_lose_unmodelled(void)
+{
+    /* given: a 20 ms motor and 20 or 50 ms of delay at 1 and 8 kHz; gains
+     * the modelled loop holds (wc = 12 and 8 rad/s, wo = 4 wc) */
+    static const int rate_hz[] = {1000, 8000};
+    for (unsigned r = 0u; r < 2u; ++r) {
+        for (int ms = 20; ms <= 50; ms += 30) {
+            const double dt = 1.0 / rate_hz[r];
+            const int d = ms * rate_hz[r] / 1000;
+            const double wc = (ms == 20) ? 12.0 : 8.0;
+            /* when */
+            const double modelled = fly_late(dt, wc, 4.0 * wc, 0.02, d, d, 16.0);
+            const double unmodelled = fly_late(dt, wc, 4.0 * wc, 0.02, 0, d, 16.0);
+            printf("%d Hz, %d ms (d %d): rms modelled %.3e, unmodelled %.3e rad (-1: diverged)\n", rate_hz[r], ms, d,
+                   modelled, unmodelled);
+            /* then */
+            TEST_ASSERT_TRUE(modelled >= 0.0 && modelled < LONG_DELAY_RMS_MAX_RAD);
+            TEST_ASSERT_TRUE(unmodelled < 0.0 || unmodelled > modelled);
+        }
     }
 }
 
@@ -512,6 +737,12 @@ int main(void)
     RUN_TEST(test_zero_model_is_bit_for_bit_the_plain_observer_and_law);
     RUN_TEST(test_wrap_on_a_run_that_needs_no_wrap_changes_no_bit);
     RUN_TEST(test_delay_feeds_the_observer_the_torque_of_d_ticks_before);
+    RUN_TEST(test_delay_line_is_exact_up_to_its_slots);
+    RUN_TEST(test_long_delay_line_follows_a_smooth_torque_within_the_block_bound);
+    RUN_TEST(test_long_delay_line_passes_a_ramp_exactly);
+    RUN_TEST(test_long_delay_line_starts_from_rest_and_from_engage);
+    RUN_TEST(test_delay_above_the_maximum_is_refused_with_its_status);
+    RUN_TEST(test_long_modelled_delay_keeps_the_loop_the_same_gains_lose_unmodelled);
     RUN_TEST(test_lag_follows_the_exact_first_order_response_and_its_mean);
     RUN_TEST(test_model_fields_are_validated_and_ignored_by_pid);
     RUN_TEST(test_modelled_lag_and_delay_keep_the_loop_that_the_unmodelled_loses);

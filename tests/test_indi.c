@@ -152,7 +152,7 @@ static double fly_constant(plant_t *p, double d, double ref, int n, ladrc_axis_t
 {
     ladrc_axis_config_t cfg = config();
     cfg.motor_tau_s = (ladrc_real_t)p->tau;
-    cfg.delay_ticks = (uint8_t)p->delay;
+    cfg.delay_ticks = (uint16_t)p->delay;
     static ladrc_axis_t axis;
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&axis, &cfg));
     double worst = 0.0;

@@ -317,7 +317,7 @@ static void test_bad_requests_are_refused_by_name(void)
     req.plant.motor_tau_s = -1.0;
     TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_ERR_MOTOR_TAU, ladrc_margins_measure(&ws, &ctl, &req));
     req.plant = p;
-    req.plant.delay_ticks = 65;
+    req.plant.delay_ticks = LADRC_MARGINS_MAX_DELAY + 1;
     TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_ERR_DELAY, ladrc_margins_measure(&ws, &ctl, &req));
     req.plant = p;
     req.plant.dt_s = 0.002;

@@ -150,7 +150,7 @@ static void test_impossible_targets_are_refused_with_the_best_margins(void)
 typedef struct {
     const char *name;
     double j, jz, dt_s, tau_s, drag_Nm_s;
-    uint8_t delay_ticks;
+    uint16_t delay_ticks;
 } modelled_axis_t;
 
 static ladrc_margins_status_t tune_airframe(const modelled_axis_t *af, ladrc_variant_t variant,

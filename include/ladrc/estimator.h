@@ -122,7 +122,7 @@ typedef struct {
     ladrc_real_t k0_per_s;      /**< bound on the continuous-time gain P (1/s), > 0; paper 300 */
     ladrc_real_t act_tau_s;     /**< the command acts through this first-order lag (s),
                                      0..LADRC_MOTOR_TAU_MAX_S, 0 = none */
-    uint8_t act_delay_ticks;    /**< and this delay (ticks), 0..LADRC_MAX_DELAY_TICKS */
+    uint16_t act_delay_ticks;   /**< and this delay (ticks), 0..LADRC_MAX_DELAY_TICKS */
 } ladrc_lp_config_t;
 
 /** Largest gain of the LP command's lead (its high-frequency gain N): see
@@ -240,7 +240,7 @@ typedef struct {
                                           tick carries at most one fit) */
     ladrc_real_t act_tau_s;                      /**< the command acts through this first-order lag (s),
                                           0..LADRC_MOTOR_TAU_MAX_S (axis.h), 0 = none */
-    uint8_t act_delay_ticks;                     /**< and this delay (ticks), 0..LADRC_MAX_DELAY_TICKS */
+    uint16_t act_delay_ticks;                    /**< and this delay (ticks), 0..LADRC_MAX_DELAY_TICKS */
 } ladrc_hp_config_t;
 
 /** One tone. */
@@ -276,7 +276,7 @@ typedef struct {
     ladrc_real_t age_s;        /**< the sample's age (s) */
     ladrc_real_t act_tau_s;    /**< actuator lag the command is advanced over (s) */
     uint16_t block_ticks;      /**< ticks each fit sample averages, 1 = none */
-    uint8_t act_delay_ticks;   /**< actuator delay the command is advanced over (ticks) */
+    uint16_t act_delay_ticks;  /**< actuator delay the command is advanced over (ticks) */
 } ladrc_hp_tone_basis_t;
 
 /** HP estimator state; owned by the caller, read through the getters. */

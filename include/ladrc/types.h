@@ -608,8 +608,18 @@ static inline int ladrc_dt_is_valid(ladrc_real_t dt_s)
     return (ladrc_is_finite(dt_s) && dt_s >= LADRC_DT_MIN_S && dt_s <= LADRC_DT_MAX_S) ? 1 : 0;
 }
 
-/** Largest actuator delay an axis models (ticks): its ring buffer's fixed size. */
-#define LADRC_MAX_DELAY_TICKS 8u
+/** Largest actuator delay an axis models (ticks): 50 ms at an 8 kHz loop. */
+#define LADRC_MAX_DELAY_TICKS 400u
+/** Slots of an axis's delay line (axis.h), its fixed memory: a delay of up to
+ *  this many ticks is held tick by tick (exact), a longer one as means of
+ *  blocks of ticks. At least 8 (the exact delays of earlier releases), at
+ *  most 255. */
+#ifndef LADRC_DELAY_SLOTS
+#define LADRC_DELAY_SLOTS 32u
+#endif
+#if LADRC_DELAY_SLOTS < 8 || LADRC_DELAY_SLOTS > 255
+#error "LADRC_DELAY_SLOTS must be between 8 and 255"
+#endif
 /** Largest motor lag an axis models (s): a large airframe's slow rotor, twenty times an ESC's lag. */
 #define LADRC_MOTOR_TAU_MAX_S LADRC_R(1.0)
 

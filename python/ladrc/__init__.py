@@ -143,7 +143,7 @@ class _Library:
                         ("hp_freq_min_rad_s", r), ("hp_freq_max_rad_s", r), ("hp_lambda0_per_s", r),
                         ("hp_freq_lambda0_per_s", r), ("hp_freq_filter_rad_s", r),
                         ("hp_fit_decimation", u16), ("hp_sample", i),
-                        ("motor_tau_s", r), ("delay_ticks", u8), ("wrap_angle", u8),
+                        ("motor_tau_s", r), ("delay_ticks", u16), ("wrap_angle", u8),
                         ("indi_att_kp_per_s", r), ("indi_rate_kp_per_s", r), ("indi_filter_rad_s", r),
                         ("cas_att_kp", r), ("cas_rate_max_rad_s", r), ("cas_rate_kp", r),
                         ("cas_rate_ki", r), ("cas_rate_kd", r), ("cas_d_filter_tau_s", r),

@@ -25,7 +25,7 @@
 
 #include "rng.h"
 
-#define SIM_SENSOR_MAX_DELAY 64
+#define SIM_SENSOR_MAX_DELAY 512 /* past the controllers' LADRC_MAX_DELAY_TICKS (400): a sensor later than they model */
 
 typedef struct {
     double angle_std_rad, rate_std_rad_s;

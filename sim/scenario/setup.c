@@ -106,7 +106,7 @@ static void apply_overrides(ladrc_axis_config_t *a, const sim_overrides_t *o)
     if (!isnan(o->model_motor_tau_s))
         a->motor_tau_s = (ladrc_real_t)o->model_motor_tau_s;
     if (o->model_delay_ticks >= 0)
-        a->delay_ticks = (uint8_t)o->model_delay_ticks;
+        a->delay_ticks = (uint16_t)o->model_delay_ticks;
 }
 
 #define GAIN(field, text, units)                                                                                       \
@@ -211,7 +211,7 @@ void sim_setup_attitude(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_
          * inertia: its motors' lag and its sensors' delay (0 and 0: none,
          * and the library's arithmetic is the unmodelled one bit for bit). */
         cfg->axis[i].motor_tau_s = (ladrc_real_t)sc->motor_tau_s;
-        cfg->axis[i].delay_ticks = (uint8_t)(sc->delay_ticks > 255 ? 255 : sc->delay_ticks);
+        cfg->axis[i].delay_ticks = (uint16_t)sc->delay_ticks; /* 0..SIM_SENSOR_MAX_DELAY (schema.c) */
         apply_overrides(&cfg->axis[i], o);
         if (sc->tuning[id].tuned) { /* tune = margins: the file gives no gains */
             sim_setup_tuned_gains(&sc->tuning[id], i, &cfg->axis[i]);

@@ -133,7 +133,7 @@ def main():
         if e.axis != 2 or not e.text.startswith("LADRC_ERR_WO_RAD_S"):
             failures.append(f"attitude error: axis {e.axis}, text {e.text}")
     for field, value, status in (("motor_tau_s", -0.01, "LADRC_ERR_MOTOR_TAU_S"),
-                                 ("delay_ticks", 9, "LADRC_ERR_DELAY_TICKS"),
+                                 ("delay_ticks", 401, "LADRC_ERR_DELAY_TICKS"),
                                  ("wrap_angle", 2, "LADRC_ERR_WRAP_ANGLE")):
         try:
             ladrc.Axis({"variant": "LADRC", "dt_s": 0.001, "inertia_kg_m2": 5.445e-3, field: value})

@@ -64,10 +64,12 @@ typedef enum {
     RUN_GF_RPM3,    /* centres moved, then the 12 notches on 3 channels */
     RUN_GF_FULL3,   /* the same with the second-order low-pass after them */
     RUN_ATT_EULER,  /* LADRC's 3 axes in the Euler frame (ladrc_attitude_step, no mixer) */
-    RUN_ATT_QUAT    /* the same in the quaternion frame on the same attitudes (ladrc_attitude_step_quat) */
+    RUN_ATT_QUAT,   /* the same in the quaternion frame on the same attitudes (ladrc_attitude_step_quat) */
+    RUN_DELAY       /* one LADRC axis with a 30 ms motor and a long delay modelled (delay_axis) */
 } run_t;
 
 static ladrc_axis_t axis;
+static ladrc_axis_t delay_axis;
 static ladrc_attitude_t att;
 static ladrc_mixer_t mixer;
 static const bench_inputs_t *in;   /* inputs of the current case */
@@ -190,6 +192,9 @@ static uint32_t run(run_t what, int warm, int timed)
     switch (what) {
     case RUN_AXIS:
         BLOCK(sink = bench_axis_tick(&axis, in, i), bench_empty_tick(in, i));
+        break;
+    case RUN_DELAY:
+        BLOCK(sink = bench_axis_tick(&delay_axis, in, i), bench_empty_tick(in, i));
         break;
     case RUN_ATTITUDE:
         BLOCK(sink = bench_attitude_tick(&att, &mixer, in, i), bench_empty_tick(in, i));
@@ -315,18 +320,6 @@ static ladrc_real_t record_attitude(int bench_case, int full, ladrc_real_t *samp
     return att.axis[0].part.hp.est.fit_rate_per_s;
 }
 
-/* The torque an axis's next observer step takes as acting (its actuator
- * model's mean over the step, axis.h). */
-static ladrc_real_t acting_Nm(const ladrc_axis_t *ax)
-{
-    if (!ax->model) {
-        return ax->applied_Nm;
-    }
-    const ladrc_actuator_t *act = &ax->act;
-    const ladrc_real_t v = (act->delay_ticks != 0u) ? act->delayed_Nm[act->head] : ax->applied_Nm;
-    return act->lag_Nm + act->mean_gain * (v - act->lag_Nm);
-}
-
 /* Replays the HP-MLADRC-gyro 3-axis case (as bench_attitude_tick) and
  * records what its axes are fed and what roll's LP estimator and fit see. */
 static void record_gyro(void)
@@ -336,7 +329,7 @@ static void record_gyro(void)
     for (int i = 0; i < BENCH_SAMPLES; ++i) {
         /* before the tick: LP's known input of this tick */
         const ladrc_real_t fitted = ladrc_hp_get_estimate(&roll->part.hp.est);
-        gyro_accel_in[i] = roll->b0 * acting_Nm(roll) + fitted;
+        gyro_accel_in[i] = roll->b0 * ladrc_axis_get_acting_Nm(roll) + fitted;
         ladrc_real_t torque[LADRC_AXES];
         ladrc_mixer_output_t out;
         (void)ladrc_attitude_step(&att, bench_ref[i], gyro->ang[i], gyro->rate[i], torque);
@@ -641,9 +634,31 @@ int main(void)
         print_hp_state("lone_hp_gyro_axis", &mod.lone_gyro[a].part.hp.est);
     }
 
+    /* A long delay modelled: 20 and 50 ms at 1, 2, 4 and 8 kHz (d = 20 .. 400),
+     * one LADRC axis with a 30 ms motor on the one-tone axis inputs. */
+    in = &bench_in[BENCH_ONE_TONE];
+    static const unsigned delay_hz[] = {1000u, 2000u, 4000u, 8000u};
+    for (unsigned r = 0u; r < sizeof delay_hz / sizeof delay_hz[0]; ++r) {
+        for (unsigned ms = 20u; ms <= 50u; ms += 30u) {
+            ladrc_axis_config_t dc;
+            ladrc_axis_config_default(&dc, LADRC_VARIANT_LADRC, 1.0f / (float)delay_hz[r], bench_inertia[0]);
+            dc.motor_tau_s = BENCH_ACT_MOTOR_TAU_S;
+            dc.delay_ticks = (uint16_t)(ms * delay_hz[r] / 1000u);
+            if (ladrc_axis_init(&delay_axis, &dc) != LADRC_OK) {
+                printf("BENCH error: init failed for the delay of %u ticks\n", (unsigned)dc.delay_ticks);
+                return 1;
+            }
+            ladrc_axis_reset(&delay_axis, in->axis_ang[0]);
+            char name[40];
+            snprintf(name, sizeof name, "ladrc_axis_delay_%uhz_%u", delay_hz[r], (unsigned)dc.delay_ticks);
+            print_module(name, RUN_DELAY, ipc);
+        }
+    }
+
     SIZE_LINE(ladrc_attitude_t);
     SIZE_LINE(ladrc_attitude_config_t);
     SIZE_LINE(ladrc_axis_t);
+    SIZE_LINE(ladrc_actuator_t);
     SIZE_LINE(ladrc_axis_config_t);
     SIZE_LINE(ladrc_mixer_t);
     SIZE_LINE(ladrc_mixer_config_t);

@@ -41,7 +41,7 @@ extern "C" {
 /** Points of the output frequency grid (plots, CSV). */
 #define LADRC_MARGINS_MAX_OUT 400
 /** Largest measurement delay analysed (ticks); the simulator's sensor limit. */
-#define LADRC_MARGINS_MAX_DELAY 64
+#define LADRC_MARGINS_MAX_DELAY 512
 /** Largest reference step of the tuning objective (rad): well inside the
  *  small-angle loop, whose error beyond 1 rad counts as diverged. */
 #define LADRC_MARGINS_MAX_STEP_RAD 0.5
@@ -294,7 +294,10 @@ ladrc_margins_status_t ladrc_margins_max_motor_tau(ladrc_margins_workspace_t *ws
                                                    double tau_max_s, double *tau_s);
 
 /** Largest stable measurement delay (whole ticks, delay_ticks replaced),
- *  -1 if unstable at 0, LADRC_MARGINS_MAX_DELAY if stable throughout.
+ *  -1 if unstable at 0, LADRC_MARGINS_MAX_DELAY if stable throughout. Every
+ *  delay up to 64 ticks is tried in turn (the first unstable one ends the
+ *  search); past 64, doubling and bisection (about 2 log2 d verdicts), which
+ *  takes the loop as stable below one delay and unstable above it.
  *  @param ws     the measured workspace
  *  @param plant  the plant
  *  @param ticks  out: the largest stable delay (ticks)
