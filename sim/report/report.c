@@ -4,7 +4,9 @@
 
 #include <math.h>
 
+#include "run/runner.h"
 #include "run/tune.h"
+#include "scenario/signals.h"
 #include "scenario/setup.h"
 
 static const char *const AXES[3] = {"roll", "pitch", "yaw"};
@@ -27,6 +29,35 @@ void sim_report_divergence_text(char *buf, size_t len, const sim_scenario_t *sc,
         snprintf(buf, len, "diverged at t = %.4f s on %s: |tracking error| %.6g deg exceeds diverge_limit_deg = %g",
                  m->diverged_at_s, diverged_axis_name(m), m->diverged_error_deg, sc->diverge_limit_deg);
     }
+}
+
+double sim_report_reference_accel(const sim_scenario_t *sc, int axis, double until_s)
+{
+    const double h = SIM_REFERENCE_ACCEL_STEP_S;
+    double peak = 0.0;
+    double r0 = sim_signal_eval(&sc->reference[axis], 0.0);
+    double r1 = sim_signal_eval(&sc->reference[axis], h);
+    for (double t = 2.0 * h; t <= until_s + h; t += h) {
+        const double r2 = sim_signal_eval(&sc->reference[axis], t);
+        peak = fmax(peak, fabs(r2 - 2.0 * r1 + r0) / (h * h)); /* the signals are in rad */
+        r0 = r1;
+        r1 = r2;
+    }
+    return peak;
+}
+
+void sim_report_outran_text(char *buf, size_t len, const sim_scenario_t *sc, const sim_metrics_t *m, int axis)
+{
+    const double asked = sim_report_reference_accel(sc, axis, m->reference_outran_at_s[axis]);
+    const double given = sim_setup_authority_Nm(sc, axis) / sc->inertia_kg_m2[axis];
+    snprintf(buf, len,
+             "the reference outran the controller's shaper on %s from t = %.4f s (|tracking error| up to %.4g deg, "
+             "the controller within %g deg of its shaped reference): it asks up to %.4g rad/s^2 where the rotors "
+             "give %.4g about hover: %s",
+             AXES[axis], m->reference_outran_at_s[axis], m->reference_outran_deg[axis],
+             SIM_SHAPED_TRACKING_SHARE * sc->diverge_limit_deg, asked, given,
+             asked > given ? "reference beyond authority"
+                           : "the shaper's bound holds it back (td_accel_rad_s2, levant_lipschitz_rad_s4)");
 }
 
 /* What a table prints in place of a run's statistics: "diverged",
@@ -250,6 +281,13 @@ void sim_report_tables(FILE *out, const sim_scenario_result_t *r)
             fprintf(out, "%s: DIVERGED: %s; the run stopped there and its statistics are withheld\n",
                     sim_controller_name(sc->controllers[c]), why);
         }
+        for (int i = 0; i < 3 && !m->untunable; ++i) {
+            if (!isnan(m->reference_outran_at_s[i])) {
+                char why[400];
+                sim_report_outran_text(why, sizeof why, sc, m, i);
+                fprintf(out, "%s: %s; the run went on\n", sim_controller_name(sc->controllers[c]), why);
+            }
+        }
     }
     table4(out, r);
     table5(out, r);
@@ -366,6 +404,14 @@ int sim_report_metrics_csv(FILE *out, const sim_scenario_result_t *r, int header
         } else {
             row(out, sc, name, "-", "finite", "-", m->finite);
             row(out, sc, name, "-", "fault_ticks", "-", (double)m->faults);
+        }
+        for (int i = 0; i < 3 && !m->untunable; ++i) {
+            if (!isnan(m->reference_outran_at_s[i])) {
+                row(out, sc, name, "-", "reference_outran_at_s", AXES[i], m->reference_outran_at_s[i]);
+                row(out, sc, name, "-", "reference_outran_deg", AXES[i], m->reference_outran_deg[i]);
+                row(out, sc, name, "-", "reference_accel_rad_s2", AXES[i],
+                    sim_report_reference_accel(sc, i, m->reference_outran_at_s[i]));
+            }
         }
         row(out, sc, name, "-", "diverged", "-", m->diverged);
         if (m->diverged) { /* the error is nan when the state turned non-finite */

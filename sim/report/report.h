@@ -45,6 +45,16 @@ void sim_report_tuning(FILE *out, const sim_scenario_t *sc);
  * or "...: the state turned non-finite (roll angle or rate)", for the tables and stderr. */
 void sim_report_divergence_text(char *buf, size_t len, const sim_scenario_t *sc, const sim_metrics_t *m);
 
+/* Largest |reference''| on axis i (rad/s^2) over (0, until_s]: second
+ * differences of the scenario's reference over SIM_REFERENCE_ACCEL_STEP_S. */
+#define SIM_REFERENCE_ACCEL_STEP_S 0.005
+double sim_report_reference_accel(const sim_scenario_t *sc, int axis, double until_s);
+
+/* "the reference outran the shaper on roll from ... s (|error| up to ... deg, ...): it asks up to
+ * ... rad/s^2 where the rotors give ... about hover: reference beyond authority" (or "...: a
+ * shaper's bound holds it back"), for axis i of a run whose reference_outran_at_s[i] is set. */
+void sim_report_outran_text(char *buf, size_t len, const sim_scenario_t *sc, const sim_metrics_t *m, int axis);
+
 /* Appends the metrics as CSV rows: scenario,controller,table,quantity,axis,value,
  * (a tuned controller adds table "tune": its gains wc_rad_s, wo_rad_s or
  * pid_kp, pid_ki, pid_kd, pid_d_filter_tau_s, and pm_deg, gm_db, gm_low_db,

@@ -40,6 +40,12 @@ typedef struct {
     double diverged_at_s;      /* the instant it was seen */
     int diverged_axis;         /* 0..2; -1: a rotor's w^2 turned non-finite */
     double diverged_error_deg; /* |error| on that axis then; NaN when non-finite */
+    /* The reference outran the controller's shaper (runner.h): |error| beyond
+     * diverge_limit_deg while the controller stayed near its shaped
+     * reference; the run went on. First instant (NaN: never) and the largest
+     * |error| (deg) per axis. */
+    double reference_outran_at_s[3];
+    double reference_outran_deg[3];
     /* tune = margins found no gains that fly the check flight: the
      * controller was not flown (the tables print "untunable"). */
     int untunable;

@@ -19,6 +19,11 @@ typedef struct {
     volatile long *ticks_done;
 } sim_progress_t;
 
+/* A tracking error beyond diverge_limit_deg is the reference outrunning the
+ * controller's shaper, not a divergence, while the controller is within
+ * this share of the limit of its own shaped reference. */
+#define SIM_SHAPED_TRACKING_SHARE 0.5
+
 /* Runs one controller on an attitude scenario. csv_path NULL: no time series.
  * Returns 0, or -1 with a message in err (nothing was run).
  * Divergence: at each control instant t, before the controller acts, the

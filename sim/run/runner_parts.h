@@ -255,10 +255,14 @@ int runner_run_tick(const sim_scenario_t *sc, attitude_run_t *r, double t, const
                     const double ref_rad[3], const double dist[3], double w2_cmd[4]);
 
 /* Divergence at t (runner.h): the plant's state non-finite, or the tracking
- * error ref - angle beyond the scenario's limit on an axis. Records the first
- * cause found in m and returns 1; 0 while the run is healthy. */
+ * error ref - angle beyond the scenario's limit on an axis while the
+ * controller att (NULL: not asked) is as far from its own shaped reference;
+ * beyond the limit but near its shaped reference, the reference outran the
+ * shaper: recorded in m (reference_outran_*), the run goes on. Records the
+ * first cause of a divergence in m and returns 1; 0 while the run is
+ * healthy. */
 int runner_diverged(const sim_scenario_t *sc, const sim_plant_t *p, const double ref_rad[3], int wrap_yaw, double t_s,
-                    sim_metrics_t *m);
+                    const ladrc_attitude_t *att, sim_metrics_t *m);
 
 /* Settling times and the time series' end; 0, or -1 with the message. */
 int runner_run_close(const sim_scenario_t *sc, attitude_run_t *r);

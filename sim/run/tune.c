@@ -285,10 +285,14 @@ static double check_flight(const sim_scenario_t *sc, sim_controller_id_t id, cha
         return INFINITY;
     }
     double sum = 0.0;
+    int outran = -1;
     for (int i = 0; i < 3; ++i) {
         sum += sim_stat_rms(&m.error_deg[i]);
+        outran = (outran < 0 && !isnan(m.reference_outran_at_s[i])) ? i : outran;
     }
-    snprintf(seen, len, "fly at %.4g deg RMS (summed over the axes)", sum);
+    snprintf(seen, len, "fly at %.4g deg RMS (summed over the axes)%s%s%s", sum,
+             outran >= 0 ? ", the reference outrunning the shaper on " : "", outran >= 0 ? AXIS_NAMES[outran] : "",
+             outran >= 0 ? " (see the run's report)" : "");
     return sum;
 }
 

@@ -110,6 +110,27 @@ static void test_a_slowly_growing_oscillation_diverges_at_the_limit_while_finite
     }
 }
 
+/* A step beyond the divergence limit that the controller's shaper takes
+ * slowly (LADRC's TD bounded at 2 rad/s^2: 150 deg in about 2.3 s): the
+ * controller stays near its shaped reference, so the run goes on, and the
+ * instant and size of the reference's lead are recorded. */
+static void test_a_reference_that_outruns_the_shaper_is_recorded_not_a_divergence(void)
+{
+    const sim_metrics_t m = fly_text("[run]\nduration_s = 6\ncontrollers = LADRC\n[reference]\nroll = 1 .. : 150\n"
+                                     "[controller LADRC]\ntd_accel_rad_s2 = 2\n",
+                                     SIM_CTRL_LADRC);
+    char msg[160];
+    snprintf(msg, sizeof msg, "diverged %d, outran at %.4f s by up to %.4f deg", m.diverged, m.reference_outran_at_s[0],
+             m.reference_outran_deg[0]);
+    TEST_MESSAGE(msg);
+    TEST_ASSERT_FALSE_MESSAGE(m.diverged, msg);
+    /* the first tick after the step (1 ms), by the step less what the shaper moved then */
+    TEST_ASSERT_TRUE_MESSAGE(fabs(m.reference_outran_at_s[0] - 1.0) <= 2.0 * DT_S, msg);
+    TEST_ASSERT_TRUE_MESSAGE(m.reference_outran_deg[0] > 140.0 && m.reference_outran_deg[0] <= 150.0, msg);
+    TEST_ASSERT_TRUE_MESSAGE(isnan(m.reference_outran_at_s[1]) && isnan(m.reference_outran_at_s[2]), msg);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(6000 - 1, (int)m.error_deg[0].n, msg); /* the whole run is in the statistics */
+}
+
 static void test_a_non_finite_state_diverges_at_the_first_instant_it_is_seen(void)
 {
     /* an infinite disturbance from 1.5 s: the plant step from 1.5 to 1.501 s
@@ -232,19 +253,24 @@ static void test_the_error_is_taken_from_the_reference_the_controller_gets(void)
 
 static void test_the_limit_is_the_scenarios(void)
 {
-    /* a 10 deg step: within the default 90 deg, beyond a 5 deg limit at t = 0 */
-    const char *step = "[run]\nduration_s = 1\ncontrollers = LADRC\n[reference]\nroll = 10\n";
+    /* a 10 deg step: within the default 90 deg, beyond a 5 deg limit at
+     * t = 0 (PID: no shaper, the step is what it tracks) */
+    const char *step = "[run]\nduration_s = 1\ncontrollers = PID\n[reference]\nroll = 10\n";
     char text[256];
-    const sim_metrics_t healthy = fly_text(step, SIM_CTRL_LADRC);
+    const sim_metrics_t healthy = fly_text(step, SIM_CTRL_PID);
     TEST_ASSERT_FALSE(healthy.diverged);
     TEST_ASSERT_TRUE(isnan(healthy.diverged_at_s));
     snprintf(text, sizeof text, "%s[metrics]\ndiverge_limit_deg = 5\n", step);
-    const sim_metrics_t m = fly_text(text, SIM_CTRL_LADRC);
+    const sim_metrics_t m = fly_text(text, SIM_CTRL_PID);
     TEST_ASSERT_TRUE(m.diverged);
     TEST_ASSERT_TRUE(m.finite);
-    TEST_ASSERT_EQUAL_FLOAT(0.0f, (float)m.diverged_at_s);
+    /* at t = 0 the controller has not yet been given the step (it rests on
+     * the angle): the first tick after, when it tracks it */
+    TEST_ASSERT_EQUAL_FLOAT((float)DT_S, (float)m.diverged_at_s);
     TEST_ASSERT_EQUAL_INT(0, m.diverged_axis);
-    TEST_ASSERT_FLOAT_WITHIN(1e-4, 10.0, m.diverged_error_deg); /* the step in deg, through float */
+    /* the step less what the vehicle turned in that first tick (0.02 deg):
+     * within 0.05 deg */
+    TEST_ASSERT_FLOAT_WITHIN(0.05, 10.0, m.diverged_error_deg);
 }
 
 static void test_a_limit_cycle_never_settles_and_a_step_response_does(void)
@@ -353,6 +379,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_every_controller_stays_finite_on_the_paper_case);
     RUN_TEST(test_a_slowly_growing_oscillation_diverges_at_the_limit_while_finite);
+    RUN_TEST(test_a_reference_that_outruns_the_shaper_is_recorded_not_a_divergence);
     RUN_TEST(test_a_non_finite_state_diverges_at_the_first_instant_it_is_seen);
     RUN_TEST(test_the_limit_is_the_scenarios);
     RUN_TEST(test_a_limit_cycle_never_settles_and_a_step_response_does);
