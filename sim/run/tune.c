@@ -97,6 +97,18 @@ static void tune_error(const sim_scenario_t *sc, sim_controller_id_t id, sim_par
     snprintf(err->message, sizeof err->message, "%s", message);
 }
 
+/* The request and the targets of axis i: its plant, the file's objective
+ * and noise, and its noise cap. */
+static void axis_request(const sim_scenario_t *sc, sim_controller_id_t id, const ladrc_margins_targets_t *targets,
+                         int i, ladrc_margins_request_t *req, ladrc_margins_targets_t *axis_targets)
+{
+    ladrc_margins_plant_t plant;
+    sim_tune_plant(sc, i, &plant);
+    ladrc_margins_request_default(req, &plant);
+    sim_tune_objective(sc, id, req);
+    *axis_targets = axis_targets_of(sc, id, targets, i);
+}
+
 static void keep(sim_tuning_t *t, int i, const ladrc_axis_config_t *tuned, const ladrc_margins_result_t *m,
                  double step_cost, double cap_Nm, int idle)
 {
@@ -152,17 +164,14 @@ static int tune_axes(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margins_w
     sim_setup_attitude(sc, id, &acfg); /* tuning[id] is clear: the defaults and the file's keys */
     int met_all = 1;
     for (int i = 0; i < 3; ++i) {
-        ladrc_margins_plant_t plant;
-        sim_tune_plant(sc, i, &plant);
         ladrc_margins_request_t req;
-        ladrc_margins_request_default(&req, &plant);
-        sim_tune_objective(sc, id, &req);
-        const ladrc_margins_targets_t axis_targets = axis_targets_of(sc, id, targets, i);
+        ladrc_margins_targets_t axis_targets;
+        axis_request(sc, id, targets, i, &req, &axis_targets);
         /* Roll and pitch of a symmetric airframe are the same loop: pitch
          * takes roll's gains when its own analysis with them meets the
          * targets (an adaptive variant's linearisation under the tone may
          * differ between the two), else it is tuned itself. */
-        if (i == 1 && plant.inertia_kg_m2 == sc->inertia_kg_m2[0] * sc->inertia_scale[0] && !isnan(t->pm_deg[0])) {
+        if (i == 1 && req.plant.inertia_kg_m2 == sc->inertia_kg_m2[0] * sc->inertia_scale[0] && !isnan(t->pm_deg[0])) {
             ladrc_attitude_config_t shared = acfg;
             sim_setup_tuned_gains(t, 0, &shared.axis[1]);
             const ladrc_margins_controller_t chk = sim_tune_controller_of(sc, filter, &shared, 1);
@@ -221,12 +230,9 @@ static int analyse_candidate(sim_scenario_t *sc, sim_controller_id_t id, ladrc_m
     sim_setup_attitude(sc, id, &acfg);
     int met_all = 1;
     for (int i = 0; i < 3; ++i) {
-        ladrc_margins_plant_t plant;
-        sim_tune_plant(sc, i, &plant);
         ladrc_margins_request_t req;
-        ladrc_margins_request_default(&req, &plant);
-        sim_tune_objective(sc, id, &req);
-        const ladrc_margins_targets_t axis_targets = axis_targets_of(sc, id, targets, i);
+        ladrc_margins_targets_t axis_targets;
+        axis_request(sc, id, targets, i, &req, &axis_targets);
         const ladrc_margins_controller_t ctl = sim_tune_controller_of(sc, filter, &acfg, i);
         int idle = 0;
         double step_cost = NAN;
