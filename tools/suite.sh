@@ -20,14 +20,21 @@ cmake --build --preset host-release --target ladrc_sil --parallel 2 >/dev/null
 sil=build/host-release/sim/ladrc_sil
 mkdir -p "$out"
 warnings=()
+tune_all=0
+tune_tuner=0
 for f in scenarios/suite/*.ini scenarios/paper_tuned.ini; do
   name=$(basename "$f" .ini)
   rm -rf "${out:?}/$name"
   set +e
-  "$sil" "$f" --out "$out" --quiet "$@" > "$out/$name.tables.txt" 2> "$out/$name.err"
+  "$sil" "$f" --out "$out" "$@" > "$out/$name.tables.txt" 2> "$out/$name.err"
   rc=$?
   set -e
-  cat "$out/$name.err" >&2
+  grep -v "^ladrc_sil: \(tuned \|[0-9]* runs, \| *[0-9]*% (\)" "$out/$name.err" >&2 || true
+  # the tuning's cost of one core, and that of the tuners and their own check flights alone
+  read -r all tuner < <(sed -n 's/.*; of one core \([0-9.]*\) s, the tuners and their check flights \([0-9.]*\) s.*/\1 \2/p' \
+    "$out/$name.err" | head -n 1) || true
+  tune_all=$(awk -v a="$tune_all" -v b="${all:-0}" 'BEGIN { print a + b }')
+  tune_tuner=$(awk -v a="$tune_tuner" -v b="${tuner:-0}" 'BEGIN { print a + b }')
   case $rc in
     0) ;;
     3) warnings+=("DIVERGED in $name: $(grep -i diverg "$out/$name.err" | tr '\n' ' ')") ;;
@@ -41,4 +48,5 @@ for f in scenarios/suite/*.ini scenarios/paper_tuned.ini; do
   rm -f "$out/$name.err"
   echo "suite.sh: flew $name"
 done
+awk -v a="$tune_all" -v t="$tune_tuner" 'BEGIN { printf "suite.sh: tuning took %.1f s of one core; the tuners and their own check flights alone %.1f s (the candidates: %.2fx)\n", a, t, t > 0 ? a / t : 0 }'
 for w in "${warnings[@]}"; do echo "suite.sh: WARNING: $w" >&2; done

@@ -10,9 +10,9 @@
 # with the counts of each outcome per controller in OUT/*/tunemap.txt. Long:
 # not run in CI (the campaign alone is about 20 minutes on 2 cores).
 #
-# An airframe that ladrc_sil refuses (a tuning it cannot meet stops the run
-# before anything flies, as today's simulator does) is left out of the map
-# and named in OUT/airframes/refused.txt and on stderr; so is the campaign.
+# A controller left untunable is a result (ladrc_sil exit 4, `untunable` in
+# the map); an airframe that ladrc_sil refuses is left out of the map and
+# named in OUT/airframes/refused.txt and on stderr; so is the campaign.
 # Exit status 0 when both maps were drawn, 1 otherwise.
 #
 # Usage: tools/tuning_map.sh [OUT] [--jobs N]     (OUT default build/tuning-map)
@@ -55,7 +55,7 @@ for f in "$root"/scenarios/airframes/*.ini; do
   rc=$?
   set -e
   secs=$(( $(date +%s) - start ))
-  if [[ $rc -ne 0 && $rc -ne 3 ]]; then
+  if [[ $rc -ne 0 && $rc -ne 3 && $rc -ne 4 ]]; then
     echo "$name: exit $rc after $secs s: $(tr '\n' ' ' < "$air/flown/$name.err")" >> "$air/refused.txt"
     echo "tuning_map.sh: $name refused (exit $rc, $secs s): $(head -n 1 "$air/flown/$name.err")" >&2
     continue

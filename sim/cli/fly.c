@@ -157,8 +157,11 @@ int sim_fly_tune(sim_scenario_t *scenarios, int n_sc, const sim_fly_tune_options
         started = running > started ? running : started;
     }
     int untunable = 0;
+    double wall_s = 0.0, tuner_s = 0.0;
     for (int i = 0; i < n; ++i) {
         const tune_task_t *t = &tasks[i];
+        wall_s += t->sc->tuning[t->id].wall_s;
+        tuner_s += t->sc->tuning[t->id].tuner_s;
         if (t->rc < 0 || (opt->strict && t->rc != SIM_TUNE_OK)) {
             *err = t->err;
             *failed = t->scenario_index;
@@ -170,8 +173,11 @@ int sim_fly_tune(sim_scenario_t *scenarios, int n_sc, const sim_fly_tune_options
         }
     }
     if (!opt->quiet) {
-        fprintf(stderr, "ladrc_sil: tuned %d controllers (tune = margins) in %.2f s with %d jobs%s\n", n,
-                sim_fly_now_s() - start, started > 0 ? started : 1, untunable > 0 ? "; some untunable" : "");
+        fprintf(stderr,
+                "ladrc_sil: tuned %d controllers (tune = margins) in %.2f s with %d jobs%s; of one core %.2f s, "
+                "the tuners and their check flights %.2f s, the other candidates %.2f s (%.2fx)\n",
+                n, sim_fly_now_s() - start, started > 0 ? started : 1, untunable > 0 ? "; some untunable" : "", wall_s,
+                tuner_s, wall_s - tuner_s, tuner_s > 0.0 ? wall_s / tuner_s : 0.0);
     }
     return untunable;
 }

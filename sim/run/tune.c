@@ -276,7 +276,15 @@ static double check_flight(const sim_scenario_t *sc, sim_controller_id_t id, cha
         return INFINITY;
     }
     if (m.diverged) {
-        if (m.diverged_axis >= 0 && m.diverged_axis < 3 && !isnan(m.diverged_error_deg)) {
+        const int ax = m.diverged_axis;
+        if (ax >= 0 && ax < 3 && !isnan(m.diverged_error_deg) && !isnan(m.reference_outran_at_s[ax])) {
+            snprintf(seen, len,
+                     "on %s: diverge at %.3f s of the check flight (|error| %.1f deg beyond %g deg), after the "
+                     "reference outran the controller's shaper from %.3f s (td_accel_rad_s2, "
+                     "levant_lipschitz_rad_s4)",
+                     AXIS_NAMES[ax], m.diverged_at_s, m.diverged_error_deg, sc->diverge_limit_deg,
+                     m.reference_outran_at_s[ax]);
+        } else if (ax >= 0 && ax < 3 && !isnan(m.diverged_error_deg)) {
             snprintf(seen, len, "on %s: diverge at %.3f s of the check flight (|error| %.1f deg beyond %g deg)",
                      AXIS_NAMES[m.diverged_axis], m.diverged_at_s, m.diverged_error_deg, sc->diverge_limit_deg);
         } else if (m.diverged_axis >= 0 && m.diverged_axis < 3) {
@@ -335,6 +343,7 @@ int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margin
     sim_tune_filter(sc, &filter);
     char why[sizeof t->reason] = "";
     const int met = tune_axes(sc, id, ws, &targets, &filter, why, sizeof why);
+    double tuner_s = now_s() - start; /* with its check flight below: what a tuning cost before candidates */
 
     /* The candidates: the tuner's gains (its closest miss when it misses
      * the targets), the library's defaults and the file's own gains, each
@@ -361,7 +370,7 @@ int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margin
         cand[SIM_CANDIDATE_SCENARIO] = *t;
     }
     double cost[SIM_N_CANDIDATES];
-    char seen[SIM_N_CANDIDATES][200];
+    char seen[SIM_N_CANDIDATES][280];
     int win = -1;
     for (int c = 0; c < SIM_N_CANDIDATES; ++c) {
         cost[c] = NAN;
@@ -370,7 +379,9 @@ int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margin
             continue;
         }
         *t = cand[c];
+        const double flight_start = now_s();
         cost[c] = check_flight(sc, id, seen[c], sizeof seen[c]);
+        tuner_s += c == SIM_CANDIDATE_MARGINS ? now_s() - flight_start : 0.0;
         /* One that meets the targets beats one that does not; between
          * equals the check flight decides; ties go to the earlier one. */
         if (cost[c] < INFINITY &&
@@ -422,6 +433,7 @@ int sim_tune_controller(sim_scenario_t *sc, sim_controller_id_t id, ladrc_margin
         tune_error(sc, id, err, msg);
     }
     t->wall_s = now_s() - start;
+    t->tuner_s = tuner_s;
     return rc;
 }
 

@@ -138,7 +138,8 @@ typedef struct {
     double cmd_noise_cap_Nm[3]; /* the cap it was held to; 0: none */
     int idle[3];                /* HP-MLADRC margins of its idle estimator (margins.h) */
     int shared[3];              /* 1: this axis took another's result (same airframe and controller) */
-    double wall_s;              /* time the tuning took */
+    double wall_s;              /* time the tuning took, the candidates included */
+    double tuner_s;             /* of which the tuner and its own check flight (the tuning without candidates) */
 } sim_tuning_t;
 
 /* Where a parse failed, as file:line:column: message (line and column are
