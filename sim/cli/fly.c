@@ -135,7 +135,7 @@ int sim_fly_tune(sim_scenario_t *scenarios, int n_sc, const sim_fly_tune_options
     }
     memcpy(tasks, ordered, (size_t)n * sizeof tasks[0]);
     int started = 0;
-    for (int pass = 0; pass < 2; ++pass) {
+    for (int pass = 0; pass < 2 && (pass == 0 || n_first < n); ++pass) {
         tune_pool_t pool = {.tasks = tasks + (pass ? n_first : 0),
                             .n = pass ? n - n_first : n_first,
                             .next = 0,
