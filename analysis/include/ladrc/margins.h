@@ -412,7 +412,8 @@ typedef struct {
  *  margins, and its command noise within the cap when the targets cap it
  *  (the result must then carry cmd_noise_Nm: a request with noise).
  *  @param res  the result; must not be NULL (not checked)
- *  @param tg   the targets; must not be NULL (not checked) */
+ *  @param tg   the targets; must not be NULL (not checked)
+ *  @return 1 when it meets them, else 0 */
 int ladrc_margins_meets(const ladrc_margins_result_t *res, const ladrc_margins_targets_t *tg);
 
 /** The tuning's outcome: the gains chosen (those of the variant) and their margins. */
