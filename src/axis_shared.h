@@ -67,6 +67,13 @@ static inline uint16_t axis_delay_block_ticks(unsigned d)
 /** The line as if torque_Nm had been pushed for ever (reset, engage). */
 void axis_delay_fill(ladrc_actuator_t *act, ladrc_real_t torque_Nm);
 
+/** The lag's mean over the next tick of a command v that comes out of the
+ *  delay line (N m): m + g (v - m). */
+static inline ladrc_real_t axis_lagged_mean(const ladrc_actuator_t *act, ladrc_real_t v)
+{
+    return act->lag_Nm + act->mean_gain * (v - act->lag_Nm);
+}
+
 /** Torque (N m) the next tick's observer step takes as acting: the applied
  *  torque without a model, else its delayed and lagged mean (axis.h). */
 static inline ladrc_real_t axis_acting_Nm(const ladrc_axis_t *axis)
@@ -74,9 +81,7 @@ static inline ladrc_real_t axis_acting_Nm(const ladrc_axis_t *axis)
     if (!axis->model) {
         return axis->applied_Nm;
     }
-    const ladrc_actuator_t *act = &axis->act;
-    const ladrc_real_t v = axis_delay_out(act, axis->applied_Nm);
-    return act->lag_Nm + act->mean_gain * (v - act->lag_Nm);
+    return axis_lagged_mean(&axis->act, axis_delay_out(&axis->act, axis->applied_Nm));
 }
 
 /** The fed rate of change of f as ladrc_axis_set_disturbance_rate takes it:
@@ -156,7 +161,7 @@ static inline ladrc_real_t axis_advance_actuator(ladrc_axis_t *axis)
     }
     ladrc_actuator_t *act = &axis->act;
     const ladrc_real_t v = axis_delay_out(act, axis->applied_Nm);
-    const ladrc_real_t mean = act->lag_Nm + act->mean_gain * (v - act->lag_Nm);
+    const ladrc_real_t mean = axis_lagged_mean(act, v);
     if (act->delay_ticks != 0u) {
         axis_delay_push(act, axis->applied_Nm);
     }
