@@ -170,4 +170,7 @@ int margins_check_noise(const ladrc_margins_request_t *req);
  * measured controller's loop; 0 when the request has no noise. */
 double margins_cmd_noise(const loop_t *lp, const ladrc_margins_request_t *req);
 
+/* Radix-2 FFT in place (n a power of 2), forward: X_m = sum x_k e^{-j 2 pi m k / n}. */
+void margins_fft(double *re, double *im, int n);
+
 #endif

@@ -162,8 +162,7 @@ static int run_closed(const ladrc_margins_controller_t *ctl, ctl_state_t *s, psi
     return 1;
 }
 
-/* Radix-2 FFT in place (n a power of 2), forward: X_m = sum x_k e^{-j 2 pi m k / n}. */
-static void fft(double *re, double *im, int n)
+void margins_fft(double *re, double *im, int n)
 {
     for (int i = 1, j = 0; i < n; ++i) {
         int bit = n >> 1;
@@ -318,7 +317,7 @@ ladrc_margins_status_t ladrc_margins_measure(ladrc_margins_workspace_t *ws, cons
             ws->fft_re[i] = (i < n) ? ws->h[p][i] - ws->tail[p] - ws->ramp[p] * (double)i : 0.0;
             ws->fft_im[i] = 0.0;
         }
-        fft(ws->fft_re, ws->fft_im, N_FFT);
+        margins_fft(ws->fft_re, ws->fft_im, N_FFT);
         for (int m = 1; m <= N_HALF; ++m) {
             const cplx zi = cexp(-I * 2.0 * PI * m / N_FFT);
             const cplx v = ws->fft_re[m] + I * ws->fft_im[m] + tail_at(ws, p, zi);

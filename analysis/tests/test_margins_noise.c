@@ -3,6 +3,7 @@
  * flown with white measurement noise, and the tuner's noise cap. */
 #include "unity.h"
 #include "ladrc/margins.h"
+#include "../margins_internal.h" /* margins_fft */
 
 #include <math.h>
 #include <stdint.h>
@@ -52,38 +53,6 @@ static double gauss(void)
     return sqrt(-2.0 * log(uniform01())) * cos(2.0 * PI * uniform01());
 }
 
-static void fft(double *re, double *im, long n)
-{
-    for (long i = 1, j = 0; i < n; ++i) {
-        long bit = n >> 1;
-        for (; j & bit; bit >>= 1)
-            j ^= bit;
-        j ^= bit;
-        if (i < j) {
-            double t = re[i];
-            re[i] = re[j];
-            re[j] = t;
-            t = im[i];
-            im[i] = im[j];
-            im[j] = t;
-        }
-    }
-    for (long len = 2; len <= n; len <<= 1) {
-        const double ang = -2.0 * PI / (double)len;
-        for (long i = 0; i < n; i += len) {
-            for (long k = 0; k < len / 2; ++k) {
-                const double c = cos(ang * (double)k), s = sin(ang * (double)k);
-                const long a = i + k, b = i + k + len / 2;
-                const double tr = re[b] * c - im[b] * s, ti = re[b] * s + im[b] * c;
-                re[b] = re[a] - tr;
-                im[b] = im[a] - ti;
-                re[a] += tr;
-                im[a] += ti;
-            }
-        }
-    }
-}
-
 /* RMS of x above f_hz: the periodogram's bins from the corner to the
  * Nyquist frequency (an ideal high-pass, as the prediction's band). */
 static double rms_above(const double *x, long n, double dt, double f_hz)
@@ -92,7 +61,7 @@ static double rms_above(const double *x, long n, double dt, double f_hz)
         fre[i] = x[i];
         fim[i] = 0.0;
     }
-    fft(fre, fim, n);
+    margins_fft(fre, fim, (int)n);
     const long m0 = (long)ceil(f_hz * dt * (double)n);
     double sum = 0.0;
     for (long m = m0; m <= n / 2; ++m) {
