@@ -20,8 +20,9 @@ int sim_tune_wanted(const sim_scenario_t *sc, sim_controller_id_t id);
 /* The plant the tuning of axis i designs for (above). */
 void sim_tune_plant(const sim_scenario_t *sc, int axis, ladrc_margins_plant_t *plant);
 /* The tuning objective's steps the file gives controller id
- * (tune_step_deg, tune_disturbance_step_rad_s2) into req; the others keep
- * req's values. */
+ * (tune_step_deg, tune_disturbance_step_rad_s2) into req, the others keeping
+ * req's values, and the scenario's sensor noise (sim_tune_noise_request) for
+ * the predicted command noise. */
 void sim_tune_objective(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_margins_request_t *req);
 
 /* The scenario's gyro filter ([filter]) as the tuning and the margins see it:
