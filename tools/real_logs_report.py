@@ -71,6 +71,32 @@ def untunable_reasons(stderr_text, names):
     return reasons
 
 
+def timings(stdout_text):
+    """', identified in X s, replayed in Y s' from ladrc_replay's own lines, when printed."""
+    found = ""
+    m = re.search(r"identified in ([0-9.]+) s", stdout_text)
+    if m:
+        found += f", identified in {m.group(1)} s"
+    m = re.search(r"^replayed .* in ([0-9.]+) s: ([0-9.]+x) real time", stdout_text, re.M)
+    if m:
+        found += f", replayed in {m.group(1)} s ({m.group(2)} real time)"
+    return found
+
+
+def status_causes(stdout_text, replayed):
+    """What made the status 1: the identification's warnings, the controllers that faulted."""
+    causes = []
+    warnings = [l for l in stdout_text.splitlines() if l.startswith("warning: ")]
+    if warnings:
+        axes = sorted({l.split(":")[1].strip() for l in warnings if l.count(":") >= 2})
+        causes.append(f"{len(warnings)} identification warnings ({', '.join(axes)})")
+    for name, axes in replayed.items():
+        ticks = max((int(float(r.get("fault_ticks") or 0)) for r in axes.values()), default=0)
+        if name != LOG_SOURCE and ticks > 0:
+            causes.append(f"{name} faulted ({ticks} ticks)")
+    return "; ".join(causes) or "(not told by the outputs)"
+
+
 def last_error(stdout_text, stderr_text):
     lines = [l for l in stderr_text.splitlines() if l.strip() and not l.startswith("\r")]
     errors = [l for l in lines if "warning:" not in l]
@@ -93,7 +119,7 @@ def main(argv=None):
         err_text = f.read().replace("\r", "\n")
     failures = []
     print(f"== {a.log}")
-    print(f"   exit status {a.status}, {a.seconds:.1f} s")
+    print(f"   exit status {a.status}, {a.seconds:.1f} s{timings(out_text)}")
     if a.status != 0:
         failures.append(f"exit status {a.status}")
         if a.status == 2:
@@ -108,6 +134,8 @@ def main(argv=None):
     replayed, untunable = read_summary(summaries[0])
     reasons = untunable_reasons(err_text, untunable)
     print("   replayed: " + (", ".join(s for s in replayed if s != LOG_SOURCE) or "none"))
+    if a.status == 1:
+        print(f"   status 1 from: {status_causes(out_text, replayed)}")
     for name in untunable:
         reason = reasons.get(name)
         print(f"   untunable: {name}: {reason or '(no reason printed)'}")

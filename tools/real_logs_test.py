@@ -336,6 +336,15 @@ class Verdict(unittest.TestCase):
         self.assertEqual(self.run_report(self.rows(), status=1), 1)
         self.assertEqual(self.run_report(None, status=2, stderr="x.csv:1:1: no column 'gyroADC[0]'\n"), 1)
 
+    def test_status_one_is_explained(self):
+        rows = {"LOG": {"roll": {"fault_ticks": "0"}}, "LADRC": {"roll": {"fault_ticks": "12"}},
+                "PID": {"roll": {"fault_ticks": "0"}}}
+        out = "warning: roll: b0's interval is wider than +-10 %\nwarning: yaw: R^2 < 0.5\n"
+        self.assertEqual(rr.status_causes(out, rows), "2 identification warnings (roll, yaw); LADRC faulted (12 ticks)")
+        self.assertEqual(rr.timings("x: 5 rows, identified in 1.31 s (4 passes)\n"
+                                    "replayed 17022 ticks (17.02 s of flight) with 6 controllers in 0.79 s: 22x real time\n"),
+                         ", identified in 1.31 s, replayed in 0.79 s (22x real time)")
+
     def test_untunable_needs_its_reason(self):
         rows = self.rows() + "".join("INDI," + a + ",untunable" * 11 + "\n" for a in rr.AXES)
         self.assertEqual(self.run_report(rows, stderr=""), 1)
