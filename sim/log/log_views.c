@@ -105,7 +105,12 @@ static void write_summary(FILE *f, FILE *report, const char *source, sim_respons
         if (report == NULL) {
             continue;
         }
-        if (st.windows == 0) {
+        const unsigned has = sim_response_has(r);
+        if (!(has & SIM_LOG_HAS_REF_RATE) || !(has & SIM_LOG_HAS_GYRO)) {
+            fprintf(report, "step response %s %s: the log has no %s (map it with --map %s)\n", source, AXIS_NAMES[a],
+                    (has & SIM_LOG_HAS_GYRO) ? "rate setpoint" : "gyro",
+                    (has & SIM_LOG_HAS_GYRO) ? "ref_rate[i]=COLUMN*deg" : "gyro[i]=COLUMN*deg");
+        } else if (st.windows == 0) {
             fprintf(report, "step response %s %s: no 2 s window whose setpoint reaches %.0f deg/s%s\n", source,
                     AXIS_NAMES[a], SIM_RESPONSE_MIN_INPUT_DEG_S,
                     st.rejected > 0 ? " and whose step settles within 0.5-3" : "");

@@ -27,6 +27,7 @@ typedef struct {
 struct sim_response {
     double dt_s;
     long long ticks;
+    unsigned has; /* the SIM_LOG_HAS_* of the ticks pushed */
     plan_t step_plan, freq_plan, noise_plan;
     int hop, resp_n;
     ring_t step_ref[3], step_gyro[3], freq_ref[3], freq_gyro[3];
@@ -177,6 +178,11 @@ void sim_response_free(sim_response_t *r)
 double sim_response_dt_s(const sim_response_t *r)
 {
     return r->dt_s;
+}
+
+unsigned sim_response_has(const sim_response_t *r)
+{
+    return r->has;
 }
 
 /* The ring's last `len` samples, oldest first, times the window, minus their
@@ -342,6 +348,7 @@ static void noise_segment(sim_response_t *r)
 
 void sim_response_push(sim_response_t *r, const sim_log_sample_t *s, unsigned has)
 {
+    r->has = has;
     const int rate = (has & SIM_LOG_HAS_REF_RATE) && (has & SIM_LOG_HAS_GYRO);
     const int noise = (has & SIM_LOG_HAS_THROTTLE) != 0;
     r->noise_has = ((has & SIM_LOG_HAS_GYRO) ? 1u << SIM_NOISE_GYRO : 0u) |
@@ -379,9 +386,13 @@ void sim_response_push(sim_response_t *r, const sim_log_sample_t *s, unsigned ha
     }
 }
 
-/* The first time the step crosses `level` (linear between samples); NaN when it does not. */
+/* The first time the step reaches `level` (linear between samples; 0 when
+ * its first sample does already); NaN when it does not. */
 static double crossing_s(const double *step, int n, double dt_s, double level)
 {
+    if (n > 0 && step[0] >= level) {
+        return 0.0;
+    }
     for (int i = 1; i < n; ++i) {
         if (step[i] >= level && step[i - 1] < level) {
             return dt_s * (i - 1 + (level - step[i - 1]) / (step[i] - step[i - 1]));

@@ -7,7 +7,7 @@
  *   estimate it: 2 s Hann windows every 0.5 s, those whose setpoint reaches
  *   20 deg/s, each deconvolved (Wiener: H = Y X* / (|X|^2 + lambda(f)),
  *   lambda the window's mean input power below 25 Hz times a noise-to-signal
- *   ratio of 0.001 that rises as (f / 25 Hz)^8 above), the step the cumulative
+ *   ratio of 1e-4 that rises as (f / 25 Hz)^8 above), the step the cumulative
  *   sum of the impulse response over 0.5 s; a window whose step does not stay
  *   within 0.5-3 over 0.2-0.5 s is dropped (PIDtoolbox's check); mean and
  *   spread (standard deviation) over the windows kept;
@@ -28,7 +28,7 @@
 #define SIM_RESPONSE_LENGTH_S 0.5         /* the step response's length (both tools: 0.5 s) */
 #define SIM_RESPONSE_MIN_INPUT_DEG_S 20.0 /* a window's setpoint must reach this (both tools) */
 #define SIM_RESPONSE_CUTOFF_HZ 25.0       /* PID-Analyzer's cut: the input holds little above it */
-#define SIM_RESPONSE_NSR 0.001            /* noise-to-signal ratio below the cut (-30 dB) */
+#define SIM_RESPONSE_NSR 0.0001           /* noise-to-signal ratio below the cut (-40 dB) */
 #define SIM_RESPONSE_NSR_ORDER 8          /* its rise above the cut: 80 dB a decade */
 #define SIM_RESPONSE_STEADY_FROM_S 0.2    /* the steady part of the step: 0.2-0.5 s */
 #define SIM_RESPONSE_STEADY_MIN 0.5       /* PIDtoolbox's quality check on it */
@@ -68,6 +68,9 @@ void sim_response_free(sim_response_t *r);
 void sim_response_push(sim_response_t *r, const sim_log_sample_t *s, unsigned has);
 
 double sim_response_dt_s(const sim_response_t *r);
+
+/* The SIM_LOG_HAS_* of the ticks pushed (0 before the first). */
+unsigned sim_response_has(const sim_response_t *r);
 
 /* The step response of axis 0..2, its mean and spread computed into r's
  * arrays from the sums (valid until the next call, push or free). */

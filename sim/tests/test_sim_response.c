@@ -112,7 +112,7 @@ static sim_response_t *fly(loop_t proto, int steps, double noise_deg_s, uint64_t
  * wide, +2-10 % on a rise of 30-70 ms, a rounded peak), and the Hann taper
  * multiplies the gyro after the loop's lag, not the setpoint before it,
  * which reads low by about the loop's mean delay over the window's taper
- * (measured: steady 0.965 and rise -7 % for the slow loop, 0.979 and +4 %
+ * (measured: steady 0.966 and rise -9 % for the slow loop, 0.989 and 0 %
  * for the fast one): 15 % on the rise time, 5 ms on the delay, 5 points of
  * overshoot, 5 % on the steady value. */
 #define RISE_TOL 0.15
