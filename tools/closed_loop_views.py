@@ -63,7 +63,10 @@ def main():
             "reference.roll=0", "reference.pitch=0", "reference.yaw=0",
             "disturbance.roll=0", "disturbance.pitch=0", "disturbance.yaw=0",
             # a log integrates flips to whole turns: a run diverges on a lost vehicle, not on a late one
-            "metrics.diverge_limit_deg=720"]
+            "metrics.diverge_limit_deg=720",
+            # the airframe's metric windows, fitted to the run's length
+            "metrics.error_window_s=0 %g" % duration, "metrics.steady_window_s=%g %g" % (duration / 2, duration),
+            "metrics.settle_window_s=1 3"]
     cmd = [sil, ini, "--out", flights, "--quiet"] + [x for s in sets for x in ("--set", s)]
     if args.controllers:
         cmd += ["--controllers", args.controllers]

@@ -4,12 +4,16 @@
 # ordinary flight (scenarios/logs) cut to 16 s with a throttle that varies, written as a
 # Betaflight log, replayed with CASCADED and LADRC; every figure comes out, every figure takes a
 # controller's colour from the one palette, and one landing spike does not set the y range.
-# Usage: replay_plot_test.sh LADRC_SIL LADRC_REPLAY SOURCE_DIR
+# Then the closed-loop path (tools/closed_loop_views.py): the log's setpoints as a series
+# (ladrc_views --reference), two controllers flown on the identified airframe with them, their
+# views beside the log's.
+# Usage: replay_plot_test.sh LADRC_SIL LADRC_REPLAY LADRC_VIEWS SOURCE_DIR
 # Exit status 77 (reported by ctest as skipped) when matplotlib or numpy is missing.
 set -uo pipefail
 sil=$1
 replay=$2
-src=$3
+views=$3
+src=$4
 
 py=python3
 [[ -x /usr/bin/python3 ]] && py=/usr/bin/python3
@@ -80,6 +84,34 @@ lo, hi = replay_plot.commands_figure(d, os.path.join(sys.argv[1], "spike.png"), 
 assert hi < 2.0 * bulk, (hi, bulk)
 PY
 check one_palette_and_a_spike_does_not_set_the_range $?
+
+# The setpoints as a series: one row a tick (1 kHz) over the 16 s, the header's units; a log
+# without a setpoint is refused and leaves nothing.
+"$views" --reference "$work/ref.csv" "$log" > /dev/null
+check views_writes_the_reference $?
+rows=$(grep -c '^[0-9]' "$work/ref.csv")
+[[ $rows -ge 15900 && $rows -le 16001 ]] && grep -q '^t \[s\], roll \[rad\], pitch \[rad\], yaw \[rad\]$' "$work/ref.csv"
+check reference_has_a_row_a_tick $?
+# the log without its setpoint[0..2] columns
+awk -F', *' 'NR == 1 { for (i = 1; i <= NF; ++i) drop[i] = ($i ~ /^setpoint\[[012]\]/) }
+  { out = ""; for (i = 1; i <= NF; ++i) if (!drop[i]) out = out (out == "" ? "" : ",") $i; print out }' \
+  "$log" > "$work/no_setpoint.csv"
+"$views" --reference "$work/ref2.csv" "$work/no_setpoint.csv" > /dev/null 2> "$work/refused.txt"
+[[ $? -eq 2 && ! -e $work/ref2.csv && ! -e $work/ref2.csv.tmp ]] && grep -q "has no setpoint" "$work/refused.txt"
+check views_refuses_a_log_without_setpoint $?
+
+# Closed loop: LADRC and CASCADED on the identified airframe with the log's first 8 s of setpoints.
+bin="$work/bin"
+mkdir -p "$bin" && ln -s "$sil" "$bin/ladrc_sil" && ln -s "$views" "$bin/ladrc_views"
+"$py" "$src/tools/closed_loop_views.py" "$work/r" "$log" --seconds 8 --controllers "LADRC CASCADED" --bin "$bin" \
+  > "$work/closed.txt" 2>&1
+check closed_loop_views_succeeds $?
+for src_name in LOG LADRC CASCADED; do
+  grep -q "^$src_name,roll," "$work/r/closed_loop/response_summary.csv"
+  check "closed_loop_has_$src_name" $?
+done
+png_ok "$work/r/closed_loop/response_step.png" 1000 400 20000
+check closed_loop_step_figure $?
 
 echo "$failures failed"
 [[ $failures -eq 0 ]]

@@ -5,7 +5,7 @@ ladrc_replay writes in DIR: step_response.csv, freq_response.csv, noise_throttle
 response_summary.csv, one source per log (LOG: the log flown; a controller's name: a simulated
 flight of it).
 
-Usage: response_plot.py DIR
+Usage: response_plot.py DIR [--dpi N]
 
 Draws in DIR:
 - response_step.png: per axis, each source's step response (setpoint -> gyro, deconvolved) with
@@ -71,7 +71,7 @@ def summary_label(summary, source, axis):
         source, number(row["rise_ms"]), number(row["overshoot_pct"]), int(number(row["windows"])))
 
 
-def step_figure(rows, summary, out):
+def step_figure(rows, summary, out, dpi=100):
     srcs = sources_of(rows)
     fig, axs = plt.subplots(1, 3, figsize=(15, 4.8), sharey=True)
     everything = []
@@ -99,11 +99,11 @@ def step_figure(rows, summary, out):
     axs[0].set_ylabel("gyro per setpoint (1: tracks)")
     fig.suptitle("Step response deconvolved from the flight (mean over 2 s windows, band: one standard deviation)")
     fig.tight_layout()
-    fig.savefig(out, dpi=100)
+    fig.savefig(out, dpi=dpi)
     plt.close(fig)
 
 
-def freq_figure(rows, out):
+def freq_figure(rows, out, dpi=100):
     srcs = sources_of(rows)
     fig, axs = plt.subplots(3, 3, figsize=(15, 9), sharex=True, gridspec_kw={"height_ratios": [2, 2, 1]})
     for j, axis in enumerate(AXES):
@@ -137,11 +137,11 @@ def freq_figure(rows, out):
         ax.set_xlim(0.5, None)
     fig.suptitle("Frequency response (Welch H1; faint where the coherence is under %.1f)" % COHERENT)
     fig.tight_layout()
-    fig.savefig(out, dpi=100)
+    fig.savefig(out, dpi=dpi)
     plt.close(fig)
 
 
-def noise_figure(rows, out):
+def noise_figure(rows, out, dpi=90):
     """One row per (source, signal), one column per axis: PSD in dB over throttle and frequency."""
     panels = []
     for s in sources_of(rows):
@@ -181,13 +181,14 @@ def noise_figure(rows, out):
                 fig.colorbar(mesh, ax=ax, label=unit)
     fig.suptitle("Noise against throttle (Welch, 0.25 s segments, binned by the segment's mean throttle)")
     fig.tight_layout()
-    fig.savefig(out, dpi=90)
+    fig.savefig(out, dpi=dpi)
     plt.close(fig)
     return True
 
 
-def draw(dirname):
-    """Draws the three figures of DIR; returns their paths."""
+def draw(dirname, dpi=None):
+    """Draws the three figures of DIR (dpi: None for each figure's own); returns their paths."""
+    res = {} if dpi is None else {"dpi": dpi}
     for name in FILES:
         if not os.path.isfile(os.path.join(dirname, name)):
             sys.exit("response_plot: %s is missing (ladrc_replay writes it)" % os.path.join(dirname, name))
@@ -196,13 +197,13 @@ def draw(dirname):
     step = read_rows(os.path.join(dirname, "step_response.csv"))
     if step:
         out.append(os.path.join(dirname, "response_step.png"))
-        step_figure(step, summary, out[-1])
+        step_figure(step, summary, out[-1], **res)
     freq = read_rows(os.path.join(dirname, "freq_response.csv"))
     if freq:
         out.append(os.path.join(dirname, "response_freq.png"))
-        freq_figure(freq, out[-1])
+        freq_figure(freq, out[-1], **res)
     noise = read_rows(os.path.join(dirname, "noise_throttle.csv"))
-    if noise and noise_figure(noise, os.path.join(dirname, "response_noise.png")):
+    if noise and noise_figure(noise, os.path.join(dirname, "response_noise.png"), **res):
         out.append(os.path.join(dirname, "response_noise.png"))
     if not out:
         sys.exit("response_plot: %s: no rows to draw (no window reached 20 deg/s and the log has no throttle)"
@@ -213,8 +214,9 @@ def draw(dirname):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("dir")
+    ap.add_argument("--dpi", type=int, default=None, help="resolution of every figure (default: 100, 90 the noise)")
     args = ap.parse_args()
-    print("response_plot: " + ", ".join(draw(args.dir)))
+    print("response_plot: " + ", ".join(draw(args.dir, args.dpi)))
 
 
 if __name__ == "__main__":
