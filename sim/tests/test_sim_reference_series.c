@@ -17,7 +17,7 @@ static char dir[64];
 
 void setUp(void)
 {
-    snprintf(dir, sizeof dir, "/tmp/ladrc_refseries_XXXXXX");
+    snprintf(dir, sizeof dir, "refseries_XXXXXX"); /* in the build folder, as the other tests */
     TEST_ASSERT_NOT_NULL(mkdtemp(dir));
 }
 
