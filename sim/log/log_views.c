@@ -110,10 +110,15 @@ static void write_summary(FILE *f, FILE *report, const char *source, sim_respons
             fprintf(report, "step response %s %s: the log has no %s (map it with --map %s)\n", source, AXIS_NAMES[a],
                     (has & SIM_LOG_HAS_GYRO) ? "rate setpoint" : "gyro",
                     (has & SIM_LOG_HAS_GYRO) ? "ref_rate[i]=COLUMN*deg" : "gyro[i]=COLUMN*deg");
+        } else if (st.windows == 0 && st.rejected == 0) {
+            fprintf(report, "step response %s %s: no %.0f s window whose setpoint reaches %.0f deg/s\n", source,
+                    AXIS_NAMES[a], SIM_RESPONSE_WINDOW_S, SIM_RESPONSE_MIN_INPUT_DEG_S);
         } else if (st.windows == 0) {
-            fprintf(report, "step response %s %s: no 2 s window whose setpoint reaches %.0f deg/s%s\n", source,
-                    AXIS_NAMES[a], SIM_RESPONSE_MIN_INPUT_DEG_S,
-                    st.rejected > 0 ? " and whose step settles within 0.5-3" : "");
+            fprintf(report,
+                    "step response %s %s: %d windows reach %.0f deg/s, none whose step stays within %.1f-%.0f over "
+                    "%.1f-%.1f s\n",
+                    source, AXIS_NAMES[a], st.rejected, SIM_RESPONSE_MIN_INPUT_DEG_S, SIM_RESPONSE_STEADY_MIN,
+                    SIM_RESPONSE_STEADY_MAX, SIM_RESPONSE_STEADY_FROM_S, SIM_RESPONSE_LENGTH_S);
         } else {
             fprintf(report,
                     "step response %s %s: %d windows (%d dropped): rise %.1f ms, delay %.1f ms, overshoot %.1f %%, "
