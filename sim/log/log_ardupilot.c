@@ -2,7 +2,10 @@
 /* Finding an ArduPilot log's type files (log_ardupilot.h). */
 #include "log_ardupilot.h"
 
+#include "log_map.h"
+
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static int is_alnum(char ch)
@@ -92,4 +95,43 @@ const char *sim_log_ardupilot_enabled_by(const char *topic)
         }
     }
     return "";
+}
+
+static int add_topic(const char *topic, char names[][SIM_LOG_ARDUPILOT_TYPE_LEN], const char **topics, int n)
+{
+    const size_t len = strcspn(topic, "[");
+    if (len == 0 || len >= SIM_LOG_ARDUPILOT_TYPE_LEN || n == SIM_LOG_ARDUPILOT_TOPICS_MAX) {
+        return n; /* no such type: the reader refuses the item */
+    }
+    for (int i = 0; i < n; ++i) {
+        if (strlen(names[i]) == len && strncmp(names[i], topic, len) == 0) {
+            return n;
+        }
+    }
+    memcpy(names[n], topic, len);
+    names[n][len] = '\0';
+    topics[n] = names[n];
+    return n + 1;
+}
+
+int sim_log_ardupilot_topics(const char *const *map, int n_map, char names[][SIM_LOG_ARDUPILOT_TYPE_LEN],
+                             const char **topics)
+{
+    sim_log_map_t *m = malloc(sizeof *m);
+    char msg[256];
+    int n = 0;
+    for (int with_rate = 0; m != NULL && with_rate <= 1; ++with_rate) {
+        /* bad items are the reader's to refuse: the preset's types then */
+        if (sim_log_map_build_ardupilot(m, with_rate, map, n_map, msg, sizeof msg) != 0 &&
+            sim_log_map_build_ardupilot(m, with_rate, NULL, 0, msg, sizeof msg) != 0) {
+            continue;
+        }
+        for (int s = 0; s < SIM_LOG_N_SLOTS; ++s) {
+            if (m->mapped[s]) {
+                n = add_topic(m->item[s].topic, names, topics, n);
+            }
+        }
+    }
+    free(m);
+    return n;
 }

@@ -21,4 +21,13 @@ int sim_log_ardupilot_topic_path(const char *base, const char *topic, char *out,
  * parameter), for a refusal's message; "" for a type it does not know. */
 const char *sim_log_ardupilot_enabled_by(const char *topic);
 
+#define SIM_LOG_ARDUPILOT_TOPICS_MAX 48 /* the preset's types and those of the caller's items */
+#define SIM_LOG_ARDUPILOT_TYPE_LEN 8    /* a type's name (4 characters) and its NUL, with room */
+
+/* The message types the form reads, for the decoder: those of the preset
+ * (both its RATE and its PID commands) and of the caller's map items, once
+ * each. Their count; names[i] holds each, topics[i] points at it. */
+int sim_log_ardupilot_topics(const char *const *map, int n_map, char names[][SIM_LOG_ARDUPILOT_TYPE_LEN],
+                             const char **topics);
+
 #endif

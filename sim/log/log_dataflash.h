@@ -44,9 +44,7 @@
 #include <stdio.h>
 
 #include "log.h"
-#ifndef LADRC_SIM_LOG_CONVERT_H /* until log_convert.h declares it */
-typedef void (*sim_log_convert_progress_fn)(void *ctx, long long bytes_done, long long bytes_total);
-#endif
+#include "log_convert.h"
 
 #define SIM_LOG_DATAFLASH_MAX_FILES 512 /* CSVs open at once: the descriptors a process is given */
 
