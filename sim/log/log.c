@@ -121,6 +121,8 @@ static sim_log_t *start(const sim_log_options_t *opt, const char *path, sim_log_
     t->n_terms = 1;
     strcpy(t->term[0].column, opt->format == SIM_LOG_ARDUPILOT ? "TimeUS" : "timestamp");
     t->scale = 1e-6;
+    log->sample_time = *t;
+    strcpy(log->sample_time.term[0].column, "SampleUS");
     return log;
 }
 
@@ -276,7 +278,11 @@ static sim_log_t *finish_open(sim_log_t *log, const sim_log_options_t *opt, sim_
 
 static int open_file(sim_log_t *log, FILE *stream, int own, const char *path, const char *topic, sim_log_error_t *err)
 {
-    const sim_log_item_t *time = topic != NULL ? &log->topic_time : &log->map.item[0];
+    const sim_log_item_t *time = &log->map.item[0];
+    if (topic != NULL) {
+        const int sampled = log->format == SIM_LOG_ARDUPILOT && sim_log_ardupilot_sample_timed(topic);
+        time = sampled ? &log->sample_time : &log->topic_time;
+    }
     sim_log_file_t *f = &log->files[log->n_files];
     if (sim_log_file_open(f, stream, own, path, time, &log->map, topic, err) != 0) {
         snprintf(err->path, sizeof err->path, "%s", path);

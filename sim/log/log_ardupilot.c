@@ -135,3 +135,9 @@ int sim_log_ardupilot_topics(const char *const *map, int n_map, char names[][SIM
     free(m);
     return n;
 }
+
+int sim_log_ardupilot_sample_timed(const char *topic)
+{
+    const size_t n = strcspn(topic, "[");
+    return n == 3 && (strncmp(topic, "GYR", 3) == 0 || strncmp(topic, "ACC", 3) == 0);
+}

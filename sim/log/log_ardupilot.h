@@ -21,6 +21,10 @@ int sim_log_ardupilot_topic_path(const char *base, const char *topic, char *out,
  * parameter), for a refusal's message; "" for a type it does not know. */
 const char *sim_log_ardupilot_enabled_by(const char *topic);
 
+/* The type times its rows by SampleUS, the sensor's sample, not TimeUS:
+ * GYR and ACC (written in bursts, TimeUS their write's time up to 4.4). */
+int sim_log_ardupilot_sample_timed(const char *topic);
+
 #define SIM_LOG_ARDUPILOT_TOPICS_MAX 48 /* the preset's types and those of the caller's items */
 #define SIM_LOG_ARDUPILOT_TYPE_LEN 8    /* a type's name (4 characters) and its NUL, with room */
 

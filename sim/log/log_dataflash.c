@@ -2,6 +2,7 @@
 /* ArduPilot DataFlash logs into CSVs (log_dataflash.h). */
 #include "log_dataflash.h"
 
+#include "log_ardupilot.h"
 #include "log_file.h"
 
 #include <errno.h>
@@ -564,6 +565,8 @@ static int names_time_unit(const char *name)
 /* Each field's conversion, the time and instance fields: at the type's first row. */
 static void freeze(decoder_t *d, type_t *t)
 {
+    /* GYR and ACC are written in bursts: their sample's time orders them */
+    const char *time_name = sim_log_ardupilot_sample_timed(t->name) ? "SampleUS" : "TimeUS";
     t->frozen = 1;
     t->time_field = -1;
     t->instance_field = -1;
@@ -572,7 +575,7 @@ static void freeze(decoder_t *d, type_t *t)
         const char *name = t->names + f->name_at;
         f->exp10 = strchr("cCeE", f->kind) != NULL ? -2 : (f->kind == 'L' ? -7 : 0);
         f->mult = 1.0;
-        if (strcmp(name, "TimeUS") == 0 && is_integer_kind(f->kind) && f->exp10 == 0) {
+        if (strcmp(name, time_name) == 0 && is_integer_kind(f->kind) && f->exp10 == 0) {
             t->time_field = i;
         }
         if (t->has_fmtu && i < (int)strlen(t->unit_ids) && t->unit_ids[i] == '#') {

@@ -25,9 +25,9 @@
  *
  * Instances: a type whose FMTU marks a field '#' (without FMTU: a field
  * named I or Instance) goes to one file per value of that field (0..255);
- * the others to _0. Rows whose TimeUS is not after the previous row's in
- * their file are dropped and counted: the reader takes time strictly
- * increasing (a log whose clock restarts, a repeated message).
+ * the others to _0. Rows whose TimeUS (GYR and ACC: SampleUS) is not after
+ * the previous row's in their file are dropped and counted: the reader
+ * takes time strictly increasing (a log whose clock restarts, a repeat).
  *
  * Damage is handled as ArduPilot's tools do: a byte that does not start a
  * known message is skipped until the next 0xA3 0x95 of a defined type, and

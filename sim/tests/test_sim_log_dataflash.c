@@ -98,10 +98,12 @@ static void fmt(int type, int length, const char *name, const char *format, cons
     put_text(columns, 64);
 }
 
+static long long preamble_us; /* FMTU's and MULT's times, increasing as ArduPilot's */
+
 static void fmtu(int type, const char *units, const char *mults)
 {
     header(T_FMTU);
-    put_le(1, 8);
+    put_le((uint64_t)++preamble_us, 8);
     put_le((uint64_t)type, 1);
     put_text(units, 16);
     put_text(mults, 16);
@@ -110,7 +112,7 @@ static void fmtu(int type, const char *units, const char *mults)
 static void mult(char id, double v)
 {
     header(T_MULT);
-    put_le(1, 8);
+    put_le((uint64_t)++preamble_us, 8);
     put_le((uint64_t)(unsigned char)id, 1);
     put_f64(v);
 }
@@ -120,6 +122,7 @@ static void mult(char id, double v)
 static void preamble(void)
 {
     lb.n = 0;
+    preamble_us = 0;
     fmt(T_FMTU, 44, "FMTU", "QBNN", "TimeUS,FmtType,UnitIds,MultIds");
     fmt(T_MULT, 20, "MULT", "Qbd", "TimeUS,Id,Mult");
     mult('0', 1.0);
@@ -627,6 +630,43 @@ static void test_the_ardupilot_form_reads_what_was_written(void)
     sim_log_close(log);
 }
 
+/* GYR written in bursts of four, every 4 ms, all at the burst's TimeUS:
+ * read at each sample's SampleUS. */
+static void test_raw_gyro_bursts_read_at_their_sample_time(void)
+{
+    write_flight(1, 0);
+    enum { T_GYR = 60 };
+    fmt(T_GYR, 32, "GYR", "QBQfff", "TimeUS,I,SampleUS,GyrX,GyrY,GyrZ");
+    fmtu(T_GYR, "s#sEEE", "F-F000");
+    for (long long t = 4000; t <= T_END_US; t += 4000) {
+        for (long long j = 3; j >= 0; --j) {
+            const long long sample = t - 1000 * j;
+            header(T_GYR);
+            put_le((uint64_t)t, 8);
+            put_le(0, 1);
+            put_le((uint64_t)sample, 8);
+            put_f32((float)(0.001 * (double)(sample / 1000)));
+            put_f32(0.0f);
+            put_f32(-1.0f);
+        }
+    }
+    sim_log_dataflash_stats_t st;
+    decode_all(&st);
+    TEST_ASSERT_EQUAL_LL(0, st.rows_backwards); /* TimeUS repeats, SampleUS does not */
+    const sim_log_options_t o = ardupilot_options();
+    sim_log_error_t err;
+    sim_log_t *log = sim_log_open(&o, &err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(log, err.message);
+    TEST_ASSERT_TRUE(sim_log_has(log) & SIM_LOG_HAS_GYRO_RAW);
+    sim_log_sample_t s;
+    for (long long k = 0; sim_log_next(log, &s, &err) == 1; ++k) {
+        const long long t_us = 4000 + 1000 * k;
+        ASSERT_NEAR(FLOAT_TEXT_TOL, 0.001 * (double)(t_us / 1000), s.gyro_raw_rad_s[0]);
+        ASSERT_NEAR(0.0, -1.0, s.gyro_raw_rad_s[2]);
+    }
+    sim_log_close(log);
+}
+
 static void test_older_logs_command_from_the_pids(void)
 {
     write_flight(0, 1);
@@ -671,6 +711,7 @@ int main(void)
     RUN_TEST(test_bad_fmts_are_not_used);
     RUN_TEST(test_time_not_increasing_is_dropped);
     RUN_TEST(test_the_ardupilot_form_reads_what_was_written);
+    RUN_TEST(test_raw_gyro_bursts_read_at_their_sample_time);
     RUN_TEST(test_older_logs_command_from_the_pids);
     RUN_TEST(test_a_log_without_the_command_is_refused_naming_its_bit);
     return UNITY_END();
