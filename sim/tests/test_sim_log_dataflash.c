@@ -7,6 +7,7 @@
 #define _POSIX_C_SOURCE 200809L /* mkdtemp, opendir */
 #include "unity.h"
 #include "log/log.h"
+#include "log/log_ardupilot.h"
 #include "log/log_dataflash.h"
 
 #include <dirent.h>
@@ -698,6 +699,43 @@ static void test_a_log_without_the_command_is_refused_naming_its_bit(void)
     TEST_ASSERT_NOT_NULL(strstr(err.path, "flight_RATE_0.csv"));
 }
 
+static void test_the_base_and_the_types_to_decode(void)
+{
+    char b[128];
+    sim_log_ardupilot_base("d/LOG_IMU_0.csv", b, sizeof b);
+    TEST_ASSERT_EQUAL_STRING("d/LOG", b);
+    sim_log_ardupilot_base("d/LOG_ESC_12.csv", b, sizeof b);
+    TEST_ASSERT_EQUAL_STRING("d/LOG", b);
+    sim_log_ardupilot_base("d/00000012.BIN", b, sizeof b);
+    TEST_ASSERT_EQUAL_STRING("d/00000012", b);
+    sim_log_ardupilot_base("d/LOG", b, sizeof b);
+    TEST_ASSERT_EQUAL_STRING("d/LOG", b);
+    sim_log_ardupilot_base("_IMU_0.csv", b, sizeof b); /* no BASE before it: the path */
+    TEST_ASSERT_EQUAL_STRING("_IMU_0.csv", b);
+    TEST_ASSERT_EQUAL_INT(0, sim_log_ardupilot_topic_path("d/LOG", "ESC[3]", b, sizeof b));
+    TEST_ASSERT_EQUAL_STRING("d/LOG_ESC_3.csv", b);
+    TEST_ASSERT_EQUAL_INT(-1, sim_log_ardupilot_topic_path("d/LOG", "ESC[3", b, sizeof b));
+    TEST_ASSERT_EQUAL_INT(-1, sim_log_ardupilot_topic_path("d/LOG", "ESC[256]", b, sizeof b));
+    /* the preset's types, both command variants, and those of the caller's items */
+    const char *const map[] = {"gyro_raw[0]=VIBE.VibeX", "bad item"};
+    char names[SIM_LOG_ARDUPILOT_TOPICS_MAX][SIM_LOG_ARDUPILOT_TYPE_LEN];
+    const char *topics[SIM_LOG_ARDUPILOT_TOPICS_MAX];
+    int n = sim_log_ardupilot_topics(map, 1, names, topics);
+    static const char *const WANT[] = {"IMU",  "GYR",  "ATT",  "RATE", "PIDR", "PIDP",
+                                       "PIDY", "CTUN", "RCOU", "ESC",  "VIBE"};
+    const int n_want = (int)(sizeof WANT / sizeof WANT[0]);
+    TEST_ASSERT_EQUAL_INT(n_want, n);
+    for (int i = 0; i < n_want; ++i) {
+        int found = 0;
+        for (int k = 0; k < n; ++k) {
+            found |= strcmp(topics[k], WANT[i]) == 0;
+        }
+        TEST_ASSERT_TRUE_MESSAGE(found, WANT[i]);
+    }
+    n = sim_log_ardupilot_topics(map, 2, names, topics); /* a bad item: the preset's types */
+    TEST_ASSERT_EQUAL_INT(n_want - 1, n);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -714,5 +752,6 @@ int main(void)
     RUN_TEST(test_raw_gyro_bursts_read_at_their_sample_time);
     RUN_TEST(test_older_logs_command_from_the_pids);
     RUN_TEST(test_a_log_without_the_command_is_refused_naming_its_bit);
+    RUN_TEST(test_the_base_and_the_types_to_decode);
     return UNITY_END();
 }
