@@ -17,10 +17,16 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "log/log_dataflash.h"
 
 static char dir[64];
+
+static void remove_dir(void)
+{
+    rmdir(dir);
+}
 
 static int cells_of(const char *line)
 {
@@ -107,6 +113,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (dir[0] == '\0') {
         snprintf(dir, sizeof dir, "/tmp/fuzz_dataflash_XXXXXX");
         FUZZ_CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+        atexit(remove_dir);
     }
     if (size == 0) {
         return 0; /* fmemopen of 0 bytes fails on some C libraries */
