@@ -231,7 +231,8 @@ int main(int argc, char **argv)
         } else if (strcmp(arg, "--format") == 0 && a + 1 < argc) {
             const int f = sim_log_format_parse(argv[++a]);
             if (f < 0) {
-                fprintf(stderr, "ladrc_margins: --format: expected betaflight, px4, ardupilot or generic, got '%s'\n", argv[a]);
+                fprintf(stderr, "ladrc_margins: --format: expected betaflight, px4, ardupilot or generic, got '%s'\n",
+                        argv[a]);
                 return 2;
             }
             log_opt.format = (sim_log_format_t)f;

@@ -101,7 +101,8 @@ static int parse_args(int argc, char **argv, options_t *o)
         } else if (strcmp(arg, "--format") == 0) {
             const int f = sim_log_format_parse(argv[++a]);
             if (f < 0) {
-                fprintf(stderr, "ladrc_replay: --format: expected betaflight, px4, ardupilot or generic, got '%s'\n", val);
+                fprintf(stderr, "ladrc_replay: --format: expected betaflight, px4, ardupilot or generic, got '%s'\n",
+                        val);
                 return -1;
             }
             o->log.format = (sim_log_format_t)f;
