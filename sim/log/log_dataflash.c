@@ -3,6 +3,7 @@
 #include "log_dataflash.h"
 
 #include "log_ardupilot.h"
+#include "log_dataflash_fields.h"
 #include "log_file.h"
 
 #include <errno.h>
@@ -20,23 +21,13 @@
 #define MAX_FIELDS 16  /* the format string is an N: 16 characters */
 #define NAME_LEN 4     /* a type's name, an n */
 #define COLUMNS_LEN 64 /* the column names, a Z */
-#define ARRAY_N 32     /* the int16 values of an 'a' field */
 #define N_TYPES 256
 #define N_INSTANCES 256
 #define IN_BUF (1 << 16)
 #define OUT_BUF (1 << 14)          /* each CSV's stdio buffer: 512 of them stay under 8 MiB */
 #define PROGRESS_EVERY (4LL << 20) /* bytes between progress calls */
-#define CELL_MAX 40                /* characters of one number's text */
-#define LINE_MAX (MAX_FIELDS * ARRAY_N * (CELL_MAX + 1) + 2)
+#define LINE_MAX (MAX_FIELDS * DF_ARRAY_N * (DF_CELL_MAX + 1) + 2)
 #define POW10_TOL 1e-6 /* relative: a multiplier this close to a power of ten is one (MULTs are floats widened) */
-
-typedef struct {
-    char kind; /* the format character */
-    unsigned char size, offset;
-    int exp10;   /* integers: the value is raw * 10^exp10, written exactly */
-    double mult; /* floats, and integers whose multiplier is no power of ten: raw * mult */
-    int name_at; /* the name's start in the type's names */
-} field_t;
 
 typedef struct {
     int defined, frozen, wanted, has_fmtu;
@@ -82,273 +73,6 @@ typedef struct {
     char *line;
     int in_skip; /* inside a run of skipped bytes */
 } decoder_t;
-
-/* The field kinds' sizes in bytes; 0: not a kind. */
-static int kind_size(char k)
-{
-    switch (k) {
-    case 'b':
-    case 'B':
-    case 'M':
-        return 1;
-    case 'h':
-    case 'H':
-    case 'c':
-    case 'C':
-    case 'g':
-        return 2;
-    case 'i':
-    case 'I':
-    case 'f':
-    case 'e':
-    case 'E':
-    case 'L':
-    case 'n':
-        return 4;
-    case 'd':
-    case 'q':
-    case 'Q':
-        return 8;
-    case 'N':
-        return 16;
-    case 'Z':
-    case 'a':
-        return 64;
-    default:
-        return 0;
-    }
-}
-
-static int is_integer_kind(char k)
-{
-    return strchr("bBMhHiIqQcCeEL", k) != NULL;
-}
-
-static int is_text_kind(char k)
-{
-    return k == 'n' || k == 'N' || k == 'Z';
-}
-
-/* Little-endian fields, whatever the host's order. */
-static uint64_t get_le(const unsigned char *p, int size)
-{
-    uint64_t v = 0;
-    for (int i = size - 1; i >= 0; --i) {
-        v = (v << 8) | p[i];
-    }
-    return v;
-}
-
-static int64_t get_signed(const unsigned char *p, int size)
-{
-    const uint64_t v = get_le(p, size);
-    const int bits = 8 * size;
-    if (bits < 64 && (v >> (bits - 1)) != 0) {
-        return (int64_t)(v | (~(uint64_t)0 << bits));
-    }
-    return (int64_t)v;
-}
-
-static float get_float(const unsigned char *p)
-{
-    const uint32_t u = (uint32_t)get_le(p, 4);
-    float f;
-    memcpy(&f, &u, sizeof f);
-    return f;
-}
-
-static double get_double(const unsigned char *p)
-{
-    const uint64_t u = get_le(p, 8);
-    double d;
-    memcpy(&d, &u, sizeof d);
-    return d;
-}
-
-/* IEEE 754 binary16 to float. */
-static float half_to_float(unsigned h)
-{
-    const int sign = (h >> 15) & 1, e = (h >> 10) & 0x1f;
-    const unsigned m = h & 0x3ff;
-    float v;
-    if (e == 0) {
-        v = ldexpf((float)m, -24);
-    } else if (e == 31) {
-        v = m == 0 ? HUGE_VALF : NAN;
-    } else {
-        v = ldexpf((float)(m | 0x400), e - 25);
-    }
-    return sign ? -v : v;
-}
-
-/* Raw integer field: its value's magnitude and sign. */
-static void get_integer(const unsigned char *p, char kind, int size, uint64_t *mag, int *neg)
-{
-    if (strchr("BMHCIEQ", kind) != NULL) {
-        *mag = get_le(p, size);
-        *neg = 0;
-    } else {
-        const int64_t v = get_signed(p, size);
-        *neg = v < 0;
-        *mag = v < 0 ? (uint64_t)0 - (uint64_t)v : (uint64_t)v;
-    }
-}
-
-/* mag * 10^exp10 in decimal, exactly: the characters written. */
-static int put_decimal(char *p, uint64_t mag, int neg, int exp10)
-{
-    char digits[48];
-    int n = 0, w = 0;
-    do {
-        digits[n++] = (char)('0' + (int)(mag % 10));
-        mag /= 10;
-    } while (mag != 0);
-    const int frac = exp10 < 0 ? -exp10 : 0;
-    while (n <= frac) {
-        digits[n++] = '0';
-    }
-    if (neg) {
-        p[w++] = '-';
-    }
-    for (int i = n - 1; i >= 0; --i) {
-        p[w++] = digits[i];
-        if (i == frac && frac > 0) {
-            p[w++] = '.';
-        }
-    }
-    for (int i = 0; i < exp10; ++i) {
-        p[w++] = '0';
-    }
-    return w;
-}
-
-static int put_number(char *p, double v, int digits);
-
-/* 10^k for 0 <= k <= 22, each exact in a double. */
-static double pow10_exact(int k)
-{
-    static const double P[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
-                                 1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-    return P[k];
-}
-
-/* A float in 9 significant digits, as "%.9g" writes it but some ten times
- * faster: the float times an exact power of ten, rounded once (so the
- * digits are within one unit of the ninth of the exact ones, 1e-8 relative
- * at most, under half a float's spacing: the text reads back to the
- * float). Values beyond 1e-14..1e30 and non-finite ones go to snprintf. */
-static int put_float9(char *p, float f)
-{
-    const double v = fabs((double)f);
-    if (!(v >= 1e-14 && v < 1e30)) {
-        return v == 0.0 ? (signbit(f) ? (p[0] = '-', p[1] = '0', 2) : (p[0] = '0', 1)) : put_number(p, (double)f, 9);
-    }
-    int e10 = (int)floor(log10(v));
-    const int k = 8 - e10;
-    double scaled = k >= 0 ? v * pow10_exact(k) : v / pow10_exact(-k);
-    double n = floor(scaled + 0.5);
-    if (n >= 1e9) { /* log10 rounded up to the next decade */
-        ++e10;
-        n = floor(n / 10.0 + 0.5);
-    } else if (n < 1e8) {
-        --e10;
-        scaled = (k + 1) >= 0 ? v * pow10_exact(k + 1) : v / pow10_exact(-(k + 1));
-        n = floor(scaled + 0.5);
-    }
-    char digits[10];
-    uint32_t m = (uint32_t)n;
-    for (int i = 8; i >= 0; --i) {
-        digits[i] = (char)('0' + (int)(m % 10));
-        m /= 10;
-    }
-    int nd = 9;
-    while (nd > 1 && digits[nd - 1] == '0') {
-        --nd;
-    }
-    int w = 0;
-    if (f < 0.0f) {
-        p[w++] = '-';
-    }
-    if (e10 < -4 || e10 >= 9) { /* d.ddde[+-]XX */
-        p[w++] = digits[0];
-        if (nd > 1) {
-            p[w++] = '.';
-            memcpy(p + w, digits + 1, (size_t)(nd - 1));
-            w += nd - 1;
-        }
-        w += sprintf(p + w, "e%c%02d", e10 < 0 ? '-' : '+', e10 < 0 ? -e10 : e10);
-    } else if (e10 < 0) { /* 0.000ddd */
-        p[w++] = '0';
-        p[w++] = '.';
-        for (int i = -1; i > e10; --i) {
-            p[w++] = '0';
-        }
-        memcpy(p + w, digits, (size_t)nd);
-        w += nd;
-    } else { /* ddd.ddd */
-        for (int i = 0; i < nd || i <= e10; ++i) {
-            if (i == e10 + 1) {
-                p[w++] = '.';
-            }
-            p[w++] = i < nd ? digits[i] : '0';
-        }
-    }
-    return w;
-}
-
-static int put_number(char *p, double v, int digits)
-{
-    const int n = snprintf(p, CELL_MAX, "%.*g", digits, v);
-    return n < 0 ? 0 : (n >= CELL_MAX ? CELL_MAX - 1 : n);
-}
-
-/* Text up to its first NUL, with what would break a CSV cell replaced. */
-static int put_text(char *p, const unsigned char *s, int size)
-{
-    int w = 0;
-    for (int i = 0; i < size && s[i] != 0; ++i) {
-        const unsigned char ch = s[i];
-        p[w++] = (ch < 0x20 || ch > 0x7e || ch == ',' || ch == '"') ? '_' : (char)ch;
-    }
-    return w;
-}
-
-/* The field's value as text: the characters written. */
-static int put_field(char *p, const field_t *f, const unsigned char *m)
-{
-    const unsigned char *v = m + f->offset;
-    uint64_t mag;
-    int neg;
-    switch (f->kind) {
-    case 'f': /* a float times its multiplier: a float's digits */
-        return put_float9(p, f->mult == 1.0 ? get_float(v) : (float)((double)get_float(v) * f->mult));
-    case 'd':
-        return put_number(p, get_double(v) * f->mult, 17);
-    case 'g':
-        return put_float9(p, (float)((double)half_to_float((unsigned)get_le(v, 2)) * f->mult));
-    case 'n':
-    case 'N':
-    case 'Z':
-        return put_text(p, v, f->size);
-    case 'a': {
-        int w = 0;
-        for (int i = 0; i < ARRAY_N; ++i) {
-            if (i > 0) {
-                p[w++] = ',';
-            }
-            get_integer(v + 2 * i, 'h', 2, &mag, &neg);
-            w += put_decimal(p + w, mag, neg, 0);
-        }
-        return w;
-    }
-    default:
-        get_integer(v, f->kind, f->size, &mag, &neg);
-        if (f->mult != 1.0) {
-            return put_number(p, (neg ? -(double)mag : (double)mag) * f->mult, 17);
-        }
-        return put_decimal(p, mag, neg, f->exp10);
-    }
-}
 
 static int fail(decoder_t *d, long long offset, const char *what)
 {
@@ -429,7 +153,7 @@ static int parse_fmt(const unsigned char *m, type_t *t)
     int k = 0, size = HEADER_LEN;
     while (k < MAX_FIELDS && m[9 + k] != 0) {
         const char kind = (char)m[9 + k];
-        const int s = kind_size(kind);
+        const int s = df_kind_size(kind);
         if (s == 0) {
             return -1;
         }
@@ -513,7 +237,7 @@ static void take_fmt(decoder_t *d, const unsigned char *m)
 static void field_text(const type_t *t, int i, const unsigned char *m, char *out, size_t len)
 {
     size_t n = 0;
-    if (i >= 0 && is_text_kind(t->field[i].kind)) {
+    if (i >= 0 && df_is_text_kind(t->field[i].kind)) {
         const unsigned char *s = m + t->field[i].offset;
         while (n + 1 < len && n < t->field[i].size && s[n] != 0) {
             out[n] = (char)s[n];
@@ -527,10 +251,10 @@ static void take_fmtu(decoder_t *d, const unsigned char *m)
 {
     const type_t *u = &d->type[d->fmtu_type];
     const int type_at = find_field(u, "FmtType");
-    if (type_at < 0 || !is_integer_kind(u->field[type_at].kind)) {
+    if (type_at < 0 || !df_is_integer_kind(u->field[type_at].kind)) {
         return;
     }
-    const uint64_t id = get_le(m + u->field[type_at].offset, u->field[type_at].size);
+    const uint64_t id = df_get_le(m + u->field[type_at].offset, u->field[type_at].size);
     if (id >= N_TYPES || !d->type[id].defined || d->type[id].frozen) {
         return;
     }
@@ -548,7 +272,7 @@ static void take_mult(decoder_t *d, const unsigned char *m)
         return;
     }
     const unsigned id = m[u->field[id_at].offset];
-    const double v = get_double(m + u->field[mult_at].offset);
+    const double v = df_get_double(m + u->field[mult_at].offset);
     if (isfinite(v) && v != 0.0) {
         d->mult_of[id] = v;
         d->mult_known[id] = 1;
@@ -575,14 +299,14 @@ static void freeze(decoder_t *d, type_t *t)
         const char *name = t->names + f->name_at;
         f->exp10 = strchr("cCeE", f->kind) != NULL ? -2 : (f->kind == 'L' ? -7 : 0);
         f->mult = 1.0;
-        if (strcmp(name, time_name) == 0 && is_integer_kind(f->kind) && f->exp10 == 0) {
+        if (strcmp(name, time_name) == 0 && df_is_integer_kind(f->kind) && f->exp10 == 0) {
             t->time_field = i;
         }
         if (t->has_fmtu && i < (int)strlen(t->unit_ids) && t->unit_ids[i] == '#') {
             t->instance_field = i;
         }
         /* c C e E L carry their scale; the FMTU multiplier restates it */
-        const int own_scale = f->exp10 != 0 || f->kind == 'a' || is_text_kind(f->kind);
+        const int own_scale = f->exp10 != 0 || f->kind == 'a' || df_is_text_kind(f->kind);
         if (!t->has_fmtu || own_scale || names_time_unit(name) || i >= (int)strlen(t->mult_ids)) {
             continue;
         }
@@ -593,7 +317,7 @@ static void freeze(decoder_t *d, type_t *t)
         const double m = d->mult_of[id];
         const double k = floor(log10(fabs(m)) + 0.5);
         const int pow10 = m > 0.0 && fabs(m - pow(10.0, k)) <= POW10_TOL * m && fabs(k) <= 12.0;
-        if (pow10 && is_integer_kind(f->kind)) {
+        if (pow10 && df_is_integer_kind(f->kind)) {
             f->exp10 = (int)k;
         } else {
             f->mult = pow10 ? pow(10.0, k) : m;
@@ -603,7 +327,7 @@ static void freeze(decoder_t *d, type_t *t)
         const int a = find_field(t, "I"), b = find_field(t, "Instance");
         t->instance_field = a >= 0 ? a : b;
     }
-    if (t->instance_field >= 0 && (!is_integer_kind(t->field[t->instance_field].kind) ||
+    if (t->instance_field >= 0 && (!df_is_integer_kind(t->field[t->instance_field].kind) ||
                                    t->field[t->instance_field].exp10 != 0 || t->field[t->instance_field].mult != 1.0)) {
         t->instance_field = -1;
     }
@@ -617,7 +341,7 @@ static int write_header(decoder_t *d, const type_t *t, FILE *f)
     for (int i = 0; i < t->n_fields; ++i) {
         const char *name = t->names + t->field[i].name_at;
         if (t->field[i].kind == 'a') {
-            for (int k = 0; k < ARRAY_N; ++k) {
+            for (int k = 0; k < DF_ARRAY_N; ++k) {
                 p += sprintf(p, "%s%s[%d]", (i > 0 || k > 0) ? "," : "", name, k);
             }
         } else {
@@ -676,7 +400,7 @@ static int write_row(decoder_t *d, int id, const unsigned char *m, long long off
         uint64_t mag;
         int neg;
         const field_t *f = &t->field[t->instance_field];
-        get_integer(m + f->offset, f->kind, f->size, &mag, &neg);
+        df_get_integer(m + f->offset, f->kind, f->size, &mag, &neg);
         if (neg || mag >= N_INSTANCES) {
             ++d->st->rows_bad_instance;
             return 0;
@@ -692,7 +416,7 @@ static int write_row(decoder_t *d, int id, const unsigned char *m, long long off
         const field_t *f = &t->field[t->time_field];
         uint64_t mag;
         int neg;
-        get_integer(m + f->offset, f->kind, f->size, &mag, &neg);
+        df_get_integer(m + f->offset, f->kind, f->size, &mag, &neg);
         const long long time = neg ? -(long long)(mag > (uint64_t)LLONG_MAX ? (uint64_t)LLONG_MAX : mag)
                                    : (long long)(mag > (uint64_t)LLONG_MAX ? (uint64_t)LLONG_MAX : mag);
         if (o->has_rows && time <= o->last_time) {
@@ -707,7 +431,7 @@ static int write_row(decoder_t *d, int id, const unsigned char *m, long long off
         if (i > 0) {
             *p++ = ',';
         }
-        p += put_field(p, &t->field[i], m);
+        p += df_put_field(p, &t->field[i], m);
     }
     *p++ = '\n';
     if (fwrite(d->line, 1, (size_t)(p - d->line), o->f) != (size_t)(p - d->line)) {
