@@ -124,6 +124,13 @@ static int find_field(const type_t *t, const char *name)
     return -1;
 }
 
+/* The column that times the type's rows: SampleUS for GYR and ACC, written
+ * in bursts, TimeUS for the others. */
+static const char *time_name_of(const type_t *t)
+{
+    return sim_log_ardupilot_sample_timed(t->name) ? "SampleUS" : "TimeUS";
+}
+
 static int is_wanted(const decoder_t *d, const char *name)
 {
     if (d->topics == NULL || d->n_topics <= 0) {
@@ -188,7 +195,9 @@ static int parse_fmt(const unsigned char *m, type_t *t)
     if (f + 1 != k || at == t->field[f].name_at) {
         return -1;
     }
-    return 0;
+    /* the time column, where there is one, a plain integer (us) */
+    const int time_at = find_field(t, time_name_of(t));
+    return time_at >= 0 && strchr("bBhHiIqQM", t->field[time_at].kind) == NULL ? -1 : 0;
 }
 
 static int same_definition(const type_t *a, const type_t *b)
@@ -289,8 +298,7 @@ static int names_time_unit(const char *name)
 /* Each field's conversion, the time and instance fields: at the type's first row. */
 static void freeze(decoder_t *d, type_t *t)
 {
-    /* GYR and ACC are written in bursts: their sample's time orders them */
-    const char *time_name = sim_log_ardupilot_sample_timed(t->name) ? "SampleUS" : "TimeUS";
+    const char *time_name = time_name_of(t);
     t->frozen = 1;
     t->time_field = -1;
     t->instance_field = -1;
@@ -299,7 +307,7 @@ static void freeze(decoder_t *d, type_t *t)
         const char *name = t->names + f->name_at;
         f->exp10 = strchr("cCeE", f->kind) != NULL ? -2 : (f->kind == 'L' ? -7 : 0);
         f->mult = 1.0;
-        if (strcmp(name, time_name) == 0 && df_is_integer_kind(f->kind) && f->exp10 == 0) {
+        if (strcmp(name, time_name) == 0) { /* a plain integer (parse_fmt) */
             t->time_field = i;
         }
         if (t->has_fmtu && i < (int)strlen(t->unit_ids) && t->unit_ids[i] == '#') {

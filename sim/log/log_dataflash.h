@@ -32,9 +32,10 @@
  * Damage is handled as ArduPilot's tools do: a byte that does not start a
  * known message is skipped until the next 0xA3 0x95 of a defined type, and
  * the bytes skipped are counted; a log cut inside a message is decoded up
- * to the cut. An FMT whose fields do not add up to its length, whose name
- * is not letters and digits, or that redefines a type after its rows, is
- * not used (counted). Refused, nothing written: a file that cannot be read,
+ * to the cut. An FMT whose fields overrun its length, whose name is not
+ * letters and digits, whose TimeUS (GYR, ACC: SampleUS) is not a plain
+ * integer, or that redefines a type after its rows, is not used (counted).
+ * Refused, nothing written: a file that cannot be read,
  * no FMT message in it, more than SIM_LOG_DATAFLASH_MAX_FILES outputs, a
  * write error.
  */

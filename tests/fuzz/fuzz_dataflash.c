@@ -6,9 +6,9 @@
  * - a refused input has its error at an offset ("offset N: ...", N within
  *   the input) and leaves no file behind;
  * - an accepted one wrote as many CSVs as it counts, each with a header and
- *   rows of as many cells, and a TimeUS column (where there is one) whose
- *   values increase strictly; the bytes skipped and the cut lie within the
- *   input.
+ *   rows of as many cells, and a TimeUS column (GYR, ACC: SampleUS; where
+ *   there is one) whose values increase strictly; the bytes skipped and the
+ *   cut lie within the input.
  */
 #define _POSIX_C_SOURCE 200809L /* fmemopen, mkdtemp, opendir */
 #include "fuzz.h"
@@ -37,14 +37,16 @@ static int cells_of(const char *line)
     return n;
 }
 
-/* The header's cells and the TimeUS column's index (-1: none). */
-static int header_of(const char *line, int *time_col)
+/* The header's cells and the index of the column that times the rows
+ * (-1: none): SampleUS for GYR and ACC, TimeUS for the others. */
+static int header_of(const char *line, const char *time_name, int *time_col)
 {
     *time_col = -1;
     int col = 0;
+    const size_t k = strlen(time_name);
     for (const char *p = line;; ++col) {
         const size_t n = strcspn(p, ",\n");
-        if (n == 6 && strncmp(p, "TimeUS", 6) == 0) {
+        if (n == k && strncmp(p, time_name, k) == 0) {
             *time_col = col;
         }
         if (p[n] != ',') {
@@ -63,14 +65,15 @@ static long long cell_value(const char *line, int col)
     return strtoll(p, NULL, 10);
 }
 
-static void check_csv(const char *path)
+static void check_csv(const char *path, const char *file)
 {
     static char line[1 << 16];
     FILE *f = fopen(path, "r");
     FUZZ_CHECK(f != NULL, "cannot read %s", path);
     FUZZ_CHECK(fgets(line, sizeof line, f) != NULL, "%s: no header", path);
     int time_col;
-    const int cells = header_of(line, &time_col);
+    const int sampled = strncmp(file, "log_GYR_", 8) == 0 || strncmp(file, "log_ACC_", 8) == 0;
+    const int cells = header_of(line, sampled ? "SampleUS" : "TimeUS", &time_col);
     long long prev = 0, rows = 0;
     while (fgets(line, sizeof line, f) != NULL) {
         FUZZ_CHECK(strchr(line, '\n') != NULL, "%s: row %lld unended or too long", path, rows + 1);
@@ -99,7 +102,7 @@ static int sweep(int check)
         }
         snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
         if (check) {
-            check_csv(path);
+            check_csv(path, e->d_name);
         }
         remove(path);
         ++n;
