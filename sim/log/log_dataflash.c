@@ -172,8 +172,11 @@ static int parse_fmt(const unsigned char *m, type_t *t)
         ++k;
     }
     t->n_fields = k;
-    if (n == 0 || k == 0 || size > t->length) { /* bytes past the fields: framed, not read (Copter 3.x's BAR3) */
+    if (n == 0 || size > t->length) { /* bytes past the fields: framed, not read (Copter 3.x's BAR3) */
         return -1;
+    }
+    if (k == 0) { /* Copter 3.2's STRT: frames its messages, writes nothing */
+        return m[25] == 0 ? 0 : -1;
     }
     /* the names: k of them, comma separated, printable */
     int f = 0, at = 0;
@@ -194,6 +197,11 @@ static int parse_fmt(const unsigned char *m, type_t *t)
     }
     if (f + 1 != k || at == t->field[f].name_at) {
         return -1;
+    }
+    for (int i = 0; i < k; ++i) { /* each name once: one column is the time */
+        if (find_field(t, t->names + t->field[i].name_at) != i) {
+            return -1;
+        }
     }
     /* the time column, where there is one, a plain integer (us) */
     const int time_at = find_field(t, time_name_of(t));
@@ -463,7 +471,7 @@ static int take_message(decoder_t *d, int id, const unsigned char *m, long long 
     } else if (id == d->mult_type) {
         take_mult(d, m);
     }
-    return d->type[id].wanted ? write_row(d, id, m, offset) : 0;
+    return d->type[id].wanted && d->type[id].n_fields > 0 ? write_row(d, id, m, offset) : 0;
 }
 
 static void skip_byte(decoder_t *d, long long offset)

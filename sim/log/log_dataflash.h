@@ -33,8 +33,10 @@
  * known message is skipped until the next 0xA3 0x95 of a defined type, and
  * the bytes skipped are counted; a log cut inside a message is decoded up
  * to the cut. An FMT whose fields overrun its length, whose name is not
- * letters and digits, whose TimeUS (GYR, ACC: SampleUS) is not a plain
- * integer, or that redefines a type after its rows, is not used (counted).
+ * letters and digits, that names a column twice, whose TimeUS (GYR, ACC:
+ * SampleUS) is not a plain integer, or that redefines a type after its
+ * rows, is not used (counted). A type of no fields frames its messages and
+ * writes nothing.
  * Refused, nothing written: a file that cannot be read,
  * no FMT message in it, more than SIM_LOG_DATAFLASH_MAX_FILES outputs, a
  * write error.

@@ -476,6 +476,9 @@ static void test_bad_fmts_are_not_used(void)
     fmt(45, 15, "MULT", "Qf", "TimeUS,V");   /* a name of another type */
     fmt(46, 23, "BADT", "Nf", "TimeUS,V");   /* a time that is text */
     fmt(47, 9, "BADE", "cf", "TimeUS,V");    /* a time in hundredths */
+    fmt(48, 15, "BADN", "Qf", "V,V");        /* a name twice */
+    fmt(49, 3, "STRT", "", "");              /* no fields: framed, nothing written */
+    header(49);
     header(40);
     put_le(5, 8);
     put_f32(2.0f);
@@ -484,7 +487,9 @@ static void test_bad_fmts_are_not_used(void)
     put_le(5, 8);
     sim_log_dataflash_stats_t st;
     decode_all(&st);
-    TEST_ASSERT_EQUAL_INT(7, st.bad_fmts);
+    TEST_ASSERT_EQUAL_INT(8, st.bad_fmts);
+    TEST_ASSERT_EQUAL_LL(1, st.type_count[49]);
+    TEST_ASSERT_EQUAL_INT(-1, count_lines("STRT_0"));
     TEST_ASSERT_EQUAL_LL(3 + 8, st.skipped_bytes); /* the message of undefined type 41 */
     char line[256];
     read_line("BADL_0", 2, line, sizeof line);
