@@ -708,6 +708,10 @@ static void test_a_log_without_the_command_is_refused_naming_its_bit(void)
 
 static void test_the_base_and_the_types_to_decode(void)
 {
+    TEST_ASSERT_EQUAL_INT(SIM_LOG_ARDUPILOT, sim_log_format_parse("ardupilot"));
+    TEST_ASSERT_EQUAL_STRING("ardupilot", sim_log_format_name(SIM_LOG_ARDUPILOT));
+    TEST_ASSERT_TRUE(sim_log_format_has_topics(SIM_LOG_ARDUPILOT) && sim_log_format_has_topics(SIM_LOG_PX4));
+    TEST_ASSERT_FALSE(sim_log_format_has_topics(SIM_LOG_BETAFLIGHT) || sim_log_format_has_topics(SIM_LOG_GENERIC));
     char b[128];
     sim_log_ardupilot_base("d/LOG_IMU_0.csv", b, sizeof b);
     TEST_ASSERT_EQUAL_STRING("d/LOG", b);
