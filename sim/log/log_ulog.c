@@ -263,9 +263,21 @@ static int find_out(decoder_t *d, int topic, int multi_id, long long offset)
         free(o->row);
         return fail_at(d, offset, "out of memory");
     }
-    snprintf(o->path, base + t->len + 16, "%s_%s_%d.csv", d->out_base, t->name, multi_id);
-    for (char *p = o->path + base + 1; *p != '\0'; ++p) {
-        *p = *p == '/' ? '_' : *p; /* as ulog2csv: a topic's '/' is no folder */
+    memcpy(o->path, d->out_base, base);
+    o->path[base] = '_';
+    for (size_t i = 0; i < t->len; ++i) { /* as ulog2csv: a topic's '/' is no folder; nor NUL or control bytes */
+        const unsigned char c = (unsigned char)t->name[i];
+        o->path[base + 1 + i] = (c == '/' || c < 0x20 || c == 0x7f) ? '_' : (char)c;
+    }
+    snprintf(o->path + base + 1 + t->len, 16, "_%d.csv", multi_id);
+    for (int i = 0; i < d->n_out; ++i) {
+        if (strcmp(d->out[i].path, o->path) == 0) {
+            free(o->path);
+            free(o->row);
+            snprintf(d->msg, sizeof d->msg, "topics '%.*s' and '%.*s' would write one file",
+                     (int)(t->len > SHOWN ? SHOWN : t->len), t->name, SHOWN, d->topic[d->out[i].topic].name);
+            return fail_at(d, offset, d->msg);
+        }
     }
     return d->n_out++;
 }

@@ -179,13 +179,18 @@ static int add_column(walk_t *w, sim_ulog_type_t type, uint16_t count, int is_ti
     return 0;
 }
 
-/* The prefix extended by text (its length restored by the caller). */
+/* The prefix extended by text (its length restored by the caller); a
+ * comma or a control byte, which would break the header's cells, written
+ * '?'. */
 static int push_name(walk_t *w, const char *text, size_t n)
 {
     if (w->name_len + n >= sizeof w->name) {
         return fail(w->msg, w->msg_len, "a field name longer than 1023 bytes: '%.*s'", w->name, w->name_len);
     }
-    memcpy(w->name + w->name_len, text, n);
+    for (size_t i = 0; i < n; ++i) {
+        const unsigned char c = (unsigned char)text[i];
+        w->name[w->name_len + i] = (c < 0x20 || c == 0x7f || c == ',') ? '?' : (char)c;
+    }
     w->name_len += n;
     w->name[w->name_len] = '\0';
     return 0;
