@@ -17,12 +17,15 @@
 #define MSG_HEADER 3      /* uint16_t msg_size, uint8_t msg_type */
 #define FLAG_BITS_MIN 40u /* compat[8], incompat[8], appended_offsets[3] */
 #define APPENDED_MAX 3
-#define READ_CHUNK (1u << 20)                                  /* bytes read at once */
-#define READ_CAP (READ_CHUNK + 65535u + MSG_HEADER)            /* a chunk and one whole message */
-#define PROGRESS_EVERY (4LL << 20)                             /* bytes between progress calls */
-#define OUT_BUFFER 32768                                       /* each CSV's stdio buffer */
-#define SUB_NONE 0                                             /* msg_id: no subscription */
-#define SUB_FILTERED (-1)                                      /* subscribed, a topic not asked for */
+#define READ_CHUNK (1u << 20)                       /* bytes read at once */
+#define READ_CAP (READ_CHUNK + 65535u + MSG_HEADER) /* a chunk and one whole message */
+#define PROGRESS_EVERY (4LL << 20)                  /* bytes between progress calls */
+#define OUT_BUFFER 32768                            /* each CSV's stdio buffer */
+#define SUB_NONE 0                                  /* msg_id: no subscription */
+#define SUB_FILTERED (-1)                           /* subscribed, a topic not asked for */
+/* Columns of every topic read: PX4 logs have some 20,000 in all; the
+ * bound keeps a hostile log's layouts to some 8 MB. */
+#define COLUMNS_MAX 1000000
 #define SHOWN 60                                               /* characters of a name quoted */
 #define PATH_MAX_LEN (SIM_LOG_PATH_LEN + 4 * SIM_LOG_PATH_LEN) /* an output file's path */
 
@@ -143,8 +146,7 @@ typedef struct {
     int topic;
     int multi_id;
     char *path;
-    FILE *f;   /* NULL until its first row */
-    char *row; /* the row's text */
+    FILE *f; /* NULL until its first row */
     long long rows;
     uint64_t last_us; /* the last row's timestamp */
     uint64_t ts_high; /* narrow timestamps: the wraps so far, in the field's unit */
@@ -164,7 +166,10 @@ typedef struct {
     int n_topic, cap_topic;
     out_t *out;
     int n_out, cap_out;
-    int *sub; /* by msg_id: SUB_NONE, SUB_FILTERED, or the out's index + 1 */
+    int *sub;  /* by msg_id: SUB_NONE, SUB_FILTERED, or the out's index + 1 */
+    char *row; /* a row's text, room for the longest of the topics' */
+    size_t row_cap;
+    long long columns; /* of every topic's layout */
     long long appended[APPENDED_MAX];
     int n_appended, next_appended;
     sim_log_ulog_stats_t *st;
@@ -223,6 +228,22 @@ static int find_topic(decoder_t *d, const unsigned char *name, size_t len, long 
         snprintf(d->msg, sizeof d->msg, "topic '%.*s': %s", (int)(len > SHOWN ? SHOWN : len), (const char *)name, why);
         return fail_at(d, offset, d->msg);
     }
+    d->columns += t->layout.n_col;
+    if (d->columns > COLUMNS_MAX) {
+        sim_ulog_layout_free(&t->layout);
+        snprintf(d->msg, sizeof d->msg, "the topics read have more than %d columns", COLUMNS_MAX);
+        return fail_at(d, offset, d->msg);
+    }
+    const size_t row_cap = t->layout.row_max + SIM_NUMFMT_MAX; /* a number's text may run past row_max */
+    if (row_cap > d->row_cap) {
+        char *row = realloc(d->row, row_cap);
+        if (row == NULL) {
+            sim_ulog_layout_free(&t->layout);
+            return fail_at(d, offset, "out of memory");
+        }
+        d->row = row;
+        d->row_cap = row_cap;
+    }
     t->name = malloc(len + 1);
     if (t->name == NULL) {
         sim_ulog_layout_free(&t->layout);
@@ -257,10 +278,7 @@ static int find_out(decoder_t *d, int topic, int multi_id, long long offset)
         return fail_at(d, offset, d->msg);
     }
     o->path = malloc(base + t->len + 16);
-    o->row = malloc(t->layout.row_max + SIM_NUMFMT_MAX);
-    if (o->path == NULL || o->row == NULL) {
-        free(o->path);
-        free(o->row);
+    if (o->path == NULL) {
         return fail_at(d, offset, "out of memory");
     }
     memcpy(o->path, d->out_base, base);
@@ -273,7 +291,6 @@ static int find_out(decoder_t *d, int topic, int multi_id, long long offset)
     for (int i = 0; i < d->n_out; ++i) {
         if (strcmp(d->out[i].path, o->path) == 0) {
             free(o->path);
-            free(o->row);
             snprintf(d->msg, sizeof d->msg, "topics '%.*s' and '%.*s' would write one file",
                      (int)(t->len > SHOWN ? SHOWN : t->len), t->name, SHOWN, d->topic[d->out[i].topic].name);
             return fail_at(d, offset, d->msg);
@@ -469,14 +486,14 @@ static int data(decoder_t *d, const unsigned char *p, size_t size, long long off
     if (o->f == NULL && open_out(d, o) != 0) {
         return -1;
     }
-    char *s = write_u64(o->row, t_us);
+    char *s = write_u64(d->row, t_us);
     for (int c = 1; c < l->n_col; ++c) {
         *s++ = ',';
         s = write_cell(s, &l->col[c], v);
     }
     *s++ = '\n';
-    const size_t len = (size_t)(s - o->row);
-    if (fwrite(o->row, 1, len, o->f) != len) {
+    const size_t len = (size_t)(s - d->row);
+    if (fwrite(d->row, 1, len, o->f) != len) {
         return sim_log_fail(d->err, o->path, 0, 0, "cannot write: %s", strerror(errno));
     }
     o->last_us = t_us;
@@ -660,8 +677,8 @@ static int finish(decoder_t *d, int rc)
             (void)remove(d->out[i].path);
         }
         free(d->out[i].path);
-        free(d->out[i].row);
     }
+    free(d->row);
     for (int i = 0; i < d->n_topic; ++i) {
         free(d->topic[i].name);
         sim_ulog_layout_free(&d->topic[i].layout);
