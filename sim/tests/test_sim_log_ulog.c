@@ -835,6 +835,142 @@ static void test_px4_without_a_command(void)
     free(x.b);
 }
 
+/* The formats of PX4 v1.15 (as its logger writes them; nested esc_report,
+ * padding in the middle and at the ends), every topic of the preset at
+ * 1 kHz: the setpoints, the throttle, the motors and the rotor speeds. */
+static void v1_15_log(bytes_t *x)
+{
+    ulog_header(x);
+    flag_bits(x, 0, 0, 0);
+    text_message(x, 'F', GYRO_FORMAT);
+    text_message(x, 'F',
+                 "vehicle_attitude:uint64_t timestamp;uint64_t timestamp_sample;float[4] q;"
+                 "float[4] delta_q_reset;uint8_t quat_reset_counter;uint8_t[7] _padding0;");
+    text_message(x, 'F',
+                 "vehicle_torque_setpoint:uint64_t timestamp;uint64_t timestamp_sample;float[3] xyz;"
+                 "uint8_t[4] _padding0;");
+    text_message(x, 'F',
+                 "vehicle_rates_setpoint:uint64_t timestamp;float roll;float pitch;float yaw;"
+                 "float[3] thrust_body;bool reset_integral;uint8_t[7] _padding0;");
+    text_message(x, 'F',
+                 "vehicle_attitude_setpoint:uint64_t timestamp;float roll_body;float pitch_body;"
+                 "float yaw_body;float yaw_sp_move_rate;float[4] q_d;float[3] thrust_body;bool reset_integral;"
+                 "bool fw_control_yaw_wheel;uint8_t[2] _padding0;");
+    text_message(x, 'F',
+                 "actuator_motors:uint64_t timestamp;uint64_t timestamp_sample;float[12] control;"
+                 "uint16_t reversible_flags;uint8_t[6] _padding0;");
+    text_message(x, 'F',
+                 "esc_report:uint64_t timestamp;uint32_t esc_errorcount;int32_t esc_rpm;float esc_voltage;"
+                 "float esc_current;float esc_temperature;uint16_t failures;uint8_t esc_address;"
+                 "uint8_t esc_cmdcount;uint8_t esc_state;uint8_t actuator_function;int8_t esc_power;"
+                 "uint8_t[5] _padding0;");
+    text_message(x, 'F',
+                 "esc_status:uint64_t timestamp;uint16_t counter;uint8_t esc_count;"
+                 "uint8_t esc_connectiontype;uint8_t esc_online_flags;uint8_t esc_armed_flags;"
+                 "uint8_t[2] _padding0;esc_report[8] esc;");
+    static const char *const NAMES[] = {"vehicle_angular_velocity", "vehicle_attitude", "vehicle_torque_setpoint",
+                                        "vehicle_rates_setpoint",   "actuator_motors",  "esc_status",
+                                        "vehicle_attitude_setpoint"};
+    for (int i = 0; i < 7; ++i) {
+        add_logged(x, 0, i, NAMES[i]);
+    }
+    bytes_t d = {0};
+    for (int k = 0; k < PX4_ROWS; ++k) {
+        const uint64_t t = PX4_T0_US + 1000u * (unsigned)k;
+        gyro_row(x, 0, t, gyro_value(0, k), gyro_value(1, k), gyro_value(2, k));
+        d.n = 0;
+        put_le(&d, t, 8);
+        put_le(&d, t, 8);
+        put_f32(&d, 1.0f);
+        put_le(&d, 0, 12);
+        put_le(&d, 0, 17); /* delta_q_reset, the counter; the trailing padding not logged */
+        data(x, 1, &d);
+        d.n = 0;
+        put_le(&d, t, 8);
+        put_le(&d, t, 8);
+        for (int i = 0; i < 3; ++i) {
+            put_f32(&d, control_value(i, k));
+        }
+        data(x, 2, &d);
+        d.n = 0;
+        put_le(&d, t, 8);
+        for (int i = 0; i < 3; ++i) {
+            put_f32(&d, 3.0f * control_value(i, k)); /* roll, pitch, yaw rates */
+        }
+        put_le(&d, 0, 13); /* thrust_body, reset_integral */
+        data(x, 3, &d);
+        d.n = 0;
+        put_le(&d, t, 8);
+        put_le(&d, t, 8);
+        for (int q = 0; q < 12; ++q) {
+            put_f32(&d, q < 4 ? 0.5f + 0.01f * (float)q : NAN); /* four motors: nan for the others */
+        }
+        put_le(&d, 0, 2);
+        data(x, 4, &d);
+        d.n = 0;
+        put_le(&d, t, 8);
+        put_le(&d, (uint64_t)k, 2);
+        put_le(&d, 4, 1);
+        put_le(&d, 0, 5);
+        for (int q = 0; q < 8; ++q) {
+            put_le(&d, t, 8);
+            put_le(&d, 0, 4);
+            put_le(&d, (uint32_t)(6000 + 600 * q + k), 4); /* rpm */
+            put_f32(&d, 16.0f);
+            put_le(&d, 0, 20);
+        }
+        data(x, 5, &d);
+        d.n = 0;
+        put_le(&d, t, 8);
+        put_le(&d, 0, 16);
+        put_f32(&d, (float)cos(0.001 * k)); /* q_d: a turn about y */
+        put_f32(&d, 0.0f);
+        put_f32(&d, (float)sin(0.001 * k));
+        put_f32(&d, 0.0f);
+        put_f32(&d, 0.0f);
+        put_f32(&d, 0.0f);
+        put_f32(&d, -0.25f - 0.001f * (float)k); /* thrust along -z */
+        put_le(&d, 0, 2);
+        data(x, 6, &d);
+    }
+    free(d.b);
+}
+
+/* The preset's column names on PX4 v1.15's formats: the setpoints, the
+ * throttle, the motors and esc[i].esc_rpm through the nested array. */
+static void test_px4_v1_15_formats(void)
+{
+    bytes_t x = {0};
+    v1_15_log(&x);
+    decode_px4(&x);
+    sim_log_error_t err;
+    sim_log_t *log = open_px4(in_path, &err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(log, err.message);
+    TEST_ASSERT_EQUAL_UINT(SIM_LOG_HAS_GYRO | SIM_LOG_HAS_ANGLE | SIM_LOG_HAS_COMMAND | SIM_LOG_HAS_REF_ANGLE |
+                               SIM_LOG_HAS_REF_RATE | SIM_LOG_HAS_THROTTLE | SIM_LOG_HAS_MOTOR | SIM_LOG_HAS_ROTOR_HZ,
+                           sim_log_has(log));
+    sim_log_sample_t s;
+    int k = 0;
+    while (sim_log_next(log, &s, &err) == 1) {
+        for (int i = 0; i < 3; ++i) {
+            assert_float_text(control_value(i, k), s.command[i]);
+            assert_float_text(3.0f * control_value(i, k), s.ref_rate_rad_s[i]);
+        }
+        assert_float_text(0.25f + 0.001f * (float)k, s.throttle);
+        TEST_ASSERT_TRUE(fabs(s.ref_angle_rad[1] - 0.002 * k) <= 1e-6); /* to the floats' rounding */
+        TEST_ASSERT_EQUAL_INT(SIM_LOG_MAX_MOTORS, s.n_motors);          /* the rotor speeds of all eight */
+        for (int q = 0; q < SIM_LOG_MAX_MOTORS; ++q) {
+            /* the preset's 1/60 is written 0.0166666667: 2e-9 relative */
+            TEST_ASSERT_TRUE(fabs(s.rotor_hz[q] - (6000.0 + 600.0 * q + k) / 60.0) <= 3e-9 * s.rotor_hz[q]);
+            TEST_ASSERT_TRUE(q < 4 ? fabs(s.motor[q] - (0.5 + 0.01 * q)) <= 1e-7 : isnan(s.motor[q]));
+        }
+        ++k;
+    }
+    TEST_ASSERT_EQUAL_INT(PX4_ROWS, k);
+    sim_log_close(log);
+    free(x.b);
+}
+
 /* The topics a decoder is asked for: the preset's, their fallbacks, the
  * caller's; a caller's item drops the fallback of its field. */
 static void test_px4_topics(void)
@@ -878,6 +1014,7 @@ int main(void)
     RUN_TEST(test_px4_before_v1_13);
     RUN_TEST(test_px4_torque_setpoint_first);
     RUN_TEST(test_px4_without_a_command);
+    RUN_TEST(test_px4_v1_15_formats);
     RUN_TEST(test_px4_topics);
     return UNITY_END();
 }
