@@ -522,7 +522,11 @@ static int flag_bits(decoder_t *d, const unsigned char *p, size_t size, long lon
         for (int i = 0; i < APPENDED_MAX; ++i) {
             const uint64_t a = le64(p + 16 + 8 * i);
             if (a > 0 && a < (uint64_t)1 << 62) {
-                d->appended[d->n_appended++] = (long long)a;
+                int j = d->n_appended++; /* kept ascending: they are reached in order */
+                for (; j > 0 && d->appended[j - 1] > (long long)a; --j) {
+                    d->appended[j] = d->appended[j - 1];
+                }
+                d->appended[j] = (long long)a;
             }
         }
     }
@@ -780,12 +784,13 @@ int sim_log_ulog_stats_describe(const sim_log_ulog_stats_t *st, char *buf, size_
         note(buf, len, &n, t);
     }
     if (st->dropouts > 0) {
-        snprintf(t, sizeof t, "%lld dropouts (%lld ms lost)", st->dropouts, st->dropout_ms);
+        snprintf(t, sizeof t, "%lld dropout%s (%lld ms lost)", st->dropouts, st->dropouts == 1 ? "" : "s",
+                 st->dropout_ms);
         note(buf, len, &n, t);
     }
     if (st->resyncs > 0) {
-        snprintf(t, sizeof t, "%lld corrupt headers: %lld bytes passed to the next sync message", st->resyncs,
-                 st->resync_bytes);
+        snprintf(t, sizeof t, "%lld corrupt header%s: %lld bytes passed to the next sync message", st->resyncs,
+                 st->resyncs == 1 ? "" : "s", st->resync_bytes);
         note(buf, len, &n, t);
     }
     if (st->data_bad_size + st->data_no_subscription > 0) {
@@ -796,11 +801,12 @@ int sim_log_ulog_stats_describe(const sim_log_ulog_stats_t *st, char *buf, size_
         note(buf, len, &n, t);
     }
     if (st->out_of_order > 0) {
-        snprintf(t, sizeof t, "%lld rows whose timestamp did not increase skipped", st->out_of_order);
+        snprintf(t, sizeof t, "%lld row%s whose timestamp did not increase skipped", st->out_of_order,
+                 st->out_of_order == 1 ? "" : "s");
         note(buf, len, &n, t);
     }
     if (st->unknown > 0) {
-        snprintf(t, sizeof t, "%lld messages of unknown types skipped", st->unknown);
+        snprintf(t, sizeof t, "%lld message%s of unknown types skipped", st->unknown, st->unknown == 1 ? "" : "s");
         note(buf, len, &n, t);
     }
     if (st->appended_cut_bytes > 0) {
