@@ -349,6 +349,14 @@ static void test_every_field_kind(void)
     free(x.b);
 }
 
+static void note_progress(void *ctx, long long done, long long total)
+{
+    long long *seen = ctx;
+    TEST_ASSERT_TRUE(done >= seen[0] && done <= total); /* never back, never past the end */
+    seen[0] = done;
+    seen[1] = total;
+}
+
 /* Only the topics asked for; one subscribed but never logged has no file;
  * a '/' in a topic's name is no folder. */
 static void test_the_topics_asked_for(void)
@@ -376,7 +384,10 @@ static void test_the_topics_asked_for(void)
     TEST_ASSERT_EQUAL_INT(1, csv_files());
     TEST_ASSERT_NOT_NULL(read_csv("a_b_0.csv"));
     TEST_ASSERT_TRUE(st.rows == 5 && st.files == 1 && st.data_no_subscription == 0);
-    TEST_ASSERT_EQUAL_INT_MESSAGE(0, decode(&x, NULL, 0, &st, &err), err.message);
+    long long seen[2] = {-1, -1}; /* the last progress: done, total */
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_log_ulog_to_csv(in_path, base, NULL, 0, note_progress, seen, &err),
+                                  err.message);
+    TEST_ASSERT_TRUE(seen[0] == (long long)x.n && seen[1] == (long long)x.n); /* the whole log, its size known */
     TEST_ASSERT_EQUAL_INT(2, csv_files());
     TEST_ASSERT_EQUAL_STRING("timestamp,timestamp_sample,xyz[0],xyz[1],xyz[2]\n"
                              "1000,900,0,0,0\n2000,1900,1,0,0\n3000,2900,2,0,0\n4000,3900,3,0,0\n5000,4900,4,0,0\n",
