@@ -17,12 +17,12 @@
 #define MSG_HEADER 3      /* uint16_t msg_size, uint8_t msg_type */
 #define FLAG_BITS_MIN 40u /* compat[8], incompat[8], appended_offsets[3] */
 #define APPENDED_MAX 3
-#define READ_CHUNK (1u << 20)                       /* bytes read at once */
-#define READ_CAP (READ_CHUNK + 65535u + MSG_HEADER) /* a chunk and one whole message */
-#define PROGRESS_EVERY (4LL << 20)                  /* bytes between progress calls */
-#define OUT_BUFFER 32768                            /* each CSV's stdio buffer */
-#define SUB_NONE 0                                  /* msg_id: no subscription */
-#define SUB_FILTERED (-1)                           /* subscribed, a topic not asked for */
+#define READ_CHUNK (1u << 20)         /* bytes read at once (fewer for a smaller log) */
+#define MSG_MAX (65535u + MSG_HEADER) /* a whole message */
+#define PROGRESS_EVERY (4LL << 20)    /* bytes between progress calls */
+#define OUT_BUFFER 32768              /* each CSV's stdio buffer */
+#define SUB_NONE 0                    /* msg_id: no subscription */
+#define SUB_FILTERED (-1)             /* subscribed, a topic not asked for */
 /* Columns of every topic read: PX4 logs have some 20,000 in all; the
  * bound keeps a hostile log's layouts to some 8 MB. */
 #define COLUMNS_MAX 1000000
@@ -53,6 +53,7 @@ static uint64_t le64(const unsigned char *p)
 typedef struct {
     FILE *f;
     unsigned char *buf;
+    size_t chunk, cap; /* read at once; held: a chunk and a whole message */
     size_t start, end;
     long long base;
     int eof, error;
@@ -63,7 +64,7 @@ static long long reader_pos(const reader_t *r)
     return r->base + (long long)r->start;
 }
 
-/* At least n (<= READ_CAP) bytes at the cursor: 1; 0 when the log ends first. */
+/* At least n (<= the chunk or a message) bytes at the cursor: 1; 0 when the log ends first. */
 static int reader_fill(reader_t *r, size_t n)
 {
     while (r->end - r->start < n && !r->eof) {
@@ -73,7 +74,7 @@ static int reader_fill(reader_t *r, size_t n)
             r->end -= r->start;
             r->start = 0;
         }
-        const size_t want = READ_CAP - r->end < READ_CHUNK ? READ_CAP - r->end : READ_CHUNK;
+        const size_t want = r->cap - r->end < r->chunk ? r->cap - r->end : r->chunk;
         const size_t got = fread(r->buf + r->end, 1, want, r->f);
         r->end += got;
         if (got < want) {
@@ -126,7 +127,7 @@ static int reader_find_sync(reader_t *r, long long *skipped)
             ++p;
         }
         r->start = r->end - (sizeof SYNC - 1); /* a magic may start in the last 7 bytes */
-        if (!reader_fill(r, READ_CHUNK) && r->end - r->start < sizeof SYNC) {
+        if (!reader_fill(r, r->chunk) && r->end - r->start < sizeof SYNC) {
             r->start = r->end;
             *skipped = reader_pos(r) - from;
             return 0;
@@ -714,7 +715,9 @@ int sim_log_ulog_to_csv_stream(FILE *in, const char *name, long long total_bytes
     d.n_topics = n_topics;
     d.err = err;
     d.r.f = in;
-    d.r.buf = malloc(READ_CAP);
+    d.r.chunk = total_bytes > 0 && total_bytes < (long long)READ_CHUNK ? (size_t)total_bytes : READ_CHUNK;
+    d.r.cap = d.r.chunk + MSG_MAX;
+    d.r.buf = malloc(d.r.cap);
     d.sub = calloc(65536, sizeof *d.sub);
     int rc;
     if (d.r.buf == NULL || d.sub == NULL) {
