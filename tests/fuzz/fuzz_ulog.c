@@ -24,12 +24,18 @@
 
 static char dir[64];
 
+static void remove_dir(void)
+{
+    (void)rmdir(dir); /* emptied after each input */
+}
+
 static void make_dir(void)
 {
     if (dir[0] == '\0') {
         const char *tmp = getenv("TMPDIR");
         snprintf(dir, sizeof dir, "%s/fuzz_ulog.XXXXXX", tmp != NULL && strlen(tmp) < 40 ? tmp : "/tmp");
         FUZZ_CHECK(mkdtemp(dir) != NULL, "mkdtemp %s", dir);
+        atexit(remove_dir);
     }
 }
 
