@@ -23,8 +23,9 @@
 #define OUT_BUFFER 32768              /* each CSV's stdio buffer */
 #define SUB_NONE 0                    /* msg_id: no subscription */
 #define SUB_FILTERED (-1)             /* subscribed, a topic not asked for */
-/* Columns of every topic read: PX4 logs have some 20,000 in all; the
- * bound keeps a hostile log's layouts to some 8 MB. */
+/* Columns of every topic read: PX4 logs have 300 to 2,600 in all (over
+ * every topic of the pyulog samples); the bound keeps a hostile log's
+ * layouts to some 8 MB. */
 #define COLUMNS_MAX 1000000
 #define SHOWN 60                                               /* characters of a name quoted */
 #define PATH_MAX_LEN (SIM_LOG_PATH_LEN + 4 * SIM_LOG_PATH_LEN) /* an output file's path */
