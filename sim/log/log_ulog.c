@@ -787,6 +787,10 @@ int sim_log_ulog_stats_describe(const sim_log_ulog_stats_t *st, char *buf, size_
                  st->end_offset);
         note(buf, len, &n, t);
     }
+    if (st->version > 1) { /* the spec: parse a newer version as well, with a warning */
+        snprintf(t, sizeof t, "ULog version %d, newer than this reader's 1: read as 1", st->version);
+        note(buf, len, &n, t);
+    }
     if (st->dropouts > 0) {
         snprintf(t, sizeof t, "%lld dropout%s (%lld ms lost)", st->dropouts, st->dropouts == 1 ? "" : "s",
                  st->dropout_ms);
