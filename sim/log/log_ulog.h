@@ -18,8 +18,8 @@
  * ms), written in us.
  *
  * What a log has that is not refused, but counted (sim_log_ulog_stats_t,
- * sim_log_ulog_stats_describe): a log cut inside a message (decoded up to
- * it), dropouts, appended data (read as part of the data section; a message
+ * sim_log_ulog_stats_describe): a header's version above 1 (read as 1, as
+ * the spec asks), a log cut inside a message (decoded up to it), dropouts, appended data (read as part of the data section; a message
  * cut by an appended section is dropped), messages of unknown types (skipped
  * by their size), data messages of a size their format does not fit or of no
  * subscription, a corrupt message header (type or size 0: decoding resumes
