@@ -135,8 +135,13 @@ static int decode(sim_log_options_t *o, sim_log_prepared_t *p, sim_log_convert_p
         if (sim_log_px4_topics(o->map, o->n_map, &topics, why, sizeof why) != 0) {
             return sim_log_fail(err, p->original, 0, 0, "%s", why);
         }
-        if (sim_log_ulog_to_csv(p->original, base, topics.list, topics.n, progress, ctx, err) != 0) {
+        sim_log_ulog_stats_t st;
+        if (sim_log_ulog_to_csv_stats(p->original, base, topics.list, topics.n, progress, ctx, &st, err) != 0) {
             return -1;
+        }
+        char notes[sizeof err->message * 2];
+        if (sim_log_ulog_stats_describe(&st, notes, sizeof notes) > 0) { /* a cut, dropouts, skips: said */
+            fprintf(stderr, "%s: %s\n", p->original, notes);
         }
         o->format = SIM_LOG_PX4;
         snprintf(o->path, sizeof o->path, "%s", base);
