@@ -66,7 +66,7 @@ static const preset_item_t PX4[] = {
 /* The same fields from the topics of older PX4 releases, each read when
  * the preset's topic file is missing and its own is there (log_px4.h). */
 static const preset_item_t PX4_FALLBACK[] = {
-    /* before v1.11 vehicle_attitude carried the body rates */
+    /* older releases' vehicle_attitude carried the body rates (v1.6 did, v1.11 does not) */
     {"gyro[0]=vehicle_attitude.rollspeed", 1},
     {"gyro[1]=vehicle_attitude.pitchspeed", 1},
     {"gyro[2]=vehicle_attitude.yawspeed", 1},
