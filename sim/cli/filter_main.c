@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "ladrc/gyro_filter.h"
 #include "ladrc/margins.h"
@@ -20,7 +21,8 @@
 #include "scenario/scenario.h"
 #include "scenario/setup.h"
 
-#define RAD2DEG (180.0 / 3.14159265358979323846)
+#define PI 3.14159265358979323846
+#define RAD2DEG (180.0 / PI)
 /* The crossover the proposal keeps the phase cost at when none is given
  * (rad/s): the simulator's chirp flight's tuned crossovers span 21-34. */
 #define CROSSOVER_DEFAULT_RAD_S 30.0
@@ -47,7 +49,8 @@ static void usage(FILE *out)
           "  --crossover W     the loop crossover (rad/s) the proposal keeps the phase cost at (default 30)\n"
           "  --out FILE.csv    the series: t_s, the input and the filtered gyro per axis (rad/s)\n"
           "Prints per axis the rms in 0-20, 20-100, >100 Hz and the vibration band, before and after,\n"
-          "the attenuation (dB) and the delay (ms); the same for the log's own chain when it has both\n"
+          "the attenuation (dB), the phase at the crossover (deg) and its delay (ms); the same for the log's own chain "
+          "when it has both\n"
           "gyros. Exit status 0; 2 for bad usage or a refused log or stage.\n",
           out);
 }
@@ -203,7 +206,10 @@ static int parse_args(int argc, char **argv, options_t *o)
         return -1;
     }
     if (!format_given) {
-        /* PX4 when a topic file of that name is there, Betaflight when the name says so, else by the header */
+        /* as ladrc_replay tells it: PX4 when a topic file of that name is there, Betaflight when the
+         * header has gyroADC, else generic */
+        char px4[SIM_LOG_PATH_LEN + 64];
+        snprintf(px4, sizeof px4, "%s_vehicle_angular_velocity_0.csv", path);
         FILE *f = fopen(path, "r");
         char line[4096] = "";
         if (f != NULL) {
@@ -211,10 +217,11 @@ static int parse_args(int argc, char **argv, options_t *o)
             }
             fclose(f);
         }
-        o->log.format = strstr(path, "_vehicle_") != NULL || strstr(path, "_sensor_combined_") != NULL || f == NULL
-                            ? SIM_LOG_PX4
-                        : strstr(line, "gyroADC") != NULL ? SIM_LOG_BETAFLIGHT
-                                                          : SIM_LOG_GENERIC;
+        o->log.format =
+            strstr(path, "_vehicle_") != NULL || strstr(path, "_sensor_combined_") != NULL || access(px4, R_OK) == 0
+                ? SIM_LOG_PX4
+            : strstr(line, "gyroADC") != NULL ? SIM_LOG_BETAFLIGHT
+                                              : SIM_LOG_GENERIC;
     }
     return 0;
 }
@@ -246,8 +253,12 @@ static int stage_from_scenario(const char *path, double dt_s, ladrc_gyro_filter_
     return 0;
 }
 
+/* One row: the rms (deg/s) in the bands and the vibration band of `out`;
+ * with `in`, the attenuation from it (dB, vibration band and above 20 Hz)
+ * and the phase cost at the crossover (deg, a lag positive) with the delay
+ * it is (ms). */
 static void print_row(const char *label, const sim_spectrum_t *in, const sim_spectrum_t *out, double lo_hz,
-                      double hi_hz, double delay_ticks, double dt_s, double wc_rad_s)
+                      double hi_hz, double phase_deg, double wc_rad_s)
 {
     printf("  %-16s", label);
     static const double edges[] = {0.0, 20.0, 100.0, INFINITY};
@@ -259,9 +270,9 @@ static void print_row(const char *label, const sim_spectrum_t *in, const sim_spe
         printf("\n");
         return;
     }
-    printf(" %7.1f %7.1f %7.2f %7.1f\n", sim_filter_measured_attenuation_db(in, out, lo_hz, hi_hz),
-           sim_filter_measured_attenuation_db(in, out, LADRC_MARGINS_NOISE_CORNER_HZ, INFINITY),
-           1e3 * delay_ticks * dt_s, wc_rad_s * delay_ticks * dt_s * RAD2DEG);
+    printf(" %7.1f %7.1f %7.1f %8.2f\n", sim_filter_measured_attenuation_db(in, out, lo_hz, hi_hz),
+           sim_filter_measured_attenuation_db(in, out, LADRC_MARGINS_NOISE_CORNER_HZ, INFINITY), phase_deg,
+           1e3 * phase_deg / RAD2DEG / wc_rad_s);
 }
 
 int main(int argc, char **argv)
@@ -272,7 +283,7 @@ int main(int argc, char **argv)
     }
     static sim_log_noise_t n;
     char err[1024];
-    if (sim_log_noise_measure(&o.log, &n, err, sizeof err) != 0) {
+    if (sim_log_noise_measure(&o.log, o.crossover_rad_s, &n, err, sizeof err) != 0) {
         fprintf(stderr, "%s\n", err);
         return 2;
     }
@@ -331,9 +342,10 @@ int main(int argc, char **argv)
         fprintf(csv, "t_s,in_roll_rad_s,in_pitch_rad_s,in_yaw_rad_s,out_roll_rad_s,out_pitch_rad_s,out_yaw_rad_s\n");
     }
     static sim_spectrum_t out_spectrum[3];
-    static sim_lag_t lag[3];
+    static sim_phase_probe_t probe[3];
     for (int i = 0; i < 3; ++i) {
         sim_spectrum_init(&out_spectrum[i], 1.0 / n.dt_s);
+        sim_phase_probe_init(&probe[i], o.crossover_rad_s, n.dt_s);
     }
     sim_log_sample_t s;
     int rc, first = 1;
@@ -357,7 +369,7 @@ int main(int argc, char **argv)
         faults += ladrc_gyro_filter_step(&f, in, out) != LADRC_FAULT_NONE;
         for (int i = 0; i < 3; ++i) {
             sim_spectrum_push(&out_spectrum[i], (double)out[i]);
-            sim_lag_push(&lag[i], (double)in[i], (double)out[i]);
+            sim_phase_probe_push(&probe[i], (double)in[i], (double)out[i]);
         }
         if (csv != NULL) {
             fprintf(csv, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", s.t_s, (double)in[0], (double)in[1], (double)in[2],
@@ -404,19 +416,21 @@ int main(int argc, char **argv)
     if (faults > 0) {
         printf("warning: the stage raised a fault on %lld ticks (a sample or rotor speed not finite)\n", faults);
     }
-    printf("  %-16s %8s %8s %8s %8s %7s %7s %7s %7s\n", "", "0-20Hz", "20-100Hz", ">100Hz", "vib", "att dB", ">20 dB",
-           "delay ms", "deg");
+    printf("  %-16s %8s %8s %8s %8s %7s %7s %7s %8s\n", "", "0-20Hz", "20-100Hz", ">100Hz", "vib", "att dB", ">20 dB",
+           "deg", "delay ms");
+    double gain, phase_rad;
+    sim_filter_response(&cfg, rotor_hz, o.crossover_rad_s / (2.0 * PI), &gain, &phase_rad);
     for (int i = 0; i < 3; ++i) {
-        char label[32];
         printf("%s\n", AXIS[i]);
-        snprintf(label, sizeof label, "input");
-        print_row(label, NULL, &input[i], p.band_lo_hz, p.band_hi_hz, 0.0, n.dt_s, o.crossover_rad_s);
-        print_row("this stage", &input[i], &out_spectrum[i], p.band_lo_hz, p.band_hi_hz, sim_lag_ticks(&lag[i]), n.dt_s,
-                  o.crossover_rad_s);
+        print_row("input", NULL, &input[i], p.band_lo_hz, p.band_hi_hz, NAN, o.crossover_rad_s);
+        print_row("this stage", &input[i], &out_spectrum[i], p.band_lo_hz, p.band_hi_hz,
+                  -sim_phase_probe_rad(&probe[i]) * RAD2DEG, o.crossover_rad_s);
         if (raw) {
             print_row("the log's chain", &n.gyro_raw[i], &n.gyro[i], p.band_lo_hz, p.band_hi_hz,
-                      sim_lag_ticks(&n.chain[i]), n.dt_s, o.crossover_rad_s);
+                      sim_log_noise_chain_phase_deg(&n, i), o.crossover_rad_s);
         }
     }
+    printf("this stage's response at %.3g rad/s: %.1f deg%s (measured above from the streams)\n", o.crossover_rad_s,
+           -phase_rad * RAD2DEG, cfg.rpm_rotors > 0 ? ", RPM notches at the rotors' mean speed" : "");
     return 0;
 }

@@ -41,7 +41,10 @@ int sim_replay_noise_stage(const sim_log_options_t *opt, sim_airframe_t *a, FILE
         snprintf(err, err_len, "%s: out of memory for the noise pass", opt->path);
         return -1;
     }
-    if (sim_log_noise_measure(opt, n, err, err_len) != 0) {
+    const double wc = sim_filter_crossover_estimate(
+        median3(a->axis[0].lag_s, a->axis[1].lag_s, a->axis[2].lag_s),
+        (int)median3(a->axis[0].delay_ticks, a->axis[1].delay_ticks, a->axis[2].delay_ticks), a->dt_s);
+    if (sim_log_noise_measure(opt, wc, n, err, err_len) != 0) {
         free(n);
         return -1;
     }
@@ -56,9 +59,6 @@ int sim_replay_noise_stage(const sim_log_options_t *opt, sim_airframe_t *a, FILE
         }
         fputc('\n', out);
     }
-    const double wc = sim_filter_crossover_estimate(
-        median3(a->axis[0].lag_s, a->axis[1].lag_s, a->axis[2].lag_s),
-        (int)median3(a->axis[0].delay_ticks, a->axis[1].delay_ticks, a->axis[2].delay_ticks), n->dt_s);
     static sim_filter_proposal_t p;
     char why[256];
     /* the airframe's rotors are nominal, not the log's: its stage has fixed notches only */
@@ -86,15 +86,14 @@ int sim_replay_noise_stage(const sim_log_options_t *opt, sim_airframe_t *a, FILE
             p.band_lo_hz, p.band_hi_hz, wc);
     const double own_phase = phase_cost_deg(&p.cfg, 0.0, wc);
     for (int i = 0; i < 3; ++i) {
-        fprintf(out, "  %-5s proposed: %5.1f dB in the band, %4.1f deg at the crossover", AXIS[i],
+        fprintf(out, "  %-5s proposed: %5.1f dB in the band, %4.1f deg at the crossover (a delay of %.2f ms)", AXIS[i],
                 sim_filter_band_attenuation_db(&p.cfg, 0.0, raw ? &n->gyro_raw[i] : &n->gyro[i], p.band_lo_hz,
                                                p.band_hi_hz),
-                own_phase);
+                own_phase, 1e3 * own_phase / RAD2DEG / wc);
         if (raw) {
-            const double delay_s = sim_log_noise_chain_delay_s(n, i);
-            fprintf(out, "; the log's chain: %5.1f dB, delay %.2f ms (%4.1f deg at the crossover)",
+            fprintf(out, "; the log's chain: %5.1f dB, %4.1f deg at the crossover (a delay of %.2f ms)",
                     sim_filter_measured_attenuation_db(&n->gyro_raw[i], &n->gyro[i], p.band_lo_hz, p.band_hi_hz),
-                    1e3 * delay_s, wc * delay_s * RAD2DEG);
+                    sim_log_noise_chain_phase_deg(n, i), 1e3 * sim_log_noise_chain_delay_s(n, i));
         }
         fputc('\n', out);
     }

@@ -210,7 +210,8 @@ static void assign_rpm(sim_filter_proposal_t *p, double rotor_hz, int rotors)
     if (top == 0) {
         return;
     }
-    p->cfg.rpm_rotors = (uint8_t)(rotors < (int)LADRC_GYRO_FILTER_MAX_ROTORS ? rotors : (int)LADRC_GYRO_FILTER_MAX_ROTORS);
+    p->cfg.rpm_rotors =
+        (uint8_t)(rotors < (int)LADRC_GYRO_FILTER_MAX_ROTORS ? rotors : (int)LADRC_GYRO_FILTER_MAX_ROTORS);
     p->cfg.rpm_harmonics = (uint8_t)top;
     p->cfg.rpm_q = (ladrc_real_t)clamp_q(q);
     p->cfg.rpm_min_hz = (ladrc_real_t)(0.5 * rotor_hz);
@@ -240,22 +241,30 @@ int sim_filter_propose(const sim_spectrum_t raw[3], double dt_s, double rotor_hz
         }
     }
     assign_rpm(p, rotor_hz, rotors);
-    /* the fixed notches: the strongest lines the RPM bank leaves */
+    /* the fixed notches: the strongest lines the RPM bank leaves, each kept
+     * when the stage with it (no low-pass yet) stays within the phase budget */
     qsort(p->lines, (size_t)p->n_lines, sizeof p->lines[0], by_power_desc);
     double q = SIM_FILTER_Q_MAX;
     for (int j = 0; j < p->n_lines; ++j) {
         sim_filter_line_t *l = &p->lines[j];
+        const double line_q = l->hz / l->width_hz;
         if (l->harmonic != 0) {
             continue;
         }
-        if (p->cfg.n_notches >= LADRC_GYRO_FILTER_MAX_NOTCHES) {
+        if (p->cfg.n_notches >= LADRC_GYRO_FILTER_MAX_NOTCHES || line_q < SIM_FILTER_Q_MIN) {
+            l->harmonic = -1; /* no room, or a hump too wide for a notch: the low-pass's */
+            continue;
+        }
+        ladrc_gyro_filter_config_t with = p->cfg;
+        with.notch_hz[with.n_notches++] = (ladrc_real_t)l->hz;
+        with.notch_q = (ladrc_real_t)fmin(clamp_q(line_q), q);
+        if (phase_cost_deg(&with, p->rotor_hz, crossover_rad_s) > SIM_FILTER_PHASE_BUDGET_DEG) {
             l->harmonic = -1;
             continue;
         }
-        p->cfg.notch_hz[p->cfg.n_notches++] = (ladrc_real_t)l->hz;
-        q = fmin(q, l->hz / l->width_hz);
+        p->cfg = with;
+        q = (double)with.notch_q;
     }
-    p->cfg.notch_q = (ladrc_real_t)clamp_q(q);
     qsort(p->lines, (size_t)p->n_lines, sizeof p->lines[0], by_hz);
     /* the vibration band: the lines' span (their widths included), else the floor band */
     if (p->n_lines > 0) {

@@ -6,7 +6,9 @@
  * the peak's own width), RPM notches on the harmonics of the rotors' speed
  * when the log reports it, and a second-order low-pass whose corner is the
  * lowest that keeps the whole stage's phase cost at the loop's crossover
- * within SIM_FILTER_PHASE_BUDGET_DEG. The stage is the library's
+ * within SIM_FILTER_PHASE_BUDGET_DEG. Fixed notches are taken strongest
+ * line first while the stage stays within that budget; the RPM bank is
+ * taken whole (its cost is reported). The stage is the library's
  * (gyro_filter.h); its response is evaluated from the sections the library
  * derives, so what is proposed is what flies.
  */
@@ -29,16 +31,19 @@
 #define SIM_FILTER_LINE_MIN_HZ 30.0
 /* A line's width: where its PSD above the floor falls to this share of its peak's (-10 dB). */
 #define SIM_FILTER_WIDTH_SHARE 0.1
-/* The notches' Q is kept in this range: wider than 1 a notch eats an octave
- * of phase; narrower than 20 a drifting line walks out of it. */
-#define SIM_FILTER_Q_MIN 1.0
+/* The notches' Q is kept in this range: a peak wider than Q 2 (half its
+ * centre) is a hump of the flight's own motion or propwash, the low-pass's
+ * to take, and a notch that wide eats the phase at the crossover; narrower
+ * than 20 a drifting line walks out of it. */
+#define SIM_FILTER_Q_MIN 2.0
 #define SIM_FILTER_Q_MAX 20.0
 /* A line is the RPM bank's when within this share of a harmonic of the rotors' mean speed. */
 #define SIM_FILTER_RPM_MATCH 0.06
 
 typedef struct {
     double hz, width_hz, power; /* centre, width at SIM_FILTER_WIDTH_SHARE, summed power over the axes ((rad/s)^2) */
-    int harmonic;               /* > 0: the RPM bank's harmonic that covers it; 0: a fixed notch, -1: left out */
+    int harmonic; /* > 0: the RPM bank's harmonic that covers it; 0: a fixed notch, -1: left out (no room, too
+                     wide, or over the phase budget) */
 } sim_filter_line_t;
 
 #define SIM_FILTER_MAX_LINES (3 * SIM_SPECTRUM_MAX_LINES)

@@ -5,56 +5,52 @@
 #include <math.h>
 #include <string.h>
 
-static void start(sim_log_noise_t *n, double dt_s, unsigned has)
+static void start(sim_log_noise_t *n, double dt_s, unsigned has, double probe_rad_s)
 {
     memset(n, 0, sizeof *n);
     n->dt_s = dt_s;
     n->has = has;
+    n->probe_rad_s = probe_rad_s;
     for (int i = 0; i < 3; ++i) {
+        sim_phase_probe_init(&n->chain[i], probe_rad_s, dt_s);
         sim_spectrum_init(&n->command[i], 1.0 / dt_s);
         sim_spectrum_init(&n->gyro[i], 1.0 / dt_s);
         sim_spectrum_init(&n->gyro_raw[i], 1.0 / dt_s);
     }
 }
 
-void sim_lag_push(sim_lag_t *l, double x, double y)
+#define PI 3.14159265358979323846
+#define RAD2DEG (180.0 / PI)
+
+void sim_phase_probe_init(sim_phase_probe_t *p, double w_rad_s, double dt_s)
 {
-    const int slot = (int)(l->n % SIM_LOG_NOISE_LAGS);
-    l->ring[slot] = x;
-    l->x_sum += x;
-    l->y_sum += y;
-    for (int j = 0; j < SIM_LOG_NOISE_LAGS && j <= l->n; ++j) {
-        l->xcorr[j] += y * l->ring[(slot - j + SIM_LOG_NOISE_LAGS) % SIM_LOG_NOISE_LAGS];
-    }
-    l->n++;
+    memset(p, 0, sizeof *p);
+    p->w_rad_per_tick = w_rad_s * dt_s;
 }
 
-/* The cross-covariance at lag j: the mean product less the product of the
- * means (the lagged sum's mean taken as the whole stream's: a bias of j / n). */
-static double covariance(const sim_lag_t *l, int j)
+void sim_phase_probe_push(sim_phase_probe_t *p, double x, double y)
 {
-    const double n = (double)l->n;
-    return l->xcorr[j] / (n - (double)j) - (l->y_sum / n) * (l->x_sum / n);
+    const double window = 0.5 * (1.0 - cos(2.0 * PI * p->fill / SIM_PHASE_PROBE_N));
+    const double c = window * cos(p->w_rad_per_tick * p->fill), s = -window * sin(p->w_rad_per_tick * p->fill);
+    p->xr += x * c;
+    p->xi += x * s;
+    p->yr += y * c;
+    p->yi += y * s;
+    if (++p->fill < SIM_PHASE_PROBE_N) {
+        return;
+    }
+    /* Y X*: the block's cross-power */
+    p->sxy_re += p->yr * p->xr + p->yi * p->xi;
+    p->sxy_im += p->yi * p->xr - p->yr * p->xi;
+    p->sxx += p->xr * p->xr + p->xi * p->xi;
+    p->blocks++;
+    p->xr = p->xi = p->yr = p->yi = 0.0;
+    p->fill = 0;
 }
 
-double sim_lag_ticks(const sim_lag_t *l)
+double sim_phase_probe_rad(const sim_phase_probe_t *p)
 {
-    if (l->n <= 4 * SIM_LOG_NOISE_LAGS) {
-        return NAN;
-    }
-    int best = 0;
-    for (int j = 1; j < SIM_LOG_NOISE_LAGS; ++j) {
-        if (covariance(l, j) > covariance(l, best)) {
-            best = j;
-        }
-    }
-    double frac = 0.0; /* the parabola's vertex through the peak and its neighbours */
-    if (best > 0 && best + 1 < SIM_LOG_NOISE_LAGS) {
-        const double a = covariance(l, best - 1), b = covariance(l, best), c = covariance(l, best + 1);
-        const double den = a - 2.0 * b + c;
-        frac = den < 0.0 ? 0.5 * (a - c) / den : 0.0;
-    }
-    return (double)best + frac;
+    return p->blocks > 0 && p->sxx > 0.0 ? atan2(p->sxy_im, p->sxy_re) : NAN;
 }
 
 static void add(sim_log_noise_t *n, const sim_log_sample_t *s)
@@ -64,7 +60,7 @@ static void add(sim_log_noise_t *n, const sim_log_sample_t *s)
         sim_spectrum_push(&n->gyro[i], s->gyro_rad_s[i]);
         if (n->has & SIM_LOG_HAS_GYRO_RAW) {
             sim_spectrum_push(&n->gyro_raw[i], s->gyro_raw_rad_s[i]);
-            sim_lag_push(&n->chain[i], s->gyro_raw_rad_s[i], s->gyro_rad_s[i]);
+            sim_phase_probe_push(&n->chain[i], s->gyro_raw_rad_s[i], s->gyro_rad_s[i]);
         }
     }
     for (int m = 0; m < s->n_motors && (n->has & SIM_LOG_HAS_ROTOR_HZ); ++m) {
@@ -77,7 +73,8 @@ static void add(sim_log_noise_t *n, const sim_log_sample_t *s)
     n->ticks++;
 }
 
-int sim_log_noise_measure(const sim_log_options_t *opt, sim_log_noise_t *n, char *err, size_t err_len)
+int sim_log_noise_measure(const sim_log_options_t *opt, double probe_rad_s, sim_log_noise_t *n, char *err,
+                          size_t err_len)
 {
     sim_log_error_t lerr;
     sim_log_t *log = sim_log_open(opt, &lerr);
@@ -85,7 +82,7 @@ int sim_log_noise_measure(const sim_log_options_t *opt, sim_log_noise_t *n, char
         sim_log_error_format(&lerr, err, err_len);
         return -1;
     }
-    start(n, sim_log_dt_s(log), sim_log_has(log));
+    start(n, sim_log_dt_s(log), sim_log_has(log), probe_rad_s);
     sim_log_sample_t s;
     int rc;
     while ((rc = sim_log_next(log, &s, &lerr)) == 1) {
@@ -103,9 +100,14 @@ double sim_log_noise_command_above(const sim_log_noise_t *n, int axis, double f_
     return sim_spectrum_band_rms(&n->command[axis], f_lo_hz, INFINITY);
 }
 
+double sim_log_noise_chain_phase_deg(const sim_log_noise_t *n, int axis)
+{
+    return (n->has & SIM_LOG_HAS_GYRO_RAW) ? -sim_phase_probe_rad(&n->chain[axis]) * RAD2DEG : NAN;
+}
+
 double sim_log_noise_chain_delay_s(const sim_log_noise_t *n, int axis)
 {
-    return (n->has & SIM_LOG_HAS_GYRO_RAW) ? sim_lag_ticks(&n->chain[axis]) * n->dt_s : NAN;
+    return sim_log_noise_chain_phase_deg(n, axis) / RAD2DEG / n->probe_rad_s;
 }
 
 double sim_log_noise_rotor_hz(const sim_log_noise_t *n)

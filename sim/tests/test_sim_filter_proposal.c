@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The gyro filter stage proposed from a spectrum (log/filter_proposal.h)
  * on synthetic gyro noise with known lines, the stage's response against
- * the library's documented corners, and the delay estimate of a chain
+ * the library's documented corners, and the phase probe of a chain
  * (log/log_noise.h) on a known delay. */
 #include "unity.h"
 #include "log/airframe.h"
@@ -30,8 +30,12 @@
  * coefficients are float (6e-8 relative each), and the gain there moves by a
  * few of them: 1e-6. */
 #define RESPONSE_TOL 1e-6
-/* The cross-correlation's parabola finds a whole-tick delay within 0.05 tick. */
-#define LAG_TOL_TICKS 0.05
+/* A pure delay of 3 ticks is -0.09 rad at 30 rad/s. The windows of x and
+ * of the delayed y are 3 samples apart, so the stream's much stronger
+ * content below the probe (a 1.6 Hz corner) leaks into the two by
+ * different amounts: 2.6 % of the phase measured; 0.005 rad (5.6 %) allows
+ * it and still tells 3 ticks from 2 or 4 (0.03 rad apart). */
+#define PHASE_TOL_RAD 0.005
 
 static sim_spectrum_t spectra[3];
 
@@ -165,20 +169,21 @@ static void test_response_matches_the_documented_corners(void)
     TEST_ASSERT_EQUAL_INT(-1, sim_filter_response(&cfg, 0.0, 150.0, &g, &ph));
 }
 
-static void test_lag_of_a_delayed_stream(void)
+static void test_phase_probe_of_a_delayed_stream(void)
 {
-    static sim_lag_t lag;
-    memset(&lag, 0, sizeof lag);
+    static sim_phase_probe_t probe;
+    const double w_rad_s = 30.0;
+    sim_phase_probe_init(&probe, w_rad_s, DT_S);
     uint64_t seed = 12345u;
     double x[4] = {0, 0, 0, 0};
     double smooth = 0.0;
     for (int k = 0; k < 20000; ++k) {
-        smooth = 0.9 * smooth + uniform(&seed); /* a low-passed stream: a peaked correlation */
+        smooth = 0.99 * smooth + uniform(&seed); /* content at the probe's frequency */
         memmove(x + 1, x, 3 * sizeof x[0]);
         x[0] = smooth;
-        sim_lag_push(&lag, smooth, x[3]); /* y three ticks behind */
+        sim_phase_probe_push(&probe, smooth, x[3]); /* y three ticks behind */
     }
-    TEST_ASSERT_FLOAT_WITHIN(LAG_TOL_TICKS, 3.0, sim_lag_ticks(&lag));
+    TEST_ASSERT_FLOAT_WITHIN(PHASE_TOL_RAD, -3.0 * w_rad_s * DT_S, sim_phase_probe_rad(&probe));
 }
 
 int main(void)
@@ -189,6 +194,6 @@ int main(void)
     RUN_TEST(test_white_noise_gives_no_notch);
     RUN_TEST(test_too_short_a_log_is_refused);
     RUN_TEST(test_response_matches_the_documented_corners);
-    RUN_TEST(test_lag_of_a_delayed_stream);
+    RUN_TEST(test_phase_probe_of_a_delayed_stream);
     return UNITY_END();
 }
