@@ -12,11 +12,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "ladrc/gyro_filter.h"
 #include "ladrc/margins.h"
 #include "log/filter_proposal.h"
+#include "log/log_convert.h"
 #include "log/log_noise.h"
 #include "scenario/scenario.h"
 #include "scenario/setup.h"
@@ -33,7 +33,8 @@ typedef struct {
     sim_log_options_t log;
     const char *filter_from, *out;
     double crossover_rad_s;
-    int given; /* a stage option was given */
+    int given;        /* a stage option was given */
+    int format_given; /* --format: else told from the file, as ladrc_replay tells it */
     ladrc_gyro_filter_config_t cfg;
 } options_t;
 
@@ -205,24 +206,7 @@ static int parse_args(int argc, char **argv, options_t *o)
         fprintf(stderr, "ladrc_filter: %s: path too long\n", path);
         return -1;
     }
-    if (!format_given) {
-        /* as ladrc_replay tells it: PX4 when a topic file of that name is there, Betaflight when the
-         * header has gyroADC, else generic */
-        char px4[SIM_LOG_PATH_LEN + 64];
-        snprintf(px4, sizeof px4, "%s_vehicle_angular_velocity_0.csv", path);
-        FILE *f = fopen(path, "r");
-        char line[4096] = "";
-        if (f != NULL) {
-            while (fgets(line, sizeof line, f) != NULL && (line[0] == '#' || line[0] == '\n')) {
-            }
-            fclose(f);
-        }
-        o->log.format =
-            strstr(path, "_vehicle_") != NULL || strstr(path, "_sensor_combined_") != NULL || access(px4, R_OK) == 0
-                ? SIM_LOG_PX4
-            : strstr(line, "gyroADC") != NULL ? SIM_LOG_BETAFLIGHT
-                                              : SIM_LOG_GENERIC;
-    }
+    o->format_given = format_given;
     return 0;
 }
 
@@ -275,47 +259,42 @@ static void print_row(const char *label, const sim_spectrum_t *in, const sim_spe
            1e3 * phase_deg / RAD2DEG / wc_rad_s);
 }
 
-int main(int argc, char **argv)
+/* Everything after the log is prepared: 0, or 2 after saying why. */
+static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len)
 {
-    static options_t o;
-    if (parse_args(argc, argv, &o) != 0) {
-        return 2;
-    }
-    static sim_log_noise_t n;
-    char err[1024];
-    if (sim_log_noise_measure(&o.log, o.crossover_rad_s, &n, err, sizeof err) != 0) {
+    if (sim_log_noise_measure(&o->log, o->crossover_rad_s, n, err, err_len) != 0) {
         fprintf(stderr, "%s\n", err);
         return 2;
     }
-    const int raw = (n.has & SIM_LOG_HAS_GYRO_RAW) != 0;
-    const sim_spectrum_t *input = raw ? n.gyro_raw : n.gyro;
-    const double rotor_hz = sim_log_noise_rotor_hz(&n);
+    const int raw = (n->has & SIM_LOG_HAS_GYRO_RAW) != 0;
+    const sim_spectrum_t *input = raw ? n->gyro_raw : n->gyro;
+    const double rotor_hz = sim_log_noise_rotor_hz(n);
     static sim_filter_proposal_t p;
-    if (sim_filter_propose(input, n.dt_s, rotor_hz, n.rotors, o.crossover_rad_s, &p, err, sizeof err) != 0) {
-        fprintf(stderr, "%s: %s\n", o.log.path, err);
+    if (sim_filter_propose(input, n->dt_s, rotor_hz, n->rotors, o->crossover_rad_s, &p, err, err_len) != 0) {
+        fprintf(stderr, "%s: %s\n", o->log.path, err);
         return 2;
     }
     ladrc_gyro_filter_config_t cfg = p.cfg;
     const char *source = "proposed from the log's spectrum";
-    if (o.filter_from != NULL) {
-        if (stage_from_scenario(o.filter_from, n.dt_s, &cfg) != 0) {
+    if (o->filter_from != NULL) {
+        if (stage_from_scenario(o->filter_from, n->dt_s, &cfg) != 0) {
             return 2;
         }
-        source = o.filter_from;
-    } else if (o.given) {
-        cfg = o.cfg;
-        cfg.dt_s = (ladrc_real_t)n.dt_s;
+        source = o->filter_from;
+    } else if (o->given) {
+        cfg = o->cfg;
+        cfg.dt_s = (ladrc_real_t)n->dt_s;
         source = "given";
     }
     if (cfg.rpm_rotors > 0) {
-        if (!(n.has & SIM_LOG_HAS_ROTOR_HZ) || n.rotors == 0) {
+        if (!(n->has & SIM_LOG_HAS_ROTOR_HZ) || n->rotors == 0) {
             fprintf(stderr,
                     "%s: RPM notches need the rotors' speed: the log has none (map rotor_hz[i], e.g. "
                     "Betaflight's eRPM[i] or PX4's esc_status)\n",
-                    o.log.path);
+                    o->log.path);
             return 2;
         }
-        cfg.rpm_rotors = (uint8_t)n.rotors; /* as many as the log reports */
+        cfg.rpm_rotors = (uint8_t)n->rotors; /* as many as the log reports */
     }
     static ladrc_gyro_filter_t f;
     const ladrc_status_t st = ladrc_gyro_filter_init(&f, &cfg);
@@ -325,17 +304,17 @@ int main(int argc, char **argv)
     }
     /* the second pass: the stage over the input */
     sim_log_error_t lerr;
-    sim_log_t *log = sim_log_open(&o.log, &lerr);
+    sim_log_t *log = sim_log_open(&o->log, &lerr);
     if (log == NULL) {
-        sim_log_error_format(&lerr, err, sizeof err);
+        sim_log_error_format(&lerr, err, err_len);
         fprintf(stderr, "%s\n", err);
         return 2;
     }
     FILE *csv = NULL;
-    if (o.out != NULL) {
-        csv = fopen(o.out, "w");
+    if (o->out != NULL) {
+        csv = fopen(o->out, "w");
         if (csv == NULL) {
-            fprintf(stderr, "ladrc_filter: %s: cannot write: %s\n", o.out, strerror(errno));
+            fprintf(stderr, "ladrc_filter: %s: cannot write: %s\n", o->out, strerror(errno));
             sim_log_close(log);
             return 2;
         }
@@ -344,8 +323,8 @@ int main(int argc, char **argv)
     static sim_spectrum_t out_spectrum[3];
     static sim_phase_probe_t probe[3];
     for (int i = 0; i < 3; ++i) {
-        sim_spectrum_init(&out_spectrum[i], 1.0 / n.dt_s);
-        sim_phase_probe_init(&probe[i], o.crossover_rad_s, n.dt_s);
+        sim_spectrum_init(&out_spectrum[i], 1.0 / n->dt_s);
+        sim_phase_probe_init(&probe[i], o->crossover_rad_s, n->dt_s);
     }
     sim_log_sample_t s;
     int rc, first = 1;
@@ -377,22 +356,22 @@ int main(int argc, char **argv)
         }
     }
     if (rc < 0) {
-        sim_log_error_format(&lerr, err, sizeof err);
+        sim_log_error_format(&lerr, err, err_len);
         fprintf(stderr, "%s\n", err);
     }
     sim_log_close(log);
     if (csv != NULL && ((ferror(csv) | fclose(csv)) != 0 || rc < 0)) {
         if (rc == 0) {
-            fprintf(stderr, "ladrc_filter: %s: write failed\n", o.out);
+            fprintf(stderr, "ladrc_filter: %s: write failed\n", o->out);
         }
-        remove(o.out);
+        remove(o->out);
         return 2;
     }
     if (rc < 0) {
         return 2;
     }
 
-    printf("%s: %lld ticks at %.4g s, the gyro %s its filters%s\n", o.log.path, n.ticks, n.dt_s,
+    printf("%s: %lld ticks at %.4g s, the gyro %s its filters%s\n", o->log.path, n->ticks, n->dt_s,
            raw ? "before" : "(no gyro before", raw ? "" : ")");
     printf("stage (%s): low-pass ", source);
     if (cfg.lpf_order > 0) {
@@ -412,25 +391,45 @@ int main(int argc, char **argv)
                (double)cfg.rpm_q, rotor_hz);
     }
     printf("\nvibration band %.1f-%.1f Hz (%s); delay and phase at %.3g rad/s; rms in deg/s\n", p.band_lo_hz,
-           p.band_hi_hz, p.n_lines > 0 ? "the lines' span" : "no lines: the floor band", o.crossover_rad_s);
+           p.band_hi_hz, p.n_lines > 0 ? "the lines' span" : "no lines: the floor band", o->crossover_rad_s);
     if (faults > 0) {
         printf("warning: the stage raised a fault on %lld ticks (a sample or rotor speed not finite)\n", faults);
     }
     printf("  %-16s %8s %8s %8s %8s %7s %7s %7s %8s\n", "", "0-20Hz", "20-100Hz", ">100Hz", "vib", "att dB", ">20 dB",
            "deg", "delay ms");
     double gain, phase_rad;
-    sim_filter_response(&cfg, rotor_hz, o.crossover_rad_s / (2.0 * PI), &gain, &phase_rad);
+    sim_filter_response(&cfg, rotor_hz, o->crossover_rad_s / (2.0 * PI), &gain, &phase_rad);
     for (int i = 0; i < 3; ++i) {
         printf("%s\n", AXIS[i]);
-        print_row("input", NULL, &input[i], p.band_lo_hz, p.band_hi_hz, NAN, o.crossover_rad_s);
+        print_row("input", NULL, &input[i], p.band_lo_hz, p.band_hi_hz, NAN, o->crossover_rad_s);
         print_row("this stage", &input[i], &out_spectrum[i], p.band_lo_hz, p.band_hi_hz,
-                  -sim_phase_probe_rad(&probe[i]) * RAD2DEG, o.crossover_rad_s);
+                  -sim_phase_probe_rad(&probe[i]) * RAD2DEG, o->crossover_rad_s);
         if (raw) {
-            print_row("the log's chain", &n.gyro_raw[i], &n.gyro[i], p.band_lo_hz, p.band_hi_hz,
-                      sim_log_noise_chain_phase_deg(&n, i), o.crossover_rad_s);
+            print_row("the log's chain", &n->gyro_raw[i], &n->gyro[i], p.band_lo_hz, p.band_hi_hz,
+                      sim_log_noise_chain_phase_deg(n, i), o->crossover_rad_s);
         }
     }
-    printf("this stage's response at %.3g rad/s: %.1f deg%s (measured above from the streams)\n", o.crossover_rad_s,
+    printf("this stage's response at %.3g rad/s: %.1f deg%s (measured above from the streams)\n", o->crossover_rad_s,
            -phase_rad * RAD2DEG, cfg.rpm_rotors > 0 ? ", RPM notches at the rotors' mean speed" : "");
     return 0;
+}
+
+int main(int argc, char **argv)
+{
+    static options_t o;
+    if (parse_args(argc, argv, &o) != 0) {
+        return 2;
+    }
+    static sim_log_noise_t n;
+    char err[1024];
+    static sim_log_prepared_t prepared; /* a binary log decoded into a temporary folder */
+    sim_log_error_t lerr;
+    if (sim_log_prepare(&o.log, o.format_given, &prepared, NULL, NULL, &lerr) != 0) {
+        sim_log_error_format(&lerr, err, sizeof err);
+        fprintf(stderr, "%s\n", err);
+        return 2;
+    }
+    const int rc = run(&o, &n, err, sizeof err);
+    sim_log_prepared_remove(&prepared);
+    return rc;
 }
