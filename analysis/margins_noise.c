@@ -16,7 +16,7 @@ static int check_psd(const ladrc_margins_request_t *req)
     if (req->rate_noise_psd_bins == 0)
         return 0;
     if (req->rate_noise_psd_bins < 2 || req->rate_noise_psd_bins > LADRC_MARGINS_NOISE_PSD_BINS ||
-        !(req->rate_noise_psd_step_hz > 0.0 && isfinite(req->rate_noise_psd_step_hz)))
+        !(req->rate_noise_bin_hz > 0.0 && isfinite(req->rate_noise_bin_hz)))
         return -1;
     for (int k = 0; k < req->rate_noise_psd_bins; ++k)
         if (!(req->rate_noise_psd[k] >= 0.0 && isfinite(req->rate_noise_psd[k])))
@@ -61,7 +61,7 @@ static double psd_as_variance(const ladrc_margins_request_t *req, double w)
 {
     if (req->rate_noise_psd_bins == 0)
         return 0.0;
-    const double fs = 1.0 / req->plant.dt_s, x = w / (2.0 * PI) * fs / req->rate_noise_psd_step_hz;
+    const double fs = 1.0 / req->plant.dt_s, x = w / (2.0 * PI) * fs / req->rate_noise_bin_hz;
     const int k = (int)floor(x);
     if (k + 1 >= req->rate_noise_psd_bins)
         return k + 1 == req->rate_noise_psd_bins && x == (double)k ? req->rate_noise_psd[k] * 0.5 * fs : 0.0;

@@ -208,14 +208,14 @@ static void test_a_coloured_rate_noise_is_its_spectrum(void)
     const double white = res.cmd_noise_Nm;
     req.rate_noise_std_rad_s = 0.0;
     req.rate_noise_psd_bins = LADRC_MARGINS_NOISE_PSD_BINS;
-    req.rate_noise_psd_step_hz = 0.5 * fs / (LADRC_MARGINS_NOISE_PSD_BINS - 1);
+    req.rate_noise_bin_hz = 0.5 * fs / (LADRC_MARGINS_NOISE_PSD_BINS - 1);
     for (int k = 0; k < LADRC_MARGINS_NOISE_PSD_BINS; ++k) {
         req.rate_noise_psd[k] = 2.0 * sr * sr / fs; /* one-sided: the variance over fs / 2 */
     }
     TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_analyse(&ws, &ctl, &req, &res));
     TEST_ASSERT_FLOAT_WITHIN(PSD_REL_TOL * white, white, res.cmd_noise_Nm);
     for (int k = 0; k < LADRC_MARGINS_NOISE_PSD_BINS; ++k) {
-        if ((double)k * req.rate_noise_psd_step_hz < 100.0) {
+        if ((double)k * req.rate_noise_bin_hz < 100.0) {
             req.rate_noise_psd[k] = 0.0;
         }
     }

@@ -93,7 +93,7 @@ int sim_tune_noise_series(const sim_scenario_t *sc, int axis, ladrc_margins_requ
     if (rc == 0 && cache.bins > 0) {
         req->rate_noise_psd_bins =
             cache.bins < LADRC_MARGINS_NOISE_PSD_BINS ? cache.bins : LADRC_MARGINS_NOISE_PSD_BINS;
-        req->rate_noise_psd_step_hz = cache.step_hz;
+        req->rate_noise_bin_hz = cache.step_hz;
         memcpy(req->rate_noise_psd, cache.psd[axis], (size_t)req->rate_noise_psd_bins * sizeof req->rate_noise_psd[0]);
         req->noise_corner_hz = LADRC_MARGINS_NOISE_CORNER_HZ;
     }

@@ -108,34 +108,34 @@ typedef struct {
 
 /** How to measure. ladrc_margins_request_default fills every field. */
 typedef struct {
-    ladrc_margins_plant_t plant;   /**< the plant of the adaptive variants' converged run and of the loop */
-    double response_s;             /**< length of the impulse responses (s); default 4, or
+    ladrc_margins_plant_t plant; /**< the plant of the adaptive variants' converged run and of the loop */
+    double response_s;           /**< length of the impulse responses (s); default 4, or
                                   LADRC_MARGINS_MAX_TAPS periods where that is shorter */
-    double tone_rad_s;             /**< adaptive variants: disturbance tone they converge on;
+    double tone_rad_s;           /**< adaptive variants: disturbance tone they converge on;
                                   0: the axis's hp_freq_rad_s[0] (default) */
-    double tone_rad_s2;            /**< its amplitude (rad/s^2); default 20 */
-    double converge_s;             /**< adaptive variants: closed-loop run before the
+    double tone_rad_s2;          /**< its amplitude (rad/s^2); default 20 */
+    double converge_s;           /**< adaptive variants: closed-loop run before the
                                   linearisation (s); default 10 */
-    int n_starts;                  /**< adaptive variants: start instants averaged over a
+    int n_starts;                /**< adaptive variants: start instants averaged over a
                                   tone period; default 4 */
-    double out_min_rad_s;          /**< output grid: lowest frequency (rad/s); default 0.1 */
-    int n_out;                     /**< output grid points, 2..LADRC_MARGINS_MAX_OUT; default 200 */
-    double track_step_rad;         /**< tuning objective: reference step (rad),
+    double out_min_rad_s;        /**< output grid: lowest frequency (rad/s); default 0.1 */
+    int n_out;                   /**< output grid points, 2..LADRC_MARGINS_MAX_OUT; default 200 */
+    double track_step_rad;       /**< tuning objective: reference step (rad),
                                   0..LADRC_MARGINS_MAX_STEP_RAD; default
                                   0.1745 (10 deg) */
-    double dist_step_rad_s2;       /**< tuning objective: then a disturbance step (rad/s^2), >= 0;
+    double dist_step_rad_s2;     /**< tuning objective: then a disturbance step (rad/s^2), >= 0;
                                   default 20. Both 0: the peak |d -> error| is the objective */
-    double step_window_s;          /**< how long each step is flown (s), > 0 and <= 60; default 2 */
-    double angle_noise_std_rad;    /**< command noise: white noise on the measured angle, standard
+    double step_window_s;        /**< how long each step is flown (s), > 0 and <= 60; default 2 */
+    double angle_noise_std_rad;  /**< command noise: white noise on the measured angle, standard
                                   deviation per sample (rad), finite and >= 0; default 0 */
-    double rate_noise_std_rad_s;   /**< white noise on the measured rate (gyro), standard deviation
+    double rate_noise_std_rad_s; /**< white noise on the measured rate (gyro), standard deviation
                                   per sample (rad/s), finite and >= 0; default 0 */
-    double noise_corner_hz;        /**< the command noise is its RMS from this frequency (Hz) up to
+    double noise_corner_hz;      /**< the command noise is its RMS from this frequency (Hz) up to
                                   the Nyquist frequency; > 0 and below it when a noise is
                                   non-zero; default LADRC_MARGINS_NOISE_CORNER_HZ */
-    int rate_noise_psd_bins;       /**< coloured rate noise added to the white: 0 (default) none, else
+    int rate_noise_psd_bins;     /**< coloured rate noise added to the white: 0 (default) none, else
                                   the bins of rate_noise_psd, 2..LADRC_MARGINS_NOISE_PSD_BINS */
-    double rate_noise_psd_step_hz; /**< their spacing (Hz), > 0: bin k is at k times it */
+    double rate_noise_bin_hz;    /**< the bins' spacing (Hz), > 0: bin k is at k times it */
     /** one-sided PSD of the coloured rate noise ((rad/s)^2/Hz), finite and >= 0, linear between
      *  the bins and 0 beyond the last (e.g. a flight log's gyro noise, its Welch spectrum) */
     double rate_noise_psd[LADRC_MARGINS_NOISE_PSD_BINS];
