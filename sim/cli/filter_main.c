@@ -256,7 +256,7 @@ static void print_row(const char *label, const sim_spectrum_t *in, const sim_spe
     }
     printf(" %7.1f %7.1f %7.1f %8.2f\n", sim_filter_measured_attenuation_db(in, out, lo_hz, hi_hz),
            sim_filter_measured_attenuation_db(in, out, LADRC_MARGINS_NOISE_CORNER_HZ, INFINITY), phase_deg,
-           1e3 * phase_deg / RAD2DEG / wc_rad_s);
+           1e3 * sim_phase_delay_s(phase_deg, wc_rad_s));
 }
 
 /* Everything after the log is prepared: 0, or 2 after saying why. */
@@ -397,8 +397,6 @@ static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len
     }
     printf("  %-16s %8s %8s %8s %8s %7s %7s %7s %8s\n", "", "0-20Hz", "20-100Hz", ">100Hz", "vib", "att dB", ">20 dB",
            "deg", "delay ms");
-    double gain, phase_rad;
-    sim_filter_response(&cfg, rotor_hz, o->crossover_rad_s / (2.0 * PI), &gain, &phase_rad);
     for (int i = 0; i < 3; ++i) {
         printf("%s\n", AXIS[i]);
         print_row("input", NULL, &input[i], p.band_lo_hz, p.band_hi_hz, NAN, o->crossover_rad_s);
@@ -410,7 +408,8 @@ static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len
         }
     }
     printf("this stage's response at %.3g rad/s: %.1f deg%s (measured above from the streams)\n", o->crossover_rad_s,
-           -phase_rad * RAD2DEG, cfg.rpm_rotors > 0 ? ", RPM notches at the rotors' mean speed" : "");
+           sim_filter_phase_cost_deg(&cfg, rotor_hz, o->crossover_rad_s),
+           cfg.rpm_rotors > 0 ? ", RPM notches at the rotors' mean speed" : "");
     return 0;
 }
 

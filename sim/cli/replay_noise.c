@@ -27,13 +27,6 @@ static double median3(double a, double b, double c)
     return v[1];
 }
 
-/* The stage's phase cost (deg, a lag positive) at w_rad_s. */
-static double phase_cost_deg(const ladrc_gyro_filter_config_t *cfg, double rotor_hz, double w_rad_s)
-{
-    double g, ph;
-    return sim_filter_response(cfg, rotor_hz, w_rad_s / (2.0 * PI), &g, &ph) == 0 ? -ph * RAD2DEG : NAN;
-}
-
 int sim_replay_noise_stage(const sim_log_options_t *opt, sim_airframe_t *a, FILE *out, char *err, size_t err_len)
 {
     sim_log_noise_t *n = malloc(sizeof *n);
@@ -84,12 +77,12 @@ int sim_replay_noise_stage(const sim_log_options_t *opt, sim_airframe_t *a, FILE
     }
     fprintf(out, "; vibration band %.1f-%.1f Hz, crossover %.1f rad/s (estimated from the lag and delay)\n",
             p.band_lo_hz, p.band_hi_hz, wc);
-    const double own_phase = phase_cost_deg(&p.cfg, 0.0, wc);
+    const double own_phase = sim_filter_phase_cost_deg(&p.cfg, 0.0, wc);
     for (int i = 0; i < 3; ++i) {
         fprintf(out, "  %-5s proposed: %5.1f dB in the band, %4.1f deg at the crossover (a delay of %.2f ms)", AXIS[i],
                 sim_filter_band_attenuation_db(&p.cfg, 0.0, raw ? &n->gyro_raw[i] : &n->gyro[i], p.band_lo_hz,
                                                p.band_hi_hz),
-                own_phase, 1e3 * own_phase / RAD2DEG / wc);
+                own_phase, 1e3 * sim_phase_delay_s(own_phase, wc));
         if (raw) {
             fprintf(out, "; the log's chain: %5.1f dB, %4.1f deg at the crossover (a delay of %.2f ms)",
                     sim_filter_measured_attenuation_db(&n->gyro_raw[i], &n->gyro[i], p.band_lo_hz, p.band_hi_hz),

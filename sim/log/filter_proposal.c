@@ -154,8 +154,7 @@ static double clamp_q(double q)
     return fmin(fmax(q, SIM_FILTER_Q_MIN), SIM_FILTER_Q_MAX);
 }
 
-/* The phase (deg, as a cost: >= 0 for a lag) of the stage at w_rad_s. */
-static double phase_cost_deg(const ladrc_gyro_filter_config_t *cfg, double rotor_hz, double w_rad_s)
+double sim_filter_phase_cost_deg(const ladrc_gyro_filter_config_t *cfg, double rotor_hz, double w_rad_s)
 {
     double g, ph;
     if (sim_filter_response(cfg, rotor_hz, w_rad_s / (2.0 * PI), &g, &ph) != 0) {
@@ -173,14 +172,14 @@ static double lowpass_corner_hz(ladrc_gyro_filter_config_t *cfg, double rotor_hz
     double lo = w_rad_s / (2.0 * PI), hi = top;
     cfg->lpf_order = 2;
     cfg->lpf_cutoff_hz = (ladrc_real_t)hi;
-    if (phase_cost_deg(cfg, rotor_hz, w_rad_s) > SIM_FILTER_PHASE_BUDGET_DEG) {
+    if (sim_filter_phase_cost_deg(cfg, rotor_hz, w_rad_s) > SIM_FILTER_PHASE_BUDGET_DEG) {
         cfg->lpf_order = 0;
         return 0.0;
     }
     for (int it = 0; it < 60; ++it) {
         const double mid = 0.5 * (lo + hi);
         cfg->lpf_cutoff_hz = (ladrc_real_t)mid;
-        if (phase_cost_deg(cfg, rotor_hz, w_rad_s) > SIM_FILTER_PHASE_BUDGET_DEG) {
+        if (sim_filter_phase_cost_deg(cfg, rotor_hz, w_rad_s) > SIM_FILTER_PHASE_BUDGET_DEG) {
             lo = mid;
         } else {
             hi = mid;
@@ -258,7 +257,7 @@ int sim_filter_propose(const sim_spectrum_t raw[3], double dt_s, double rotor_hz
         ladrc_gyro_filter_config_t with = p->cfg;
         with.notch_hz[with.n_notches++] = (ladrc_real_t)l->hz;
         with.notch_q = (ladrc_real_t)fmin(clamp_q(line_q), q);
-        if (phase_cost_deg(&with, p->rotor_hz, crossover_rad_s) > SIM_FILTER_PHASE_BUDGET_DEG) {
+        if (sim_filter_phase_cost_deg(&with, p->rotor_hz, crossover_rad_s) > SIM_FILTER_PHASE_BUDGET_DEG) {
             l->harmonic = -1;
             continue;
         }

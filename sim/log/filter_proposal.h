@@ -63,6 +63,10 @@ typedef struct {
 int sim_filter_response(const ladrc_gyro_filter_config_t *cfg, double rotor_hz, double hz, double *gain,
                         double *phase_rad);
 
+/* The stage's phase at w_rad_s as a cost (deg, a lag positive); +INFINITY
+ * when cfg is refused. */
+double sim_filter_phase_cost_deg(const ladrc_gyro_filter_config_t *cfg, double rotor_hz, double w_rad_s);
+
 /* The attenuation (dB) of the stage over [lo_hz, hi_hz) of the spectrum
  * `in`: its power there over the power of |H|^2 times it. */
 double sim_filter_band_attenuation_db(const ladrc_gyro_filter_config_t *cfg, double rotor_hz, const sim_spectrum_t *in,

@@ -107,7 +107,7 @@ double sim_log_noise_chain_phase_deg(const sim_log_noise_t *n, int axis)
 
 double sim_log_noise_chain_delay_s(const sim_log_noise_t *n, int axis)
 {
-    return sim_log_noise_chain_phase_deg(n, axis) / RAD2DEG / n->probe_rad_s;
+    return sim_phase_delay_s(sim_log_noise_chain_phase_deg(n, axis), n->probe_rad_s);
 }
 
 double sim_log_noise_rotor_hz(const sim_log_noise_t *n)

@@ -32,6 +32,12 @@ typedef struct {
     long blocks;
 } sim_phase_probe_t;
 
+/* The delay (s) a phase cost (deg, a lag positive) is at w_rad_s. */
+static inline double sim_phase_delay_s(double phase_deg, double w_rad_s)
+{
+    return phase_deg * (3.14159265358979323846 / 180.0) / w_rad_s;
+}
+
 void sim_phase_probe_init(sim_phase_probe_t *p, double w_rad_s, double dt_s);
 void sim_phase_probe_push(sim_phase_probe_t *p, double x, double y);
 /* y's phase against x's at the frequency (rad, a lag negative, in (-pi, pi]); NaN before a whole block. */

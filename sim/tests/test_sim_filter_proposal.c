@@ -75,13 +75,6 @@ static void synthetic(const double *hz, const double *amp, int n_lines)
     }
 }
 
-static double phase_cost_deg(const ladrc_gyro_filter_config_t *cfg, double rotor_hz, double w_rad_s)
-{
-    double g, ph;
-    TEST_ASSERT_EQUAL_INT(0, sim_filter_response(cfg, rotor_hz, w_rad_s / (2.0 * PI), &g, &ph));
-    return -ph * 180.0 / PI;
-}
-
 static void test_notches_at_the_lines_and_a_lowpass_within_the_budget(void)
 {
     const double hz[2] = {70.3, 161.1}, amp[2] = {1.0, 0.5};
@@ -102,7 +95,7 @@ static void test_notches_at_the_lines_and_a_lowpass_within_the_budget(void)
     TEST_ASSERT_TRUE(p.band_lo_hz < hz[0] && p.band_hi_hz > hz[1]);
     /* the low-pass is the lowest within the budget: on it, not below it */
     TEST_ASSERT_EQUAL_UINT(2, p.cfg.lpf_order);
-    TEST_ASSERT_FLOAT_WITHIN(BUDGET_TOL_DEG, SIM_FILTER_PHASE_BUDGET_DEG, phase_cost_deg(&p.cfg, 0.0, 30.0));
+    TEST_ASSERT_FLOAT_WITHIN(BUDGET_TOL_DEG, SIM_FILTER_PHASE_BUDGET_DEG, sim_filter_phase_cost_deg(&p.cfg, 0.0, 30.0));
     for (int i = 0; i < 3; ++i) {
         TEST_ASSERT_TRUE(sim_filter_band_attenuation_db(&p.cfg, 0.0, &spectra[i], p.band_lo_hz, p.band_hi_hz) >=
                          BAND_ATTENUATION_MIN_DB);
