@@ -20,6 +20,7 @@
 
 #include <stdio.h>
 
+#include "gyro_filter.h"
 #include "ident.h"
 #include "spectrum.h"
 
@@ -39,6 +40,8 @@ typedef struct {
     double noise_floor_rad_s_rthz[3]; /* the gyro's white floor (sqrt of its PSD) */
     int n_lines[3];
     sim_spectrum_line_t lines[3][SIM_SPECTRUM_MAX_LINES];
+    int has_gyro_filter; /* the log held the gyro before and after its filters */
+    sim_gyro_filter_axis_t gyro_filter[3];
 } sim_airframe_t;
 
 /* The band of the gyro's spectrum its floor is taken over (Hz), at sample rate fs. */
@@ -51,6 +54,13 @@ double sim_airframe_inertia(int axis, double b0);
 /* The yaw torque coefficient (N m s^2) that makes yaw's authority over
  * inertia_yaw equal b0_yaw. */
 double sim_airframe_yaw_coeff(double b0_yaw, double inertia_yaw);
+
+/* The b0 (rad/s^2) the scenario gives an axis: the identified one when the
+ * log tells it (sim_ident_b0_told); else its interval's upper end, the side
+ * a tuning is gentle on (the larger b0, the lower the gains: flown on the
+ * smaller true b0 the loop loses gain, not margin); else, for roll or pitch,
+ * the other one's. NaN when none of these is > 0. */
+double sim_airframe_b0(const sim_airframe_t *a, int axis);
 
 /* Writes the scenario to f: `source` names the log in its comment (a file
  * name, no folders), `noise_series` the noise file next to it (NULL: none).

@@ -140,6 +140,12 @@ int sim_ident_begin_pass(sim_ident_t *id)
         a->h_count = 0;
         a->sse3 = 0.0;
         memset(a->hac, 0, sizeof a->hac);
+        memset(a->block_h, 0, sizeof a->block_h);
+        memset(a->zx, 0, sizeof a->zx);
+        memset(a->zy, 0, sizeof a->zy);
+        memset(a->block_zx, 0, sizeof a->block_zx);
+        memset(a->block_zy, 0, sizeof a->block_zy);
+        a->iv_on = id->pass == 3;
         const int n = channels_of_pass(id);
         for (int c = 0; c < n; ++c) {
             if (id->pass == 1) {
@@ -150,6 +156,7 @@ int sim_ident_begin_pass(sim_ident_t *id)
             a->ch[c].alpha = tau > 0.0 ? exp(-id->opt.dt_s / tau) : 0.0;
             a->ch[c].gain = tau > 0.0 ? tau / id->opt.dt_s * (1.0 - a->ch[c].alpha) : 0.0;
         }
+        a->ref_ch = a->ch[0]; /* pass 3: the chosen lag */
         restart(a);
         if (id->pass == 1) {
             sim_spectrum_init(&a->command, 1.0 / id->opt.dt_s);
@@ -158,12 +165,48 @@ int sim_ident_begin_pass(sim_ident_t *id)
     return id->pass;
 }
 
-/* One axis's sample. */
-static void add_axis(sim_ident_t *id, axis_t *a, double w, double u)
+/* The phi of one lag channel for input v held over the tick (ident_internal.h), filtered into its ring. */
+static void lag_channel_step(const sim_ident_t *id, lag_channel_t *ch, int pos, double v)
+{
+    const double phi = v + (ch->x - v) * ch->gain;
+    ch->x = ch->alpha * ch->x + (1.0 - ch->alpha) * v;
+    ch->ring[pos] = ch->ring[pos + RING] = prefilter_step(id->lpf, &ch->filter, phi);
+}
+
+static void lag_channel_settle(const sim_ident_t *id, lag_channel_t *ch, double v)
+{
+    ch->x = v;
+    prefilter_settle(id->lpf, &ch->filter, v);
+    for (int k = 0; k < 2 * RING; ++k) {
+        ch->ring[k] = v;
+    }
+}
+
+/* Pass 3's instrumental-variable sums of one fitted sample into block b:
+ * z = (the setpoint's phi at the chosen delay, its filtered mid-point, 1),
+ * x = (p, wm, 1). */
+static void iv_add(axis_t *a, int d0, long long b, double rf, double p, double wm, double y)
+{
+    const double z[3] = {lag_channel_at(&a->ref_ch, a->pos, d0), rf, 1.0}, x[3] = {p, wm, 1.0};
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+            a->zx[i][j] += z[i] * x[j];
+            a->block_zx[b][i][j] += z[i] * x[j];
+        }
+        a->zy[i] += z[i] * y;
+        a->block_zy[b][i] += z[i] * y;
+    }
+}
+
+/* One axis's sample (ref: the setpoint, NaN when none). */
+static void add_axis(sim_ident_t *id, axis_t *a, double w, double u, double ref)
 {
     if (!isfinite(w) || !isfinite(u)) {
         restart(a);
         return;
+    }
+    if (!isfinite(ref)) {
+        a->iv_on = 0;
     }
     if (id->pass == 1) {
         sim_spectrum_push(&a->command, u);
@@ -174,11 +217,12 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u)
         prefilter_settle(id->lpf, &a->fy, 0.0);
         prefilter_settle(id->lpf, &a->fw, w);
         for (int c = 0; c < n_ch; ++c) {
-            a->ch[c].x = u;
-            prefilter_settle(id->lpf, &a->ch[c].filter, u);
-            for (int k = 0; k < RING; ++k) {
-                a->ch[c].ring[k] = u;
-            }
+            lag_channel_settle(id, &a->ch[c], u);
+        }
+        if (a->iv_on) {
+            lag_channel_settle(id, &a->ref_ch, ref);
+            prefilter_settle(id->lpf, &a->fr, ref);
+            a->r_prev = ref;
         }
         a->w_prev = w;
         a->u_prev = u;
@@ -189,10 +233,13 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u)
     const double wm = prefilter_step(id->lpf, &a->fw, 0.5 * (w + a->w_prev));
     a->pos = (a->pos + 1) % RING;
     for (int c = 0; c < n_ch; ++c) {
-        lag_channel_t *ch = &a->ch[c];
-        const double phi = a->u_prev + (ch->x - a->u_prev) * ch->gain;
-        ch->x = ch->alpha * ch->x + (1.0 - ch->alpha) * a->u_prev;
-        ch->ring[a->pos] = prefilter_step(id->lpf, &ch->filter, phi);
+        lag_channel_step(id, &a->ch[c], a->pos, a->u_prev);
+    }
+    double rf = 0.0;
+    if (a->iv_on) {
+        lag_channel_step(id, &a->ref_ch, a->pos, a->r_prev);
+        rf = prefilter_step(id->lpf, &a->fr, 0.5 * (ref + a->r_prev));
+        a->r_prev = ref;
     }
     a->w_prev = w;
     a->u_prev = u;
@@ -210,9 +257,9 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u)
     int d0, nd;
     delays_of_pass(id, a, &d0, &nd);
     for (int c = 0; c < n_ch; ++c) {
-        const double *ring = a->ch[c].ring;
+        const double *newest = &a->ch[c].ring[a->pos + RING - d0]; /* delay d0 + j at newest[-j] */
         for (int j = 0; j < nd; ++j) {
-            const double p = ring[(a->pos - (d0 + j) + RING) % RING];
+            const double p = newest[-j];
             candidate_sums_t *cs = &a->cand[c][j];
             cs->pp += p * p;
             cs->pw += p * wm;
@@ -221,10 +268,16 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u)
         }
     }
     if (id->pass == 3 && a->valid) {
-        const double p = a->ch[0].ring[(a->pos - d0 + RING) % RING];
+        const double p = lag_channel_at(&a->ch[0], a->pos, d0);
         const double r = y - (a->theta[0] * p + a->theta[1] * wm + a->theta[2]);
         const double h = (a->v[0] * p + a->v[1] * wm + a->v[2]) * r;
         a->sse3 += r * r;
+        long long b = a->n_fitted > 0 ? a->h_count * SPLIT_BLOCKS / a->n_fitted : 0;
+        b = b < SPLIT_BLOCKS ? b : SPLIT_BLOCKS - 1;
+        a->block_h[b] += h;
+        if (a->iv_on) {
+            iv_add(a, d0, b, rf, p, wm, y);
+        }
         const int lags = id->hac_lags;
         const long long k = a->h_seg++;
         a->h_count++;
@@ -236,11 +289,17 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u)
     }
 }
 
-void sim_ident_add(sim_ident_t *id, const double gyro_rad_s[3], const double command[3])
+void sim_ident_add_ref(sim_ident_t *id, const double gyro_rad_s[3], const double command[3],
+                       const double setpoint_rad_s[3])
 {
     for (int i = 0; i < 3; ++i) {
-        add_axis(id, &id->axis[i], gyro_rad_s[i], command[i]);
+        add_axis(id, &id->axis[i], gyro_rad_s[i], command[i], setpoint_rad_s != NULL ? setpoint_rad_s[i] : NAN);
     }
+}
+
+void sim_ident_add(sim_ident_t *id, const double gyro_rad_s[3], const double command[3])
+{
+    sim_ident_add_ref(id, gyro_rad_s, command, NULL);
 }
 
 /* Least squares of candidate sums: theta, the inverse of the sums matrix and
@@ -354,6 +413,7 @@ static void end_fine(axis_t *a)
     a->tau_s = profile_vertex(a, best_c, best_j);
     a->delay = a->fine_d0 + best_j;
     a->n = a->sh.n;
+    a->n_fitted = (long long)a->sh.n;
     a->sst = a->sh.yy - a->sh.y1 * a->sh.y1 / a->sh.n;
     a->phi_mean = c->p1 / a->sh.n;
     a->phi_var = c->pp / a->sh.n - a->phi_mean * a->phi_mean;

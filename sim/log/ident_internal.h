@@ -13,6 +13,12 @@
 #define RING (SIM_IDENT_MAX_DELAY + 1)
 #define MAX_CHANNELS (SIM_IDENT_COARSE_TAUS > SIM_IDENT_FINE_TAUS ? SIM_IDENT_COARSE_TAUS : SIM_IDENT_FINE_TAUS)
 #define PREFILTER_SECTIONS 3 /* two low-pass, one high-pass */
+/* The split-window variance: pass 3 sums b0's influence (the residual
+ * times row 1 of the inverse sums matrix times the regressors) over this
+ * many consecutive blocks of the samples; their scatter is b0's variance
+ * with every correlation inside a block counted, however long (a
+ * cluster-robust sandwich over contiguous blocks). */
+#define SPLIT_BLOCKS 8
 
 /* The prefilter's sections' states (ident.c: the band-pass both sides go through). */
 typedef struct {
@@ -21,13 +27,21 @@ typedef struct {
 
 /* The command through one candidate lag: phi(j) = u(j) + (x(j) - u(j)) g,
  * the mean of the lag's output over a hold of u(j) starting from x(j), then
- * x(j + 1) = alpha x(j) + (1 - alpha) u(j); filtered, into a ring by tick. */
+ * x(j + 1) = alpha x(j) + (1 - alpha) u(j); filtered, into a ring by tick,
+ * written twice (at pos and pos + RING) so that the delays read a window
+ * without a modulo each (lag_channel_at). */
 typedef struct {
     double tau_s, alpha, gain;
     double x;
     prefilter_t filter;
-    double ring[RING];
+    double ring[2 * RING];
 } lag_channel_t;
+
+/* The channel's value d ticks before the newest (at ring slot pos), 0 <= d < RING. */
+static inline double lag_channel_at(const lag_channel_t *ch, int pos, int d)
+{
+    return ch->ring[pos + RING - d];
+}
 
 /* Sums of x x' and x y over the samples of one candidate (tau, d); x = (phi, w, 1). */
 typedef struct {
@@ -66,6 +80,17 @@ typedef struct {
     long long h_count, h_seg; /* residuals in all, and since the last gap */
     sim_spectrum_t command;   /* pass 1: the command's spectrum */
     double sse3;
+    double block_h[SPLIT_BLOCKS]; /* pass 3: b0's influence summed per block */
+    /* pass 3: the instrumental-variable fit: the setpoint through the chosen
+     * lag (its ring by tick) and its filtered mid-point; sums of z x' and z y
+     * with z = (setpoint's phi, setpoint, 1), over all and per block */
+    lag_channel_t ref_ch;
+    prefilter_t fr;
+    double r_prev;
+    int iv_on; /* every sample of pass 3 had a finite setpoint */
+    double zx[3][3], zy[3];
+    double block_zx[SPLIT_BLOCKS][3][3], block_zy[SPLIT_BLOCKS][3];
+    long long n_fitted; /* the samples pass 2 fitted: pass 3 fits the same */
     int valid;
 } axis_t;
 
