@@ -136,7 +136,7 @@ int sim_ident_begin_pass(sim_ident_t *id)
     for (int i = 0; i < 3; ++i) {
         axis_t *a = &id->axis[i];
         memset(&a->sh, 0, sizeof a->sh);
-        memset(a->cand, 0, sizeof a->cand);
+        memset(&a->cand, 0, sizeof a->cand);
         a->h_count = 0;
         a->sse3 = 0.0;
         memset(a->hac, 0, sizeof a->hac);
@@ -231,7 +231,7 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u, double ref)
     }
     const double y = prefilter_step(id->lpf, &a->fy, (w - a->w_prev) / id->opt.dt_s);
     const double wm = prefilter_step(id->lpf, &a->fw, 0.5 * (w + a->w_prev));
-    a->pos = (a->pos + 1) % RING;
+    a->pos = (a->pos + RING - 1) % RING;
     for (int c = 0; c < n_ch; ++c) {
         lag_channel_step(id, &a->ch[c], a->pos, a->u_prev);
     }
@@ -257,14 +257,15 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u, double ref)
     int d0, nd;
     delays_of_pass(id, a, &d0, &nd);
     for (int c = 0; c < n_ch; ++c) {
-        const double *newest = &a->ch[c].ring[a->pos + RING - d0]; /* delay d0 + j at newest[-j] */
+        const double *restrict phi = &a->ch[c].ring[a->pos + d0]; /* delay d0 + j at phi[j] */
+        double *restrict pp = a->cand.pp[c], *restrict pw = a->cand.pw[c], *restrict p1 = a->cand.p1[c],
+                         *restrict py = a->cand.py[c];
         for (int j = 0; j < nd; ++j) {
-            const double p = newest[-j];
-            candidate_sums_t *cs = &a->cand[c][j];
-            cs->pp += p * p;
-            cs->pw += p * wm;
-            cs->p1 += p;
-            cs->py += p * y;
+            const double p = phi[j];
+            pp[j] += p * p;
+            pw[j] += p * wm;
+            p1[j] += p;
+            py[j] += p * y;
         }
     }
     if (id->pass == 3 && a->valid) {
@@ -339,7 +340,8 @@ static int solve(const shared_sums_t *s, const candidate_sums_t *c, double theta
 static double candidate_fit(const axis_t *a, int c, int j, double *b0)
 {
     double theta[3], inv[3][3], sse;
-    if (!solve(&a->sh, &a->cand[c][j], theta, inv, &sse)) {
+    const candidate_sums_t cs = candidate_at(&a->cand, c, j);
+    if (!solve(&a->sh, &cs, theta, inv, &sse)) {
         *b0 = NAN;
         return INFINITY;
     }
@@ -404,11 +406,12 @@ static void end_fine(axis_t *a)
             }
         }
     }
-    a->valid = best_c >= 0 && solve(&a->sh, &a->cand[best_c][best_j], a->theta, a->m_inv, &a->sse);
+    const candidate_sums_t best_sums = candidate_at(&a->cand, best_c >= 0 ? best_c : 0, best_j);
+    a->valid = best_c >= 0 && solve(&a->sh, &best_sums, a->theta, a->m_inv, &a->sse);
     if (!a->valid) {
         return;
     }
-    const candidate_sums_t *c = &a->cand[best_c][best_j];
+    const candidate_sums_t *c = &best_sums;
     a->tau_grid_s = a->tau_fine[best_c];
     a->tau_s = profile_vertex(a, best_c, best_j);
     a->delay = a->fine_d0 + best_j;
@@ -426,12 +429,13 @@ static void end_fine(axis_t *a)
 static void end_refined(axis_t *a)
 {
     double theta[3], inv[3][3], sse;
-    if (solve(&a->sh, &a->cand[0][0], theta, inv, &sse) && sse <= a->sse) {
+    const candidate_sums_t refined = candidate_at(&a->cand, 0, 0);
+    if (solve(&a->sh, &refined, theta, inv, &sse) && sse <= a->sse) {
         memcpy(a->theta, theta, sizeof theta);
         memcpy(a->m_inv, inv, sizeof inv);
         a->sse = sse;
-        a->phi_mean = a->cand[0][0].p1 / a->sh.n;
-        a->phi_var = a->cand[0][0].pp / a->sh.n - a->phi_mean * a->phi_mean;
+        a->phi_mean = refined.p1 / a->sh.n;
+        a->phi_var = refined.pp / a->sh.n - a->phi_mean * a->phi_mean;
     } else {
         a->tau_s = a->tau_grid_s;
     }

@@ -27,9 +27,11 @@ typedef struct {
 
 /* The command through one candidate lag: phi(j) = u(j) + (x(j) - u(j)) g,
  * the mean of the lag's output over a hold of u(j) starting from x(j), then
- * x(j + 1) = alpha x(j) + (1 - alpha) u(j); filtered, into a ring by tick,
- * written twice (at pos and pos + RING) so that the delays read a window
- * without a modulo each (lag_channel_at). */
+ * x(j + 1) = alpha x(j) + (1 - alpha) u(j); filtered, into a ring by tick:
+ * the newest at slot pos, which counts down, and each value written twice
+ * (at pos and pos + RING) so that delays 0, 1, 2... are the consecutive
+ * slots from pos (lag_channel_at): the grid's inner loop reads them in
+ * order, without a modulo, and vectorises. */
 typedef struct {
     double tau_s, alpha, gain;
     double x;
@@ -40,13 +42,25 @@ typedef struct {
 /* The channel's value d ticks before the newest (at ring slot pos), 0 <= d < RING. */
 static inline double lag_channel_at(const lag_channel_t *ch, int pos, int d)
 {
-    return ch->ring[pos + RING - d];
+    return ch->ring[pos + d];
 }
 
 /* Sums of x x' and x y over the samples of one candidate (tau, d); x = (phi, w, 1). */
 typedef struct {
     double pp, pw, p1, py;
 } candidate_sums_t;
+
+/* The same sums of every candidate of a pass, by channel and delay, one
+ * array per sum (the grid's inner loop over the delays vectorises). */
+typedef struct {
+    double pp[MAX_CHANNELS][RING], pw[MAX_CHANNELS][RING], p1[MAX_CHANNELS][RING], py[MAX_CHANNELS][RING];
+} candidate_grid_t;
+
+static inline candidate_sums_t candidate_at(const candidate_grid_t *g, int c, int j)
+{
+    const candidate_sums_t s = {g->pp[c][j], g->pw[c][j], g->p1[c][j], g->py[c][j]};
+    return s;
+}
 
 typedef struct {
     double ww, w1, n, wy, y1, yy;
@@ -60,7 +74,7 @@ typedef struct {
     lag_channel_t ch[MAX_CHANNELS];
     int pos; /* ring slot of the newest phi */
     shared_sums_t sh;
-    candidate_sums_t cand[MAX_CHANNELS][RING];
+    candidate_grid_t cand;
     /* profiles: the best sum of squares per candidate of each pass */
     double sse_coarse[SIM_IDENT_COARSE_TAUS][RING], b0_coarse[SIM_IDENT_COARSE_TAUS][RING];
     double sse_fine[SIM_IDENT_FINE_TAUS][SIM_IDENT_FINE_DELAYS], b0_fine[SIM_IDENT_FINE_TAUS][SIM_IDENT_FINE_DELAYS];
