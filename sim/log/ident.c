@@ -279,13 +279,16 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u, double ref)
         if (a->iv_on) {
             iv_add(a, d0, b, rf, p, wm, y);
         }
-        const int lags = id->hac_lags;
+        const int lags = id->hac_lags, size = lags + 1;
         const long long k = a->h_seg++;
         a->h_count++;
-        a->h_ring[k % (lags + 1)] = h;
+        a->h_pos = (a->h_pos + size - 1) % size;
+        a->h_ring[a->h_pos] = a->h_ring[a->h_pos + size] = h;
         const int m_max = k < lags ? (int)k : lags;
+        const double *restrict past = &a->h_ring[a->h_pos]; /* lag m at past[m] */
+        double *restrict hac = a->hac;
         for (int m = 0; m <= m_max; ++m) {
-            a->hac[m] += h * a->h_ring[(k - m) % (lags + 1)];
+            hac[m] += h * past[m];
         }
     }
 }

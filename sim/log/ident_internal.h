@@ -89,7 +89,11 @@ typedef struct {
     double phi_mean, phi_var;
     /* pass 3: the residuals' sandwich */
     double v[3]; /* row 1 of m_inv */
-    double h_ring[SIM_IDENT_MAX_HAC_LAGS + 1];
+    /* the last hac_lags + 1 influences, newest at h_pos, which counts down;
+     * each written twice (at h_pos and h_pos + hac_lags + 1) so that lags
+     * 0, 1, 2... are consecutive slots: the products' loop vectorises */
+    double h_ring[2 * (SIM_IDENT_MAX_HAC_LAGS + 1)];
+    int h_pos;
     double hac[SIM_IDENT_MAX_HAC_LAGS + 1];
     long long h_count, h_seg; /* residuals in all, and since the last gap */
     sim_spectrum_t command;   /* pass 1: the command's spectrum */
