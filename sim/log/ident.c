@@ -173,12 +173,26 @@ static void lag_channel_step(const sim_ident_t *id, lag_channel_t *ch, int pos, 
     ch->ring[pos] = ch->ring[pos + RING] = prefilter_step(id->lpf, &ch->filter, phi);
 }
 
+/* The running sums of phi and phi^2 through the newest tick, into their rings (slot spos of RING + 1). */
+static void lag_channel_sums(lag_channel_t *ch, int pos, int spos)
+{
+    const double p = ch->ring[pos];
+    ch->sum1 += p;
+    ch->sum2 += p * p;
+    ch->ring1[spos] = ch->ring1[spos + RING + 1] = ch->sum1;
+    ch->ring2[spos] = ch->ring2[spos + RING + 1] = ch->sum2;
+}
+
 static void lag_channel_settle(const sim_ident_t *id, lag_channel_t *ch, double v)
 {
     ch->x = v;
     prefilter_settle(id->lpf, &ch->filter, v);
     for (int k = 0; k < 2 * RING; ++k) {
         ch->ring[k] = v;
+    }
+    ch->sum1 = ch->sum2 = 0.0;
+    for (int k = 0; k < 2 * (RING + 1); ++k) {
+        ch->ring1[k] = ch->ring2[k] = 0.0;
     }
 }
 
@@ -198,10 +212,37 @@ static void iv_add(axis_t *a, int d0, long long b, double rf, double p, double w
     }
 }
 
+/* Passes 1 and 2 take the candidates' sums of phi and phi^2 from the
+ * channels' running sums: sign -1 at a segment's first fitted tick (the
+ * sums through the tick before it, delay d + 1), +1 after its last (the
+ * sums through it, delay d). */
+static void segment_sums(const sim_ident_t *id, axis_t *a, double sign, int extra)
+{
+    int d0, nd;
+    delays_of_pass(id, a, &d0, &nd);
+    for (int c = 0; c < channels_of_pass(id); ++c) {
+        const lag_channel_t *ch = &a->ch[c];
+        for (int j = 0; j < nd; ++j) {
+            const int at = a->spos + d0 + j + extra;
+            a->cand.p1[c][j] += sign * ch->ring1[at];
+            a->cand.pp[c][j] += sign * ch->ring2[at];
+        }
+    }
+}
+
+/* A segment's end (a gap, the pass's end): its fitted ticks' sums of phi and phi^2 in. */
+static void segment_close(const sim_ident_t *id, axis_t *a)
+{
+    if (id->pass < 3 && a->since_restart > id->skip) {
+        segment_sums(id, a, 1.0, 0);
+    }
+}
+
 /* One axis's sample (ref: the setpoint, NaN when none). */
 static void add_axis(sim_ident_t *id, axis_t *a, double w, double u, double ref)
 {
     if (!isfinite(w) || !isfinite(u)) {
+        segment_close(id, a);
         restart(a);
         return;
     }
@@ -232,8 +273,10 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u, double ref)
     const double y = prefilter_step(id->lpf, &a->fy, (w - a->w_prev) / id->opt.dt_s);
     const double wm = prefilter_step(id->lpf, &a->fw, 0.5 * (w + a->w_prev));
     a->pos = (a->pos + RING - 1) % RING;
+    a->spos = (a->spos + RING) % (RING + 1);
     for (int c = 0; c < n_ch; ++c) {
         lag_channel_step(id, &a->ch[c], a->pos, a->u_prev);
+        lag_channel_sums(&a->ch[c], a->pos, a->spos);
     }
     double rf = 0.0;
     if (a->iv_on) {
@@ -247,6 +290,9 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u, double ref)
     if (a->since_restart <= id->skip) {
         return;
     }
+    if (a->since_restart == id->skip + 1 && id->pass < 3) {
+        segment_sums(id, a, -1.0, 1); /* the segment's first fitted tick */
+    }
     shared_sums_t *s = &a->sh;
     s->ww += wm * wm;
     s->w1 += wm;
@@ -258,14 +304,14 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u, double ref)
     delays_of_pass(id, a, &d0, &nd);
     for (int c = 0; c < n_ch; ++c) {
         const double *restrict phi = &a->ch[c].ring[a->pos + d0]; /* delay d0 + j at phi[j] */
-        double *restrict pp = a->cand.pp[c], *restrict pw = a->cand.pw[c], *restrict p1 = a->cand.p1[c],
-                         *restrict py = a->cand.py[c];
-        for (int j = 0; j < nd; ++j) {
-            const double p = phi[j];
-            pp[j] += p * p;
-            pw[j] += p * wm;
-            p1[j] += p;
-            py[j] += p * y;
+        double *restrict pw = a->cand.pw[c], *restrict py = a->cand.py[c];
+        if (id->pass == 3) { /* one candidate: its sums of phi and phi^2 here too */
+            a->cand.pp[c][0] += phi[0] * phi[0];
+            a->cand.p1[c][0] += phi[0];
+        }
+        for (int j = 0; j < nd; ++j) { /* phi and phi^2: segment_sums */
+            pw[j] += phi[j] * wm;
+            py[j] += phi[j] * y;
         }
     }
     if (id->pass == 3 && a->valid) {
@@ -448,6 +494,7 @@ void sim_ident_end_pass(sim_ident_t *id)
 {
     for (int i = 0; i < 3; ++i) {
         axis_t *a = &id->axis[i];
+        segment_close(id, a);
         if (id->pass == 1) {
             end_coarse(id, a);
         } else if (id->pass == 2) {

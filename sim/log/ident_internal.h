@@ -37,6 +37,11 @@ typedef struct {
     double x;
     prefilter_t filter;
     double ring[2 * RING];
+    /* running sums of phi and phi^2 since the segment's start, by tick
+     * (the same doubled ring, one slot more): a candidate's sums of phi and
+     * phi^2 over a segment are two of these apart (segment_close) */
+    double sum1, sum2;
+    double ring1[2 * (RING + 1)], ring2[2 * (RING + 1)];
 } lag_channel_t;
 
 /* The channel's value d ticks before the newest (at ring slot pos), 0 <= d < RING. */
@@ -72,7 +77,8 @@ typedef struct {
     long long since_restart;
     prefilter_t fy, fw;
     lag_channel_t ch[MAX_CHANNELS];
-    int pos; /* ring slot of the newest phi */
+    int pos;  /* ring slot of the newest phi */
+    int spos; /* slot of the newest running sums (rings of RING + 1) */
     shared_sums_t sh;
     candidate_grid_t cand;
     /* profiles: the best sum of squares per candidate of each pass */
