@@ -18,8 +18,10 @@
 #include "report/report.h"
 #include "scenario/setup.h"
 #include "run/tune.h"
+#include "run/tune_noise.h"
 #include "run/runner.h"
 #include "cli/replay_report.h"
+#include "log/log_convert.h"
 #include "log/log_identify.h"
 
 /* Largest motor lag searched (s): ten times any real motor's. */
@@ -35,7 +37,7 @@ static void usage(FILE *out)
 {
     fputs("usage: ladrc_margins SCENARIO [--controllers LIST] [--axis roll|pitch|yaw|all]\n"
           "                     [--inertia-factor F] [--csv DIR] [--tune] [--fly]\n"
-          "       ladrc_margins --from-log LOG [--format betaflight|px4|generic] [--map F=SOURCE]...\n"
+          "       ladrc_margins --from-log LOG [--format betaflight|px4|ardupilot|generic] [--map F=SOURCE]...\n"
           "                     [--save-scenario FILE] [the options above]\n"
           "  SCENARIO           an attitude scenario file (docs/scenario-format.md)\n"
           "  --from-log LOG     the airframe identified from a flight log (docs/flight-logs.md),\n"
@@ -117,13 +119,29 @@ static void fmt_margin(char *buf, size_t len, double v, const char *unit)
 
 /* The scenario of the airframe identified from a log (log_identify.h,
  * airframe.h): written to save_path when given, read from memory. */
-static int load_from_log(const char *log_path, sim_log_options_t *opt, const char *save_path, sim_scenario_t *sc)
+/* The decoded form of a binary log, removed at exit. */
+static sim_log_prepared_t prepared;
+
+static void remove_prepared(void)
+{
+    sim_log_prepared_remove(&prepared);
+}
+
+static int load_from_log(const char *log_path, sim_log_options_t *opt, int format_given, const char *save_path,
+                         sim_scenario_t *sc)
 {
     char err[1024];
     if (snprintf(opt->path, sizeof opt->path, "%s", log_path) >= (int)sizeof opt->path) {
         fprintf(stderr, "ladrc_margins: %s: path too long\n", log_path);
         return -1;
     }
+    sim_log_error_t lerr;
+    if (sim_log_prepare(opt, format_given, &prepared, NULL, NULL, &lerr) != 0) {
+        sim_log_error_format(&lerr, err, sizeof err);
+        fprintf(stderr, "%s\n", err);
+        return -1;
+    }
+    atexit(remove_prepared);
     const sim_log_identify_options_t io = {.log = *opt, .delay_max_ticks = -1};
     static sim_airframe_t airframe;
     if (sim_log_identify(&io, &airframe, NULL, err, sizeof err) != 0) {
@@ -168,6 +186,7 @@ int main(int argc, char **argv)
     static sim_scenario_t sc;
     const char *path = NULL, *csv_dir = NULL, *from_log = NULL, *save_path = NULL;
     sim_log_options_t log_opt;
+    int format_given = 0;
     sim_log_options_default(&log_opt);
     int axis_from = 0, axis_to = 2, tune = 0, fly = 0, n_override = 0;
     double inertia_factor = 1.0;
@@ -213,10 +232,12 @@ int main(int argc, char **argv)
         } else if (strcmp(arg, "--format") == 0 && a + 1 < argc) {
             const int f = sim_log_format_parse(argv[++a]);
             if (f < 0) {
-                fprintf(stderr, "ladrc_margins: --format: expected betaflight, px4 or generic, got '%s'\n", argv[a]);
+                fprintf(stderr, "ladrc_margins: --format: expected betaflight, px4, ardupilot or generic, got '%s'\n",
+                        argv[a]);
                 return 2;
             }
             log_opt.format = (sim_log_format_t)f;
+            format_given = 1;
         } else if (strcmp(arg, "--map") == 0 && a + 1 < argc && log_opt.n_map < SIM_LOG_MAX_MAP) {
             log_opt.map[log_opt.n_map++] = argv[++a];
         } else if (strcmp(arg, "--save-scenario") == 0 && a + 1 < argc) {
@@ -234,7 +255,7 @@ int main(int argc, char **argv)
         return 2;
     }
     sim_parse_error_t perr;
-    if (from_log != NULL && load_from_log(from_log, &log_opt, save_path, &sc) != 0) {
+    if (from_log != NULL && load_from_log(from_log, &log_opt, format_given, save_path, &sc) != 0) {
         return 2;
     }
     if ((from_log == NULL && sim_scenario_load(&sc, path, &perr) != 0) ||
@@ -319,6 +340,10 @@ int main(int argc, char **argv)
             ladrc_margins_request_t req;
             ladrc_margins_request_default(&req, &plant);
             sim_tune_objective(&sc, id, &req);
+            char series_why[512];
+            if (sim_tune_noise_series(&sc, i, &req, series_why, sizeof series_why) != 0) {
+                fprintf(stderr, "%s\n", series_why);
+            }
             const ladrc_margins_controller_t ctl = sim_tune_controller_of(&sc, &filter, &acfg, i);
             int idle = 0;
             ladrc_margins_status_t st = ladrc_margins_analyse_reported(&ws, &ctl, &req, &res, &idle);

@@ -22,6 +22,7 @@
 
 #include "gyro_filter.h"
 #include "ident.h"
+#include "ladrc/gyro_filter.h"
 #include "spectrum.h"
 
 /* The nominal vehicle of an identified airframe. */
@@ -42,6 +43,12 @@ typedef struct {
     sim_spectrum_line_t lines[3][SIM_SPECTRUM_MAX_LINES];
     int has_gyro_filter; /* the log held the gyro before and after its filters */
     sim_gyro_filter_axis_t gyro_filter[3];
+    /* Set by the caller after the identification (zero: none): the gyro filter stage to fly
+     * ([filter]), and the logged controller's command noise above 20 Hz per axis (normalised
+     * command), the LADRC family's per-axis cap in N m (sim_airframe_torque_per_command_Nm). */
+    int has_filter;
+    ladrc_gyro_filter_config_t filter;
+    double log_cmd_noise[3];
 } sim_airframe_t;
 
 /* The band of the gyro's spectrum its floor is taken over (Hz), at sample rate fs. */
@@ -61,6 +68,9 @@ double sim_airframe_yaw_coeff(double b0_yaw, double inertia_yaw);
  * smaller true b0 the loop loses gain, not margin); else, for roll or pitch,
  * the other one's. NaN when none of these is > 0. */
 double sim_airframe_b0(const sim_airframe_t *a, int axis);
+/* The torque (N m) a command of 1 means on axis i of the scenario: the
+ * axis's inertia times the b0 it flies (sim_airframe_b0; NaN when not > 0). */
+double sim_airframe_torque_per_command_Nm(const sim_airframe_t *a, int axis);
 
 /* Writes the scenario to f: `source` names the log in its comment (a file
  * name, no folders), `noise_series` the noise file next to it (NULL: none).

@@ -56,6 +56,10 @@ typedef struct {
 typedef struct {
     sim_log_item_t item[SIM_LOG_N_SLOTS];
     int mapped[SIM_LOG_N_SLOTS]; /* item[slot] holds an item */
+    /* PX4: the preset's item from another topic, taken when item's topic
+     * file is missing and its is there (older PX4 releases; log_px4.h) */
+    sim_log_item_t fallback[SIM_LOG_N_SLOTS];
+    int has_fallback[SIM_LOG_N_SLOTS];
 } sim_log_map_t;
 
 /* One item; `topics`: sources are topic.column (PX4). 0, or -1 with a
@@ -66,5 +70,10 @@ int sim_log_item_parse(const char *text, int topics, sim_log_item_t *it, char *m
  * message naming the bad item. */
 int sim_log_map_build(sim_log_map_t *m, sim_log_format_t format, const char *const *items, int n_items, char *msg,
                       size_t len);
+
+/* The ArduPilot preset with the commands from RATE (with_rate) or from
+ * PIDR/PIDP/PIDY (logs without RATE), then the caller's items. */
+int sim_log_map_build_ardupilot(sim_log_map_t *m, int with_rate, const char *const *items, int n_items, char *msg,
+                                size_t len);
 
 #endif
