@@ -33,6 +33,9 @@ LADRC_FAMILY = ("LADRC", "LP-MLADRC", "HP-MLADRC")
 LOG_SOURCE = "LOG"
 AXES = ("roll", "pitch", "yaw")
 # a tuning note on stderr: 'path:line:col: message' (warnings say so first)
+# an untunable controller's reason is shown up to this many characters (its
+# full text is on ladrc_replay's stderr, kept with --keep)
+REASON_CHARS = 240
 NOTE = re.compile(r"^(?P<where>[^:\s][^:]*:\d+:\d+): (?P<message>.*)$")
 
 
@@ -138,7 +141,8 @@ def main(argv=None):
         print(f"   status 1 from: {status_causes(out_text, replayed)}")
     for name in untunable:
         reason = reasons.get(name)
-        print(f"   untunable: {name}: {reason or '(no reason printed)'}")
+        shown = reason if reason is None or len(reason) <= REASON_CHARS else reason[:REASON_CHARS] + " ..."
+        print(f"   untunable: {name}: {shown or '(no reason printed)'}")
         if not reason:
             failures.append(f"{name} untunable without a reason")
     if LOG_SOURCE not in replayed:
