@@ -124,21 +124,42 @@ void sim_report_replay(FILE *out, const sim_replay_t *r)
     }
 }
 
-static int write_summary(const char *path, const sim_replay_t *r, const sim_controller_id_t *untunable, int n_untunable)
+void sim_report_skipped(FILE *out, const sim_replay_skipped_t *skipped, int n_skipped)
+{
+    for (int c = 0; c < n_skipped; ++c) {
+        fprintf(out, "untunable %s, not replayed: %s\n", sim_controller_name(skipped[c].id), skipped[c].reason);
+    }
+}
+
+/* text as a CSV cell: quoted, its quotes doubled, no line breaks */
+static void csv_cell(FILE *f, const char *prefix, const char *text)
+{
+    fprintf(f, "\"%s", prefix);
+    for (const char *p = text; *p != '\0'; ++p) {
+        if (*p == '"') {
+            fputs("\"\"", f);
+        } else {
+            fputc(*p == '\n' || *p == '\r' ? ' ' : *p, f);
+        }
+    }
+    fputc('"', f);
+}
+
+static int write_summary(const char *path, const sim_replay_t *r, const sim_replay_skipped_t *skipped, int n_skipped)
 {
     FILE *f = fopen(path, "w");
     if (f == NULL) {
         return -1;
     }
     fprintf(f, "source,axis,ticks,command_rms,command_std,noise_0_20hz,noise_20_100hz,noise_above_100hz,"
-               "difference_rms,estimate_mean_rad_s2,estimate_std_rad_s2,fault_ticks,faults\n");
+               "difference_rms,estimate_mean_rad_s2,estimate_std_rad_s2,fault_ticks,faults,status\n");
     for (int c = -1; c < r->n; ++c) {
         for (int i = 0; i < 3; ++i) {
             const sim_replay_axis_t *a = c < 0 ? &r->log_axis[i] : &r->axis[c][i];
             double bands[SIM_REPLAY_BANDS];
             band_rms(a, bands);
             const int est = c >= 0 && r->has_estimate[c];
-            fprintf(f, "%s,%s,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%lld,%u\n",
+            fprintf(f, "%s,%s,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%lld,%u,replayed\n",
                     c < 0 ? "LOG" : sim_controller_name(r->ids[c]), AXIS[i], a->command.n,
                     sim_replay_stat_rms(&a->command), sim_replay_stat_std(&a->command), bands[0], bands[1], bands[2],
                     c < 0 ? NAN : sim_replay_stat_rms(&a->difference), est ? a->estimate.mean : NAN,
@@ -146,12 +167,14 @@ static int write_summary(const char *path, const sim_replay_t *r, const sim_cont
                     c < 0 ? 0u : (unsigned)r->faults_seen[c]);
         }
     }
-    for (int c = 0; c < n_untunable; ++c) {
+    for (int c = 0; c < n_skipped; ++c) {
         for (int i = 0; i < 3; ++i) {
-            fprintf(f, "%s,%s", sim_controller_name(untunable[c]), AXIS[i]);
-            for (int k = 0; k < 11; ++k) { /* every column after the axis */
+            fprintf(f, "%s,%s", sim_controller_name(skipped[c].id), AXIS[i]);
+            for (int k = 0; k < 11; ++k) { /* every value column after the axis */
                 fputs(",untunable", f);
             }
+            fputc(',', f);
+            csv_cell(f, "untunable: ", skipped[c].reason);
             fputc('\n', f);
         }
     }
@@ -190,18 +213,15 @@ static int write_spectrum(const char *path, const sim_replay_t *r)
     return (ferror(f) | fclose(f)) != 0 ? -1 : 0;
 }
 
-int sim_write_replay_files(const char *dir, const sim_replay_t *r, const sim_controller_id_t *untunable,
-                           int n_untunable, char *why, size_t why_len)
+int sim_write_replay_files(const char *summary_path, const char *spectrum_path, const sim_replay_t *r,
+                           const sim_replay_skipped_t *skipped, int n_skipped, char *why, size_t why_len)
 {
-    char path[1024];
-    snprintf(path, sizeof path, "%s/replay_summary.csv", dir);
-    if (write_summary(path, r, untunable, n_untunable) != 0) {
-        snprintf(why, why_len, "%s: write failed", path);
+    if (write_summary(summary_path, r, skipped, n_skipped) != 0) {
+        snprintf(why, why_len, "%s: write failed", summary_path);
         return -1;
     }
-    snprintf(path, sizeof path, "%s/spectrum.csv", dir);
-    if (write_spectrum(path, r) != 0) {
-        snprintf(why, why_len, "%s: write failed", path);
+    if (write_spectrum(spectrum_path, r) != 0) {
+        snprintf(why, why_len, "%s: write failed", spectrum_path);
         return -1;
     }
     return 0;

@@ -284,7 +284,7 @@ static void test_the_airframe_scenario_has_the_identified_b0_lag_and_delay(void)
     size_t len = 0;
     FILE *mem = open_memstream(&text, &len);
     TEST_ASSERT_NOT_NULL(mem);
-    TEST_ASSERT_EQUAL_INT(0, sim_airframe_write(mem, &af, "test.csv", NULL, why, sizeof why));
+    TEST_ASSERT_EQUAL_INT(0, sim_airframe_write(mem, &af, "test.csv", NULL, NULL, why, sizeof why));
     TEST_ASSERT_EQUAL_INT(0, fclose(mem));
     sim_parse_error_t err;
     const int parsed = sim_scenario_parse(&sc, text, "airframe.ini", &err);
@@ -297,13 +297,64 @@ static void test_the_airframe_scenario_has_the_identified_b0_lag_and_delay(void)
     TEST_ASSERT_TRUE(sc.inertia_kg_m2[2] < sc.inertia_kg_m2[0] + sc.inertia_kg_m2[1]);
     TEST_ASSERT_TRUE(fabs(sc.motor_tau_s - 0.025) < 1e-12);
     TEST_ASSERT_EQUAL_INT(3, sc.delay_ticks);
-    /* a negative b0 writes no scenario, and says why */
+    /* a negative b0 (the command's sign against the gyro's) is not the
+     * airframe's: pitch takes roll's, and the scenario's comment says why */
     af.axis[1].b0 = -5.0;
     mem = open_memstream(&text, &len);
-    TEST_ASSERT_EQUAL_INT(-1, sim_airframe_write(mem, &af, "test.csv", NULL, why, sizeof why));
+    TEST_ASSERT_EQUAL_INT(0, sim_airframe_write(mem, &af, "test.csv", NULL, NULL, why, sizeof why));
+    TEST_ASSERT_EQUAL_INT(0, fclose(mem));
+    TEST_ASSERT_NOT_NULL(strstr(text, "pitch: b0 came out negative"));
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_scenario_parse(&sc, text, "airframe.ini", &err), err.message);
+    free(text);
+    TEST_ASSERT_TRUE(fabs(sim_setup_authority_Nm(&sc, 1) / sc.inertia_kg_m2[1] - b0[0]) <= 1e-8 * b0[0]);
+}
+
+/* A log at 47 Hz (a PX4 log's rate): the controllers whose defaults refuse
+ * the rate (LP-MLADRC's and HP-MLADRC's forgetting, lp_lambda0_per_s 100/s,
+ * and RATE-ADRC's rate gain, each above 1 / dt) are not listed and are
+ * named with the reason; the others are; no b0 told on any axis: the
+ * library's default airframe's. */
+static void test_an_airframe_at_47_hz_lists_the_controllers_that_start(void)
+{
+    static sim_airframe_t af;
+    static sim_scenario_t sc;
+    af.dt_s = 1.0 / 47.0;
+    for (int i = 0; i < 3; ++i) {
+        af.axis[i].b0 = NAN;
+        af.axis[i].lag_s = NAN;
+        af.axis[i].delay_ticks = -1;
+        af.axis[i].damping_per_s = NAN;
+    }
+    char *text = NULL, why[256];
+    size_t len = 0;
+    sim_airframe_refused_t refused;
+    FILE *mem = open_memstream(&text, &len);
+    TEST_ASSERT_NOT_NULL(mem);
+    TEST_ASSERT_EQUAL_INT(0, sim_airframe_write(mem, &af, "test.csv", NULL, &refused, why, sizeof why));
+    TEST_ASSERT_EQUAL_INT(0, fclose(mem));
+    sim_parse_error_t err;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_scenario_parse(&sc, text, "airframe.ini", &err), err.message);
+    TEST_ASSERT_NOT_NULL(strstr(text, "the library's default airframe's"));
+    free(text);
+    TEST_ASSERT_EQUAL_INT(3, refused.n);
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_HP_MLADRC, refused.ids[0]);
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_LP_MLADRC, refused.ids[1]);
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_RATE_ADRC, refused.ids[2]);
+    TEST_ASSERT_NOT_NULL(strstr(refused.reason[1], "LP-MLADRC does not start: "));
+    TEST_ASSERT_NOT_NULL(strstr(refused.reason[1], "lambda0"));
+    TEST_ASSERT_NOT_NULL(strstr(refused.reason[1], "(at the log's 47 Hz)"));
+    TEST_ASSERT_NOT_NULL(strstr(refused.reason[2], "radrc_kp_per_s * dt_s < 1"));
+    TEST_ASSERT_EQUAL_INT(3, sc.n_controllers); /* LADRC, CASCADED, INDI */
+    TEST_ASSERT_EQUAL_INT(0, sc.delay_ticks);
+    sim_airframe_b0_source_t source;
+    TEST_ASSERT_EQUAL_INT(SIM_AIRFRAME_B0_DEFAULT, (sim_airframe_b0(&af, 2, &source), source));
+    /* below 10 Hz no scenario: refused with the reason */
+    af.dt_s = 0.2;
+    mem = open_memstream(&text, &len);
+    TEST_ASSERT_EQUAL_INT(-1, sim_airframe_write(mem, &af, "test.csv", NULL, NULL, why, sizeof why));
     fclose(mem);
     free(text);
-    TEST_ASSERT_NOT_NULL(strstr(why, "pitch"));
+    TEST_ASSERT_NOT_NULL(strstr(why, "--dt"));
 }
 
 int main(void)
@@ -318,5 +369,6 @@ int main(void)
     RUN_TEST(test_spectrum_finds_the_floor_and_a_line);
     RUN_TEST(test_spectra_pushed_together_equal_spectra_pushed_alone);
     RUN_TEST(test_the_airframe_scenario_has_the_identified_b0_lag_and_delay);
+    RUN_TEST(test_an_airframe_at_47_hz_lists_the_controllers_that_start);
     return UNITY_END();
 }
