@@ -18,6 +18,7 @@
 #include "cli/fly.h"
 #include "cli/replay_report.h"
 #include "cli/staged_dir.h"
+#include "log/log_convert.h"
 #include "log/log_identify.h"
 #include "log/replay.h"
 #include "report/report.h"
@@ -156,28 +157,6 @@ static int parse_args(int argc, char **argv, options_t *o)
     return 0;
 }
 
-/* The form of a log given without --format: PX4 when a topic file of that
- * name is there, Betaflight when its header has gyroADC, else generic. */
-static sim_log_format_t detect_format(const char *path)
-{
-    if (strstr(path, "_vehicle_") != NULL || strstr(path, "_sensor_combined_") != NULL) {
-        return SIM_LOG_PX4;
-    }
-    char px4[SIM_LOG_PATH_LEN + 64];
-    snprintf(px4, sizeof px4, "%s_vehicle_angular_velocity_0.csv", path);
-    if (access(px4, R_OK) == 0) {
-        return SIM_LOG_PX4;
-    }
-    FILE *f = fopen(path, "r");
-    char line[4096] = "";
-    if (f != NULL) {
-        while (fgets(line, sizeof line, f) != NULL && (line[0] == '#' || line[0] == '\n')) {
-        }
-        fclose(f);
-    }
-    return strstr(line, "gyroADC") != NULL ? SIM_LOG_BETAFLIGHT : SIM_LOG_GENERIC;
-}
-
 /* The log's name without folders and extension: the default output folder's. */
 static void log_stem(const char *path, char *buf, size_t len)
 {
@@ -213,6 +192,19 @@ static void end_progress(const progress_t *p)
     }
 }
 
+/* The decoded form of a binary log, removed at exit. */
+static sim_log_prepared_t prepared;
+
+static void remove_prepared(void)
+{
+    sim_log_prepared_remove(&prepared);
+}
+
+static void show_decoding(void *ctx, long long done, long long total)
+{
+    show_progress(ctx, 1, 1, "decoding", total > 0 ? (double)done / (double)total : 0.0);
+}
+
 /* The owned outputs of a run, in the output folder: written by it, or,
  * left by an earlier run and not written by this one, removed (the figures
  * tools/replay_plot.py drew from them among them). */
@@ -228,9 +220,12 @@ static void remove_outputs(void)
     sim_staged_abort(&stage);
 }
 
+/* The staged outputs go by unlink and rmdir alone; the decoded log's folder
+ * is listed to be removed (not async-signal-safe, but the process ends). */
 static void remove_outputs_on_signal(int sig)
 {
     sim_staged_abort(&stage);
+    sim_log_prepared_remove(&prepared);
     signal(sig, SIG_DFL);
     raise(sig);
 }
@@ -399,7 +394,7 @@ static int replay(const options_t *o, const sim_scenario_t *sc, sim_replay_t *r,
     const unsigned has = sim_log_has(log);
     if (!(has & (SIM_LOG_HAS_REF_ANGLE | SIM_LOG_HAS_REF_INTEGRATED))) {
         fprintf(stderr, "ladrc_replay: %s: the log has no setpoint (attitude or rate): nothing to replay against\n",
-                o->log.path);
+                prepared.original);
         sim_log_close(log);
         return -1;
     }
@@ -473,21 +468,31 @@ int main(int argc, char **argv)
     if (parse_args(argc, argv, &o) != 0) {
         return 2;
     }
-    if (!o.format_given) {
-        o.log.format = detect_format(o.log.path);
-    }
     char dir[SIM_LOG_PATH_LEN + 16], stem[SIM_LOG_PATH_LEN], noise[SIM_STAGED_PATH_LEN + 64], err[1024];
     log_stem(o.log.path, stem, sizeof stem);
     snprintf(dir, sizeof dir, "%s%s", o.out_dir != NULL ? o.out_dir : "replay/", o.out_dir != NULL ? "" : stem);
     if (check_inputs(&o, dir) != 0) {
         return 2;
     }
+    progress_t prog = {.quiet = o.quiet, .tty = isatty(2), .start_s = sim_fly_now_s(), .last_s = 0.0};
+    sim_log_error_t lerr;
+    if (sim_log_prepare(&o.log, o.format_given, &prepared, show_decoding, &prog, &lerr) != 0) {
+        end_progress(&prog);
+        sim_log_error_format(&lerr, err, sizeof err);
+        fprintf(stderr, "%s\n", err);
+        return 2;
+    }
+    atexit(remove_prepared);
+    end_progress(&prog);
+    if (prepared.dir[0] != '\0' && !o.quiet) {
+        fprintf(stderr, "ladrc_replay: %s: a %s log of %lld bytes, decoded in %.2f s\n", prepared.original,
+                sim_log_source_name(prepared.source), prepared.bytes, prepared.decode_s);
+    }
     remove_outputs_on_exit();
     if (sim_staged_open(&stage, dir, err, sizeof err) != 0) {
         fprintf(stderr, "ladrc_replay: %s\n", err);
         return 2;
     }
-    progress_t prog = {.quiet = o.quiet, .tty = isatty(2), .start_s = sim_fly_now_s(), .last_s = 0.0};
     sim_log_identify_options_t io = {.log = o.log,
                                      .delay_max_ticks = -1,
                                      .noise_series = out_path("airframe_noise.csv", noise, sizeof noise),
@@ -497,7 +502,7 @@ int main(int argc, char **argv)
     static sim_airframe_t airframe;
     sim_log_stats_t stats;
     if (!o.quiet) {
-        fprintf(stderr, "ladrc_replay: %s (%s form)\n", o.log.path, sim_log_format_name(o.log.format));
+        fprintf(stderr, "ladrc_replay: %s (%s form)\n", prepared.original, sim_log_format_name(o.log.format));
     }
     if (sim_log_identify(&io, &airframe, &stats, err, sizeof err) != 0) {
         end_progress(&prog);
@@ -505,8 +510,8 @@ int main(int argc, char **argv)
         return 2;
     }
     end_progress(&prog);
-    printf("%s: %lld rows in %d file(s), %lld ticks at %.4g s, identified in %.2f s (4 passes)", o.log.path, stats.rows,
-           stats.n_files, stats.ticks, airframe.dt_s, sim_fly_now_s() - prog.start_s);
+    printf("%s: %lld rows in %d file(s), %lld ticks at %.4g s, identified in %.2f s (4 passes)", prepared.original,
+           stats.rows, stats.n_files, stats.ticks, airframe.dt_s, sim_fly_now_s() - prog.start_s);
     if (stats.gaps > 0) {
         printf(", %lld gap(s) interpolated over (longest %.3g s)", stats.gaps, stats.longest_gap_s);
     }
@@ -531,11 +536,12 @@ int main(int argc, char **argv)
         return 2;
     }
     static sim_airframe_refused_t refused;
-    const int have_airframe = write_scenario(&airframe, o.log.path, &refused, ini, sizeof ini, err, sizeof err) == 0;
+    const int have_airframe =
+        write_scenario(&airframe, prepared.original, &refused, ini, sizeof ini, err, sizeof err) == 0;
     if (have_airframe) {
         printf("scenario of the airframe: %s (ladrc_sil flies it, ladrc_margins tunes it)\n", shown(ini));
     } else if (o.scenario == NULL) {
-        fprintf(stderr, "ladrc_replay: %s: no airframe to tune the controllers for: %s\n", o.log.path, err);
+        fprintf(stderr, "ladrc_replay: %s: no airframe to tune the controllers for: %s\n", prepared.original, err);
         return 2;
     } else {
         printf("no scenario of the airframe: %s\n", err);
