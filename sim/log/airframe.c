@@ -240,7 +240,14 @@ static int controller_starts(const sim_airframe_t *a, sim_controller_id_t id, ch
     const int rc = written && sim_scenario_parse(&probe, text, "airframe.ini", &err) == 0 ? 0 : -1;
     free(text);
     if (rc != 0) {
-        snprintf(why, why_len, "%s (at the log's %.4g Hz)", written ? err.message : "out of memory", 1.0 / a->dt_s);
+        char rate[48];
+        snprintf(rate, sizeof rate, " (at the log's %.4g Hz)", 1.0 / a->dt_s);
+        const char *msg = written ? err.message : "out of memory";
+        const size_t room = why_len > strlen(rate) ? why_len - strlen(rate) - 1 : 0;
+        const size_t n = strlen(msg) < room ? strlen(msg) : room; /* cut so that the rate is always said */
+        memcpy(why, msg, n);
+        why[n] = '\0';
+        strncat(why, rate, why_len - n - 1);
     }
     return rc;
 }

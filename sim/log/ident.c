@@ -176,7 +176,7 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u)
         for (int c = 0; c < n_ch; ++c) {
             a->ch[c].x = u;
             prefilter_settle(id->lpf, &a->ch[c].filter, u);
-            for (int k = 0; k < RING; ++k) {
+            for (int k = 0; k < 2 * RING; ++k) {
                 a->ch[c].ring[k] = u;
             }
         }
@@ -192,7 +192,7 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u)
         lag_channel_t *ch = &a->ch[c];
         const double phi = a->u_prev + (ch->x - a->u_prev) * ch->gain;
         ch->x = ch->alpha * ch->x + (1.0 - ch->alpha) * a->u_prev;
-        ch->ring[a->pos] = prefilter_step(id->lpf, &ch->filter, phi);
+        ch->ring[a->pos] = ch->ring[a->pos + RING] = prefilter_step(id->lpf, &ch->filter, phi);
     }
     a->w_prev = w;
     a->u_prev = u;
@@ -210,9 +210,9 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u)
     int d0, nd;
     delays_of_pass(id, a, &d0, &nd);
     for (int c = 0; c < n_ch; ++c) {
-        const double *ring = a->ch[c].ring;
+        const double *delayed = a->ch[c].ring + a->pos + RING - d0; /* delay d0 + j at delayed[-j] */
         for (int j = 0; j < nd; ++j) {
-            const double p = ring[(a->pos - (d0 + j) + RING) % RING];
+            const double p = delayed[-j];
             candidate_sums_t *cs = &a->cand[c][j];
             cs->pp += p * p;
             cs->pw += p * wm;
@@ -221,7 +221,7 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u)
         }
     }
     if (id->pass == 3 && a->valid) {
-        const double p = a->ch[0].ring[(a->pos - d0 + RING) % RING];
+        const double p = a->ch[0].ring[a->pos + RING - d0];
         const double r = y - (a->theta[0] * p + a->theta[1] * wm + a->theta[2]);
         const double h = (a->v[0] * p + a->v[1] * wm + a->v[2]) * r;
         a->sse3 += r * r;

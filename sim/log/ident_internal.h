@@ -26,7 +26,7 @@ typedef struct {
     double tau_s, alpha, gain;
     double x;
     prefilter_t filter;
-    double ring[RING];
+    double ring[2 * RING]; /* each value twice, at k and k + RING: any window of delays reads in one run */
 } lag_channel_t;
 
 /* Sums of x x' and x y over the samples of one candidate (tau, d); x = (phi, w, 1). */
