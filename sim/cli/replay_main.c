@@ -312,6 +312,7 @@ static int is_refused(const sim_airframe_refused_t *refused, sim_controller_id_t
 static void skip(sim_replay_skipped_t *skipped, int *n_skipped, sim_controller_id_t id, const char *reason)
 {
     skipped[*n_skipped].id = id;
+    skipped[*n_skipped].untunable = 1;
     snprintf(skipped[*n_skipped].reason, sizeof skipped[0].reason, "%s", reason);
     ++*n_skipped;
 }
@@ -321,7 +322,7 @@ static void skip(sim_replay_skipped_t *skipped, int *n_skipped, sim_controller_i
  * start at the log's rate) and those left untunable are not replayed: they
  * go, with the reason, to skipped[*n_skipped]. */
 static int load_scenario(const options_t *o, const char *path, const sim_airframe_refused_t *refused,
-                         sim_scenario_t *sc, sim_replay_skipped_t *skipped, int *n_skipped)
+                         const char *no_replay, sim_scenario_t *sc, sim_replay_skipped_t *skipped, int *n_skipped)
 {
     sim_parse_error_t perr;
     *n_skipped = 0;
@@ -353,6 +354,14 @@ static int load_scenario(const options_t *o, const char *path, const sim_airfram
     if (sc->kind != SIM_KIND_ATTITUDE) {
         fprintf(stderr, "ladrc_replay: %s: not an attitude scenario\n", shown(path));
         return -1;
+    }
+    if (no_replay != NULL) { /* nothing to replay against: no tuning, every controller named */
+        for (int c = 0; c < sc->n_controllers; ++c) {
+            skip(skipped, n_skipped, sc->controllers[c], no_replay);
+            skipped[*n_skipped - 1].untunable = 0;
+        }
+        sc->n_controllers = 0;
+        return 0;
     }
     int failed = 0;
     const sim_fly_tune_options_t tune_opt = {.jobs = 2, .quiet = o->quiet, .strict = 0, .note = tune_note};
@@ -392,7 +401,7 @@ static int replay(const options_t *o, const sim_scenario_t *sc, sim_replay_t *r,
         return -1;
     }
     const unsigned has = sim_log_has(log);
-    if (!(has & (SIM_LOG_HAS_REF_ANGLE | SIM_LOG_HAS_REF_INTEGRATED))) {
+    if (sc->n_controllers > 0 && !(has & (SIM_LOG_HAS_REF_ANGLE | SIM_LOG_HAS_REF_INTEGRATED))) {
         fprintf(stderr, "ladrc_replay: %s: the log has no setpoint (attitude or rate): nothing to replay against\n",
                 prepared.original);
         sim_log_close(log);
@@ -435,6 +444,27 @@ static int replay(const options_t *o, const sim_scenario_t *sc, sim_replay_t *r,
         return -1;
     }
     return rc < 0 ? -1 : 0;
+}
+
+/* NULL when the log has a setpoint (attitude or rate) the controllers are
+ * replayed against, else why not; "" when it cannot be opened (said). */
+static const char *why_no_replay(const options_t *o)
+{
+    sim_log_error_t lerr;
+    sim_log_t *log = sim_log_open(&o->log, &lerr);
+    if (log == NULL) {
+        char err[1024];
+        sim_log_error_format(&lerr, err, sizeof err);
+        fprintf(stderr, "%s\n", err);
+        return "";
+    }
+    const unsigned has = sim_log_has(log);
+    sim_log_close(log);
+    return (has & (SIM_LOG_HAS_REF_ANGLE | SIM_LOG_HAS_REF_INTEGRATED))
+               ? NULL
+               : "the log has no setpoint to replay against (Betaflight: setpoint[0..2], which logs before 3.2 lack; "
+                 "PX4: vehicle_rates_setpoint or vehicle_attitude_setpoint); --map ref_rate[i]=COLUMN or "
+                 "ref_angle[i]=COLUMN gives one";
 }
 
 /* Refuses a run whose outputs would replace its own log or scenario: 0, or -1 after saying so. */
@@ -550,8 +580,10 @@ int main(int argc, char **argv)
     static sim_replay_skipped_t skipped[SIM_CTRL_COUNT];
     int n_skipped = 0;
     if (!o.identify_only) {
-        if (load_scenario(&o, o.scenario != NULL ? o.scenario : ini, o.scenario != NULL ? NULL : &refused, &sc, skipped,
-                          &n_skipped) != 0) {
+        const char *no_replay = why_no_replay(&o);
+        if ((no_replay != NULL && no_replay[0] == '\0') ||
+            load_scenario(&o, o.scenario != NULL ? o.scenario : ini, o.scenario != NULL ? NULL : &refused, no_replay,
+                          &sc, skipped, &n_skipped) != 0) {
             return 2;
         }
         sim_report_tuning(stdout, &sc);

@@ -127,7 +127,8 @@ void sim_report_replay(FILE *out, const sim_replay_t *r)
 void sim_report_skipped(FILE *out, const sim_replay_skipped_t *skipped, int n_skipped)
 {
     for (int c = 0; c < n_skipped; ++c) {
-        fprintf(out, "untunable %s, not replayed: %s\n", sim_controller_name(skipped[c].id), skipped[c].reason);
+        fprintf(out, "%s%s, not replayed: %s\n", skipped[c].untunable ? "untunable " : "",
+                sim_controller_name(skipped[c].id), skipped[c].reason);
     }
 }
 
@@ -171,10 +172,10 @@ static int write_summary(const char *path, const sim_replay_t *r, const sim_repl
         for (int i = 0; i < 3; ++i) {
             fprintf(f, "%s,%s", sim_controller_name(skipped[c].id), AXIS[i]);
             for (int k = 0; k < 11; ++k) { /* every value column after the axis */
-                fputs(",untunable", f);
+                fputs(skipped[c].untunable ? ",untunable" : ",not_replayed", f);
             }
             fputc(',', f);
-            csv_cell(f, "untunable: ", skipped[c].reason);
+            csv_cell(f, skipped[c].untunable ? "untunable: " : "not replayed: ", skipped[c].reason);
             fputc('\n', f);
         }
     }

@@ -26,6 +26,7 @@ void sim_replay_csv_row(FILE *f, const sim_replay_t *r, const sim_log_sample_t *
  * library at the log's rate, and why. */
 typedef struct {
     sim_controller_id_t id;
+    int untunable; /* 1: untunable or refused at the log's rate; 0: the log cannot be replayed (no setpoint) */
     char reason[600];
 } sim_replay_skipped_t;
 
@@ -35,8 +36,9 @@ void sim_report_skipped(FILE *out, const sim_replay_skipped_t *skipped, int n_sk
 
 /* replay_summary.csv and spectrum.csv at the paths given (0, or -1 with the
  * file that failed in why). The summary's last column, status, reads
- * replayed, or for a controller not replayed "untunable: " and the reason
- * (its value columns then read untunable). */
+ * replayed, or for a controller not replayed "untunable: " or "not
+ * replayed: " and the reason (its value columns then read untunable or
+ * not_replayed). */
 int sim_write_replay_files(const char *summary_path, const char *spectrum_path, const sim_replay_t *r,
                            const sim_replay_skipped_t *skipped, int n_skipped, char *why, size_t why_len);
 

@@ -153,6 +153,18 @@ sed -e 's/^duration_s = 6/duration_s = 12/' -e 's/^controllers = .*/controllers 
   grep -q '^LP-MLADRC,roll,untunable,.*,"untunable: LP-MLADRC does not start: ' "$work/slow_replay/replay_summary.csv" &&
   grep -q "^LADRC,roll,56[0-9],.*,replayed$" "$work/slow_replay/replay_summary.csv"
 check log_at_47_hz_replays_what_starts_and_names_the_rest $?
+# A log without a setpoint (the PX4 log above less its attitude and rate setpoints; Betaflight logs
+# before 3.2): identified, the log's own command summarised, every controller named as not replayed
+# with the reason; exit 0.
+mkdir -p "$work/noref"
+for f in "$work/slow/slow/"LADRC_px4_*.csv; do
+    case $f in *_attitude_setpoint_* | *_rates_setpoint_*) ;; *) cp "$f" "$work/noref/" ;; esac
+done
+"$replay" "$work/noref/LADRC_px4" --controllers LADRC --every 0 --quiet --out "$work/noref_out" > "$work/noref.txt" 2>&1
+[ $? -eq 0 ] && grep -q "^LADRC, not replayed: the log has no setpoint to replay against" "$work/noref.txt" &&
+  grep -q "^LOG,roll,5[0-9][0-9],.*,replayed$" "$work/noref_out/replay_summary.csv" &&
+  grep -q '^LADRC,roll,not_replayed,.*,"not replayed: the log has no setpoint' "$work/noref_out/replay_summary.csv"
+check log_without_setpoint_is_identified_and_says_why_not_replayed $?
 "$margins" --from-log "$work/slow/slow/LADRC_px4" --controllers LADRC,LP-MLADRC --axis roll > "$work/slow_m.txt" 2>&1
 [ $? -eq 0 ] && grep -q "^LP-MLADRC  *untunable: LP-MLADRC does not start" "$work/slow_m.txt" &&
   grep -q "^LADRC  *roll .* yes " "$work/slow_m.txt"
