@@ -41,11 +41,12 @@ typedef struct {
 
 static void usage(FILE *out)
 {
-    fputs("usage: ladrc_replay LOG [--format betaflight|px4|generic] [--map FIELD=SOURCE]...\n"
+    fputs("usage: ladrc_replay LOG [--format betaflight|px4|ardupilot|generic] [--map FIELD=SOURCE]...\n"
           "                    [--dt S] [--from S] [--to S] [--scenario FILE] [--controllers LIST]\n"
           "                    [--out DIR] [--every N] [--identify-only] [--strict] [--quiet]\n"
           "  LOG               a blackbox_decode CSV, a PX4 ulog2csv topic file (or their common\n"
-          "                    prefix), or a CSV whose columns --map names (docs/flight-logs.md)\n"
+          "                    prefix), an ArduPilot DataFlash .bin, or a CSV whose columns --map\n"
+          "                    names (docs/flight-logs.md)\n"
           "  --format F        the log's form (default: told from the files)\n"
           "  --map F=SOURCE    a column (or sum of columns, times a scale) for a field, over the form's\n"
           "  --dt S            control period to resample to (default: the log's row period)\n"
@@ -106,7 +107,8 @@ static int parse_args(int argc, char **argv, options_t *o)
         } else if (strcmp(arg, "--format") == 0) {
             const int f = sim_log_format_parse(argv[++a]);
             if (f < 0) {
-                fprintf(stderr, "ladrc_replay: --format: expected betaflight, px4 or generic, got '%s'\n", val);
+                fprintf(stderr, "ladrc_replay: --format: expected betaflight, px4, ardupilot or generic, got '%s'\n",
+                        val);
                 return -1;
             }
             o->log.format = (sim_log_format_t)f;

@@ -67,4 +67,9 @@ int sim_log_item_parse(const char *text, int topics, sim_log_item_t *it, char *m
 int sim_log_map_build(sim_log_map_t *m, sim_log_format_t format, const char *const *items, int n_items, char *msg,
                       size_t len);
 
+/* The ArduPilot preset with the commands from RATE (with_rate) or from
+ * PIDR/PIDP/PIDY (logs without RATE), then the caller's items. */
+int sim_log_map_build_ardupilot(sim_log_map_t *m, int with_rate, const char *const *items, int n_items, char *msg,
+                                size_t len);
+
 #endif
