@@ -357,6 +357,39 @@ static void test_an_airframe_at_47_hz_lists_the_controllers_that_start(void)
     TEST_ASSERT_NOT_NULL(strstr(why, "--dt"));
 }
 
+/* The longest delay the identification finds (40 ticks, SIM_IDENT_MAX_DELAY)
+ * reaches the scenario and every controller's actuator model alike. */
+static void test_the_longest_delay_reaches_every_controller(void)
+{
+    static sim_airframe_t af;
+    static sim_scenario_t sc;
+    af.dt_s = 0.001;
+    for (int i = 0; i < 3; ++i) {
+        af.axis[i].b0 = 120.0;
+        af.axis[i].lag_s = 0.03;
+        af.axis[i].delay_ticks = SIM_IDENT_MAX_DELAY - (i == 0);
+        af.axis[i].damping_per_s = 10.0;
+    }
+    char *text = NULL, why[256];
+    size_t len = 0;
+    FILE *mem = open_memstream(&text, &len);
+    TEST_ASSERT_NOT_NULL(mem);
+    TEST_ASSERT_EQUAL_INT(0, sim_airframe_write(mem, &af, "test.csv", NULL, NULL, why, sizeof why));
+    TEST_ASSERT_EQUAL_INT(0, fclose(mem));
+    sim_parse_error_t err;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_scenario_parse(&sc, text, "airframe.ini", &err), err.message);
+    free(text);
+    TEST_ASSERT_EQUAL_INT(SIM_IDENT_MAX_DELAY, sc.delay_ticks);
+    TEST_ASSERT_EQUAL_INT(6, sc.n_controllers);
+    for (int c = 0; c < sc.n_controllers; ++c) {
+        ladrc_attitude_config_t cfg;
+        sim_setup_attitude(&sc, sc.controllers[c], &cfg);
+        for (int i = 0; i < 3; ++i) {
+            TEST_ASSERT_EQUAL_INT(SIM_IDENT_MAX_DELAY, cfg.axis[i].delay_ticks);
+        }
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -370,5 +403,6 @@ int main(void)
     RUN_TEST(test_spectra_pushed_together_equal_spectra_pushed_alone);
     RUN_TEST(test_the_airframe_scenario_has_the_identified_b0_lag_and_delay);
     RUN_TEST(test_an_airframe_at_47_hz_lists_the_controllers_that_start);
+    RUN_TEST(test_the_longest_delay_reaches_every_controller);
     return UNITY_END();
 }
