@@ -16,10 +16,12 @@
 #include <unistd.h>
 
 #include "cli/fly.h"
+#include "cli/replay_noise.h"
 #include "cli/replay_report.h"
 #include "cli/staged_dir.h"
 #include "log/log_convert.h"
 #include "log/log_identify.h"
+#include "log/log_views.h"
 #include "log/replay.h"
 #include "report/report.h"
 #include "run/tune.h"
@@ -61,7 +63,9 @@ static void usage(FILE *out)
           "                    faulted, else 4 when a controller was not replayed (untunable)\n"
           "  --quiet           no progress on stderr\n"
           "Writes in DIR: identification.csv, airframe.ini, airframe_noise.csv, replay.csv,\n"
-          "replay_summary.csv, spectrum.csv, all at once when the run ends (nothing on a refusal);\n"
+          "replay_summary.csv, spectrum.csv, and the log's step and frequency responses and noise\n"
+          "against throttle (step_response.csv, freq_response.csv, noise_throttle.csv,\n"
+          "response_summary.csv), all at once when the run ends (nothing on a refusal);\n"
           "tools/replay_plot.py DIR draws them. A controller that cannot be tuned for the airframe\n"
           "or does not start at the log's rate is not replayed: its reason is printed and in\n"
           "replay_summary.csv; the others are.\n"
@@ -210,10 +214,13 @@ static void show_decoding(void *ctx, long long done, long long total)
 /* The owned outputs of a run, in the output folder: written by it, or,
  * left by an earlier run and not written by this one, removed (the figures
  * tools/replay_plot.py drew from them among them). */
-static const char *const OUTPUTS[] = {"identification.csv",  "airframe.ini",       "airframe_noise.csv",
-                                      "replay.csv",          "replay_summary.csv", "spectrum.csv",
-                                      "replay_commands.png", "replay_spectrum.png"};
+static const char *const OUTPUTS[] = {"step_response.csv",    "freq_response.csv",   "noise_throttle.csv",
+                                      "response_summary.csv", "identification.csv",  "airframe.ini",
+                                      "airframe_noise.csv",   "replay.csv",          "replay_summary.csv",
+                                      "spectrum.csv",         "replay_commands.png", "replay_spectrum.png"};
 #define N_OUTPUTS ((int)(sizeof OUTPUTS / sizeof OUTPUTS[0]))
+#define VIEWS OUTPUTS /* the first four: the log's views (log_views.h) */
+#define N_VIEWS 4
 
 static sim_staged_dir_t stage; /* the outputs until the run succeeds; an exit or a signal before removes them */
 
@@ -567,6 +574,10 @@ int main(int argc, char **argv)
         fprintf(stderr, "ladrc_replay: %s: write failed\n", shown(path));
         return 2;
     }
+    if (sim_replay_noise_stage(&o.log, &airframe, stdout, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", shown(err));
+        return 2;
+    }
     static sim_airframe_refused_t refused;
     const int have_airframe =
         write_scenario(&airframe, prepared.original, &refused, ini, sizeof ini, err, sizeof err) == 0;
@@ -599,10 +610,15 @@ int main(int argc, char **argv)
         printf("replayed %lld ticks (%.4g s of flight) with %d controllers in %.2f s: %.0fx real time\n", r.ticks,
                (double)r.ticks * sc.control_dt_s, r.n, replay_s, (double)r.ticks * sc.control_dt_s / replay_s);
         sim_report_replay(stdout, &r);
+        sim_replay_noise_report(stdout, &sc, &r);
         char spectrum[SIM_STAGED_PATH_LEN + 64];
+        for (int k = 0; k < N_VIEWS; ++k) { /* registered: an exit before the commit removes them */
+            out_path(VIEWS[k], spectrum, sizeof spectrum);
+        }
         if (sim_write_replay_files(out_path("replay_summary.csv", path, sizeof path),
                                    out_path("spectrum.csv", spectrum, sizeof spectrum), &r, skipped, n_skipped, err,
-                                   sizeof err) != 0) {
+                                   sizeof err) != 0 ||
+            sim_log_views_of_log(&o.log, stage.stage, stdout, err, sizeof err) != 0) {
             fprintf(stderr, "ladrc_replay: %s\n", shown(err));
             return 2;
         }

@@ -21,6 +21,7 @@
 #include <stdio.h>
 
 #include "ident.h"
+#include "ladrc/gyro_filter.h"
 #include "scenario/scenario.h"
 #include "spectrum.h"
 
@@ -40,6 +41,12 @@ typedef struct {
     double noise_floor_rad_s_rthz[3]; /* the gyro's white floor (sqrt of its PSD) */
     int n_lines[3];
     sim_spectrum_line_t lines[3][SIM_SPECTRUM_MAX_LINES];
+    /* Set by the caller after the identification (zero: none): the gyro filter stage to fly
+     * ([filter]), and the logged controller's command noise above 20 Hz per axis (normalised
+     * command), the LADRC family's per-axis cap in N m (sim_airframe_torque_per_command_Nm). */
+    int has_filter;
+    ladrc_gyro_filter_config_t filter;
+    double log_cmd_noise[3];
 } sim_airframe_t;
 
 /* The band of the gyro's spectrum its floor is taken over (Hz), at sample rate fs. */
@@ -77,6 +84,10 @@ typedef struct {
     sim_controller_id_t ids[SIM_MAX_CONTROLLERS];
     char reason[SIM_MAX_CONTROLLERS][256];
 } sim_airframe_refused_t;
+
+/* The torque (N m) a command of 1 means on axis i of the scenario: the
+ * axis's inertia times its b0 (the b0 sim_airframe_b0 gives it). */
+double sim_airframe_torque_per_command_Nm(const sim_airframe_t *a, int axis);
 
 /* Writes the scenario to f: `source` names the log in its comment (a file
  * name, no folders), `noise_series` the noise file next to it (NULL: none).

@@ -242,6 +242,9 @@ const key_def_t SCHEMA_KEYS[] = {
     {KEY(SEC_REFERENCE, "throttle", V_SIGNAL, SC(throttle))},
     {KEY(SEC_REFERENCE, "frame", V_CHOICE, SC(frame)), .choices = FRAMES},
     {KEY(SEC_REFERENCE, "yaw_weight", V_REAL, SC(yaw_weight)), .range = R_WEIGHT},
+    {KEY(SEC_REFERENCE, "series", V_TEXT, SC(ref_series))},
+    {KEY(SEC_REFERENCE, "series_interp", V_CHOICE, SC(ref_series_interp)), .choices = SERIES_INTERP},
+    {KEY(SEC_REFERENCE, "series_end", V_CHOICE, SC(ref_series_end)), .choices = SERIES_END},
 
     {KEY(SEC_DISTURBANCE, "roll", V_SIGNAL, SC(disturbance[0]))},
     {KEY(SEC_DISTURBANCE, "pitch", V_SIGNAL, SC(disturbance[1]))},
@@ -349,6 +352,7 @@ const key_def_t SCHEMA_KEYS[] = {
     {CTRL_KEY("tune_noise_max_Nm", V_REAL, tune_noise_max_Nm, ALL_CONTROLLERS), .range = R_POSITIVE},
     {CTRL_KEY("tune_noise_ref", V_CHOICE, tune_noise_ref, ALL_CONTROLLERS), .choices = CONTROLLER_CHOICES},
     {CTRL_KEY("tune_noise_ratio", V_REAL, tune_noise_ratio, ALL_CONTROLLERS), .range = R_POSITIVE},
+    {CTRL_KEY("tune_noise_axis_max_Nm", V_VEC3, tune_noise_axis_max_Nm, ALL_CONTROLLERS), .range = R_POSITIVE},
 };
 
 #define N_KEYS ((int)(sizeof SCHEMA_KEYS / sizeof SCHEMA_KEYS[0]))
@@ -487,6 +491,7 @@ void schema_set_defaults(sim_scenario_t *sc)
 
     sc->dist_series_end = SIM_SERIES_REFUSE; /* a run past the recording is an error unless asked */
     sc->noise_series_end = SIM_SERIES_REFUSE;
+    sc->ref_series_end = SIM_SERIES_REFUSE;
     sc->turbulence = SIM_TURB_OFF;
     sc->turb_sigma_m_s = 0.0;
     sc->altitude_m = DEFAULT_ALTITUDE_M;
@@ -539,6 +544,7 @@ void schema_set_defaults(sim_scenario_t *sc)
         o->tune_noise_max_Nm = NAN;
         o->tune_noise_ref = -1;
         o->tune_noise_ratio = 1.0;
+        o->tune_noise_axis_max_Nm[0] = o->tune_noise_axis_max_Nm[1] = o->tune_noise_axis_max_Nm[2] = NAN;
         o->indi_att_kp_per_s = o->indi_rate_kp_per_s = o->indi_filter_rad_s = NAN;
         o->radrc_kp_per_s = o->radrc_att_kp_per_s = o->radrc_rate_max_deg_s = NAN;
         o->cas_att_kp = o->cas_rate_max_deg_s = o->cas_rate_kp = o->cas_rate_ki = o->cas_rate_kd = NAN;
