@@ -471,7 +471,7 @@ static const char *why_no_replay(const options_t *o)
     sim_log_close(log);
     return (has & (SIM_LOG_HAS_REF_ANGLE | SIM_LOG_HAS_REF_INTEGRATED))
                ? NULL
-               : "the log has no setpoint to replay against (Betaflight: setpoint[0..2], which logs before 3.2 lack; "
+               : "the log has no setpoint to replay against (Betaflight: setpoint[0..2], which 3.x logs lack; "
                  "PX4: vehicle_rates_setpoint or vehicle_attitude_setpoint); --map ref_rate[i]=COLUMN or "
                  "ref_angle[i]=COLUMN gives one";
 }

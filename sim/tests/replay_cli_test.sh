@@ -154,7 +154,7 @@ sed -e 's/^duration_s = 6/duration_s = 12/' -e 's/^controllers = .*/controllers 
   grep -q "^LADRC,roll,56[0-9],.*,replayed$" "$work/slow_replay/replay_summary.csv"
 check log_at_47_hz_replays_what_starts_and_names_the_rest $?
 # A log without a setpoint (the PX4 log above less its attitude and rate setpoints; Betaflight logs
-# before 3.2): identified, the log's own command summarised, every controller named as not replayed
+# 3.x): identified, the log's own command summarised, every controller named as not replayed
 # with the reason; exit 0.
 mkdir -p "$work/noref"
 for f in "$work/slow/slow/"LADRC_px4_*.csv; do
