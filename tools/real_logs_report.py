@@ -36,21 +36,27 @@ AXES = ("roll", "pitch", "yaw")
 # an untunable controller's reason is shown up to this many characters (its
 # full text is on ladrc_replay's stderr, kept with --keep)
 REASON_CHARS = 240
+# ladrc_replay's own line for a controller it does not replay
+NOT_REPLAYED = re.compile(r"^untunable (?P<name>[\w-]+), not replayed: (?P<message>.*)$")
 NOTE = re.compile(r"^(?P<where>[^:\s][^:]*:\d+:\d+): (?P<message>.*)$")
 
 
 def read_summary(path):
-    """Rows of replay_summary.csv: {source: {axis: row}}, and the untunable sources."""
+    """Rows of replay_summary.csv: {source: {axis: row}}, the untunable sources and their reasons."""
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
-    replayed, untunable = {}, []
+    replayed, untunable, reasons = {}, [], {}
     for row in rows:
         if row.get("ticks") == "untunable":
             if row["source"] not in untunable:
                 untunable.append(row["source"])
+            # its reason, in the status column when the summary has one ("untunable: why")
+            status = row.get("status") or ""
+            if status.startswith("untunable: "):
+                reasons.setdefault(row["source"], status[len("untunable: "):])
             continue
         replayed.setdefault(row["source"], {})[row["axis"]] = row
-    return replayed, untunable
+    return replayed, untunable, reasons
 
 
 def noise_above_20hz(row):
@@ -65,6 +71,10 @@ def untunable_reasons(stderr_text, names):
     """Each untunable controller's reason: the stderr notes that name it and are not warnings."""
     reasons = {}
     for line in stderr_text.splitlines():
+        m = NOT_REPLAYED.match(line.strip())
+        if m and m.group("name") in names:
+            reasons.setdefault(m.group("name"), m.group("message"))
+            continue
         m = NOTE.match(line.strip())
         if not m or m.group("message").startswith("warning:"):
             continue
@@ -134,8 +144,9 @@ def main(argv=None):
         print("   no replay_summary.csv: nothing replayed")
         print(f"   verdict: FAIL ({'; '.join(failures)})")
         return 1
-    replayed, untunable = read_summary(summaries[0])
-    reasons = untunable_reasons(err_text, untunable)
+    replayed, untunable, reasons = read_summary(summaries[0])
+    for name, why in untunable_reasons(err_text + "\n" + out_text, untunable).items():
+        reasons.setdefault(name, why)
     print("   replayed: " + (", ".join(s for s in replayed if s != LOG_SOURCE) or "none"))
     if a.status == 1:
         print(f"   status 1 from: {status_causes(out_text, replayed)}")
@@ -155,6 +166,11 @@ def main(argv=None):
     print(f"   command noise above 20 Hz (rms, 1 = full authority):")
     for axis in AXES:
         log_noise, how = noise_above_20hz(replayed[LOG_SOURCE][axis])
+        if not math.isfinite(log_noise):
+            # no Welch segment: the replay is shorter than one (sim/log/spectrum.h)
+            failures.append(f"{axis}: the log's noise not measured (replay shorter than a spectrum segment)")
+            print(f"   {axis:5s}  log's noise not measured: the replay is shorter than one spectrum segment")
+            continue
         best_name, best = None, math.inf
         for name in family:
             value, _ = noise_above_20hz(replayed[name][axis])

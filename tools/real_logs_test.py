@@ -345,6 +345,21 @@ class Verdict(unittest.TestCase):
                                     "replayed 17022 ticks (17.02 s of flight) with 6 controllers in 0.79 s: 22x real time\n"),
                          ", identified in 1.31 s, replayed in 0.79 s (22x real time)")
 
+    def test_reasons_from_the_status_column_and_stdout(self):
+        status_rows = "".join("INDI," + a + ",untunable" * 12 + ',"untunable: INDI does not start: at 47 Hz"\n'
+                              for a in rr.AXES)
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "s.csv")
+            with open(path, "w") as f:
+                f.write(SUMMARY_HEADER.rstrip("\n") + ",noise_above_20hz,status\n" + status_rows)
+            _, untunable, reasons = rr.read_summary(path)
+        self.assertEqual((untunable, reasons), (["INDI"], {"INDI": "INDI does not start: at 47 Hz"}))
+        self.assertEqual(rr.untunable_reasons("untunable LP-MLADRC, not replayed: it refuses 47 Hz\n", ["LP-MLADRC"]),
+                         {"LP-MLADRC": "it refuses 47 Hz"})
+
+    def test_noise_not_measured_fails(self):
+        self.assertEqual(self.run_report(self.rows(log=("nan", "nan"))), 1)
+
     def test_untunable_needs_its_reason(self):
         rows = self.rows() + "".join("INDI," + a + ",untunable" * 11 + "\n" for a in rr.AXES)
         self.assertEqual(self.run_report(rows, stderr=""), 1)
