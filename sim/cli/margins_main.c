@@ -20,6 +20,7 @@
 #include "run/tune.h"
 #include "run/runner.h"
 #include "cli/replay_report.h"
+#include "log/log_convert.h"
 #include "log/log_identify.h"
 
 /* Largest motor lag searched (s): ten times any real motor's. */
@@ -117,13 +118,29 @@ static void fmt_margin(char *buf, size_t len, double v, const char *unit)
 
 /* The scenario of the airframe identified from a log (log_identify.h,
  * airframe.h): written to save_path when given, read from memory. */
-static int load_from_log(const char *log_path, sim_log_options_t *opt, const char *save_path, sim_scenario_t *sc)
+/* The decoded form of a binary log, removed at exit. */
+static sim_log_prepared_t prepared;
+
+static void remove_prepared(void)
+{
+    sim_log_prepared_remove(&prepared);
+}
+
+static int load_from_log(const char *log_path, sim_log_options_t *opt, int format_given, const char *save_path,
+                         sim_scenario_t *sc)
 {
     char err[1024];
     if (snprintf(opt->path, sizeof opt->path, "%s", log_path) >= (int)sizeof opt->path) {
         fprintf(stderr, "ladrc_margins: %s: path too long\n", log_path);
         return -1;
     }
+    sim_log_error_t lerr;
+    if (sim_log_prepare(opt, format_given, &prepared, NULL, NULL, &lerr) != 0) {
+        sim_log_error_format(&lerr, err, sizeof err);
+        fprintf(stderr, "%s\n", err);
+        return -1;
+    }
+    atexit(remove_prepared);
     const sim_log_identify_options_t io = {.log = *opt, .delay_max_ticks = -1};
     static sim_airframe_t airframe;
     if (sim_log_identify(&io, &airframe, NULL, err, sizeof err) != 0) {
@@ -168,6 +185,7 @@ int main(int argc, char **argv)
     static sim_scenario_t sc;
     const char *path = NULL, *csv_dir = NULL, *from_log = NULL, *save_path = NULL;
     sim_log_options_t log_opt;
+    int format_given = 0;
     sim_log_options_default(&log_opt);
     int axis_from = 0, axis_to = 2, tune = 0, fly = 0, n_override = 0;
     double inertia_factor = 1.0;
@@ -217,6 +235,7 @@ int main(int argc, char **argv)
                 return 2;
             }
             log_opt.format = (sim_log_format_t)f;
+            format_given = 1;
         } else if (strcmp(arg, "--map") == 0 && a + 1 < argc && log_opt.n_map < SIM_LOG_MAX_MAP) {
             log_opt.map[log_opt.n_map++] = argv[++a];
         } else if (strcmp(arg, "--save-scenario") == 0 && a + 1 < argc) {
@@ -234,7 +253,7 @@ int main(int argc, char **argv)
         return 2;
     }
     sim_parse_error_t perr;
-    if (from_log != NULL && load_from_log(from_log, &log_opt, save_path, &sc) != 0) {
+    if (from_log != NULL && load_from_log(from_log, &log_opt, format_given, save_path, &sc) != 0) {
         return 2;
     }
     if ((from_log == NULL && sim_scenario_load(&sc, path, &perr) != 0) ||

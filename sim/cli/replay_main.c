@@ -16,6 +16,7 @@
 
 #include "cli/fly.h"
 #include "cli/replay_report.h"
+#include "log/log_convert.h"
 #include "log/log_identify.h"
 #include "log/replay.h"
 #include "report/report.h"
@@ -150,28 +151,6 @@ static int parse_args(int argc, char **argv, options_t *o)
     return 0;
 }
 
-/* The form of a log given without --format: PX4 when a topic file of that
- * name is there, Betaflight when its header has gyroADC, else generic. */
-static sim_log_format_t detect_format(const char *path)
-{
-    if (strstr(path, "_vehicle_") != NULL || strstr(path, "_sensor_combined_") != NULL) {
-        return SIM_LOG_PX4;
-    }
-    char px4[SIM_LOG_PATH_LEN + 64];
-    snprintf(px4, sizeof px4, "%s_vehicle_angular_velocity_0.csv", path);
-    if (access(px4, R_OK) == 0) {
-        return SIM_LOG_PX4;
-    }
-    FILE *f = fopen(path, "r");
-    char line[4096] = "";
-    if (f != NULL) {
-        while (fgets(line, sizeof line, f) != NULL && (line[0] == '#' || line[0] == '\n')) {
-        }
-        fclose(f);
-    }
-    return strstr(line, "gyroADC") != NULL ? SIM_LOG_BETAFLIGHT : SIM_LOG_GENERIC;
-}
-
 /* The log's name without folders and extension: the default output folder's. */
 static void log_stem(const char *path, char *buf, size_t len)
 {
@@ -205,6 +184,19 @@ static void end_progress(const progress_t *p)
     if (!p->quiet && p->tty) {
         fputs("\r\033[K", stderr);
     }
+}
+
+/* The decoded form of a binary log, removed at exit. */
+static sim_log_prepared_t prepared;
+
+static void remove_prepared(void)
+{
+    sim_log_prepared_remove(&prepared);
+}
+
+static void show_decoding(void *ctx, long long done, long long total)
+{
+    show_progress(ctx, 1, 1, "decoding", total > 0 ? (double)done / (double)total : 0.0);
 }
 
 static int write_scenario(const char *dir, const sim_airframe_t *a, const char *log_path, char *ini, size_t ini_len)
@@ -295,7 +287,7 @@ static int replay(const options_t *o, const sim_scenario_t *sc, const char *dir,
     const unsigned has = sim_log_has(log);
     if (!(has & (SIM_LOG_HAS_REF_ANGLE | SIM_LOG_HAS_REF_INTEGRATED))) {
         fprintf(stderr, "ladrc_replay: %s: the log has no setpoint (attitude or rate): nothing to replay against\n",
-                o->log.path);
+                prepared.original);
         sim_log_close(log);
         return -1;
     }
@@ -345,17 +337,27 @@ int main(int argc, char **argv)
     if (parse_args(argc, argv, &o) != 0) {
         return 2;
     }
-    if (!o.format_given) {
-        o.log.format = detect_format(o.log.path);
-    }
     char dir[SIM_LOG_PATH_LEN + 16], stem[SIM_LOG_PATH_LEN], noise[SIM_LOG_PATH_LEN + 64], err[1024];
     log_stem(o.log.path, stem, sizeof stem);
+    progress_t prog = {.quiet = o.quiet, .tty = isatty(2), .start_s = sim_fly_now_s(), .last_s = 0.0};
+    sim_log_error_t lerr;
+    if (sim_log_prepare(&o.log, o.format_given, &prepared, show_decoding, &prog, &lerr) != 0) {
+        end_progress(&prog);
+        sim_log_error_format(&lerr, err, sizeof err);
+        fprintf(stderr, "%s\n", err);
+        return 2;
+    }
+    atexit(remove_prepared);
+    end_progress(&prog);
+    if (prepared.dir[0] != '\0' && !o.quiet) {
+        fprintf(stderr, "ladrc_replay: %s: a %s log of %lld bytes, decoded in %.2f s\n", prepared.original,
+                sim_log_source_name(prepared.source), prepared.bytes, prepared.decode_s);
+    }
     snprintf(dir, sizeof dir, "%s%s", o.out_dir != NULL ? o.out_dir : "replay/", o.out_dir != NULL ? "" : stem);
     if (sim_fly_make_dirs(dir) != 0) {
         fprintf(stderr, "ladrc_replay: cannot create '%s': %s\n", dir, strerror(errno));
         return 2;
     }
-    progress_t prog = {.quiet = o.quiet, .tty = isatty(2), .start_s = sim_fly_now_s(), .last_s = 0.0};
     snprintf(noise, sizeof noise, "%s/airframe_noise.csv", dir);
     sim_log_identify_options_t io = {.log = o.log,
                                      .delay_max_ticks = -1,
@@ -366,7 +368,7 @@ int main(int argc, char **argv)
     static sim_airframe_t airframe;
     sim_log_stats_t stats;
     if (!o.quiet) {
-        fprintf(stderr, "ladrc_replay: %s (%s form)\n", o.log.path, sim_log_format_name(o.log.format));
+        fprintf(stderr, "ladrc_replay: %s (%s form)\n", prepared.original, sim_log_format_name(o.log.format));
     }
     if (sim_log_identify(&io, &airframe, &stats, err, sizeof err) != 0) {
         end_progress(&prog);
@@ -374,8 +376,8 @@ int main(int argc, char **argv)
         return 2;
     }
     end_progress(&prog);
-    printf("%s: %lld rows in %d file(s), %lld ticks at %.4g s, identified in %.2f s (4 passes)", o.log.path, stats.rows,
-           stats.n_files, stats.ticks, airframe.dt_s, sim_fly_now_s() - prog.start_s);
+    printf("%s: %lld rows in %d file(s), %lld ticks at %.4g s, identified in %.2f s (4 passes)", prepared.original,
+           stats.rows, stats.n_files, stats.ticks, airframe.dt_s, sim_fly_now_s() - prog.start_s);
     if (stats.gaps > 0) {
         printf(", %lld gap(s) interpolated over (longest %.3g s)", stats.gaps, stats.longest_gap_s);
     }
@@ -391,7 +393,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "ladrc_replay: %s: write failed\n", path);
         return 2;
     }
-    const int have_airframe = write_scenario(dir, &airframe, o.log.path, ini, sizeof ini) == 0;
+    const int have_airframe = write_scenario(dir, &airframe, prepared.original, ini, sizeof ini) == 0;
     if (have_airframe) {
         printf("scenario of the airframe: %s (ladrc_sil flies it, ladrc_margins tunes it)\n", ini);
     }

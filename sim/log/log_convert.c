@@ -1,0 +1,194 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Logs as they come (log_convert.h): the form told from the bytes, binary
+ * logs decoded into a temporary folder of CSVs. */
+#define _POSIX_C_SOURCE 200809L
+#include "log_convert.h"
+
+#include "log_file.h"
+#include "log_px4.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#define HEAD_BYTES 64
+#define HEADER_LINE_MAX 4096 /* bytes of a CSV header looked at for gyroADC */
+
+static const char BBL_MAGIC[] = "H Product:Blackbox flight data recorder";
+static const unsigned char ULOG_MAGIC[] = {'U', 'L', 'o', 'g', 0x01, 0x12, 0x35};
+enum { DATAFLASH_HEAD1 = 0xA3, DATAFLASH_HEAD2 = 0x95, DATAFLASH_FMT = 0x80 };
+
+const char *sim_log_source_name(sim_log_source_t s)
+{
+    static const char *const names[] = {"CSV", "PX4 ULog", "Betaflight blackbox", "ArduPilot DataFlash", "missing"};
+    return (int)s >= 0 && (int)s <= (int)SIM_LOG_SOURCE_MISSING ? names[s] : "?";
+}
+
+/* ulog2csv's topic files under the prefix path (the prefix is no file). */
+static int has_px4_topic_files(const char *path)
+{
+    char topic[SIM_LOG_PATH_LEN + 64];
+    return sim_log_px4_topic_path(path, "vehicle_angular_velocity", topic, sizeof topic) == 0 &&
+           access(topic, R_OK) == 0;
+}
+
+sim_log_source_t sim_log_source_of(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL) {
+        return has_px4_topic_files(path) ? SIM_LOG_SOURCE_CSV : SIM_LOG_SOURCE_MISSING;
+    }
+    unsigned char head[HEAD_BYTES];
+    const size_t n = fread(head, 1, sizeof head, f);
+    fclose(f);
+    if (n >= sizeof ULOG_MAGIC && memcmp(head, ULOG_MAGIC, sizeof ULOG_MAGIC) == 0) {
+        return SIM_LOG_SOURCE_ULOG;
+    }
+    if (n >= sizeof BBL_MAGIC - 1 && memcmp(head, BBL_MAGIC, sizeof BBL_MAGIC - 1) == 0) {
+        return SIM_LOG_SOURCE_BBL;
+    }
+    if (n >= 3 && head[0] == DATAFLASH_HEAD1 && head[1] == DATAFLASH_HEAD2 && head[2] == DATAFLASH_FMT) {
+        return SIM_LOG_SOURCE_DATAFLASH;
+    }
+    return SIM_LOG_SOURCE_CSV;
+}
+
+sim_log_format_t sim_log_csv_format_of(const char *path)
+{
+    if (strstr(path, "_vehicle_") != NULL || strstr(path, "_sensor_combined_") != NULL || has_px4_topic_files(path)) {
+        return SIM_LOG_PX4;
+    }
+    FILE *f = fopen(path, "r");
+    char line[HEADER_LINE_MAX] = "";
+    if (f != NULL) {
+        while (fgets(line, sizeof line, f) != NULL && (line[0] == '#' || line[0] == '\n')) {
+        }
+        fclose(f);
+    }
+    return strstr(line, "gyroADC") != NULL ? SIM_LOG_BETAFLIGHT : SIM_LOG_GENERIC;
+}
+
+/* The log's name without folders and extension. */
+static void stem_of(const char *path, char *buf, size_t len)
+{
+    const char *base = strrchr(path, '/');
+    snprintf(buf, len, "%s", base != NULL ? base + 1 : path);
+    char *dot = strrchr(buf, '.');
+    if (dot != NULL && dot != buf) {
+        *dot = '\0';
+    }
+}
+
+static long long file_bytes(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 ? (long long)st.st_size : 0;
+}
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* A fresh folder under $TMPDIR (or /tmp): 0, or -1 with err set. */
+static int make_temp_dir(sim_log_prepared_t *p, sim_log_error_t *err)
+{
+    const char *tmp = getenv("TMPDIR");
+    if (tmp == NULL || tmp[0] == '\0') {
+        tmp = "/tmp";
+    }
+    if (snprintf(p->dir, sizeof p->dir, "%s/ladrc_log.XXXXXX", tmp) >= (int)sizeof p->dir) {
+        p->dir[0] = '\0';
+        return sim_log_fail(err, p->original, 0, 0, "TMPDIR too long for a temporary folder");
+    }
+    if (mkdtemp(p->dir) == NULL) {
+        const int e = errno;
+        p->dir[0] = '\0';
+        return sim_log_fail(err, p->original, 0, 0, "cannot make a temporary folder in %s: %s", tmp, strerror(e));
+    }
+    return 0;
+}
+
+/* Decodes the binary log into p->dir; o->path and o->format name the CSVs. */
+static int decode(sim_log_options_t *o, sim_log_prepared_t *p, sim_log_convert_progress_fn progress, void *ctx,
+                  sim_log_error_t *err)
+{
+    (void)progress;
+    (void)ctx;
+    char stem[SIM_LOG_PATH_LEN], base[SIM_LOG_PATH_LEN];
+    stem_of(p->original, stem, sizeof stem);
+    if (snprintf(base, sizeof base, "%s/%s", p->dir, stem) >= (int)sizeof base) {
+        return sim_log_fail(err, p->original, 0, 0, "path too long");
+    }
+    switch (p->source) {
+    case SIM_LOG_SOURCE_ULOG:
+        return sim_log_fail(err, p->original, 0, 0,
+                            "a PX4 ULog: this build does not decode it; give ulog2csv's CSVs (docs/flight-logs.md)");
+    case SIM_LOG_SOURCE_BBL:
+        return sim_log_fail(err, p->original, 0, 0,
+                            "a Betaflight blackbox log: this build does not decode it; give blackbox_decode's CSV "
+                            "(docs/flight-logs.md)");
+    case SIM_LOG_SOURCE_DATAFLASH:
+        return sim_log_fail(err, p->original, 0, 0, "an ArduPilot DataFlash log: this build does not decode it");
+    default:
+        break;
+    }
+    (void)o;
+    return sim_log_fail(err, p->original, 0, 0, "not a binary log");
+}
+
+int sim_log_prepare(sim_log_options_t *o, int format_given, sim_log_prepared_t *p, sim_log_convert_progress_fn progress,
+                    void *progress_ctx, sim_log_error_t *err)
+{
+    memset(p, 0, sizeof *p);
+    snprintf(p->original, sizeof p->original, "%s", o->path);
+    p->source = sim_log_source_of(o->path);
+    p->bytes = file_bytes(o->path);
+    if (p->source == SIM_LOG_SOURCE_MISSING) {
+        return sim_log_fail(err, o->path, 0, 0, "no such log (nor ulog2csv topic files under that prefix)");
+    }
+    if (p->source == SIM_LOG_SOURCE_CSV) {
+        if (!format_given) {
+            o->format = sim_log_csv_format_of(o->path);
+        }
+        return 0;
+    }
+    const double start_s = now_s();
+    if (make_temp_dir(p, err) != 0) {
+        return -1;
+    }
+    if (decode(o, p, progress, progress_ctx, err) != 0) {
+        sim_log_prepared_remove(p);
+        return -1;
+    }
+    p->decode_s = now_s() - start_s;
+    return 0;
+}
+
+void sim_log_prepared_remove(sim_log_prepared_t *p)
+{
+    if (p->dir[0] == '\0') {
+        return;
+    }
+    DIR *d = opendir(p->dir);
+    if (d != NULL) {
+        const struct dirent *e;
+        char path[SIM_LOG_PATH_LEN + 300];
+        while ((e = readdir(d)) != NULL) {
+            if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0 &&
+                snprintf(path, sizeof path, "%s/%s", p->dir, e->d_name) < (int)sizeof path) {
+                (void)remove(path);
+            }
+        }
+        closedir(d);
+    }
+    (void)rmdir(p->dir);
+    p->dir[0] = '\0';
+}
