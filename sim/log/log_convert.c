@@ -4,6 +4,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "log_convert.h"
 
+#include "log_bbl.h"
 #include "log_file.h"
 #include "log_px4.h"
 
@@ -131,10 +132,14 @@ static int decode(sim_log_options_t *o, sim_log_prepared_t *p, sim_log_convert_p
     case SIM_LOG_SOURCE_ULOG:
         return sim_log_fail(err, p->original, 0, 0,
                             "a PX4 ULog: this build does not decode it; give ulog2csv's CSVs (docs/flight-logs.md)");
-    case SIM_LOG_SOURCE_BBL:
-        return sim_log_fail(err, p->original, 0, 0,
-                            "a Betaflight blackbox log: this build does not decode it; give blackbox_decode's CSV "
-                            "(docs/flight-logs.md)");
+    case SIM_LOG_SOURCE_BBL: /* the longest of its logs, as blackbox_decode's CSV */
+        if (sim_log_bbl_to_csv(p->original, base, NULL, 0, 0, progress, ctx, err) != 0) {
+            return -1;
+        }
+        o->format = SIM_LOG_BETAFLIGHT;
+        return snprintf(o->path, sizeof o->path, "%s.csv", base) < (int)sizeof o->path
+                   ? 0
+                   : sim_log_fail(err, p->original, 0, 0, "path too long");
     case SIM_LOG_SOURCE_DATAFLASH:
         return sim_log_fail(err, p->original, 0, 0, "an ArduPilot DataFlash log: this build does not decode it");
     default:
