@@ -615,6 +615,10 @@ static void next_buffer(decoder_t *d)
 static void main_frame_done(decoder_t *d, int intra)
 {
     int64_t *v = d->hist[d->cur];
+    if (!intra && !d->stream_valid) { /* predicted from frames lost: its time is no time to unwrap */
+        ++d->st.dropped;
+        return;
+    }
     v[1] = unwrap_time(d, v[1]);
     if (intra) {
         if (d->last_iteration != UINT32_MAX && !in_line(d, v)) {
