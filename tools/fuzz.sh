@@ -10,7 +10,7 @@
 #   --time S      each target for S seconds
 #   --runs N      N executions of each target
 #   --build-only  build the targets, run nothing
-#   TARGET        fuzz_scenario, fuzz_expr, fuzz_log (default: every tests/fuzz/fuzz_*.c)
+#   TARGET        fuzz_scenario, fuzz_expr, fuzz_log, fuzz_bbl (default: every tests/fuzz/fuzz_*.c)
 #
 # Prints per target the executions, their rate, the corpus and the findings
 # (crash, leak, undefined behaviour, failed check, timeout, out of memory),
@@ -88,6 +88,7 @@ run_target() {
   local target=$1 name=${1#fuzz_}
   local max_len=4096 # scenario, log
   [[ $name == expr ]] && max_len=512
+  [[ $name == bbl ]] && max_len=16384 # a header of some 1 KB and frames
   rm -rf "$out/artifacts/$target"
   mkdir -p "$out/corpus/$target" "$out/artifacts/$target"
   "$out/$target" "${mode[@]}" -max_len=$max_len -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \

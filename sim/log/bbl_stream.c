@@ -11,7 +11,10 @@ int bbl_stream_init(bbl_stream_t *s, FILE *f, long long start, long long end)
     s->f = f;
     s->base = start;
     s->end = end;
-    s->buf = malloc(BBL_BUFFER);
+    /* a small log gets a small buffer: at least two windows, so that a refill holds one */
+    const long long want = end - start + 1;
+    s->cap = want < 2 * BBL_WINDOW ? 2 * BBL_WINDOW : (want > BBL_BUFFER ? BBL_BUFFER : (size_t)want);
+    s->buf = malloc(s->cap);
     if (s->buf == NULL) {
         return -1;
     }
@@ -35,8 +38,8 @@ static void refill(bbl_stream_t *s)
     s->base += (long long)s->pos;
     s->pos = 0;
     s->len = keep;
-    while (!s->file_done && s->len < BBL_BUFFER) {
-        const size_t n = fread(s->buf + s->len, 1, BBL_BUFFER - s->len, s->f);
+    while (!s->file_done && s->len < s->cap) {
+        const size_t n = fread(s->buf + s->len, 1, s->cap - s->len, s->f);
         s->len += n;
         if (n == 0) {
             s->file_done = 1;

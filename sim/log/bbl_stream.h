@@ -21,12 +21,12 @@
 typedef struct {
     FILE *f;
     unsigned char *buf;
-    size_t len, pos; /* bytes held, the next one's index */
-    long long base;  /* file offset of buf[0] */
-    long long end;   /* the log's end offset (exclusive) */
-    int file_done;   /* f gave its last byte */
-    int past_end;    /* a read went past the log's end */
-    int past_window; /* a read went past the bytes held (a frame too long) */
+    size_t cap, len, pos; /* bytes of buf, held, the next one's index */
+    long long base;       /* file offset of buf[0] */
+    long long end;        /* the log's end offset (exclusive) */
+    int file_done;        /* f gave its last byte */
+    int past_end;         /* a read went past the log's end */
+    int past_window;      /* a read went past the bytes held (a frame too long) */
     int read_error;
 } bbl_stream_t;
 

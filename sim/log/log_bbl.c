@@ -19,6 +19,10 @@
 #define INTERVAL_MAX 32768 /* of the I interval and P ratio: the skip count loops over it */
 #define SCAN_BLOCK (1 << 20)
 #define PROGRESS_BYTES (1LL << 20)
+/* deg/s per logged gyro unit: Baseflight's and old Cleanflight's counts are
+ * some 0.06 deg/s, Betaflight logs deg/s (1); outside these bounds no gyro's */
+#define GYRO_SCALE_MIN 1e-9
+#define GYRO_SCALE_MAX 1e6
 #define ROW_MAX (2 * MAX_FIELDS * 24) /* a row's text: fields of 21 characters and their ", " */
 
 enum {
@@ -130,7 +134,12 @@ static int add_log(log_list_t *l, long long offset)
 static int find_logs(FILE *f, log_list_t *l, long long *size)
 {
     const size_t m = sizeof LOG_MARKER - 1;
-    unsigned char *buf = malloc(SCAN_BLOCK + m);
+    size_t block = SCAN_BLOCK; /* or the file's size, when smaller */
+    if (fseek(f, 0, SEEK_END) == 0) {
+        const long end = ftell(f);
+        block = end >= 0 && (unsigned long)end < block ? (size_t)end + 1 : block;
+    }
+    unsigned char *buf = malloc(block + m);
     size_t held = 0;
     long long base = 0; /* offset of buf[0] */
     if (buf == NULL || fseek(f, 0, SEEK_SET) != 0) {
@@ -138,7 +147,7 @@ static int find_logs(FILE *f, log_list_t *l, long long *size)
         return -1;
     }
     for (;;) {
-        const size_t n = fread(buf + held, 1, SCAN_BLOCK, f);
+        const size_t n = fread(buf + held, 1, block, f);
         const size_t len = held + n;
         size_t i = 0;
         while (len >= m && i + m <= len) {
@@ -314,6 +323,10 @@ static int check_defs(decoder_t *d, char *msg, size_t len)
                 return -1;
             }
         }
+    }
+    if (!(d->gyro_deg_s_per_unit >= GYRO_SCALE_MIN && d->gyro_deg_s_per_unit <= GYRO_SCALE_MAX)) {
+        snprintf(msg, len, "gyro_scale gives %g deg/s per unit: no gyro's", d->gyro_deg_s_per_unit);
+        return -1;
     }
     /* home coordinates come in pairs: the second of each takes the home's second */
     frame_def_t *g = &d->def[T_G];
