@@ -7,6 +7,7 @@
 #define _POSIX_C_SOURCE 200809L /* fmemopen, open_memstream, mkstemp */
 #include "unity.h"
 #include "log/log.h"
+#include "log/bbl_stream.h"
 #include "log/log_bbl.h"
 
 #include <math.h>
@@ -641,6 +642,31 @@ static void test_through_the_readers_betaflight_form(void)
     free(w.b);
 }
 
+/* TAG8_4S16 in both data versions, from bytes laid out by hand: a 4-bit
+ * pair, an 8-bit and a 16-bit value (selector 0xE5: fields 1, 1, 2, 3). */
+static void test_tag8_4s16_in_both_data_versions(void)
+{
+    static const unsigned char v1[] = {0xE5, 0x2F, 0x80, 0x34, 0x12}; /* low nibble first; 16 bits little-endian */
+    static const unsigned char v2[] = {0xE5, 0xF2, 0x80, 0x12, 0x34}; /* a stream of nibbles, high first */
+    static const int64_t want[4] = {-1, 2, -128, 0x1234};
+    const unsigned char *bytes[2] = {v1, v2};
+    for (int version = 1; version <= 2; ++version) {
+        FILE *f = fmemopen((void *)(uintptr_t)bytes[version - 1], sizeof v1, "rb");
+        bbl_stream_t s;
+        int64_t got[4];
+        TEST_ASSERT_EQUAL_INT(0, bbl_stream_init(&s, f, 0, (long long)sizeof v1));
+        bbl_stream_frame_start(&s);
+        bbl_read_tag8_4s16(&s, version, got);
+        for (int i = 0; i < 4; ++i) {
+            TEST_ASSERT_TRUE(got[i] == want[i]);
+        }
+        TEST_ASSERT_EQUAL_INT((int)sizeof v1, (int)bbl_stream_offset(&s));
+        TEST_ASSERT_EQUAL_INT(0, s.past_end);
+        bbl_stream_free(&s);
+        fclose(f);
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -650,5 +676,6 @@ int main(void)
     RUN_TEST(test_several_logs_in_a_file_by_index_or_the_longest);
     RUN_TEST(test_bad_headers_are_refused_at_an_offset);
     RUN_TEST(test_through_the_readers_betaflight_form);
+    RUN_TEST(test_tag8_4s16_in_both_data_versions);
     return UNITY_END();
 }
