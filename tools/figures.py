@@ -23,6 +23,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from sim_output import AXES, CONTROLLERS, divergence_text, is_number, load_metrics  # noqa: E402
+from plot_style import COLOURS, clip_ylim  # noqa: E402,F401  (estimators_plot.py takes COLOURS from here)
 
 import matplotlib
 
@@ -30,8 +31,6 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-COLOURS = {"HP-MLADRC": "#1f77b4", "LP-MLADRC": "#2ca02c", "LADRC": "#d62728", "RATE-ADRC": "#17becf", "PID": "#9467bd",
-           "CASCADED": "#8c564b", "INDI": "#ff7f0e"}
 # Wider lines lie underneath, so that a curve lying on another stays visible.
 WIDTHS = {"HP-MLADRC": 1.0, "LP-MLADRC": 1.3, "LADRC": 2.0, "RATE-ADRC": 1.1, "PID": 1.6, "CASCADED": 1.4, "INDI": 1.2}
 ZORDER = {"HP-MLADRC": 4, "LP-MLADRC": 3, "LADRC": 1, "RATE-ADRC": 3.8, "PID": 2, "CASCADED": 2.5, "INDI": 3.5}
@@ -113,21 +112,6 @@ def note_divergence(metrics):
 
 def style(c, scale=1.0):
     return {"color": COLOURS[c], "lw": WIDTHS[c] * scale, "zorder": ZORDER[c], "label": LABELS.get(c, NAMES.get(c, c))}
-
-
-def clip_ylim(ax, values, what):
-    """Limits the y range to the bulk of the values (0.2 to 99.8 percentile, with a margin), so that
-    short spikes at steps do not flatten the rest, and says so in the panel."""
-    v = np.concatenate([x[np.isfinite(x)] for x in values])
-    if v.size == 0:
-        return
-    lo, hi = np.percentile(v, [0.2, 99.8])
-    pad = 0.15 * max(hi - lo, 1e-9)
-    lo, hi = lo - pad, hi + pad
-    if v.min() < lo or v.max() > hi:
-        ax.set_ylim(lo, hi)
-        ax.text(0.99, 0.03, "%s clipped (peaks %.3g, %.3g)" % (what, v.min(), v.max()), transform=ax.transAxes,
-                ha="right", va="bottom", fontsize=7, color="0.3")
 
 
 def stride(n):

@@ -6,12 +6,17 @@ usage: /usr/bin/python3 tools/margins_plot.py CSV [CSV...] -o OUT.png
 """
 import argparse
 import csv
+import os
+import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_style import colour_of  # noqa: E402
 
 
 def read(path):
@@ -34,7 +39,7 @@ def main():
         label = path.rsplit("/", 1)[-1].removesuffix(".csv")
         label += f": PM {meta['pm_deg']:.0f} deg, GM {meta['gm_db']:.1f} dB"
         w = c["w_rad_s"]
-        line, = ax_mag.semilogx(w, c["L_mag_db"], label=label)
+        line, = ax_mag.semilogx(w, c["L_mag_db"], label=label, color=colour_of(label))
         phase = np.degrees(np.unwrap(np.radians(c["L_phase_deg"])))
         phase -= 360.0 * np.round((phase[-1] + 180.0) / 360.0)  # -180 where it matters
         ax_ph.semilogx(w, phase, color=line.get_color())

@@ -8,7 +8,12 @@ Draws in DIR:
 - replay_commands.png: per axis, the log's own command and each replayed controller's over
   time (the window --from/--to, default the whole replay.csv);
 - replay_spectrum.png: per axis, the gyro's spectrum (before the log's filters where the log
-  has it) with the vibration lines the identification found marked, and the commands' spectra.
+  has it) with the vibration lines the identification found marked, and the commands' spectra;
+- response_step.png, response_freq.png, response_noise.png: the field's views of the log
+  (tools/response_plot.py), when ladrc_replay wrote their CSVs.
+Each controller has its colour of every figure of the project (tools/plot_style.py), the log
+black; the commands' y range is the bulk of the values (0.2-99.8 percentiles), so that one
+spike (a landing, a flip) does not flatten the rest of the flight.
 Exit status 1 when a file is missing or empty.
 """
 import argparse
@@ -17,7 +22,11 @@ import math
 import os
 import sys
 
-import matplotlib
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_style import LOG_COLOUR, clip_ylim, colour_of  # noqa: E402
+import response_plot  # noqa: E402
+
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -46,6 +55,7 @@ def sources(columns):
 
 
 def commands_figure(d, out, t_from, t_to):
+    """Draws the commands; returns each panel's y limits."""
     t = d["t_s"]
     keep = (t >= t_from) & (t <= (t_to if t_to > 0 else t[-1]))
     ctrls = sources(d)
@@ -53,8 +63,9 @@ def commands_figure(d, out, t_from, t_to):
     for i, axis in enumerate(AXES):
         ax = axs[i]
         for c in ctrls:
-            ax.plot(t[keep], d[f"{c}_cmd_{axis}"][keep], lw=0.8, label=c)
-        ax.plot(t[keep], d[f"LOG_cmd_{axis}"][keep], color="black", lw=1.6, label="log (flown)", zorder=10)
+            ax.plot(t[keep], d[f"{c}_cmd_{axis}"][keep], lw=0.8, label=c, color=colour_of(c))
+        ax.plot(t[keep], d[f"LOG_cmd_{axis}"][keep], color=LOG_COLOUR, lw=1.6, label="log (flown)", zorder=10)
+        clip_ylim(ax, [d[f"{c}_cmd_{axis}"][keep] for c in ctrls + ["LOG"]], "command")
         ax.set_ylabel(f"{axis} command\n(1: full authority)")
         ax.grid(alpha=0.3)
     axs[0].legend(ncol=4, fontsize=8, loc="upper right")
@@ -62,7 +73,9 @@ def commands_figure(d, out, t_from, t_to):
     fig.suptitle("What each controller would have commanded on the log's flight (open loop)")
     fig.tight_layout()
     fig.savefig(out, dpi=110)
+    limits = [ax.get_ylim() for ax in axs]
     plt.close(fig)
+    return limits
 
 
 def read_lines(ident_path):
@@ -90,9 +103,9 @@ def spectrum_figure(s, lines, out):
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
         ax = axs[1][i]
-        ax.semilogy(hz, np.sqrt(s[f"LOG_{axis}"]), color="black", lw=1.2, label="log")
+        ax.semilogy(hz, np.sqrt(s[f"LOG_{axis}"]), color=LOG_COLOUR, lw=1.2, label="log")
         for c in ctrls:
-            ax.semilogy(hz, np.sqrt(s[f"{c}_{axis}"]), lw=0.8, label=c)
+            ax.semilogy(hz, np.sqrt(s[f"{c}_{axis}"]), lw=0.8, label=c, color=colour_of(c))
         ax.set_title(f"{axis}: command")
         ax.set_ylabel("1/sqrt(Hz)")
         ax.set_xlabel("frequency (Hz)")
@@ -118,7 +131,10 @@ def main():
     spectrum_figure(read_columns(os.path.join(args.dir, "spectrum.csv")),
                     read_lines(os.path.join(args.dir, "identification.csv")),
                     os.path.join(args.dir, "replay_spectrum.png"))
-    print(f"replay_plot: {args.dir}/replay_commands.png, {args.dir}/replay_spectrum.png")
+    drawn = [f"{args.dir}/replay_commands.png", f"{args.dir}/replay_spectrum.png"]
+    if os.path.isfile(os.path.join(args.dir, "step_response.csv")):
+        drawn += response_plot.draw(args.dir)
+    print("replay_plot: " + ", ".join(drawn))
 
 
 if __name__ == "__main__":

@@ -36,7 +36,7 @@ static void usage(FILE *out)
 {
     fputs("usage: ladrc_margins SCENARIO [--controllers LIST] [--axis roll|pitch|yaw|all]\n"
           "                     [--inertia-factor F] [--csv DIR] [--tune] [--fly]\n"
-          "       ladrc_margins --from-log LOG [--format betaflight|px4|generic] [--map F=SOURCE]...\n"
+          "       ladrc_margins --from-log LOG [--format betaflight|px4|ardupilot|generic] [--map F=SOURCE]...\n"
           "                     [--save-scenario FILE] [the options above]\n"
           "  SCENARIO           an attitude scenario file (docs/scenario-format.md)\n"
           "  --from-log LOG     the airframe identified from a flight log (docs/flight-logs.md),\n"
@@ -231,7 +231,8 @@ int main(int argc, char **argv)
         } else if (strcmp(arg, "--format") == 0 && a + 1 < argc) {
             const int f = sim_log_format_parse(argv[++a]);
             if (f < 0) {
-                fprintf(stderr, "ladrc_margins: --format: expected betaflight, px4 or generic, got '%s'\n", argv[a]);
+                fprintf(stderr, "ladrc_margins: --format: expected betaflight, px4, ardupilot or generic, got '%s'\n",
+                        argv[a]);
                 return 2;
             }
             log_opt.format = (sim_log_format_t)f;

@@ -18,6 +18,7 @@
 #include "cli/replay_report.h"
 #include "log/log_convert.h"
 #include "log/log_identify.h"
+#include "log/log_views.h"
 #include "log/replay.h"
 #include "report/report.h"
 #include "run/tune.h"
@@ -38,11 +39,12 @@ typedef struct {
 
 static void usage(FILE *out)
 {
-    fputs("usage: ladrc_replay LOG [--format betaflight|px4|generic] [--map FIELD=SOURCE]...\n"
+    fputs("usage: ladrc_replay LOG [--format betaflight|px4|ardupilot|generic] [--map FIELD=SOURCE]...\n"
           "                    [--dt S] [--from S] [--to S] [--scenario FILE] [--controllers LIST]\n"
           "                    [--out DIR] [--every N] [--identify-only] [--strict] [--quiet]\n"
           "  LOG               a blackbox_decode CSV, a PX4 ulog2csv topic file (or their common\n"
-          "                    prefix), or a CSV whose columns --map names (docs/flight-logs.md)\n"
+          "                    prefix), an ArduPilot DataFlash .bin, or a CSV whose columns --map\n"
+          "                    names (docs/flight-logs.md)\n"
           "  --format F        the log's form (default: told from the files)\n"
           "  --map F=SOURCE    a column (or sum of columns, times a scale) for a field, over the form's\n"
           "  --dt S            control period to resample to (default: the log's row period)\n"
@@ -57,7 +59,9 @@ static void usage(FILE *out)
           "                    is untunable (default: the untunable are not replayed, the rest are)\n"
           "  --quiet           no progress on stderr\n"
           "Writes in DIR: identification.csv, airframe.ini, airframe_noise.csv, replay.csv,\n"
-          "replay_summary.csv, spectrum.csv; tools/replay_plot.py DIR draws them.\n"
+          "replay_summary.csv, spectrum.csv, and the log's step and frequency responses and noise\n"
+          "against throttle (step_response.csv, freq_response.csv, noise_throttle.csv,\n"
+          "response_summary.csv); tools/replay_plot.py DIR draws them.\n"
           "Exit status 0; 1 when a replayed controller faulted or the identification warned;\n"
           "2 for bad usage, a refused log or scenario; 4 when, else clean, a controller was\n"
           "untunable (not replayed; replay_summary.csv lists it as untunable).\n",
@@ -100,7 +104,8 @@ static int parse_args(int argc, char **argv, options_t *o)
         } else if (strcmp(arg, "--format") == 0) {
             const int f = sim_log_format_parse(argv[++a]);
             if (f < 0) {
-                fprintf(stderr, "ladrc_replay: --format: expected betaflight, px4 or generic, got '%s'\n", val);
+                fprintf(stderr, "ladrc_replay: --format: expected betaflight, px4, ardupilot or generic, got '%s'\n",
+                        val);
                 return -1;
             }
             o->log.format = (sim_log_format_t)f;
@@ -420,7 +425,8 @@ int main(int argc, char **argv)
     printf("replayed %lld ticks (%.4g s of flight) with %d controllers in %.2f s: %.0fx real time\n", r.ticks,
            (double)r.ticks * sc.control_dt_s, r.n, replay_s, (double)r.ticks * sc.control_dt_s / replay_s);
     sim_report_replay(stdout, &r);
-    if (sim_write_replay_files(dir, &r, untunable, n_untunable, err, sizeof err) != 0) {
+    if (sim_write_replay_files(dir, &r, untunable, n_untunable, err, sizeof err) != 0 ||
+        sim_log_views_of_log(&o.log, dir, stdout, err, sizeof err) != 0) {
         fprintf(stderr, "ladrc_replay: %s\n", err);
         return 2;
     }

@@ -3,6 +3,7 @@
  * tick's sample from the files' brackets. */
 #include "log.h"
 
+#include "log_ardupilot.h"
 #include "log_px4.h"
 #include "log_reader.h"
 
@@ -25,11 +26,11 @@ void sim_log_options_default(sim_log_options_t *o)
     o->format = SIM_LOG_BETAFLIGHT;
 }
 
-static const char *const FORMAT_NAMES[] = {"betaflight", "px4", "generic"};
+static const char *const FORMAT_NAMES[SIM_LOG_FORMAT_COUNT] = {"betaflight", "px4", "generic", "ardupilot"};
 
 int sim_log_format_parse(const char *name)
 {
-    for (int i = 0; name != NULL && i < 3; ++i) {
+    for (int i = 0; name != NULL && i < SIM_LOG_FORMAT_COUNT; ++i) {
         if (strcmp(name, FORMAT_NAMES[i]) == 0) {
             return i;
         }
@@ -39,7 +40,7 @@ int sim_log_format_parse(const char *name)
 
 const char *sim_log_format_name(sim_log_format_t f)
 {
-    return ((int)f >= 0 && (int)f < 3) ? FORMAT_NAMES[f] : "?";
+    return ((int)f >= 0 && (int)f < SIM_LOG_FORMAT_COUNT) ? FORMAT_NAMES[f] : "?";
 }
 
 void sim_log_error_format(const sim_log_error_t *err, char *buf, size_t len)
@@ -53,7 +54,7 @@ void sim_log_error_format(const sim_log_error_t *err, char *buf, size_t len)
 
 static int check_options(const sim_log_options_t *o, const char *path, sim_log_error_t *err)
 {
-    if ((int)o->format < 0 || (int)o->format > 2) {
+    if ((int)o->format < 0 || (int)o->format >= SIM_LOG_FORMAT_COUNT) {
         return sim_log_fail(err, path, 0, 0, "unknown log form %d", (int)o->format);
     }
     if (!(o->dt_s == 0.0 || (o->dt_s >= DT_MIN_S && isfinite(o->dt_s)))) {
@@ -71,15 +72,38 @@ static int check_options(const sim_log_options_t *o, const char *path, sim_log_e
     return 0;
 }
 
+static int file_exists(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (f != NULL) {
+        fclose(f);
+    }
+    return f != NULL;
+}
+
+/* The form's preset and the caller's items. ArduPilot: the commands from
+ * RATE, or from PIDR/PIDP/PIDY when the log has those and no RATE. */
+static int build_map(sim_log_t *log, const sim_log_options_t *opt, char *msg, size_t len)
+{
+    if (opt->format != SIM_LOG_ARDUPILOT) {
+        return sim_log_map_build(&log->map, opt->format, opt->map, opt->n_map, msg, len);
+    }
+    char base[SIM_LOG_PATH_LEN], rate[SIM_LOG_PATH_LEN + 16], pidr[SIM_LOG_PATH_LEN + 16];
+    sim_log_ardupilot_base(opt->path, base, sizeof base);
+    const int with_rate = sim_log_ardupilot_topic_path(base, "RATE", rate, sizeof rate) != 0 || file_exists(rate) ||
+                          sim_log_ardupilot_topic_path(base, "PIDR", pidr, sizeof pidr) != 0 || !file_exists(pidr);
+    return sim_log_map_build_ardupilot(&log->map, with_rate, opt->map, opt->n_map, msg, len);
+}
+
 static sim_log_t *start(const sim_log_options_t *opt, const char *path, sim_log_error_t *err)
 {
     if (check_options(opt, path, err) != 0) {
         return NULL;
     }
     /* a file per topic, at most one per slot */
-    const size_t file_slots = opt->format == SIM_LOG_PX4 ? SIM_LOG_N_SLOTS : 1;
+    const size_t file_slots = sim_log_format_has_topics(opt->format) ? SIM_LOG_N_SLOTS : 1;
     sim_log_t *log = calloc(1, sizeof *log);
-    sim_log_item_t *t = log != NULL ? &log->px4_time : NULL;
+    sim_log_item_t *t = log != NULL ? &log->topic_time : NULL;
     if (log == NULL || (log->files = calloc(file_slots, sizeof *log->files)) == NULL) {
         free(log);
         sim_log_fail(err, path, 0, 0, "out of memory");
@@ -88,15 +112,17 @@ static sim_log_t *start(const sim_log_options_t *opt, const char *path, sim_log_
     log->format = opt->format;
     snprintf(log->path, sizeof log->path, "%s", path);
     char message[sizeof err->message];
-    if (sim_log_map_build(&log->map, opt->format, opt->map, opt->n_map, message, sizeof message) != 0) {
+    if (build_map(log, opt, message, sizeof message) != 0) {
         sim_log_fail(err, path, 0, 0, "%s", message);
         sim_log_close(log);
         return NULL;
     }
     t->slot = 0;
     t->n_terms = 1;
-    strcpy(t->term[0].column, "timestamp");
+    strcpy(t->term[0].column, opt->format == SIM_LOG_ARDUPILOT ? "TimeUS" : "timestamp");
     t->scale = 1e-6;
+    log->sample_time = *t;
+    strcpy(log->sample_time.term[0].column, "SampleUS");
     return log;
 }
 
@@ -252,7 +278,11 @@ static sim_log_t *finish_open(sim_log_t *log, const sim_log_options_t *opt, sim_
 
 static int open_file(sim_log_t *log, FILE *stream, int own, const char *path, const char *topic, sim_log_error_t *err)
 {
-    const sim_log_item_t *time = topic != NULL ? &log->px4_time : &log->map.item[0];
+    const sim_log_item_t *time = &log->map.item[0];
+    if (topic != NULL) {
+        const int sampled = log->format == SIM_LOG_ARDUPILOT && sim_log_ardupilot_sample_timed(topic);
+        time = sampled ? &log->sample_time : &log->topic_time;
+    }
     sim_log_file_t *f = &log->files[log->n_files];
     if (sim_log_file_open(f, stream, own, path, time, &log->map, topic, err) != 0) {
         snprintf(err->path, sizeof err->path, "%s", path);
@@ -303,15 +333,25 @@ static int needs_topic(const sim_log_map_t *m, const char *topic, char *field, s
     return 0;
 }
 
-static sim_log_t *open_px4(sim_log_t *log, const sim_log_options_t *opt, sim_log_error_t *err)
+static int topic_path(const sim_log_options_t *opt, const char *base, const char *topic, char *out, size_t len)
+{
+    return opt->format == SIM_LOG_ARDUPILOT ? sim_log_ardupilot_topic_path(base, topic, out, len)
+                                            : sim_log_px4_topic_path(base, topic, out, len);
+}
+
+static sim_log_t *open_topics(sim_log_t *log, const sim_log_options_t *opt, sim_log_error_t *err)
 {
     const char *topics[SIM_LOG_N_SLOTS];
     const int n = list_topics(&log->map, topics);
     char base[SIM_LOG_PATH_LEN], path[SIM_LOG_PATH_LEN], field[32];
     int rc = 0;
-    sim_log_px4_base(opt->path, topics, n, base, sizeof base);
+    if (opt->format == SIM_LOG_ARDUPILOT) {
+        sim_log_ardupilot_base(opt->path, base, sizeof base);
+    } else {
+        sim_log_px4_base(opt->path, topics, n, base, sizeof base);
+    }
     for (int i = 0; rc == 0 && i < n; ++i) {
-        if (sim_log_px4_topic_path(base, topics[i], path, sizeof path) != 0) {
+        if (topic_path(opt, base, topics[i], path, sizeof path) != 0) {
             rc = sim_log_fail(err, base, 0, 0, "the path of topic %s is longer than %d bytes", topics[i],
                               SIM_LOG_PATH_LEN - 1);
             break;
@@ -319,6 +359,9 @@ static sim_log_t *open_px4(sim_log_t *log, const sim_log_options_t *opt, sim_log
         FILE *stream = fopen(path, "rb");
         if (stream != NULL) {
             rc = open_file(log, stream, 1, path, topics[i], err);
+        } else if (needs_topic(&log->map, topics[i], field, sizeof field) && opt->format == SIM_LOG_ARDUPILOT) {
+            rc = sim_log_fail(err, path, 0, 0, "cannot open: %s (no %s messages, needed for %s: logged with %s)",
+                              strerror(errno), topics[i], field, sim_log_ardupilot_enabled_by(topics[i]));
         } else if (needs_topic(&log->map, topics[i], field, sizeof field)) {
             rc = sim_log_fail(err, path, 0, 0, "cannot open: %s (topic %s, needed for %s)", strerror(errno), topics[i],
                               field);
@@ -337,8 +380,8 @@ sim_log_t *sim_log_open(const sim_log_options_t *opt, sim_log_error_t *err)
     if (log == NULL) {
         return NULL;
     }
-    if (opt->format == SIM_LOG_PX4) {
-        return open_px4(log, opt, err);
+    if (sim_log_format_has_topics(opt->format)) {
+        return open_topics(log, opt, err);
     }
     FILE *stream = fopen(opt->path, "rb");
     if (stream == NULL) {
@@ -352,8 +395,9 @@ sim_log_t *sim_log_open(const sim_log_options_t *opt, sim_log_error_t *err)
 
 sim_log_t *sim_log_open_stream(FILE *stream, const char *name, const sim_log_options_t *opt, sim_log_error_t *err)
 {
-    if (opt->format == SIM_LOG_PX4) {
-        sim_log_fail(err, name, 0, 0, "the px4 form is read from its topic files, not a stream");
+    if (sim_log_format_has_topics(opt->format)) {
+        sim_log_fail(err, name, 0, 0, "the %s form is read from its topic files, not a stream",
+                     sim_log_format_name(opt->format));
         return NULL;
     }
     sim_log_t *log = start(opt, name, err);

@@ -10,6 +10,11 @@
  *   `eRPM[i]`, `gyroUnfilt[0..2]` where logged).
  * - SIM_LOG_PX4: the CSVs ulog2csv writes, one per topic, named
  *   BASE_<topic>_<instance>.csv; the path given is BASE or any one of them.
+ * - SIM_LOG_ARDUPILOT: the CSVs sim_log_dataflash_to_csv writes from a
+ *   DataFlash .bin, one per message type and instance, named
+ *   BASE_<TYPE>_<instance>.csv (log_dataflash.h); the path given is BASE,
+ *   BASE.bin or any one of them. Commands from RATE, or from PIDR/PIDP/PIDY
+ *   in logs without RATE (Copter before 3.6).
  * - SIM_LOG_GENERIC: one CSV with a header row whose columns are named as
  *   the fields below (`time`, `gyro[0]`, ...: each field optional under its
  *   own name but the time, in SI units), or mapped by the caller.
@@ -18,8 +23,10 @@
  * `A+B+C`, optionally times a scale: `...*0.001`, `...*deg` (pi/180),
  * `...*us` (1e-6), `...*ms` (1e-3), `...*-1` (a sign). A column name may be
  * prefixed with `?`: optional, 0 when the log lacks it or reads `nan` in its
- * first row (ulog2csv's unused array entries). PX4 sources name
- * their topic: `vehicle_torque_setpoint.xyz[0]`. Items given by the caller
+ * first row (ulog2csv's unused array entries). PX4 and ArduPilot sources
+ * name their topic: `vehicle_torque_setpoint.xyz[0]`, `RATE.ROut`,
+ * `ESC[1].RPM` (instance 1); each topic's time is its `timestamp` (PX4) or
+ * `TimeUS` (ArduPilot), in us. Items given by the caller
  * replace the preset's item of the same FIELD. FIELDs, in SI units:
  *   time (s), gyro[0..2] (rad/s, what the log's controller used),
  *   gyro_raw[0..2] (rad/s, before its filters), angle[0..2] (rad, roll pitch
@@ -61,7 +68,19 @@
 #define SIM_LOG_MAX_MOTORS 8
 #define SIM_LOG_GAP_FACTOR 5.0 /* a gap: a row period this many times the median */
 
-typedef enum { SIM_LOG_BETAFLIGHT = 0, SIM_LOG_PX4 = 1, SIM_LOG_GENERIC = 2 } sim_log_format_t;
+typedef enum {
+    SIM_LOG_BETAFLIGHT = 0,
+    SIM_LOG_PX4 = 1,
+    SIM_LOG_GENERIC = 2,
+    SIM_LOG_ARDUPILOT = 3,
+    SIM_LOG_FORMAT_COUNT
+} sim_log_format_t;
+
+/* A form of one CSV per topic, each with its own time column (PX4, ArduPilot). */
+static inline int sim_log_format_has_topics(sim_log_format_t f)
+{
+    return f == SIM_LOG_PX4 || f == SIM_LOG_ARDUPILOT;
+}
 
 /* Which fields of sim_log_sample_t hold values (the others are NaN). */
 enum {
@@ -96,7 +115,7 @@ typedef struct {
 
 typedef struct {
     sim_log_format_t format;
-    char path[SIM_LOG_PATH_LEN];      /* BF / generic: the CSV; PX4: BASE or one topic file */
+    char path[SIM_LOG_PATH_LEN];      /* BF / generic: the CSV; PX4, ArduPilot: BASE or one topic file */
     double dt_s;                      /* control period; 0: the median row period of the first file read */
     const char *map[SIM_LOG_MAX_MAP]; /* mapping items (above), replacing the preset's */
     int n_map;
@@ -124,7 +143,7 @@ typedef struct sim_log sim_log_t; /* the open reader (heap; host only) */
 /* The options' defaults: format BETAFLIGHT, dt 0, no map, the whole log. */
 void sim_log_options_default(sim_log_options_t *o);
 
-/* "betaflight", "px4", "generic" -> format; -1 for anything else. */
+/* "betaflight", "px4", "generic", "ardupilot" -> format; -1 for anything else. */
 int sim_log_format_parse(const char *name);
 const char *sim_log_format_name(sim_log_format_t f);
 

@@ -4,7 +4,9 @@
 #define _POSIX_C_SOURCE 200809L
 #include "log_convert.h"
 
+#include "log_ardupilot.h"
 #include "log_bbl.h"
+#include "log_dataflash.h"
 #include "log_file.h"
 #include "log_px4.h"
 
@@ -140,8 +142,17 @@ static int decode(sim_log_options_t *o, sim_log_prepared_t *p, sim_log_convert_p
         return snprintf(o->path, sizeof o->path, "%s.csv", base) < (int)sizeof o->path
                    ? 0
                    : sim_log_fail(err, p->original, 0, 0, "path too long");
-    case SIM_LOG_SOURCE_DATAFLASH:
-        return sim_log_fail(err, p->original, 0, 0, "an ArduPilot DataFlash log: this build does not decode it");
+    case SIM_LOG_SOURCE_DATAFLASH: {
+        char names[SIM_LOG_ARDUPILOT_TOPICS_MAX][SIM_LOG_ARDUPILOT_TYPE_LEN];
+        const char *topics[SIM_LOG_ARDUPILOT_TOPICS_MAX];
+        const int n = sim_log_ardupilot_topics(o->map, o->n_map, names, topics);
+        if (sim_log_dataflash_to_csv(p->original, base, topics, n, progress, ctx, err) != 0) {
+            return -1;
+        }
+        snprintf(o->path, sizeof o->path, "%s", base);
+        o->format = SIM_LOG_ARDUPILOT;
+        return 0;
+    }
     default:
         break;
     }

@@ -99,6 +99,49 @@ const char *sim_log_column_hint(const char *column)
     return NULL;
 }
 
+/* ArduPilot (docs/flight-logs.md has the table): the units ArduPilot logs
+ * these fields in (IMU rad/s, ATT deg, RATE deg/s, RCOU us, ESC rpm), the
+ * same from Copter 3.6 to 4.6; each topic's TimeUS is its time. */
+static const preset_item_t ARDUPILOT[] = {
+    {"gyro[0]=IMU.GyrX", 1},
+    {"gyro[1]=IMU.GyrY", 1},
+    {"gyro[2]=IMU.GyrZ", 1},
+    {"gyro_raw[0]=?GYR.GyrX", 1},
+    {"gyro_raw[1]=?GYR.GyrY", 1},
+    {"gyro_raw[2]=?GYR.GyrZ", 1},
+    {"angle[0]=ATT.Roll*deg", 1},
+    {"angle[1]=ATT.Pitch*deg", 1},
+    {"angle[2]=ATT.Yaw*deg", 1},
+    {"ref_angle[0]=ATT.DesRoll*deg", 1},
+    {"ref_angle[1]=ATT.DesPitch*deg", 1},
+    {"ref_angle[2]=ATT.DesYaw*deg", 1},
+    {"motor[0]=?RCOU.C1", 1},
+    {"motor[1]=?RCOU.C2", 1},
+    {"motor[2]=?RCOU.C3", 1},
+    {"motor[3]=?RCOU.C4", 1},
+    {"motor[4]=?RCOU.C5", 1},
+    {"motor[5]=?RCOU.C6", 1},
+    {"motor[6]=?RCOU.C7", 1},
+    {"motor[7]=?RCOU.C8", 1},
+    {"rotor_hz[#]=?ESC[#].RPM*0.0166666667", SIM_LOG_MAX_MOTORS}, /* rpm / 60 */
+};
+
+/* The rate loop's setpoint and output (-1..1) and the throttle (0..1). */
+static const preset_item_t ARDUPILOT_RATE[] = {
+    {"ref_rate[0]=?RATE.RDes*deg", 1}, {"ref_rate[1]=?RATE.PDes*deg", 1}, {"ref_rate[2]=?RATE.YDes*deg", 1},
+    {"command[0]=RATE.ROut", 1},       {"command[1]=RATE.POut", 1},       {"command[2]=RATE.YOut", 1},
+    {"throttle=?RATE.AOut", 1},
+};
+
+/* Logs without RATE (Copter before 3.6): the rate PIDs' terms, whose sum is
+ * what the rate loop gave the motors (FF from 3.5 on), and CTUN's throttle. */
+static const preset_item_t ARDUPILOT_PID[] = {
+    {"command[0]=PIDR.P+PIDR.I+PIDR.D+?PIDR.FF", 1},
+    {"command[1]=PIDP.P+PIDP.I+PIDP.D+?PIDP.FF", 1},
+    {"command[2]=PIDY.P+PIDY.I+PIDY.D+?PIDY.FF", 1},
+    {"throttle=?CTUN.ThO", 1},
+};
+
 /* Each group's first slot: the counts of GROUPS summed. */
 static const int FIRST[SIM_LOG_G_COUNT + 1] = {0, 1, 4, 7, 10, 14, 17, 21, 24, 27, 28, 36, SIM_LOG_N_SLOTS};
 
@@ -285,7 +328,7 @@ int sim_log_item_parse(const char *text, int topics, sim_log_item_t *it, char *m
         p = plus + 1;
     }
     if (topics && it->slot == sim_log_group_first(SIM_LOG_G_TIME)) {
-        return item_error(msg, len, text, "the px4 form's time is each topic's timestamp, not", eq + 1,
+        return item_error(msg, len, text, "a topic form's time is each topic's own (timestamp, TimeUS), not", eq + 1,
                           (size_t)(end - eq - 1));
     }
     return 0;
@@ -333,16 +376,24 @@ static int add_generic(sim_log_map_t *m, char *msg, size_t len)
     return 0;
 }
 
-int sim_log_map_build(sim_log_map_t *m, sim_log_format_t format, const char *const *items, int n_items, char *msg,
-                      size_t len)
+#define N_ITEMS(a) ((int)(sizeof(a) / sizeof((a)[0])))
+
+static int build(sim_log_map_t *m, sim_log_format_t format, int with_rate, const char *const *items, int n_items,
+                 char *msg, size_t len)
 {
-    const int topics = format == SIM_LOG_PX4;
+    const int topics = sim_log_format_has_topics(format);
     int rc;
     memset(m, 0, sizeof *m);
     if (format == SIM_LOG_BETAFLIGHT) {
-        rc = add_items(m, BETAFLIGHT, (int)(sizeof BETAFLIGHT / sizeof BETAFLIGHT[0]), 0, msg, len);
+        rc = add_items(m, BETAFLIGHT, N_ITEMS(BETAFLIGHT), 0, msg, len);
     } else if (format == SIM_LOG_PX4) {
-        rc = add_items(m, PX4, (int)(sizeof PX4 / sizeof PX4[0]), 1, msg, len);
+        rc = add_items(m, PX4, N_ITEMS(PX4), 1, msg, len);
+    } else if (format == SIM_LOG_ARDUPILOT) {
+        rc = add_items(m, ARDUPILOT, N_ITEMS(ARDUPILOT), 1, msg, len);
+        if (rc == 0) {
+            rc = with_rate ? add_items(m, ARDUPILOT_RATE, N_ITEMS(ARDUPILOT_RATE), 1, msg, len)
+                           : add_items(m, ARDUPILOT_PID, N_ITEMS(ARDUPILOT_PID), 1, msg, len);
+        }
     } else {
         rc = add_generic(m, msg, len);
     }
@@ -359,4 +410,16 @@ int sim_log_map_build(sim_log_map_t *m, sim_log_format_t format, const char *con
         }
     }
     return rc;
+}
+
+int sim_log_map_build(sim_log_map_t *m, sim_log_format_t format, const char *const *items, int n_items, char *msg,
+                      size_t len)
+{
+    return build(m, format, 1, items, n_items, msg, len);
+}
+
+int sim_log_map_build_ardupilot(sim_log_map_t *m, int with_rate, const char *const *items, int n_items, char *msg,
+                                size_t len)
+{
+    return build(m, SIM_LOG_ARDUPILOT, with_rate, items, n_items, msg, len);
 }

@@ -72,4 +72,9 @@ int sim_log_map_build(sim_log_map_t *m, sim_log_format_t format, const char *con
  * preset does not read. */
 const char *sim_log_column_hint(const char *column);
 
+/* The ArduPilot preset with the commands from RATE (with_rate) or from
+ * PIDR/PIDP/PIDY (logs without RATE), then the caller's items. */
+int sim_log_map_build_ardupilot(sim_log_map_t *m, int with_rate, const char *const *items, int n_items, char *msg,
+                                size_t len);
+
 #endif

@@ -14,7 +14,8 @@ struct sim_log {
     sim_log_format_t format;
     char path[SIM_LOG_PATH_LEN];
     sim_log_map_t map;
-    sim_log_item_t px4_time; /* each topic's timestamp, us */
+    sim_log_item_t topic_time;  /* each topic's time column (timestamp, TimeUS), us */
+    sim_log_item_t sample_time; /* ArduPilot's raw sensor messages (GYR): SampleUS, us */
     sim_log_file_t *files;
     int n_files;
     int slot_file[SIM_LOG_N_SLOTS]; /* -1: the slot has no value */

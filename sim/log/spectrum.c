@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* Welch's PSD (spectrum.h): radix-2 FFT of Hann-windowed half-overlapping segments. */
+/* Welch's PSD (spectrum.h): the FFT (fft.h) of Hann-windowed half-overlapping segments. */
 #include "spectrum.h"
+
+#include "fft.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -16,45 +18,7 @@ void sim_spectrum_init(sim_spectrum_t *s, double fs_hz)
         s->window[i] = 0.5 - 0.5 * cos(2.0 * PI * i / SIM_SPECTRUM_N);
         s->window_power += s->window[i] * s->window[i];
     }
-    for (int k = 0; k < SIM_SPECTRUM_N / 2; ++k) {
-        s->twiddle_re[k] = cos(2.0 * PI * k / SIM_SPECTRUM_N);
-        s->twiddle_im[k] = -sin(2.0 * PI * k / SIM_SPECTRUM_N);
-    }
-}
-
-/* In place, iterative radix-2 of SIM_SPECTRUM_N points. */
-static void fft(const sim_spectrum_t *s, double *re, double *im)
-{
-    const int n = SIM_SPECTRUM_N;
-    for (int i = 1, j = 0; i < n; ++i) {
-        int bit = n >> 1;
-        for (; j & bit; bit >>= 1) {
-            j ^= bit;
-        }
-        j ^= bit;
-        if (i < j) {
-            double t = re[i];
-            re[i] = re[j];
-            re[j] = t;
-            t = im[i];
-            im[i] = im[j];
-            im[j] = t;
-        }
-    }
-    for (int len = 2; len <= n; len <<= 1) {
-        const int stride = n / len;
-        for (int i = 0; i < n; i += len) {
-            for (int k = 0; k < len / 2; ++k) {
-                const double wr = s->twiddle_re[k * stride], wi = s->twiddle_im[k * stride];
-                const int p = i + k, q = i + k + len / 2;
-                const double xr = re[q] * wr - im[q] * wi, xi = re[q] * wi + im[q] * wr;
-                re[q] = re[p] - xr;
-                im[q] = im[p] - xi;
-                re[p] += xr;
-                im[p] += xi;
-            }
-        }
-    }
+    sim_fft_twiddles(SIM_SPECTRUM_N, s->twiddle_re, s->twiddle_im);
 }
 
 /* The last SIM_SPECTRUM_N samples, windowed about their mean, into out. */
@@ -84,7 +48,7 @@ static void add_segment(sim_spectrum_t *s)
 {
     double re[SIM_SPECTRUM_N], im[SIM_SPECTRUM_N] = {0.0};
     windowed_segment(s, re);
-    fft(s, re, im);
+    sim_fft(SIM_SPECTRUM_N, s->twiddle_re, s->twiddle_im, re, im);
     for (int k = 0; k < SIM_SPECTRUM_BINS; ++k) {
         accumulate(s, k, re[k] * re[k] + im[k] * im[k]);
     }
@@ -99,7 +63,7 @@ static void add_segment_pair(sim_spectrum_t *a, sim_spectrum_t *b)
     double re[SIM_SPECTRUM_N], im[SIM_SPECTRUM_N];
     windowed_segment(a, re);
     windowed_segment(b, im);
-    fft(a, re, im);
+    sim_fft(SIM_SPECTRUM_N, a->twiddle_re, a->twiddle_im, re, im);
     for (int k = 0; k < SIM_SPECTRUM_BINS; ++k) {
         const int m = (n - k) % n;
         const double ar = 0.5 * (re[k] + re[m]), ai = 0.5 * (im[k] - im[m]);

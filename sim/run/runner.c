@@ -44,7 +44,22 @@ typedef struct {
     double wind_stage[STAGES_MAX][3];
     recorded_t rec;                               /* the recorded series they fly */
     sim_series_cursor_t dist_cur, dist_stage_cur; /* the disturbance's, at the instants and the stages */
+    sim_series_cursor_t ref_cur;                  /* the reference series', at the instants */
 } group_t;
+
+/* The recorded reference series (rad) added to the references at t, rounded
+ * to ladrc_real_t as the controllers get them. */
+static void add_reference_series(const recorded_t *rec, sim_series_cursor_t *cur, double t, ladrc_real_t ref[3])
+{
+    if (!rec->has_ref) {
+        return;
+    }
+    double add[3] = {0.0, 0.0, 0.0};
+    runner_recorded_add(&rec->ref, cur, t, add);
+    for (int i = 0; i < 3; ++i) {
+        ref[i] = (ladrc_real_t)((double)ref[i] + add[i]);
+    }
+}
 
 /* Every started run refused with err (it does not fly; its files closed). */
 static void group_refuse(group_t *g, const char *err)
@@ -82,6 +97,7 @@ static void group_open(group_t *g, const sim_scenario_t *sc, sim_run_spec_t *run
     }
     sim_series_cursor_init(&g->dist_cur);
     sim_series_cursor_init(&g->dist_stage_cur);
+    sim_series_cursor_init(&g->ref_cur);
     if (runner_recorded_open(&g->rec, sc, err, sizeof err) != 0) {
         group_refuse(g, err);
     }
@@ -116,6 +132,7 @@ static const sim_plant_t *group_control(group_t *g, long k, long n_ticks, double
     if (g->rec.has_dist) {
         runner_recorded_add(&g->rec.dist, &g->dist_cur, t, dist);
     }
+    add_reference_series(&g->rec, &g->ref_cur, t, ref);
     widen(ref, ref_rad);
     const sim_plant_t *lead = NULL; /* the plants' times are the same bits */
     for (int q = 0; q < g->n; ++q) {
@@ -182,6 +199,7 @@ static void group_check_end(group_t *g, long n_ticks)
     ladrc_real_t ref[3];
     double ref_rad[3];
     runner_references(sc, t, &memo, ref);
+    add_reference_series(&g->rec, &g->ref_cur, t, ref);
     widen(ref, ref_rad);
     for (int q = 0; q < g->n; ++q) {
         if (g->run[q].flying) {

@@ -64,10 +64,11 @@ void runner_disturbance_batch_init(disturbance_batch_t *b, const sim_scenario_t 
 /* ---- runner_series.c ---------------------------------------------------------- */
 
 /* The recorded series a group's runs fly (series.h): a disturbance on the
- * plant, noises on the measured rate and angle. */
+ * plant, angles added to the references, noises on the measured rate and angle. */
 typedef struct {
-    int has_dist, has_rate, has_angle;
+    int has_dist, has_ref, has_rate, has_angle;
     sim_series_t dist;  /* rad/s^2 */
+    sim_series_t ref;   /* rad */
     sim_series_t rate;  /* rad/s */
     sim_series_t angle; /* rad */
 } recorded_t;

@@ -31,6 +31,8 @@ int runner_recorded_open(recorded_t *r, const sim_scenario_t *sc, char *err, siz
     memset(r, 0, sizeof *r);
     if (open_one(&r->dist, &r->has_dist, sc->dist_series, SIM_DIM_ANG_ACCEL, sc->dist_series_interp,
                  sc->dist_series_end, err, err_len) != 0 ||
+        open_one(&r->ref, &r->has_ref, sc->ref_series, SIM_DIM_ANGLE, sc->ref_series_interp, sc->ref_series_end, err,
+                 err_len) != 0 ||
         open_one(&r->rate, &r->has_rate, sc->rate_noise_series, SIM_DIM_ANG_RATE, sc->noise_series_interp,
                  sc->noise_series_end, err, err_len) != 0 ||
         open_one(&r->angle, &r->has_angle, sc->angle_noise_series, SIM_DIM_ANGLE, sc->noise_series_interp,
@@ -44,9 +46,10 @@ int runner_recorded_open(recorded_t *r, const sim_scenario_t *sc, char *err, siz
 void runner_recorded_close(recorded_t *r)
 {
     sim_series_free(&r->dist);
+    sim_series_free(&r->ref);
     sim_series_free(&r->rate);
     sim_series_free(&r->angle);
-    r->has_dist = r->has_rate = r->has_angle = 0;
+    r->has_dist = r->has_ref = r->has_rate = r->has_angle = 0;
 }
 
 void runner_recorded_add(const sim_series_t *s, sim_series_cursor_t *cursor, double t_s, double v[3])

@@ -921,9 +921,12 @@ static void check_series(parser_t *p)
     static const char *const dist[] = {"series"};
     static const char *const noise[] = {"rate_noise_series", "angle_noise_series"};
     check_series_options(p, SEC_DISTURBANCE, dist, 1);
+    check_series_options(p, SEC_REFERENCE, dist, 1);
     check_series_options(p, SEC_SENSORS, noise, 2);
     check_one_series(p, SEC_DISTURBANCE, "series", sc->dist_series, SIM_DIM_ANG_ACCEL, sc->dist_series_interp,
                      sc->dist_series_end);
+    check_one_series(p, SEC_REFERENCE, "series", sc->ref_series, SIM_DIM_ANGLE, sc->ref_series_interp,
+                     sc->ref_series_end);
     check_one_series(p, SEC_SENSORS, "rate_noise_series", sc->rate_noise_series, SIM_DIM_ANG_RATE,
                      sc->noise_series_interp, sc->noise_series_end);
     check_one_series(p, SEC_SENSORS, "angle_noise_series", sc->angle_noise_series, SIM_DIM_ANGLE,

@@ -220,13 +220,15 @@ typedef struct {
     int delay_ticks;
     int use_rate; /* controllers get the measured rate */
 
-    /* Recorded series (series.h): a file added to the disturbance or to the
-     * measured rate or angle. Paths are relative to the scenario's folder
+    /* Recorded series (series.h): a file added to the disturbance, to the
+     * references or to the measured rate or angle. Paths are relative to the scenario's folder
      * as given, resolved by the parser ("" : none). */
     char dist_series[SIM_PATH_LEN];
     int dist_series_interp, dist_series_end; /* SIM_SERIES_LINEAR/HOLD; SIM_SERIES_REPEAT/HOLD_END/REFUSE */
     char rate_noise_series[SIM_PATH_LEN], angle_noise_series[SIM_PATH_LEN];
     int noise_series_interp, noise_series_end;
+    char ref_series[SIM_PATH_LEN]; /* [reference] series: angles added to the references */
+    int ref_series_interp, ref_series_end;
 
     /* [mismatch]: what the controllers assume, as factors of the plant's values */
     double inertia_scale[3], rot_drag_scale;

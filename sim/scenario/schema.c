@@ -242,6 +242,9 @@ const key_def_t SCHEMA_KEYS[] = {
     {KEY(SEC_REFERENCE, "throttle", V_SIGNAL, SC(throttle))},
     {KEY(SEC_REFERENCE, "frame", V_CHOICE, SC(frame)), .choices = FRAMES},
     {KEY(SEC_REFERENCE, "yaw_weight", V_REAL, SC(yaw_weight)), .range = R_WEIGHT},
+    {KEY(SEC_REFERENCE, "series", V_TEXT, SC(ref_series))},
+    {KEY(SEC_REFERENCE, "series_interp", V_CHOICE, SC(ref_series_interp)), .choices = SERIES_INTERP},
+    {KEY(SEC_REFERENCE, "series_end", V_CHOICE, SC(ref_series_end)), .choices = SERIES_END},
 
     {KEY(SEC_DISTURBANCE, "roll", V_SIGNAL, SC(disturbance[0]))},
     {KEY(SEC_DISTURBANCE, "pitch", V_SIGNAL, SC(disturbance[1]))},
@@ -487,6 +490,7 @@ void schema_set_defaults(sim_scenario_t *sc)
 
     sc->dist_series_end = SIM_SERIES_REFUSE; /* a run past the recording is an error unless asked */
     sc->noise_series_end = SIM_SERIES_REFUSE;
+    sc->ref_series_end = SIM_SERIES_REFUSE;
     sc->turbulence = SIM_TURB_OFF;
     sc->turb_sigma_m_s = 0.0;
     sc->altitude_m = DEFAULT_ALTITUDE_M;
