@@ -642,6 +642,36 @@ static void test_through_the_readers_betaflight_form(void)
     free(w.b);
 }
 
+/* A gyro_scale other than 1 (sensor counts, as Cleanflight logged): the
+ * gyro written converted, `gyroADC[i] (deg/s)`, which the reader takes. */
+static void test_a_gyro_in_counts_is_written_in_deg_s(void)
+{
+    buf_t w = {0};
+    write_log(&w, 16, -1);
+    char *at = strstr((char *)w.b, "H gyro_scale:0x3f800000");
+    TEST_ASSERT_NOT_NULL(at);
+    memcpy(at, "H gyro_scale:0x3f000000", 23); /* 0.5 deg/s per count */
+    decoded_t d = decode(&w, 1);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, d.rc, d.err.message);
+    TEST_ASSERT_NOT_NULL(strstr(d.text, ", gyroADC[0] (deg/s), gyroADC[1] (deg/s), gyroADC[2] (deg/s), motor[0]"));
+    sim_log_options_t o;
+    sim_log_options_default(&o);
+    o.format = SIM_LOG_BETAFLIGHT;
+    FILE *f = fmemopen(d.text, d.len, "r");
+    sim_log_error_t err;
+    sim_log_t *log = sim_log_open_stream(f, "t.csv", &o, &err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(log, err.message);
+    sim_log_sample_t s;
+    TEST_ASSERT_EQUAL_INT(1, sim_log_next(log, &s, &err));
+    for (int i = 0; i < 3; ++i) { /* half a count is a multiple of 0.5: printed exactly with 2 decimals */
+        TEST_ASSERT_TRUE(fabs(s.gyro_rad_s[i] - 0.5 * (double)v_true(0, F_G0 + i) * PI / 180.0) <= ROUND_TOL);
+    }
+    sim_log_close(log);
+    fclose(f);
+    free(d.text);
+    free(w.b);
+}
+
 /* TAG8_4S16 in both data versions, from bytes laid out by hand: a 4-bit
  * pair, an 8-bit and a 16-bit value (selector 0xE5: fields 1, 1, 2, 3). */
 static void test_tag8_4s16_in_both_data_versions(void)
@@ -677,5 +707,6 @@ int main(void)
     RUN_TEST(test_bad_headers_are_refused_at_an_offset);
     RUN_TEST(test_through_the_readers_betaflight_form);
     RUN_TEST(test_tag8_4s16_in_both_data_versions);
+    RUN_TEST(test_a_gyro_in_counts_is_written_in_deg_s);
     return UNITY_END();
 }
