@@ -8,13 +8,26 @@
 
 int margins_noise_wanted(const ladrc_margins_request_t *req)
 {
-    return req->angle_noise_std_rad > 0.0 || req->rate_noise_std_rad_s > 0.0;
+    return req->angle_noise_std_rad > 0.0 || req->rate_noise_std_rad_s > 0.0 || req->rate_noise_psd_bins > 0;
+}
+
+static int check_psd(const ladrc_margins_request_t *req)
+{
+    if (req->rate_noise_psd_bins == 0)
+        return 0;
+    if (req->rate_noise_psd_bins < 2 || req->rate_noise_psd_bins > LADRC_MARGINS_NOISE_PSD_BINS ||
+        !(req->rate_noise_bin_hz > 0.0 && isfinite(req->rate_noise_bin_hz)))
+        return -1;
+    for (int k = 0; k < req->rate_noise_psd_bins; ++k)
+        if (!(req->rate_noise_psd[k] >= 0.0 && isfinite(req->rate_noise_psd[k])))
+            return -1;
+    return 0;
 }
 
 int margins_check_noise(const ladrc_margins_request_t *req)
 {
     if (!(req->angle_noise_std_rad >= 0.0 && isfinite(req->angle_noise_std_rad)) ||
-        !(req->rate_noise_std_rad_s >= 0.0 && isfinite(req->rate_noise_std_rad_s)))
+        !(req->rate_noise_std_rad_s >= 0.0 && isfinite(req->rate_noise_std_rad_s)) || check_psd(req) != 0)
         return -1;
     if (margins_noise_wanted(req) && !(req->noise_corner_hz > 0.0 && req->noise_corner_hz < 0.5 / req->plant.dt_s))
         return -1;
@@ -41,6 +54,21 @@ static double power_at_bin(const loop_t *lp, int m, double var_a, double var_r)
     return s2 * (var_a * ca2 + var_r * cr2);
 }
 
+/* The coloured rate noise at w (rad per tick) as the variance per sample of
+ * a white noise of the same density there: a one-sided PSD p ((rad/s)^2/Hz)
+ * is a white variance p fs / 2. */
+static double psd_as_variance(const ladrc_margins_request_t *req, double w)
+{
+    if (req->rate_noise_psd_bins == 0)
+        return 0.0;
+    const double fs = 1.0 / req->plant.dt_s, x = w / (2.0 * PI) * fs / req->rate_noise_bin_hz;
+    const int k = (int)floor(x);
+    if (k + 1 >= req->rate_noise_psd_bins)
+        return k + 1 == req->rate_noise_psd_bins && x == (double)k ? req->rate_noise_psd[k] * 0.5 * fs : 0.0;
+    const double f = x - (double)k;
+    return ((1.0 - f) * req->rate_noise_psd[k] + f * req->rate_noise_psd[k + 1]) * 0.5 * fs;
+}
+
 /* White noise of variance v per sample has the two-sided PSD v over
  * w in (-pi, pi] (rad per tick): a real signal's power in the band
  * [w0, pi] of both sides is (1 / pi) int_w0^pi |H|^2 v dw. The integral by
@@ -59,10 +87,10 @@ double margins_cmd_noise(const loop_t *lp, const ladrc_margins_request_t *req)
         m0 = 1;
     if (m0 > N_HALF)
         return 0.0;
-    double sum = (m0 * step - w0) * power_at_bin(lp, m0, var_a, var_r);
-    double prev = power_at_bin(lp, m0, var_a, var_r);
+    double prev = power_at_bin(lp, m0, var_a, var_r + psd_as_variance(req, m0 * step));
+    double sum = (m0 * step - w0) * prev;
     for (int m = m0 + 1; m <= N_HALF; ++m) {
-        const double p = power_at_bin(lp, m, var_a, var_r);
+        const double p = power_at_bin(lp, m, var_a, var_r + psd_as_variance(req, m * step));
         sum += 0.5 * step * (prev + p);
         prev = p;
     }

@@ -189,6 +189,45 @@ static void test_no_noise_predicts_zero_and_bad_noise_is_refused(void)
     TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_loop(&ws, &req, &res));
 }
 
+/* A coloured rate noise (rate_noise_psd) flat at white noise's density is
+ * that white noise: the same prediction to the rounding of the sums (the
+ * bins' linear interpolation of a flat PSD is exact; 1e-9 relative).
+ * Zero below 100 Hz, it predicts less; a bad PSD is refused. */
+#define PSD_REL_TOL 1e-9
+static void test_a_coloured_rate_noise_is_its_spectrum(void)
+{
+    const ladrc_margins_plant_t p = test_plant();
+    ladrc_axis_config_t cfg;
+    ladrc_axis_config_default(&cfg, LADRC_VARIANT_CASCADED, (ladrc_real_t)p.dt_s, (ladrc_real_t)p.inertia_kg_m2);
+    const ladrc_margins_controller_t ctl = {.axis = &cfg, .use_rate = 1};
+    static ladrc_margins_request_t req;
+    ladrc_margins_request_default(&req, &p);
+    const double sr = 0.02, fs = 1.0 / p.dt_s;
+    req.rate_noise_std_rad_s = sr;
+    TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_analyse(&ws, &ctl, &req, &res));
+    const double white = res.cmd_noise_Nm;
+    req.rate_noise_std_rad_s = 0.0;
+    req.rate_noise_psd_bins = LADRC_MARGINS_NOISE_PSD_BINS;
+    req.rate_noise_bin_hz = 0.5 * fs / (LADRC_MARGINS_NOISE_PSD_BINS - 1);
+    for (int k = 0; k < LADRC_MARGINS_NOISE_PSD_BINS; ++k) {
+        req.rate_noise_psd[k] = 2.0 * sr * sr / fs; /* one-sided: the variance over fs / 2 */
+    }
+    TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_analyse(&ws, &ctl, &req, &res));
+    TEST_ASSERT_FLOAT_WITHIN(PSD_REL_TOL * white, white, res.cmd_noise_Nm);
+    for (int k = 0; k < LADRC_MARGINS_NOISE_PSD_BINS; ++k) {
+        if ((double)k * req.rate_noise_bin_hz < 100.0) {
+            req.rate_noise_psd[k] = 0.0;
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_OK, ladrc_margins_analyse(&ws, &ctl, &req, &res));
+    TEST_ASSERT_TRUE(res.cmd_noise_Nm > 0.0 && res.cmd_noise_Nm < white);
+    req.rate_noise_psd[3] = -1.0;
+    TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_ERR_REQUEST, ladrc_margins_loop(&ws, &req, &res));
+    req.rate_noise_psd[3] = 0.0;
+    req.rate_noise_psd_bins = 1;
+    TEST_ASSERT_EQUAL_INT(LADRC_MARGINS_ERR_REQUEST, ladrc_margins_loop(&ws, &req, &res));
+}
+
 /* The cap lowers the bandwidth until the noise fits; a cap no setting meets
  * reports the closest miss. */
 static void test_the_tuners_cap_lowers_the_bandwidth(void)
@@ -236,5 +275,6 @@ int main(void)
     RUN_TEST(test_cascaded_rate_noise_matches_the_flight);
     RUN_TEST(test_no_noise_predicts_zero_and_bad_noise_is_refused);
     RUN_TEST(test_the_tuners_cap_lowers_the_bandwidth);
+    RUN_TEST(test_a_coloured_rate_noise_is_its_spectrum);
     return UNITY_END();
 }

@@ -18,6 +18,7 @@
 #include "report/report.h"
 #include "scenario/setup.h"
 #include "run/tune.h"
+#include "run/tune_noise.h"
 #include "run/runner.h"
 #include "cli/replay_report.h"
 #include "log/log_convert.h"
@@ -339,6 +340,10 @@ int main(int argc, char **argv)
             ladrc_margins_request_t req;
             ladrc_margins_request_default(&req, &plant);
             sim_tune_objective(&sc, id, &req);
+            char series_why[512];
+            if (sim_tune_noise_series(&sc, i, &req, series_why, sizeof series_why) != 0) {
+                fprintf(stderr, "%s\n", series_why);
+            }
             const ladrc_margins_controller_t ctl = sim_tune_controller_of(&sc, &filter, &acfg, i);
             int idle = 0;
             ladrc_margins_status_t st = ladrc_margins_analyse_reported(&ws, &ctl, &req, &res, &idle);

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "cli/fly.h"
+#include "cli/replay_noise.h"
 #include "cli/replay_report.h"
 #include "log/log_convert.h"
 #include "log/log_identify.h"
@@ -398,6 +399,10 @@ int main(int argc, char **argv)
         fprintf(stderr, "ladrc_replay: %s: write failed\n", path);
         return 2;
     }
+    if (sim_replay_noise_stage(&o.log, &airframe, stdout, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        return 2;
+    }
     const int have_airframe = write_scenario(dir, &airframe, prepared.original, ini, sizeof ini) == 0;
     if (have_airframe) {
         printf("scenario of the airframe: %s (ladrc_sil flies it, ladrc_margins tunes it)\n", ini);
@@ -425,6 +430,7 @@ int main(int argc, char **argv)
     printf("replayed %lld ticks (%.4g s of flight) with %d controllers in %.2f s: %.0fx real time\n", r.ticks,
            (double)r.ticks * sc.control_dt_s, r.n, replay_s, (double)r.ticks * sc.control_dt_s / replay_s);
     sim_report_replay(stdout, &r);
+    sim_replay_noise_report(stdout, &sc, &r);
     if (sim_write_replay_files(dir, &r, untunable, n_untunable, err, sizeof err) != 0 ||
         sim_log_views_of_log(&o.log, dir, stdout, err, sizeof err) != 0) {
         fprintf(stderr, "ladrc_replay: %s\n", err);

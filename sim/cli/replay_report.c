@@ -131,25 +131,26 @@ static int write_summary(const char *path, const sim_replay_t *r, const sim_cont
         return -1;
     }
     fprintf(f, "source,axis,ticks,command_rms,command_std,noise_0_20hz,noise_20_100hz,noise_above_100hz,"
-               "difference_rms,estimate_mean_rad_s2,estimate_std_rad_s2,fault_ticks,faults\n");
+               "difference_rms,estimate_mean_rad_s2,estimate_std_rad_s2,fault_ticks,faults,noise_above_20hz\n");
     for (int c = -1; c < r->n; ++c) {
         for (int i = 0; i < 3; ++i) {
             const sim_replay_axis_t *a = c < 0 ? &r->log_axis[i] : &r->axis[c][i];
             double bands[SIM_REPLAY_BANDS];
             band_rms(a, bands);
             const int est = c >= 0 && r->has_estimate[c];
-            fprintf(f, "%s,%s,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%lld,%u\n",
+            fprintf(f, "%s,%s,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%lld,%u,%.9g\n",
                     c < 0 ? "LOG" : sim_controller_name(r->ids[c]), AXIS[i], a->command.n,
                     sim_replay_stat_rms(&a->command), sim_replay_stat_std(&a->command), bands[0], bands[1], bands[2],
                     c < 0 ? NAN : sim_replay_stat_rms(&a->difference), est ? a->estimate.mean : NAN,
                     est ? sim_replay_stat_std(&a->estimate) : NAN, c < 0 ? 0LL : r->fault_ticks[c],
-                    c < 0 ? 0u : (unsigned)r->faults_seen[c]);
+                    c < 0 ? 0u : (unsigned)r->faults_seen[c],
+                    sim_spectrum_band_rms(&a->spectrum, SIM_REPLAY_BAND_EDGES_HZ[1], INFINITY));
         }
     }
     for (int c = 0; c < n_untunable; ++c) {
         for (int i = 0; i < 3; ++i) {
             fprintf(f, "%s,%s", sim_controller_name(untunable[c]), AXIS[i]);
-            for (int k = 0; k < 11; ++k) { /* every column after the axis */
+            for (int k = 0; k < 12; ++k) { /* every column after the axis */
                 fputs(",untunable", f);
             }
             fputc('\n', f);

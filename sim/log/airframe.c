@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "filter_proposal.h"
 #include "scenario/setup.h"
 
 #define RAD2DEG (180.0 / 3.14159265358979323846)
@@ -58,12 +59,41 @@ static double median3(double a, double b, double c)
     return v[1];
 }
 
+/* The scenario's inertias: roll's and pitch's their authority over b0, yaw's a share of their sum. */
+static void inertias(const sim_airframe_t *a, double J[3])
+{
+    for (int i = 0; i < 3; ++i) {
+        J[i] = i < 2 ? sim_airframe_inertia(i, a->axis[i].b0) : SIM_AIRFRAME_YAW_INERTIA_SHARE * (J[0] + J[1]);
+    }
+}
+
+double sim_airframe_torque_per_command_Nm(const sim_airframe_t *a, int axis)
+{
+    double J[3];
+    inertias(a, J);
+    return a->axis[axis].b0 > 0.0 ? J[axis] * a->axis[axis].b0 : NAN;
+}
+
+/* One controller's section; the LADRC family's carries the logged controller's noise as its cap. */
+static void write_controller(FILE *f, const sim_airframe_t *a, const char *name, int family, const char *extra)
+{
+    fprintf(f, "[controller %s]\ntune = margins\n%s", name, extra);
+    if (family && a->log_cmd_noise[0] > 0.0 && a->log_cmd_noise[1] > 0.0 && a->log_cmd_noise[2] > 0.0) {
+        fprintf(f, "tune_noise_axis_max_Nm =");
+        for (int i = 0; i < 3; ++i) {
+            fprintf(f, " %.6g", a->log_cmd_noise[i] * sim_airframe_torque_per_command_Nm(a, i));
+        }
+        fputc('\n', f);
+    }
+    fputc('\n', f);
+}
+
 int sim_airframe_write(FILE *f, const sim_airframe_t *a, const char *source, const char *noise_series, char *why,
                        size_t why_len)
 {
     double J[3], drag[3];
+    inertias(a, J);
     for (int i = 0; i < 3; ++i) {
-        J[i] = i < 2 ? sim_airframe_inertia(i, a->axis[i].b0) : SIM_AIRFRAME_YAW_INERTIA_SHARE * (J[0] + J[1]);
         if (!isfinite(J[i]) || !(a->axis[i].b0 > 0.0)) {
             snprintf(why, why_len, "%s: no positive b0 identified (%s)", AXIS[i],
                      isfinite(a->axis[i].b0) ? "it came out negative: check the axis's sign" : "too few samples");
@@ -129,6 +159,13 @@ int sim_airframe_write(FILE *f, const sim_airframe_t *a, const char *source, con
         fprintf(f, "# the log's white floor over the band it was measured in\n");
         fprintf(f, "rate_noise_std_deg_s = %.6g\n\n", white_deg_s);
     }
+    if (a->has_filter) {
+        fprintf(f,
+                "# the gyro filter stage proposed from the log's spectrum before its filters: notches at\n"
+                "# its vibration lines, a low-pass within %.0f deg of phase at the crossover\n",
+                SIM_FILTER_PHASE_BUDGET_DEG);
+        sim_filter_write_ini(f, &a->filter);
+    }
     fprintf(f, "[reference]                     # degrees: steps both ways on each axis\n");
     fprintf(f, "roll = 1 .. 7 : 10\nroll = 13 .. 19 : -10\npitch = 7 .. 13 : 10\npitch = 19 .. 25 : -10\n");
     fprintf(f, "yaw = 4 .. 16 : 20\n\n");
@@ -137,11 +174,19 @@ int sim_airframe_write(FILE *f, const sim_airframe_t *a, const char *source, con
         const double d = 0.15 * a->axis[i].b0;
         fprintf(f, "%s = 2 .. 8 : %.6g\n%s = 14 .. 26 : %.6g*sin(3*t)\n", AXIS[i], d, AXIS[i], d);
     }
-    fprintf(f, "\n[controller HP-MLADRC]\ntune = margins\nhp_sample = gyro\n\n");
-    const char *const others[] = {"LP-MLADRC", "LADRC", "RATE-ADRC", "CASCADED", "INDI"};
-    for (int c = 0; c < 5; ++c) {
-        fprintf(f, "[controller %s]\ntune = margins\n\n", others[c]);
+    if (a->log_cmd_noise[0] > 0.0) {
+        fprintf(f,
+                "\n# the LADRC family's command noise above 20 Hz capped at the logged controller's: %.4g %.4g %.4g\n"
+                "# of the authority (roll pitch yaw), in N m\n",
+                a->log_cmd_noise[0], a->log_cmd_noise[1], a->log_cmd_noise[2]);
     }
+    fputc('\n', f);
+    write_controller(f, a, "HP-MLADRC", 1, "hp_sample = gyro\n");
+    write_controller(f, a, "LP-MLADRC", 1, "");
+    write_controller(f, a, "LADRC", 1, "");
+    write_controller(f, a, "RATE-ADRC", 1, "");
+    write_controller(f, a, "CASCADED", 0, "");
+    write_controller(f, a, "INDI", 0, "");
     fprintf(f, "[metrics]\nerror_window_s = 0 30\nsteady_window_s = 20 25\nsettle_band_deg = 0.5\nsettle_window_s = 1 "
                "3\n");
     if (ferror(f)) {

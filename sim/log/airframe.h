@@ -21,6 +21,7 @@
 #include <stdio.h>
 
 #include "ident.h"
+#include "ladrc/gyro_filter.h"
 #include "spectrum.h"
 
 /* The nominal vehicle of an identified airframe. */
@@ -39,6 +40,12 @@ typedef struct {
     double noise_floor_rad_s_rthz[3]; /* the gyro's white floor (sqrt of its PSD) */
     int n_lines[3];
     sim_spectrum_line_t lines[3][SIM_SPECTRUM_MAX_LINES];
+    /* Set by the caller after the identification (zero: none): the gyro filter stage to fly
+     * ([filter]), and the logged controller's command noise above 20 Hz per axis (normalised
+     * command), the LADRC family's per-axis cap in N m (sim_airframe_torque_per_command_Nm). */
+    int has_filter;
+    ladrc_gyro_filter_config_t filter;
+    double log_cmd_noise[3];
 } sim_airframe_t;
 
 /* The band of the gyro's spectrum its floor is taken over (Hz), at sample rate fs. */
@@ -51,6 +58,10 @@ double sim_airframe_inertia(int axis, double b0);
 /* The yaw torque coefficient (N m s^2) that makes yaw's authority over
  * inertia_yaw equal b0_yaw. */
 double sim_airframe_yaw_coeff(double b0_yaw, double inertia_yaw);
+
+/* The torque (N m) a command of 1 means on axis i of the scenario: the
+ * axis's inertia times its b0 (NaN when b0 is not > 0). */
+double sim_airframe_torque_per_command_Nm(const sim_airframe_t *a, int axis);
 
 /* Writes the scenario to f: `source` names the log in its comment (a file
  * name, no folders), `noise_series` the noise file next to it (NULL: none).

@@ -300,24 +300,8 @@ static int open_file(sim_log_t *log, FILE *stream, int own, const char *path, co
     return 0;
 }
 
-/* The topics the map names, in slot order (the first: the first file read). */
-static int list_topics(const sim_log_map_t *m, const char **topics)
-{
-    int n = 0;
-    for (int s = 1; s < SIM_LOG_N_SLOTS; ++s) {
-        int seen = !m->mapped[s];
-        for (int i = 0; !seen && i < n; ++i) {
-            seen = strcmp(topics[i], m->item[s].topic) == 0;
-        }
-        if (!seen) {
-            topics[n++] = m->item[s].topic;
-        }
-    }
-    return n;
-}
-
-/* A required item of the topic: its field's name in `field`, or 0. */
-static int needs_topic(const sim_log_map_t *m, const char *topic, char *field, size_t len)
+/* A required item of the topic: its slot, or -1. */
+static int needs_topic(const sim_log_map_t *m, const char *topic)
 {
     for (int s = 1; s < SIM_LOG_N_SLOTS; ++s) {
         if (!m->mapped[s] || strcmp(m->item[s].topic, topic) != 0) {
@@ -325,12 +309,11 @@ static int needs_topic(const sim_log_map_t *m, const char *topic, char *field, s
         }
         for (int k = 0; k < m->item[s].n_terms; ++k) {
             if (!m->item[s].term[k].optional) {
-                sim_log_slot_name(s, field, len);
-                return 1;
+                return s;
             }
         }
     }
-    return 0;
+    return -1;
 }
 
 static int topic_path(const sim_log_options_t *opt, const char *base, const char *topic, char *out, size_t len)
@@ -341,14 +324,17 @@ static int topic_path(const sim_log_options_t *opt, const char *base, const char
 
 static sim_log_t *open_topics(sim_log_t *log, const sim_log_options_t *opt, sim_log_error_t *err)
 {
-    const char *topics[SIM_LOG_N_SLOTS];
-    const int n = list_topics(&log->map, topics);
+    const char *topics[SIM_LOG_PX4_TOPICS_MAX];
+    /* the base from any topic's file, then each field from the topic logged */
+    int n = sim_log_px4_map_topics(&log->map, 1, topics);
     char base[SIM_LOG_PATH_LEN], path[SIM_LOG_PATH_LEN], field[32];
     int rc = 0;
     if (opt->format == SIM_LOG_ARDUPILOT) {
         sim_log_ardupilot_base(opt->path, base, sizeof base);
     } else {
         sim_log_px4_base(opt->path, topics, n, base, sizeof base);
+        sim_log_px4_choose(&log->map, base);
+        n = sim_log_px4_map_topics(&log->map, 0, topics);
     }
     for (int i = 0; rc == 0 && i < n; ++i) {
         if (topic_path(opt, base, topics[i], path, sizeof path) != 0) {
@@ -357,14 +343,24 @@ static sim_log_t *open_topics(sim_log_t *log, const sim_log_options_t *opt, sim_
             break;
         }
         FILE *stream = fopen(path, "rb");
+        const int open_errno = errno;
+        const int slot = stream == NULL ? needs_topic(&log->map, topics[i]) : -1;
         if (stream != NULL) {
             rc = open_file(log, stream, 1, path, topics[i], err);
-        } else if (needs_topic(&log->map, topics[i], field, sizeof field) && opt->format == SIM_LOG_ARDUPILOT) {
+        } else if (slot >= 0 && opt->format == SIM_LOG_ARDUPILOT) {
+            sim_log_slot_name(slot, field, sizeof field);
             rc = sim_log_fail(err, path, 0, 0, "cannot open: %s (no %s messages, needed for %s: logged with %s)",
-                              strerror(errno), topics[i], field, sim_log_ardupilot_enabled_by(topics[i]));
-        } else if (needs_topic(&log->map, topics[i], field, sizeof field)) {
-            rc = sim_log_fail(err, path, 0, 0, "cannot open: %s (topic %s, needed for %s)", strerror(errno), topics[i],
-                              field);
+                              strerror(open_errno), topics[i], field, sim_log_ardupilot_enabled_by(topics[i]));
+        } else if (slot >= 0 && log->map.has_fallback[slot]) {
+            sim_log_slot_name(slot, field, sizeof field);
+            rc = sim_log_fail(err, path, 0, 0,
+                              "cannot open: %s (topic %s, needed for %s; nor is there a file of %s, "
+                              "which older PX4 releases log)",
+                              strerror(open_errno), topics[i], field, log->map.fallback[slot].topic);
+        } else if (slot >= 0) {
+            sim_log_slot_name(slot, field, sizeof field);
+            rc = sim_log_fail(err, path, 0, 0, "cannot open: %s (topic %s, needed for %s)", strerror(open_errno),
+                              topics[i], field);
         } /* else its items are optional: absent */
     }
     if (rc == 0) {

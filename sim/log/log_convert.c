@@ -9,6 +9,7 @@
 #include "log_dataflash.h"
 #include "log_file.h"
 #include "log_px4.h"
+#include "log_ulog.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -131,9 +132,24 @@ static int decode(sim_log_options_t *o, sim_log_prepared_t *p, sim_log_convert_p
         return sim_log_fail(err, p->original, 0, 0, "path too long");
     }
     switch (p->source) {
-    case SIM_LOG_SOURCE_ULOG:
-        return sim_log_fail(err, p->original, 0, 0,
-                            "a PX4 ULog: this build does not decode it; give ulog2csv's CSVs (docs/flight-logs.md)");
+    case SIM_LOG_SOURCE_ULOG: { /* the topics the px4 form reads, as ulog2csv's files under base */
+        sim_log_px4_topics_t topics;
+        char why[sizeof err->message];
+        if (sim_log_px4_topics(o->map, o->n_map, &topics, why, sizeof why) != 0) {
+            return sim_log_fail(err, p->original, 0, 0, "%s", why);
+        }
+        sim_log_ulog_stats_t st;
+        if (sim_log_ulog_to_csv_stats(p->original, base, topics.list, topics.n, progress, ctx, &st, err) != 0) {
+            return -1;
+        }
+        char notes[sizeof err->message * 2];
+        if (sim_log_ulog_stats_describe(&st, notes, sizeof notes) > 0) { /* a cut, dropouts, skips: said */
+            fprintf(stderr, "%s: %s\n", p->original, notes);
+        }
+        o->format = SIM_LOG_PX4;
+        snprintf(o->path, sizeof o->path, "%s", base);
+        return 0;
+    }
     case SIM_LOG_SOURCE_BBL: /* the longest of its logs, as blackbox_decode's CSV */
         if (sim_log_bbl_to_csv(p->original, base, NULL, 0, 0, progress, ctx, err) != 0) {
             return -1;

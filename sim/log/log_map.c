@@ -142,6 +142,19 @@ static const preset_item_t ARDUPILOT_PID[] = {
     {"throttle=?CTUN.ThO", 1},
 };
 
+/* The same fields from the topics of older PX4 releases, each read when
+ * the preset's topic file is missing and its own is there (log_px4.h). */
+static const preset_item_t PX4_FALLBACK[] = {
+    /* older releases' vehicle_attitude carried the body rates (v1.6 did, v1.11 does not) */
+    {"gyro[0]=vehicle_attitude.rollspeed", 1},
+    {"gyro[1]=vehicle_attitude.pitchspeed", 1},
+    {"gyro[2]=vehicle_attitude.yawspeed", 1},
+    /* before v1.13: actuator_controls_0's roll, pitch, yaw (thrust is control[3]) */
+    {"command[#]=actuator_controls_0.control[#]", 3},
+    /* before v1.13: the outputs (PWM, us) */
+    {"motor[#]=?actuator_outputs.output[#]", SIM_LOG_MAX_MOTORS},
+};
+
 /* Each group's first slot: the counts of GROUPS summed. */
 static const int FIRST[SIM_LOG_G_COUNT + 1] = {0, 1, 4, 7, 10, 14, 17, 21, 24, 27, 28, 36, SIM_LOG_N_SLOTS};
 
@@ -344,7 +357,9 @@ static void expand(const char *text, int k, char *out, size_t len)
     out[j] = '\0';
 }
 
-static int add_items(sim_log_map_t *m, const preset_item_t *preset, int n, int topics, char *msg, size_t len)
+/* The preset's items into m's items, or (fallback) into its fallbacks. */
+static int add_items(sim_log_map_t *m, const preset_item_t *preset, int n, int topics, int fallback, char *msg,
+                     size_t len)
 {
     char text[160];
     sim_log_item_t it;
@@ -354,8 +369,13 @@ static int add_items(sim_log_map_t *m, const preset_item_t *preset, int n, int t
             if (sim_log_item_parse(text, topics, &it, msg, len) != 0) {
                 return -1;
             }
-            m->item[it.slot] = it;
-            m->mapped[it.slot] = 1;
+            if (fallback) {
+                m->fallback[it.slot] = it;
+                m->has_fallback[it.slot] = 1;
+            } else {
+                m->item[it.slot] = it;
+                m->mapped[it.slot] = 1;
+            }
         }
     }
     return 0;
@@ -385,14 +405,15 @@ static int build(sim_log_map_t *m, sim_log_format_t format, int with_rate, const
     int rc;
     memset(m, 0, sizeof *m);
     if (format == SIM_LOG_BETAFLIGHT) {
-        rc = add_items(m, BETAFLIGHT, N_ITEMS(BETAFLIGHT), 0, msg, len);
+        rc = add_items(m, BETAFLIGHT, N_ITEMS(BETAFLIGHT), 0, 0, msg, len);
     } else if (format == SIM_LOG_PX4) {
-        rc = add_items(m, PX4, N_ITEMS(PX4), 1, msg, len);
+        rc = add_items(m, PX4, N_ITEMS(PX4), 1, 0, msg, len);
+        rc = rc == 0 ? add_items(m, PX4_FALLBACK, N_ITEMS(PX4_FALLBACK), 1, 1, msg, len) : rc;
     } else if (format == SIM_LOG_ARDUPILOT) {
-        rc = add_items(m, ARDUPILOT, N_ITEMS(ARDUPILOT), 1, msg, len);
+        rc = add_items(m, ARDUPILOT, N_ITEMS(ARDUPILOT), 1, 0, msg, len);
         if (rc == 0) {
-            rc = with_rate ? add_items(m, ARDUPILOT_RATE, N_ITEMS(ARDUPILOT_RATE), 1, msg, len)
-                           : add_items(m, ARDUPILOT_PID, N_ITEMS(ARDUPILOT_PID), 1, msg, len);
+            rc = with_rate ? add_items(m, ARDUPILOT_RATE, N_ITEMS(ARDUPILOT_RATE), 1, 0, msg, len)
+                           : add_items(m, ARDUPILOT_PID, N_ITEMS(ARDUPILOT_PID), 1, 0, msg, len);
         }
     } else {
         rc = add_generic(m, msg, len);
@@ -407,6 +428,7 @@ static int build(sim_log_map_t *m, sim_log_format_t format, int with_rate, const
         if (rc == 0) {
             m->item[it.slot] = it;
             m->mapped[it.slot] = 1;
+            m->has_fallback[it.slot] = 0; /* the caller's item is the one read */
         }
     }
     return rc;

@@ -56,6 +56,10 @@ typedef struct {
 typedef struct {
     sim_log_item_t item[SIM_LOG_N_SLOTS];
     int mapped[SIM_LOG_N_SLOTS]; /* item[slot] holds an item */
+    /* PX4: the preset's item from another topic, taken when item's topic
+     * file is missing and its is there (older PX4 releases; log_px4.h) */
+    sim_log_item_t fallback[SIM_LOG_N_SLOTS];
+    int has_fallback[SIM_LOG_N_SLOTS];
 } sim_log_map_t;
 
 /* One item; `topics`: sources are topic.column (PX4). 0, or -1 with a

@@ -3,6 +3,7 @@
 #include "log_px4.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static int ends_with(const char *s, size_t n, const char *suffix)
@@ -50,4 +51,67 @@ int sim_log_px4_topic_path(const char *base, const char *topic, char *out, size_
 {
     const int n = snprintf(out, len, "%s_%s_0.csv", base, topic);
     return (n < 0 || (size_t)n >= len) ? -1 : 0;
+}
+
+int sim_log_px4_map_topics(const sim_log_map_t *m, int with_fallbacks, const char **topics)
+{
+    int n = 0;
+    for (int pass = 0; pass <= (with_fallbacks ? 1 : 0); ++pass) {
+        for (int s = 1; s < SIM_LOG_N_SLOTS; ++s) {
+            const sim_log_item_t *it = pass == 0 ? &m->item[s] : &m->fallback[s];
+            int seen = pass == 0 ? !m->mapped[s] : !m->has_fallback[s];
+            for (int i = 0; !seen && i < n; ++i) {
+                seen = strcmp(topics[i], it->topic) == 0;
+            }
+            if (!seen) {
+                topics[n++] = it->topic;
+            }
+        }
+    }
+    return n;
+}
+
+/* The topic's file under base can be read. */
+static int topic_file_exists(const char *base, const char *topic)
+{
+    char path[SIM_LOG_PATH_LEN + SIM_LOG_NAME_LEN + 16];
+    FILE *f = sim_log_px4_topic_path(base, topic, path, sizeof path) == 0 ? fopen(path, "rb") : NULL;
+    if (f != NULL) {
+        fclose(f);
+    }
+    return f != NULL;
+}
+
+void sim_log_px4_choose(sim_log_map_t *m, const char *base)
+{
+    for (int s = 1; s < SIM_LOG_N_SLOTS; ++s) {
+        if (m->mapped[s] && m->has_fallback[s] && !topic_file_exists(base, m->item[s].topic) &&
+            topic_file_exists(base, m->fallback[s].topic)) {
+            const sim_log_item_t newer = m->item[s];
+            m->item[s] = m->fallback[s];
+            m->fallback[s] = newer; /* named when neither is there */
+        }
+    }
+}
+
+int sim_log_px4_topics(const char *const *items, int n_items, sim_log_px4_topics_t *t, char *msg, size_t len)
+{
+    sim_log_map_t *m = malloc(sizeof *m); /* some 80 KB */
+    const char *topics[SIM_LOG_PX4_TOPICS_MAX];
+    memset(t, 0, sizeof *t);
+    if (m == NULL) {
+        snprintf(msg, len, "out of memory");
+        return -1;
+    }
+    if (sim_log_map_build(m, SIM_LOG_PX4, items, n_items, msg, len) != 0) {
+        free(m);
+        return -1;
+    }
+    t->n = sim_log_px4_map_topics(m, 1, topics);
+    for (int i = 0; i < t->n; ++i) {
+        snprintf(t->name[i], sizeof t->name[i], "%s", topics[i]);
+        t->list[i] = t->name[i];
+    }
+    free(m);
+    return 0;
 }

@@ -53,6 +53,18 @@ int sim_replay_init(sim_replay_t *r, const sim_scenario_t *sc, const sim_control
         sim_spectrum_init(&r->gyro[i], fs);
         sim_spectrum_init(&r->gyro_raw[i], fs);
     }
+    r->filter_on = sim_setup_filters_gyro(sc);
+    if (r->filter_on) {
+        ladrc_gyro_filter_config_t fc;
+        sim_setup_gyro_filter(sc, &fc);
+        fc.channels = 3; /* the rates only */
+        const ladrc_status_t st = ladrc_gyro_filter_init(&r->filter, &fc);
+        if (st != LADRC_OK) {
+            snprintf(err, err_len, "%s: [filter]: %s", sc->path, ladrc_status_str(st));
+            return -1;
+        }
+        r->filter_hover_rotor_hz = sim_setup_hover_rotor_hz(sc);
+    }
     for (int c = 0; c < n; ++c) {
         ladrc_attitude_config_t cfg;
         sim_setup_attitude(sc, ids[c], &cfg);
@@ -94,6 +106,25 @@ static void quats_of(const sim_log_sample_t *s, unsigned has, double q[4], doubl
     }
 }
 
+/* The scenario's stage over the gyro its noise came from (replay.h); a
+ * sample the stage refuses keeps its latest output, as in flight. */
+static void filter_rates(sim_replay_t *r, const sim_log_sample_t *s, unsigned has, ladrc_real_t rate[3])
+{
+    if (r->filter.rpm_rotors > 0) {
+        ladrc_real_t hz[LADRC_GYRO_FILTER_MAX_ROTORS];
+        for (int m = 0; m < (int)LADRC_GYRO_FILTER_MAX_ROTORS; ++m) {
+            hz[m] = (ladrc_real_t)((has & SIM_LOG_HAS_ROTOR_HZ) && m < s->n_motors ? s->rotor_hz[m]
+                                                                                   : r->filter_hover_rotor_hz);
+        }
+        ladrc_gyro_filter_set_rotor_hz(&r->filter, hz);
+    }
+    ladrc_real_t in[3];
+    for (int i = 0; i < 3; ++i) {
+        in[i] = (ladrc_real_t)((has & SIM_LOG_HAS_GYRO_RAW) ? s->gyro_raw_rad_s[i] : s->gyro_rad_s[i]);
+    }
+    ladrc_gyro_filter_step(&r->filter, in, rate);
+}
+
 /* The spectra a tick feeds: gyro, gyro before filters, the log's command, each controller's. */
 #define TICK_SPECTRA (9 + 3 * SIM_MAX_CONTROLLERS)
 
@@ -118,6 +149,9 @@ void sim_replay_step(sim_replay_t *r, const sim_log_sample_t *s, unsigned has, s
         stat_add(&r->log_axis[i].command, s->command[i]);
         spectra[n_spectra] = &r->log_axis[i].spectrum;
         values[n_spectra++] = s->command[i];
+    }
+    if (r->filter_on) {
+        filter_rates(r, s, has, rate);
     }
     ladrc_quat_t meas = {LADRC_R(1.0), 0, 0, 0}, qref = {LADRC_R(1.0), 0, 0, 0};
     if (r->quat_frame) {

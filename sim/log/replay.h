@@ -12,9 +12,13 @@
  * The controllers are configured as a scenario configures them (its airframe,
  * its tuning) and fly its frame (Euler or quaternion); the log's normalised
  * command c is the torque c * sim_setup_authority_Nm, and the replay's
- * commands are normalised the same way. Not replayed: the scenario's gyro
- * filter (a log's gyro is the one its controller used, filtered already),
- * flight phases and the gain schedule.
+ * commands are normalised the same way. The scenario's gyro filter stage
+ * ([filter]), when it has one, runs as in flight on the gyro the airframe's
+ * noise was measured on: the log's gyro before its filters when it has one,
+ * else its gyro (filtered by the log's stack already: the stage then comes
+ * on top, as flying that scenario on that gyro would); the RPM notches on
+ * the log's rotor speeds, else the scenario's hover speed; the angles are
+ * not filtered. Not replayed: flight phases and the gain schedule.
  */
 #ifndef LADRC_SIM_REPLAY_H
 #define LADRC_SIM_REPLAY_H
@@ -22,6 +26,7 @@
 #include <stddef.h>
 
 #include "ladrc/attitude.h"
+#include "ladrc/gyro_filter.h"
 #include "log.h"
 #include "scenario/scenario.h"
 #include "spectrum.h"
@@ -57,6 +62,9 @@ typedef struct {
     sim_spectrum_t gyro[3], gyro_raw[3];
     int quat_frame;
     double authority_Nm[3];
+    int filter_on;                /* the scenario's gyro filter stage, run on the rates */
+    ladrc_gyro_filter_t filter;   /* at rest on 0 at the start, as in flight */
+    double filter_hover_rotor_hz; /* its RPM notches' speed when the log has none (Hz) */
     long long ticks;
 } sim_replay_t;
 

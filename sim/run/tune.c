@@ -31,14 +31,16 @@ void sim_tune_objective(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_
 }
 
 /* The targets of axis i: the file's margins and its command-noise cap (an
- * absolute one, or the reference controller's noise on that axis, tuned
+ * absolute one for this axis or every axis, or the reference controller's noise on that axis, tuned
  * before, times the ratio). */
 static ladrc_margins_targets_t axis_targets_of(const sim_scenario_t *sc, sim_controller_id_t id,
                                                const ladrc_margins_targets_t *targets, int i)
 {
     const sim_overrides_t *o = &sc->overrides[id];
     ladrc_margins_targets_t tg = *targets;
-    if (!isnan(o->tune_noise_max_Nm)) {
+    if (!isnan(o->tune_noise_axis_max_Nm[i])) {
+        tg.cmd_noise_max_Nm = o->tune_noise_axis_max_Nm[i];
+    } else if (!isnan(o->tune_noise_max_Nm)) {
         tg.cmd_noise_max_Nm = o->tune_noise_max_Nm;
     } else if (o->tune_noise_ref >= 0) {
         const sim_tuning_t *ref = &sc->tuning[o->tune_noise_ref];
@@ -98,7 +100,7 @@ static void tune_error(const sim_scenario_t *sc, sim_controller_id_t id, sim_par
 }
 
 /* The request and the targets of axis i: its plant, the file's objective
- * and noise, and its noise cap. */
+ * and noise (its recorded gyro noise included), and its noise cap. */
 static void axis_request(const sim_scenario_t *sc, sim_controller_id_t id, const ladrc_margins_targets_t *targets,
                          int i, ladrc_margins_request_t *req, ladrc_margins_targets_t *axis_targets)
 {
@@ -106,6 +108,11 @@ static void axis_request(const sim_scenario_t *sc, sim_controller_id_t id, const
     sim_tune_plant(sc, i, &plant);
     ladrc_margins_request_default(req, &plant);
     sim_tune_objective(sc, id, req);
+    char why[512];
+    if (sim_tune_noise_series(sc, i, req, why, sizeof why) != 0) {
+        /* the parser read the file: it changed since; the prediction is then the white noise's only */
+        fprintf(stderr, "%s\n", why);
+    }
     *axis_targets = axis_targets_of(sc, id, targets, i);
 }
 

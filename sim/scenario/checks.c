@@ -469,6 +469,13 @@ static void check_noise_cap(parser_t *p, int id)
     const loc_t *max = checks_seen(p, sec, "tune_noise_max_Nm");
     const loc_t *ref = checks_seen(p, sec, "tune_noise_ref");
     const loc_t *ratio = checks_seen(p, sec, "tune_noise_ratio");
+    const loc_t *axis = checks_seen(p, sec, "tune_noise_axis_max_Nm");
+    if (axis->line != 0 && (max->line != 0 || ref->line != 0)) {
+        check_fail(p, axis->line, axis->key_col,
+                   "'tune_noise_axis_max_Nm' conflicts with %s (line %d): give one of them",
+                   max->line != 0 ? "tune_noise_max_Nm" : "tune_noise_ref", max->line != 0 ? max->line : ref->line);
+        return;
+    }
     if (ratio->line != 0 && ref->line == 0) {
         check_fail(p, ratio->line, ratio->key_col, "'tune_noise_ratio' applies only with tune_noise_ref");
     }
@@ -507,8 +514,8 @@ static void check_noise_cap(parser_t *p, int id)
 static void check_tuning(parser_t *p)
 {
     static const char *const tune_only[] = {
-        "tune_phase_margin_deg", "tune_gain_margin_db", "tune_step_deg",   "tune_disturbance_step_rad_s2",
-        "tune_noise_max_Nm",     "tune_noise_ref",      "tune_noise_ratio"};
+        "tune_phase_margin_deg", "tune_gain_margin_db", "tune_step_deg",    "tune_disturbance_step_rad_s2",
+        "tune_noise_max_Nm",     "tune_noise_ref",      "tune_noise_ratio", "tune_noise_axis_max_Nm"};
     for (int id = 0; id < SIM_CTRL_COUNT; ++id) {
         const int sec = SEC_CONTROLLER + id;
         if (p->sc->overrides[id].tune == SIM_TUNE_MARGINS) {

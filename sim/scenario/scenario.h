@@ -103,6 +103,7 @@ typedef struct {
     int tune_noise_ref;                    /* -1, or a sim_controller_id_t: the cap is that controller's tuned
                                  command noise on the same axis times tune_noise_ratio */
     double tune_noise_ratio;               /* > 0; default 1 */
+    double tune_noise_axis_max_Nm[3];      /* per axis (roll, pitch, yaw) cap as tune_noise_max_Nm; NaN: none */
 } sim_overrides_t;
 
 /* Gains chosen by tune = margins (sim_tune_controller, tune.h) for each axis

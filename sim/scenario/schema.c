@@ -352,6 +352,7 @@ const key_def_t SCHEMA_KEYS[] = {
     {CTRL_KEY("tune_noise_max_Nm", V_REAL, tune_noise_max_Nm, ALL_CONTROLLERS), .range = R_POSITIVE},
     {CTRL_KEY("tune_noise_ref", V_CHOICE, tune_noise_ref, ALL_CONTROLLERS), .choices = CONTROLLER_CHOICES},
     {CTRL_KEY("tune_noise_ratio", V_REAL, tune_noise_ratio, ALL_CONTROLLERS), .range = R_POSITIVE},
+    {CTRL_KEY("tune_noise_axis_max_Nm", V_VEC3, tune_noise_axis_max_Nm, ALL_CONTROLLERS), .range = R_POSITIVE},
 };
 
 #define N_KEYS ((int)(sizeof SCHEMA_KEYS / sizeof SCHEMA_KEYS[0]))
@@ -543,6 +544,7 @@ void schema_set_defaults(sim_scenario_t *sc)
         o->tune_noise_max_Nm = NAN;
         o->tune_noise_ref = -1;
         o->tune_noise_ratio = 1.0;
+        o->tune_noise_axis_max_Nm[0] = o->tune_noise_axis_max_Nm[1] = o->tune_noise_axis_max_Nm[2] = NAN;
         o->indi_att_kp_per_s = o->indi_rate_kp_per_s = o->indi_filter_rad_s = NAN;
         o->radrc_kp_per_s = o->radrc_att_kp_per_s = o->radrc_rate_max_deg_s = NAN;
         o->cas_att_kp = o->cas_rate_max_deg_s = o->cas_rate_kp = o->cas_rate_ki = o->cas_rate_kd = NAN;

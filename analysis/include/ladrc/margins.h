@@ -45,6 +45,9 @@ extern "C" {
 /** Largest reference step of the tuning objective (rad): well inside the
  *  small-angle loop, whose error beyond 1 rad counts as diverged. */
 #define LADRC_MARGINS_MAX_STEP_RAD 0.5
+/** Most bins of a coloured rate-noise spectrum (ladrc_margins_request_t rate_noise_psd):
+ *  a 1024-point Welch spectrum's. */
+#define LADRC_MARGINS_NOISE_PSD_BINS 513
 /** Default corner of the predicted command noise (Hz): above an attitude
  *  loop's bandwidth, where what reaches the motors is noise, not control. */
 #define LADRC_MARGINS_NOISE_CORNER_HZ 20.0
@@ -130,6 +133,12 @@ typedef struct {
     double noise_corner_hz;      /**< the command noise is its RMS from this frequency (Hz) up to
                                   the Nyquist frequency; > 0 and below it when a noise is
                                   non-zero; default LADRC_MARGINS_NOISE_CORNER_HZ */
+    int rate_noise_psd_bins;     /**< coloured rate noise added to the white: 0 (default) none, else
+                                  the bins of rate_noise_psd, 2..LADRC_MARGINS_NOISE_PSD_BINS */
+    double rate_noise_bin_hz;    /**< the bins' spacing (Hz), > 0: bin k is at k times it */
+    /** one-sided PSD of the coloured rate noise ((rad/s)^2/Hz), finite and >= 0, linear between
+     *  the bins and 0 beyond the last (e.g. a flight log's gyro noise, its Welch spectrum) */
+    double rate_noise_psd[LADRC_MARGINS_NOISE_PSD_BINS];
 } ladrc_margins_request_t;
 
 /** Margins and verdict of one loop. Margins that do not exist are +INFINITY
