@@ -884,11 +884,49 @@ int sim_log_bbl_decode(FILE *in, const char *name, FILE *out, int index, sim_log
     return rc;
 }
 
+int sim_log_bbl_stats_describe(const sim_log_bbl_stats_t *st, char *buf, size_t len)
+{
+    size_t n = 0;
+    buf[0] = '\0';
+#define SAY(...)                                                                                                       \
+    do {                                                                                                               \
+        if (n < len) {                                                                                                 \
+            const int k = snprintf(buf + n, len - n, __VA_ARGS__);                                                     \
+            n += k > 0 ? (size_t)k : 0;                                                                                \
+        }                                                                                                              \
+    } while (0)
+    if (st->n_logs > 1) {
+        SAY("log %d of %d (offset %lld, %lld bytes)", st->index, st->n_logs, st->log_offset, st->log_bytes);
+    }
+    if (st->corrupt > 0 || st->skipped_bytes > 0) {
+        SAY("%scorrupt frames skipped: %lld, bytes of no frame skipped: %lld", n > 0 ? "; " : "", st->corrupt,
+            st->skipped_bytes);
+    }
+    if (st->dropped > 0) {
+        SAY("%smain frames dropped (after a corrupt frame until the next I frame, or out of line): %lld",
+            n > 0 ? "; " : "", st->dropped);
+    }
+    if (st->time_repeats > 0) {
+        SAY("%smain frames left out, their time not increasing: %lld", n > 0 ? "; " : "", st->time_repeats);
+    }
+    if (st->truncated) {
+        SAY("%scut within a frame at offset %lld", n > 0 ? "; " : "", st->truncated_at);
+    }
+#undef SAY
+    return n < len ? (int)n : (int)len - 1;
+}
+
 int sim_log_bbl_to_csv(const char *in_path, const char *out_base, const char *const *topics, int n_topics, int index,
                        sim_log_convert_progress_fn progress, void *progress_ctx, sim_log_error_t *err)
 {
     (void)topics; /* one CSV of every main field: nothing to choose */
     (void)n_topics;
+    return sim_log_bbl_to_csv_stats(in_path, out_base, index, progress, progress_ctx, NULL, err);
+}
+
+int sim_log_bbl_to_csv_stats(const char *in_path, const char *out_base, int index, sim_log_convert_progress_fn progress,
+                             void *progress_ctx, sim_log_bbl_stats_t *stats, sim_log_error_t *err)
+{
     char out_path[SIM_LOG_PATH_LEN];
     if (snprintf(out_path, sizeof out_path, "%s.csv", out_base) >= (int)sizeof out_path) {
         return sim_log_fail(err, in_path, 0, 0, "output path longer than %d bytes", SIM_LOG_PATH_LEN - 1);
@@ -903,7 +941,7 @@ int sim_log_bbl_to_csv(const char *in_path, const char *out_base, const char *co
         fclose(in);
         return sim_log_fail(err, out_path, 0, 0, "cannot create: %s", strerror(e));
     }
-    int rc = sim_log_bbl_decode(in, in_path, out, index, progress, progress_ctx, NULL, err);
+    int rc = sim_log_bbl_decode(in, in_path, out, index, progress, progress_ctx, stats, err);
     fclose(in);
     if (fclose(out) != 0 && rc == 0) {
         rc = sim_log_fail(err, out_path, 0, 0, "cannot write: %s", strerror(errno));

@@ -65,6 +65,15 @@ typedef struct {
 int sim_log_bbl_to_csv(const char *in_path, const char *out_base, const char *const *topics, int n_topics, int index,
                        sim_log_convert_progress_fn progress, void *progress_ctx, sim_log_error_t *err);
 
+/* The same with the statistics of the log decoded (stats may be NULL). */
+int sim_log_bbl_to_csv_stats(const char *in_path, const char *out_base, int index, sim_log_convert_progress_fn progress,
+                             void *progress_ctx, sim_log_bbl_stats_t *stats, sim_log_error_t *err);
+
+/* What the decoding met that the CSV does not show, as one line into buf
+ * (the log chosen of several, corrupt frames, frames dropped, a cut): its
+ * length, 0 when there is nothing to say. */
+int sim_log_bbl_stats_describe(const sim_log_bbl_stats_t *st, char *buf, size_t len);
+
 /* The same from a stream (seekable; `name` in messages) into the stream out
  * (the caller's: what was written before a refusal is the caller's to drop);
  * stats may be NULL. */

@@ -485,6 +485,8 @@ static void test_every_encoding_and_predictor_reads_back_exactly(void)
     TEST_ASSERT_EQUAL_INT(0, (int)d.st.corrupt);
     TEST_ASSERT_EQUAL_INT(1, d.st.ended);
     TEST_ASSERT_EQUAL_INT(0, d.st.truncated);
+    char said[400];
+    TEST_ASSERT_EQUAL_INT(0, sim_log_bbl_stats_describe(&d.st, said, sizeof said)); /* a clean log: nothing to say */
     free(d.text);
     free(w.b);
 }
@@ -502,6 +504,10 @@ static void test_a_corrupt_frame_is_skipped_counted_and_decoding_resumes_at_the_
     TEST_ASSERT_EQUAL_INT(FRAMES - lost, n);
     TEST_ASSERT_EQUAL_INT(1, (int)d.st.corrupt);
     TEST_ASSERT_EQUAL_INT(lost, (int)d.st.dropped);
+    char said[400], want[200];
+    TEST_ASSERT_TRUE(sim_log_bbl_stats_describe(&d.st, said, sizeof said) > 0);
+    snprintf(want, sizeof want, "corrupt frames skipped: 1, bytes of no frame skipped: 200; main frames dropped");
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(said, want), said);
     for (int r = 0, k = 0; r < n; ++r, ++k) {
         if (k == bad) {
             k += lost;
@@ -538,6 +544,9 @@ static void test_a_log_cut_anywhere_decodes_up_to_the_cut(void)
         TEST_ASSERT_EQUAL_INT(0, d.st.ended);
         cut_in_frame += d.st.truncated;
         if (d.st.truncated) {
+            char said[400];
+            TEST_ASSERT_TRUE(sim_log_bbl_stats_describe(&d.st, said, sizeof said) > 0);
+            TEST_ASSERT_NOT_NULL_MESSAGE(strstr(said, "cut within a frame at offset "), said);
             TEST_ASSERT_TRUE(d.st.truncated_at >= (long long)data_at && d.st.truncated_at < (long long)cut);
         }
         free(d.text);
