@@ -9,7 +9,8 @@
  *   (us)`, whose rows have as many cells as the header, each an integer
  *   (or a decimal number in a converted gyro column), and whose time
  *   increases; as many rows as the statistics count, and statistics that
- *   hold together (the log inside the file, a valid frame count per row).
+ *   hold together (the log inside the file, a valid frame count per row), and
+ *   their one-line description fits the buffer it is given.
  */
 #define _POSIX_C_SOURCE 200809L /* fmemopen, open_memstream */
 #include "fuzz.h"
@@ -112,6 +113,9 @@ static void decode(const uint8_t *data, size_t size, int index)
                        (st.truncated_at >= st.log_offset && st.truncated_at < st.log_offset + st.log_bytes),
                    "cut at %lld", st.truncated_at);
         check_csv(text, len, &st);
+        char said[160]; /* shorter than some descriptions: cut, and terminated */
+        const int n = sim_log_bbl_stats_describe(&st, said, sizeof said);
+        FUZZ_CHECK(n >= 0 && (size_t)n < sizeof said && strlen(said) == (size_t)n, "description of %d bytes", n);
     }
     free(text);
 }
