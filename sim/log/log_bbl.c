@@ -2,7 +2,7 @@
 /* Betaflight's blackbox log to blackbox_decode's CSV (log_bbl.h). */
 #include "log_bbl.h"
 
-#include "bbl_stream.h"
+#include "bbl_decoder.h"
 #include "log_file.h"
 
 #include <errno.h>
@@ -11,36 +11,11 @@
 #include <string.h>
 
 #define LOG_MARKER "H Product:Blackbox flight data recorder"
-#define MAX_FIELDS 128       /* fields of one frame */
-#define FRAME_MAX_BYTES 256  /* a longer frame is corrupt */
-#define HEADER_LINE_MAX 2048 /* bytes of one header line */
+#define FRAME_MAX_BYTES 256 /* a longer frame is corrupt */
 #define ITERATION_JUMP_MAX 5000u
 #define TIME_JUMP_MAX_US 10000000LL
-#define INTERVAL_MAX 32768 /* of the I interval and P ratio: the skip count loops over it */
 #define SCAN_BLOCK (1 << 20)
 #define PROGRESS_BYTES (1LL << 20)
-/* deg/s per logged gyro unit: Baseflight's and old Cleanflight's counts are
- * some 0.06 deg/s, Betaflight logs deg/s (1); outside these bounds no gyro's */
-#define GYRO_SCALE_MIN 1e-9
-#define GYRO_SCALE_MAX 1e6
-#define ROW_MAX (2 * MAX_FIELDS * 24) /* a row's text: fields of 21 characters and their ", " */
-
-enum {
-    PRED_NONE,
-    PRED_PREVIOUS,
-    PRED_STRAIGHT_LINE,
-    PRED_AVERAGE_2,
-    PRED_MINTHROTTLE,
-    PRED_MOTOR_0,
-    PRED_INC,
-    PRED_HOME_COORD,
-    PRED_1500,
-    PRED_VBATREF,
-    PRED_LAST_MAIN_FRAME_TIME,
-    PRED_MINMOTOR,
-    PRED_COUNT,
-    PRED_HOME_COORD_1 = 256 /* the second of a pair of home coordinates */
-};
 
 enum {
     EVENT_SYNC_BEEP = 0,
@@ -51,59 +26,7 @@ enum {
     EVENT_LOG_END = 255
 };
 
-/* Frame types, in the order of the statistics. */
-enum { T_I, T_P, T_S, T_G, T_H, T_E, T_COUNT };
-static const char TYPES[T_COUNT + 1] = "IPSGHE";
-
-typedef struct {
-    int n;
-    char names[HEADER_LINE_MAX]; /* the name line, its commas made NULs */
-    int name_at[MAX_FIELDS];
-    int is_signed[MAX_FIELDS];
-    int predictor[MAX_FIELDS];
-    int encoding[MAX_FIELDS];
-} frame_def_t;
-
-typedef struct {
-    const char *name;
-    bbl_stream_t in;
-    frame_def_t def[T_COUNT]; /* E: none */
-    int data_version;
-    long minthrottle, motor_low, vbatref;
-    long i_interval, p_num, p_denom;
-    int baseflight; /* the header's firmware type: gyro_scale in rad/us */
-    int has_gyro_scale;
-    double gyro_scale;   /* deg/s (or rad/us) per logged unit */
-    int motor0, gyro[3]; /* main fields by name, -1 absent */
-    int home[2];         /* H fields GPS_home[0..1] */
-    /* main frames: the current one and the last two valid ones */
-    int64_t hist[3][MAX_FIELDS];
-    int cur, prev, prev2; /* indices into hist; prev -1: none (the stream invalid) */
-    int stream_valid;
-    uint32_t last_iteration; /* UINT32_MAX: none yet */
-    int64_t last_time_us;    /* -1: none yet */
-    int64_t rollover_us;     /* 2^32 us per wrap of the logger's clock */
-    int64_t last_row_us;     /* the last row written */
-    int resumed, end_read;   /* the event frame just read: logging resumed, the log's end */
-    uint32_t resume_iteration, resume_time_us;
-    int64_t slow[MAX_FIELDS], gps[MAX_FIELDS], home_now[MAX_FIELDS], home_valid[MAX_FIELDS];
-    int convert_gyro;
-    double gyro_deg_s_per_unit;
-    FILE *out;
-    char row[ROW_MAX];
-    sim_log_bbl_stats_t st;
-    sim_log_convert_progress_fn progress;
-    void *progress_ctx;
-    long long file_bytes, next_progress;
-} decoder_t;
-
-static int type_of(int c)
-{
-    const char *p = c > 0 ? strchr(TYPES, c) : NULL;
-    return p != NULL ? (int)(p - TYPES) : -1;
-}
-
-static int fail_at(sim_log_error_t *err, const decoder_t *d, long long offset, const char *message)
+int bbl_fail_at(sim_log_error_t *err, const decoder_t *d, long long offset, const char *message)
 {
     return sim_log_fail(err, d->name, 0, 0, "offset %lld: %s", offset, message);
 }
@@ -174,226 +97,6 @@ static int find_logs(FILE *f, log_list_t *l, long long *size)
     return ferror(f) ? -1 : 0;
 }
 
-/* --- the header ---------------------------------------------------------- */
-
-/* A comma-separated list of integers into v (missing entries stay 0). */
-static void parse_ints(const char *text, int *v, int max)
-{
-    for (int i = 0; i < max && *text != '\0'; ++i) {
-        v[i] = (int)strtol(text, NULL, 10);
-        text = strchr(text, ',');
-        if (text == NULL) {
-            break;
-        }
-        ++text;
-    }
-}
-
-static int field_index(const frame_def_t *def, const char *name)
-{
-    for (int i = 0; i < def->n; ++i) {
-        if (strcmp(def->names + def->name_at[i], name) == 0) {
-            return i;
-        }
-    }
-    return -1;
-}
-
-static int parse_names(frame_def_t *def, const char *value)
-{
-    snprintf(def->names, sizeof def->names, "%s", value);
-    def->n = 0;
-    for (char *p = def->names;;) {
-        if (def->n == MAX_FIELDS) {
-            return -1;
-        }
-        def->name_at[def->n++] = (int)(p - def->names);
-        p = strchr(p, ',');
-        if (p == NULL) {
-            return 0;
-        }
-        *p++ = '\0';
-    }
-}
-
-static long clamp_long(long v, long lo, long hi)
-{
-    return v < lo ? lo : (v > hi ? hi : v);
-}
-
-/* One `H name:value` line (without its end). 0, or -1 with a message. */
-static int header_line(decoder_t *d, char *line, const char **msg)
-{
-    char *colon = strchr(line, ':');
-    if (colon == NULL) {
-        return 0; /* not a name:value pair: ignored, as blackbox_decode does */
-    }
-    *colon = '\0';
-    const char *name = line, *value = colon + 1;
-    if (strncmp(name, "Field ", 6) == 0 && name[6] != '\0' && name[7] == ' ') {
-        const int t = type_of((unsigned char)name[6]);
-        const char *what = name + 8;
-        if (t < 0 || t == T_E) {
-            return 0;
-        }
-        frame_def_t *def = &d->def[t];
-        if (strcmp(what, "name") == 0) {
-            if (parse_names(def, value) != 0) {
-                *msg = "more than 128 fields in a frame";
-                return -1;
-            }
-            if (t == T_I) { /* P frames have the I frame's fields */
-                memcpy(d->def[T_P].names, def->names, sizeof def->names);
-                memcpy(d->def[T_P].name_at, def->name_at, sizeof def->name_at);
-                d->def[T_P].n = def->n;
-            }
-        } else if (strcmp(what, "signed") == 0) {
-            parse_ints(value, def->is_signed, MAX_FIELDS);
-            if (t == T_I) {
-                memcpy(d->def[T_P].is_signed, def->is_signed, sizeof def->is_signed);
-            }
-        } else if (strcmp(what, "predictor") == 0) {
-            parse_ints(value, def->predictor, MAX_FIELDS);
-        } else if (strcmp(what, "encoding") == 0) {
-            parse_ints(value, def->encoding, MAX_FIELDS);
-        }
-    } else if (strcmp(name, "Data version") == 0) {
-        d->data_version = (int)strtol(value, NULL, 10);
-    } else if (strcmp(name, "I interval") == 0) {
-        d->i_interval = clamp_long(strtol(value, NULL, 10), 1, INTERVAL_MAX);
-    } else if (strcmp(name, "P interval") == 0 && strchr(value, '/') != NULL) {
-        /* `num/denom`; a plain number (newer firmware's) leaves 1/1, as blackbox_decode does */
-        d->p_num = clamp_long(strtol(value, NULL, 10), 1, INTERVAL_MAX);
-        d->p_denom = clamp_long(strtol(strchr(value, '/') + 1, NULL, 10), 1, INTERVAL_MAX);
-    } else if (strcmp(name, "Firmware type") == 0) {
-        d->baseflight = strcmp(value, "Cleanflight") != 0;
-    } else if (strcmp(name, "minthrottle") == 0) {
-        d->minthrottle = strtol(value, NULL, 10);
-        d->motor_low = d->minthrottle; /* until motorOutput says otherwise */
-    } else if (strcmp(name, "motorOutput") == 0) {
-        d->motor_low = strtol(value, NULL, 10);
-    } else if (strcmp(name, "vbatref") == 0) {
-        d->vbatref = strtol(value, NULL, 10);
-    } else if (strcmp(name, "gyro_scale") == 0 || strcmp(name, "gyro.scale") == 0) {
-        const uint32_t bits = (uint32_t)strtoul(value, NULL, 16); /* the float's bits, in hex */
-        float f;
-        memcpy(&f, &bits, sizeof f);
-        d->gyro_scale = f;
-        d->has_gyro_scale = 1;
-    }
-    return 0;
-}
-
-static int is_group(int encoding)
-{
-    return encoding == BBL_ENC_TAG8_8SVB || encoding == BBL_ENC_TAG2_3S32 || encoding == BBL_ENC_TAG8_4S16 ||
-           encoding == BBL_ENC_TAG2_3SVARIABLE;
-}
-
-static int known_encoding(int e)
-{
-    return e == BBL_ENC_SIGNED_VB || e == BBL_ENC_UNSIGNED_VB || e == BBL_ENC_NEG_14BIT || e == BBL_ENC_NULL ||
-           is_group(e);
-}
-
-/* The frame definitions hold together: 0, or -1 with a message. */
-static int check_defs(decoder_t *d, char *msg, size_t len)
-{
-    const frame_def_t *in = &d->def[T_I];
-    if (in->n < 2 || strcmp(in->names + in->name_at[0], "loopIteration") != 0 ||
-        strcmp(in->names + in->name_at[1], "time") != 0) {
-        snprintf(msg, len, "no 'H Field I name' line starting loopIteration,time: not a main frame layout");
-        return -1;
-    }
-    for (int t = 0; t < T_E; ++t) {
-        for (int i = 0; i < d->def[t].n; ++i) {
-            const int e = d->def[t].encoding[i], p = d->def[t].predictor[i];
-            if (!known_encoding(e)) {
-                snprintf(msg, len, "field %d of the %c frame: encoding %d is none of the format's", i + 1, TYPES[t], e);
-                return -1;
-            }
-            if (p < 0 || p >= PRED_COUNT) {
-                snprintf(msg, len, "field %d of the %c frame: predictor %d is none of the format's", i + 1, TYPES[t],
-                         p);
-                return -1;
-            }
-            if ((t == T_I || t == T_P) && p == PRED_MOTOR_0 && d->motor0 < 0) {
-                snprintf(msg, len, "field %d of the %c frame: predicted from motor[0], which no field is", i + 1,
-                         TYPES[t]);
-                return -1;
-            }
-        }
-    }
-    if (!(d->gyro_deg_s_per_unit >= GYRO_SCALE_MIN && d->gyro_deg_s_per_unit <= GYRO_SCALE_MAX)) {
-        snprintf(msg, len, "gyro_scale gives %g deg/s per unit: no gyro's", d->gyro_deg_s_per_unit);
-        return -1;
-    }
-    /* home coordinates come in pairs: the second of each takes the home's second */
-    frame_def_t *g = &d->def[T_G];
-    for (int i = 1; i < g->n; ++i) {
-        if (g->predictor[i - 1] == PRED_HOME_COORD && g->predictor[i] == PRED_HOME_COORD) {
-            g->predictor[i] = PRED_HOME_COORD_1;
-        }
-    }
-    return 0;
-}
-
-static void find_fields(decoder_t *d)
-{
-    char name[16];
-    d->motor0 = field_index(&d->def[T_I], "motor[0]");
-    for (int i = 0; i < 3; ++i) {
-        snprintf(name, sizeof name, "gyroADC[%d]", i);
-        d->gyro[i] = field_index(&d->def[T_I], name);
-    }
-    for (int i = 0; i < 2; ++i) {
-        snprintf(name, sizeof name, "GPS_home[%d]", i);
-        d->home[i] = field_index(&d->def[T_H], name);
-    }
-    /* the gyro as logged unless its scale says it is not deg/s */
-    if (d->has_gyro_scale && d->baseflight) {
-        d->gyro_deg_s_per_unit = d->gyro_scale * 1e6 * (180.0 / 3.14159265358979323846);
-    } else {
-        d->gyro_deg_s_per_unit = d->has_gyro_scale ? d->gyro_scale : 1.0;
-    }
-    d->convert_gyro = d->gyro_deg_s_per_unit != 1.0;
-}
-
-/* Reads the header lines from the log's start: 0, or -1 with err set. */
-static int read_header(decoder_t *d, sim_log_error_t *err)
-{
-    char line[HEADER_LINE_MAX + 1], msg[200];
-    const char *bad = NULL;
-    while (bbl_stream_peek(&d->in) == 'H') {
-        bbl_stream_frame_start(&d->in);
-        const long long at = bbl_stream_offset(&d->in);
-        size_t n = 0;
-        int c = 0;
-        (void)bbl_read_byte(&d->in); /* 'H' */
-        if (bbl_stream_peek(&d->in) != ' ') {
-            break; /* an H frame's marker, or garbage: the data begin */
-        }
-        (void)bbl_read_byte(&d->in);
-        while ((c = bbl_stream_peek(&d->in)) >= 0 && c != '\n' && c != '\0' && n < HEADER_LINE_MAX) {
-            line[n++] = (char)bbl_read_byte(&d->in);
-        }
-        if (c != '\n') { /* cut, binary or too long: the header is over */
-            bbl_stream_seek_back(&d->in, at);
-            break;
-        }
-        (void)bbl_read_byte(&d->in);
-        line[n] = '\0';
-        if (header_line(d, line, &bad) != 0) {
-            return fail_at(err, d, at, bad);
-        }
-    }
-    find_fields(d);
-    if (check_defs(d, msg, sizeof msg) != 0) {
-        return fail_at(err, d, bbl_stream_offset(&d->in), msg);
-    }
-    return 0;
-}
-
 /* --- frames -------------------------------------------------------------- */
 
 static int64_t add_u(int64_t a, int64_t b)
@@ -448,7 +151,7 @@ static void parse_fields(decoder_t *d, const frame_def_t *def, int64_t *v, const
             ++i;
             continue;
         }
-        if (is_group(e)) {
+        if (bbl_is_group(e)) {
             int count = 3;
             if (e == BBL_ENC_TAG8_8SVB) { /* this field and the following of the same encoding, up to 8 */
                 count = 1;
@@ -734,7 +437,7 @@ static void frame(decoder_t *d, int t)
     const long long size = bbl_stream_offset(s) - start - 1;
     const int at_end = d->end_read || bbl_stream_offset(s) >= s->end; /* nothing of the log after its end */
     const int whole = !s->past_end && !s->past_window && size <= FRAME_MAX_BYTES && event_ok &&
-                      (at_end || type_of(bbl_stream_peek(s)) >= 0);
+                      (at_end || bbl_type_of(bbl_stream_peek(s)) >= 0);
     if (!whole) {
         ++d->st.corrupt;
         if (s->past_end) {
@@ -777,7 +480,7 @@ static int decode_data(decoder_t *d, sim_log_error_t *err)
         if (c < 0 || d->st.ended) {
             break;
         }
-        const int t = type_of(c);
+        const int t = bbl_type_of(c);
         if (t < 0) { /* no frame starts here: the main stream has lost its thread */
             (void)bbl_read_byte(s);
             ++d->st.skipped_bytes;
@@ -788,13 +491,13 @@ static int decode_data(decoder_t *d, sim_log_error_t *err)
         report(d);
     }
     if (s->read_error) {
-        return fail_at(err, d, bbl_stream_offset(s), "read error");
+        return bbl_fail_at(err, d, bbl_stream_offset(s), "read error");
     }
     if (ferror(d->out)) {
         return sim_log_fail(err, d->name, 0, 0, "cannot write the CSV: %s", strerror(errno));
     }
     if (d->st.rows == 0) {
-        return fail_at(err, d, d->st.log_offset, "no main frame decoded in the log");
+        return bbl_fail_at(err, d, d->st.log_offset, "no main frame decoded in the log");
     }
     return 0;
 }
@@ -846,11 +549,11 @@ int sim_log_bbl_decode(FILE *in, const char *name, FILE *out, int index, sim_log
     if (find_logs(in, &logs, &size) != 0) {
         sim_log_fail(err, name, 0, 0, "cannot read the log: %s", ferror(in) ? strerror(errno) : "out of memory");
     } else if (logs.n == 0) {
-        fail_at(err, d, 0, "no '" LOG_MARKER "' line: not a blackbox log");
+        bbl_fail_at(err, d, 0, "no '" LOG_MARKER "' line: not a blackbox log");
     } else if (index < 0 || index > logs.n) {
         char msg[96];
         snprintf(msg, sizeof msg, "log %d asked for, the file has %d (1 to %d; 0: the longest)", index, logs.n, logs.n);
-        fail_at(err, d, 0, msg);
+        bbl_fail_at(err, d, 0, msg);
     } else {
         const int k = choose_log(&logs, size, index);
         const long long end = k + 1 < logs.n ? logs.begin[k + 1] : size;
@@ -863,7 +566,7 @@ int sim_log_bbl_decode(FILE *in, const char *name, FILE *out, int index, sim_log
             sim_log_fail(err, name, 0, 0, "cannot seek in the log or out of memory");
         } else {
             bbl_stream_frame_start(&d->in);
-            rc = read_header(d, err);
+            rc = bbl_read_header(d, err);
             if (rc == 0 && write_header(d) != 0) {
                 rc = sim_log_fail(err, name, 0, 0, "cannot write the CSV: %s", strerror(errno));
             }
