@@ -59,7 +59,8 @@ CFLAGS=(-std=c99 -g -O1 -fno-omit-frame-pointer -fsanitize=fuzzer-no-link,addres
 sources=()
 objects=()
 for source in src/*.c analysis/*.c sim/*/*.c tests/fuzz/fuzz_common.c; do
-  [[ $source == sim/tests/* || $source == sim/cli/main.c || $source == sim/cli/margins_main.c || $source == sim/cli/replay_main.c ]] && continue
+  [[ $source == sim/tests/* || $source == sim/cli/main.c || $source == sim/cli/margins_main.c || $source == sim/cli/replay_main.c ||
+        $source == sim/cli/views_main.c || $source == sim/cli/filter_main.c ]] && continue
   sources+=("$source")
   objects+=("$obj/$(echo "${source%.c}" | tr / _).o")
 done
