@@ -156,6 +156,7 @@ static int load_from_log(const char *log_path, sim_log_options_t *opt, int forma
     sim_log_error_t lerr;
     if (sim_log_prepare(opt, format_given, &prepared, NULL, NULL, &lerr) != 0) {
         sim_log_error_format(&lerr, err, sizeof err);
+        sim_log_prepared_explain(&prepared, err, sizeof err);
         fprintf(stderr, "%s\n", err);
         return -1;
     }
@@ -163,6 +164,7 @@ static int load_from_log(const char *log_path, sim_log_options_t *opt, int forma
     const sim_log_identify_options_t io = {.log = *opt, .delay_max_ticks = -1};
     static sim_airframe_t airframe;
     if (sim_log_identify(&io, &airframe, NULL, err, sizeof err) != 0) {
+        sim_log_prepared_explain(&prepared, err, sizeof err);
         fprintf(stderr, "%s\n", err);
         return -1;
     }

@@ -263,7 +263,12 @@ static const char *out_path(const char *name, char *buf, size_t len)
 static const char *shown(const char *path)
 {
     static char buf[SIM_STAGED_PATH_LEN + 128];
-    return sim_staged_shown(&stage, path, buf, sizeof buf);
+    const char *staged = sim_staged_shown(&stage, path, buf, sizeof buf);
+    if (staged != buf) {
+        snprintf(buf, sizeof buf, "%s", staged);
+    }
+    sim_log_prepared_explain(&prepared, buf, sizeof buf); /* a decoded log's file: the log's name */
+    return buf;
 }
 
 static int write_scenario(const sim_airframe_t *a, const char *log_path, sim_airframe_refused_t *refused, char *ini,
@@ -406,6 +411,7 @@ static int replay(const options_t *o, const sim_scenario_t *sc, sim_replay_t *r,
     sim_log_t *log = sim_log_open(&lo, &lerr);
     if (log == NULL) {
         sim_log_error_format(&lerr, err, sizeof err);
+        sim_log_prepared_explain(&prepared, err, sizeof err);
         fprintf(stderr, "%s\n", err);
         return -1;
     }
@@ -445,6 +451,7 @@ static int replay(const options_t *o, const sim_scenario_t *sc, sim_replay_t *r,
     end_progress(prog);
     if (rc < 0) {
         sim_log_error_format(&lerr, err, sizeof err);
+        sim_log_prepared_explain(&prepared, err, sizeof err);
         fprintf(stderr, "%s\n", err);
     }
     sim_log_close(log);
@@ -464,6 +471,7 @@ static const char *why_no_replay(const options_t *o)
     if (log == NULL) {
         char err[1024];
         sim_log_error_format(&lerr, err, sizeof err);
+        sim_log_prepared_explain(&prepared, err, sizeof err);
         fprintf(stderr, "%s\n", err);
         return "";
     }
@@ -518,6 +526,7 @@ int main(int argc, char **argv)
     if (sim_log_prepare(&o.log, o.format_given, &prepared, show_decoding, &prog, &lerr) != 0) {
         end_progress(&prog);
         sim_log_error_format(&lerr, err, sizeof err);
+        sim_log_prepared_explain(&prepared, err, sizeof err);
         fprintf(stderr, "%s\n", err);
         return 2;
     }

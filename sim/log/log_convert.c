@@ -210,6 +210,18 @@ int sim_log_prepare(sim_log_options_t *o, int format_given, sim_log_prepared_t *
     return 0;
 }
 
+void sim_log_prepared_explain(const sim_log_prepared_t *p, char *msg, size_t len)
+{
+    const size_t dir_len = strlen(p->dir);
+    char *at = dir_len > 0 ? strstr(msg, p->dir) : NULL;
+    if (at == NULL || at[dir_len] != '/') {
+        return;
+    }
+    char out[2048];
+    snprintf(out, sizeof out, "%.*s%s, decoded as %s", (int)(at - msg), msg, p->original, at + dir_len + 1);
+    snprintf(msg, len, "%s", out);
+}
+
 void sim_log_prepared_remove(sim_log_prepared_t *p)
 {
     if (p->dir[0] == '\0') {

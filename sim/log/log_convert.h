@@ -49,6 +49,11 @@ typedef struct {
 int sim_log_prepare(sim_log_options_t *o, int format_given, sim_log_prepared_t *p, sim_log_convert_progress_fn progress,
                     void *progress_ctx, sim_log_error_t *err);
 
+/* A message naming a file of the temporary folder names the log the user
+ * gave instead ("LOG.bin, decoded as LOG_IMU_0.csv:1:37: ..."): the folder
+ * is gone when the message is read. msg is rewritten in place (cut at len). */
+void sim_log_prepared_explain(const sim_log_prepared_t *p, char *msg, size_t len);
+
 /* Removes the temporary folder (and every file in it); safe to call twice. */
 void sim_log_prepared_remove(sim_log_prepared_t *p);
 
