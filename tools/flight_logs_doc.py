@@ -7,7 +7,7 @@ Usage: flight_logs_doc.py OUT_DIR DOC_MD
 - identification: the chirp flight's airframe as scenarios/logs/chirp_flight.ini gives it (the
   truth, per unit of normalised command) beside what ladrc_replay identified from its Betaflight
   and its PX4 log; and, when OUT_DIR/check.md exists (tools/log_ident_check.py --markdown), the
-  summary of the identification over random airframes.
+  summary of the identification over random airframes and its coverage table.
 - worked: the margins ladrc_margins --from-log tuned every controller to (roll), and the replay
   of the ordinary flight: per controller and axis, command rms, its noise per band, its rms
   difference from the log's command, the disturbance estimate's mean, the ticks with a fault.
@@ -83,10 +83,19 @@ def identification_block(out):
     if os.path.isfile(check):
         with open(check) as f:
             summary = f.readline().strip()
+            f.readline()
+            table = []
+            for row in f:
+                if not row.startswith("|"):
+                    break
+                table.append(row.rstrip("\n"))
         lines += ["", "Over 20 random airframes (`tools/log_ident_check.py`, a slow test of the suite: mass "
                   "0.25-3 kg, motor lag 10-60 ms, 0-4 ticks of delay, 500 Hz or 1 kHz, gyro noise 0.1-0.8 "
-                  "deg/s, vibration 0-1.5 deg/s at the rotor orders 1-3), each flown through chirps and "
-                  "through a pilot's steps and sweeps, both log forms: " + summary + "."]
+                  "deg/s, vibration 0-1.5 deg/s at the rotor orders 1-3, turbulence off, light or moderate), "
+                  "each flown through chirps, through a pilot's steps and sweeps, and in hover, each log "
+                  "identified whole and by halves (`--from`, `--to`), both log forms: " + summary + ".",
+                  "", "The coverage of the 95 % intervals per flight, scope and form (b0 told: not flagged "
+                  "0x100; the lag and delay stated: neither flagged 0x80 nor b0 not told):", ""] + table
     return lines
 
 

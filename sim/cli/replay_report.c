@@ -24,10 +24,18 @@ void sim_report_identification(FILE *out, const sim_airframe_t *a)
                 x->damping_per_s, x->r2, x->band_share, a->noise_floor_rad_s_rthz[i] * RAD2DEG);
     }
     for (int i = 0; i < 3; ++i) {
-        for (unsigned bit = 1; bit != 0 && bit <= SIM_IDENT_WARN_NARROW; bit <<= 1) {
+        for (unsigned bit = 1; bit != 0 && bit <= SIM_IDENT_WARN_LAST; bit <<= 1) {
             if (a->axis[i].warnings & bit) {
                 fprintf(out, "warning: %s: %s\n", AXIS[i], sim_ident_warning_text(bit));
             }
+        }
+        if (!sim_ident_b0_told(&a->axis[i])) {
+            fprintf(out, "%s: b0 not told; the airframe flies b0 %.4g rad/s^2\n", AXIS[i], sim_airframe_b0(a, i));
+        }
+        if (a->has_gyro_filter) {
+            const sim_gyro_filter_axis_t *g = &a->gyro_filter[i];
+            fprintf(out, "%s: the log's gyro filters: delay %.2f ms, %.1f dB at the vibration lines (%d)\n", AXIS[i],
+                    1e3 * g->delay_s, g->vib_atten_db, g->n_lines);
         }
         if (a->n_lines[i] > 0) {
             fprintf(out, "%s gyro lines:", AXIS[i]);
@@ -47,7 +55,8 @@ int sim_write_identification_csv(const char *path, const sim_airframe_t *a)
     }
     fprintf(f, "axis,b0_rad_s2,b0_lo_rad_s2,b0_hi_rad_s2,lag_s,lag_lo_s,lag_hi_s,delay_ticks,delay_lo_ticks,"
                "delay_hi_ticks,damping_per_s,r2,command_rms,band_share,samples,warnings,gyro_floor_rad_s_rthz,"
-               "lines_hz\n");
+               "lines_hz,b0_told,b0_flown_rad_s2,b0_iv_rad_s2,b0_iv_lo_rad_s2,b0_iv_hi_rad_s2,gyro_filter_delay_s,"
+               "gyro_filter_vib_atten_db\n");
     for (int i = 0; i < 3; ++i) {
         const sim_ident_axis_t *x = &a->axis[i];
         fprintf(f, "%s,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d,%d,%.9g,%.9g,%.9g,%.9g,%lld,%u,%.9g,", AXIS[i], x->b0,
@@ -57,7 +66,8 @@ int sim_write_identification_csv(const char *path, const sim_airframe_t *a)
         for (int k = 0; k < a->n_lines[i]; ++k) {
             fprintf(f, "%s%.6g", k > 0 ? " " : "", a->lines[i][k].hz);
         }
-        fputc('\n', f);
+        fprintf(f, ",%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", sim_ident_b0_told(x), sim_airframe_b0(a, i), x->b0_iv,
+                x->b0_iv_lo, x->b0_iv_hi, a->gyro_filter[i].delay_s, a->gyro_filter[i].vib_atten_db);
     }
     return (ferror(f) | fclose(f)) != 0 ? -1 : 0;
 }

@@ -46,6 +46,29 @@ double sim_airframe_yaw_coeff(double b0_yaw, double inertia_yaw)
     return b0_yaw * inertia_yaw / sim_setup_authority_Nm(&sc, 2);
 }
 
+/* The axis's own b0 for the scenario: told, else the interval's upper end. */
+static double own_b0(const sim_ident_axis_t *x)
+{
+    if (sim_ident_b0_told(x)) {
+        return x->b0;
+    }
+    return isfinite(x->b0_hi) && x->b0_hi > 0.0 ? fmax(x->b0_hi, x->b0) : NAN;
+}
+
+double sim_airframe_b0(const sim_airframe_t *a, int axis)
+{
+    const double b0 = own_b0(&a->axis[axis]);
+    return isfinite(b0) || axis == 2 ? b0 : own_b0(&a->axis[1 - axis]);
+}
+
+static const char *b0_source(const sim_airframe_t *a, int axis)
+{
+    if (sim_ident_b0_told(&a->axis[axis])) {
+        return "identified";
+    }
+    return isfinite(own_b0(&a->axis[axis])) ? "not told: its interval's upper end" : "not told: the other tilt axis's";
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     const double x = *(const double *)a, y = *(const double *)b;
@@ -63,7 +86,7 @@ static double median3(double a, double b, double c)
 static void inertias(const sim_airframe_t *a, double J[3])
 {
     for (int i = 0; i < 3; ++i) {
-        J[i] = i < 2 ? sim_airframe_inertia(i, a->axis[i].b0) : SIM_AIRFRAME_YAW_INERTIA_SHARE * (J[0] + J[1]);
+        J[i] = i < 2 ? sim_airframe_inertia(i, sim_airframe_b0(a, i)) : SIM_AIRFRAME_YAW_INERTIA_SHARE * (J[0] + J[1]);
     }
 }
 
@@ -71,7 +94,8 @@ double sim_airframe_torque_per_command_Nm(const sim_airframe_t *a, int axis)
 {
     double J[3];
     inertias(a, J);
-    return a->axis[axis].b0 > 0.0 ? J[axis] * a->axis[axis].b0 : NAN;
+    const double b0 = sim_airframe_b0(a, axis);
+    return b0 > 0.0 ? J[axis] * b0 : NAN;
 }
 
 /* One controller's section; the LADRC family's carries the logged controller's noise as its cap. */
@@ -91,11 +115,13 @@ static void write_controller(FILE *f, const sim_airframe_t *a, const char *name,
 int sim_airframe_write(FILE *f, const sim_airframe_t *a, const char *source, const char *noise_series, char *why,
                        size_t why_len)
 {
-    double J[3], drag[3];
+    double J[3], drag[3], b0[3];
     inertias(a, J);
     for (int i = 0; i < 3; ++i) {
-        if (!isfinite(J[i]) || !(a->axis[i].b0 > 0.0)) {
-            snprintf(why, why_len, "%s: no positive b0 identified (%s)", AXIS[i],
+        b0[i] = sim_airframe_b0(a, i);
+        if (!isfinite(J[i]) || !(b0[i] > 0.0)) {
+            snprintf(why, why_len, "%s: no positive b0 identified, nor an interval with a positive upper end (%s)",
+                     AXIS[i],
                      isfinite(a->axis[i].b0) ? "it came out negative: check the axis's sign" : "too few samples");
             return -1;
         }
@@ -128,6 +154,9 @@ int sim_airframe_write(FILE *f, const sim_airframe_t *a, const char *source, con
             x->delay_lo_ticks, x->delay_hi_ticks, x->r2,
             x->warnings ? "  (weak: see the identification's warnings)" : "");
     }
+    for (int i = 0; i < 3; ++i) {
+        fprintf(f, "#   %-5s b0 flown %.4g rad/s^2 (%s)\n", AXIS[i], b0[i], b0_source(a, i));
+    }
     fprintf(f,
             "# The vehicle is nominal (%.3g kg, arm %.3g m, thrust to weight 2): a command of 1 is its\n"
             "# torque authority; roll's and pitch's inertia are that authority over their b0, yaw's\n"
@@ -138,7 +167,7 @@ int sim_airframe_write(FILE *f, const sim_airframe_t *a, const char *source, con
     fprintf(f, "[vehicle]\nmass_kg = %.9g\ninertia_kg_m2 = %.9g %.9g %.9g\narm_m = %.9g\n", SIM_AIRFRAME_MASS_KG, J[0],
             J[1], J[2], SIM_AIRFRAME_ARM_M);
     fprintf(f, "thrust_coeff_N_s2 = %.9g\nyaw_coeff_Nm_s2 = %.9g\nrot_drag_Nm_s = %.9g\ng_m_s2 = %.9g\n\n",
-            SIM_AIRFRAME_THRUST_COEFF_N_S2, sim_airframe_yaw_coeff(a->axis[2].b0, J[2]), kt, SIM_AIRFRAME_G_M_S2);
+            SIM_AIRFRAME_THRUST_COEFF_N_S2, sim_airframe_yaw_coeff(b0[2], J[2]), kt, SIM_AIRFRAME_G_M_S2);
     fprintf(f, "[rotors]\nideal = no\nw2_min_rad2_s2 = %.9g\nw2_max_rad2_s2 = %.9g\nmotor_tau_s = %.9g\n\n",
             0.05 * w2_hover, 2.0 * w2_hover, tau);
     fprintf(f, "[sensors]\nangle_noise_std_deg = 0.05\ndelay_ticks = %d\nuse_rate = yes\n", delay);
@@ -171,7 +200,7 @@ int sim_airframe_write(FILE *f, const sim_airframe_t *a, const char *source, con
     fprintf(f, "yaw = 4 .. 16 : 20\n\n");
     fprintf(f, "[disturbance]                   # rad/s^2: a step, then a 3 rad/s tone, at 15 %% of b0\n");
     for (int i = 0; i < 3; ++i) {
-        const double d = 0.15 * a->axis[i].b0;
+        const double d = 0.15 * b0[i];
         fprintf(f, "%s = 2 .. 8 : %.6g\n%s = 14 .. 26 : %.6g*sin(3*t)\n", AXIS[i], d, AXIS[i], d);
     }
     if (a->log_cmd_noise[0] > 0.0) {

@@ -20,6 +20,7 @@
 
 #include <stdio.h>
 
+#include "gyro_filter.h"
 #include "ident.h"
 #include "ladrc/gyro_filter.h"
 #include "spectrum.h"
@@ -40,6 +41,8 @@ typedef struct {
     double noise_floor_rad_s_rthz[3]; /* the gyro's white floor (sqrt of its PSD) */
     int n_lines[3];
     sim_spectrum_line_t lines[3][SIM_SPECTRUM_MAX_LINES];
+    int has_gyro_filter; /* the log held the gyro before and after its filters */
+    sim_gyro_filter_axis_t gyro_filter[3];
     /* Set by the caller after the identification (zero: none): the gyro filter stage to fly
      * ([filter]), and the logged controller's command noise above 20 Hz per axis (normalised
      * command), the LADRC family's per-axis cap in N m (sim_airframe_torque_per_command_Nm). */
@@ -59,8 +62,14 @@ double sim_airframe_inertia(int axis, double b0);
  * inertia_yaw equal b0_yaw. */
 double sim_airframe_yaw_coeff(double b0_yaw, double inertia_yaw);
 
+/* The b0 (rad/s^2) the scenario gives an axis: the identified one when the
+ * log tells it (sim_ident_b0_told); else its interval's upper end, the side
+ * a tuning is gentle on (the larger b0, the lower the gains: flown on the
+ * smaller true b0 the loop loses gain, not margin); else, for roll or pitch,
+ * the other one's. NaN when none of these is > 0. */
+double sim_airframe_b0(const sim_airframe_t *a, int axis);
 /* The torque (N m) a command of 1 means on axis i of the scenario: the
- * axis's inertia times its b0 (NaN when b0 is not > 0). */
+ * axis's inertia times the b0 it flies (sim_airframe_b0; NaN when not > 0). */
 double sim_airframe_torque_per_command_Nm(const sim_airframe_t *a, int axis);
 
 /* Writes the scenario to f: `source` names the log in its comment (a file

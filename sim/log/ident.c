@@ -136,10 +136,16 @@ int sim_ident_begin_pass(sim_ident_t *id)
     for (int i = 0; i < 3; ++i) {
         axis_t *a = &id->axis[i];
         memset(&a->sh, 0, sizeof a->sh);
-        memset(a->cand, 0, sizeof a->cand);
+        memset(&a->cand, 0, sizeof a->cand);
         a->h_count = 0;
         a->sse3 = 0.0;
         memset(a->hac, 0, sizeof a->hac);
+        memset(a->block_h, 0, sizeof a->block_h);
+        memset(a->zx, 0, sizeof a->zx);
+        memset(a->zy, 0, sizeof a->zy);
+        memset(a->block_zx, 0, sizeof a->block_zx);
+        memset(a->block_zy, 0, sizeof a->block_zy);
+        a->iv_on = id->pass == 3;
         const int n = channels_of_pass(id);
         for (int c = 0; c < n; ++c) {
             if (id->pass == 1) {
@@ -150,6 +156,7 @@ int sim_ident_begin_pass(sim_ident_t *id)
             a->ch[c].alpha = tau > 0.0 ? exp(-id->opt.dt_s / tau) : 0.0;
             a->ch[c].gain = tau > 0.0 ? tau / id->opt.dt_s * (1.0 - a->ch[c].alpha) : 0.0;
         }
+        a->ref_ch = a->ch[0]; /* pass 3: the chosen lag */
         restart(a);
         if (id->pass == 1) {
             sim_spectrum_init(&a->command, 1.0 / id->opt.dt_s);
@@ -158,12 +165,89 @@ int sim_ident_begin_pass(sim_ident_t *id)
     return id->pass;
 }
 
-/* One axis's sample. */
-static void add_axis(sim_ident_t *id, axis_t *a, double w, double u)
+/* The phi of one lag channel for input v held over the tick (ident_internal.h), filtered into its ring. */
+static void lag_channel_step(const sim_ident_t *id, lag_channel_t *ch, int pos, double v)
+{
+    const double phi = v + (ch->x - v) * ch->gain;
+    ch->x = ch->alpha * ch->x + (1.0 - ch->alpha) * v;
+    ch->ring[pos] = ch->ring[pos + RING] = prefilter_step(id->lpf, &ch->filter, phi);
+}
+
+/* The running sums of phi and phi^2 through the newest tick, into their rings (slot spos of RING + 1). */
+static void lag_channel_sums(lag_channel_t *ch, int pos, int spos)
+{
+    const double p = ch->ring[pos];
+    ch->sum1 += p;
+    ch->sum2 += p * p;
+    ch->ring1[spos] = ch->ring1[spos + RING + 1] = ch->sum1;
+    ch->ring2[spos] = ch->ring2[spos + RING + 1] = ch->sum2;
+}
+
+static void lag_channel_settle(const sim_ident_t *id, lag_channel_t *ch, double v)
+{
+    ch->x = v;
+    prefilter_settle(id->lpf, &ch->filter, v);
+    for (int k = 0; k < 2 * RING; ++k) {
+        ch->ring[k] = v;
+    }
+    ch->sum1 = ch->sum2 = 0.0;
+    for (int k = 0; k < 2 * (RING + 1); ++k) {
+        ch->ring1[k] = ch->ring2[k] = 0.0;
+    }
+}
+
+/* Pass 3's instrumental-variable sums of one fitted sample into block b:
+ * z = (the setpoint's phi at the chosen delay, its filtered mid-point, 1),
+ * x = (p, wm, 1). */
+static void iv_add(axis_t *a, int d0, long long b, double rf, double p, double wm, double y)
+{
+    const double z[3] = {lag_channel_at(&a->ref_ch, a->pos, d0), rf, 1.0}, x[3] = {p, wm, 1.0};
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+            a->zx[i][j] += z[i] * x[j];
+            a->block_zx[b][i][j] += z[i] * x[j];
+        }
+        a->zy[i] += z[i] * y;
+        a->block_zy[b][i] += z[i] * y;
+    }
+}
+
+/* Passes 1 and 2 take the candidates' sums of phi and phi^2 from the
+ * channels' running sums: sign -1 at a segment's first fitted tick (the
+ * sums through the tick before it, delay d + 1), +1 after its last (the
+ * sums through it, delay d). */
+static void segment_sums(const sim_ident_t *id, axis_t *a, double sign, int extra)
+{
+    int d0, nd;
+    delays_of_pass(id, a, &d0, &nd);
+    for (int c = 0; c < channels_of_pass(id); ++c) {
+        const lag_channel_t *ch = &a->ch[c];
+        for (int j = 0; j < nd; ++j) {
+            const int at = a->spos + d0 + j + extra;
+            a->cand.p1[c][j] += sign * ch->ring1[at];
+            a->cand.pp[c][j] += sign * ch->ring2[at];
+        }
+    }
+}
+
+/* A segment's end (a gap, the pass's end): its fitted ticks' sums of phi and phi^2 in. */
+static void segment_close(const sim_ident_t *id, axis_t *a)
+{
+    if (id->pass < 3 && a->since_restart > id->skip) {
+        segment_sums(id, a, 1.0, 0);
+    }
+}
+
+/* One axis's sample (ref: the setpoint, NaN when none). */
+static void add_axis(sim_ident_t *id, axis_t *a, double w, double u, double ref)
 {
     if (!isfinite(w) || !isfinite(u)) {
+        segment_close(id, a);
         restart(a);
         return;
+    }
+    if (!isfinite(ref)) {
+        a->iv_on = 0;
     }
     if (id->pass == 1) {
         sim_spectrum_push(&a->command, u);
@@ -174,11 +258,12 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u)
         prefilter_settle(id->lpf, &a->fy, 0.0);
         prefilter_settle(id->lpf, &a->fw, w);
         for (int c = 0; c < n_ch; ++c) {
-            a->ch[c].x = u;
-            prefilter_settle(id->lpf, &a->ch[c].filter, u);
-            for (int k = 0; k < RING; ++k) {
-                a->ch[c].ring[k] = u;
-            }
+            lag_channel_settle(id, &a->ch[c], u);
+        }
+        if (a->iv_on) {
+            lag_channel_settle(id, &a->ref_ch, ref);
+            prefilter_settle(id->lpf, &a->fr, ref);
+            a->r_prev = ref;
         }
         a->w_prev = w;
         a->u_prev = u;
@@ -187,18 +272,26 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u)
     }
     const double y = prefilter_step(id->lpf, &a->fy, (w - a->w_prev) / id->opt.dt_s);
     const double wm = prefilter_step(id->lpf, &a->fw, 0.5 * (w + a->w_prev));
-    a->pos = (a->pos + 1) % RING;
+    a->pos = (a->pos + RING - 1) % RING;
+    a->spos = (a->spos + RING) % (RING + 1);
     for (int c = 0; c < n_ch; ++c) {
-        lag_channel_t *ch = &a->ch[c];
-        const double phi = a->u_prev + (ch->x - a->u_prev) * ch->gain;
-        ch->x = ch->alpha * ch->x + (1.0 - ch->alpha) * a->u_prev;
-        ch->ring[a->pos] = prefilter_step(id->lpf, &ch->filter, phi);
+        lag_channel_step(id, &a->ch[c], a->pos, a->u_prev);
+        lag_channel_sums(&a->ch[c], a->pos, a->spos);
+    }
+    double rf = 0.0;
+    if (a->iv_on) {
+        lag_channel_step(id, &a->ref_ch, a->pos, a->r_prev);
+        rf = prefilter_step(id->lpf, &a->fr, 0.5 * (ref + a->r_prev));
+        a->r_prev = ref;
     }
     a->w_prev = w;
     a->u_prev = u;
     a->since_restart++;
     if (a->since_restart <= id->skip) {
         return;
+    }
+    if (a->since_restart == id->skip + 1 && id->pass < 3) {
+        segment_sums(id, a, -1.0, 1); /* the segment's first fitted tick */
     }
     shared_sums_t *s = &a->sh;
     s->ww += wm * wm;
@@ -210,37 +303,53 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u)
     int d0, nd;
     delays_of_pass(id, a, &d0, &nd);
     for (int c = 0; c < n_ch; ++c) {
-        const double *ring = a->ch[c].ring;
-        for (int j = 0; j < nd; ++j) {
-            const double p = ring[(a->pos - (d0 + j) + RING) % RING];
-            candidate_sums_t *cs = &a->cand[c][j];
-            cs->pp += p * p;
-            cs->pw += p * wm;
-            cs->p1 += p;
-            cs->py += p * y;
+        const double *restrict phi = &a->ch[c].ring[a->pos + d0]; /* delay d0 + j at phi[j] */
+        double *restrict pw = a->cand.pw[c], *restrict py = a->cand.py[c];
+        if (id->pass == 3) { /* one candidate: its sums of phi and phi^2 here too */
+            a->cand.pp[c][0] += phi[0] * phi[0];
+            a->cand.p1[c][0] += phi[0];
+        }
+        for (int j = 0; j < nd; ++j) { /* phi and phi^2: segment_sums */
+            pw[j] += phi[j] * wm;
+            py[j] += phi[j] * y;
         }
     }
     if (id->pass == 3 && a->valid) {
-        const double p = a->ch[0].ring[(a->pos - d0 + RING) % RING];
+        const double p = lag_channel_at(&a->ch[0], a->pos, d0);
         const double r = y - (a->theta[0] * p + a->theta[1] * wm + a->theta[2]);
         const double h = (a->v[0] * p + a->v[1] * wm + a->v[2]) * r;
         a->sse3 += r * r;
-        const int lags = id->hac_lags;
+        long long b = a->n_fitted > 0 ? a->h_count * SPLIT_BLOCKS / a->n_fitted : 0;
+        b = b < SPLIT_BLOCKS ? b : SPLIT_BLOCKS - 1;
+        a->block_h[b] += h;
+        if (a->iv_on) {
+            iv_add(a, d0, b, rf, p, wm, y);
+        }
+        const int lags = id->hac_lags, size = lags + 1;
         const long long k = a->h_seg++;
         a->h_count++;
-        a->h_ring[k % (lags + 1)] = h;
+        a->h_pos = (a->h_pos + size - 1) % size;
+        a->h_ring[a->h_pos] = a->h_ring[a->h_pos + size] = h;
         const int m_max = k < lags ? (int)k : lags;
+        const double *restrict past = &a->h_ring[a->h_pos]; /* lag m at past[m] */
+        double *restrict hac = a->hac;
         for (int m = 0; m <= m_max; ++m) {
-            a->hac[m] += h * a->h_ring[(k - m) % (lags + 1)];
+            hac[m] += h * past[m];
         }
+    }
+}
+
+void sim_ident_add_ref(sim_ident_t *id, const double gyro_rad_s[3], const double command[3],
+                       const double setpoint_rad_s[3])
+{
+    for (int i = 0; i < 3; ++i) {
+        add_axis(id, &id->axis[i], gyro_rad_s[i], command[i], setpoint_rad_s != NULL ? setpoint_rad_s[i] : NAN);
     }
 }
 
 void sim_ident_add(sim_ident_t *id, const double gyro_rad_s[3], const double command[3])
 {
-    for (int i = 0; i < 3; ++i) {
-        add_axis(id, &id->axis[i], gyro_rad_s[i], command[i]);
-    }
+    sim_ident_add_ref(id, gyro_rad_s, command, NULL);
 }
 
 /* Least squares of candidate sums: theta, the inverse of the sums matrix and
@@ -280,7 +389,8 @@ static int solve(const shared_sums_t *s, const candidate_sums_t *c, double theta
 static double candidate_fit(const axis_t *a, int c, int j, double *b0)
 {
     double theta[3], inv[3][3], sse;
-    if (!solve(&a->sh, &a->cand[c][j], theta, inv, &sse)) {
+    const candidate_sums_t cs = candidate_at(&a->cand, c, j);
+    if (!solve(&a->sh, &cs, theta, inv, &sse)) {
         *b0 = NAN;
         return INFINITY;
     }
@@ -345,15 +455,17 @@ static void end_fine(axis_t *a)
             }
         }
     }
-    a->valid = best_c >= 0 && solve(&a->sh, &a->cand[best_c][best_j], a->theta, a->m_inv, &a->sse);
+    const candidate_sums_t best_sums = candidate_at(&a->cand, best_c >= 0 ? best_c : 0, best_j);
+    a->valid = best_c >= 0 && solve(&a->sh, &best_sums, a->theta, a->m_inv, &a->sse);
     if (!a->valid) {
         return;
     }
-    const candidate_sums_t *c = &a->cand[best_c][best_j];
+    const candidate_sums_t *c = &best_sums;
     a->tau_grid_s = a->tau_fine[best_c];
     a->tau_s = profile_vertex(a, best_c, best_j);
     a->delay = a->fine_d0 + best_j;
     a->n = a->sh.n;
+    a->n_fitted = (long long)a->sh.n;
     a->sst = a->sh.yy - a->sh.y1 * a->sh.y1 / a->sh.n;
     a->phi_mean = c->p1 / a->sh.n;
     a->phi_var = c->pp / a->sh.n - a->phi_mean * a->phi_mean;
@@ -366,12 +478,13 @@ static void end_fine(axis_t *a)
 static void end_refined(axis_t *a)
 {
     double theta[3], inv[3][3], sse;
-    if (solve(&a->sh, &a->cand[0][0], theta, inv, &sse) && sse <= a->sse) {
+    const candidate_sums_t refined = candidate_at(&a->cand, 0, 0);
+    if (solve(&a->sh, &refined, theta, inv, &sse) && sse <= a->sse) {
         memcpy(a->theta, theta, sizeof theta);
         memcpy(a->m_inv, inv, sizeof inv);
         a->sse = sse;
-        a->phi_mean = a->cand[0][0].p1 / a->sh.n;
-        a->phi_var = a->cand[0][0].pp / a->sh.n - a->phi_mean * a->phi_mean;
+        a->phi_mean = refined.p1 / a->sh.n;
+        a->phi_var = refined.pp / a->sh.n - a->phi_mean * a->phi_mean;
     } else {
         a->tau_s = a->tau_grid_s;
     }
@@ -381,6 +494,7 @@ void sim_ident_end_pass(sim_ident_t *id)
 {
     for (int i = 0; i < 3; ++i) {
         axis_t *a = &id->axis[i];
+        segment_close(id, a);
         if (id->pass == 1) {
             end_coarse(id, a);
         } else if (id->pass == 2) {

@@ -17,12 +17,15 @@
  * residuals.
  *
  * Intervals (95 %): every candidate (tau, d) whose residual sum of squares
- * lies within the chi-square(1) threshold, scaled by the sandwich
- * (Newey-West, Bartlett) variance ratio and by PROFILE_SAFETY (ident.c),
- * is consistent with the log: the lag's and delay's intervals span that
- * set, b0's spans its b0s widened by b0's own sandwich interval. Warnings
- * flag what the log cannot tell (SIM_IDENT_WARN_*): the fits of a log
- * without enough excitation come with wide intervals and a warning.
+ * lies within the larger of the chi-square(1) threshold, scaled by the
+ * sandwich (Newey-West, Bartlett) variance ratio and by PROFILE_SAFETY, and
+ * PROFILE_BIAS_SHARE of the best's (ident_result.c) is consistent with the
+ * log: the lag's and delay's intervals span that set, b0's spans its b0s
+ * widened by the larger of b0's sandwich and split-window (8 blocks)
+ * half-widths, and spans the instrumental-variable b0's interval too (the
+ * setpoint as the instrument: b0_iv). Warnings flag what the log cannot
+ * tell (SIM_IDENT_WARN_*), "b0 not told" among them
+ * (sim_ident_b0_told).
  *
  * Memory is fixed (grid sums and short rings): a log of any length is
  * streamed through each pass.
@@ -47,8 +50,10 @@ enum {
     SIM_IDENT_WARN_DELAY_WIDE = 1u << 4, /* the delay not told to the tick */
     SIM_IDENT_WARN_LOW_FIT = 1u << 5,    /* R^2 below SIM_IDENT_R2_MIN */
     SIM_IDENT_WARN_EDGE = 1u << 6,       /* the best fit at the edge of the grid */
-    SIM_IDENT_WARN_NARROW = 1u << 7 /* the command's share above the motors' corner under SIM_IDENT_BAND_SHARE_MIN */
+    SIM_IDENT_WARN_NARROW = 1u << 7, /* the command's share above the motors' corner under SIM_IDENT_BAND_SHARE_MIN */
+    SIM_IDENT_WARN_B0_NOT_TOLD = 1u << 8 /* sim_ident_b0_told() is 0: the log cannot tell b0 */
 };
+#define SIM_IDENT_WARN_LAST SIM_IDENT_WARN_B0_NOT_TOLD
 #define SIM_IDENT_MIN_SAMPLES 2000
 #define SIM_IDENT_PREFILTER_MAX_HZ 40.0 /* the default corner: a chirp's top */
 #define SIM_IDENT_PREFILTER_MIN_HZ 10.0 /* the lowest a vibration line may push it */
@@ -57,6 +62,10 @@ enum {
  * for the plant's), 4 % low with it; 2 and 4 Hz gave no better. */
 #define SIM_IDENT_HIGHPASS_HZ 1.0
 #define SIM_IDENT_B0_REL_MAX 0.10
+/* b0 is not told when its interval's upper end is more than this times its
+ * lower end (or the lower end is not > 0): a tuning for one end would then
+ * put the loop's gain off by more than half its margin of 6 dB at the other. */
+#define SIM_IDENT_B0_TOLD_RATIO 2.0
 #define SIM_IDENT_LAG_REL_MAX 0.5
 #define SIM_IDENT_R2_MIN 0.5
 /* Lag and delay part only where the lag's phase differs from a delay's:
@@ -84,7 +93,13 @@ typedef struct {
     double command_rms;    /* the filtered command's rms about its mean: the excitation */
     double variance_ratio; /* sandwich over ordinary variance of b0 (>= 1 with coloured residuals) */
     double band_share;     /* the command's rms share above the motors' corner (SIM_IDENT_WARN_NARROW) */
-    unsigned warnings;     /* SIM_IDENT_WARN_* */
+    /* b0 by instrumental variables (the logged rate setpoint, exogenous in
+     * closed loop, through the same lag and delay as the instrument of the
+     * command): free of the bias the gyro's noise brings into the command;
+     * its 95 % interval from the split-window variance. NaN without a
+     * setpoint in the log. b0_lo and b0_hi span this interval too. */
+    double b0_iv, b0_iv_lo, b0_iv_hi;
+    unsigned warnings; /* SIM_IDENT_WARN_* */
 } sim_ident_axis_t;
 
 typedef struct sim_ident sim_ident_t;
@@ -101,6 +116,12 @@ int sim_ident_begin_pass(sim_ident_t *id);
  * sample with a non-finite value restarts the fit's filters (a gap). */
 void sim_ident_add(sim_ident_t *id, const double gyro_rad_s[3], const double command[3]);
 
+/* The same with the rate setpoint (rad/s; NULL: none), the instrument of
+ * b0_iv. A non-finite setpoint turns the axis's b0_iv off. Every sample of
+ * a pass must come the same way. */
+void sim_ident_add_ref(sim_ident_t *id, const double gyro_rad_s[3], const double command[3],
+                       const double setpoint_rad_s[3]);
+
 void sim_ident_end_pass(sim_ident_t *id);
 
 /* The result of axis 0 roll, 1 pitch, 2 yaw (after the last pass). */
@@ -109,6 +130,16 @@ void sim_ident_result(const sim_ident_t *id, int axis, sim_ident_axis_t *out);
 /* The delay grid's last value and the prefilter's corner actually used. */
 int sim_ident_delay_max(const sim_ident_t *id);
 double sim_ident_prefilter_hz(const sim_ident_t *id);
+
+/* 1 when the log tells b0: enough samples; a signal of the log's own, not
+ * the loop's answer to its gyro (in closed loop without one any plant fits:
+ * the gyro's noise and the gusts the controller answers look like a plant,
+ * and in hover b0 came out 1.5-8 times the truth with R^2 up to 0.98):
+ * a setpoint that moves (b0_iv is had) or a command with content above the
+ * motors' corner (SIM_IDENT_BAND_SHARE_MIN, a chirp); R^2 at least
+ * SIM_IDENT_R2_MIN; b0 and its interval's lower end > 0; the upper end
+ * within SIM_IDENT_B0_TOLD_RATIO of the lower. */
+int sim_ident_b0_told(const sim_ident_axis_t *x);
 
 /* One sentence per warning bit; "" for 0. */
 const char *sim_ident_warning_text(unsigned bit);

@@ -3,6 +3,7 @@
 #include "log_identify.h"
 
 #include "biquad.h"
+#include "ident_cache.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -31,6 +32,7 @@ typedef struct {
     biquad_t hp_state[3];
     FILE *noise;
     long long noise_rows, noise_rows_max;
+    sim_gyro_filter_t *filter; /* the log's filters, when it has the gyro before and after them */
 } survey_t;
 
 static int survey_open(survey_t *s, const sim_log_identify_options_t *o, double dt_s, char *err, size_t err_len)
@@ -113,6 +115,8 @@ static void survey_add(survey_t *s, double t_s, const double gyro[3])
 
 static int survey_close(survey_t *s, const char *path, char *err, size_t err_len)
 {
+    sim_gyro_filter_free(s->filter);
+    s->filter = NULL;
     if (s->noise != NULL && (ferror(s->noise) | fclose(s->noise)) != 0) {
         snprintf(err, err_len, "%s: write failed", path);
         return -1;
@@ -120,9 +124,42 @@ static int survey_close(survey_t *s, const char *path, char *err, size_t err_len
     return 0;
 }
 
-/* One pass over the log; 0, or -1 with the message. */
+static void report_progress(const sim_log_identify_options_t *o, int pass, long long done, long long total)
+{
+    o->progress(o->progress_ctx, pass + 1, 4, "identification", total > 0 ? (double)done / (double)total : 0.0);
+}
+
+/* One pass over the cache's ticks; 0, or -1 with the message. */
+static int cache_pass(const sim_log_identify_options_t *o, sim_ident_cache_t *cache, sim_ident_t *id, int pass,
+                      char *err, size_t err_len)
+{
+    if (sim_ident_cache_rewind(cache) != 0) {
+        snprintf(err, err_len, "%s: identification: the temporary file of its samples cannot be read back",
+                 o->log.path);
+        return -1;
+    }
+    double gyro[3], command[3], setpoint[3];
+    int rc;
+    long long k = 0;
+    while ((rc = sim_ident_cache_get(cache, gyro, command, setpoint)) == 1) {
+        sim_ident_add_ref(id, gyro, command, setpoint);
+        if (o->progress != NULL && ++k % PROGRESS_EVERY == 0) {
+            long long done, total;
+            sim_ident_cache_progress(cache, &done, &total);
+            report_progress(o, pass, done, total);
+        }
+    }
+    if (rc < 0) {
+        snprintf(err, err_len, "%s: identification: reading the temporary file of its samples failed", o->log.path);
+    }
+    return rc < 0 ? -1 : 0;
+}
+
+/* One pass over the log, its ticks into the cache too when one is given
+ * (*cache is freed and set to NULL when it cannot be written: the later
+ * passes then read the log again); 0, or -1 with the message. */
 static int read_pass(const sim_log_identify_options_t *o, sim_ident_t *id, survey_t *survey, int pass,
-                     sim_log_stats_t *stats, char *err, size_t err_len)
+                     sim_ident_cache_t **cache, sim_log_stats_t *stats, char *err, size_t err_len)
 {
     sim_log_error_t lerr;
     sim_log_t *log = sim_log_open(&o->log, &lerr);
@@ -138,16 +175,28 @@ static int read_pass(const sim_log_identify_options_t *o, sim_ident_t *id, surve
         return -1;
     }
     const int raw = (has & SIM_LOG_HAS_GYRO_RAW) != 0;
+    const double none[3] = {NAN, NAN, NAN};
     sim_log_sample_t s;
     int rc;
     long long k = 0;
     while ((rc = sim_log_next(log, &s, &lerr)) == 1) {
         const double *gyro = raw ? s.gyro_raw_rad_s : s.gyro_rad_s;
+        const double *setpoint = (has & SIM_LOG_HAS_REF_RATE) ? s.ref_rate_rad_s : none;
         if (id != NULL) {
-            sim_ident_add(id, gyro, s.command);
+            sim_ident_add_ref(id, gyro, s.command, setpoint);
+        }
+        if (cache != NULL && *cache != NULL && sim_ident_cache_put(*cache, gyro, s.command, setpoint) != 0) {
+            sim_ident_cache_free(*cache);
+            *cache = NULL;
         }
         if (survey != NULL) {
             survey_add(survey, s.t_s, gyro);
+            if (raw && survey->filter == NULL) {
+                survey->filter = sim_gyro_filter_new(o->log.dt_s);
+            }
+            if (raw && survey->filter != NULL) {
+                sim_gyro_filter_add(survey->filter, s.gyro_raw_rad_s, s.gyro_rad_s);
+            }
             if (has & SIM_LOG_HAS_ROTOR_HZ) {
                 survey_rotors(survey, &s);
             }
@@ -155,7 +204,7 @@ static int read_pass(const sim_log_identify_options_t *o, sim_ident_t *id, surve
         if (o->progress != NULL && ++k % PROGRESS_EVERY == 0) {
             long long done, total;
             sim_log_progress(log, &done, &total);
-            o->progress(o->progress_ctx, pass + 1, 4, "identification", total > 0 ? (double)done / (double)total : 0.0);
+            report_progress(o, pass, done, total);
         }
     }
     if (rc < 0) {
@@ -225,10 +274,15 @@ int sim_log_identify(const sim_log_identify_options_t *o, sim_airframe_t *out, s
     /* pass 0: the gyro's spectrum (and the noise file), which sets the prefilter */
     static survey_t survey; /* three spectra: large */
     int rc = survey_open(&survey, o, dt_s, err, err_len);
+    sim_ident_cache_t *cache = sim_ident_cache_new(); /* NULL: every pass reads the log */
     if (rc == 0) {
-        rc = read_pass(&fixed, NULL, &survey, 0, stats, err, err_len);
+        rc = read_pass(&fixed, NULL, &survey, 0, &cache, stats, err, err_len);
     }
+    sim_gyro_filter_t *filter = survey.filter; /* kept past the survey's close */
+    survey.filter = NULL;
     if (survey_close(&survey, o->noise_series, err, err_len) != 0 || rc != 0) {
+        sim_gyro_filter_free(filter);
+        sim_ident_cache_free(cache);
         return -1;
     }
     const sim_ident_options_t io = {.dt_s = dt_s,
@@ -238,13 +292,17 @@ int sim_log_identify(const sim_log_identify_options_t *o, sim_airframe_t *out, s
     sim_ident_t *id = sim_ident_new(&io);
     if (id == NULL) {
         snprintf(err, err_len, "%s: identification: out of memory", o->log.path);
+        sim_gyro_filter_free(filter);
+        sim_ident_cache_free(cache);
         return -1;
     }
     int pass;
     while (rc == 0 && (pass = sim_ident_begin_pass(id)) != 0) {
-        rc = read_pass(&fixed, id, NULL, pass, NULL, err, err_len);
+        rc = cache != NULL ? cache_pass(&fixed, cache, id, pass, err, err_len)
+                           : read_pass(&fixed, id, NULL, pass, NULL, NULL, err, err_len);
         sim_ident_end_pass(id);
     }
+    sim_ident_cache_free(cache);
     if (rc == 0) {
         out->dt_s = dt_s;
         out->prefilter_hz = sim_ident_prefilter_hz(id);
@@ -256,8 +314,14 @@ int sim_log_identify(const sim_log_identify_options_t *o, sim_airframe_t *out, s
             out->noise_floor_rad_s_rthz[i] = sqrt(floor);
             out->n_lines[i] = sim_spectrum_lines(&survey.spectrum[i], lo, floor, LINE_MIN_RATIO, out->lines[i],
                                                  SIM_SPECTRUM_MAX_LINES);
+            out->gyro_filter[i] = (sim_gyro_filter_axis_t){NAN, NAN, NAN, 0};
+            if (filter != NULL) {
+                sim_gyro_filter_result(filter, i, lo, hi, LINE_MIN_RATIO, &out->gyro_filter[i]);
+            }
         }
+        out->has_gyro_filter = filter != NULL;
     }
+    sim_gyro_filter_free(filter);
     sim_ident_free(id);
     return rc;
 }

@@ -1,10 +1,13 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /*
- * A log's airframe: the identification's passes over a flight log (ident.h),
- * each streaming the log again through the reader (log.h), and the gyro's
- * noise floor and vibration lines from its spectrum. The identification
- * takes the gyro before the log's filters when the log has it (the plant's
- * own response), else the filtered one.
+ * A log's airframe: the identification's passes over a flight log (ident.h):
+ * the first streams the log through the reader (log.h) and keeps each
+ * tick's gyro, command and setpoint in a temporary file (ident_cache.h),
+ * which the later passes read back; the gyro's noise floor and vibration
+ * lines from its spectrum; and, when the log has the gyro both before and
+ * after its filters, their delay and attenuation (gyro_filter.h). The
+ * identification takes the gyro before the log's filters when the log has
+ * it (the plant's own response), else the filtered one.
  */
 #ifndef LADRC_SIM_LOG_IDENTIFY_H
 #define LADRC_SIM_LOG_IDENTIFY_H

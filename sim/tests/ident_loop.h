@@ -30,6 +30,7 @@ typedef struct {
     loop_axis_t ax;
     double dt_s, kp_att, kp_rate;
     double w, x, angle;
+    double setpoint_rad_s; /* the rate setpoint of the last tick (the angle loop's output) */
     double hist_w[LOOP_HISTORY], hist_angle[LOOP_HISTORY];
     long k;
     sim_rng_t rng;
@@ -64,7 +65,8 @@ static void loop_tick(loop_t *l, double *gyro_rad_s, double *command)
     l->hist_angle[now] = l->angle;
     const double gyro = l->hist_w[then] + ax->noise_rad_s * sim_rng_gauss(&l->rng);
     const double ref = ax->manoeuvre_rad * (sin(2.0 * LOOP_PI * 0.7 * t) + 0.5 * (((long)(t / 1.3)) % 2 ? 1.0 : -1.0));
-    const double u = l->kp_rate * (l->kp_att * (ref - l->hist_angle[then]) - gyro) / ax->b0 + loop_chirp(ax, t);
+    l->setpoint_rad_s = l->kp_att * (ref - l->hist_angle[then]);
+    const double u = l->kp_rate * (l->setpoint_rad_s - gyro) / ax->b0 + loop_chirp(ax, t);
     const double h = l->dt_s / LOOP_SUBSTEPS, alpha = exp(-h / ax->tau_s);
     for (int s = 0; s < LOOP_SUBSTEPS; ++s) {
         const double x_next = alpha * l->x + (1.0 - alpha) * u;

@@ -82,6 +82,12 @@ static void airframe(sim_airframe_t *a)
     const double b0[3] = {110.0, 125.0, 48.0};
     for (int i = 0; i < 3; ++i) {
         a->axis[i].b0 = b0[i];
+        /* told (sim_ident_b0_told): the airframe flies b0 itself */
+        a->axis[i].b0_lo = 0.95 * b0[i];
+        a->axis[i].b0_hi = 1.05 * b0[i];
+        a->axis[i].samples = SIM_IDENT_MIN_SAMPLES;
+        a->axis[i].r2 = 0.9;
+        a->axis[i].band_share = 0.8;
         a->axis[i].lag_s = 0.03;
         a->axis[i].delay_ticks = 2;
         a->axis[i].damping_per_s = 10.0;
