@@ -17,7 +17,9 @@ void setpoint_smooth_init(setpoint_smooth_t *s, double dt_s)
 {
     memset(s, 0, sizeof *s);
     s->dt_s = dt_s;
-    s->last_step_tick = -1;
+    for (int i = 0; i < 3; ++i) {
+        s->last_step_tick[i] = -1;
+    }
     s->frame_ticks = NAN;
     s->link_hz = NAN;
     s->cutoff_hz = NAN;
@@ -69,27 +71,30 @@ static void learn(setpoint_smooth_t *s)
     s->state = SETPOINT_SMOOTH_ON;
 }
 
+/* Steps counted per axis (the axes' frames interleave when pooled); two
+ * changed ticks in a row are one step (a row's step lands on two ticks
+ * when the log's rows sit between them); a longer run steps every tick. */
 static void count_steps(setpoint_smooth_t *s, const double source[3])
 {
-    int stepped = 0;
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; i < 3 && s->state == SETPOINT_SMOOTH_TRAINING; ++i) {
         /* NaN never steps: a missing axis leaves the others to tell */
-        if (s->tick > 0 && source[i] != s->prev_source[i] && !isnan(source[i]) && !isnan(s->prev_source[i])) {
-            stepped = 1;
-        }
+        const int changed =
+            s->tick > 0 && source[i] != s->prev_source[i] && !isnan(source[i]) && !isnan(s->prev_source[i]);
         s->prev_source[i] = source[i];
-    }
-    if (!stepped) {
-        return;
-    }
-    if (s->last_step_tick >= 0) {
-        const long long gap = s->tick - s->last_step_tick;
-        s->intervals[s->n_intervals++] = gap > 1000000 ? 1000000 : (int)gap;
-        if (s->n_intervals == SETPOINT_SMOOTH_TRAINING_STEPS) {
-            learn(s);
+        s->run_ticks[i] = changed ? s->run_ticks[i] + 1 : 0;
+        /* a run's second tick is its step's other half; from its third on, it changes every tick */
+        if (!changed || s->run_ticks[i] == 2) {
+            continue;
         }
+        if (s->last_step_tick[i] >= 0) {
+            const long long gap = s->tick - s->last_step_tick[i];
+            s->intervals[s->n_intervals++] = gap > 1000000 ? 1000000 : (int)gap;
+            if (s->n_intervals == SETPOINT_SMOOTH_TRAINING_STEPS) {
+                learn(s);
+            }
+        }
+        s->last_step_tick[i] = s->tick;
     }
-    s->last_step_tick = s->tick;
 }
 
 void setpoint_smooth_step(setpoint_smooth_t *s, const double source[3], double angle_rad[3])
@@ -130,8 +135,9 @@ void setpoint_smooth_describe(const setpoint_smooth_t *s, char *buf, size_t len)
                  1e3 * s->frame_ticks * s->dt_s);
         break;
     default:
-        snprintf(buf, len, "setpoint not smoothed: %d steps seen, %d needed to learn the link's rate",
-                 s->n_intervals + (s->last_step_tick >= 0), SETPOINT_SMOOTH_TRAINING_STEPS + 1);
+        snprintf(buf, len,
+                 "setpoint not smoothed: %d intervals between its steps seen, %d needed to learn the link's rate",
+                 s->n_intervals, SETPOINT_SMOOTH_TRAINING_STEPS);
         break;
     }
 }

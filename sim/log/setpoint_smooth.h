@@ -9,8 +9,8 @@
  * steps as they are charges them with noise the flight never had.
  *
  * The rule (Betaflight's automatic RC smoothing): the link's frame rate is
- * learned from the setpoint itself, the mean interval between its distinct
- * steps over the first SETPOINT_SMOOTH_TRAINING_STEPS steps (intervals
+ * learned from the setpoint itself, the mean interval between each axis's
+ * distinct steps over the first SETPOINT_SMOOTH_TRAINING_STEPS intervals (intervals
  * within 0.5-1.5x their median, so that held sticks do not count); the
  * cutoff is SETPOINT_SMOOTH_CUTOFF_FACTOR times that rate, at least
  * SETPOINT_SMOOTH_MIN_CUTOFF_HZ; the filter a second-order Butterworth
@@ -32,7 +32,7 @@
 
 #include "biquad.h"
 
-#define SETPOINT_SMOOTH_TRAINING_STEPS 64
+#define SETPOINT_SMOOTH_TRAINING_STEPS 256
 /* Betaflight's cutoff factor 1.5 / (1 + rc_smoothing_auto_factor / 10) at its default factor, 30 */
 #define SETPOINT_SMOOTH_CUTOFF_FACTOR 0.375
 #define SETPOINT_SMOOTH_MIN_CUTOFF_HZ 15.0 /* Betaflight's floor */
@@ -48,8 +48,9 @@ typedef enum {
 typedef struct {
     double dt_s;
     setpoint_smooth_state_t state;
-    double prev_source[3]; /* the signal the steps are counted on */
-    long long tick, last_step_tick;
+    double prev_source[3];             /* the signal the steps are counted on */
+    long long tick, last_step_tick[3]; /* per axis */
+    int run_ticks[3];                  /* ticks in a row the axis has changed */
     int n_intervals;
     int intervals[SETPOINT_SMOOTH_TRAINING_STEPS];
     double frame_ticks; /* the learned interval between the link's frames (ticks) */

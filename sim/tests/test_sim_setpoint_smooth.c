@@ -14,7 +14,7 @@
 #define DT_S 0.001
 #define LINK_HZ 150.0
 /* 1000 / 150 ticks per frame: intervals of 6 and 7 ticks averaging 6.67;
- * the mean over 64 intervals is within one tick of it over 64: 2.5 %. */
+ * the mean over the training's intervals is within a tick of it over 64: 2.5 %. */
 #define LINK_REL_TOL 0.025
 /* A second-order Butterworth at 0.375 x 150 = 56.25 Hz passes
  * 1 / sqrt(1 + (150 / 56.25)^4) = 0.139 at the link's rate, less above;
@@ -49,7 +49,7 @@ static void test_a_link_is_learned_and_its_steps_smoothed(void)
         angle += rate[0] * DT_S;
         double ref[3] = {angle, 0.5 * angle, 0.0};
         setpoint_smooth_step(&s, rate, ref);
-        if (k > 2000) { /* learned by then: 64 frames take 0.43 s */
+        if (k > 2000) { /* learned by then: 256 intervals on two axes take 0.86 s */
             sim_spectrum_push(&raw, rate[0]);
             sim_spectrum_push(&smooth, (ref[0] - prev_smoothed) / DT_S);
         }
@@ -85,7 +85,7 @@ static void test_scripted_steps_are_not_a_link(void)
 {
     static setpoint_smooth_t s;
     setpoint_smooth_init(&s, DT_S);
-    for (long long k = 0; k < 100000; ++k) {
+    for (long long k = 0; k < 200000; ++k) {
         const double level = (double)((k / 500) % 3) - 1.0; /* a step every 0.5 s */
         const double logged[3] = {0.2 * level, 0.0, 0.0};   /* an angle setpoint: its steps counted on it */
         double ref[3] = {logged[0], logged[1], logged[2]};
