@@ -147,7 +147,12 @@ void sim_replay_noise_report(FILE *out, const sim_scenario_t *sc, const sim_repl
                 lowest = fmin(lowest, t->cmd_noise_Nm[i] / r->authority_Nm[i]);
             }
         }
-        if (!(lowest <= log)) {
+        if (isinf(lowest)) {
+            fprintf(out,
+                    "  %s: above the log's by %.3gx; no member of the family was tuned for this airframe (the "
+                    "library's defaults fly): nothing predicted\n",
+                    AXIS[i], quietest[i] / log);
+        } else if (!(lowest <= log)) {
             fprintf(out,
                     "  %s: above the log's: no tuned gains of the family reach it even as predicted (lowest %.4g, "
                     "%.3gx the log's)\n",
