@@ -137,6 +137,9 @@ def worked_block(out):
               "| ticks with a fault |", "|---|---|---|---|---|---|---|---|---|"]
     with open(os.path.join(out, "replay_px4", "replay_summary.csv"), newline="") as f:
         for r in csv.DictReader(f):
+            if r.get("status", "replayed") != "replayed":  # a controller not replayed: no numbers
+                continue
+
             def num(key, fmt="%.4f"):
                 x = float(r[key])
                 return "-" if math.isnan(x) else fmt % x

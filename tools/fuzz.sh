@@ -10,7 +10,7 @@
 #   --time S      each target for S seconds
 #   --runs N      N executions of each target
 #   --build-only  build the targets, run nothing
-#   TARGET        fuzz_scenario, fuzz_expr, fuzz_log, fuzz_ulog (default: every tests/fuzz/fuzz_*.c)
+#   TARGET        fuzz_scenario, fuzz_expr, fuzz_log, fuzz_ulog, fuzz_bbl (default: every tests/fuzz/fuzz_*.c)
 #
 # Prints per target the executions, their rate, the corpus and the findings
 # (crash, leak, undefined behaviour, failed check, timeout, out of memory),
@@ -59,7 +59,8 @@ CFLAGS=(-std=c99 -g -O1 -fno-omit-frame-pointer -fsanitize=fuzzer-no-link,addres
 sources=()
 objects=()
 for source in src/*.c analysis/*.c sim/*/*.c tests/fuzz/fuzz_common.c; do
-  [[ $source == sim/tests/* || $source == sim/cli/main.c || $source == sim/cli/margins_main.c || $source == sim/cli/replay_main.c ]] && continue
+  [[ $source == sim/tests/* || $source == sim/cli/main.c || $source == sim/cli/margins_main.c || $source == sim/cli/replay_main.c ||
+        $source == sim/cli/views_main.c || $source == sim/cli/filter_main.c ]] && continue
   sources+=("$source")
   objects+=("$obj/$(echo "${source%.c}" | tr / _).o")
 done
@@ -88,6 +89,7 @@ run_target() {
   local target=$1 name=${1#fuzz_}
   local max_len=4096 # scenario, log
   [[ $name == expr ]] && max_len=512
+  [[ $name == bbl ]] && max_len=16384 # a header of some 1 KB and frames
   rm -rf "$out/artifacts/$target"
   mkdir -p "$out/corpus/$target" "$out/artifacts/$target"
   "$out/$target" "${mode[@]}" -max_len=$max_len -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \

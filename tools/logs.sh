@@ -27,7 +27,7 @@ rm -rf "$out"
 mkdir -p "$out"
 "$bin/ladrc_sil" scenarios/logs/chirp_flight.ini scenarios/logs/ordinary_flight.ini --out "$out" --quiet --jobs 2 \
   > "$out/flights.txt"
-# Status 1 is a warning of the identification (printed), not a failure.
+# ladrc_replay exits 0 when it ran (its warnings printed); a status above 1 is a failure.
 run() { # name, command...
   local name=$1 rc=0
   shift

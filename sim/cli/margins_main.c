@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "ladrc/margins.h"
 #include "scenario/scenario.h"
@@ -21,6 +22,7 @@
 #include "run/tune_noise.h"
 #include "run/runner.h"
 #include "cli/replay_report.h"
+#include "cli/staged_dir.h"
 #include "log/log_convert.h"
 #include "log/log_identify.h"
 
@@ -37,12 +39,16 @@ static void usage(FILE *out)
 {
     fputs("usage: ladrc_margins SCENARIO [--controllers LIST] [--axis roll|pitch|yaw|all]\n"
           "                     [--inertia-factor F] [--csv DIR] [--tune] [--fly]\n"
-          "       ladrc_margins --from-log LOG [--format betaflight|px4|ardupilot|generic] [--map F=SOURCE]...\n"
-          "                     [--save-scenario FILE] [the options above]\n"
+          "       ladrc_margins --from-log LOG [--format betaflight|px4|ardupilot|generic]\n"
+          "                     [--map F=SOURCE]... [--dt S] [--from S] [--to S]\n"
+          "                     [--save-scenario FILE] [--strict] [the options above]\n"
           "  SCENARIO           an attitude scenario file (docs/scenario-format.md)\n"
           "  --from-log LOG     the airframe identified from a flight log (docs/flight-logs.md),\n"
-          "                     its controllers tuned by tune = margins; --format, --map as ladrc_replay's;\n"
-          "                     --save-scenario writes that airframe's scenario\n"
+          "                     its controllers tuned by tune = margins; --format, --map, --dt,\n"
+          "                     --from, --to as ladrc_replay's; --save-scenario writes that\n"
+          "                     airframe's scenario (not over the log itself); a controller that\n"
+          "                     does not start at the log's rate or is untunable is named with\n"
+          "                     its reason, the others analysed\n"
           "  --controllers L    comma-separated subset of HP-MLADRC,LP-MLADRC,LADRC,PID,CASCADED,INDI\n"
           "  --axis A           axis to analyse (default: all)\n"
           "  --inertia-factor F true inertia = F times the scenario's (default 1)\n"
@@ -57,8 +63,9 @@ static void usage(FILE *out)
           "that misses its targets is a warning (the best candidate's gains are\n"
           "analysed); a controller with no candidate that flies the check flight is\n"
           "untunable. Exit status 0, 1 if an analysis failed or a loop is unstable,\n"
-          "2 for bad usage or a bad scenario, 4 when, else clean, a controller was\n"
-          "untunable.\n",
+          "2 for bad usage, a bad scenario or a refused log, 4 when, else clean, a\n"
+          "controller was untunable; with --from-log an untunable controller leaves\n"
+          "the status 0 unless --strict.\n",
           out);
 }
 
@@ -128,12 +135,23 @@ static void remove_prepared(void)
 }
 
 static int load_from_log(const char *log_path, sim_log_options_t *opt, int format_given, const char *save_path,
-                         sim_scenario_t *sc)
+                         sim_scenario_t *sc, sim_airframe_refused_t *refused)
 {
-    char err[1024];
+    char err[SIM_STAGED_PATH_LEN + 256];
     if (snprintf(opt->path, sizeof opt->path, "%s", log_path) >= (int)sizeof opt->path) {
         fprintf(stderr, "ladrc_margins: %s: path too long\n", log_path);
         return -1;
+    }
+    if (save_path != NULL) { /* the scenario saved over the log would lose it */
+        char dir[SIM_STAGED_PATH_LEN];
+        const char *slash = strrchr(save_path, '/');
+        const char *name = slash != NULL ? slash + 1 : save_path;
+        snprintf(dir, sizeof dir, "%.*s", slash != NULL ? (int)(slash - save_path) : 1,
+                 slash != NULL ? save_path : ".");
+        if (sim_staged_check_input(slash == save_path ? "/" : dir, &name, 1, log_path, err, sizeof err) != 0) {
+            fprintf(stderr, "ladrc_margins: --save-scenario: %s: give another path\n", err);
+            return -1;
+        }
     }
     sim_log_error_t lerr;
     if (sim_log_prepare(opt, format_given, &prepared, NULL, NULL, &lerr) != 0) {
@@ -149,22 +167,32 @@ static int load_from_log(const char *log_path, sim_log_options_t *opt, int forma
         return -1;
     }
     sim_report_identification(stdout, &airframe);
+    for (int i = 0; i < 3; ++i) {
+        char note[256];
+        if (sim_airframe_b0_note(&airframe, i, note, sizeof note)) {
+            printf("warning: %s\n", note);
+        }
+    }
     char *text = NULL;
     size_t len = 0;
     FILE *mem = open_memstream(&text, &len);
     const char *base = strrchr(log_path, '/');
-    const int rc = mem == NULL
-                       ? -1
-                       : sim_airframe_write(mem, &airframe, base != NULL ? base + 1 : log_path, NULL, err, sizeof err);
+    const int rc = mem == NULL ? -1
+                               : sim_airframe_write(mem, &airframe, base != NULL ? base + 1 : log_path, NULL, refused,
+                                                    err, sizeof err);
     if (mem == NULL || fclose(mem) != 0 || rc != 0) {
         fprintf(stderr, "ladrc_margins: %s: no airframe: %s\n", log_path, rc != 0 ? err : "out of memory");
         free(text);
         return -1;
     }
-    if (save_path != NULL) {
-        FILE *f = fopen(save_path, "w");
-        if (f == NULL || fputs(text, f) < 0 || fclose(f) != 0) {
-            fprintf(stderr, "ladrc_margins: --save-scenario: cannot write '%s'\n", save_path);
+    if (save_path != NULL) { /* a temporary name beside it, renamed into place once whole */
+        char tmp[SIM_STAGED_PATH_LEN + 32];
+        snprintf(tmp, sizeof tmp, "%s.partial-%ld", save_path, (long)getpid());
+        FILE *f = fopen(tmp, "w");
+        const int ok = f != NULL && fputs(text, f) >= 0;
+        if (f == NULL || (fclose(f) | !ok) != 0 || rename(tmp, save_path) != 0) {
+            fprintf(stderr, "ladrc_margins: --save-scenario: cannot write '%s': %s\n", save_path, strerror(errno));
+            unlink(tmp);
             free(text);
             return -1;
         }
@@ -188,7 +216,7 @@ int main(int argc, char **argv)
     sim_log_options_t log_opt;
     int format_given = 0;
     sim_log_options_default(&log_opt);
-    int axis_from = 0, axis_to = 2, tune = 0, fly = 0, n_override = 0;
+    int axis_from = 0, axis_to = 2, tune = 0, fly = 0, n_override = 0, strict = 0;
     double inertia_factor = 1.0;
     sim_controller_id_t ids[SIM_MAX_CONTROLLERS];
     for (int a = 1; a < argc; ++a) {
@@ -242,6 +270,17 @@ int main(int argc, char **argv)
             log_opt.map[log_opt.n_map++] = argv[++a];
         } else if (strcmp(arg, "--save-scenario") == 0 && a + 1 < argc) {
             save_path = argv[++a];
+        } else if (strcmp(arg, "--strict") == 0) {
+            strict = 1;
+        } else if ((strcmp(arg, "--dt") == 0 || strcmp(arg, "--from") == 0 || strcmp(arg, "--to") == 0) &&
+                   a + 1 < argc) {
+            char *end = NULL;
+            const double v = strtod(argv[++a], &end);
+            if (end == argv[a] || *end != '\0' || !isfinite(v) || v < 0.0) {
+                fprintf(stderr, "ladrc_margins: %s: expected a number >= 0, got '%s'\n", arg, argv[a]);
+                return 2;
+            }
+            *(arg[2] == 'd' ? &log_opt.dt_s : arg[2] == 'f' ? &log_opt.t_from_s : &log_opt.t_to_s) = v;
         } else if (arg[0] == '-' || path != NULL) {
             fprintf(stderr, "ladrc_margins: unknown, incomplete or extra argument '%s'\n", arg);
             usage(stderr);
@@ -255,9 +294,35 @@ int main(int argc, char **argv)
         return 2;
     }
     sim_parse_error_t perr;
-    if (from_log != NULL && load_from_log(from_log, &log_opt, format_given, save_path, &sc) != 0) {
+    static sim_airframe_refused_t refused;
+    if (from_log != NULL && load_from_log(from_log, &log_opt, format_given, save_path, &sc, &refused) != 0) {
         return 2;
     }
+    /* from a log: the controllers that do not start at its rate are named, not analysed */
+    int n_kept = 0, not_started = 0;
+    for (int k = 0; k < refused.n; ++k) {
+        int asked = n_override == 0;
+        for (int c = 0; c < n_override; ++c) {
+            asked |= ids[c] == refused.ids[k];
+        }
+        if (asked) {
+            printf("%-10s untunable: %s\n", sim_controller_name(refused.ids[k]), refused.reason[k]);
+            ++not_started;
+        }
+    }
+    for (int c = 0; c < n_override; ++c) {
+        int out = 0;
+        for (int k = 0; k < refused.n; ++k) {
+            out |= ids[c] == refused.ids[k];
+        }
+        if (!out) {
+            ids[n_kept++] = ids[c];
+        }
+    }
+    if (n_override > 0 && n_kept == 0) {
+        sc.n_controllers = 0;
+    }
+    n_override = n_kept;
     if ((from_log == NULL && sim_scenario_load(&sc, path, &perr) != 0) ||
         (n_override > 0 && sim_scenario_set_controllers(&sc, ids, n_override, &perr) != 0)) {
         if (perr.line > 0) {
@@ -406,5 +471,6 @@ int main(int argc, char **argv)
             }
         }
     }
-    return status == 0 && untunable > 0 ? 4 : status;
+    untunable += not_started;
+    return status == 0 && untunable > 0 && (from_log == NULL || strict) ? 4 : status;
 }

@@ -29,8 +29,9 @@ void sim_report_identification(FILE *out, const sim_airframe_t *a)
                 fprintf(out, "warning: %s: %s\n", AXIS[i], sim_ident_warning_text(bit));
             }
         }
-        if (!sim_ident_b0_told(&a->axis[i])) {
-            fprintf(out, "%s: b0 not told; the airframe flies b0 %.4g rad/s^2\n", AXIS[i], sim_airframe_b0(a, i));
+        char note[256];
+        if (sim_airframe_b0_note(a, i, note, sizeof note)) {
+            fprintf(out, "%s\n", note);
         }
         if (a->has_gyro_filter) {
             const sim_gyro_filter_axis_t *g = &a->gyro_filter[i];
@@ -66,8 +67,10 @@ int sim_write_identification_csv(const char *path, const sim_airframe_t *a)
         for (int k = 0; k < a->n_lines[i]; ++k) {
             fprintf(f, "%s%.6g", k > 0 ? " " : "", a->lines[i][k].hz);
         }
-        fprintf(f, ",%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", sim_ident_b0_told(x), sim_airframe_b0(a, i), x->b0_iv,
-                x->b0_iv_lo, x->b0_iv_hi, a->gyro_filter[i].delay_s, a->gyro_filter[i].vib_atten_db);
+        sim_airframe_b0_source_t from;
+        const double b0_flown = sim_airframe_b0(a, i, &from);
+        fprintf(f, ",%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", sim_ident_b0_told(x), b0_flown, x->b0_iv, x->b0_iv_lo,
+                x->b0_iv_hi, a->gyro_filter[i].delay_s, a->gyro_filter[i].vib_atten_db);
     }
     return (ferror(f) | fclose(f)) != 0 ? -1 : 0;
 }
@@ -137,21 +140,43 @@ void sim_report_replay(FILE *out, const sim_replay_t *r)
     }
 }
 
-static int write_summary(const char *path, const sim_replay_t *r, const sim_controller_id_t *untunable, int n_untunable)
+void sim_report_skipped(FILE *out, const sim_replay_skipped_t *skipped, int n_skipped)
+{
+    for (int c = 0; c < n_skipped; ++c) {
+        fprintf(out, "%s%s, not replayed: %s\n", skipped[c].untunable ? "untunable " : "",
+                sim_controller_name(skipped[c].id), skipped[c].reason);
+    }
+}
+
+/* text as a CSV cell: quoted, its quotes doubled, no line breaks */
+static void csv_cell(FILE *f, const char *prefix, const char *text)
+{
+    fprintf(f, "\"%s", prefix);
+    for (const char *p = text; *p != '\0'; ++p) {
+        if (*p == '"') {
+            fputs("\"\"", f);
+        } else {
+            fputc(*p == '\n' || *p == '\r' ? ' ' : *p, f);
+        }
+    }
+    fputc('"', f);
+}
+
+static int write_summary(const char *path, const sim_replay_t *r, const sim_replay_skipped_t *skipped, int n_skipped)
 {
     FILE *f = fopen(path, "w");
     if (f == NULL) {
         return -1;
     }
     fprintf(f, "source,axis,ticks,command_rms,command_std,noise_0_20hz,noise_20_100hz,noise_above_100hz,"
-               "difference_rms,estimate_mean_rad_s2,estimate_std_rad_s2,fault_ticks,faults,noise_above_20hz\n");
+               "difference_rms,estimate_mean_rad_s2,estimate_std_rad_s2,fault_ticks,faults,noise_above_20hz,status\n");
     for (int c = -1; c < r->n; ++c) {
         for (int i = 0; i < 3; ++i) {
             const sim_replay_axis_t *a = c < 0 ? &r->log_axis[i] : &r->axis[c][i];
             double bands[SIM_REPLAY_BANDS];
             band_rms(a, bands);
             const int est = c >= 0 && r->has_estimate[c];
-            fprintf(f, "%s,%s,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%lld,%u,%.9g\n",
+            fprintf(f, "%s,%s,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%lld,%u,%.9g,replayed\n",
                     c < 0 ? "LOG" : sim_controller_name(r->ids[c]), AXIS[i], a->command.n,
                     sim_replay_stat_rms(&a->command), sim_replay_stat_std(&a->command), bands[0], bands[1], bands[2],
                     c < 0 ? NAN : sim_replay_stat_rms(&a->difference), est ? a->estimate.mean : NAN,
@@ -160,12 +185,14 @@ static int write_summary(const char *path, const sim_replay_t *r, const sim_cont
                     sim_spectrum_band_rms(&a->spectrum, SIM_REPLAY_BAND_EDGES_HZ[1], INFINITY));
         }
     }
-    for (int c = 0; c < n_untunable; ++c) {
+    for (int c = 0; c < n_skipped; ++c) {
         for (int i = 0; i < 3; ++i) {
-            fprintf(f, "%s,%s", sim_controller_name(untunable[c]), AXIS[i]);
-            for (int k = 0; k < 12; ++k) { /* every column after the axis */
-                fputs(",untunable", f);
+            fprintf(f, "%s,%s", sim_controller_name(skipped[c].id), AXIS[i]);
+            for (int k = 0; k < 12; ++k) { /* every value column after the axis */
+                fputs(skipped[c].untunable ? ",untunable" : ",not_replayed", f);
             }
+            fputc(',', f);
+            csv_cell(f, skipped[c].untunable ? "untunable: " : "not replayed: ", skipped[c].reason);
             fputc('\n', f);
         }
     }
@@ -204,18 +231,15 @@ static int write_spectrum(const char *path, const sim_replay_t *r)
     return (ferror(f) | fclose(f)) != 0 ? -1 : 0;
 }
 
-int sim_write_replay_files(const char *dir, const sim_replay_t *r, const sim_controller_id_t *untunable,
-                           int n_untunable, char *why, size_t why_len)
+int sim_write_replay_files(const char *summary_path, const char *spectrum_path, const sim_replay_t *r,
+                           const sim_replay_skipped_t *skipped, int n_skipped, char *why, size_t why_len)
 {
-    char path[1024];
-    snprintf(path, sizeof path, "%s/replay_summary.csv", dir);
-    if (write_summary(path, r, untunable, n_untunable) != 0) {
-        snprintf(why, why_len, "%s: write failed", path);
+    if (write_summary(summary_path, r, skipped, n_skipped) != 0) {
+        snprintf(why, why_len, "%s: write failed", summary_path);
         return -1;
     }
-    snprintf(path, sizeof path, "%s/spectrum.csv", dir);
-    if (write_spectrum(path, r) != 0) {
-        snprintf(why, why_len, "%s: write failed", path);
+    if (write_spectrum(spectrum_path, r) != 0) {
+        snprintf(why, why_len, "%s: write failed", spectrum_path);
         return -1;
     }
     return 0;

@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The scenario of an identified airframe (airframe.h). */
+#define _POSIX_C_SOURCE 200809L /* open_memstream */
 #include "airframe.h"
 
 #include <math.h>
@@ -7,12 +8,18 @@
 #include <string.h>
 
 #include "filter_proposal.h"
+#include "plant/plant.h"
 #include "scenario/setup.h"
 
 #define RAD2DEG (180.0 / 3.14159265358979323846)
 #define SUBSTEPS_MIN 4
 
 static const char *const AXIS[3] = {"roll", "pitch", "yaw"};
+
+/* The controllers an identified airframe's scenario tunes and flies. */
+static const sim_controller_id_t CONTROLLERS[] = {SIM_CTRL_HP_MLADRC, SIM_CTRL_LP_MLADRC, SIM_CTRL_LADRC,
+                                                  SIM_CTRL_RATE_ADRC, SIM_CTRL_CASCADED,  SIM_CTRL_INDI};
+#define N_CONTROLLERS ((int)(sizeof CONTROLLERS / sizeof CONTROLLERS[0]))
 
 void sim_airframe_floor_band(double fs_hz, double *lo_hz, double *hi_hz)
 {
@@ -55,38 +62,93 @@ static double own_b0(const sim_ident_axis_t *x)
     return isfinite(x->b0_hi) && x->b0_hi > 0.0 ? fmax(x->b0_hi, x->b0) : NAN;
 }
 
-double sim_airframe_b0(const sim_airframe_t *a, int axis)
-{
-    const double b0 = own_b0(&a->axis[axis]);
-    return isfinite(b0) || axis == 2 ? b0 : own_b0(&a->axis[1 - axis]);
-}
-
-static const char *b0_source(const sim_airframe_t *a, int axis)
-{
-    if (sim_ident_b0_told(&a->axis[axis])) {
-        return "identified";
-    }
-    return isfinite(own_b0(&a->axis[axis])) ? "not told: its interval's upper end" : "not told: the other tilt axis's";
-}
-
 static int cmp_double(const void *a, const void *b)
 {
     const double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
 }
 
-static double median3(double a, double b, double c)
+/* The median of the axes' values that are told (finite and >= 0), or
+ * `otherwise` when none is: an axis with too few samples has none. */
+static double median_told(const double v[3], double otherwise)
 {
-    double v[3] = {a, b, c};
-    qsort(v, 3, sizeof v[0], cmp_double);
-    return v[1];
+    double told[3];
+    int n = 0;
+    for (int i = 0; i < 3; ++i) {
+        if (isfinite(v[i]) && v[i] >= 0.0) {
+            told[n++] = v[i];
+        }
+    }
+    qsort(told, (size_t)n, sizeof told[0], cmp_double);
+    return n == 0 ? otherwise : n == 2 ? 0.5 * (told[0] + told[1]) : told[n / 2];
+}
+
+/* The paper's vehicle's b0 on an axis (sim_vehicle_paper): the library's default airframe. */
+static double paper_b0(int axis)
+{
+    static sim_scenario_t sc; /* large; only its vehicle fields are read */
+    sim_vehicle_t v;
+    sim_vehicle_paper(&v);
+    memset(&sc, 0, sizeof sc);
+    sc.mass_kg = v.mass_kg;
+    sc.arm_m = v.arm_m;
+    sc.thrust_coeff_N_s2 = v.thrust_coeff_N_s2;
+    sc.yaw_coeff_Nm_s2 = v.yaw_coeff_Nm_s2;
+    sc.g_m_s2 = v.g_m_s2;
+    return sim_setup_authority_Nm(&sc, axis) / v.inertia_kg_m2[axis];
+}
+
+double sim_airframe_b0(const sim_airframe_t *a, int axis, sim_airframe_b0_source_t *source)
+{
+    const int partner = axis == 0 ? 1 : axis == 1 ? 0 : -1; /* roll and pitch: alike on a multirotor */
+    const double own = own_b0(&a->axis[axis]);
+    if (isfinite(own)) {
+        *source = sim_ident_b0_told(&a->axis[axis]) ? SIM_AIRFRAME_B0_IDENTIFIED : SIM_AIRFRAME_B0_INTERVAL_HI;
+        return own;
+    }
+    if (partner >= 0 && isfinite(own_b0(&a->axis[partner]))) {
+        *source = SIM_AIRFRAME_B0_OTHER_AXIS;
+        return own_b0(&a->axis[partner]);
+    }
+    *source = SIM_AIRFRAME_B0_DEFAULT;
+    return paper_b0(axis);
+}
+
+int sim_airframe_b0_note(const sim_airframe_t *a, int axis, char *buf, size_t len)
+{
+    sim_airframe_b0_source_t source;
+    const double b0 = sim_airframe_b0(a, axis, &source);
+    const char *why = a->axis[axis].b0 < 0.0       ? "came out negative (check the axis's sign: --map ...*-1)"
+                      : isfinite(a->axis[axis].b0) ? "is not told (see the identification's warnings)"
+                                                   : "is not told (too few samples)";
+    switch (source) {
+    case SIM_AIRFRAME_B0_IDENTIFIED:
+        buf[0] = '\0';
+        return 0;
+    case SIM_AIRFRAME_B0_INTERVAL_HI:
+        snprintf(buf, len,
+                 "%s: b0 %s: the scenario takes its interval's upper end, %.4g rad/s^2 (the larger b0, the gentler "
+                 "the gains)",
+                 AXIS[axis], why, b0);
+        break;
+    case SIM_AIRFRAME_B0_OTHER_AXIS:
+        snprintf(buf, len, "%s: b0 %s: the scenario takes %s's, %.4g rad/s^2", AXIS[axis], why, AXIS[axis ^ 1], b0);
+        break;
+    default:
+        snprintf(buf, len, "%s: b0 %s: the scenario takes the library's default airframe's, %.4g rad/s^2", AXIS[axis],
+                 why, b0);
+        break;
+    }
+    return 1;
 }
 
 /* The scenario's inertias: roll's and pitch's their authority over b0, yaw's a share of their sum. */
 static void inertias(const sim_airframe_t *a, double J[3])
 {
     for (int i = 0; i < 3; ++i) {
-        J[i] = i < 2 ? sim_airframe_inertia(i, sim_airframe_b0(a, i)) : SIM_AIRFRAME_YAW_INERTIA_SHARE * (J[0] + J[1]);
+        sim_airframe_b0_source_t from;
+        const double b0 = sim_airframe_b0(a, i, &from);
+        J[i] = i < 2 ? sim_airframe_inertia(i, b0) : SIM_AIRFRAME_YAW_INERTIA_SHARE * (J[0] + J[1]);
     }
 }
 
@@ -94,8 +156,8 @@ double sim_airframe_torque_per_command_Nm(const sim_airframe_t *a, int axis)
 {
     double J[3];
     inertias(a, J);
-    const double b0 = sim_airframe_b0(a, axis);
-    return b0 > 0.0 ? J[axis] * b0 : NAN;
+    sim_airframe_b0_source_t from;
+    return J[axis] * sim_airframe_b0(a, axis, &from);
 }
 
 /* One controller's section; the LADRC family's carries the logged controller's noise as its cap. */
@@ -112,24 +174,22 @@ static void write_controller(FILE *f, const sim_airframe_t *a, const char *name,
     fputc('\n', f);
 }
 
-int sim_airframe_write(FILE *f, const sim_airframe_t *a, const char *source, const char *noise_series, char *why,
-                       size_t why_len)
+/* The scenario's text, flying the listed controllers. */
+static void write_text(FILE *f, const sim_airframe_t *a, const char *source, const char *noise_series,
+                       const sim_controller_id_t *ids, int n_ids, const sim_airframe_refused_t *refused)
 {
-    double J[3], drag[3], b0[3];
+    double J[3], drag[3], b0[3], lag[3], delays[3];
     inertias(a, J);
     for (int i = 0; i < 3; ++i) {
-        b0[i] = sim_airframe_b0(a, i);
-        if (!isfinite(J[i]) || !(b0[i] > 0.0)) {
-            snprintf(why, why_len, "%s: no positive b0 identified, nor an interval with a positive upper end (%s)",
-                     AXIS[i],
-                     isfinite(a->axis[i].b0) ? "it came out negative: check the axis's sign" : "too few samples");
-            return -1;
-        }
-        drag[i] = fmax(a->axis[i].damping_per_s, 0.0) * J[i];
+        sim_airframe_b0_source_t from;
+        b0[i] = sim_airframe_b0(a, i, &from);
+        drag[i] = isfinite(a->axis[i].damping_per_s) ? fmax(a->axis[i].damping_per_s, 0.0) * J[i] : NAN;
+        lag[i] = a->axis[i].lag_s;
+        delays[i] = a->axis[i].delay_ticks;
     }
-    const double kt = median3(drag[0], drag[1], drag[2]);
-    const double tau = median3(a->axis[0].lag_s, a->axis[1].lag_s, a->axis[2].lag_s);
-    const int delay = (int)median3(a->axis[0].delay_ticks, a->axis[1].delay_ticks, a->axis[2].delay_ticks);
+    const double kt = median_told(drag, 0.0);
+    const double tau = median_told(lag, 0.0);
+    const int delay = (int)median_told(delays, 0.0);
     const double fs = 1.0 / a->dt_s;
     const double w2_hover = SIM_AIRFRAME_MASS_KG * SIM_AIRFRAME_G_M_S2 / (4.0 * SIM_AIRFRAME_THRUST_COEFF_N_S2);
     /* the plant step within the shortest time constant: the lag, and each J / kt */
@@ -153,9 +213,17 @@ int sim_airframe_write(FILE *f, const sim_airframe_t *a, const char *source, con
             AXIS[i], x->b0, x->b0_lo, x->b0_hi, 1e3 * x->lag_s, 1e3 * x->lag_lo_s, 1e3 * x->lag_hi_s, x->delay_ticks,
             x->delay_lo_ticks, x->delay_hi_ticks, x->r2,
             x->warnings ? "  (weak: see the identification's warnings)" : "");
+        char note[256];
+        if (sim_airframe_b0_note(a, i, note, sizeof note)) {
+            fprintf(f, "#   %s\n", note);
+        }
     }
+    static const char *const FROM[] = {"identified", "not told: its interval's upper end",
+                                       "not told: the other tilt axis's", "not told: the default airframe's"};
     for (int i = 0; i < 3; ++i) {
-        fprintf(f, "#   %-5s b0 flown %.4g rad/s^2 (%s)\n", AXIS[i], b0[i], b0_source(a, i));
+        sim_airframe_b0_source_t from;
+        (void)sim_airframe_b0(a, i, &from);
+        fprintf(f, "#   %-5s b0 flown %.4g rad/s^2 (%s)\n", AXIS[i], b0[i], FROM[from]);
     }
     fprintf(f,
             "# The vehicle is nominal (%.3g kg, arm %.3g m, thrust to weight 2): a command of 1 is its\n"
@@ -163,7 +231,15 @@ int sim_airframe_write(FILE *f, const sim_airframe_t *a, const char *source, con
             "# inertia is 0.9 (Jx + Jy) and its torque coefficient gives it yaw's b0.\n\n",
             SIM_AIRFRAME_MASS_KG, SIM_AIRFRAME_ARM_M);
     fprintf(f, "[run]\nduration_s = 30\ncontrol_dt_s = %.9g\nplant_substeps = %d\nseed = 1\n", a->dt_s, substeps);
-    fprintf(f, "controllers = HP-MLADRC LP-MLADRC LADRC RATE-ADRC CASCADED INDI\n\n");
+    fprintf(f, "controllers =");
+    for (int c = 0; c < n_ids; ++c) {
+        fprintf(f, " %s", sim_controller_name(ids[c]));
+    }
+    fputs("\n", f);
+    for (int c = 0; refused != NULL && c < refused->n; ++c) {
+        fprintf(f, "# not listed: %s\n", refused->reason[c]);
+    }
+    fputs("\n", f);
     fprintf(f, "[vehicle]\nmass_kg = %.9g\ninertia_kg_m2 = %.9g %.9g %.9g\narm_m = %.9g\n", SIM_AIRFRAME_MASS_KG, J[0],
             J[1], J[2], SIM_AIRFRAME_ARM_M);
     fprintf(f, "thrust_coeff_N_s2 = %.9g\nyaw_coeff_Nm_s2 = %.9g\nrot_drag_Nm_s = %.9g\ng_m_s2 = %.9g\n\n",
@@ -218,6 +294,63 @@ int sim_airframe_write(FILE *f, const sim_airframe_t *a, const char *source, con
     write_controller(f, a, "INDI", 0, "");
     fprintf(f, "[metrics]\nerror_window_s = 0 30\nsteady_window_s = 20 25\nsettle_band_deg = 0.5\nsettle_window_s = 1 "
                "3\n");
+}
+
+/* 0 when controller id starts on the airframe (its scenario, without the
+ * noise file, parses with it listed), else -1 with the parser's reason. */
+static int controller_starts(const sim_airframe_t *a, sim_controller_id_t id, char *why, size_t why_len)
+{
+    static sim_scenario_t probe; /* large */
+    char *text = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&text, &len);
+    if (mem == NULL) {
+        snprintf(why, why_len, "%s: out of memory", sim_controller_name(id));
+        return -1;
+    }
+    write_text(mem, a, "probe", NULL, &id, 1, NULL);
+    const int written = fclose(mem) == 0;
+    sim_parse_error_t err;
+    const int rc = written && sim_scenario_parse(&probe, text, "airframe.ini", &err) == 0 ? 0 : -1;
+    free(text);
+    if (rc != 0) {
+        char rate[48];
+        snprintf(rate, sizeof rate, " (at the log's %.4g Hz)", 1.0 / a->dt_s);
+        const char *msg = written ? err.message : "out of memory";
+        const size_t room = why_len > strlen(rate) ? why_len - strlen(rate) - 1 : 0;
+        const size_t n = strlen(msg) < room ? strlen(msg) : room; /* cut so that the rate is always said */
+        memcpy(why, msg, n);
+        why[n] = '\0';
+        strncat(why, rate, why_len - n - 1);
+    }
+    return rc;
+}
+
+int sim_airframe_write(FILE *f, const sim_airframe_t *a, const char *source, const char *noise_series,
+                       sim_airframe_refused_t *refused, char *why, size_t why_len)
+{
+    if (!(a->dt_s >= SIM_CONTROL_DT_MIN_S && a->dt_s <= SIM_CONTROL_DT_MAX_S)) {
+        snprintf(why, why_len, "a control period of %g s: a scenario's is %g to %g s (--dt resamples the log)", a->dt_s,
+                 SIM_CONTROL_DT_MIN_S, SIM_CONTROL_DT_MAX_S);
+        return -1;
+    }
+    sim_controller_id_t ids[N_CONTROLLERS];
+    int n = 0;
+    sim_airframe_refused_t none;
+    refused = refused != NULL ? refused : &none;
+    refused->n = 0;
+    for (int c = 0; c < N_CONTROLLERS; ++c) {
+        if (controller_starts(a, CONTROLLERS[c], refused->reason[refused->n], sizeof refused->reason[0]) == 0) {
+            ids[n++] = CONTROLLERS[c];
+        } else {
+            refused->ids[refused->n++] = CONTROLLERS[c];
+        }
+    }
+    if (n == 0) {
+        snprintf(why, why_len, "no controller starts on it: %s", refused->reason[0]);
+        return -1;
+    }
+    write_text(f, a, source, noise_series, ids, n, refused);
     if (ferror(f)) {
         snprintf(why, why_len, "write failed");
         return -1;

@@ -23,6 +23,7 @@
 #include "gyro_filter.h"
 #include "ident.h"
 #include "ladrc/gyro_filter.h"
+#include "scenario/scenario.h"
 #include "spectrum.h"
 
 /* The nominal vehicle of an identified airframe. */
@@ -62,20 +63,48 @@ double sim_airframe_inertia(int axis, double b0);
  * inertia_yaw equal b0_yaw. */
 double sim_airframe_yaw_coeff(double b0_yaw, double inertia_yaw);
 
-/* The b0 (rad/s^2) the scenario gives an axis: the identified one when the
- * log tells it (sim_ident_b0_told); else its interval's upper end, the side
- * a tuning is gentle on (the larger b0, the lower the gains: flown on the
- * smaller true b0 the loop loses gain, not margin); else, for roll or pitch,
- * the other one's. NaN when none of these is > 0. */
-double sim_airframe_b0(const sim_airframe_t *a, int axis);
+/* Where the b0 the scenario gives an axis comes from. */
+typedef enum {
+    SIM_AIRFRAME_B0_IDENTIFIED = 0, /* the log's, told (sim_ident_b0_told) */
+    SIM_AIRFRAME_B0_INTERVAL_HI,    /* not told: its interval's upper end, the side a tuning is gentle on */
+    SIM_AIRFRAME_B0_OTHER_AXIS,     /* roll's for pitch or pitch's for roll: alike on a multirotor */
+    SIM_AIRFRAME_B0_DEFAULT         /* the library's default airframe's (sim_vehicle_paper) */
+} sim_airframe_b0_source_t;
+
+/* The b0 (rad/s^2 per unit of command) the scenario gives axis `axis`: the
+ * identified one when the log tells it; else its interval's upper end when
+ * that is positive (the larger b0, the lower the gains: flown on the smaller
+ * true b0 the loop loses gain, not margin); else (negative: the command's
+ * sign does not match the gyro's) the other of roll and pitch by the same
+ * rule, else the library's default airframe's. */
+double sim_airframe_b0(const sim_airframe_t *a, int axis, sim_airframe_b0_source_t *source);
+
+/* 1 and a sentence in buf saying why axis's b0 is not the log's and what the
+ * scenario takes instead; 0 and "" when it is the log's. */
+int sim_airframe_b0_note(const sim_airframe_t *a, int axis, char *buf, size_t len);
+
+/* The controllers the scenario does not list: they do not start on the
+ * airframe (a rate their defaults refuse), each with the reason. */
+typedef struct {
+    int n;
+    sim_controller_id_t ids[SIM_MAX_CONTROLLERS];
+    char reason[SIM_MAX_CONTROLLERS][256];
+} sim_airframe_refused_t;
+
 /* The torque (N m) a command of 1 means on axis i of the scenario: the
- * axis's inertia times the b0 it flies (sim_airframe_b0; NaN when not > 0). */
+ * axis's inertia times its b0 (the b0 sim_airframe_b0 gives it). */
 double sim_airframe_torque_per_command_Nm(const sim_airframe_t *a, int axis);
 
 /* Writes the scenario to f: `source` names the log in its comment (a file
  * name, no folders), `noise_series` the noise file next to it (NULL: none).
- * Returns 0, or -1 when an axis has no usable b0 (the message in why). */
-int sim_airframe_write(FILE *f, const sim_airframe_t *a, const char *source, const char *noise_series, char *why,
-                       size_t why_len);
+ * It lists HP-MLADRC, LP-MLADRC, LADRC, RATE-ADRC, CASCADED and INDI, each
+ * tune = margins, less those that do not start at the log's rate (into
+ * *refused when not NULL, and named in the file's comments). An axis whose
+ * b0 is not told takes sim_airframe_b0's (said in the comments), the lag
+ * and delay the median of the axes that tell them. Returns 0, or -1 (the
+ * message in why) when the control period is outside a scenario's range
+ * or no controller starts. */
+int sim_airframe_write(FILE *f, const sim_airframe_t *a, const char *source, const char *noise_series,
+                       sim_airframe_refused_t *refused, char *why, size_t why_len);
 
 #endif

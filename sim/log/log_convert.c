@@ -5,6 +5,7 @@
 #include "log_convert.h"
 
 #include "log_ardupilot.h"
+#include "log_bbl.h"
 #include "log_dataflash.h"
 #include "log_file.h"
 #include "log_px4.h"
@@ -149,10 +150,20 @@ static int decode(sim_log_options_t *o, sim_log_prepared_t *p, sim_log_convert_p
         snprintf(o->path, sizeof o->path, "%s", base);
         return 0;
     }
-    case SIM_LOG_SOURCE_BBL:
-        return sim_log_fail(err, p->original, 0, 0,
-                            "a Betaflight blackbox log: this build does not decode it; give blackbox_decode's CSV "
-                            "(docs/flight-logs.md)");
+    case SIM_LOG_SOURCE_BBL: { /* the longest of its logs, as blackbox_decode's CSV */
+        sim_log_bbl_stats_t st;
+        char notes[sizeof err->message * 2];
+        if (sim_log_bbl_to_csv_stats(p->original, base, 0, progress, ctx, &st, err) != 0) {
+            return -1;
+        }
+        if (sim_log_bbl_stats_describe(&st, notes, sizeof notes) > 0) { /* several logs, corruption, a cut: said */
+            fprintf(stderr, "%s: %s\n", p->original, notes);
+        }
+        o->format = SIM_LOG_BETAFLIGHT;
+        return snprintf(o->path, sizeof o->path, "%s.csv", base) < (int)sizeof o->path
+                   ? 0
+                   : sim_log_fail(err, p->original, 0, 0, "path too long");
+    }
     case SIM_LOG_SOURCE_DATAFLASH: {
         char names[SIM_LOG_ARDUPILOT_TOPICS_MAX][SIM_LOG_ARDUPILOT_TYPE_LEN];
         const char *topics[SIM_LOG_ARDUPILOT_TOPICS_MAX];

@@ -2,6 +2,8 @@
 /* One CSV of a log: header, rows, the first rows held, the bracket (log_file.h). */
 #include "log_file.h"
 
+#include "log_units.h"
+
 #include <float.h>
 #include <math.h>
 #include <stdarg.h>
@@ -42,38 +44,110 @@ static double snap_whole(double x, double rel)
     return fabs(x - r) <= rel * fabs(x) + DBL_MIN ? r : x;
 }
 
-static int find_column(const sim_log_csv_t *c, const char *name)
+/* How a term's column was found in the header. */
+typedef enum { FOUND_NAME, FOUND_CONVERTED, FOUND_UNITLESS } found_t;
+
+static int same_text(const char *a, size_t a_len, const char *b, size_t b_len)
+{
+    return a_len == b_len && memcmp(a, b, a_len) == 0;
+}
+
+/* The header cell of a term's column and the factor its values take: the
+ * name itself; else, when the term names a unit (`gyroADC[0] (deg/s)`), the
+ * same base in another unit of that quantity (converted: blackbox_decode's
+ * unit flags) or with no unit (taken to be in the term's unit). -1: none. */
+static int find_column(const sim_log_csv_t *c, const char *name, double *factor, found_t *how)
 {
     const size_t n = strlen(name);
+    size_t base_len, unit_len, cell_base_len, cell_unit_len;
+    const char *unit, *cell_unit;
+    *factor = 1.0;
+    *how = FOUND_NAME;
     for (int i = 0; i < c->n_cells; ++i) {
-        if (c->cells[i].len == n && memcmp(c->cells[i].text, name, n) == 0) {
+        if (same_text(c->cells[i].text, c->cells[i].len, name, n)) {
+            return i;
+        }
+    }
+    sim_log_unit_split(name, n, &base_len, &unit, &unit_len);
+    if (unit_len == 0) {
+        return -1;
+    }
+    for (int i = 0; i < c->n_cells; ++i) {
+        sim_log_unit_split(c->cells[i].text, c->cells[i].len, &cell_base_len, &cell_unit, &cell_unit_len);
+        if (!same_text(c->cells[i].text, cell_base_len, name, base_len)) {
+            continue;
+        }
+        if (cell_unit_len == 0) {
+            *how = FOUND_UNITLESS;
+            return i;
+        }
+        if (sim_log_unit_factor(cell_unit, cell_unit_len, unit, unit_len, factor) == 0) {
+            *how = FOUND_CONVERTED;
             return i;
         }
     }
     return -1;
 }
 
+/* A header cell of the column's base in a unit that cannot be converted
+ * to the term's, or in one when the term names none: -1 when none. */
+static int find_other_unit(const sim_log_csv_t *c, const char *name)
+{
+    size_t base_len, unit_len, cell_base_len, cell_unit_len;
+    const char *unit, *cell_unit;
+    sim_log_unit_split(name, strlen(name), &base_len, &unit, &unit_len);
+    for (int i = 0; i < c->n_cells; ++i) {
+        sim_log_unit_split(c->cells[i].text, c->cells[i].len, &cell_base_len, &cell_unit, &cell_unit_len);
+        if (cell_unit_len > 0 && same_text(c->cells[i].text, cell_base_len, name, base_len)) {
+            return i;
+        }
+    }
+    return -1;
+}
+
+/* A required term's column missing, at the header line's end: what the
+ * header has of its base in another unit, and how a log would give it. */
+static int missing_column(const sim_log_file_t *f, const sim_log_item_t *it, int k, sim_log_error_t *err)
+{
+    char field[32], other[SIM_LOG_NAME_LEN + 64] = "";
+    const char *hint = sim_log_column_hint(it->term[k].column);
+    const int cell = find_other_unit(&f->csv, it->term[k].column);
+    sim_log_slot_name(it->slot, field, sizeof field);
+    if (cell >= 0) {
+        size_t base_len, unit_len;
+        const char *unit;
+        sim_log_unit_split(it->term[k].column, strlen(it->term[k].column), &base_len, &unit, &unit_len);
+        snprintf(other, sizeof other, "; the log has '%.*s'%s", shown(f->csv.cells[cell].len), f->csv.cells[cell].text,
+                 unit_len > 0 ? ", in a unit not convertible to the one named" : ": name the column with its unit");
+    }
+    return sim_log_fail(err, f->path, f->header_line, f->header_end, "no column '%s' (needed for %s)%s%s%s",
+                        it->term[k].column, field, other, hint != NULL ? ": " : "", hint != NULL ? hint : "");
+}
+
 /* The header's cell of every term; a required one missing is an error at
  * the header line's end. */
 static int resolve(sim_log_file_t *f, sim_log_error_t *err)
 {
-    char field[32];
     const sim_log_csv_t *c = &f->csv;
     for (int i = 0; i <= f->n_items; ++i) {
         const sim_log_item_t *it = f->item[i];
         int found = 0;
         for (int k = 0; k < it->n_terms; ++k) {
-            f->col[i][k] = find_column(c, it->term[k].column);
+            found_t how;
+            f->col[i][k] = find_column(c, it->term[k].column, &f->term_factor[i][k], &how);
             found |= f->col[i][k] >= 0;
             if (f->col[i][k] < 0 && !it->term[k].optional) {
-                sim_log_slot_name(it->slot, field, sizeof field);
-                return sim_log_fail(err, f->path, f->header_line, f->header_end, "no column '%s' (needed for %s)",
-                                    it->term[k].column, field);
+                return missing_column(f, it, k, err);
+            }
+            if (i == 0 && how == FOUND_UNITLESS) { /* blackbox_decode names its time's unit but under --raw */
+                return sim_log_fail(err, f->path, f->header_line, c->cells[f->col[i][k]].column,
+                                    "column '%s' has no unit: blackbox_decode --raw writes it so, with the fields' "
+                                    "deltas, not their values (decode without --raw)",
+                                    it->term[k].column);
             }
         }
         if (i == 0 && !found) { /* a time made of optional columns only */
-            return sim_log_fail(err, f->path, f->header_line, f->header_end, "no column '%s' (needed for time)",
-                                it->term[0].column);
+            return missing_column(f, it, 0, err);
         }
     }
     return 0;
@@ -142,7 +216,7 @@ static double item_sum(const sim_log_file_t *f, int i, int *first_col)
     for (int k = 0; k < f->item[i]->n_terms; ++k) {
         const int col = f->col[i][k];
         if (col >= 0) {
-            sum += f->cell_v[col];
+            sum += f->cell_v[col] * f->term_factor[i][k];
             if (*first_col < 0) {
                 *first_col = col;
             }

@@ -35,9 +35,13 @@ typedef struct {
     int n;
 } preset_item_t;
 
+/* blackbox_decode names the unit of the time and the gyro by its flags
+ * (--unit-frame-time us|ms|s, --unit-rotation raw|deg/s|rad/s): a term's
+ * `(unit)` reads the column in any of them, converted (log_units.h); the
+ * raw gyro, unsuffixed, is deg/s in Betaflight (its header's gyro_scale 1). */
 static const preset_item_t BETAFLIGHT[] = {
     {"time=time (us)*us", 1},
-    {"gyro[#]=gyroADC[#]*deg", 3},
+    {"gyro[#]=gyroADC[#] (deg/s)*deg", 3},
     {"gyro_raw[#]=?gyroUnfilt[#]*deg", 3},
     {"ref_rate[#]=?setpoint[#]*deg", 3},
     /* yaw's axisD[2] is usually not logged */
@@ -62,6 +66,38 @@ static const preset_item_t PX4[] = {
     {"motor[#]=?actuator_motors.control[#]", SIM_LOG_MAX_MOTORS},
     {"rotor_hz[#]=?esc_status.esc[#].esc_rpm*0.0166666667", SIM_LOG_MAX_MOTORS},
 };
+
+/* How a Betaflight log gets each column the preset reads (the switches are
+ * Betaflight 4.3's and later's; before, each group was always logged). */
+static const struct {
+    const char *base;
+    const char *hint;
+} HINTS[] = {
+    {"time", "blackbox_decode writes 'time (us)' under every --unit-frame-time (us, ms, s)"},
+    {"gyroADC", "logged unless blackbox_disable_gyro = ON; blackbox_decode names it 'gyroADC[i] (deg/s)' or "
+                "'(rad/s)' under --unit-rotation, plain under raw"},
+    {"axisP", "logged unless blackbox_disable_pids = ON"},
+    {"axisI", "logged unless blackbox_disable_pids = ON"},
+    {"axisD", "logged unless blackbox_disable_pids = ON"},
+    {"axisF", "logged unless blackbox_disable_pids = ON"},
+    {"setpoint", "logged unless blackbox_disable_setpoint = ON"},
+    {"gyroUnfilt", "logged by Betaflight 4.3 and later unless blackbox_disable_gyrounfilt = ON; before, "
+                   "debug_mode = GYRO_SCALED logs it as debug[0..2]"},
+    {"motor", "logged unless blackbox_disable_motors = ON"},
+    {"eRPM", "logged with dshot_bidir = ON unless blackbox_disable_rpm = ON"},
+    {"debug", "logged unless blackbox_disable_debug = ON; what it holds is the log's debug_mode"},
+};
+
+const char *sim_log_column_hint(const char *column)
+{
+    for (size_t i = 0; i < sizeof HINTS / sizeof HINTS[0]; ++i) {
+        const size_t n = strlen(HINTS[i].base);
+        if (strncmp(column, HINTS[i].base, n) == 0 && (column[n] == '[' || column[n] == ' ' || column[n] == '\0')) {
+            return HINTS[i].hint;
+        }
+    }
+    return NULL;
+}
 
 /* ArduPilot (docs/flight-logs.md has the table): the units ArduPilot logs
  * these fields in (IMU rad/s, ATT deg, RATE deg/s, RCOU us, ESC rpm), the

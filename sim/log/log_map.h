@@ -71,6 +71,11 @@ int sim_log_item_parse(const char *text, int topics, sim_log_item_t *it, char *m
 int sim_log_map_build(sim_log_map_t *m, sim_log_format_t format, const char *const *items, int n_items, char *msg,
                       size_t len);
 
+/* How a Betaflight log gets the column (`gyroADC[0]`, `time (us)`): the
+ * firmware's switch or blackbox_decode's flag, or NULL for a column the
+ * preset does not read. */
+const char *sim_log_column_hint(const char *column);
+
 /* The ArduPilot preset with the commands from RATE (with_rate) or from
  * PIDR/PIDP/PIDY (logs without RATE), then the caller's items. */
 int sim_log_map_build_ardupilot(sim_log_map_t *m, int with_rate, const char *const *items, int n_items, char *msg,

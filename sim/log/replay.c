@@ -40,8 +40,8 @@ int sim_replay_init(sim_replay_t *r, const sim_scenario_t *sc, const sim_control
                     size_t err_len)
 {
     memset(r, 0, sizeof *r);
-    if (n < 1 || n > SIM_MAX_CONTROLLERS) {
-        snprintf(err, err_len, "replay: %d controllers (1 to %d)", n, SIM_MAX_CONTROLLERS);
+    if (n < 0 || n > SIM_MAX_CONTROLLERS) { /* none: the log's own command alone */
+        snprintf(err, err_len, "replay: %d controllers (0 to %d)", n, SIM_MAX_CONTROLLERS);
         return -1;
     }
     const double fs = 1.0 / sc->control_dt_s;

@@ -292,7 +292,7 @@ static void test_the_airframe_scenario_has_the_identified_b0_lag_and_delay(void)
     size_t len = 0;
     FILE *mem = open_memstream(&text, &len);
     TEST_ASSERT_NOT_NULL(mem);
-    TEST_ASSERT_EQUAL_INT(0, sim_airframe_write(mem, &af, "test.csv", NULL, why, sizeof why));
+    TEST_ASSERT_EQUAL_INT(0, sim_airframe_write(mem, &af, "test.csv", NULL, NULL, why, sizeof why));
     TEST_ASSERT_EQUAL_INT(0, fclose(mem));
     sim_parse_error_t err;
     const int parsed = sim_scenario_parse(&sc, text, "airframe.ini", &err);
@@ -306,28 +306,107 @@ static void test_the_airframe_scenario_has_the_identified_b0_lag_and_delay(void)
     TEST_ASSERT_TRUE(fabs(sc.motor_tau_s - 0.025) < 1e-12);
     TEST_ASSERT_EQUAL_INT(3, sc.delay_ticks);
     /* b0 not told: the interval's upper end, the side a tuning is gentle on */
+    sim_airframe_b0_source_t from;
     af.axis[1].b0_lo = -20.0;
     af.axis[1].b0_hi = 400.0;
     TEST_ASSERT_FALSE(sim_ident_b0_told(&af.axis[1]));
-    TEST_ASSERT_TRUE(400.0 == sim_airframe_b0(&af, 1));
-    /* nothing positive on pitch: roll's */
+    TEST_ASSERT_TRUE(400.0 == sim_airframe_b0(&af, 1, &from));
+    TEST_ASSERT_EQUAL_INT(SIM_AIRFRAME_B0_INTERVAL_HI, from);
+    /* a negative b0 (the command's sign against the gyro's) is not the
+     * airframe's: pitch takes roll's, and the scenario's comment says why */
     af.axis[1].b0 = -5.0;
     af.axis[1].b0_hi = -1.0;
-    TEST_ASSERT_TRUE(b0[0] == sim_airframe_b0(&af, 1));
+    TEST_ASSERT_TRUE(b0[0] == sim_airframe_b0(&af, 1, &from));
+    TEST_ASSERT_EQUAL_INT(SIM_AIRFRAME_B0_OTHER_AXIS, from);
     mem = open_memstream(&text, &len);
-    TEST_ASSERT_EQUAL_INT(0, sim_airframe_write(mem, &af, "test.csv", NULL, why, sizeof why));
+    TEST_ASSERT_EQUAL_INT(0, sim_airframe_write(mem, &af, "test.csv", NULL, NULL, why, sizeof why));
     TEST_ASSERT_EQUAL_INT(0, fclose(mem));
+    TEST_ASSERT_NOT_NULL(strstr(text, "pitch: b0 came out negative"));
     TEST_ASSERT_NOT_NULL(strstr(text, "pitch b0 flown 240 rad/s^2 (not told: the other tilt axis's)"));
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_scenario_parse(&sc, text, "airframe.ini", &err), err.message);
     free(text);
-    /* nothing positive on yaw, which has no partner: no scenario, and why */
-    af.axis[2].b0 = -5.0;
-    af.axis[2].b0_hi = -1.0;
-    TEST_ASSERT_TRUE(isnan(sim_airframe_b0(&af, 2)));
+    TEST_ASSERT_TRUE(fabs(sim_setup_authority_Nm(&sc, 1) / sc.inertia_kg_m2[1] - b0[0]) <= 1e-8 * b0[0]);
+}
+
+/* A log at 47 Hz (a PX4 log's rate): the controllers whose defaults refuse
+ * the rate (LP-MLADRC's and HP-MLADRC's forgetting, lp_lambda0_per_s 100/s,
+ * and RATE-ADRC's rate gain, each above 1 / dt) are not listed and are
+ * named with the reason; the others are; no b0 told on any axis: the
+ * library's default airframe's. */
+static void test_an_airframe_at_47_hz_lists_the_controllers_that_start(void)
+{
+    static sim_airframe_t af;
+    static sim_scenario_t sc;
+    af.dt_s = 1.0 / 47.0;
+    for (int i = 0; i < 3; ++i) {
+        af.axis[i].b0 = NAN;
+        af.axis[i].lag_s = NAN;
+        af.axis[i].delay_ticks = -1;
+        af.axis[i].damping_per_s = NAN;
+    }
+    char *text = NULL, why[256];
+    size_t len = 0;
+    sim_airframe_refused_t refused;
+    FILE *mem = open_memstream(&text, &len);
+    TEST_ASSERT_NOT_NULL(mem);
+    TEST_ASSERT_EQUAL_INT(0, sim_airframe_write(mem, &af, "test.csv", NULL, &refused, why, sizeof why));
+    TEST_ASSERT_EQUAL_INT(0, fclose(mem));
+    sim_parse_error_t err;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_scenario_parse(&sc, text, "airframe.ini", &err), err.message);
+    TEST_ASSERT_NOT_NULL(strstr(text, "the library's default airframe's"));
+    free(text);
+    TEST_ASSERT_EQUAL_INT(3, refused.n);
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_HP_MLADRC, refused.ids[0]);
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_LP_MLADRC, refused.ids[1]);
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_RATE_ADRC, refused.ids[2]);
+    TEST_ASSERT_NOT_NULL(strstr(refused.reason[1], "LP-MLADRC does not start: "));
+    TEST_ASSERT_NOT_NULL(strstr(refused.reason[1], "lambda0"));
+    TEST_ASSERT_NOT_NULL(strstr(refused.reason[1], "(at the log's 47 Hz)"));
+    TEST_ASSERT_NOT_NULL(strstr(refused.reason[2], "radrc_kp_per_s * dt_s < 1"));
+    TEST_ASSERT_EQUAL_INT(3, sc.n_controllers); /* LADRC, CASCADED, INDI */
+    TEST_ASSERT_EQUAL_INT(0, sc.delay_ticks);
+    sim_airframe_b0_source_t source;
+    TEST_ASSERT_EQUAL_INT(SIM_AIRFRAME_B0_DEFAULT, (sim_airframe_b0(&af, 2, &source), source));
+    /* below 10 Hz no scenario: refused with the reason */
+    af.dt_s = 0.2;
     mem = open_memstream(&text, &len);
-    TEST_ASSERT_EQUAL_INT(-1, sim_airframe_write(mem, &af, "test.csv", NULL, why, sizeof why));
+    TEST_ASSERT_EQUAL_INT(-1, sim_airframe_write(mem, &af, "test.csv", NULL, NULL, why, sizeof why));
     fclose(mem);
     free(text);
-    TEST_ASSERT_NOT_NULL(strstr(why, "yaw"));
+    TEST_ASSERT_NOT_NULL(strstr(why, "--dt"));
+}
+
+/* The longest delay the identification finds (40 ticks, SIM_IDENT_MAX_DELAY)
+ * reaches the scenario and every controller's actuator model alike. */
+static void test_the_longest_delay_reaches_every_controller(void)
+{
+    static sim_airframe_t af;
+    static sim_scenario_t sc;
+    af.dt_s = 0.001;
+    for (int i = 0; i < 3; ++i) {
+        af.axis[i].b0 = 120.0;
+        af.axis[i].lag_s = 0.03;
+        af.axis[i].delay_ticks = SIM_IDENT_MAX_DELAY - (i == 0);
+        af.axis[i].damping_per_s = 10.0;
+    }
+    char *text = NULL, why[256];
+    size_t len = 0;
+    FILE *mem = open_memstream(&text, &len);
+    TEST_ASSERT_NOT_NULL(mem);
+    TEST_ASSERT_EQUAL_INT(0, sim_airframe_write(mem, &af, "test.csv", NULL, NULL, why, sizeof why));
+    TEST_ASSERT_EQUAL_INT(0, fclose(mem));
+    sim_parse_error_t err;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_scenario_parse(&sc, text, "airframe.ini", &err), err.message);
+    free(text);
+    TEST_ASSERT_EQUAL_INT(SIM_IDENT_MAX_DELAY, sc.delay_ticks);
+    TEST_ASSERT_EQUAL_INT(6, sc.n_controllers);
+    for (int c = 0; c < sc.n_controllers; ++c) {
+        ladrc_attitude_config_t cfg;
+        sim_setup_attitude(&sc, sc.controllers[c], &cfg);
+        for (int i = 0; i < 3; ++i) {
+            TEST_ASSERT_EQUAL_INT(SIM_IDENT_MAX_DELAY, cfg.axis[i].delay_ticks);
+        }
+    }
 }
 
 /* The instrumental-variable b0 (the rate setpoint as the instrument) on
@@ -510,5 +589,7 @@ int main(void)
     RUN_TEST(test_b0_told_needs_a_positive_interval_within_its_ratio);
     RUN_TEST(test_the_gyro_filters_delay_and_attenuation);
     RUN_TEST(test_the_cache_gives_back_its_samples);
+    RUN_TEST(test_an_airframe_at_47_hz_lists_the_controllers_that_start);
+    RUN_TEST(test_the_longest_delay_reaches_every_controller);
     return UNITY_END();
 }

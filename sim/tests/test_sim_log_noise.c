@@ -110,7 +110,7 @@ static void test_the_airframe_caps_the_family_in_newton_metres_and_flies_the_sta
     airframe(&a);
     FILE *f = temp_file();
     char why[256];
-    TEST_ASSERT_EQUAL_INT(0, sim_airframe_write(f, &a, "test.csv", NULL, why, sizeof why));
+    TEST_ASSERT_EQUAL_INT(0, sim_airframe_write(f, &a, "test.csv", NULL, NULL, why, sizeof why));
     TEST_ASSERT_EQUAL_INT(0, fclose(f));
     sim_parse_error_t err;
     TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_scenario_load(&sc, path, &err), err.message);
