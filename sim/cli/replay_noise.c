@@ -131,12 +131,18 @@ void sim_replay_noise_report(FILE *out, const sim_scenario_t *sc, const sim_repl
     fprintf(out, "the LADRC family's quietest against the log's:");
     for (int i = 0; i < 3; ++i) {
         const double log = sim_spectrum_band_rms(&r->log_axis[i].spectrum, LADRC_MARGINS_NOISE_CORNER_HZ, INFINITY);
-        fprintf(out, " %s %.4g %s %.4g", AXIS[i], quietest[i], quietest[i] <= log ? "<=" : "ABOVE", log);
+        fprintf(out, " %s %.4g %s %.4g", AXIS[i], quietest[i],
+                quietest[i] <= log ? "<=" : (isnan(quietest[i]) || isnan(log) ? "?" : "ABOVE"), log);
     }
     fputc('\n', out);
     for (int i = 0; i < 3; ++i) {
         const double log = sim_spectrum_band_rms(&r->log_axis[i].spectrum, LADRC_MARGINS_NOISE_CORNER_HZ, INFINITY);
         if (quietest[i] <= log) {
+            continue;
+        }
+        if (isnan(quietest[i]) || isnan(log)) {
+            fprintf(out, "  %s: no noise figure above %.0f Hz: the log is shorter than one spectrum segment\n", AXIS[i],
+                    LADRC_MARGINS_NOISE_CORNER_HZ);
             continue;
         }
         /* the family's lowest prediction says which side of the tuning the excess lies on */
