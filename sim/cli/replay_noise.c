@@ -131,7 +131,44 @@ void sim_replay_noise_report(FILE *out, const sim_scenario_t *sc, const sim_repl
     fprintf(out, "the LADRC family's quietest against the log's:");
     for (int i = 0; i < 3; ++i) {
         const double log = sim_spectrum_band_rms(&r->log_axis[i].spectrum, LADRC_MARGINS_NOISE_CORNER_HZ, INFINITY);
-        fprintf(out, " %s %.4g %s %.4g", AXIS[i], quietest[i], quietest[i] <= log ? "<=" : "ABOVE", log);
+        fprintf(out, " %s %.4g %s %.4g", AXIS[i], quietest[i],
+                quietest[i] <= log ? "<=" : (isnan(quietest[i]) || isnan(log) ? "?" : "ABOVE"), log);
     }
     fputc('\n', out);
+    for (int i = 0; i < 3; ++i) {
+        const double log = sim_spectrum_band_rms(&r->log_axis[i].spectrum, LADRC_MARGINS_NOISE_CORNER_HZ, INFINITY);
+        if (quietest[i] <= log) {
+            continue;
+        }
+        if (isnan(quietest[i]) || isnan(log)) {
+            fprintf(out, "  %s: no noise figure above %.0f Hz: the log is shorter than one spectrum segment\n", AXIS[i],
+                    LADRC_MARGINS_NOISE_CORNER_HZ);
+            continue;
+        }
+        /* the family's lowest prediction says which side of the tuning the excess lies on */
+        double lowest = INFINITY;
+        for (int c = 0; c < r->n; ++c) {
+            const sim_tuning_t *t = &sc->tuning[r->ids[c]];
+            if (in_family(r->ids[c]) && t->tuned) {
+                lowest = fmin(lowest, t->cmd_noise_Nm[i] / r->authority_Nm[i]);
+            }
+        }
+        if (isinf(lowest)) {
+            fprintf(out,
+                    "  %s: above the log's by %.3gx; no member of the family was tuned for this airframe (the "
+                    "library's defaults fly): nothing predicted\n",
+                    AXIS[i], quietest[i] / log);
+        } else if (!(lowest <= log)) {
+            fprintf(out,
+                    "  %s: above the log's: no tuned gains of the family reach it even as predicted (lowest %.4g, "
+                    "%.3gx the log's)\n",
+                    AXIS[i], lowest, lowest / log);
+        } else {
+            fprintf(out,
+                    "  %s: above the log's by %.3gx though predicted within it (lowest %.4g): the excess is what "
+                    "the prediction does not count (the setpoint's steps through the reference shapers, the "
+                    "flight's own motion above %.0f Hz)\n",
+                    AXIS[i], quietest[i] / log, lowest, LADRC_MARGINS_NOISE_CORNER_HZ);
+        }
+    }
 }

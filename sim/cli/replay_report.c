@@ -114,6 +114,9 @@ static void band_rms(const sim_replay_axis_t *a, double out[SIM_REPLAY_BANDS])
 
 void sim_report_replay(FILE *out, const sim_replay_t *r)
 {
+    char smoothing[256];
+    setpoint_smooth_describe(&r->setpoint, smoothing, sizeof smoothing);
+    fprintf(out, "%s (every controller)\n", smoothing);
     fprintf(out, "replay of %lld ticks: commands normalised (1: full authority); noise as rms per band\n", r->ticks);
     fprintf(out, "%-10s %-5s %9s %9s %9s %9s %9s %12s %10s\n", "source", "axis", "rms", "0-20 Hz", "20-100 Hz",
             ">100 Hz", "vs log", "est. mean", "fault ticks");

@@ -53,6 +53,7 @@ int sim_replay_init(sim_replay_t *r, const sim_scenario_t *sc, const sim_control
         sim_spectrum_init(&r->gyro[i], fs);
         sim_spectrum_init(&r->gyro_raw[i], fs);
     }
+    setpoint_smooth_init(&r->setpoint, sc->control_dt_s);
     r->filter_on = sim_setup_filters_gyro(sc);
     if (r->filter_on) {
         ladrc_gyro_filter_config_t fc;
@@ -92,18 +93,30 @@ static ladrc_quat_t to_quat(const double q[4])
 }
 
 /* The attitude and reference as quaternions: the log's own, else composed from the angles. */
-static void quats_of(const sim_log_sample_t *s, unsigned has, double q[4], double q_ref[4])
+static void quats_of(const sim_log_sample_t *s, unsigned has, const double ref_angle_rad[3], int smoothed, double q[4],
+                     double q_ref[4])
 {
     if (has & SIM_LOG_HAS_ANGLE) {
         memcpy(q, s->quat, 4 * sizeof q[0]);
     } else {
         sim_quat_from_euler(s->angle_rad, q);
     }
-    if (has & SIM_LOG_HAS_REF_ANGLE) {
+    if (smoothed) {
+        sim_quat_from_euler(ref_angle_rad, q_ref); /* the smoothed setpoint's */
+    } else if (has & SIM_LOG_HAS_REF_ANGLE) {
         memcpy(q_ref, s->ref_quat, 4 * sizeof q_ref[0]);
     } else {
-        sim_quat_from_euler(s->ref_angle_rad, q_ref);
+        sim_quat_from_euler(ref_angle_rad, q_ref);
     }
+}
+
+/* The log's reference angles as the controllers get them: smoothed as a
+ * stack smooths its link's steps (counted on the rate setpoint when logged). */
+static int reference_of(sim_replay_t *r, const sim_log_sample_t *s, unsigned has, double ref_rad[3])
+{
+    memcpy(ref_rad, s->ref_angle_rad, 3 * sizeof ref_rad[0]);
+    setpoint_smooth_step(&r->setpoint, (has & SIM_LOG_HAS_REF_RATE) ? s->ref_rate_rad_s : s->ref_angle_rad, ref_rad);
+    return r->setpoint.state == SETPOINT_SMOOTH_ON;
 }
 
 /* The scenario's stage over the gyro its noise came from (replay.h); a
@@ -134,12 +147,14 @@ void sim_replay_step(sim_replay_t *r, const sim_log_sample_t *s, unsigned has, s
     double values[TICK_SPECTRA];
     int n_spectra = 0;
     ladrc_real_t rate[3], applied[3], angle[3], ref[3];
+    double ref_rad[3];
+    const int smoothed = reference_of(r, s, has, ref_rad);
     for (int i = 0; i < 3; ++i) {
         rate[i] = (ladrc_real_t)s->gyro_rad_s[i];
         /* the torque that acted, as the simulator's controllers are told it */
         applied[i] = (ladrc_real_t)(s->command[i] * r->authority_Nm[i]);
         angle[i] = (ladrc_real_t)s->angle_rad[i];
-        ref[i] = (ladrc_real_t)s->ref_angle_rad[i];
+        ref[i] = (ladrc_real_t)ref_rad[i];
         spectra[n_spectra] = &r->gyro[i];
         values[n_spectra++] = s->gyro_rad_s[i];
         if (has & SIM_LOG_HAS_GYRO_RAW) {
@@ -156,7 +171,7 @@ void sim_replay_step(sim_replay_t *r, const sim_log_sample_t *s, unsigned has, s
     ladrc_quat_t meas = {LADRC_R(1.0), 0, 0, 0}, qref = {LADRC_R(1.0), 0, 0, 0};
     if (r->quat_frame) {
         double q[4], q_ref[4];
-        quats_of(s, has, q, q_ref);
+        quats_of(s, has, ref_rad, smoothed, q, q_ref);
         meas = to_quat(q);
         qref = to_quat(q_ref);
     }

@@ -18,7 +18,8 @@
  * else its gyro (filtered by the log's stack already: the stage then comes
  * on top, as flying that scenario on that gyro would); the RPM notches on
  * the log's rotor speeds, else the scenario's hover speed; the angles are
- * not filtered. Not replayed: flight phases and the gain schedule.
+ * not filtered. The log's setpoint reaches every controller smoothed as a
+ * flight stack smooths its radio link's steps (setpoint_smooth.h). Not replayed: flight phases and the gain schedule.
  */
 #ifndef LADRC_SIM_REPLAY_H
 #define LADRC_SIM_REPLAY_H
@@ -29,6 +30,7 @@
 #include "ladrc/gyro_filter.h"
 #include "log.h"
 #include "scenario/scenario.h"
+#include "setpoint_smooth.h"
 #include "spectrum.h"
 
 /* The frequency bands the command's noise is told in (Hz): [0, 20), [20, 100), [100, Nyquist]. */
@@ -65,6 +67,7 @@ typedef struct {
     int filter_on;                /* the scenario's gyro filter stage, run on the rates */
     ladrc_gyro_filter_t filter;   /* at rest on 0 at the start, as in flight */
     double filter_hover_rotor_hz; /* its RPM notches' speed when the log has none (Hz) */
+    setpoint_smooth_t setpoint;   /* the log's setpoint as a stack smooths it, the same for every controller */
     long long ticks;
 } sim_replay_t;
 
