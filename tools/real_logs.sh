@@ -15,6 +15,8 @@
 #   --replay BIN  the ladrc_replay to run (default: $LADRC_REPLAY, else
 #                 build/host-release/sim/ladrc_replay)
 #   --keep OUT    keep each run's outputs in OUT/<n>-<log name> (default: removed)
+#   --noise M     gate (default): a LADRC family louder than the log above 20 Hz fails
+#                 the log; report: said on its line, not failed
 # Environment: REAL_LOGS_TIMEOUT_S, the limit of one run (default 1800 s).
 # Exit status 0 when every log passes, 1 when one fails, 2 for bad usage or no log.
 set -uo pipefail
@@ -22,11 +24,13 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 dir=$root/tests/data/real_logs
 replay=${LADRC_REPLAY:-$root/build/host-release/sim/ladrc_replay}
 keep=
+noise=gate
 positional=0
 while [[ $# -gt 0 ]]; do
   case $1 in
     --replay) replay=${2:?--replay needs a path}; shift 2 ;;
     --keep) keep=${2:?--keep needs a directory}; shift 2 ;;
+    --noise) noise=${2:?--noise needs gate or report}; shift 2 ;;
     -h|--help) sed -n '2,21p' "$0"; exit 0 ;;
     -*) echo "real_logs.sh: unknown option $1" >&2; exit 2 ;;
     *) [[ $positional -eq 0 ]] || { echo "real_logs.sh: one DIR only" >&2; exit 2; }
@@ -73,7 +77,7 @@ for log in "${logs[@]}"; do
   end=$(date +%s.%N)
   seconds=$(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.2f", b - a }')
   if "$py" "$root/tools/real_logs_report.py" --log "${log#"$root"/}" --status "$status" --out "$run" \
-      --stdout "$work/$n.out" --stderr "$work/$n.err" --seconds "$seconds"; then
+      --stdout "$work/$n.out" --stderr "$work/$n.err" --seconds "$seconds" --noise "$noise"; then
     passed=$((passed + 1))
   else
     failed=$((failed + 1))

@@ -150,6 +150,11 @@ static void inertias(const sim_airframe_t *a, double J[3])
         const double b0 = sim_airframe_b0(a, i, &from);
         J[i] = i < 2 ? sim_airframe_inertia(i, b0) : SIM_AIRFRAME_YAW_INERTIA_SHARE * (J[0] + J[1]);
     }
+    /* a rigid body: each inertia at most the sum of the other two. Roll's and
+     * pitch's b0 far apart (a weakly told axis) would break it; yaw's
+     * inertia then grows to their difference, its b0 kept through its torque
+     * coefficient (sim_airframe_yaw_coeff) */
+    J[2] = fmax(J[2], fabs(J[0] - J[1]));
 }
 
 double sim_airframe_torque_per_command_Nm(const sim_airframe_t *a, int axis)

@@ -8,7 +8,8 @@
  * inertia: the scenario takes a nominal vehicle (1 kg, 0.1 m arm, thrust to
  * weight 2) whose torque authority (sim_setup_authority_Nm) is what a
  * command of 1 means, and the inertia J = authority / b0 on roll and pitch;
- * yaw's inertia is SIM_AIRFRAME_YAW_INERTIA_SHARE of their sum and its torque
+ * yaw's inertia is SIM_AIRFRAME_YAW_INERTIA_SHARE of their sum (at least their
+ * difference: a rigid body) and its torque
  * coefficient is set to give yaw's b0: the plant's b0 is the log's on every
  * axis. Rate damping: the median over the axes
  * of a J. Motor lag: the median of the axes'. Delay: the median in ticks.
