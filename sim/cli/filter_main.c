@@ -15,6 +15,7 @@
 
 #include "ladrc/gyro_filter.h"
 #include "ladrc/margins.h"
+#include "cli/cli_number.h"
 #include "log/filter_proposal.h"
 #include "log/log_convert.h"
 #include "log/log_noise.h"
@@ -56,18 +57,6 @@ static void usage(FILE *out)
           out);
 }
 
-static int number(const char *flag, const char *text, double *v)
-{
-    char *end = NULL;
-    errno = 0;
-    *v = strtod(text, &end);
-    if (end == text || *end != '\0' || errno != 0 || !isfinite(*v) || *v < 0.0) {
-        fprintf(stderr, "ladrc_filter: %s: expected a number >= 0, got '%s'\n", flag, text);
-        return -1;
-    }
-    return 0;
-}
-
 /* One stage option at argv[a] with its value; 1 when it was one, 0 when
  * not, -1 on a bad value. */
 static int stage_option(options_t *o, const char *arg, const char *val)
@@ -82,7 +71,7 @@ static int stage_option(options_t *o, const char *arg, const char *val)
         return 0;
     }
     double v;
-    if (number(arg, val, &v) != 0) {
+    if (sim_cli_number("ladrc_filter", arg, val, &v) != 0) {
         return -1;
     }
     ladrc_gyro_filter_config_t *c = &o->cfg;
@@ -172,7 +161,7 @@ static int parse_args(int argc, char **argv, options_t *o)
             o->log.map[o->log.n_map++] = argv[++a];
         } else if (strcmp(arg, "--dt") == 0 || strcmp(arg, "--from") == 0 || strcmp(arg, "--to") == 0 ||
                    strcmp(arg, "--crossover") == 0) {
-            if (number(arg, argv[++a], &v) != 0) {
+            if (sim_cli_number("ladrc_filter", arg, argv[++a], &v) != 0) {
                 return -1;
             }
             *(arg[2] == 'd'   ? &o->log.dt_s

@@ -15,6 +15,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "cli/cli_number.h"
 #include "cli/fly.h"
 #include "cli/replay_noise.h"
 #include "cli/replay_report.h"
@@ -75,18 +76,6 @@ static void usage(FILE *out)
           out);
 }
 
-static int parse_number(const char *flag, const char *text, double *v)
-{
-    char *end = NULL;
-    errno = 0;
-    *v = strtod(text, &end);
-    if (end == text || *end != '\0' || errno != 0 || !isfinite(*v) || *v < 0.0) {
-        fprintf(stderr, "ladrc_replay: %s: expected a number >= 0, got '%s'\n", flag, text);
-        return -1;
-    }
-    return 0;
-}
-
 static int parse_args(int argc, char **argv, options_t *o)
 {
     memset(o, 0, sizeof *o);
@@ -124,7 +113,7 @@ static int parse_args(int argc, char **argv, options_t *o)
             }
             o->log.map[o->log.n_map++] = argv[++a];
         } else if (strcmp(arg, "--dt") == 0 || strcmp(arg, "--from") == 0 || strcmp(arg, "--to") == 0) {
-            if (parse_number(arg, argv[++a], &v) != 0) {
+            if (sim_cli_number("ladrc_replay", arg, argv[++a], &v) != 0) {
                 return -1;
             }
             *(arg[2] == 'd' ? &o->log.dt_s : arg[2] == 'f' ? &o->log.t_from_s : &o->log.t_to_s) = v;
@@ -140,7 +129,7 @@ static int parse_args(int argc, char **argv, options_t *o)
         } else if (strcmp(arg, "--out") == 0) {
             o->out_dir = argv[++a];
         } else if (strcmp(arg, "--every") == 0) {
-            if (parse_number(arg, argv[++a], &v) != 0 || v != floor(v) || v > 1e9) {
+            if (sim_cli_number("ladrc_replay", arg, argv[++a], &v) != 0 || v != floor(v) || v > 1e9) {
                 fprintf(stderr, "ladrc_replay: --every: expected a whole number of ticks\n");
                 return -1;
             }

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli/cli_number.h"
 #include "cli/fly.h"
 #include "log/log_reference.h"
 #include "log/log_views.h"
@@ -31,18 +32,6 @@ static void usage(FILE *out)
           "                    for a scenario's [reference] series; --seconds S: its first S seconds\n"
           "Exit status 0; 2 for bad usage or a refused log (nothing written).\n",
           out);
-}
-
-static int parse_seconds(const char *flag, const char *text, double *v)
-{
-    char *end = NULL;
-    errno = 0;
-    *v = strtod(text, &end);
-    if (end == text || *end != '\0' || errno != 0 || !isfinite(*v) || *v < 0.0) {
-        fprintf(stderr, "ladrc_views: %s: expected a number >= 0, got '%s'\n", flag, text);
-        return -1;
-    }
-    return 0;
 }
 
 int main(int argc, char **argv)
@@ -79,7 +68,7 @@ int main(int argc, char **argv)
             }
             cur.map[cur.n_map++] = argv[++a];
         } else if (strcmp(arg, "--dt") == 0 || strcmp(arg, "--seconds") == 0) {
-            if (parse_seconds(arg, val, arg[2] == 'd' ? &cur.dt_s : &seconds) != 0) {
+            if (sim_cli_number("ladrc_views", arg, val, arg[2] == 'd' ? &cur.dt_s : &seconds) != 0) {
                 return 2;
             }
             ++a;
