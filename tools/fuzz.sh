@@ -10,7 +10,7 @@
 #   --time S      each target for S seconds
 #   --runs N      N executions of each target
 #   --build-only  build the targets, run nothing
-#   TARGET        fuzz_scenario, fuzz_expr, fuzz_log, fuzz_ulog, fuzz_bbl (default: every tests/fuzz/fuzz_*.c)
+#   TARGET        fuzz_scenario, fuzz_expr, fuzz_log, fuzz_ulog, fuzz_bbl, fuzz_dataflash (default: every tests/fuzz/fuzz_*.c)
 #
 # Prints per target the executions, their rate, the corpus and the findings
 # (crash, leak, undefined behaviour, failed check, timeout, out of memory),
