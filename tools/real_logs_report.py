@@ -170,7 +170,7 @@ def main(argv=None):
     for axis in AXES:
         log_noise, how = noise_above_20hz(replayed[LOG_SOURCE][axis])
         if not math.isfinite(log_noise):
-            # no Welch segment: the replay is shorter than one (sim/log/spectrum.h)
+            # no Welch segment: the replay is shorter than one (sim/run/spectrum.h)
             failures.append(f"{axis}: the log's noise not measured (replay shorter than a spectrum segment)")
             print(f"   {axis:5s}  log's noise not measured: the replay is shorter than one spectrum segment")
             continue

@@ -25,7 +25,7 @@
 #include "ident.h"
 #include "ladrc/gyro_filter.h"
 #include "scenario/scenario.h"
-#include "spectrum.h"
+#include "run/spectrum.h"
 
 /* The nominal vehicle of an identified airframe. */
 #define SIM_AIRFRAME_MASS_KG 1.0

@@ -18,7 +18,7 @@
 #include <stdio.h>
 
 #include "ladrc/gyro_filter.h"
-#include "spectrum.h"
+#include "run/spectrum.h"
 
 /* The phase (deg) the stage may cost at the crossover: 6 deg of a 45 deg
  * phase margin target (13 %), about one tick of delay at 30 rad/s and 1 kHz

@@ -21,7 +21,7 @@
 #ifndef LADRC_SIM_GYRO_FILTER_H
 #define LADRC_SIM_GYRO_FILTER_H
 
-#include "spectrum.h"
+#include "run/spectrum.h"
 
 #define SIM_GYRO_FILTER_TAPS 64         /* lags each way: 64 ms at 1 kHz, a 16 Hz resolution */
 #define SIM_GYRO_FILTER_BAND_SHARE 0.05 /* the band the delay is read in: 50 Hz at 1 kHz */

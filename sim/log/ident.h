@@ -33,7 +33,7 @@
 #ifndef LADRC_SIM_IDENT_H
 #define LADRC_SIM_IDENT_H
 
-#include "spectrum.h"
+#include "run/spectrum.h"
 
 #define SIM_IDENT_COARSE_TAUS 40 /* 0, then geometric from 0.5 ms to lag_max_s */
 #define SIM_IDENT_FINE_TAUS 33   /* between the coarse best's neighbours */

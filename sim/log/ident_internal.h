@@ -6,7 +6,7 @@
 #ifndef LADRC_SIM_IDENT_INTERNAL_H
 #define LADRC_SIM_IDENT_INTERNAL_H
 
-#include "biquad.h"
+#include "run/biquad.h"
 #include "ident.h"
 
 #define PI 3.14159265358979323846

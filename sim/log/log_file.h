@@ -29,10 +29,10 @@ typedef struct {
     /* the items: time first, then those this file gives (item i + 1 is slot[i]'s) */
     int n_items;
     int slot[SIM_LOG_N_SLOTS];
-    const sim_log_item_t *item[SIM_LOG_N_SLOTS + 1]; /* the caller's, kept while the file is open */
-    int col[SIM_LOG_N_SLOTS + 1][SIM_LOG_TERMS_MAX]; /* each term's header cell, -1 absent */
+    const sim_log_item_t *item[SIM_LOG_N_SLOTS + 1];            /* the caller's, kept while the file is open */
+    int col[SIM_LOG_N_SLOTS + 1][SIM_LOG_TERMS_MAX];            /* each term's header cell, -1 absent */
     double term_factor[SIM_LOG_N_SLOTS + 1][SIM_LOG_TERMS_MAX]; /* the cell's unit to the term's (log_units.h) */
-    int present[SIM_LOG_N_SLOTS];                    /* item i has a column */
+    int present[SIM_LOG_N_SLOTS];                               /* item i has a column */
     double time_to_us;
     /* the header cells read from each row, ascending */
     int n_needed;

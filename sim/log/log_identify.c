@@ -2,7 +2,7 @@
 /* A log's airframe (log_identify.h). */
 #include "log_identify.h"
 
-#include "biquad.h"
+#include "run/biquad.h"
 #include "ident_cache.h"
 
 #include <math.h>

@@ -14,7 +14,7 @@
 #include <stddef.h>
 
 #include "log.h"
-#include "spectrum.h"
+#include "run/spectrum.h"
 
 /* Samples per block of the phase probe: 1.02 s at 1 kHz, a resolution of
  * 1 Hz about the probed frequency, finer than any crossover's 3-6 Hz. */

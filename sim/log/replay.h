@@ -31,7 +31,7 @@
 #include "log.h"
 #include "scenario/scenario.h"
 #include "setpoint_smooth.h"
-#include "spectrum.h"
+#include "run/spectrum.h"
 
 /* The frequency bands the command's noise is told in (Hz): [0, 20), [20, 100), [100, Nyquist]. */
 #define SIM_REPLAY_BANDS 3

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "fft.h"
+#include "run/fft.h"
 
 #define PI 3.14159265358979323846
 #define DEG (PI / 180.0)

@@ -30,7 +30,7 @@
 
 #include <stddef.h>
 
-#include "biquad.h"
+#include "run/biquad.h"
 
 #define SETPOINT_SMOOTH_TRAINING_STEPS 256
 /* Betaflight's cutoff factor 1.5 / (1 + rc_smoothing_auto_factor / 10) at its default factor, 30 */

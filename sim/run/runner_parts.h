@@ -19,7 +19,7 @@
 #include "ladrc/attitude.h"
 #include "ladrc/gyro_filter.h"
 #include "ladrc/mixer.h"
-#include "log/biquad.h"
+#include "biquad.h"
 #include "numfmt.h"
 #include "plant/plant.h"
 #include "runner.h"

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "log/spectrum.h"
+#include "spectrum.h"
 #include "scenario/series.h"
 
 void sim_tune_noise_request(const sim_scenario_t *sc, ladrc_margins_request_t *req)

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Identification from a log's gyro and command (log/ident.h) on small closed
  * loops with known plants (ident_loop.h), and the Welch spectrum
- * (log/spectrum.h) it reports the gyro's noise with. */
+ * (run/spectrum.h) it reports the gyro's noise with. */
 #define _POSIX_C_SOURCE 200809L /* open_memstream */
 #include "unity.h"
 
@@ -12,13 +12,13 @@
 
 #include "ident_loop.h"
 #include "log/airframe.h"
-#include "log/biquad.h"
+#include "run/biquad.h"
 #include "log/gyro_filter.h"
 #include "log/ident.h"
 #include "log/ident_cache.h"
 #include "scenario/scenario.h"
 #include "scenario/setup.h"
-#include "log/spectrum.h"
+#include "run/spectrum.h"
 
 #define DT_S 0.001
 #define CHIRP_TICKS 20000L /* 20 s: a 1 to 40 Hz sweep */

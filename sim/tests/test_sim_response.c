@@ -4,7 +4,7 @@
  * pilot's steps and gyro noise, the frequency response of a known filter,
  * and the noise against throttle of a tone that grows with throttle. */
 #include "unity.h"
-#include "log/fft.h"
+#include "run/fft.h"
 #include "log/response.h"
 #include "plant/rng.h"
 

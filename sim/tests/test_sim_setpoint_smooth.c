@@ -5,7 +5,7 @@
  * unchanged; yaw smoothed across its wrap at +-pi without a sweep. */
 #include "unity.h"
 #include "log/setpoint_smooth.h"
-#include "log/spectrum.h"
+#include "run/spectrum.h"
 
 #include <math.h>
 #include <stdlib.h>
