@@ -124,8 +124,6 @@ static int make_temp_dir(sim_log_prepared_t *p, sim_log_error_t *err)
 static int decode(sim_log_options_t *o, sim_log_prepared_t *p, sim_log_convert_progress_fn progress, void *ctx,
                   sim_log_error_t *err)
 {
-    (void)progress;
-    (void)ctx;
     char stem[SIM_LOG_PATH_LEN], base[SIM_LOG_PATH_LEN];
     stem_of(p->original, stem, sizeof stem);
     if (snprintf(base, sizeof base, "%s/%s", p->dir, stem) >= (int)sizeof base) {
@@ -176,10 +174,8 @@ static int decode(sim_log_options_t *o, sim_log_prepared_t *p, sim_log_convert_p
         return 0;
     }
     default:
-        break;
+        return sim_log_fail(err, p->original, 0, 0, "not a binary log");
     }
-    (void)o;
-    return sim_log_fail(err, p->original, 0, 0, "not a binary log");
 }
 
 int sim_log_prepare(sim_log_options_t *o, int format_given, sim_log_prepared_t *p, sim_log_convert_progress_fn progress,
