@@ -54,7 +54,7 @@ static void put(const void *p, size_t n)
 static void put_le(uint64_t v, int size)
 {
     for (int i = 0; i < size; ++i) {
-        const unsigned char ch = (unsigned char)(v >> (8 * i));
+        const unsigned char ch = (unsigned char)(i < 8 ? v >> (8 * i) : 0u);
         put(&ch, 1);
     }
 }

@@ -42,7 +42,7 @@ static void put(bytes_t *x, const void *p, size_t n)
 static void put_le(bytes_t *x, uint64_t v, int n)
 {
     for (int i = 0; i < n; ++i) {
-        const unsigned char c = (unsigned char)(v >> (8 * i));
+        const unsigned char c = (unsigned char)(i < 8 ? v >> (8 * i) : 0u);
         put(x, &c, 1);
     }
 }
