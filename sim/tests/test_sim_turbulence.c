@@ -4,6 +4,7 @@
  * standard's intensities, the hover rule holds, and one seed gives one air. */
 #include "unity.h"
 #include "plant/turbulence.h"
+#include "run/fft.h"
 
 #include <math.h>
 #include <string.h>
@@ -34,41 +35,8 @@ void tearDown(void)
 #define VAR_TOL 0.05
 
 static double re_[SEG], im_[SEG];
+static double tw_re[SEG / 2], tw_im[SEG / 2];
 static double acc[3][SEG / 2];
-
-/* In-place radix-2 FFT of re_ + i im_ (SEG a power of 2). */
-static void fft(void)
-{
-    for (int i = 1, j = 0; i < SEG; ++i) {
-        int bit = SEG >> 1;
-        for (; j & bit; bit >>= 1) {
-            j ^= bit;
-        }
-        j ^= bit;
-        if (i < j) {
-            double t = re_[i];
-            re_[i] = re_[j];
-            re_[j] = t;
-            t = im_[i];
-            im_[i] = im_[j];
-            im_[j] = t;
-        }
-    }
-    for (int len = 2; len <= SEG; len <<= 1) {
-        const double ang = -2.0 * PI_D / len;
-        for (int i = 0; i < SEG; i += len) {
-            for (int k = 0; k < len / 2; ++k) {
-                const double wr = cos(ang * k), wi = sin(ang * k);
-                const int a = i + k, b = i + k + len / 2;
-                const double xr = re_[b] * wr - im_[b] * wi, xi = re_[b] * wi + im_[b] * wr;
-                re_[b] = re_[a] - xr;
-                im_[b] = im_[a] - xi;
-                re_[a] += xr;
-                im_[a] += xi;
-            }
-        }
-    }
-}
 
 static sim_turb_config_t windy(void)
 {
@@ -85,6 +53,7 @@ static void welch(sim_turb_t *t, double var[3])
     double wsum2 = 0.0, sum[3] = {0}, sum2[3] = {0};
     long n = 0;
     memset(acc, 0, sizeof acc);
+    sim_fft_twiddles(SEG, tw_re, tw_im);
     for (int i = 0; i < SEG; ++i) {
         const double w = 0.5 - 0.5 * cos(2.0 * PI_D * i / SEG);
         wsum2 += w * w;
@@ -104,7 +73,7 @@ static void welch(sim_turb_t *t, double var[3])
                 re_[i] = seg[a][i] * (0.5 - 0.5 * cos(2.0 * PI_D * i / SEG));
                 im_[i] = 0.0;
             }
-            fft();
+            sim_fft(SEG, tw_re, tw_im, re_, im_);
             for (int k = 1; k < SEG / 2; ++k) {
                 /* per Hz: 2 dt |X|^2 / sum w^2; per rad/s: / (2 pi) */
                 acc[a][k] += 2.0 * DT_S * (re_[k] * re_[k] + im_[k] * im_[k]) / wsum2 / (2.0 * PI_D) / SEGMENTS;
