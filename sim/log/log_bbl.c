@@ -3,6 +3,7 @@
 #include "log_bbl.h"
 
 #include "bbl_decoder.h"
+#include "log_digits.h"
 #include "log_file.h"
 
 #include <errno.h>
@@ -242,29 +243,6 @@ static void invalidate(decoder_t *d)
 
 /* --- the CSV -------------------------------------------------------------- */
 
-static char *put_u64(char *p, uint64_t u)
-{
-    char tmp[24];
-    int n = 0;
-    do {
-        tmp[n++] = (char)('0' + u % 10u);
-        u /= 10u;
-    } while (u != 0);
-    while (n > 0) {
-        *p++ = tmp[--n];
-    }
-    return p;
-}
-
-static char *put_i64(char *p, int64_t v)
-{
-    if (v < 0) {
-        *p++ = '-';
-        return put_u64(p, (uint64_t)0 - (uint64_t)v);
-    }
-    return put_u64(p, (uint64_t)v);
-}
-
 static int write_header(decoder_t *d)
 {
     const frame_def_t *in = &d->def[T_I];
@@ -297,20 +275,20 @@ static void write_row(decoder_t *d, const int64_t *v)
             *p++ = ' ';
         }
         if (i == 1) {
-            p = put_i64(p, v[1]);
+            p = sim_log_put_i64(p, v[1]);
         } else if (d->convert_gyro && (i == d->gyro[0] || i == d->gyro[1] || i == d->gyro[2])) {
             const int n = snprintf(p, 32, "%.2f", (double)(int32_t)(uint32_t)(uint64_t)v[i] * d->gyro_deg_s_per_unit);
             p += n > 0 && n < 32 ? n : 0; /* a scale beyond any gyro's: the cell left empty */
         } else if (in->is_signed[i]) {
-            p = put_i64(p, (int32_t)(uint32_t)(uint64_t)v[i]);
+            p = sim_log_put_i64(p, (int32_t)(uint32_t)(uint64_t)v[i]);
         } else {
-            p = put_u64(p, (uint32_t)(uint64_t)v[i]);
+            p = sim_log_put_u64(p, (uint32_t)(uint64_t)v[i]);
         }
     }
     for (int i = 0; i < d->def[T_S].n; ++i) {
         *p++ = ',';
         *p++ = ' ';
-        p = put_u64(p, (uint64_t)d->slow[i]);
+        p = sim_log_put_u64(p, (uint64_t)d->slow[i]);
     }
     *p++ = '\n';
     fwrite(d->row, 1, (size_t)(p - d->row), d->out);

@@ -3,6 +3,7 @@
  * message layout is the PX4 documentation's "ULog File Format". */
 #include "log_ulog.h"
 
+#include "log_digits.h"
 #include "log_file.h"
 #include "log_ulog_format.h"
 #include "run/numfmt.h"
@@ -325,29 +326,6 @@ static int add_logged(decoder_t *d, const unsigned char *p, size_t size, long lo
     return 0;
 }
 
-static char *write_u64(char *s, uint64_t v)
-{
-    char digits[20];
-    int n = 0;
-    do {
-        digits[n++] = (char)('0' + v % 10u);
-        v /= 10u;
-    } while (v > 0);
-    while (n > 0) {
-        *s++ = digits[--n];
-    }
-    return s;
-}
-
-static char *write_i64(char *s, int64_t v)
-{
-    if (v < 0) {
-        *s++ = '-';
-        return write_u64(s, (uint64_t)0 - (uint64_t)v);
-    }
-    return write_u64(s, (uint64_t)v);
-}
-
 static char *write_real(char *s, double v, int digits)
 {
     if (isnan(v)) {
@@ -378,21 +356,21 @@ static char *write_cell(char *s, const sim_ulog_column_t *c, const unsigned char
     case SIM_ULOG_INT8:
     case SIM_ULOG_BOOL: /* numpy int8, as ulog2csv writes them */
     case SIM_ULOG_CHAR:
-        return write_i64(s, (int8_t)p[0]);
+        return sim_log_put_i64(s, (int8_t)p[0]);
     case SIM_ULOG_UINT8:
-        return write_u64(s, p[0]);
+        return sim_log_put_u64(s, p[0]);
     case SIM_ULOG_INT16:
-        return write_i64(s, (int16_t)le16(p));
+        return sim_log_put_i64(s, (int16_t)le16(p));
     case SIM_ULOG_UINT16:
-        return write_u64(s, le16(p));
+        return sim_log_put_u64(s, le16(p));
     case SIM_ULOG_INT32:
-        return write_i64(s, (int32_t)le32(p));
+        return sim_log_put_i64(s, (int32_t)le32(p));
     case SIM_ULOG_UINT32:
-        return write_u64(s, le32(p));
+        return sim_log_put_u64(s, le32(p));
     case SIM_ULOG_INT64:
-        return write_i64(s, (int64_t)le64(p));
+        return sim_log_put_i64(s, (int64_t)le64(p));
     case SIM_ULOG_UINT64:
-        return write_u64(s, le64(p));
+        return sim_log_put_u64(s, le64(p));
     case SIM_ULOG_FLOAT: {
         const uint32_t bits = le32(p);
         float v;
@@ -488,7 +466,7 @@ static int data(decoder_t *d, const unsigned char *p, size_t size, long long off
     if (o->f == NULL && open_out(d, o) != 0) {
         return -1;
     }
-    char *s = write_u64(d->row, t_us);
+    char *s = sim_log_put_u64(d->row, t_us);
     for (int c = 1; c < l->n_col; ++c) {
         *s++ = ',';
         s = write_cell(s, &l->col[c], v);
