@@ -41,8 +41,8 @@
 /* ...must stand GATE_EVIDENCE_ON times above the power noise alone would
  * give it (noise alone exceeds that with probability e^-16 per window) to
  * lock, GATE_EVIDENCE_OFF to stay locked... */
-#define GATE_EVIDENCE_ON LADRC_R(16.0)
-#define GATE_EVIDENCE_OFF LADRC_R(4.0)
+#define GATE_EVIDENCE_ON LADRC_R(256.0)
+#define GATE_EVIDENCE_OFF LADRC_R(64.0)
 /* ...and hold at least GATE_COHERENCE_ON of the phasor's power less its
  * noise (a tone off its frequency by dw turns its phasor at dw: the mean
  * keeps 1 / (1 + (dw W)^2) of it), GATE_COHERENCE_OFF to stay locked. */

@@ -7,6 +7,7 @@
 #include "unity.h"
 #include "test_axis_command.h"
 #include "ladrc/axis.h"
+#include "test_noise.h"
 #include "test_plant.h"
 
 #include <math.h>
@@ -59,19 +60,6 @@ static double disturbance(double t, const void *ctx)
     return d->step + ((t <= d->stop_s) ? d->amp * sin(d->w * t) : 0.0);
 }
 
-/* Deterministic Gaussian noise: xorshift32 + Box-Muller. */
-static double gaussian(unsigned *state)
-{
-    double u[2];
-    for (int i = 0; i < 2; ++i) {
-        *state ^= *state << 13;
-        *state ^= *state >> 17;
-        *state ^= *state << 5;
-        u[i] = ((*state >> 8) + 0.5) / 16777216.0;
-    }
-    return sqrt(-2.0 * log(u[0])) * cos(2.0 * PI * u[1]);
-}
-
 static ladrc_axis_config_t config(ladrc_variant_t variant)
 {
     ladrc_axis_config_t cfg;
@@ -113,8 +101,8 @@ static result_t fly(const ladrc_axis_config_t *cfg, const ladrc_axis_config_t *t
     const long n = (long)(to_s / DT_S + 0.5);
     for (long k = 0; k < n; ++k) {
         const double t = (double)k * DT_S;
-        const ladrc_real_t angle = (ladrc_real_t)(y + ANGLE_NOISE_RAD * gaussian(&seed));
-        const ladrc_real_t rate = (ladrc_real_t)(w + GYRO_NOISE_RAD_S * gaussian(&seed));
+        const ladrc_real_t angle = (ladrc_real_t)(y + ANGLE_NOISE_RAD * test_gaussian(&seed));
+        const ladrc_real_t rate = (ladrc_real_t)(w + GYRO_NOISE_RAD_S * test_gaussian(&seed));
         const double u = axis_command_with_rate(&axis, 0.0f, angle, rate);
         if (twin_cfg != NULL) {
             const double u_twin = axis_command_with_rate(&twin, 0.0f, angle, rate);

@@ -7,6 +7,7 @@
 #include "unity.h"
 #include "test_axis_command.h"
 #include "ladrc/axis.h"
+#include "test_noise.h"
 #include "test_plant.h"
 
 #include <math.h>
@@ -68,19 +69,6 @@ static double disturbance(double t, const void *ctx)
     }
 }
 
-/* Deterministic Gaussian noise: xorshift32 + Box-Muller. */
-static double gaussian(unsigned *state)
-{
-    double u[2];
-    for (int i = 0; i < 2; ++i) {
-        *state ^= *state << 13;
-        *state ^= *state >> 17;
-        *state ^= *state << 5;
-        u[i] = ((*state >> 8) + 0.5) / 16777216.0;
-    }
-    return sqrt(-2.0 * log(u[0])) * cos(2.0 * PI * u[1]);
-}
-
 typedef struct {
     ladrc_variant_t variant;
     ladrc_hp_freq_mode_t freq_mode;
@@ -118,7 +106,7 @@ static result_t fly(const run_t *r, double settle_band_rad)
     double last_outside_s = r->event_s;
     const long n = (long)(r->to_s / DT_S + 0.5);
     for (long k = 0; k < n; ++k) {
-        const double noise = r->noise_std_rad > 0.0 ? r->noise_std_rad * gaussian(&seed) : 0.0;
+        const double noise = r->noise_std_rad > 0.0 ? r->noise_std_rad * test_gaussian(&seed) : 0.0;
         /* LP needs the rate; LADRC and HP ignore it */
         const double u =
             axis_command_with_rate(&axis, 0.0f, (ladrc_real_t)(plant.y_rad + noise), (ladrc_real_t)plant.rate_rad_s);
