@@ -329,23 +329,28 @@ def fmt_s(v):
     return "never" if v is None else "%.3f s" % v
 
 
+def evidence_text(peak):
+    return "not logged by this build" if peak is None else "%.3g" % peak
+
+
 def tone_table(rows):
     lines = ["| case | axis | tone (rad/s) | amplitude (rad/s²) | gyro noise in band (rad/s² RMS) | tone / noise | held | "
              "HP / LP RMS over the tone (deg) | HP/LP | HP/LP in band | gate open (weight 1) after onset | "
-             "let go after the end | in band ≤ %g× | whole ≤ %g× |" % (BAND_RATIO_MAX, WORSE_MAX),
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "let go after the end | in band ≤ %g× | whole ≤ %g× | evidence's peak in the window (threshold 1) |" % (
+                 BAND_RATIO_MAX, WORSE_MAX),
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         if "failed" in r:
-            lines.append("| `%s` | - | run failed: %s | | | | | | | | | | | |" % (r["case"], r["failed"]))
+            lines.append("| `%s` | - | run failed: %s | | | | | | | | | | | | |" % (r["case"], r["failed"]))
             continue
         tone = "%.2f" % r["w"] if r["steady"] else "drifts %.2f-%.2f" % (r["lo"], r["hi"])
         let_go = "held open to the end" if r["held_open_to_end"] else ("-" if r["let_go"] is None and r["open_at"] is None
                                                                       else fmt_s(r["let_go"]))
-        lines.append("| `%s` | %s | %s | %.1f | %.3g | %.3g | %s | %.3f / %.3f | %.3f | %.3f | %s | %s | %s | %s |" % (
+        lines.append("| `%s` | %s | %s | %.1f | %.3g | %.3g | %s | %.3f / %.3f | %.3f | %.3f | %s | %s | %s | %s | %s |" % (
             r["case"], r["axis"], tone, r["amp"], r["noise"], r["snr"], "yes" if r["held"] else "no: " + r["why_not"],
             r["rms_hp"], r["rms_lp"], r["whole"], r["band_ratio"], fmt_s(r["open_at"]), let_go,
             verdict(r["band_ratio"] <= BAND_RATIO_MAX) if r["held"] else "(not held)",
-            verdict(r["whole"] <= WORSE_MAX)))
+            verdict(r["whole"] <= WORSE_MAX), evidence_text(r["evidence_peak"])))
     return lines
 
 
@@ -360,7 +365,7 @@ def free_table(frees):
             lines.append("| `%s` | %.0f | %s | %.3f | %.3f | %s | %s |" % (
                 f["case"], f["hours"] * 3600, axis, a["open_s"], a["full_s"],
                 "-" if a["whole"] is None else "%.4f (%s)" % (a["whole"], verdict(a["whole"] <= WORSE_MAX)),
-                "not logged by this build" if a["evidence_peak"] is None else "%.3g" % a["evidence_peak"]))
+                evidence_text(a["evidence_peak"])))
     return lines
 
 
