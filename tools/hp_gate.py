@@ -5,7 +5,7 @@ and prints, per case and axis with a tone, the tone against the gyro noise in it
 LP's tracking error over the tone's window (whole and in the tone's band), when the gate opened
 and let go; and, over the tone-free flights, the seconds per hour the gate was open.
 
-    tools/hp_gate.py [--bin ladrc_sil] [--out DIR] [--jobs 2] [--quick] [--docs FILE] [--no-run]
+    tools/hp_gate.py [--bin ladrc_sil] [--out DIR] [--jobs 2] [--quick] [--docs FILE [--docs-block NAME]] [--no-run]
 
 Exit status: 0 every run flew (the acceptance figures may be met or missed: they are what the gate
 work has to reach); 1 a run failed (diverged, untunable, missing output), its figures not printed;
@@ -44,6 +44,9 @@ STEADY_TOL = 0.02
 SEARCH_MIN_RAD_S, SEARCH_MAX_RAD_S = 0.3, 40.0
 # The gate's weight counts as 1 (fully open) from here: it moves in float steps towards 1.
 WEIGHT_ONE = 1.0 - 1e-6
+# The gate's evidence, 1 at the engage threshold: per tone, hp_evidence{k}_{axis}_ratio (k = 1 up to
+# the build's LADRC_HP_MAX_TONES: columns up to this k are looked for), or one per axis, hp_evidence_{axis}.
+EVIDENCE_TONES_MAX = 8
 
 # The quick form (CI): the reference case, one other loop rate, and one tone-free flight cut to 120 s.
 QUICK_CASES = ("reference", "loop_2khz")
@@ -130,18 +133,43 @@ def search_range(scen):
 
 # ---------------------------------------------------------------- what a run wrote
 
-def read_columns(path, names):
-    """{name: array} of the named columns of a ladrc_sil time series; a missing column is absent."""
+def read_columns(path, names, optional=()):
+    """{name: array} of the named columns of a ladrc_sil time series; of the optional ones, those it
+    holds (a missing required column fails the run)."""
     if not os.path.exists(path):
         raise RunFailed("no time series %s" % path)
     with open(path) as f:
         header = f.readline().strip().split(",")
-    present = [n for n in names if n in header]
+    for n in names:
+        if n not in header:
+            raise RunFailed("%s: no column %s" % (path, n))
+    present = list(names) + [n for n in optional if n in header]
     cols = [header.index(n) for n in present]
     data = np.loadtxt(path, delimiter=",", skiprows=1, usecols=cols, ndmin=2)
     if data.shape[0] < 2:
         raise RunFailed("%s holds no flight" % path)
     return {n: data[:, i] for i, n in enumerate(present)}
+
+
+def evidence_columns(axis):
+    """The names a build may log the gate's evidence on an axis under."""
+    return ["hp_evidence_%s" % axis] + ["hp_evidence%d_%s_ratio" % (k, axis) for k in range(1, EVIDENCE_TONES_MAX + 1)]
+
+
+def evidence_series(run, axis):
+    """[(name, array)] of the evidence columns the run holds for the axis (none on a build without)."""
+    return [(n, run[n]) for n in evidence_columns(axis) if n in run]
+
+
+def evidence_peak(run, axis, inside=None):
+    """The largest evidence of any tone on the axis (over the ticks inside, else all); None without
+    the columns, nan when no tone was active."""
+    series = evidence_series(run, axis)
+    if not series:
+        return None
+    v = np.concatenate([x if inside is None else x[inside] for _, x in series])
+    v = v[np.isfinite(v)]
+    return float(v.max()) if v.size else math.nan
 
 
 def disturbance_windows(case_dir):
@@ -177,6 +205,12 @@ def check_run(case, case_dir, metrics):
 
 # ---------------------------------------------------------------- the tones, from the disturbance flown
 
+def tick_s(t):
+    """The control period (s) from the time column: its span over its steps (t_s is printed to 0.1 ms,
+    so one step of an 8 kHz loop reads 0.1 or 0.2 ms)."""
+    return float(t[-1] - t[0]) / (len(t) - 1)
+
+
 def spectrum_peaks(t, x, rel=0.25):
     """[(frequency rad/s, amplitude)] of the spectral peaks of x at least rel of the largest: Hann
     window, zero-padded 8x, the peak's bin refined by a parabola through its neighbours."""
@@ -185,7 +219,7 @@ def spectrum_peaks(t, x, rel=0.25):
     win = np.hanning(n)
     nfft = 8 * (1 << int(math.ceil(math.log2(n))))
     mag = np.abs(np.fft.rfft(x * win, nfft)) * 2.0 / win.sum()
-    dt = (t[-1] - t[0]) / (n - 1)
+    dt = tick_s(t)
     df = 1.0 / (nfft * dt)
     top = mag.max()
     peaks = []
@@ -210,7 +244,7 @@ def find_tones(t, x):
     whole window's spectrum spreads it over sidebands, which are that tone, not others)."""
     tones = []
     half = len(t) // 2
-    dt = (t[-1] - t[0]) / (len(t) - 1)
+    dt = tick_s(t)
     for w, amp in sorted(spectrum_peaks(t, x), key=lambda p: -p[1]):
         if any(tone["lo"] <= w <= tone["hi"] for tone in tones):
             continue
@@ -255,13 +289,14 @@ def first_time(t, cond):
 def tone_rows(case, case_dir, scen_path):
     scen = read_scenario(scen_path)
     windows = disturbance_windows(case_dir)
-    names = ["t_s"]
+    names, evidence = ["t_s"], []
     for axis in windows:
-        names += ["dist_%s_rad_s2" % axis, "error_%s_deg" % axis, "hp_weight_%s_frac" % axis, "hp_evidence_%s" % axis]
-    hp = read_columns(os.path.join(case_dir, HP + ".csv"), names)
+        names += ["dist_%s_rad_s2" % axis, "error_%s_deg" % axis, "hp_weight_%s_frac" % axis]
+        evidence += evidence_columns(axis)
+    hp = read_columns(os.path.join(case_dir, HP + ".csv"), names, evidence)
     lp = read_columns(os.path.join(case_dir, LP + ".csv"), ["t_s"] + ["error_%s_deg" % a for a in windows])
     t = hp["t_s"]
-    dt = float(np.median(np.diff(t)))
+    dt = tick_s(t)
     smin, smax = search_range(scen)
     rows = []
     for axis, (a, b) in windows.items():
@@ -270,13 +305,13 @@ def tone_rows(case, case_dir, scen_path):
         x = hp["dist_%s_rad_s2" % axis][inside]
         e_hp, e_lp = hp["error_%s_deg" % axis][inside], lp["error_%s_deg" % axis][inside]
         weight = hp["hp_weight_%s_frac" % axis]
-        open_at = first_time(t[t > a] - a, weight[t > a] >= WEIGHT_ONE)
+        open_at = first_time(t[inside] - a, weight[inside] >= WEIGHT_ONE)
         after = t > b
-        opened = bool(np.any(weight[inside] > 0))
-        let_go = first_time(t[after] - b, weight[after] <= 0.0) if opened else None
-        held_open_to_end = opened and let_go is None and np.any(after)
+        open_at_end = bool(weight[inside][-1] > 0)
+        let_go = first_time(t[after] - b, weight[after] <= 0.0) if open_at_end else None
+        shut_from = b if not open_at_end else None if let_go is None else b + let_go
+        reopened = None if shut_from is None else first_time(t[t > shut_from], weight[t > shut_from] > 0)
         whole = rms(e_hp) / rms(e_lp)
-        evidence = hp.get("hp_evidence_%s" % axis)
         for tone in find_tones(t[inside], x):
             w_lo, w_hi = BAND_LO * tone["lo"], BAND_HI * tone["hi"]
             noise = noise_accel_rms(scen, scen_path, sim_output.AXES.index(axis), w_lo / (2 * math.pi),
@@ -291,9 +326,9 @@ def tone_rows(case, case_dir, scen_path):
                 "case": case, "axis": axis, "w": tone["w"], "lo": tone["lo"], "hi": tone["hi"],
                 "steady": tone["steady"], "amp": tone["amp"], "noise": noise, "snr": snr, "held": held,
                 "why_not": why_not, "rms_hp": rms(e_hp), "rms_lp": rms(e_lp), "whole": whole,
-                "band_ratio": band_hp / band_lp, "open_at": open_at, "let_go": let_go,
-                "held_open_to_end": held_open_to_end,
-                "evidence_peak": None if evidence is None else float(np.nanmax(evidence[inside])),
+                "band_ratio": band_hp / band_lp, "open_at": open_at, "open_at_end": open_at_end,
+                "let_go": let_go, "reopened": reopened,
+                "evidence_peak": evidence_peak(hp, axis, inside),
             })
     return rows
 
@@ -301,20 +336,19 @@ def tone_rows(case, case_dir, scen_path):
 def free_figures(case, case_dir, metrics):
     """Seconds with the weight above 0 and at 1, per axis, the flight's length, HP/LP RMS per axis
     (whole flight, metrics.csv's error window), and the evidence's peak when the build logs it."""
-    names = ["t_s"] + ["hp_weight_%s_frac" % a for a in sim_output.AXES] + ["hp_evidence_%s" % a for a in sim_output.AXES]
-    hp = read_columns(os.path.join(case_dir, HP + ".csv"), names)
+    names = ["t_s"] + ["hp_weight_%s_frac" % a for a in sim_output.AXES]
+    hp = read_columns(os.path.join(case_dir, HP + ".csv"), names, sum((evidence_columns(a) for a in sim_output.AXES), []))
     t = hp["t_s"]
-    dt = float(np.median(np.diff(t)))
+    dt = tick_s(t)
     out = {"case": case, "hours": len(t) * dt / 3600.0, "axes": {}}  # each tick counts dt, as the open seconds
     for axis in sim_output.AXES:
         w = hp["hp_weight_%s_frac" % axis]
-        ev = hp.get("hp_evidence_%s" % axis)
         rms_hp = metrics.get((HP, "4", "error_rms_deg", axis))
         rms_lp = metrics.get((LP, "4", "error_rms_deg", axis))
         out["axes"][axis] = {
             "open_s": float(np.count_nonzero(w > 0)) * dt, "full_s": float(np.count_nonzero(w >= WEIGHT_ONE)) * dt,
             "whole": rms_hp / rms_lp if sim_output.is_number(rms_hp) and sim_output.is_number(rms_lp) else None,
-            "evidence_peak": None if ev is None else float(np.nanmax(ev)),
+            "evidence_peak": evidence_peak(hp, axis),
         }
     return out
 
@@ -330,13 +364,13 @@ def fmt_s(v):
 
 
 def evidence_text(peak):
-    return "not logged by this build" if peak is None else "%.3g" % peak
+    return "not logged by this build" if peak is None else "no tone active" if peak != peak else "%.3g" % peak
 
 
 def tone_table(rows):
     lines = ["| case | axis | tone (rad/s) | amplitude (rad/s²) | gyro noise in band (rad/s² RMS) | tone / noise | held | "
              "HP / LP RMS over the tone (deg) | HP/LP | HP/LP in band | gate open (weight 1) after onset | "
-             "let go after the end | in band ≤ %g× | whole ≤ %g× | evidence's peak in the window (threshold 1) |" % (
+             "let go (weight 0) after the end | in band ≤ %g× | whole ≤ %g× | evidence's peak in the window (threshold 1) |" % (
                  BAND_RATIO_MAX, WORSE_MAX),
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
@@ -344,8 +378,14 @@ def tone_table(rows):
             lines.append("| `%s` | - | run failed: %s | | | | | | | | | | | | |" % (r["case"], r["failed"]))
             continue
         tone = "%.2f" % r["w"] if r["steady"] else "drifts %.2f-%.2f" % (r["lo"], r["hi"])
-        let_go = "held open to the end" if r["held_open_to_end"] else ("-" if r["let_go"] is None and r["open_at"] is None
-                                                                      else fmt_s(r["let_go"]))
+        if not r["open_at_end"]:
+            let_go = "- (shut at the end)"
+        elif r["let_go"] is None:
+            let_go = "held open to the flight's end"
+        else:
+            let_go = fmt_s(r["let_go"])
+        if r["reopened"] is not None:
+            let_go += "; open again from t = %.2f s" % r["reopened"]
         lines.append("| `%s` | %s | %s | %.1f | %.3g | %.3g | %s | %.3f / %.3f | %.3f | %.3f | %s | %s | %s | %s | %s |" % (
             r["case"], r["axis"], tone, r["amp"], r["noise"], r["snr"], "yes" if r["held"] else "no: " + r["why_not"],
             r["rms_hp"], r["rms_lp"], r["whole"], r["band_ratio"], fmt_s(r["open_at"]), let_go,
@@ -412,8 +452,8 @@ def summarise(rows, frees):
     return lines, summary, ok and not failed
 
 
-def write_docs(path, text):
-    begin, end = "<!-- hp_gate:begin -->", "<!-- hp_gate:end -->"
+def write_docs(path, text, block_name="hp_gate"):
+    begin, end = "<!-- %s:begin -->" % block_name, "<!-- %s:end -->" % block_name
     block = begin + "\n" + text + end
     if os.path.exists(path):
         with open(path) as f:
@@ -457,6 +497,8 @@ def main():
     p.add_argument("--quick", action="store_true",
                    help="the CI subset: the reference case, the 2 kHz loop and a 120 s tone-free flight")
     p.add_argument("--docs", metavar="FILE", help="write the tables into FILE's hp_gate block (Markdown)")
+    p.add_argument("--docs-block", default="hp_gate", metavar="NAME",
+                   help="the block --docs rewrites, between <!-- NAME:begin --> and <!-- NAME:end --> (default hp_gate)")
     p.add_argument("--no-run", action="store_true", help="read a previous run in --out instead of flying")
     args = p.parse_args()
     if args.out is None:
@@ -502,7 +544,7 @@ def main():
         "\n".join("- " + ln for ln in rate_lines) + "\n\n" + summary + "\n"
     print(text, end="")
     if args.docs:
-        write_docs(args.docs, text)
+        write_docs(args.docs, text, args.docs_block)
     failed = any("failed" in r for r in rows) or any("failed" in f for f in frees)
     return 1 if failed else 0
 

@@ -2,8 +2,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """HP-MLADRC's gate in one run of tools/hp_gate.py (docs/hp-gate.md): per axis, the disturbance
 flown and HP's applied estimate, the gate's weight, and its evidence against the engage threshold
-(hp_evidence_<axis>, 1 = engage), the disturbance's window shaded. A build that does not log the
-evidence gets the weight alone, and the title says so.
+(hp_evidence{k}_<axis>_ratio per tone k, or hp_evidence_<axis>; 1 = engage), the disturbance's
+window shaded. A build that does not log the evidence gets the weight alone, and the title says so.
 
     tools/hp_gate_plot.py CASE_DIR [--out FILE.png]
 
@@ -16,14 +16,15 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from figures import AXIS_SYMBOLS, save, stride  # noqa: E402  (figures.py sets the house style)
-from hp_gate import HP, RunFailed, disturbance_windows, read_columns  # noqa: E402
+from hp_gate import HP, RunFailed, disturbance_windows, evidence_columns, evidence_series, read_columns  # noqa: E402
 from plot_style import COLOURS, clip_ylim  # noqa: E402
 from sim_output import AXES  # noqa: E402
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-EVIDENCE_THRESHOLD = 1.0  # hp_evidence_<axis> is normalised so that the gate engages at 1
+EVIDENCE_THRESHOLD = 1.0  # the evidence columns are normalised so that the gate engages at 1
+TONE_STYLES = ("-", "--", ":", "-.")
 DIST_COLOUR = "black"
 
 
@@ -35,23 +36,20 @@ def main():
     path = os.path.join(args.case_dir, HP + ".csv")
     names = ["t_s"]
     for a in AXES:
-        names += ["dist_%s_rad_s2" % a, "hp_est_%s_rad_s2" % a, "hp_weight_%s_frac" % a, "hp_evidence_%s" % a]
+        names += ["dist_%s_rad_s2" % a, "hp_est_%s_rad_s2" % a, "hp_weight_%s_frac" % a]
     try:
-        run = read_columns(path, names)
+        run = read_columns(path, names, sum((evidence_columns(a) for a in AXES), []))
         windows = disturbance_windows(args.case_dir)
     except RunFailed as e:
         sys.exit("hp_gate_plot.py: %s" % e)
-    missing = [n for n in names if n not in run and not n.startswith("hp_evidence_")]
-    if missing:
-        sys.exit("hp_gate_plot.py: %s: no column %s (a time series of HP-MLADRC from ladrc_sil)" % (path, missing[0]))
-    evidence = all("hp_evidence_%s" % a in run for a in AXES)
+    evidence = all(evidence_series(run, a) for a in AXES)
     t = run["t_s"]
     k = stride(len(t))
     rows = 3 if evidence else 2
     fig, axes = plt.subplots(rows, 3, figsize=(14, 2.4 * rows + 1.2), sharex=True, squeeze=False)
     case = os.path.basename(os.path.normpath(args.case_dir))
     fig.suptitle("HP-MLADRC's gate, %s%s" % (
-        case, "" if evidence else ": weight alone (this build logs no hp_evidence_<axis>)"))
+        case, "" if evidence else ": weight alone (this build logs no evidence, hp_evidence{k}_<axis>_ratio)"))
     for col, a in enumerate(AXES):
         panels = axes[:, col]
         dist, est = run["dist_%s_rad_s2" % a], run["hp_est_%s_rad_s2" % a]
@@ -62,10 +60,12 @@ def main():
         panels[1].plot(t[::k], run["hp_weight_%s_frac" % a][::k], color=COLOURS[HP], lw=1.0)
         panels[1].set_ylim(-0.05, 1.05)
         if evidence:
-            ev = run["hp_evidence_%s" % a]
-            panels[2].plot(t[::k], ev[::k], color=COLOURS[HP], lw=0.8, label="evidence")
+            series = evidence_series(run, a)
+            for i, (name, ev) in enumerate(series):
+                label = "tone %s" % name[len("hp_evidence"):].split("_")[0] if name[len("hp_evidence")] != "_" else "evidence"
+                panels[2].plot(t[::k], ev[::k], color=COLOURS[HP], lw=0.8, ls=TONE_STYLES[i % len(TONE_STYLES)], label=label)
             panels[2].axhline(EVIDENCE_THRESHOLD, color="0.3", ls="--", lw=0.9, label="engage threshold")
-            clip_ylim(panels[2], [ev, np.array([0.0, EVIDENCE_THRESHOLD])], "evidence")
+            clip_ylim(panels[2], [ev for _, ev in series] + [np.array([0.0, EVIDENCE_THRESHOLD])], "evidence")
         if a in windows:
             lo, hi = windows[a]
             for ax in panels:

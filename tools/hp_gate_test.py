@@ -106,8 +106,9 @@ def write_case(d, evidence, diverged=False):
         cols["dist_%s_rad_s2" % a] = tone if on else 0 * t
         cols["hp_est_%s_rad_s2" % a] = tone * weight if on else 0 * t
         cols["hp_weight_%s_frac" % a] = weight if on else 0 * t
-        if evidence:
-            cols["hp_evidence_%s" % a] = 2 * weight if on else 0.1 + 0 * t
+        if evidence:  # per tone, as the build logs it: tone 2 inactive (nan) but on roll after 10 s
+            cols["hp_evidence1_%s_ratio" % a] = 2 * weight if on else 0.1 + 0 * t
+            cols["hp_evidence2_%s_ratio" % a] = np.where(on & (t > 10), 0.5, np.nan)
     names = list(cols)
     for c in ("HP-MLADRC", "LP-MLADRC"):
         np.savetxt(os.path.join(d, c + ".csv"), np.column_stack([cols[n] for n in names]), delimiter=",",
@@ -137,7 +138,8 @@ def test_cases_and_plot():
             check(close(rows[0]["open_at"], 2.5, 0.001), "the gate opens 2.5 s after the onset (%.3f)" % rows[0]["open_at"])
             check(rows[0]["let_go"] is not None and close(rows[0]["let_go"], 0.5, 0.01),
                   "and lets go 0.5 s after the end (%s)" % rows[0]["let_go"])
-            check(close(rows[0]["evidence_peak"], 2.0, 1e-6), "the evidence's peak is read")
+            check(rows[0]["reopened"] is None, "and stays shut after")
+            check(close(rows[0]["evidence_peak"], 2.0, 1e-6), "the evidence's peak is read (the larger tone's)")
         try:
             hp_gate.check_run("bad", bad, hp_gate.sim_output.load_metrics(bad))
             check(False, "a diverged run is refused")
