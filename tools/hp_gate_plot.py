@@ -25,7 +25,16 @@ import numpy as np  # noqa: E402
 
 EVIDENCE_THRESHOLD = 1.0  # the evidence columns are normalised so that the gate engages at 1
 TONE_STYLES = ("-", "--", ":", "-.")
+EVIDENCE_FLOOR = 1e-3     # the evidence panel's lowest value, a fraction of the threshold
 DIST_COLOUR = "black"
+
+
+def log_evidence(ax, values):
+    """A log y axis for the evidence: a locked tone's runs to thousands of times the threshold, the
+    noise's stays near or below it; down to EVIDENCE_FLOOR of the threshold."""
+    v = np.concatenate([x[np.isfinite(x)] for x in values] + [np.array([EVIDENCE_THRESHOLD])])
+    ax.set_yscale("log")
+    ax.set_ylim(EVIDENCE_FLOOR * EVIDENCE_THRESHOLD, 2.0 * max(v.max(), EVIDENCE_THRESHOLD))
 
 
 def main():
@@ -65,7 +74,7 @@ def main():
                 label = "tone %s" % name[len("hp_evidence"):].split("_")[0] if name[len("hp_evidence")] != "_" else "evidence"
                 panels[2].plot(t[::k], ev[::k], color=COLOURS[HP], lw=0.8, ls=TONE_STYLES[i % len(TONE_STYLES)], label=label)
             panels[2].axhline(EVIDENCE_THRESHOLD, color="0.3", ls="--", lw=0.9, label="engage threshold")
-            clip_ylim(panels[2], [ev for _, ev in series] + [np.array([0.0, EVIDENCE_THRESHOLD])], "evidence")
+            log_evidence(panels[2], [ev for _, ev in series])
         if a in windows:
             lo, hi = windows[a]
             for ax in panels:
