@@ -337,7 +337,8 @@ def free_figures(case, case_dir, metrics):
     """Seconds with the weight above 0 and at 1, per axis, the flight's length, HP/LP RMS per axis
     (whole flight, metrics.csv's error window), and the evidence's peak when the build logs it."""
     names = ["t_s"] + ["hp_weight_%s_frac" % a for a in sim_output.AXES]
-    hp = read_columns(os.path.join(case_dir, HP + ".csv"), names, sum((evidence_columns(a) for a in sim_output.AXES), []))
+    evidence = [n for a in sim_output.AXES for n in evidence_columns(a)]
+    hp = read_columns(os.path.join(case_dir, HP + ".csv"), names, evidence)
     t = hp["t_s"]
     dt = tick_s(t)
     out = {"case": case, "hours": len(t) * dt / 3600.0, "axes": {}}  # each tick counts dt, as the open seconds
@@ -367,15 +368,19 @@ def evidence_text(peak):
     return "not logged by this build" if peak is None else "no tone active" if peak != peak else "%.3g" % peak
 
 
+def md_row(cells):
+    return "| " + " | ".join(cells) + " |"
+
+
 def tone_table(rows):
-    lines = ["| case | axis | tone (rad/s) | amplitude (rad/s²) | gyro noise in band (rad/s² RMS) | tone / noise | held | "
-             "HP / LP RMS over the tone (deg) | HP/LP | HP/LP in band | gate open (weight 1) after onset | "
-             "let go (weight 0) after the end | in band ≤ %g× | whole ≤ %g× | evidence's peak in the window (threshold 1) |" % (
-                 BAND_RATIO_MAX, WORSE_MAX),
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    titles = ["case", "axis", "tone (rad/s)", "amplitude (rad/s²)", "gyro noise in band (rad/s² RMS)", "tone / noise",
+              "held", "HP / LP RMS over the tone (deg)", "HP/LP", "HP/LP in band", "gate open (weight 1) after onset",
+              "let go (weight 0) after the end", "in band ≤ %g×" % BAND_RATIO_MAX, "whole ≤ %g×" % WORSE_MAX,
+              "evidence's peak in the window (threshold 1)"]
+    lines = [md_row(titles), "|" + "---|" * len(titles)]
     for r in rows:
         if "failed" in r:
-            lines.append("| `%s` | - | run failed: %s | | | | | | | | | | | | |" % (r["case"], r["failed"]))
+            lines.append(md_row(["`%s`" % r["case"], "-", "run failed: %s" % r["failed"]] + [""] * (len(titles) - 3)))
             continue
         tone = "%.2f" % r["w"] if r["steady"] else "drifts %.2f-%.2f" % (r["lo"], r["hi"])
         if not r["open_at_end"]:
@@ -386,11 +391,12 @@ def tone_table(rows):
             let_go = fmt_s(r["let_go"])
         if r["reopened"] is not None:
             let_go += "; open again from t = %.2f s" % r["reopened"]
-        lines.append("| `%s` | %s | %s | %.1f | %.3g | %.3g | %s | %.3f / %.3f | %.3f | %.3f | %s | %s | %s | %s | %s |" % (
-            r["case"], r["axis"], tone, r["amp"], r["noise"], r["snr"], "yes" if r["held"] else "no: " + r["why_not"],
-            r["rms_hp"], r["rms_lp"], r["whole"], r["band_ratio"], fmt_s(r["open_at"]), let_go,
+        lines.append(md_row([
+            "`%s`" % r["case"], r["axis"], tone, "%.1f" % r["amp"], "%.3g" % r["noise"], "%.3g" % r["snr"],
+            "yes" if r["held"] else "no: " + r["why_not"], "%.3f / %.3f" % (r["rms_hp"], r["rms_lp"]),
+            "%.3f" % r["whole"], "%.3f" % r["band_ratio"], fmt_s(r["open_at"]), let_go,
             verdict(r["band_ratio"] <= BAND_RATIO_MAX) if r["held"] else "(not held)",
-            verdict(r["whole"] <= WORSE_MAX), evidence_text(r["evidence_peak"])))
+            verdict(r["whole"] <= WORSE_MAX), evidence_text(r["evidence_peak"])]))
     return lines
 
 
@@ -498,7 +504,7 @@ def main():
                    help="the CI subset: the reference case, the 2 kHz loop and a 120 s tone-free flight")
     p.add_argument("--docs", metavar="FILE", help="write the tables into FILE's hp_gate block (Markdown)")
     p.add_argument("--docs-block", default="hp_gate", metavar="NAME",
-                   help="the block --docs rewrites, between <!-- NAME:begin --> and <!-- NAME:end --> (default hp_gate)")
+                   help="the block --docs rewrites: <!-- NAME:begin --> to <!-- NAME:end --> (default hp_gate)")
     p.add_argument("--no-run", action="store_true", help="read a previous run in --out instead of flying")
     args = p.parse_args()
     if args.out is None:

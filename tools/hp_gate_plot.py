@@ -29,6 +29,12 @@ EVIDENCE_FLOOR = 1e-3     # the evidence panel's lowest value, a fraction of the
 DIST_COLOUR = "black"
 
 
+def evidence_label(column):
+    """"tone 2" for hp_evidence2_roll_ratio, "evidence" for the per-axis hp_evidence_roll."""
+    k = column[len("hp_evidence"):].split("_")[0]
+    return "tone " + k if k else "evidence"
+
+
 def log_evidence(ax, values):
     """A log y axis for the evidence: a locked tone's runs to thousands of times the threshold, the
     noise's stays near or below it; down to EVIDENCE_FLOOR of the threshold."""
@@ -71,8 +77,8 @@ def main():
         if evidence:
             series = evidence_series(run, a)
             for i, (name, ev) in enumerate(series):
-                label = "tone %s" % name[len("hp_evidence"):].split("_")[0] if name[len("hp_evidence")] != "_" else "evidence"
-                panels[2].plot(t[::k], ev[::k], color=COLOURS[HP], lw=0.8, ls=TONE_STYLES[i % len(TONE_STYLES)], label=label)
+                panels[2].plot(t[::k], ev[::k], color=COLOURS[HP], lw=0.8, ls=TONE_STYLES[i % len(TONE_STYLES)],
+                               label=evidence_label(name))
             panels[2].axhline(EVIDENCE_THRESHOLD, color="0.3", ls="--", lw=0.9, label="engage threshold")
             log_evidence(panels[2], [ev for _, ev in series])
         if a in windows:

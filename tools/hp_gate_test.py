@@ -89,7 +89,8 @@ def test_noise():
     w = 2 * math.pi * np.fft.rfftfreq(len(n), dt)
     keep = (w >= 0.8 * 12) & (w <= 1.25 * 12)
     drawn = math.sqrt(2 * np.sum(np.abs(spec[keep] * w[keep]) ** 2)) / len(n)
-    check(close(formula, drawn, 0.10), "white noise in band: formula %.4g, drawn %.4g rad/s^2 (10 %%)" % (formula, drawn))
+    check(close(formula, drawn, 0.10),
+          "white noise in band: formula %.4g, drawn %.4g rad/s^2 (10 %%)" % (formula, drawn))
 
 
 def write_case(d, evidence, diverged=False):
@@ -122,7 +123,8 @@ def write_case(d, evidence, diverged=False):
             if diverged and c == "HP-MLADRC":
                 f.write("x,%s,-,diverged_at_s,roll,4.5\nx,%s,-,diverged_error_deg,roll,91\n" % (c, c))
             for a in ("roll", "pitch", "yaw"):
-                f.write("x,%s,4,error_rms_deg,%s,%s\n" % (c, a, "diverged" if diverged and c == "HP-MLADRC" else "0.01"))
+                value = "diverged" if diverged and c == "HP-MLADRC" else "0.01"
+                f.write("x,%s,4,error_rms_deg,%s,%s\n" % (c, a, value))
 
 
 def test_cases_and_plot():
@@ -135,7 +137,8 @@ def test_cases_and_plot():
         check(len(rows) == 1 and rows[0]["axis"] == "roll", "one tone row, on roll")
         if rows:
             # the weight reaches 1 at 5.5 s, 2.5 s after the onset; it is 0 again at 18.5 s
-            check(close(rows[0]["open_at"], 2.5, 0.001), "the gate opens 2.5 s after the onset (%.3f)" % rows[0]["open_at"])
+            check(close(rows[0]["open_at"], 2.5, 0.001),
+                  "the gate opens 2.5 s after the onset (%.3f)" % rows[0]["open_at"])
             check(rows[0]["let_go"] is not None and close(rows[0]["let_go"], 0.5, 0.01),
                   "and lets go 0.5 s after the end (%s)" % rows[0]["let_go"])
             check(rows[0]["reopened"] is None, "and stays shut after")
@@ -167,7 +170,8 @@ def test_cases_and_plot():
         hp_gate.write_docs(doc, "new\n")
         with open(doc) as f:
             text = f.read()
-        check(text == "before\n<!-- hp_gate:begin -->\nnew\n<!-- hp_gate:end -->\nafter\n", "the docs block is replaced")
+        check(text == "before\n<!-- hp_gate:begin -->\nnew\n<!-- hp_gate:end -->\nafter\n",
+              "the docs block is replaced")
 
 
 def main():
