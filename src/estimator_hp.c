@@ -429,7 +429,12 @@ LADRC_NOINLINE static void after_fit(ladrc_hp_estimator_t *est, ladrc_real_t sam
         const ladrc_real_t motion = update_slip(est, tone, a, b);
         const int window_full = update_evidence(est, tone, a, b);
         const ladrc_real_t power = fit_tone_power(theta, k);
+        const uint8_t was_significant = tone->significant;
         tone->significant = (power >= AMP_SHARE * est->sig_power && power >= power_floor) ? 1u : 0u;
+        if (tone->significant && !was_significant) {
+            /* a tone that just rose out of the sample: its window starts now */
+            hp_restart_window(tone);
+        }
         if (!tone->significant) {
             tone->locked = 0u;
             continue;

@@ -96,6 +96,16 @@ static inline int hp_search_agrees(const ladrc_hp_estimator_t *est)
 void hp_set_tone_freq(const ladrc_hp_tone_basis_t *basis, unsigned advance, ladrc_hp_tone_t *tone,
                       ladrc_real_t w_rad_s);
 
+/* The gate's window starts over: the phasor's means restart from the next
+ * fit sample (its noise power and increments stay). */
+static inline void hp_restart_window(ladrc_hp_tone_t *tone)
+{
+    tone->mean_a = LADRC_R(0.0);
+    tone->mean_b = LADRC_R(0.0);
+    tone->mean_power = LADRC_R(0.0);
+    tone->gate_samples = 0u;
+}
+
 /* A tone whose phasor starts over: the gate's means restart (not locked). */
 static inline void hp_forget_evidence(ladrc_hp_tone_t *tone)
 {
