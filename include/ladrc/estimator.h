@@ -133,7 +133,7 @@ typedef struct {
 
 /** LP estimator state; owned by the caller, read through the getters. */
 typedef struct {
-    ladrc_rls_t rls;              /**< one parameter: d_hat */
+    ladrc_rls1_t rls;             /**< one parameter, regressor 1: d_hat */
     ladrc_real_t dt_s;            /**< fixed step h (s) */
     ladrc_real_t prev_rate_rad_s; /**< the previous finite rate (rad/s) */
     ladrc_real_t lead_x;          /**< the lead's low-pass state x (rad/s^2) */
