@@ -82,7 +82,7 @@ ladrc_real_t axis_hp_preset(ladrc_axis_t *axis, ladrc_real_t f_rad_s2)
 
 ladrc_real_t axis_hp_command(ladrc_axis_t *axis)
 {
-    const ladrc_real_t tones = ladrc_hp_get_command(&axis->part.hp.est);
+    const ladrc_real_t tones = hp_command(&axis->part.hp.est);
     if (!axis->part.hp.gyro) {
         return tones;
     }

@@ -294,6 +294,7 @@ typedef struct {
     /** @} */
     ladrc_real_t weight;    /**< compensation weight in [0, 1] */
     ladrc_real_t estimate;  /**< the applied d_hat (rad/s^2) */
+    ladrc_real_t command;   /**< advance: the compensation the command carries (rad/s^2) */
     ladrc_real_t handover;  /**< part of estimate's latest change due to the weight */
     ladrc_real_t block_sum; /**< sample_block_mean: the block's samples so far, summed (rad/s^2) */
     uint16_t block_n;       /**< sample_block_mean: how many */
@@ -384,8 +385,8 @@ ladrc_real_t ladrc_hp_get_estimate(const ladrc_hp_estimator_t *est);
 
 /** The compensation the command should carry after the latest step
  *  (rad/s^2): the estimate with each tone advanced over the actuator (see
- *  above), computed on call; the estimate itself when there is no actuator
- *  to advance over.
+ *  above), computed by the step in the same pass as the estimate; the
+ *  estimate itself when there is no actuator to advance over.
  *  @param est  the estimator; NULL: 0
  *  @return the compensation (rad/s^2) */
 ladrc_real_t ladrc_hp_get_command(const ladrc_hp_estimator_t *est);
