@@ -247,11 +247,10 @@ static LADRC_FORCE_INLINE ladrc_fault_t update_n(ladrc_rls_t *rls, const ladrc_r
 ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_real_t y)
 {
     LADRC_REQUIRE(rls != NULL && phi != NULL, LADRC_FAULT_STATE);
-    /* The counts the estimators use most laid out flat (LP: 1; HP, one
-     * tone: 3); the others through the loops. */
+    /* The count the estimators use most laid out flat (HP, one tone: 3; LP
+     * has its own one-parameter form, ladrc_rls1_t); the others through the
+     * loops. */
     switch (rls->n_params) {
-    case 1u:
-        return update_n(rls, phi, y, 1u);
     case 3u:
         return update_n(rls, phi, y, 3u);
     default:
