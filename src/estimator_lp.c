@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* LP disturbance estimator: measured acceleration minus known input, tracked
  * by a one-parameter bounded-gain RLS (see estimator.h; rls.h, ladrc_rls1_t). */
-#include "ladrc/estimator.h"
+#include "estimator_lp_internal.h"
 #include "require.h"
 
 ladrc_status_t ladrc_lp_init(ladrc_lp_estimator_t *est, const ladrc_lp_config_t *cfg)
@@ -80,13 +80,13 @@ ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s, 
 ladrc_real_t ladrc_lp_get_estimate(const ladrc_lp_estimator_t *est)
 {
     LADRC_REQUIRE(est != NULL, LADRC_R(0.0));
-    return est->rls.theta;
+    return lp_estimate(est);
 }
 
 ladrc_real_t ladrc_lp_get_sample(const ladrc_lp_estimator_t *est)
 {
     LADRC_REQUIRE(est != NULL, (ladrc_real_t)NAN);
-    return est->has_sample ? est->sample_rad_s2 : (ladrc_real_t)NAN;
+    return lp_sample(est);
 }
 
 void ladrc_lp_hand_over(ladrc_lp_estimator_t *est, ladrc_real_t delta)
@@ -104,14 +104,6 @@ void ladrc_lp_hand_over(ladrc_lp_estimator_t *est, ladrc_real_t delta)
 ladrc_fault_t ladrc_lp_step_lead(ladrc_lp_estimator_t *est, ladrc_real_t *command_rad_s2)
 {
     LADRC_REQUIRE(est != NULL && command_rad_s2 != NULL, LADRC_FAULT_STATE);
-    const ladrc_real_t d_hat = est->rls.theta;
-    if (!est->lead) {
-        *command_rad_s2 = d_hat;
-        return LADRC_FAULT_NONE;
-    }
-    /* the bounded lead over the actuator (estimator.h) */
-    const ladrc_real_t fast = d_hat - est->lead_x;
-    est->lead_x += est->lead_beta * fast;
-    *command_rad_s2 = d_hat + (LADRC_LP_LEAD_MAX - LADRC_R(1.0)) * fast;
+    *command_rad_s2 = lp_lead_step(est);
     return LADRC_FAULT_NONE;
 }
