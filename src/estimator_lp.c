@@ -2,6 +2,7 @@
 /* LP disturbance estimator: measured acceleration minus known input, tracked
  * by a one-parameter bounded-gain RLS (see estimator.h; rls.h, ladrc_rls1_t). */
 #include "estimator_lp_internal.h"
+#include "rls1_internal.h"
 #include "require.h"
 
 ladrc_status_t ladrc_lp_init(ladrc_lp_estimator_t *est, const ladrc_lp_config_t *cfg)
@@ -68,7 +69,7 @@ ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s, 
     est->faults = LADRC_FAULT_NONE;
     if (est->has_prev_rate) {
         const ladrc_real_t sample = (rate_rad_s - est->prev_rate_rad_s) / est->dt_s - accel_known;
-        est->faults = ladrc_rls1_update(&est->rls, sample);
+        est->faults = rls1_update(&est->rls, sample);
         est->sample_rad_s2 = sample;
         est->has_sample = ladrc_is_finite(sample) ? 1u : 0u;
     }

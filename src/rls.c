@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Bounded-gain RLS on the factors P = U D U^T (see rls.h). */
 #include "ladrc/rls.h"
+#include "rls1_internal.h"
 #include "require.h"
 
 #include "compiler.h"
@@ -363,7 +364,7 @@ ladrc_status_t ladrc_rls1_init(ladrc_rls1_t *rls, const ladrc_rls_config_t *cfg)
 }
 
 /* P restarted as restart_p does at n = 1 (its trace: initial_trace(p_initial, 1) = p_initial). */
-static void rls1_restart_p(ladrc_rls1_t *rls)
+void rls1_restart_p(ladrc_rls1_t *rls)
 {
     rls->p = rls->p_initial;
     rls->settled = 0u;
@@ -383,7 +384,7 @@ void ladrc_rls1_reset(ladrc_rls1_t *rls)
  * beta = mu + g, D <- D mu / (beta mu) and tr(P) = D; U is empty. Each
  * product with phi = 1 is exact, so leaving it out changes no bit
  * (tests/test_rls.c compares the two on every path). */
-static ladrc_fault_t rls1_full_update(ladrc_rls1_t *rls, ladrc_real_t y)
+ladrc_fault_t rls1_full_update(ladrc_rls1_t *rls, ladrc_real_t y)
 {
     const ladrc_real_t h = rls->dt_s;
     const ladrc_real_t p_before = rls->p;
@@ -421,21 +422,5 @@ static ladrc_fault_t rls1_full_update(ladrc_rls1_t *rls, ladrc_real_t y)
 ladrc_fault_t ladrc_rls1_update(ladrc_rls1_t *rls, ladrc_real_t y)
 {
     LADRC_REQUIRE(rls != NULL, LADRC_FAULT_STATE);
-    if (!ladrc_is_finite(y)) {
-        rls->faults = LADRC_FAULT_INPUT;
-        return rls->faults;
-    }
-    if (!rls->settled) {
-        return rls1_full_update(rls, y);
-    }
-    /* P at its fixed point: the full update's gain, forgetting and P again. */
-    const ladrc_real_t theta = rls->theta + rls->gain * ((y - rls->theta) * rls->inv_beta);
-    if (!ladrc_is_finite(theta)) {
-        rls1_restart_p(rls);
-        rls->faults = LADRC_FAULT_STATE;
-        return rls->faults;
-    }
-    rls->theta = theta;
-    rls->faults = LADRC_FAULT_NONE;
-    return rls->faults;
+    return rls1_update(rls, y);
 }
