@@ -474,8 +474,9 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
     }
     /* The model at this tick's phases with the sample's lag undone per tone
      * (lead: (1 + j w / wo)^3), and with an actuator to advance over the
-     * command in the same pass; theta read once (the getter is a call). */
-    const ladrc_real_t *theta = ladrc_rls_get_theta(&est->fit);
+     * command in the same pass; theta read from the fit the estimator owns
+     * (the getter is a call). */
+    const ladrc_real_t *theta = est->fit.theta;
     ladrc_real_t model;
     if (est->advance) {
         model = model_and_command(est, theta);
