@@ -23,17 +23,33 @@
 /* ...and this much of the relative phase of two significant tones. */
 #define SEPARATION_MEMORY_RAD LADRC_R(1.0)
 /* Slip (turn rate of a fitted phasor) averaged at this rate (1/s): a few
- * fit memories, so one noisy fit sample does not unlock a tone. */
+ * fit memories, so one noisy fit sample does not move a tone's frequency
+ * far (the ONLINE search follows the slip). */
 #define SLIP_AVERAGE_PER_S LADRC_R(10.0)
-/* A tone locks while |slip| < SLIP_TOL_FRACTION * lambda (the fit then
- * follows the turning phasor with a phase error of about slip / lambda) and
- * unlocks above SLIP_UNLOCK_FACTOR times that. */
+/* To lock, a tone's slip must stay below SLIP_TOL_FRACTION of the fit's rate
+ * (the fit then follows the turning phasor with a phase error of about
+ * slip / lambda) plus SLIP_NOISE_SIGMAS times the slip the phasor's noise
+ * gives; to stay locked, below SLIP_UNLOCK_FACTOR times that. */
 #define SLIP_TOL_FRACTION LADRC_R(0.1)
+#define SLIP_NOISE_SIGMAS LADRC_R(3.0)
 #define SLIP_UNLOCK_FACTOR LADRC_R(3.0)
-/* A change of size counts at this weight beside the turn: a third, so a fit
- * whose amplitude still settles after a restart may lock, the tail of a
- * transient (decaying at several times lambda) may not. */
-#define DRIFT_WEIGHT LADRC_R(0.33)
+/* The gate judges each tone on its band (estimator.h "Gate"): the fitted
+ * phasor's mean over a window of at least GATE_WINDOW_RAD of the tone's
+ * phase and GATE_WINDOW_MEMORIES of the fit's memories... */
+#define GATE_WINDOW_RAD LADRC_R(6.28318530717959)
+#define GATE_WINDOW_MEMORIES LADRC_R(3.0)
+/* ...must stand GATE_EVIDENCE_ON times above the power noise alone would
+ * give it (noise alone exceeds that with probability e^-16 per window) to
+ * lock, GATE_EVIDENCE_OFF to stay locked... */
+#define GATE_EVIDENCE_ON LADRC_R(16.0)
+#define GATE_EVIDENCE_OFF LADRC_R(4.0)
+/* ...and hold at least GATE_COHERENCE_ON of the phasor's power less its
+ * noise (a tone off its frequency by dw turns its phasor at dw: the mean
+ * keeps 1 / (1 + (dw W)^2) of it), GATE_COHERENCE_OFF to stay locked. */
+#define GATE_COHERENCE_ON LADRC_R(0.5)
+#define GATE_COHERENCE_OFF LADRC_R(0.25)
+/* The phasor's noise power is averaged over this many fit memories. */
+#define NOISE_MEMORIES LADRC_R(2.0)
 /* A tone is significant while its power a^2/2 is at least this share of the
  * sample's power around its mean and its amplitude above AMP_FLOOR. */
 #define AMP_SHARE LADRC_R(0.01)
@@ -233,11 +249,18 @@ static LADRC_FORCE_INLINE ladrc_real_t tone_turned(const ladrc_hp_tone_t *tone, 
     return x * tone->cos_psi - y * tone->sin_psi;
 }
 
+/* A change of size counts at this weight beside the turn: a third, so a fit
+ * whose amplitude still settles after a restart may lock, the tail of a
+ * transient (decaying at several times lambda) may not. */
+#define DRIFT_WEIGHT LADRC_R(0.33)
+
 /* Turn of a tone's fitted phasor since the previous fit sample, as a rate
- * (rad/s), averaged into its slip, and the relative change of its size, as
- * a rate (1/s), averaged into its drift; returns |slip| + DRIFT_WEIGHT
- * |drift|, how far the phasor is from standing still (a tone that decays or
- * grows, e.g. the tail of a transient, does not stand still either). */
+ * (rad/s), averaged into its slip (what the ONLINE search follows), and the
+ * relative change of its size, as a rate (1/s), averaged into its drift;
+ * returns |slip| + DRIFT_WEIGHT |drift|, how far the phasor is from
+ * standing still (a tone that decays or grows, e.g. the tail of a
+ * transient, does not stand still either). Reads the previous phasor
+ * (update_evidence moves it on). */
 static ladrc_real_t update_slip(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone, ladrc_real_t a, ladrc_real_t b)
 {
     /* (a - j b) conj(prev_a - j prev_b) = |prev|^2 P / P_prev: its angle is
@@ -245,8 +268,6 @@ static ladrc_real_t update_slip(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t
     const ladrc_real_t re = a * tone->prev_a + b * tone->prev_b;
     const ladrc_real_t im = a * tone->prev_b - b * tone->prev_a;
     const ladrc_real_t prev2 = tone->prev_a * tone->prev_a + tone->prev_b * tone->prev_b;
-    tone->prev_a = a;
-    tone->prev_b = b;
     if (!(prev2 > LADRC_R(0.0))) {
         /* a (re)started fit: nothing to compare yet */
         return ladrc_fabs(tone->slip_rad_s) + DRIFT_WEIGHT * ladrc_fabs(tone->drift_per_s);
@@ -264,6 +285,64 @@ static ladrc_real_t update_slip(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t
     tone->slip_rad_s += alpha * (turn / est->fit_period_s - tone->slip_rad_s);
     tone->drift_per_s += alpha * (grow / est->fit_period_s - tone->drift_per_s);
     return ladrc_fabs(tone->slip_rad_s) + DRIFT_WEIGHT * ladrc_fabs(tone->drift_per_s);
+}
+
+/* The slip a tone of power a^2 / 2 may show and still lock (rad/s): the
+ * fit's share and the noise's, whose per-sample turn has a variance of
+ * lambda T s2 / |P|^2 (the increments' power across the phasor), averaged
+ * at SLIP_AVERAGE_PER_S. */
+static ladrc_real_t slip_allowed(const ladrc_hp_estimator_t *est, const ladrc_hp_tone_t *tone, ladrc_real_t power)
+{
+    const ladrc_real_t lambda = est->fit_rate_per_s;
+    const ladrc_real_t noise2 =
+        lambda * SLIP_AVERAGE_PER_S * tone->noise_power / (LADRC_R(4.0) * power + LADRC_R(1e-30));
+    return SLIP_TOL_FRACTION * lambda + SLIP_NOISE_SIGMAS * ladrc_sqrt(noise2);
+}
+
+/* The gate's band evidence for a tone (estimator.h "Gate"), from its fitted
+ * phasor P = (a, b) at this fit sample; updates the means and returns 1
+ * once they span a whole window. Under noise alone P wanders as a
+ * first-order process of the fit's rate lambda and variance s2, whose
+ * increments are uncorrelated with mean power 2 lambda T s2 (their changes:
+ * 4 lambda T s2); its mean over a window of rate
+ * beta then has power s2 beta / (beta + lambda). */
+static int update_evidence(const ladrc_hp_estimator_t *est, ladrc_hp_tone_t *tone, ladrc_real_t a, ladrc_real_t b)
+{
+    const ladrc_real_t t = est->fit_period_s;
+    const ladrc_real_t lambda = est->fit_rate_per_s;
+    const ladrc_real_t da = a - tone->prev_a;
+    const ladrc_real_t db = b - tone->prev_b;
+    /* the change of the increment: noise's increments are uncorrelated, a
+     * smooth motion (the fit converging, a slow turn) nearly cancels */
+    const ladrc_real_t dda = da - tone->prev_da;
+    const ladrc_real_t ddb = db - tone->prev_db;
+    const int fresh = (tone->prev_a == LADRC_R(0.0) && tone->prev_b == LADRC_R(0.0));
+    const int second = (tone->prev_da != LADRC_R(0.0) || tone->prev_db != LADRC_R(0.0));
+    tone->prev_a = a;
+    tone->prev_b = b;
+    tone->prev_da = fresh ? LADRC_R(0.0) : da;
+    tone->prev_db = fresh ? LADRC_R(0.0) : db;
+    if (fresh || !second) {
+        return 0; /* a (re)started fit: no change of increment yet */
+    }
+    if (tone->gate_samples < UINT16_MAX) {
+        tone->gate_samples++;
+    }
+    const ladrc_real_t n = (ladrc_real_t)tone->gate_samples;
+    const ladrc_real_t window_s = max_real(GATE_WINDOW_RAD / tone->w_rad_s, GATE_WINDOW_MEMORIES / lambda);
+    /* plain means until the window is full, then forgetting at its rate */
+    const ladrc_real_t alpha = max_real(LADRC_R(1.0) / n, t / window_s);
+    const ladrc_real_t alpha_noise = max_real(LADRC_R(1.0) / n, lambda * t / NOISE_MEMORIES);
+    tone->mean_a += alpha * (a - tone->mean_a);
+    tone->mean_b += alpha * (b - tone->mean_b);
+    tone->mean_power += alpha * (a * a + b * b - tone->mean_power);
+    tone->noise_power += alpha_noise * ((dda * dda + ddb * ddb) / (LADRC_R(4.0) * lambda * t) - tone->noise_power);
+    const ladrc_real_t beta = alpha / t;
+    const ladrc_real_t mean2 = tone->mean_a * tone->mean_a + tone->mean_b * tone->mean_b;
+    const ladrc_real_t mean_noise = tone->noise_power * beta / (beta + lambda);
+    tone->evidence = mean2 / (GATE_EVIDENCE_ON * mean_noise + LADRC_R(1e-30));
+    tone->coherence = mean2 / max_real(tone->mean_power - tone->noise_power, mean2 + LADRC_R(1e-30));
+    return n * t >= window_s;
 }
 
 /* Change detection on the fit's prior error (see estimator.h). A change
@@ -299,7 +378,7 @@ static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
         tone->prev_b = LADRC_R(0.0);
         tone->slip_rad_s = LADRC_R(0.0);
         tone->drift_per_s = LADRC_R(0.0);
-        tone->locked = 0u;
+        hp_forget_evidence(tone);
     }
     return CHANGE_NEW;
 }
@@ -341,7 +420,6 @@ LADRC_NOINLINE static void after_fit(ladrc_hp_estimator_t *est, ladrc_real_t sam
     est->sig_power += POWER_AVERAGE_PER_S * t * (centred * centred - est->sig_power);
     const ladrc_real_t power_floor = LADRC_R(0.5) * AMP_FLOOR_RAD_S2 * AMP_FLOOR_RAD_S2;
     const int settled = !changing && fit_settled(est, theta);
-    const ladrc_real_t tol = SLIP_TOL_FRACTION * est->fit_rate_per_s;
     ladrc_real_t rate = est->lambda0_max;
     int any_locked = 0;
     int all_locked = 1;
@@ -350,20 +428,35 @@ LADRC_NOINLINE static void after_fit(ladrc_hp_estimator_t *est, ladrc_real_t sam
         const ladrc_real_t a = theta[theta_a(k)];
         const ladrc_real_t b = theta[theta_a(k) + 1u];
         const ladrc_real_t motion = update_slip(est, tone, a, b);
+        const int window_full = update_evidence(est, tone, a, b);
         const ladrc_real_t power = fit_tone_power(theta, k);
         tone->significant = (power >= AMP_SHARE * est->sig_power && power >= power_floor) ? 1u : 0u;
         if (!tone->significant) {
             tone->locked = 0u;
             continue;
         }
-        /* A tone locks only once the fit predicts the sample (its phasor also
-         * turns while the fit converges) and, ONLINE, while the frequency fit
-         * sees a clean model. */
-        const int ready = tone->locked || (settled && hp_search_agrees(est));
-        /* to lock, the phasor must stand still; to stay locked, it must not
-         * turn (two tones' fitted sizes breathe a little as they settle) */
-        const ladrc_real_t moving = tone->locked ? ladrc_fabs(tone->slip_rad_s) : motion;
-        tone->locked = (ready && moving < (tone->locked ? SLIP_UNLOCK_FACTOR * tol : tol)) ? 1u : 0u;
+        /* A tone locks once the fit predicts the sample (its phasor also
+         * moves while the fit converges) and its phasor stands still. A
+         * clean sample (the observer's): while an ONLINE search sees a
+         * clean model of the active tones. A noisy one (the gyro's): while
+         * no clean model contradicts the tones and the band evidence and
+         * coherence pass over a whole window. It stays locked while the
+         * phasor does not turn and, noisy, the evidence and coherence pass
+         * their lower bars. */
+        int stays, locks;
+        if (!est->block_mean) {
+            const ladrc_real_t tol = SLIP_TOL_FRACTION * est->fit_rate_per_s;
+            stays = tone->locked && ladrc_fabs(tone->slip_rad_s) < SLIP_UNLOCK_FACTOR * tol;
+            locks = settled && hp_search_agrees(est) && motion < tol;
+        } else {
+            const ladrc_real_t slip_bar = slip_allowed(est, tone, power);
+            const int agrees = !hp_search_contradicts(est);
+            stays = tone->locked && agrees && ladrc_fabs(tone->slip_rad_s) < SLIP_UNLOCK_FACTOR * slip_bar &&
+                    tone->evidence * GATE_EVIDENCE_ON >= GATE_EVIDENCE_OFF && tone->coherence >= GATE_COHERENCE_OFF;
+            locks = settled && agrees && motion < slip_bar && window_full && tone->evidence >= LADRC_R(1.0) &&
+                    tone->coherence >= GATE_COHERENCE_ON;
+        }
+        tone->locked = (stays || locks) ? 1u : 0u;
         any_locked |= tone->locked;
         all_locked &= tone->locked;
         rate = min_real(rate, tone->w_rad_s / FIT_MEMORY_RAD);
@@ -545,6 +638,18 @@ int ladrc_hp_tone_locked(const ladrc_hp_estimator_t *est, unsigned k)
 {
     LADRC_REQUIRE(est != NULL, 0);
     return (k < est->n_active) ? (int)est->tone[k].locked : 0;
+}
+
+ladrc_real_t ladrc_hp_get_evidence(const ladrc_hp_estimator_t *est, unsigned k)
+{
+    LADRC_REQUIRE(est != NULL, LADRC_R(0.0));
+    return (k < est->n_active) ? est->tone[k].evidence : LADRC_R(0.0);
+}
+
+ladrc_real_t ladrc_hp_get_coherence(const ladrc_hp_estimator_t *est, unsigned k)
+{
+    LADRC_REQUIRE(est != NULL, LADRC_R(0.0));
+    return (k < est->n_active) ? est->tone[k].coherence : LADRC_R(0.0);
 }
 
 ladrc_real_t ladrc_hp_get_weight(const ladrc_hp_estimator_t *est)

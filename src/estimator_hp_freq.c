@@ -121,6 +121,7 @@ void hp_restart_tones(ladrc_hp_estimator_t *est, unsigned n)
         }
     }
     hp_start_fit(est, n, theta);
+    est->contradicts = 0u; /* the tones now take the frequencies found */
 }
 
 /* ONLINE frequency fit (see estimator.h). One fit sample of the raw sample
@@ -261,6 +262,12 @@ unsigned hp_update_frequencies(ladrc_hp_estimator_t *est, ladrc_real_t sample)
     ladrc_real_t *w = est->found_rad_s;
     const unsigned found = clean_tones(est, w);
     est->clean = (found == est->n_active) ? 1u : 0u;
+    est->contradicts = (found > 0u && found != est->n_active) ? 1u : 0u;
+    for (unsigned k = 0u; k < found && k < est->n_active; ++k) {
+        if (ladrc_fabs(w[k] - est->tone[k].w_rad_s) > TONE_SEPARATION * w[k]) {
+            est->contradicts = 1u;
+        }
+    }
     if (est->hold < UINT16_MAX) {
         est->hold++;
     }
@@ -306,6 +313,7 @@ void hp_freq_reset(ladrc_hp_estimator_t *est)
     est->found_rad_s[0] = LADRC_R(0.0);
     est->found_rad_s[LADRC_HP_MAX_TONES - 1u] = LADRC_R(0.0);
     est->clean = 0u;
+    est->contradicts = 0u;
     est->spec_restart_left = 0u;
 }
 

@@ -48,6 +48,11 @@ static inline ladrc_real_t min_real(ladrc_real_t a, ladrc_real_t b)
     return (b < a) ? b : a;
 }
 
+static inline ladrc_real_t max_real(ladrc_real_t a, ladrc_real_t b)
+{
+    return (b > a) ? b : a;
+}
+
 /* 1: the frequencies are searched online (never without the search built). */
 static inline int hp_online(const ladrc_hp_estimator_t *est)
 {
@@ -59,8 +64,22 @@ static inline int hp_online(const ladrc_hp_estimator_t *est)
 #endif
 }
 
+/* 1 while an ONLINE search sees a clean model whose tones are not the
+ * active ones (another number, or a frequency far from a tone's): no tone
+ * may lock then. Under noise the search sees no clean model and leaves the
+ * judgement to the band evidence. */
+static inline int hp_search_contradicts(const ladrc_hp_estimator_t *est)
+{
+#if LADRC_WITH_HP_ONLINE
+    return est->online && est->contradicts;
+#else
+    (void)est;
+    return 0;
+#endif
+}
+
 /* 1 unless an ONLINE search sees another number of clean tones than are
- * active (a tone may lock only while it agrees). */
+ * active (on a clean sample a tone may lock only while it agrees). */
 static inline int hp_search_agrees(const ladrc_hp_estimator_t *est)
 {
 #if LADRC_WITH_HP_ONLINE
@@ -82,6 +101,21 @@ static inline int hp_search_agrees(const ladrc_hp_estimator_t *est)
 void hp_set_tone_freq(const ladrc_hp_tone_basis_t *basis, unsigned advance, ladrc_hp_tone_t *tone,
                       ladrc_real_t w_rad_s);
 
+/* A tone whose phasor starts over: the gate's means restart (not locked). */
+static inline void hp_forget_evidence(ladrc_hp_tone_t *tone)
+{
+    tone->mean_a = LADRC_R(0.0);
+    tone->mean_b = LADRC_R(0.0);
+    tone->prev_da = LADRC_R(0.0);
+    tone->prev_db = LADRC_R(0.0);
+    tone->mean_power = LADRC_R(0.0);
+    tone->noise_power = LADRC_R(0.0);
+    tone->evidence = LADRC_R(0.0);
+    tone->coherence = LADRC_R(0.0);
+    tone->gate_samples = 0u;
+    tone->locked = 0u;
+}
+
 /* A tone whose fit starts over: no phasor history, not significant, not locked. */
 static inline void hp_forget_tone(ladrc_hp_tone_t *tone)
 {
@@ -89,6 +123,7 @@ static inline void hp_forget_tone(ladrc_hp_tone_t *tone)
     tone->prev_b = LADRC_R(0.0);
     tone->slip_rad_s = LADRC_R(0.0);
     tone->drift_per_s = LADRC_R(0.0);
+    hp_forget_evidence(tone);
     tone->significant = 0u;
     tone->locked = 0u;
 }

@@ -77,11 +77,31 @@
  * averaged turn rate (slip), plus the averaged relative rate at which its
  * size changes (a decaying transient does not stand still either), must stay
  * below a tenth of lambda (a phase error under 0.1 rad) for the tone to be
- * locked; a short-memory fit's explained
- * power could not tell this (it explains almost anything locally). The
- * compensation weight moves at a bounded rate towards 1 while every
- * significant tone (a real share of the sample's power) is locked and no
- * change is under way, else towards 0 (plain LADRC): d_hat = weight * model.
+ * locked. The compensation weight moves at a bounded rate towards 1 while
+ * every significant tone (a real share of the sample's power) is locked and
+ * no change is under way, else towards 0 (plain LADRC): d_hat = weight * model.
+ * A clean sample (the observer's) locks once the fit predicts it and, ONLINE,
+ * the frequency fit sees a clean model of the active tones.
+ * A noisy sample (the gyro's block mean) is judged on the tone's band:
+ * - the phasor's mean M over a window of at least one period of the tone
+ *   and three fit memories, its mean power Q and its noise power s2 (from
+ *   the changes of its increments, which a smooth motion of P does not
+ *   have: under noise alone P wanders as a first-order process of rate
+ *   lambda, whose increments are uncorrelated);
+ * - evidence: |M|^2 at least 16 times the power s2 beta / (beta + lambda)
+ *   noise alone gives the mean over a window of rate beta (noise alone passes
+ *   with probability e^-16 per window); coherence: |M|^2 at least half of
+ *   Q - s2 (a tone off its frequency by dw keeps 1 / (1 + (dw W)^2) of it);
+ * - the slip bar widened by three times the slip the noise gives;
+ * - no clean model of other tones from the frequency fit (under noise it sees
+ *   none and the band decides).
+ *   Locked, a tone stays so while the evidence keeps a quarter of its bar,
+ *   the coherence 0.25 and the slip three times its bar. Vibration far from
+ *   the tone does not enter its band: the fit's phasor only carries what lies
+ *   within about lambda of the tone. The smallest tone it engages on is
+ *   A = 4 sqrt(G beta) for a sample noise of one-sided density G
+ *   ((rad/s^2)^2/Hz) at the tone and beta = 1 / W (ladrc_hp_get_evidence and
+ *   ladrc_hp_get_coherence report both per tone).
  *
  * Changes: a short average of the fit's prior error power far above its long
  * average (a frequency jump, an onset, a stop, a bias step) restarts the fit
@@ -264,8 +284,19 @@ typedef struct {
     /** @} */
     ladrc_real_t slip_rad_s;  /**< averaged turn rate of the fitted phasor */
     ladrc_real_t drift_per_s; /**< averaged relative rate of change of its size */
+    /** @{ */
+    ladrc_real_t mean_a, mean_b; /**< the fitted phasor's mean over the gate's window */
+    /** @} */
+    /** @{ */
+    ladrc_real_t prev_da, prev_db; /**< the fitted phasor's previous increment */
+    /** @} */
+    ladrc_real_t mean_power;  /**< the mean of its squared size over the window */
+    ladrc_real_t noise_power; /**< its noise power, from its increments */
+    ladrc_real_t evidence;    /**< |mean|^2 over the mean's noise power, over GATE_EVIDENCE_ON */
+    ladrc_real_t coherence;   /**< |mean|^2 over the mean squared size less the noise */
+    uint16_t gate_samples;    /**< fit samples in the gate's means since the tone (re)started */
     uint8_t significant;      /**< carries a real share of the sample's power */
-    uint8_t locked;           /**< significant and its phasor stands still */
+    uint8_t locked;           /**< significant and its band evidence and coherence pass */
 } ladrc_hp_tone_t;
 
 /** What a tone's constants follow from besides its frequency (from the
@@ -319,6 +350,7 @@ typedef struct {
     uint8_t spec_decide;                          /**< fit samples since the frequency fit's model was last judged */
     uint8_t online;                               /**< 1: freq_mode ONLINE */
     uint8_t clean;                                /**< the frequency fit sees as many clean tones as are active */
+    uint8_t contradicts; /**< the frequency fit sees a clean model with other tones than the active */
 #endif
     /** @{ */
     uint16_t fit_decimation, fit_count, fit_phase; /**< ticks per fit sample, tick in the block, tick that fits */
@@ -425,6 +457,24 @@ ladrc_real_t ladrc_hp_get_amplitude(const ladrc_hp_estimator_t *est, unsigned k)
  *  @param k    the tone, from 0
  *  @return 1 locked, 0 not (or k >= the active tones) */
 int ladrc_hp_tone_locked(const ladrc_hp_estimator_t *est, unsigned k);
+
+/** The gate's band evidence for active tone k: the power of its fitted
+ *  phasor's mean over the gate's window against the power noise alone
+ *  would give that mean, as a fraction of the bar a tone must clear to
+ *  lock (1: at the bar; see "Gate" above).
+ *  @param est  the estimator; NULL: 0
+ *  @param k    the tone, from 0
+ *  @return the evidence over its bar; 0 for k >= the active tones */
+ladrc_real_t ladrc_hp_get_evidence(const ladrc_hp_estimator_t *est, unsigned k);
+
+/** The gate's coherence for active tone k: the power of its fitted
+ *  phasor's mean over the window against its mean power less the noise's
+ *  (1: the phasor stands still; a tone off its frequency by dw keeps
+ *  1 / (1 + (dw W)^2) of it over a window W).
+ *  @param est  the estimator; NULL: 0
+ *  @param k    the tone, from 0
+ *  @return the coherence, in [0, 1]; 0 for k >= the active tones */
+ladrc_real_t ladrc_hp_get_coherence(const ladrc_hp_estimator_t *est, unsigned k);
 
 /** Compensation weight set by the gate.
  *  @param est  the estimator; NULL: 0

@@ -97,6 +97,13 @@ void runner_attitude_csv_header(char *out, size_t len)
         axis_columns(out, len, &at, freq, "_rad_s");
         axis_columns(out, len, &at, amp, "_rad_s2");
     }
+    for (int k = 1; k <= LADRC_HP_MAX_TONES; ++k) {
+        char evidence[32], coherence[32];
+        snprintf(evidence, sizeof evidence, "hp_evidence%d_", k);
+        snprintf(coherence, sizeof coherence, "hp_coherence%d_", k);
+        axis_columns(out, len, &at, evidence, "_ratio");
+        axis_columns(out, len, &at, coherence, "_frac");
+    }
     axis_columns(out, len, &at, "hp_est_", "_rad_s2");
     axis_columns(out, len, &at, "lp_est_", "_rad_s2");
     if (at + 1 < len) {
@@ -127,6 +134,12 @@ static void estimator_cells(csv_line_t *line, const ladrc_attitude_t *att)
             runner_line_g(line, k < tones[i] ? (double)ladrc_hp_get_freq(hp[i], k) : NAN, 6);
         for (int i = 0; i < 3; ++i)
             runner_line_g(line, k < tones[i] ? (double)ladrc_hp_get_amplitude(hp[i], k) : NAN, 6);
+    }
+    for (unsigned k = 0; k < LADRC_HP_MAX_TONES; ++k) {
+        for (int i = 0; i < 3; ++i)
+            runner_line_g(line, k < tones[i] ? (double)ladrc_hp_get_evidence(hp[i], k) : NAN, 6);
+        for (int i = 0; i < 3; ++i)
+            runner_line_g(line, k < tones[i] ? (double)ladrc_hp_get_coherence(hp[i], k) : NAN, 6);
     }
     for (int i = 0; i < 3; ++i)
         runner_line_g(line, hp[i] != NULL ? (double)ladrc_hp_get_estimate(hp[i]) : NAN, 6);

@@ -179,9 +179,9 @@ printf '[run]\nduration_s = 0.5\ncontrollers = LADRC PID\n[rotors]\nideal = no\n
 "$sil" "$work/sat.ini" --out "$work/sat_out" --quiet > /dev/null 2>&1
 check csv_run_succeeds $?
 head -n 1 "$work/sat_out/sat/LADRC.csv" | tr , '\n' |
-  grep -Ev '(_s|_deg|_Nm|_rad_s2|_rad2_s2|_deg_s|_m_s2|_flag|_count|_frac)$' | grep -q . && bad=1 || bad=0
+  grep -Ev '(_s|_deg|_Nm|_rad_s2|_rad2_s2|_deg_s|_m_s2|_flag|_count|_frac|_ratio)$' | grep -q . && bad=1 || bad=0
 check csv_every_column_has_a_unit $bad
-awk -F, 'NR == 1 { n = NF } NF != n { bad = 1 } END { exit bad || n != 75 }' "$work/sat_out/sat/PID.csv"
+awk -F, 'NR == 1 { n = NF } NF != n { bad = 1 } END { exit bad || n != 87 }' "$work/sat_out/sat/PID.csv"
 check csv_rows_as_wide_as_the_header $?
 awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
     { if ($c["meas_angle_pitch_deg"] != 0) noisy = 1; if ($c["angle_pitch_deg"] != $c["meas_angle_pitch_deg"]) apart = 1

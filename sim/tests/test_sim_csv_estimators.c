@@ -15,7 +15,7 @@
 #include <unistd.h>
 
 #define TICKS 4000 /* 4 s at 1 ms */
-#define VALUES (3 * (4 + 2 * LADRC_HP_MAX_TONES))
+#define VALUES (3 * (4 + 4 * LADRC_HP_MAX_TONES))
 #define ROW_MAX (RUNNER_CSV_FIELDS_MAX * SIM_NUMFMT_MAX)
 
 /* A tone from 1 s on, HP's gate has something to engage on; a motor lag
@@ -59,6 +59,12 @@ static void read_getters(const ladrc_attitude_t *att, double *v)
             v[n++] = hp[i] && k < ladrc_hp_get_active_tones(hp[i]) ? (double)ladrc_hp_get_freq(hp[i], k) : NAN;
         for (int i = 0; i < 3; ++i)
             v[n++] = hp[i] && k < ladrc_hp_get_active_tones(hp[i]) ? (double)ladrc_hp_get_amplitude(hp[i], k) : NAN;
+    }
+    for (unsigned k = 0; k < LADRC_HP_MAX_TONES; ++k) {
+        for (int i = 0; i < 3; ++i)
+            v[n++] = hp[i] && k < ladrc_hp_get_active_tones(hp[i]) ? (double)ladrc_hp_get_evidence(hp[i], k) : NAN;
+        for (int i = 0; i < 3; ++i)
+            v[n++] = hp[i] && k < ladrc_hp_get_active_tones(hp[i]) ? (double)ladrc_hp_get_coherence(hp[i], k) : NAN;
     }
     for (int i = 0; i < 3; ++i)
         v[n++] = hp[i] ? (double)ladrc_hp_get_estimate(hp[i]) : NAN;
@@ -140,6 +146,13 @@ static void value_columns(const char *header, int *col)
         snprintf(amp, sizeof amp, "hp_amp%d_", k);
         axis_columns(header, freq, "_rad_s", col, &n);
         axis_columns(header, amp, "_rad_s2", col, &n);
+    }
+    for (int k = 1; k <= LADRC_HP_MAX_TONES; ++k) {
+        char evidence[32], coherence[32];
+        snprintf(evidence, sizeof evidence, "hp_evidence%d_", k);
+        snprintf(coherence, sizeof coherence, "hp_coherence%d_", k);
+        axis_columns(header, evidence, "_ratio", col, &n);
+        axis_columns(header, coherence, "_frac", col, &n);
     }
     axis_columns(header, "hp_est_", "_rad_s2", col, &n);
     axis_columns(header, "lp_est_", "_rad_s2", col, &n);
