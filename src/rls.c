@@ -383,7 +383,7 @@ void ladrc_rls1_reset(ladrc_rls1_t *rls)
 /* update_n at n = 1, phi = 1, operation for operation: f = 1, so g = h D,
  * beta = mu + g, D <- D mu / (beta mu) and tr(P) = D; U is empty. Each
  * product with phi = 1 is exact, so leaving it out changes no bit
- * (tests/test_rls.c compares the two on every path). */
+ * (tests/test_rls1.c compares the two on every path). */
 ladrc_fault_t rls1_full_update(ladrc_rls1_t *rls, ladrc_real_t y)
 {
     const ladrc_real_t h = rls->dt_s;
