@@ -91,6 +91,13 @@ static unsigned compare_one(ladrc_real_t dt_s, ladrc_real_t lambda0_per_s, ladrc
 
 static void test_unit_rls_is_the_general_rls_at_one_parameter_bit_for_bit(void)
 {
+#ifdef __FAST_MATH__
+    /* -ffast-math (the host-fastmath preset builds the non-finite input
+     * tests) lets the compiler reorder and contract each update its own
+     * way, and an overflow may happen in one and not the other: bit for
+     * bit is a property of the IEEE builds, which every other preset is. */
+    TEST_IGNORE_MESSAGE("bit for bit needs IEEE arithmetic, not -ffast-math");
+#endif
     static const double dt_s[] = {1e-3, 5e-4, 2.5e-4, 1.25e-4, 2e-3, 4e-3};
     static const double lambda0_per_s[] = {10.0, 50.0, 100.0, 200.0, 1000.0};
     static const double k0[] = {30.0, 100.0, 300.0, 1000.0};
