@@ -248,9 +248,9 @@ LADRC_NOINLINE static void update_feed(ladrc_attitude_t *att)
     put_feed(att, LADRC_ROLL, feed(att, LADRC_ROLL, w1, a1, w2, a2, a0));
     put_feed(att, LADRC_PITCH, feed(att, LADRC_PITCH, w2, a2, w0, a0, a1));
     put_feed(att, LADRC_YAW, feed(att, LADRC_YAW, w0, a0, w1, a1, a2));
-    ladrc_axis_set_known_disturbance(&att->axis[LADRC_ROLL], known_part(att, LADRC_ROLL, w1, w2, w0));
-    ladrc_axis_set_known_disturbance(&att->axis[LADRC_PITCH], known_part(att, LADRC_PITCH, w2, w0, w1));
-    ladrc_axis_set_known_disturbance(&att->axis[LADRC_YAW], known_part(att, LADRC_YAW, w0, w1, w2));
+    axis_put_known_disturbance(&att->axis[LADRC_ROLL], known_part(att, LADRC_ROLL, w1, w2, w0));
+    axis_put_known_disturbance(&att->axis[LADRC_PITCH], known_part(att, LADRC_PITCH, w2, w0, w1));
+    axis_put_known_disturbance(&att->axis[LADRC_YAW], known_part(att, LADRC_YAW, w0, w1, w2));
 }
 
 /* The tick of both frames: the feed, then each axis (inlined in both: the

@@ -501,7 +501,7 @@ void ladrc_axis_set_disturbance_rate(ladrc_axis_t *axis, ladrc_real_t rate_rad_s
 void ladrc_axis_set_known_disturbance(ladrc_axis_t *axis, ladrc_real_t f_known_rad_s2)
 {
     LADRC_REQUIRE_VOID(axis != NULL);
-    axis->f_known_rad_s2 = ladrc_is_finite(f_known_rad_s2) ? f_known_rad_s2 : LADRC_R(0.0);
+    axis_put_known_disturbance(axis, f_known_rad_s2);
 }
 
 ladrc_real_t ladrc_axis_get_accel(const ladrc_axis_t *axis)

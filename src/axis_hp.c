@@ -3,6 +3,7 @@
  * (axis.h, estimator.h). */
 #include "axis_internal.h"
 #include "estimator_hp_internal.h"
+#include "estimator_lp_internal.h"
 #include "require.h"
 
 void ladrc_axis_hp_config(const ladrc_axis_config_t *cfg, ladrc_hp_config_t *hp)
@@ -77,16 +78,14 @@ ladrc_real_t axis_hp_preset(ladrc_axis_t *axis, ladrc_real_t f_rad_s2)
         return LADRC_R(0.0); /* the fit starts idle: the LESO carries f */
     }
     ladrc_lp_hand_over(&axis->part.hp.source.lp, f_rad_s2); /* the LP beside the fit at f at once */
-    return ladrc_lp_get_estimate(&axis->part.hp.source.lp);
+    return lp_estimate(&axis->part.hp.source.lp);
 }
 
 ladrc_real_t axis_hp_command(ladrc_axis_t *axis)
 {
-    const ladrc_real_t tones = ladrc_hp_get_command(&axis->part.hp.est);
+    const ladrc_real_t tones = hp_command(&axis->part.hp.est);
     if (!axis->part.hp.gyro) {
         return tones;
     }
-    ladrc_real_t lp_command;
-    (void)ladrc_lp_step_lead(&axis->part.hp.source.lp, &lp_command);
-    return lp_command + tones;
+    return lp_lead_step(&axis->part.hp.source.lp) + tones;
 }

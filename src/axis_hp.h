@@ -6,6 +6,7 @@
 
 #include "axis_internal.h"
 #include "estimator_hp_internal.h"
+#include "estimator_lp_internal.h"
 
 /* OBSERVER: z3 holds f - d_hat seen through the observer's lag, plus what
  * the fed rate h put in; the shadow, a twin of the observer on a still plant
@@ -25,13 +26,13 @@ static inline ladrc_real_t axis_hp_sample(ladrc_axis_t *axis, ladrc_real_t rate_
         ladrc_lp_estimator_t *lp = &axis->part.hp.source.lp;
         const ladrc_real_t fitted = hp_estimate(est); /* applied over the step the rate saw */
         (void)ladrc_lp_step(lp, rate_rad_s, axis->b0 * acting_Nm + fitted);
-        (void)ladrc_hp_step(est, ladrc_lp_get_sample(lp) + fitted - axis->f_known_rad_s2);
+        (void)ladrc_hp_step(est, lp_sample(lp) + fitted - axis->f_known_rad_s2);
         /* what the weight brings in, LP gives up at once */
         const ladrc_real_t handover = hp_handover(est);
         if (handover != LADRC_R(0.0)) {
             ladrc_lp_hand_over(lp, -handover);
         }
-        return ladrc_lp_get_estimate(lp) + hp_estimate(est);
+        return lp_estimate(lp) + hp_estimate(est);
     }
     ladrc_leso_twin_t *shadow = &axis->part.hp.source.shadow;
     (void)ladrc_leso_step_twin(&axis->leso, shadow, LADRC_R(0.0), LADRC_R(0.0),

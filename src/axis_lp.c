@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* LP-MLADRC: the LADRC axis with the LP estimator (axis.h, estimator.h). */
 #include "axis_internal.h"
+#include "estimator_lp_internal.h"
 
 ladrc_status_t axis_lp_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cfg)
 {
@@ -15,12 +16,10 @@ void axis_lp_restart(ladrc_axis_t *axis)
 ladrc_real_t axis_lp_preset(ladrc_axis_t *axis, ladrc_real_t f_rad_s2)
 {
     ladrc_lp_hand_over(&axis->part.lp, f_rad_s2); /* the estimate at f at once */
-    return ladrc_lp_get_estimate(&axis->part.lp);
+    return lp_estimate(&axis->part.lp);
 }
 
 ladrc_real_t axis_lp_command(ladrc_axis_t *axis)
 {
-    ladrc_real_t command_rad_s2;
-    (void)ladrc_lp_step_lead(&axis->part.lp, &command_rad_s2);
-    return command_rad_s2;
+    return lp_lead_step(&axis->part.lp);
 }

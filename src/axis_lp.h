@@ -5,6 +5,7 @@
 #define LADRC_AXIS_LP_H
 
 #include "axis_internal.h"
+#include "estimator_lp_internal.h"
 
 /* A tick without a rate (NaN) is a gap: LP holds and restarts its
  * difference. The rate is as old as the angle: the torque that acted over
@@ -12,7 +13,7 @@
 static inline ladrc_real_t axis_lp_sample(ladrc_axis_t *axis, ladrc_real_t rate_rad_s, ladrc_real_t acting_Nm)
 {
     (void)ladrc_lp_step(&axis->part.lp, rate_rad_s, axis->b0 * acting_Nm);
-    return ladrc_lp_get_estimate(&axis->part.lp);
+    return lp_estimate(&axis->part.lp);
 }
 
 #endif /* LADRC_AXIS_LP_H */

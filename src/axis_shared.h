@@ -91,6 +91,13 @@ static inline void axis_put_disturbance_rate(ladrc_axis_t *axis, ladrc_real_t ra
     axis->f_rate_rad_s3 = ladrc_is_finite(rate_rad_s3) ? rate_rad_s3 : LADRC_R(0.0);
 }
 
+/** The known part of f as ladrc_axis_set_known_disturbance takes it
+ *  (rad/s^2): a non-finite one is taken as 0. */
+static inline void axis_put_known_disturbance(ladrc_axis_t *axis, ladrc_real_t f_known_rad_s2)
+{
+    axis->f_known_rad_s2 = ladrc_is_finite(f_known_rad_s2) ? f_known_rad_s2 : LADRC_R(0.0);
+}
+
 /** |b0| for an inertia between 1e-7 and 1000 kg m^2 (a 10 g toy to a 500 kg
  *  airframe): outside, the law's division by b0 or the observer's b0 u
  *  leaves float for commands a real actuator gives (LADRC family, RATE-ADRC). */

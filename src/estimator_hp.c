@@ -229,6 +229,7 @@ void ladrc_hp_reset(ladrc_hp_estimator_t *est)
     est->weight = LADRC_R(0.0);
     est->engaged = 0u;
     est->estimate = LADRC_R(0.0);
+    est->command = LADRC_R(0.0);
     est->handover = LADRC_R(0.0);
     est->fit_count = 0u;
     est->block_sum = LADRC_R(0.0);
@@ -486,14 +487,37 @@ LADRC_NOINLINE static void after_fit(ladrc_hp_estimator_t *est, ladrc_real_t sam
     }
 }
 
-/* Rotates a tone's phasor by w h, renormalising to first order so it stays unit. */
-static void advance_phase(ladrc_hp_tone_t *tone)
+/* Rotates a tone's phasor by w h, renormalising to first order so it stays
+ * unit. Inlined into both model passes: a call per tone and tick would
+ * cost more than the rotation. */
+static LADRC_FORCE_INLINE void advance_phase(ladrc_hp_tone_t *tone)
 {
     const ladrc_real_t c = tone->cos_psi * tone->cos_step - tone->sin_psi * tone->sin_step;
     const ladrc_real_t s = tone->sin_psi * tone->cos_step + tone->cos_psi * tone->sin_step;
     const ladrc_real_t norm = LADRC_R(1.5) - LADRC_R(0.5) * (c * c + s * s);
     tone->cos_psi = c * norm;
     tone->sin_psi = s * norm;
+}
+
+/* The model at this tick's phases (returned), each tone's phase moved on by
+ * w h, and the command: the tones turned by cmd at the moved phase, which
+ * cmd takes back (estimator.h), times the weight: one pass over the tones
+ * for an estimator with an actuator to advance over; the plain one's tick
+ * keeps its own loop (ladrc_hp_step). */
+static LADRC_FORCE_INLINE ladrc_real_t model_and_command(ladrc_hp_estimator_t *est, const ladrc_real_t *theta)
+{
+    ladrc_real_t model = theta[0];
+    ladrc_real_t command = theta[0];
+    for (unsigned k = 0u; k < est->n_active; ++k) {
+        ladrc_hp_tone_t *tone = &est->tone[k];
+        const ladrc_real_t a = theta[theta_a(k)];
+        const ladrc_real_t b = theta[theta_a(k) + 1u];
+        model += tone_turned(tone, a, b, tone->lead_re, tone->lead_im);
+        advance_phase(tone);
+        command += tone_turned(tone, a, b, tone->cmd_re, tone->cmd_im);
+    }
+    est->command = est->weight * command;
+    return model;
 }
 
 ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s2)
@@ -547,13 +571,20 @@ ladrc_fault_t ladrc_hp_step(ladrc_hp_estimator_t *est, ladrc_real_t sample_rad_s
         est->fit_count = 0u;
     }
     /* The model at this tick's phases with the sample's lag undone per tone
-     * (lead: (1 + j w / wo)^3); theta read once (the getter is a call). */
-    const ladrc_real_t *theta = ladrc_rls_get_theta(&est->fit);
-    ladrc_real_t model = theta[0];
-    for (unsigned k = 0u; k < est->n_active; ++k) {
-        ladrc_hp_tone_t *tone = &est->tone[k];
-        model += tone_turned(tone, theta[theta_a(k)], theta[theta_a(k) + 1u], tone->lead_re, tone->lead_im);
-        advance_phase(tone);
+     * (lead: (1 + j w / wo)^3), and with an actuator to advance over the
+     * command in the same pass; theta read from the fit the estimator owns
+     * (the getter is a call). */
+    const ladrc_real_t *theta = est->fit.theta;
+    ladrc_real_t model;
+    if (est->advance) {
+        model = model_and_command(est, theta);
+    } else {
+        model = theta[0];
+        for (unsigned k = 0u; k < est->n_active; ++k) {
+            ladrc_hp_tone_t *tone = &est->tone[k];
+            model += tone_turned(tone, theta[theta_a(k)], theta[theta_a(k) + 1u], tone->lead_re, tone->lead_im);
+            advance_phase(tone);
+        }
     }
     est->estimate = est->weight * model;
     est->handover = (est->weight - weight_before) * model;
@@ -575,18 +606,7 @@ ladrc_real_t ladrc_hp_get_estimate(const ladrc_hp_estimator_t *est)
 ladrc_real_t ladrc_hp_get_command(const ladrc_hp_estimator_t *est)
 {
     LADRC_REQUIRE(est != NULL, LADRC_R(0.0));
-    if (!est->advance) {
-        return est->estimate;
-    }
-    /* The tick's model with each tone turned by cmd instead of lead; the
-     * phases have moved on by w h since, which cmd takes back. */
-    const ladrc_real_t *theta = ladrc_rls_get_theta(&est->fit);
-    ladrc_real_t command = theta[0];
-    for (unsigned k = 0u; k < est->n_active; ++k) {
-        const ladrc_hp_tone_t *tone = &est->tone[k];
-        command += tone_turned(tone, theta[theta_a(k)], theta[theta_a(k) + 1u], tone->cmd_re, tone->cmd_im);
-    }
-    return est->weight * command;
+    return hp_command(est);
 }
 
 ladrc_real_t ladrc_hp_get_handover(const ladrc_hp_estimator_t *est)

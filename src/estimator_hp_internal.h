@@ -12,12 +12,17 @@
 
 #include "ladrc/estimator.h"
 
-/* What ladrc_hp_get_estimate and ladrc_hp_get_handover read, for the HP
+/* What ladrc_hp_get_estimate, ladrc_hp_get_command and ladrc_hp_get_handover read, for the HP
  * axis's tick too (axis_hp.h): no call and no NULL test for an estimator
  * the axis owns. */
 static inline ladrc_real_t hp_estimate(const ladrc_hp_estimator_t *est)
 {
     return est->estimate;
+}
+
+static inline ladrc_real_t hp_command(const ladrc_hp_estimator_t *est)
+{
+    return est->advance ? est->command : est->estimate;
 }
 
 static inline ladrc_real_t hp_handover(const ladrc_hp_estimator_t *est)

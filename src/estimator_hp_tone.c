@@ -53,9 +53,17 @@ void hp_set_tone_freq(const ladrc_hp_tone_basis_t *basis, unsigned advance, ladr
         /* times e^{j w age} / G(w), G the block mean's gain at w,
          * sin(N w h / 2) / (N sin(w h / 2)): >= 0.9 where init allows it */
         ladrc_real_t c, sn, c_half, s_half, c_block, s_block;
-        small_rotation(w_rad_s * basis->age_s, &c, &sn);
+        const ladrc_real_t age_turn = w_rad_s * basis->age_s;
+        const ladrc_real_t block_turn = LADRC_R(0.5) * (ladrc_real_t)basis->block_ticks * w_rad_s * basis->dt_s;
+        small_rotation(age_turn, &c, &sn);
         small_rotation(LADRC_R(0.5) * w_rad_s * basis->dt_s, &c_half, &s_half);
-        small_rotation(LADRC_R(0.5) * (ladrc_real_t)basis->block_ticks * w_rad_s * basis->dt_s, &c_block, &s_block);
+        if (block_turn == age_turn) {
+            /* the gyro sample's age is half its block (axis_hp.c): with a
+             * power-of-two block the two turns are the same number */
+            s_block = sn;
+        } else {
+            small_rotation(block_turn, &c_block, &s_block);
+        }
         const ladrc_real_t gain =
             (s_half > LADRC_R(0.0)) ? s_block / ((ladrc_real_t)basis->block_ticks * s_half) : LADRC_R(1.0);
         const ladrc_real_t turned = (re * c - im * sn) / gain;

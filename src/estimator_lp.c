@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* LP disturbance estimator: measured acceleration minus known input, tracked
- * by a one-parameter bounded-gain RLS (see estimator.h). */
-#include "ladrc/estimator.h"
+ * by a one-parameter bounded-gain RLS (see estimator.h; rls.h, ladrc_rls1_t). */
+#include "estimator_lp_internal.h"
+#include "rls1_internal.h"
 #include "require.h"
 
 ladrc_status_t ladrc_lp_init(ladrc_lp_estimator_t *est, const ladrc_lp_config_t *cfg)
@@ -24,7 +25,7 @@ ladrc_status_t ladrc_lp_init(ladrc_lp_estimator_t *est, const ladrc_lp_config_t 
                                         .lambda0_per_s = cfg->lambda0_per_s,
                                         .p_bound = cfg->k0_per_s,
                                         .p_initial = cfg->k0_per_s};
-    const ladrc_status_t status = ladrc_rls_init(&est->rls, &rls_cfg);
+    const ladrc_status_t status = ladrc_rls1_init(&est->rls, &rls_cfg);
     if (status != LADRC_OK) {
         return status;
     }
@@ -47,7 +48,7 @@ ladrc_status_t ladrc_lp_init(ladrc_lp_estimator_t *est, const ladrc_lp_config_t 
 void ladrc_lp_reset(ladrc_lp_estimator_t *est)
 {
     LADRC_REQUIRE_VOID(est != NULL);
-    ladrc_rls_reset(&est->rls, NULL);
+    ladrc_rls1_reset(&est->rls);
     est->prev_rate_rad_s = LADRC_R(0.0);
     est->has_prev_rate = 0u;
     est->lead_x = LADRC_R(0.0);
@@ -68,8 +69,7 @@ ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s, 
     est->faults = LADRC_FAULT_NONE;
     if (est->has_prev_rate) {
         const ladrc_real_t sample = (rate_rad_s - est->prev_rate_rad_s) / est->dt_s - accel_known;
-        const ladrc_real_t one = LADRC_R(1.0);
-        est->faults = ladrc_rls_update(&est->rls, &one, sample);
+        est->faults = rls1_update(&est->rls, sample);
         est->sample_rad_s2 = sample;
         est->has_sample = ladrc_is_finite(sample) ? 1u : 0u;
     }
@@ -81,20 +81,23 @@ ladrc_fault_t ladrc_lp_step(ladrc_lp_estimator_t *est, ladrc_real_t rate_rad_s, 
 ladrc_real_t ladrc_lp_get_estimate(const ladrc_lp_estimator_t *est)
 {
     LADRC_REQUIRE(est != NULL, LADRC_R(0.0));
-    return ladrc_rls_get_theta(&est->rls)[0];
+    return lp_estimate(est);
 }
 
 ladrc_real_t ladrc_lp_get_sample(const ladrc_lp_estimator_t *est)
 {
     LADRC_REQUIRE(est != NULL, (ladrc_real_t)NAN);
-    return est->has_sample ? est->sample_rad_s2 : (ladrc_real_t)NAN;
+    return lp_sample(est);
 }
 
 void ladrc_lp_hand_over(ladrc_lp_estimator_t *est, ladrc_real_t delta)
 {
     LADRC_REQUIRE_VOID(est != NULL);
     if (ladrc_is_finite(delta) && ladrc_is_finite(est->lead_x + delta)) {
-        ladrc_rls_shift(&est->rls, 0u, delta);
+        const ladrc_real_t moved = est->rls.theta + delta;
+        if (ladrc_is_finite(moved)) {
+            est->rls.theta = moved;
+        }
         est->lead_x += delta;
     }
 }
@@ -102,14 +105,6 @@ void ladrc_lp_hand_over(ladrc_lp_estimator_t *est, ladrc_real_t delta)
 ladrc_fault_t ladrc_lp_step_lead(ladrc_lp_estimator_t *est, ladrc_real_t *command_rad_s2)
 {
     LADRC_REQUIRE(est != NULL && command_rad_s2 != NULL, LADRC_FAULT_STATE);
-    const ladrc_real_t d_hat = ladrc_rls_get_theta(&est->rls)[0];
-    if (!est->lead) {
-        *command_rad_s2 = d_hat;
-        return LADRC_FAULT_NONE;
-    }
-    /* the bounded lead over the actuator (estimator.h) */
-    const ladrc_real_t fast = d_hat - est->lead_x;
-    est->lead_x += est->lead_beta * fast;
-    *command_rad_s2 = d_hat + (LADRC_LP_LEAD_MAX - LADRC_R(1.0)) * fast;
+    *command_rad_s2 = lp_lead_step(est);
     return LADRC_FAULT_NONE;
 }

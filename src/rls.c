@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Bounded-gain RLS on the factors P = U D U^T (see rls.h). */
 #include "ladrc/rls.h"
+#include "rls1_internal.h"
 #include "require.h"
 
 #include "compiler.h"
@@ -65,14 +66,9 @@ static int lambda0_is_valid(ladrc_real_t lambda0_per_s, ladrc_real_t dt_s)
     return ladrc_is_finite(lambda0_per_s) && lambda0_per_s >= LADRC_R(0.0) && lambda0_per_s * dt_s <= LADRC_R(1.0);
 }
 
-ladrc_status_t ladrc_rls_init(ladrc_rls_t *rls, const ladrc_rls_config_t *cfg)
+/* The checks of ladrc_rls_init after the NULLs and n_params, in its order. */
+static ladrc_status_t check_config(const ladrc_rls_config_t *cfg)
 {
-    if (rls == NULL || cfg == NULL) {
-        return LADRC_ERR_NULL;
-    }
-    if (cfg->n_params < 1u || cfg->n_params > LADRC_RLS_MAX_PARAMS) {
-        return LADRC_ERR_RLS_N_PARAMS;
-    }
     if (!ladrc_dt_is_valid(cfg->dt_s)) {
         return LADRC_ERR_DT_S;
     }
@@ -88,6 +84,21 @@ ladrc_status_t ladrc_rls_init(ladrc_rls_t *rls, const ladrc_rls_config_t *cfg)
     /* The trace the start state will hold must itself meet the bound. */
     if (initial_trace(cfg->p_initial, cfg->n_params) > cfg->p_bound) {
         return LADRC_ERR_RLS_P_INITIAL;
+    }
+    return LADRC_OK;
+}
+
+ladrc_status_t ladrc_rls_init(ladrc_rls_t *rls, const ladrc_rls_config_t *cfg)
+{
+    if (rls == NULL || cfg == NULL) {
+        return LADRC_ERR_NULL;
+    }
+    if (cfg->n_params < 1u || cfg->n_params > LADRC_RLS_MAX_PARAMS) {
+        return LADRC_ERR_RLS_N_PARAMS;
+    }
+    const ladrc_status_t status = check_config(cfg);
+    if (status != LADRC_OK) {
+        return status;
     }
     rls->n_params = cfg->n_params;
     rls->dt_s = cfg->dt_s;
@@ -129,6 +140,14 @@ ladrc_status_t ladrc_rls_restart(ladrc_rls_t *rls, uint8_t n_params, const ladrc
     return LADRC_OK;
 }
 
+/* lambda = lambda0 (1 - tr(P) / k0), 0 within the dead band below k0 (rls.h). */
+static LADRC_FORCE_INLINE ladrc_real_t forgetting_rate(ladrc_real_t trace, ladrc_real_t p_bound,
+                                                       ladrc_real_t lambda0_per_s)
+{
+    const ladrc_real_t room = LADRC_R(1.0) - trace / p_bound;
+    return (room > RLS_FORGET_DEADBAND) ? lambda0_per_s * room : LADRC_R(0.0);
+}
+
 /* The update for n parameters, inlined into ladrc_rls_update: where n is a
  * constant the compiler lays the loops out flat (one formula, written once). */
 static LADRC_FORCE_INLINE ladrc_fault_t update_n(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_real_t y,
@@ -146,8 +165,7 @@ static LADRC_FORCE_INLINE ladrc_fault_t update_n(ladrc_rls_t *rls, const ladrc_r
     }
 
     const ladrc_real_t h = rls->dt_s;
-    const ladrc_real_t room = LADRC_R(1.0) - rls->trace / rls->p_bound;
-    const ladrc_real_t lambda = (room > RLS_FORGET_DEADBAND) ? rls->lambda0_per_s * room : LADRC_R(0.0);
+    const ladrc_real_t lambda = forgetting_rate(rls->trace, rls->p_bound, rls->lambda0_per_s);
     rls->lambda_per_s = lambda;
     const ladrc_real_t mu = ladrc_exp(-lambda * h);
     const ladrc_real_t inv_mu = LADRC_R(1.0) / mu;
@@ -230,11 +248,10 @@ static LADRC_FORCE_INLINE ladrc_fault_t update_n(ladrc_rls_t *rls, const ladrc_r
 ladrc_fault_t ladrc_rls_update(ladrc_rls_t *rls, const ladrc_real_t *phi, ladrc_real_t y)
 {
     LADRC_REQUIRE(rls != NULL && phi != NULL, LADRC_FAULT_STATE);
-    /* The counts the estimators use most laid out flat (LP: 1; HP, one
-     * tone: 3); the others through the loops. */
+    /* The count the estimators use most laid out flat (HP, one tone: 3; LP
+     * has its own one-parameter form, ladrc_rls1_t); the others through the
+     * loops. */
     switch (rls->n_params) {
-    case 1u:
-        return update_n(rls, phi, y, 1u);
     case 3u:
         return update_n(rls, phi, y, 3u);
     default:
@@ -322,4 +339,88 @@ ladrc_status_t ladrc_rls_set_lambda0(ladrc_rls_t *rls, ladrc_real_t lambda0_per_
     }
     rls->lambda0_per_s = lambda0_per_s;
     return LADRC_OK;
+}
+
+/* --- one parameter, regressor 1 (rls.h) --------------------------------------- */
+
+ladrc_status_t ladrc_rls1_init(ladrc_rls1_t *rls, const ladrc_rls_config_t *cfg)
+{
+    if (rls == NULL || cfg == NULL) {
+        return LADRC_ERR_NULL;
+    }
+    if (cfg->n_params != 1u) {
+        return LADRC_ERR_RLS_N_PARAMS;
+    }
+    const ladrc_status_t status = check_config(cfg);
+    if (status != LADRC_OK) {
+        return status;
+    }
+    rls->dt_s = cfg->dt_s;
+    rls->lambda0_per_s = cfg->lambda0_per_s;
+    rls->p_bound = cfg->p_bound;
+    rls->p_initial = cfg->p_initial;
+    ladrc_rls1_reset(rls);
+    return LADRC_OK;
+}
+
+/* P restarted as restart_p does at n = 1 (its trace: initial_trace(p_initial, 1) = p_initial). */
+void rls1_restart_p(ladrc_rls1_t *rls)
+{
+    rls->p = rls->p_initial;
+    rls->settled = 0u;
+    rls->gain = LADRC_R(0.0);
+    rls->inv_beta = LADRC_R(0.0);
+}
+
+void ladrc_rls1_reset(ladrc_rls1_t *rls)
+{
+    LADRC_REQUIRE_VOID(rls != NULL);
+    rls->theta = LADRC_R(0.0);
+    rls1_restart_p(rls);
+    rls->faults = LADRC_FAULT_NONE;
+}
+
+/* update_n at n = 1, phi = 1, operation for operation: f = 1, so g = h D,
+ * beta = mu + g, D <- D mu / (beta mu) and tr(P) = D; U is empty. Each
+ * product with phi = 1 is exact, so leaving it out changes no bit
+ * (tests/test_rls1.c compares the two on every path). */
+ladrc_fault_t rls1_full_update(ladrc_rls1_t *rls, ladrc_real_t y)
+{
+    const ladrc_real_t h = rls->dt_s;
+    const ladrc_real_t p_before = rls->p;
+    const ladrc_real_t lambda = forgetting_rate(p_before, rls->p_bound, rls->lambda0_per_s);
+    const ladrc_real_t mu = ladrc_exp(-lambda * h);
+    const ladrc_real_t inv_mu = LADRC_R(1.0) / mu;
+    const ladrc_real_t g = h * p_before;
+    const ladrc_real_t e = y - rls->theta;
+    const ladrc_real_t inv_beta = LADRC_R(1.0) / (mu + g);
+    ladrc_real_t p = p_before * (mu * inv_beta * inv_mu);
+    int sound = ladrc_is_positive(p);
+    const ladrc_real_t theta = rls->theta + g * (e * inv_beta);
+    const int theta_ok = ladrc_is_finite(theta);
+    if (sound && p > rls->p_bound) {
+        p *= rls->p_bound * RLS_CLAMP_FRACTION / p;
+        sound &= ladrc_is_positive(p);
+    }
+    if (!sound || !theta_ok) {
+        rls1_restart_p(rls);
+        rls->faults = LADRC_FAULT_STATE;
+    } else {
+        /* P is a function of P alone here: the same P, the same update for good. */
+        rls->settled = (p == p_before) ? 1u : 0u;
+        rls->gain = g;
+        rls->inv_beta = inv_beta;
+        rls->p = p;
+        rls->faults = LADRC_FAULT_NONE;
+    }
+    if (theta_ok) {
+        rls->theta = theta;
+    }
+    return rls->faults;
+}
+
+ladrc_fault_t ladrc_rls1_update(ladrc_rls1_t *rls, ladrc_real_t y)
+{
+    LADRC_REQUIRE(rls != NULL, LADRC_FAULT_STATE);
+    return rls1_update(rls, y);
 }

@@ -153,7 +153,7 @@ typedef struct {
 
 /** LP estimator state; owned by the caller, read through the getters. */
 typedef struct {
-    ladrc_rls_t rls;              /**< one parameter: d_hat */
+    ladrc_rls1_t rls;             /**< one parameter, regressor 1: d_hat */
     ladrc_real_t dt_s;            /**< fixed step h (s) */
     ladrc_real_t prev_rate_rad_s; /**< the previous finite rate (rad/s) */
     ladrc_real_t lead_x;          /**< the lead's low-pass state x (rad/s^2) */
@@ -325,6 +325,7 @@ typedef struct {
     /** @} */
     ladrc_real_t weight;    /**< compensation weight in [0, 1] */
     ladrc_real_t estimate;  /**< the applied d_hat (rad/s^2) */
+    ladrc_real_t command;   /**< advance: the compensation the command carries (rad/s^2) */
     ladrc_real_t handover;  /**< part of estimate's latest change due to the weight */
     ladrc_real_t block_sum; /**< sample_block_mean: the block's samples so far, summed (rad/s^2) */
     uint16_t block_n;       /**< sample_block_mean: how many */
@@ -416,8 +417,8 @@ ladrc_real_t ladrc_hp_get_estimate(const ladrc_hp_estimator_t *est);
 
 /** The compensation the command should carry after the latest step
  *  (rad/s^2): the estimate with each tone advanced over the actuator (see
- *  above), computed on call; the estimate itself when there is no actuator
- *  to advance over.
+ *  above), computed by the step in the same pass as the estimate; the
+ *  estimate itself when there is no actuator to advance over.
  *  @param est  the estimator; NULL: 0
  *  @return the compensation (rad/s^2) */
 ladrc_real_t ladrc_hp_get_command(const ladrc_hp_estimator_t *est);

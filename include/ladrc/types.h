@@ -190,6 +190,7 @@ typedef float ladrc_real_t;
 #define ladrc_pid_init LADRC_ABI_NAME_(ladrc_pid_init)
 #define ladrc_reso_init LADRC_ABI_NAME_(ladrc_reso_init)
 #define ladrc_rls_init LADRC_ABI_CAT3(ladrc_rls_init, LADRC_ABI_REAL_, LADRC_ABI_TONES_)
+#define ladrc_rls1_init LADRC_ABI_NAME_(ladrc_rls1_init)
 #define ladrc_td_init LADRC_ABI_NAME_(ladrc_td_init)
 #define ladrc_tune_b0_from_inertia LADRC_ABI_NAME_(ladrc_tune_b0_from_inertia)
 #define ladrc_tune_wc_from_settling LADRC_ABI_NAME_(ladrc_tune_wc_from_settling)
