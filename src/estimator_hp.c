@@ -38,9 +38,10 @@
  * phase and GATE_WINDOW_MEMORIES of the fit's memories... */
 #define GATE_WINDOW_RAD LADRC_R(6.28318530717959)
 #define GATE_WINDOW_MEMORIES LADRC_R(3.0)
-/* ...must stand GATE_EVIDENCE_ON times above the power noise alone would
- * give it (noise alone exceeds that with probability e^-16 per window) to
- * lock, GATE_EVIDENCE_OFF to stay locked... */
+/* ...must stand GATE_EVIDENCE_ON times above the power white noise alone
+ * would give it to lock, GATE_EVIDENCE_OFF to stay locked (turbulence, whose
+ * phasor wanders more slowly, crossed 64 times it 18 s per simulated hour,
+ * 256 never: estimator.h)... */
 #define GATE_EVIDENCE_ON LADRC_R(256.0)
 #define GATE_EVIDENCE_OFF LADRC_R(64.0)
 /* ...and hold at least GATE_COHERENCE_ON of the phasor's power less its

@@ -88,10 +88,14 @@
  *   the changes of its increments, which a smooth motion of P does not
  *   have: under noise alone P wanders as a first-order process of rate
  *   lambda, whose increments are uncorrelated);
- * - evidence: |M|^2 at least 16 times the power s2 beta / (beta + lambda)
- *   noise alone gives the mean over a window of rate beta (noise alone passes
- *   with probability e^-16 per window); coherence: |M|^2 at least half of
- *   Q - s2 (a tone off its frequency by dw keeps 1 / (1 + (dw W)^2) of it);
+ * - evidence: |M|^2 at least 256 times the power s2 beta / (beta + lambda)
+ *   white noise alone gives the mean over a window of rate beta. White
+ *   noise alone would pass 16 times it with probability e^-16 per window;
+ *   turbulence, whose phasor wanders more slowly than its increments tell,
+ *   passed 16 times it for 78-188 s and 64 times it for 18 s per hour of
+ *   simulated flight, 256 times it never (docs/hp-gate.md); coherence:
+ *   |M|^2 at least half of Q - s2 (a tone off its frequency by dw keeps
+ *   1 / (1 + (dw W)^2) of it);
  * - the slip bar widened by three times the slip the noise gives;
  * - no clean model of other tones from the frequency fit (under noise it sees
  *   none and the band decides).
@@ -99,7 +103,7 @@
  *   the coherence 0.25 and the slip three times its bar. Vibration far from
  *   the tone does not enter its band: the fit's phasor only carries what lies
  *   within about lambda of the tone. The smallest tone it engages on is
- *   A = 4 sqrt(G beta) for a sample noise of one-sided density G
+ *   A = 16 sqrt(G beta) for a sample noise of one-sided density G
  *   ((rad/s^2)^2/Hz) at the tone and beta = 1 / W (ladrc_hp_get_evidence and
  *   ladrc_hp_get_coherence report both per tone).
  *
