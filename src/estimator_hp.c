@@ -33,6 +33,10 @@
 #define SLIP_TOL_FRACTION LADRC_R(0.1)
 #define SLIP_NOISE_SIGMAS LADRC_R(3.0)
 #define SLIP_UNLOCK_FACTOR LADRC_R(3.0)
+/* A change of size counts at this weight beside the turn: a third, so a fit
+ * whose amplitude still settles after a restart may lock, the tail of a
+ * transient (decaying at several times lambda) may not. */
+#define DRIFT_WEIGHT LADRC_R(0.33)
 /* The gate judges each tone on its band (estimator.h "Gate"): the fitted
  * phasor's mean over a window of at least GATE_WINDOW_RAD of the tone's
  * phase and GATE_WINDOW_MEMORIES of the fit's memories... */
@@ -249,11 +253,6 @@ static LADRC_FORCE_INLINE ladrc_real_t tone_turned(const ladrc_hp_tone_t *tone, 
     const ladrc_real_t y = a * im - b * re;
     return x * tone->cos_psi - y * tone->sin_psi;
 }
-
-/* A change of size counts at this weight beside the turn: a third, so a fit
- * whose amplitude still settles after a restart may lock, the tail of a
- * transient (decaying at several times lambda) may not. */
-#define DRIFT_WEIGHT LADRC_R(0.33)
 
 /* Turn of a tone's fitted phasor since the previous fit sample, as a rate
  * (rad/s), averaged into its slip (what the ONLINE search follows), and the
