@@ -114,15 +114,12 @@ static inline void hp_restart_window(ladrc_hp_tone_t *tone)
 /* A tone whose phasor starts over: the gate's means restart (not locked). */
 static inline void hp_forget_evidence(ladrc_hp_tone_t *tone)
 {
-    tone->mean_a = LADRC_R(0.0);
-    tone->mean_b = LADRC_R(0.0);
+    hp_restart_window(tone);
     tone->prev_da = LADRC_R(0.0);
     tone->prev_db = LADRC_R(0.0);
-    tone->mean_power = LADRC_R(0.0);
     tone->noise_power = LADRC_R(0.0);
     tone->evidence = LADRC_R(0.0);
     tone->coherence = LADRC_R(0.0);
-    tone->gate_samples = 0u;
     tone->locked = 0u;
 }
 

@@ -1,14 +1,14 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* HP-MLADRC on the gyro: its gate on a realistic sensor (estimator.h
- * "Gate"). A small plant with a real motor, as test_hp_gyro.c's: J = 0.0139
- * kg m^2, a 30 ms motor lag the axis models, 1 kHz, wc = 6.4, wo = 51, the
- * library's online search (first guess 3 rad/s). The gyro carries white
- * noise and two rotor lines, the plant a turbulence: white noise through a
+ * "Gate"). The small plant of test_gyro_quad.h with the library's online
+ * search (first guess 3 rad/s). The gyro carries white noise and two rotor
+ * lines, the plant a turbulence: white noise through a
  * first-order low-pass, so its phasor at any frequency wanders slowly, the
  * hardest case for a gate that looks for a phasor standing still. Against
  * LP-MLADRC with the same gains on the same noise. */
 #include "unity.h"
 #include "test_axis_command.h"
+#include "test_gyro_quad.h"
 #include "test_noise.h"
 #include "test_plant.h"
 #include "ladrc/axis.h"
@@ -16,25 +16,16 @@
 #include <math.h>
 #include <stdio.h>
 
-#define DT_S 1e-3
-#define J_KG_M2 0.0139
-#define TAU_S 0.03
-#define WC_RAD_S 6.4
-#define WO_RAD_S 51.0
-#define PI 3.14159265358979
-#define DEG (PI / 180.0)
 /* The gyro: 0.5 deg/s of white noise and the first two rotor lines of a
  * hovering quad as a 100 Hz low-pass leaves them, 0.7 deg/s at 130 Hz and
  * 0.1 deg/s at 260 Hz. */
-#define GYRO_NOISE_RAD_S (0.5 * DEG)
 #define LINE1_RAD_S (0.7 * DEG)
 #define LINE1_HZ 130.0
 #define LINE2_RAD_S (0.1 * DEG)
 #define LINE2_HZ 260.0
-#define ANGLE_NOISE_RAD (0.05 * DEG)
 /* Turbulence: 1 rad/s^2 RMS with a 3 rad/s corner, so it has power at the
- * tones' frequencies (at 2 rad/s^2 the online search no longer finds the
- * tone below: docs/hp-gate.md). */
+ * tones' frequencies (at 2 rad/s^2 the online search no longer moves the
+ * tone below from its 3 rad/s first guess). */
 #define TURB_RMS_RAD_S2 1.0
 #define TURB_CORNER_RAD_S 3.0
 /* The tone: 20 rad/s^2 at 6 rad/s (the search must find it from 3 rad/s)
@@ -81,22 +72,11 @@ typedef struct {
     double rms_rad;   /* RMS angle error over the window */
 } flight_t;
 
-static ladrc_axis_config_t config(ladrc_variant_t variant)
-{
-    ladrc_axis_config_t cfg;
-    ladrc_axis_config_default(&cfg, variant, (ladrc_real_t)DT_S, (ladrc_real_t)J_KG_M2);
-    cfg.wc_rad_s = (ladrc_real_t)WC_RAD_S;
-    cfg.wo_rad_s = (ladrc_real_t)WO_RAD_S;
-    cfg.motor_tau_s = (ladrc_real_t)TAU_S;
-    cfg.hp_sample = LADRC_HP_SAMPLE_GYRO;
-    return cfg;
-}
-
 /* Flies duration_s; the window for the error runs from from_s to to_s
  * (whole periods of the tone). */
 static flight_t fly(ladrc_variant_t variant, const tone_t *tone, double duration_s, double from_s, double to_s)
 {
-    const ladrc_axis_config_t cfg = config(variant);
+    const ladrc_axis_config_t cfg = test_gyro_quad_config(variant);
     ladrc_axis_t axis;
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&axis, &cfg));
     unsigned seed = 2463534242u;

@@ -7,21 +7,13 @@
 #include "unity.h"
 #include "test_axis_command.h"
 #include "ladrc/axis.h"
+#include "test_gyro_quad.h"
 #include "test_noise.h"
 #include "test_plant.h"
 
 #include <math.h>
 #include <stdio.h>
 
-#define DT_S 1e-3
-#define J_KG_M2 0.0139
-#define TAU_S 0.03
-#define WC_RAD_S 6.4
-#define WO_RAD_S 51.0
-#define PI 3.14159265358979
-#define DEG (PI / 180.0)
-#define GYRO_NOISE_RAD_S (0.5 * DEG)
-#define ANGLE_NOISE_RAD (0.05 * DEG)
 #define ONSET_S 2.0
 /* The steady tone: 30 rad/s^2 (a fifth of the authority of such a quad) at
  * 9 rad/s, known to the estimator; the window starts once the gate has had
@@ -62,12 +54,7 @@ static double disturbance(double t, const void *ctx)
 
 static ladrc_axis_config_t config(ladrc_variant_t variant)
 {
-    ladrc_axis_config_t cfg;
-    ladrc_axis_config_default(&cfg, variant, (ladrc_real_t)DT_S, (ladrc_real_t)J_KG_M2);
-    cfg.wc_rad_s = (ladrc_real_t)WC_RAD_S;
-    cfg.wo_rad_s = (ladrc_real_t)WO_RAD_S;
-    cfg.motor_tau_s = (ladrc_real_t)TAU_S;
-    cfg.hp_sample = LADRC_HP_SAMPLE_GYRO;
+    ladrc_axis_config_t cfg = test_gyro_quad_config(variant);
     cfg.hp_freq_mode = LADRC_HP_FREQ_KNOWN;
     cfg.hp_n_tones = 1u;
     cfg.hp_freq_rad_s[0] = (ladrc_real_t)TONE_W_RAD_S;

@@ -90,19 +90,15 @@ void runner_attitude_csv_header(char *out, size_t len)
     size_t at = (size_t)snprintf(out, len, "%s", BASE_COLUMNS);
     axis_columns(out, len, &at, "hp_weight_", "_frac");
     axis_columns(out, len, &at, "hp_tones_", "_count");
+    /* per tone k, in this order: its frequency, amplitude, gate evidence and coherence */
+    static const char *const tone_families[][2] = {
+        {"hp_freq", "_rad_s"}, {"hp_amp", "_rad_s2"}, {"hp_evidence", "_ratio"}, {"hp_coherence", "_frac"}};
     for (int k = 1; k <= LADRC_HP_MAX_TONES; ++k) {
-        char freq[32], amp[32];
-        snprintf(freq, sizeof freq, "hp_freq%d_", k);
-        snprintf(amp, sizeof amp, "hp_amp%d_", k);
-        axis_columns(out, len, &at, freq, "_rad_s");
-        axis_columns(out, len, &at, amp, "_rad_s2");
-    }
-    for (int k = 1; k <= LADRC_HP_MAX_TONES; ++k) {
-        char evidence[32], coherence[32];
-        snprintf(evidence, sizeof evidence, "hp_evidence%d_", k);
-        snprintf(coherence, sizeof coherence, "hp_coherence%d_", k);
-        axis_columns(out, len, &at, evidence, "_ratio");
-        axis_columns(out, len, &at, coherence, "_frac");
+        for (size_t f = 0; f < sizeof tone_families / sizeof tone_families[0]; ++f) {
+            char prefix[32];
+            snprintf(prefix, sizeof prefix, "%s%d_", tone_families[f][0], k);
+            axis_columns(out, len, &at, prefix, tone_families[f][1]);
+        }
     }
     axis_columns(out, len, &at, "hp_est_", "_rad_s2");
     axis_columns(out, len, &at, "lp_est_", "_rad_s2");
@@ -130,16 +126,12 @@ static void estimator_cells(csv_line_t *line, const ladrc_attitude_t *att)
     for (int i = 0; i < 3; ++i)
         runner_line_g(line, hp[i] != NULL ? (double)tones[i] : NAN, 6);
     for (unsigned k = 0; k < LADRC_HP_MAX_TONES; ++k) {
-        for (int i = 0; i < 3; ++i)
-            runner_line_g(line, k < tones[i] ? (double)ladrc_hp_get_freq(hp[i], k) : NAN, 6);
-        for (int i = 0; i < 3; ++i)
-            runner_line_g(line, k < tones[i] ? (double)ladrc_hp_get_amplitude(hp[i], k) : NAN, 6);
-    }
-    for (unsigned k = 0; k < LADRC_HP_MAX_TONES; ++k) {
-        for (int i = 0; i < 3; ++i)
-            runner_line_g(line, k < tones[i] ? (double)ladrc_hp_get_evidence(hp[i], k) : NAN, 6);
-        for (int i = 0; i < 3; ++i)
-            runner_line_g(line, k < tones[i] ? (double)ladrc_hp_get_coherence(hp[i], k) : NAN, 6);
+        ladrc_real_t (*const getters[])(const ladrc_hp_estimator_t *, unsigned) = {
+            ladrc_hp_get_freq, ladrc_hp_get_amplitude, ladrc_hp_get_evidence, ladrc_hp_get_coherence};
+        for (size_t g = 0; g < sizeof getters / sizeof getters[0]; ++g) {
+            for (int i = 0; i < 3; ++i)
+                runner_line_g(line, k < tones[i] ? (double)getters[g](hp[i], k) : NAN, 6);
+        }
     }
     for (int i = 0; i < 3; ++i)
         runner_line_g(line, hp[i] != NULL ? (double)ladrc_hp_get_estimate(hp[i]) : NAN, 6);

@@ -54,17 +54,14 @@ static void read_getters(const ladrc_attitude_t *att, double *v)
         v[n++] = hp[i] ? (double)ladrc_hp_get_weight(hp[i]) : NAN;
     for (int i = 0; i < 3; ++i)
         v[n++] = hp[i] ? (double)ladrc_hp_get_active_tones(hp[i]) : NAN;
+    /* per tone: frequency, amplitude, gate evidence and coherence (docs/csv-format.md) */
     for (unsigned k = 0; k < LADRC_HP_MAX_TONES; ++k) {
-        for (int i = 0; i < 3; ++i)
-            v[n++] = hp[i] && k < ladrc_hp_get_active_tones(hp[i]) ? (double)ladrc_hp_get_freq(hp[i], k) : NAN;
-        for (int i = 0; i < 3; ++i)
-            v[n++] = hp[i] && k < ladrc_hp_get_active_tones(hp[i]) ? (double)ladrc_hp_get_amplitude(hp[i], k) : NAN;
-    }
-    for (unsigned k = 0; k < LADRC_HP_MAX_TONES; ++k) {
-        for (int i = 0; i < 3; ++i)
-            v[n++] = hp[i] && k < ladrc_hp_get_active_tones(hp[i]) ? (double)ladrc_hp_get_evidence(hp[i], k) : NAN;
-        for (int i = 0; i < 3; ++i)
-            v[n++] = hp[i] && k < ladrc_hp_get_active_tones(hp[i]) ? (double)ladrc_hp_get_coherence(hp[i], k) : NAN;
+        ladrc_real_t (*const getters[])(const ladrc_hp_estimator_t *, unsigned) = {
+            ladrc_hp_get_freq, ladrc_hp_get_amplitude, ladrc_hp_get_evidence, ladrc_hp_get_coherence};
+        for (size_t g = 0; g < sizeof getters / sizeof getters[0]; ++g) {
+            for (int i = 0; i < 3; ++i)
+                v[n++] = hp[i] && k < ladrc_hp_get_active_tones(hp[i]) ? (double)getters[g](hp[i], k) : NAN;
+        }
     }
     for (int i = 0; i < 3; ++i)
         v[n++] = hp[i] ? (double)ladrc_hp_get_estimate(hp[i]) : NAN;
@@ -140,19 +137,14 @@ static void value_columns(const char *header, int *col)
     int n = 0;
     axis_columns(header, "hp_weight_", "_frac", col, &n);
     axis_columns(header, "hp_tones_", "_count", col, &n);
+    static const char *const families[][2] = {
+        {"hp_freq", "_rad_s"}, {"hp_amp", "_rad_s2"}, {"hp_evidence", "_ratio"}, {"hp_coherence", "_frac"}};
     for (int k = 1; k <= LADRC_HP_MAX_TONES; ++k) {
-        char freq[32], amp[32];
-        snprintf(freq, sizeof freq, "hp_freq%d_", k);
-        snprintf(amp, sizeof amp, "hp_amp%d_", k);
-        axis_columns(header, freq, "_rad_s", col, &n);
-        axis_columns(header, amp, "_rad_s2", col, &n);
-    }
-    for (int k = 1; k <= LADRC_HP_MAX_TONES; ++k) {
-        char evidence[32], coherence[32];
-        snprintf(evidence, sizeof evidence, "hp_evidence%d_", k);
-        snprintf(coherence, sizeof coherence, "hp_coherence%d_", k);
-        axis_columns(header, evidence, "_ratio", col, &n);
-        axis_columns(header, coherence, "_frac", col, &n);
+        for (size_t f = 0; f < sizeof families / sizeof families[0]; ++f) {
+            char prefix[32];
+            snprintf(prefix, sizeof prefix, "%s%d_", families[f][0], k);
+            axis_columns(header, prefix, families[f][1], col, &n);
+        }
     }
     axis_columns(header, "hp_est_", "_rad_s2", col, &n);
     axis_columns(header, "lp_est_", "_rad_s2", col, &n);
