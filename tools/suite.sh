@@ -48,5 +48,5 @@ for f in scenarios/suite/*.ini scenarios/paper_tuned.ini; do
   rm -f "$out/$name.err"
   echo "suite.sh: flew $name"
 done
-awk -v a="$tune_all" -v t="$tune_tuner" 'BEGIN { printf "suite.sh: tuning took %.1f s of one core; the tuners and their own check flights alone %.1f s (the candidates: %.2fx)\n", a, t, t > 0 ? a / t : 0 }'
+awk -v a="$tune_all" -v t="$tune_tuner" 'BEGIN { printf "suite.sh: tuning took %.1f s of one core; the tuners and their own check flights alone %.1f s (the candidates: %.2fx)\n", a, t, (t > 0 ? a / t : 0) }'
 for w in "${warnings[@]}"; do echo "suite.sh: WARNING: $w" >&2; done
