@@ -494,6 +494,18 @@ static void test_time_not_increasing(void)
     expect_error("gyro[0], time\n1, 0\n1, 5\n1, 4\n", 4, 4, "time goes back");
 }
 
+static void test_a_row_period_below_a_microsecond_is_refused_as_the_logs(void)
+{
+    /* rows 1e-300 s apart (a time column in another unit): refused for the log's own times, not
+     * for a period the user did not give, and never converted to a tick count */
+    sim_log_options_t o = options(SIM_LOG_GENERIC, 0.0);
+    sim_log_error_t err;
+    sim_log_sample_t s[4];
+    memset(&err, 0, sizeof err);
+    TEST_ASSERT_EQUAL_INT(-1, read_text("time,gyro[0]\n0,1\n1e-300,1\n2e-300,1\n3e-300,1\n", &o, s, 4, NULL, &err));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err.message, "rows 1e-300 s apart (the median): below 1e-6 s"), err.message);
+}
+
 static void test_rows_of_the_wrong_length(void)
 {
     expect_error("time,gyro[0],command[0]\n0,1,2\n0.001,1\n", 3, 8, "row has 2 cells, the header 3");
@@ -706,6 +718,7 @@ int main(void)
     RUN_TEST(test_a_nan_column_of_optional_items_is_absent);
     RUN_TEST(test_missing_columns_at_the_header_line_end);
     RUN_TEST(test_time_not_increasing);
+    RUN_TEST(test_a_row_period_below_a_microsecond_is_refused_as_the_logs);
     RUN_TEST(test_rows_of_the_wrong_length);
     RUN_TEST(test_values_that_are_not_finite_numbers);
     RUN_TEST(test_fewer_than_two_rows);
