@@ -64,7 +64,10 @@ sim_log_source_t sim_log_source_of(const char *path)
 
 sim_log_format_t sim_log_csv_format_of(const char *path)
 {
-    if (strstr(path, "_vehicle_") != NULL || strstr(path, "_sensor_combined_") != NULL || has_px4_topic_files(path)) {
+    /* ulog2csv's topic names are in the file's name, not in its folders' */
+    const char *slash = strrchr(path, '/');
+    const char *name = slash != NULL ? slash + 1 : path;
+    if (strstr(name, "_vehicle_") != NULL || strstr(name, "_sensor_combined_") != NULL || has_px4_topic_files(path)) {
         return SIM_LOG_PX4;
     }
     FILE *f = fopen(path, "r");
