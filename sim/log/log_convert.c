@@ -186,6 +186,14 @@ int sim_log_prepare(sim_log_options_t *o, int format_given, sim_log_prepared_t *
 {
     memset(p, 0, sizeof *p);
     snprintf(p->original, sizeof p->original, "%s", o->path);
+    struct stat st;
+    if (stat(o->path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) {
+        /* a pipe cannot be read again, and even its first bytes (the form's
+         * magic) are gone once looked at */
+        return sim_log_fail(err, o->path, 0, 0,
+                            "not a regular file (a pipe or a device): a log is read more than once; save it "
+                            "to a file first");
+    }
     p->source = sim_log_source_of(o->path);
     p->bytes = file_bytes(o->path);
     if (p->source == SIM_LOG_SOURCE_MISSING) {
