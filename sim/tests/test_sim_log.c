@@ -490,6 +490,9 @@ static void test_time_not_increasing(void)
 {
     expect_error("time,gyro[0]\n0.000,1\n0.002,1\n0.001,1\n", 4, 1, "time goes back from 0.002 s to 0.001 s");
     expect_error("time,gyro[0]\n0.000,1\n0.002,1\n  0.002,1\n", 4, 3, "time repeats (0.002 s)");
+    /* seconds past 2^52 us no longer resolve a microsecond: said, not read as a repeat */
+    expect_error("time,gyro[0]\n4503599627370497e-6,1\n4503599627370498e-6,1\n", 2, 1,
+                 "beyond what a time in s or ms resolves to the microsecond (2^52 us)");
     /* in the first rows, held to estimate the row period, as later */
     expect_error("gyro[0], time\n1, 0\n1, 5\n1, 4\n", 4, 4, "time goes back");
 }
