@@ -98,7 +98,10 @@
 static uint16_t ticks_in(ladrc_real_t period_s, ladrc_real_t dt_s)
 {
     const ladrc_real_t ticks = period_s / dt_s;
-    return (ticks >= LADRC_R(1.0) && ticks < LADRC_R(65535.0)) ? (uint16_t)(ticks + LADRC_R(0.5)) : 1u;
+    if (ticks >= LADRC_R(1.0) && ticks < LADRC_R(65535.0)) {
+        return (uint16_t)(ticks + LADRC_R(0.5));
+    }
+    return 1u;
 }
 
 void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant, ladrc_real_t dt_s,
