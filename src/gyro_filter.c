@@ -411,7 +411,9 @@ ladrc_fault_t ladrc_gyro_filter_set_rotor_hz(ladrc_gyro_filter_t *f, const ladrc
 
 /* One channel through its chain, history moved on; the oldest history of each
  * section is kept in undo first. The RPM notches' outputs (and so their
- * histories) are held within +-bound (LADRC_GYRO_FILTER_RPM_GAIN_BOUND). */
+ * histories) are held within +-bound (LADRC_GYRO_FILTER_RPM_GAIN_BOUND; the
+ * branch almost never taken); the fixed sections are left to the state
+ * guard (a history corrupted from outside is a state fault, not hidden). */
 static ladrc_real_t chain_step(ladrc_gyro_filter_t *f, ladrc_gyro_filter_history_t *hist, ladrc_real_t x,
                                ladrc_real_t bound)
 {
@@ -423,8 +425,8 @@ static ladrc_real_t chain_step(ladrc_gyro_filter_t *f, ladrc_gyro_filter_history
         f->undo[i][1] = h->y2;
         if (s->weight > LADRC_R(0.0)) {
             ladrc_real_t y = section_output(s, h, x);
-            if (i >= f->rpm_first && i < rpm_end) {
-                y = ladrc_clamp(y, -bound, bound);
+            if (ladrc_fabs(y) > bound && i >= f->rpm_first && i < rpm_end) {
+                y = (y > LADRC_R(0.0)) ? bound : -bound;
             }
             section_push(h, x, y);
             x = x + s->weight * (y - x); /* one path: no branch on the weight (within an ulp of y at 1) */
