@@ -20,7 +20,9 @@ if(LADRC_COVERAGE)
 endif()
 
 if(LADRC_SANITIZE)
-  set(_ladrc_san -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
+  # float-cast-overflow is not part of gcc's "undefined": a float converted to
+  # an integer it does not fit is undefined behaviour all the same.
+  set(_ladrc_san -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer)
   add_compile_options(${_ladrc_san})
   add_link_options(${_ladrc_san})
 endif()

@@ -89,11 +89,19 @@
 /* The smallest angle and rate range accepted: a milliradian (per second),
  * the resolution of a good IMU; below, float rounding alone leaves it. */
 #define AXIS_RANGE_MIN LADRC_R(1e-3)
+/* The largest angle_limit_rad init takes: a million radians, far beyond any
+ * attitude, wrapped or not, and low enough that the reference shapers'
+ * states on an angle within it stay far inside the real type (a limit near
+ * its maximum let a reset leave them where every later tick overflowed). */
+#define AXIS_ANGLE_LIMIT_MAX_RAD LADRC_R(1e6)
 /* Ticks of dt_s in period_s, at least 1 (a period shorter than a tick: every tick). */
 static uint16_t ticks_in(ladrc_real_t period_s, ladrc_real_t dt_s)
 {
     const ladrc_real_t ticks = period_s / dt_s;
-    return (ticks >= LADRC_R(1.0) && ticks < LADRC_R(65535.0)) ? (uint16_t)(ticks + LADRC_R(0.5)) : 1u;
+    if (ticks >= LADRC_R(1.0) && ticks < LADRC_R(65535.0)) {
+        return (uint16_t)(ticks + LADRC_R(0.5));
+    }
+    return 1u;
 }
 
 void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant, ladrc_real_t dt_s,
@@ -238,7 +246,7 @@ ladrc_status_t ladrc_axis_init(ladrc_axis_t *axis, const ladrc_axis_config_t *cf
     if (!(cfg->u_min_Nm < LADRC_R(0.0) && cfg->u_max_Nm > LADRC_R(0.0))) {
         return LADRC_ERR_U_LIMITS;
     }
-    if (!(ladrc_is_finite(cfg->angle_limit_rad) && cfg->angle_limit_rad >= AXIS_RANGE_MIN &&
+    if (!(cfg->angle_limit_rad >= AXIS_RANGE_MIN && cfg->angle_limit_rad <= AXIS_ANGLE_LIMIT_MAX_RAD &&
           ladrc_is_finite(cfg->rate_limit_rad_s) && cfg->rate_limit_rad_s >= AXIS_RANGE_MIN &&
           ladrc_is_positive(cfg->applied_limit_Nm))) {
         return LADRC_ERR_INPUT_LIMITS;

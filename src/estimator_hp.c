@@ -366,7 +366,7 @@ static int detect_change(ladrc_hp_estimator_t *est, ladrc_real_t err)
     if (!(est->err_fast > CHANGE_RATIO * est->err_slow && est->err_fast > CHANGE_SHARE * est->sig_power)) {
         return 0;
     }
-    est->change_left = (uint16_t)(CHANGE_HOLD_S / t + LADRC_R(0.5));
+    est->change_left = hp_count(CHANGE_HOLD_S / t);
 #if LADRC_WITH_HP_ONLINE
     hp_freq_after_change(est);
 #endif

@@ -322,8 +322,7 @@ void hp_freq_after_change(ladrc_hp_estimator_t *est)
     /* One restart of the frequency fit at a time: a change seen again while
      * one is pending does not delay it further. */
     if (est->spec_restart_left == 0u) {
-        est->spec_restart_left =
-            (uint16_t)(FILTER_SETTLE_PER_WF / (est->filter_rad_s * est->fit_period_s) + LADRC_R(0.5));
+        est->spec_restart_left = hp_count(FILTER_SETTLE_PER_WF / (est->filter_rad_s * est->fit_period_s));
     }
 }
 

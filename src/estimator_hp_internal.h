@@ -53,6 +53,20 @@ static inline ladrc_real_t max_real(ladrc_real_t a, ladrc_real_t b)
     return (b > a) ? b : a;
 }
 
+/* A count of fit samples, x rounded, held within 0..UINT16_MAX (an x out
+ * of that range or not a number, from a fit period near its bounds,
+ * converts to no integer; NaN: the most). */
+static inline uint16_t hp_count(ladrc_real_t x)
+{
+    if (x < LADRC_R(0.0)) {
+        return 0u;
+    }
+    if (x < LADRC_R(65534.5)) {
+        return (uint16_t)(x + LADRC_R(0.5));
+    }
+    return UINT16_MAX;
+}
+
 /* 1: the frequencies are searched online (never without the search built). */
 static inline int hp_online(const ladrc_hp_estimator_t *est)
 {

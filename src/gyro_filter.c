@@ -26,15 +26,19 @@ static inline int sample_is_good(ladrc_real_t x)
  * a change of the filter from now on. Direct form II keeps internal states
  * weighted by the old coefficients, which new ones misread into a transient.
  */
-static LADRC_FORCE_INLINE ladrc_real_t section_step(const ladrc_gyro_filter_section_t *c,
-                                                    ladrc_gyro_filter_history_t *h, ladrc_real_t x)
+static LADRC_FORCE_INLINE ladrc_real_t section_output(const ladrc_gyro_filter_section_t *c,
+                                                      const ladrc_gyro_filter_history_t *h, ladrc_real_t x)
 {
-    const ladrc_real_t y = c->b0 * x + c->b1 * h->x1 + c->b2 * h->x2 - c->a1 * h->y1 - c->a2 * h->y2;
+    return c->b0 * x + c->b1 * h->x1 + c->b2 * h->x2 - c->a1 * h->y1 - c->a2 * h->y2;
+}
+
+/* The section's history moved on by one tick of input x and output y. */
+static LADRC_FORCE_INLINE void section_push(ladrc_gyro_filter_history_t *h, ladrc_real_t x, ladrc_real_t y)
+{
     h->x2 = h->x1;
     h->x1 = x;
     h->y2 = h->y1;
     h->y1 = y;
-    return y;
 }
 
 /* An off section passes its input and records it as its output, so that its
@@ -42,10 +46,14 @@ static LADRC_FORCE_INLINE ladrc_real_t section_step(const ladrc_gyro_filter_sect
  * without a step. */
 static inline void section_pass(ladrc_gyro_filter_history_t *h, ladrc_real_t x)
 {
-    h->x2 = h->x1;
-    h->x1 = x;
-    h->y2 = h->y1;
-    h->y1 = x;
+    section_push(h, x, x);
+}
+
+/* A channel's envelope after a sample of magnitude m: the larger of m and the
+ * decayed envelope. */
+static inline ladrc_real_t envelope_next(ladrc_real_t m, ladrc_real_t decayed)
+{
+    return (m > decayed) ? m : decayed;
 }
 
 /* LADRC_FORCE_INLINE below: -Os keeps these helpers out of line in
@@ -283,6 +291,7 @@ static ladrc_status_t setup(ladrc_gyro_filter_t *f, const ladrc_gyro_filter_conf
     }
     f->n_sections = (uint8_t)n;
     f->channels = cfg->channels;
+    f->envelope_decay = ladrc_exp(-cfg->dt_s / LADRC_GYRO_FILTER_ENVELOPE_TAU_S);
     return LADRC_OK;
 }
 
@@ -338,6 +347,7 @@ void ladrc_gyro_filter_reset(ladrc_gyro_filter_t *f, const ladrc_real_t *value)
             h->y2 = v;
         }
         f->out[ch] = v;
+        f->envelope[ch] = ladrc_fabs(v);
     }
 }
 
@@ -400,16 +410,25 @@ ladrc_fault_t ladrc_gyro_filter_set_rotor_hz(ladrc_gyro_filter_t *f, const ladrc
 }
 
 /* One channel through its chain, history moved on; the oldest history of each
- * section is kept in undo first. */
-static ladrc_real_t chain_step(ladrc_gyro_filter_t *f, ladrc_gyro_filter_history_t *hist, ladrc_real_t x)
+ * section is kept in undo first. The RPM notches' outputs (and so their
+ * histories) are held within +-bound (LADRC_GYRO_FILTER_RPM_GAIN_BOUND; the
+ * branch almost never taken); the fixed sections are left to the state
+ * guard (a history corrupted from outside is a state fault, not hidden). */
+static ladrc_real_t chain_step(ladrc_gyro_filter_t *f, ladrc_gyro_filter_history_t *hist, ladrc_real_t x,
+                               ladrc_real_t bound)
 {
+    const unsigned rpm_end = (unsigned)f->rpm_first + (unsigned)f->rpm_rotors * f->rpm_harmonics;
     for (unsigned i = 0u; i < f->n_sections; ++i) {
         const ladrc_gyro_filter_section_t *s = &f->section[i];
         ladrc_gyro_filter_history_t *h = &hist[i];
         f->undo[i][0] = h->x2;
         f->undo[i][1] = h->y2;
         if (s->weight > LADRC_R(0.0)) {
-            const ladrc_real_t y = section_step(s, h, x);
+            ladrc_real_t y = section_output(s, h, x);
+            if (ladrc_fabs(y) > bound && i >= f->rpm_first && i < rpm_end) {
+                y = (y > LADRC_R(0.0)) ? bound : -bound;
+            }
+            section_push(h, x, y);
             x = x + s->weight * (y - x); /* one path: no branch on the weight (within an ulp of y at 1) */
         } else {
             section_pass(h, x);
@@ -447,9 +466,10 @@ ladrc_fault_t ladrc_gyro_filter_step(ladrc_gyro_filter_t *f, const ladrc_real_t 
             out[ch] = f->out[ch];
             continue;
         }
+        f->envelope[ch] = envelope_next(ladrc_fabs(x), f->envelope[ch] * f->envelope_decay);
         /* A non-finite value anywhere in the chain reaches its output (every
          * section passes its input with a non-zero gain), so one test suffices. */
-        y = chain_step(f, f->hist[ch], x);
+        y = chain_step(f, f->hist[ch], x, LADRC_GYRO_FILTER_RPM_GAIN_BOUND * f->envelope[ch]);
         if (!ladrc_is_finite(y)) {
             chain_undo(f, f->hist[ch]);
             faults |= LADRC_FAULT_STATE;

@@ -14,6 +14,7 @@
 #include "test_plant.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #define DT_S 0.001
@@ -197,6 +198,43 @@ static void test_axis_init_refuses_what_it_cannot_discretise(void)
     }
 }
 
+/* The largest angle limit init takes (axis.h), and a tick's faults: no
+ * state fault may outlive the tick that raised it, whatever angle within the
+ * limit a reset left the shapers at. */
+#define ANGLE_LIMIT_MAX_RAD 1e6
+#define GOOD_TICKS 2000
+/* A reset far from the reference makes the first ticks shape a huge step; a
+ * state fault there is allowed, one that keeps coming is not. */
+#define STATE_FAULT_RUN_MAX 1
+
+static void test_no_state_fault_outlives_its_tick_after_a_reset_at_the_largest_angle_limit(void)
+{
+    for (int v = 0; v < (int)LADRC_VARIANT_COUNT; ++v) {
+        ladrc_axis_config_t cfg;
+        ladrc_axis_t axis;
+        ladrc_axis_config_default(&cfg, (ladrc_variant_t)v, (ladrc_real_t)DT_S, LADRC_R(5.445e-3));
+        cfg.u_min_Nm = LADRC_R(-0.5);
+        cfg.u_max_Nm = LADRC_R(0.5);
+        cfg.angle_limit_rad = (ladrc_real_t)(1.1 * ANGLE_LIMIT_MAX_RAD);
+        TEST_ASSERT_EQUAL_INT(LADRC_ERR_INPUT_LIMITS, ladrc_axis_init(&axis, &cfg));
+        cfg.angle_limit_rad = (ladrc_real_t)ANGLE_LIMIT_MAX_RAD;
+        TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&axis, &cfg));
+        ladrc_axis_reset(&axis, (ladrc_real_t)(0.9 * ANGLE_LIMIT_MAX_RAD));
+        int run = 0, longest = 0;
+        ladrc_real_t u = LADRC_R(0.0);
+        for (int k = 0; k < GOOD_TICKS; ++k) {
+            const ladrc_real_t rate = LADRC_R(0.0);
+            const ladrc_fault_t f = ladrc_axis_step(&axis, LADRC_R(0.1), LADRC_R(0.0), &rate, &u);
+            ladrc_axis_set_applied(&axis, u);
+            run = ((f & LADRC_FAULT_STATE) != 0u) ? run + 1 : 0;
+            longest = (run > longest) ? run : longest;
+        }
+        char msg[80];
+        snprintf(msg, sizeof msg, "variant %d: %d ticks of state faults in a row", v, longest);
+        TEST_ASSERT_TRUE_MESSAGE(longest <= STATE_FAULT_RUN_MAX, msg);
+    }
+}
+
 static void test_steps_no_module_can_discretise_are_refused(void)
 {
     const ladrc_real_t steps[4] = {(ladrc_real_t)1e30, (ladrc_real_t)2.0, (ladrc_real_t)9e-7, LADRC_REAL_MIN};
@@ -265,6 +303,7 @@ int main(void)
     RUN_TEST(test_hp_refuses_a_sample_beyond_its_range_and_keeps_its_estimate);
     RUN_TEST(test_axis_init_refuses_what_it_cannot_discretise);
     RUN_TEST(test_steps_no_module_can_discretise_are_refused);
+    RUN_TEST(test_no_state_fault_outlives_its_tick_after_a_reset_at_the_largest_angle_limit);
     RUN_TEST(test_attitude_init_refuses_bodies_that_cannot_exist);
     return UNITY_END();
 }

@@ -203,7 +203,7 @@ typedef struct {
     /* Plausible ranges (finite; angle and rate >= 1e-3, applied > 0): a sample
      * beyond is a bad input, held and flagged like a NaN. The defaults are far
      * beyond any real flight. */
-    ladrc_real_t angle_limit_rad;  /**< |reference| and |measured angle| (rad); default 1000 */
+    ladrc_real_t angle_limit_rad;  /**< |reference| and |measured angle| (rad), 1e-3..1e6; default 1000 */
     ladrc_real_t rate_limit_rad_s; /**< |measured rate| (rad/s); default 100 */
     ladrc_real_t applied_limit_Nm; /**< |applied torque| (N m); default 1e4 rad/s^2 times the inertia */
     /* LADRC */
@@ -446,8 +446,8 @@ void ladrc_axis_config_default(ladrc_axis_config_t *cfg, ladrc_variant_t variant
  * @retval LADRC_ERR_DT_S                dt_s not finite or outside [LADRC_DT_MIN_S, LADRC_DT_MAX_S];
  *                                       HP: also its fit period above LADRC_DT_MAX_S
  * @retval LADRC_ERR_U_LIMITS            not u_min_Nm < 0 < u_max_Nm (NaN included)
- * @retval LADRC_ERR_INPUT_LIMITS        angle or rate limit not finite or below 1e-3,
- *                                       applied_limit_Nm not finite or not > 0
+ * @retval LADRC_ERR_INPUT_LIMITS        angle or rate limit not finite or below 1e-3, angle limit
+ *                                       above 1e6 rad, applied_limit_Nm not finite or not > 0
  * @retval LADRC_ERR_WRAP_ANGLE          wrap_angle not 0 or 1
  * @retval LADRC_ERR_VARIANT             variant not a ladrc_variant_t
  * @retval LADRC_ERR_VARIANT_NOT_BUILT   variant left out of this build

@@ -63,6 +63,17 @@ extern "C" {
  *  can overflow the chain's history; a larger one counts as non-finite. */
 #define LADRC_GYRO_FILTER_INPUT_MAX (LADRC_REAL_MAX * LADRC_R(5.42101086242752217e-20))
 
+/** An RPM notch's output never exceeds this many times its channel's input envelope (below):
+ *  its coefficients change every tick, and direct form I under centres that jump at random can
+ *  ring up without bound; a notch whose centre stays put never comes near it (its gain is at
+ *  most 1, its ring-down at most about twice its input). With its history so bounded, the bank
+ *  stays bounded for any sequence of centres and, once they settle, is a stable filter again:
+ *  it recovers by itself. */
+#define LADRC_GYRO_FILTER_RPM_GAIN_BOUND LADRC_R(8.0)
+/** Time constant of the input envelope (s): slower than the ring-down of any notch the bank can
+ *  hold (Q 5 at 20 Hz rings down in 80 ms), so the bound never cuts a legitimate output. */
+#define LADRC_GYRO_FILTER_ENVELOPE_TAU_S LADRC_R(1.0)
+
 /** Gyro filter configuration (ladrc_gyro_filter_init validates it); can live in flash.
  *  The fields of a stage that is off are not read (lpf_cutoff_hz with lpf_order 0, notch_q
  *  with n_notches 0, the rpm_ fields with rpm_rotors 0). */
@@ -109,18 +120,22 @@ typedef struct {
      *  put a channel back when its new state is not finite */
     ladrc_real_t undo[LADRC_GYRO_FILTER_MAX_STAGES][2];
     ladrc_real_t out[LADRC_GYRO_FILTER_MAX_CHANNELS]; /**< each channel's latest output (held on a fault) */
-    ladrc_real_t rad_per_hz;                          /**< 2 pi dt_s: a centre (Hz) as radians per tick */
-    ladrc_real_t rpm_inv_2q;                          /**< 1 / (2 rpm_q) */
-    ladrc_real_t rpm_min_hz;                          /**< of the config (Hz) */
-    ladrc_real_t rpm_full_hz;                         /**< rpm_min_hz + rpm_fade_hz: weight 1 from here (Hz) */
-    ladrc_real_t rpm_inv_fade_per_hz;                 /**< 1 / rpm_fade_hz (1/Hz), 0 without a fade */
-    ladrc_real_t centre_max_hz;                       /**< 0.45 / dt_s: notches from here on are off (Hz) */
-    uint8_t channels;                                 /**< of the config; 0 after a rejected init */
-    uint8_t n_sections;                               /**< sections in the chain */
-    uint8_t rpm_first;                                /**< index of the first RPM notch (= n_notches) */
-    uint8_t rpm_rotors;                               /**< of the config */
-    uint8_t rpm_harmonics;                            /**< of the config */
-    ladrc_fault_t faults;                             /**< flags of the latest step */
+    /** each channel's input envelope: its largest |input|, decaying by envelope_decay per tick;
+     *  an RPM notch's output is bounded by LADRC_GYRO_FILTER_RPM_GAIN_BOUND times it */
+    ladrc_real_t envelope[LADRC_GYRO_FILTER_MAX_CHANNELS];
+    ladrc_real_t envelope_decay;      /**< exp(-dt_s / LADRC_GYRO_FILTER_ENVELOPE_TAU_S) */
+    ladrc_real_t rad_per_hz;          /**< 2 pi dt_s: a centre (Hz) as radians per tick */
+    ladrc_real_t rpm_inv_2q;          /**< 1 / (2 rpm_q) */
+    ladrc_real_t rpm_min_hz;          /**< of the config (Hz) */
+    ladrc_real_t rpm_full_hz;         /**< rpm_min_hz + rpm_fade_hz: weight 1 from here (Hz) */
+    ladrc_real_t rpm_inv_fade_per_hz; /**< 1 / rpm_fade_hz (1/Hz), 0 without a fade */
+    ladrc_real_t centre_max_hz;       /**< 0.45 / dt_s: notches from here on are off (Hz) */
+    uint8_t channels;                 /**< of the config; 0 after a rejected init */
+    uint8_t n_sections;               /**< sections in the chain */
+    uint8_t rpm_first;                /**< index of the first RPM notch (= n_notches) */
+    uint8_t rpm_rotors;               /**< of the config */
+    uint8_t rpm_harmonics;            /**< of the config */
+    ladrc_fault_t faults;             /**< flags of the latest step */
 } ladrc_gyro_filter_t;
 
 /**
@@ -185,8 +200,8 @@ void ladrc_gyro_filter_reset(ladrc_gyro_filter_t *f, const ladrc_real_t *value);
  * bank it does nothing. Centres that move a few Hz per tick, and a speed that
  * glitches for a tick now and then, keep the outputs on the scale of the
  * input; speeds that jump at random every tick can make direct form I ring
- * up by orders of magnitude for a while (its switched sections have no gain
- * bound): low-pass noisy telemetry first.
+ * up, but never beyond LADRC_GYRO_FILTER_RPM_GAIN_BOUND times the input's
+ * envelope, and the bank recovers by itself once the centres settle.
  * @param f         the filter; NULL: LADRC_FAULT_STATE, nothing changes
  * @param rotor_hz  rotation frequency of each of the rpm_rotors rotors (Hz, revolutions per second,
  *                  e.g. eRPM / 60 / pole pairs); NULL: LADRC_FAULT_STATE, nothing changes

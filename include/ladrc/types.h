@@ -259,7 +259,7 @@ typedef enum {
                                        turns too far per fit sample */
     LADRC_ERR_HP_FREQ_LAMBDA0,    /**< hp freq_lambda0_per_s not finite, not > 0, or above 1 / T */
     LADRC_ERR_HP_FREQ_FILTER,     /**< hp freq_filter_rad_s not finite, not > 0, or too fast for the fit sample */
-    LADRC_ERR_INPUT_LIMITS, /**< angle_limit_rad or rate_limit_rad_s not finite or below 1e-3, or applied_limit_Nm not finite or not > 0 */
+    LADRC_ERR_INPUT_LIMITS, /**< angle_limit_rad or rate_limit_rad_s not finite or below 1e-3, angle_limit_rad above 1e6, or applied_limit_Nm not finite or not > 0 */
     LADRC_ERR_INERTIA_TRIANGLE, /**< attitude inertias no rigid body has (each must be <= the sum of the other two) */
     LADRC_ERR_MOTOR_TAU_S,      /**< axis motor_tau_s not finite, < 0, or above LADRC_MOTOR_TAU_MAX_S */
     LADRC_ERR_DELAY_TICKS,      /**< axis delay_ticks above LADRC_MAX_DELAY_TICKS */

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "run/progress.h"
+#include "staged_dir.h"
 #include "report/report.h"
 #include "run/runner.h"
 #include "run/tune.h"
@@ -265,10 +266,41 @@ static void normal_dir(const char *dir, char *out, size_t n)
     out[o] = '\0';
 }
 
+/* -1 (said on stderr) when a recorded series of the scenario is one of the
+ * files its run writes: the run would truncate the series before reading it. */
+static int series_among_outputs(const sim_scenario_t *sc)
+{
+    char names[SIM_MAX_CONTROLLERS + 3][64];
+    const char *name_of[SIM_MAX_CONTROLLERS + 3];
+    int n = 0;
+    snprintf(names[n++], sizeof names[0], "metrics.csv");
+    snprintf(names[n++], sizeof names[0], "signals.csv");
+    snprintf(names[n++], sizeof names[0], "differentiator.csv");
+    for (int c = 0; c < sc->n_controllers && c < SIM_MAX_CONTROLLERS; ++c) {
+        snprintf(names[n++], sizeof names[0], "%s.csv", sim_controller_name(sc->controllers[c]));
+    }
+    for (int i = 0; i < n; ++i) {
+        name_of[i] = names[i];
+    }
+    const char *const series[] = {sc->dist_series, sc->ref_series, sc->rate_noise_series, sc->angle_noise_series};
+    for (size_t k = 0; k < sizeof series / sizeof series[0]; ++k) {
+        char why[2 * SIM_PATH_LEN];
+        if (series[k][0] != '\0' &&
+            sim_staged_check_input(sc->output_dir, name_of, n, series[k], why, sizeof why) != 0) {
+            fprintf(stderr, "ladrc_sil: %s: %s: give the run another output_dir (or --out)\n", sc->path, why);
+            return -1;
+        }
+    }
+    return 0;
+}
+
 int sim_fly_check_collisions(const sim_scenario_t *scenarios, int n)
 {
     static char norm[SIM_FLY_MAX_SCENARIOS][SIM_PATH_LEN];
     for (int i = 0; i < n && i < SIM_FLY_MAX_SCENARIOS; ++i) {
+        if (series_among_outputs(&scenarios[i]) != 0) {
+            return -1;
+        }
         normal_dir(scenarios[i].output_dir, norm[i], sizeof norm[i]);
         for (int j = 0; j < i; ++j) {
             if (strcmp(norm[i], norm[j]) == 0) {

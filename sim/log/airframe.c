@@ -120,7 +120,7 @@ int sim_airframe_b0_note(const sim_airframe_t *a, int axis, char *buf, size_t le
     const double b0 = sim_airframe_b0(a, axis, &source);
     const char *why = a->axis[axis].b0 < 0.0       ? "came out negative (check the axis's sign: --map ...*-1)"
                       : isfinite(a->axis[axis].b0) ? "is not told (see the identification's warnings)"
-                                                   : "is not told (too few samples)";
+                                                   : "is not told (too few samples: a short log, or no excitation)";
     switch (source) {
     case SIM_AIRFRAME_B0_IDENTIFIED:
         buf[0] = '\0';

@@ -170,6 +170,10 @@ static double lowpass_corner_hz(ladrc_gyro_filter_config_t *cfg, double rotor_hz
 {
     const double top = 0.45 / (double)cfg->dt_s;
     double lo = w_rad_s / (2.0 * PI), hi = top;
+    if (!(w_rad_s > 0.0 && isfinite(w_rad_s))) {
+        cfg->lpf_order = 0; /* no crossover to hold the phase at (a log that tells no lag) */
+        return 0.0;
+    }
     cfg->lpf_order = 2;
     cfg->lpf_cutoff_hz = (ladrc_real_t)hi;
     if (sim_filter_phase_cost_deg(cfg, rotor_hz, w_rad_s) > SIM_FILTER_PHASE_BUDGET_DEG) {

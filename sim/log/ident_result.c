@@ -241,7 +241,7 @@ const char *sim_ident_warning_text(unsigned bit)
 {
     switch (bit) {
     case SIM_IDENT_WARN_FEW:
-        return "too few samples to fit";
+        return "too few samples to fit: the log is short, or nothing moves on the axis (no excitation)";
     case SIM_IDENT_WARN_SIGN:
         return "b0 is not positive: the command and the gyro disagree in sign (check the axis's mapping)";
     case SIM_IDENT_WARN_B0_WIDE:

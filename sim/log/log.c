@@ -269,8 +269,16 @@ static sim_log_t *finish_open(sim_log_t *log, const sim_log_options_t *opt, sim_
     if (log->n_files == 0) {
         sim_log_fail(err, log->path, 0, 0, "no topic file has a mapped column");
     } else if (find_fields(log, err) == 0 && find_start(log, err) == 0) {
-        set_grid(log, opt);
-        return log;
+        if (!(opt->dt_s > 0.0) && !(log->files[0].median_us >= DT_MIN_S * 1e6)) {
+            /* a period the controllers cannot run at, from the log's own times */
+            sim_log_fail(err, log->path, 0, 0,
+                         "rows %g s apart (the median): below 1e-6 s; the time column in another unit? "
+                         "(its unit is told by its header; --dt sets the period)",
+                         log->files[0].median_us * 1e-6);
+        } else {
+            set_grid(log, opt);
+            return log;
+        }
     }
     sim_log_close(log);
     return NULL;

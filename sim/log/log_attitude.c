@@ -8,12 +8,20 @@
 
 void sim_log_quat_to_angle(const double q[4], double angle_rad[3])
 {
+    /* The rotation of q / |q|: every term scaled by n2 = |q|^2, so a log's
+     * quaternion that is not quite unit gives the angles of its direction on
+     * its rows as between them; one of no length (all zero) is no attitude. */
     const double w = q[0], x = q[1], y = q[2], z = q[3];
-    double s = 2.0 * (w * y - z * x);
+    const double n2 = w * w + x * x + y * y + z * z;
+    if (!(n2 > 0.0 && isfinite(n2))) {
+        angle_rad[0] = angle_rad[1] = angle_rad[2] = NAN;
+        return;
+    }
+    double s = 2.0 * (w * y - z * x) / n2;
     s = s > 1.0 ? 1.0 : (s < -1.0 ? -1.0 : s);
-    angle_rad[0] = atan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y));
+    angle_rad[0] = atan2(2.0 * (w * x + y * z), n2 - 2.0 * (x * x + y * y));
     angle_rad[1] = asin(s);
-    angle_rad[2] = atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z));
+    angle_rad[2] = atan2(2.0 * (w * z + x * y), n2 - 2.0 * (y * y + z * z));
 }
 
 void sim_log_angle_to_quat(const double angle_rad[3], double q[4])

@@ -6,8 +6,9 @@
 #ifndef LADRC_SIM_LOG_ATTITUDE_H
 #define LADRC_SIM_LOG_ATTITUDE_H
 
-/* roll = atan2(2(wx + yz), 1 - 2(x^2 + y^2)), pitch = asin(2(wy - zx))
- * clamped, yaw = atan2(2(wz + xy), 1 - 2(y^2 + z^2)). */
+/* The ZYX angles of q's direction, n2 = |q|^2: roll = atan2(2(wx + yz),
+ * n2 - 2(x^2 + y^2)), pitch = asin(2(wy - zx) / n2) clamped, yaw =
+ * atan2(2(wz + xy), n2 - 2(y^2 + z^2)); NaN for a q of no length or not finite. */
 void sim_log_quat_to_angle(const double q[4], double angle_rad[3]);
 void sim_log_angle_to_quat(const double angle_rad[3], double q[4]);
 

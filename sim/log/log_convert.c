@@ -64,7 +64,10 @@ sim_log_source_t sim_log_source_of(const char *path)
 
 sim_log_format_t sim_log_csv_format_of(const char *path)
 {
-    if (strstr(path, "_vehicle_") != NULL || strstr(path, "_sensor_combined_") != NULL || has_px4_topic_files(path)) {
+    /* ulog2csv's topic names are in the file's name, not in its folders' */
+    const char *slash = strrchr(path, '/');
+    const char *name = slash != NULL ? slash + 1 : path;
+    if (strstr(name, "_vehicle_") != NULL || strstr(name, "_sensor_combined_") != NULL || has_px4_topic_files(path)) {
         return SIM_LOG_PX4;
     }
     FILE *f = fopen(path, "r");
@@ -183,6 +186,14 @@ int sim_log_prepare(sim_log_options_t *o, int format_given, sim_log_prepared_t *
 {
     memset(p, 0, sizeof *p);
     snprintf(p->original, sizeof p->original, "%s", o->path);
+    struct stat st;
+    if (stat(o->path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) {
+        /* a pipe cannot be read again, and even its first bytes (the form's
+         * magic) are gone once looked at */
+        return sim_log_fail(err, o->path, 0, 0,
+                            "not a regular file (a pipe or a device): a log is read more than once; save it "
+                            "to a file first");
+    }
     p->source = sim_log_source_of(o->path);
     p->bytes = file_bytes(o->path);
     if (p->source == SIM_LOG_SOURCE_MISSING) {

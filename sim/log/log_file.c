@@ -281,6 +281,14 @@ static int read_row(sim_log_file_t *f, double *t_us, double *v, sim_log_error_t 
         return sim_log_fail(err, f->path, c->line_no, column_of(f, col),
                             "time %.9g s is beyond the reader's range (2^53 us)", t * 1e-6);
     }
+    if (f->time_to_us != 1.0 && !(fabs(t) <= 0.5 * TIME_MAX_US)) {
+        /* a time in s or ms is a product: from 2^52 us on it no longer
+         * resolves a microsecond, and distinct rows would read as one */
+        return sim_log_fail(err, f->path, c->line_no, column_of(f, col),
+                            "time %.9g s is beyond what a time in s or ms resolves to the microsecond (2^52 us): "
+                            "give the time in us, or from a nearer origin",
+                            t * 1e-6);
+    }
     if (f->rows > 0 && t <= f->last_read_us) {
         if (t == f->last_read_us) {
             return sim_log_fail(err, f->path, c->line_no, column_of(f, col), "time repeats (%.9g s)", t * 1e-6);

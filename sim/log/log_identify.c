@@ -35,6 +35,10 @@ typedef struct {
     sim_gyro_filter_t *filter; /* the log's filters, when it has the gyro before and after them */
 } survey_t;
 
+/* The most rows the noise series is given (a day at 100 kHz): beyond any
+ * log, and far inside long long. */
+#define NOISE_ROWS_MAX 8.64e9
+
 static int survey_open(survey_t *s, const sim_log_identify_options_t *o, double dt_s, char *err, size_t err_len)
 {
     memset(s, 0, sizeof *s);
@@ -50,7 +54,9 @@ static int survey_open(survey_t *s, const sim_log_identify_options_t *o, double 
         snprintf(err, err_len, "%s: cannot write", o->noise_series);
         return -1;
     }
-    s->noise_rows_max = (long long)ceil(o->noise_series_s / dt_s);
+    /* in double first: rows 1e-300 s apart would overflow the conversion */
+    const double rows = ceil(o->noise_series_s / dt_s);
+    s->noise_rows_max = (rows < NOISE_ROWS_MAX) ? (long long)rows : (long long)NOISE_ROWS_MAX;
     fprintf(s->noise, "# the gyro's noise of the log, high-passed at %.4g Hz\n", sim_log_noise_corner_hz(1.0 / dt_s));
     fprintf(s->noise, "t [s], roll [rad/s], pitch [rad/s], yaw [rad/s]\n");
     return 0;

@@ -139,5 +139,5 @@ int ini_read_file_max(const char *path, size_t max_bytes, char **text, size_t *l
 
 int ini_read_file(const char *path, char **text, size_t *len)
 {
-    return ini_read_file_max(path, (size_t)-1 / 2, text, len);
+    return ini_read_file_max(path, INI_FILE_MAX_BYTES, text, len);
 }

@@ -60,9 +60,14 @@ typedef int (*ini_line_fn)(void *ctx, char *s);
  * stopped the reading. */
 int ini_lines(char *text, ini_place_t *place, ini_line_fn fn, void *ctx);
 
+/* The most bytes ini_read_file takes: a scenario or campaign is a short
+ * text; /dev/zero given as one is refused, not read until memory runs out. */
+#define INI_FILE_MAX_BYTES ((size_t)16 * 1024 * 1024)
+
 /* The bytes of the file at path, NUL-terminated, in *text (to free) and
  * their number in *len. Returns 0; -1 when it cannot be opened (errno from
- * fopen), -2 out of memory (errno ENOMEM), -3 a read error (errno EIO). */
+ * fopen), -2 out of memory (errno ENOMEM), -3 a read error (errno EIO), -4
+ * more than INI_FILE_MAX_BYTES (errno EFBIG). */
 int ini_read_file(const char *path, char **text, size_t *len);
 
 /* The same for a file of at most max_bytes (< SIZE_MAX / 2): -4 (errno

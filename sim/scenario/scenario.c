@@ -188,7 +188,10 @@ int sim_scenario_load_with(sim_scenario_t *sc, const char *path, const char *con
         if (read == -1) {
             snprintf(err->message, sizeof err->message, "cannot open: %s", path != NULL ? strerror(errno) : "no path");
         } else {
-            snprintf(err->message, sizeof err->message, "%s", read == -2 ? "out of memory" : "read error");
+            snprintf(err->message, sizeof err->message, "%s",
+                     read == -2   ? "out of memory"
+                     : read == -4 ? "larger than 16 MiB: not a scenario file"
+                                  : "read error");
         }
         return -1;
     }

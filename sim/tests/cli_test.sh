@@ -229,6 +229,17 @@ rc=$?
   grep -q "bad_unit.csv:1:13: unit \[deg/s\] is an angular rate; key series wants an angular acceleration" "$work/s_bad.err" &&
   grep -q "(the file of series, .*bad_series.ini line 6)" "$work/s_bad.err"
 check series_bad_unit_at_its_place_nothing_written $?
+# A series that is one of the run's own outputs (LADRC.csv in the output
+# folder): refused before anything is written, the series left as it was.
+mkdir -p "$work/s_own/own_series"
+cp "$work/sine.csv" "$work/s_own/own_series/LADRC.csv"
+printf "$base[disturbance]\nseries = s_own/own_series/LADRC.csv\n" > "$work/own_series.ini"
+"$sil" "$work/own_series.ini" --out "$work/s_own" --quiet > /dev/null 2> "$work/s_own.err"
+rc=$?
+[ $rc -eq 2 ] && cmp -s "$work/sine.csv" "$work/s_own/own_series/LADRC.csv" &&
+  [ ! -e "$work/s_own/own_series/metrics.csv" ] &&
+  grep -q "the input is the output .*LADRC.csv of this run" "$work/s_own.err"
+check series_that_is_an_output_refused_and_kept $?
 
 echo "$(( checks - failures )) passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -132,6 +132,19 @@ static void test_white_noise_gives_no_notch(void)
     TEST_ASSERT_EQUAL_FLOAT(hi, p.band_hi_hz);
 }
 
+static void test_a_log_that_tells_no_crossover_gets_no_lowpass(void)
+{
+    /* a still log tells no lag, so no crossover (NaN): no low-pass is proposed, not a NaN corner
+     * the gyro filter would refuse */
+    synthetic(NULL, NULL, 0);
+    static sim_filter_proposal_t p;
+    char why[256];
+    TEST_ASSERT_EQUAL_INT(0, sim_filter_propose(spectra, DT_S, 0.0, 0, NAN, &p, why, sizeof why));
+    TEST_ASSERT_EQUAL_UINT(0, p.cfg.lpf_order);
+    ladrc_gyro_filter_t f;
+    TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_gyro_filter_init(&f, &p.cfg));
+}
+
 static void test_too_short_a_log_is_refused(void)
 {
     for (int i = 0; i < 3; ++i) {
@@ -185,6 +198,7 @@ int main(void)
     RUN_TEST(test_notches_at_the_lines_and_a_lowpass_within_the_budget);
     RUN_TEST(test_lines_on_the_rotor_harmonics_go_to_the_rpm_bank);
     RUN_TEST(test_white_noise_gives_no_notch);
+    RUN_TEST(test_a_log_that_tells_no_crossover_gets_no_lowpass);
     RUN_TEST(test_too_short_a_log_is_refused);
     RUN_TEST(test_response_matches_the_documented_corners);
     RUN_TEST(test_phase_probe_of_a_delayed_stream);

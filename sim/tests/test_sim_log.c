@@ -490,8 +490,47 @@ static void test_time_not_increasing(void)
 {
     expect_error("time,gyro[0]\n0.000,1\n0.002,1\n0.001,1\n", 4, 1, "time goes back from 0.002 s to 0.001 s");
     expect_error("time,gyro[0]\n0.000,1\n0.002,1\n  0.002,1\n", 4, 3, "time repeats (0.002 s)");
+    /* seconds past 2^52 us no longer resolve a microsecond: said, not read as a repeat */
+    expect_error("time,gyro[0]\n4503599627370497e-6,1\n4503599627370498e-6,1\n", 2, 1,
+                 "beyond what a time in s or ms resolves to the microsecond (2^52 us)");
     /* in the first rows, held to estimate the row period, as later */
     expect_error("gyro[0], time\n1, 0\n1, 5\n1, 4\n", 4, 4, "time goes back");
+}
+
+static void test_a_row_period_below_a_microsecond_is_refused_as_the_logs(void)
+{
+    /* rows 1e-300 s apart (a time column in another unit): refused for the log's own times, not
+     * for a period the user did not give, and never converted to a tick count */
+    sim_log_options_t o = options(SIM_LOG_GENERIC, 0.0);
+    sim_log_error_t err;
+    sim_log_sample_t s[4];
+    memset(&err, 0, sizeof err);
+    TEST_ASSERT_EQUAL_INT(-1, read_text("time,gyro[0]\n0,1\n1e-300,1\n2e-300,1\n3e-300,1\n", &o, s, 4, NULL, &err));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err.message, "rows 1e-300 s apart (the median): below 1e-6 s"), err.message);
+}
+
+/* Angles from arithmetic on a handful of reals: ulps. */
+#define QUAT_ANGLE_TOL 1e-12
+
+static void test_a_quaternion_that_is_not_unit_gives_its_directions_angles_on_rows_and_between(void)
+{
+    /* (2, 1, 0, 0) is (0.894, 0.447, 0, 0) scaled: roll atan2(4, 3) on every tick, rows (every
+     * 2nd tick) and between alike (53.13 deg; 104 deg from the raw numbers before) */
+    const char *text = "time,gyro[0],quat[0],quat[1],quat[2],quat[3]\n"
+                       "0,0,2,1,0,0\n0.002,0,2,1,0,0\n0.004,0,2,1,0,0\n0.006,0,2,1,0,0\n";
+    sim_log_options_t o = options(SIM_LOG_GENERIC, 0.001);
+    sim_log_error_t err;
+    sim_log_sample_t s[8];
+    const int n = read_text(text, &o, s, 8, NULL, &err);
+    TEST_ASSERT_TRUE(n >= 5);
+    for (int k = 0; k < n && k < 8; ++k) {
+        TEST_ASSERT_TRUE(fabs(s[k].angle_rad[0] - atan2(4.0, 3.0)) <= QUAT_ANGLE_TOL);
+        TEST_ASSERT_TRUE(fabs(s[k].angle_rad[1]) <= QUAT_ANGLE_TOL);
+    }
+    /* a quaternion of no length is no attitude (it read as level before) */
+    const char *zero = "time,gyro[0],quat[0],quat[1],quat[2],quat[3]\n0,0,0,0,0,0\n0.001,0,0,0,0,0\n";
+    TEST_ASSERT_TRUE(read_text(zero, &o, s, 8, NULL, &err) >= 1);
+    TEST_ASSERT_TRUE(isnan(s[0].angle_rad[0]) && isnan(s[0].angle_rad[1]) && isnan(s[0].angle_rad[2]));
 }
 
 static void test_rows_of_the_wrong_length(void)
@@ -706,6 +745,8 @@ int main(void)
     RUN_TEST(test_a_nan_column_of_optional_items_is_absent);
     RUN_TEST(test_missing_columns_at_the_header_line_end);
     RUN_TEST(test_time_not_increasing);
+    RUN_TEST(test_a_row_period_below_a_microsecond_is_refused_as_the_logs);
+    RUN_TEST(test_a_quaternion_that_is_not_unit_gives_its_directions_angles_on_rows_and_between);
     RUN_TEST(test_rows_of_the_wrong_length);
     RUN_TEST(test_values_that_are_not_finite_numbers);
     RUN_TEST(test_fewer_than_two_rows);

@@ -970,6 +970,14 @@ static void test_null_arguments_are_refused_and_err_is_optional(void)
     TEST_ASSERT_EQUAL_INT(-1, sim_scenario_parse(&sc, "[run]\n", "x.ini", NULL));
 }
 
+static void test_an_endless_file_is_refused_at_its_size_bound(void)
+{
+    /* /dev/zero given as a scenario: refused after 16 MiB, not read until memory runs out */
+    TEST_ASSERT_EQUAL_INT(-1, sim_scenario_load(&sc, "/dev/zero", &err));
+    TEST_ASSERT_EQUAL_STRING("/dev/zero", err.path);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err.message, "larger than 16 MiB"), err.message);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -986,5 +994,6 @@ int main(void)
     RUN_TEST(test_excitation_and_log_errors);
     RUN_TEST(test_long_values_are_rejected_not_truncated);
     RUN_TEST(test_null_arguments_are_refused_and_err_is_optional);
+    RUN_TEST(test_an_endless_file_is_refused_at_its_size_bound);
     return UNITY_END();
 }
