@@ -271,7 +271,8 @@ static sim_log_t *finish_open(sim_log_t *log, const sim_log_options_t *opt, sim_
     } else if (find_fields(log, err) == 0 && find_start(log, err) == 0) {
         if (!(opt->dt_s > 0.0) && !(log->files[0].median_us >= DT_MIN_S * 1e6)) {
             /* a period the controllers cannot run at, from the log's own times */
-            sim_log_fail(err, log->path, 0, 0,
+            /* located at the header, which names the time column's unit */
+            sim_log_fail(err, log->files[0].path, log->files[0].header_line, 1,
                          "rows %g s apart (the median): below 1e-6 s; the time column in another unit? "
                          "(its unit is told by its header; --dt sets the period)",
                          log->files[0].median_us * 1e-6);

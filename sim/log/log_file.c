@@ -256,6 +256,23 @@ static int column_of(const sim_log_file_t *f, int col)
     return col >= 0 ? f->csv.cells[col].column : 1;
 }
 
+/* 1 when this file gives all four components of group g's quaternion and
+ * they are all 0 in the row v: no attitude at all (a length other than 1 is
+ * normalised: its direction is the attitude). */
+static int quat_of_no_length(const sim_log_file_t *f, const double *v, sim_log_group_t g)
+{
+    const int first = sim_log_group_first(g);
+    int given = 0;
+    double n2 = 0.0;
+    for (int i = 0; i < f->n_items; ++i) {
+        if (f->present[i] && f->slot[i] >= first && f->slot[i] < first + 4) {
+            ++given;
+            n2 += v[i] * v[i];
+        }
+    }
+    return given == 4 && n2 == 0.0;
+}
+
 /* One row from the file: 1, 0 at its end, -1 on error. */
 static int read_row(sim_log_file_t *f, double *t_us, double *v, sim_log_error_t *err)
 {
@@ -311,6 +328,9 @@ static int read_row(sim_log_file_t *f, double *t_us, double *v, sim_log_error_t 
             return sim_log_fail(err, f->path, c->line_no, column_of(f, col),
                                 "%s is %g, beyond the reader's range (1e15)", field, v[i - 1]);
         }
+    }
+    if (quat_of_no_length(f, v, SIM_LOG_G_QUAT) || quat_of_no_length(f, v, SIM_LOG_G_REF_QUAT)) {
+        return sim_log_fail(err, f->path, c->line_no, 1, "a quaternion of no length (all four components 0)");
     }
     *t_us = t;
     f->last_read_us = t;

@@ -507,6 +507,8 @@ static void test_a_row_period_below_a_microsecond_is_refused_as_the_logs(void)
     memset(&err, 0, sizeof err);
     TEST_ASSERT_EQUAL_INT(-1, read_text("time,gyro[0]\n0,1\n1e-300,1\n2e-300,1\n3e-300,1\n", &o, s, 4, NULL, &err));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err.message, "rows 1e-300 s apart (the median): below 1e-6 s"), err.message);
+    TEST_ASSERT_EQUAL_INT(1, err.line); /* at the header, which names the time column's unit */
+    TEST_ASSERT_EQUAL_INT(1, err.column);
 }
 
 /* Angles from arithmetic on a handful of reals: ulps. */
@@ -527,10 +529,13 @@ static void test_a_quaternion_that_is_not_unit_gives_its_directions_angles_on_ro
         TEST_ASSERT_TRUE(fabs(s[k].angle_rad[0] - atan2(4.0, 3.0)) <= QUAT_ANGLE_TOL);
         TEST_ASSERT_TRUE(fabs(s[k].angle_rad[1]) <= QUAT_ANGLE_TOL);
     }
-    /* a quaternion of no length is no attitude (it read as level before) */
-    const char *zero = "time,gyro[0],quat[0],quat[1],quat[2],quat[3]\n0,0,0,0,0,0\n0.001,0,0,0,0,0\n";
-    TEST_ASSERT_TRUE(read_text(zero, &o, s, 8, NULL, &err) >= 1);
-    TEST_ASSERT_TRUE(isnan(s[0].angle_rad[0]) && isnan(s[0].angle_rad[1]) && isnan(s[0].angle_rad[2]));
+}
+
+static void test_a_quaternion_of_no_length_is_refused_at_its_row(void)
+{
+    /* no attitude at all (it read as level before) */
+    expect_error("time,gyro[0],quat[0],quat[1],quat[2],quat[3]\n0,0,1,0,0,0\n0.001,0,0,0,0,0\n", 3, 1,
+                 "a quaternion of no length (all four components 0)");
 }
 
 static void test_rows_of_the_wrong_length(void)
@@ -747,6 +752,7 @@ int main(void)
     RUN_TEST(test_time_not_increasing);
     RUN_TEST(test_a_row_period_below_a_microsecond_is_refused_as_the_logs);
     RUN_TEST(test_a_quaternion_that_is_not_unit_gives_its_directions_angles_on_rows_and_between);
+    RUN_TEST(test_a_quaternion_of_no_length_is_refused_at_its_row);
     RUN_TEST(test_rows_of_the_wrong_length);
     RUN_TEST(test_values_that_are_not_finite_numbers);
     RUN_TEST(test_fewer_than_two_rows);
