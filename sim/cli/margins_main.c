@@ -163,10 +163,14 @@ static int load_from_log(const char *log_path, sim_log_options_t *opt, int forma
     atexit(remove_prepared);
     const sim_log_identify_options_t io = {.log = *opt, .delay_max_ticks = -1};
     static sim_airframe_t airframe;
-    if (sim_log_identify(&io, &airframe, NULL, err, sizeof err) != 0) {
+    sim_log_stats_t stats;
+    if (sim_log_identify(&io, &airframe, &stats, err, sizeof err) != 0) {
         sim_log_prepared_explain(&prepared, err, sizeof err);
         fprintf(stderr, "%s\n", err);
         return -1;
+    }
+    if (sim_log_gap_warning(&stats, err, sizeof err)) {
+        printf("warning: %s: %s\n", log_path, err);
     }
     sim_report_identification(stdout, &airframe);
     for (int i = 0; i < 3; ++i) {

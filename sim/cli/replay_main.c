@@ -549,10 +549,16 @@ int main(int argc, char **argv)
     end_progress(&prog);
     printf("%s: %lld rows in %d file(s), %lld ticks at %.4g s, identified in %.2f s (4 passes)", prepared.original,
            stats.rows, stats.n_files, stats.ticks, airframe.dt_s, sim_fly_now_s() - prog.start_s);
-    if (stats.gaps > 0) {
-        printf(", %lld gap(s) interpolated over (longest %.3g s)", stats.gaps, stats.longest_gap_s);
+    if (stats.gaps > stats.skipped_gaps) {
+        printf(", %lld gap(s) interpolated over", stats.gaps - stats.skipped_gaps);
+        if (stats.skipped_gaps == 0) { /* else the longest is a skipped one: the warning below */
+            printf(" (longest %.3g s)", stats.longest_gap_s);
+        }
     }
     printf("\n");
+    if (sim_log_gap_warning(&stats, err, sizeof err)) {
+        printf("warning: %s: %s\n", prepared.original, err);
+    }
     if (1.0 / airframe.dt_s < SLOW_LOG_HZ) {
         printf("note: the log's rate, %.4g Hz, is below %.0f Hz: the controllers run at it, as in a loop that slow "
                "(those that refuse it are not replayed); --dt resamples the log to another\n",

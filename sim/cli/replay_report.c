@@ -168,6 +168,11 @@ static int write_summary(const char *path, const sim_replay_t *r, const sim_repl
     if (f == NULL) {
         return -1;
     }
+    char status[96] = "replayed";
+    if (r->gap_restarts > 0) { /* the log's skipped gaps (log.h), said where the figures are */
+        snprintf(status, sizeof status, "replayed; restarted after %lld skipped gap(s) in the log's time",
+                 r->gap_restarts);
+    }
     fprintf(f, "source,axis,ticks,command_rms,command_std,noise_0_20hz,noise_20_100hz,noise_above_100hz,"
                "difference_rms,estimate_mean_rad_s2,estimate_std_rad_s2,fault_ticks,faults,noise_above_20hz,status\n");
     for (int c = -1; c < r->n; ++c) {
@@ -176,13 +181,13 @@ static int write_summary(const char *path, const sim_replay_t *r, const sim_repl
             double bands[SIM_REPLAY_BANDS];
             band_rms(a, bands);
             const int est = c >= 0 && r->has_estimate[c];
-            fprintf(f, "%s,%s,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%lld,%u,%.9g,replayed\n",
+            fprintf(f, "%s,%s,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%lld,%u,%.9g,%s\n",
                     c < 0 ? "LOG" : sim_controller_name(r->ids[c]), AXIS[i], a->command.n,
                     sim_replay_stat_rms(&a->command), sim_replay_stat_std(&a->command), bands[0], bands[1], bands[2],
                     c < 0 ? NAN : sim_replay_stat_rms(&a->difference), est ? a->estimate.mean : NAN,
                     est ? sim_replay_stat_std(&a->estimate) : NAN, c < 0 ? 0LL : r->fault_ticks[c],
                     c < 0 ? 0u : (unsigned)r->faults_seen[c],
-                    sim_spectrum_band_rms(&a->spectrum, SIM_REPLAY_BAND_EDGES_HZ[1], INFINITY));
+                    sim_spectrum_band_rms(&a->spectrum, SIM_REPLAY_BAND_EDGES_HZ[1], INFINITY), status);
         }
     }
     for (int c = 0; c < n_skipped; ++c) {

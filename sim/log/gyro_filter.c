@@ -51,6 +51,8 @@ static void add_axis(axis_state_t *a, double x, double y)
 {
     if (!isfinite(x) || !isfinite(y)) {
         a->started = 0;
+        sim_spectrum_break(&a->raw); /* no segment across the gap */
+        sim_spectrum_break(&a->filtered);
         return;
     }
     sim_spectrum_push(&a->raw, x);

@@ -41,7 +41,7 @@ sim_gyro_filter_t *sim_gyro_filter_new(double dt_s);
 void sim_gyro_filter_free(sim_gyro_filter_t *g);
 
 /* One tick: the gyro before and after the filters (rad/s). A non-finite
- * value restarts the differences (a gap). */
+ * value restarts the differences and the spectra's segments (a gap). */
 void sim_gyro_filter_add(sim_gyro_filter_t *g, const double raw_rad_s[3], const double filtered_rad_s[3]);
 
 /* The result of axis 0 roll, 1 pitch, 2 yaw: lines are those of the raw

@@ -244,6 +244,9 @@ static void add_axis(sim_ident_t *id, axis_t *a, double w, double u, double ref)
     if (!isfinite(w) || !isfinite(u)) {
         segment_close(id, a);
         restart(a);
+        if (id->pass == 1) {
+            sim_spectrum_break(&a->command); /* no segment across the gap */
+        }
         return;
     }
     if (!isfinite(ref)) {

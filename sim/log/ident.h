@@ -113,7 +113,8 @@ void sim_ident_free(sim_ident_t *id);
 int sim_ident_begin_pass(sim_ident_t *id);
 
 /* One sample: the gyro (rad/s) and the normalised command of each axis. A
- * sample with a non-finite value restarts the fit's filters (a gap). */
+ * sample with a non-finite value restarts the fit's filters and the
+ * command's spectrum's segment (a gap). */
 void sim_ident_add(sim_ident_t *id, const double gyro_rad_s[3], const double command[3]);
 
 /* The same with the rate setpoint (rad/s; NULL: none), the instrument of

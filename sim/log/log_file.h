@@ -75,4 +75,11 @@ int sim_log_file_reach(sim_log_file_t *f, double tick_us, sim_log_error_t *err);
 
 void sim_log_file_close(sim_log_file_t *f);
 
+/* 1 when a tick at tick_us lies inside a gap of the bracket that the
+ * ticks skip (log.h: SIM_LOG_GAP_SKIP_FACTOR), not on either row. */
+static inline int sim_log_file_in_skipped_gap(const sim_log_file_t *f, double tick_us)
+{
+    return f->t0 < tick_us && tick_us < f->t1 && f->t1 - f->t0 > SIM_LOG_GAP_SKIP_FACTOR * f->median_us;
+}
+
 #endif

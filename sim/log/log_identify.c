@@ -32,7 +32,9 @@ typedef struct {
     biquad_t hp_state[3];
     FILE *noise;
     long long noise_rows, noise_rows_max;
-    sim_gyro_filter_t *filter; /* the log's filters, when it has the gyro before and after them */
+    double dt_s, noise_last_t_s; /* the tick period; the latest time written to the noise file */
+    double noise_shift_s;        /* the skipped gaps' time, taken out of the noise file's: its times stay a series */
+    sim_gyro_filter_t *filter;   /* the log's filters, when it has the gyro before and after them */
 } survey_t;
 
 /* The most rows the noise series is given (a day at 100 kHz): beyond any
@@ -42,6 +44,7 @@ typedef struct {
 static int survey_open(survey_t *s, const sim_log_identify_options_t *o, double dt_s, char *err, size_t err_len)
 {
     memset(s, 0, sizeof *s);
+    s->dt_s = dt_s;
     for (int i = 0; i < 3; ++i) {
         sim_spectrum_init(&s->spectrum[i], 1.0 / dt_s);
         s->hp = biquad_highpass(sim_log_noise_corner_hz(1.0 / dt_s), dt_s, BIQUAD_Q_BUTTERWORTH);
@@ -114,7 +117,8 @@ static void survey_add(survey_t *s, double t_s, const double gyro[3])
         hp[i] = biquad_step(&s->hp, &s->hp_state[i], gyro[i]);
     }
     if (s->noise != NULL && s->noise_rows < s->noise_rows_max) {
-        fprintf(s->noise, "%.9g, %.9g, %.9g, %.9g\n", t_s, hp[0], hp[1], hp[2]);
+        s->noise_last_t_s = t_s - s->noise_shift_s;
+        fprintf(s->noise, "%.9g, %.9g, %.9g, %.9g\n", s->noise_last_t_s, hp[0], hp[1], hp[2]);
         s->noise_rows++;
     }
 }
@@ -161,6 +165,34 @@ static int cache_pass(const sim_log_identify_options_t *o, sim_ident_cache_t *ca
     return rc < 0 ? -1 : 0;
 }
 
+/* A gap the reader skipped (log.h): the fit's filters restart and no
+ * residual is paired across it (the identification's gap: a non-finite
+ * gyro, which the cache keeps for the later passes), the log's filters'
+ * measurement restarts, no spectrum's segment spans it, and the noise
+ * file's times go on without it. */
+static void gap(sim_ident_t *id, survey_t *survey, sim_ident_cache_t **cache, double t_s, const double command[3])
+{
+    static const double no_gyro[3] = {NAN, NAN, NAN};
+    if (id != NULL) {
+        sim_ident_add_ref(id, no_gyro, command, no_gyro);
+    }
+    if (cache != NULL && *cache != NULL && sim_ident_cache_put(*cache, no_gyro, command, no_gyro) != 0) {
+        sim_ident_cache_free(*cache);
+        *cache = NULL;
+    }
+    if (survey != NULL) {
+        for (int i = 0; i < 3; ++i) {
+            sim_spectrum_break(&survey->spectrum[i]);
+        }
+        if (survey->filter != NULL) {
+            sim_gyro_filter_add(survey->filter, no_gyro, no_gyro);
+        }
+        if (survey->noise_rows > 0) { /* the noise file goes on a tick after its latest row */
+            survey->noise_shift_s = t_s - (survey->noise_last_t_s + survey->dt_s);
+        }
+    }
+}
+
 /* One pass over the log, its ticks into the cache too when one is given
  * (*cache is freed and set to NULL when it cannot be written: the later
  * passes then read the log again); 0, or -1 with the message. */
@@ -186,6 +218,9 @@ static int read_pass(const sim_log_identify_options_t *o, sim_ident_t *id, surve
     int rc;
     long long k = 0;
     while ((rc = sim_log_next(log, &s, &lerr)) == 1) {
+        if (s.after_gap) {
+            gap(id, survey, cache, s.t_s, s.command);
+        }
         const double *gyro = raw ? s.gyro_raw_rad_s : s.gyro_rad_s;
         const double *setpoint = (has & SIM_LOG_HAS_REF_RATE) ? s.ref_rate_rad_s : none;
         if (id != NULL) {

@@ -176,17 +176,22 @@ static int ended(sim_log_t *log, const sim_log_file_t *f, sim_log_error_t *err)
     return -1;
 }
 
-int sim_log_next(sim_log_t *log, sim_log_sample_t *s, sim_log_error_t *err)
+/* The first tick at or after t_us (a row's time past the current tick). */
+static long long first_tick_at(const sim_log_t *log, double t_us)
 {
-    if (log->failed) {
-        *err = log->err;
-        return -1;
+    long long k = (long long)ceil((t_us - log->t_first_us) / log->dt_us); /* t_us < 2^54, dt >= 1 us */
+    while (k > log->k && tick_us(log, k - 1) >= t_us) {
+        --k; /* the division's rounding, either way */
     }
-    if (log->done || log->k > log->k_end) {
-        log->done = 1;
-        return 0;
+    while (tick_us(log, k) < t_us) {
+        ++k;
     }
-    const double tick = tick_us(log, log->k);
+    return k;
+}
+
+/* Every file's bracket moved to the tick: 1, 0 at the end, -1 on error. */
+static int reach_all(sim_log_t *log, double tick, sim_log_error_t *err)
+{
     for (int i = 0; i < log->n_files; ++i) {
         sim_log_file_t *f = &log->files[i];
         const int rc = sim_log_file_reach(f, tick, &log->err);
@@ -200,7 +205,51 @@ int sim_log_next(sim_log_t *log, sim_log_sample_t *s, sim_log_error_t *err)
             return -1;
         }
     }
+    return 1;
+}
+
+/* A file whose bracket holds the tick inside a gap the ticks skip: its index, else -1. */
+static int file_in_skipped_gap(const sim_log_t *log, double tick)
+{
+    for (int i = 0; i < log->n_files; ++i) {
+        if (sim_log_file_in_skipped_gap(&log->files[i], tick)) {
+            return i;
+        }
+    }
+    return -1;
+}
+
+int sim_log_next(sim_log_t *log, sim_log_sample_t *s, sim_log_error_t *err)
+{
+    if (log->failed) {
+        *err = log->err;
+        return -1;
+    }
+    double tick;
+    for (;;) {
+        if (log->done || log->k > log->k_end) {
+            log->done = 1;
+            return 0;
+        }
+        tick = tick_us(log, log->k);
+        const int rc = reach_all(log, tick, err);
+        if (rc <= 0) {
+            return rc;
+        }
+        const int in_gap = file_in_skipped_gap(log, tick);
+        if (in_gap < 0) {
+            break;
+        }
+        /* skipped, not interpolated: on to the row that ends the gap */
+        const sim_log_file_t *f = &log->files[in_gap];
+        log->skipped_gaps++;
+        log->skipped_us += f->t1 - f->t0;
+        log->k = first_tick_at(log, f->t1);
+        log->after_gap = log->ticks > 0; /* a window that starts in a gap has nothing before it */
+    }
     fill(log, tick, s);
+    s->after_gap = log->after_gap;
+    log->after_gap = 0;
     ++log->k;
     ++log->ticks;
     return 1;
@@ -238,7 +287,22 @@ void sim_log_stats(const sim_log_t *log, sim_log_stats_t *st)
         st->longest_gap_s = fmax(st->longest_gap_s, f->longest_gap_us * 1e-6);
     }
     st->ticks = log->ticks;
+    st->skipped_gaps = log->skipped_gaps;
+    st->skipped_s = log->skipped_us * 1e-6;
     st->row_period_s = log->files[0].median_us * 1e-6;
     st->has = log->has;
     st->n_files = log->n_files;
+}
+
+int sim_log_gap_warning(const sim_log_stats_t *st, char *buf, size_t len)
+{
+    buf[0] = '\0';
+    if (st->skipped_gaps <= 0) {
+        return 0;
+    }
+    snprintf(buf, len,
+             "%lld gap(s) in the log's time longer than %.0f row periods skipped, not interpolated (%.6g s in "
+             "all): what spans one restarts after it",
+             st->skipped_gaps, SIM_LOG_GAP_SKIP_FACTOR, st->skipped_s);
+    return 1;
 }

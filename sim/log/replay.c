@@ -138,6 +138,32 @@ static void filter_rates(sim_replay_t *r, const sim_log_sample_t *s, unsigned ha
     ladrc_gyro_filter_step(&r->filter, in, rate);
 }
 
+/* After a gap the reader skipped (replay.h): the controllers engage again
+ * with the log's command acting, the smoothing and the filter stage restart
+ * on the log's values, the spectra's segments start afresh. */
+static void restart_after_gap(sim_replay_t *r, const sim_log_sample_t *s, unsigned has)
+{
+    ladrc_real_t acting_Nm[3], rate[3];
+    for (int i = 0; i < 3; ++i) {
+        acting_Nm[i] = (ladrc_real_t)(s->command[i] * r->authority_Nm[i]);
+        rate[i] = (ladrc_real_t)((has & SIM_LOG_HAS_GYRO_RAW) ? s->gyro_raw_rad_s[i] : s->gyro_rad_s[i]);
+        sim_spectrum_break(&r->gyro[i]);
+        sim_spectrum_break(&r->gyro_raw[i]);
+        sim_spectrum_break(&r->log_axis[i].spectrum);
+        for (int c = 0; c < r->n; ++c) {
+            sim_spectrum_break(&r->axis[c][i].spectrum);
+        }
+    }
+    for (int c = 0; c < r->n; ++c) {
+        ladrc_attitude_engage(&r->att[c], acting_Nm);
+    }
+    if (r->filter_on) {
+        ladrc_gyro_filter_reset(&r->filter, rate);
+    }
+    setpoint_smooth_init(&r->setpoint, r->setpoint.dt_s);
+    r->gap_restarts++;
+}
+
 /* The spectra a tick feeds: gyro, gyro before filters, the log's command, each controller's. */
 #define TICK_SPECTRA (9 + 3 * SIM_MAX_CONTROLLERS)
 
@@ -148,6 +174,9 @@ void sim_replay_step(sim_replay_t *r, const sim_log_sample_t *s, unsigned has, s
     int n_spectra = 0;
     ladrc_real_t rate[3], applied[3], angle[3], ref[3];
     double ref_rad[3];
+    if (s->after_gap) {
+        restart_after_gap(r, s, has);
+    }
     const int smoothed = reference_of(r, s, has, ref_rad);
     for (int i = 0; i < 3; ++i) {
         rate[i] = (ladrc_real_t)s->gyro_rad_s[i];

@@ -20,6 +20,12 @@
  * the log's rotor speeds, else the scenario's hover speed; the angles are
  * not filtered. The log's setpoint reaches every controller smoothed as a
  * flight stack smooths its radio link's steps (setpoint_smooth.h). Not replayed: flight phases and the gain schedule.
+ *
+ * After a gap the reader skipped (log.h: after_gap) every controller engages
+ * again, bumpless, on the log's attitude with the log's command acting (as a
+ * hand-over in flight: ladrc_attitude_engage), the setpoint's smoothing and
+ * the gyro filter stage restart on the log's values, and no spectrum's
+ * segment spans the gap; the summary's statistics go on over both sides.
  */
 #ifndef LADRC_SIM_REPLAY_H
 #define LADRC_SIM_REPLAY_H
@@ -69,6 +75,7 @@ typedef struct {
     double filter_hover_rotor_hz; /* its RPM notches' speed when the log has none (Hz) */
     setpoint_smooth_t setpoint;   /* the log's setpoint as a stack smooths it, the same for every controller */
     long long ticks;
+    long long gap_restarts; /* restarts after gaps the reader skipped */
 } sim_replay_t;
 
 /* What one tick gave (normalised commands, estimates in rad/s^2). */

@@ -117,6 +117,11 @@ void sim_spectrum_push_many(sim_spectrum_t *const *s, const double *x, int n)
     }
 }
 
+void sim_spectrum_break(sim_spectrum_t *s)
+{
+    s->pushed = 0; /* the ring refills before the next segment is due */
+}
+
 long sim_spectrum_segments(const sim_spectrum_t *s)
 {
     return s->segments;

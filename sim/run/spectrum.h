@@ -19,8 +19,8 @@ typedef struct {
     double twiddle_re[SIM_SPECTRUM_N / 2], twiddle_im[SIM_SPECTRUM_N / 2]; /* e^(-2 pi i k / N) */
     double window_power;                                                   /* sum of window^2 */
     double buf[SIM_SPECTRUM_N];                                            /* the current segment, as a ring */
-    int fill; /* samples in buf; a segment each SIM_SPECTRUM_N / 2 after the first */
-    long long pushed;
+    int fill;                          /* samples in buf; a segment each SIM_SPECTRUM_N / 2 after the first */
+    long long pushed;                  /* since the start or the last break */
     double sum_psd[SIM_SPECTRUM_BINS]; /* sum over segments of the periodogram (unit^2/Hz) */
     long segments;
 } sim_spectrum_t;
@@ -34,6 +34,12 @@ typedef struct {
 
 void sim_spectrum_init(sim_spectrum_t *s, double fs_hz);
 void sim_spectrum_push(sim_spectrum_t *s, double x);
+
+/* A break in the stream (a gap in a log): the samples of the segment under
+ * way are dropped and the next segment starts with the next sample, so that
+ * no periodogram spans the break; the segments averaged so far stay. Spectra
+ * fed in lockstep stay so when broken at the same sample. */
+void sim_spectrum_break(sim_spectrum_t *s);
 
 /* x[i] into s[i] for i < n, the same as sim_spectrum_push on each; spectra
  * of the same rate fed in lockstep share their FFTs two by two (one complex
