@@ -33,8 +33,12 @@ typedef struct {
     FILE *noise;
     long long noise_rows, noise_rows_max;
     double dt_s, noise_last_t_s; /* the tick period; the latest time written to the noise file */
-    double noise_shift_s;        /* the skipped gaps' time, taken out of the noise file's: its times stay a series */
-    sim_gyro_filter_t *filter;   /* the log's filters, when it has the gyro before and after them */
+    /* after a skipped gap the noise file's times go on a tick apart from its
+     * latest row (a series without the gap): from this time at this row */
+    int noise_rebased;
+    double noise_base_t_s;
+    long long noise_base_row;
+    sim_gyro_filter_t *filter; /* the log's filters, when it has the gyro before and after them */
 } survey_t;
 
 /* The most rows the noise series is given (a day at 100 kHz): beyond any
@@ -117,7 +121,8 @@ static void survey_add(survey_t *s, double t_s, const double gyro[3])
         hp[i] = biquad_step(&s->hp, &s->hp_state[i], gyro[i]);
     }
     if (s->noise != NULL && s->noise_rows < s->noise_rows_max) {
-        s->noise_last_t_s = t_s - s->noise_shift_s;
+        s->noise_last_t_s =
+            s->noise_rebased ? s->noise_base_t_s + (double)(s->noise_rows - s->noise_base_row) * s->dt_s : t_s;
         fprintf(s->noise, "%.9g, %.9g, %.9g, %.9g\n", s->noise_last_t_s, hp[0], hp[1], hp[2]);
         s->noise_rows++;
     }
@@ -170,7 +175,7 @@ static int cache_pass(const sim_log_identify_options_t *o, sim_ident_cache_t *ca
  * gyro, which the cache keeps for the later passes), the log's filters'
  * measurement restarts, no spectrum's segment spans it, and the noise
  * file's times go on without it. */
-static void gap(sim_ident_t *id, survey_t *survey, sim_ident_cache_t **cache, double t_s, const double command[3])
+static void gap(sim_ident_t *id, survey_t *survey, sim_ident_cache_t **cache, const double command[3])
 {
     static const double no_gyro[3] = {NAN, NAN, NAN};
     if (id != NULL) {
@@ -188,7 +193,9 @@ static void gap(sim_ident_t *id, survey_t *survey, sim_ident_cache_t **cache, do
             sim_gyro_filter_add(survey->filter, no_gyro, no_gyro);
         }
         if (survey->noise_rows > 0) { /* the noise file goes on a tick after its latest row */
-            survey->noise_shift_s = t_s - (survey->noise_last_t_s + survey->dt_s);
+            survey->noise_rebased = 1;
+            survey->noise_base_t_s = survey->noise_last_t_s + survey->dt_s;
+            survey->noise_base_row = survey->noise_rows;
         }
     }
 }
@@ -219,7 +226,7 @@ static int read_pass(const sim_log_identify_options_t *o, sim_ident_t *id, surve
     long long k = 0;
     while ((rc = sim_log_next(log, &s, &lerr)) == 1) {
         if (s.after_gap) {
-            gap(id, survey, cache, s.t_s, s.command);
+            gap(id, survey, cache, s.command);
         }
         const double *gyro = raw ? s.gyro_raw_rad_s : s.gyro_rad_s;
         const double *setpoint = (has & SIM_LOG_HAS_REF_RATE) ? s.ref_rate_rad_s : none;

@@ -32,7 +32,8 @@
  * would show it: enough for the fit to tell b0 on both sides of a gap. */
 static const double B0[3] = {200.0, 150.0, 80.0};
 
-static char path[64]; /* a test's temporary file, removed after it */
+static char path[64];       /* a test's temporary file, removed after it */
+static char noise_path[80]; /* the identification's noise file, the same */
 
 #define ASSERT_NEAR(tol, want, got) assert_near((tol), (want), (got), __LINE__)
 #define ASSERT_EQ_LL(want, got) assert_near(0.0, (double)(want), (double)(got), __LINE__)
@@ -47,11 +48,15 @@ static void assert_near(double tol, double want, double got, int line)
 void setUp(void)
 {
     path[0] = '\0';
+    noise_path[0] = '\0';
 }
 void tearDown(void)
 {
     if (path[0] != '\0') {
         remove(path);
+    }
+    if (noise_path[0] != '\0') {
+        remove(noise_path);
     }
 }
 
@@ -277,18 +282,49 @@ static void write_file(const char *text)
     TEST_ASSERT_EQUAL_INT(0, fclose(f));
 }
 
+/* The identification of text, its noise series (the first NOISE_S) into noise_path. */
+#define NOISE_S 60.0
 static void identify_text(const char *text, sim_airframe_t *a, sim_log_stats_t *st)
 {
     write_file(text);
+    snprintf(noise_path, sizeof noise_path, "%s.noise", path);
     sim_log_identify_options_t io;
     memset(&io, 0, sizeof io);
     io.log = generic(0.0);
     snprintf(io.log.path, sizeof io.log.path, "%s", path);
     io.delay_max_ticks = -1;
+    io.noise_series = noise_path;
+    io.noise_series_s = NOISE_S;
     char err[512];
     TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_log_identify(&io, a, st, err, sizeof err), err);
     remove(path);
     path[0] = '\0';
+}
+
+/* The noise file's rows, each time a row period after the one before (a
+ * series the scenario can read: no gap in it); removes the file. */
+static long long noise_rows_a_tick_apart(void)
+{
+    FILE *f = fopen(noise_path, "r");
+    TEST_ASSERT_NOT_NULL(f);
+    char line[256];
+    long long rows = 0;
+    double prev = NAN, t;
+    while (fgets(line, sizeof line, f) != NULL) {
+        if (line[0] == '#' || line[0] == 't') {
+            continue; /* the comment and the header */
+        }
+        TEST_ASSERT_EQUAL_INT(1, sscanf(line, "%lf", &t));
+        if (rows > 0) {
+            /* written with 9 digits: times below 10 s to 1e-8 s */
+            ASSERT_NEAR(1e-8, ROW_S, t - prev);
+        }
+        prev = t;
+        ++rows;
+    }
+    fclose(f);
+    remove(noise_path);
+    return rows;
 }
 
 static void test_identification_restarts_at_a_gap(void)
@@ -297,10 +333,12 @@ static void test_identification_restarts_at_a_gap(void)
     sim_log_stats_t st_whole, st_gapped;
     char *text = gap_log_text(0.0, 1.0);
     identify_text(text, &whole, &st_whole);
+    remove(noise_path);
     free(text);
     text = gap_log_text(GAP_3H_S, 1.0);
     identify_text(text, &gapped, &st_gapped);
     free(text);
+    ASSERT_EQ_LL(2 * HALF_ROWS, noise_rows_a_tick_apart());
     ASSERT_EQ_LL(2 * HALF_ROWS, st_gapped.ticks);
     ASSERT_EQ_LL(1, st_gapped.skipped_gaps);
     for (int i = 0; i < 3; ++i) {
