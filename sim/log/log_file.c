@@ -208,17 +208,25 @@ static const char *column_name(const sim_log_file_t *f, int col)
     return "?";
 }
 
-/* Item i's sum of its columns, and the first of them (-1: none). */
-static double item_sum(const sim_log_file_t *f, int i, int *first_col)
+/* Item i's sum of its columns, the first of them (-1: none) and the one
+ * whose term is largest in magnitude: where a sum beyond range is told,
+ * the column that holds the bad value (not the sum's first). */
+static double item_sum(const sim_log_file_t *f, int i, int *first_col, int *largest_col)
 {
-    double sum = 0.0;
+    double sum = 0.0, largest = -1.0;
     *first_col = -1;
+    *largest_col = -1;
     for (int k = 0; k < f->item[i]->n_terms; ++k) {
         const int col = f->col[i][k];
         if (col >= 0) {
-            sum += f->cell_v[col] * f->term_factor[i][k];
+            const double term = f->cell_v[col] * f->term_factor[i][k];
+            sum += term;
             if (*first_col < 0) {
                 *first_col = col;
+            }
+            if (!(fabs(term) <= largest)) { /* a NaN or inf term is the largest */
+                largest = fabs(term);
+                *largest_col = col;
             }
         }
     }
@@ -273,10 +281,23 @@ static int quat_of_no_length(const sim_log_file_t *f, const double *v, sim_log_g
     return given == 4 && n2 == 0.0;
 }
 
+/* For an item that sums columns: which of them holds the value told at
+ * (its name and the cell as read), else "". */
+static const char *summed_from(const sim_log_file_t *f, int i, int col, char *buf, size_t len)
+{
+    buf[0] = '\0';
+    if (f->item[i]->n_terms > 1 && col >= 0) {
+        const sim_log_cell_t *cell = &f->csv.cells[col];
+        snprintf(buf, len, ": the sum's column '%s' holds '%.*s'", column_name(f, col), shown(cell->len), cell->text);
+    }
+    return buf;
+}
+
 /* One row from the file: 1, 0 at its end, -1 on error. */
 static int read_row(sim_log_file_t *f, double *t_us, double *v, sim_log_error_t *err)
 {
     const sim_log_csv_t *c = &f->csv;
+    char held[SIM_LOG_NAME_LEN + SHOWN + 48];
     int rc = sim_log_csv_next(&f->csv, err);
     if (rc <= 0) {
         return rc;
@@ -292,19 +313,20 @@ static int read_row(sim_log_file_t *f, double *t_us, double *v, sim_log_error_t 
     if (parse_cells(f, err) != 0) {
         return -1;
     }
-    int col;
-    double t = snap_whole(item_sum(f, 0, &col) * f->time_to_us, SNAP_ULPS * DBL_EPSILON);
+    int col, largest;
+    double t = snap_whole(item_sum(f, 0, &col, &largest) * f->time_to_us, SNAP_ULPS * DBL_EPSILON);
     if (!(fabs(t) <= TIME_MAX_US)) {
-        return sim_log_fail(err, f->path, c->line_no, column_of(f, col),
-                            "time %.9g s is beyond the reader's range (2^53 us)", t * 1e-6);
+        return sim_log_fail(err, f->path, c->line_no, column_of(f, largest),
+                            "time %.9g s is beyond the reader's range (2^53 us)%s", t * 1e-6,
+                            summed_from(f, 0, largest, held, sizeof held));
     }
     if (f->time_to_us != 1.0 && !(fabs(t) <= 0.5 * TIME_MAX_US)) {
         /* a time in s or ms is a product: from 2^52 us on it no longer
          * resolves a microsecond, and distinct rows would read as one */
-        return sim_log_fail(err, f->path, c->line_no, column_of(f, col),
-                            "time %.9g s is beyond what a time in s or ms resolves to the microsecond (2^52 us): "
+        return sim_log_fail(err, f->path, c->line_no, column_of(f, largest),
+                            "time %.9g s is beyond what a time in s or ms resolves to the microsecond (2^52 us)%s: "
                             "give the time in us, or from a nearer origin",
-                            t * 1e-6);
+                            t * 1e-6, summed_from(f, 0, largest, held, sizeof held));
     }
     if (f->rows > 0 && t <= f->last_read_us) {
         if (t == f->last_read_us) {
@@ -316,7 +338,7 @@ static int read_row(sim_log_file_t *f, double *t_us, double *v, sim_log_error_t 
     for (int i = 1; i <= f->n_items; ++i) {
         f->present[i - 1] = 0;
         v[i - 1] = 0.0;
-        const double sum = item_sum(f, i, &col);
+        const double sum = item_sum(f, i, &col, &largest);
         if (col < 0) {
             continue;
         }
@@ -325,8 +347,9 @@ static int read_row(sim_log_file_t *f, double *t_us, double *v, sim_log_error_t 
         if (!(fabs(v[i - 1]) <= VALUE_MAX)) {
             char field[32];
             sim_log_slot_name(f->slot[i - 1], field, sizeof field);
-            return sim_log_fail(err, f->path, c->line_no, column_of(f, col),
-                                "%s is %g, beyond the reader's range (1e15)", field, v[i - 1]);
+            return sim_log_fail(err, f->path, c->line_no, column_of(f, largest),
+                                "%s is %g, beyond the reader's range (1e15)%s", field, v[i - 1],
+                                summed_from(f, i, largest, held, sizeof held));
         }
     }
     if (quat_of_no_length(f, v, SIM_LOG_G_QUAT) || quat_of_no_length(f, v, SIM_LOG_G_REF_QUAT)) {
