@@ -323,9 +323,15 @@ static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len
         for (int i = 0; i < 3; ++i) {
             in[i] = (ladrc_real_t)(raw ? s.gyro_raw_rad_s[i] : s.gyro_rad_s[i]);
         }
-        if (first) {
-            ladrc_gyro_filter_reset(&f, in); /* at rest on the first sample: no start-up transient */
+        if (first || s.after_gap) {
+            /* at rest on the first sample, and on the first after a skipped
+             * gap (log.h): no start-up transient */
+            ladrc_gyro_filter_reset(&f, in);
             first = 0;
+        }
+        for (int i = 0; s.after_gap && i < 3; ++i) { /* no segment or block spans the gap */
+            sim_spectrum_break(&out_spectrum[i]);
+            sim_phase_probe_break(&probe[i]);
         }
         if (cfg.rpm_rotors > 0) {
             ladrc_real_t hz[LADRC_GYRO_FILTER_MAX_ROTORS];
@@ -348,6 +354,8 @@ static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len
         sim_log_error_format(&lerr, err, err_len);
         fprintf(stderr, "%s\n", err);
     }
+    sim_log_stats_t stats;
+    sim_log_stats(log, &stats);
     sim_log_close(log);
     if (csv != NULL && ((ferror(csv) | fclose(csv)) != 0 || rc < 0)) {
         if (rc == 0) {
@@ -362,6 +370,9 @@ static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len
 
     printf("%s: %lld ticks at %.4g s, the gyro %s its filters%s\n", o->log.path, n->ticks, n->dt_s,
            raw ? "before" : "(no gyro before", raw ? "" : ")");
+    if (sim_log_gap_warning(&stats, err, err_len)) {
+        printf("warning: %s: %s\n", o->log.path, err);
+    }
     printf("stage (%s): low-pass ", source);
     if (cfg.lpf_order > 0) {
         printf("order %u at %.1f Hz", (unsigned)cfg.lpf_order, (double)cfg.lpf_cutoff_hz);

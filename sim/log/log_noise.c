@@ -48,6 +48,12 @@ void sim_phase_probe_push(sim_phase_probe_t *p, double x, double y)
     p->fill = 0;
 }
 
+void sim_phase_probe_break(sim_phase_probe_t *p)
+{
+    p->xr = p->xi = p->yr = p->yi = 0.0;
+    p->fill = 0;
+}
+
 double sim_phase_probe_rad(const sim_phase_probe_t *p)
 {
     return p->blocks > 0 && p->sxx > 0.0 ? atan2(p->sxy_im, p->sxy_re) : NAN;
@@ -55,6 +61,12 @@ double sim_phase_probe_rad(const sim_phase_probe_t *p)
 
 static void add(sim_log_noise_t *n, const sim_log_sample_t *s)
 {
+    for (int i = 0; s->after_gap && i < 3; ++i) { /* a skipped gap (log.h): no segment or block spans it */
+        sim_spectrum_break(&n->command[i]);
+        sim_spectrum_break(&n->gyro[i]);
+        sim_spectrum_break(&n->gyro_raw[i]);
+        sim_phase_probe_break(&n->chain[i]);
+    }
     for (int i = 0; i < 3; ++i) {
         sim_spectrum_push(&n->command[i], s->command[i]);
         sim_spectrum_push(&n->gyro[i], s->gyro_rad_s[i]);

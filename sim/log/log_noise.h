@@ -40,6 +40,9 @@ static inline double sim_phase_delay_s(double phase_deg, double w_rad_s)
 
 void sim_phase_probe_init(sim_phase_probe_t *p, double w_rad_s, double dt_s);
 void sim_phase_probe_push(sim_phase_probe_t *p, double x, double y);
+/* A break in the streams (a gap in a log): the block under way is dropped,
+ * the next starts with the next sample; the blocks summed so far stay. */
+void sim_phase_probe_break(sim_phase_probe_t *p);
 /* y's phase against x's at the frequency (rad, a lag negative, in (-pi, pi]); NaN before a whole block. */
 double sim_phase_probe_rad(const sim_phase_probe_t *p);
 

@@ -36,9 +36,25 @@ int sim_log_reference_write(const sim_log_options_t *log, double max_s, const ch
     sim_log_sample_t s;
     int rc;
     *written_s = 0.0;
-    while ((rc = sim_log_next(reader, &s, &lerr)) == 1 && (max_s <= 0.0 || s.t_s <= max_s)) {
-        fprintf(f, "%.6f,%.9g,%.9g,%.9g\n", s.t_s, s.ref_angle_rad[0], s.ref_angle_rad[1], s.ref_angle_rad[2]);
-        *written_s = s.t_s;
+    /* after a skipped gap (log.h) the series goes on a tick after its latest
+     * row, from this time at this tick: a series to fly, without the gap */
+    const double dt_s = sim_log_dt_s(reader);
+    double base_s = 0.0;
+    long long tick = 0, base_tick = 0;
+    int rebased = 0;
+    while ((rc = sim_log_next(reader, &s, &lerr)) == 1) {
+        if (s.after_gap) {
+            rebased = 1;
+            base_s = *written_s + dt_s;
+            base_tick = tick;
+        }
+        const double t_s = rebased ? base_s + (double)(tick - base_tick) * dt_s : s.t_s;
+        if (max_s > 0.0 && t_s > max_s) {
+            break;
+        }
+        fprintf(f, "%.6f,%.9g,%.9g,%.9g\n", t_s, s.ref_angle_rad[0], s.ref_angle_rad[1], s.ref_angle_rad[2]);
+        *written_s = t_s;
+        ++tick;
     }
     if (rc < 0) {
         sim_log_error_format(&lerr, err, len);

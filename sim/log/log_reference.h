@@ -3,7 +3,8 @@
  * A log's attitude setpoints as a recorded series a scenario flies
  * (`[reference] series`, docs/scenario-format.md): the log's reference
  * angles (its attitude setpoint, or the integral of its rate setpoint from
- * the first tick, yaw not wrapped) every tick, from the log's start.
+ * the first tick, yaw not wrapped) every tick, from the log's start; after
+ * a gap the reader skipped (log.h) the times go on a tick apart.
  */
 #ifndef LADRC_SIM_LOG_REFERENCE_H
 #define LADRC_SIM_LOG_REFERENCE_H

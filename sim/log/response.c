@@ -26,8 +26,8 @@ typedef struct {
 
 struct sim_response {
     double dt_s;
-    long long ticks;
-    unsigned has; /* the SIM_LOG_HAS_* of the ticks pushed */
+    long long ticks; /* pushed since the start or the latest skipped gap */
+    unsigned has;    /* the SIM_LOG_HAS_* of the ticks pushed */
     plan_t step_plan, freq_plan, noise_plan;
     int hop, resp_n;
     ring_t step_ref[3], step_gyro[3], freq_ref[3], freq_gyro[3];
@@ -348,6 +348,9 @@ static void noise_segment(sim_response_t *r)
 
 void sim_response_push(sim_response_t *r, const sim_log_sample_t *s, unsigned has)
 {
+    if (s->after_gap) {
+        r->ticks = 0; /* a skipped gap (log.h): the rings refill, no window spans it */
+    }
     r->has = has;
     const int rate = (has & SIM_LOG_HAS_REF_RATE) && (has & SIM_LOG_HAS_GYRO);
     const int noise = (has & SIM_LOG_HAS_THROTTLE) != 0;

@@ -3,14 +3,15 @@
 # A jump in a log's time (docs/flight-logs.md, "Gaps in time"): ladrc_replay and
 # ladrc_margins --from-log skip a gap of 3 h or of 1e9 s instead of interpolating it
 # (10.8 million and 1e12 ticks), so the ticks and the rows written stay those of the log's
-# rows; they say so (the warning, the summary's status); a log whose gaps are all a few
+# rows; they say so (the warning, the summary's status), and so does ladrc_filter; a log whose gaps are all a few
 # dropped rows is interpolated as before, with no warning. Counts, never wall-clock time:
 # the timeouts (120 s; each run takes seconds) only keep a regression from hanging the run.
-# Usage: log_gap_cli_test.sh LADRC_REPLAY LADRC_SIL LADRC_MARGINS
+# Usage: log_gap_cli_test.sh LADRC_REPLAY LADRC_SIL LADRC_MARGINS LADRC_FILTER
 set -uo pipefail
 replay=$1
 sil=$2
 margins=$3
+filter=$4
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 failures=0
@@ -86,6 +87,11 @@ timeout 120 "$margins" --from-log "$work/gap1e9.csv" --format generic --controll
 [ $? -eq 0 ] && grep -qF "warning: $work/gap1e9.csv: $(warning_of 1e+09)" "$work/margins.txt" &&
   grep -q "^identification at 1000 Hz" "$work/margins.txt"
 check margins_from_log_ends_and_warns $?
+
+timeout 120 "$filter" "$work/gap1e9.csv" --format generic > "$work/filter.txt" 2>&1
+[ $? -eq 0 ] && grep -q "^$work/gap1e9.csv: $rows ticks at 0.001 s" "$work/filter.txt" &&
+  grep -qF "warning: $work/gap1e9.csv: $(warning_of 1e+09)" "$work/filter.txt"
+check filter_ticks_bounded_and_warned $?
 
 # Five rows dropped (a gap of 6 row periods, as a blackbox log drops frames): interpolated,
 # one tick per millisecond as before, no warning, the summary's status unchanged.

@@ -8,6 +8,9 @@
 #include "unity.h"
 #include "log/log.h"
 #include "log/log_identify.h"
+#include "log/log_noise.h"
+#include "log/log_reference.h"
+#include "log/response.h"
 #include "log/replay.h"
 #include "scenario/scenario.h"
 
@@ -301,9 +304,10 @@ static void identify_text(const char *text, sim_airframe_t *a, sim_log_stats_t *
     path[0] = '\0';
 }
 
-/* The noise file's rows, each time a row period after the one before (a
- * series the scenario can read: no gap in it); removes the file. */
-static long long noise_rows_a_tick_apart(void)
+/* A series file's rows (the noise file, the setpoints), each time a row
+ * period after the one before (a series a scenario can read: no gap in
+ * it); removes the file. */
+static long long series_rows_a_tick_apart(void)
 {
     FILE *f = fopen(noise_path, "r");
     TEST_ASSERT_NOT_NULL(f);
@@ -338,7 +342,7 @@ static void test_identification_restarts_at_a_gap(void)
     text = gap_log_text(GAP_3H_S, 1.0);
     identify_text(text, &gapped, &st_gapped);
     free(text);
-    ASSERT_EQ_LL(2 * HALF_ROWS, noise_rows_a_tick_apart());
+    ASSERT_EQ_LL(2 * HALF_ROWS, series_rows_a_tick_apart());
     ASSERT_EQ_LL(2 * HALF_ROWS, st_gapped.ticks);
     ASSERT_EQ_LL(1, st_gapped.skipped_gaps);
     for (int i = 0; i < 3; ++i) {
@@ -351,6 +355,12 @@ static void test_identification_restarts_at_a_gap(void)
          * error over 6 s of a noiseless chirp, far under its 10 % interval) */
         ASSERT_NEAR(0.02 * B0[i], whole.axis[i].b0, gapped.axis[i].b0);
     }
+}
+
+/* Welch's segments of n samples every n / 2 over one side of the gap. */
+static long segments_per_side(int n)
+{
+    return (HALF_ROWS - n) / (n / 2) + 1;
 }
 
 #define REPLAY_CONTROLLERS "LADRC LP-MLADRC CASCADED PID INDI"
@@ -412,10 +422,48 @@ static void test_replay_restarts_at_a_gap(void)
     }
     /* no spectrum segment spans the gap: each side's own half-overlapping
      * segments of SIM_SPECTRUM_N ticks, not those of the whole */
-    const long per_side = (HALF_ROWS - SIM_SPECTRUM_N) / (SIM_SPECTRUM_N / 2) + 1;
+    const long per_side = segments_per_side(SIM_SPECTRUM_N);
     TEST_ASSERT_EQUAL_INT(2 * per_side, sim_spectrum_segments(&r.gyro[0]));
     TEST_ASSERT_EQUAL_INT(2 * per_side, sim_spectrum_segments(&r.log_axis[0].spectrum));
     TEST_ASSERT_EQUAL_INT(2 * per_side, sim_spectrum_segments(&r.axis[0][0].spectrum));
+}
+
+static void test_views_noise_and_series_restart_at_a_gap(void)
+{
+    char *text = gap_log_text(GAP_1E9_S, 1.0);
+    write_file(text);
+    free(text);
+    sim_log_options_t o = generic(ROW_S);
+    snprintf(o.path, sizeof o.path, "%s", path);
+    char err[512];
+    /* the noise pass (ladrc_filter, the replay's noise stage): spectra per side */
+    static sim_log_noise_t noise;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_log_noise_measure(&o, 2.0 * PI * 10.0, &noise, err, sizeof err), err);
+    TEST_ASSERT_EQUAL_INT(2 * segments_per_side(SIM_SPECTRUM_N), sim_spectrum_segments(&noise.command[0]));
+    TEST_ASSERT_EQUAL_INT(2 * segments_per_side(SIM_SPECTRUM_N), sim_spectrum_segments(&noise.gyro[2]));
+    /* the field's views: the frequency response's segments (1024 ticks at
+     * 1 kHz, the setpoint past the 20 deg/s gate throughout) per side */
+    sim_log_error_t lerr;
+    sim_log_t *log = sim_log_open(&o, &lerr);
+    TEST_ASSERT_NOT_NULL_MESSAGE(log, lerr.message);
+    sim_response_t *r = sim_response_new(ROW_S);
+    TEST_ASSERT_NOT_NULL(r);
+    sim_log_sample_t s;
+    long long ticks = 0;
+    while (ticks < TICKS_CAP && sim_log_next(log, &s, &lerr) == 1) {
+        sim_response_push(r, &s, sim_log_has(log));
+        ++ticks;
+    }
+    sim_log_close(log);
+    ASSERT_EQ_LL(2 * HALF_ROWS, ticks);
+    TEST_ASSERT_EQUAL_INT(2 * segments_per_side(1024), sim_response_freq_segments(r, 0));
+    sim_response_free(r);
+    /* the setpoints as a series: a row per tick, a tick apart across the gap */
+    snprintf(noise_path, sizeof noise_path, "%s.series", path);
+    double written_s;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_log_reference_write(&o, 0.0, noise_path, &written_s, err, sizeof err), err);
+    ASSERT_EQ_LL(2 * HALF_ROWS, series_rows_a_tick_apart());
+    ASSERT_NEAR(TIME_TOL_S, (2 * HALF_ROWS - 1) * ROW_S, written_s);
 }
 
 int main(void)
@@ -430,5 +478,6 @@ int main(void)
     RUN_TEST(test_the_warning_says_count_bound_and_length);
     RUN_TEST(test_identification_restarts_at_a_gap);
     RUN_TEST(test_replay_restarts_at_a_gap);
+    RUN_TEST(test_views_noise_and_series_restart_at_a_gap);
     return UNITY_END();
 }
