@@ -56,11 +56,13 @@
  * Not refused but counted (sim_log_stats_t): gaps in time longer than
  * SIM_LOG_GAP_FACTOR times the file's median row period, interpolated over
  * when no longer than SIM_LOG_GAP_SKIP_FACTOR times it (a few dropped
- * frames), else skipped: the ticks jump to the first tick at or after the
- * row that ends the gap, which is marked (after_gap) for what spans it to
- * restart. The ticks between two rows of a file are then at most
- * SIM_LOG_GAP_SKIP_FACTOR * row period / dt_s + 1: the ticks given are
- * bounded by the rows read, never by the log's time span.
+ * frames) or when another file's rows go on through it (a topic that
+ * pauses), else skipped: the ticks jump to the first tick at or after the
+ * earliest row after the gap, which is marked (after_gap) for what spans it
+ * to restart. Every tick given then lies between two rows of a file at most
+ * SIM_LOG_GAP_SKIP_FACTOR of its row periods apart: the ticks given are
+ * bounded by the rows read (times SIM_LOG_GAP_SKIP_FACTOR * row period /
+ * dt_s + 1), never by the log's time span.
  */
 #ifndef LADRC_SIM_LOG_H
 #define LADRC_SIM_LOG_H

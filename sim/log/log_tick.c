@@ -208,15 +208,24 @@ static int reach_all(sim_log_t *log, double tick, sim_log_error_t *err)
     return 1;
 }
 
-/* A file whose bracket holds the tick inside a gap the ticks skip: its index, else -1. */
-static int file_in_skipped_gap(const sim_log_t *log, double tick)
+/* 1 when the tick lies inside a gap the ticks skip in every file, with the
+ * span no file has a row in (from its latest row before to its earliest
+ * after); 0 when a file's rows go on around it (a topic that pauses while
+ * the others go on is interpolated: the ticks stay bounded by that file's
+ * rows). */
+static int in_skipped_gap(const sim_log_t *log, double tick, double *from_us, double *to_us)
 {
+    *from_us = -INFINITY;
+    *to_us = INFINITY;
     for (int i = 0; i < log->n_files; ++i) {
-        if (sim_log_file_in_skipped_gap(&log->files[i], tick)) {
-            return i;
+        const sim_log_file_t *f = &log->files[i];
+        if (!sim_log_file_in_skipped_gap(f, tick)) {
+            return 0;
         }
+        *from_us = fmax(*from_us, f->t0);
+        *to_us = fmin(*to_us, f->t1);
     }
-    return -1;
+    return 1;
 }
 
 int sim_log_next(sim_log_t *log, sim_log_sample_t *s, sim_log_error_t *err)
@@ -236,15 +245,14 @@ int sim_log_next(sim_log_t *log, sim_log_sample_t *s, sim_log_error_t *err)
         if (rc <= 0) {
             return rc;
         }
-        const int in_gap = file_in_skipped_gap(log, tick);
-        if (in_gap < 0) {
+        double from_us, to_us;
+        if (!in_skipped_gap(log, tick, &from_us, &to_us)) {
             break;
         }
-        /* skipped, not interpolated: on to the row that ends the gap */
-        const sim_log_file_t *f = &log->files[in_gap];
+        /* skipped, not interpolated: on to the first row after the gap */
         log->skipped_gaps++;
-        log->skipped_us += f->t1 - f->t0;
-        log->k = first_tick_at(log, f->t1);
+        log->skipped_us += to_us - from_us;
+        log->k = first_tick_at(log, to_us);
         log->after_gap = log->ticks > 0; /* a window that starts in a gap has nothing before it */
     }
     fill(log, tick, s);

@@ -31,6 +31,9 @@
 /* The times are written with 6 decimals (a microsecond): a sum of a time
  * near 1e9 s and a row's offset is off by less than half of one. */
 #define TIME_TOL_S 1e-6
+/* The command's roll over the time, written with 9 digits and divided back:
+ * a few parts in 1e9. */
+#define ROUND_TOL_LINEAR 1e-8
 /* Each axis's plant, rate per unit of command (rad/s^2), as a chirp flight
  * would show it: enough for the fit to tell b0 on both sides of a gap. */
 static const double B0[3] = {200.0, 150.0, 80.0};
@@ -466,6 +469,126 @@ static void test_views_noise_and_series_restart_at_a_gap(void)
     ASSERT_NEAR(TIME_TOL_S, (2 * HALF_ROWS - 1) * ROW_S, written_s);
 }
 
+/* A PX4 log as ulog2csv writes it, three topics (the required ones) from
+ * 1 s to 3 s: the gyro at 1 kHz, the attitude at 250 Hz, the torque
+ * setpoint at 500 Hz (its roll the time in s: linear, so interpolation
+ * gives it exactly). Rows from jump_from_us on are shifted by jump_us; the
+ * torque's rows in [pause_from_us, pause_to_us) are left out. */
+#define PX4_FIRST_US 1000000L
+#define PX4_LAST_US 3000000L
+static char px4_dir[64];
+static char px4_files[3][160];
+
+static void write_topic(int i, const char *topic, const char *header, long period_us, long jump_from_us, double jump_us,
+                        long pause_from_us, long pause_to_us)
+{
+    snprintf(px4_files[i], sizeof px4_files[i], "%s/log_%s_0.csv", px4_dir, topic);
+    FILE *f = fopen(px4_files[i], "w");
+    TEST_ASSERT_NOT_NULL(f);
+    fprintf(f, "%s\n", header);
+    for (long t = PX4_FIRST_US; t <= PX4_LAST_US; t += period_us) {
+        if (t >= pause_from_us && t < pause_to_us) {
+            continue;
+        }
+        const double stamp = (double)t + (t >= jump_from_us ? jump_us : 0.0);
+        if (i == 1) {
+            fprintf(f, "%.0f,1,0,0,0\n", stamp);
+        } else {
+            fprintf(f, "%.0f,%.0f,%.9g,0.1,0.2\n", stamp, stamp, t * 1e-6);
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(0, fclose(f));
+}
+
+static void write_px4(double jump_us, long pause_from_us, long pause_to_us)
+{
+    snprintf(px4_dir, sizeof px4_dir, "/tmp/test_sim_log_gap_XXXXXX");
+    TEST_ASSERT_NOT_NULL(mkdtemp(px4_dir));
+    const long jump_from_us = 2000000L;
+    write_topic(0, "vehicle_angular_velocity", "timestamp,timestamp_sample,xyz[0],xyz[1],xyz[2]", 1000, jump_from_us,
+                jump_us, 0, 0);
+    write_topic(1, "vehicle_attitude", "timestamp,q[0],q[1],q[2],q[3]", 4000, jump_from_us, jump_us, 0, 0);
+    write_topic(2, "vehicle_torque_setpoint", "timestamp,timestamp_sample,xyz[0],xyz[1],xyz[2]", 2000, jump_from_us,
+                jump_us, pause_from_us, pause_to_us);
+}
+
+static void remove_px4(void)
+{
+    for (int i = 0; i < 3; ++i) {
+        remove(px4_files[i]);
+    }
+    rmdir(px4_dir);
+}
+
+/* The PX4 log read at 1 kHz: its ticks, stats, the marked ticks; the
+ * command's roll against the time (its offset from linear, largest). */
+static long long read_px4(sim_log_stats_t *st, int *n_marked, long long *marked, double *off_linear)
+{
+    sim_log_options_t o;
+    sim_log_options_default(&o);
+    o.format = SIM_LOG_PX4;
+    o.dt_s = 0.001;
+    snprintf(o.path, sizeof o.path, "%s/log", px4_dir);
+    sim_log_error_t err;
+    sim_log_t *log = sim_log_open(&o, &err);
+    TEST_ASSERT_NOT_NULL_MESSAGE(log, err.message);
+    sim_log_sample_t s;
+    long long ticks = 0;
+    double first_ratio = NAN;
+    *n_marked = 0;
+    *off_linear = 0.0;
+    while (ticks < TICKS_CAP && sim_log_next(log, &s, &err) == 1) {
+        if (s.after_gap && *n_marked < 4) {
+            marked[(*n_marked)++] = ticks;
+        }
+        if (!*n_marked) { /* before any gap: the time from the log's start, 1 s */
+            const double ratio = s.command[0] / (s.t_s + 1.0);
+            first_ratio = ticks == 0 ? ratio : first_ratio;
+            *off_linear = fmax(*off_linear, fabs(ratio - first_ratio));
+        }
+        ++ticks;
+    }
+    TEST_ASSERT_TRUE_MESSAGE(ticks < TICKS_CAP, "the ticks are not bounded by the rows");
+    sim_log_stats(log, st);
+    sim_log_close(log);
+    return ticks;
+}
+
+static void test_px4_a_jump_in_every_topic_is_skipped(void)
+{
+    write_px4(1e15, 0, 0); /* 1e9 s: a clock glitch in every topic */
+    sim_log_stats_t st;
+    int n_marked;
+    long long marked[4];
+    double off_linear;
+    const long long ticks = read_px4(&st, &n_marked, marked, &off_linear);
+    remove_px4();
+    /* 1 s to 1.999 s, then the rows after the jump, 2 s to 3 s */
+    ASSERT_EQ_LL(1000 + 1001, ticks);
+    ASSERT_EQ_LL(1, st.skipped_gaps);
+    /* from the latest row before it (the gyro's, 1.999 s) to the earliest after */
+    ASSERT_NEAR(TIME_TOL_S, 1e9 + 0.001, st.skipped_s);
+    TEST_ASSERT_EQUAL_INT(1, n_marked);
+    ASSERT_EQ_LL(1000, marked[0]);
+}
+
+static void test_px4_a_topic_that_pauses_is_interpolated(void)
+{
+    /* the torque setpoint silent for 0.5 s (250 of its periods) while the
+     * gyro and the attitude go on: interpolated over as before, nothing skipped */
+    write_px4(0.0, 1500000L, 2000000L);
+    sim_log_stats_t st;
+    int n_marked;
+    long long marked[4];
+    double off_linear;
+    const long long ticks = read_px4(&st, &n_marked, marked, &off_linear);
+    remove_px4();
+    ASSERT_EQ_LL(2001, ticks);
+    ASSERT_EQ_LL(0, st.skipped_gaps);
+    TEST_ASSERT_EQUAL_INT(0, n_marked);
+    ASSERT_NEAR(ROUND_TOL_LINEAR, 0.0, off_linear); /* linear across the pause */
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -475,6 +598,8 @@ int main(void)
     RUN_TEST(test_gaps_up_to_the_bound_are_interpolated_as_before);
     RUN_TEST(test_a_gap_just_past_the_bound_is_skipped);
     RUN_TEST(test_a_window_that_starts_in_a_gap_is_not_marked);
+    RUN_TEST(test_px4_a_jump_in_every_topic_is_skipped);
+    RUN_TEST(test_px4_a_topic_that_pauses_is_interpolated);
     RUN_TEST(test_the_warning_says_count_bound_and_length);
     RUN_TEST(test_identification_restarts_at_a_gap);
     RUN_TEST(test_replay_restarts_at_a_gap);
