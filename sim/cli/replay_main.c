@@ -549,8 +549,8 @@ int main(int argc, char **argv)
     end_progress(&prog);
     printf("%s: %lld rows in %d file(s), %lld ticks at %.4g s, identified in %.2f s (4 passes)", prepared.original,
            stats.rows, stats.n_files, stats.ticks, airframe.dt_s, sim_fly_now_s() - prog.start_s);
-    if (stats.gaps > stats.skipped_gaps) {
-        printf(", %lld gap(s) interpolated over", stats.gaps - stats.skipped_gaps);
+    if (stats.gaps > stats.skipped_file_gaps) {
+        printf(", %lld gap(s) interpolated over", stats.gaps - stats.skipped_file_gaps);
         if (stats.skipped_gaps == 0) { /* else the longest is a skipped one: the warning below */
             printf(" (longest %.3g s)", stats.longest_gap_s);
         }

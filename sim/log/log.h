@@ -146,12 +146,13 @@ typedef struct {
 typedef struct {
     long long rows;  /* rows read over every file */
     long long ticks; /* samples given */
-    long long gaps;  /* gaps (SIM_LOG_GAP_FACTOR), the skipped ones among them */
+    long long gaps;  /* the files' gaps (SIM_LOG_GAP_FACTOR), the skipped ones among them */
     double longest_gap_s;
-    long long skipped_gaps; /* gaps skipped (SIM_LOG_GAP_SKIP_FACTOR): not interpolated, no ticks in them */
-    double skipped_s;       /* their total length */
-    double row_period_s;    /* median row period of the first file */
-    unsigned has;           /* SIM_LOG_HAS_* */
+    long long skipped_gaps;      /* gaps skipped (SIM_LOG_GAP_SKIP_FACTOR): not interpolated, no ticks in them */
+    double skipped_s;            /* their total length */
+    long long skipped_file_gaps; /* the files' gaps among `gaps` they are (each is one in every file) */
+    double row_period_s;         /* median row period of the first file */
+    unsigned has;                /* SIM_LOG_HAS_* */
     int n_files;
 } sim_log_stats_t;
 

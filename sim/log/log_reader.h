@@ -28,9 +28,10 @@ struct sim_log {
     int whole;
     long long t_first_whole, dt_whole;
     long long k, k_end, ticks;
-    int after_gap;          /* the next tick given follows a skipped gap */
-    long long skipped_gaps; /* gaps the ticks jumped over */
-    double skipped_us;      /* their total length */
+    int after_gap;               /* the next tick given follows a skipped gap */
+    long long skipped_gaps;      /* gaps the ticks jumped over */
+    long long skipped_file_gaps; /* the files' gaps they are: every file's, each */
+    double skipped_us;           /* their total length */
     double t_from_s;
     /* integrated attitude, from the first tick given */
     double angle[3], ref_angle[3], prev_gyro[3], prev_ref_rate[3];

@@ -251,6 +251,7 @@ int sim_log_next(sim_log_t *log, sim_log_sample_t *s, sim_log_error_t *err)
         }
         /* skipped, not interpolated: on to the first row after the gap */
         log->skipped_gaps++;
+        log->skipped_file_gaps += log->n_files;
         log->skipped_us += to_us - from_us;
         log->k = first_tick_at(log, to_us);
         log->after_gap = log->ticks > 0; /* a window that starts in a gap has nothing before it */
@@ -297,6 +298,7 @@ void sim_log_stats(const sim_log_t *log, sim_log_stats_t *st)
     st->ticks = log->ticks;
     st->skipped_gaps = log->skipped_gaps;
     st->skipped_s = log->skipped_us * 1e-6;
+    st->skipped_file_gaps = log->skipped_file_gaps;
     st->row_period_s = log->files[0].median_us * 1e-6;
     st->has = log->has;
     st->n_files = log->n_files;

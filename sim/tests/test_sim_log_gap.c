@@ -153,6 +153,7 @@ static void expect_skipped(double gap_s)
     ASSERT_EQ_LL(2 * HALF_ROWS, st.ticks);
     ASSERT_EQ_LL(1, st.skipped_gaps);
     ASSERT_EQ_LL(1, st.gaps);
+    ASSERT_EQ_LL(1, st.skipped_file_gaps);
     /* from the last row before the gap to the first after it */
     ASSERT_NEAR(TIME_TOL_S, gap_s + ROW_S, st.skipped_s);
     TEST_ASSERT_EQUAL_INT(1, n_marked);
@@ -566,6 +567,8 @@ static void test_px4_a_jump_in_every_topic_is_skipped(void)
     /* 1 s to 1.999 s, then the rows after the jump, 2 s to 3 s */
     ASSERT_EQ_LL(1000 + 1001, ticks);
     ASSERT_EQ_LL(1, st.skipped_gaps);
+    ASSERT_EQ_LL(3, st.gaps); /* one in each topic's file, all three skipped */
+    ASSERT_EQ_LL(3, st.skipped_file_gaps);
     /* from the latest row before it (the gyro's, 1.999 s) to the earliest after */
     ASSERT_NEAR(TIME_TOL_S, 1e9 + 0.001, st.skipped_s);
     TEST_ASSERT_EQUAL_INT(1, n_marked);
@@ -584,7 +587,9 @@ static void test_px4_a_topic_that_pauses_is_interpolated(void)
     const long long ticks = read_px4(&st, &n_marked, marked, &off_linear);
     remove_px4();
     ASSERT_EQ_LL(2001, ticks);
+    ASSERT_EQ_LL(1, st.gaps);
     ASSERT_EQ_LL(0, st.skipped_gaps);
+    ASSERT_EQ_LL(0, st.skipped_file_gaps);
     TEST_ASSERT_EQUAL_INT(0, n_marked);
     ASSERT_NEAR(ROUND_TOL_LINEAR, 0.0, off_linear); /* linear across the pause */
 }
