@@ -255,6 +255,13 @@ static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len
         fprintf(stderr, "%s\n", err);
         return 2;
     }
+    for (int i = 0; i < 3; ++i) {
+        char outliers[512];
+        if (sim_log_outliers_describe(&n->outliers, i, outliers, sizeof outliers) > 0) {
+            printf("%s%s (repaired before the spectra)\n", sim_log_outliers_many(&n->outliers, i) ? "warning: " : "",
+                   outliers);
+        }
+    }
     const int raw = (n->has & SIM_LOG_HAS_GYRO_RAW) != 0;
     const sim_spectrum_t *input = raw ? n->gyro_raw : n->gyro;
     const double rotor_hz = sim_log_noise_rotor_hz(n);
