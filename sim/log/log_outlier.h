@@ -6,24 +6,33 @@
  * an identification's b0 and its gyro's noise floor into nonsense.
  *
  * Each channel (per axis: the gyro, the gyro before the log's filters, the
- * command, the rate setpoint) is judged on its own. Its scale is robust:
- * s = 1.4826 x the median absolute increment over a block of
- * SIM_LOG_OUTLIER_BLOCK samples (the standard deviation of the increments
- * on Gaussian noise, untouched by a few wild ones), at least the smallest
- * non-zero increment seen so far (the log's quantum: an integer log in
- * hover has most increments 0). A run of 1 to SIM_LOG_OUTLIER_RUN_MAX
+ * command, the rate setpoint) is judged on its own, on a robust scale s of
+ * its increments over a block of SIM_LOG_OUTLIER_BLOCK samples: the larger
+ * of 1.4826 x their median absolute value and 0.608 x their 90th
+ * percentile (each the standard deviation on Gaussian noise; the second
+ * still sees a quantised signal that holds most ticks, and breaks down only
+ * beyond 10 % of bad increments). A run of 1 to SIM_LOG_OUTLIER_RUN_MAX
  * samples is an outlier when every one of them stands more than
- * SIM_LOG_OUTLIER_K s from both the sample before the run and the sample
- * after it, and those two agree within K s: a spike that leaves and comes
- * back. A step (the signal stays) or a fast ramp (the two ends disagree)
- * is motion, never an outlier. The run is replaced by the straight line
- * between its two neighbours (a gap would cost the identification its
- * filters' settling, some 150 ticks, per outlier: at 1 % corrupt no
- * segment would remain), and counted.
+ * SIM_LOG_OUTLIER_K s from both the sample kept before the run and the
+ * sample after it, and those two agree within K s: a spike that leaves and
+ * comes back. A step (the signal stays) or a fast ramp (the two ends
+ * disagree) is motion, never an outlier. The run is confirmed on the scale
+ * of the increments SIM_LOG_OUTLIER_LOCAL ticks either side of it (a burst
+ * of vibration is no spike), and the setpoint's scale is at least its
+ * gyro's (a stick's held steps, most increments 0, are moves on the gyro's
+ * scale). The run is replaced by the straight line between its two
+ * neighbours, and counted: a gap instead would cost the identification
+ * its filters' settling, some 150 ticks, per outlier (at 1 % corrupt no
+ * segment would remain), while one tick interpolated is below the band it
+ * fits (under 40 Hz at 1 kHz). Not judged: the first sample of the log and
+ * after a gap (no sample before it), a channel whose block holds still 9
+ * ticks in 10 or has under SIM_LOG_OUTLIER_MIN_INCREMENTS finite
+ * increments.
  *
- * The samples come out SIM_LOG_OUTLIER_BLOCK + SIM_LOG_OUTLIER_RUN_MAX
- * pushes late (the block's scale and the look-ahead a run's end needs),
- * in order, all of them. Memory is fixed: a log of any length streams.
+ * The samples come out in order, all of them, at most
+ * SIM_LOG_OUTLIER_BLOCK + SIM_LOG_OUTLIER_RUN_MAX + 2 SIM_LOG_OUTLIER_LOCAL
+ * pushes late (the block's scale and the look-ahead a run's end and its
+ * context need). Memory is fixed: a log of any length streams.
  */
 #ifndef LADRC_SIM_LOG_OUTLIER_H
 #define LADRC_SIM_LOG_OUTLIER_H
