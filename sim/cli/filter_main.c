@@ -322,10 +322,21 @@ static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len
         sim_spectrum_init(&out_spectrum[i], 1.0 / n->dt_s);
         sim_phase_probe_init(&probe[i], o->crossover_rad_s, n->dt_s);
     }
+    /* the input as the noise pass took it: its outliers repaired */
+    sim_log_despike_t *despike = sim_log_despike_new(n->has);
+    if (despike == NULL) {
+        fprintf(stderr, "ladrc_filter: out of memory\n");
+        sim_log_close(log);
+        if (csv != NULL) {
+            fclose(csv);
+            remove(o->out);
+        }
+        return 2;
+    }
     sim_log_sample_t s;
     int rc, first = 1;
     long long faults = 0;
-    while ((rc = sim_log_next(log, &s, &lerr)) == 1) {
+    while ((rc = sim_log_next_repaired(log, despike, &s, &lerr)) == 1) {
         ladrc_real_t in[3], out[3];
         for (int i = 0; i < 3; ++i) {
             in[i] = (ladrc_real_t)(raw ? s.gyro_raw_rad_s[i] : s.gyro_rad_s[i]);
@@ -355,6 +366,7 @@ static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len
         sim_log_error_format(&lerr, err, err_len);
         fprintf(stderr, "%s\n", err);
     }
+    sim_log_despike_free(despike);
     sim_log_close(log);
     if (csv != NULL && ((ferror(csv) | fclose(csv)) != 0 || rc < 0)) {
         if (rc == 0) {

@@ -229,14 +229,11 @@ static int read_pass(const sim_log_identify_options_t *o, sim_ident_t *id, surve
         return -1;
     }
     const pass_sinks_t sinks = {o, id, survey, cache, has};
-    sim_log_sample_t s, clean;
+    sim_log_sample_t s;
     int rc;
     long long k = 0;
-    while ((rc = sim_log_next(log, &s, &lerr)) == 1) {
-        sim_log_despike_push(despike, &s); /* never refused: each push is drained below */
-        while (sim_log_despike_pop(despike, &clean)) {
-            pass_take(&sinks, &clean);
-        }
+    while ((rc = sim_log_next_repaired(log, despike, &s, &lerr)) == 1) {
+        pass_take(&sinks, &s);
         if (o->progress != NULL && ++k % PROGRESS_EVERY == 0) {
             long long done, total;
             sim_log_progress(log, &done, &total);
@@ -246,10 +243,6 @@ static int read_pass(const sim_log_identify_options_t *o, sim_ident_t *id, surve
     if (rc < 0) {
         sim_log_error_format(&lerr, err, err_len);
     } else {
-        sim_log_despike_finish(despike);
-        while (sim_log_despike_pop(despike, &clean)) {
-            pass_take(&sinks, &clean);
-        }
         if (stats != NULL) {
             sim_log_stats(log, stats);
         }

@@ -91,21 +91,14 @@ int sim_log_noise_measure(const sim_log_options_t *opt, double probe_rad_s, sim_
         sim_log_close(log);
         return -1;
     }
-    sim_log_sample_t s, clean;
+    sim_log_sample_t s;
     int rc;
-    while ((rc = sim_log_next(log, &s, &lerr)) == 1) {
-        sim_log_despike_push(despike, &s); /* never refused: each push is drained below */
-        while (sim_log_despike_pop(despike, &clean)) {
-            add(n, &clean);
-        }
+    while ((rc = sim_log_next_repaired(log, despike, &s, &lerr)) == 1) {
+        add(n, &s);
     }
     if (rc < 0) {
         sim_log_error_format(&lerr, err, err_len);
     } else {
-        sim_log_despike_finish(despike);
-        while (sim_log_despike_pop(despike, &clean)) {
-            add(n, &clean);
-        }
         sim_log_despike_outliers(despike, &n->outliers);
     }
     sim_log_despike_free(despike);

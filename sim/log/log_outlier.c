@@ -35,6 +35,7 @@ struct sim_log_despike {
     channel_state_t ch[SLOTS];
     double increments[CAPACITY];
     sim_log_outliers_t count;
+    int ended; /* sim_log_next_repaired: the log's end reached */
 };
 
 static double *channel_value(sim_log_sample_t *s, int slot)
@@ -304,6 +305,27 @@ int sim_log_despike_pop(sim_log_despike_t *d, sim_log_sample_t *out)
     }
     count(d, d->out);
     *out = d->buf[d->out++];
+    return 1;
+}
+
+int sim_log_next_repaired(sim_log_t *log, sim_log_despike_t *d, sim_log_sample_t *s, sim_log_error_t *err)
+{
+    while (!sim_log_despike_pop(d, s)) {
+        if (d->ended) {
+            return 0;
+        }
+        sim_log_sample_t in;
+        const int rc = sim_log_next(log, &in, err);
+        if (rc < 0) {
+            return rc;
+        }
+        if (rc == 0) {
+            d->ended = 1;
+            sim_log_despike_finish(d);
+        } else {
+            sim_log_despike_push(d, &in); /* never refused: everything ready was popped above */
+        }
+    }
     return 1;
 }
 

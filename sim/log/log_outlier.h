@@ -97,6 +97,10 @@ void sim_log_despike_finish(sim_log_despike_t *d);
 /* The next sample out, repaired: 1, or 0 when none is ready. */
 int sim_log_despike_pop(sim_log_despike_t *d, sim_log_sample_t *out);
 
+/* sim_log_next through the filter: the log's next sample, repaired (1), 0
+ * at its end, -1 with the reader's error; d new for each reading of the log. */
+int sim_log_next_repaired(sim_log_t *log, sim_log_despike_t *d, sim_log_sample_t *s, sim_log_error_t *err);
+
 /* The count and places of what was replaced, over the samples popped. */
 void sim_log_despike_outliers(const sim_log_despike_t *d, sim_log_outliers_t *out);
 
