@@ -118,6 +118,19 @@ int sim_staged_open(sim_staged_dir_t *s, const char *final, char *err, size_t er
     return 0;
 }
 
+/* stage/name into buf (len > 0), with what a signal handler may call. */
+static int join(const char *stage, const char *name, char *buf, size_t len)
+{
+    const size_t a = strlen(stage), b = strlen(name);
+    if (a + 1 + b >= len) {
+        return -1;
+    }
+    memcpy(buf, stage, a);
+    buf[a] = '/';
+    memcpy(buf + a + 1, name, b + 1);
+    return 0;
+}
+
 const char *sim_staged_path(sim_staged_dir_t *s, const char *name, char *buf, size_t len)
 {
     int k = 0;
@@ -126,13 +139,13 @@ const char *sim_staged_path(sim_staged_dir_t *s, const char *name, char *buf, si
     }
     if (k == s->n_files) {
         if (k >= SIM_STAGED_MAX_FILES || strlen(name) >= sizeof s->names[0] ||
-            snprintf(s->paths[k], sizeof s->paths[k], "%s/%s", s->stage, name) >= (int)sizeof s->paths[k]) {
+            strlen(s->stage) + 1 + strlen(name) >= SIM_STAGED_PATH_LEN) {
             return NULL;
         }
         snprintf(s->names[k], sizeof s->names[k], "%s", name);
         s->n_files = k + 1; /* the abort sees it from here on */
     }
-    return snprintf(buf, len, "%s", s->paths[k]) < (int)len ? buf : NULL;
+    return join(s->stage, name, buf, len) == 0 ? buf : NULL;
 }
 
 const char *sim_staged_shown(const sim_staged_dir_t *s, const char *path, char *buf, size_t len)
@@ -159,9 +172,11 @@ int sim_staged_commit(sim_staged_dir_t *s, const char *const *owned, int n_owned
     }
     int moved[SIM_STAGED_MAX_FILES] = {0};
     for (int k = 0; k < s->n_files; ++k) {
+        char staged[SIM_STAGED_PATH_LEN];
         snprintf(path, sizeof path, "%s/%s", s->final, s->names[k]);
-        moved[k] = access(s->paths[k], F_OK) == 0; /* a name registered but not written: none */
-        if (moved[k] && rename(s->paths[k], path) != 0) {
+        moved[k] = join(s->stage, s->names[k], staged, sizeof staged) == 0 &&
+                   access(staged, F_OK) == 0; /* a name registered but not written: none */
+        if (moved[k] && rename(staged, path) != 0) {
             snprintf(err, err_len, "cannot rename '%s' into place: %s", path, strerror(errno));
             sim_staged_abort(s);
             return -1;
@@ -191,7 +206,10 @@ void sim_staged_abort(sim_staged_dir_t *s)
     }
     s->open = 0;
     for (int k = 0; k < s->n_files; ++k) {
-        unlink(s->paths[k]);
+        char staged[SIM_STAGED_PATH_LEN];
+        if (join(s->stage, s->names[k], staged, sizeof staged) == 0) {
+            unlink(staged);
+        }
     }
     if (s->stage[0] != '\0') {
         rmdir(s->stage);

@@ -9,8 +9,8 @@
  * the new run did not write are removed (only the names the command owns;
  * other files in the folder are left alone).
  *
- * sim_staged_abort only unlinks and removes folders by paths computed
- * beforehand, so a signal handler may call it.
+ * sim_staged_abort only joins strings with memcpy, unlinks and removes
+ * folders, so a signal handler may call it.
  */
 #ifndef LADRC_SIM_STAGED_DIR_H
 #define LADRC_SIM_STAGED_DIR_H
@@ -18,7 +18,8 @@
 #include <stddef.h>
 
 #define SIM_STAGED_PATH_LEN 4096
-#define SIM_STAGED_MAX_FILES 16
+#define SIM_STAGED_MAX_FILES 96 /* a scenario's outputs: 3 + 8 controllers x 11 files */
+#define SIM_STAGED_NAME_LEN 64
 #define SIM_STAGED_MAX_PARENTS 16
 
 typedef struct {
@@ -26,8 +27,7 @@ typedef struct {
     char stage[SIM_STAGED_PATH_LEN]; /* where the files are written until the commit */
     int existed;                     /* 1: the output folder was there before */
     int n_files;
-    char names[SIM_STAGED_MAX_FILES][64];
-    char paths[SIM_STAGED_MAX_FILES][SIM_STAGED_PATH_LEN]; /* in stage */
+    char names[SIM_STAGED_MAX_FILES][SIM_STAGED_NAME_LEN]; /* registered, in stage */
     int n_parents;                                         /* folders made above final, innermost last */
     char parents[SIM_STAGED_MAX_PARENTS][SIM_STAGED_PATH_LEN];
     volatile int open; /* 1 between open and commit or abort */
