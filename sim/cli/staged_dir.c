@@ -10,6 +10,19 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+/* stage/name into buf (len > 0), with what a signal handler may call. */
+static int join(const char *stage, const char *name, char *buf, size_t len)
+{
+    const size_t a = strlen(stage), b = strlen(name);
+    if (a + 1 + b >= len) {
+        return -1;
+    }
+    memcpy(buf, stage, a);
+    buf[a] = '/';
+    memcpy(buf + a + 1, name, b + 1);
+    return 0;
+}
+
 int sim_staged_check_input(const char *dir, const char *const *names, int n, const char *input, char *err,
                            size_t err_len)
 {
@@ -19,13 +32,78 @@ int sim_staged_check_input(const char *dir, const char *const *names, int n, con
     }
     for (int k = 0; k < n; ++k) {
         char path[SIM_STAGED_PATH_LEN];
-        snprintf(path, sizeof path, "%s/%s", dir, names[k]);
-        if (stat(path, &out) == 0 && out.st_dev == in.st_dev && out.st_ino == in.st_ino) {
+        if (join(dir, names[k], path, sizeof path) == 0 && stat(path, &out) == 0 && out.st_dev == in.st_dev &&
+            out.st_ino == in.st_ino) {
             snprintf(err, err_len, "%s: the input is the output %s of this run, which would replace it", input, path);
             return -1;
         }
     }
     return 0;
+}
+
+int sim_staged_check_inputs(const char *dir, const char *const *names, int n, const char *const *inputs, int n_inputs,
+                            char *err, size_t err_len)
+{
+    for (int k = 0; k < n_inputs; ++k) {
+        if (inputs[k] != NULL && inputs[k][0] != '\0' &&
+            sim_staged_check_input(dir, names, n, inputs[k], err, err_len) != 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+int sim_staged_check_file(const char *path, const char *const *inputs, int n_inputs, char *err, size_t err_len)
+{
+    const char *slash = strrchr(path, '/');
+    const char *name = slash != NULL ? slash + 1 : path;
+    if (name[0] == '\0' || strlen(path) >= SIM_STAGED_PATH_LEN) {
+        snprintf(err, err_len, "'%s': not a usable file name", path);
+        return -1;
+    }
+    char dir[SIM_STAGED_PATH_LEN];
+    const int dir_len = slash == NULL || slash == path ? 1 : (int)(slash - path); /* ".", "/" or the folder */
+    snprintf(dir, sizeof dir, "%.*s", dir_len, slash == NULL ? "." : path);
+    return sim_staged_check_inputs(dir, &name, 1, inputs, n_inputs, err, err_len);
+}
+
+int sim_staged_file_open(sim_staged_file_t *s, const char *path, const char *const *inputs, int n_inputs, char *err,
+                         size_t err_len)
+{
+    memset(s, 0, sizeof *s);
+    if (sim_staged_check_file(path, inputs, n_inputs, err, err_len) != 0) {
+        return -1;
+    }
+    snprintf(s->final, sizeof s->final, "%s", path);
+    snprintf(s->tmp, sizeof s->tmp, "%s.partial-%ld", path, (long)getpid());
+    s->f = fopen(s->tmp, "w");
+    if (s->f == NULL) {
+        snprintf(err, err_len, "%s: cannot write: %s", path, strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
+int sim_staged_file_commit(sim_staged_file_t *s, char *err, size_t err_len)
+{
+    const int failed = s->f == NULL || (ferror(s->f) | fclose(s->f)) != 0;
+    s->f = NULL;
+    if (failed || rename(s->tmp, s->final) != 0) {
+        snprintf(err, err_len, "%s: %s: %s", s->final, failed ? "write failed" : "cannot rename into place",
+                 strerror(errno));
+        unlink(s->tmp);
+        return -1;
+    }
+    return 0;
+}
+
+void sim_staged_file_abort(sim_staged_file_t *s)
+{
+    if (s->f != NULL) {
+        fclose(s->f);
+        s->f = NULL;
+        unlink(s->tmp);
+    }
 }
 
 /* The folder `path` without trailing slashes (the root kept). */
@@ -115,19 +193,6 @@ int sim_staged_open(sim_staged_dir_t *s, const char *final, char *err, size_t er
     const mode_t mask = umask(0); /* mkdtemp's folder is private: the output folder as mkdir makes one */
     umask(mask);
     chmod(s->stage, 0777 & ~mask);
-    return 0;
-}
-
-/* stage/name into buf (len > 0), with what a signal handler may call. */
-static int join(const char *stage, const char *name, char *buf, size_t len)
-{
-    const size_t a = strlen(stage), b = strlen(name);
-    if (a + 1 + b >= len) {
-        return -1;
-    }
-    memcpy(buf, stage, a);
-    buf[a] = '/';
-    memcpy(buf + a + 1, name, b + 1);
     return 0;
 }
 
