@@ -307,12 +307,20 @@ static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len
         fprintf(stderr, "%s\n", err);
         return 2;
     }
+    /* the input as the noise pass took it: its outliers repaired */
+    sim_log_despike_t *despike = sim_log_despike_new(n->has);
+    if (despike == NULL) {
+        fprintf(stderr, "ladrc_filter: out of memory\n");
+        sim_log_close(log);
+        return 2;
+    }
     FILE *csv = NULL;
     static sim_staged_file_t series; /* --out, put in place once whole */
     if (o->out != NULL) {
         const char *const inputs[] = {o->log.path, o->filter_from};
         if (sim_staged_file_open(&series, o->out, inputs, 2, err, err_len) != 0) {
             fprintf(stderr, "ladrc_filter: --out: %s\n", err);
+            sim_log_despike_free(despike);
             sim_log_close(log);
             return 2;
         }
@@ -324,17 +332,6 @@ static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len
     for (int i = 0; i < 3; ++i) {
         sim_spectrum_init(&out_spectrum[i], 1.0 / n->dt_s);
         sim_phase_probe_init(&probe[i], o->crossover_rad_s, n->dt_s);
-    }
-    /* the input as the noise pass took it: its outliers repaired */
-    sim_log_despike_t *despike = sim_log_despike_new(n->has);
-    if (despike == NULL) {
-        fprintf(stderr, "ladrc_filter: out of memory\n");
-        sim_log_close(log);
-        if (csv != NULL) {
-            fclose(csv);
-            remove(o->out);
-        }
-        return 2;
     }
     sim_log_sample_t s;
     int rc, first = 1;
