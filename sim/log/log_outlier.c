@@ -3,6 +3,7 @@
 #include "log_outlier.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,22 +36,30 @@ struct sim_log_despike {
     channel_state_t ch[SLOTS];
     double increments[CAPACITY];
     sim_log_outliers_t count;
-    int ended; /* sim_log_next_repaired: the log's end reached */
+    int ended;            /* sim_log_next_repaired: the log's end reached */
+    size_t offset[SLOTS]; /* channel_offset of each slot */
 };
 
-static double *channel_value(sim_log_sample_t *s, int slot)
+/* Where each slot's value lies in a sample (bytes). */
+static size_t channel_offset(int slot)
 {
-    const int axis = slot / SIM_LOG_OUTLIER_CHANNELS;
+    const size_t axis = (size_t)(slot / SIM_LOG_OUTLIER_CHANNELS) * sizeof(double);
     switch (slot % SIM_LOG_OUTLIER_CHANNELS) {
     case SIM_LOG_OUTLIER_GYRO:
-        return &s->gyro_rad_s[axis];
+        return offsetof(sim_log_sample_t, gyro_rad_s) + axis;
     case SIM_LOG_OUTLIER_GYRO_RAW:
-        return &s->gyro_raw_rad_s[axis];
+        return offsetof(sim_log_sample_t, gyro_raw_rad_s) + axis;
     case SIM_LOG_OUTLIER_COMMAND:
-        return &s->command[axis];
+        return offsetof(sim_log_sample_t, command) + axis;
     default:
-        return &s->ref_rate_rad_s[axis];
+        return offsetof(sim_log_sample_t, ref_rate_rad_s) + axis;
     }
+}
+
+/* The slot's value in the buffer's sample i. */
+static double *value_at(sim_log_despike_t *d, int i, int slot)
+{
+    return (double *)((char *)&d->buf[i] + d->offset[slot]);
 }
 
 sim_log_despike_t *sim_log_despike_new(unsigned has)
@@ -64,6 +73,7 @@ sim_log_despike_t *sim_log_despike_new(unsigned has)
     for (int k = 0; k < SLOTS; ++k) {
         d->ch[k].on = (has & flag[k % SIM_LOG_OUTLIER_CHANNELS]) != 0;
         d->ch[k].last = NAN;
+        d->offset[k] = channel_offset(k);
     }
     return d;
 }
@@ -121,8 +131,10 @@ static double robust_sigma(double *inc, int n, int n_min)
     if (n < n_min) {
         return 0.0;
     }
-    const double median = select_kth(inc, n, n / 2);
-    const double p90 = select_kth(inc, n, (int)(P90_SHARE * (n - 1)));
+    /* the percentile first: the median then lies among the smaller ones it leaves in front */
+    const int k90 = (int)(P90_SHARE * (n - 1));
+    const double p90 = select_kth(inc, n, k90);
+    const double median = select_kth(inc, k90 + 1, n / 2);
     return fmax(MAD_TO_SIGMA * median, P90_TO_SIGMA * p90);
 }
 
@@ -132,7 +144,7 @@ static int gather_increments(sim_log_despike_t *d, int slot, int from, int to, i
 {
     int n = 0;
     for (int j = from > 1 ? from : 1; j < to && j < d->fill; ++j) {
-        const double inc = fabs(*channel_value(&d->buf[j], slot) - *channel_value(&d->buf[j - 1], slot));
+        const double inc = fabs(*value_at(d, j, slot) - *value_at(d, j - 1, slot));
         if (isfinite(inc) && (j < skip_lo || j >= skip_hi)) {
             d->increments[n++] = inc;
         }
@@ -145,12 +157,12 @@ static int gather_increments(sim_log_despike_t *d, int slot, int from, int to, i
  * the run, and those two within it. */
 static int run_is_out(sim_log_despike_t *d, int slot, int i, int m, double last, double limit)
 {
-    const double after = *channel_value(&d->buf[i + m], slot);
+    const double after = *value_at(d, i + m, slot);
     if (!(fabs(after - last) <= limit)) {
         return 0;
     }
     for (int r = 0; r < m; ++r) {
-        const double x = *channel_value(&d->buf[i + r], slot);
+        const double x = *value_at(d, i + r, slot);
         if (!(fabs(x - last) > limit && fabs(x - after) > limit)) { /* NaN: not out */
             return 0;
         }
@@ -182,9 +194,9 @@ static int outlier_confirmed(sim_log_despike_t *d, int slot, int i, int m, doubl
 /* The run of m samples from i replaced by the line from `last` to the sample after it. */
 static void repair(sim_log_despike_t *d, int slot, int i, int m, double last)
 {
-    const double after = *channel_value(&d->buf[i + m], slot);
+    const double after = *value_at(d, i + m, slot);
     for (int r = 0; r < m; ++r) {
-        double *x = channel_value(&d->buf[i + r], slot);
+        double *x = value_at(d, i + r, slot);
         d->replaced[i + r][slot] = 1;
         d->original[i + r][slot] = *x;
         *x = last + (after - last) * (r + 1) / (m + 1);
@@ -206,7 +218,7 @@ static void judge_channel(sim_log_despike_t *d, int slot, int from, int to)
     const double limit = SIM_LOG_OUTLIER_K * sigma;
     int i = from + c->carry;
     while (i < to) {
-        const double x = *channel_value(&d->buf[i], slot);
+        const double x = *value_at(d, i, slot);
         int m = 0;
         if (limit > 0.0 && isfinite(c->last) && isfinite(x) && !(fabs(x - c->last) <= limit)) {
             m = outlier_run(d, slot, i, c->last, limit);

@@ -3,11 +3,13 @@
  * found, repaired and counted as the log streams, while noise, steps, ramps
  * and a stick's held steps pass untouched; and the identification of a
  * generated closed-loop log (log/log_identify.h) with one spike of each kind,
- * or 1 % of its cells corrupt, gives what the unmodified log gives. */
+ * or 1 % of its cells corrupt, gives what the unmodified log gives, and so
+ * does its noise pass (log/log_noise.h). */
 #define _POSIX_C_SOURCE 200809L /* mkstemp */
 #include "unity.h"
 #include "ident_loop.h"
 #include "log/log_identify.h"
+#include "log/log_noise.h"
 #include "log/log_outlier.h"
 
 #include <math.h>
@@ -267,8 +269,8 @@ static void fly(void)
     }
 }
 
-/* The flight, as damaged, identified. */
-static void identify(double (*log)[9], sim_airframe_t *a)
+/* The flight, as damaged, into a generic CSV at `path`; its reading options. */
+static void write_flight(double (*log)[9], sim_log_options_t *opt)
 {
     snprintf(path, sizeof path, "/tmp/test_sim_log_outlier_XXXXXX");
     const int fd = mkstemp(path);
@@ -284,11 +286,17 @@ static void identify(double (*log)[9], sim_airframe_t *a)
         fputc('\n', f);
     }
     TEST_ASSERT_EQUAL_INT(0, fclose(f));
+    sim_log_options_default(opt);
+    opt->format = SIM_LOG_GENERIC;
+    snprintf(opt->path, sizeof opt->path, "%s", path);
+}
+
+/* The flight, as damaged, identified. */
+static void identify(double (*log)[9], sim_airframe_t *a)
+{
     sim_log_identify_options_t o;
     memset(&o, 0, sizeof o);
-    sim_log_options_default(&o.log);
-    o.log.format = SIM_LOG_GENERIC;
-    snprintf(o.log.path, sizeof o.log.path, "%s", path);
+    write_flight(log, &o.log);
     o.delay_max_ticks = -1;
     char err[256];
     TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_log_identify(&o, a, NULL, err, sizeof err), err);
@@ -360,6 +368,35 @@ static void test_one_percent_of_cells_corrupt_is_repaired_and_warned(void)
     }
 }
 
+/* The logged command's noise above 20 Hz of the flight and of the same
+ * with roll's command at 32767 / 1000 for one tick: equal within 1 % (the
+ * repaired tick is its neighbours' mean, within the command's noise of the
+ * truth; the spike alone would add 0.5 rms over 4,000 ticks to some 0.05). */
+#define COMMAND_NOISE_REL_TOL 0.01
+
+static sim_log_noise_t noise_clean, noise_damaged;
+
+static void test_the_noise_pass_is_not_carried_by_one_sample(void)
+{
+    fly();
+    char err[256];
+    sim_log_options_t opt;
+    write_flight(flight, &opt);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_log_noise_measure(&opt, 30.0, &noise_clean, err, sizeof err), err);
+    remove(path);
+    memcpy(damaged_flight, flight, sizeof flight);
+    damaged_flight[2000][3] = 32.767;
+    write_flight(damaged_flight, &opt);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_log_noise_measure(&opt, 30.0, &noise_damaged, err, sizeof err), err);
+    const double clean_rms = sim_log_noise_command_above(&noise_clean, 0, 20.0);
+    TEST_ASSERT_TRUE(clean_rms > 0.0);
+    TEST_ASSERT_TRUE(fabs(sim_log_noise_command_above(&noise_damaged, 0, 20.0) - clean_rms) <=
+                     COMMAND_NOISE_REL_TOL * clean_rms);
+    TEST_ASSERT_EQUAL_INT(1, noise_damaged.outliers.rejected[0]);
+    TEST_ASSERT_EQUAL_INT(0, noise_clean.outliers.rejected[0] + noise_clean.outliers.rejected[1] +
+                                 noise_clean.outliers.rejected[2]);
+}
+
 int main(void)
 {
     stream = malloc(N_STREAM * sizeof *stream);
@@ -376,6 +413,7 @@ int main(void)
     RUN_TEST(test_gaps_pass_and_are_not_judged_across);
     RUN_TEST(test_one_spike_of_each_kind_leaves_the_identification_as_unmodified);
     RUN_TEST(test_one_percent_of_cells_corrupt_is_repaired_and_warned);
+    RUN_TEST(test_the_noise_pass_is_not_carried_by_one_sample);
     free(stream);
     free(stream_out);
     return UNITY_END();
