@@ -189,7 +189,7 @@ static int hp_engaged(const ladrc_axis_t *axes, int n)
     int all = 1;
     for (int i = 0; i < n; ++i) {
         const ladrc_hp_estimator_t *hp = ladrc_axis_get_hp(&axes[i]);
-        all &= hp != NULL && hp->weight > LADRC_R(0.5);
+        all &= hp != NULL && hp->weight >= LADRC_R(1.0);
     }
     return all;
 }
