@@ -17,12 +17,6 @@
 #include <math.h>
 #include <stdio.h>
 
-#define LINE1_RAD_S (0.7 * DEG)
-#define LINE1_HZ 130.0
-#define LINE2_RAD_S (0.1 * DEG)
-#define LINE2_HZ 260.0
-#define TURB_RMS_RAD_S2 1.0
-#define TURB_CORNER_RAD_S 3.0
 #define TONE_RAD_S2 20.0
 #define TONE_W_RAD_S 6.0
 /* The first event comes once the gate has engaged (test_hp_gate: 6.6 s
@@ -85,9 +79,8 @@ static void test_the_gate_engages_again_after_every_gyro_fault(void)
     static ladrc_axis_t axis;
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_axis_init(&axis, &cfg));
     unsigned seed = 88172645u;
-    double y = 0.0, w = 0.0, m = 0.0, turb = 0.0, frozen = 0.0;
-    const double a = exp(-TURB_CORNER_RAD_S * DT_S);
-    const double drive = TURB_RMS_RAD_S2 * sqrt(1.0 - a * a);
+    test_gyro_quad_air_t air = {0.0, 0.0, 0.0, 0.0};
+    double frozen = 0.0;
     const double duration_s = FIRST_EVENT_S + EVENTS * EVENT_PERIOD_S;
     const long n = (long)(duration_s / DT_S + 0.5);
     double worst_relock_s[F_KINDS] = {0.0}, event_end_s = -1.0;
@@ -100,11 +93,10 @@ static void test_the_gate_engages_again_after_every_gyro_fault(void)
         const double since_s = t - FIRST_EVENT_S - (double)event * EVENT_PERIOD_S;
         kind = (fault_kind_t)(event >= 0 ? event % F_KINDS : 0);
         const int in_fault = event >= 0 && since_s < kind_length_s[kind];
-        const double lines = LINE1_RAD_S * sin(2.0 * PI * LINE1_HZ * t) + LINE2_RAD_S * sin(2.0 * PI * LINE2_HZ * t);
-        const double reading = w + GYRO_NOISE_RAD_S * test_gaussian(&seed) + lines;
+        const double reading = air.w_rad_s + GYRO_NOISE_RAD_S * test_gaussian(&seed) + test_gyro_quad_lines_rad_s(t);
         const double gyro = in_fault ? faulty(kind, reading, frozen, &seed, k) : reading;
         frozen = in_fault ? frozen : reading;
-        const ladrc_real_t angle = (ladrc_real_t)(y + ANGLE_NOISE_RAD * test_gaussian(&seed));
+        const ladrc_real_t angle = (ladrc_real_t)(air.y_rad + ANGLE_NOISE_RAD * test_gaussian(&seed));
         const double u = axis_command_with_rate(&axis, 0.0f, angle, (ladrc_real_t)gyro);
         state_faults += (ladrc_axis_get_faults(&axis) & LADRC_FAULT_STATE) != 0u;
         TEST_ASSERT_TRUE_MESSAGE(isfinite(u), "command not finite");
@@ -129,16 +121,8 @@ static void test_the_gate_engages_again_after_every_gyro_fault(void)
                 pending = 0;
             }
         }
-        turb = a * turb + drive * test_gaussian(&seed);
-        const double d = turb + TONE_RAD_S2 * sin(TONE_W_RAD_S * t);
-        double dy, dw;
-        test_lag_step(DT_S, TAU_S, u, &m, &dy, &dw);
-        y += w * DT_S + dy / J_KG_M2 + 0.5 * d * DT_S * DT_S;
-        w += dw / J_KG_M2 + d * DT_S;
-        if (!(isfinite(y) && fabs(y) < 1.0)) {
-            printf("diverged at t = %.3f s (y %g, u %g, gyro %g)\n", t, y, u, gyro);
-        }
-        TEST_ASSERT_TRUE_MESSAGE(isfinite(y) && fabs(y) < 1.0, "diverged");
+        test_gyro_quad_air_step(&air, u, TONE_RAD_S2 * sin(TONE_W_RAD_S * t), &seed);
+        TEST_ASSERT_TRUE_MESSAGE(isfinite(air.y_rad) && fabs(air.y_rad) < 1.0, "diverged");
     }
     char msg[512];
     int len = snprintf(msg, sizeof msg, "%d events:", EVENTS);
