@@ -9,6 +9,7 @@
 #include "log/log.h"
 #include "log/log_identify.h"
 #include "log/log_noise.h"
+#include "log/log_outlier.h"
 #include "log/log_reference.h"
 #include "log/response.h"
 #include "log/replay.h"
@@ -594,6 +595,45 @@ static void test_px4_a_topic_that_pauses_is_interpolated(void)
     ASSERT_NEAR(ROUND_TOL_LINEAR, 0.0, off_linear); /* linear across the pause */
 }
 
+/* The gyro's roll through the outlier filter: a smooth signal with a
+ * level of `spike` on sample SPIKE_AT (the last before the gap when
+ * with_gap): the samples replaced. */
+#define DESPIKE_SAMPLES 2000
+#define SPIKE_AT 999
+static long long despiked(double spike, int with_gap)
+{
+    sim_log_despike_t *d = sim_log_despike_new(SIM_LOG_HAS_GYRO);
+    TEST_ASSERT_NOT_NULL(d);
+    sim_log_sample_t in, out;
+    memset(&in, 0, sizeof in);
+    for (int k = 0; k < DESPIKE_SAMPLES; ++k) {
+        in.t_s = k * ROW_S;
+        /* motion and a deterministic ripple: increments of every size */
+        in.gyro_rad_s[0] = sin(0.01 * k) + 0.01 * sin(2.3 * k * k);
+        in.gyro_rad_s[0] += k == SPIKE_AT ? spike : 0.0;
+        in.after_gap = with_gap && k == SPIKE_AT + 1;
+        TEST_ASSERT_EQUAL_INT(0, sim_log_despike_push(d, &in));
+        while (sim_log_despike_pop(d, &out)) {
+        }
+    }
+    sim_log_despike_finish(d);
+    while (sim_log_despike_pop(d, &out)) {
+    }
+    sim_log_outliers_t o;
+    sim_log_despike_outliers(d, &o);
+    sim_log_despike_free(d);
+    return o.rejected[0];
+}
+
+static void test_no_outlier_is_judged_across_a_gap(void)
+{
+    /* the filter's own: 100 rad/s on one sample is a spike */
+    ASSERT_EQ_LL(1, despiked(100.0, 0));
+    /* the same sample the last before a skipped gap: what comes after the
+     * gap does not tell it a spike (nor the first after it: not judged) */
+    ASSERT_EQ_LL(0, despiked(100.0, 1));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -609,5 +649,6 @@ int main(void)
     RUN_TEST(test_identification_restarts_at_a_gap);
     RUN_TEST(test_replay_restarts_at_a_gap);
     RUN_TEST(test_views_noise_and_series_restart_at_a_gap);
+    RUN_TEST(test_no_outlier_is_judged_across_a_gap);
     return UNITY_END();
 }
