@@ -119,6 +119,19 @@ static int reference_of(sim_replay_t *r, const sim_log_sample_t *s, unsigned has
     return r->setpoint.state == SETPOINT_SMOOTH_ON;
 }
 
+/* The torque that acted on axis i: the log's normalised command times the
+ * authority, as the simulator's controllers are told it (N m). */
+static inline ladrc_real_t acting_Nm(const sim_replay_t *r, const sim_log_sample_t *s, int i)
+{
+    return (ladrc_real_t)(s->command[i] * r->authority_Nm[i]);
+}
+
+/* The gyro the filter stage runs on (replay.h): before the log's filters when it has it (rad/s). */
+static inline ladrc_real_t stage_input_rad_s(const sim_log_sample_t *s, unsigned has, int i)
+{
+    return (ladrc_real_t)((has & SIM_LOG_HAS_GYRO_RAW) ? s->gyro_raw_rad_s[i] : s->gyro_rad_s[i]);
+}
+
 /* The scenario's stage over the gyro its noise came from (replay.h); a
  * sample the stage refuses keeps its latest output, as in flight. */
 static void filter_rates(sim_replay_t *r, const sim_log_sample_t *s, unsigned has, ladrc_real_t rate[3])
@@ -133,7 +146,7 @@ static void filter_rates(sim_replay_t *r, const sim_log_sample_t *s, unsigned ha
     }
     ladrc_real_t in[3];
     for (int i = 0; i < 3; ++i) {
-        in[i] = (ladrc_real_t)((has & SIM_LOG_HAS_GYRO_RAW) ? s->gyro_raw_rad_s[i] : s->gyro_rad_s[i]);
+        in[i] = stage_input_rad_s(s, has, i);
     }
     ladrc_gyro_filter_step(&r->filter, in, rate);
 }
@@ -143,10 +156,10 @@ static void filter_rates(sim_replay_t *r, const sim_log_sample_t *s, unsigned ha
  * on the log's values, the spectra's segments start afresh. */
 static void restart_after_gap(sim_replay_t *r, const sim_log_sample_t *s, unsigned has)
 {
-    ladrc_real_t acting_Nm[3], rate[3];
+    ladrc_real_t acting[3], rate[3];
     for (int i = 0; i < 3; ++i) {
-        acting_Nm[i] = (ladrc_real_t)(s->command[i] * r->authority_Nm[i]);
-        rate[i] = (ladrc_real_t)((has & SIM_LOG_HAS_GYRO_RAW) ? s->gyro_raw_rad_s[i] : s->gyro_rad_s[i]);
+        acting[i] = acting_Nm(r, s, i);
+        rate[i] = stage_input_rad_s(s, has, i);
         sim_spectrum_break(&r->gyro[i]);
         sim_spectrum_break(&r->gyro_raw[i]);
         sim_spectrum_break(&r->log_axis[i].spectrum);
@@ -155,7 +168,7 @@ static void restart_after_gap(sim_replay_t *r, const sim_log_sample_t *s, unsign
         }
     }
     for (int c = 0; c < r->n; ++c) {
-        ladrc_attitude_engage(&r->att[c], acting_Nm);
+        ladrc_attitude_engage(&r->att[c], acting);
     }
     if (r->filter_on) {
         ladrc_gyro_filter_reset(&r->filter, rate);
@@ -180,8 +193,7 @@ void sim_replay_step(sim_replay_t *r, const sim_log_sample_t *s, unsigned has, s
     const int smoothed = reference_of(r, s, has, ref_rad);
     for (int i = 0; i < 3; ++i) {
         rate[i] = (ladrc_real_t)s->gyro_rad_s[i];
-        /* the torque that acted, as the simulator's controllers are told it */
-        applied[i] = (ladrc_real_t)(s->command[i] * r->authority_Nm[i]);
+        applied[i] = acting_Nm(r, s, i);
         angle[i] = (ladrc_real_t)s->angle_rad[i];
         ref[i] = (ladrc_real_t)ref_rad[i];
         spectra[n_spectra] = &r->gyro[i];
