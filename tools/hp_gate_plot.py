@@ -18,7 +18,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from figures import AXIS_SYMBOLS, save, stride  # noqa: E402  (figures.py sets the house style)
 from hp_gate import HP, RunFailed, disturbance_windows, evidence_columns, evidence_series, read_columns  # noqa: E402
-from output_files import files_under, refuse_inputs  # noqa: E402
+from output_files import files_under, refuse_figure_formats, refuse_inputs  # noqa: E402
 from plot_style import COLOURS, clip_ylim  # noqa: E402
 from sim_output import AXES  # noqa: E402
 
@@ -52,6 +52,7 @@ def main():
     args = p.parse_args()
     out = args.out or os.path.join(args.case_dir, "hp_gate.png")
     refuse_inputs("hp_gate_plot.py", {"--out": out}, files_under(args.case_dir, (".csv", ".txt", ".ini")))
+    refuse_figure_formats("hp_gate_plot.py", {"--out": out})
     path = os.path.join(args.case_dir, HP + ".csv")
     names = ["t_s"]
     for a in AXES:

@@ -23,7 +23,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from output_files import files_under, refuse_inputs, save_figure  # noqa: E402
+from output_files import files_under, refuse_figure_formats, refuse_inputs, save_figure  # noqa: E402
 from report import rewrite_blocks  # noqa: E402
 from sim_output import AXES, CONTROLLERS, NOT_SETTLED, divergence_text, is_number, load_metrics  # noqa: E402
 
@@ -145,6 +145,7 @@ def main(argv):
     a = p.parse_args(argv)
     refuse_inputs("large_angle.py", {"--docs": a.docs, "--figure": a.figure},
                   files_under(a.out_dir, (".csv", ".txt", ".ini")))
+    refuse_figure_formats("large_angle.py", {"--figure": a.figure})
     st = Study(a.out_dir)
     st.lines.append("Tuned by tune = margins, quaternion frame (as shipped): the largest tracking error (the "
                     "body-axis rotation vector's largest component over the run), the time after the last "

@@ -8,6 +8,9 @@
   block ends without an exception and removed when it raises: a reader sees the earlier file or the
   new one, never a part. write_whole(path, data) writes str or bytes that way; save_figure(fig,
   path) saves a matplotlib figure that way, in the format its extension names.
+- refuse_inside(tool, folders, inputs): the same status when an input lies in an output folder a
+  run replaces; refuse_figure_formats(tool, outputs): when a figure's extension is not a format
+  matplotlib writes.
 - remove_earlier(tool, folder, patterns, written): a tool that writes a folder of outputs removes
   its own earlier outputs (the names matching patterns) that this run did not write again, so that
   a figure of an earlier run is not left looking current beside the new ones.
@@ -70,6 +73,30 @@ def files_under(folder, suffixes):
     for d, _, names in os.walk(folder):
         found += [os.path.join(d, n) for n in names if n.endswith(tuple(suffixes))]
     return found
+
+
+def refuse_inside(tool, folders, inputs):
+    """Exits with USAGE_STATUS when an input lies inside one of folders ({what: folder}), folders
+    the tool's runs replace as a whole (an input there would be gone or stale after the run)."""
+    for what, folder in folders.items():
+        top = os.path.realpath(folder)
+        for path in inputs:
+            if os.path.commonpath([top, os.path.realpath(path)]) == top:
+                print("%s: %s %s holds its input %s: refusing to replace it (move the input out)"
+                      % (tool, what, folder, path), file=sys.stderr)
+                sys.exit(USAGE_STATUS)
+
+
+def refuse_figure_formats(tool, outputs):
+    """Exits with USAGE_STATUS when an output figure ({what: path}, None skipped) has an extension
+    matplotlib does not write, before any output is written (else the run would stop half done)."""
+    from matplotlib.backend_bases import FigureCanvasBase
+    known = FigureCanvasBase.get_supported_filetypes()
+    for what, path in outputs.items():
+        if path is not None and figure_format(path) not in known:
+            print("%s: %s %s: matplotlib writes no .%s figure (%s)"
+                  % (tool, what, path, figure_format(path), ", ".join(sorted(known))), file=sys.stderr)
+            sys.exit(USAGE_STATUS)
 
 
 def _new_mode(path):

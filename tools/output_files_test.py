@@ -78,8 +78,8 @@ class Module(unittest.TestCase):
         self.dir = tempfile.mkdtemp(prefix="output_files_test.")
         self.addCleanup(shutil.rmtree, self.dir)
 
-    def path(self, name):
-        return os.path.join(self.dir, name)
+    def path(self, *parts):
+        return os.path.join(self.dir, *parts)
 
     def test_write_whole_replaces_and_leaves_no_temporary(self):
         p = write(self.path("a.txt"), "earlier\n")
@@ -181,6 +181,23 @@ class Module(unittest.TestCase):
         self.assertEqual(e.exception.code, USAGE)
         self.assertIn("tool.py: OUT %s is the same file as its input %s" % (inp, inp), err.getvalue())
 
+    def test_input_inside_a_replaced_folder(self):
+        inp = write(self.path("views", "LOG.csv"), "t_s\n")
+        err = io.StringIO()
+        with contextlib.redirect_stderr(err), self.assertRaises(SystemExit) as e:
+            of.refuse_inside("tool.py", {"views/": self.path("views")}, [inp])
+        self.assertEqual(e.exception.code, USAGE)
+        self.assertIn("views/ %s holds its input %s" % (self.path("views"), inp), err.getvalue())
+        of.refuse_inside("tool.py", {"views/": self.path("views2")}, [inp])  # a folder named alike: not inside
+
+    def test_figure_formats(self):
+        err = io.StringIO()
+        of.refuse_figure_formats("tool.py", {"--figure": self.path("a.svg"), "--out": None})
+        with contextlib.redirect_stderr(err), self.assertRaises(SystemExit) as e:
+            of.refuse_figure_formats("tool.py", {"--figure": self.path("a.txt")})
+        self.assertEqual(e.exception.code, USAGE)
+        self.assertIn("--figure %s: matplotlib writes no .txt figure" % self.path("a.txt"), err.getvalue())
+
     def test_remove_earlier_only_its_own_names_not_written(self):
         for name in ("map_roll_a.png", "map_pitch_a.png", "rms_roll.png", "notes.png", "map_roll_a.csv"):
             write(self.path(name), "x")
@@ -242,6 +259,28 @@ class Tools(unittest.TestCase):
         rc, _, err = tool("margins_plot.py", a, b, "-o", self.path("margins.png"))
         self.assertEqual(rc, 0, err)
         self.assertEqual(sorted(snapshot(self.dir)), ["LADRC.csv", "PID.csv", "margins.png"])
+
+    def test_figure_format_refused_before_anything_is_written(self):
+        a = write(self.path("LADRC.csv"), MARGINS)
+        before = snapshot(self.dir)
+        rc, _, err = tool("margins_plot.py", a, "-o", self.path("margins.txt"))
+        self.assertEqual((rc, snapshot(self.dir)), (USAGE, before), err)
+        page = write(self.path("page.md"), "<!-- large-angle:begin -->\n<!-- large-angle:end -->\n")
+        os.makedirs(self.path("out"))
+        before = snapshot(self.dir)
+        rc, _, err = tool("large_angle.py", self.path("out"), "--docs", page, "--figure", self.path("fig.txt"))
+        self.assertEqual((rc, snapshot(self.dir)), (USAGE, before), err)  # the page not rewritten either
+
+    def test_closed_loop_views(self):
+        d = self.path("replay")
+        write(os.path.join(d, "airframe.ini"), "[vehicle]\n")
+        ref = write(os.path.join(d, "log_reference.csv"), "t_s\n")
+        self.refused("closed_loop_views.py", [d, ref, "--format", "generic", "--bin", self.path("bin")], ref)
+        inside = write(os.path.join(d, "closed_loop", "LOG.csv"), "t_s\n")
+        before = snapshot(self.dir)
+        rc, _, err = tool("closed_loop_views.py", d, inside, "--format", "generic", "--bin", self.path("bin"))
+        self.assertEqual((rc, snapshot(self.dir)), (USAGE, before), err)
+        self.assertIn("holds its input %s" % inside, err)
 
     def test_hp_gate_plot(self):
         case = self.path("case")
