@@ -311,9 +311,7 @@ static void abort_stages(int sig)
     raise(sig);
 }
 
-/* -1 (said on stderr) when the scenario's file or one of its recorded series
- * is one of the files its run writes: the run would replace its own input. */
-static int inputs_among_outputs(const sim_scenario_t *sc)
+int sim_fly_check_inputs(const sim_scenario_t *sc, const char *other)
 {
     char names[MAX_OUTPUT_NAMES][SIM_STAGED_NAME_LEN];
     const char *name_of[MAX_OUTPUT_NAMES];
@@ -321,15 +319,13 @@ static int inputs_among_outputs(const sim_scenario_t *sc)
     for (int i = 0; i < n; ++i) {
         name_of[i] = names[i];
     }
-    const char *const inputs[] = {sc->path, sc->dist_series, sc->ref_series, sc->rate_noise_series,
-                                  sc->angle_noise_series};
-    for (size_t k = 0; k < sizeof inputs / sizeof inputs[0]; ++k) {
-        char why[2 * SIM_PATH_LEN];
-        if (inputs[k][0] != '\0' &&
-            sim_staged_check_input(sc->output_dir, name_of, n, inputs[k], why, sizeof why) != 0) {
-            fprintf(stderr, "ladrc_sil: %s: %s: give the run another output_dir (or --out)\n", sc->path, why);
-            return -1;
-        }
+    const char *const inputs[] = {
+        sc->path, sc->dist_series, sc->ref_series, sc->rate_noise_series, sc->angle_noise_series, other};
+    char why[2 * SIM_PATH_LEN];
+    if (sim_staged_check_inputs(sc->output_dir, name_of, n, inputs, (int)(sizeof inputs / sizeof inputs[0]), why,
+                                sizeof why) != 0) {
+        fprintf(stderr, "ladrc_sil: %s: %s: give the run another output_dir (or --out)\n", sc->path, why);
+        return -1;
     }
     return 0;
 }
@@ -338,7 +334,7 @@ int sim_fly_check_collisions(const sim_scenario_t *scenarios, int n)
 {
     static char norm[SIM_FLY_MAX_SCENARIOS][SIM_PATH_LEN];
     for (int i = 0; i < n && i < SIM_FLY_MAX_SCENARIOS; ++i) {
-        if (inputs_among_outputs(&scenarios[i]) != 0) {
+        if (sim_fly_check_inputs(&scenarios[i], NULL) != 0) {
             return -1;
         }
         normal_dir(scenarios[i].output_dir, norm[i], sizeof norm[i]);
