@@ -90,10 +90,13 @@ def refuse_inside(tool, folders, inputs):
 def refuse_figure_formats(tool, outputs):
     """Exits with USAGE_STATUS when an output figure ({what: path}, None skipped) has an extension
     matplotlib does not write, before any output is written (else the run would stop half done)."""
+    asked = {what: path for what, path in outputs.items() if path is not None}
+    if not asked:
+        return  # no figure asked for: matplotlib is not needed
     from matplotlib.backend_bases import FigureCanvasBase
     known = FigureCanvasBase.get_supported_filetypes()
-    for what, path in outputs.items():
-        if path is not None and figure_format(path) not in known:
+    for what, path in asked.items():
+        if figure_format(path) not in known:
             print("%s: %s %s: matplotlib writes no .%s figure (%s)"
                   % (tool, what, path, figure_format(path), ", ".join(sorted(known))), file=sys.stderr)
             sys.exit(USAGE_STATUS)

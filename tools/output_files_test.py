@@ -347,6 +347,23 @@ class Tools(unittest.TestCase):
         os.link(replay, os.path.join(d, "replay_spectrum.png"))  # a hard link this time
         self.refused("replay_plot.py", [d], replay)
 
+    def test_replay_plot_removes_the_views_of_an_earlier_replay(self):
+        d = self.path("replay")
+        cols = ["t_s"] + ["%s_cmd_%s" % (src, a) for src in ("LOG", "LADRC") for a in ("roll", "pitch", "yaw")]
+        write(os.path.join(d, "replay.csv"), ",".join(cols) + "\n" + "".join(
+            ",".join("%g" % (0.01 * k if i == 0 else 0.1 * ((k * (i + 1)) % 7)) for i in range(len(cols))) + "\n"
+            for k in range(50)))
+        cols = ["hz"] + ["%s_%s" % (src, a) for src in ("gyro_raw", "gyro", "LOG", "LADRC") for a in ("roll", "pitch", "yaw")]
+        write(os.path.join(d, "spectrum.csv"), ",".join(cols) + "\n" + "".join(
+            ",".join("%g" % (k if i == 0 else 1.0 / k) for i in range(len(cols))) + "\n" for k in range(1, 20)))
+        write(os.path.join(d, "identification.csv"), "axis,lines_hz\nroll,120\npitch,\nyaw,\n")
+        for name in ("response_step.png", "response_freq.png", "response_noise.png"):
+            write(os.path.join(d, name), b"the views of an earlier replay")
+        rc, _, err = tool("replay_plot.py", d)  # this replay wrote no step_response.csv: no views
+        self.assertEqual(rc, 0, err)
+        pngs = sorted(n for n in os.listdir(d) if n.endswith(".png"))
+        self.assertEqual(pngs, ["replay_commands.png", "replay_spectrum.png"], err)
+
     def test_campaign(self):
         out = self.path("camp")
         plan = write(os.path.join(out, "plan.csv"), "run,tone\n1,0.5\n")
