@@ -156,7 +156,8 @@ def main(argv):
     a = p.parse_args(argv)
     figure = {name: os.path.join(a.fig_dir, "fig14_estimators_%s.png" % name) for name in a.scenarios}
     refuse_inputs("estimators_plot.py", figure,
-                  [os.path.join(a.out_dir, name, c + ".csv") for name in a.scenarios for c in ("HP-MLADRC", "LP-MLADRC")])
+                  [os.path.join(a.out_dir, name, c + ".csv")
+                   for name in a.scenarios for c in ("HP-MLADRC", "LP-MLADRC")])
     os.makedirs(a.fig_dir, exist_ok=True)
     failed = 0
     for name in a.scenarios:

@@ -413,7 +413,8 @@ def main(argv):
     p.add_argument("--diff", default="table3_differentiator",
                    help="scenario of Fig. 5 (default: table3_differentiator)")
     a = p.parse_args(argv)
-    read = [f for scen in (a.diff, a.paper, a.noisy, a.known) for f in glob.glob(os.path.join(a.out_dir, scen, "*.csv"))]
+    read = [f for scen in (a.diff, a.paper, a.noisy, a.known)
+            for f in glob.glob(os.path.join(a.out_dir, scen, "*.csv"))]
     refuse_inputs("figures.py", {name: os.path.join(a.fig_dir, name) for name in FIGURES}, read)
     os.makedirs(a.fig_dir, exist_ok=True)
     missing = []

@@ -353,7 +353,8 @@ class Tools(unittest.TestCase):
         write(os.path.join(d, "replay.csv"), ",".join(cols) + "\n" + "".join(
             ",".join("%g" % (0.01 * k if i == 0 else 0.1 * ((k * (i + 1)) % 7)) for i in range(len(cols))) + "\n"
             for k in range(50)))
-        cols = ["hz"] + ["%s_%s" % (src, a) for src in ("gyro_raw", "gyro", "LOG", "LADRC") for a in ("roll", "pitch", "yaw")]
+        cols = ["hz"] + ["%s_%s" % (src, a) for src in ("gyro_raw", "gyro", "LOG", "LADRC")
+                         for a in ("roll", "pitch", "yaw")]
         write(os.path.join(d, "spectrum.csv"), ",".join(cols) + "\n" + "".join(
             ",".join("%g" % (k if i == 0 else 1.0 / k) for i in range(len(cols))) + "\n" for k in range(1, 20)))
         write(os.path.join(d, "identification.csv"), "axis,lines_hz\nroll,120\npitch,\nyaw,\n")

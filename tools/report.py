@@ -474,7 +474,8 @@ def main(argv):
     pages_read = [os.path.join(a.docs, "comparisons.md") if a.docs else None, a.front_page, a.suite_page]
     # what it reads: OUT_DIR/tables.txt, each scenario's folder, and the pages it rewrites in place
     refuse_inputs("report.py", {"REPORT_MD": a.report_md},
-                  [os.path.join(a.out_dir, "tables.txt")] + glob.glob(os.path.join(a.out_dir, "*", "*")) + pages_read)
+                  [os.path.join(a.out_dir, "tables.txt")] + glob.glob(os.path.join(a.out_dir, "*", "*"))
+                  + pages_read)
     headings = table_headings(os.path.join(a.out_dir, "tables.txt"))
     rep = Report()
     rep.add("# Simulation results beside the paper's", "",

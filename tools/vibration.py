@@ -381,7 +381,8 @@ def main(argv):
     p.add_argument("--figure", help="draw the spectrum figure into this PNG")
     a = p.parse_args(argv)
     refuse_inputs("vibration.py", {"--docs": a.docs, "--figure": a.figure},
-                  files_under(a.out_dir, (".csv", ".txt", ".ini")) + files_under(os.path.join(ROOT, "scenarios", "vibration"), (".ini",)))
+                  files_under(a.out_dir, (".csv", ".txt", ".ini"))
+                  + files_under(os.path.join(ROOT, "scenarios", "vibration"), (".ini",)))
     refuse_figure_formats("vibration.py", {"--figure": a.figure})
     st = Study(a.out_dir)
     st.lines.append("How far the filter stage takes the rotor lines down (worst over controllers, axes and "
