@@ -256,6 +256,13 @@ static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len
         fprintf(stderr, "%s\n", err);
         return 2;
     }
+    for (int i = 0; i < 3; ++i) {
+        char outliers[512];
+        if (sim_log_outliers_describe(&n->outliers, i, outliers, sizeof outliers) > 0) {
+            printf("%s%s (repaired before the spectra)\n", sim_log_outliers_many(&n->outliers, i) ? "warning: " : "",
+                   outliers);
+        }
+    }
     const int raw = (n->has & SIM_LOG_HAS_GYRO_RAW) != 0;
     const sim_spectrum_t *input = raw ? n->gyro_raw : n->gyro;
     const double rotor_hz = sim_log_noise_rotor_hz(n);
@@ -300,12 +307,20 @@ static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len
         fprintf(stderr, "%s\n", err);
         return 2;
     }
+    /* the input as the noise pass took it: its outliers repaired */
+    sim_log_despike_t *despike = sim_log_despike_new(n->has);
+    if (despike == NULL) {
+        fprintf(stderr, "ladrc_filter: out of memory\n");
+        sim_log_close(log);
+        return 2;
+    }
     FILE *csv = NULL;
     static sim_staged_file_t series; /* --out, put in place once whole */
     if (o->out != NULL) {
         const char *const inputs[] = {o->log.path, o->filter_from};
         if (sim_staged_file_open(&series, o->out, inputs, 2, err, err_len) != 0) {
             fprintf(stderr, "ladrc_filter: --out: %s\n", err);
+            sim_log_despike_free(despike);
             sim_log_close(log);
             return 2;
         }
@@ -321,7 +336,7 @@ static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len
     sim_log_sample_t s;
     int rc, first = 1;
     long long faults = 0;
-    while ((rc = sim_log_next(log, &s, &lerr)) == 1) {
+    while ((rc = sim_log_next_repaired(log, despike, &s, &lerr)) == 1) {
         ladrc_real_t in[3], out[3];
         for (int i = 0; i < 3; ++i) {
             in[i] = (ladrc_real_t)(raw ? s.gyro_raw_rad_s[i] : s.gyro_rad_s[i]);
@@ -351,6 +366,7 @@ static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len
         sim_log_error_format(&lerr, err, err_len);
         fprintf(stderr, "%s\n", err);
     }
+    sim_log_despike_free(despike);
     sim_log_close(log);
     if (csv != NULL && rc < 0) {
         sim_staged_file_abort(&series);
