@@ -27,7 +27,6 @@
 #define RAD2DEG (180.0 / PI)
 /* The crossover the proposal keeps the phase cost at when none is given
  * (rad/s): the simulator's chirp flight's tuned crossovers span 21-34. */
-#define CROSSOVER_DEFAULT_RAD_S 30.0
 
 static const char *const AXIS[3] = {"roll", "pitch", "yaw"};
 
@@ -125,7 +124,7 @@ static int parse_args(int argc, char **argv, options_t *o)
 {
     memset(o, 0, sizeof *o);
     sim_log_options_default(&o->log);
-    o->crossover_rad_s = CROSSOVER_DEFAULT_RAD_S;
+    o->crossover_rad_s = SIM_FILTER_CROSSOVER_DEFAULT_RAD_S;
     ladrc_gyro_filter_config_default(&o->cfg, LADRC_R(0.001), 3); /* dt: the log's, set once it is open */
     const char *path = NULL;
     int format_given = 0;

@@ -34,9 +34,11 @@ int sim_replay_noise_stage(const sim_log_options_t *opt, sim_airframe_t *a, FILE
         snprintf(err, err_len, "%s: out of memory for the noise pass", opt->path);
         return -1;
     }
-    const double wc = sim_filter_crossover_estimate(
+    const double wc_identified = sim_filter_crossover_estimate(
         median3(a->axis[0].lag_s, a->axis[1].lag_s, a->axis[2].lag_s),
         (int)median3(a->axis[0].delay_ticks, a->axis[1].delay_ticks, a->axis[2].delay_ticks), a->dt_s);
+    const int wc_known = isfinite(wc_identified);
+    const double wc = wc_known ? wc_identified : SIM_FILTER_CROSSOVER_DEFAULT_RAD_S;
     if (sim_log_noise_measure(opt, wc, n, err, err_len) != 0) {
         free(n);
         return -1;
@@ -75,8 +77,8 @@ int sim_replay_noise_stage(const sim_log_options_t *opt, sim_airframe_t *a, FILE
     if (p.cfg.n_notches > 0) {
         fprintf(out, " Hz, Q %.3g", (double)p.cfg.notch_q);
     }
-    fprintf(out, "; vibration band %.1f-%.1f Hz, crossover %.1f rad/s (estimated from the lag and delay)\n",
-            p.band_lo_hz, p.band_hi_hz, wc);
+    fprintf(out, "; vibration band %.1f-%.1f Hz, crossover %.1f rad/s (%s)\n", p.band_lo_hz, p.band_hi_hz, wc,
+            wc_known ? "estimated from the lag and delay" : "the default: the lag and delay are not identified");
     const double own_phase = sim_filter_phase_cost_deg(&p.cfg, 0.0, wc);
     for (int i = 0; i < 3; ++i) {
         fprintf(out, "  %-5s proposed: %5.1f dB in the band, %4.1f deg at the crossover (a delay of %.2f ms)", AXIS[i],

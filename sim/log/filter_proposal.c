@@ -76,7 +76,10 @@ double sim_filter_measured_attenuation_db(const sim_spectrum_t *in, const sim_sp
 
 double sim_filter_crossover_estimate(double lag_s, int delay_ticks, double dt_s)
 {
-    return 1.0 / (fmax(lag_s, 0.0) + ((double)delay_ticks + 0.5) * dt_s);
+    if (!(lag_s >= 0.0 && isfinite(lag_s)) || delay_ticks < 0 || !(dt_s > 0.0)) {
+        return NAN;
+    }
+    return 1.0 / (lag_s + ((double)delay_ticks + 0.5) * dt_s);
 }
 
 /* The line's width (Hz) at k: the bins about it whose PSD above the floor

@@ -79,8 +79,12 @@ double sim_filter_measured_attenuation_db(const sim_spectrum_t *in, const sim_sp
 /* The crossover (rad/s) a loop with this motor lag and delay reaches at a
  * 45 deg phase margin, about: 1 / (lag + (delay + 1/2) dt) (the hold's half
  * tick included). The tuned crossovers of the simulator's chirp flight
- * (21-34 rad/s) bracket its 28 rad/s. */
+ * (21-34 rad/s) bracket its 28 rad/s. NAN when the lag or the delay is not
+ * known (not finite, negative: not identified). */
 double sim_filter_crossover_estimate(double lag_s, int delay_ticks, double dt_s);
+
+/* The crossover a stage is judged at when none is known (rad/s). */
+#define SIM_FILTER_CROSSOVER_DEFAULT_RAD_S 30.0
 
 /* Proposes the stage from the three axes' pre-filter gyro spectra at dt_s,
  * the rotors' mean speed (Hz; 0 when the log has none: every line a fixed

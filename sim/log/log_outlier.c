@@ -49,10 +49,8 @@ static size_t channel_offset(int slot)
         return offsetof(sim_log_sample_t, gyro_rad_s) + axis;
     case SIM_LOG_OUTLIER_GYRO_RAW:
         return offsetof(sim_log_sample_t, gyro_raw_rad_s) + axis;
-    case SIM_LOG_OUTLIER_COMMAND:
-        return offsetof(sim_log_sample_t, command) + axis;
     default:
-        return offsetof(sim_log_sample_t, ref_rate_rad_s) + axis;
+        return offsetof(sim_log_sample_t, command) + axis;
     }
 }
 
@@ -68,8 +66,7 @@ sim_log_despike_t *sim_log_despike_new(unsigned has)
     if (d == NULL) {
         return NULL;
     }
-    const unsigned flag[SIM_LOG_OUTLIER_CHANNELS] = {SIM_LOG_HAS_GYRO, SIM_LOG_HAS_GYRO_RAW, SIM_LOG_HAS_COMMAND,
-                                                     SIM_LOG_HAS_REF_RATE};
+    const unsigned flag[SIM_LOG_OUTLIER_CHANNELS] = {SIM_LOG_HAS_GYRO, SIM_LOG_HAS_GYRO_RAW, SIM_LOG_HAS_COMMAND};
     for (int k = 0; k < SLOTS; ++k) {
         d->ch[k].on = (has & flag[k % SIM_LOG_OUTLIER_CHANNELS]) != 0;
         d->ch[k].last = NAN;
@@ -214,11 +211,6 @@ static void judge_channel(sim_log_despike_t *d, int slot, int from, int to)
     channel_state_t *c = &d->ch[slot];
     c->sigma =
         robust_sigma(d->increments, gather_increments(d, slot, 1, d->fill, 0, 0), SIM_LOG_OUTLIER_MIN_INCREMENTS);
-    if (slot % SIM_LOG_OUTLIER_CHANNELS == SIM_LOG_OUTLIER_SETPOINT) {
-        /* a stick's held steps: their moves on the gyro's scale (judged before it) are no outliers */
-        const channel_state_t *gyro = &d->ch[slot - SIM_LOG_OUTLIER_SETPOINT];
-        c->sigma = fmax(c->sigma, fmax(gyro[SIM_LOG_OUTLIER_GYRO].sigma, gyro[SIM_LOG_OUTLIER_GYRO_RAW].sigma));
-    }
     const double sigma = c->sigma;
     const double limit = SIM_LOG_OUTLIER_K * sigma;
     int i = from + c->carry;
@@ -356,7 +348,7 @@ void sim_log_despike_outliers(const sim_log_despike_t *d, sim_log_outliers_t *ou
 
 const char *sim_log_outlier_channel_name(int channel)
 {
-    static const char *const NAME[SIM_LOG_OUTLIER_CHANNELS] = {"gyro", "raw gyro", "command", "setpoint"};
+    static const char *const NAME[SIM_LOG_OUTLIER_CHANNELS] = {"gyro", "raw gyro", "command"};
     return channel >= 0 && channel < SIM_LOG_OUTLIER_CHANNELS ? NAME[channel] : "?";
 }
 

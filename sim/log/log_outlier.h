@@ -66,8 +66,8 @@ typedef enum {
     SIM_LOG_OUTLIER_GYRO = 0,
     SIM_LOG_OUTLIER_GYRO_RAW,
     SIM_LOG_OUTLIER_COMMAND,
-    SIM_LOG_OUTLIER_SETPOINT,
-    SIM_LOG_OUTLIER_CHANNELS
+    SIM_LOG_OUTLIER_CHANNELS /* the rate setpoint is not judged: a reference's step, logged as a rate
+                                setpoint, is a one-tick spike that carries the step */
 } sim_log_outlier_channel_t;
 
 typedef struct {

@@ -145,6 +145,18 @@ static void test_a_log_that_tells_no_crossover_gets_no_lowpass(void)
     TEST_ASSERT_EQUAL_INT(LADRC_OK, ladrc_gyro_filter_init(&f, &p.cfg));
 }
 
+/* The crossover of an identified lag and delay; none (NAN) for a lag or a
+ * delay the identification could not tell (a log where nothing moves gave
+ * -2000 rad/s from a delay of -1 tick). */
+static void test_the_crossover_estimate_only_from_an_identified_lag_and_delay(void)
+{
+    TEST_ASSERT_TRUE(fabs(sim_filter_crossover_estimate(0.03, 2, 1e-3) - 1.0 / (0.03 + 2.5e-3)) < 1e-9);
+    TEST_ASSERT_TRUE(isnan(sim_filter_crossover_estimate(NAN, 2, 1e-3)));
+    TEST_ASSERT_TRUE(isnan(sim_filter_crossover_estimate(0.03, -1, 1e-3)));
+    TEST_ASSERT_TRUE(isnan(sim_filter_crossover_estimate(-0.01, 2, 1e-3)));
+    TEST_ASSERT_TRUE(isnan(sim_filter_crossover_estimate(0.03, 2, 0.0)));
+}
+
 static void test_too_short_a_log_is_refused(void)
 {
     for (int i = 0; i < 3; ++i) {
@@ -199,6 +211,7 @@ int main(void)
     RUN_TEST(test_lines_on_the_rotor_harmonics_go_to_the_rpm_bank);
     RUN_TEST(test_white_noise_gives_no_notch);
     RUN_TEST(test_a_log_that_tells_no_crossover_gets_no_lowpass);
+    RUN_TEST(test_the_crossover_estimate_only_from_an_identified_lag_and_delay);
     RUN_TEST(test_too_short_a_log_is_refused);
     RUN_TEST(test_response_matches_the_documented_corners);
     RUN_TEST(test_phase_probe_of_a_delayed_stream);
