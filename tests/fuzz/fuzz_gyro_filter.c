@@ -20,10 +20,10 @@
  *   output within gfr_tolerance of a freshly initialised twin put at rest on
  *   that input and fed the same tail (the filter's normal output) within
  *   gfr_recovery_ticks_max ticks.
- * A config with a section too slow to have its gain summed (a time constant
- * over 2000 ticks: a very narrow notch far below Nyquist) is flown with the
- * finiteness and fault checks only: its recovery would take more ticks than
- * an input may cost here.
+ * A config with a fixed section too slow to have its gain summed (a time
+ * constant over 2000 ticks: a raw float's Q or centre) is flown without the
+ * output bound and the tail, and one whose recovery bound passes
+ * TAIL_TICKS_MAX without the tail: such inputs would cost seconds each.
  */
 #include "fuzz.h"
 
@@ -43,9 +43,9 @@
  * below it for errors up to the largest sample's (2 x 350 x ln(1e23) + the
  * sections' sum, some 6e4); a slower config is flown without the tail. */
 #define TAIL_TICKS_MAX 100000L
-/* Ticks within tolerance in a row that end the tail: two time constants of
- * the fastest loop's slowest realistic notch would do; 64 and the decay is
- * monotone enough by then (the bound's factor covers the rest). */
+/* Ticks within tolerance in a row that end the tail early: more than half
+ * the period of the slowest ring the decoded centres hold (2 % of Nyquist:
+ * 100 ticks a period), so that a ringing gap's zero crossing does not end it. */
 #define QUIET_TICKS 64L
 /* Float's rounding of the output bound: a few eps per section on the way. */
 #define BOUND_SLACK 1.001
