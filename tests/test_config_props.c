@@ -151,6 +151,7 @@ static void draw_axis(test_rng_t *rng, ladrc_axis_config_t *c, ladrc_variant_t v
     c->hp_freq_mode = (ladrc_hp_freq_mode_t)small_int(rng, (int)c->hp_freq_mode, 1);
     c->hp_n_tones = (uint8_t)small_int(rng, (int)c->hp_n_tones, LADRC_HP_MAX_TONES);
     c->hp_fit_decimation = (uint16_t)small_int(rng, (int)c->hp_fit_decimation, 8);
+    c->hp_sample = (ladrc_hp_sample_t)small_int(rng, (int)c->hp_sample, 1); /* observer, gyro, or beyond */
 }
 
 /* One accepted axis config on nominal inputs inside its ranges: an ADRC

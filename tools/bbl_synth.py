@@ -12,7 +12,11 @@ event every 10,000 frames.
 
 Usage: tools/bbl_synth.py OUT.bbl MEGABYTES
 """
+import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from output_files import whole_file  # noqa: E402
 
 FIELDS = ("loopIteration,time,axisP[0],axisP[1],axisP[2],axisI[0],axisI[1],axisI[2],axisD[0],axisD[1],"
           "axisF[0],axisF[1],axisF[2],rcCommand[0],rcCommand[1],rcCommand[2],rcCommand[3],setpoint[0],"
@@ -85,7 +89,7 @@ def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
     path, target = sys.argv[1], int(float(sys.argv[2]) * 1e6)
-    with open(path, "wb") as f:
+    with whole_file(path, "wb") as f:  # an interrupted run leaves no truncated log behind
         f.write(header())
         written, k = 0, 0
         block = []

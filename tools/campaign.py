@@ -53,11 +53,16 @@ logarithmic when its values are positive, span more than a decade and lie closer
 to linearly-uniform (a log_uniform draw, a geometric grid).
 
 Exit status: 0 done, 1 error (missing OUT, plan.csv, runs, campaign.csv, unknown --x/--y),
-nothing written on error. merge needs the Python standard library only; plot needs
+2 an output that is one of the inputs (campaign.csv a link to plan.csv or to a run's metrics.csv,
+a figure a link to campaign.csv); nothing written on error. Every file is written whole (a
+temporary renamed into place). merge removes the figures of OUT/figures/ named as above: they
+were drawn from the table it replaces. merge needs the Python standard library only; plot needs
 matplotlib and numpy.
 """
 import argparse
 import csv
+import fnmatch
+import glob
 import io
 import math
 import os
@@ -65,6 +70,7 @@ import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from output_files import refuse_inputs, remove_earlier, save_figure, write_whole  # noqa: E402
 from sim_output import AXES  # noqa: E402
 
 # campaign.csv's statistics: (column suffix, metrics.csv table, quantity)
@@ -204,21 +210,18 @@ def merge_table(out):
     return text.getvalue()
 
 
-def write_atomically(path, data, mode="w"):
-    tmp = "%s.tmp.%d" % (path, os.getpid())
-    try:
-        with open(tmp, mode) as f:
-            f.write(data)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+# The figures plot, ratio and tunemap draw into OUT/figures/ (the names this tool owns there).
+FIGURE_PATTERNS = ("map_*.png", "rms_*.png", "ratio_*.png", "tunemap.png")
 
 
 def cmd_merge(args):
-    text = merge_table(args.out)
     path = os.path.join(args.out, "campaign.csv")
-    write_atomically(path, text)
+    refuse_inputs("campaign.py", {"campaign.csv": path},
+                  [os.path.join(args.out, "plan.csv")] + glob.glob(os.path.join(args.out, "runs", "*", "metrics.csv")))
+    text = merge_table(args.out)
+    write_whole(path, text)
+    # every figure drawn from the table this one replaces is out of date (draw them again)
+    remove_earlier("campaign.py", os.path.join(args.out, "figures"), FIGURE_PATTERNS, [])
     n = text.count("\n") - 1
     print("campaign.py: %s: %d runs merged" % (path, n))
     return 0
@@ -482,16 +485,12 @@ def log_ticks(axis):
 
 
 def save(fig, path):
-    """Writes the figure through a temporary file, so that a PNG is whole or absent."""
+    """Writes the figure whole (output_files.save_figure): a PNG is whole or absent."""
     import matplotlib.pyplot as plt
-    tmp = "%s.tmp.%d.png" % (path[:-4], os.getpid())
     try:
-        fig.savefig(tmp, dpi=110)
-        os.replace(tmp, path)
+        save_figure(fig, path, dpi=110)
     finally:
         plt.close(fig)
-        if os.path.exists(tmp):
-            os.unlink(tmp)
 
 
 def box_data(controllers, cols, axis):
@@ -589,6 +588,10 @@ def start_figures(args, command, style):
     plt.rcParams.update(style)
     name = args.name or os.path.basename(os.path.normpath(os.path.abspath(args.out)))
     figdir = os.path.join(args.out, "figures")
+    # a figure of an earlier run that is a link to the table would be written over it
+    earlier = [os.path.join(figdir, n) for n in (os.listdir(figdir) if os.path.isdir(figdir) else [])
+               if any(fnmatch.fnmatchcase(n, p) for p in FIGURE_PATTERNS)]
+    refuse_inputs("campaign.py", earlier, [os.path.join(args.out, "campaign.csv")])
     os.makedirs(figdir, exist_ok=True)
     return name, figdir
 

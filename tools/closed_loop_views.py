@@ -23,6 +23,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import response_plot  # noqa: E402
+from output_files import refuse_inputs, refuse_inside  # noqa: E402
 
 
 def run(cmd):
@@ -45,9 +46,14 @@ def main():
     ini = os.path.join(args.replay_dir, "airframe.ini")
     if not os.path.isfile(ini):
         sys.exit("closed_loop_views: %s is missing (ladrc_replay LOG --out %s writes it)" % (ini, args.replay_dir))
+    ref = os.path.join(args.replay_dir, "log_reference.csv")
+    flights = os.path.join(args.replay_dir, "closed_loop_flights")
+    out = os.path.join(args.replay_dir, "closed_loop")
+    # its outputs: the setpoints' series, and two folders whose contents each run replaces
+    refuse_inputs("closed_loop_views", {"log_reference.csv": ref}, [args.log, ini])
+    refuse_inside("closed_loop_views", {"closed_loop_flights/": flights, "closed_loop/": out}, [args.log, ini])
     log_opts = ["--format", args.format] + [x for m in args.map for x in ("--map", m)]
 
-    ref = os.path.join(args.replay_dir, "log_reference.csv")
     r = run([views, "--reference", ref, "--seconds", "%g" % args.seconds] + log_opts + [args.log])
     if r.returncode != 0:
         sys.exit("closed_loop_views: " + r.stderr.strip())
@@ -56,7 +62,6 @@ def main():
     if duration < 4.0:
         sys.exit("closed_loop_views: %s: %.1f s of setpoints, too short for a 2 s window" % (args.log, seconds))
 
-    flights = os.path.join(args.replay_dir, "closed_loop_flights")
     sets = ["run.duration_s=%g" % duration, "run.log=generic",
             "reference.series=log_reference.csv", "reference.series_interp=linear", "reference.series_end=hold",
             # the airframe's own test signals off: the log's setpoints alone
@@ -78,7 +83,6 @@ def main():
     flown = sorted(f[: -len("_log.csv")] for f in os.listdir(scen_dir) if f.endswith("_log.csv"))
     if not flown:
         sys.exit("closed_loop_views: no flight log in %s" % scen_dir)
-    out = os.path.join(args.replay_dir, "closed_loop")
     cmd = [views, "--out", out] + log_opts + sources + ["--format", "generic"]
     cmd += ["%s=%s" % (c, os.path.join(scen_dir, c + "_log.csv")) for c in flown]
     r = run(cmd)

@@ -10,7 +10,9 @@ OUT_DIR holds <scenario>/HP-MLADRC.csv and <scenario>/LP-MLADRC.csv as `ladrc_si
 writes them; each scenario gives FIG_DIR/fig14_estimators_<scenario>.png. Printed per axis: where
 HP's gate holds its weight above ENGAGED, and how closely LP's d̂ follows f after the first
 disturbance change: the measured figures docs/comparisons.md quotes. A
-scenario with neither run, or a run without the estimator columns, is an error (exit status 1).
+scenario with neither run, or a run without the estimator columns, is an error (exit status 1) and
+its earlier figure is removed; a figure that would be written over one of the runs (a link to it) is
+refused (exit status 2).
 """
 import argparse
 import os
@@ -18,6 +20,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from figures import AXIS_SYMBOLS, COLOURS, Scenario, load_csv, mark_onsets, save, stride  # noqa: E402
+from output_files import refuse_inputs, remove_earlier  # noqa: E402
 from sim_output import AXES  # noqa: E402
 
 import matplotlib.pyplot as plt  # noqa: E402  (figures.py chose the Agg backend)
@@ -151,6 +154,10 @@ def main(argv):
     p.add_argument("fig_dir")
     p.add_argument("scenarios", nargs="+")
     a = p.parse_args(argv)
+    figure = {name: os.path.join(a.fig_dir, "fig14_estimators_%s.png" % name) for name in a.scenarios}
+    refuse_inputs("estimators_plot.py", figure,
+                  [os.path.join(a.out_dir, name, c + ".csv")
+                   for name in a.scenarios for c in ("HP-MLADRC", "LP-MLADRC")])
     os.makedirs(a.fig_dir, exist_ok=True)
     failed = 0
     for name in a.scenarios:
@@ -159,6 +166,8 @@ def main(argv):
                 print("estimators_plot.py:", line)
         except (OSError, ValueError) as e:
             print("estimators_plot.py: %s: %s" % (name, e), file=sys.stderr)
+            # an earlier run's figure of this scenario would be taken for this run's
+            remove_earlier("estimators_plot.py", a.fig_dir, [os.path.basename(figure[name])], [])
             failed = 1
     return failed
 

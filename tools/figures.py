@@ -12,11 +12,13 @@ Usage: figures.py OUT_DIR FIG_DIR [--paper NAME] [--noisy NAME] [--known NAME] [
 
 OUT_DIR holds one directory per scenario, as written by `ladrc_sil --out OUT_DIR`:
 <scenario>/<controller>.csv, <scenario>/differentiator.csv, <scenario>/metrics.csv.
-The PNGs go to FIG_DIR. A scenario that is absent is reported and its figures skipped;
-the exit status is then 1.
+The PNGs go to FIG_DIR. A scenario that is absent is reported and its figures skipped (an
+earlier run's of those names removed from FIG_DIR); the exit status is then 1. A figure that would
+be written over one of the scenarios' files (a link to it) is refused: exit status 2.
 """
 import argparse
 import csv
+import glob
 import math
 import os
 import sys
@@ -24,6 +26,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from sim_output import AXES, CONTROLLERS, divergence_text, is_number, load_metrics  # noqa: E402
 from plot_style import COLOURS, clip_ylim  # noqa: E402,F401  (estimators_plot.py takes COLOURS from here)
+from output_files import refuse_inputs, remove_earlier, save_figure  # noqa: E402
 
 import matplotlib
 
@@ -43,6 +46,12 @@ ZOOM_S = (-0.3, 1.2)                # zoom window around each onset
 SIZE_IN = (10, 6)
 DPI = 110
 MAX_POINTS = 6000                   # per line on full-length plots
+# Every figure main() draws into FIG_DIR: one not drawn this run (its scenario missing) is removed,
+# so that an earlier run's figure is not taken for this one's.
+FIGURES = ("fig05_td_levant.png", "fig06_tracking.png", "fig06_tracking_onsets.png", "fig07_errors.png",
+           "fig07_errors_onsets.png", "fig08_radar.png", "fig09_disturbance.png", "fig10_noisy_tracking.png",
+           "fig11_noisy_errors.png", "fig12_rotors.png", "fig13_hp_modes.png")
+WRITTEN = []  # the paths save() wrote
 
 plt.rcParams.update({"font.size": 10, "axes.grid": True, "grid.alpha": 0.3,
                      "legend.fontsize": 9, "figure.dpi": DPI})
@@ -125,9 +134,13 @@ def mark_onsets(ax, t_end, onsets):
 
 
 def save(fig, fig_dir, name):
+    """Saves the figure whole as FIG_DIR/name (output_files.save_figure) and closes it."""
     path = os.path.join(fig_dir, name)
-    fig.savefig(path, dpi=DPI)
-    plt.close(fig)
+    try:
+        save_figure(fig, path, dpi=DPI)
+    finally:
+        plt.close(fig)
+    WRITTEN.append(path)
     print("figures.py: wrote", path)
 
 
@@ -400,6 +413,9 @@ def main(argv):
     p.add_argument("--diff", default="table3_differentiator",
                    help="scenario of Fig. 5 (default: table3_differentiator)")
     a = p.parse_args(argv)
+    read = [f for scen in (a.diff, a.paper, a.noisy, a.known)
+            for f in glob.glob(os.path.join(a.out_dir, scen, "*.csv"))]
+    refuse_inputs("figures.py", {name: os.path.join(a.fig_dir, name) for name in FIGURES}, read)
     os.makedirs(a.fig_dir, exist_ok=True)
     missing = []
 
@@ -455,6 +471,7 @@ def main(argv):
     for name in missing:
         print("figures.py: no output of scenario '%s' in %s; its figures are skipped" % (name, a.out_dir),
               file=sys.stderr)
+    remove_earlier("figures.py", a.fig_dir, FIGURES, WRITTEN)
     return 1 if missing else 0
 
 

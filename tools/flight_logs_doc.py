@@ -19,6 +19,7 @@ import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from output_files import files_under, refuse_inputs  # noqa: E402
 from report import rewrite_blocks  # noqa: E402
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
@@ -158,6 +159,8 @@ def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
     out, doc = sys.argv[1], sys.argv[2]
+    # DOC_MD is read and rewritten in place by design; OUT_DIR's files are only read
+    refuse_inputs("flight_logs_doc.py", {"DOC_MD": doc}, files_under(out, (".csv", ".md", ".ini")))
     sys.exit(rewrite_blocks(doc, {"flight-logs:identification": identification_block(out),
                                   "flight-logs:worked": worked_block(out)}))
 

@@ -25,8 +25,12 @@ sum's spectrum follows Phi. Python's random (Mersenne Twister, seeded per axis) 
 every platform and version, so a seed gives the same file everywhere.
 """
 import math
+import os
 import random
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from output_files import write_whole  # noqa: E402
 
 BEGIN, END = "# gusts:begin", "# gusts:end"
 AXES = ("roll", "pitch", "yaw")
@@ -105,8 +109,7 @@ def process(path, check):
         print("gusts.py: %s: its gusts differ from what its parameters give; run tools/gusts.py %s"
               % (path, path), file=sys.stderr)
         return 1
-    with open(path, "w") as f:
-        f.write("\n".join(text[:starts[0] + 1] + new + text[ends[0]:]))
+    write_whole(path, "\n".join(text[:starts[0] + 1] + new + text[ends[0]:]))
     print("gusts.py: rewrote", path)
     return 0
 

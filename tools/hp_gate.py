@@ -12,6 +12,7 @@ work has to reach); 1 a run failed (diverged, untunable, missing output), its fi
 2 bad usage."""
 
 import argparse
+import glob
 import math
 import os
 import subprocess
@@ -24,6 +25,7 @@ except ImportError:  # ctest reports the quick form skipped (77), not failed, wi
     sys.exit(77)
 
 import sim_output
+from output_files import refuse_inputs, whole_file, write_whole
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCEN_DIR = os.path.join(ROOT, "scenarios", "hp_gate")
@@ -469,8 +471,7 @@ def write_docs(path, text, block_name="hp_gate"):
         doc = doc[:doc.index(begin)] + block + doc[doc.index(end) + len(end):]
     else:
         doc = block + "\n"
-    with open(path, "w") as f:
-        f.write(doc)
+    write_whole(path, doc)
 
 
 # ---------------------------------------------------------------- running
@@ -482,8 +483,8 @@ def fly(args, cases, sets=()):
     for s in sets:
         cmd += ["--set", s]
     print("+ " + " ".join(cmd), flush=True)
-    with open(os.path.join(args.out, "ladrc_sil_%s.txt" % cases[0]), "w") as log:
-        rc = subprocess.call(cmd, stdout=log)
+    with whole_file(os.path.join(args.out, "ladrc_sil_%s.txt" % cases[0])) as log:
+        rc = subprocess.call(cmd, stdout=log)  # kept when the run fails: it is that run's record
     if rc in (1, 2) or rc < 0:
         sys.exit("hp_gate.py: ladrc_sil exited with status %d (cases %s)" % (rc, ", ".join(cases)))
     return rc
@@ -509,6 +510,9 @@ def main():
     args = p.parse_args()
     if args.out is None:
         args.out = os.path.join(ROOT, "build", "hp_gate_quick" if args.quick else "hp_gate")
+    # what it reads: the cases' scenarios and each case's run folder
+    refuse_inputs("hp_gate.py", {"--docs": args.docs},
+                  glob.glob(os.path.join(SCEN_DIR, "*.ini")) + glob.glob(os.path.join(args.out, "*", "*")))
     os.makedirs(args.out, exist_ok=True)
 
     if args.quick:

@@ -8,7 +8,8 @@ window shaded. A build that does not log the evidence gets the weight alone, and
     tools/hp_gate_plot.py CASE_DIR [--out FILE.png]
 
 CASE_DIR is one case's folder of `tools/hp_gate.py --out` (HP-MLADRC.csv and signals.csv);
-FILE defaults to CASE_DIR/hp_gate.png. A folder without HP-MLADRC.csv is an error (exit 1)."""
+FILE defaults to CASE_DIR/hp_gate.png. A folder without HP-MLADRC.csv is an error (exit 1); a FILE
+that is one of the folder's files is refused (exit 2)."""
 
 import argparse
 import os
@@ -17,6 +18,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from figures import AXIS_SYMBOLS, save, stride  # noqa: E402  (figures.py sets the house style)
 from hp_gate import HP, RunFailed, disturbance_windows, evidence_columns, evidence_series, read_columns  # noqa: E402
+from output_files import files_under, refuse_figure_formats, refuse_inputs  # noqa: E402
 from plot_style import COLOURS, clip_ylim  # noqa: E402
 from sim_output import AXES  # noqa: E402
 
@@ -48,6 +50,9 @@ def main():
     p.add_argument("case_dir")
     p.add_argument("--out", help="the PNG to write (default CASE_DIR/hp_gate.png)")
     args = p.parse_args()
+    out = args.out or os.path.join(args.case_dir, "hp_gate.png")
+    refuse_inputs("hp_gate_plot.py", {"--out": out}, files_under(args.case_dir, (".csv", ".txt", ".ini")))
+    refuse_figure_formats("hp_gate_plot.py", {"--out": out})
     path = os.path.join(args.case_dir, HP + ".csv")
     names = ["t_s"]
     for a in AXES:
@@ -93,7 +98,6 @@ def main():
         axes[2, 0].legend(loc="upper left")
     axes[0, 0].legend(loc="upper left")
     fig.tight_layout()
-    out = args.out or os.path.join(args.case_dir, "hp_gate.png")
     save(fig, os.path.dirname(os.path.abspath(out)), os.path.basename(out))
     return 0
 

@@ -23,6 +23,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from output_files import files_under, refuse_figure_formats, refuse_inputs, save_figure  # noqa: E402
 from report import rewrite_blocks  # noqa: E402
 from sim_output import AXES, CONTROLLERS, NOT_SETTLED, divergence_text, is_number, load_metrics  # noqa: E402
 
@@ -131,7 +132,7 @@ def figure(out_dir, png):
     ax.legend(ncol=3, fontsize=8)
     ax.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(png, dpi=100)
+    save_figure(fig, png, dpi=100)
     plt.close(fig)
     print("large_angle.py: wrote", png)
 
@@ -142,6 +143,9 @@ def main(argv):
     p.add_argument("--docs", help="write the block between <!-- large-angle:begin/end --> of this page")
     p.add_argument("--figure", help="draw the figure into this PNG")
     a = p.parse_args(argv)
+    refuse_inputs("large_angle.py", {"--docs": a.docs, "--figure": a.figure},
+                  files_under(a.out_dir, (".csv", ".txt", ".ini")))
+    refuse_figure_formats("large_angle.py", {"--figure": a.figure})
     st = Study(a.out_dir)
     st.lines.append("Tuned by tune = margins, quaternion frame (as shipped): the largest tracking error (the "
                     "body-axis rotation vector's largest component over the run), the time after the last "

@@ -26,8 +26,12 @@ Standard library only. Errors name the file and the byte offset.
 """
 
 import argparse
+import os
 import struct
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from output_files import refuse_inputs, write_whole  # noqa: E402
 
 ULOG_MAGIC = b"ULog\x01\x12\x35"
 DATAFLASH_HEAD = b"\xa3\x95"
@@ -587,6 +591,8 @@ def main(argv=None):
     p_cut.add_argument("--log-index", type=int, default=0, help="blackbox: which log of the file")
     p_cut.add_argument("--topics", help="ULog topics / DataFlash messages whose data to keep (comma separated; default all)")
     args = parser.parse_args(argv)
+    if args.command == "cut":
+        refuse_inputs("log_excerpt.py", {"OUT": args.out}, [args.log])
 
     with open(args.log, "rb") as f:
         data = f.read()
@@ -614,8 +620,7 @@ def main(argv=None):
     except LogError as e:
         print(e, file=sys.stderr)
         return 2
-    with open(args.out, "wb") as f:
-        f.write(cut)
+    write_whole(args.out, cut)
     print(f"{args.out}: {len(cut)} bytes ({kind}) from {args.log}")
     return 0
 

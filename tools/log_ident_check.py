@@ -29,11 +29,15 @@ tool that failed.
 import argparse
 import concurrent.futures
 import csv
+import glob
 import math
 import os
 import random
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from output_files import refuse_inputs, write_whole  # noqa: E402
 
 G = 9.81
 AXES = ("roll", "pitch", "yaw")
@@ -207,14 +211,14 @@ def main():
     args = ap.parse_args()
     rng = random.Random(args.seed)
     airframes = [draw(rng, k) for k in range(args.n)]
+    flights = [(af, flight) for af in airframes for flight in FLIGHTS]
+    files = [os.path.join(args.out, f"af{af['k']:02d}_{flight}.ini") for af, flight in flights]
+    # what it reads: the tools it runs, the scenarios it writes and flies, the flights' logs and replays
+    refuse_inputs("log_ident_check", {"--markdown": args.markdown}, [args.sil, args.replay] + files +
+                  glob.glob(os.path.join(args.out, "af*", "**"), recursive=True))
     os.makedirs(args.out, exist_ok=True)
-    files = []
-    for af in airframes:
-        for flight in FLIGHTS:
-            path = os.path.join(args.out, f"af{af['k']:02d}_{flight}.ini")
-            with open(path, "w") as f:
-                f.write(scenario(af, flight))
-            files.append(path)
+    for path, (af, flight) in zip(files, flights):
+        write_whole(path, scenario(af, flight))
     flown_before = all(os.path.isdir(f[:-len(".ini")]) for f in files)
     for first in range(0, 0 if args.reuse and flown_before else len(files), SIL_BATCH):
         flown = subprocess.run([args.sil, *files[first:first + SIL_BATCH], "--out", args.out, "--jobs",
@@ -285,8 +289,8 @@ def main():
     print("\n".join(table))
     print(summary)
     if args.markdown:
-        with open(args.markdown, "w") as f:
-            f.write(summary + "\n\n" + "\n".join(table) + "\n\n```\n" + "\n".join(lines) + "\n```\n")
+        write_whole(args.markdown,
+                    summary + "\n\n" + "\n".join(table) + "\n\n```\n" + "\n".join(lines) + "\n```\n")
     sys.exit(1 if chirp_failed or regressed else 0)
 
 

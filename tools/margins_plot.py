@@ -16,6 +16,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from output_files import refuse_figure_formats, refuse_inputs, save_figure  # noqa: E402
 from plot_style import colour_of  # noqa: E402
 
 
@@ -33,6 +34,8 @@ def main():
     ap.add_argument("csv", nargs="+")
     ap.add_argument("-o", "--out", required=True)
     args = ap.parse_args()
+    refuse_inputs("margins_plot.py", {"--out": args.out}, args.csv)
+    refuse_figure_formats("margins_plot.py", {"--out": args.out})
     fig, (ax_mag, ax_ph, ax_ny) = plt.subplots(1, 3, figsize=(15, 4.5))
     for path in args.csv:
         meta, c = read(path)
@@ -64,7 +67,7 @@ def main():
     for ax in (ax_mag, ax_ph, ax_ny):
         ax.grid(True, lw=0.3)
     fig.tight_layout()
-    fig.savefig(args.out, dpi=110)
+    save_figure(fig, args.out, dpi=110)
 
 
 if __name__ == "__main__":

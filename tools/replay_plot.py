@@ -14,7 +14,8 @@ Draws in DIR:
 Each controller has its colour of every figure of the project (tools/plot_style.py), the log
 black; the commands' y range is the bulk of the values (0.2-99.8 percentiles), so that one
 spike (a landing, a flip) does not flatten the rest of the flight.
-Exit status 1 when a file is missing or empty.
+Exit status 1 when a file is missing or empty; 2 when a figure would be written over one of the
+CSVs (a link to it). The figures of the field's views are removed when this replay has none.
 """
 import argparse
 import csv
@@ -23,6 +24,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from output_files import refuse_inputs, remove_earlier, save_figure  # noqa: E402
 from plot_style import LOG_COLOUR, clip_ylim, colour_of  # noqa: E402
 import response_plot  # noqa: E402
 
@@ -72,7 +74,7 @@ def commands_figure(d, out, t_from, t_to):
     axs[-1].set_xlabel("time (s)")
     fig.suptitle("What each controller would have commanded on the log's flight (open loop)")
     fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    save_figure(fig, out, dpi=110)
     limits = [ax.get_ylim() for ax in axs]
     plt.close(fig)
     return limits
@@ -113,7 +115,7 @@ def spectrum_figure(s, lines, out):
     axs[1][0].legend(fontsize=7, ncol=2)
     fig.suptitle("Spectra of the log's gyro and of the commands")
     fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    save_figure(fig, out, dpi=110)
     plt.close(fig)
 
 
@@ -126,6 +128,10 @@ def main():
     for name in ("replay.csv", "spectrum.csv", "identification.csv"):
         if not os.path.isfile(os.path.join(args.dir, name)):
             sys.exit(f"replay_plot: {os.path.join(args.dir, name)} is missing (ladrc_replay writes it)")
+    figures = {name: os.path.join(args.dir, name)
+               for name in ("replay_commands.png", "replay_spectrum.png") + response_plot.FIGURES}
+    read = ["replay.csv", "spectrum.csv", "identification.csv"] + list(response_plot.FILES)
+    refuse_inputs("replay_plot", figures, [os.path.join(args.dir, name) for name in read])
     commands_figure(read_columns(os.path.join(args.dir, "replay.csv")), os.path.join(args.dir, "replay_commands.png"),
                     args.t_from, args.t_to)
     spectrum_figure(read_columns(os.path.join(args.dir, "spectrum.csv")),
@@ -134,6 +140,8 @@ def main():
     drawn = [f"{args.dir}/replay_commands.png", f"{args.dir}/replay_spectrum.png"]
     if os.path.isfile(os.path.join(args.dir, "step_response.csv")):
         drawn += response_plot.draw(args.dir)
+    else:  # an older replay's views would be taken for this one's
+        remove_earlier("replay_plot", args.dir, response_plot.FIGURES, [])
     print("replay_plot: " + ", ".join(drawn))
 
 

@@ -16,6 +16,7 @@ headings (the averaging windows and definitions) are quoted in the report.
 Every number of ours comes from metrics.csv; the paper's are the data below.
 """
 import argparse
+import glob
 import math
 import os
 import sys
@@ -24,6 +25,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from sim_output import (AXES, CONTROLLERS, NOT_SETTLED, divergence, divergence_text, is_number,  # noqa: E402
                         load_metrics)
 from suite_report import front_page_lines, hp_lp_block, suite_block  # noqa: E402
+from output_files import refuse_inputs, write_whole  # noqa: E402
 
 # Dong, Y. et al., "Decoupling-Free Attitude Control of UAV Considering High-Frequency
 # Disturbances: A Modified Linear Active Disturbance Rejection Method", Actuators 2025,
@@ -438,7 +440,8 @@ def headline_block(out_dir):
 
 
 def rewrite_blocks(path, blocks):
-    """Replaces the text between <!-- NAME:begin --> and <!-- NAME:end --> for each block."""
+    """Replaces the text between <!-- NAME:begin --> and <!-- NAME:end --> for each block; the page
+    is rewritten whole (write_whole), or left as it was when a block is missing."""
     with open(path) as f:
         text = f.read()
     for name, lines in blocks.items():
@@ -448,8 +451,7 @@ def rewrite_blocks(path, blocks):
             print("report.py: %s has no %s ... %s block" % (path, begin, end), file=sys.stderr)
             return 1
         text = text[:i + len(begin)] + "\n" + "\n".join(lines).rstrip() + "\n" + text[j:]
-    with open(path, "w") as f:
-        f.write(text)
+    write_whole(path, text)
     print("report.py: rewrote", ", ".join(blocks), "in", path)
     return 0
 
@@ -469,6 +471,11 @@ def main(argv):
     p.add_argument("--suite-page", metavar="MD", help="page (docs/suite.md) whose suite block to rewrite from "
                    "tools/suite.sh's output in OUT_DIR")
     a = p.parse_args(argv)
+    pages_read = [os.path.join(a.docs, "comparisons.md") if a.docs else None, a.front_page, a.suite_page]
+    # what it reads: OUT_DIR/tables.txt, each scenario's folder, and the pages it rewrites in place
+    refuse_inputs("report.py", {"REPORT_MD": a.report_md},
+                  [os.path.join(a.out_dir, "tables.txt")] + glob.glob(os.path.join(a.out_dir, "*", "*"))
+                  + pages_read)
     headings = table_headings(os.path.join(a.out_dir, "tables.txt"))
     rep = Report()
     rep.add("# Simulation results beside the paper's", "",
@@ -554,8 +561,7 @@ def main(argv):
         elif rewrite_blocks(path, blocks) != 0:
             missing.append(path)
     os.makedirs(os.path.dirname(os.path.abspath(a.report_md)), exist_ok=True)
-    with open(a.report_md, "w") as f:
-        f.write("\n".join(rep.lines).rstrip() + "\n")
+    write_whole(a.report_md, "\n".join(rep.lines).rstrip() + "\n")
     print("report.py: wrote", a.report_md)
     return 1 if missing else 0
 

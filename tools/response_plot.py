@@ -13,7 +13,9 @@ Draws in DIR:
 - response_freq.png: per axis, the closed-loop gain and phase (setpoint -> gyro) and the coherence,
   drawn faint where the coherence is under 0.5;
 - response_noise.png: per source, signal and axis, the spectrum against throttle (a heat map).
-Exit status 1 when a file is missing or holds no rows.
+A figure this run does not draw (its CSV has no rows) is removed when an earlier run left one.
+Exit status 1 when a file is missing or holds no rows; 2 when a figure would be written over one
+of the CSVs (a link to it).
 """
 import argparse
 import csv
@@ -22,6 +24,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from output_files import refuse_inputs, remove_earlier, save_figure  # noqa: E402
 from plot_style import LOG_SOURCE, colour_of, robust_limits  # noqa: E402
 
 import matplotlib  # noqa: E402
@@ -32,6 +35,7 @@ import numpy as np  # noqa: E402
 
 AXES = ("roll", "pitch", "yaw")
 FILES = ("step_response.csv", "freq_response.csv", "noise_throttle.csv", "response_summary.csv")
+FIGURES = ("response_step.png", "response_freq.png", "response_noise.png")  # what draw() writes in DIR
 COHERENT = 0.5       # below this the gain and phase are drawn faint: mostly noise
 STEP_RANGE = (-0.5, 2.5)  # the step's y limits never go beyond this (a bad window's tail)
 NOISE_DB_PCT = (5.0, 99.5)  # heat-map colour limits: percentiles of the PSD in dB
@@ -99,7 +103,7 @@ def step_figure(rows, summary, out, dpi=100):
     axs[0].set_ylabel("gyro per setpoint (1: tracks)")
     fig.suptitle("Step response deconvolved from the flight (mean over 2 s windows, band: one standard deviation)")
     fig.tight_layout()
-    fig.savefig(out, dpi=dpi)
+    save_figure(fig, out, dpi=dpi)
     plt.close(fig)
 
 
@@ -137,7 +141,7 @@ def freq_figure(rows, out, dpi=100):
         ax.set_xlim(0.5, None)
     fig.suptitle("Frequency response (Welch H1; faint where the coherence is under %.1f)" % COHERENT)
     fig.tight_layout()
-    fig.savefig(out, dpi=dpi)
+    save_figure(fig, out, dpi=dpi)
     plt.close(fig)
 
 
@@ -181,17 +185,21 @@ def noise_figure(rows, out, dpi=90):
                 fig.colorbar(mesh, ax=ax, label=unit)
     fig.suptitle("Noise against throttle (Welch, 0.25 s segments, binned by the segment's mean throttle)")
     fig.tight_layout()
-    fig.savefig(out, dpi=dpi)
+    save_figure(fig, out, dpi=dpi)
     plt.close(fig)
     return True
 
 
 def draw(dirname, dpi=None):
-    """Draws the three figures of DIR (dpi: None for each figure's own); returns their paths."""
+    """Draws the three figures of DIR (dpi: None for each figure's own); returns their paths. A figure
+    it does not draw (no rows) is removed when an earlier run left one; a figure that would be one of
+    the CSVs it reads (a link) is refused (exit 2)."""
     res = {} if dpi is None else {"dpi": dpi}
     for name in FILES:
         if not os.path.isfile(os.path.join(dirname, name)):
             sys.exit("response_plot: %s is missing (ladrc_replay writes it)" % os.path.join(dirname, name))
+    refuse_inputs("response_plot", {name: os.path.join(dirname, name) for name in FIGURES},
+                  [os.path.join(dirname, name) for name in FILES])
     summary = {(r["source"], r["axis"]): r for r in read_rows(os.path.join(dirname, "response_summary.csv"))}
     out = []
     step = read_rows(os.path.join(dirname, "step_response.csv"))
@@ -205,6 +213,8 @@ def draw(dirname, dpi=None):
     noise = read_rows(os.path.join(dirname, "noise_throttle.csv"))
     if noise and noise_figure(noise, os.path.join(dirname, "response_noise.png"), **res):
         out.append(os.path.join(dirname, "response_noise.png"))
+    # a figure not drawn from these CSVs: an earlier one would be taken for theirs
+    remove_earlier("response_plot", dirname, FIGURES, out)
     if not out:
         sys.exit("response_plot: %s: no rows to draw (no window reached 20 deg/s and the log has no throttle)"
                  % dirname)

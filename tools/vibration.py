@@ -27,6 +27,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from output_files import files_under, refuse_figure_formats, refuse_inputs, save_figure  # noqa: E402
 from report import rewrite_blocks  # noqa: E402
 from sim_output import AXES, CONTROLLERS, divergence_text, is_number, load_metrics  # noqa: E402
 
@@ -368,7 +369,7 @@ def figure(out, png):
         ax.grid(True, alpha=0.3)
         ax.legend(loc="lower left", fontsize=8)
     fig.tight_layout()
-    fig.savefig(png)
+    save_figure(fig, png)
     plt.close(fig)
     print("vibration.py: wrote", png)
 
@@ -379,6 +380,10 @@ def main(argv):
     p.add_argument("--docs", help="write the block between <!-- vibration:begin/end --> of this page")
     p.add_argument("--figure", help="draw the spectrum figure into this PNG")
     a = p.parse_args(argv)
+    refuse_inputs("vibration.py", {"--docs": a.docs, "--figure": a.figure},
+                  files_under(a.out_dir, (".csv", ".txt", ".ini"))
+                  + files_under(os.path.join(ROOT, "scenarios", "vibration"), (".ini",)))
+    refuse_figure_formats("vibration.py", {"--figure": a.figure})
     st = Study(a.out_dir)
     st.lines.append("How far the filter stage takes the rotor lines down (worst over controllers, axes and "
                     "turbulence; \">\": the filtered line is lost in the noise floor, the figure is the bound "

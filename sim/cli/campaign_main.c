@@ -16,6 +16,7 @@
 
 #include "campaign/campaign.h"
 #include "fly.h"
+#include "staged_dir.h"
 #include "run/progress.h"
 #include "scenario/scenario.h"
 
@@ -277,6 +278,10 @@ int sim_campaign_main(int argc, char **argv)
             sim_campaign_free(&c);
             return EXIT_BAD_INPUT;
         }
+        if (sim_fly_check_inputs(&scratch, path) != 0) { /* the base, its series or the campaign */
+            sim_campaign_free(&c);
+            return EXIT_BAD_INPUT;
+        }
         total_ticks += sim_fly_total_ticks(&scratch, 1);
         ++runs_total;
     }
@@ -291,6 +296,14 @@ int sim_campaign_main(int argc, char **argv)
     char *plan = plan_text(&c, &plan_len);
     char plan_path[SIM_PATH_LEN + 32];
     snprintf(plan_path, sizeof plan_path, "%s/plan.csv", out_dir);
+    const char *plan_name = "plan.csv", *const inputs[] = {path, c.base_path};
+    char why[2 * SIM_PATH_LEN + 128];
+    if (sim_staged_check_inputs(out_dir, &plan_name, 1, inputs, 2, why, sizeof why) != 0) {
+        fprintf(stderr, "ladrc_sil: %s: choose another --out\n", why);
+        free(plan);
+        sim_campaign_free(&c);
+        return EXIT_BAD_INPUT;
+    }
     const int same = plan != NULL ? same_file(plan_path, plan, plan_len) : -2;
     if (same == -2) {
         fprintf(stderr, "ladrc_sil: %s: cannot make the plan (out of memory)\n", path);

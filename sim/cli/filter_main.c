@@ -16,6 +16,7 @@
 #include "ladrc/gyro_filter.h"
 #include "ladrc/margins.h"
 #include "cli/cli_number.h"
+#include "cli/staged_dir.h"
 #include "log/filter_proposal.h"
 #include "log/log_convert.h"
 #include "log/log_noise.h"
@@ -255,6 +256,13 @@ static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len
         fprintf(stderr, "%s\n", err);
         return 2;
     }
+    for (int i = 0; i < 3; ++i) {
+        char outliers[512];
+        if (sim_log_outliers_describe(&n->outliers, i, outliers, sizeof outliers) > 0) {
+            printf("%s%s (repaired before the spectra)\n", sim_log_outliers_many(&n->outliers, i) ? "warning: " : "",
+                   outliers);
+        }
+    }
     const int raw = (n->has & SIM_LOG_HAS_GYRO_RAW) != 0;
     const sim_spectrum_t *input = raw ? n->gyro_raw : n->gyro;
     const double rotor_hz = sim_log_noise_rotor_hz(n);
@@ -299,14 +307,24 @@ static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len
         fprintf(stderr, "%s\n", err);
         return 2;
     }
+    /* the input as the noise pass took it: its outliers repaired */
+    sim_log_despike_t *despike = sim_log_despike_new(n->has);
+    if (despike == NULL) {
+        fprintf(stderr, "ladrc_filter: out of memory\n");
+        sim_log_close(log);
+        return 2;
+    }
     FILE *csv = NULL;
+    static sim_staged_file_t series; /* --out, put in place once whole */
     if (o->out != NULL) {
-        csv = fopen(o->out, "w");
-        if (csv == NULL) {
-            fprintf(stderr, "ladrc_filter: %s: cannot write: %s\n", o->out, strerror(errno));
+        const char *const inputs[] = {o->log.path, o->filter_from};
+        if (sim_staged_file_open(&series, o->out, inputs, 2, err, err_len) != 0) {
+            fprintf(stderr, "ladrc_filter: --out: %s\n", err);
+            sim_log_despike_free(despike);
             sim_log_close(log);
             return 2;
         }
+        csv = series.f;
         fprintf(csv, "t_s,in_roll_rad_s,in_pitch_rad_s,in_yaw_rad_s,out_roll_rad_s,out_pitch_rad_s,out_yaw_rad_s\n");
     }
     static sim_spectrum_t out_spectrum[3];
@@ -318,7 +336,7 @@ static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len
     sim_log_sample_t s;
     int rc, first = 1;
     long long faults = 0;
-    while ((rc = sim_log_next(log, &s, &lerr)) == 1) {
+    while ((rc = sim_log_next_repaired(log, despike, &s, &lerr)) == 1) {
         ladrc_real_t in[3], out[3];
         for (int i = 0; i < 3; ++i) {
             in[i] = (ladrc_real_t)(raw ? s.gyro_raw_rad_s[i] : s.gyro_rad_s[i]);
@@ -348,12 +366,14 @@ static int run(const options_t *o, sim_log_noise_t *n, char *err, size_t err_len
         sim_log_error_format(&lerr, err, err_len);
         fprintf(stderr, "%s\n", err);
     }
+    sim_log_despike_free(despike);
     sim_log_close(log);
-    if (csv != NULL && ((ferror(csv) | fclose(csv)) != 0 || rc < 0)) {
-        if (rc == 0) {
-            fprintf(stderr, "ladrc_filter: %s: write failed\n", o->out);
-        }
-        remove(o->out);
+    if (csv != NULL && rc < 0) {
+        sim_staged_file_abort(&series);
+        return 2;
+    }
+    if (csv != NULL && sim_staged_file_commit(&series, err, err_len) != 0) {
+        fprintf(stderr, "ladrc_filter: --out: %s\n", err);
         return 2;
     }
     if (rc < 0) {
@@ -411,6 +431,11 @@ int main(int argc, char **argv)
     static sim_log_noise_t n;
     char err[1024];
     static sim_log_prepared_t prepared; /* a binary log decoded into a temporary folder */
+    const char *const inputs[] = {o.log.path, o.filter_from};
+    if (o.out != NULL && sim_staged_check_file(o.out, inputs, 2, err, sizeof err) != 0) {
+        fprintf(stderr, "ladrc_filter: --out: %s\n", err);
+        return 2;
+    }
     sim_log_error_t lerr;
     if (sim_log_prepare(&o.log, o.format_given, &prepared, NULL, NULL, &lerr) != 0) {
         sim_log_error_format(&lerr, err, sizeof err);

@@ -4,6 +4,7 @@
 #include "fly.h"
 
 #include <errno.h>
+#include <signal.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -266,30 +267,65 @@ static void normal_dir(const char *dir, char *out, size_t n)
     out[o] = '\0';
 }
 
-/* -1 (said on stderr) when a recorded series of the scenario is one of the
- * files its run writes: the run would truncate the series before reading it. */
-static int series_among_outputs(const sim_scenario_t *sc)
+#define MAX_OUTPUT_NAMES SIM_STAGED_MAX_FILES
+
+static sim_staged_dir_t stages[SIM_FLY_MAX_SCENARIOS]; /* each scenario's outputs until they are whole */
+static volatile sig_atomic_t n_stages;
+
+/* The names of the files a scenario's runs write in its output folder (sc
+ * NULL: those any scenario's may, for removing an earlier run's), into names;
+ * returns their count. */
+static int output_names(const sim_scenario_t *sc, char names[][SIM_STAGED_NAME_LEN])
 {
-    char names[SIM_MAX_CONTROLLERS + 3][64];
-    const char *name_of[SIM_MAX_CONTROLLERS + 3];
     int n = 0;
-    snprintf(names[n++], sizeof names[0], "metrics.csv");
-    snprintf(names[n++], sizeof names[0], "signals.csv");
-    snprintf(names[n++], sizeof names[0], "differentiator.csv");
-    for (int c = 0; c < sc->n_controllers && c < SIM_MAX_CONTROLLERS; ++c) {
-        snprintf(names[n++], sizeof names[0], "%s.csv", sim_controller_name(sc->controllers[c]));
+    snprintf(names[n++], SIM_STAGED_NAME_LEN, "metrics.csv");
+    snprintf(names[n++], SIM_STAGED_NAME_LEN, "signals.csv");
+    if (sc == NULL || sc->kind == SIM_KIND_DIFFERENTIATOR) {
+        snprintf(names[n++], SIM_STAGED_NAME_LEN, "differentiator.csv");
     }
+    const int n_ctl = sc == NULL ? SIM_CTRL_COUNT : sc->kind == SIM_KIND_ATTITUDE ? sc->n_controllers : 0;
+    for (int c = 0; c < n_ctl && n < MAX_OUTPUT_NAMES; ++c) {
+        const char *name = sim_controller_name(sc == NULL ? (sim_controller_id_t)c : sc->controllers[c]);
+        snprintf(names[n++], SIM_STAGED_NAME_LEN, "%s.csv", name);
+        for (int k = 0; k < SIM_RUN_LOG_FILES && n < MAX_OUTPUT_NAMES; ++k) {
+            const int form = sim_run_log_name(name, k, names[n], SIM_STAGED_NAME_LEN);
+            n += form != 0 && (sc == NULL || (sc->log_forms & form) != 0);
+        }
+    }
+    return n;
+}
+
+/* Every name a scenario's runs may write: an earlier run's, not written
+ * again, is removed when a run's outputs are put in place. */
+static char owned[MAX_OUTPUT_NAMES][SIM_STAGED_NAME_LEN];
+static const char *owned_of[MAX_OUTPUT_NAMES];
+static int n_owned;
+
+/* Stops an interrupted batch without leaving its half-written outputs. */
+static void abort_stages(int sig)
+{
+    for (int s = 0; s < n_stages; ++s) {
+        sim_staged_abort(&stages[s]);
+    }
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+int sim_fly_check_inputs(const sim_scenario_t *sc, const char *other)
+{
+    char names[MAX_OUTPUT_NAMES][SIM_STAGED_NAME_LEN];
+    const char *name_of[MAX_OUTPUT_NAMES];
+    const int n = output_names(sc, names);
     for (int i = 0; i < n; ++i) {
         name_of[i] = names[i];
     }
-    const char *const series[] = {sc->dist_series, sc->ref_series, sc->rate_noise_series, sc->angle_noise_series};
-    for (size_t k = 0; k < sizeof series / sizeof series[0]; ++k) {
-        char why[2 * SIM_PATH_LEN];
-        if (series[k][0] != '\0' &&
-            sim_staged_check_input(sc->output_dir, name_of, n, series[k], why, sizeof why) != 0) {
-            fprintf(stderr, "ladrc_sil: %s: %s: give the run another output_dir (or --out)\n", sc->path, why);
-            return -1;
-        }
+    const char *const inputs[] = {
+        sc->path, sc->dist_series, sc->ref_series, sc->rate_noise_series, sc->angle_noise_series, other};
+    char why[2 * SIM_PATH_LEN];
+    if (sim_staged_check_inputs(sc->output_dir, name_of, n, inputs, (int)(sizeof inputs / sizeof inputs[0]), why,
+                                sizeof why) != 0) {
+        fprintf(stderr, "ladrc_sil: %s: %s: give the run another output_dir (or --out)\n", sc->path, why);
+        return -1;
     }
     return 0;
 }
@@ -298,7 +334,7 @@ int sim_fly_check_collisions(const sim_scenario_t *scenarios, int n)
 {
     static char norm[SIM_FLY_MAX_SCENARIOS][SIM_PATH_LEN];
     for (int i = 0; i < n && i < SIM_FLY_MAX_SCENARIOS; ++i) {
-        if (series_among_outputs(&scenarios[i]) != 0) {
+        if (sim_fly_check_inputs(&scenarios[i], NULL) != 0) {
             return -1;
         }
         normal_dir(scenarios[i].output_dir, norm[i], sizeof norm[i]);
@@ -468,23 +504,30 @@ static int order[MAX_JOBS];
  * metrics.csv and signals.csv; counts its diverged runs. */
 static void write_outputs(const sim_scenario_t *sc, int s, const sim_fly_options_t *opt, sim_fly_result_t *res)
 {
+    const int writes_failed = res->writes_failed;
     const sim_scenario_result_t out = {.sc = sc,
                                        .attitude = sc->kind == SIM_KIND_DIFFERENTIATOR ? NULL : attitude[s],
                                        .diff = sc->kind == SIM_KIND_DIFFERENTIATOR ? &diff[s] : NULL};
     if (opt->print_tables) {
         sim_report_tables(stdout, &out);
     }
-    char path[SIM_PATH_LEN + 32];
-    snprintf(path, sizeof path, "%s/metrics.csv", sc->output_dir);
-    FILE *f = fopen(path, "w");
-    if (f == NULL || sim_report_metrics_csv(f, &out, 1) != 0 || fclose(f) != 0) {
-        fprintf(stderr, "ladrc_sil: %s: cannot write\n", path);
+    char path[SIM_STAGED_PATH_LEN];
+    FILE *f = sim_staged_path(&stages[s], "metrics.csv", path, sizeof path) != NULL ? fopen(path, "w") : NULL;
+    if (f == NULL || (sim_report_metrics_csv(f, &out, 1) | fclose(f)) != 0) {
+        fprintf(stderr, "ladrc_sil: %s/metrics.csv: cannot write\n", sc->output_dir);
         ++res->writes_failed;
     }
-    snprintf(path, sizeof path, "%s/signals.csv", sc->output_dir);
-    f = fopen(path, "w");
-    if (f == NULL || write_signals_csv(f, sc) != 0 || fclose(f) != 0) {
-        fprintf(stderr, "ladrc_sil: %s: cannot write\n", path);
+    f = sim_staged_path(&stages[s], "signals.csv", path, sizeof path) != NULL ? fopen(path, "w") : NULL;
+    if (f == NULL || (write_signals_csv(f, sc) | fclose(f)) != 0) {
+        fprintf(stderr, "ladrc_sil: %s/signals.csv: cannot write\n", sc->output_dir);
+        ++res->writes_failed;
+    }
+    char err[SIM_STAGED_PATH_LEN + 160];
+    if (res->writes_failed > writes_failed) {
+        sim_staged_abort(&stages[s]);
+        fprintf(stderr, "ladrc_sil: %s: nothing written\n", sc->output_dir);
+    } else if (sim_staged_commit(&stages[s], owned_of, n_owned, err, sizeof err) != 0) {
+        fprintf(stderr, "ladrc_sil: %s\n", err);
         ++res->writes_failed;
     }
     int diverged = 0;
@@ -508,6 +551,46 @@ static void write_outputs(const sim_scenario_t *sc, int s, const sim_fly_options
     res->simulated_s += sc->duration_s * flown;
 }
 
+static void abort_all(void)
+{
+    for (int s = 0; s < n_stages; ++s) {
+        sim_staged_abort(&stages[s]);
+    }
+    n_stages = 0;
+}
+
+/* A staging folder per scenario, every name its runs write registered (an
+ * interruption removes them); a scenario whose folder cannot be made is
+ * marked in failed[] (said) and not flown. */
+static void open_stages(const sim_scenario_t *scenarios, int n_sc, int *failed)
+{
+    if (n_owned == 0) {
+        n_owned = output_names(NULL, owned);
+        for (int i = 0; i < n_owned; ++i) {
+            owned_of[i] = owned[i];
+        }
+    }
+    signal(SIGINT, abort_stages);
+    signal(SIGTERM, abort_stages);
+    signal(SIGHUP, abort_stages);
+    for (int s = 0; s < n_sc; ++s) {
+        char err[SIM_STAGED_PATH_LEN + 160], names[MAX_OUTPUT_NAMES][SIM_STAGED_NAME_LEN], path[SIM_STAGED_PATH_LEN];
+        if (sim_staged_open(&stages[s], scenarios[s].output_dir, err, sizeof err) != 0) {
+            fprintf(stderr, "ladrc_sil: %s: cannot write its outputs: %s\n", scenarios[s].path, err);
+            failed[s] = 1;
+        }
+        n_stages = s + 1;
+        const int n = failed[s] ? 0 : output_names(&scenarios[s], names);
+        for (int i = 0; i < n && !failed[s]; ++i) {
+            if (sim_staged_path(&stages[s], names[i], path, sizeof path) == NULL) {
+                fprintf(stderr, "ladrc_sil: %s/%s: path too long\n", scenarios[s].output_dir, names[i]);
+                sim_staged_abort(&stages[s]);
+                failed[s] = 1;
+            }
+        }
+    }
+}
+
 int sim_fly_batch(const sim_scenario_t *scenarios, int n_sc, const sim_fly_options_t *opt, sim_fly_result_t *res)
 {
     memset(res, 0, sizeof *res);
@@ -527,13 +610,14 @@ int sim_fly_batch(const sim_scenario_t *scenarios, int n_sc, const sim_fly_optio
     }
     pool_t pool;
     memset(&pool, 0, sizeof pool);
+    int scenario_failed[SIM_FLY_MAX_SCENARIOS] = {0};
+    open_stages(scenarios, n_sc, scenario_failed);
     for (int s = 0; s < n_sc; ++s) {
         const sim_scenario_t *sc = &scenarios[s];
-        if (sim_fly_make_dirs(sc->output_dir) != 0) {
-            fprintf(stderr, "ladrc_sil: %s: cannot create output directory '%s': %s\n", sc->path, sc->output_dir,
-                    strerror(errno));
+        if (scenario_failed[s]) {
             ++res->writes_failed;
-            return -1;
+            ++pool.scenarios_done;
+            continue;
         }
         const int n_ctl = sc->kind == SIM_KIND_DIFFERENTIATOR ? 1 : sc->n_controllers;
         int n = 0; /* runs flown: an untunable controller is not */
@@ -553,8 +637,10 @@ int sim_fly_batch(const sim_scenario_t *scenarios, int n_sc, const sim_fly_optio
             job->attitude = &attitude[s][c];
             job->diff = &diff[s];
             if (opt->want_csv) {
-                snprintf(job->csv_path, sizeof job->csv_path, "%s/%s.csv", sc->output_dir,
+                char name[SIM_STAGED_NAME_LEN];
+                snprintf(name, sizeof name, "%s.csv",
                          job->controller_index < 0 ? "differentiator" : sim_controller_name(sc->controllers[c]));
+                (void)sim_staged_path(&stages[s], name, job->csv_path, sizeof job->csv_path); /* registered */
             }
             total_ticks += (double)sim_run_ticks(sc);
         }
@@ -598,6 +684,7 @@ int sim_fly_batch(const sim_scenario_t *scenarios, int n_sc, const sim_fly_optio
         for (int t = 0; t < started; ++t) {
             pthread_join(threads[t], NULL);
         }
+        abort_all();
         ++res->runs_failed;
         return -1;
     }
@@ -611,7 +698,6 @@ int sim_fly_batch(const sim_scenario_t *scenarios, int n_sc, const sim_fly_optio
     res->threads = started;
     res->runs = n_jobs;
 
-    int scenario_failed[SIM_FLY_MAX_SCENARIOS] = {0};
     for (int j = 0; j < n_jobs; ++j) {
         if (jobs[j].failed) {
             fprintf(stderr, "ladrc_sil: %s\n", jobs[j].error);
@@ -622,7 +708,11 @@ int sim_fly_batch(const sim_scenario_t *scenarios, int n_sc, const sim_fly_optio
     for (int s = 0; s < n_sc; ++s) {
         if (!scenario_failed[s]) { /* no tables from a run that did not happen */
             write_outputs(&scenarios[s], s, opt, res);
+        } else {
+            sim_staged_abort(&stages[s]);
+            fprintf(stderr, "ladrc_sil: %s: nothing written\n", scenarios[s].output_dir);
         }
     }
+    n_stages = 0;
     return res->runs_failed > 0 || res->writes_failed > 0 ? -1 : 0;
 }

@@ -78,6 +78,11 @@ int sim_fly_check_collisions(const sim_scenario_t *scenarios, int n_sc);
 /* mkdir -p: 0, or -1 with errno set. */
 int sim_fly_make_dirs(const char *path);
 
+/* -1 (said on stderr) when the scenario's file, one of its recorded series
+ * or other (NULL: none) is one of the files its run writes in its
+ * output_dir: the run would replace its own input; else 0. */
+int sim_fly_check_inputs(const sim_scenario_t *sc, const char *other);
+
 /* Flies scenarios[0..n_sc-1] (at most SIM_FLY_MAX_SCENARIOS, tuned already;
  * a controller untunable is not flown: its statistics read untunable)
  * and writes each one's output_dir: the directory, the time series when

@@ -90,13 +90,27 @@ static int parse_controllers(const char *list, sim_controller_id_t *ids, int *n)
     return *n > 0 ? 0 : -1;
 }
 
-static int write_csv(const char *dir, const char *ctrl, int axis, const ladrc_margins_result_t *r)
+/* --csv's files, one per controller and axis: NAME_AXIS.csv. */
+#define CSV_NAMES (SIM_CTRL_COUNT * 3)
+static char csv_names[CSV_NAMES][SIM_STAGED_NAME_LEN];
+static const char *csv_name_of[CSV_NAMES];
+
+static void name_csv_files(void)
 {
-    char path[SIM_PATH_LEN + 96];
-    snprintf(path, sizeof path, "%s/%s_%s.csv", dir, ctrl, AXIS_NAMES[axis]);
-    FILE *f = fopen(path, "w");
+    for (int k = 0; k < CSV_NAMES; ++k) {
+        snprintf(csv_names[k], sizeof csv_names[k], "%s_%s.csv", sim_controller_name((sim_controller_id_t)(k / 3)),
+                 AXIS_NAMES[k % 3]);
+        csv_name_of[k] = csv_names[k];
+    }
+}
+
+static int write_csv(sim_staged_dir_t *dir, const char *ctrl, int axis, const ladrc_margins_result_t *r)
+{
+    char name[SIM_STAGED_NAME_LEN], path[SIM_STAGED_PATH_LEN];
+    snprintf(name, sizeof name, "%s_%s.csv", ctrl, AXIS_NAMES[axis]);
+    FILE *f = sim_staged_path(dir, name, path, sizeof path) != NULL ? fopen(path, "w") : NULL;
     if (f == NULL) {
-        fprintf(stderr, "ladrc_margins: %s: cannot write: %s\n", path, strerror(errno));
+        fprintf(stderr, "ladrc_margins: %s/%s: cannot write: %s\n", dir->final, name, strerror(errno));
         return -1;
     }
     fprintf(f, "# gm_db=%.6g gm_rad_s=%.6g pm_deg=%.6g wc_rad_s=%.6g dm_s=%.6g ms=%.6g stable=%d\n", r->gm_db,
@@ -108,8 +122,8 @@ static int write_csv(const char *dir, const char *ctrl, int axis, const ladrc_ma
                 atan2(r->l_im[i], r->l_re[i]) * 180.0 / 3.14159265358979323846,
                 20.0 * log10(hypot(r->s_re[i], r->s_im[i])), hypot(r->de_re[i], r->de_im[i]));
     }
-    if (fclose(f) != 0) {
-        fprintf(stderr, "ladrc_margins: %s: write failed\n", path);
+    if ((ferror(f) | fclose(f)) != 0) {
+        fprintf(stderr, "ladrc_margins: %s/%s: write failed\n", dir->final, name);
         return -1;
     }
     return 0;
@@ -142,22 +156,17 @@ static int load_from_log(const char *log_path, sim_log_options_t *opt, int forma
         fprintf(stderr, "ladrc_margins: %s: path too long\n", log_path);
         return -1;
     }
-    if (save_path != NULL) { /* the scenario saved over the log would lose it */
-        char dir[SIM_STAGED_PATH_LEN];
-        const char *slash = strrchr(save_path, '/');
-        const char *name = slash != NULL ? slash + 1 : save_path;
-        snprintf(dir, sizeof dir, "%.*s", slash != NULL ? (int)(slash - save_path) : 1,
-                 slash != NULL ? save_path : ".");
-        if (sim_staged_check_input(slash == save_path ? "/" : dir, &name, 1, log_path, err, sizeof err) != 0) {
-            fprintf(stderr, "ladrc_margins: --save-scenario: %s: give another path\n", err);
-            return -1;
-        }
+    static sim_staged_file_t saved; /* the scenario saved over the log would lose it */
+    if (save_path != NULL && sim_staged_file_open(&saved, save_path, &log_path, 1, err, sizeof err) != 0) {
+        fprintf(stderr, "ladrc_margins: --save-scenario: %s: give another path\n", err);
+        return -1;
     }
     sim_log_error_t lerr;
     if (sim_log_prepare(opt, format_given, &prepared, NULL, NULL, &lerr) != 0) {
         sim_log_error_format(&lerr, err, sizeof err);
         sim_log_prepared_explain(&prepared, err, sizeof err);
         fprintf(stderr, "%s\n", err);
+        sim_staged_file_abort(&saved);
         return -1;
     }
     atexit(remove_prepared);
@@ -166,6 +175,7 @@ static int load_from_log(const char *log_path, sim_log_options_t *opt, int forma
     if (sim_log_identify(&io, &airframe, NULL, err, sizeof err) != 0) {
         sim_log_prepared_explain(&prepared, err, sizeof err);
         fprintf(stderr, "%s\n", err);
+        sim_staged_file_abort(&saved);
         return -1;
     }
     sim_report_identification(stdout, &airframe);
@@ -185,19 +195,14 @@ static int load_from_log(const char *log_path, sim_log_options_t *opt, int forma
     if (mem == NULL || fclose(mem) != 0 || rc != 0) {
         fprintf(stderr, "ladrc_margins: %s: no airframe: %s\n", log_path, rc != 0 ? err : "out of memory");
         free(text);
+        sim_staged_file_abort(&saved);
         return -1;
     }
-    if (save_path != NULL) { /* a temporary name beside it, renamed into place once whole */
-        char tmp[SIM_STAGED_PATH_LEN + 32];
-        snprintf(tmp, sizeof tmp, "%s.partial-%ld", save_path, (long)getpid());
-        FILE *f = fopen(tmp, "w");
-        const int ok = f != NULL && fputs(text, f) >= 0;
-        if (f == NULL || (fclose(f) | !ok) != 0 || rename(tmp, save_path) != 0) {
-            fprintf(stderr, "ladrc_margins: --save-scenario: cannot write '%s': %s\n", save_path, strerror(errno));
-            unlink(tmp);
-            free(text);
-            return -1;
-        }
+    if (save_path != NULL && (fputs(text, saved.f) < 0 || sim_staged_file_commit(&saved, err, sizeof err) != 0)) {
+        sim_staged_file_abort(&saved);
+        fprintf(stderr, "ladrc_margins: --save-scenario: %s\n", err);
+        free(text);
+        return -1;
     }
     sim_parse_error_t perr;
     char name[SIM_PATH_LEN];
@@ -295,6 +300,13 @@ int main(int argc, char **argv)
         usage(stderr);
         return 2;
     }
+    name_csv_files();
+    const char *const inputs[] = {path, from_log};
+    char err[SIM_STAGED_PATH_LEN + 256];
+    if (csv_dir != NULL && sim_staged_check_inputs(csv_dir, csv_name_of, CSV_NAMES, inputs, 2, err, sizeof err) != 0) {
+        fprintf(stderr, "ladrc_margins: --csv: %s: give another folder\n", err);
+        return 2;
+    }
     sim_parse_error_t perr;
     static sim_airframe_refused_t refused;
     if (from_log != NULL && load_from_log(from_log, &log_opt, format_given, save_path, &sc, &refused) != 0) {
@@ -353,10 +365,6 @@ int main(int argc, char **argv)
         }
         untunable += rc == SIM_TUNE_UNTUNABLE;
     }
-    if (csv_dir != NULL && mkdir(csv_dir, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "ladrc_margins: --csv: cannot create '%s': %s\n", csv_dir, strerror(errno));
-        return 2;
-    }
     /* --fly: every controller flown once, its measured command noise (metrics.h) */
     static sim_metrics_t flown[SIM_MAX_CONTROLLERS];
     static char fly_err[SIM_MAX_CONTROLLERS][256];
@@ -379,6 +387,12 @@ int main(int argc, char **argv)
             }
         }
     }
+    static sim_staged_dir_t csv_stage; /* --csv's files, put in place together at the end */
+    if (csv_dir != NULL && sim_staged_open(&csv_stage, csv_dir, err, sizeof err) != 0) {
+        fprintf(stderr, "ladrc_margins: --csv: %s\n", err);
+        return 2;
+    }
+    int csv_failed = 0;
     printf("%s: dt %.4g s, motor lag %.4g s, sensor delay %d ticks, rate %s, true inertia x %.3g\n", sc.name,
            sc.control_dt_s, sc.motor_tau_s, sc.delay_ticks, sc.use_rate ? "used" : "not used", inertia_factor);
     sim_report_tuning(stdout, &sc);
@@ -454,8 +468,8 @@ int main(int argc, char **argv)
                    res.cmd_noise_Nm, flown_text, note);
             if (!res.stable)
                 status = 1;
-            if (csv_dir != NULL && write_csv(csv_dir, sim_controller_name(id), i, &res) != 0)
-                status = 1;
+            if (csv_dir != NULL && write_csv(&csv_stage, sim_controller_name(id), i, &res) != 0)
+                csv_failed = 1;
             if (tune) {
                 const ladrc_margins_targets_t targets = {.pm_min_deg = 45.0, .gm_min_db = 6.0};
                 ladrc_axis_config_t tuned;
@@ -472,6 +486,14 @@ int main(int argc, char **argv)
                     status = 1;
             }
         }
+    }
+    if (csv_dir != NULL && csv_failed) {
+        sim_staged_abort(&csv_stage);
+        fprintf(stderr, "ladrc_margins: --csv: nothing written in %s\n", csv_dir);
+        status = 1;
+    } else if (csv_dir != NULL && sim_staged_commit(&csv_stage, csv_name_of, CSV_NAMES, err, sizeof err) != 0) {
+        fprintf(stderr, "ladrc_margins: --csv: %s\n", err);
+        status = 1;
     }
     untunable += not_started;
     return status == 0 && untunable > 0 && (from_log == NULL || strict) ? 4 : status;

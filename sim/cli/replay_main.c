@@ -562,7 +562,7 @@ int main(int argc, char **argv)
     int warned = 0;
     for (int i = 0; i < 3; ++i) {
         char note[256];
-        warned |= airframe.axis[i].warnings != 0;
+        warned |= airframe.axis[i].warnings != 0 || sim_log_outliers_many(&airframe.outliers, i);
         if (sim_airframe_b0_note(&airframe, i, note, sizeof note)) {
             printf("warning: %s\n", note);
         }

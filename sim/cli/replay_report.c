@@ -24,6 +24,17 @@ void sim_report_identification(FILE *out, const sim_airframe_t *a)
                 x->damping_per_s, x->r2, x->band_share, a->noise_floor_rad_s_rthz[i] * RAD2DEG);
     }
     for (int i = 0; i < 3; ++i) {
+        char outliers[512];
+        if (sim_log_outliers_describe(&a->outliers, i, outliers, sizeof outliers) > 0) {
+            fprintf(out, "%s\n", outliers);
+        }
+        if (sim_log_outliers_many(&a->outliers, i)) {
+            fprintf(out,
+                    "warning: %s: %.2g %% of the samples were outliers (more than %.2g %%): the log may be damaged "
+                    "(a corrupt blackbox or a failing sensor); the identification used them repaired\n",
+                    AXIS[i], 100.0 * (double)a->outliers.rejected[i] / (double)a->outliers.samples,
+                    100.0 * SIM_LOG_OUTLIER_WARN_SHARE);
+        }
         for (unsigned bit = 1; bit != 0 && bit <= SIM_IDENT_WARN_LAST; bit <<= 1) {
             if (a->axis[i].warnings & bit) {
                 fprintf(out, "warning: %s: %s\n", AXIS[i], sim_ident_warning_text(bit));
@@ -57,7 +68,7 @@ int sim_write_identification_csv(const char *path, const sim_airframe_t *a)
     fprintf(f, "axis,b0_rad_s2,b0_lo_rad_s2,b0_hi_rad_s2,lag_s,lag_lo_s,lag_hi_s,delay_ticks,delay_lo_ticks,"
                "delay_hi_ticks,damping_per_s,r2,command_rms,band_share,samples,warnings,gyro_floor_rad_s_rthz,"
                "lines_hz,b0_told,b0_flown_rad_s2,b0_iv_rad_s2,b0_iv_lo_rad_s2,b0_iv_hi_rad_s2,gyro_filter_delay_s,"
-               "gyro_filter_vib_atten_db\n");
+               "gyro_filter_vib_atten_db,outliers\n");
     for (int i = 0; i < 3; ++i) {
         const sim_ident_axis_t *x = &a->axis[i];
         fprintf(f, "%s,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d,%d,%.9g,%.9g,%.9g,%.9g,%lld,%u,%.9g,", AXIS[i], x->b0,
@@ -69,8 +80,8 @@ int sim_write_identification_csv(const char *path, const sim_airframe_t *a)
         }
         sim_airframe_b0_source_t from;
         const double b0_flown = sim_airframe_b0(a, i, &from);
-        fprintf(f, ",%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", sim_ident_b0_told(x), b0_flown, x->b0_iv, x->b0_iv_lo,
-                x->b0_iv_hi, a->gyro_filter[i].delay_s, a->gyro_filter[i].vib_atten_db);
+        fprintf(f, ",%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%lld\n", sim_ident_b0_told(x), b0_flown, x->b0_iv, x->b0_iv_lo,
+                x->b0_iv_hi, a->gyro_filter[i].delay_s, a->gyro_filter[i].vib_atten_db, a->outliers.rejected[i]);
     }
     return (ferror(f) | fclose(f)) != 0 ? -1 : 0;
 }

@@ -10,6 +10,19 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+/* stage/name into buf (len > 0), with what a signal handler may call. */
+static int join(const char *stage, const char *name, char *buf, size_t len)
+{
+    const size_t a = strlen(stage), b = strlen(name);
+    if (a + 1 + b >= len) {
+        return -1;
+    }
+    memcpy(buf, stage, a);
+    buf[a] = '/';
+    memcpy(buf + a + 1, name, b + 1);
+    return 0;
+}
+
 int sim_staged_check_input(const char *dir, const char *const *names, int n, const char *input, char *err,
                            size_t err_len)
 {
@@ -19,13 +32,78 @@ int sim_staged_check_input(const char *dir, const char *const *names, int n, con
     }
     for (int k = 0; k < n; ++k) {
         char path[SIM_STAGED_PATH_LEN];
-        snprintf(path, sizeof path, "%s/%s", dir, names[k]);
-        if (stat(path, &out) == 0 && out.st_dev == in.st_dev && out.st_ino == in.st_ino) {
+        if (join(dir, names[k], path, sizeof path) == 0 && stat(path, &out) == 0 && out.st_dev == in.st_dev &&
+            out.st_ino == in.st_ino) {
             snprintf(err, err_len, "%s: the input is the output %s of this run, which would replace it", input, path);
             return -1;
         }
     }
     return 0;
+}
+
+int sim_staged_check_inputs(const char *dir, const char *const *names, int n, const char *const *inputs, int n_inputs,
+                            char *err, size_t err_len)
+{
+    for (int k = 0; k < n_inputs; ++k) {
+        if (inputs[k] != NULL && inputs[k][0] != '\0' &&
+            sim_staged_check_input(dir, names, n, inputs[k], err, err_len) != 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+int sim_staged_check_file(const char *path, const char *const *inputs, int n_inputs, char *err, size_t err_len)
+{
+    const char *slash = strrchr(path, '/');
+    const char *name = slash != NULL ? slash + 1 : path;
+    if (name[0] == '\0' || strlen(path) >= SIM_STAGED_PATH_LEN) {
+        snprintf(err, err_len, "'%s': not a usable file name", path);
+        return -1;
+    }
+    char dir[SIM_STAGED_PATH_LEN];
+    const int dir_len = slash == NULL || slash == path ? 1 : (int)(slash - path); /* ".", "/" or the folder */
+    snprintf(dir, sizeof dir, "%.*s", dir_len, slash == NULL ? "." : path);
+    return sim_staged_check_inputs(dir, &name, 1, inputs, n_inputs, err, err_len);
+}
+
+int sim_staged_file_open(sim_staged_file_t *s, const char *path, const char *const *inputs, int n_inputs, char *err,
+                         size_t err_len)
+{
+    memset(s, 0, sizeof *s);
+    if (sim_staged_check_file(path, inputs, n_inputs, err, err_len) != 0) {
+        return -1;
+    }
+    snprintf(s->final, sizeof s->final, "%s", path);
+    snprintf(s->tmp, sizeof s->tmp, "%s.partial-%ld", path, (long)getpid());
+    s->f = fopen(s->tmp, "w");
+    if (s->f == NULL) {
+        snprintf(err, err_len, "%s: cannot write: %s", path, strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
+int sim_staged_file_commit(sim_staged_file_t *s, char *err, size_t err_len)
+{
+    const int failed = s->f == NULL || (ferror(s->f) | fclose(s->f)) != 0;
+    s->f = NULL;
+    if (failed || rename(s->tmp, s->final) != 0) {
+        snprintf(err, err_len, "%s: %s: %s", s->final, failed ? "write failed" : "cannot rename into place",
+                 strerror(errno));
+        unlink(s->tmp);
+        return -1;
+    }
+    return 0;
+}
+
+void sim_staged_file_abort(sim_staged_file_t *s)
+{
+    if (s->f != NULL) {
+        fclose(s->f);
+        s->f = NULL;
+        unlink(s->tmp);
+    }
 }
 
 /* The folder `path` without trailing slashes (the root kept). */
@@ -126,13 +204,13 @@ const char *sim_staged_path(sim_staged_dir_t *s, const char *name, char *buf, si
     }
     if (k == s->n_files) {
         if (k >= SIM_STAGED_MAX_FILES || strlen(name) >= sizeof s->names[0] ||
-            snprintf(s->paths[k], sizeof s->paths[k], "%s/%s", s->stage, name) >= (int)sizeof s->paths[k]) {
+            strlen(s->stage) + 1 + strlen(name) >= SIM_STAGED_PATH_LEN) {
             return NULL;
         }
         snprintf(s->names[k], sizeof s->names[k], "%s", name);
         s->n_files = k + 1; /* the abort sees it from here on */
     }
-    return snprintf(buf, len, "%s", s->paths[k]) < (int)len ? buf : NULL;
+    return join(s->stage, name, buf, len) == 0 ? buf : NULL;
 }
 
 const char *sim_staged_shown(const sim_staged_dir_t *s, const char *path, char *buf, size_t len)
@@ -159,9 +237,11 @@ int sim_staged_commit(sim_staged_dir_t *s, const char *const *owned, int n_owned
     }
     int moved[SIM_STAGED_MAX_FILES] = {0};
     for (int k = 0; k < s->n_files; ++k) {
+        char staged[SIM_STAGED_PATH_LEN];
         snprintf(path, sizeof path, "%s/%s", s->final, s->names[k]);
-        moved[k] = access(s->paths[k], F_OK) == 0; /* a name registered but not written: none */
-        if (moved[k] && rename(s->paths[k], path) != 0) {
+        moved[k] = join(s->stage, s->names[k], staged, sizeof staged) == 0 &&
+                   access(staged, F_OK) == 0; /* a name registered but not written: none */
+        if (moved[k] && rename(staged, path) != 0) {
             snprintf(err, err_len, "cannot rename '%s' into place: %s", path, strerror(errno));
             sim_staged_abort(s);
             return -1;
@@ -191,7 +271,10 @@ void sim_staged_abort(sim_staged_dir_t *s)
     }
     s->open = 0;
     for (int k = 0; k < s->n_files; ++k) {
-        unlink(s->paths[k]);
+        char staged[SIM_STAGED_PATH_LEN];
+        if (join(s->stage, s->names[k], staged, sizeof staged) == 0) {
+            unlink(staged);
+        }
     }
     if (s->stage[0] != '\0') {
         rmdir(s->stage);

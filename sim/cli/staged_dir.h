@@ -9,16 +9,18 @@
  * the new run did not write are removed (only the names the command owns;
  * other files in the folder are left alone).
  *
- * sim_staged_abort only unlinks and removes folders by paths computed
- * beforehand, so a signal handler may call it.
+ * sim_staged_abort only joins strings with memcpy, unlinks and removes
+ * folders, so a signal handler may call it.
  */
 #ifndef LADRC_SIM_STAGED_DIR_H
 #define LADRC_SIM_STAGED_DIR_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #define SIM_STAGED_PATH_LEN 4096
-#define SIM_STAGED_MAX_FILES 16
+#define SIM_STAGED_MAX_FILES 96 /* a scenario's outputs: 3 + 8 controllers x 11 files */
+#define SIM_STAGED_NAME_LEN 64
 #define SIM_STAGED_MAX_PARENTS 16
 
 typedef struct {
@@ -26,8 +28,7 @@ typedef struct {
     char stage[SIM_STAGED_PATH_LEN]; /* where the files are written until the commit */
     int existed;                     /* 1: the output folder was there before */
     int n_files;
-    char names[SIM_STAGED_MAX_FILES][64];
-    char paths[SIM_STAGED_MAX_FILES][SIM_STAGED_PATH_LEN]; /* in stage */
+    char names[SIM_STAGED_MAX_FILES][SIM_STAGED_NAME_LEN]; /* registered, in stage */
     int n_parents;                                         /* folders made above final, innermost last */
     char parents[SIM_STAGED_MAX_PARENTS][SIM_STAGED_PATH_LEN];
     volatile int open; /* 1 between open and commit or abort */
@@ -38,6 +39,36 @@ typedef struct {
  * would replace its own input. An input or a folder that is not there: 0. */
 int sim_staged_check_input(const char *dir, const char *const *names, int n, const char *input, char *err,
                            size_t err_len);
+
+/* sim_staged_check_input for each of inputs[0..n_inputs-1] (NULL or empty
+ * entries skipped). */
+int sim_staged_check_inputs(const char *dir, const char *const *names, int n, const char *const *inputs, int n_inputs,
+                            char *err, size_t err_len);
+
+/* 0 when the file at path is none of inputs[0..n_inputs-1], else -1 with
+ * the message (also for a path that names no file: "dir/"). */
+int sim_staged_check_file(const char *path, const char *const *inputs, int n_inputs, char *err, size_t err_len);
+
+/* An output that is one file, written whole: to a temporary name beside
+ * it, renamed into place by sim_staged_file_commit; a refusal or an abort
+ * leaves nothing and the earlier file as it was. */
+typedef struct {
+    char final[SIM_STAGED_PATH_LEN];
+    char tmp[SIM_STAGED_PATH_LEN + 32];
+    FILE *f;
+} sim_staged_file_t;
+
+/* Refuses (-1 with the message) a path that is one of inputs[0..n_inputs-1],
+ * else opens the temporary file: 0. */
+int sim_staged_file_open(sim_staged_file_t *s, const char *path, const char *const *inputs, int n_inputs, char *err,
+                         size_t err_len);
+
+/* Closes and renames the file into place: 0, or -1 with the message (the
+ * temporary file removed). */
+int sim_staged_file_commit(sim_staged_file_t *s, char *err, size_t err_len);
+
+/* Closes and removes the temporary file; nothing when not open. */
+void sim_staged_file_abort(sim_staged_file_t *s);
 
 /* Makes the staging folder for the output folder final (the parent folders
  * it needs, which an abort removes again). Returns 0, or -1 with the message

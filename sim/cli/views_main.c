@@ -12,7 +12,7 @@
 #include <string.h>
 
 #include "cli/cli_number.h"
-#include "cli/fly.h"
+#include "cli/staged_dir.h"
 #include "log/log_reference.h"
 #include "log/log_views.h"
 
@@ -114,6 +114,11 @@ int main(int argc, char **argv)
             return 2;
         }
         double written_s;
+        const char *const input = in[0].log.path;
+        if (sim_staged_check_file(reference, &input, 1, err, sizeof err) != 0) {
+            fprintf(stderr, "ladrc_views: --reference: %s: give another path\n", err);
+            return 2;
+        }
         if (sim_log_reference_write(&in[0].log, seconds, reference, &written_s, err, sizeof err) != 0) {
             fprintf(stderr, "%s\n", err);
             return 2;
@@ -125,13 +130,31 @@ int main(int argc, char **argv)
         usage(stderr);
         return 2;
     }
-    if (sim_fly_make_dirs(out) != 0) {
-        fprintf(stderr, "ladrc_views: cannot create '%s': %s\n", out, strerror(errno));
+    const char *views[SIM_VIEWS_FILES], *inputs[MAX_LOGS];
+    char path[SIM_STAGED_PATH_LEN];
+    for (int k = 0; k < SIM_VIEWS_FILES; ++k) {
+        views[k] = sim_log_views_file(k);
+    }
+    for (int i = 0; i < n; ++i) {
+        inputs[i] = in[i].log.path;
+    }
+    static sim_staged_dir_t stage; /* the four files put in place together, or none */
+    if (sim_staged_check_inputs(out, views, SIM_VIEWS_FILES, inputs, n, err, sizeof err) != 0 ||
+        sim_staged_open(&stage, out, err, sizeof err) != 0) {
+        fprintf(stderr, "ladrc_views: --out: %s\n", err);
         return 2;
     }
-    const int rc = sim_log_views_write(in, n, out, stdout, err, sizeof err);
+    for (int k = 0; k < SIM_VIEWS_FILES; ++k) {
+        (void)sim_staged_path(&stage, views[k], path, sizeof path); /* registered: an abort removes it */
+    }
+    int rc = sim_log_views_write(in, n, stage.stage, stdout, err, sizeof err);
     for (int i = 0; i < n; ++i) {
         free((void *)in[i].source);
+    }
+    if (rc != 0) {
+        sim_staged_abort(&stage);
+    } else {
+        rc = sim_staged_commit(&stage, views, SIM_VIEWS_FILES, err, sizeof err);
     }
     if (rc != 0) {
         fprintf(stderr, "%s\n", err);

@@ -24,6 +24,7 @@
 #include "gyro_filter.h"
 #include "ident.h"
 #include "ladrc/gyro_filter.h"
+#include "log_outlier.h"
 #include "scenario/scenario.h"
 #include "run/spectrum.h"
 
@@ -45,6 +46,7 @@ typedef struct {
     sim_spectrum_line_t lines[3][SIM_SPECTRUM_MAX_LINES];
     int has_gyro_filter; /* the log held the gyro before and after its filters */
     sim_gyro_filter_axis_t gyro_filter[3];
+    sim_log_outliers_t outliers; /* the samples replaced as outliers before the identification (log_outlier.h) */
     /* Set by the caller after the identification (zero: none): the gyro filter stage to fly
      * ([filter]), and the logged controller's command noise above 20 Hz per axis (normalised
      * command), the LADRC family's per-axis cap in N m (sim_airframe_torque_per_command_Nm). */

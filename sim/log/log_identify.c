@@ -4,6 +4,7 @@
 
 #include "run/biquad.h"
 #include "ident_cache.h"
+#include "log_outlier.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -161,11 +162,52 @@ static int cache_pass(const sim_log_identify_options_t *o, sim_ident_cache_t *ca
     return rc < 0 ? -1 : 0;
 }
 
+/* What a pass over the log feeds its samples to. */
+typedef struct {
+    const sim_log_identify_options_t *o;
+    sim_ident_t *id;
+    survey_t *survey;
+    sim_ident_cache_t **cache;
+    unsigned has;
+} pass_sinks_t;
+
+/* One tick of the log (its outliers repaired) into the identification, the cache and the survey. */
+static void pass_take(const pass_sinks_t *p, const sim_log_sample_t *s)
+{
+    const int raw = (p->has & SIM_LOG_HAS_GYRO_RAW) != 0;
+    const double none[3] = {NAN, NAN, NAN};
+    const double *gyro = raw ? s->gyro_raw_rad_s : s->gyro_rad_s;
+    const double *setpoint = (p->has & SIM_LOG_HAS_REF_RATE) ? s->ref_rate_rad_s : none;
+    if (p->id != NULL) {
+        sim_ident_add_ref(p->id, gyro, s->command, setpoint);
+    }
+    if (p->cache != NULL && *p->cache != NULL && sim_ident_cache_put(*p->cache, gyro, s->command, setpoint) != 0) {
+        sim_ident_cache_free(*p->cache);
+        *p->cache = NULL;
+    }
+    survey_t *survey = p->survey;
+    if (survey != NULL) {
+        survey_add(survey, s->t_s, gyro);
+        if (raw && survey->filter == NULL) {
+            survey->filter = sim_gyro_filter_new(p->o->log.dt_s);
+        }
+        if (raw && survey->filter != NULL) {
+            sim_gyro_filter_add(survey->filter, s->gyro_raw_rad_s, s->gyro_rad_s);
+        }
+        if (p->has & SIM_LOG_HAS_ROTOR_HZ) {
+            survey_rotors(survey, s);
+        }
+    }
+}
+
 /* One pass over the log, its ticks into the cache too when one is given
  * (*cache is freed and set to NULL when it cannot be written: the later
- * passes then read the log again); 0, or -1 with the message. */
+ * passes then read the log again); every tick through the outlier filter
+ * (log_outlier.h), whose count goes to *outliers when not NULL; 0, or -1
+ * with the message. */
 static int read_pass(const sim_log_identify_options_t *o, sim_ident_t *id, survey_t *survey, int pass,
-                     sim_ident_cache_t **cache, sim_log_stats_t *stats, char *err, size_t err_len)
+                     sim_ident_cache_t **cache, sim_log_stats_t *stats, sim_log_outliers_t *outliers, char *err,
+                     size_t err_len)
 {
     sim_log_error_t lerr;
     sim_log_t *log = sim_log_open(&o->log, &lerr);
@@ -180,33 +222,18 @@ static int read_pass(const sim_log_identify_options_t *o, sim_ident_t *id, surve
         sim_log_close(log);
         return -1;
     }
-    const int raw = (has & SIM_LOG_HAS_GYRO_RAW) != 0;
-    const double none[3] = {NAN, NAN, NAN};
+    sim_log_despike_t *despike = sim_log_despike_new(has);
+    if (despike == NULL) {
+        snprintf(err, err_len, "%s: identification: out of memory", o->log.path);
+        sim_log_close(log);
+        return -1;
+    }
+    const pass_sinks_t sinks = {o, id, survey, cache, has};
     sim_log_sample_t s;
     int rc;
     long long k = 0;
-    while ((rc = sim_log_next(log, &s, &lerr)) == 1) {
-        const double *gyro = raw ? s.gyro_raw_rad_s : s.gyro_rad_s;
-        const double *setpoint = (has & SIM_LOG_HAS_REF_RATE) ? s.ref_rate_rad_s : none;
-        if (id != NULL) {
-            sim_ident_add_ref(id, gyro, s.command, setpoint);
-        }
-        if (cache != NULL && *cache != NULL && sim_ident_cache_put(*cache, gyro, s.command, setpoint) != 0) {
-            sim_ident_cache_free(*cache);
-            *cache = NULL;
-        }
-        if (survey != NULL) {
-            survey_add(survey, s.t_s, gyro);
-            if (raw && survey->filter == NULL) {
-                survey->filter = sim_gyro_filter_new(o->log.dt_s);
-            }
-            if (raw && survey->filter != NULL) {
-                sim_gyro_filter_add(survey->filter, s.gyro_raw_rad_s, s.gyro_rad_s);
-            }
-            if (has & SIM_LOG_HAS_ROTOR_HZ) {
-                survey_rotors(survey, &s);
-            }
-        }
+    while ((rc = sim_log_next_repaired(log, despike, &s, &lerr)) == 1) {
+        pass_take(&sinks, &s);
         if (o->progress != NULL && ++k % PROGRESS_EVERY == 0) {
             long long done, total;
             sim_log_progress(log, &done, &total);
@@ -215,9 +242,15 @@ static int read_pass(const sim_log_identify_options_t *o, sim_ident_t *id, surve
     }
     if (rc < 0) {
         sim_log_error_format(&lerr, err, err_len);
-    } else if (stats != NULL) {
-        sim_log_stats(log, stats);
+    } else {
+        if (stats != NULL) {
+            sim_log_stats(log, stats);
+        }
+        if (outliers != NULL) {
+            sim_log_despike_outliers(despike, outliers);
+        }
     }
+    sim_log_despike_free(despike);
     sim_log_close(log);
     return rc < 0 ? -1 : 0;
 }
@@ -282,7 +315,7 @@ int sim_log_identify(const sim_log_identify_options_t *o, sim_airframe_t *out, s
     int rc = survey_open(&survey, o, dt_s, err, err_len);
     sim_ident_cache_t *cache = sim_ident_cache_new(); /* NULL: every pass reads the log */
     if (rc == 0) {
-        rc = read_pass(&fixed, NULL, &survey, 0, &cache, stats, err, err_len);
+        rc = read_pass(&fixed, NULL, &survey, 0, &cache, stats, &out->outliers, err, err_len);
     }
     sim_gyro_filter_t *filter = survey.filter; /* kept past the survey's close */
     survey.filter = NULL;
@@ -305,7 +338,7 @@ int sim_log_identify(const sim_log_identify_options_t *o, sim_airframe_t *out, s
     int pass;
     while (rc == 0 && (pass = sim_ident_begin_pass(id)) != 0) {
         rc = cache != NULL ? cache_pass(&fixed, cache, id, pass, err, err_len)
-                           : read_pass(&fixed, id, NULL, pass, NULL, NULL, err, err_len);
+                           : read_pass(&fixed, id, NULL, pass, NULL, NULL, NULL, err, err_len);
         sim_ident_end_pass(id);
     }
     sim_ident_cache_free(cache);

@@ -3,6 +3,7 @@
 #include "log_noise.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 static void start(sim_log_noise_t *n, double dt_s, unsigned has, double probe_rad_s)
@@ -83,14 +84,24 @@ int sim_log_noise_measure(const sim_log_options_t *opt, double probe_rad_s, sim_
         return -1;
     }
     start(n, sim_log_dt_s(log), sim_log_has(log), probe_rad_s);
+    /* a damaged frame's spike would carry the whole spectrum's floor: repaired first */
+    sim_log_despike_t *despike = sim_log_despike_new(n->has);
+    if (despike == NULL) {
+        snprintf(err, err_len, "%s: noise: out of memory", opt->path);
+        sim_log_close(log);
+        return -1;
+    }
     sim_log_sample_t s;
     int rc;
-    while ((rc = sim_log_next(log, &s, &lerr)) == 1) {
+    while ((rc = sim_log_next_repaired(log, despike, &s, &lerr)) == 1) {
         add(n, &s);
     }
     if (rc < 0) {
         sim_log_error_format(&lerr, err, err_len);
+    } else {
+        sim_log_despike_outliers(despike, &n->outliers);
     }
+    sim_log_despike_free(despike);
     sim_log_close(log);
     return rc < 0 ? -1 : 0;
 }

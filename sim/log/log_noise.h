@@ -14,6 +14,7 @@
 #include <stddef.h>
 
 #include "log.h"
+#include "log_outlier.h"
 #include "run/spectrum.h"
 
 /* Samples per block of the phase probe: 1.02 s at 1 kHz, a resolution of
@@ -53,9 +54,10 @@ typedef struct {
     int rotors;                                      /* the most rotors a tick reports a speed for */
     double rotor_hz_sum; /* mean rotor speed over the ticks and rotors that report one (Hz) */
     long long rotor_samples;
+    sim_log_outliers_t outliers; /* the samples replaced as outliers before the spectra (log_outlier.h) */
 } sim_log_noise_t;
 
-/* Reads the whole log (as opt reads it) into *n, the chain's phase probed at probe_rad_s. Returns 0, or -1 with the
+/* Reads the whole log (as opt reads it), its outliers repaired (log_outlier.h), into *n, the chain's phase probed at probe_rad_s. Returns 0, or -1 with the
  * reader's located message in err (nothing measured). */
 int sim_log_noise_measure(const sim_log_options_t *opt, double probe_rad_s, sim_log_noise_t *n, char *err,
                           size_t err_len);

@@ -145,10 +145,16 @@ static FILE *open_csv(const char *dir, const char *name, const char *header, cha
 
 enum { STEP, FREQ, NOISE, SUMMARY, FILES };
 
+static const char *const names[FILES] = {"step_response.csv", "freq_response.csv", "noise_throttle.csv",
+                                         "response_summary.csv"};
+
+const char *sim_log_views_file(int k)
+{
+    return k >= 0 && k < FILES ? names[k] : NULL;
+}
+
 int sim_log_views_write(const sim_views_input_t *in, int n, const char *dir, FILE *report, char *err, size_t len)
 {
-    static const char *const names[FILES] = {"step_response.csv", "freq_response.csv", "noise_throttle.csv",
-                                             "response_summary.csv"};
     static const char *const headers[FILES] = {
         "source,axis,t_s,step,spread", "source,axis,hz,gain,phase_deg,coherence",
         "source,signal,axis,throttle_from,throttle_to,segments,hz,psd",

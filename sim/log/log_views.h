@@ -25,6 +25,10 @@ typedef struct {
     sim_log_options_t log; /* dt_s 0: the log's own row period */
 } sim_views_input_t;
 
+/* The CSVs the views write, k in 0 .. SIM_VIEWS_FILES - 1. */
+#define SIM_VIEWS_FILES 4
+const char *sim_log_views_file(int k);
+
 /* Reads the n logs, writes the four CSVs in dir and, when report is not
  * NULL, a line per source and axis (windows, rise, delay, overshoot).
  * 0, or -1 with err set (the log's file:line:column, or the file not written). */

@@ -15,13 +15,14 @@ int sim_vibration_init(sim_vibration_t *v, const sim_vibration_config_t *cfg, ui
         return -1;
     }
     for (int k = 0; k < cfg->n_orders; ++k) {
-        if (!in_range(cfg->order[k], 1e-3, 100.0) || !in_range(cfg->gyro_rad_s[k], 0.0, 100.0) ||
-            !in_range(cfg->accel_m_s2[k], 0.0, 1000.0)) {
+        if (!in_range(cfg->order[k], SIM_VIB_ORDER_MIN, SIM_VIB_ORDER_MAX) ||
+            !in_range(cfg->gyro_rad_s[k], 0.0, SIM_VIB_GYRO_MAX_RAD_S) ||
+            !in_range(cfg->accel_m_s2[k], 0.0, SIM_VIB_ACCEL_MAX_M_S2)) {
             return -1;
         }
     }
     for (int a = 0; a < 3; ++a) {
-        if (!in_range(cfg->axis_gain[a], 0.0, 100.0)) {
+        if (!in_range(cfg->axis_gain[a], 0.0, SIM_VIB_AXIS_GAIN_MAX)) {
             return -1;
         }
     }

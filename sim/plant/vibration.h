@@ -30,6 +30,15 @@
 #define SIM_VIB_MAX_ORDERS 4
 #define SIM_VIB_ROTORS 4
 
+/* What sim_vibration_init accepts (the scenario parser refuses the rest at
+ * its key): orders in [SIM_VIB_ORDER_MIN, SIM_VIB_ORDER_MAX] multiples of
+ * the rotor rate, amplitudes and axis gains from 0 to their maxima. */
+#define SIM_VIB_ORDER_MIN 1e-3
+#define SIM_VIB_ORDER_MAX 100.0
+#define SIM_VIB_GYRO_MAX_RAD_S 100.0  /* per rotor, per order */
+#define SIM_VIB_ACCEL_MAX_M_S2 1000.0 /* per rotor, per order */
+#define SIM_VIB_AXIS_GAIN_MAX 100.0
+
 typedef struct {
     int n_orders;                          /* 0: no vibration */
     double order[SIM_VIB_MAX_ORDERS];      /* multiples of the rotor rate, > 0 */

@@ -58,6 +58,12 @@ void sim_run_attitude_group(const sim_scenario_t *sc, sim_run_spec_t *runs, int 
 int sim_run_differentiator(const sim_scenario_t *sc, const char *csv_path, const sim_progress_t *progress,
                            sim_diff_metrics_t *out, char *err, size_t err_len);
 
+/* The flight logs ([run] log) of a run whose time series is STEM.csv: file k
+ * of SIM_RUN_LOG_FILES is named into out; returns the SIM_RUN_LOG_* form it
+ * belongs to, or 0 when k is out of range or the name does not fit. */
+#define SIM_RUN_LOG_FILES 10
+int sim_run_log_name(const char *stem, int k, char *out, size_t len);
+
 /* Control ticks a run of sc takes (for progress). */
 long sim_run_ticks(const sim_scenario_t *sc);
 

@@ -85,18 +85,25 @@ static const char *header_of(int file)
                                    : PX4_HEADER[file - FILE_PX4];
 }
 
-/* The file's path: the stem and the form's suffix; 0, or -1 when too long. */
-static int file_path(const flight_log_t *log, int file, char *out, size_t len)
+int sim_run_log_name(const char *stem, int file, char *out, size_t len)
 {
     int n;
     if (file == FILE_BETAFLIGHT) {
-        n = snprintf(out, len, "%s_betaflight.csv", log->stem);
+        n = snprintf(out, len, "%s_betaflight.csv", stem);
     } else if (file == FILE_GENERIC) {
-        n = snprintf(out, len, "%s_log.csv", log->stem);
+        n = snprintf(out, len, "%s_log.csv", stem);
+    } else if (file >= FILE_PX4 && file < RUNNER_LOG_FILES) {
+        n = snprintf(out, len, "%s_px4_%s_0.csv", stem, PX4_TOPIC[file - FILE_PX4]);
     } else {
-        n = snprintf(out, len, "%s_px4_%s_0.csv", log->stem, PX4_TOPIC[file - FILE_PX4]);
+        return 0;
     }
-    return (n >= 0 && (size_t)n < len) ? 0 : -1;
+    return (n >= 0 && (size_t)n < len) ? form_of(file) : 0;
+}
+
+/* The file's path: the stem and the form's suffix; 0, or -1 when too long. */
+static int file_path(const flight_log_t *log, int file, char *out, size_t len)
+{
+    return sim_run_log_name(log->stem, file, out, len) != 0 ? 0 : -1;
 }
 
 static void close_all(flight_log_t *log)

@@ -160,8 +160,8 @@ void runner_line_end(csv_line_t *l, FILE *f);
 
 /* The files of a run's flight logs: betaflight, generic, then the PX4
  * topics a px4 log writes, one file each. */
-#define RUNNER_PX4_TOPICS 8
-#define RUNNER_LOG_FILES (2 + RUNNER_PX4_TOPICS)
+#define RUNNER_PX4_TOPICS (SIM_RUN_LOG_FILES - 2)
+#define RUNNER_LOG_FILES SIM_RUN_LOG_FILES /* Betaflight, generic and one per PX4 topic */
 
 /* A run's flight logs ([run] log, docs/csv-format.md): each form asked for,
  * in files named after the run's time series (its path without ".csv"),

@@ -18,6 +18,7 @@
 #include "plant/plant.h"
 #include "plant/sensor.h"
 #include "plant/turbulence.h"
+#include "plant/vibration.h"
 #include "series.h"
 
 /* Defaults that are not the paper vehicle's (documented in docs/scenario-format.md). */
@@ -266,10 +267,10 @@ const key_def_t SCHEMA_KEYS[] = {
     {KEY(SEC_WIND, "from_deg", V_REAL, SC(mean_wind_from_rad)), .range = R_HEADING, .scale = DEG_TO_RAD},
 
     {KEY(SEC_VIBRATION, "orders", V_LIST, SC(vib_order)), .offset2 = SC(vib_n_orders), .range = R_ORDER},
-    {KEY(SEC_VIBRATION, "gyro_deg_s", V_LIST, SC(vib_gyro_rad_s)), .offset2 = SC(vib_n_gyro), .range = R_NONNEGATIVE,
+    {KEY(SEC_VIBRATION, "gyro_deg_s", V_LIST, SC(vib_gyro_rad_s)), .offset2 = SC(vib_n_gyro), .range = R_VIB_GYRO,
      .scale = DEG_TO_RAD},
-    {KEY(SEC_VIBRATION, "accel_m_s2", V_LIST, SC(vib_accel_m_s2)), .offset2 = SC(vib_n_accel), .range = R_NONNEGATIVE},
-    {KEY(SEC_VIBRATION, "axis_gain", V_VEC3, SC(vib_axis_gain)), .range = R_NONNEGATIVE},
+    {KEY(SEC_VIBRATION, "accel_m_s2", V_LIST, SC(vib_accel_m_s2)), .offset2 = SC(vib_n_accel), .range = R_VIB_ACCEL},
+    {KEY(SEC_VIBRATION, "axis_gain", V_VEC3, SC(vib_axis_gain)), .range = R_VIB_GAIN},
 
     {KEY(SEC_FILTER, "enabled", V_CHOICE, SC(filter_enabled)), .choices = YES_NO},
     {KEY(SEC_FILTER, "angle", V_CHOICE, SC(filter_angle)), .choices = YES_NO},
@@ -440,7 +441,24 @@ int schema_check_range(const key_def_t *def, double v, char *msg, size_t msg_len
     case R_WIND:
         return (v >= 0.0 && v <= 50.0) ? 0 : refuse(msg, msg_len, "%s must be between 0 and 50", def->name);
     case R_ORDER:
-        return (v > 0.0 && v <= 100.0) ? 0 : refuse(msg, msg_len, "%s must be > 0 and at most 100", def->name);
+        return (v >= SIM_VIB_ORDER_MIN && v <= SIM_VIB_ORDER_MAX)
+                   ? 0
+                   : refuse(msg, msg_len, "%s must be between %g and %g", def->name, SIM_VIB_ORDER_MIN,
+                            SIM_VIB_ORDER_MAX);
+    case R_VIB_GYRO:
+        /* whole deg/s: the bound's conversion to rad/s cannot round past the plant's */
+        return (v >= 0.0 && v <= floor(SIM_VIB_GYRO_MAX_RAD_S / DEG_TO_RAD))
+                   ? 0
+                   : refuse(msg, msg_len, "%s must be between 0 and %.0f (%g rad/s)", def->name,
+                            floor(SIM_VIB_GYRO_MAX_RAD_S / DEG_TO_RAD), SIM_VIB_GYRO_MAX_RAD_S);
+    case R_VIB_ACCEL:
+        return (v >= 0.0 && v <= SIM_VIB_ACCEL_MAX_M_S2)
+                   ? 0
+                   : refuse(msg, msg_len, "%s must be between 0 and %g", def->name, SIM_VIB_ACCEL_MAX_M_S2);
+    case R_VIB_GAIN:
+        return (v >= 0.0 && v <= SIM_VIB_AXIS_GAIN_MAX)
+                   ? 0
+                   : refuse(msg, msg_len, "%s must be between 0 and %g", def->name, SIM_VIB_AXIS_GAIN_MAX);
     case R_Q:
         return (v >= 0.1 && v <= 100.0) ? 0 : refuse(msg, msg_len, "%s must be between 0.1 and 100", def->name);
     case R_WEIGHT:

@@ -76,7 +76,10 @@ typedef enum {
     R_ALTITUDE,     /* > 0, <= 1000 ft in m */
     R_SIGMA,        /* 0 .. 30 m/s */
     R_WIND,         /* 0 .. 50 m/s */
-    R_ORDER,        /* > 0, <= 100 */
+    R_ORDER,        /* SIM_VIB_ORDER_MIN .. SIM_VIB_ORDER_MAX */
+    R_VIB_GYRO,     /* 0 .. SIM_VIB_GYRO_MAX_RAD_S (deg/s in the file) */
+    R_VIB_ACCEL,    /* 0 .. SIM_VIB_ACCEL_MAX_M_S2 */
+    R_VIB_GAIN,     /* 0 .. SIM_VIB_AXIS_GAIN_MAX */
     R_Q,            /* 0.1 .. 100 */
     R_HEADING,      /* 0 <= v < 360 (deg in the file) */
     R_WEIGHT,       /* 0 < v <= 1 */

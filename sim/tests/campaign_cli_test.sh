@@ -109,7 +109,7 @@ check another_campaigns_plan_exits_2_and_writes_nothing $?
 mkdir -p "$work/o3/small/runs"
 : > "$work/o3/small/runs/00002"
 "$sil" --campaign "$work/small.ini" --out "$work/o3" --quiet > /dev/null 2> "$work/o3.err"
-[ $? -eq 1 ] && grep -q "runs/00002/metrics.csv: cannot write" "$work/o3.err" && [ -s "$work/o3/small/runs/00001/metrics.csv" ]
+[ $? -eq 1 ] && grep -q "cannot write its outputs: .*runs/00002: not a folder" "$work/o3.err" && [ -s "$work/o3/small/runs/00001/metrics.csv" ]
 check unwritable_run_exits_1 $?
 
 # Bad input: exit 2, the offending text in the message, nothing written.

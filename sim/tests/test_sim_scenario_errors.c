@@ -678,11 +678,31 @@ static void test_environment_errors(void)
         {.text = "[wind]\nmean_m_s = -1\n", .line = 2, .column = 12, .message = "mean_m_s must be between 0 and 50"},
         {.text = "[wind]\nfrom_deg = 360\n", .line = 2, .column = 12, .message = "from_deg must be >= 0 and below 360"},
         {.text = "[vibration]\norders = 1 2 3 4 5\n", .line = 2, .column = 18, .message = "expected at most 4 numbers"},
-        {.text = "[vibration]\norders = 0\n", .line = 2, .column = 10, .message = "orders must be > 0 and at most 100"},
+        {.text = "[vibration]\norders = 0\n",
+         .line = 2,
+         .column = 10,
+         .message = "orders must be between 0.001 and 100"},
+        {.text = "[vibration]\norders = 1 100.5\n",
+         .line = 2,
+         .column = 12,
+         .message = "orders must be between 0.001 and 100"},
         {.text = "[vibration]\norders = 1\ngyro_deg_s = -1\n",
          .line = 3,
          .column = 14,
-         .message = "gyro_deg_s must be >= 0"},
+         .message = "gyro_deg_s must be between 0 and 5729 (100 rad/s)"},
+        /* values the runner's vibration would refuse are refused at their key */
+        {.text = "[vibration]\norders = 1\ngyro_deg_s = 1e4\n",
+         .line = 3,
+         .column = 14,
+         .message = "gyro_deg_s must be between 0 and 5729 (100 rad/s)"},
+        {.text = "[vibration]\norders = 1 2\naccel_m_s2 = 1 1001\n",
+         .line = 3,
+         .column = 16,
+         .message = "accel_m_s2 must be between 0 and 1000"},
+        {.text = "[vibration]\norders = 1\naxis_gain = 1 101 1\n",
+         .line = 3,
+         .column = 15,
+         .message = "axis_gain must be between 0 and 100"},
         {.text = "[vibration]\norders = 1\naxis_gain = 1 1\n",
          .line = 3,
          .column = 16,
@@ -979,6 +999,24 @@ static void test_an_endless_file_is_refused_at_its_size_bound(void)
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(err.message, "larger than 16 MiB"), err.message);
 }
 
+/* Every [vibration] value the parser takes, at the ends of its ranges, is
+ * one the run's vibration starts with: no refusal after parsing. */
+static void test_vibration_accepted_at_its_limits_starts(void)
+{
+    static const char *const texts[] = {
+        "[run]\nduration_s = 1\n[vibration]\norders = 0.001 100\ngyro_deg_s = 5729 0\naccel_m_s2 = 1000 0\n"
+        "axis_gain = 100 0 100\n",
+        "[run]\nduration_s = 1\n[vibration]\norders = 1 2 3 4\ngyro_deg_s = 0 0 0 5729\n"
+        "accel_m_s2 = 0 1000 0 0\naxis_gain = 0 0 0\n",
+    };
+    for (size_t i = 0; i < sizeof texts / sizeof texts[0]; ++i) {
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_scenario_parse(&sc, texts[i], "ok.ini", &err), err.message);
+        const sim_vibration_config_t cfg = sim_setup_vibration(&sc);
+        sim_vibration_t v;
+        TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_vibration_init(&v, &cfg, 1u), texts[i]);
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -996,5 +1034,6 @@ int main(void)
     RUN_TEST(test_long_values_are_rejected_not_truncated);
     RUN_TEST(test_null_arguments_are_refused_and_err_is_optional);
     RUN_TEST(test_an_endless_file_is_refused_at_its_size_bound);
+    RUN_TEST(test_vibration_accepted_at_its_limits_starts);
     return UNITY_END();
 }
