@@ -148,15 +148,30 @@ static int section_is_stable(const ladrc_gyro_filter_section_t *s)
            ladrc_fabs(s->a2) < LADRC_R(1.0) && ladrc_fabs(s->a1) < LADRC_R(1.0) + s->a2;
 }
 
-/* Whether the notch at w0_rad (radians per tick) with 1 / (2 Q) = inv_2q
- * rounds to a stable section. */
-static int notch_is_stable(ladrc_real_t w0_rad, ladrc_real_t inv_2q)
+/* Rounding margin of an RPM notch's stability (in eps; below). */
+#define RPM_STABILITY_MARGIN_EPS LADRC_R(16.0)
+
+/*
+ * Whether the RPM notch at w0_rad (radians per tick) with 1 / (2 Q) = inv_2q
+ * rounds to a stable section, with a margin that holds it stable at every
+ * centre between two ends that pass. The notch's stability margin,
+ * 1 + a2 - |a1| = 2 g (1 - |cos w0|) with g = 1 / (1 + alpha), rises from
+ * either end of (0, pi) towards pi / 2 for any Q (its derivative is
+ * sin w + (1 - cos w) / (2 Q) > 0 below pi / 2, mirrored above), and the
+ * rounding of a1 and a2 moves it by up to some 1.5 eps: 16 eps at the ends
+ * keeps every centre between them stable as rounded. A Q so low that the
+ * notch is wider than float can place its poles (a2 rounding to -1 near
+ * pi / 2: the fuzz target found Q 1.4e-8) and a Q so high that alpha vanishes
+ * both fail it.
+ */
+static int rpm_notch_is_stable(ladrc_real_t w0_rad, ladrc_real_t inv_2q)
 {
     ladrc_gyro_filter_section_t s;
     ladrc_real_t c, sn;
     centre_cos_sin(w0_rad, &c, &sn);
     set_notch(&s, c, sn * inv_2q);
-    return section_is_stable(&s);
+    return section_is_stable(&s) &&
+           (s.b0 + s.b0) * (LADRC_R(1.0) - ladrc_fabs(c)) >= RPM_STABILITY_MARGIN_EPS * LADRC_REAL_EPS;
 }
 
 /* A centre that can carry a notch: finite, > 0 and below centre_max_hz. */
@@ -237,10 +252,10 @@ static ladrc_status_t setup_rpm(ladrc_gyro_filter_t *f, const ladrc_gyro_filter_
         return LADRC_ERR_GYRO_RPM_Q;
     }
     f->rpm_inv_2q = LADRC_R(0.5) / cfg->rpm_q;
-    /* alpha = sin(w0) / (2 Q) is smallest at the ends of the range an RPM
-     * notch can be on in (sin rises, then falls): the narrowest notches. */
-    if (!notch_is_stable(f->rad_per_hz * cfg->rpm_min_hz, f->rpm_inv_2q) ||
-        !notch_is_stable(LADRC_GYRO_FILTER_CENTRE_MAX_NYQUIST * LADRC_PI, f->rpm_inv_2q)) {
+    /* The ends of the range an RPM notch can be on in: the least stable
+     * notches (rpm_notch_is_stable). */
+    if (!rpm_notch_is_stable(f->rad_per_hz * cfg->rpm_min_hz, f->rpm_inv_2q) ||
+        !rpm_notch_is_stable(LADRC_GYRO_FILTER_CENTRE_MAX_NYQUIST * LADRC_PI, f->rpm_inv_2q)) {
         return LADRC_ERR_GYRO_RPM_Q;
     }
     f->rpm_min_hz = cfg->rpm_min_hz;

@@ -103,12 +103,14 @@
     X(LADRC_ERR_GYRO_LPF_CUTOFF_HZ, "gyro filter lpf_cutoff_hz must be finite and within (0, 0.5 / dt_s)")             \
     X(LADRC_ERR_GYRO_N_NOTCHES, "gyro filter n_notches must be at most LADRC_GYRO_FILTER_MAX_NOTCHES")                 \
     X(LADRC_ERR_GYRO_NOTCH_HZ, "gyro filter notch_hz must be finite and within (0, 0.45 / dt_s)")                      \
-    X(LADRC_ERR_GYRO_NOTCH_Q, "gyro filter notch_q must be finite, > 0 and low enough for a stable notch")             \
+    X(LADRC_ERR_GYRO_NOTCH_Q,                                                                                          \
+      "gyro filter notch_q must be finite, > 0 and neither too high nor too low for a stable notch")                   \
     X(LADRC_ERR_GYRO_RPM_ROTORS, "gyro filter rpm_rotors must be at most LADRC_GYRO_FILTER_MAX_ROTORS")                \
     X(LADRC_ERR_GYRO_RPM_HARMONICS, "gyro filter rpm_harmonics must be 1..LADRC_GYRO_FILTER_MAX_HARMONICS")            \
     X(LADRC_ERR_GYRO_RPM_MIN_HZ, "gyro filter rpm_min_hz must be finite and within (0, 0.45 / dt_s)")                  \
     X(LADRC_ERR_GYRO_RPM_FADE_HZ, "gyro filter rpm_fade_hz must be finite, >= 0, and 0 or with a finite inverse")      \
-    X(LADRC_ERR_GYRO_RPM_Q, "gyro filter rpm_q must be finite, > 0 and low enough for a stable notch")                 \
+    X(LADRC_ERR_GYRO_RPM_Q,                                                                                            \
+      "gyro filter rpm_q must be finite, > 0 and neither too high nor too low for a stable notch")                     \
     X(LADRC_ERR_ATTITUDE_FRAME, "attitude frame must be LADRC_FRAME_EULER or LADRC_FRAME_QUATERNION")                  \
     X(LADRC_ERR_YAW_WEIGHT, "yaw_weight must be finite and in (0, 1]")                                                 \
     X(LADRC_ERR_CAS_I_RELAX, "cas_i_relax_rad_s must be > 0 with a finite inverse (INFINITY: no relax)")               \

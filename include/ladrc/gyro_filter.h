@@ -31,6 +31,19 @@
  * weight 0 is off: its output is its input, and its history records the
  * input as its output, so that it comes back without a step. Method:
  * docs/method.md section 7.
+ *
+ * Under hostile telemetry (speeds drawn anew every tick, alternating, sweeping
+ * the range, at its ends) and any samples, every output stays finite and
+ * within the chain's bound: each RPM notch within LADRC_GYRO_FILTER_RPM_GAIN_BOUND
+ * times the input envelope, times the gains of the fixed notches and the
+ * low-pass. Once the speeds hold still, the output is back within 1e-3 (plus
+ * 1e-4 of the input and float's deadband) of a filter that never saw them: on
+ * 3 channels with 4 fixed notches (60-270 Hz, Q 5), 4 rotors x 3 harmonics
+ * and a 150 Hz low-pass, at most 185, 679 and 1,345 ticks at 1, 4 and 8 kHz
+ * (0.17-0.19 s) after samples on a gyro's scale, and 1,383, 5,399 and 10,667
+ * ticks (1.33-1.38 s) after samples of LADRC_GYRO_FILTER_INPUT_MAX: some 7 and
+ * 53 time constants of the slowest section (tests/test_gyro_filter_recovery.c,
+ * the fuzz target tests/fuzz/fuzz_gyro_filter.c; docs/vibration.md).
  */
 #ifndef LADRC_GYRO_FILTER_H
 #define LADRC_GYRO_FILTER_H
@@ -168,15 +181,17 @@ void ladrc_gyro_filter_config_default(ladrc_gyro_filter_config_t *cfg, ladrc_rea
  *                                      so near either end that its section rounds to an unstable one
  * @retval LADRC_ERR_GYRO_N_NOTCHES     n_notches above LADRC_GYRO_FILTER_MAX_NOTCHES
  * @retval LADRC_ERR_GYRO_NOTCH_HZ      one of the first n_notches notch_hz not finite or not in (0, 0.45 / dt_s)
- * @retval LADRC_ERR_GYRO_NOTCH_Q       n_notches > 0: notch_q not finite, not > 0, or so high that a fixed
- *                                      notch rounds to an unstable section
+ * @retval LADRC_ERR_GYRO_NOTCH_Q       n_notches > 0: notch_q not finite, not > 0, or so high or so low that a
+ *                                      fixed notch rounds to an unstable section
  * @retval LADRC_ERR_GYRO_RPM_ROTORS    rpm_rotors above LADRC_GYRO_FILTER_MAX_ROTORS
  * @retval LADRC_ERR_GYRO_RPM_HARMONICS rpm_rotors > 0: rpm_harmonics outside 1..LADRC_GYRO_FILTER_MAX_HARMONICS
  * @retval LADRC_ERR_GYRO_RPM_MIN_HZ    rpm_rotors > 0: rpm_min_hz not finite or not in (0, 0.45 / dt_s)
  * @retval LADRC_ERR_GYRO_RPM_FADE_HZ   rpm_rotors > 0: rpm_fade_hz not finite, < 0, or > 0 with 1 / rpm_fade_hz
  *                                      not finite
- * @retval LADRC_ERR_GYRO_RPM_Q         rpm_rotors > 0: rpm_q not finite, not > 0, or so high that the narrowest
- *                                      RPM notch (at rpm_min_hz or at 0.45 / dt_s) rounds to an unstable section
+ * @retval LADRC_ERR_GYRO_RPM_Q         rpm_rotors > 0: rpm_q not finite, not > 0, or so high or so low that an
+ *                                      RPM notch at either end of the range (rpm_min_hz, 0.45 / dt_s) is within
+ *                                      16 eps of instability as rounded (then a notch between could round
+ *                                      unstable); a tiny rpm_min_hz fails it too
  */
 ladrc_status_t ladrc_gyro_filter_init(ladrc_gyro_filter_t *f, const ladrc_gyro_filter_config_t *cfg);
 

@@ -288,12 +288,12 @@ typedef enum {
     LADRC_ERR_GYRO_LPF_CUTOFF_HZ, /**< gyro filter lpf_cutoff_hz not finite or not in (0, 0.5 / dt_s) */
     LADRC_ERR_GYRO_N_NOTCHES,     /**< gyro filter n_notches above LADRC_GYRO_FILTER_MAX_NOTCHES */
     LADRC_ERR_GYRO_NOTCH_HZ,      /**< gyro filter notch_hz not finite or not in (0, 0.45 / dt_s) */
-    LADRC_ERR_GYRO_NOTCH_Q,       /**< gyro filter notch_q not finite, not > 0, or too high to round stable */
-    LADRC_ERR_GYRO_RPM_ROTORS,    /**< gyro filter rpm_rotors above LADRC_GYRO_FILTER_MAX_ROTORS */
+    LADRC_ERR_GYRO_NOTCH_Q,    /**< gyro filter notch_q not finite, not > 0, or too high or too low to round stable */
+    LADRC_ERR_GYRO_RPM_ROTORS, /**< gyro filter rpm_rotors above LADRC_GYRO_FILTER_MAX_ROTORS */
     LADRC_ERR_GYRO_RPM_HARMONICS, /**< gyro filter rpm_harmonics outside 1..LADRC_GYRO_FILTER_MAX_HARMONICS */
     LADRC_ERR_GYRO_RPM_MIN_HZ,    /**< gyro filter rpm_min_hz not finite or not in (0, 0.45 / dt_s) */
     LADRC_ERR_GYRO_RPM_FADE_HZ,   /**< gyro filter rpm_fade_hz not finite, < 0, or its inverse not finite */
-    LADRC_ERR_GYRO_RPM_Q,         /**< gyro filter rpm_q not finite, not > 0, or too high to round stable */
+    LADRC_ERR_GYRO_RPM_Q,         /**< gyro filter rpm_q not finite, not > 0, or too high or too low to round stable */
     LADRC_ERR_ATTITUDE_FRAME,     /**< attitude frame not a ladrc_attitude_frame_t */
     LADRC_ERR_YAW_WEIGHT,         /**< attitude yaw_weight not finite or not in (0, 1] (quaternion frame) */
     LADRC_ERR_CAS_I_RELAX, /**< cas_i_relax_rad_s NaN, not > 0, or with an infinite inverse (INFINITY = no relax) */

@@ -817,14 +817,15 @@ static void test_environment_errors(void)
         {.text = "[run]\nduration_s = 1\n[filter]\nrpm_harmonics = 2\nrpm_q = 100\nrpm_min_hz = 0.01\n",
          .line = 5,
          .column = 9,
-         .message = "the gyro filter refuses it: LADRC_ERR_GYRO_RPM_Q: gyro filter rpm_q must be finite, > 0 and low "
-                    "enough for a stable notch"},
+         .message =
+             "the gyro filter refuses it: LADRC_ERR_GYRO_RPM_Q: gyro filter rpm_q must be finite, > 0 and neither "
+             "too high nor too low for a stable notch"},
         /* the same refusal of a key the file left at its default: at the [filter] header */
         {.text = "[run]\nduration_s = 1\n[filter]\nrpm_harmonics = 2\nrpm_min_hz = 0.00001\n",
          .line = 3,
          .column = 1,
          .message = "the gyro filter refuses rpm_q's default: LADRC_ERR_GYRO_RPM_Q: gyro filter rpm_q must be "
-                    "finite, > 0 and low enough for a stable notch"},
+                    "finite, > 0 and neither too high nor too low for a stable notch"},
     };
     CHECK_BAD_CASES(refused);
 #endif
