@@ -227,36 +227,20 @@ static double flight[FLIGHT_TICKS][9]; /* gyro[3], command[3], ref_rate[3] */
 
 static void fly(void)
 {
-    const loop_axis_t ax[3] = {{.b0 = 120.0,
-                                .tau_s = 0.03,
-                                .damping_per_s = 10.0,
-                                .delay_ticks = 2,
-                                .noise_rad_s = 0.002,
-                                .chirp_amp = 0.1,
-                                .f0_hz = 1.0,
-                                .f1_hz = 40.0,
-                                .chirp_s = 4.0,
-                                .manoeuvre_rad = 0.2},
-                               {.b0 = 120.0,
-                                .tau_s = 0.03,
-                                .damping_per_s = 10.0,
-                                .delay_ticks = 2,
-                                .noise_rad_s = 0.002,
-                                .chirp_amp = 0.1,
-                                .f0_hz = 1.0,
-                                .f1_hz = 40.0,
-                                .chirp_s = 4.0,
-                                .manoeuvre_rad = 0.2},
-                               {.b0 = 50.0,
-                                .tau_s = 0.03,
-                                .damping_per_s = 5.0,
-                                .delay_ticks = 2,
-                                .noise_rad_s = 0.002,
-                                .chirp_amp = 0.1,
-                                .f0_hz = 1.0,
-                                .f1_hz = 40.0,
-                                .chirp_s = 4.0,
-                                .manoeuvre_rad = 0.2}};
+    const loop_axis_t roll = {.b0 = 120.0,
+                              .tau_s = 0.03,
+                              .damping_per_s = 10.0,
+                              .delay_ticks = 2,
+                              .noise_rad_s = 0.002,
+                              .chirp_amp = 0.1,
+                              .f0_hz = 1.0,
+                              .f1_hz = 40.0,
+                              .chirp_s = 4.0,
+                              .manoeuvre_rad = 0.2};
+    loop_axis_t yaw = roll; /* a yaw: less effective, less damped */
+    yaw.b0 = 50.0;
+    yaw.damping_per_s = 5.0;
+    const loop_axis_t ax[3] = {roll, roll, yaw};
     for (int i = 0; i < 3; ++i) {
         loop_t l;
         loop_init(&l, &ax[i], DT_S, 100 + (uint64_t)i);
