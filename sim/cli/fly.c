@@ -24,11 +24,11 @@
 
 typedef struct {
     const sim_scenario_t *sc;
-    int scenario_index;   /* into the batch */
-    int controller_index; /* into sc->controllers; -1 for a differentiator run */
-    int group_size;       /* runs flown in lockstep from this job on; 0: in an earlier job's group */
+    int scenario_index;                 /* into the batch */
+    int controller_index;               /* into sc->controllers; -1 for a differentiator run */
+    int group_size;                     /* runs flown in lockstep from this job on; 0: in an earlier job's group */
     char csv_path[SIM_STAGED_PATH_LEN]; /* in the scenario's staging folder */
-    sim_metrics_t *attitude; /* where the result goes */
+    sim_metrics_t *attitude;            /* where the result goes */
     sim_diff_metrics_t *diff;
     volatile long ticks_done; /* progress hint, written by the worker only */
     char error[SIM_PATH_LEN + 160];
