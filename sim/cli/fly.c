@@ -430,7 +430,8 @@ static int write_signals_csv(FILE *f, const sim_scenario_t *sc)
  * controller's figure below: its time less the plant's ~800. */
 static double job_compute_ns(const job_t *job)
 {
-    static const double CONTROLLER_NS[SIM_CTRL_COUNT] = {630.0, 570.0, 500.0, 430.0, 470.0, 430.0};
+    /* BETAFLIGHT: a UDP round trip with its SITL */
+    static const double CONTROLLER_NS[SIM_CTRL_COUNT] = {630.0, 570.0, 500.0, 430.0, 470.0, 430.0, 0.0, 20000.0};
     /* HP LP LADRC PID CASCADED INDI */
     const double ticks = (double)sim_run_ticks(job->sc);
     if (job->controller_index < 0) {

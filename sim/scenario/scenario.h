@@ -50,7 +50,8 @@ typedef enum {
     SIM_CTRL_INDI = 5,
     SIM_CTRL_RATE_ADRC = 6,
     SIM_CTRL_BETAFLIGHT = 7, /* Betaflight's own firmware (its SITL build) over UDP (docs/betaflight.md) */
-    SIM_CTRL_COUNT = 8
+    SIM_CTRL_COUNT = 8,
+    SIM_CTRL_LIBRARY_COUNT = 7 /* the library's controllers: the ids below it */
 } sim_controller_id_t;
 
 /* [controller NAME] tune: how the controller's gains are chosen. */
