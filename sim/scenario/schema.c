@@ -137,15 +137,11 @@ static const choice_t TUNE_MODES[] = {{.name = "none", .value = SIM_TUNE_NONE},
                                       {.name = "margins", .value = SIM_TUNE_MARGINS},
                                       {.name = NULL, .value = 0}};
 /* tune_noise_ref: a controller's name, its sim_controller_id_t */
-static const choice_t CONTROLLER_CHOICES[] = {{.name = "HP-MLADRC", .value = SIM_CTRL_HP_MLADRC},
-                                              {.name = "LP-MLADRC", .value = SIM_CTRL_LP_MLADRC},
-                                              {.name = "LADRC", .value = SIM_CTRL_LADRC},
-                                              {.name = "PID", .value = SIM_CTRL_PID},
-                                              {.name = "CASCADED", .value = SIM_CTRL_CASCADED},
-                                              {.name = "INDI", .value = SIM_CTRL_INDI},
-                                              {.name = "RATE-ADRC", .value = SIM_CTRL_RATE_ADRC},
-                                              {.name = "BETAFLIGHT", .value = SIM_CTRL_BETAFLIGHT},
-                                              {.name = NULL, .value = 0}};
+static const choice_t CONTROLLER_CHOICES[] = {
+    {.name = "HP-MLADRC", .value = SIM_CTRL_HP_MLADRC}, {.name = "LP-MLADRC", .value = SIM_CTRL_LP_MLADRC},
+    {.name = "LADRC", .value = SIM_CTRL_LADRC},         {.name = "PID", .value = SIM_CTRL_PID},
+    {.name = "CASCADED", .value = SIM_CTRL_CASCADED},   {.name = "INDI", .value = SIM_CTRL_INDI},
+    {.name = "RATE-ADRC", .value = SIM_CTRL_RATE_ADRC}, {.name = NULL, .value = 0}};
 static const choice_t BF_MODES[] = {
     {.name = "acro", .value = BF_MODE_ACRO}, {.name = "angle", .value = BF_MODE_ANGLE}, {.name = NULL, .value = 0}};
 static const choice_t HP_FREQ_MODES[] = {{.name = "known", .value = LADRC_HP_FREQ_KNOWN},
