@@ -21,8 +21,8 @@
 
 #define BF_WARMUP_S_DEFAULT 2.0
 #define BF_ARM_WAIT_S 2.0
-#define BF_RATE_MAX_DEG_S_DEFAULT 1000.0 /* tools/betaflight/sitl.cli: linear rates */
-#define BF_ANGLE_LIMIT_DEG_DEFAULT 60.0  /* Betaflight's angle_limit default */
+#define BF_RATE_MAX_DEG_S_DEFAULT 700.0 /* tools/betaflight/sitl.cli: linear rates */
+#define BF_ANGLE_LIMIT_DEG_DEFAULT 60.0 /* Betaflight's angle_limit default */
 /* The pilot's angle loop in acro (1/s): a crossover near 1 Hz, well below
  * any rate loop's, as a pilot holding an attitude by sight */
 #define BF_PILOT_ATT_KP_DEFAULT 6.0
@@ -87,7 +87,9 @@ static int any_spinning(const float motor[BF_MOTORS])
 int runner_bf_open(const sim_scenario_t *sc, attitude_run_t *r, char *err, size_t err_len)
 {
     const sim_overrides_t *o = &sc->overrides[SIM_CTRL_BETAFLIGHT];
-    if (sc->betaflight_sitl[0] == '\0') {
+    const char *env = getenv("LADRC_BETAFLIGHT_SITL"); /* a campaign's runs: the environment's */
+    const char *dir = sc->betaflight_sitl[0] != '\0' ? sc->betaflight_sitl : env != NULL ? env : "";
+    if (dir[0] == '\0') {
         snprintf(err, err_len,
                  "%s: BETAFLIGHT needs a Betaflight SITL: ladrc_sil --betaflight DIR, or LADRC_BETAFLIGHT_SITL=DIR "
                  "(tools/betaflight_sitl.sh CHECKOUT DIR builds one)",
@@ -115,7 +117,7 @@ int runner_bf_open(const sim_scenario_t *sc, attitude_run_t *r, char *err, size_
     bf_fdm_t s;
     bf_pilot_sticks(&bf->pilot, 0.0, ref0, r->plant.angle_rad, 0.0, 0, &rc);
     still_packet(r, 0.0, &s);
-    if (bf_link_open(&bf->link, sc->betaflight_sitl, o->bf_timeout_ms, &rc, &s, bf->motor, err, err_len) != 0) {
+    if (bf_link_open(&bf->link, dir, o->bf_timeout_ms, &rc, &s, bf->motor, err, err_len) != 0) {
         return -1;
     }
     const long warmup = lround(or_default(o->bf_warmup_s, BF_WARMUP_S_DEFAULT) / dt);
@@ -143,7 +145,7 @@ int runner_bf_open(const sim_scenario_t *sc, attitude_run_t *r, char *err, size_
             snprintf(err, err_len,
                      "%s: Betaflight SITL %s did not arm within %.3g s of its time after %.3g s still and disarmed "
                      "(its motors stayed at 0); its last output: %s",
-                     sc->path, sc->betaflight_sitl, BF_ARM_WAIT_S, (double)warmup * dt, last);
+                     sc->path, dir, BF_ARM_WAIT_S, (double)warmup * dt, last);
             return -1;
         }
     }

@@ -4,7 +4,7 @@
  * (bridge/bf_packet.h), for testing the simulator's bridge where
  * Betaflight itself cannot be built: state in on 9003, RC in on 9004, one
  * motor packet out to 9002 per state packet. Its controller is a rate P loop
- * on the gyro (acro: linear rates, 1000 deg/s at full stick; angle mode: an
+ * on the gyro (acro: linear rates, 700 deg/s at full stick; angle mode: an
  * angle P loop on the packet's attitude, 60 deg at full stick) through a
  * plus-frame mixer in Betaflight's QUADP motor order (rear, right, left,
  * front), motor outputs idle + (1 - idle) x mix when armed, 0 disarmed. It
@@ -36,7 +36,7 @@
 
 #define CALIBRATION_PACKETS 500
 #define IDLE 0.055
-#define RATE_MAX_RAD_S (1000.0 * 3.14159265358979323846 / 180.0)
+#define RATE_MAX_RAD_S (700.0 * 3.14159265358979323846 / 180.0)
 #define ANGLE_LIMIT_RAD (60.0 * 3.14159265358979323846 / 180.0)
 #define ANGLE_KP_PER_S 6.0
 
