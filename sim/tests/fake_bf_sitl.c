@@ -16,6 +16,7 @@
  *   silent@T    stop answering from there (alive)
  *   garbage@T   answer that one with 7 bytes
  *   nan@T       answer that one with a motor output that is not a number
+ *   junk@T      answer that one with 1-64 random bytes (seeded by T)
  *   never-arm   never arm (prints an arming-disabled line now and then)
  *   no-start    exit with status 1 at once, saying why
  * FAKE_BF_KP: the rate loop's gain (motor fraction per rad/s), default 0.04.
@@ -40,7 +41,7 @@
 #define ANGLE_LIMIT_RAD (60.0 * 3.14159265358979323846 / 180.0)
 #define ANGLE_KP_PER_S 6.0
 
-typedef enum { FAULT_NONE, FAULT_DIE, FAULT_SILENT, FAULT_GARBAGE, FAULT_NAN, FAULT_NEVER_ARM } fault_t;
+typedef enum { FAULT_NONE, FAULT_DIE, FAULT_SILENT, FAULT_GARBAGE, FAULT_NAN, FAULT_JUNK, FAULT_NEVER_ARM } fault_t;
 
 static int udp_bound(int port)
 {
@@ -114,9 +115,9 @@ int main(void)
     if (f != NULL && strcmp(f, "never-arm") == 0) {
         fault = FAULT_NEVER_ARM;
     } else if (f != NULL) {
-        static const char *const NAMES[] = {"die@", "silent@", "garbage@", "nan@"};
-        static const fault_t KINDS[] = {FAULT_DIE, FAULT_SILENT, FAULT_GARBAGE, FAULT_NAN};
-        for (int k = 0; k < 4; ++k) {
+        static const char *const NAMES[] = {"die@", "silent@", "garbage@", "nan@", "junk@"};
+        static const fault_t KINDS[] = {FAULT_DIE, FAULT_SILENT, FAULT_GARBAGE, FAULT_NAN, FAULT_JUNK};
+        for (int k = 0; k < 5; ++k) {
             if (strncmp(f, NAMES[k], strlen(NAMES[k])) == 0) {
                 fault = KINDS[k];
                 at = atof(f + strlen(NAMES[k]));
@@ -189,6 +190,15 @@ int main(void)
             motor[2] = (float)NAN;
             bf_motor_encode(motor, out);
         }
-        (void)sendto(fdm, out, out_len, 0, (const struct sockaddr *)&to, sizeof to);
+        unsigned char junk[64];
+        if (due && fault == FAULT_JUNK) { /* a 64-bit LCG from the fault's time */
+            uint64_t x = (uint64_t)(at * 1e6) * 6364136223846793005ULL + 1442695040888963407ULL;
+            out_len = 1 + (size_t)((x >> 33) % sizeof junk);
+            for (size_t b = 0; b < sizeof junk; ++b) {
+                x = x * 6364136223846793005ULL + 1442695040888963407ULL;
+                junk[b] = (unsigned char)(x >> 56);
+            }
+        }
+        (void)sendto(fdm, due && fault == FAULT_JUNK ? junk : out, out_len, 0, (const struct sockaddr *)&to, sizeof to);
     }
 }
