@@ -19,7 +19,11 @@
  *   junk@T      answer that one with 1-64 random bytes (seeded by T)
  *   never-arm   never arm (prints an arming-disabled line now and then)
  *   no-start    exit with status 1 at once, saying why
- * FAKE_BF_KP: the rate loop's gain (motor fraction per rad/s), default 0.04.
+ * FAKE_BF_KP: the rate loop's gain (motor fraction per rad/s), default 0.04,
+ * times N / 100 when its configuration (eeprom.bin in its working folder)
+ * holds a line `set simplified_master_multiplier = N`, as Betaflight's
+ * master slider scales its gains. `--config FILE` stores FILE as that
+ * configuration and exits, as Betaflight's SITL does.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <arpa/inet.h>
@@ -103,8 +107,44 @@ static void control(const bf_fdm_t *s, const bf_rc_t *rc, int armed, double kp, 
     }
 }
 
-int main(void)
+/* Copies the CLI file into eeprom.bin; the exit status. */
+static int store_config(const char *path)
 {
+    FILE *in = fopen(path, "rb"), *out = fopen("eeprom.bin", "wb");
+    int c, rc = in != NULL && out != NULL ? 0 : 1;
+    while (rc == 0 && (c = fgetc(in)) != EOF) {
+        fputc(c, out);
+    }
+    if (in != NULL) {
+        fclose(in);
+    }
+    if (out != NULL && fclose(out) != 0) {
+        rc = 1;
+    }
+    printf("fake SITL: configuration %s %s\n", path, rc == 0 ? "saved" : "not saved");
+    return rc;
+}
+
+/* The master slider in eeprom.bin, percent (100 without one). */
+static double master_slider(void)
+{
+    FILE *f = fopen("eeprom.bin", "rb");
+    char line[256];
+    double pct = 100.0;
+    while (f != NULL && fgets(line, sizeof line, f) != NULL) {
+        (void)sscanf(line, "set simplified_master_multiplier = %lf", &pct);
+    }
+    if (f != NULL) {
+        fclose(f);
+    }
+    return pct;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc == 3 && strcmp(argv[1], "--config") == 0) {
+        return store_config(argv[2]);
+    }
     const char *f = getenv("FAKE_BF_FAULT");
     fault_t fault = FAULT_NONE;
     double at = INFINITY; /* the fault's time (s) */
@@ -125,7 +165,7 @@ int main(void)
         }
     }
     const char *kp_text = getenv("FAKE_BF_KP");
-    const double kp = kp_text != NULL ? atof(kp_text) : 0.04;
+    const double kp = (kp_text != NULL ? atof(kp_text) : 0.04) * master_slider() / 100.0;
     const int fdm = udp_bound(BF_PORT_FDM), rcs = udp_bound(BF_PORT_RC);
     struct sockaddr_in to;
     memset(&to, 0, sizeof to);
