@@ -32,6 +32,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from output_files import refuse_inputs, save_figure, write_whole  # noqa: E402
 from sim_output import AXES, divergence_text, is_number, load_metrics, untunable  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
@@ -270,7 +271,7 @@ def write_figure(rows, path):
     ax.set_xscale("log")
     ax.set_xlabel("RMS error: LADRC family's best (at no more command noise) / Betaflight stock")
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     return path
 
@@ -320,8 +321,7 @@ def write_doc(results, args, bf_commit, adrc_commit):
                 cells.append("%s / %s / %s" % (fmt(v[0]), fmt(v[1]), fmt(v[2])) if v else why_not(res, c))
             out.append("| %s | %s |" % (axis, " | ".join(cells)))
         out.append("")
-    with open(args.out, "w") as f:
-        f.write("\n".join(out))
+    write_whole(args.out, "\n".join(out) + "\n")
     return losses
 
 
@@ -353,6 +353,7 @@ def main():
         sys.exit("betaflight_study: %s missing (cmake --preset host-release && cmake --build --preset host-release)" % SIL)
     args.sitl, args.adrc = os.path.abspath(args.sitl), os.path.abspath(args.adrc) if args.adrc else None
     cases = args.cases or default_cases()
+    refuse_inputs("betaflight_study", [args.out, os.path.splitext(args.out)[0] + ".png"], cases)
     results = []
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
         for i, case in enumerate(cases):
