@@ -305,6 +305,12 @@ def write_doc(results, args, bf_commit, adrc_commit):
         out.append("| %s | %s | %s | %s | %s | %s |" % (name, axis, best[0] if best else "-",
                                                        fmt(best[1][0]) if best else "-",
                                                        fmt(stock[0]) if stock else "-", verdict))
+    cost = m4f_cost()
+    out += ["", "## What each costs on a Cortex-M4F", "",
+            "Instructions per tick of three axes and the mixer at -Os (docs/performance.md). Betaflight's own",
+            "rate loop was not measured on the Cortex-M4F here: its SITL runs on the host.", "",
+            "| controller | instructions/tick |", "|---|---|"]
+    out += ["| %s | %.0f |" % (c, cost[c]) for c in FAMILY + INCUMBENTS if c in cost]
     out += ["", "## Every controller, every case", ""]
     for res in results:
         out += ["### %s (`%s`)" % (res["name"], res["case"]), ""]
@@ -323,6 +329,19 @@ def write_doc(results, args, bf_commit, adrc_commit):
         out.append("")
     write_whole(args.out, "\n".join(out) + "\n")
     return losses
+
+
+def m4f_cost():
+    """{controller: Cortex-M4F instructions per 3-axis tick with the mixer} from docs/performance.md."""
+    cost = {}
+    path = os.path.join(ROOT, "docs", "performance.md")
+    if os.path.exists(path):
+        with open(path) as f:
+            for line in f:
+                m = re.match(r"\| ([A-Z-]+), 3 axes \+ mixer, instructions/tick \| ([0-9.]+) \|", line)
+                if m:
+                    cost[m.group(1)] = float(m.group(2))
+    return cost
 
 
 def commit_of(folder):
