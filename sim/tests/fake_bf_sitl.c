@@ -95,8 +95,8 @@ static void control(const bf_fdm_t *s, const bf_rc_t *rc, int armed, double kp, 
         rate_sp[1] = ANGLE_KP_PER_S * (-stick(rc->channel_us[BF_CH_PITCH]) * ANGLE_LIMIT_RAD - pitch);
     }
     double u[3];
-    for (int i = 0; i < 3; ++i) {
-        u[i] = kp * (rate_sp[i] - s->gyro_rad_s[i]);
+    for (int i = 0; i < 3; ++i) { /* the packet's yaw is nose left (docs/betaflight.md) */
+        u[i] = kp * (rate_sp[i] - (i == 2 ? -1.0 : 1.0) * s->gyro_rad_s[i]);
     }
     const double thr = ((double)rc->channel_us[BF_CH_THROTTLE] - 1000.0) / 1000.0;
     /* rear, right, left, front: pitch up on the front, roll right on the left, yaw on the side pair */
