@@ -70,10 +70,10 @@ PARSED=$(awk -v file="$PARAMS" '
         seen[key] = NR
         rest = substr(text, eq + 1)
         n = split(rest, v, /[ \t]+/)
-        out = key; count = 0; col = eq + 1
+        out = key; count = 0; from = eq + 1
         for (i = 1; i <= n; ++i) {
             if (v[i] == "") continue
-            col = index(text, v[i])
+            col = from - 1 + index(substr(text, from), v[i]); from = col + length(v[i])
             if (v[i] !~ num) fail(NR, col, "\"" v[i] "\" is not a non-negative decimal number")
             if (key == "delay_ticks" && v[i] !~ /^[0-9]+$/) fail(NR, col, "delay_ticks must be a whole number of ticks")
             if (key != "motor_tau_s" && key != "delay_ticks" && v[i] + 0 <= 0) fail(NR, col, key " must be > 0")
