@@ -100,7 +100,9 @@ LIB_DEFINES=$(printf '%s\n' "$SELECTION" | sed -n 's/^ladrc-define: //p')
 # --- the hook points: all found (or already there) before anything is written
 MK=$TREE/mk/source.mk
 PID=$TREE/src/main/flight/pid.c
+# shellcheck disable=SC2016 # make's text, not the shell's
 MK_HOOK='COMMON_SRC += $(CONFIG_SRC) $(PG_SRC) $(COMMON_DEVICE_SRC) $(RX_SRC)'
+# shellcheck disable=SC2016 # make's text, not the shell's
 MK_LINE='include $(SRC_DIR)/ladrc/ladrc.mk # ladrc rate loop (integrations/betaflight/apply.sh)'
 INC_HOOK='#include "pid.h"'
 INC_LINE='#include "ladrc/ladrc_bf_hook.h" // ladrc rate loop (integrations/betaflight/apply.sh)'
@@ -110,19 +112,19 @@ SUM_NEW='pidData[axis].Sum = ladrcRatePidSum(axis, currentPidSetpoint, gyroRate,
 # count_lines FILE TEXT: lines holding TEXT exactly (as a substring, no patterns)
 count_lines() { awk -v t="$2" 'index($0, t) { ++n } END { print n + 0 }' "$1"; }
 
-# check_hook FILE HOOK DONE: "apply" when HOOK is on exactly one line and DONE
-# nowhere, "done" when DONE is on one line, else stops naming file and text.
+# check_hook FILE HOOK EDIT: "absent" when HOOK is on exactly one line and EDIT
+# nowhere, "present" when EDIT is on one line, else stops naming file and text.
 check_hook() {
     local done_count hook_count
     done_count=$(count_lines "$1" "$3")
     if [ "$done_count" = 1 ]; then
-        echo done
+        echo present
         return
     fi
     [ "$done_count" = 0 ] || die "$1: the ladrc edit \"$3\" is there $done_count times (a damaged earlier apply); start from a fresh copy of the tree"
     hook_count=$(count_lines "$1" "$2")
     [ "$hook_count" = 1 ] || die "$1: hook text not found exactly once (found $hook_count times): $2"
-    echo apply
+    echo absent
 }
 MK_STATE=$(check_hook "$MK" "$MK_HOOK" "$MK_LINE")
 INC_STATE=$(check_hook "$PID" "$INC_HOOK" "$INC_LINE")
@@ -190,8 +192,8 @@ insert_after() {
 replace_text() {
     awk -v t="$2" -v new="$3" '{ at = index($0, t); if (at) $0 = substr($0, 1, at - 1) new substr($0, at + length(t)); print }' "$1" >"$1.ladrc.tmp" && mv "$1.ladrc.tmp" "$1"
 }
-[ "$MK_STATE" = done ] || insert_after "$MK" "$MK_HOOK" "$MK_LINE"
-[ "$INC_STATE" = done ] || insert_after "$PID" "$INC_HOOK" "$INC_LINE"
-[ "$SUM_STATE" = done ] || replace_text "$PID" "$SUM_HOOK" "$SUM_NEW"
+[ "$MK_STATE" = present ] || insert_after "$MK" "$MK_HOOK" "$MK_LINE"
+[ "$INC_STATE" = present ] || insert_after "$PID" "$INC_HOOK" "$INC_LINE"
+[ "$SUM_STATE" = present ] || replace_text "$PID" "$SUM_HOOK" "$SUM_NEW"
 
-echo "apply.sh: ladrc rate loop in $TREE (hooks: source.mk $MK_STATE->ok, pid.c include $INC_STATE->ok, pid.c pidSum $SUM_STATE->ok; library: $LIB_SOURCES)"
+echo "apply.sh: ladrc rate loop in $TREE (edits before: source.mk $MK_STATE, pid.c include $INC_STATE, pid.c pidSum $SUM_STATE; now all present; library: $LIB_SOURCES)"

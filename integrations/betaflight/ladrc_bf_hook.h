@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /**
  * @file ladrc_bf_hook.h
- * @brief What Betaflight's pid.c calls at its one hook point
+ * @brief What Betaflight's pid.c calls at its hook point in pidController
  *        (docs/betaflight-integration.md): the per-axis pidSum from the
  *        library's rate loop (ladrc_rate.h) instead of P + I + D + F + S.
  */
