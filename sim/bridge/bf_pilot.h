@@ -5,12 +5,16 @@
  * AUX2 selects angle mode), pulses 1000-2000 us, centre 1500.
  *
  * Acro (rate) mode: the pilot closes the angle loop, as a pilot flying by
- * sight does: the stick asks for rate = ref' + att_kp (ref - angle) on each
- * axis (ref' the reference's change over the last tick), through the SITL's
- * rates set linear (full stick = rate_max). Angle mode: roll and pitch
- * sticks ask for ref / angle_limit (the SITL's angle mode maps the stick
- * linearly onto its angle limit), yaw as in acro. Sticks beyond full
- * deflection are held there (counted: bf_pilot_t.clipped).
+ * sight does: the sticks ask for the body rates w = w_ref + att_kp e, where
+ * w_ref are the body rates of the reference's change over the last tick
+ * (its ZYX angles' rates turned into body rates at the reference's
+ * attitude, so a flip's reference is followed through any angle) and e the
+ * body-axis attitude error the caller gives (the rotation from the attitude
+ * to the reference's), through the SITL's rates set linear (full stick =
+ * rate_max). Angle mode: roll and pitch sticks ask for ref / angle_limit
+ * (the SITL's angle mode maps the stick linearly onto its angle limit), yaw
+ * as in acro. Sticks beyond full deflection are held there (counted:
+ * bf_pilot_t.clipped).
  *
  * Signs: the simulator's axes are forward-right-down (roll right, pitch
  * nose up, yaw nose right positive); Betaflight's pitch stick forward pitches
@@ -49,10 +53,18 @@ typedef struct {
 
 void bf_pilot_init(bf_pilot_t *p, const bf_pilot_config_t *cfg);
 
-/* The channels of a tick at t_s: references and measured angles (rad,
- * forward-right-down), throttle in [0, 1], armed 0/1. */
-void bf_pilot_sticks(bf_pilot_t *p, double t_s, const double ref_rad[3], const double angle_rad[3], double throttle,
+/* The channels of a tick at t_s: the references (ZYX angles, rad), the
+ * attitude error (body axes, rad, forward-right-down), throttle in [0, 1],
+ * armed 0/1. */
+void bf_pilot_sticks(bf_pilot_t *p, double t_s, const double ref_rad[3], const double error_rad[3], double throttle,
                      int armed, bf_rc_t *rc);
+
+/* The body rates (rad/s) of ZYX angles at ref_rad changing at euler_rate. */
+void bf_body_rates(const double ref_rad[3], const double euler_rate[3], double body_rad_s[3]);
+
+/* Forgets the last reference: the next tick has no feed-forward (a new
+ * flight starts from where the pilot is, not with a jump). */
+void bf_pilot_restart(bf_pilot_t *p);
 
 /* A stick in [-1, 1] as a pulse (us), rounded; beyond: held at the end. */
 uint16_t bf_stick_us(double stick);

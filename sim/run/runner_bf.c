@@ -112,10 +112,10 @@ int runner_bf_open(const sim_scenario_t *sc, attitude_run_t *r, char *err, size_
         .dt_s = sc->control_dt_s};
     bf_pilot_init(&bf->pilot, &pc);
     const double dt = sc->control_dt_s;
-    const double ref0[3] = {r->plant.angle_rad[0], r->plant.angle_rad[1], r->plant.angle_rad[2]};
+    const double ref0[3] = {r->plant.angle_rad[0], r->plant.angle_rad[1], r->plant.angle_rad[2]}, still[3] = {0, 0, 0};
     bf_rc_t rc;
     bf_fdm_t s;
-    bf_pilot_sticks(&bf->pilot, 0.0, ref0, r->plant.angle_rad, 0.0, 0, &rc);
+    bf_pilot_sticks(&bf->pilot, 0.0, ref0, still, 0.0, 0, &rc);
     still_packet(r, 0.0, &s);
     if (bf_link_open(&bf->link, dir, o->bf_timeout_ms, &rc, &s, bf->motor, err, err_len) != 0) {
         return -1;
@@ -123,7 +123,7 @@ int runner_bf_open(const sim_scenario_t *sc, attitude_run_t *r, char *err, size_
     const long warmup = lround(or_default(o->bf_warmup_s, BF_WARMUP_S_DEFAULT) / dt);
     long k = 1;
     for (; k <= warmup; ++k) {
-        bf_pilot_sticks(&bf->pilot, (double)k * dt, ref0, r->plant.angle_rad, 0.0, 0, &rc);
+        bf_pilot_sticks(&bf->pilot, (double)k * dt, ref0, still, 0.0, 0, &rc);
         still_packet(r, (double)k * dt, &s);
         if (bf_link_exchange(&bf->link, &rc, &s, bf->motor, err, err_len) != 0) {
             return -1;
@@ -133,7 +133,7 @@ int runner_bf_open(const sim_scenario_t *sc, attitude_run_t *r, char *err, size_
         const long wait = lround(BF_ARM_WAIT_S / dt);
         long j = 0;
         for (; j < wait && !any_spinning(bf->motor); ++j, ++k) {
-            bf_pilot_sticks(&bf->pilot, (double)k * dt, ref0, r->plant.angle_rad, 0.0, 1, &rc);
+            bf_pilot_sticks(&bf->pilot, (double)k * dt, ref0, still, 0.0, 1, &rc);
             still_packet(r, (double)k * dt, &s);
             if (bf_link_exchange(&bf->link, &rc, &s, bf->motor, err, err_len) != 0) {
                 return -1;
@@ -150,6 +150,7 @@ int runner_bf_open(const sim_scenario_t *sc, attitude_run_t *r, char *err, size_
         }
     }
     bf->t0_s = (double)k * dt;
+    bf_pilot_restart(&bf->pilot);
     return 0;
 }
 
@@ -183,8 +184,9 @@ int runner_bf_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, d
     bf_rc_t rc;
     bf_fdm_t s;
     const double t_sitl = bf->t0_s + tk->t;
-    bf_pilot_sticks(&bf->pilot, t_sitl, tk->ref_rad, tk->meas_angle, throttle_stick(sc, r, bf, thrust_N), r->armed,
-                    &rc);
+    double error_rad[3]; /* the pilot sees the vehicle, not its sensors */
+    runner_attitude_error_rad(sc, &r->plant, tk->ref_rad, r->wrap_yaw, error_rad);
+    bf_pilot_sticks(&bf->pilot, t_sitl, tk->ref_rad, error_rad, throttle_stick(sc, r, bf, thrust_N), r->armed, &rc);
     state_packet(&r->plant, tk->meas_rate, tk->accel_m_s2, t_sitl, &s);
     char err[BF_LINK_PATH_LEN + 1024];
     if (bf_link_exchange(&bf->link, &rc, &s, bf->motor, err, sizeof err) != 0) {

@@ -249,6 +249,12 @@ typedef struct {
     int failed;                 /* 1: stopped by a failure, its message in the spec (not a divergence) */
 } attitude_run_t;
 
+/* The tracking error of every axis (rad): ref - angle per axis in the Euler
+ * frame (yaw wrapped when wrap_yaw), the body-axis rotation vector from the
+ * attitude to the reference's (ZYX) in the quaternion frame. */
+void runner_attitude_error_rad(const sim_scenario_t *sc, const sim_plant_t *p, const double ref_rad[3], int wrap_yaw,
+                               double error_rad[3]);
+
 /* The thrust asked of the mixer (N) at t_s for the measured tilt (angle[0..1], rad). */
 ladrc_real_t runner_thrust_N(const sim_scenario_t *sc, const attitude_run_t *r, const ladrc_real_t angle[3],
                              double t_s);

@@ -58,7 +58,7 @@ static double tracking_error_rad(double ref_rad, double angle_rad, int wrapped)
  * frame (yaw's wrapped when the controller wraps it), the body-axis
  * rotation vector from the attitude to the reference's (ZYX) in the
  * quaternion frame. */
-static void attitude_error_rad(const sim_scenario_t *sc, const sim_plant_t *p, const double ref_rad[3], int wrap_yaw,
+void runner_attitude_error_rad(const sim_scenario_t *sc, const sim_plant_t *p, const double ref_rad[3], int wrap_yaw,
                                double error_rad[3])
 {
     if (sc->frame == LADRC_FRAME_QUATERNION) {
@@ -96,7 +96,7 @@ int runner_diverged(const sim_scenario_t *sc, const sim_plant_t *p, const double
 {
     int axis = -2;
     double error_deg = NAN, error_rad[3];
-    attitude_error_rad(sc, p, ref_rad, wrap_yaw, error_rad);
+    runner_attitude_error_rad(sc, p, ref_rad, wrap_yaw, error_rad);
     for (int i = 0; i < 3 && axis == -2; ++i) {
         const double e_deg = error_rad[i] * RAD2DEG;
         if (!isfinite(e_deg) || !isfinite(p->rate_rad_s[i])) {
@@ -417,7 +417,7 @@ static void run_truth(const sim_scenario_t *sc, const attitude_run_t *r, tick_t 
     }
     sim_plant_forces(&plant->v, plant->w2_rad2_s2, &thrust_actual, torque_actual);
     sim_plant_accel(plant, torque_actual, tk->dist, accel);
-    attitude_error_rad(sc, plant, tk->ref_rad, r->wrap_yaw, tk->err_rad);
+    runner_attitude_error_rad(sc, plant, tk->ref_rad, r->wrap_yaw, tk->err_rad);
     for (int i = 0; i < 3; ++i) {
         tk->f_true[i] = accel[i] - tk->applied[i] / (sc->inertia_kg_m2[i] * sc->inertia_scale[i]);
         if (r->bf != NULL) { /* the SITL's estimates are its own */

@@ -95,7 +95,32 @@ fault garbage garbage@3 "a packet of 7 bytes on port 9002 at its time 3 s"
 fault not_a_number nan@3 "motor 3 output nan at its time 3 s"
 fault never_arms never-arm "did not arm within 2 s"
 
-# 6. The motor port taken by another process: refused with the port named.
+# 6. Faults of every kind at times drawn from a fixed seed (BF_FAULT_RUNS of them, 12 by
+# default; docs/reliability.md has a long form): each run ends, exit 0 (the fault after the
+# flight's end, or junk that happens to decode as four outputs in [0, 1]) or exit 1 with the
+# SITL named and the exchange counted; never a hang (the exchange timeout 300 ms bounds each).
+RANDOM=40
+runs=${BF_FAULT_RUNS:-12}
+located=0 clean=0 other=0
+kinds=(die silent garbage nan junk)
+for _ in $(seq "$runs"); do
+    kind=${kinds[$((RANDOM % 5))]}
+    at=$(awk -v r=$RANDOM 'BEGIN { printf "%.4f", 2.0 + 3.2 * r / 32768 }')
+    FAKE_BF_FAULT="$kind@$at" sil_run "$work/r" --betaflight "$work/sitl" --set controller:BETAFLIGHT.timeout_ms=300
+    if [ $rc -eq 1 ] && grep -q "Betaflight SITL $work/sitl.*(exchange [0-9]*)" "$work/err"; then
+        located=$((located + 1))
+    elif [ $rc -eq 0 ]; then
+        clean=$((clean + 1))
+    else
+        other=$((other + 1))
+        echo "fault $kind@$at: exit $rc: $(head -c 400 "$work/err")"
+    fi
+    rm -rf "$work/r"
+done
+echo "random faults: $runs runs, $located located errors, $clean flights to the end, $other otherwise"
+check random_faults "$([ $other -eq 0 ] && [ $located -gt 0 ] && echo 0 || echo 1)"
+
+# 7. The motor port taken by another process: refused with the port named.
 /usr/bin/python3 -c '
 import socket, sys, time
 s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM); s.bind(("127.0.0.1", 9002))
@@ -107,7 +132,7 @@ kill "$holder" 2>/dev/null
 wait "$holder" 2>/dev/null
 check port_taken "$([ $rc -eq 1 ] && grep -q 'UDP port 9002' "$work/err" && echo 0 || echo 1)"
 
-# 7. No SITL process left behind by any of the above.
+# 8. No SITL process left behind by any of the above.
 check none_left "$(pgrep -f "$work/" > /dev/null && echo 1 || echo 0)"
 
 [ "$failures" -eq 0 ] && echo "betaflight_bridge_test.sh: all passed" || echo "betaflight_bridge_test.sh: $failures failed"

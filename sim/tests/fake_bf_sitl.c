@@ -16,9 +16,14 @@
  *   silent@T    stop answering from there (alive)
  *   garbage@T   answer that one with 7 bytes
  *   nan@T       answer that one with a motor output that is not a number
+ *   junk@T      answer that one with 1-64 random bytes (seeded by T)
  *   never-arm   never arm (prints an arming-disabled line now and then)
  *   no-start    exit with status 1 at once, saying why
- * FAKE_BF_KP: the rate loop's gain (motor fraction per rad/s), default 0.04.
+ * FAKE_BF_KP: the rate loop's gain (motor fraction per rad/s), default 0.04,
+ * times N / 100 when its configuration (eeprom.bin in its working folder)
+ * holds a line `set simplified_master_multiplier = N`, as Betaflight's
+ * master slider scales its gains. `--config FILE` stores FILE as that
+ * configuration and exits, as Betaflight's SITL does.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <arpa/inet.h>
@@ -40,7 +45,7 @@
 #define ANGLE_LIMIT_RAD (60.0 * 3.14159265358979323846 / 180.0)
 #define ANGLE_KP_PER_S 6.0
 
-typedef enum { FAULT_NONE, FAULT_DIE, FAULT_SILENT, FAULT_GARBAGE, FAULT_NAN, FAULT_NEVER_ARM } fault_t;
+typedef enum { FAULT_NONE, FAULT_DIE, FAULT_SILENT, FAULT_GARBAGE, FAULT_NAN, FAULT_JUNK, FAULT_NEVER_ARM } fault_t;
 
 static int udp_bound(int port)
 {
@@ -102,8 +107,44 @@ static void control(const bf_fdm_t *s, const bf_rc_t *rc, int armed, double kp, 
     }
 }
 
-int main(void)
+/* Copies the CLI file into eeprom.bin; the exit status. */
+static int store_config(const char *path)
 {
+    FILE *in = fopen(path, "rb"), *out = fopen("eeprom.bin", "wb");
+    int c, rc = in != NULL && out != NULL ? 0 : 1;
+    while (rc == 0 && (c = fgetc(in)) != EOF) {
+        fputc(c, out);
+    }
+    if (in != NULL) {
+        fclose(in);
+    }
+    if (out != NULL && fclose(out) != 0) {
+        rc = 1;
+    }
+    printf("fake SITL: configuration %s %s\n", path, rc == 0 ? "saved" : "not saved");
+    return rc;
+}
+
+/* The master slider in eeprom.bin, percent (100 without one). */
+static double master_slider(void)
+{
+    FILE *f = fopen("eeprom.bin", "rb");
+    char line[256];
+    double pct = 100.0;
+    while (f != NULL && fgets(line, sizeof line, f) != NULL) {
+        (void)sscanf(line, "set simplified_master_multiplier = %lf", &pct);
+    }
+    if (f != NULL) {
+        fclose(f);
+    }
+    return pct;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc == 3 && strcmp(argv[1], "--config") == 0) {
+        return store_config(argv[2]);
+    }
     const char *f = getenv("FAKE_BF_FAULT");
     fault_t fault = FAULT_NONE;
     double at = INFINITY; /* the fault's time (s) */
@@ -114,9 +155,9 @@ int main(void)
     if (f != NULL && strcmp(f, "never-arm") == 0) {
         fault = FAULT_NEVER_ARM;
     } else if (f != NULL) {
-        static const char *const NAMES[] = {"die@", "silent@", "garbage@", "nan@"};
-        static const fault_t KINDS[] = {FAULT_DIE, FAULT_SILENT, FAULT_GARBAGE, FAULT_NAN};
-        for (int k = 0; k < 4; ++k) {
+        static const char *const NAMES[] = {"die@", "silent@", "garbage@", "nan@", "junk@"};
+        static const fault_t KINDS[] = {FAULT_DIE, FAULT_SILENT, FAULT_GARBAGE, FAULT_NAN, FAULT_JUNK};
+        for (int k = 0; k < 5; ++k) {
             if (strncmp(f, NAMES[k], strlen(NAMES[k])) == 0) {
                 fault = KINDS[k];
                 at = atof(f + strlen(NAMES[k]));
@@ -124,7 +165,7 @@ int main(void)
         }
     }
     const char *kp_text = getenv("FAKE_BF_KP");
-    const double kp = kp_text != NULL ? atof(kp_text) : 0.04;
+    const double kp = (kp_text != NULL ? atof(kp_text) : 0.04) * master_slider() / 100.0;
     const int fdm = udp_bound(BF_PORT_FDM), rcs = udp_bound(BF_PORT_RC);
     struct sockaddr_in to;
     memset(&to, 0, sizeof to);
@@ -189,6 +230,15 @@ int main(void)
             motor[2] = (float)NAN;
             bf_motor_encode(motor, out);
         }
-        (void)sendto(fdm, out, out_len, 0, (const struct sockaddr *)&to, sizeof to);
+        unsigned char junk[64];
+        if (due && fault == FAULT_JUNK) { /* a 64-bit LCG from the fault's time */
+            uint64_t x = (uint64_t)(at * 1e6) * 6364136223846793005ULL + 1442695040888963407ULL;
+            out_len = 1 + (size_t)((x >> 33) % sizeof junk);
+            for (size_t b = 0; b < sizeof junk; ++b) {
+                x = x * 6364136223846793005ULL + 1442695040888963407ULL;
+                junk[b] = (unsigned char)(x >> 56);
+            }
+        }
+        (void)sendto(fdm, due && fault == FAULT_JUNK ? junk : out, out_len, 0, (const struct sockaddr *)&to, sizeof to);
     }
 }
