@@ -45,28 +45,55 @@ void bf_body_rates(const double ref_rad[3], const double euler_rate[3], double b
     body_rad_s[2] = -euler_rate[1] * sf + euler_rate[2] * ct * cf;
 }
 
-void bf_pilot_sticks(bf_pilot_t *p, double t_s, const double ref_rad[3], const double error_rad[3], double throttle,
-                     int armed, bf_rc_t *rc)
+void bf_pilot_rate_demand(const bf_pilot_t *p, const double ref_rad[3], const double error_rad[3], double rate_rad_s[3])
 {
-    static const int CH[3] = {BF_CH_ROLL, BF_CH_PITCH, BF_CH_YAW};
     const bf_pilot_config_t *c = &p->cfg;
     double euler_rate[3] = {0.0, 0.0, 0.0}, ff[3];
     for (int i = 0; p->has_last && i < 3; ++i) {
         euler_rate[i] = (ref_rad[i] - p->last_ref_rad[i]) / c->dt_s;
     }
     bf_body_rates(ref_rad, euler_rate, ff);
+    for (int i = 0; i < 3; ++i) {
+        rate_rad_s[i] = ff[i] + c->att_kp_per_s * error_rad[i];
+    }
+}
+
+double bf_pilot_stick_rate(const bf_pilot_t *p, int axis, double rate_rad_s, int pulse)
+{
+    const double max = p->cfg.rate_max_rad_s;
+    if (!pulse) {
+        return fmax(-max, fmin(max, rate_rad_s));
+    }
+    const int us = (int)bf_stick_us(STICK_SIGN[axis] * rate_rad_s / max) - BF_STICK_CENTRE_US;
+    return STICK_SIGN[axis] * (double)us / BF_STICK_HALF_US * max;
+}
+
+void bf_pilot_advance(bf_pilot_t *p, const double ref_rad[3])
+{
+    for (int i = 0; i < 3; ++i) {
+        p->last_ref_rad[i] = ref_rad[i];
+    }
+    p->has_last = 1;
+}
+
+void bf_pilot_sticks(bf_pilot_t *p, double t_s, const double ref_rad[3], const double error_rad[3], double throttle,
+                     int armed, bf_rc_t *rc)
+{
+    static const int CH[3] = {BF_CH_ROLL, BF_CH_PITCH, BF_CH_YAW};
+    const bf_pilot_config_t *c = &p->cfg;
+    double demand[3];
+    bf_pilot_rate_demand(p, ref_rad, error_rad, demand);
     int clipped = 0;
     for (int i = 0; i < 3; ++i) {
         double stick;
         if (c->mode == BF_MODE_ANGLE && i < 2) {
             stick = ref_rad[i] / c->angle_limit_rad;
         } else {
-            stick = (ff[i] + c->att_kp_per_s * error_rad[i]) / c->rate_max_rad_s;
+            stick = demand[i] / c->rate_max_rad_s;
         }
         rc->channel_us[CH[i]] = bf_stick_us(held(STICK_SIGN[i] * stick, &clipped));
-        p->last_ref_rad[i] = ref_rad[i];
     }
-    p->has_last = 1;
+    bf_pilot_advance(p, ref_rad);
     p->clipped += clipped;
     rc->t_s = t_s;
     rc->channel_us[BF_CH_THROTTLE] = (uint16_t)lround(1000.0 + 1000.0 * fmax(0.0, fmin(1.0, throttle)));

@@ -36,6 +36,13 @@ typedef enum { BF_MODE_ACRO = 0, BF_MODE_ANGLE = 1 } bf_mode_t;
 #define BF_CH_ARM 4
 #define BF_CH_ANGLE 5
 
+/* The pilot's defaults: full stick in acro as tools/betaflight/sitl.cli
+ * makes the SITL's rates (linear, deg/s), and its angle loop (1/s): a
+ * crossover near 1 Hz, well below any rate loop's, as a pilot holding an
+ * attitude by sight */
+#define BF_RATE_MAX_DEG_S_DEFAULT 700.0
+#define BF_PILOT_ATT_KP_DEFAULT 6.0
+
 typedef struct {
     bf_mode_t mode;
     double rate_max_rad_s;  /* full stick, acro (the SITL's linear rates) */
@@ -65,6 +72,22 @@ void bf_body_rates(const double ref_rad[3], const double euler_rate[3], double b
 /* Forgets the last reference: the next tick has no feed-forward (a new
  * flight starts from where the pilot is, not with a jump). */
 void bf_pilot_restart(bf_pilot_t *p);
+
+/* The body rates (rad/s) the acro sticks ask for at this tick, before they
+ * become pulses: w_ref + att_kp e (the file's comment), w_ref from the
+ * reference's change since the last tick bf_pilot_sticks or
+ * bf_pilot_advance saw (none on the first). Does not advance the pilot. */
+void bf_pilot_rate_demand(const bf_pilot_t *p, const double ref_rad[3], const double error_rad[3],
+                          double rate_rad_s[3]);
+
+/* The rate (rad/s) the SITL reads on axis (0 roll, 1 pitch, 2 yaw) for a
+ * demand: held within full stick, and with pulse 1 as the link carries it,
+ * a whole-microsecond pulse (rate_max / 500 per us). */
+double bf_pilot_stick_rate(const bf_pilot_t *p, int axis, double rate_rad_s, int pulse);
+
+/* Remembers the tick's reference (the next tick's feed-forward), as
+ * bf_pilot_sticks does. */
+void bf_pilot_advance(bf_pilot_t *p, const double ref_rad[3]);
 
 /* A stick in [-1, 1] as a pulse (us), rounded; beyond: held at the end. */
 uint16_t bf_stick_us(double stick);

@@ -21,11 +21,7 @@
 
 #define BF_WARMUP_S_DEFAULT 2.0
 #define BF_ARM_WAIT_S 2.0
-#define BF_RATE_MAX_DEG_S_DEFAULT 700.0 /* tools/betaflight/sitl.cli: linear rates */
 #define BF_ANGLE_LIMIT_DEG_DEFAULT 60.0 /* Betaflight's angle_limit default */
-/* The pilot's angle loop in acro (1/s): a crossover near 1 Hz, well below
- * any rate loop's, as a pilot holding an attitude by sight */
-#define BF_PILOT_ATT_KP_DEFAULT 6.0
 #define SEA_LEVEL_PA 101325.0
 
 /* Betaflight's QUADP motor k drives the plant's rotor BF_TO_PLANT[k]

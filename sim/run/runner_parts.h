@@ -246,6 +246,9 @@ typedef struct {
     int armed, on_ground;
     double ground_angle_rad[3]; /* the attitude the ground holds it at */
     struct runner_bf *bf;       /* BETAFLIGHT: its SITL (runner_bf.c); NULL for the library's controllers */
+    int piloted;                /* 1: RATE-ADRC flown by Betaflight's acro pilot (runner_pilot.c) */
+    int pilot_pulse;            /* 1: its demand quantized to the RC pulse */
+    bf_pilot_t pilot;           /* piloted: the pilot */
     int failed;                 /* 1: stopped by a failure, its message in the spec (not a divergence) */
 } attitude_run_t;
 
@@ -262,6 +265,21 @@ ladrc_real_t runner_thrust_N(const sim_scenario_t *sc, const attitude_run_t *r, 
 /* The w^2 (rad^2/s^2) a rotor gives at the ESC command c in [0, 1]: c w2_max,
  * or through [rotors] thrust_curve k, w2_max ((1 - k) c + k c^2). */
 double runner_command_w2(const sim_scenario_t *sc, double c);
+
+/* ---- runner_pilot.c ----------------------------------------------------------- */
+
+/* A piloted controller's configuration (sim_setup_piloted): its axes in
+ * acro, in the Euler frame (the pilot gives body rates); others unchanged. */
+void runner_pilot_configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_config_t *cfg);
+
+/* Sets r's pilot up when controller id is flown by one (sim_setup_piloted). */
+void runner_pilot_open(const sim_scenario_t *sc, sim_controller_id_t id, attitude_run_t *r);
+
+/* The rate setpoints (rad/s) the pilot asks of the rate loop at tk: its
+ * demand for tk's references and the vehicle's attitude, as the SITL would
+ * read it off the sticks; the pilot moves on to tk. */
+void runner_pilot_rates(const sim_scenario_t *sc, attitude_run_t *r, const struct runner_tick *tk,
+                        ladrc_real_t rate_sp[3]);
 
 /* ---- runner_bf.c -------------------------------------------------------------- */
 

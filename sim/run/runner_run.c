@@ -27,6 +27,7 @@ static int configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_att
         memset(att, 0, sizeof *att); /* not flown: the SITL controls (the mixer gives the thrust asked) */
     } else {
         sim_setup_attitude(sc, id, &cfg);
+        runner_pilot_configure(sc, id, &cfg);
         st = ladrc_attitude_init(att, &cfg, &bad_axis);
     }
     if (st != LADRC_OK) {
@@ -141,6 +142,7 @@ int runner_run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t 
     r->rec = NULL;                     /* no series unless the group gives its own */
     r->bf = NULL;
     r->failed = 0;
+    runner_pilot_open(sc, spec->ctrl, r);
     memset(m, 0, sizeof *m);
     if (configure(sc, spec->ctrl, &r->att, &r->mixer, spec->err, spec->err_len) != 0) {
         return -1;
@@ -367,7 +369,11 @@ static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, 
         tk->ctrl_angle[i] = (double)angle[i];
     }
     ladrc_quat_t meas = {LADRC_R(1.0), 0, 0, 0}, ref = {LADRC_R(1.0), 0, 0, 0};
-    if (quat_frame) {
+    ladrc_real_t rate_sp[3]; /* piloted: the pilot's rate setpoints are the axes' references */
+    if (r->piloted) {
+        runner_pilot_rates(sc, r, tk, rate_sp);
+    }
+    if (quat_frame && !r->piloted) {
         /* what series and vibration added to the angles turns the sensed
          * attitude as a small rotation in body axes */
         double turn_rad[3], turn[4], q_meas[4], q_ref[4], tilt_rad[3];
@@ -394,8 +400,10 @@ static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, 
     tk->thrust_N = thrust_N;
     ladrc_attitude_set_operating_point(&r->att, thrust_N, run_voltage_V(sc, r, tk->t));
     const ladrc_fault_t faults =
-        quat_frame ? ladrc_attitude_step_quat(&r->att, &ref, &meas, sc->use_rate ? rate : NULL, tk->torque)
-                   : ladrc_attitude_step(&r->att, tk->ref, angle, sc->use_rate ? rate : NULL, tk->torque);
+        (quat_frame && !r->piloted)
+            ? ladrc_attitude_step_quat(&r->att, &ref, &meas, sc->use_rate ? rate : NULL, tk->torque)
+            : ladrc_attitude_step(&r->att, r->piloted ? rate_sp : tk->ref, angle, sc->use_rate ? rate : NULL,
+                                  tk->torque);
     if (faults != LADRC_FAULT_NONE) {
         r->spec->metrics->faults++;
     }

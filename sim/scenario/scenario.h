@@ -97,8 +97,10 @@ typedef struct {
     int wrap_yaw;                          /* -1 (yes), 0 or 1: the controller's yaw wraps at +-180 deg */
     int tune;                              /* -1 (none) or sim_tune_t */
     int bf_mode;                           /* BETAFLIGHT: -1 (acro) or bf_mode_t */
-    double bf_att_kp_per_s;                /* BETAFLIGHT: the pilot's angle loop in acro (NaN: default) */
-    double bf_rate_max_deg_s;              /* BETAFLIGHT: full stick in acro, as the SITL's rates say */
+    double bf_att_kp_per_s;                /* BETAFLIGHT, RATE-ADRC's pilot: its angle loop (NaN: default) */
+    double bf_rate_max_deg_s;              /* BETAFLIGHT, RATE-ADRC's pilot: full stick in acro */
+    int radrc_pilot;                       /* RATE-ADRC: -1 or 0 (no), 1 (acro: the pilot's rate setpoint) */
+    int radrc_pilot_pulse;                 /* RATE-ADRC's pilot: -1 or 0 (no), 1 (quantized to the pulse) */
     double bf_angle_limit_deg;             /* BETAFLIGHT: full stick in angle mode, the SITL's angle_limit */
     double bf_warmup_s;                    /* BETAFLIGHT: the SITL's time still and disarmed before arming */
     int bf_timeout_ms;                     /* BETAFLIGHT: -1 (default) or an exchange's timeout */

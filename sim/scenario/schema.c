@@ -144,6 +144,9 @@ static const choice_t CONTROLLER_CHOICES[] = {
     {.name = "RATE-ADRC", .value = SIM_CTRL_RATE_ADRC}, {.name = NULL, .value = 0}};
 static const choice_t BF_MODES[] = {
     {.name = "acro", .value = BF_MODE_ACRO}, {.name = "angle", .value = BF_MODE_ANGLE}, {.name = NULL, .value = 0}};
+/* RATE-ADRC's rate setpoint: its own attitude loop, or Betaflight's acro pilot (bf_pilot.h) */
+static const choice_t RADRC_PILOTS[] = {
+    {.name = "no", .value = 0}, {.name = "acro", .value = 1}, {.name = NULL, .value = 0}};
 static const choice_t HP_FREQ_MODES[] = {{.name = "known", .value = LADRC_HP_FREQ_KNOWN},
                                          {.name = "online", .value = LADRC_HP_FREQ_ONLINE},
                                          {.name = NULL, .value = 0}};
@@ -333,6 +336,9 @@ const key_def_t SCHEMA_KEYS[] = {
     {CTRL_KEY("radrc_kp_per_s", V_REAL, radrc_kp_per_s, C_RADRC), .range = R_POSITIVE},
     {CTRL_KEY("radrc_att_kp_per_s", V_REAL, radrc_att_kp_per_s, C_RADRC), .range = R_POSITIVE},
     {CTRL_KEY("radrc_rate_max_deg_s", V_REAL, radrc_rate_max_deg_s, C_RADRC), .range = R_POSITIVE},
+    {CTRL_KEY("pilot", V_CHOICE, radrc_pilot, C_RADRC), .choices = RADRC_PILOTS},
+    {CTRL_KEY("pilot_pulse", V_CHOICE, radrc_pilot_pulse, C_RADRC), .choices = YES_NO},
+    {CTRL_KEY("pilot_rate_max_deg_s", V_REAL, bf_rate_max_deg_s, C_RADRC), .range = R_POSITIVE},
     {CTRL_KEY("cas_att_kp", V_REAL, cas_att_kp, C_CAS), .range = R_POSITIVE},
     {CTRL_KEY("cas_rate_max_deg_s", V_REAL, cas_rate_max_deg_s, C_CAS), .range = R_POSITIVE},
     {CTRL_KEY("cas_rate_kp", V_REAL, cas_rate_kp, C_CAS), .range = R_NONNEGATIVE},
@@ -352,7 +358,7 @@ const key_def_t SCHEMA_KEYS[] = {
     {CTRL_KEY("wrap_yaw", V_CHOICE, wrap_yaw, LADRC_FAMILY | C_PID | C_CAS | C_INDI | C_RADRC), .choices = YES_NO},
     {CTRL_KEY("tune", V_CHOICE, tune, ALL_CONTROLLERS), .choices = TUNE_MODES},
     {CTRL_KEY("mode", V_CHOICE, bf_mode, C_BF), .choices = BF_MODES},
-    {CTRL_KEY("pilot_att_kp_per_s", V_REAL, bf_att_kp_per_s, C_BF), .range = R_POSITIVE},
+    {CTRL_KEY("pilot_att_kp_per_s", V_REAL, bf_att_kp_per_s, C_BF | C_RADRC), .range = R_POSITIVE},
     {CTRL_KEY("rate_max_deg_s", V_REAL, bf_rate_max_deg_s, C_BF), .range = R_POSITIVE},
     {CTRL_KEY("angle_limit_deg", V_REAL, bf_angle_limit_deg, C_BF), .range = R_POSITIVE},
     {CTRL_KEY("warmup_s", V_REAL, bf_warmup_s, C_BF), .range = R_NONNEGATIVE},
@@ -569,6 +575,7 @@ void schema_set_defaults(sim_scenario_t *sc)
         o->pid_kp = o->pid_ki = o->pid_kd = NAN;
         o->tune = -1;
         o->bf_mode = o->bf_timeout_ms = -1;
+        o->radrc_pilot = o->radrc_pilot_pulse = -1;
         o->bf_att_kp_per_s = o->bf_rate_max_deg_s = o->bf_angle_limit_deg = o->bf_warmup_s = NAN;
         o->tune_pm_deg = o->tune_gm_db = NAN;
         o->tune_step_rad = o->tune_dist_rad_s2 = NAN;

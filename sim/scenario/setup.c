@@ -187,6 +187,11 @@ int sim_setup_format_gains(const ladrc_axis_config_t *a, char *buf, size_t size)
     return used;
 }
 
+int sim_setup_piloted(const sim_scenario_t *sc, sim_controller_id_t id)
+{
+    return id == SIM_CTRL_RATE_ADRC && sc->overrides[id].radrc_pilot == 1;
+}
+
 int sim_setup_wraps_yaw(const sim_scenario_t *sc, sim_controller_id_t id)
 {
     return sc->overrides[id].wrap_yaw != 0;

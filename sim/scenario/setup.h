@@ -55,6 +55,13 @@ int sim_setup_format_gains(const ladrc_axis_config_t *a, char *buf, size_t size)
  * error is measured modulo 360 deg. */
 int sim_setup_wraps_yaw(const sim_scenario_t *sc, sim_controller_id_t id);
 
+/* 1 when controller id is RATE-ADRC flown by Betaflight's acro pilot
+ * ([controller RATE-ADRC] pilot = acro): its flights run the axes in acro
+ * (radrc_acro), their reference each tick the pilot's body-rate demand
+ * (bf_pilot.h); its gains are this function's configuration's (tune =
+ * margins tunes the rate loop under its own attitude loop, as without it). */
+int sim_setup_piloted(const sim_scenario_t *sc, sim_controller_id_t id);
+
 /* The vehicle's mixer; ideal rotors get limits 0 and 1e12 (the mixer wants
  * finite ones). */
 void sim_setup_mixer(const sim_scenario_t *sc, ladrc_mixer_config_t *cfg);
