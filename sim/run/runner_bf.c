@@ -32,12 +32,15 @@
  * (plant.h: rotor 1 rear, 2 left, 3 front, 4 right). */
 static const int BF_TO_PLANT[BF_MOTORS] = {0, 3, 1, 2};
 
-/* The body rates as the packet carries them: yaw negated. The SITL's
- * Gazebo bridge keeps the packet's yaw sign (Gazebo's plugin sends it in
- * its own frames); with the simulator's nose-right yaw negated, Betaflight
- * at its default motor direction (yaw_motors_reversed off) holds yaw and
- * its yaw stick to the right turns the nose right, as on a real quad. */
+/* The packet's axes as the SITL's Gazebo bridge reads them into
+ * Betaflight's forward-left-up body: it negates the pitch rate and the
+ * whole specific force, so the packet carries the roll and pitch rates as
+ * they are, the yaw rate negated, and the specific force with its forward
+ * part negated. Measured: with the yaw rate as it is, Betaflight's yaw runs
+ * away at its default motor direction; with the forward force as it is, its
+ * attitude estimate tilts nose down for nose up and angle mode diverges. */
 static const double BF_GYRO_SIGN[3] = {1.0, 1.0, -1.0};
+static const double BF_ACCEL_SIGN[3] = {-1.0, 1.0, 1.0};
 
 static double or_default(double v, double d)
 {
@@ -68,7 +71,7 @@ static void state_packet(const sim_plant_t *plant, const double rate_rad_s[3], c
     bf_gazebo_quat(q, s->quat_wxyz);
     for (int i = 0; i < 3; ++i) {
         s->gyro_rad_s[i] = BF_GYRO_SIGN[i] * rate_rad_s[i];
-        s->accel_m_s2[i] = accel_m_s2[i];
+        s->accel_m_s2[i] = BF_ACCEL_SIGN[i] * accel_m_s2[i];
     }
     s->pressure_Pa = SEA_LEVEL_PA;
 }
