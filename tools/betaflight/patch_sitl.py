@@ -1,0 +1,166 @@
+#!/usr/bin/env python3
+"""Apply the lockstep hook edits to a build copy of a Betaflight tree.
+
+Usage: patch_sitl.py TREE
+
+TREE is a copy (tools/betaflight_sitl.sh makes it), never the user's
+checkout. Every edit looks for a named piece of text in a named file and
+stops with `file: hook not found: <text>` when that text is missing, so a
+Betaflight version that moved the code fails here, not at run time. The
+edits (all in src/platform/SIMULATOR/sitl.c) are documented in
+docs/betaflight-sitl.md; the code they switch on is sitl_lockstep.c, which
+is copied next to sitl.c. Everything is compiled only with SITL_LOCKSTEP=1.
+"""
+
+import re
+import shutil
+import sys
+from pathlib import Path
+
+SITL_C = "src/platform/SIMULATOR/sitl.c"
+LOCKSTEP_C = "sitl_lockstep.c"
+
+
+class HookNotFound(Exception):
+    pass
+
+
+def find_once(text, needle, path):
+    """Offset of the only occurrence of needle in text."""
+    first = text.find(needle)
+    if first < 0:
+        raise HookNotFound(f"{path}: hook not found: {needle!r}")
+    if text.find(needle, first + 1) >= 0:
+        raise HookNotFound(f"{path}: hook found more than once: {needle!r}")
+    return first
+
+
+def insert_after(text, needle, addition, path):
+    at = find_once(text, needle, path) + len(needle)
+    return text[:at] + addition + text[at:]
+
+
+def replace_once(text, needle, replacement, path):
+    at = find_once(text, needle, path)
+    return text[:at] + replacement + text[at + len(needle):]
+
+
+def function_span(text, signature, path):
+    """(start, end) of a function definition that begins with the line
+    `signature` and ends at its matching closing brace."""
+    match = re.search(r"^" + re.escape(signature) + r"\s*\n\{", text, re.MULTILINE)
+    if not match:
+        raise HookNotFound(f"{path}: hook not found: function definition {signature!r}")
+    depth = 0
+    for at in range(match.end() - 1, len(text)):
+        if text[at] == "{":
+            depth += 1
+        elif text[at] == "}":
+            depth -= 1
+            if depth == 0:
+                return match.start(), at + 1
+    raise HookNotFound(f"{path}: no closing brace for {signature!r}")
+
+
+def without_lockstep(text, signature, path):
+    """Compile the original definition only in non-lockstep builds:
+    sitl_lockstep.c defines its replacement."""
+    start, end = function_span(text, signature, path)
+    return text[:start] + "#if !SITL_LOCKSTEP\n" + text[start:end] + "\n#endif\n" + text[end:]
+
+
+# The five SITL functions that sitl_lockstep.c replaces: the wall-clock time
+# base (micros64/millis64 scale the wall clock by a measured simRate), the
+# sleeping delays, and delayMicroseconds_real, which run() calls after every
+# scheduler() pass and which becomes the tick loop.
+REPLACED_FUNCTIONS = [
+    "uint64_t micros64(void)",
+    "uint64_t millis64(void)",
+    "void delayMicroseconds(uint32_t us)",
+    "void delay(uint32_t ms)",
+    "void delayMicroseconds_real(uint32_t us)",
+]
+
+PRELUDE = """
+#ifndef SITL_LOCKSTEP
+#define SITL_LOCKSTEP 0
+#endif
+#if SITL_LOCKSTEP
+static void lockstepInit(void);
+#endif
+"""
+
+
+def patch_sitl_c(text, path):
+    # Lockstep switch and the prototype of the hook called from systemInit.
+    text = insert_after(text, '#include "sitl_gyro.h"\n', PRELUDE, path)
+
+    # systemInit: remember the main thread (delay() moves the simulated
+    # clock only there).
+    text = insert_after(
+        text,
+        "    clock_gettime(CLOCK_MONOTONIC, &start_time);\n    printf(\"[system]Init...\\n\");\n",
+        "#if SITL_LOCKSTEP\n    lockstepInit();\n#endif\n",
+        path,
+    )
+
+    # udpThread / udpRCThread: the main thread reads the FDM and RC sockets
+    # itself, in tick order; the threads end at once (systemReset still
+    # joins them).
+    for thread in ("static void* udpThread(void* data)", "static void *udpRCThread(void *data)"):
+        start, end = function_span(text, thread, path)
+        body = text[start:end]
+        body = replace_once(body, "    UNUSED(data);\n", "    UNUSED(data);\n    if (SITL_LOCKSTEP) {\n        return NULL;\n    }\n", path)
+        text = text[:start] + body + text[end:]
+
+    # updateState: the 500 ms wall-clock timeout answers a packet with the old
+    # motor outputs and drops its state; a lockstep simulator may pause for
+    # any time, and every packet must be applied.
+    text = replace_once(
+        text,
+        "if (realtime_now > last_realtime + 500*1e3) {",
+        "if (!SITL_LOCKSTEP && realtime_now > last_realtime + 500*1e3) {",
+        path,
+    )
+
+    # pwmCompleteMotorUpdate: keep computing pwmPkt, but the tick loop sends
+    # it, once per FDM packet, after the tick's scheduler passes.
+    text = replace_once(
+        text,
+        "    if (pthread_mutex_trylock(&updateLock) != 0) return;\n",
+        "    if (SITL_LOCKSTEP || pthread_mutex_trylock(&updateLock) != 0) return;\n",
+        path,
+    )
+
+    for signature in REPLACED_FUNCTIONS:
+        text = without_lockstep(text, signature, path)
+
+    return text + '\n#if SITL_LOCKSTEP\n#include "' + LOCKSTEP_C + '"\n#endif\n'
+
+
+def main(argv):
+    if len(argv) != 2:
+        print(__doc__.strip().splitlines()[2], file=sys.stderr)
+        return 2
+    tree = Path(argv[1])
+    sitl_c = tree / SITL_C
+    if not sitl_c.is_file():
+        print(f"{sitl_c}: not found: TREE must be a Betaflight source tree", file=sys.stderr)
+        return 1
+    original = sitl_c.read_text()
+    if "sitl_lockstep.c" in original:
+        print(f"{sitl_c}: already patched", file=sys.stderr)
+        return 1
+    try:
+        patched = patch_sitl_c(original, str(sitl_c))
+    except HookNotFound as exc:
+        print(f"{exc}", file=sys.stderr)
+        return 1
+    shutil.copyfile(Path(__file__).with_name(LOCKSTEP_C), sitl_c.parent / LOCKSTEP_C)
+    sitl_c.write_text(patched)
+    print(f"patched {SITL_C}: lockstep tick loop and simulated clock ({len(REPLACED_FUNCTIONS)} functions replaced)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
