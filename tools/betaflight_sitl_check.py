@@ -77,6 +77,10 @@ TILT_PROBE_S = 1.0  # the attitude estimate follows the accelerometer within sec
 # A motor "rises" in a probe when its change is above half the largest change;
 # the mixer moves the rising pair together and the other pair the other way.
 RISE_FRACTION = 0.5
+# A gyro probe's own axis must carry this many times the command of any other
+# axis in the motor change; measured about 10x or more (the other axes stay at
+# zero but for output rounding to 0.001).
+DOMINANT_FACTOR = 3.0
 FIRST_REPLY_TIMEOUT_S = 30.0  # boot of the SITL before its first answer
 REPLY_TIMEOUT_S = 5.0
 DRAIN_S = 0.3
@@ -108,6 +112,31 @@ def own_cpu_s():
     return usage.ru_utime + usage.ru_stime
 
 
+def quat_mul(a, b):
+    aw, ax, ay, az = a
+    bw, bx, by, bz = b
+    return (
+        aw * bw - ax * bx - ay * by - az * bz,
+        aw * bx + ax * bw + ay * bz - az * by,
+        aw * by - ax * bz + ay * bw + az * bx,
+        aw * bz + ax * by - ay * bx + az * bw,
+    )
+
+
+def packet_quat(roll_deg):
+    """FDM quaternion (w, x, y, z) of a vehicle rolled right by roll_deg at
+    heading north, in the Gazebo-bridge convention the SITL undoes: it
+    computes q = Rz(90 deg) * Rx(180 deg) * q_packet * Rx(180 deg), the
+    attitude of the body (x forward, y left, z up) in the world (north, west,
+    up). So the packet carries Rx(180) * Rz(-90) * q * Rx(180): the y and z
+    parts of Rz(-90) * q negated."""
+    half = math.radians(roll_deg) / 2.0
+    roll = (math.cos(half), math.sin(half), 0.0, 0.0)
+    rz_minus_90 = (math.sqrt(0.5), 0.0, 0.0, -math.sqrt(0.5))
+    w, x, y, z = quat_mul(rz_minus_90, roll)
+    return (w, x, -y, -z)
+
+
 class Lockstep:
     """The simulator side: one FDM packet out, one motor packet back."""
 
@@ -133,6 +162,7 @@ class Lockstep:
         self.channels[CH_AUX2] = RC_LOW_US
         self.gyro = [0.0, 0.0, 0.0]
         self.accel = list(level_accel())
+        self.quat = list(packet_quat(0.0))
 
     def time_s(self):
         return self.tick * self.dt_s
@@ -146,7 +176,7 @@ class Lockstep:
             t,
             *self.gyro,
             *self.accel,
-            1.0, 0.0, 0.0, 0.0,  # quaternion w, x, y, z (unused by sitl.cli: no magnetometer)
+            *self.quat,
             0.0, 0.0, 0.0,
             0.0, 0.0, 0.0,
             SEA_LEVEL_PA,
@@ -226,10 +256,15 @@ def probe(link, name, apply, undo, seconds=PROBE_S):
     if min(base) < ARMED_MIN_OUTPUT:
         raise CheckFailed(f"{name}: not armed again after a disarm: outputs {fmt_motors(base)}")
     apply()
-    end = link.run_for(seconds)
+    first_change = None
+    end = base
+    for k in range(round(seconds / link.dt_s)):
+        end = link.step()
+        if first_change is None and end != base:
+            first_change = k
     undo()
     up, delta = rising(base, end)
-    return {"name": name, "up": up, "delta": delta}
+    return {"name": name, "up": up, "delta": delta, "first_change": first_change}
 
 
 def fly(link, report):
@@ -284,18 +319,25 @@ def fly(link, report):
             )
         )
     link.channels[CH_AUX2] = RC_HIGH_US  # angle mode
+    def tilt(roll_deg):
+        link.accel[0:3] = rolled_accel(roll_deg)
+        link.quat[0:4] = packet_quat(roll_deg)
+
     probes.append(
         probe(
             link,
-            f"angle mode, FDM accel of a {TILT_PROBE_DEG:.0f} deg right roll",
-            lambda: link.accel.__setitem__(slice(0, 3), rolled_accel(TILT_PROBE_DEG)),
-            lambda: link.accel.__setitem__(slice(0, 3), level_accel()),
+            f"angle mode, FDM accel and quaternion of a {TILT_PROBE_DEG:.0f} deg right roll",
+            lambda: tilt(TILT_PROBE_DEG),
+            lambda: tilt(0.0),
             TILT_PROBE_S,
         )
     )
     link.channels[CH_AUX2] = RC_LOW_US
     for p in probes:
-        report(f"{p['name']}: motors {sorted(p['up'])} rise, change {fmt_motors(p['delta'])}")
+        report(
+            f"{p['name']}: motors {sorted(p['up'])} rise, change {fmt_motors(p['delta'])}; first change in the "
+            f"answer to the probe's FDM packet + {p['first_change']}"
+        )
     found["probes"] = probes
     # speed over the ticks after the first answer (the first waits for the boot)
     found["wall_s"] = time.monotonic() - link.first_reply_wall_s
@@ -310,8 +352,6 @@ def interpret(found, report):
     the gyro and accelerometer probes; raises CheckFailed on a contradiction."""
     probes = found["probes"]
     roll, pitch, yaw = (p["up"] for p in probes[0:3])
-    gyros = [p["up"] for p in probes[3:6]]
-    tilt = probes[6]["up"]
     for name, up in (("roll", roll), ("pitch", pitch), ("yaw", yaw)):
         if len(up) != 2:
             raise CheckFailed(f"{name} stick: {len(up)} motors rose, expected a pair: {sorted(up)}")
@@ -324,32 +364,43 @@ def interpret(found, report):
     report("motor order (packet index: position, from the roll/pitch/yaw stick probes): " + "; ".join(positions))
     found["positions"] = positions
 
+    # A probe's motor change split along the three stick patterns: how much of
+    # it is a roll, pitch or yaw command in the stick's positive direction.
+    def components(delta):
+        return [sum(d if i in up else -d for i, d in enumerate(delta)) / 4.0 for up in (roll, pitch, yaw)]
+
     # A positive rate in a gyro field, if Betaflight reads it as the stick's
-    # positive direction, is countered by the opposite pair. The stick
-    # directions are the pilot's: roll right, nose down, nose right (this last
-    # one with the motor spins above, Betaflight's default props-in layout).
+    # positive direction, is countered: a command against that direction. The
+    # stick directions are the pilot's: roll right, nose down, nose right
+    # (this last one with the motor spins above, Betaflight's default
+    # props-in layout). The probed axis must carry most of the change.
     senses = []
-    for axis, stick_up, gyro_up, positive, negative in (
-        ("gyro[0] (roll)", roll, gyros[0], "roll right", "roll left"),
-        ("gyro[1] (pitch)", pitch, gyros[1], "nose down", "nose up"),
-        ("gyro[2] (yaw)", yaw, gyros[2], "nose right (clockwise seen from above)",
-         "nose left (counter-clockwise seen from above)"),
+    names = ("roll", "pitch", "yaw")
+    for axis, positive, negative in (
+        (0, "roll right", "roll left"),
+        (1, "nose down", "nose up"),
+        (2, "nose right (clockwise seen from above)", "nose left (counter-clockwise seen from above)"),
     ):
-        everyone = frozenset(range(4))
-        if gyro_up == everyone - stick_up:
-            senses.append(f"FDM {axis}: a positive rate is read as {positive}")
-        elif gyro_up == stick_up:
-            senses.append(f"FDM {axis}: a positive rate is read as {negative}")
-        else:
-            raise CheckFailed(f"{axis}: gyro probe raised {sorted(gyro_up)}, stick probe {sorted(stick_up)}: no clear sense")
-    for s in senses:
-        report(s)
-    if tilt == frozenset(range(4)) - roll:
-        report("FDM accel (0, -g sin r, -g cos r) is read as a right roll by r (angle mode levels it with a left roll)")
-    elif tilt == roll:
-        report("FDM accel (0, -g sin r, -g cos r) is read as a LEFT roll by r (angle mode rolls right)")
-    else:
-        raise CheckFailed(f"accelerometer tilt probe raised {sorted(tilt)}: no clear sense")
+        comp = components(probes[3 + axis]["delta"])
+        others = max(abs(c) for i, c in enumerate(comp) if i != axis)
+        if abs(comp[axis]) <= DOMINANT_FACTOR * others:
+            raise CheckFailed(
+                f"FDM gyro[{axis}] probe: roll/pitch/yaw commands {fmt_motors(comp)}: the {names[axis]} "
+                f"one is not {DOMINANT_FACTOR:.0f}x the others"
+            )
+        sense = positive if comp[axis] < 0.0 else negative
+        senses.append(f"FDM gyro[{axis}] ({names[axis]}): a positive rate is read as {sense}")
+    for line in senses:
+        report(line)
+    comp = components(probes[6]["delta"])
+    report(f"accelerometer/quaternion tilt probe: roll/pitch/yaw commands {fmt_motors(comp)}")
+    if abs(comp[0]) <= max(abs(comp[1]), abs(comp[2])):
+        raise CheckFailed(f"tilt probe: roll/pitch/yaw commands {fmt_motors(comp)}: the roll one is not the largest")
+    tilt_sense = "right" if comp[0] < 0.0 else "LEFT"
+    report(
+        f"FDM accel (0, -g sin r, -g cos r) with the quaternion of a right roll r is read as a {tilt_sense} roll "
+        f"(angle mode commands a {'left' if comp[0] < 0.0 else 'right'} roll)"
+    )
     found["senses"] = senses
 
 

@@ -6,10 +6,11 @@ Usage: patch_sitl.py TREE
 TREE is a copy (tools/betaflight_sitl.sh makes it), never the user's
 checkout. Every edit looks for a named piece of text in a named file and
 stops with `file: hook not found: <text>` when that text is missing, so a
-Betaflight version that moved the code fails here, not at run time. The
-edits (all in src/platform/SIMULATOR/sitl.c) are documented in
-docs/betaflight-sitl.md; the code they switch on is sitl_lockstep.c, which
-is copied next to sitl.c. Everything is compiled only with SITL_LOCKSTEP=1.
+Betaflight version that moved the code fails here, not at run time; nothing
+is written unless every hook was found. The edits (src/platform/SIMULATOR/
+sitl.c: compiled only with SITL_LOCKSTEP=1; src/main/sensors/gyro_init.c:
+the virtual gyro's rate) are documented in docs/betaflight-sitl.md; the code
+the sitl.c edits switch on is sitl_lockstep.c, copied next to sitl.c.
 """
 
 import re
@@ -18,6 +19,7 @@ import sys
 from pathlib import Path
 
 SITL_C = "src/platform/SIMULATOR/sitl.c"
+GYRO_INIT_C = "src/main/sensors/gyro_init.c"
 LOCKSTEP_C = "sitl_lockstep.c"
 
 
@@ -93,7 +95,7 @@ static void lockstepInit(void);
 
 def patch_sitl_c(text, path):
     # Lockstep switch and the prototype of the hook called from systemInit.
-    text = insert_after(text, '#include "sitl_gyro.h"\n', PRELUDE, path)
+    text = insert_after(text, '#include "udplink.h"\n', PRELUDE, path)
 
     # systemInit: remember the main thread (delay() moves the simulated
     # clock only there).
@@ -138,6 +140,34 @@ def patch_sitl_c(text, path):
     return text + '\n#if SITL_LOCKSTEP\n#include "' + LOCKSTEP_C + '"\n#endif\n'
 
 
+# Betaflight's virtual gyro samples at VIRTUAL_GYRO_SAMPLE_RATE_HZ (1 kHz), and
+# its accelerometer at the same rate; the gyro task, and with it the filters
+# and the PID loop, then run at 1 kHz / pid_process_denom. A real 8 kHz gyro
+# (and gyroSetSampleRate's default for a sensor it does not know, which older
+# trees, such as the ADRC fork, use for the virtual gyro too) samples at 8 kHz
+# with the accelerometer at 1 kHz.
+VIRTUAL_GYRO_RATE = """        gyroSensor->gyroDev.gyroSampleRateHz = VIRTUAL_GYRO_SAMPLE_RATE_HZ;
+        gyroSensor->gyroDev.accSampleRateHz = VIRTUAL_GYRO_SAMPLE_RATE_HZ;
+        gyroSensor->gyroDev.gyroRateKHz = GYRO_RATE_1_kHz;
+"""
+GYRO_RATE_8K = """        // lockstep SITL: an 8 kHz gyro with a 1 kHz accelerometer, as gyroSetSampleRate's default
+        gyroSensor->gyroDev.gyroSampleRateHz = 8000;
+        gyroSensor->gyroDev.accSampleRateHz = 1000;
+        gyroSensor->gyroDev.gyroRateKHz = GYRO_RATE_8_kHz;
+"""
+GYRO_RATE_FROM_DETECTION = "    gyroSensor->gyroDev.gyroSampleRateHz = gyroSetSampleRate(&gyroSensor->gyroDev);\n    gyroSensor->gyroDev.initFn("
+
+
+def patch_gyro_init_c(text, path):
+    """The virtual gyro at 8 kHz; a tree that already takes every gyro's rate
+    from gyroSetSampleRate (8 kHz for the virtual one) is left as it is."""
+    if VIRTUAL_GYRO_RATE in text:
+        return replace_once(text, VIRTUAL_GYRO_RATE, GYRO_RATE_8K, path), "virtual gyro at 8 kHz"
+    if GYRO_RATE_FROM_DETECTION in text:
+        return text, "virtual gyro already at gyroSetSampleRate's 8 kHz"
+    raise HookNotFound(f"{path}: hook not found: {VIRTUAL_GYRO_RATE!r} (nor {GYRO_RATE_FROM_DETECTION!r})")
+
+
 def main(argv):
     if len(argv) != 2:
         print(__doc__.strip().splitlines()[2], file=sys.stderr)
@@ -147,18 +177,25 @@ def main(argv):
     if not sitl_c.is_file():
         print(f"{sitl_c}: not found: TREE must be a Betaflight source tree", file=sys.stderr)
         return 1
+    gyro_init_c = tree / GYRO_INIT_C
     original = sitl_c.read_text()
     if "sitl_lockstep.c" in original:
         print(f"{sitl_c}: already patched", file=sys.stderr)
         return 1
     try:
         patched = patch_sitl_c(original, str(sitl_c))
+        if not gyro_init_c.is_file():
+            raise HookNotFound(f"{gyro_init_c}: not found")
+        gyro_init, gyro_note = patch_gyro_init_c(gyro_init_c.read_text(), str(gyro_init_c))
     except HookNotFound as exc:
         print(f"{exc}", file=sys.stderr)
         return 1
+    # nothing is written until every hook was found
     shutil.copyfile(Path(__file__).with_name(LOCKSTEP_C), sitl_c.parent / LOCKSTEP_C)
     sitl_c.write_text(patched)
+    gyro_init_c.write_text(gyro_init)
     print(f"patched {SITL_C}: lockstep tick loop and simulated clock ({len(REPLACED_FUNCTIONS)} functions replaced)")
+    print(f"patched {GYRO_INIT_C}: {gyro_note}")
     return 0
 
 

@@ -25,8 +25,9 @@
 #include <sys/socket.h>
 #include <sys/time.h>
 
-/* The virtual gyro samples at 8 kHz (gyroSetSampleRate's default), so the
- * scheduler's gyro task is due every 125 us of this clock. The clock only
+/* The virtual gyro samples at 8 kHz (patch_sitl.py sets that rate in
+ * gyro_init.c), so the scheduler's gyro task is due every 125 us of this
+ * clock. The clock only
  * moves in whole steps of it: the gyro task is then never due a few
  * microseconds ahead (the scheduler would spin on a clock that only a packet
  * can move), and a packet's time step is run as that many 125 us sub-steps,
@@ -49,8 +50,8 @@
 #endif
 
 static pthread_t lockstepMainThread;
-static uint64_t lockstepNowUs;   /* the simulated clock, whole grid steps */
-static bool lockstepStarted;     /* first FDM packet received */
+static uint64_t lockstepNowUs; /* the simulated clock, whole grid steps */
+static bool lockstepStarted;   /* first FDM packet received */
 static double lockstepLastTimestampS;
 static unsigned lockstepPasses;
 static uint64_t lockstepSubStepsLeft; /* 125 us sub-steps still to run in this tick */
