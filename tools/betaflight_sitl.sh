@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Build Betaflight's SITL in lockstep from a user's Betaflight checkout.
 # docs/betaflight-sitl.md explains the build, the hook edits, the CLI file and the protocol.
 set -euo pipefail
@@ -130,7 +131,8 @@ for sub in lib/modules/dronecan/libcanard src/config; do
 done
 
 echo "applying the lockstep hook edits"
-python3 "$HERE/betaflight/patch_sitl.py" "$tree"
+patch_report="$(python3 "$HERE/betaflight/patch_sitl.py" "$tree")" || die "the hook edits failed (above): see docs/betaflight-sitl.md"
+echo "$patch_report"
 
 if [ "$ladrc" = 1 ]; then
     echo "adding the ladrc rate controller: $apply"
@@ -178,7 +180,8 @@ fi
     echo "checkout: $checkout"
     echo "commit: $commit"
     echo "make: make TARGET=SITL OPTIONS=\"$options\""
-    echo "hook edits: tools/betaflight/patch_sitl.py (lockstep tick loop and simulated clock)"
+    echo "hook edits (tools/betaflight/patch_sitl.py):"
+    echo "$patch_report" | sed 's/^/  /'
     echo "ladrc rate controller: $([ "$ladrc" = 1 ] && echo yes || echo no)"
     echo "cli: sitl.cli$(for f in ${extra_cli[@]+"${extra_cli[@]}"}; do printf ' %s' "$(basename "$f")"; done)"
     echo "built: $(date -u +%Y-%m-%dT%H:%M:%SZ)"

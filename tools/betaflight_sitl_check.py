@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Check a lockstep Betaflight SITL built by tools/betaflight_sitl.sh.
 
 Acts as the simulator: sends FDM packets of a level vehicle at rest (UDP 9003)
@@ -18,7 +19,7 @@ packet before it sends the next. Checks and reports:
 
 Usage:
   betaflight_sitl_check.py [--launch OUTDIR] [--runs N] [--rate-hz 4000]
-                           [--isolate] [--log-dir DIR]
+                           [--rc-hz 250] [--isolate] [--log-dir DIR] [--keep-logs]
 
 Without --launch it talks to a SITL already running on this machine (started
 in a directory holding the eeprom.bin the build made, and not yet sent any
@@ -61,7 +62,7 @@ RC_HIGH_US = 2000
 # AETR channel order (map AETR1234): roll, pitch, throttle, yaw, AUX1, AUX2
 CH_ROLL, CH_PITCH, CH_THROTTLE, CH_YAW, CH_AUX1, CH_AUX2 = range(6)
 
-RC_RATE_HZ = 250  # a common radio link's frame rate; the failsafe needs RC well inside 1.5 s
+RC_RATE_HZ = 250  # default: a common radio link's frame rate; the failsafe needs RC well inside 1.5 s
 ARM_TOGGLE_S = 0.1  # AUX1 low then high for this long each, until the motors arm
 ARM_TIMEOUT_S = 10.0  # simulated seconds the boot may take before arming is allowed
 # An armed motor output is at least the idle (0.055 with motor_idle 5.5 %); disarmed is exactly 0.
@@ -140,9 +141,9 @@ def packet_quat(roll_deg):
 class Lockstep:
     """The simulator side: one FDM packet out, one motor packet back."""
 
-    def __init__(self, rate_hz):
+    def __init__(self, rate_hz, rc_hz=RC_RATE_HZ):
         self.dt_s = 1.0 / rate_hz
-        self.rc_every = max(1, round(rate_hz / RC_RATE_HZ))
+        self.rc_every = max(1, round(rate_hz / rc_hz))
         self.out = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
         self.inp = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
         try:
@@ -354,7 +355,10 @@ def interpret(found, report):
     roll, pitch, yaw = (p["up"] for p in probes[0:3])
     for name, up in (("roll", roll), ("pitch", pitch), ("yaw", yaw)):
         if len(up) != 2:
-            raise CheckFailed(f"{name} stick: {len(up)} motors rose, expected a pair: {sorted(up)}")
+            raise CheckFailed(
+                f"{name} stick: {len(up)} motors rose, expected a pair: {sorted(up)} (Betaflight takes RC "
+                "frames less than 800 us apart for an invalid rate: send RC at 1 kHz or less)"
+            )
     positions = []
     for i in range(4):
         side = "left" if i in roll else "right"
@@ -458,11 +462,11 @@ def one_run(args, run_index, report):
     try:
         if args.launch:
             workdir = tempfile.mkdtemp(prefix=f"bf_sitl_run{run_index}_", dir=args.log_dir)
-            link = Lockstep(args.rate_hz)  # bind the motor port before the SITL sends to it
+            link = Lockstep(args.rate_hz, args.rc_hz)  # bind the motor port before the SITL sends to it
             proc, log_path = start_sitl(args.launch, workdir)
             report(f"run {run_index}: SITL started, log {log_path}")
         else:
-            link = Lockstep(args.rate_hz)
+            link = Lockstep(args.rate_hz, args.rc_hz)
         found = fly(link, report)
         extra = link.extra_replies()
         found["extra"] = extra
@@ -489,6 +493,9 @@ def parse_args(argv):
     parser.add_argument("--launch", metavar="OUTDIR", help="start OUTDIR/betaflight_SITL.elf for each run")
     parser.add_argument("--runs", type=int, help="runs to compare (default 2 with --launch, else 1)")
     parser.add_argument("--rate-hz", type=int, default=4000, help="FDM packets per simulated second (default 4000)")
+    parser.add_argument(
+        "--rc-hz", type=int, default=RC_RATE_HZ, help=f"RC packets per simulated second (default {RC_RATE_HZ})"
+    )
     parser.add_argument("--isolate", action="store_true", help="run in a private network namespace (unshare -rn)")
     parser.add_argument("--log-dir", help="where the runs' directories go (default: the system temporary directory)")
     parser.add_argument("--keep-logs", action="store_true", help="keep each run's directory and SITL log")
@@ -501,6 +508,8 @@ def parse_args(argv):
         parser.error("--runs above 1 needs --launch (every run needs a freshly started SITL)")
     if args.rate_hz <= 0 or 1_000_000 % args.rate_hz != 0 or (1_000_000 // args.rate_hz) % 125 != 0:
         parser.error("--rate-hz: the lockstep SITL needs a period that is a whole multiple of 125 us (8000, 4000, 2000, 1000, ...)")
+    if args.rc_hz <= 0 or args.rc_hz > args.rate_hz or args.rate_hz % args.rc_hz != 0:
+        parser.error("--rc-hz must divide --rate-hz (RC goes with every n-th FDM packet)")
     if args.launch and not os.path.isdir(args.launch):
         parser.error(f"--launch {args.launch}: not a directory")
     return args

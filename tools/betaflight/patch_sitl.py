@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Apply the lockstep hook edits to a build copy of a Betaflight tree.
 
 Usage: patch_sitl.py TREE

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Lockstep tick loop and simulated clock for Betaflight's SITL.
  *
  * tools/betaflight/patch_sitl.py copies this file next to the SITL's
@@ -27,12 +28,12 @@
 
 /* The virtual gyro samples at 8 kHz (patch_sitl.py sets that rate in
  * gyro_init.c), so the scheduler's gyro task is due every 125 us of this
- * clock. The clock only
- * moves in whole steps of it: the gyro task is then never due a few
- * microseconds ahead (the scheduler would spin on a clock that only a packet
- * can move), and a packet's time step is run as that many 125 us sub-steps,
- * one gyro sample each (the scheduler's overrun recovery would skip the gyro
- * task for good after a jump of three or more samples). */
+ * clock. The clock only moves in whole steps of it: the gyro task is then
+ * never due a few microseconds ahead (the scheduler would spin on a clock
+ * that only a packet can move), and a packet's time step is run as that many
+ * 125 us sub-steps, one gyro sample each (after a jump of three or more
+ * samples the scheduler's overrun recovery would skip the gyro task for
+ * good). */
 #define LOCKSTEP_GRID_US 125
 /* A step above a second is taken for a unit error (timestamps are seconds). */
 #define LOCKSTEP_MAX_STEP_US 1000000
@@ -229,6 +230,29 @@ static void lockstepStartTick(void)
     updateState(&fdmPkt);
 }
 
+/* What stops arming, printed with the simulated time whenever it changes:
+ * the boot's progress without a configurator. */
+static void lockstepReportArmingFlags(void)
+{
+    static armingDisableFlags_e reported = (armingDisableFlags_e)-1;
+    const armingDisableFlags_e flags = getArmingDisableFlags();
+    if (flags == reported) {
+        return;
+    }
+    reported = flags;
+    printf("[SITL lockstep] t=%.4f s (FDM packet %llu): arming disabled by:", lockstepLastTimestampS,
+           (unsigned long long)(lockstepTicks - 1));
+    if (flags == 0) {
+        printf(" nothing (arming allowed)");
+    }
+    for (unsigned i = 0; i < ARMING_DISABLE_FLAGS_COUNT; i++) {
+        if (flags & (1u << i)) {
+            printf(" %s", getArmingDisableFlagName((armingDisableFlags_e)(1u << i)));
+        }
+    }
+    printf("\n");
+}
+
 /* run() calls this after every scheduler() pass (RUN_LOOP_DELAY_US). */
 void delayMicroseconds_real(uint32_t us)
 {
@@ -246,6 +270,7 @@ void delayMicroseconds_real(uint32_t us)
         /* the answer to this tick's FDM packet: the motor outputs of the
          * last mixer run (zero until the motors are first written) */
         sendMotorUpdate();
+        lockstepReportArmingFlags();
     }
     lockstepStartTick();
 }
