@@ -570,7 +570,8 @@ def main(argv):
             failures.append(f"run {run_index}: {exc}")
         if sim_s / found["wall_s"] < REALTIME_FACTOR_REQUIRED:
             failures.append(
-                f"run {run_index}: {sim_s / found['wall_s']:.1f}x real time, below the {REALTIME_FACTOR_REQUIRED:.0f}x needed"
+                f"run {run_index}: {sim_s / found['wall_s']:.1f}x real time, below the {REALTIME_FACTOR_REQUIRED:.0f}x needed "
+                "(the machine's load counts: see the CPU figures above)"
             )
         report(f"run {run_index}: motor packets sha256 {found['digest']}")
     if len(runs) > 1:
