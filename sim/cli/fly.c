@@ -13,6 +13,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "bridge/bf_link.h"
 #include "run/progress.h"
 #include "staged_dir.h"
 #include "report/report.h"
@@ -330,6 +331,39 @@ int sim_fly_check_inputs(const sim_scenario_t *sc, const char *other)
     return 0;
 }
 
+int sim_fly_set_betaflight(sim_scenario_t *sc, const char *dir)
+{
+    int flies = 0;
+    for (int c = 0; sc->kind == SIM_KIND_ATTITUDE && c < sc->n_controllers; ++c) {
+        flies |= sc->controllers[c] == SIM_CTRL_BETAFLIGHT;
+    }
+    if (!flies) {
+        return 0;
+    }
+    if (dir == NULL || dir[0] == '\0') {
+        fprintf(stderr,
+                "%s: BETAFLIGHT needs a Betaflight SITL: --betaflight DIR or LADRC_BETAFLIGHT_SITL=DIR "
+                "(tools/betaflight_sitl.sh CHECKOUT DIR builds one; docs/betaflight.md)\n",
+                sc->path);
+        return -1;
+    }
+    if (strlen(dir) >= sizeof sc->betaflight_sitl) {
+        fprintf(stderr, "%s: --betaflight: path too long\n", sc->path);
+        return -1;
+    }
+    char program[SIM_PATH_LEN + 32], config[SIM_PATH_LEN + 32];
+    snprintf(program, sizeof program, "%s/%s", dir, BF_SITL_PROGRAM);
+    snprintf(config, sizeof config, "%s/%s", dir, BF_SITL_CONFIG);
+    const char *missing = access(program, X_OK) != 0 ? program : access(config, R_OK) != 0 ? config : NULL;
+    if (missing != NULL) {
+        fprintf(stderr, "%s: BETAFLIGHT: %s: %s (tools/betaflight_sitl.sh CHECKOUT %s builds it; docs/betaflight.md)\n",
+                sc->path, missing, strerror(errno), dir);
+        return -1;
+    }
+    snprintf(sc->betaflight_sitl, sizeof sc->betaflight_sitl, "%s", dir);
+    return 0;
+}
+
 int sim_fly_check_collisions(const sim_scenario_t *scenarios, int n)
 {
     static char norm[SIM_FLY_MAX_SCENARIOS][SIM_PATH_LEN];
@@ -396,7 +430,8 @@ static int write_signals_csv(FILE *f, const sim_scenario_t *sc)
  * controller's figure below: its time less the plant's ~800. */
 static double job_compute_ns(const job_t *job)
 {
-    static const double CONTROLLER_NS[SIM_CTRL_COUNT] = {630.0, 570.0, 500.0, 430.0, 470.0, 430.0};
+    /* BETAFLIGHT: a UDP round trip with its SITL */
+    static const double CONTROLLER_NS[SIM_CTRL_COUNT] = {630.0, 570.0, 500.0, 430.0, 470.0, 430.0, 0.0, 20000.0};
     /* HP LP LADRC PID CASCADED INDI */
     const double ticks = (double)sim_run_ticks(job->sc);
     if (job->controller_index < 0) {

@@ -71,6 +71,11 @@ typedef struct {
 int sim_fly_tune(sim_scenario_t *scenarios, int n_sc, const sim_fly_tune_options_t *opt, sim_parse_error_t *err,
                  int *failed);
 
+/* The Betaflight SITL folder of a scenario that flies BETAFLIGHT (dir:
+ * --betaflight or $LADRC_BETAFLIGHT_SITL; NULL or "": none given); 0, or -1
+ * after printing why on stderr (none given, or too long). */
+int sim_fly_set_betaflight(sim_scenario_t *sc, const char *dir);
+
 /* Refuses two scenarios writing the same output_dir: returns 0, or -1 after
  * printing the first pair on stderr. */
 int sim_fly_check_collisions(const sim_scenario_t *scenarios, int n_sc);

@@ -70,12 +70,12 @@ static void tune_note(void *ctx, int scenario_index, int rc, const sim_parse_err
 static void usage(FILE *out)
 {
     fputs("usage: ladrc_sil SCENARIO... [--jobs N] [--controllers LIST] [--set SECTION.KEY=VALUE]... [--seed N]\n"
-          "                 [--out DIR] [--no-csv] [--strict] [--quiet]\n"
+          "                 [--out DIR] [--no-csv] [--strict] [--quiet] [--betaflight DIR]\n"
           "       ladrc_sil --campaign FILE [--list] [--shard K/N] [--jobs N] [--out DIR] [--csv] [--quiet]\n"
           "                 (its options: ladrc_sil --campaign --help; docs/campaign-format.md)\n"
           "  SCENARIO          a scenario file (format: docs/scenario-format.md)\n"
           "  --jobs N          worker threads (default: the number of cores)\n"
-          "  --controllers L   subset of HP-MLADRC LP-MLADRC LADRC PID CASCADED INDI RATE-ADRC, names\n"
+          "  --controllers L   subset of HP-MLADRC LP-MLADRC LADRC PID CASCADED INDI RATE-ADRC BETAFLIGHT, names\n"
           "                    separated by commas, spaces or both (default: each scenario's own list)\n"
           "  --set S.K=V       KEY = VALUE in [SECTION] of every scenario, replacing the file's value\n"
           "                    (a controller's section: controller:NAME.KEY=V); repeatable\n"
@@ -87,6 +87,8 @@ static void usage(FILE *out)
           "                    check flight, refuses the scenario (exit 2) instead of flying the best\n"
           "                    candidate (docs/margins.md)\n"
           "  --quiet           no progress on stderr\n"
+          "  --betaflight DIR  the Betaflight SITL that BETAFLIGHT flies (tools/betaflight_sitl.sh builds\n"
+          "                    DIR; default: $LADRC_BETAFLIGHT_SITL; docs/betaflight.md)\n"
           "Prints the comparison tables on stdout; writes <out>/<controller>.csv time series and\n"
           "<out>/metrics.csv. A run diverges when |tracking error| on an axis exceeds the scenario's\n"
           "diverge_limit_deg (default 90) or its state turns non-finite: it stops there, its statistics\n"
@@ -118,6 +120,7 @@ int main(int argc, char **argv)
     int n_sc = 0;
     long jobs_wanted = sysconf(_SC_NPROCESSORS_ONLN);
     const char *out_root = NULL;
+    const char *betaflight = getenv("LADRC_BETAFLIGHT_SITL");
     int want_csv = 1, quiet = 0, strict = 0, n_override = 0;
     sim_controller_id_t override_ids[SIM_MAX_CONTROLLERS];
     const char *paths[MAX_SCENARIOS];
@@ -174,6 +177,8 @@ int main(int argc, char **argv)
             }
         } else if (strcmp(arg, "--out") == 0 && a + 1 < argc) {
             out_root = argv[++a];
+        } else if (strcmp(arg, "--betaflight") == 0 && a + 1 < argc) {
+            betaflight = argv[++a];
         } else if (strcmp(arg, "--no-csv") == 0) {
             want_csv = 0;
         } else if (strcmp(arg, "--csv") == 0) {
@@ -216,6 +221,9 @@ int main(int argc, char **argv)
                 return EXIT_BAD_INPUT;
             }
             memcpy(sc->output_dir, dir, sizeof dir);
+        }
+        if (sim_fly_set_betaflight(sc, betaflight) != 0) {
+            return EXIT_BAD_INPUT;
         }
     }
 

@@ -77,7 +77,7 @@ static int parse_controllers(const char *list, sim_controller_id_t *ids, int *n)
     *n = 0;
     for (char *tok = strtok(buf, ","); tok != NULL; tok = strtok(NULL, ",")) {
         int found = -1;
-        for (int c = 0; c < SIM_CTRL_COUNT; ++c) {
+        for (int c = 0; c < SIM_CTRL_LIBRARY_COUNT; ++c) { /* a SITL's loop is not ours to analyse */
             if (strcmp(tok, sim_controller_name((sim_controller_id_t)c)) == 0)
                 found = c;
         }

@@ -203,8 +203,8 @@ static void group_check_end(group_t *g, long n_ticks)
     widen(ref, ref_rad);
     for (int q = 0; q < g->n; ++q) {
         if (g->run[q].flying) {
-            (void)runner_diverged(sc, &g->run[q].plant, ref_rad, g->run[q].wrap_yaw, t, &g->run[q].att,
-                                  g->runs[q].metrics);
+            (void)runner_diverged(sc, &g->run[q].plant, ref_rad, g->run[q].wrap_yaw, t,
+                                  g->run[q].bf != NULL ? NULL : &g->run[q].att, g->runs[q].metrics);
         }
     }
 }

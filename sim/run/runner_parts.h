@@ -20,6 +20,8 @@
 #include "ladrc/gyro_filter.h"
 #include "ladrc/mixer.h"
 #include "biquad.h"
+#include "bridge/bf_link.h"
+#include "bridge/bf_pilot.h"
 #include "numfmt.h"
 #include "plant/plant.h"
 #include "runner.h"
@@ -243,7 +245,47 @@ typedef struct {
     int next_event;
     int armed, on_ground;
     double ground_angle_rad[3]; /* the attitude the ground holds it at */
+    struct runner_bf *bf;       /* BETAFLIGHT: its SITL (runner_bf.c); NULL for the library's controllers */
+    int failed;                 /* 1: stopped by a failure, its message in the spec (not a divergence) */
 } attitude_run_t;
+
+/* The tracking error of every axis (rad): ref - angle per axis in the Euler
+ * frame (yaw wrapped when wrap_yaw), the body-axis rotation vector from the
+ * attitude to the reference's (ZYX) in the quaternion frame. */
+void runner_attitude_error_rad(const sim_scenario_t *sc, const sim_plant_t *p, const double ref_rad[3], int wrap_yaw,
+                               double error_rad[3]);
+
+/* The thrust asked of the mixer (N) at t_s for the measured tilt (angle[0..1], rad). */
+ladrc_real_t runner_thrust_N(const sim_scenario_t *sc, const attitude_run_t *r, const ladrc_real_t angle[3],
+                             double t_s);
+
+/* The w^2 (rad^2/s^2) a rotor gives at the ESC command c in [0, 1]: c w2_max,
+ * or through [rotors] thrust_curve k, w2_max ((1 - k) c + k c^2). */
+double runner_command_w2(const sim_scenario_t *sc, double c);
+
+/* ---- runner_bf.c -------------------------------------------------------------- */
+
+/* A BETAFLIGHT run's SITL, its pilot, and the SITL's time at t = 0. */
+typedef struct runner_bf {
+    bf_link_t link;
+    bf_pilot_t pilot;
+    double t0_s;
+    float motor[BF_MOTORS];
+    double throttle;      /* the pilot's throttle stick, [0, 1] */
+    double last_thrust_N; /* what the last motor outputs gave; NaN: none yet in the air */
+} runner_bf_t;
+
+/* Starts the SITL of sc->betaflight_sitl, warms it up and arms it when the
+ * run starts armed (r->plant, r->armed set); 0, or -1 with the message. */
+int runner_bf_open(const sim_scenario_t *sc, attitude_run_t *r, char *err, size_t err_len);
+
+/* One tick's exchange: 1 with the rotors' command and tk's torque, thrust
+ * and mixer output as the motor outputs give them; -1 with the message in
+ * the run's spec. */
+int runner_bf_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, double w2_cmd[4]);
+
+/* Stops the SITL; safe on any run. */
+void runner_bf_close(attitude_run_t *r);
 
 /* Sets a run up; 0, or -1 with the message in its spec (then it does not fly). */
 int runner_run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t *spec);

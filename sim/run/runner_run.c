@@ -21,9 +21,14 @@ static int configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_att
                      char *err, size_t err_len)
 {
     ladrc_attitude_config_t cfg;
-    sim_setup_attitude(sc, id, &cfg);
     int bad_axis = -1;
-    ladrc_status_t st = ladrc_attitude_init(att, &cfg, &bad_axis);
+    ladrc_status_t st = LADRC_OK;
+    if (id == SIM_CTRL_BETAFLIGHT) {
+        memset(att, 0, sizeof *att); /* not flown: the SITL controls (the mixer gives the thrust asked) */
+    } else {
+        sim_setup_attitude(sc, id, &cfg);
+        st = ladrc_attitude_init(att, &cfg, &bad_axis);
+    }
     if (st != LADRC_OK) {
         snprintf(err, err_len, "%s: controller %s, axis %d: %s", sc->path, sim_controller_name(id), bad_axis,
                  ladrc_status_str(st));
@@ -53,7 +58,7 @@ static double tracking_error_rad(double ref_rad, double angle_rad, int wrapped)
  * frame (yaw's wrapped when the controller wraps it), the body-axis
  * rotation vector from the attitude to the reference's (ZYX) in the
  * quaternion frame. */
-static void attitude_error_rad(const sim_scenario_t *sc, const sim_plant_t *p, const double ref_rad[3], int wrap_yaw,
+void runner_attitude_error_rad(const sim_scenario_t *sc, const sim_plant_t *p, const double ref_rad[3], int wrap_yaw,
                                double error_rad[3])
 {
     if (sc->frame == LADRC_FRAME_QUATERNION) {
@@ -91,7 +96,7 @@ int runner_diverged(const sim_scenario_t *sc, const sim_plant_t *p, const double
 {
     int axis = -2;
     double error_deg = NAN, error_rad[3];
-    attitude_error_rad(sc, p, ref_rad, wrap_yaw, error_rad);
+    runner_attitude_error_rad(sc, p, ref_rad, wrap_yaw, error_rad);
     for (int i = 0; i < 3 && axis == -2; ++i) {
         const double e_deg = error_rad[i] * RAD2DEG;
         if (!isfinite(e_deg) || !isfinite(p->rate_rad_s[i])) {
@@ -134,6 +139,8 @@ int runner_run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t 
     r->csv = NULL;
     memset(&r->log, 0, sizeof r->log); /* no flight log open */
     r->rec = NULL;                     /* no series unless the group gives its own */
+    r->bf = NULL;
+    r->failed = 0;
     memset(m, 0, sizeof *m);
     if (configure(sc, spec->ctrl, &r->att, &r->mixer, spec->err, spec->err_len) != 0) {
         return -1;
@@ -205,20 +212,33 @@ int runner_run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t 
     r->ground_angle_rad[0] = sc->ground_rad[0];
     r->ground_angle_rad[1] = sc->ground_rad[1];
     r->ground_angle_rad[2] = 0.0;
+    const int library = spec->ctrl != SIM_CTRL_BETAFLIGHT;
     if (r->on_ground) {
         sim_plant_hold(&r->plant, r->ground_angle_rad);
-        ladrc_attitude_set_landed(&r->att, (uint8_t)sc->landed_input);
+        if (library) {
+            ladrc_attitude_set_landed(&r->att, (uint8_t)sc->landed_input);
+        }
     }
-    if (!r->armed) {
+    if (!r->armed && library) {
         ladrc_attitude_disarm(&r->att);
     }
-    m->has_estimate = spec->ctrl != SIM_CTRL_PID && spec->ctrl != SIM_CTRL_CASCADED;
+    m->has_estimate = library && spec->ctrl != SIM_CTRL_PID && spec->ctrl != SIM_CTRL_CASCADED;
     m->finite = 1;
     m->diverged_axis = -1;
     m->diverged_at_s = m->diverged_error_deg = NAN;
     for (int i = 0; i < 3; ++i) {
         m->reference_outran_at_s[i] = NAN;
         m->reference_outran_deg[i] = 0.0;
+    }
+    if (!library && runner_bf_open(sc, r, spec->err, spec->err_len) != 0) {
+        runner_bf_close(r);
+        if (r->csv != NULL) {
+            fclose(r->csv);
+            r->csv = NULL;
+        }
+        char ignored[8];
+        (void)runner_log_close(&r->log, ignored, sizeof ignored);
+        return -1;
     }
     r->flying = 1;
     return 0;
@@ -227,8 +247,7 @@ int runner_run_open(const sim_scenario_t *sc, attitude_run_t *r, sim_run_spec_t 
 /* The thrust asked of the mixer (N): none while disarmed, the ground's share
  * of the weight while armed on the ground, else what holds altitude at the
  * measured tilt. */
-static ladrc_real_t run_thrust_N(const sim_scenario_t *sc, const attitude_run_t *r, const ladrc_real_t angle[3],
-                                 double t_s)
+ladrc_real_t runner_thrust_N(const sim_scenario_t *sc, const attitude_run_t *r, const ladrc_real_t angle[3], double t_s)
 {
     if (!r->armed) {
         return LADRC_R(0.0);
@@ -256,7 +275,12 @@ static double rotor_w2(const sim_scenario_t *sc, const attitude_run_t *r, ladrc_
     if (!isfinite(sc->thrust_curve)) {
         return (double)w2;
     }
-    const double c = (double)ladrc_mixer_command(&r->mixer, w2), k = sc->thrust_curve;
+    return runner_command_w2(sc, (double)ladrc_mixer_command(&r->mixer, w2));
+}
+
+double runner_command_w2(const sim_scenario_t *sc, double c)
+{
+    const double k = isfinite(sc->thrust_curve) ? sc->thrust_curve : 0.0;
     return sc->w2_max_rad2_s2 * ((1.0 - k) * c + k * c * c);
 }
 
@@ -276,7 +300,8 @@ static const ladrc_real_t *run_excite(const sim_scenario_t *sc, attitude_run_t *
 }
 
 /* Measure, check, control and mix at tk->t; 0 when the run diverged (nothing
- * of this instant or later is recorded), else 1 with the rotors' command. */
+ * of this instant or later is recorded), -1 when its SITL failed (the message
+ * in the spec), else 1 with the rotors' command. */
 static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, double w2_cmd[4])
 {
     const sim_plant_t *plant = &r->plant;
@@ -301,8 +326,11 @@ static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, 
     sim_plant_wind_to_body(plant->angle_rad, gravity, tk->accel_m_s2);
     sim_vibration_tick(&r->vibration, plant->w2_rad2_s2, sc->control_dt_s, tk->meas_rate, tk->meas_angle,
                        tk->accel_m_s2);
-    if (runner_diverged(sc, plant, tk->ref_rad, r->wrap_yaw, tk->t, &r->att, r->spec->metrics)) {
+    if (runner_diverged(sc, plant, tk->ref_rad, r->wrap_yaw, tk->t, r->bf != NULL ? NULL : &r->att, r->spec->metrics)) {
         return 0;
+    }
+    if (r->bf != NULL) {
+        return runner_bf_control(sc, r, tk, w2_cmd);
     }
     /* the filter stage sees the rates and the unwrapped angles, as the
      * attitude estimator integrating the filtered gyro would give them;
@@ -362,7 +390,7 @@ static int run_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, 
         tk->ctrl_quat[3] = (double)meas.z;
         memcpy(tk->ctrl_angle, tilt_rad, sizeof tilt_rad);
     }
-    thrust_N = run_thrust_N(sc, r, angle, tk->t);
+    thrust_N = runner_thrust_N(sc, r, angle, tk->t);
     tk->thrust_N = thrust_N;
     ladrc_attitude_set_operating_point(&r->att, thrust_N, run_voltage_V(sc, r, tk->t));
     const ladrc_fault_t faults =
@@ -389,9 +417,13 @@ static void run_truth(const sim_scenario_t *sc, const attitude_run_t *r, tick_t 
     }
     sim_plant_forces(&plant->v, plant->w2_rad2_s2, &thrust_actual, torque_actual);
     sim_plant_accel(plant, torque_actual, tk->dist, accel);
-    attitude_error_rad(sc, plant, tk->ref_rad, r->wrap_yaw, tk->err_rad);
+    runner_attitude_error_rad(sc, plant, tk->ref_rad, r->wrap_yaw, tk->err_rad);
     for (int i = 0; i < 3; ++i) {
         tk->f_true[i] = accel[i] - tk->applied[i] / (sc->inertia_kg_m2[i] * sc->inertia_scale[i]);
+        if (r->bf != NULL) { /* the SITL's estimates are its own */
+            tk->f_est[i] = tk->z1[i] = tk->z2[i] = NAN;
+            continue;
+        }
         ladrc_real_t a_est, r_est, d_est;
         ladrc_axis_get_estimate(&r->att.axis[i], &a_est, &r_est, &d_est);
         tk->f_est[i] = d_est;
@@ -441,6 +473,15 @@ static void run_metrics(const sim_scenario_t *sc, attitude_run_t *r, const tick_
 static void run_phases(const sim_scenario_t *sc, attitude_run_t *r, double t)
 {
     for (; r->next_event < sc->n_events && sc->event_s[r->next_event] <= t; ++r->next_event) {
+        if (r->bf != NULL) { /* the SITL gets the switches and the throttle from its pilot */
+            const int kind = sc->event_kind[r->next_event];
+            r->armed = kind == SIM_EVENT_ARM ? 1 : kind == SIM_EVENT_DISARM ? 0 : r->armed;
+            r->on_ground = kind == SIM_EVENT_TAKEOFF ? 0 : kind == SIM_EVENT_LAND ? 1 : r->on_ground;
+            if (kind == SIM_EVENT_LAND) {
+                r->ground_angle_rad[2] = r->plant.angle_rad[2];
+            }
+            continue;
+        }
         switch (sc->event_kind[r->next_event]) {
         case SIM_EVENT_ARM:
             r->armed = 1;
@@ -480,7 +521,9 @@ int runner_run_tick(const sim_scenario_t *sc, attitude_run_t *r, double t, const
     tk.ref = ref;
     tk.ref_rad = ref_rad;
     tk.dist = dist;
-    if (!run_control(sc, r, &tk, w2_cmd)) {
+    const int controlled = run_control(sc, r, &tk, w2_cmd);
+    if (controlled <= 0) {
+        r->failed = controlled < 0;
         return 0;
     }
     run_truth(sc, r, &tk);
@@ -498,15 +541,25 @@ int runner_run_tick(const sim_scenario_t *sc, attitude_run_t *r, double t, const
 int runner_run_close(const sim_scenario_t *sc, attitude_run_t *r)
 {
     sim_metrics_t *m = r->spec->metrics;
+    runner_bf_close(r);
     for (int i = 0; i < 3; ++i) {
         m->settle_s[i] = r->out_at_last[i] ? SIM_NOT_SETTLED : r->last_out_s[i] - sc->settle_after_s;
         if (r->cmd_hp_on)
             m->cmd_noise_Nm[i] = sim_stat_rms(&m->cmd_hp_Nm[i]);
     }
-    const int log_rc = runner_log_close(&r->log, r->spec->err, r->spec->err_len);
-    if (r->csv != NULL && fclose(r->csv) != 0) {
+    char log_err[SIM_PATH_LEN + 64];
+    const int log_rc = runner_log_close(&r->log, log_err, sizeof log_err);
+    const int csv_rc = r->csv != NULL && fclose(r->csv) != 0 ? -1 : 0;
+    r->csv = NULL;
+    if (r->failed) {
+        return -1; /* its message is the failure's */
+    }
+    if (csv_rc != 0) {
         snprintf(r->spec->err, r->spec->err_len, "%s: write failed", r->spec->csv_path);
         return -1;
+    }
+    if (log_rc != 0) {
+        snprintf(r->spec->err, r->spec->err_len, "%s", log_err);
     }
     return log_rc;
 }

@@ -755,6 +755,9 @@ static void check_controllers(parser_t *p)
 {
     sim_scenario_t *sc = p->sc;
     for (int id = 0; id < SIM_CTRL_COUNT; ++id) {
+        if (id == SIM_CTRL_BETAFLIGHT) {
+            continue; /* not the library's: its SITL answers for itself when it flies */
+        }
         ladrc_attitude_config_t cfg;
         ladrc_attitude_t att;
         sim_setup_attitude(sc, (sim_controller_id_t)id, &cfg);

@@ -49,7 +49,9 @@ typedef enum {
     SIM_CTRL_CASCADED = 4,
     SIM_CTRL_INDI = 5,
     SIM_CTRL_RATE_ADRC = 6,
-    SIM_CTRL_COUNT = 7
+    SIM_CTRL_BETAFLIGHT = 7, /* Betaflight's own firmware (its SITL build) over UDP (docs/betaflight.md) */
+    SIM_CTRL_COUNT = 8,
+    SIM_CTRL_LIBRARY_COUNT = 7 /* the library's controllers: the ids below it */
 } sim_controller_id_t;
 
 /* [controller NAME] tune: how the controller's gains are chosen. */
@@ -94,6 +96,12 @@ typedef struct {
     int model_delay_ticks;                 /* -1: [sensors] delay_ticks (LADRC family) */
     int wrap_yaw;                          /* -1 (yes), 0 or 1: the controller's yaw wraps at +-180 deg */
     int tune;                              /* -1 (none) or sim_tune_t */
+    int bf_mode;                           /* BETAFLIGHT: -1 (acro) or bf_mode_t */
+    double bf_att_kp_per_s;                /* BETAFLIGHT: the pilot's angle loop in acro (NaN: default) */
+    double bf_rate_max_deg_s;              /* BETAFLIGHT: full stick in acro, as the SITL's rates say */
+    double bf_angle_limit_deg;             /* BETAFLIGHT: full stick in angle mode, the SITL's angle_limit */
+    double bf_warmup_s;                    /* BETAFLIGHT: the SITL's time still and disarmed before arming */
+    int bf_timeout_ms;                     /* BETAFLIGHT: -1 (default) or an exchange's timeout */
     double tune_pm_deg;                    /* tune = margins: phase margin target (deg); NaN: SIM_TUNE_PM_DEG_DEFAULT */
     double tune_gm_db;                     /* gain margin target (dB); NaN: SIM_TUNE_GM_DB_DEFAULT */
     double tune_step_rad;                  /* objective's reference step (rad); NaN: the analysis's default */
@@ -164,7 +172,8 @@ typedef struct {
     double control_dt_s;
     int plant_substeps; /* plant RK4 steps per control step, >= 1 */
     uint64_t seed;
-    char output_dir[SIM_PATH_LEN]; /* relative paths are relative to the current directory */
+    char output_dir[SIM_PATH_LEN];      /* relative paths are relative to the current directory */
+    char betaflight_sitl[SIM_PATH_LEN]; /* BETAFLIGHT: the SITL's folder (ladrc_sil --betaflight); "" none */
     int n_controllers;
     sim_controller_id_t controllers[SIM_MAX_CONTROLLERS];
     int log_forms; /* SIM_RUN_LOG_* bits; 0: no flight log */

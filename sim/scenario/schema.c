@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "bridge/bf_pilot.h"
 #include "ladrc/attitude.h"
 #include "ladrc/estimator.h"
 #include "ini.h"
@@ -49,8 +50,8 @@
 
 /* ---- controllers ------------------------------------------------------------ */
 
-static const char *const CONTROLLER_NAMES[SIM_CTRL_COUNT] = {"HP-MLADRC", "LP-MLADRC", "LADRC",    "PID",
-                                                             "CASCADED",  "INDI",      "RATE-ADRC"};
+static const char *const CONTROLLER_NAMES[SIM_CTRL_COUNT] = {"HP-MLADRC", "LP-MLADRC", "LADRC",     "PID",
+                                                             "CASCADED",  "INDI",      "RATE-ADRC", "BETAFLIGHT"};
 
 int sim_controller_needs_rate(sim_controller_id_t id)
 {
@@ -141,6 +142,8 @@ static const choice_t CONTROLLER_CHOICES[] = {
     {.name = "LADRC", .value = SIM_CTRL_LADRC},         {.name = "PID", .value = SIM_CTRL_PID},
     {.name = "CASCADED", .value = SIM_CTRL_CASCADED},   {.name = "INDI", .value = SIM_CTRL_INDI},
     {.name = "RATE-ADRC", .value = SIM_CTRL_RATE_ADRC}, {.name = NULL, .value = 0}};
+static const choice_t BF_MODES[] = {
+    {.name = "acro", .value = BF_MODE_ACRO}, {.name = "angle", .value = BF_MODE_ANGLE}, {.name = NULL, .value = 0}};
 static const choice_t HP_FREQ_MODES[] = {{.name = "known", .value = LADRC_HP_FREQ_KNOWN},
                                          {.name = "online", .value = LADRC_HP_FREQ_ONLINE},
                                          {.name = NULL, .value = 0}};
@@ -171,7 +174,9 @@ static const choice_t HP_SAMPLES[] = {{.name = "observer", .value = LADRC_HP_SAM
 #define C_INDI CTRL_BIT(SIM_CTRL_INDI)
 #define C_RADRC CTRL_BIT(SIM_CTRL_RATE_ADRC)
 #define LADRC_FAMILY (C_HP | C_LP | C_LADRC)
-#define ALL_CONTROLLERS ((1u << SIM_CTRL_COUNT) - 1u)
+#define C_BF CTRL_BIT(SIM_CTRL_BETAFLIGHT)
+/* the library's controllers: Betaflight brings its own gains and tuning */
+#define ALL_CONTROLLERS (((1u << SIM_CTRL_COUNT) - 1u) & ~C_BF)
 
 #define SC(field) offsetof(sim_scenario_t, field)
 #define OV(field) offsetof(sim_overrides_t, field)
@@ -346,6 +351,12 @@ const key_def_t SCHEMA_KEYS[] = {
     {CTRL_KEY("model_delay_ticks", V_INT, model_delay_ticks, LADRC_FAMILY | C_INDI | C_RADRC), .range = R_DELAY},
     {CTRL_KEY("wrap_yaw", V_CHOICE, wrap_yaw, LADRC_FAMILY | C_PID | C_CAS | C_INDI | C_RADRC), .choices = YES_NO},
     {CTRL_KEY("tune", V_CHOICE, tune, ALL_CONTROLLERS), .choices = TUNE_MODES},
+    {CTRL_KEY("mode", V_CHOICE, bf_mode, C_BF), .choices = BF_MODES},
+    {CTRL_KEY("pilot_att_kp_per_s", V_REAL, bf_att_kp_per_s, C_BF), .range = R_POSITIVE},
+    {CTRL_KEY("rate_max_deg_s", V_REAL, bf_rate_max_deg_s, C_BF), .range = R_POSITIVE},
+    {CTRL_KEY("angle_limit_deg", V_REAL, bf_angle_limit_deg, C_BF), .range = R_POSITIVE},
+    {CTRL_KEY("warmup_s", V_REAL, bf_warmup_s, C_BF), .range = R_NONNEGATIVE},
+    {CTRL_KEY("timeout_ms", V_INT, bf_timeout_ms, C_BF), .range = R_POSITIVE},
     {CTRL_KEY("tune_phase_margin_deg", V_REAL, tune_pm_deg, ALL_CONTROLLERS), .range = R_PHASE_MARGIN},
     {CTRL_KEY("tune_gain_margin_db", V_REAL, tune_gm_db, ALL_CONTROLLERS), .range = R_POSITIVE},
     {CTRL_KEY("tune_step_deg", V_REAL, tune_step_rad, ALL_CONTROLLERS), .range = R_TUNE_STEP, .scale = DEG_TO_RAD},
@@ -557,6 +568,8 @@ void schema_set_defaults(sim_scenario_t *sc)
         o->model_delay_ticks = o->wrap_yaw = -1;
         o->pid_kp = o->pid_ki = o->pid_kd = NAN;
         o->tune = -1;
+        o->bf_mode = o->bf_timeout_ms = -1;
+        o->bf_att_kp_per_s = o->bf_rate_max_deg_s = o->bf_angle_limit_deg = o->bf_warmup_s = NAN;
         o->tune_pm_deg = o->tune_gm_db = NAN;
         o->tune_step_rad = o->tune_dist_rad_s2 = NAN;
         o->tune_noise_max_Nm = NAN;

@@ -36,7 +36,7 @@ static void fly_every_controller(const char *folder, const char *file)
     snprintf(path, sizeof path, "%s/%s/%s", SIM_SCENARIO_DIR, folder, file);
     sim_parse_error_t perr;
     TEST_ASSERT_EQUAL_INT_MESSAGE(0, sim_scenario_load(&sc, path, &perr), perr.message);
-    TEST_ASSERT_EQUAL_INT(SIM_CTRL_COUNT, sc.n_controllers);
+    TEST_ASSERT_EQUAL_INT(SIM_CTRL_LIBRARY_COUNT, sc.n_controllers);
     for (int c = 0; c < sc.n_controllers; ++c) {
         const sim_controller_id_t id = sc.controllers[c];
         if (sim_tune_wanted(&sc, id)) {

@@ -1,0 +1,386 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
+"""Betaflight's own firmware (its SITL, in lockstep: docs/betaflight.md) against the LADRC family
+and the incumbents on the realistic suite, the vibration cases and the large-angle cases; writes
+docs/betaflight-study.md and its figure.
+
+Per case:
+- the library's controllers as the case lists them, each tuned by the project's rule
+  (tune = margins), in one ladrc_sil run;
+- Betaflight stock: the SITL folder as tools/betaflight_sitl.sh built it (Betaflight's defaults
+  but for what flying the simulator needs: tools/betaflight/sitl.cli);
+- Betaflight at the slider tune a pilot would pick for the airframe: the master multiplier of
+  Betaflight's simplified tuning from SLIDERS, each flown on a step flight of the case's
+  airframe (its references replaced by steps, its disturbances off: never the case itself), the
+  one with the least RMS error taken;
+- the open Betaflight ADRC (--adrc DIR, a SITL folder built from that fork) at its defaults.
+
+Every Betaflight run flies in its own network namespace (the SITL's UDP ports are fixed), so
+runs go side by side (--jobs). Usage:
+
+  tools/betaflight_study.py --sitl DIR [--adrc DIR] [--out docs/betaflight-study.md]
+                            [--work build/betaflight-study] [--jobs 2] [--cases CASE.ini ...]
+"""
+import argparse
+import concurrent.futures
+import glob
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from output_files import refuse_inputs, save_figure, write_whole  # noqa: E402
+from sim_output import AXES, divergence_text, is_number, load_metrics, untunable  # noqa: E402
+
+ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+SIL = os.path.join(ROOT, "build", "host-release", "sim", "ladrc_sil")
+FAMILY = ("HP-MLADRC", "LP-MLADRC", "LADRC", "RATE-ADRC")
+INCUMBENTS = ("CASCADED", "INDI")
+# Betaflight's simplified tuning, master multiplier in percent (its range 0-200; 100 = defaults)
+SLIDERS = (25, 50, 75, 100, 125, 150, 200)
+# The slider's step flight: 10 deg roll and pitch steps, a 20 deg yaw step, 5 s
+STEP_FLIGHT = {"run.duration_s": "5",
+               "reference.roll": "10*step(t - 1) - 10*step(t - 3)",
+               "reference.pitch": "-10*step(t - 2) + 10*step(t - 4)",
+               "reference.yaw": "20*step(t - 1.5)",
+               "disturbance.roll": "0", "disturbance.pitch": "0", "disturbance.yaw": "0",
+               "metrics.error_window_s": "0 5", "metrics.steady_window_s": "4.5 5", "metrics.settle_window_s": "1 5"}
+BF_STOCK, BF_SLIDER, BF_ADRC = "BF stock", "BF slider", "BF ADRC"
+SITL_PROGRAM, SITL_CONFIG, SITL_CLI = "betaflight_SITL.elf", "eeprom.bin", "sitl.cli"
+
+
+def default_cases():
+    """The realistic suite, the vibration cases and the large-angle cases."""
+    return [c for p in ("suite", "vibration", "large_angle") for c in sorted(glob.glob(os.path.join(ROOT, "scenarios", p, "*.ini")))]
+
+
+def in_namespace(cmd):
+    """cmd in a network namespace of its own (its own loopback), when this machine allows it."""
+    if shutil.which("unshare") and shutil.which("ip") and os.geteuid() == 0:
+        inner = "ip link set lo up && exec " + " ".join(_quote(a) for a in cmd)
+        return ["unshare", "-n", "sh", "-c", inner]
+    return cmd
+
+
+def _quote(a):
+    return "'" + a.replace("'", "'\\''") + "'"
+
+
+def sil(args, out_dir, betaflight=None):
+    """Runs ladrc_sil; (exit status, stderr). Exit 3 (a run diverged) and 4 (untunable) are results."""
+    cmd = [SIL] + args + ["--out", out_dir, "--no-csv"]  # not --quiet: its speed line
+    if betaflight is not None:
+        cmd = in_namespace(cmd + ["--controllers", "BETAFLIGHT", "--betaflight", betaflight])
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    return p.returncode, p.stderr
+
+
+def speed_of(stderr):
+    m = re.search(r"\(([0-9.]+)x real time\)", stderr)
+    return float(m.group(1)) if m else math.nan
+
+
+def slider_folder(sitl, work, percent):
+    """A SITL folder whose configuration is the stock one with the master multiplier at percent."""
+    folder = os.path.join(work, "sitl_slider_%d" % percent)
+    if os.path.exists(os.path.join(folder, SITL_CONFIG)):
+        return folder
+    os.makedirs(folder, exist_ok=True)
+    program = os.path.join(folder, SITL_PROGRAM)
+    if not os.path.exists(program):
+        os.symlink(os.path.abspath(os.path.join(sitl, SITL_PROGRAM)), program)
+    with open(os.path.join(sitl, SITL_CLI)) as f:
+        lines = [ln for ln in f.read().splitlines() if ln.strip() != "save"]
+    lines += ["set simplified_master_multiplier = %d" % percent, "simplified_tuning apply", "save"]
+    cli = os.path.join(folder, "slider.cli")
+    with open(cli, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    p = subprocess.run(in_namespace([os.path.abspath(program), "--config", "slider.cli"]), cwd=folder,
+                       capture_output=True, text=True)
+    if p.returncode != 0 or not os.path.exists(os.path.join(folder, SITL_CONFIG)):
+        sys.exit("betaflight_study: configuring the slider %d %%: exit %d: %s" % (percent, p.returncode, p.stdout[-400:]))
+    return folder
+
+
+def step_flight_args(case):
+    args = [case]
+    for k, v in STEP_FLIGHT.items():
+        args += ["--set", "%s=%s" % (k, v)]
+    return args
+
+
+def total_rms(m):
+    """The sum of BETAFLIGHT's RMS errors over the axes; inf when it did not fly to the end."""
+    if m is None or divergence_text(m, "BETAFLIGHT") is not None:
+        return math.inf
+    v = [m.get(("BETAFLIGHT", "4", "error_rms_deg", a)) for a in AXES]
+    return sum(v) if all(is_number(x) for x in v) else math.inf
+
+
+def pick_slider(case, sitl, work, name, pool):
+    """(percent, {percent: total RMS}) of the slider that flies the step flight best."""
+    scores = {}
+    futures = {}
+    for pct in SLIDERS:
+        folder = slider_folder(sitl, work, pct)
+        out = os.path.join(work, "steps", name, str(pct))
+        futures[pool.submit(sil, step_flight_args(case), out, folder)] = (pct, out)
+    for fut in concurrent.futures.as_completed(futures):
+        pct, out = futures[fut]
+        rc, err = fut.result()
+        if rc not in (0, 3):
+            sys.exit("betaflight_study: %s: the step flight at slider %d %%: exit %d: %s" % (case, pct, rc, err.strip()[-400:]))
+        scores[pct] = total_rms(load_metrics(os.path.join(out, name)))
+    best = min(SLIDERS, key=lambda p: (scores[p], abs(p - 100)))
+    return best, scores
+
+
+def study_case(case, args, pool):
+    name = os.path.splitext(os.path.basename(case))[0]
+    work = args.work
+    result = {"name": name, "case": os.path.relpath(case, ROOT), "metrics": {}, "speed": {}, "errors": []}
+    rc, err = sil([case], os.path.join(work, "library"))
+    result["metrics"]["library"] = load_metrics(os.path.join(work, "library", name))
+    if rc not in (0, 3, 4):
+        result["errors"].append("library controllers: exit %d: %s" % (rc, err.strip()[-300:]))
+    variants = [(BF_STOCK, args.sitl)]
+    pct, scores = pick_slider(case, args.sitl, work, name, pool)
+    result["slider"], result["slider_scores"] = pct, scores
+    variants.append((BF_SLIDER, slider_folder(args.sitl, work, pct)))
+    if args.adrc:
+        variants.append((BF_ADRC, args.adrc))
+    futures = {}
+    for label, folder in variants:
+        out = os.path.join(work, label.replace(" ", "_"))
+        futures[pool.submit(sil, [case], out, folder)] = (label, out)
+    for fut in concurrent.futures.as_completed(futures):
+        label, out = futures[fut]
+        rc, err = fut.result()
+        result["metrics"][label] = load_metrics(os.path.join(out, name))
+        result["speed"][label] = speed_of(err)
+        if rc not in (0, 3):
+            result["errors"].append("%s: exit %d: %s" % (label, rc, err.strip()[-300:]))
+    return result
+
+
+def value(m, controller, table, quantity, axis):
+    if m is None:
+        return None
+    v = m.get((controller, table, quantity, axis))
+    return v if is_number(v) else None
+
+
+def row_values(res, label, axis):
+    """(RMS deg, steady band deg, command noise N m) of a column, or None where it did not fly."""
+    if label in (BF_STOCK, BF_SLIDER, BF_ADRC):
+        m, c = res["metrics"].get(label), "BETAFLIGHT"
+    else:
+        m, c = res["metrics"].get("library"), label
+    if m is None or untunable(m, c) or divergence_text(m, c) is not None:
+        return None
+    rms, band, noise = (value(m, c, "4", "error_rms_deg", axis), value(m, c, "5", "steady_band_deg", axis),
+                        value(m, c, "-", "cmd_noise_Nm", axis))
+    return None if rms is None else (rms, band, noise)
+
+
+def why_not(res, label):
+    m = res["metrics"].get(label if label in (BF_STOCK, BF_SLIDER, BF_ADRC) else "library")
+    c = "BETAFLIGHT" if label in (BF_STOCK, BF_SLIDER, BF_ADRC) else label
+    if m is None:
+        return "failed"
+    if untunable(m, c):
+        return "untunable"
+    d = divergence_text(m, c)
+    return d if d is not None else "-"
+
+
+def family_best(res, axis, noise_cap):
+    """(controller, values) of the family member with the least RMS error on the axis whose command
+    noise is at most noise_cap (None: any), or None."""
+    best = None
+    for c in FAMILY:
+        v = row_values(res, c, axis)
+        if v is None or (noise_cap is not None and (v[2] is None or v[2] > noise_cap)):
+            continue
+        if best is None or v[0] < best[1][0]:
+            best = (c, v)
+    return best
+
+
+def fmt(v, digits=3):
+    return "-" if v is None or not math.isfinite(v) else ("%.*g" % (digits, v))
+
+
+def columns_of(results):
+    """The columns some case has: the library's controllers it lists, then the Betaflight runs."""
+    def has(res, c):
+        if c in (BF_STOCK, BF_SLIDER, BF_ADRC):
+            return c in res["metrics"]
+        m = res["metrics"].get("library")
+        return m is not None and any(key[0] == c for key in m)
+    return [c for c in FAMILY + INCUMBENTS + (BF_STOCK, BF_SLIDER, BF_ADRC) if any(has(r, c) for r in results)]
+
+
+def verdicts(results):
+    """Per case and axis: the family's best at no more command noise than BF stock, and the ratio."""
+    rows, losses = [], []
+    for res in results:
+        for axis in AXES:
+            stock = row_values(res, BF_STOCK, axis)
+            if stock is None:
+                best = family_best(res, axis, None)
+                rows.append((res["name"], axis, best, None, "BF stock did not fly: " + why_not(res, BF_STOCK)))
+                continue
+            best = family_best(res, axis, stock[2])
+            if best is None:
+                losses.append((res["name"], axis, "no family member at or under BF stock's command noise %s N m"
+                               % fmt(stock[2])))
+                rows.append((res["name"], axis, None, stock, "loss: noise"))
+                continue
+            ratio = best[1][0] / stock[0] if stock[0] > 0 else math.inf
+            if ratio >= 1.0:
+                losses.append((res["name"], axis, "%s %s deg against BF stock %s deg (%.2fx)"
+                               % (best[0], fmt(best[1][0]), fmt(stock[0]), ratio)))
+            rows.append((res["name"], axis, best, stock, "%.2fx" % ratio))
+    return rows, losses
+
+
+def write_figure(rows, path):
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return None
+    labels, ratios = [], []
+    for name, axis, best, stock, _ in rows:
+        if best is not None and stock is not None and stock[0] > 0:
+            labels.append("%s %s" % (name, axis))
+            ratios.append(best[1][0] / stock[0])
+    if not ratios:
+        return None
+    fig, ax = plt.subplots(figsize=(8, max(3, 0.22 * len(ratios))))
+    ax.barh(range(len(ratios)), ratios, color=["#2ca02c" if r < 1 else "#d62728" for r in ratios])
+    ax.axvline(1.0, color="black", lw=0.8)
+    ax.set_yticks(range(len(ratios)))
+    ax.set_yticklabels(labels, fontsize=7)
+    ax.invert_yaxis()
+    ax.set_xscale("log")
+    ax.set_xlabel("RMS error: LADRC family's best (at no more command noise) / Betaflight stock")
+    fig.tight_layout()
+    save_figure(fig, path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def write_doc(results, args, bf_commit, adrc_commit):
+    rows, losses = verdicts(results)
+    cols = columns_of(results)
+    figure = write_figure(rows, os.path.splitext(args.out)[0] + ".png")
+    out = ["# Betaflight in the loop: the study", "",
+           "Generated by `tools/betaflight_study.py` (docs/betaflight.md); do not edit by hand.", "",
+           "Betaflight: %s (lockstep SITL, tools/betaflight_sitl.sh, configuration tools/betaflight/sitl.cli)."
+           % bf_commit]
+    if args.adrc:
+        out.append("Open Betaflight ADRC: %s, at its documented defaults (tools/betaflight/adrc_fork.cli)." % adrc_commit)
+    out += ["", "Every library controller tuned by the project's rule (`tune = margins`); Betaflight stock at its",
+            "defaults; Betaflight at the master slider a pilot picks for the airframe (the one of %s %% whose"
+            % ", ".join(str(s) for s in SLIDERS),
+            "5 s step flight on the case's airframe, disturbances off, has the least RMS error); the pilot",
+            "flies acro (docs/betaflight.md, \"The pilot\"). RMS and steady band in deg, command noise",
+            "(the torque command above 20 Hz, RMS) in N m.", ""]
+    if figure:
+        out += ["![LADRC family's best over Betaflight stock](%s)" % os.path.basename(figure), ""]
+    wins = sum(1 for r in rows if r[4].endswith("x") and float(r[4][:-1]) < 1.0)
+    out += ["## Verdict", "",
+            "The LADRC family's best at no more command noise than Betaflight stock beats it on RMS error on "
+            "%d of %d case-axes." % (wins, len(rows)), ""]
+    if losses:
+        out += ["Losses:", ""] + ["- %s %s: %s" % l for l in losses] + [""]
+    out += ["| case | axis | family's best | its RMS | BF stock RMS | ratio |", "|---|---|---|---|---|---|"]
+    for name, axis, best, stock, verdict in rows:
+        out.append("| %s | %s | %s | %s | %s | %s |" % (name, axis, best[0] if best else "-",
+                                                       fmt(best[1][0]) if best else "-",
+                                                       fmt(stock[0]) if stock else "-", verdict))
+    cost = m4f_cost()
+    out += ["", "## What each costs on a Cortex-M4F", "",
+            "Instructions per tick of three axes and the mixer at -Os (docs/performance.md). Betaflight's own",
+            "rate loop was not measured on the Cortex-M4F here: its SITL runs on the host.", "",
+            "| controller | instructions/tick |", "|---|---|"]
+    out += ["| %s | %.0f |" % (c, cost[c]) for c in FAMILY + INCUMBENTS if c in cost]
+    out += ["", "## Every controller, every case", ""]
+    for res in results:
+        out += ["### %s (`%s`)" % (res["name"], res["case"]), ""]
+        speeds = ", ".join("%s %.0fx" % (k, v) for k, v in sorted(res["speed"].items()) if math.isfinite(v))
+        out += ["Slider picked: %d %% (step flight RMS sum per slider: %s). Speed (x real time): %s." % (
+            res["slider"], ", ".join("%d: %s" % (p, fmt(res["slider_scores"][p])) for p in SLIDERS), speeds), ""]
+        for e in res["errors"]:
+            out += ["Error: " + e, ""]
+        out += ["| axis | " + " | ".join(cols) + " |", "|---|" + "---|" * len(cols)]
+        for axis in AXES:
+            cells = []
+            for c in cols:
+                v = row_values(res, c, axis)
+                cells.append("%s / %s / %s" % (fmt(v[0]), fmt(v[1]), fmt(v[2])) if v else why_not(res, c))
+            out.append("| %s | %s |" % (axis, " | ".join(cells)))
+        out.append("")
+    write_whole(args.out, "\n".join(out) + "\n")
+    return losses
+
+
+def m4f_cost():
+    """{controller: Cortex-M4F instructions per 3-axis tick with the mixer} from docs/performance.md."""
+    cost = {}
+    path = os.path.join(ROOT, "docs", "performance.md")
+    if os.path.exists(path):
+        with open(path) as f:
+            for line in f:
+                m = re.match(r"\| ([A-Z-]+), 3 axes \+ mixer, instructions/tick \| ([0-9.]+) \|", line)
+                if m:
+                    cost[m.group(1)] = float(m.group(2))
+    return cost
+
+
+def commit_of(folder):
+    path = os.path.join(folder, "BUILD_INFO")
+    if os.path.exists(path):
+        with open(path) as f:
+            for line in f:
+                if line.startswith("commit"):
+                    return line.split("=", 1)[-1].strip().split(":", 1)[-1].strip()
+    return "unknown commit"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--sitl", required=True, help="Betaflight SITL folder (tools/betaflight_sitl.sh)")
+    ap.add_argument("--adrc", help="the open Betaflight ADRC fork's SITL folder")
+    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "betaflight-study.md"))
+    ap.add_argument("--work", default=os.path.join(ROOT, "build", "betaflight-study"))
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--cases", nargs="+")
+    args = ap.parse_args()
+    for folder in [args.sitl] + ([args.adrc] if args.adrc else []):
+        for f in (SITL_PROGRAM, SITL_CONFIG, SITL_CLI):
+            if not os.path.exists(os.path.join(folder, f)):
+                sys.exit("betaflight_study: %s: no %s (tools/betaflight_sitl.sh CHECKOUT %s builds it)"
+                         % (folder, f, folder))
+    if not os.access(SIL, os.X_OK):
+        sys.exit("betaflight_study: %s missing (cmake --preset host-release && cmake --build --preset host-release)" % SIL)
+    args.sitl, args.adrc = os.path.abspath(args.sitl), os.path.abspath(args.adrc) if args.adrc else None
+    cases = args.cases or default_cases()
+    refuse_inputs("betaflight_study", [args.out, os.path.splitext(args.out)[0] + ".png"], cases)
+    results = []
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+        for i, case in enumerate(cases):
+            print("betaflight_study: %d/%d %s" % (i + 1, len(cases), case), file=sys.stderr, flush=True)
+            results.append(study_case(case, args, pool))
+    losses = write_doc(results, args, commit_of(args.sitl), commit_of(args.adrc) if args.adrc else None)
+    print("betaflight_study: wrote %s (%d losses)" % (args.out, len(losses)), file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
