@@ -6,7 +6,7 @@ set -euo pipefail
 
 usage() {
     cat <<'EOF'
-Usage: tools/betaflight_sitl.sh CHECKOUT OUTDIR [--ladrc] [--cli FILE]...
+Usage: tools/betaflight_sitl.sh CHECKOUT OUTDIR [--ladrc --ladrc-params FILE] [--cli FILE]...
 
 Builds Betaflight's SITL (make TARGET=SITL) in lockstep with a simulator:
 one motor packet per FDM packet, micros()/millis() following the packets'
@@ -21,7 +21,10 @@ timestamps, so that two runs fed the same packets give the same motor outputs.
                 sitl_config.cli       the CLI lines loaded into eeprom.bin
                 BUILD_INFO            the checkout's commit and the build options
   --ladrc     add the ladrc library as the rate controller with
-              integrations/betaflight/apply.sh TREE LADRC_REPO_ROOT
+              integrations/betaflight/apply.sh TREE LADRC_REPO_ROOT PARAMS_FILE
+  --ladrc-params FILE
+              the airframe's rate-loop parameters for --ladrc (required with it;
+              e.g. integrations/betaflight/params/paper_quadp.params)
   --cli FILE  more CLI lines, loaded after tools/betaflight/sitl.cli (repeatable;
               e.g. tools/betaflight/adrc_fork.cli for the ADRC fork of Betaflight)
 
@@ -44,6 +47,7 @@ TREE_MARKER=".betaflight_sitl_tree"
 checkout=""
 outdir=""
 ladrc=0
+ladrc_params=""
 extra_cli=()
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -53,6 +57,12 @@ while [ $# -gt 0 ]; do
         ;;
     --ladrc)
         ladrc=1
+        ;;
+    --ladrc-params)
+        [ $# -ge 2 ] || { usage >&2; echo "betaflight_sitl.sh: --ladrc-params needs a FILE" >&2; exit 2; }
+        [ -f "$2" ] || { echo "betaflight_sitl.sh: --ladrc-params $2: no such file" >&2; exit 2; }
+        ladrc_params="$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"
+        shift
         ;;
     --cli)
         [ $# -ge 2 ] || { usage >&2; echo "betaflight_sitl.sh: --cli needs a FILE" >&2; exit 2; }
@@ -92,6 +102,16 @@ for need in Makefile mk src/main src/platform/SIMULATOR/sitl.c lib/main/MAVLink 
 done
 [ -f "$checkout/lib/modules/dronecan/libcanard/canard.c" ] ||
     die "$checkout/lib/modules/dronecan/libcanard/canard.c: not found: check out the submodule (git -C $checkout submodule update --init lib/modules/dronecan/libcanard)"
+if [ "$ladrc" = 1 ] && [ -z "$ladrc_params" ]; then
+    usage >&2
+    echo "betaflight_sitl.sh: --ladrc needs --ladrc-params FILE (the airframe's rate-loop parameters)" >&2
+    exit 2
+fi
+if [ "$ladrc" = 0 ] && [ -n "$ladrc_params" ]; then
+    usage >&2
+    echo "betaflight_sitl.sh: --ladrc-params is for --ladrc" >&2
+    exit 2
+fi
 apply="$REPO_ROOT/integrations/betaflight/apply.sh"
 if [ "$ladrc" = 1 ] && [ ! -f "$apply" ]; then
     die "--ladrc: $apply not found: this checkout of ladrc has no Betaflight integration yet"
@@ -136,7 +156,7 @@ echo "$patch_report"
 
 if [ "$ladrc" = 1 ]; then
     echo "adding the ladrc rate controller: $apply"
-    bash "$apply" "$tree" "$REPO_ROOT" || die "--ladrc: $apply failed"
+    bash "$apply" "$tree" "$REPO_ROOT" "$ladrc_params" || die "--ladrc: $apply failed"
 fi
 
 options="SITL_LOCKSTEP=1"
@@ -182,7 +202,7 @@ fi
     echo "make: make TARGET=SITL OPTIONS=\"$options\""
     echo "hook edits (tools/betaflight/patch_sitl.py):"
     echo "$patch_report" | sed 's/^/  /'
-    echo "ladrc rate controller: $([ "$ladrc" = 1 ] && echo yes || echo no)"
+    echo "ladrc rate controller: $([ "$ladrc" = 1 ] && echo "yes, parameters $ladrc_params" || echo no)"
     echo "cli: sitl.cli$(for f in ${extra_cli[@]+"${extra_cli[@]}"}; do printf ' %s' "$(basename "$f")"; done)"
     echo "built: $(date -u +%Y-%m-%dT%H:%M:%SZ)"
 } >"$outdir/BUILD_INFO"

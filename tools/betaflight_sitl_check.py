@@ -78,6 +78,9 @@ TILT_PROBE_S = 1.0  # the attitude estimate follows the accelerometer within sec
 # A motor "rises" in a probe when its change is above half the largest change;
 # the mixer moves the rising pair together and the other pair the other way.
 RISE_FRACTION = 0.5
+# A motor belongs to a stick's pattern when its change is above this fraction
+# of the largest (QUADP's motors off the axis move by 0.000 to 0.001).
+PATTERN_FRACTION = 0.25
 # A gyro probe's own axis must carry this many times the command of any other
 # axis in the motor change; measured about 10x or more (the other axes stay at
 # zero but for output rounding to 0.001).
@@ -352,26 +355,35 @@ def interpret(found, report):
     """Motor positions from the stick probes, the FDM sign conventions from
     the gyro and accelerometer probes; raises CheckFailed on a contradiction."""
     probes = found["probes"]
-    roll, pitch, yaw = (p["up"] for p in probes[0:3])
-    for name, up in (("roll", roll), ("pitch", pitch), ("yaw", yaw)):
-        if len(up) != 2:
+    # Each stick's pattern: per motor +1 (rises), -1 (falls) or 0 (stays), from
+    # its change against the largest; QUADX moves every motor on every axis,
+    # QUADP leaves the front and rear motors out of roll and the sides out of
+    # pitch.
+    patterns = []
+    for name, p in zip(("roll", "pitch", "yaw"), probes[0:3]):
+        largest = max(abs(d) for d in p["delta"])
+        pattern = [0 if abs(d) <= PATTERN_FRACTION * largest else (1 if d > 0 else -1) for d in p["delta"]]
+        if largest == 0.0 or 1 not in pattern or -1 not in pattern:
             raise CheckFailed(
-                f"{name} stick: {len(up)} motors rose, expected a pair: {sorted(up)} (Betaflight takes RC "
-                "frames less than 800 us apart for an invalid rate: send RC at 1 kHz or less)"
+                f"{name} stick: motor change {fmt_motors(p['delta'])}: no motor rose against another (Betaflight "
+                "takes RC frames less than 800 us apart for an invalid rate: send RC at 1 kHz or less)"
             )
+        patterns.append(pattern)
+    roll, pitch, yaw = patterns
     positions = []
     for i in range(4):
-        side = "left" if i in roll else "right"
-        end = "rear" if i in pitch else "front"
-        spin = "CCW" if i in yaw else "CW"
-        positions.append(f"{i}: {end}-{side} ({spin} seen from above)")
+        where = [w for w in ({1: "rear", -1: "front"}.get(pitch[i]), {1: "left", -1: "right"}.get(roll[i])) if w]
+        if not where or yaw[i] == 0:
+            raise CheckFailed(f"motor {i}: moved by no roll/pitch stick or by no yaw stick: no position")
+        spin = "CCW" if yaw[i] > 0 else "CW"
+        positions.append(f"{i}: {'-'.join(where)} ({spin} seen from above)")
     report("motor order (packet index: position, from the roll/pitch/yaw stick probes): " + "; ".join(positions))
     found["positions"] = positions
 
     # A probe's motor change split along the three stick patterns: how much of
     # it is a roll, pitch or yaw command in the stick's positive direction.
     def components(delta):
-        return [sum(d if i in up else -d for i, d in enumerate(delta)) / 4.0 for up in (roll, pitch, yaw)]
+        return [sum(d * w for d, w in zip(delta, pattern)) / sum(w * w for w in pattern) for pattern in patterns]
 
     # A positive rate in a gyro field, if Betaflight reads it as the stick's
     # positive direction, is countered: a command against that direction. The

@@ -94,6 +94,29 @@ static void lockstepInit(void);
 """
 
 
+# The yaw rate's sign. Betaflight master maps the FDM gyro in one helper,
+# sitlGyroBodyFromSim, and keeps the packet's yaw sign with the Gazebo bridge
+# (ENABLE_GAZEBO_BRIDGE = 1, the SITL's default) and negates it for the
+# legacy bridges (the fix of Betaflight issue #15294). Older trees, such as
+# the ADRC fork, negate it for every bridge; there the negation is made to
+# depend on the bridge as on master, so that one simulator flies both builds.
+MASTER_GYRO_MAPPING = "sitlGyroBodyFromSim("
+OLD_YAW_LINE = "    z = constrain(-pkt->imu_angular_velocity_rpy[2] * GYRO_SCALE * RAD2DEG, -32767, 32767);\n"
+OLD_YAW_AS_MASTER = (
+    "    // lockstep SITL: the yaw sign of Betaflight master's sitlGyroBodyFromSim\n"
+    "    z = constrain((ENABLE_GAZEBO_BRIDGE ? 1 : -1) * pkt->imu_angular_velocity_rpy[2] * GYRO_SCALE * RAD2DEG,\n"
+    "                  -32767, 32767);\n"
+)
+
+
+def gazebo_yaw_as_master(text, path):
+    if MASTER_GYRO_MAPPING in text:
+        return text
+    if OLD_YAW_LINE in text:
+        return replace_once(text, OLD_YAW_LINE, OLD_YAW_AS_MASTER, path)
+    raise HookNotFound(f"{path}: hook not found: {MASTER_GYRO_MAPPING!r} (nor {OLD_YAW_LINE.strip()!r})")
+
+
 def patch_sitl_c(text, path):
     # Lockstep switch and the prototype of the hook called from systemInit.
     text = insert_after(text, '#include "udplink.h"\n', PRELUDE, path)
@@ -137,6 +160,8 @@ def patch_sitl_c(text, path):
 
     for signature in REPLACED_FUNCTIONS:
         text = without_lockstep(text, signature, path)
+
+    text = gazebo_yaw_as_master(text, path)
 
     return text + '\n#if SITL_LOCKSTEP\n#include "' + LOCKSTEP_C + '"\n#endif\n'
 
@@ -196,6 +221,8 @@ def main(argv):
     sitl_c.write_text(patched)
     gyro_init_c.write_text(gyro_init)
     print(f"patched {SITL_C}: lockstep tick loop and simulated clock ({len(REPLACED_FUNCTIONS)} functions replaced)")
+    if OLD_YAW_AS_MASTER in patched:
+        print(f"patched {SITL_C}: the gyro's yaw sign as on Betaflight master (kept with the Gazebo bridge)")
     print(f"patched {GYRO_INIT_C}: {gyro_note}")
     return 0
 

@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """tools/betaflight/patch_sitl.py on hand-made trees: each hook the script
 edits is present in a small stand-in for Betaflight's sitl.c and gyro_init.c
-(our own text with the same hook lines). A complete tree must be patched with
+(our own text with the same hook lines). A complete tree, as master or as an
+older tree such as the ADRC fork has it, must be patched with
 every edit in place; a tree missing any one hook must fail naming the file and
 the text, with nothing written; a second run must refuse; bad usage exits 2.
 Usage: tools/betaflight/patch_sitl_test.py"""
@@ -24,6 +25,7 @@ static void updateState(const fdm_packet* pkt)
     if (realtime_now > last_realtime + 500*1e3) { // 500ms timeout
         return;
     }
+    GYRO_MAPPING
 }
 
 static void* udpThread(void* data)
@@ -75,6 +77,12 @@ static void pwmCompleteMotorUpdate(void)
     send();
 }
 """
+
+MASTER_GYRO = "sitlGyroBodyFromSim(pkt->imu_angular_velocity_rpy, ENABLE_GAZEBO_BRIDGE, &r, &p, &y);"
+FORK_GYRO = "z = constrain(-pkt->imu_angular_velocity_rpy[2] * GYRO_SCALE * RAD2DEG, -32767, 32767);"
+SITL_C_FORK = SITL_C.replace("GYRO_MAPPING", FORK_GYRO)
+SITL_C_NO_GYRO = SITL_C.replace("GYRO_MAPPING", "")
+SITL_C = SITL_C.replace("GYRO_MAPPING", MASTER_GYRO)
 
 GYRO_INIT_MASTER = """void gyroInitSensor(void)
 {
@@ -168,11 +176,24 @@ def main():
         code, out = run(good)
         expect("a second run refuses (exit 1, 'already patched')", code == 1 and "already patched" in out, out)
 
+        expect("master's gyro mapping is left as it is", MASTER_GYRO in sitl)
+
         fork = os.path.join(work, "fork")
-        make_tree(fork, SITL_C, GYRO_INIT_FORK)
+        make_tree(fork, SITL_C_FORK, GYRO_INIT_FORK)
         code, out = run(fork)
         expect("a tree whose virtual gyro already uses gyroSetSampleRate is left at it",
                code == 0 and read(fork, "src/main/sensors/gyro_init.c") == GYRO_INIT_FORK and "already" in out, out)
+        fork_sitl = read(fork, "src/platform/SIMULATOR/sitl.c")
+        expect("an older tree's yaw negation depends on the bridge, as on master",
+               FORK_GYRO not in fork_sitl
+               and "(ENABLE_GAZEBO_BRIDGE ? 1 : -1) * pkt->imu_angular_velocity_rpy[2]" in fork_sitl, fork_sitl)
+
+        tree = os.path.join(work, "noyaw")
+        make_tree(tree, SITL_C_NO_GYRO, GYRO_INIT_MASTER)
+        code, out = run(tree)
+        expect("without either gyro mapping: exit 1 naming sitl.c, nothing written",
+               code == 1 and "sitlGyroBodyFromSim" in out and read(tree, "src/platform/SIMULATOR/sitl.c") == SITL_C_NO_GYRO,
+               out)
 
         for i, hook in enumerate(SITL_HOOKS):
             tree = os.path.join(work, f"missing{i}")
