@@ -50,7 +50,7 @@ STEP_FLIGHT = {"run.duration_s": "5",
                "metrics.error_window_s": "0 5", "metrics.steady_window_s": "4.5 5", "metrics.settle_window_s": "1 5"}
 BF_STOCK, BF_ANGLE, BF_SLIDER, BF_ADRC = "BF stock", "BF stock angle", "BF slider", "BF ADRC"
 BF_RUNS = (BF_STOCK, BF_ANGLE, BF_SLIDER, BF_ADRC)
-SITL_PROGRAM, SITL_CONFIG, SITL_CLI = "betaflight_SITL.elf", "eeprom.bin", "sitl.cli"
+SITL_PROGRAM, SITL_CONFIG, SITL_CLI = "betaflight_SITL.elf", "eeprom.bin", "sitl_config.cli"
 
 
 def default_cases():

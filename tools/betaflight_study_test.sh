@@ -14,8 +14,8 @@ failures=0
 check() { if [ "$2" -eq 0 ]; then echo "betaflight_study_test.sh:$1:PASS"; else echo "betaflight_study_test.sh:$1:FAIL"; failures=$((failures + 1)); fi; }
 mkdir -p "$work/sitl"
 cp "$fake" "$work/sitl/betaflight_SITL.elf"
-printf 'feature RX_UDP\nsave\n' > "$work/sitl/sitl.cli"
-(cd "$work/sitl" && ./betaflight_SITL.elf --config sitl.cli > /dev/null)
+printf 'feature RX_UDP\nsave\n' > "$work/sitl/sitl_config.cli"
+(cd "$work/sitl" && ./betaflight_SITL.elf --config sitl_config.cli > /dev/null)
 /usr/bin/python3 tools/betaflight_study.py --sitl "$work/sitl" --out "$work/study.md" --work "$work/w" \
     --cases scenarios/large_angle/flips.ini 2> "$work/err"
 check runs "$?"

@@ -27,6 +27,11 @@
  * any rate loop's, as a pilot holding an attitude by sight */
 #define BF_PILOT_ATT_KP_DEFAULT 6.0
 #define SEA_LEVEL_PA 101325.0
+/* The RC link's frame period: Betaflight takes frames closer than some
+ * 0.8 ms for a broken link and leaves its sticks where they were, so the
+ * pilot's frame goes out with every state packet at 1 kHz and slower, and
+ * with every n-th one faster (1 kHz at most, a fast receiver's rate). */
+#define BF_RC_PERIOD_S 0.001
 
 /* Betaflight's QUADP motor k drives the plant's rotor BF_TO_PLANT[k]
  * (plant.h: rotor 1 rear, 2 left, 3 front, 4 right). */
@@ -85,6 +90,12 @@ static void still_packet(const attitude_run_t *r, double t_s, bf_fdm_t *s)
     state_packet(&r->plant, rate, accel, t_s, s);
 }
 
+/* 1 when exchange k carries an RC frame (BF_RC_PERIOD_S). */
+static int rc_due(const runner_bf_t *bf, long k)
+{
+    return k % bf->rc_every == 0;
+}
+
 static int any_spinning(const float motor[BF_MOTORS])
 {
     int on = 0;
@@ -122,6 +133,8 @@ int runner_bf_open(const sim_scenario_t *sc, attitude_run_t *r, char *err, size_
         .dt_s = sc->control_dt_s};
     bf_pilot_init(&bf->pilot, &pc);
     const double dt = sc->control_dt_s;
+    bf->rc_every = (long)ceil(BF_RC_PERIOD_S / dt - 1e-9);
+    bf->rc_every = bf->rc_every < 1 ? 1 : bf->rc_every;
     const double ref0[3] = {r->plant.angle_rad[0], r->plant.angle_rad[1], r->plant.angle_rad[2]}, still[3] = {0, 0, 0};
     bf_rc_t rc;
     bf_fdm_t s;
@@ -135,7 +148,7 @@ int runner_bf_open(const sim_scenario_t *sc, attitude_run_t *r, char *err, size_
     for (; k <= warmup; ++k) {
         bf_pilot_sticks(&bf->pilot, (double)k * dt, ref0, still, 0.0, 0, &rc);
         still_packet(r, (double)k * dt, &s);
-        if (bf_link_exchange(&bf->link, &rc, &s, bf->motor, err, err_len) != 0) {
+        if (bf_link_exchange(&bf->link, rc_due(bf, k) ? &rc : NULL, &s, bf->motor, err, err_len) != 0) {
             return -1;
         }
     }
@@ -145,7 +158,7 @@ int runner_bf_open(const sim_scenario_t *sc, attitude_run_t *r, char *err, size_
         for (; j < wait && !any_spinning(bf->motor); ++j, ++k) {
             bf_pilot_sticks(&bf->pilot, (double)k * dt, ref0, still, 0.0, 1, &rc);
             still_packet(r, (double)k * dt, &s);
-            if (bf_link_exchange(&bf->link, &rc, &s, bf->motor, err, err_len) != 0) {
+            if (bf_link_exchange(&bf->link, rc_due(bf, k) ? &rc : NULL, &s, bf->motor, err, err_len) != 0) {
                 return -1;
             }
         }
@@ -160,6 +173,7 @@ int runner_bf_open(const sim_scenario_t *sc, attitude_run_t *r, char *err, size_
         }
     }
     bf->t0_s = (double)k * dt;
+    bf->k0 = k;
     bf_pilot_restart(&bf->pilot);
     return 0;
 }
@@ -199,7 +213,8 @@ int runner_bf_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, d
     bf_pilot_sticks(&bf->pilot, t_sitl, tk->ref_rad, error_rad, throttle_stick(sc, r, bf, thrust_N), r->armed, &rc);
     state_packet(&r->plant, tk->meas_rate, tk->accel_m_s2, t_sitl, &s);
     char err[BF_LINK_PATH_LEN + 1024];
-    if (bf_link_exchange(&bf->link, &rc, &s, bf->motor, err, sizeof err) != 0) {
+    const long k = bf->k0 + lround(tk->t / sc->control_dt_s);
+    if (bf_link_exchange(&bf->link, rc_due(bf, k) ? &rc : NULL, &s, bf->motor, err, sizeof err) != 0) {
         snprintf(r->spec->err, r->spec->err_len, "%s: BETAFLIGHT at t = %.6g s: %s", sc->path, tk->t, err);
         return -1;
     }
