@@ -36,7 +36,7 @@ from output_files import refuse_inputs, save_figure, write_whole  # noqa: E402
 from sim_output import AXES, divergence_text, is_number, load_metrics, untunable  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-SIL = os.path.join(ROOT, "build", "host-release", "sim", "ladrc_sil")
+SIL = [os.path.join(ROOT, "build", "host-release", "sim", "ladrc_sil")]  # --sil replaces it
 FAMILY = ("HP-MLADRC", "LP-MLADRC", "LADRC", "RATE-ADRC")
 INCUMBENTS = ("CASCADED", "INDI")
 # Betaflight's simplified tuning, master multiplier in percent (its range 0-200; 100 = defaults)
@@ -58,9 +58,23 @@ def default_cases():
     return [c for p in ("suite", "vibration", "large_angle") for c in sorted(glob.glob(os.path.join(ROOT, "scenarios", p, "*.ini")))]
 
 
+_NAMESPACES = []
+
+
+def namespaces_work():
+    """True when `unshare -n` with a loopback works here (root, and a kernel that lets us)."""
+    if not _NAMESPACES:
+        ok = bool(shutil.which("unshare") and shutil.which("ip") and os.geteuid() == 0)
+        if ok:
+            ok = subprocess.run(["unshare", "-n", "sh", "-c", "ip link set lo up"], capture_output=True).returncode == 0
+        _NAMESPACES.append(ok)
+    return _NAMESPACES[0]
+
+
 def in_namespace(cmd):
-    """cmd in a network namespace of its own (its own loopback), when this machine allows it."""
-    if shutil.which("unshare") and shutil.which("ip") and os.geteuid() == 0:
+    """cmd in a network namespace of its own (its own loopback) when this machine allows it; else
+    as it is (then the runs must not overlap: --jobs 1)."""
+    if namespaces_work():
         inner = "ip link set lo up && exec " + " ".join(_quote(a) for a in cmd)
         return ["unshare", "-n", "sh", "-c", inner]
     return cmd
@@ -72,7 +86,7 @@ def _quote(a):
 
 def sil(args, out_dir, betaflight=None, mode="acro"):
     """Runs ladrc_sil; (exit status, stderr). Exit 3 (a run diverged) and 4 (untunable) are results."""
-    cmd = [SIL] + args + ["--out", out_dir, "--no-csv"]  # not --quiet: its speed line
+    cmd = [SIL[0]] + args + ["--out", out_dir, "--no-csv"]  # not --quiet: its speed line
     if betaflight is not None:
         cmd = in_namespace(cmd + ["--controllers", "BETAFLIGHT", "--betaflight", betaflight,
                                   "--set", "controller:BETAFLIGHT.mode=" + mode])
@@ -375,14 +389,20 @@ def main():
     ap.add_argument("--work", default=os.path.join(ROOT, "build", "betaflight-study"))
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--cases", nargs="+")
+    ap.add_argument("--sil", help="the ladrc_sil to run (default: build/host-release's)")
     args = ap.parse_args()
+    if args.sil:
+        SIL[0] = os.path.abspath(args.sil)
+    if not namespaces_work():
+        args.jobs = 1  # the SITL's ports are the machine's
     for folder in [args.sitl] + ([args.adrc] if args.adrc else []):
         for f in (SITL_PROGRAM, SITL_CONFIG, SITL_CLI):
             if not os.path.exists(os.path.join(folder, f)):
                 sys.exit("betaflight_study: %s: no %s (tools/betaflight_sitl.sh CHECKOUT %s builds it)"
                          % (folder, f, folder))
-    if not os.access(SIL, os.X_OK):
-        sys.exit("betaflight_study: %s missing (cmake --preset host-release && cmake --build --preset host-release)" % SIL)
+    if not os.access(SIL[0], os.X_OK):
+        sys.exit("betaflight_study: %s missing (cmake --preset host-release && cmake --build --preset host-release)"
+                 % SIL[0])
     args.sitl, args.adrc = os.path.abspath(args.sitl), os.path.abspath(args.adrc) if args.adrc else None
     cases = args.cases or default_cases()
     refuse_inputs("betaflight_study", [args.out, os.path.splitext(args.out)[0] + ".png"], cases)
