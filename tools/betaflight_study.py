@@ -36,7 +36,7 @@ from output_files import refuse_inputs, save_figure, write_whole  # noqa: E402
 from sim_output import AXES, divergence_text, is_number, load_metrics, untunable  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-SIL = os.path.join(ROOT, "build", "host-release", "sim", "ladrc_sil")
+SIL = [os.path.join(ROOT, "build", "host-release", "sim", "ladrc_sil")]  # --sil replaces it
 FAMILY = ("HP-MLADRC", "LP-MLADRC", "LADRC", "RATE-ADRC")
 INCUMBENTS = ("CASCADED", "INDI")
 # Betaflight's simplified tuning, master multiplier in percent (its range 0-200; 100 = defaults)
@@ -48,8 +48,9 @@ STEP_FLIGHT = {"run.duration_s": "5",
                "reference.yaw": "20*step(t - 1.5)",
                "disturbance.roll": "0", "disturbance.pitch": "0", "disturbance.yaw": "0",
                "metrics.error_window_s": "0 5", "metrics.steady_window_s": "4.5 5", "metrics.settle_window_s": "1 5"}
-BF_STOCK, BF_SLIDER, BF_ADRC = "BF stock", "BF slider", "BF ADRC"
-SITL_PROGRAM, SITL_CONFIG, SITL_CLI = "betaflight_SITL.elf", "eeprom.bin", "sitl.cli"
+BF_STOCK, BF_ANGLE, BF_SLIDER, BF_ADRC = "BF stock", "BF stock angle", "BF slider", "BF ADRC"
+BF_RUNS = (BF_STOCK, BF_ANGLE, BF_SLIDER, BF_ADRC)
+SITL_PROGRAM, SITL_CONFIG, SITL_CLI = "betaflight_SITL.elf", "eeprom.bin", "sitl_config.cli"
 
 
 def default_cases():
@@ -57,9 +58,23 @@ def default_cases():
     return [c for p in ("suite", "vibration", "large_angle") for c in sorted(glob.glob(os.path.join(ROOT, "scenarios", p, "*.ini")))]
 
 
+_NAMESPACES = []
+
+
+def namespaces_work():
+    """True when `unshare -n` with a loopback works here (root, and a kernel that lets us)."""
+    if not _NAMESPACES:
+        ok = bool(shutil.which("unshare") and shutil.which("ip") and os.geteuid() == 0)
+        if ok:
+            ok = subprocess.run(["unshare", "-n", "sh", "-c", "ip link set lo up"], capture_output=True).returncode == 0
+        _NAMESPACES.append(ok)
+    return _NAMESPACES[0]
+
+
 def in_namespace(cmd):
-    """cmd in a network namespace of its own (its own loopback), when this machine allows it."""
-    if shutil.which("unshare") and shutil.which("ip") and os.geteuid() == 0:
+    """cmd in a network namespace of its own (its own loopback) when this machine allows it; else
+    as it is (then the runs must not overlap: --jobs 1)."""
+    if namespaces_work():
         inner = "ip link set lo up && exec " + " ".join(_quote(a) for a in cmd)
         return ["unshare", "-n", "sh", "-c", inner]
     return cmd
@@ -69,11 +84,12 @@ def _quote(a):
     return "'" + a.replace("'", "'\\''") + "'"
 
 
-def sil(args, out_dir, betaflight=None):
+def sil(args, out_dir, betaflight=None, mode="acro"):
     """Runs ladrc_sil; (exit status, stderr). Exit 3 (a run diverged) and 4 (untunable) are results."""
-    cmd = [SIL] + args + ["--out", out_dir, "--no-csv"]  # not --quiet: its speed line
+    cmd = [SIL[0]] + args + ["--out", out_dir, "--no-csv"]  # not --quiet: its speed line
     if betaflight is not None:
-        cmd = in_namespace(cmd + ["--controllers", "BETAFLIGHT", "--betaflight", betaflight])
+        cmd = in_namespace(cmd + ["--controllers", "BETAFLIGHT", "--betaflight", betaflight,
+                                  "--set", "controller:BETAFLIGHT.mode=" + mode])
     p = subprocess.run(cmd, capture_output=True, text=True)
     return p.returncode, p.stderr
 
@@ -103,6 +119,11 @@ def slider_folder(sitl, work, percent):
     if p.returncode != 0 or not os.path.exists(os.path.join(folder, SITL_CONFIG)):
         sys.exit("betaflight_study: configuring the slider %d %%: exit %d: %s" % (percent, p.returncode, p.stdout[-400:]))
     return folder
+
+
+def flips(case):
+    """True for a case whose references turn past angle mode's limit (the large-angle cases)."""
+    return os.path.basename(os.path.dirname(case)) == "large_angle"
 
 
 def step_flight_args(case):
@@ -146,16 +167,18 @@ def study_case(case, args, pool):
     result["metrics"]["library"] = load_metrics(os.path.join(work, "library", name))
     if rc not in (0, 3, 4):
         result["errors"].append("library controllers: exit %d: %s" % (rc, err.strip()[-300:]))
-    variants = [(BF_STOCK, args.sitl)]
+    variants = [(BF_STOCK, args.sitl, "acro")]
+    if not flips(case):
+        variants.append((BF_ANGLE, args.sitl, "angle"))
     pct, scores = pick_slider(case, args.sitl, work, name, pool)
     result["slider"], result["slider_scores"] = pct, scores
-    variants.append((BF_SLIDER, slider_folder(args.sitl, work, pct)))
+    variants.append((BF_SLIDER, slider_folder(args.sitl, work, pct), "acro"))
     if args.adrc:
-        variants.append((BF_ADRC, args.adrc))
+        variants.append((BF_ADRC, args.adrc, "acro"))
     futures = {}
-    for label, folder in variants:
+    for label, folder, mode in variants:
         out = os.path.join(work, label.replace(" ", "_"))
-        futures[pool.submit(sil, [case], out, folder)] = (label, out)
+        futures[pool.submit(sil, [case], out, folder, mode)] = (label, out)
     for fut in concurrent.futures.as_completed(futures):
         label, out = futures[fut]
         rc, err = fut.result()
@@ -175,7 +198,7 @@ def value(m, controller, table, quantity, axis):
 
 def row_values(res, label, axis):
     """(RMS deg, steady band deg, command noise N m) of a column, or None where it did not fly."""
-    if label in (BF_STOCK, BF_SLIDER, BF_ADRC):
+    if label in BF_RUNS:
         m, c = res["metrics"].get(label), "BETAFLIGHT"
     else:
         m, c = res["metrics"].get("library"), label
@@ -187,8 +210,8 @@ def row_values(res, label, axis):
 
 
 def why_not(res, label):
-    m = res["metrics"].get(label if label in (BF_STOCK, BF_SLIDER, BF_ADRC) else "library")
-    c = "BETAFLIGHT" if label in (BF_STOCK, BF_SLIDER, BF_ADRC) else label
+    m = res["metrics"].get(label if label in BF_RUNS else "library")
+    c = "BETAFLIGHT" if label in BF_RUNS else label
     if m is None:
         return "failed"
     if untunable(m, c):
@@ -217,11 +240,11 @@ def fmt(v, digits=3):
 def columns_of(results):
     """The columns some case has: the library's controllers it lists, then the Betaflight runs."""
     def has(res, c):
-        if c in (BF_STOCK, BF_SLIDER, BF_ADRC):
+        if c in BF_RUNS:
             return c in res["metrics"]
         m = res["metrics"].get("library")
         return m is not None and any(key[0] == c for key in m)
-    return [c for c in FAMILY + INCUMBENTS + (BF_STOCK, BF_SLIDER, BF_ADRC) if any(has(r, c) for r in results)]
+    return [c for c in FAMILY + INCUMBENTS + BF_RUNS if any(has(r, c) for r in results)]
 
 
 def verdicts(results):
@@ -229,7 +252,8 @@ def verdicts(results):
     rows, losses = [], []
     for res in results:
         for axis in AXES:
-            stock = row_values(res, BF_STOCK, axis)
+            modes = [v for v in (row_values(res, BF_STOCK, axis), row_values(res, BF_ANGLE, axis)) if v is not None]
+            stock = min(modes, key=lambda v: v[0]) if modes else None
             if stock is None:
                 best = family_best(res, axis, None)
                 rows.append((res["name"], axis, best, None, "BF stock did not fly: " + why_not(res, BF_STOCK)))
@@ -290,8 +314,11 @@ def write_doc(results, args, bf_commit, adrc_commit):
             "defaults; Betaflight at the master slider a pilot picks for the airframe (the one of %s %% whose"
             % ", ".join(str(s) for s in SLIDERS),
             "5 s step flight on the case's airframe, disturbances off, has the least RMS error); the pilot",
-            "flies acro (docs/betaflight.md, \"The pilot\"). RMS and steady band in deg, command noise",
-            "(the torque command above 20 Hz, RMS) in N m.", ""]
+            "flies acro (docs/betaflight.md, \"The pilot\"), and Betaflight stock also in angle mode",
+            "(its own angle loop; not on the large-angle cases, whose flips pass its angle limit). The",
+            "verdict sets the family's best against the better of Betaflight stock's two modes on each",
+            "case and axis, at no more command noise than that mode. RMS and steady band in deg, command",
+            "noise (the torque command above 20 Hz, RMS) in N m.", ""]
     if figure:
         out += ["![LADRC family's best over Betaflight stock](%s)" % os.path.basename(figure), ""]
     wins = sum(1 for r in rows if r[4].endswith("x") and float(r[4][:-1]) < 1.0)
@@ -300,7 +327,7 @@ def write_doc(results, args, bf_commit, adrc_commit):
             "%d of %d case-axes." % (wins, len(rows)), ""]
     if losses:
         out += ["Losses:", ""] + ["- %s %s: %s" % l for l in losses] + [""]
-    out += ["| case | axis | family's best | its RMS | BF stock RMS | ratio |", "|---|---|---|---|---|---|"]
+    out += ["| case | axis | family's best | its RMS | BF stock RMS (better mode) | ratio |", "|---|---|---|---|---|---|"]
     for name, axis, best, stock, verdict in rows:
         out.append("| %s | %s | %s | %s | %s | %s |" % (name, axis, best[0] if best else "-",
                                                        fmt(best[1][0]) if best else "-",
@@ -362,14 +389,20 @@ def main():
     ap.add_argument("--work", default=os.path.join(ROOT, "build", "betaflight-study"))
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--cases", nargs="+")
+    ap.add_argument("--sil", help="the ladrc_sil to run (default: build/host-release's)")
     args = ap.parse_args()
+    if args.sil:
+        SIL[0] = os.path.abspath(args.sil)
+    if not namespaces_work():
+        args.jobs = 1  # the SITL's ports are the machine's
     for folder in [args.sitl] + ([args.adrc] if args.adrc else []):
         for f in (SITL_PROGRAM, SITL_CONFIG, SITL_CLI):
             if not os.path.exists(os.path.join(folder, f)):
                 sys.exit("betaflight_study: %s: no %s (tools/betaflight_sitl.sh CHECKOUT %s builds it)"
                          % (folder, f, folder))
-    if not os.access(SIL, os.X_OK):
-        sys.exit("betaflight_study: %s missing (cmake --preset host-release && cmake --build --preset host-release)" % SIL)
+    if not os.access(SIL[0], os.X_OK):
+        sys.exit("betaflight_study: %s missing (cmake --preset host-release && cmake --build --preset host-release)"
+                 % SIL[0])
     args.sitl, args.adrc = os.path.abspath(args.sitl), os.path.abspath(args.adrc) if args.adrc else None
     cases = args.cases or default_cases()
     refuse_inputs("betaflight_study", [args.out, os.path.splitext(args.out)[0] + ".png"], cases)

@@ -101,14 +101,16 @@ static void no_answer(bf_link_t *l, const char *waited, double t_s, char *err, s
 static int send_pair(bf_link_t *l, const bf_rc_t *rc, const bf_fdm_t *s, char *err, size_t err_len)
 {
     unsigned char rc_bytes[BF_RC_BYTES], fdm_bytes[BF_FDM_BYTES];
-    bf_rc_encode(rc, rc_bytes);
     bf_fdm_encode(s, fdm_bytes);
     struct sockaddr_in to;
     memset(&to, 0, sizeof to);
     to.sin_family = AF_INET;
     to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
     to.sin_port = htons(BF_PORT_RC);
-    if (sendto(l->sock, rc_bytes, sizeof rc_bytes, 0, (const struct sockaddr *)&to, sizeof to) < 0) {
+    if (rc != NULL) {
+        bf_rc_encode(rc, rc_bytes);
+    }
+    if (rc != NULL && sendto(l->sock, rc_bytes, sizeof rc_bytes, 0, (const struct sockaddr *)&to, sizeof to) < 0) {
         snprintf(err, err_len, "Betaflight SITL link: sending RC to port %d: %s", BF_PORT_RC, strerror(errno));
         return -1;
     }

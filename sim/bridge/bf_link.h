@@ -51,7 +51,8 @@ typedef struct {
 int bf_link_open(bf_link_t *l, const char *dir, int timeout_ms, const bf_rc_t *rc, const bf_fdm_t *boot,
                  float motor[BF_MOTORS], char *err, size_t err_len);
 
-/* One lockstep exchange; 0 with the motor outputs, or -1 with the message. */
+/* One lockstep exchange (rc NULL: no RC frame this time); 0 with the motor
+ * outputs, or -1 with the message. */
 int bf_link_exchange(bf_link_t *l, const bf_rc_t *rc, const bf_fdm_t *s, float motor[BF_MOTORS], char *err,
                      size_t err_len);
 

@@ -23,17 +23,25 @@
 #define BF_ARM_WAIT_S 2.0
 #define BF_ANGLE_LIMIT_DEG_DEFAULT 60.0 /* Betaflight's angle_limit default */
 #define SEA_LEVEL_PA 101325.0
+/* The RC link's frame period: Betaflight takes frames closer than some
+ * 0.8 ms for a broken link and leaves its sticks where they were, so the
+ * pilot's frame goes out with every state packet at 1 kHz and slower, and
+ * with every n-th one faster (1 kHz at most, a fast receiver's rate). */
+#define BF_RC_PERIOD_S 0.001
 
 /* Betaflight's QUADP motor k drives the plant's rotor BF_TO_PLANT[k]
  * (plant.h: rotor 1 rear, 2 left, 3 front, 4 right). */
 static const int BF_TO_PLANT[BF_MOTORS] = {0, 3, 1, 2};
 
-/* The body rates as the packet carries them: yaw negated. The SITL's
- * Gazebo bridge keeps the packet's yaw sign (Gazebo's plugin sends it in
- * its own frames); with the simulator's nose-right yaw negated, Betaflight
- * at its default motor direction (yaw_motors_reversed off) holds yaw and
- * its yaw stick to the right turns the nose right, as on a real quad. */
+/* The packet's axes as the SITL's Gazebo bridge reads them into
+ * Betaflight's forward-left-up body: it negates the pitch rate and the
+ * whole specific force, so the packet carries the roll and pitch rates as
+ * they are, the yaw rate negated, and the specific force with its forward
+ * part negated. Measured: with the yaw rate as it is, Betaflight's yaw runs
+ * away at its default motor direction; with the forward force as it is, its
+ * attitude estimate tilts nose down for nose up and angle mode diverges. */
 static const double BF_GYRO_SIGN[3] = {1.0, 1.0, -1.0};
+static const double BF_ACCEL_SIGN[3] = {-1.0, 1.0, 1.0};
 
 static double or_default(double v, double d)
 {
@@ -64,7 +72,7 @@ static void state_packet(const sim_plant_t *plant, const double rate_rad_s[3], c
     bf_gazebo_quat(q, s->quat_wxyz);
     for (int i = 0; i < 3; ++i) {
         s->gyro_rad_s[i] = BF_GYRO_SIGN[i] * rate_rad_s[i];
-        s->accel_m_s2[i] = accel_m_s2[i];
+        s->accel_m_s2[i] = BF_ACCEL_SIGN[i] * accel_m_s2[i];
     }
     s->pressure_Pa = SEA_LEVEL_PA;
 }
@@ -76,6 +84,12 @@ static void still_packet(const attitude_run_t *r, double t_s, bf_fdm_t *s)
     double accel[3];
     sim_plant_wind_to_body(r->plant.angle_rad, gravity, accel);
     state_packet(&r->plant, rate, accel, t_s, s);
+}
+
+/* 1 when exchange k carries an RC frame (BF_RC_PERIOD_S). */
+static int rc_due(const runner_bf_t *bf, long k)
+{
+    return k % bf->rc_every == 0;
 }
 
 static int any_spinning(const float motor[BF_MOTORS])
@@ -115,6 +129,8 @@ int runner_bf_open(const sim_scenario_t *sc, attitude_run_t *r, char *err, size_
         .dt_s = sc->control_dt_s};
     bf_pilot_init(&bf->pilot, &pc);
     const double dt = sc->control_dt_s;
+    bf->rc_every = (long)ceil(BF_RC_PERIOD_S / dt - 1e-9);
+    bf->rc_every = bf->rc_every < 1 ? 1 : bf->rc_every;
     const double ref0[3] = {r->plant.angle_rad[0], r->plant.angle_rad[1], r->plant.angle_rad[2]}, still[3] = {0, 0, 0};
     bf_rc_t rc;
     bf_fdm_t s;
@@ -128,7 +144,7 @@ int runner_bf_open(const sim_scenario_t *sc, attitude_run_t *r, char *err, size_
     for (; k <= warmup; ++k) {
         bf_pilot_sticks(&bf->pilot, (double)k * dt, ref0, still, 0.0, 0, &rc);
         still_packet(r, (double)k * dt, &s);
-        if (bf_link_exchange(&bf->link, &rc, &s, bf->motor, err, err_len) != 0) {
+        if (bf_link_exchange(&bf->link, rc_due(bf, k) ? &rc : NULL, &s, bf->motor, err, err_len) != 0) {
             return -1;
         }
     }
@@ -138,7 +154,7 @@ int runner_bf_open(const sim_scenario_t *sc, attitude_run_t *r, char *err, size_
         for (; j < wait && !any_spinning(bf->motor); ++j, ++k) {
             bf_pilot_sticks(&bf->pilot, (double)k * dt, ref0, still, 0.0, 1, &rc);
             still_packet(r, (double)k * dt, &s);
-            if (bf_link_exchange(&bf->link, &rc, &s, bf->motor, err, err_len) != 0) {
+            if (bf_link_exchange(&bf->link, rc_due(bf, k) ? &rc : NULL, &s, bf->motor, err, err_len) != 0) {
                 return -1;
             }
         }
@@ -153,6 +169,7 @@ int runner_bf_open(const sim_scenario_t *sc, attitude_run_t *r, char *err, size_
         }
     }
     bf->t0_s = (double)k * dt;
+    bf->k0 = k;
     bf_pilot_restart(&bf->pilot);
     return 0;
 }
@@ -192,7 +209,8 @@ int runner_bf_control(const sim_scenario_t *sc, attitude_run_t *r, tick_t *tk, d
     bf_pilot_sticks(&bf->pilot, t_sitl, tk->ref_rad, error_rad, throttle_stick(sc, r, bf, thrust_N), r->armed, &rc);
     state_packet(&r->plant, tk->meas_rate, tk->accel_m_s2, t_sitl, &s);
     char err[BF_LINK_PATH_LEN + 1024];
-    if (bf_link_exchange(&bf->link, &rc, &s, bf->motor, err, sizeof err) != 0) {
+    const long k = bf->k0 + lround(tk->t / sc->control_dt_s);
+    if (bf_link_exchange(&bf->link, rc_due(bf, k) ? &rc : NULL, &s, bf->motor, err, sizeof err) != 0) {
         snprintf(r->spec->err, r->spec->err_len, "%s: BETAFLIGHT at t = %.6g s: %s", sc->path, tk->t, err);
         return -1;
     }

@@ -289,6 +289,8 @@ typedef struct runner_bf {
     bf_pilot_t pilot;
     double t0_s;
     float motor[BF_MOTORS];
+    long rc_every;        /* an RC frame with every rc_every-th state packet */
+    long k0;              /* the exchange of t = 0 */
     double throttle;      /* the pilot's throttle stick, [0, 1] */
     double last_thrust_N; /* what the last motor outputs gave; NaN: none yet in the air */
 } runner_bf_t;
