@@ -2,17 +2,18 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """The library inside Betaflight against the same controller flown natively.
 
-Usage: betaflight_match.py BF_TREE [--sim LADRC_SIL] [--work DIR] [--config matched|defaults|both]
+Usage: betaflight_match.py SITL_LADRC_DIR [--sim LADRC_SIL] [--work DIR] [--config matched|defaults|both]
                            [--doc FILE|-] [--bf-commit HASH] [CASE.ini ...]
 
-BF_TREE is a build copy of a Betaflight tree with the lockstep patch applied
-(tools/betaflight/patch_sitl.py), never the checkout itself: the script
-puts each case's rate-loop parameters into it with
-integrations/betaflight/apply.sh and builds its SITL (make TARGET=SITL
-EXTRA_FLAGS=-DSITL_LOCKSTEP=1; one build per distinct parameters file and
-CLI configuration, kept under DIR/<config>/sitl/). Each case (default:
-scenarios/suite, scenarios/vibration, scenarios/large_angle) is flown twice
-with the same pilot:
+SITL_LADRC_DIR is the OUTDIR of tools/betaflight_sitl.sh CHECKOUT OUTDIR --ladrc
+--ladrc-params FILE (any parameters file): its build copy OUTDIR/tree, with
+the lockstep hooks and the library in, is what the script rebuilds with each
+case's parameters (integrations/betaflight/apply.sh, then make TARGET=SITL
+OPTIONS=SITL_LOCKSTEP=1, incremental: only the parameters' header changes;
+one build per distinct parameters file and CLI configuration, kept under
+DIR/<config>/sitl/). Each case (default: scenarios/suite,
+scenarios/vibration, scenarios/large_angle) is flown twice with the same
+pilot:
 
   native      ladrc_sil CASE --controllers RATE-ADRC, [controller RATE-ADRC]
               pilot = acro, pilot_pulse = yes: the library's RATE-ADRC rate
@@ -21,8 +22,9 @@ with the same pilot:
   betaflight  ladrc_sil CASE --controllers BETAFLIGHT with that SITL: the same
               rate loop, gains (k_w, wo per axis) and airframe model (b0 from
               params.py, the case's motor lag and delay) compiled into
-              Betaflight as its rate controller; in its own network namespace
-              (the SITL's UDP ports are fixed machine-wide).
+              Betaflight as its rate controller, configured by
+              tools/betaflight/sitl.cli and the case's lines; in its own
+              network namespace (the SITL's UDP ports are fixed machine-wide).
 
 Configurations (CONFIGS below): matched (the same rotor floor, gyro low-pass
 and no RC smoothing on both sides) and defaults (Betaflight's own). It
@@ -52,11 +54,17 @@ REPO = Path(__file__).resolve().parent.parent
 DEFAULT_CASES = ["scenarios/suite/*.ini", "scenarios/vibration/*.ini", "scenarios/large_angle/*.ini"]
 AXES = ("roll", "pitch", "yaw")
 TOLERANCE = 0.05  # the acceptance: within 5 % RMS on every case and axis
-# The SITL's virtual gyro samples at 1 kHz (accgyro_virtual.h), so its PID
-# loop runs every pid_process_denom milliseconds: the case's control step
-# must be a whole number of them.
-SITL_GYRO_DT_S = 1e-3
-PID_DENOM_MAX = 8
+# The lockstep SITL's virtual gyro samples at 8 kHz (tools/betaflight/
+# patch_sitl.py), its PID loop every pid_process_denom samples (1..16,
+# Betaflight's MAX_PID_PROCESS_DENOM): the case's control step must be a
+# whole number of samples within that.
+SITL_GYRO_DT_S = 1.0 / 8000
+PID_DENOM_MAX = 16
+# The bridge sends an RC frame with every state packet at 1 kHz and slower,
+# with every n-th one faster (runner_bf.c BF_RC_PERIOD_S): a faster case's
+# sticks would change every n-th tick in Betaflight and every tick in the
+# native twin, so such a case flies at this step on both sides.
+RC_FRAME_S = 1e-3
 # The pilot's full stick (deg/s): the bridge's default and the SITL's linear
 # rate; 1.4 deg/s per microsecond of pulse.
 RATE_MAX_DEG_S = 700
@@ -68,6 +76,22 @@ MOTOR_IDLE_MAX = 2000  # Betaflight's bound on motor_idle (20 %)
 LOOP_LINE = re.compile(r"\[ladrc\] rate loop on: .* loop ([0-9.]+) s")
 TUNED_LINE = re.compile(
     r"^tuned RATE-ADRC (roll|pitch|yaw): k_att \S+ 1/s k_w (\S+) 1/s wo (\S+) rad/s", re.MULTILINE)
+
+
+# Betaflight's gyro low-pass 1 at its static default (gyro.h GYRO_LPF1_DYN_MIN_HZ_DEFAULT), a PT1.
+BF_LPF1_HZ = 250.0
+
+
+def pt1_twin_hz(cutoff_hz, samples, dt_s):
+    """The cutoff (Hz) of the library's first-order low-pass at the control
+    step dt_s (bilinear, gyro_filter.h: pole (1 - K) / (1 + K), K = tan(pi fc
+    dt)) whose pole per tick is that of Betaflight's PT1 at cutoff_hz run
+    over the `samples` gyro samples of a tick (each step y += k (x - y),
+    k = dT / (dT + 1 / (2 pi fc)), dT = dt_s / samples: pole (1 - k)^samples)."""
+    dt_gyro = dt_s / samples
+    k = dt_gyro / (dt_gyro + 1.0 / (2.0 * math.pi * cutoff_hz))
+    pole = (1.0 - k) ** samples
+    return math.atan((1.0 - pole) / (1.0 + pole)) / (math.pi * dt_s)
 
 
 class Refused(Exception):
@@ -139,9 +163,10 @@ class Case:
         self.case_dt_s, self.case_delay = dt, delay
         self.sets = []
         denom = dt / SITL_GYRO_DT_S
-        if abs(denom - round(denom)) > 1e-9 or not 1 <= round(denom) <= PID_DENOM_MAX:
-            # faster than the SITL's gyro: both fly at 1 ms with the same delay in time
-            denom, dt = 1, SITL_GYRO_DT_S
+        if dt < RC_FRAME_S - 1e-12 or abs(denom - round(denom)) > 1e-6 or not 1 <= round(denom) <= PID_DENOM_MAX:
+            # both fly at the RC frame's step, with the same delay in time
+            dt = RC_FRAME_S
+            denom = dt / SITL_GYRO_DT_S
             delay = int(round(self.case_delay * self.case_dt_s / dt))
             self.sets += [f"run.control_dt_s={dt:g}", f"sensors.delay_ticks={delay}"]
         self.pid_denom, self.dt_s, self.delay_ticks = int(round(denom)), dt, delay
@@ -153,9 +178,10 @@ class Case:
 
     def match_filters(self, ini, p):
         """Betaflight's gyro filter set to one the native twin's [filter] has
-        too: the case's low-pass when it has one, else Betaflight's own first
-        stage at its static default (a 250 Hz first order); the second
-        low-pass and the dynamic notches off (the library has no twin of them)."""
+        too: the case's low-pass when it has one; else Betaflight's own first
+        stage at its static default (a 250 Hz PT1) and natively the first
+        order with the same pole per control tick (pt1_twin_hz). The second
+        low-pass off (the SITL has no dynamic notch, no RPM filter)."""
         f = ini.get("filter", {})
         on = f.get("enabled", ("yes", 0))[0] == "yes" and "lpf_hz" in f
         if on and "notch_hz" in f:
@@ -165,20 +191,18 @@ class Case:
             self.sets.append("filter.rpm_harmonics=0")
             self.native_filter_note = "RPM notches off on both (the SITL has no RPM filter)"
         order = int(need(ini, p, "filter", "lpf_order", default=[2.0])[0]) if on else 1
-        hz = need(ini, p, "filter", "lpf_hz")[0] if on else 250.0
-        if on or hz < 0.5 / self.dt_s:
-            self.sets += ["filter.enabled=yes", "filter.angle=no", f"filter.lpf_order={order}", f"filter.lpf_hz={hz:g}"]
-        else:
-            # at or above the native loop's Nyquist frequency: Betaflight
-            # filters its 1 kHz gyro there, the native twin samples unfiltered
-            self.native_filter_note = f"Betaflight's {hz:g} Hz low-pass has no twin at {self.dt_s * 1e3:g} ms"
+        hz = need(ini, p, "filter", "lpf_hz")[0] if on else BF_LPF1_HZ
+        native_hz = hz if on else pt1_twin_hz(BF_LPF1_HZ, self.pid_denom, self.dt_s)
+        if not on:
+            self.native_filter_note = f"native first order at {native_hz:.1f} Hz"
+        self.sets += ["filter.enabled=yes", "filter.angle=no", f"filter.lpf_order={order}",
+                      f"filter.lpf_hz={native_hz:.6g}"]
         self.filter_cli = [
             "set simplified_gyro_filter = OFF",
             f"set gyro_lpf1_type = {'BIQUAD' if order == 2 else 'PT1'}",
             f"set gyro_lpf1_static_hz = {hz:g}",
             "set gyro_lpf1_dyn_min_hz = 0",
             "set gyro_lpf2_static_hz = 0",
-            "set dyn_notch_count = 0",
         ]
 
 
@@ -234,8 +258,10 @@ def params_file(case, gains, work):
 def sitl_for(case, params, tree, work):
     """A SITL folder (program, eeprom.bin) with the case's parameters and CLI
     configuration; built once per distinct pair."""
-    cli = (REPO / "tools/betaflight_match.cli").read_text().rstrip("\n").splitlines()
-    cli += [f"set pid_process_denom = {case.pid_denom}", f"set motor_idle = {case.motor_idle}"]
+    base = (REPO / "tools/betaflight/sitl.cli").read_text().splitlines()
+    cli = [line for line in base if line.strip() != "save"]  # one save, at the end
+    cli += ["# ---- tools/betaflight_match.py: the case's lines",
+            f"set pid_process_denom = {case.pid_denom}", f"set motor_idle = {case.motor_idle}"]
     cli += [f"set {axis}_rc_rate = {RATE_MAX_DEG_S // 10}" for axis in AXES]
     cli += [f"set {axis}_srate = {RATE_MAX_DEG_S // 10}" for axis in AXES]
     cli += case.filter_cli + [case.rc_smoothing_cli, "save"]
@@ -245,7 +271,7 @@ def sitl_for(case, params, tree, work):
     if (out / "eeprom.bin").is_file():
         return out
     run(["bash", str(REPO / "integrations/betaflight/apply.sh"), str(tree), str(REPO), str(params)], "apply.sh")
-    run(["make", "-C", str(tree), "TARGET=SITL", "EXTRA_FLAGS=-DSITL_LOCKSTEP=1", f"-j{os.cpu_count() or 1}"],
+    run(["make", "-C", str(tree), "TARGET=SITL", "OPTIONS=SITL_LOCKSTEP=1", f"-j{os.environ.get('JOBS', '2')}"],
         "make TARGET=SITL")
     built = Path(tree) / "obj/main/betaflight_SITL.elf"
     tmp = out.with_suffix(".tmp")
@@ -258,10 +284,14 @@ def sitl_for(case, params, tree, work):
     wrapper = tmp / "betaflight_SITL.elf"
     wrapper.write_text(f'#!/bin/sh\nexec "{out}/sitl.elf" "$@" > "{out}/last_output.txt" 2>&1\n')
     wrapper.chmod(0o755)
-    run(["unshare", "-n", "sh", "-c", "ip link set lo up; exec ./sitl.elf --config match.cli"], "SITL --config",
-        cwd=tmp)
-    if not (tmp / "eeprom.bin").is_file():
-        raise Refused(f"{tmp}: the SITL wrote no eeprom.bin from match.cli")
+    log = run(["unshare", "-n", "sh", "-c", "ip link set lo up; exec ./sitl.elf --config match.cli"],
+              "SITL --config", cwd=tmp)
+    (tmp / "config.log").write_text(log)
+    refused = [line for line in log.splitlines() if "###ERROR" in line]
+    if refused:
+        raise Refused(f"{tmp}/config.log: the SITL refused CLI lines of match.cli: " + "; ".join(refused))
+    if "EEPROM saved" not in log or not (tmp / "eeprom.bin").is_file():
+        raise Refused(f"{tmp}/config.log: the SITL saved no eeprom.bin from match.cli")
     tmp.rename(out)
     return out
 
@@ -293,13 +323,18 @@ def fly_case(case, args, work):
 
 
 def bf_commit(args):
+    """The checkout's commit as BUILD_INFO records it, or --bf-commit."""
+    info = Path(args.sitl_dir) / "BUILD_INFO"
+    text = info.read_text()
+    if "ladrc rate controller: yes" not in text:
+        raise Refused(f"{info}: not a --ladrc build (tools/betaflight_sitl.sh CHECKOUT OUTDIR --ladrc "
+                      "--ladrc-params FILE makes one)")
+    found = re.search(r"^commit: (\S+)", text, re.MULTILINE)
     if args.bf_commit:
         return args.bf_commit
-    try:
-        return subprocess.run(["git", "-C", args.tree, "rev-parse", "HEAD"], check=True, capture_output=True,
-                              text=True).stdout.strip()
-    except (subprocess.CalledProcessError, FileNotFoundError):
-        raise Refused(f"{args.tree}: not a git checkout: give its Betaflight commit with --bf-commit HASH") from None
+    if found is None or found.group(1) == "unknown":
+        raise Refused(f"{info}: no commit recorded (a checkout without git): give it with --bf-commit HASH")
+    return found.group(1)
 
 
 def relative(path):
@@ -348,7 +383,7 @@ CONFIGS = {
 
 def main(argv):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("tree", metavar="BF_TREE")
+    ap.add_argument("sitl_dir", metavar="SITL_LADRC_DIR")
     ap.add_argument("cases", nargs="*")
     ap.add_argument("--sim", default=str(REPO / "build/host-release/sim/ladrc_sil"))
     ap.add_argument("--work", default=str(REPO / "build/betaflight-match"))
@@ -363,9 +398,11 @@ def main(argv):
     names = list(CONFIGS) if args.config == "both" else [args.config]
     tables = {}
     try:
-        if not (Path(args.tree) / "src/platform/SIMULATOR/sitl_lockstep.c").is_file():
-            raise Refused(f"{args.tree}: no src/platform/SIMULATOR/sitl_lockstep.c: BF_TREE must be a Betaflight "
-                          "build copy with tools/betaflight/patch_sitl.py applied")
+        args.tree = Path(args.sitl_dir) / "tree"
+        for need in ("BUILD_INFO", "tree/src/platform/SIMULATOR/sitl_lockstep.c", "tree/src/main/ladrc"):
+            if not (Path(args.sitl_dir) / need).exists():
+                raise Refused(f"{args.sitl_dir}/{need}: missing: SITL_LADRC_DIR must be the OUTDIR of "
+                              "tools/betaflight_sitl.sh CHECKOUT OUTDIR --ladrc --ladrc-params FILE")
         if not os.access(args.sim, os.X_OK):
             raise Refused(f"{args.sim}: no ladrc_sil there (--sim PATH)")
         commit = bf_commit(args)

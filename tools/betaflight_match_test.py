@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: BSD-3-Clause
 """tools/betaflight_match.py without Betaflight: how a case is flown on both sides (its loop rate
-and delay on the SITL's 1 kHz gyro, Betaflight's motor_idle at the rotors' floor, the gyro
+and delay on the SITL's 8 kHz gyro and 1 kHz RC frames, Betaflight's motor_idle at the rotors' floor, the gyro
 filters of the matched configuration), the refusals (a missing airframe key, a floor no
 motor_idle gives, a notch with no twin), the table's ratios and misses, and a --doc pointed at
 an input (exit 2, nothing written)."""
 
+import math
 import os
 import subprocess
 import sys
@@ -48,18 +49,23 @@ class CaseTest(unittest.TestCase):
     def tearDown(self):
         self.tmp.cleanup()
 
-    def test_a_1_ms_case_flies_as_it_is_at_pid_process_denom_1(self):
+    def test_a_1_ms_case_flies_as_it_is_every_8th_gyro_sample(self):
         c = bm.Case(case_file(self.dir), bm.CONFIGS["matched"])
-        self.assertEqual((c.pid_denom, c.dt_s, c.delay_ticks), (1, 0.001, 2))
+        self.assertEqual((c.pid_denom, c.dt_s, c.delay_ticks), (8, 0.001, 2))
         self.assertNotIn("run.control_dt_s=0.001", c.sets)
 
-    def test_a_2_ms_case_runs_betaflight_every_second_gyro_sample(self):
+    def test_a_2_ms_case_runs_betaflight_every_16th_gyro_sample(self):
         c = bm.Case(case_file(self.dir, dt=0.002), bm.CONFIGS["matched"])
-        self.assertEqual((c.pid_denom, c.dt_s, c.delay_ticks), (2, 0.002, 2))
+        self.assertEqual((c.pid_denom, c.dt_s, c.delay_ticks), (16, 0.002, 2))
 
-    def test_a_case_faster_than_the_gyro_flies_at_1_ms_with_its_delay_in_time(self):
+    def test_a_case_beyond_betaflights_loop_divider_flies_at_the_rc_frame_step(self):
+        c = bm.Case(case_file(self.dir, dt=0.004), bm.CONFIGS["matched"])  # 32 gyro samples: above 16
+        self.assertEqual((c.pid_denom, c.dt_s, c.delay_ticks), (8, 0.001, 8))
+        self.assertIn("run.control_dt_s=0.001", c.sets)
+
+    def test_a_case_faster_than_the_rc_frames_flies_at_1_ms_with_its_delay_in_time(self):
         c = bm.Case(case_file(self.dir, dt=0.0005), bm.CONFIGS["matched"])
-        self.assertEqual((c.pid_denom, c.dt_s, c.delay_ticks), (1, 0.001, 1))  # 2 x 0.5 ms = 1 x 1 ms
+        self.assertEqual((c.pid_denom, c.dt_s, c.delay_ticks), (8, 0.001, 1))  # 2 x 0.5 ms = 1 x 1 ms
         self.assertIn("run.control_dt_s=0.001", c.sets)
         self.assertIn("sensors.delay_ticks=1", c.sets)
 
@@ -86,20 +92,27 @@ class CaseTest(unittest.TestCase):
                     bm.CONFIGS["matched"])
         self.assertIn("set gyro_lpf1_type = BIQUAD", c.filter_cli)
         self.assertIn("set gyro_lpf1_static_hz = 100", c.filter_cli)
-        for off in ("set gyro_lpf1_dyn_min_hz = 0", "set gyro_lpf2_static_hz = 0", "set dyn_notch_count = 0",
-                    "set simplified_gyro_filter = OFF"):
+        for off in ("set gyro_lpf1_dyn_min_hz = 0", "set gyro_lpf2_static_hz = 0", "set simplified_gyro_filter = OFF"):
             self.assertIn(off, c.filter_cli)
         self.assertIn("filter.lpf_hz=100", c.sets)
         self.assertIn("filter.rpm_harmonics=0", c.sets)  # the SITL has no RPM filter
 
-    def test_without_a_filter_both_get_a_250_hz_first_order_below_the_native_nyquist(self):
+    def test_without_a_filter_the_native_first_order_has_betaflights_pt1_pole_per_tick(self):
         c = bm.Case(case_file(self.dir), bm.CONFIGS["matched"])
         self.assertIn("set gyro_lpf1_type = PT1", c.filter_cli)
+        self.assertIn("set gyro_lpf1_static_hz = 250", c.filter_cli)
         self.assertIn("filter.lpf_order=1", c.sets)
+        # 8 PT1 steps of k = 0.1641 at 8 kHz leave 0.2387 of the last tick's output; the bilinear
+        # first order with that pole at 1 kHz: K = 0.6146, fc = atan(K) / (pi 1 ms) = 175.5 Hz
+        self.assertIn("filter.lpf_hz=175.534", c.sets)
         c2 = bm.Case(case_file(self.dir, dt=0.002), bm.CONFIGS["matched"])
-        self.assertIn("set gyro_lpf1_static_hz = 250", c2.filter_cli)
-        self.assertFalse(any(s.startswith("filter.") for s in c2.sets))  # 250 Hz is the 2 ms loop's Nyquist
-        self.assertIn("no twin at 2 ms", c2.native_filter_note)
+        self.assertIn("filter.lpf_hz=115.971", c2.sets)  # 16 steps a tick: a faster pole, below 250 Hz
+        for hz, n, dt in ((250.0, 8, 1e-3), (100.0, 16, 2e-3), (400.0, 4, 5e-4)):
+            fc = bm.pt1_twin_hz(hz, n, dt)
+            k_bilinear = math.tan(math.pi * fc * dt)
+            dt_gyro = dt / n
+            k_pt1 = dt_gyro / (dt_gyro + 1 / (2 * math.pi * hz))
+            self.assertAlmostEqual((1 - k_bilinear) / (1 + k_bilinear), (1 - k_pt1) ** n, places=12)
 
     def test_defaults_leave_the_filters_alone(self):
         c = bm.Case(case_file(self.dir, extra="[filter]\nlpf_hz = 100\n"), bm.CONFIGS["defaults"])

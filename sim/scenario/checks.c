@@ -531,6 +531,23 @@ static void check_tuning(parser_t *p)
     }
 }
 
+/* RATE-ADRC's pilot keys without pilot = acro are an error: its own
+ * attitude loop flies then, and nothing would read them. */
+static void check_pilot(parser_t *p)
+{
+    static const char *const pilot_only[] = {"pilot_pulse", "pilot_att_kp_per_s", "pilot_rate_max_deg_s"};
+    const int sec = SEC_CONTROLLER + SIM_CTRL_RATE_ADRC;
+    if (p->sc->overrides[SIM_CTRL_RATE_ADRC].radrc_pilot == 1) {
+        return;
+    }
+    for (int k = 0; k < (int)(sizeof pilot_only / sizeof pilot_only[0]); ++k) {
+        const loc_t *at = checks_seen(p, sec, pilot_only[k]);
+        if (at->line != 0) {
+            check_fail(p, at->line, at->key_col, "'%s' applies only with pilot = acro", pilot_only[k]);
+        }
+    }
+}
+
 /* ---- what the library accepts ------------------------------------------------
  *
  * The controllers, the mixer and the differentiators are initialised once
@@ -955,6 +972,7 @@ void checks_run(parser_t *p)
         check_phases(p);
         check_excitation(p);
         check_tuning(p);
+        check_pilot(p);
     } else {
         check_differentiator(p);
     }

@@ -91,6 +91,19 @@ static void test_pilot_no_flies_as_without_the_key(void)
     TEST_ASSERT_EQUAL_MEMORY(&without.rotor_w2, &no.rotor_w2, sizeof no.rotor_w2);
 }
 
+static void test_pilot_keys_without_pilot_acro_are_refused_at_their_line(void)
+{
+    static sim_scenario_t sc;
+    sim_parse_error_t perr;
+    TEST_ASSERT_NOT_EQUAL(0, sim_scenario_parse(&sc, STEP_CASE "pilot_pulse = yes\n", "pilot.ini", &perr));
+    TEST_ASSERT_EQUAL_INT(16, perr.line); /* the key, where it is given */
+    TEST_ASSERT_EQUAL_INT(1, perr.column);
+    TEST_ASSERT_NOT_NULL(strstr(perr.message, "'pilot_pulse' applies only with pilot = acro"));
+    TEST_ASSERT_NOT_EQUAL(
+        0, sim_scenario_parse(&sc, STEP_CASE "pilot = no\npilot_rate_max_deg_s = 350\n", "pilot.ini", &perr));
+    TEST_ASSERT_NOT_NULL(strstr(perr.message, "'pilot_rate_max_deg_s' applies only with pilot = acro"));
+}
+
 /* The rate a pulse carries, read back as the SITL reads it: (us - 1500) /
  * 500 of full stick, the pitch stick negated (bf_pilot.h). */
 static double pulse_rate(const bf_pilot_t *p, int axis, uint16_t us)
@@ -140,6 +153,7 @@ int main(void)
     RUN_TEST(test_a_pilot_flown_rate_adrc_tracks_a_step);
     RUN_TEST(test_a_pilot_flown_rate_adrc_tracks_a_step_through_the_pulses);
     RUN_TEST(test_pilot_no_flies_as_without_the_key);
+    RUN_TEST(test_pilot_keys_without_pilot_acro_are_refused_at_their_line);
     RUN_TEST(test_the_quantized_demand_is_the_rate_the_sticks_carry);
     return UNITY_END();
 }
