@@ -11,7 +11,8 @@ the lockstep hooks and the library in, is what the script rebuilds with each
 case's parameters (integrations/betaflight/apply.sh, then make TARGET=SITL
 OPTIONS=SITL_LOCKSTEP=1, incremental: only the parameters' header changes;
 one build per distinct parameters file and CLI configuration, kept under
-DIR/<config>/sitl/). Each case (default: scenarios/suite,
+DIR/<config>/sitl/; the tree is left with the last case's parameters,
+OUTDIR's own betaflight_SITL.elf and eeprom.bin untouched). Each case (default: scenarios/suite,
 scenarios/vibration, scenarios/large_angle) is flown twice with the same
 pilot:
 
@@ -121,7 +122,7 @@ def need(ini, path, section, key, count=1, default=None):
     if entry is None:
         if default is not None:
             return default
-        raise Refused(f"{path}: [{section}] {key} missing: params.py needs it for the SITL's airframe model")
+        raise Refused(f"{path}: [{section}] {key} missing: the match reads it (the SITL's airframe model and loop)")
     value, number = entry
     parts = value.split()
     try:
@@ -185,7 +186,8 @@ class Case:
         f = ini.get("filter", {})
         on = f.get("enabled", ("yes", 0))[0] == "yes" and "lpf_hz" in f
         if on and "notch_hz" in f:
-            raise Refused(f"{p}:{f['notch_hz'][1]}:1: [filter] notch_hz: no Betaflight twin of it in --filters matched")
+            raise Refused(f"{p}:{f['notch_hz'][1]}:1: [filter] notch_hz: no Betaflight twin of it in the matched "
+                          "configuration")
         if on and "rpm_harmonics" in f:
             # the SITL has no RPM filter (no DShot telemetry): both fly the low-pass alone
             self.sets.append("filter.rpm_harmonics=0")
