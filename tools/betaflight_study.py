@@ -176,17 +176,30 @@ def study_case(case, args, pool):
     if args.adrc:
         variants.append((BF_ADRC, args.adrc, "acro"))
     futures = {}
+    again = os.path.join(work, "BF_stock_again")  # the same run twice: the same bytes?
+    futures[pool.submit(sil, [case], again, args.sitl, "acro")] = (None, again)
     for label, folder, mode in variants:
         out = os.path.join(work, label.replace(" ", "_"))
         futures[pool.submit(sil, [case], out, folder, mode)] = (label, out)
     for fut in concurrent.futures.as_completed(futures):
         label, out = futures[fut]
         rc, err = fut.result()
+        if label is None:
+            continue
         result["metrics"][label] = load_metrics(os.path.join(out, name))
         result["speed"][label] = speed_of(err)
         if rc not in (0, 3):
             result["errors"].append("%s: exit %d: %s" % (label, rc, err.strip()[-300:]))
+    result["repeatable"] = same_bytes(os.path.join(again, name, "metrics.csv"),
+                                      os.path.join(work, "BF_stock", name, "metrics.csv"))
     return result
+
+
+def same_bytes(a, b):
+    if not (os.path.exists(a) and os.path.exists(b)):
+        return False
+    with open(a, "rb") as fa, open(b, "rb") as fb:
+        return fa.read() == fb.read()
 
 
 def value(m, controller, table, quantity, axis):
@@ -322,6 +335,11 @@ def write_doc(results, args, bf_commit, adrc_commit):
     if figure:
         out += ["![LADRC family's best over Betaflight stock](%s)" % os.path.basename(figure), ""]
     wins = sum(1 for r in rows if r[4].endswith("x") and float(r[4][:-1]) < 1.0)
+    speeds = [v for res in results for v in res["speed"].values() if math.isfinite(v)]
+    repeat = sum(1 for res in results if res["repeatable"])
+    out += ["Lockstep: Betaflight stock flown twice on each case gave the same metrics byte for byte on %d of %d "
+            "cases; every Betaflight run flew at %s-%sx real time (one ladrc_sil, one SITL)."
+            % (repeat, len(results), fmt(min(speeds) if speeds else None, 2), fmt(max(speeds) if speeds else None, 2)), ""]
     out += ["## Verdict", "",
             "The LADRC family's best at no more command noise than Betaflight stock beats it on RMS error on "
             "%d of %d case-axes." % (wins, len(rows)), ""]
@@ -342,6 +360,7 @@ def write_doc(results, args, bf_commit, adrc_commit):
     for res in results:
         out += ["### %s (`%s`)" % (res["name"], res["case"]), ""]
         speeds = ", ".join("%s %.0fx" % (k, v) for k, v in sorted(res["speed"].items()) if math.isfinite(v))
+        speeds += "; BF stock flown twice: %s" % ("the same metrics, byte for byte" if res["repeatable"] else "DIFFERENT")
         out += ["Slider picked: %d %% (step flight RMS sum per slider: %s). Speed (x real time): %s." % (
             res["slider"], ", ".join("%d: %s" % (p, fmt(res["slider_scores"][p])) for p in SLIDERS), speeds), ""]
         for e in res["errors"]:
