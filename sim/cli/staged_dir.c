@@ -134,10 +134,14 @@ static int make_parents(sim_staged_dir_t *s)
             *p = '\0';
             struct stat st;
             if (stat(buf, &st) != 0) {
-                if (mkdir(buf, 0777) != 0 || s->n_parents >= SIM_STAGED_MAX_PARENTS) {
+                if (s->n_parents >= SIM_STAGED_MAX_PARENTS) {
                     return -1;
                 }
-                snprintf(s->parents[s->n_parents++], sizeof s->parents[0], "%s", buf);
+                if (mkdir(buf, 0777) == 0) {
+                    snprintf(s->parents[s->n_parents++], sizeof s->parents[0], "%s", buf);
+                } else if (errno != EEXIST || stat(buf, &st) != 0 || !S_ISDIR(st.st_mode)) {
+                    return -1; /* EEXIST: another run made it since the stat; it is not ours to remove */
+                }
             } else if (!S_ISDIR(st.st_mode)) {
                 errno = ENOTDIR;
                 return -1;

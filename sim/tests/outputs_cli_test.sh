@@ -222,5 +222,17 @@ tool_case filter "$gen" "" file "0" "$bin/ladrc_filter" INPUT --format generic -
 tool_case views "$bf" "" dir "0" "$bin/ladrc_views" --out OUT A=INPUT
 tool_case views_reference "$bf" "" file "0" "$bin/ladrc_views" --reference OUT INPUT
 
+# Runs at once whose output folders share parents none has made yet: each makes what is missing,
+# none fails because another made a parent first (a mkdir that meets EEXIST after its stat).
+pids=()
+for i in 1 2 3 4 5 6 7 8; do
+    "$bin/ladrc_sil" "$work/short.ini" --out "$work/together/a/b/c/run$i" --no-csv --quiet > /dev/null 2> "$work/together_$i.err" &
+    pids+=($!)
+done
+together=0
+for p in "${pids[@]}"; do wait "$p" || together=1; done
+[ $together -eq 0 ] || cat "$work"/together_*.err
+check sil_runs_at_once_share_new_parents $together
+
 echo "outputs_cli_test.sh: $failures failure(s)"
 [ "$failures" -eq 0 ]
