@@ -245,15 +245,19 @@ def value(m, controller, table, quantity, axis):
     return v if is_number(v) else None
 
 
-def row_values(res, label, axis):
-    """(RMS deg, steady band deg, command noise N m) of a column, or None where it did not fly. A
-    family member's label ending in MATCHED_SUFFIX is its run under Betaflight's noise caps."""
+def column_source(res, label):
+    """(metrics, controller) of a column: a Betaflight run, a family member's run under
+    Betaflight's noise caps (its label ends in MATCHED_SUFFIX) or a library controller's."""
     if label in BF_RUNS:
-        m, c = res["metrics"].get(label), "BETAFLIGHT"
-    elif label.endswith(MATCHED_SUFFIX):
-        m, c = res["metrics"].get(MATCHED), label[:-len(MATCHED_SUFFIX)]
-    else:
-        m, c = res["metrics"].get("library"), label
+        return res["metrics"].get(label), "BETAFLIGHT"
+    if label.endswith(MATCHED_SUFFIX):
+        return res["metrics"].get(MATCHED), label[:-len(MATCHED_SUFFIX)]
+    return res["metrics"].get("library"), label
+
+
+def row_values(res, label, axis):
+    """(RMS deg, steady band deg, command noise N m) of a column, or None where it did not fly."""
+    m, c = column_source(res, label)
     if m is None or untunable(m, c) or divergence_text(m, c) is not None:
         return None
     rms, band, noise = (value(m, c, "4", "error_rms_deg", axis), value(m, c, "5", "steady_band_deg", axis),
@@ -262,12 +266,8 @@ def row_values(res, label, axis):
 
 
 def why_not(res, label):
-    if label in BF_RUNS:
-        m, c = res["metrics"].get(label), "BETAFLIGHT"
-    elif label.endswith(MATCHED_SUFFIX):
-        m, c = res["metrics"].get(MATCHED), label[:-len(MATCHED_SUFFIX)]
-    else:
-        m, c = res["metrics"].get("library"), label
+    """Why a column has no figures: not flown, failed, untunable or its divergence."""
+    m, c = column_source(res, label)
     if m is None and label == BF_ANGLE and flips(res["case"]):
         return "not flown (past angle mode's limit)"
     if m is None:
