@@ -366,7 +366,7 @@ def write_figure(rows, results, path):
     ax.set_yticklabels(labels, fontsize=7)
     ax.invert_yaxis()
     ax.set_xscale("log")
-    ax.set_xlabel("RMS error: LADRC family's best / Betaflight stock (grey: only at more command noise, a loss)")
+    ax.set_xlabel("RMS error: family's best / Betaflight stock\n(grey: a loss, the family only at more command noise)")
     fig.tight_layout()
     save_figure(fig, path, dpi=110)
     plt.close(fig)
