@@ -42,6 +42,7 @@ typedef enum { BF_MODE_ACRO = 0, BF_MODE_ANGLE = 1 } bf_mode_t;
  * attitude by sight */
 #define BF_RATE_MAX_DEG_S_DEFAULT 700.0
 #define BF_PILOT_ATT_KP_DEFAULT 6.0
+#define BF_ANGLE_LIMIT_DEG_DEFAULT 60.0 /* Betaflight's angle_limit default */
 
 typedef struct {
     bf_mode_t mode;

@@ -21,7 +21,6 @@
 
 #define BF_WARMUP_S_DEFAULT 2.0
 #define BF_ARM_WAIT_S 2.0
-#define BF_ANGLE_LIMIT_DEG_DEFAULT 60.0 /* Betaflight's angle_limit default */
 #define SEA_LEVEL_PA 101325.0
 /* The RC link's frame period: Betaflight takes frames closer than some
  * 0.8 ms for a broken link and leaves its sticks where they were, so the
@@ -42,11 +41,6 @@ static const int BF_TO_PLANT[BF_MOTORS] = {0, 3, 1, 2};
  * attitude estimate tilts nose down for nose up and angle mode diverges. */
 static const double BF_GYRO_SIGN[3] = {1.0, 1.0, -1.0};
 static const double BF_ACCEL_SIGN[3] = {-1.0, 1.0, 1.0};
-
-static double or_default(double v, double d)
-{
-    return isnan(v) ? d : v;
-}
 
 /* The ESC command c in [0, 1] that gives a rotor w2 (the inverse of
  * runner_command_w2). */
@@ -121,12 +115,8 @@ int runner_bf_open(const sim_scenario_t *sc, attitude_run_t *r, char *err, size_
     bf->link.sock = -1;
     bf->last_thrust_N = NAN;
     r->bf = bf;
-    const bf_pilot_config_t pc = {
-        .mode = o->bf_mode < 0 ? BF_MODE_ACRO : (bf_mode_t)o->bf_mode,
-        .rate_max_rad_s = or_default(o->bf_rate_max_deg_s, BF_RATE_MAX_DEG_S_DEFAULT) / RAD2DEG,
-        .angle_limit_rad = or_default(o->bf_angle_limit_deg, BF_ANGLE_LIMIT_DEG_DEFAULT) / RAD2DEG,
-        .att_kp_per_s = or_default(o->bf_att_kp_per_s, BF_PILOT_ATT_KP_DEFAULT),
-        .dt_s = sc->control_dt_s};
+    bf_pilot_config_t pc;
+    runner_pilot_config(sc, o, o->bf_mode < 0 ? BF_MODE_ACRO : (bf_mode_t)o->bf_mode, &pc);
     bf_pilot_init(&bf->pilot, &pc);
     const double dt = sc->control_dt_s;
     bf->rc_every = (long)ceil(BF_RC_PERIOD_S / dt - 1e-9);
@@ -139,7 +129,7 @@ int runner_bf_open(const sim_scenario_t *sc, attitude_run_t *r, char *err, size_
     if (bf_link_open(&bf->link, dir, o->bf_timeout_ms, &rc, &s, bf->motor, err, err_len) != 0) {
         return -1;
     }
-    const long warmup = lround(or_default(o->bf_warmup_s, BF_WARMUP_S_DEFAULT) / dt);
+    const long warmup = lround((isnan(o->bf_warmup_s) ? BF_WARMUP_S_DEFAULT : o->bf_warmup_s) / dt);
     long k = 1;
     for (; k <= warmup; ++k) {
         bf_pilot_sticks(&bf->pilot, (double)k * dt, ref0, still, 0.0, 0, &rc);

@@ -272,6 +272,11 @@ double runner_command_w2(const sim_scenario_t *sc, double c);
  * acro, in the Euler frame (the pilot gives body rates); others unchanged. */
 void runner_pilot_configure(const sim_scenario_t *sc, sim_controller_id_t id, ladrc_attitude_config_t *cfg);
 
+/* The pilot's configuration from a controller's keys (rate_max_deg_s,
+ * angle_limit_deg, pilot_att_kp_per_s, their defaults where not given): the
+ * BETAFLIGHT run's and a piloted RATE-ADRC's alike. */
+void runner_pilot_config(const sim_scenario_t *sc, const sim_overrides_t *o, bf_mode_t mode, bf_pilot_config_t *pc);
+
 /* Sets r's pilot up when controller id is flown by one (sim_setup_piloted). */
 void runner_pilot_open(const sim_scenario_t *sc, sim_controller_id_t id, attitude_run_t *r);
 

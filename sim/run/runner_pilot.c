@@ -31,13 +31,23 @@ void runner_pilot_open(const sim_scenario_t *sc, sim_controller_id_t id, attitud
     const sim_overrides_t *o = &sc->overrides[id];
     r->piloted = sim_setup_piloted(sc, id);
     r->pilot_pulse = o->radrc_pilot_pulse == 1;
-    const bf_pilot_config_t pc = {
-        .mode = BF_MODE_ACRO,
-        .rate_max_rad_s = (isnan(o->bf_rate_max_deg_s) ? BF_RATE_MAX_DEG_S_DEFAULT : o->bf_rate_max_deg_s) / RAD2DEG,
-        .angle_limit_rad = NAN, /* acro only */
-        .att_kp_per_s = isnan(o->bf_att_kp_per_s) ? BF_PILOT_ATT_KP_DEFAULT : o->bf_att_kp_per_s,
-        .dt_s = sc->control_dt_s};
+    bf_pilot_config_t pc;
+    runner_pilot_config(sc, o, BF_MODE_ACRO, &pc);
     bf_pilot_init(&r->pilot, &pc);
+}
+
+static double or_default(double v, double d)
+{
+    return isnan(v) ? d : v;
+}
+
+void runner_pilot_config(const sim_scenario_t *sc, const sim_overrides_t *o, bf_mode_t mode, bf_pilot_config_t *pc)
+{
+    pc->mode = mode;
+    pc->rate_max_rad_s = or_default(o->bf_rate_max_deg_s, BF_RATE_MAX_DEG_S_DEFAULT) / RAD2DEG;
+    pc->angle_limit_rad = or_default(o->bf_angle_limit_deg, BF_ANGLE_LIMIT_DEG_DEFAULT) / RAD2DEG;
+    pc->att_kp_per_s = or_default(o->bf_att_kp_per_s, BF_PILOT_ATT_KP_DEFAULT);
+    pc->dt_s = sc->control_dt_s;
 }
 
 void runner_pilot_rates(const sim_scenario_t *sc, attitude_run_t *r, const tick_t *tk, ladrc_real_t rate_sp[3])
